@@ -1,0 +1,466 @@
+//! The window demo (winit 0.30 + ash-window): orbit camera, live switching of driver, submission
+//! mode, level, LOD, wireframe and a CPU animation of the coarse mesh. The window title is the
+//! HUD: fps, GPU frame time from timestamp queries, coarse and refined triangle counts, GPU
+//! geometry bytes; the terminal gets the key help.
+//!
+//! One frame in flight: each frame waits for the previous frame's fence before it writes uniforms
+//! or records, or rebuilds anything, so nothing in flight is ever changed or destroyed.
+
+use crate::gpu::{
+    surface_extensions, vk, Buffer, BufferDesc, CommandPool, Context, ContextDesc, Fence, Messages,
+    QueryPools, Semaphore, Swapchain, DEPTH_FORMAT,
+};
+use crate::mesh::Mesh;
+use crate::pattern::triangle_count;
+use crate::render::frame::{cmd_render, FrameWork, TargetView};
+use crate::render::{Camera, DrawConfig, Driver, FrameUniforms, Renderer, Scene, Submit};
+use anyhow::{anyhow, Context as _, Result};
+use raw_window_handle::{HasDisplayHandle, HasWindowHandle};
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::time::Instant;
+use winit::application::ApplicationHandler;
+use winit::event::{ElementState, MouseButton, MouseScrollDelta, WindowEvent};
+use winit::event_loop::{ActiveEventLoop, EventLoop};
+use winit::keyboard::{Key, NamedKey};
+use winit::window::{Window, WindowId};
+
+/// Options of `meshrefine view`.
+#[derive(Clone, Debug)]
+pub struct ViewOptions {
+    pub cfg: DrawConfig,
+    /// Exit after this many frames.
+    pub frames: Option<u64>,
+    /// Save the last frame here.
+    pub screenshot: Option<PathBuf>,
+    pub wireframe: bool,
+    pub animate: bool,
+}
+
+pub const KEY_HELP: &str = "keys: drag = orbit, wheel = zoom, 1/2/3 = static/pattern/tess, \
+P/U/I = push/ubo/instanced, +/- = level, L = LOD by distance, W = wireframe, A = animate, Esc = quit";
+
+/// Run the demo until the window closes (or `frames` frames). Returns the context's message list
+/// so the caller can check validation and leaks after everything is dropped.
+pub fn run(desc: ContextDesc, mesh: Mesh, opts: ViewOptions) -> Result<Arc<Messages>> {
+    let event_loop =
+        EventLoop::new().context("cannot open the window system (is DISPLAY set correctly?)")?;
+    let mut app = App {
+        desc,
+        mesh: Some(mesh),
+        opts,
+        state: None,
+        error: None,
+        messages: None,
+    };
+    event_loop
+        .run_app(&mut app)
+        .context("window event loop failed")?;
+    app.state = None; // drop every Vulkan object before reporting
+    if let Some(e) = app.error {
+        return Err(e);
+    }
+    app.messages
+        .ok_or_else(|| anyhow!("the window was never shown"))
+}
+
+struct App {
+    desc: ContextDesc,
+    mesh: Option<Mesh>,
+    opts: ViewOptions,
+    state: Option<State>,
+    error: Option<anyhow::Error>,
+    messages: Option<Arc<Messages>>,
+}
+
+/// Field order is drop order: GPU objects first, the window last.
+struct State {
+    scene: Scene,
+    base_mesh: Mesh,
+    renderer: Renderer,
+    queries: QueryPools,
+    screenshot_buffer: Option<Buffer>,
+    cmd: vk::CommandBuffer,
+    pool: CommandPool,
+    fence: Fence,
+    acquired: Semaphore,
+    rendered: Vec<Semaphore>,
+    swapchain: Swapchain,
+    ctx: Arc<Context>,
+    window: Arc<Window>,
+    camera: Camera,
+    cfg: DrawConfig,
+    max_level: u32,
+    wireframe: bool,
+    animate: bool,
+    lod: bool,
+    start: Instant,
+    frames: u64,
+    recorded_once: bool,
+    resize: bool,
+    drag: Option<(f64, f64)>,
+    cursor: (f64, f64),
+    fps_window: (Instant, u64),
+    gpu_ms: f64,
+}
+
+impl ApplicationHandler for App {
+    fn resumed(&mut self, event_loop: &ActiveEventLoop) {
+        if self.state.is_some() {
+            return;
+        }
+        match self.create(event_loop) {
+            Ok(s) => {
+                self.messages = Some(s.ctx.messages_handle());
+                self.state = Some(s);
+            }
+            Err(e) => {
+                self.error = Some(e);
+                event_loop.exit();
+            }
+        }
+    }
+
+    fn window_event(&mut self, event_loop: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
+        let Some(s) = self.state.as_mut() else { return };
+        match event {
+            WindowEvent::CloseRequested => event_loop.exit(),
+            WindowEvent::Resized(_) => s.resize = true,
+            WindowEvent::MouseInput {
+                state,
+                button: MouseButton::Left,
+                ..
+            } => {
+                s.drag = (state == ElementState::Pressed).then_some(s.cursor);
+            }
+            WindowEvent::CursorMoved { position, .. } => {
+                s.cursor = (position.x, position.y);
+                if let Some((x, y)) = s.drag {
+                    s.camera.orbit(
+                        ((position.x - x) * 0.01) as f32,
+                        ((position.y - y) * 0.01) as f32,
+                    );
+                    s.drag = Some(s.cursor);
+                }
+            }
+            WindowEvent::MouseWheel { delta, .. } => {
+                let d = match delta {
+                    MouseScrollDelta::LineDelta(_, y) => y,
+                    MouseScrollDelta::PixelDelta(p) => p.y as f32 / 40.0,
+                };
+                s.camera.zoom(0.9f32.powf(d));
+            }
+            WindowEvent::KeyboardInput { event, .. } if event.state == ElementState::Pressed => {
+                if !s.key(&event.logical_key) {
+                    event_loop.exit();
+                }
+            }
+            WindowEvent::RedrawRequested => match s.frame(&self.opts) {
+                Ok(true) => {}
+                Ok(false) => event_loop.exit(),
+                Err(e) => {
+                    self.error = Some(e);
+                    event_loop.exit();
+                }
+            },
+            _ => {}
+        }
+    }
+
+    fn about_to_wait(&mut self, _event_loop: &ActiveEventLoop) {
+        if let Some(s) = &self.state {
+            s.window.request_redraw();
+        }
+    }
+}
+
+impl App {
+    fn create(&mut self, event_loop: &ActiveEventLoop) -> Result<State> {
+        let attrs = Window::default_attributes()
+            .with_title("meshrefine")
+            .with_inner_size(winit::dpi::LogicalSize::new(1280.0, 720.0));
+        let window = Arc::new(
+            event_loop
+                .create_window(attrs)
+                .context("cannot create a window")?,
+        );
+        let display = window
+            .display_handle()
+            .map_err(|e| anyhow!("no display handle: {e}"))?
+            .as_raw();
+        let handle = window
+            .window_handle()
+            .map_err(|e| anyhow!("no window handle: {e}"))?
+            .as_raw();
+        let mut desc = self.desc.clone();
+        desc.surface_extensions = surface_extensions(display)?;
+        let ctx = Context::new(&desc)?;
+        let size = window.inner_size();
+        let swapchain = Swapchain::new(&ctx, display, handle, (size.width, size.height))?;
+        let renderer = Renderer::new(&ctx, swapchain.format, DEPTH_FORMAT)?;
+        let pool = CommandPool::new(&ctx, "window commands")?;
+        let cmd = pool.allocate(1)?[0];
+        let mesh = self.mesh.take().expect("created once");
+        let cfg = self.opts.cfg;
+        let max_level = cfg.level;
+        let scene = Scene::new(&ctx, &pool, &renderer, mesh.clone(), max_level)?;
+        let (c, r) = scene.bounding_sphere();
+        let rendered = (0..swapchain.images.len())
+            .map(|i| Semaphore::new(&ctx, &format!("rendered {i}")))
+            .collect::<Result<Vec<_>, _>>()?;
+        println!("{KEY_HELP}");
+        Ok(State {
+            base_mesh: mesh,
+            scene,
+            queries: QueryPools::new(&ctx, 1)?,
+            screenshot_buffer: None,
+            cmd,
+            fence: Fence::new(&ctx, true, "frame fence")?,
+            acquired: Semaphore::new(&ctx, "acquired")?,
+            rendered,
+            renderer,
+            pool,
+            swapchain,
+            ctx,
+            window,
+            camera: Camera::framing(c, r),
+            cfg,
+            max_level,
+            wireframe: self.opts.wireframe,
+            animate: self.opts.animate,
+            lod: false,
+            start: Instant::now(),
+            frames: 0,
+            recorded_once: false,
+            resize: false,
+            drag: None,
+            cursor: (0.0, 0.0),
+            fps_window: (Instant::now(), 0),
+            gpu_ms: 0.0,
+        })
+    }
+}
+
+impl State {
+    /// Handle a key; false quits.
+    fn key(&mut self, key: &Key) -> bool {
+        let levels: Vec<u32> = self.scene.patterns.levels().collect();
+        let pos = levels
+            .iter()
+            .position(|&l| l == self.cfg.level)
+            .unwrap_or(0);
+        match key {
+            Key::Named(NamedKey::Escape) => return false,
+            Key::Character(c) => match c.as_str() {
+                "1" => self.cfg.driver = Driver::Static,
+                "2" => self.cfg.driver = Driver::Pattern,
+                "3" => self.cfg.driver = Driver::Tess,
+                "p" | "P" => (self.cfg.driver, self.cfg.submit) = (Driver::Pattern, Submit::Push),
+                "u" | "U" => (self.cfg.driver, self.cfg.submit) = (Driver::Pattern, Submit::Ubo),
+                "i" | "I" => {
+                    (self.cfg.driver, self.cfg.submit) = (Driver::Pattern, Submit::Instanced)
+                }
+                "+" | "=" => self.cfg.level = levels[(pos + 1).min(levels.len() - 1)],
+                "-" | "_" => self.cfg.level = levels[pos.saturating_sub(1)],
+                "w" | "W" => self.wireframe = !self.wireframe,
+                "a" | "A" => self.animate = !self.animate,
+                "l" | "L" => self.lod = !self.lod,
+                _ => {}
+            },
+            _ => {}
+        }
+        true
+    }
+
+    /// Draw one frame; false once the requested frame count is reached.
+    fn frame(&mut self, opts: &ViewOptions) -> Result<bool> {
+        let size = self.window.inner_size();
+        if size.width == 0 || size.height == 0 {
+            return Ok(true); // minimised: pause rendering
+        }
+        self.fence.wait()?;
+        if self.recorded_once {
+            self.gpu_ms = self.queries.gpu_ms(0)?;
+        }
+        if self.resize {
+            self.ctx.wait_idle()?;
+            self.swapchain.recreate((size.width, size.height))?;
+            self.resize = false;
+        }
+        if self.animate {
+            let t = self.start.elapsed().as_secs_f32();
+            self.scene.update_mesh(self.base_mesh.animated(t, 0.04));
+        }
+        if self.lod {
+            let (_, r) = self.scene.bounding_sphere();
+            self.cfg.level = self
+                .scene
+                .patterns
+                .level_for_distance(self.camera.distance, r);
+        }
+        let mut cfg = self.cfg;
+        if cfg.driver == Driver::Tess
+            && crate::render::tess::check_level(&self.ctx, cfg.level).is_err()
+        {
+            // Show the finest level the tessellator can make rather than failing mid-demo.
+            let max = self.ctx.info.limits.max_tessellation_generation_level;
+            cfg.level = self
+                .scene
+                .patterns
+                .levels()
+                .filter(|&l| l <= max)
+                .last()
+                .unwrap_or(1);
+        }
+        self.scene
+            .prepare(&self.ctx, &self.pool, &mut self.renderer, &cfg, false)?;
+
+        let Some(image) = self.swapchain.acquire(self.acquired.raw)? else {
+            self.resize = true;
+            return Ok(true);
+        };
+        let last = opts.frames.is_some_and(|n| self.frames + 1 >= n);
+        let screenshot = last && opts.screenshot.is_some();
+        let extent = self.swapchain.extent;
+        if screenshot {
+            self.screenshot_buffer = Some(Buffer::new(
+                &self.ctx,
+                BufferDesc::new_readback(
+                    extent.width as u64 * extent.height as u64 * 4,
+                    vk::BufferUsageFlags::empty(),
+                ),
+                "screenshot",
+            )?);
+        }
+        let eye = self.camera.eye();
+        self.renderer.set_frame(&FrameUniforms {
+            view_proj: self
+                .camera
+                .view_proj(extent.width as f32 / extent.height as f32)
+                .to_cols_array_2d(),
+            eye: eye.extend(1.0).to_array(),
+            light_dir: (eye - self.camera.target
+                + glam::Vec3::new(0.3, 0.8, 0.2) * self.camera.distance)
+                .normalize()
+                .extend(0.0)
+                .to_array(),
+            base_color: [0.80, 0.55, 0.35, 1.0],
+            options: [if self.wireframe { 1.0 } else { 0.0 }, 1.2, 0.0, 0.0],
+        });
+        let depth = self.swapchain.depth.as_ref().expect("depth image exists");
+        let target = TargetView {
+            color: image.image,
+            color_view: image.view,
+            depth: depth.raw,
+            depth_view: depth.view,
+            extent,
+            final_layout: if screenshot {
+                vk::ImageLayout::TRANSFER_SRC_OPTIMAL
+            } else {
+                vk::ImageLayout::PRESENT_SRC_KHR
+            },
+        };
+        let work = FrameWork {
+            mesh: &self.scene.gpu,
+            records: &self.scene.data.records,
+            static_vbo: self.scene.static_vbo.as_ref(),
+            cfg,
+            capture: false,
+            clear: [0.08, 0.09, 0.11, 1.0],
+        };
+        let screenshot_buffer = self.screenshot_buffer.as_ref().filter(|_| screenshot);
+        self.pool.record(self.cmd, |cmd| {
+            cmd_render(
+                cmd,
+                &self.renderer,
+                &target,
+                &work,
+                Some((&self.queries, 0)),
+            );
+            if let Some(buf) = screenshot_buffer {
+                cmd.copy_image_to_buffer(image.image, extent, buf);
+                cmd.barrier_to_host();
+                cmd.transition(
+                    image.image,
+                    vk::ImageAspectFlags::COLOR,
+                    vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+                    vk::ImageLayout::PRESENT_SRC_KHR,
+                );
+            }
+        })?;
+        self.fence.reset()?;
+        let rendered = &self.rendered[image.index as usize];
+        self.pool
+            .submit(self.cmd, &self.acquired, rendered, &self.fence)?;
+        self.recorded_once = true;
+        let stale = self.swapchain.present(image.index, rendered.raw)? || image.suboptimal;
+        if stale {
+            self.resize = true;
+        }
+        self.frames += 1;
+        self.update_title(&cfg);
+        if screenshot {
+            self.fence.wait()?;
+            let path = opts.screenshot.as_ref().unwrap();
+            self.save_screenshot(path)?;
+            println!("saved {}", path.display());
+        }
+        Ok(!last)
+    }
+
+    fn save_screenshot(&mut self, path: &std::path::Path) -> Result<()> {
+        let buf = self.screenshot_buffer.take().expect("screenshot buffer");
+        let e = self.swapchain.extent;
+        let mut rgba = buf.mapped()[..(e.width * e.height * 4) as usize].to_vec();
+        if matches!(
+            self.swapchain.format,
+            vk::Format::B8G8R8A8_SRGB | vk::Format::B8G8R8A8_UNORM
+        ) {
+            for px in rgba.chunks_exact_mut(4) {
+                px.swap(0, 2);
+            }
+        }
+        for px in rgba.chunks_exact_mut(4) {
+            px[3] = 255;
+        }
+        crate::gpu::Readback {
+            width: e.width,
+            height: e.height,
+            rgba,
+        }
+        .save_png(path)
+        .with_context(|| format!("cannot write '{}'", path.display()))
+    }
+
+    fn update_title(&mut self, cfg: &DrawConfig) {
+        let (t0, n0) = self.fps_window;
+        let dt = t0.elapsed().as_secs_f64();
+        if dt < 0.5 {
+            return;
+        }
+        let fps = (self.frames - n0) as f64 / dt;
+        self.fps_window = (Instant::now(), self.frames);
+        let coarse = self.scene.gpu.triangle_count as u64;
+        let bytes = self.scene.geometry_bytes(cfg.driver, cfg.level);
+        self.window.set_title(&format!(
+            "meshrefine | {} level {}{}{}{} | {:.0} fps | GPU {:.2} ms | {} -> {} triangles | {:.2} MB geometry | max level {}",
+            cfg.label(),
+            cfg.level,
+            if self.lod { " (LOD)" } else { "" },
+            if self.wireframe { " wire" } else { "" },
+            if self.animate { " animated" } else { "" },
+            fps,
+            self.gpu_ms,
+            coarse,
+            coarse * triangle_count(cfg.level) as u64,
+            bytes as f64 / 1e6,
+            self.max_level,
+        ));
+    }
+}
+
+impl Drop for State {
+    fn drop(&mut self) {
+        let _ = self.ctx.wait_idle();
+    }
+}

@@ -1,0 +1,325 @@
+//! Benchmarks shared by `cargo bench` (benches/fig7.rs) and `meshrefine bench`: every driver and
+//! submission mode on the same meshes and levels, in the same run, so the ratios against `static`
+//! compare like with like. Frame time from GPU timestamps and wall clock (submit to fence), median
+//! and spread over timed frames after one warm-up frame (Mesa compiles shaders at the first draw).
+//! Timings are measured, never asserted.
+
+use crate::gpu::{Context, GpuError};
+use crate::mesh::Mesh;
+use crate::pattern::{index_count, vertex_count, PatternSet};
+use crate::render::{Camera, DrawConfig, Driver, Headless, Scene, Submit};
+use crate::surface::CoarseTri;
+use glam::Vec3;
+use std::fmt::Write as _;
+use std::sync::Arc;
+
+#[derive(Clone, Debug)]
+pub struct BenchOptions {
+    pub levels: Vec<u32>,
+    pub frames: u32,
+    pub width: u32,
+    pub height: u32,
+}
+
+/// Median, min and max of a sample.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Stat {
+    pub median: f64,
+    pub min: f64,
+    pub max: f64,
+}
+
+impl Stat {
+    pub fn of(v: &[f64]) -> Self {
+        let mut s = v.to_vec();
+        s.sort_by(f64::total_cmp);
+        if s.is_empty() {
+            return Self::default();
+        }
+        let n = s.len();
+        let median = if n % 2 == 1 {
+            s[n / 2]
+        } else {
+            0.5 * (s[n / 2 - 1] + s[n / 2])
+        };
+        Self {
+            median,
+            min: s[0],
+            max: s[n - 1],
+        }
+    }
+}
+
+#[derive(Clone, Debug)]
+pub struct Row {
+    pub mesh: String,
+    pub coarse_triangles: u32,
+    pub level: u32,
+    pub variant: String,
+    pub refined_triangles: u64,
+    pub gpu_ms: Option<Stat>,
+    pub wall_ms: Option<Stat>,
+    /// Vertices and indices of refined geometry stored on the GPU.
+    pub stored_vertices: u64,
+    pub stored_indices: u64,
+    pub geometry_bytes: u64,
+    /// GPU and wall time relative to `static` at the same mesh and level (same run).
+    pub gpu_ratio: Option<f64>,
+    pub wall_ratio: Option<f64>,
+    pub note: String,
+}
+
+pub struct Report {
+    pub device: String,
+    pub frames: u32,
+    pub width: u32,
+    pub height: u32,
+    pub rows: Vec<Row>,
+}
+
+/// The variants measured, `static` first (the reference of the ratios).
+pub fn variants() -> Vec<(Driver, Submit)> {
+    vec![
+        (Driver::Static, Submit::Instanced),
+        (Driver::Pattern, Submit::Push),
+        (Driver::Pattern, Submit::Ubo),
+        (Driver::Pattern, Submit::Instanced),
+        (Driver::Tess, Submit::Instanced),
+    ]
+}
+
+/// A planar grid of exactly `triangles` triangles (an even count) facing +z, 1 unit tall:
+/// the coarse meshes of the 2005 paper's Fig. 7 are "10, 100, 1000 triangles".
+pub fn grid_mesh(triangles: u32) -> Mesh {
+    let quads = (triangles / 2).max(1);
+    let mut cols = (quads as f64).sqrt().ceil() as u32;
+    while quads % cols != 0 {
+        cols += 1;
+    }
+    let rows = quads / cols;
+    let mut positions = Vec::new();
+    for j in 0..=rows {
+        for i in 0..=cols {
+            positions.push(Vec3::new(
+                i as f32 / rows as f32,
+                j as f32 / rows as f32,
+                0.0,
+            ));
+        }
+    }
+    let mut tris = Vec::new();
+    let at = |i: u32, j: u32| j * (cols + 1) + i;
+    for j in 0..rows {
+        for i in 0..cols {
+            tris.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+            tris.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+        }
+    }
+    let (mut mesh, _) =
+        Mesh::from_parts("grid", positions, None, tris).expect("a grid is a valid mesh");
+    mesh.name = format!("grid{}", 2 * quads);
+    mesh
+}
+
+fn footprint(driver: Driver, level: u32, triangles: u64) -> (u64, u64, u64) {
+    let records = triangles * std::mem::size_of::<CoarseTri>() as u64;
+    let bytes = crate::render::geometry_bytes(driver, level, triangles, records);
+    let (pv, pi) = (vertex_count(level) as u64, index_count(level) as u64);
+    match driver {
+        Driver::Static => (triangles * pv, triangles * (pi + 1) - 1, bytes),
+        Driver::Pattern => (pv, pi, bytes),
+        Driver::Tess => (0, 0, bytes),
+    }
+}
+
+/// Measure every variant on every mesh at every level.
+pub fn run(ctx: Arc<Context>, meshes: &[Mesh], opts: &BenchOptions) -> Result<Report, GpuError> {
+    let device = ctx.info.describe();
+    let max_tess = ctx.info.limits.max_tessellation_generation_level;
+    let mut h = Headless::with_context(ctx.clone(), opts.width, opts.height)?;
+    let mut rows = Vec::new();
+    for mesh in meshes {
+        let mut scene: Scene = Scene::with_patterns(
+            &h.ctx,
+            &h.pool,
+            &h.renderer,
+            mesh.clone(),
+            PatternSet::from_levels(&opts.levels),
+        )?;
+        let (c, r) = scene.bounding_sphere();
+        let camera = Camera::framing(c, r);
+        let t = scene.gpu.triangle_count;
+        for &level in &opts.levels {
+            let mut reference: Option<(f64, f64)> = None;
+            for (driver, submit) in variants() {
+                let cfg = DrawConfig::new(driver, submit, level);
+                let (stored_vertices, stored_indices, geometry_bytes) =
+                    footprint(driver, level, t as u64);
+                let mut row = Row {
+                    mesh: mesh.name.clone(),
+                    coarse_triangles: t,
+                    level,
+                    variant: cfg.label(),
+                    refined_triangles: t as u64 * level as u64 * level as u64,
+                    gpu_ms: None,
+                    wall_ms: None,
+                    stored_vertices,
+                    stored_indices,
+                    geometry_bytes,
+                    gpu_ratio: None,
+                    wall_ratio: None,
+                    note: String::new(),
+                };
+                if driver == Driver::Tess && level > max_tess {
+                    row.note =
+                        format!("not drawn: level > maxTessellationGenerationLevel ({max_tess})");
+                    rows.push(row);
+                    continue;
+                }
+                h.draw(&mut scene, &cfg, &camera)?; // warm-up: shader compilation, static VBO build
+                let mut gpu = Vec::new();
+                let mut wall = Vec::new();
+                for _ in 0..opts.frames.max(1) {
+                    let f = h.draw(&mut scene, &cfg, &camera)?;
+                    gpu.push(f.gpu_ms);
+                    wall.push(f.wall_ms);
+                }
+                let (g, w) = (Stat::of(&gpu), Stat::of(&wall));
+                if driver == Driver::Static {
+                    reference = Some((g.median, w.median));
+                }
+                if let Some((rg, rw)) = reference {
+                    row.gpu_ratio = Some(g.median / rg);
+                    row.wall_ratio = Some(w.median / rw);
+                }
+                row.gpu_ms = Some(g);
+                row.wall_ms = Some(w);
+                log::info!(
+                    "{} L{} {}: gpu {:.2} ms wall {:.2} ms",
+                    row.mesh,
+                    level,
+                    row.variant,
+                    g.median,
+                    w.median
+                );
+                rows.push(row);
+            }
+            // Free the static buffers of this level before the next one.
+            scene.static_vbo = None;
+        }
+    }
+    Ok(Report {
+        device,
+        frames: opts.frames,
+        width: opts.width,
+        height: opts.height,
+        rows,
+    })
+}
+
+fn fmt_stat(s: &Option<Stat>) -> String {
+    s.map(|s| format!("{:.2} ({:.2}–{:.2})", s.median, s.min, s.max))
+        .unwrap_or_else(|| "–".into())
+}
+
+fn fmt_ratio(r: Option<f64>) -> String {
+    r.map(|r| format!("{r:.2}")).unwrap_or_else(|| "–".into())
+}
+
+impl Report {
+    pub fn markdown(&self) -> String {
+        let mut s = String::new();
+        let _ = writeln!(
+            s,
+            "Device: {}. {}x{} offscreen, median (min–max) of {} timed frames after one warm-up frame; ratios are against `static` at the same mesh and level, measured in the same run.\n",
+            self.device, self.width, self.height, self.frames
+        );
+        let _ = writeln!(
+            s,
+            "| mesh | coarse tris | level | variant | refined tris | GPU ms | wall ms | GPU / static | wall / static | stored vertices | stored indices | geometry bytes | note |"
+        );
+        let _ = writeln!(
+            s,
+            "|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---|"
+        );
+        for r in &self.rows {
+            let _ = writeln!(
+                s,
+                "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+                r.mesh,
+                r.coarse_triangles,
+                r.level,
+                r.variant,
+                r.refined_triangles,
+                fmt_stat(&r.gpu_ms),
+                fmt_stat(&r.wall_ms),
+                fmt_ratio(r.gpu_ratio),
+                fmt_ratio(r.wall_ratio),
+                r.stored_vertices,
+                r.stored_indices,
+                r.geometry_bytes,
+                r.note
+            );
+        }
+        s
+    }
+
+    pub fn csv(&self) -> String {
+        let mut s = String::from(
+            "device,mesh,coarse_triangles,level,variant,refined_triangles,gpu_ms_median,gpu_ms_min,gpu_ms_max,wall_ms_median,wall_ms_min,wall_ms_max,gpu_ratio_vs_static,wall_ratio_vs_static,stored_vertices,stored_indices,geometry_bytes,note\n",
+        );
+        let f = |x: Option<f64>| x.map(|v| format!("{v:.4}")).unwrap_or_default();
+        for r in &self.rows {
+            let _ = writeln!(
+                s,
+                "\"{}\",{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},\"{}\"",
+                self.device,
+                r.mesh,
+                r.coarse_triangles,
+                r.level,
+                r.variant,
+                r.refined_triangles,
+                f(r.gpu_ms.map(|s| s.median)),
+                f(r.gpu_ms.map(|s| s.min)),
+                f(r.gpu_ms.map(|s| s.max)),
+                f(r.wall_ms.map(|s| s.median)),
+                f(r.wall_ms.map(|s| s.min)),
+                f(r.wall_ms.map(|s| s.max)),
+                f(r.gpu_ratio),
+                f(r.wall_ratio),
+                r.stored_vertices,
+                r.stored_indices,
+                r.geometry_bytes,
+                r.note
+            );
+        }
+        s
+    }
+
+    pub fn json(&self) -> String {
+        let f = |x: Option<f64>| {
+            x.map(|v| format!("{v:.4}"))
+                .unwrap_or_else(|| "null".into())
+        };
+        let rows: Vec<String> = self
+            .rows
+            .iter()
+            .map(|r| {
+                format!(
+                    "{{\"mesh\":\"{}\",\"coarse_triangles\":{},\"level\":{},\"variant\":\"{}\",\"refined_triangles\":{},\"gpu_ms_median\":{},\"wall_ms_median\":{},\"gpu_ratio_vs_static\":{},\"wall_ratio_vs_static\":{},\"stored_vertices\":{},\"stored_indices\":{},\"geometry_bytes\":{},\"note\":\"{}\"}}",
+                    r.mesh, r.coarse_triangles, r.level, r.variant, r.refined_triangles,
+                    f(r.gpu_ms.map(|s| s.median)), f(r.wall_ms.map(|s| s.median)), f(r.gpu_ratio), f(r.wall_ratio),
+                    r.stored_vertices, r.stored_indices, r.geometry_bytes, r.note
+                )
+            })
+            .collect();
+        format!(
+            "{{\"device\":\"{}\",\"frames\":{},\"width\":{},\"height\":{},\"rows\":[\n{}\n]}}\n",
+            self.device.replace('"', "'"),
+            self.frames,
+            self.width,
+            self.height,
+            rows.join(",\n")
+        )
+    }
+}

@@ -1,0 +1,144 @@
+//! Command line: `meshrefine view | render | export | info | bench`.
+
+use clap::{Args, Parser, Subcommand};
+use meshrefine::render::{Driver, Submit};
+use meshrefine::surface::Surface;
+use std::path::PathBuf;
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "meshrefine",
+    version,
+    about = "Refine coarse triangle meshes on the GPU (Vulkan)"
+)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+    /// Enable the Vulkan validation layer (also: MESHREFINE_VALIDATE=1).
+    #[arg(long, global = true)]
+    pub validate: bool,
+    /// Use the first Vulkan device whose name contains NAME (case-insensitive).
+    #[arg(long, global = true, value_name = "NAME")]
+    pub device: Option<String>,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Open the window demo (headless render to a PNG when no display exists).
+    View(ViewArgs),
+    /// Render a mesh headlessly to a PNG.
+    Render(RenderArgs),
+    /// Write the refined mesh, read back from the GPU's drawing pipeline, as OBJ.
+    Export(ExportArgs),
+    /// Mesh statistics; with --level, the GPU geometry bytes of each driver.
+    Info(InfoArgs),
+    /// Time every driver and submission mode on a mesh (ratios against `static`).
+    Bench(BenchArgs),
+}
+
+#[derive(Args, Debug, Clone)]
+pub struct Technique {
+    /// Surface defined by each coarse triangle.
+    #[arg(long, value_enum, default_value = "flat")]
+    pub surface: SurfaceArg,
+    /// How barycentric samples are produced on the GPU.
+    #[arg(long, value_enum, default_value = "pattern")]
+    pub driver: Driver,
+    /// How the pattern driver hands each coarse triangle to the vertex shader.
+    #[arg(long, value_enum, default_value = "instanced")]
+    pub submit: Submit,
+    /// Refinement level N: N segments per coarse edge, N² triangles per coarse triangle.
+    #[arg(long, default_value_t = 16, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    pub level: u32,
+}
+
+#[derive(clap::ValueEnum, Clone, Copy, Debug)]
+pub enum SurfaceArg {
+    /// Linear interpolation of the coarse triangle.
+    Flat,
+}
+
+impl SurfaceArg {
+    pub fn surface(self) -> Surface {
+        match self {
+            SurfaceArg::Flat => Surface::Flat,
+        }
+    }
+}
+
+#[derive(Args, Debug)]
+pub struct ViewArgs {
+    /// OBJ file (default: the embedded Spot control mesh).
+    pub mesh: Option<PathBuf>,
+    #[command(flatten)]
+    pub technique: Technique,
+    /// Exit after N frames.
+    #[arg(long)]
+    pub frames: Option<u64>,
+    /// Save the last frame to this PNG file.
+    #[arg(long, value_name = "FILE.png")]
+    pub screenshot: Option<PathBuf>,
+    /// Start with the wireframe overlay on.
+    #[arg(long)]
+    pub wireframe: bool,
+    /// Start with the coarse-mesh animation on.
+    #[arg(long)]
+    pub animate: bool,
+    /// Where the headless fallback writes its image when no display exists.
+    #[arg(long, value_name = "FILE.png", default_value = "meshrefine-view.png")]
+    pub headless_output: PathBuf,
+}
+
+#[derive(Args, Debug)]
+pub struct RenderArgs {
+    /// OBJ file (default: the embedded Spot control mesh).
+    pub mesh: Option<PathBuf>,
+    /// Output PNG.
+    #[arg(short, long, value_name = "FILE.png")]
+    pub output: PathBuf,
+    #[arg(long, default_value_t = 1280)]
+    pub width: u32,
+    #[arg(long, default_value_t = 720)]
+    pub height: u32,
+    /// Draw the refined triangles' edges.
+    #[arg(long)]
+    pub wireframe: bool,
+    #[command(flatten)]
+    pub technique: Technique,
+}
+
+#[derive(Args, Debug)]
+pub struct ExportArgs {
+    /// OBJ file (default: the embedded Spot control mesh).
+    pub mesh: Option<PathBuf>,
+    /// Output OBJ.
+    #[arg(short, long, value_name = "FILE.obj")]
+    pub output: PathBuf,
+    #[command(flatten)]
+    pub technique: Technique,
+}
+
+#[derive(Args, Debug)]
+pub struct InfoArgs {
+    /// OBJ file.
+    pub mesh: PathBuf,
+    /// Also print the GPU geometry bytes each driver would hold at this level.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    pub level: Option<u32>,
+}
+
+#[derive(Args, Debug)]
+pub struct BenchArgs {
+    /// OBJ file (default: the embedded Spot control mesh).
+    pub mesh: Option<PathBuf>,
+    /// Levels to measure (comma separated).
+    #[arg(long, value_delimiter = ',', default_value = "8,16,32,64")]
+    pub levels: Vec<u32>,
+    /// Timed frames per variant (after one warm-up frame).
+    #[arg(long, default_value_t = 5)]
+    pub frames: u32,
+    #[arg(long, default_value_t = 1280)]
+    pub width: u32,
+    #[arg(long, default_value_t = 720)]
+    pub height: u32,
+}

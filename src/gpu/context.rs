@@ -1,0 +1,512 @@
+//! Instance, physical device choice, device, queue, allocator, validation messages.
+
+use super::{track_drop, track_new};
+use ash::vk;
+use gpu_allocator::vulkan::{Allocator, AllocatorCreateDesc};
+use std::ffi::{c_char, c_void, CStr, CString};
+use std::mem::ManuallyDrop;
+use std::sync::{Arc, Mutex};
+
+/// Errors of the Vulkan layer. A Vulkan failure names the call.
+#[derive(Debug, thiserror::Error)]
+pub enum GpuError {
+    #[error("cannot load the Vulkan library: {0} (install libvulkan1 and a driver, e.g. mesa-vulkan-drivers)")]
+    Loading(String),
+    #[error("{call} failed: {result}")]
+    Vk {
+        call: &'static str,
+        result: vk::Result,
+    },
+    #[error("no Vulkan 1.3 device found (install mesa-vulkan-drivers for lavapipe, the software rasterizer)")]
+    NoDevice,
+    #[error("no Vulkan device matches --device '{wanted}'; available: {available}")]
+    DeviceNotFound { wanted: String, available: String },
+    #[error("device '{device}' lacks the required feature {feature}")]
+    MissingFeature {
+        device: String,
+        feature: &'static str,
+    },
+    #[error("the Vulkan validation layer VK_LAYER_KHRONOS_validation is not installed (apt-get install vulkan-validationlayers)")]
+    NoValidationLayer,
+    #[error("GPU memory allocation '{name}' failed: {source}")]
+    Alloc {
+        name: String,
+        source: gpu_allocator::AllocationError,
+    },
+    #[error("{0}")]
+    Other(String),
+}
+
+pub(crate) trait VkResultExt<T> {
+    fn call(self, name: &'static str) -> Result<T, GpuError>;
+}
+
+impl<T> VkResultExt<T> for Result<T, vk::Result> {
+    fn call(self, name: &'static str) -> Result<T, GpuError> {
+        self.map_err(|result| GpuError::Vk { call: name, result })
+    }
+}
+
+/// Validation-layer warnings and errors (and leak reports) collected during the context's life.
+#[derive(Default, Debug)]
+pub struct Messages {
+    list: Mutex<Vec<String>>,
+}
+
+impl Messages {
+    pub fn push(&self, m: String) {
+        self.list.lock().unwrap().push(m);
+    }
+    pub fn take(&self) -> Vec<String> {
+        std::mem::take(&mut *self.list.lock().unwrap())
+    }
+    pub fn snapshot(&self) -> Vec<String> {
+        self.list.lock().unwrap().clone()
+    }
+}
+
+/// What to create.
+#[derive(Clone, Debug, Default)]
+pub struct ContextDesc {
+    /// Enable VK_LAYER_KHRONOS_validation and the debug messenger.
+    pub validate: bool,
+    /// Pick the first device whose name contains this (case-insensitive).
+    pub device_name: Option<String>,
+    /// Instance extensions a window surface needs (from `ash_window::enumerate_required_extensions`).
+    pub surface_extensions: Vec<&'static CStr>,
+}
+
+/// Identity and limits of the chosen device, for logs and benchmark tables.
+#[derive(Clone, Debug)]
+pub struct DeviceInfo {
+    pub name: String,
+    pub driver_name: String,
+    pub driver_info: String,
+    pub driver_id: vk::DriverId,
+    pub device_type: vk::PhysicalDeviceType,
+    pub api_version: u32,
+    pub limits: vk::PhysicalDeviceLimits,
+    /// Optional features we enabled.
+    pub pipeline_statistics: bool,
+    pub vertex_stores: bool,
+    pub fill_mode_non_solid: bool,
+}
+
+impl DeviceInfo {
+    /// lavapipe (Mesa's llvmpipe Vulkan driver): some workarounds apply only there.
+    pub fn is_lavapipe(&self) -> bool {
+        self.driver_id == vk::DriverId::MESA_LLVMPIPE
+    }
+    pub fn describe(&self) -> String {
+        format!(
+            "{} ({}, {} {}, Vulkan {}.{}.{})",
+            self.name,
+            format!("{:?}", self.device_type)
+                .to_lowercase()
+                .replace('_', " "),
+            self.driver_name,
+            self.driver_info,
+            vk::api_version_major(self.api_version),
+            vk::api_version_minor(self.api_version),
+            vk::api_version_patch(self.api_version)
+        )
+    }
+}
+
+pub struct Context {
+    pub entry: ash::Entry,
+    pub instance: ash::Instance,
+    debug_instance: Option<ash::ext::debug_utils::Instance>,
+    messenger: vk::DebugUtilsMessengerEXT,
+    debug_device: Option<ash::ext::debug_utils::Device>,
+    pub physical: vk::PhysicalDevice,
+    pub info: DeviceInfo,
+    pub device: ash::Device,
+    pub queue: vk::Queue,
+    pub queue_family: u32,
+    allocator: ManuallyDrop<Mutex<Allocator>>,
+    /// Boxed so its address, handed to the messenger as user data, is stable.
+    messages: Arc<Messages>,
+    _messages_ptr: Box<Arc<Messages>>,
+}
+
+unsafe extern "system" fn debug_callback(
+    severity: vk::DebugUtilsMessageSeverityFlagsEXT,
+    types: vk::DebugUtilsMessageTypeFlagsEXT,
+    data: *const vk::DebugUtilsMessengerCallbackDataEXT<'_>,
+    user: *mut c_void,
+) -> vk::Bool32 {
+    // SAFETY: the loader passes a valid callback-data pointer for the duration of the call.
+    let msg = unsafe { (*data).message_as_c_str() }
+        .map(|m| m.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let text = format!("[{types:?}] {msg}");
+    if severity.contains(vk::DebugUtilsMessageSeverityFlagsEXT::ERROR)
+        || severity.contains(vk::DebugUtilsMessageSeverityFlagsEXT::WARNING)
+    {
+        log::error!("vulkan validation: {text}");
+        // SAFETY: `user` is the Box<Arc<Messages>> owned by the Context, alive until after the
+        // messenger is destroyed.
+        let messages = unsafe { &*(user as *const Arc<Messages>) };
+        messages.push(text);
+    } else if severity.contains(vk::DebugUtilsMessageSeverityFlagsEXT::INFO) {
+        log::debug!("vulkan: {text}");
+    } else {
+        log::trace!("vulkan: {text}");
+    }
+    vk::FALSE
+}
+
+fn cstr_field(chars: &[c_char]) -> String {
+    // SAFETY: Vulkan fixed-size string fields are NUL-terminated.
+    unsafe { CStr::from_ptr(chars.as_ptr()) }
+        .to_string_lossy()
+        .into_owned()
+}
+
+impl Context {
+    pub fn new(desc: &ContextDesc) -> Result<Arc<Self>, GpuError> {
+        // SAFETY: loads the system Vulkan loader; no other Vulkan call happens before.
+        let entry = unsafe { ash::Entry::load() }.map_err(|e| GpuError::Loading(e.to_string()))?;
+
+        // SAFETY: plain enumeration on a valid entry.
+        let layers = unsafe { entry.enumerate_instance_layer_properties() }
+            .call("vkEnumerateInstanceLayerProperties")?;
+        let validation = c"VK_LAYER_KHRONOS_validation";
+        let has_validation = layers
+            .iter()
+            .any(|l| l.layer_name_as_c_str() == Ok(validation));
+        if desc.validate && !has_validation {
+            return Err(GpuError::NoValidationLayer);
+        }
+        // SAFETY: as above.
+        let exts = unsafe { entry.enumerate_instance_extension_properties(None) }
+            .call("vkEnumerateInstanceExtensionProperties")?;
+        let has_debug_utils = exts
+            .iter()
+            .any(|e| e.extension_name_as_c_str() == Ok(ash::ext::debug_utils::NAME))
+            || desc.validate;
+
+        let app_name = CString::new("meshrefine").unwrap();
+        let app = vk::ApplicationInfo::default()
+            .application_name(&app_name)
+            .engine_name(&app_name)
+            .api_version(vk::API_VERSION_1_3);
+        let mut ext_names: Vec<*const c_char> =
+            desc.surface_extensions.iter().map(|e| e.as_ptr()).collect();
+        if has_debug_utils {
+            ext_names.push(ash::ext::debug_utils::NAME.as_ptr());
+        }
+        let layer_names: Vec<*const c_char> = if desc.validate {
+            vec![validation.as_ptr()]
+        } else {
+            vec![]
+        };
+
+        let messages = Arc::new(Messages::default());
+        let messages_ptr = Box::new(messages.clone());
+        let mut messenger_info = vk::DebugUtilsMessengerCreateInfoEXT::default()
+            .message_severity(
+                vk::DebugUtilsMessageSeverityFlagsEXT::ERROR
+                    | vk::DebugUtilsMessageSeverityFlagsEXT::WARNING
+                    | vk::DebugUtilsMessageSeverityFlagsEXT::INFO,
+            )
+            .message_type(
+                vk::DebugUtilsMessageTypeFlagsEXT::GENERAL
+                    | vk::DebugUtilsMessageTypeFlagsEXT::VALIDATION
+                    | vk::DebugUtilsMessageTypeFlagsEXT::PERFORMANCE,
+            )
+            .pfn_user_callback(Some(debug_callback))
+            .user_data(&*messages_ptr as *const Arc<Messages> as *mut c_void);
+        let mut instance_info = vk::InstanceCreateInfo::default()
+            .application_info(&app)
+            .enabled_extension_names(&ext_names)
+            .enabled_layer_names(&layer_names);
+        if desc.validate {
+            // Also catch messages from vkCreateInstance / vkDestroyInstance themselves.
+            instance_info = instance_info.push_next(&mut messenger_info);
+        }
+        // SAFETY: all pointers in the create info outlive the call.
+        let instance =
+            unsafe { entry.create_instance(&instance_info, None) }.call("vkCreateInstance")?;
+
+        let (debug_instance, messenger) = if desc.validate {
+            let di = ash::ext::debug_utils::Instance::new(&entry, &instance);
+            // SAFETY: valid instance; the user-data box outlives the messenger (destroyed in Drop).
+            let m = unsafe { di.create_debug_utils_messenger(&messenger_info, None) };
+            match m {
+                Ok(m) => (Some(di), m),
+                Err(e) => {
+                    // SAFETY: nothing else was created from this instance.
+                    unsafe { instance.destroy_instance(None) };
+                    return Err(GpuError::Vk {
+                        call: "vkCreateDebugUtilsMessengerEXT",
+                        result: e,
+                    });
+                }
+            }
+        } else if has_debug_utils {
+            (
+                Some(ash::ext::debug_utils::Instance::new(&entry, &instance)),
+                vk::DebugUtilsMessengerEXT::null(),
+            )
+        } else {
+            (None, vk::DebugUtilsMessengerEXT::null())
+        };
+
+        let destroy_instance = |instance: &ash::Instance| {
+            if let Some(di) = &debug_instance {
+                if messenger != vk::DebugUtilsMessengerEXT::null() {
+                    // SAFETY: messenger created above from this instance.
+                    unsafe { di.destroy_debug_utils_messenger(messenger, None) };
+                }
+            }
+            // SAFETY: no child object remains.
+            unsafe { instance.destroy_instance(None) };
+        };
+
+        let picked = match pick_device(&instance, desc) {
+            Ok(p) => p,
+            Err(e) => {
+                destroy_instance(&instance);
+                return Err(e);
+            }
+        };
+        let (physical, queue_family, info) = picked;
+
+        // Features: required ones fail with a named error; optional ones degrade with a log line.
+        // SAFETY: valid physical device.
+        let available = unsafe { instance.get_physical_device_features(physical) };
+        let mut f13 = vk::PhysicalDeviceVulkan13Features::default();
+        let mut f2 = vk::PhysicalDeviceFeatures2::default().push_next(&mut f13);
+        // SAFETY: valid physical device; f2 chain lives on the stack.
+        unsafe { instance.get_physical_device_features2(physical, &mut f2) };
+        let dynamic_rendering = f13.dynamic_rendering == vk::TRUE;
+        let missing = if available.tessellation_shader == vk::FALSE {
+            Some("tessellationShader")
+        } else if !dynamic_rendering {
+            Some("dynamicRendering")
+        } else {
+            None
+        };
+        if let Some(feature) = missing {
+            destroy_instance(&instance);
+            return Err(GpuError::MissingFeature {
+                device: info.name.clone(),
+                feature,
+            });
+        }
+        let mut info = info;
+        info.pipeline_statistics = available.pipeline_statistics_query == vk::TRUE;
+        info.vertex_stores = available.vertex_pipeline_stores_and_atomics == vk::TRUE;
+        info.fill_mode_non_solid = available.fill_mode_non_solid == vk::TRUE;
+        if !info.pipeline_statistics {
+            log::warn!(
+                "{}: no pipelineStatisticsQuery, statistics are off",
+                info.name
+            );
+        }
+        if !info.vertex_stores {
+            log::warn!(
+                "{}: no vertexPipelineStoresAndAtomics, capture (export) is unavailable",
+                info.name
+            );
+        }
+        let features = vk::PhysicalDeviceFeatures::default()
+            .tessellation_shader(true)
+            .pipeline_statistics_query(info.pipeline_statistics)
+            .vertex_pipeline_stores_and_atomics(info.vertex_stores)
+            .fill_mode_non_solid(info.fill_mode_non_solid);
+        let mut enable13 = vk::PhysicalDeviceVulkan13Features::default().dynamic_rendering(true);
+        let priorities = [1.0f32];
+        let queue_info = [vk::DeviceQueueCreateInfo::default()
+            .queue_family_index(queue_family)
+            .queue_priorities(&priorities)];
+        let mut device_exts: Vec<*const c_char> = Vec::new();
+        if !desc.surface_extensions.is_empty() {
+            device_exts.push(ash::khr::swapchain::NAME.as_ptr());
+        }
+        let device_info = vk::DeviceCreateInfo::default()
+            .queue_create_infos(&queue_info)
+            .enabled_extension_names(&device_exts)
+            .enabled_features(&features)
+            .push_next(&mut enable13);
+        // SAFETY: valid physical device, create info pointers outlive the call.
+        let device = match unsafe { instance.create_device(physical, &device_info, None) } {
+            Ok(d) => d,
+            Err(e) => {
+                destroy_instance(&instance);
+                return Err(GpuError::Vk {
+                    call: "vkCreateDevice",
+                    result: e,
+                });
+            }
+        };
+        // SAFETY: the family and index 0 were requested above.
+        let queue = unsafe { device.get_device_queue(queue_family, 0) };
+        let debug_device = debug_instance
+            .as_ref()
+            .map(|_| ash::ext::debug_utils::Device::new(&instance, &device));
+
+        let allocator = Allocator::new(&AllocatorCreateDesc {
+            instance: instance.clone(),
+            device: device.clone(),
+            physical_device: physical,
+            debug_settings: gpu_allocator::AllocatorDebugSettings {
+                log_leaks_on_shutdown: false,
+                ..Default::default()
+            },
+            buffer_device_address: false,
+            allocation_sizes: gpu_allocator::AllocationSizes::default(),
+        })
+        .map_err(|e| GpuError::Alloc {
+            name: "allocator".into(),
+            source: e,
+        })?;
+
+        log::info!("using {}", info.describe());
+        track_new();
+        Ok(Arc::new(Self {
+            entry,
+            instance,
+            debug_instance,
+            messenger,
+            debug_device,
+            physical,
+            info,
+            device,
+            queue,
+            queue_family,
+            allocator: ManuallyDrop::new(Mutex::new(allocator)),
+            messages,
+            _messages_ptr: messages_ptr,
+        }))
+    }
+
+    /// Validation warnings/errors and leak reports so far.
+    pub fn messages(&self) -> &Messages {
+        &self.messages
+    }
+
+    /// A handle to the message list that survives the context (to read leak reports after drop).
+    pub fn messages_handle(&self) -> Arc<Messages> {
+        self.messages.clone()
+    }
+
+    pub(crate) fn allocator(&self) -> std::sync::MutexGuard<'_, Allocator> {
+        self.allocator.lock().unwrap()
+    }
+
+    /// Give a Vulkan object a debug name (VK_EXT_debug_utils), when available.
+    pub fn set_name<H: vk::Handle>(&self, handle: H, name: &str) {
+        if let Some(dd) = &self.debug_device {
+            let name = CString::new(name).unwrap_or_default();
+            let info = vk::DebugUtilsObjectNameInfoEXT::default()
+                .object_handle(handle)
+                .object_name(&name);
+            // SAFETY: the handle belongs to this device.
+            let _ = unsafe { dd.set_debug_utils_object_name(&info) };
+        }
+    }
+
+    /// Wait until the device is idle.
+    pub fn wait_idle(&self) -> Result<(), GpuError> {
+        // SAFETY: valid device.
+        unsafe { self.device.device_wait_idle() }.call("vkDeviceWaitIdle")
+    }
+}
+
+fn pick_device(
+    instance: &ash::Instance,
+    desc: &ContextDesc,
+) -> Result<(vk::PhysicalDevice, u32, DeviceInfo), GpuError> {
+    // SAFETY: valid instance.
+    let devices =
+        unsafe { instance.enumerate_physical_devices() }.call("vkEnumeratePhysicalDevices")?;
+    let mut candidates = Vec::new();
+    for pd in devices {
+        let mut driver = vk::PhysicalDeviceDriverProperties::default();
+        let mut props2 = vk::PhysicalDeviceProperties2::default().push_next(&mut driver);
+        // SAFETY: valid physical device; chain on the stack.
+        unsafe { instance.get_physical_device_properties2(pd, &mut props2) };
+        let props = props2.properties;
+        if props.api_version < vk::API_VERSION_1_3 {
+            continue;
+        }
+        // SAFETY: valid physical device.
+        let families = unsafe { instance.get_physical_device_queue_family_properties(pd) };
+        let Some(family) = families.iter().position(|f| {
+            f.queue_flags
+                .contains(vk::QueueFlags::GRAPHICS | vk::QueueFlags::COMPUTE)
+        }) else {
+            continue;
+        };
+        let info = DeviceInfo {
+            name: cstr_field(&props.device_name),
+            driver_name: cstr_field(&driver.driver_name),
+            driver_info: cstr_field(&driver.driver_info),
+            driver_id: driver.driver_id,
+            device_type: props.device_type,
+            api_version: props.api_version,
+            limits: props.limits,
+            pipeline_statistics: false,
+            vertex_stores: false,
+            fill_mode_non_solid: false,
+        };
+        candidates.push((pd, family as u32, info));
+    }
+    if let Some(wanted) = &desc.device_name {
+        let w = wanted.to_lowercase();
+        let available = candidates
+            .iter()
+            .map(|c| c.2.name.clone())
+            .collect::<Vec<_>>()
+            .join(", ");
+        return candidates
+            .into_iter()
+            .find(|c| c.2.name.to_lowercase().contains(&w))
+            .ok_or(GpuError::DeviceNotFound {
+                wanted: wanted.clone(),
+                available,
+            });
+    }
+    let rank = |t: vk::PhysicalDeviceType| match t {
+        vk::PhysicalDeviceType::DISCRETE_GPU => 0,
+        vk::PhysicalDeviceType::INTEGRATED_GPU => 1,
+        vk::PhysicalDeviceType::VIRTUAL_GPU => 2,
+        vk::PhysicalDeviceType::CPU => 3,
+        _ => 4,
+    };
+    candidates.sort_by_key(|c| rank(c.2.device_type));
+    candidates.into_iter().next().ok_or(GpuError::NoDevice)
+}
+
+impl Drop for Context {
+    fn drop(&mut self) {
+        // SAFETY: we own the device; waiting has no preconditions.
+        let _ = unsafe { self.device.device_wait_idle() };
+        {
+            let allocator = self.allocator.lock().unwrap();
+            let report = allocator.generate_report();
+            for a in &report.allocations {
+                self.messages.push(format!(
+                    "leak: GPU allocation '{}' ({} bytes) was never freed",
+                    a.name, a.size
+                ));
+            }
+        }
+        // SAFETY: dropped exactly once, before the device it uses.
+        unsafe { ManuallyDrop::drop(&mut self.allocator) };
+        // SAFETY: every child object holds an Arc<Context>, so none is alive; idle device.
+        unsafe { self.device.destroy_device(None) };
+        if let Some(di) = &self.debug_instance {
+            if self.messenger != vk::DebugUtilsMessengerEXT::null() {
+                // SAFETY: created from this instance, destroyed once.
+                unsafe { di.destroy_debug_utils_messenger(self.messenger, None) };
+            }
+        }
+        // SAFETY: all children destroyed above.
+        unsafe { self.instance.destroy_instance(None) };
+        track_drop();
+    }
+}

@@ -1,0 +1,237 @@
+//! Images with views, and the offscreen colour + depth target of headless rendering.
+
+use super::context::VkResultExt;
+use super::{track_drop, track_new, Buffer, BufferDesc, CommandPool, Context, GpuError};
+use ash::vk;
+use gpu_allocator::vulkan::{Allocation, AllocationCreateDesc, AllocationScheme};
+use gpu_allocator::MemoryLocation;
+use std::sync::Arc;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct ImageDesc {
+    pub extent: vk::Extent2D,
+    pub format: vk::Format,
+    pub usage: vk::ImageUsageFlags,
+    pub aspect: vk::ImageAspectFlags,
+}
+
+impl ImageDesc {
+    pub fn new_color(extent: vk::Extent2D, format: vk::Format) -> Self {
+        Self {
+            extent,
+            format,
+            usage: vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::TRANSFER_SRC,
+            aspect: vk::ImageAspectFlags::COLOR,
+        }
+    }
+    pub fn new_depth(extent: vk::Extent2D) -> Self {
+        Self {
+            extent,
+            format: DEPTH_FORMAT,
+            usage: vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT,
+            aspect: vk::ImageAspectFlags::DEPTH,
+        }
+    }
+}
+
+/// Depth format used by every target (mandatory for depth attachments in Vulkan).
+pub const DEPTH_FORMAT: vk::Format = vk::Format::D32_SFLOAT;
+
+pub struct Image {
+    ctx: Arc<Context>,
+    pub raw: vk::Image,
+    pub view: vk::ImageView,
+    allocation: Option<Allocation>,
+    pub desc: ImageDesc,
+}
+
+impl Image {
+    pub fn new(ctx: &Arc<Context>, desc: ImageDesc, name: &str) -> Result<Self, GpuError> {
+        let info = vk::ImageCreateInfo::default()
+            .image_type(vk::ImageType::TYPE_2D)
+            .format(desc.format)
+            .extent(vk::Extent3D {
+                width: desc.extent.width,
+                height: desc.extent.height,
+                depth: 1,
+            })
+            .mip_levels(1)
+            .array_layers(1)
+            .samples(vk::SampleCountFlags::TYPE_1)
+            .tiling(vk::ImageTiling::OPTIMAL)
+            .usage(desc.usage)
+            .initial_layout(vk::ImageLayout::UNDEFINED);
+        // SAFETY: valid device and create info.
+        let raw = unsafe { ctx.device.create_image(&info, None) }.call("vkCreateImage")?;
+        // SAFETY: image from this device.
+        let requirements = unsafe { ctx.device.get_image_memory_requirements(raw) };
+        let allocation = match ctx.allocator().allocate(&AllocationCreateDesc {
+            name,
+            requirements,
+            location: MemoryLocation::GpuOnly,
+            linear: false,
+            allocation_scheme: AllocationScheme::GpuAllocatorManaged,
+        }) {
+            Ok(a) => a,
+            Err(e) => {
+                // SAFETY: unused image.
+                unsafe { ctx.device.destroy_image(raw, None) };
+                return Err(GpuError::Alloc {
+                    name: name.into(),
+                    source: e,
+                });
+            }
+        };
+        // SAFETY: memory satisfies the requirements; bound once.
+        if let Err(e) = unsafe {
+            ctx.device
+                .bind_image_memory(raw, allocation.memory(), allocation.offset())
+        } {
+            let _ = ctx.allocator().free(allocation);
+            // SAFETY: unused image.
+            unsafe { ctx.device.destroy_image(raw, None) };
+            return Err(GpuError::Vk {
+                call: "vkBindImageMemory",
+                result: e,
+            });
+        }
+        let view = match create_view(ctx, raw, desc.format, desc.aspect) {
+            Ok(v) => v,
+            Err(e) => {
+                let _ = ctx.allocator().free(allocation);
+                // SAFETY: unused image.
+                unsafe { ctx.device.destroy_image(raw, None) };
+                return Err(e);
+            }
+        };
+        ctx.set_name(raw, name);
+        ctx.set_name(view, &format!("{name} view"));
+        track_new();
+        Ok(Self {
+            ctx: ctx.clone(),
+            raw,
+            view,
+            allocation: Some(allocation),
+            desc,
+        })
+    }
+}
+
+/// A 2D view of the whole image (also used for swapchain images).
+pub(crate) fn create_view(
+    ctx: &Context,
+    image: vk::Image,
+    format: vk::Format,
+    aspect: vk::ImageAspectFlags,
+) -> Result<vk::ImageView, GpuError> {
+    let info = vk::ImageViewCreateInfo::default()
+        .image(image)
+        .view_type(vk::ImageViewType::TYPE_2D)
+        .format(format)
+        .subresource_range(subresource(aspect));
+    // SAFETY: image from this device.
+    unsafe { ctx.device.create_image_view(&info, None) }.call("vkCreateImageView")
+}
+
+pub(crate) fn subresource(aspect: vk::ImageAspectFlags) -> vk::ImageSubresourceRange {
+    vk::ImageSubresourceRange::default()
+        .aspect_mask(aspect)
+        .level_count(1)
+        .layer_count(1)
+}
+
+impl Drop for Image {
+    fn drop(&mut self) {
+        // SAFETY: not in use by pending work (see module docs of gpu).
+        unsafe {
+            self.ctx.device.destroy_image_view(self.view, None);
+            self.ctx.device.destroy_image(self.raw, None);
+        }
+        if let Some(a) = self.allocation.take() {
+            let _ = self.ctx.allocator().free(a);
+        }
+        track_drop();
+    }
+}
+
+/// RGBA8 pixels read back from a target.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Readback {
+    pub width: u32,
+    pub height: u32,
+    /// Tightly packed RGBA8, row-major, top row first.
+    pub rgba: Vec<u8>,
+}
+
+impl Readback {
+    /// Write as a PNG file.
+    pub fn save_png(&self, path: &std::path::Path) -> std::io::Result<()> {
+        let file = std::io::BufWriter::new(std::fs::File::create(path)?);
+        let mut enc = png::Encoder::new(file, self.width, self.height);
+        enc.set_color(png::ColorType::Rgba);
+        enc.set_depth(png::BitDepth::Eight);
+        let mut w = enc.write_header().map_err(std::io::Error::other)?;
+        w.write_image_data(&self.rgba)
+            .map_err(std::io::Error::other)?;
+        w.finish().map_err(std::io::Error::other)
+    }
+}
+
+/// Offscreen colour + depth images for headless rendering, with a readback buffer.
+pub struct OffscreenTarget {
+    pub color: Image,
+    pub depth: Image,
+    readback: Buffer,
+}
+
+/// Colour format of offscreen targets (stored as sRGB so PNGs look like the window).
+pub const OFFSCREEN_FORMAT: vk::Format = vk::Format::R8G8B8A8_SRGB;
+
+impl OffscreenTarget {
+    pub fn new(ctx: &Arc<Context>, width: u32, height: u32) -> Result<Self, GpuError> {
+        let max = ctx.info.limits.max_image_dimension2_d;
+        if width == 0 || height == 0 || width > max || height > max {
+            return Err(GpuError::Other(format!(
+                "image size {width}x{height} is outside what the device supports (1..={max} per side)"
+            )));
+        }
+        let extent = vk::Extent2D { width, height };
+        let color = Image::new(
+            ctx,
+            ImageDesc::new_color(extent, OFFSCREEN_FORMAT),
+            "offscreen colour",
+        )?;
+        let depth = Image::new(ctx, ImageDesc::new_depth(extent), "offscreen depth")?;
+        let readback = Buffer::new(
+            ctx,
+            BufferDesc::new_readback(
+                width as u64 * height as u64 * 4,
+                vk::BufferUsageFlags::empty(),
+            ),
+            "offscreen readback",
+        )?;
+        Ok(Self {
+            color,
+            depth,
+            readback,
+        })
+    }
+
+    pub fn extent(&self) -> vk::Extent2D {
+        self.color.desc.extent
+    }
+
+    /// Copy the colour image (in TRANSFER_SRC_OPTIMAL layout) to host memory.
+    pub fn read(&self, pool: &CommandPool) -> Result<Readback, GpuError> {
+        let extent = self.extent();
+        pool.submit_and_wait(|cmd| {
+            cmd.copy_image_to_buffer(self.color.raw, extent, &self.readback);
+            cmd.barrier_to_host();
+        })?;
+        Ok(Readback {
+            width: extent.width,
+            height: extent.height,
+            rgba: self.readback.mapped().to_vec(),
+        })
+    }
+}

@@ -1,0 +1,369 @@
+//! Shader modules, descriptor set layouts and pools, pipeline layouts, graphics pipelines.
+//! Pipelines use dynamic rendering (Vulkan 1.3), dynamic viewport and scissor.
+
+use super::context::VkResultExt;
+use super::{shaders, track_drop, track_new, Context, GpuError};
+use ash::vk;
+use std::ffi::CStr;
+use std::sync::Arc;
+
+pub struct ShaderModule {
+    ctx: Arc<Context>,
+    pub raw: vk::ShaderModule,
+}
+
+impl ShaderModule {
+    /// Module from the embedded shader `name` (path below `glsl/`, e.g. `pattern/pattern.vert`).
+    pub fn new(ctx: &Arc<Context>, name: &str) -> Result<Self, GpuError> {
+        let code = shaders::spirv(name);
+        let info = vk::ShaderModuleCreateInfo::default().code(&code);
+        // SAFETY: valid SPIR-V compiled by build.rs.
+        let raw =
+            unsafe { ctx.device.create_shader_module(&info, None) }.call("vkCreateShaderModule")?;
+        ctx.set_name(raw, name);
+        track_new();
+        Ok(Self {
+            ctx: ctx.clone(),
+            raw,
+        })
+    }
+}
+
+impl Drop for ShaderModule {
+    fn drop(&mut self) {
+        // SAFETY: modules may be destroyed once pipelines are created.
+        unsafe { self.ctx.device.destroy_shader_module(self.raw, None) };
+        track_drop();
+    }
+}
+
+pub struct DescriptorSetLayout {
+    ctx: Arc<Context>,
+    pub raw: vk::DescriptorSetLayout,
+}
+
+impl DescriptorSetLayout {
+    /// `bindings`: (binding, type, stages).
+    pub fn new(
+        ctx: &Arc<Context>,
+        bindings: &[(u32, vk::DescriptorType, vk::ShaderStageFlags)],
+        name: &str,
+    ) -> Result<Self, GpuError> {
+        let b: Vec<_> = bindings
+            .iter()
+            .map(|&(binding, ty, stages)| {
+                vk::DescriptorSetLayoutBinding::default()
+                    .binding(binding)
+                    .descriptor_type(ty)
+                    .descriptor_count(1)
+                    .stage_flags(stages)
+            })
+            .collect();
+        let info = vk::DescriptorSetLayoutCreateInfo::default().bindings(&b);
+        // SAFETY: valid device and create info.
+        let raw = unsafe { ctx.device.create_descriptor_set_layout(&info, None) }
+            .call("vkCreateDescriptorSetLayout")?;
+        ctx.set_name(raw, name);
+        track_new();
+        Ok(Self {
+            ctx: ctx.clone(),
+            raw,
+        })
+    }
+}
+
+impl Drop for DescriptorSetLayout {
+    fn drop(&mut self) {
+        // SAFETY: layouts are not used by pending work after their owner drops them.
+        unsafe {
+            self.ctx
+                .device
+                .destroy_descriptor_set_layout(self.raw, None)
+        };
+        track_drop();
+    }
+}
+
+pub struct PipelineLayout {
+    ctx: Arc<Context>,
+    pub raw: vk::PipelineLayout,
+}
+
+impl PipelineLayout {
+    pub fn new(
+        ctx: &Arc<Context>,
+        sets: &[&DescriptorSetLayout],
+        push_constant_bytes: u32,
+        push_stages: vk::ShaderStageFlags,
+        name: &str,
+    ) -> Result<Self, GpuError> {
+        let layouts: Vec<_> = sets.iter().map(|s| s.raw).collect();
+        let ranges = [vk::PushConstantRange::default()
+            .stage_flags(push_stages)
+            .size(push_constant_bytes)];
+        let info = vk::PipelineLayoutCreateInfo::default()
+            .set_layouts(&layouts)
+            .push_constant_ranges(&ranges);
+        // SAFETY: valid device and create info.
+        let raw = unsafe { ctx.device.create_pipeline_layout(&info, None) }
+            .call("vkCreatePipelineLayout")?;
+        ctx.set_name(raw, name);
+        track_new();
+        Ok(Self {
+            ctx: ctx.clone(),
+            raw,
+        })
+    }
+}
+
+impl Drop for PipelineLayout {
+    fn drop(&mut self) {
+        // SAFETY: not used by pending work.
+        unsafe { self.ctx.device.destroy_pipeline_layout(self.raw, None) };
+        track_drop();
+    }
+}
+
+/// Descriptor pool that frees all its sets when dropped.
+pub struct DescriptorPool {
+    ctx: Arc<Context>,
+    pub raw: vk::DescriptorPool,
+}
+
+impl DescriptorPool {
+    pub fn new(
+        ctx: &Arc<Context>,
+        max_sets: u32,
+        sizes: &[(vk::DescriptorType, u32)],
+        name: &str,
+    ) -> Result<Self, GpuError> {
+        let s: Vec<_> = sizes
+            .iter()
+            .map(|&(ty, n)| vk::DescriptorPoolSize::default().ty(ty).descriptor_count(n))
+            .collect();
+        let info = vk::DescriptorPoolCreateInfo::default()
+            .max_sets(max_sets)
+            .pool_sizes(&s);
+        // SAFETY: valid device and create info.
+        let raw = unsafe { ctx.device.create_descriptor_pool(&info, None) }
+            .call("vkCreateDescriptorPool")?;
+        ctx.set_name(raw, name);
+        track_new();
+        Ok(Self {
+            ctx: ctx.clone(),
+            raw,
+        })
+    }
+
+    pub fn allocate(
+        &self,
+        layout: &DescriptorSetLayout,
+        name: &str,
+    ) -> Result<vk::DescriptorSet, GpuError> {
+        let layouts = [layout.raw];
+        let info = vk::DescriptorSetAllocateInfo::default()
+            .descriptor_pool(self.raw)
+            .set_layouts(&layouts);
+        // SAFETY: pool and layout from this device.
+        let set = unsafe { self.ctx.device.allocate_descriptor_sets(&info) }
+            .call("vkAllocateDescriptorSets")?[0];
+        self.ctx.set_name(set, name);
+        Ok(set)
+    }
+
+    /// Point `binding` of `set` at `buffer` (whole buffer, or `range` bytes for dynamic uniform buffers).
+    pub fn write_buffer(
+        &self,
+        set: vk::DescriptorSet,
+        binding: u32,
+        ty: vk::DescriptorType,
+        buffer: vk::Buffer,
+        range: u64,
+    ) {
+        let info = [vk::DescriptorBufferInfo::default()
+            .buffer(buffer)
+            .range(range)];
+        let write = vk::WriteDescriptorSet::default()
+            .dst_set(set)
+            .dst_binding(binding)
+            .descriptor_type(ty)
+            .buffer_info(&info);
+        // SAFETY: set not in use by pending work while it is written (written before recording).
+        unsafe { self.ctx.device.update_descriptor_sets(&[write], &[]) };
+    }
+}
+
+impl Drop for DescriptorPool {
+    fn drop(&mut self) {
+        // SAFETY: sets from this pool are not used by pending work.
+        unsafe { self.ctx.device.destroy_descriptor_pool(self.raw, None) };
+        track_drop();
+    }
+}
+
+/// Specialization constants: (constant id, u32 value).
+pub type SpecConstants = Vec<(u32, u32)>;
+
+/// Everything that makes a graphics pipeline.
+#[derive(Clone, Debug)]
+pub struct GraphicsPipelineDesc {
+    /// (stage, embedded shader name)
+    pub stages: Vec<(vk::ShaderStageFlags, String)>,
+    pub spec: SpecConstants,
+    /// (binding, stride, per-instance)
+    pub vertex_bindings: Vec<(u32, u32, bool)>,
+    /// (location, binding, format, offset)
+    pub vertex_attributes: Vec<(u32, u32, vk::Format, u32)>,
+    pub topology: vk::PrimitiveTopology,
+    pub primitive_restart: bool,
+    pub patch_control_points: u32,
+    pub color_format: vk::Format,
+    pub depth_format: vk::Format,
+}
+
+pub struct Pipeline {
+    ctx: Arc<Context>,
+    pub raw: vk::Pipeline,
+}
+
+impl Pipeline {
+    pub fn new_graphics(
+        ctx: &Arc<Context>,
+        layout: &PipelineLayout,
+        desc: &GraphicsPipelineDesc,
+        name: &str,
+    ) -> Result<Self, GpuError> {
+        let modules = desc
+            .stages
+            .iter()
+            .map(|(_, n)| ShaderModule::new(ctx, n))
+            .collect::<Result<Vec<_>, _>>()?;
+        let entries: Vec<vk::SpecializationMapEntry> = desc
+            .spec
+            .iter()
+            .enumerate()
+            .map(|(i, &(id, _))| {
+                vk::SpecializationMapEntry::default()
+                    .constant_id(id)
+                    .offset(4 * i as u32)
+                    .size(4)
+            })
+            .collect();
+        let data: Vec<u8> = desc
+            .spec
+            .iter()
+            .flat_map(|&(_, v)| v.to_ne_bytes())
+            .collect();
+        let spec = vk::SpecializationInfo::default()
+            .map_entries(&entries)
+            .data(&data);
+        let main: &CStr = c"main";
+        let stages: Vec<_> = desc
+            .stages
+            .iter()
+            .zip(&modules)
+            .map(|((stage, _), m)| {
+                vk::PipelineShaderStageCreateInfo::default()
+                    .stage(*stage)
+                    .module(m.raw)
+                    .name(main)
+                    .specialization_info(&spec)
+            })
+            .collect();
+        let bindings: Vec<_> = desc
+            .vertex_bindings
+            .iter()
+            .map(|&(binding, stride, instance)| {
+                vk::VertexInputBindingDescription::default()
+                    .binding(binding)
+                    .stride(stride)
+                    .input_rate(if instance {
+                        vk::VertexInputRate::INSTANCE
+                    } else {
+                        vk::VertexInputRate::VERTEX
+                    })
+            })
+            .collect();
+        let attributes: Vec<_> = desc
+            .vertex_attributes
+            .iter()
+            .map(|&(location, binding, format, offset)| {
+                vk::VertexInputAttributeDescription::default()
+                    .location(location)
+                    .binding(binding)
+                    .format(format)
+                    .offset(offset)
+            })
+            .collect();
+        let vertex_input = vk::PipelineVertexInputStateCreateInfo::default()
+            .vertex_binding_descriptions(&bindings)
+            .vertex_attribute_descriptions(&attributes);
+        let input_assembly = vk::PipelineInputAssemblyStateCreateInfo::default()
+            .topology(desc.topology)
+            .primitive_restart_enable(desc.primitive_restart);
+        let tessellation = vk::PipelineTessellationStateCreateInfo::default()
+            .patch_control_points(desc.patch_control_points);
+        let viewport = vk::PipelineViewportStateCreateInfo::default()
+            .viewport_count(1)
+            .scissor_count(1);
+        let raster = vk::PipelineRasterizationStateCreateInfo::default()
+            .polygon_mode(vk::PolygonMode::FILL)
+            .cull_mode(vk::CullModeFlags::NONE)
+            .front_face(vk::FrontFace::COUNTER_CLOCKWISE)
+            .line_width(1.0);
+        let multisample = vk::PipelineMultisampleStateCreateInfo::default()
+            .rasterization_samples(vk::SampleCountFlags::TYPE_1);
+        let depth = vk::PipelineDepthStencilStateCreateInfo::default()
+            .depth_test_enable(true)
+            .depth_write_enable(true)
+            .depth_compare_op(vk::CompareOp::LESS_OR_EQUAL);
+        let blend_attachments = [vk::PipelineColorBlendAttachmentState::default()
+            .color_write_mask(vk::ColorComponentFlags::RGBA)];
+        let blend =
+            vk::PipelineColorBlendStateCreateInfo::default().attachments(&blend_attachments);
+        let dynamic_states = [vk::DynamicState::VIEWPORT, vk::DynamicState::SCISSOR];
+        let dynamic = vk::PipelineDynamicStateCreateInfo::default().dynamic_states(&dynamic_states);
+        let color_formats = [desc.color_format];
+        let mut rendering = vk::PipelineRenderingCreateInfo::default()
+            .color_attachment_formats(&color_formats)
+            .depth_attachment_format(desc.depth_format);
+        let mut info = vk::GraphicsPipelineCreateInfo::default()
+            .stages(&stages)
+            .vertex_input_state(&vertex_input)
+            .input_assembly_state(&input_assembly)
+            .viewport_state(&viewport)
+            .rasterization_state(&raster)
+            .multisample_state(&multisample)
+            .depth_stencil_state(&depth)
+            .color_blend_state(&blend)
+            .dynamic_state(&dynamic)
+            .layout(layout.raw)
+            .push_next(&mut rendering);
+        if desc.patch_control_points > 0 {
+            info = info.tessellation_state(&tessellation);
+        }
+        // SAFETY: every pointer in the create info outlives the call.
+        let raw = unsafe {
+            ctx.device
+                .create_graphics_pipelines(vk::PipelineCache::null(), &[info], None)
+        }
+        .map_err(|(_, e)| GpuError::Vk {
+            call: "vkCreateGraphicsPipelines",
+            result: e,
+        })?[0];
+        ctx.set_name(raw, name);
+        track_new();
+        Ok(Self {
+            ctx: ctx.clone(),
+            raw,
+        })
+    }
+}
+
+impl Drop for Pipeline {
+    fn drop(&mut self) {
+        // SAFETY: not used by pending work.
+        unsafe { self.ctx.device.destroy_pipeline(self.raw, None) };
+        track_drop();
+    }
+}

@@ -1,0 +1,269 @@
+//! [`Cmd`]: safe recording of the commands the drivers use, so that no module outside `gpu`
+//! calls ash. A `Cmd` exists only between `vkBeginCommandBuffer` and `vkEndCommandBuffer` of a
+//! buffer that the `CommandPool` (or the frame loop through it) owns; resources passed in are
+//! kept alive by their owners until the submission has been waited for (see the module docs).
+
+use super::image::subresource;
+use super::{Buffer, Context};
+use ash::vk;
+
+#[derive(Clone, Copy)]
+pub struct Cmd<'a> {
+    pub(crate) ctx: &'a Context,
+    pub raw: vk::CommandBuffer,
+}
+
+impl<'a> Cmd<'a> {
+    pub(crate) fn new(ctx: &'a Context, raw: vk::CommandBuffer) -> Self {
+        Self { ctx, raw }
+    }
+
+    pub fn context(&self) -> &Context {
+        self.ctx
+    }
+
+    pub fn bind_graphics_pipeline(&self, pipeline: vk::Pipeline) {
+        // SAFETY (every method): `raw` is in the recording state (see the type's docs) and the
+        // handles come from this device and outlive the submission.
+        unsafe {
+            self.ctx
+                .device
+                .cmd_bind_pipeline(self.raw, vk::PipelineBindPoint::GRAPHICS, pipeline)
+        };
+    }
+
+    pub fn bind_descriptor_set(
+        &self,
+        layout: vk::PipelineLayout,
+        set_index: u32,
+        set: vk::DescriptorSet,
+        dynamic_offsets: &[u32],
+    ) {
+        // SAFETY: see `bind_graphics_pipeline`.
+        unsafe {
+            self.ctx.device.cmd_bind_descriptor_sets(
+                self.raw,
+                vk::PipelineBindPoint::GRAPHICS,
+                layout,
+                set_index,
+                &[set],
+                dynamic_offsets,
+            )
+        };
+    }
+
+    pub fn push_constants(
+        &self,
+        layout: vk::PipelineLayout,
+        stages: vk::ShaderStageFlags,
+        offset: u32,
+        bytes: &[u8],
+    ) {
+        // SAFETY: see `bind_graphics_pipeline`; the range lies in the layout's push range.
+        unsafe {
+            self.ctx
+                .device
+                .cmd_push_constants(self.raw, layout, stages, offset, bytes)
+        };
+    }
+
+    pub fn bind_vertex_buffer(&self, binding: u32, buffer: &Buffer) {
+        // SAFETY: see `bind_graphics_pipeline`.
+        unsafe {
+            self.ctx
+                .device
+                .cmd_bind_vertex_buffers(self.raw, binding, &[buffer.raw], &[0])
+        };
+    }
+
+    pub fn bind_index_buffer_u32(&self, buffer: &Buffer) {
+        // SAFETY: see `bind_graphics_pipeline`.
+        unsafe {
+            self.ctx
+                .device
+                .cmd_bind_index_buffer(self.raw, buffer.raw, 0, vk::IndexType::UINT32)
+        };
+    }
+
+    pub fn draw(&self, vertices: u32, instances: u32, first_vertex: u32, first_instance: u32) {
+        // SAFETY: see `bind_graphics_pipeline`.
+        unsafe {
+            self.ctx
+                .device
+                .cmd_draw(self.raw, vertices, instances, first_vertex, first_instance)
+        };
+    }
+
+    pub fn draw_indexed(
+        &self,
+        indices: u32,
+        instances: u32,
+        first_index: u32,
+        vertex_offset: i32,
+        first_instance: u32,
+    ) {
+        // SAFETY: see `bind_graphics_pipeline`.
+        unsafe {
+            self.ctx.device.cmd_draw_indexed(
+                self.raw,
+                indices,
+                instances,
+                first_index,
+                vertex_offset,
+                first_instance,
+            )
+        };
+    }
+
+    /// Begin dynamic rendering into one colour and one depth attachment (both cleared), and set
+    /// the viewport and scissor to the whole extent.
+    pub fn begin_rendering(
+        &self,
+        color_view: vk::ImageView,
+        depth_view: vk::ImageView,
+        extent: vk::Extent2D,
+        clear: [f32; 4],
+    ) {
+        let color = [vk::RenderingAttachmentInfo::default()
+            .image_view(color_view)
+            .image_layout(vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL)
+            .load_op(vk::AttachmentLoadOp::CLEAR)
+            .store_op(vk::AttachmentStoreOp::STORE)
+            .clear_value(vk::ClearValue {
+                color: vk::ClearColorValue { float32: clear },
+            })];
+        let depth = vk::RenderingAttachmentInfo::default()
+            .image_view(depth_view)
+            .image_layout(vk::ImageLayout::DEPTH_ATTACHMENT_OPTIMAL)
+            .load_op(vk::AttachmentLoadOp::CLEAR)
+            .store_op(vk::AttachmentStoreOp::DONT_CARE)
+            .clear_value(vk::ClearValue {
+                depth_stencil: vk::ClearDepthStencilValue {
+                    depth: 1.0,
+                    stencil: 0,
+                },
+            });
+        let area = vk::Rect2D {
+            offset: vk::Offset2D::default(),
+            extent,
+        };
+        let info = vk::RenderingInfo::default()
+            .render_area(area)
+            .layer_count(1)
+            .color_attachments(&color)
+            .depth_attachment(&depth);
+        let viewport = vk::Viewport {
+            x: 0.0,
+            y: 0.0,
+            width: extent.width as f32,
+            height: extent.height as f32,
+            min_depth: 0.0,
+            max_depth: 1.0,
+        };
+        // SAFETY: see `bind_graphics_pipeline`; attachments are in the layouts named above.
+        unsafe {
+            self.ctx.device.cmd_begin_rendering(self.raw, &info);
+            self.ctx.device.cmd_set_viewport(self.raw, 0, &[viewport]);
+            self.ctx.device.cmd_set_scissor(self.raw, 0, &[area]);
+        }
+    }
+
+    pub fn end_rendering(&self) {
+        // SAFETY: matches a `begin_rendering` on this command buffer.
+        unsafe { self.ctx.device.cmd_end_rendering(self.raw) };
+    }
+
+    /// Image layout transition of the whole image (conservative stage and access masks).
+    pub fn transition(
+        &self,
+        image: vk::Image,
+        aspect: vk::ImageAspectFlags,
+        old: vk::ImageLayout,
+        new: vk::ImageLayout,
+    ) {
+        let barrier = vk::ImageMemoryBarrier::default()
+            .image(image)
+            .old_layout(old)
+            .new_layout(new)
+            .src_access_mask(vk::AccessFlags::MEMORY_WRITE)
+            .dst_access_mask(vk::AccessFlags::MEMORY_READ | vk::AccessFlags::MEMORY_WRITE)
+            .src_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
+            .dst_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
+            .subresource_range(subresource(aspect));
+        // SAFETY: see `bind_graphics_pipeline`; outside a rendering instance.
+        unsafe {
+            self.ctx.device.cmd_pipeline_barrier(
+                self.raw,
+                vk::PipelineStageFlags::ALL_COMMANDS,
+                vk::PipelineStageFlags::ALL_COMMANDS,
+                vk::DependencyFlags::empty(),
+                &[],
+                &[],
+                &[barrier],
+            )
+        };
+    }
+
+    /// Make shader and transfer writes visible to the host once the submission's fence signals.
+    pub fn barrier_to_host(&self) {
+        let barrier = vk::MemoryBarrier::default()
+            .src_access_mask(vk::AccessFlags::SHADER_WRITE | vk::AccessFlags::TRANSFER_WRITE)
+            .dst_access_mask(vk::AccessFlags::HOST_READ);
+        // SAFETY: see `bind_graphics_pipeline`; outside a rendering instance.
+        unsafe {
+            self.ctx.device.cmd_pipeline_barrier(
+                self.raw,
+                vk::PipelineStageFlags::ALL_COMMANDS,
+                vk::PipelineStageFlags::HOST,
+                vk::DependencyFlags::empty(),
+                &[barrier],
+                &[],
+                &[],
+            )
+        };
+    }
+
+    /// Copy a colour image in TRANSFER_SRC_OPTIMAL to a buffer, tightly packed.
+    pub fn copy_image_to_buffer(&self, image: vk::Image, extent: vk::Extent2D, buffer: &Buffer) {
+        let region = vk::BufferImageCopy::default()
+            .image_subresource(
+                vk::ImageSubresourceLayers::default()
+                    .aspect_mask(vk::ImageAspectFlags::COLOR)
+                    .layer_count(1),
+            )
+            .image_extent(vk::Extent3D {
+                width: extent.width,
+                height: extent.height,
+                depth: 1,
+            });
+        // SAFETY: see `bind_graphics_pipeline`; the buffer holds width*height*4 bytes.
+        unsafe {
+            self.ctx.device.cmd_copy_image_to_buffer(
+                self.raw,
+                image,
+                vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+                buffer.raw,
+                &[region],
+            )
+        };
+    }
+
+    pub fn copy_buffer(&self, src: &Buffer, dst: &Buffer, bytes: u64) {
+        let region = vk::BufferCopy::default().size(bytes);
+        // SAFETY: see `bind_graphics_pipeline`; both buffers hold `bytes`.
+        unsafe {
+            self.ctx
+                .device
+                .cmd_copy_buffer(self.raw, src.raw, dst.raw, &[region])
+        };
+    }
+
+    pub fn fill_buffer(&self, buffer: &Buffer, value: u32) {
+        // SAFETY: see `bind_graphics_pipeline`.
+        unsafe {
+            self.ctx
+                .device
+                .cmd_fill_buffer(self.raw, buffer.raw, 0, vk::WHOLE_SIZE, value)
+        };
+    }
+}

@@ -1,0 +1,15 @@
+//! meshrefine: GPU mesh refinement on raw Vulkan.
+//!
+//! The math modules (`mesh`, `pattern`, `surface`) hold no Vulkan and no unsafe code; `gpu` is
+//! the only module that calls ash; `render` composes them into the drivers (`static`, `pattern`,
+//! `tess`); `app` is the window demo; `export` writes what the GPU evaluated.
+#![deny(unsafe_op_in_unsafe_fn)]
+
+pub mod app;
+pub mod bench;
+pub mod export;
+pub mod gpu;
+pub mod mesh;
+pub mod pattern;
+pub mod render;
+pub mod surface;

@@ -1,0 +1,257 @@
+//! `meshrefine` binary: parses the command line, runs the command, turns every failure into one
+//! clear sentence and a non-zero exit status.
+
+mod cli;
+
+use anyhow::{bail, Context as _, Result};
+use clap::Parser;
+use cli::{Cli, Command, Technique};
+use meshrefine::gpu::{Context, ContextDesc, Messages};
+use meshrefine::mesh::Mesh;
+use meshrefine::render::{geometry_bytes, Camera, DrawConfig, Driver, Headless};
+use std::path::Path;
+use std::process::ExitCode;
+use std::sync::Arc;
+
+fn main() -> ExitCode {
+    env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn"))
+        .format_timestamp(None)
+        .init();
+    let cli = Cli::parse();
+    match run(cli) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn context_desc(cli: &Cli) -> ContextDesc {
+    let env = std::env::var("MESHREFINE_VALIDATE").is_ok_and(|v| !v.is_empty() && v != "0");
+    ContextDesc {
+        validate: cli.validate || env,
+        device_name: cli.device.clone(),
+        surface_extensions: vec![],
+    }
+}
+
+fn load_mesh(path: Option<&Path>) -> Result<Mesh> {
+    match path {
+        None => Ok(meshrefine::mesh::default_mesh()),
+        Some(p) => {
+            let (mesh, report) = Mesh::load_obj(p)?;
+            if !report.dropped_degenerate.is_empty() {
+                eprintln!(
+                    "warning: '{}': dropped {} degenerate face(s) (repeated vertex or zero area)",
+                    p.display(),
+                    report.dropped_degenerate.len()
+                );
+            }
+            Ok(mesh)
+        }
+    }
+}
+
+fn draw_config(t: &Technique) -> DrawConfig {
+    DrawConfig {
+        surface: t.surface.surface(),
+        driver: t.driver,
+        submit: t.submit,
+        level: t.level,
+    }
+}
+
+/// After every GPU object is gone: fail if the validation layer complained or anything leaked.
+fn check_messages(messages: &Arc<Messages>) -> Result<()> {
+    let list = messages.take();
+    let leaked = meshrefine::gpu::live_objects();
+    if leaked != 0 {
+        bail!("{leaked} Vulkan object(s) were still alive at shutdown");
+    }
+    if !list.is_empty() {
+        for m in &list {
+            eprintln!("validation: {m}");
+        }
+        bail!(
+            "the Vulkan validation layer reported {} problem(s)",
+            list.len()
+        );
+    }
+    Ok(())
+}
+
+fn run(cli: Cli) -> Result<()> {
+    let desc = context_desc(&cli);
+    match &cli.command {
+        Command::Render(a) => {
+            let mesh = load_mesh(a.mesh.as_deref())?;
+            let cfg = draw_config(&a.technique);
+            let messages = {
+                let ctx = Context::new(&desc)?;
+                let messages = ctx.messages_handle();
+                render_png(ctx, mesh, &cfg, a.width, a.height, a.wireframe, &a.output)?;
+                messages
+            };
+            check_messages(&messages)?;
+            println!("wrote {}", a.output.display());
+        }
+        Command::View(a) => {
+            let mesh = load_mesh(a.mesh.as_deref())?;
+            let cfg = draw_config(&a.technique);
+            let has_display = std::env::var_os("DISPLAY").is_some()
+                || std::env::var_os("WAYLAND_DISPLAY").is_some();
+            if !has_display {
+                let messages = {
+                    let ctx = Context::new(&desc)?;
+                    let messages = ctx.messages_handle();
+                    render_png(ctx, mesh, &cfg, 1280, 720, a.wireframe, &a.headless_output)?;
+                    messages
+                };
+                check_messages(&messages)?;
+                let shown =
+                    std::fs::canonicalize(&a.headless_output).unwrap_or(a.headless_output.clone());
+                println!(
+                    "no display found (DISPLAY and WAYLAND_DISPLAY are unset): rendered the scene headlessly to {}",
+                    shown.display()
+                );
+                return Ok(());
+            }
+            let opts = meshrefine::app::ViewOptions {
+                cfg,
+                frames: a.frames,
+                screenshot: a.screenshot.clone(),
+                wireframe: a.wireframe,
+                animate: a.animate,
+            };
+            let messages = meshrefine::app::run(desc, mesh, opts)?;
+            check_messages(&messages)?;
+        }
+        Command::Export(a) => {
+            let mesh = load_mesh(a.mesh.as_deref())?;
+            let cfg = draw_config(&a.technique);
+            if cfg.driver == Driver::Static {
+                bail!("export reads back what the GPU evaluated: choose --driver pattern or --driver tess");
+            }
+            let messages = {
+                let ctx = Context::new(&desc)?;
+                let messages = ctx.messages_handle();
+                let device = ctx.info.describe();
+                let mut h = Headless::with_context(ctx, 64, 64)?;
+                let name = mesh.name.clone();
+                let mut scene = h.scene(mesh, cfg.level)?;
+                let (c, r) = scene.bounding_sphere();
+                let cap = h.capture(&mut scene, &cfg, &Camera::framing(c, r))?;
+                let pattern = &scene.patterns.patterns[scene.patterns.find(cfg.level).unwrap()];
+                let refined =
+                    meshrefine::export::weld(&cap, pattern).map_err(anyhow::Error::msg)?;
+                let header = vec![
+                    format!(
+                        "meshrefine export of '{name}': surface {}, driver {}, level {}",
+                        cfg.surface.name(),
+                        cfg.label(),
+                        cfg.level
+                    ),
+                    format!("evaluated on {device}"),
+                    format!(
+                        "{} vertices, {} normals, {} triangles",
+                        refined.positions.len(),
+                        refined.normals.len(),
+                        refined.triangles.len()
+                    ),
+                ];
+                std::fs::write(&a.output, meshrefine::export::to_obj(&refined, &header))
+                    .with_context(|| format!("cannot write '{}'", a.output.display()))?;
+                println!("{}", header[2]);
+                messages
+            };
+            check_messages(&messages)?;
+            println!("wrote {}", a.output.display());
+        }
+        Command::Info(a) => info(&a.mesh, a.level)?,
+        Command::Bench(a) => {
+            let mesh = load_mesh(a.mesh.as_deref())?;
+            let ctx = Context::new(&desc)?;
+            let messages = ctx.messages_handle();
+            let opts = meshrefine::bench::BenchOptions {
+                levels: a.levels.clone(),
+                frames: a.frames,
+                width: a.width,
+                height: a.height,
+            };
+            let report = meshrefine::bench::run(ctx, &[mesh], &opts)?;
+            println!("{}", report.markdown());
+            check_messages(&messages)?;
+        }
+    }
+    Ok(())
+}
+
+fn render_png(
+    ctx: Arc<Context>,
+    mesh: Mesh,
+    cfg: &DrawConfig,
+    width: u32,
+    height: u32,
+    wireframe: bool,
+    out: &Path,
+) -> Result<()> {
+    let mut h = Headless::with_context(ctx, width, height)?;
+    h.wireframe = wireframe;
+    let mut scene = h.scene(mesh, cfg.level)?;
+    let (c, r) = scene.bounding_sphere();
+    let image = h.render(&mut scene, cfg, &Camera::framing(c, r))?;
+    image
+        .save_png(out)
+        .with_context(|| format!("cannot write '{}'", out.display()))
+}
+
+fn info(path: &Path, level: Option<u32>) -> Result<()> {
+    let (mesh, report) = Mesh::load_obj(path)?;
+    let s = mesh.stats();
+    println!("mesh: {}", path.display());
+    println!("vertices: {}", s.vertices);
+    println!("triangles: {}", s.triangles);
+    println!("boundary edges: {}", s.boundary_edges);
+    println!("non-manifold edges: {}", s.nonmanifold_edges);
+    println!("non-manifold vertices: {}", s.nonmanifold_vertices);
+    println!(
+        "inconsistently oriented edges: {}",
+        s.inconsistently_oriented_edges
+    );
+    println!(
+        "degenerate faces dropped: {}",
+        report.dropped_degenerate.len()
+    );
+    println!(
+        "normals: {}",
+        if report.normals_computed {
+            "computed (area-weighted)"
+        } else {
+            "from file"
+        }
+    );
+    let hist: Vec<String> = s
+        .valence_histogram
+        .iter()
+        .map(|(v, n)| format!("{v}:{n}"))
+        .collect();
+    println!("valence histogram (valence:vertices): {}", hist.join(" "));
+    if let Some(level) = level {
+        let t = s.triangles as u64;
+        let records = t * std::mem::size_of::<meshrefine::surface::CoarseTri>() as u64;
+        println!(
+            "level {level}: {} refined triangles ({} per coarse triangle)",
+            t * meshrefine::pattern::triangle_count(level) as u64,
+            meshrefine::pattern::triangle_count(level)
+        );
+        for d in Driver::ALL {
+            println!(
+                "  {:8} {:>14} bytes of GPU geometry",
+                d.name(),
+                geometry_bytes(d, level, t, records)
+            );
+        }
+    }
+    Ok(())
+}

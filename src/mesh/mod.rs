@@ -1,0 +1,327 @@
+//! Triangle meshes: loading (Wavefront OBJ), validation, normals and topology statistics.
+//!
+//! # Design
+//!
+//! A [`Mesh`] is an indexed triangle mesh with separate index sets for positions and
+//! normals, so that a vertex can carry several normals (hard edges) while its position is
+//! shared by every triangle around it, which is what subdivision and adjacency need. It is
+//! built only through [`Mesh::load_obj`], [`Mesh::from_obj_str`], [`Mesh::from_parts`] and
+//! [`default_mesh`], which all run the same pipeline:
+//!
+//! 1. validate the input (OBJ text is pre-scanned line by line, see `scan.rs`, so every error
+//!    names its file and line; `tobj` then parses canonical text and triangulates polygons
+//!    as fans);
+//! 2. weld: positions that are bitwise equal (after turning `-0.0` into `0.0`) become one
+//!    index, in order of first use;
+//! 3. drop degenerate triangles, those that repeat a position index after welding or whose
+//!    area is zero (`|cross| <= 1e-12 * longest_edge^2`), each with a `log::warn!` and an
+//!    entry in [`LoadReport::dropped_degenerate`]; if none is left the load fails with
+//!    [`MeshError::EmptyMesh`];
+//! 4. normals: an OBJ whose every face corner has a `vn` keeps those (normalized); otherwise
+//!    (none, or only some faces, which also logs a warning) area-weighted vertex normals are
+//!    computed per welded position.
+//!
+//! # Invariants of a loaded mesh
+//!
+//! - at least one triangle; every `p` index is `< positions.len()`, every `n` index is
+//!   `< normals.len()`, and all indices are at most `u32::MAX / 2` ([`MAX_INDICES`]);
+//! - positions are finite and unique; normals are finite and unit length;
+//! - no triangle repeats a position index or has zero area;
+//! - when normals were computed, `normals.len() == positions.len()` and `n == p` for every
+//!   triangle;
+//! - positions used by no triangle may remain (from [`Mesh::from_parts`]);
+//!   [`MeshStats::vertices`] counts only the positions used by at least one triangle.
+//!
+//! Loading does not require a manifold; techniques that do call [`Mesh::require_manifold`].
+//! Errors are single lower-case sentences naming the file and, where possible, the line.
+
+#![forbid(unsafe_code)]
+
+mod animate;
+mod error;
+mod normals;
+mod obj;
+mod scan;
+mod topology;
+mod weld;
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use glam::Vec3;
+
+pub use error::{MeshError, MAX_INDICES};
+pub use normals::{compute_area_weighted_normals, FALLBACK_NORMAL};
+pub use topology::mesh_stats;
+
+/// Welded triangle mesh. Positions are unique (welded: exactly-equal positions merged to one
+/// index). See the module documentation for the invariants.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Mesh {
+    /// File stem, or "default" when the path has none.
+    pub name: String,
+    /// Unique, finite vertex positions.
+    pub positions: Vec<Vec3>,
+    /// Unit length.
+    pub normals: Vec<Vec3>,
+    /// At least one; none degenerate.
+    pub triangles: Vec<Triangle>,
+}
+
+/// One triangle: position indices and normal indices per corner, in input order
+/// (counter-clockwise seen from the front, by OBJ convention).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Triangle {
+    /// Indices into [`Mesh::positions`].
+    pub p: [u32; 3],
+    /// Indices into [`Mesh::normals`].
+    pub n: [u32; 3],
+}
+
+/// What loading did besides building the mesh.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct LoadReport {
+    /// Degenerate triangles that were left out, in input order.
+    pub dropped_degenerate: Vec<DegenerateFace>,
+    /// Whether the normals were computed (true) or taken from the input (false).
+    pub normals_computed: bool,
+    /// Faces with more than three corners that were split into triangles.
+    pub polygons_triangulated: usize,
+}
+
+/// A triangle dropped because it is degenerate. A polygon's fan triangles share its `face`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct DegenerateFace {
+    /// 0-based face index in file order (triangle index for [`Mesh::from_parts`]).
+    pub face: usize,
+    /// 1-based line of the face in the OBJ text.
+    pub line: Option<usize>,
+    /// "repeats a vertex index" or "has zero area".
+    pub reason: &'static str,
+}
+
+/// Topology statistics, see [`Mesh::stats`] and [`mesh_stats`] for the definitions.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct MeshStats {
+    /// Positions used by at least one triangle.
+    pub vertices: usize,
+    /// Number of triangles.
+    pub triangles: usize,
+    /// Distinct edges (unordered position-index pairs).
+    pub edges: usize,
+    /// Edges used by exactly one triangle.
+    pub boundary_edges: usize,
+    /// Edges used by more than two triangles.
+    pub nonmanifold_edges: usize,
+    /// Vertices whose triangles do not form one edge-connected fan, or that lie on a
+    /// non-manifold edge.
+    pub nonmanifold_vertices: usize,
+    /// Interior edges that both of their triangles traverse in the same direction.
+    pub inconsistently_oriented_edges: usize,
+    /// Vertices on at least one boundary edge.
+    pub boundary_vertices: usize,
+    /// Valence (number of distinct neighbouring vertices) -> number of vertices.
+    pub valence_histogram: BTreeMap<u32, usize>,
+    /// The same over interior vertices only (those on no boundary edge).
+    pub interior_valence_histogram: BTreeMap<u32, usize>,
+}
+
+impl Mesh {
+    /// Loads a Wavefront OBJ file (all objects and groups merged into one mesh).
+    pub fn load_obj(path: &Path) -> Result<(Mesh, LoadReport), MeshError> {
+        obj::load_obj(path)
+    }
+
+    /// Parses OBJ text. `name` is used in messages like a path, and its file stem names the
+    /// mesh.
+    pub fn from_obj_str(name: &str, text: &str) -> Result<(Mesh, LoadReport), MeshError> {
+        obj::parse_obj(name, weld::mesh_name(name), text)
+    }
+
+    /// Builds a mesh from raw arrays with the same validation, welding and degenerate-face
+    /// handling as loading. `normals`, if given, has one entry per position (indices of
+    /// `tris` then index them too, and survive welding); otherwise normals are computed.
+    /// Indices are 0-based.
+    pub fn from_parts(
+        name: &str,
+        positions: Vec<Vec3>,
+        normals: Option<Vec<Vec3>>,
+        tris: Vec<[u32; 3]>,
+    ) -> Result<(Mesh, LoadReport), MeshError> {
+        weld::from_parts(name, positions, normals, tris)
+    }
+
+    /// Topology statistics (computed on demand, O(triangles)).
+    pub fn stats(&self) -> MeshStats {
+        mesh_stats(self.positions.len(), &self.position_indices())
+    }
+
+    /// The position indices of every triangle (e.g. for an index buffer).
+    pub fn position_indices(&self) -> Vec<[u32; 3]> {
+        self.triangles.iter().map(|t| t.p).collect()
+    }
+
+    /// Axis-aligned bounds `(min, max)` of the positions used by triangles (of all
+    /// positions if no triangle uses any; `(0, 0)` for no positions).
+    pub fn bounds(&self) -> (Vec3, Vec3) {
+        let used = self
+            .triangles
+            .iter()
+            .flat_map(|t| t.p)
+            .filter_map(|i| self.positions.get(i as usize));
+        let (lo, hi) = used.fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &p| {
+            (lo.min(p), hi.max(p))
+        });
+        if lo.cmple(hi).all() {
+            return (lo, hi);
+        }
+        let (lo, hi) = self
+            .positions
+            .iter()
+            .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &p| {
+                (lo.min(p), hi.max(p))
+            });
+        if lo.cmple(hi).all() {
+            (lo, hi)
+        } else {
+            (Vec3::ZERO, Vec3::ZERO)
+        }
+    }
+
+    /// CPU deformation for the demo's animation: a travelling sine wave that moves each
+    /// position by at most `amplitude` along its area-weighted vertex normal, periodic in
+    /// `time` (seconds) with period 2 and deterministic. Triangles are unchanged. Normals are
+    /// recomputed only if they were computed, which is recognized as `n == p` for every
+    /// triangle and normals exactly equal to the area-weighted normals of the positions;
+    /// normals from the input are kept as they are. A zero or non-finite `time` or
+    /// `amplitude` returns an unchanged copy.
+    pub fn animated(&self, time: f32, amplitude: f32) -> Mesh {
+        animate::animated(self, time, amplitude)
+    }
+
+    /// `Ok` if the mesh has no non-manifold edge or vertex, else [`MeshError::NonManifold`]
+    /// (named by [`Mesh::name`]).
+    pub fn require_manifold(&self) -> Result<(), MeshError> {
+        let s = self.stats();
+        if s.is_manifold() {
+            Ok(())
+        } else {
+            Err(MeshError::NonManifold {
+                path: self.name.clone(),
+                edges: s.nonmanifold_edges,
+                vertices: s.nonmanifold_vertices,
+            })
+        }
+    }
+}
+
+/// The default model: the control mesh of "Spot" (Spot by Keenan Crane, released into the
+/// public domain), triangulated, with area-weighted normals given in the file; 188
+/// vertices, 372 triangles, closed. Embedded from `assets/models/spot_control_tri_vn.obj`
+/// at compile time. Named "spot".
+pub fn default_mesh() -> Mesh {
+    const SPOT_OBJ: &str = include_str!(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/assets/models/spot_control_tri_vn.obj"
+    ));
+    let (mut mesh, _) =
+        Mesh::from_obj_str("spot_control_tri_vn.obj", SPOT_OBJ).expect("embedded mesh is valid");
+    mesh.name = "spot".to_string();
+    mesh
+}
+
+#[cfg(test)]
+pub(crate) mod test_support {
+    use super::{LoadReport, Mesh};
+    use std::path::PathBuf;
+
+    pub fn model_path(file: &str) -> PathBuf {
+        PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/assets/models")).join(file)
+    }
+
+    pub fn load_model(file: &str) -> (Mesh, LoadReport) {
+        Mesh::load_obj(&model_path(file)).unwrap_or_else(|e| panic!("{e}"))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::test_support::load_model;
+    use super::*;
+
+    #[test]
+    fn default_mesh_is_spot() {
+        let mesh = default_mesh();
+        assert_eq!(mesh.name, "spot");
+        let s = mesh.stats();
+        assert_eq!((s.vertices, s.triangles), (188, 372));
+        assert!(s.is_closed());
+        assert!(mesh.normals.iter().all(|n| (n.length() - 1.0).abs() < 1e-5));
+        let (from_file, report) = load_model("spot_control_tri_vn.obj");
+        assert!(!report.normals_computed);
+        assert_eq!(mesh.positions, from_file.positions);
+        assert_eq!(mesh.triangles, from_file.triangles);
+    }
+
+    #[test]
+    fn names_come_from_file_stems() {
+        assert_eq!(load_model("tetrahedron.obj").0.name, "tetrahedron");
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+        assert_eq!(Mesh::from_obj_str("", text).unwrap().0.name, "default");
+        assert_eq!(
+            Mesh::from_obj_str("/tmp/a/thing.obj", text).unwrap().0.name,
+            "thing"
+        );
+    }
+
+    #[test]
+    fn bounds_cover_used_positions() {
+        let (mesh, _) = load_model("tetrahedron.obj");
+        assert_eq!(mesh.bounds(), (Vec3::splat(-1.0), Vec3::splat(1.0)));
+        let p = vec![Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::splat(100.0)];
+        let (mesh, _) = Mesh::from_parts("m", p, None, vec![[0, 1, 2]]).unwrap();
+        assert_eq!(mesh.bounds(), (Vec3::ZERO, Vec3::new(1.0, 1.0, 0.0)));
+        let empty = Mesh {
+            name: "e".into(),
+            positions: vec![],
+            normals: vec![],
+            triangles: vec![],
+        };
+        assert_eq!(empty.bounds(), (Vec3::ZERO, Vec3::ZERO));
+        assert_eq!(empty.stats(), MeshStats::default());
+    }
+
+    #[test]
+    fn computed_normals_point_outwards_on_closed_models() {
+        for file in ["tetrahedron.obj", "icosahedron.obj", "uvsphere12.obj"] {
+            let (mesh, report) = load_model(file);
+            assert!(report.normals_computed);
+            let (lo, hi) = mesh.bounds();
+            let centre = (lo + hi) / 2.0;
+            for t in &mesh.triangles {
+                for k in 0..3 {
+                    let p = mesh.positions[t.p[k] as usize];
+                    assert!(
+                        mesh.normals[t.n[k] as usize].dot(p - centre) > 0.0,
+                        "{file}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn given_normals_match_computed_ones_where_they_should() {
+        // The _vn icosahedron has exact sphere normals, which the symmetric mesh reproduces.
+        let (given, _) = load_model("icosahedron_vn.obj");
+        let (computed, _) = load_model("icosahedron.obj");
+        assert_eq!(given.positions, computed.positions);
+        for (g, c) in given.triangles.iter().zip(&computed.triangles) {
+            for k in 0..3 {
+                let a = given.normals[g.n[k] as usize];
+                let b = computed.normals[c.n[k] as usize];
+                assert!(a.dot(b) > 0.9999, "{a} vs {b}");
+            }
+        }
+    }
+}

@@ -1,0 +1,405 @@
+//! Wavefront OBJ loading: a validating pre-scan, then `tobj` for triangulation.
+//!
+//! `tobj` 4 reports errors without line numbers and trusts its input more than a loader of
+//! user files can: it accepts `nan`/`inf` coordinates, silently skips faces with fewer than
+//! three vertices, silently invents a normal for a corner with normal index 0, and panics
+//! (integer overflow, in builds with overflow checks) on a face whose relative normal or
+//! texture index points before the first one (e.g. `f 1//-5 2//1 3//1`). So the text is
+//! first scanned (`scan.rs`), line by line, and every problem is reported with its line. The
+//! scan also rewrites the file into a canonical form that `tobj` cannot misread: only `v x y z`,
+//! `vn x y z` and `f` lines with absolute, range-checked `v` or `v//vn` indices remain; every
+//! other statement (groups, objects, materials, texture coordinates, lines, points) becomes
+//! an empty line, which also merges all objects and groups into one mesh. `tobj` then parses
+//! that text and fan-triangulates polygons (`0 1 2`, `0 2 3`, ...).
+
+use std::io::Cursor;
+use std::path::Path;
+
+use glam::Vec3;
+
+use super::scan::{parse_error, Scan};
+use super::weld::{assemble, mesh_name, RawMesh, RawTriangle};
+use super::{LoadReport, Mesh, MeshError};
+
+/// Reads and parses an OBJ file. Bytes that are not UTF-8 are replaced (they can only
+/// matter inside comments or names, which are ignored).
+pub(crate) fn load_obj(path: &Path) -> Result<(Mesh, LoadReport), MeshError> {
+    let shown = path.display().to_string();
+    let bytes = std::fs::read(path).map_err(|source| MeshError::Io {
+        path: shown.clone(),
+        source,
+    })?;
+    let text = String::from_utf8_lossy(&bytes);
+    parse_obj(&shown, mesh_name(&shown), &text)
+}
+
+/// Parses OBJ text; `path` is what messages call it.
+pub(crate) fn parse_obj(
+    path: &str,
+    name: String,
+    text: &str,
+) -> Result<(Mesh, LoadReport), MeshError> {
+    let scan = Scan::run(path, text)?;
+    let use_given_normals = scan.use_file_normals(path)?;
+
+    let (positions, normals, p_idx, n_idx) = run_tobj(path, &scan.canonical)?;
+    let expected: usize = scan.faces.iter().map(|f| f.corners - 2).sum();
+    let consistent = p_idx.len() == expected * 3
+        && (!use_given_normals || n_idx.len() == p_idx.len())
+        && p_idx.iter().all(|&i| (i as usize) < positions.len())
+        && (!use_given_normals || n_idx.iter().all(|&i| (i as usize) < normals.len()));
+    if !consistent {
+        return Err(parse_error(
+            path,
+            None,
+            "could not be read consistently by the OBJ parser".into(),
+        ));
+    }
+    if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
+        return Err(MeshError::NonFinite {
+            path: path.into(),
+            line: None,
+            what: format!("coordinate of vertex {}", i + 1),
+        });
+    }
+
+    let mut triangles = Vec::with_capacity(expected);
+    let mut next = 0;
+    for (face, info) in scan.faces.iter().enumerate() {
+        for _ in 2..info.corners {
+            let p = [p_idx[next], p_idx[next + 1], p_idx[next + 2]];
+            let n = if use_given_normals {
+                [n_idx[next], n_idx[next + 1], n_idx[next + 2]]
+            } else {
+                p
+            };
+            triangles.push(RawTriangle {
+                p,
+                n,
+                face,
+                line: Some(info.line),
+            });
+            next += 3;
+        }
+    }
+
+    let polygons_triangulated = scan.faces.iter().filter(|f| f.corners > 3).count();
+    let result = assemble(RawMesh {
+        path: path.into(),
+        name,
+        positions,
+        normals: use_given_normals.then_some(normals),
+        triangles,
+        polygons_triangulated,
+    })?;
+    log::debug!(
+        "'{path}': {} vertices, {} triangles, normals {}",
+        result.0.positions.len(),
+        result.0.triangles.len(),
+        if result.1.normals_computed {
+            "computed"
+        } else {
+            "from the file"
+        }
+    );
+    Ok(result)
+}
+
+type TobjOutput = (Vec<Vec3>, Vec<Vec3>, Vec<u32>, Vec<u32>);
+
+/// Runs `tobj` on canonical text and merges its models: positions, normals, and per-corner
+/// position and normal indices.
+fn run_tobj(path: &str, canonical: &str) -> Result<TobjOutput, MeshError> {
+    // Listing every field documents the choice; the update only covers fields that optional
+    // tobj features add.
+    #[allow(clippy::needless_update)]
+    let options = tobj::LoadOptions {
+        triangulate: true,
+        single_index: false,
+        ignore_points: true,
+        ignore_lines: true,
+        ..Default::default()
+    };
+    let (models, _materials) =
+        tobj::load_obj_buf(&mut Cursor::new(canonical.as_bytes()), &options, |_| {
+            Err(tobj::LoadError::OpenFileFailed)
+        })
+        .map_err(|e| {
+            parse_error(
+                path,
+                None,
+                format!("could not be read by the OBJ parser: {e}"),
+            )
+        })?;
+
+    let (mut positions, mut normals, mut p_idx, mut n_idx) = (vec![], vec![], vec![], vec![]);
+    let vec3s = |v: &[f32]| -> Vec<Vec3> { v.chunks_exact(3).map(Vec3::from_slice).collect() };
+    for model in models {
+        let m = model.mesh;
+        let (p_base, n_base) = (positions.len() as u32, normals.len() as u32);
+        positions.extend(vec3s(&m.positions));
+        normals.extend(vec3s(&m.normals));
+        p_idx.extend(m.indices.iter().map(|&i| p_base.saturating_add(i)));
+        n_idx.extend(m.normal_indices.iter().map(|&i| n_base.saturating_add(i)));
+    }
+    Ok((positions, normals, p_idx, n_idx))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::test_support::{load_model, model_path};
+    use crate::mesh::DegenerateFace;
+
+    const TRI: &str = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+
+    fn load(text: &str) -> Result<(Mesh, LoadReport), MeshError> {
+        Mesh::from_obj_str("x.obj", text)
+    }
+
+    fn err(text: &str) -> String {
+        match load(text) {
+            Ok(_) => panic!("{text:?} loaded"),
+            Err(e) => e.to_string(),
+        }
+    }
+
+    #[test]
+    fn loads_a_triangle() {
+        let (mesh, report) = load(&format!("{TRI}f 1 2 3\n")).unwrap();
+        assert_eq!(mesh.name, "x");
+        assert_eq!(mesh.positions, vec![Vec3::ZERO, Vec3::X, Vec3::Y]);
+        assert_eq!(mesh.normals, vec![Vec3::Z; 3]);
+        assert_eq!(mesh.triangles.len(), 1);
+        assert_eq!(mesh.triangles[0].p, mesh.triangles[0].n);
+        assert!(report.normals_computed);
+        assert_eq!(report.polygons_triangulated, 0);
+        assert!(report.dropped_degenerate.is_empty());
+    }
+
+    #[test]
+    fn missing_file_is_an_io_error() {
+        let path = model_path("no_such_model.obj");
+        let e = Mesh::load_obj(&path).unwrap_err();
+        assert!(matches!(e, MeshError::Io { .. }));
+        assert_eq!(
+            e.to_string(),
+            format!(
+                "cannot read mesh file '{}': No such file or directory (os error 2)",
+                path.display()
+            )
+        );
+    }
+
+    #[test]
+    fn garbage_never_panics() {
+        let long_face = format!("{TRI}f {}\n", "1 2 3 ".repeat(1000));
+        let inputs: Vec<String> = vec![
+            String::new(),
+            "\n\n\n".into(),
+            "# only a comment\n# another\n".into(),
+            "hello world\nthis is not a mesh\n".into(),
+            "\u{0}\u{1}\u{2}binary\u{ff}".into(),
+            String::from_utf8_lossy(&[0x89, b'P', b'N', b'G', 13, 10, 26, 10, 0, 0]).into(),
+            "v\nvn\nf\nvt\no\ng\ns\nusemtl\nmtllib\nl\np\n".into(),
+            "f 1 2 3\n".into(),
+            format!("{TRI}f 1 2 99\n"),
+            "v nan 0 0\n".into(),
+            "v inf 0 0\n".into(),
+            format!("{TRI}f 0 1 2\n"),
+            format!("{TRI}f 1 2\n"),
+            format!("{TRI}vn 0 0 1\nf 1//-5 2//1 3//1\n"),
+            format!("{TRI}vt 0 0\nf 1/-9 2/1 3/1\n"),
+            format!("{TRI}vn 0 0 1\nf 1//1 2//1 3//7\n"),
+            format!("{TRI}vn 0 0 1\nf 1//0 2//1 3//1\n"),
+            format!("{TRI}f -9223372036854775808 1 2\n"),
+            format!("{TRI}f 9223372036854775807 1 2\n"),
+            format!("{TRI}f 1 2 3 # trailing comment\n"),
+            "v 1e38 1e38 1e38\nv -1e38 -1e38 1e38\nv 1e38 -1e38 -1e38\nf 1 2 3\n".into(),
+            "v 1e-45 0 0\nv 0 1e-45 0\nv 0 0 1e-45\nf 1 2 3\n".into(),
+            "\r\n\r\nv 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nf 1 2 3\r\n".into(),
+            long_face,
+        ];
+        for text in &inputs {
+            let result = std::panic::catch_unwind(|| load(text));
+            match result {
+                Ok(Ok((m, _))) => {
+                    assert!(!m.triangles.is_empty());
+                    assert!(m.positions.iter().all(|p| p.is_finite()));
+                    assert!(m.normals.iter().all(|n| (n.length() - 1.0).abs() < 1e-5));
+                }
+                Ok(Err(e)) => {
+                    let msg = e.to_string();
+                    assert!(msg.starts_with("'x.obj'"), "{msg}");
+                    assert!(!msg.ends_with('.'), "{msg}");
+                }
+                Err(_) => panic!("panicked on {text:?}"),
+            }
+        }
+    }
+
+    #[test]
+    fn mutated_files_never_panic() {
+        // Deterministic mutations of a valid file with characters that matter to the parser.
+        let base = std::fs::read_to_string(model_path("cube_tri.obj")).unwrap();
+        let alphabet = b" \n/-+0123456789fvnte#.x\0";
+        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        let mut next = move |n: usize| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state % n as u64) as usize
+        };
+        for _ in 0..3000 {
+            let mut bytes = base.clone().into_bytes();
+            for _ in 0..1 + next(4) {
+                let at = next(bytes.len());
+                let c = alphabet[next(alphabet.len())];
+                match next(3) {
+                    0 => bytes[at] = c,
+                    1 => bytes.insert(at, c),
+                    _ => {
+                        bytes.remove(at);
+                    }
+                }
+            }
+            let text = String::from_utf8_lossy(&bytes).into_owned();
+            let result = std::panic::catch_unwind(|| load(&text));
+            match result {
+                Ok(Ok((m, _))) => assert!(m.positions.iter().all(|p| p.is_finite())),
+                Ok(Err(e)) => assert!(e.to_string().starts_with("'x.obj'")),
+                Err(_) => panic!("panicked on {text:?}"),
+            }
+        }
+    }
+
+    #[test]
+    fn binary_file_is_rejected() {
+        let dir = std::env::temp_dir().join(format!("meshwork-bin-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("image.obj");
+        std::fs::write(
+            &path,
+            [0x89, b'P', b'N', b'G', 13, 10, 26, 10, 0, 0, 0, 13, 0xff],
+        )
+        .unwrap();
+        let e = Mesh::load_obj(&path).unwrap_err();
+        std::fs::remove_dir_all(&dir).ok();
+        // "\u{fffd}PNG\r\n", "\u{1a}\n", then the NUL bytes on line 3.
+        assert!(matches!(e, MeshError::Parse { line: Some(3), .. }), "{e}");
+    }
+
+    #[test]
+    fn normals_from_the_file() {
+        let text = format!("{TRI}vn 0 0 2\nf 1//1 2//1 3//1\n");
+        let (m, report) = load(&text).unwrap();
+        assert!(!report.normals_computed);
+        assert_eq!(m.normals, vec![Vec3::Z]);
+        assert_eq!(m.triangles[0].n, [0, 0, 0]);
+
+        let (m, report) = load(&format!("{TRI}vn 0 0 1\nf 1/5/1 2/6/1 3/7/-1\n")).unwrap();
+        assert!(!report.normals_computed);
+        assert_eq!(m.triangles[0].n, [0, 0, 0]);
+    }
+
+    #[test]
+    fn partial_normals_are_recomputed() {
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvn 1 0 0\nf 1//1 2//1 3//1\nf 2 4 3\n";
+        let (m, report) = load(text).unwrap();
+        assert!(report.normals_computed);
+        assert_eq!(m.normals, vec![Vec3::Z; 4]);
+        // Missing on one corner only is partial too.
+        let (_, report) = load("v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 1 0 0\nf 1//1 2 3//1\n").unwrap();
+        assert!(report.normals_computed);
+    }
+
+    #[test]
+    fn objects_and_groups_merge_and_polygons_triangulate() {
+        let text = "o a\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nusemtl red\nf 1 2 3 4\n\
+                    g b\nv 2 0 0\nv 2 1 0\nl 2 5 6\nf 2 5 6 3\np 1\no c\nv 3 0 0\nf 5 7 6\n";
+        let (m, report) = load(text).unwrap();
+        assert_eq!(m.triangles.len(), 5);
+        assert_eq!(m.positions.len(), 7);
+        assert_eq!(report.polygons_triangulated, 2);
+        let s = m.stats();
+        assert_eq!(s.vertices, 7);
+        assert!(s.is_manifold());
+        assert_eq!(s.inconsistently_oriented_edges, 0);
+    }
+
+    #[test]
+    fn duplicate_vertices_are_welded() {
+        // Two triangles with their own copies of the shared edge, -0 vs 0 included.
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv -0 0 0\nv 0 1 0\nv -1 0 0\nf 1 2 3\nf 4 5 6\n";
+        let (m, _) = load(text).unwrap();
+        assert_eq!(m.positions.len(), 4);
+        assert_eq!(m.stats().boundary_edges, 4);
+    }
+
+    #[test]
+    fn degenerate_faces_are_dropped_and_reported() {
+        let (mesh, report) = load_model("degenerate_faces.obj");
+        let want = |face, line, reason| DegenerateFace {
+            face,
+            line: Some(line),
+            reason,
+        };
+        assert_eq!(
+            report.dropped_degenerate,
+            vec![
+                want(18, 40, "has zero area"),
+                want(19, 41, "has zero area"),
+                want(20, 42, "repeats a vertex index"),
+            ]
+        );
+        assert_eq!(mesh.triangles.len(), 18);
+        let path = model_path("degenerate_faces.obj");
+        let text = std::fs::read_to_string(&path).unwrap();
+        assert_eq!(text.lines().nth(41), Some("f 6 6 7"));
+    }
+
+    #[test]
+    fn all_faces_degenerate_is_an_empty_mesh() {
+        assert_eq!(
+            err("v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\nf 1 1 2\n"),
+            "'x.obj' contains no triangles"
+        );
+    }
+
+    #[test]
+    fn split_normals_are_kept() {
+        let (m, report) = load_model("cylinder_hard_normals.obj");
+        assert!(!report.normals_computed);
+        assert_eq!(m.positions.len(), 50);
+        assert!(m.normals.len() >= 3);
+        // Some position is used with two different normals (the rims).
+        let mut seen = std::collections::HashMap::new();
+        let mut split = false;
+        for t in &m.triangles {
+            for k in 0..3 {
+                let n = m.normals[t.n[k] as usize];
+                let first = *seen.entry(t.p[k]).or_insert(n);
+                split |= (first - n).length() > 1e-3;
+            }
+        }
+        assert!(split);
+    }
+
+    #[test]
+    fn every_model_loads_with_unit_normals() {
+        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/models");
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.extension().is_some_and(|e| e == "obj") {
+                let (m, report) = Mesh::load_obj(&path).unwrap_or_else(|e| panic!("{e}"));
+                let has_vn = std::fs::read_to_string(&path).unwrap().contains("\nvn ");
+                assert_eq!(report.normals_computed, !has_vn, "{}", path.display());
+                assert!(m.normals.iter().all(|n| (n.length() - 1.0).abs() < 1e-5));
+                for t in &m.triangles {
+                    assert!(t.p.iter().all(|&i| (i as usize) < m.positions.len()));
+                    assert!(t.n.iter().all(|&i| (i as usize) < m.normals.len()));
+                }
+            }
+        }
+    }
+}

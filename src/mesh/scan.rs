@@ -1,0 +1,584 @@
+//! The validating pre-scan of OBJ text (see `obj.rs` for why it exists).
+//!
+//! Statements understood: `v x y z [w]` or `v x y z r g b` (colours ignored), `vn x y z`,
+//! and `f` with corners `v`, `v/vt`, `v//vn` or `v/vt/vn` (positive 1-based or negative
+//! relative indices; texture indices are checked for syntax only). `#` starts a comment
+//! anywhere on a line. Everything else is ignored. Absolute indices may refer to vertices
+//! defined later in the file; relative ones count back from the current line.
+
+use glam::Vec3;
+
+use super::normals::unit;
+use super::{MeshError, MAX_INDICES};
+
+/// A face statement.
+pub(crate) struct FaceInfo {
+    /// 1-based line.
+    pub line: usize,
+    pub corners: usize,
+    /// Corners that carry a normal index.
+    pub with_normals: usize,
+}
+
+/// What the validating pass found.
+pub(crate) struct Scan {
+    /// The file in canonical form, line for line: `v x y z`, `vn x y z`, `f` with absolute
+    /// 1-based `v` or `v//vn` corners, and empty lines for everything else.
+    pub canonical: String,
+    pub faces: Vec<FaceInfo>,
+    /// Each `vn` statement: its line and value.
+    normals: Vec<(usize, Vec3)>,
+    /// For each corner with a normal: (0-based normal index, line of its face).
+    normal_refs: Vec<(usize, usize)>,
+}
+
+pub(crate) fn parse_error(path: &str, line: Option<usize>, msg: String) -> MeshError {
+    MeshError::Parse {
+        path: path.into(),
+        line,
+        msg,
+    }
+}
+
+/// The keyword and the remaining words of a line, with any `#` comment removed.
+fn statement(line: &str) -> (Option<&str>, std::str::SplitWhitespace<'_>) {
+    let content = line.split('#').next().unwrap_or("");
+    let mut words = content.split_whitespace();
+    (words.next(), words)
+}
+
+/// An index as written, resolved to 0-based, or why not.
+enum Resolved {
+    Ok(usize),
+    Zero,
+    /// Positive, beyond the total count.
+    AfterLast,
+    /// Negative, before the first element defined so far.
+    BeforeFirst,
+}
+
+fn resolve(index: i64, so_far: usize, total: usize) -> Resolved {
+    match index {
+        0 => Resolved::Zero,
+        i if i > 0 => match usize::try_from(i - 1) {
+            Ok(r) if r < total => Resolved::Ok(r),
+            _ => Resolved::AfterLast,
+        },
+        // so_far <= MAX_INDICES, so the sum cannot overflow.
+        i => usize::try_from(so_far as i64 + i).map_or(Resolved::BeforeFirst, Resolved::Ok),
+    }
+}
+
+/// Scanning state for one file.
+struct Scanner<'a> {
+    path: &'a str,
+    v_total: usize,
+    vn_total: usize,
+    v_count: usize,
+    corners_total: usize,
+    scan: Scan,
+}
+
+impl Scan {
+    /// Validates `text`, reporting the first problem with its line.
+    pub(crate) fn run(path: &str, text: &str) -> Result<Scan, MeshError> {
+        // Pass 1: totals, for forward references, and a check for binary data.
+        let (mut v_total, mut vn_total) = (0usize, 0usize);
+        for (i, line) in text.lines().enumerate() {
+            if line.contains('\0') {
+                return Err(parse_error(
+                    path,
+                    Some(i + 1),
+                    "contains a NUL byte, so this is binary data, not a Wavefront OBJ file".into(),
+                ));
+            }
+            match statement(line).0 {
+                Some("v") => v_total += 1,
+                Some("vn") => vn_total += 1,
+                _ => {}
+            }
+        }
+        for (what, count) in [("vertices", v_total), ("normals", vn_total)] {
+            if count > MAX_INDICES {
+                return Err(MeshError::TooLarge {
+                    path: path.into(),
+                    what,
+                    count,
+                });
+            }
+        }
+
+        // Pass 2: validate every statement and write the canonical text.
+        let mut s = Scanner {
+            path,
+            v_total,
+            vn_total,
+            v_count: 0,
+            corners_total: 0,
+            scan: Scan {
+                canonical: String::with_capacity(text.len()),
+                faces: Vec::new(),
+                normals: Vec::new(),
+                normal_refs: Vec::new(),
+            },
+        };
+        for (i, line) in text.lines().enumerate() {
+            let (keyword, words) = statement(line);
+            let words: Vec<&str> = words.collect();
+            match keyword {
+                Some("v") => s.vertex(i + 1, &words)?,
+                Some("vn") => s.normal(i + 1, &words)?,
+                Some("f") => s.face(i + 1, &words)?,
+                _ => {}
+            }
+            s.scan.canonical.push('\n');
+        }
+
+        if s.corners_total > MAX_INDICES {
+            return Err(MeshError::TooLarge {
+                path: path.into(),
+                what: "triangle corners",
+                count: s.corners_total,
+            });
+        }
+        if s.scan.faces.is_empty() {
+            return Err(if v_total == 0 {
+                parse_error(
+                    path,
+                    None,
+                    "is not a Wavefront OBJ file: it defines no vertices or faces".into(),
+                )
+            } else {
+                MeshError::EmptyMesh { path: path.into() }
+            });
+        }
+        Ok(s.scan)
+    }
+
+    /// Whether to keep the file's normals: every corner of every face has one, and those
+    /// used are valid (else [`MeshError::BadNormal`] naming the `vn` line). Warns when only
+    /// some faces have them.
+    pub(crate) fn use_file_normals(&self, path: &str) -> Result<bool, MeshError> {
+        let complete = self
+            .faces
+            .iter()
+            .filter(|f| f.with_normals == f.corners)
+            .count();
+        if complete < self.faces.len() {
+            if self.faces.iter().any(|f| f.with_normals > 0) {
+                log::warn!(
+                    "'{path}': only {complete} of {} faces give a normal for every corner; computing normals for all faces",
+                    self.faces.len()
+                );
+            }
+            return Ok(false);
+        }
+        for &(n, face_line) in &self.normal_refs {
+            let (line, v) = self.normals[n];
+            if unit(v).is_none() {
+                let problem = if v.is_finite() {
+                    "has zero length"
+                } else {
+                    "is NaN or infinite"
+                };
+                return Err(MeshError::BadNormal {
+                    path: path.into(),
+                    line: Some(line),
+                    msg: format!(
+                        "normal ({}, {}, {}) used by the face on line {face_line} {problem}",
+                        v.x, v.y, v.z
+                    ),
+                });
+            }
+        }
+        Ok(true)
+    }
+}
+
+impl Scanner<'_> {
+    fn err(&self, line: usize, msg: String) -> MeshError {
+        parse_error(self.path, Some(line), msg)
+    }
+
+    fn non_finite(&self, line: usize, what: &str) -> MeshError {
+        MeshError::NonFinite {
+            path: self.path.into(),
+            line: Some(line),
+            what: what.into(),
+        }
+    }
+
+    fn float(&self, line: usize, word: &str, what: &str) -> Result<f32, MeshError> {
+        word.parse()
+            .map_err(|_| self.err(line, format!("{what} '{word}' is not a number")))
+    }
+
+    /// `v x y z`, `v x y z w` (divided by w) or `v x y z r g b` (colours ignored).
+    fn vertex(&mut self, ln: usize, words: &[&str]) -> Result<(), MeshError> {
+        if words.len() < 3 {
+            return Err(self.err(
+                ln,
+                format!("vertex has {} coordinate(s) but 3 are needed", words.len()),
+            ));
+        }
+        let mut c = [0f32; 3];
+        for (c, w) in c.iter_mut().zip(words) {
+            *c = self.float(ln, w, "vertex coordinate")?;
+        }
+        let mut p = Vec3::from(c);
+        match words.len() {
+            3 | 6 => {}
+            4 => {
+                let w = self.float(ln, words[3], "vertex weight")?;
+                if !w.is_finite() {
+                    return Err(self.non_finite(ln, "vertex weight"));
+                }
+                if w == 0.0 {
+                    return Err(self.err(ln, "vertex weight w is zero".into()));
+                }
+                p /= w;
+            }
+            n => {
+                return Err(self.err(
+                    ln,
+                    format!(
+                        "vertex has {n} values but 'x y z', 'x y z w' or 'x y z r g b' was expected"
+                    ),
+                ))
+            }
+        }
+        if !p.is_finite() {
+            return Err(self.non_finite(ln, "vertex coordinate"));
+        }
+        self.v_count += 1;
+        // `Display` for f32 prints the shortest text that parses back to the same value.
+        self.scan
+            .canonical
+            .push_str(&format!("v {} {} {}", p.x, p.y, p.z));
+        Ok(())
+    }
+
+    /// `vn x y z`. Zero or non-finite normals are only an error if used.
+    fn normal(&mut self, ln: usize, words: &[&str]) -> Result<(), MeshError> {
+        if words.len() < 3 {
+            return Err(self.err(
+                ln,
+                format!("normal has {} component(s) but 3 are needed", words.len()),
+            ));
+        }
+        let mut c = [0f32; 3];
+        for (c, w) in c.iter_mut().zip(words) {
+            *c = self.float(ln, w, "normal component")?;
+        }
+        self.scan.normals.push((ln, Vec3::from(c)));
+        self.scan
+            .canonical
+            .push_str(&format!("vn {} {} {}", c[0], c[1], c[2]));
+        Ok(())
+    }
+
+    fn face(&mut self, ln: usize, words: &[&str]) -> Result<(), MeshError> {
+        if words.len() < 3 {
+            return Err(self.err(
+                ln,
+                format!(
+                    "face has {} vertex reference(s) but at least 3 are needed",
+                    words.len()
+                ),
+            ));
+        }
+        let mut with_normals = 0;
+        let mut canonical = String::from("f");
+        for word in words {
+            let (v, n) = self.corner(ln, word)?;
+            let v = self.position_index(ln, v)?;
+            canonical.push_str(&format!(" {}", v + 1));
+            if let Some(n) = n {
+                let n = self.normal_index(ln, n)?;
+                canonical.push_str(&format!("//{}", n + 1));
+                self.scan.normal_refs.push((n, ln));
+                with_normals += 1;
+            }
+        }
+        self.scan.canonical.push_str(&canonical);
+        self.corners_total = self
+            .corners_total
+            .saturating_add((words.len() - 2).saturating_mul(3));
+        self.scan.faces.push(FaceInfo {
+            line: ln,
+            corners: words.len(),
+            with_normals,
+        });
+        Ok(())
+    }
+
+    /// One corner `v`, `v/vt`, `v//vn` or `v/vt/vn`: the position index and the normal
+    /// index as written.
+    fn corner(&self, ln: usize, word: &str) -> Result<(i64, Option<i64>), MeshError> {
+        let parts: Vec<&str> = word.split('/').collect();
+        if parts.len() > 3 {
+            return Err(self.err(
+                ln,
+                format!("face vertex '{word}' has more than three '/'-separated indices"),
+            ));
+        }
+        let index = |s: &str, what: &str| -> Result<Option<i64>, MeshError> {
+            if s.is_empty() {
+                return Ok(None);
+            }
+            s.parse().map(Some).map_err(|_| {
+                self.err(
+                    ln,
+                    format!("face vertex '{word}' has an invalid {what} index"),
+                )
+            })
+        };
+        let v = index(parts[0], "position")?
+            .ok_or_else(|| self.err(ln, format!("face vertex '{word}' has no position index")))?;
+        if let Some(t) = parts.get(1) {
+            index(t, "texture coordinate")?;
+        }
+        let n = match parts.get(2) {
+            Some(s) => index(s, "normal")?,
+            None => None,
+        };
+        Ok((v, n))
+    }
+
+    fn position_index(&self, ln: usize, index: i64) -> Result<usize, MeshError> {
+        let out_of_range = |count| MeshError::IndexOutOfRange {
+            path: self.path.into(),
+            line: Some(ln),
+            index,
+            count,
+        };
+        match resolve(index, self.v_count, self.v_total) {
+            Resolved::Ok(r) => Ok(r),
+            Resolved::Zero | Resolved::AfterLast => Err(out_of_range(self.v_total)),
+            Resolved::BeforeFirst => Err(out_of_range(self.v_count)),
+        }
+    }
+
+    fn normal_index(&self, ln: usize, index: i64) -> Result<usize, MeshError> {
+        let so_far = self.scan.normals.len();
+        let msg = match resolve(index, so_far, self.vn_total) {
+            Resolved::Ok(r) => return Ok(r),
+            Resolved::Zero => "face refers to normal 0 but OBJ indices start at 1".to_string(),
+            Resolved::AfterLast => format!(
+                "face refers to normal {index} but the file defines only {} normal(s)",
+                self.vn_total
+            ),
+            Resolved::BeforeFirst => format!(
+                "face refers to normal {index} (relative) but only {so_far} normal(s) are defined before this line"
+            ),
+        };
+        Err(self.err(ln, msg))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::{LoadReport, Mesh};
+
+    const TRI: &str = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+
+    fn load(text: &str) -> Result<(Mesh, LoadReport), MeshError> {
+        Mesh::from_obj_str("x.obj", text)
+    }
+
+    fn err(text: &str) -> String {
+        match load(text) {
+            Ok(_) => panic!("{text:?} loaded"),
+            Err(e) => e.to_string(),
+        }
+    }
+
+    #[test]
+    fn canonical_text_keeps_lines_and_resolves_indices() {
+        let text = "# c\no a\nv 1 2 3 2\nv 0 0 0 # v\nv 1 0 0\nvt 0 0\nvn 0 0 1\n\
+                    usemtl m\nf -3/1/1 2//-1 3/1\nl 1 2\n";
+        let scan = Scan::run("x", text).unwrap();
+        assert_eq!(
+            scan.canonical,
+            "\n\nv 0.5 1 1.5\nv 0 0 0\nv 1 0 0\n\nvn 0 0 1\n\nf 1//1 2//1 3\n\n"
+        );
+        assert_eq!(scan.faces.len(), 1);
+        assert_eq!(scan.faces[0].line, 9);
+        assert_eq!(scan.faces[0].with_normals, 2);
+    }
+
+    #[test]
+    fn out_of_range_indices_name_the_line() {
+        assert_eq!(
+            err(&format!("# c\n{TRI}f 1 2 3\nf 1 2 99\n")),
+            "'x.obj' line 6: face refers to vertex 99 but the file defines only 3 vertices"
+        );
+        assert_eq!(
+            err(&format!("{TRI}f 0 1 2\n")),
+            "'x.obj' line 4: face refers to vertex 0 but OBJ indices start at 1"
+        );
+        assert_eq!(
+            err(&format!("{TRI}f -1 -2 -4\n")),
+            "'x.obj' line 4: face refers to vertex -4 (relative) but only 3 vertices are defined before this line"
+        );
+        assert!(matches!(
+            load(&format!("{TRI}f 1 2 99\n")),
+            Err(MeshError::IndexOutOfRange {
+                line: Some(4),
+                index: 99,
+                count: 3,
+                ..
+            })
+        ));
+        assert_eq!(
+            err(&format!("{TRI}f 1 2 99999999999999999999999\n")),
+            "'x.obj' line 4: face vertex '99999999999999999999999' has an invalid position index"
+        );
+    }
+
+    #[test]
+    fn relative_and_forward_indices() {
+        let (rel, _) = load(&format!("{TRI}f -3 -2 -1\n")).unwrap();
+        let (abs, _) = load(&format!("{TRI}f 1 2 3\n")).unwrap();
+        assert_eq!(rel, abs);
+        // An absolute index may refer to a vertex defined later in the file.
+        let (fwd, _) = load("v 0 0 0\nv 1 0 0\nf 1 2 3\nv 0 1 0\n").unwrap();
+        assert_eq!(fwd.triangles.len(), 1);
+        // A relative one may not.
+        assert_eq!(
+            err("v 0 0 0\nv 1 0 0\nf -2 -1 -3\nv 0 1 0\n"),
+            "'x.obj' line 3: face refers to vertex -3 (relative) but only 2 vertices are defined before this line"
+        );
+    }
+
+    #[test]
+    fn non_finite_coordinates_name_the_line() {
+        for bad in ["nan", "NaN", "inf", "-infinity", "1e39"] {
+            assert_eq!(
+                err(&format!("v 0 0 0\nv {bad} 0 0\nv 0 1 0\nf 1 2 3\n")),
+                "'x.obj' line 2: vertex coordinate is NaN or infinite",
+                "{bad}"
+            );
+        }
+        assert!(matches!(
+            load("v 0 0 0\nv 0 0 nan\n"),
+            Err(MeshError::NonFinite { line: Some(2), .. })
+        ));
+        assert_eq!(
+            err("v 1 2 3 inf\n"),
+            "'x.obj' line 1: vertex weight is NaN or infinite"
+        );
+    }
+
+    #[test]
+    fn malformed_vertices() {
+        assert_eq!(
+            err("v 1 2\n"),
+            "'x.obj' line 1: vertex has 2 coordinate(s) but 3 are needed"
+        );
+        assert_eq!(
+            err("v 1 2 x\n"),
+            "'x.obj' line 1: vertex coordinate 'x' is not a number"
+        );
+        assert_eq!(
+            err("v 1 2 3 q\n"),
+            "'x.obj' line 1: vertex weight 'q' is not a number"
+        );
+        assert_eq!(
+            err("v 1 2 3 0\n"),
+            "'x.obj' line 1: vertex weight w is zero"
+        );
+        assert_eq!(
+            err("v 1 2 3 4 5\n"),
+            "'x.obj' line 1: vertex has 5 values but 'x y z', 'x y z w' or 'x y z r g b' was expected"
+        );
+        // Weights divide, colours are ignored.
+        let (m, _) = load("v 0 0 0 2\nv 2 0 0 2\nv 0 2 0 2 \nf 1 2 3\n").unwrap();
+        assert_eq!(m.positions, vec![Vec3::ZERO, Vec3::X, Vec3::Y]);
+        let (m, _) = load("v 0 0 0 1 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+        assert_eq!(m.positions.len(), 3);
+    }
+
+    #[test]
+    fn malformed_faces() {
+        assert_eq!(
+            err(&format!("{TRI}f 1 2\n")),
+            "'x.obj' line 4: face has 2 vertex reference(s) but at least 3 are needed"
+        );
+        assert_eq!(
+            err(&format!("{TRI}f\n")),
+            "'x.obj' line 4: face has 0 vertex reference(s) but at least 3 are needed"
+        );
+        assert_eq!(
+            err(&format!("{TRI}f 1 2 a\n")),
+            "'x.obj' line 4: face vertex 'a' has an invalid position index"
+        );
+        assert_eq!(
+            err(&format!("{TRI}f 1 2 /3\n")),
+            "'x.obj' line 4: face vertex '/3' has no position index"
+        );
+        assert_eq!(
+            err(&format!("{TRI}f 1 2 3/1/1/1\n")),
+            "'x.obj' line 4: face vertex '3/1/1/1' has more than three '/'-separated indices"
+        );
+        assert_eq!(
+            err(&format!("{TRI}f 1 2 3/x\n")),
+            "'x.obj' line 4: face vertex '3/x' has an invalid texture coordinate index"
+        );
+        assert_eq!(
+            err(&format!("{TRI}vn 0 0 1\nf 1 2 3//x\n")),
+            "'x.obj' line 5: face vertex '3//x' has an invalid normal index"
+        );
+    }
+
+    #[test]
+    fn empty_and_non_obj_inputs() {
+        let not_obj = "'x.obj' is not a Wavefront OBJ file: it defines no vertices or faces";
+        assert_eq!(err(""), not_obj);
+        assert_eq!(err("\n\n"), not_obj);
+        assert_eq!(err("# only a comment\n"), not_obj);
+        assert_eq!(err("hello world\n"), not_obj);
+        assert_eq!(err(TRI), "'x.obj' contains no triangles");
+        assert_eq!(
+            err("v 0 0 0\n\u{0}\u{1}"),
+            "'x.obj' line 2: contains a NUL byte, so this is binary data, not a Wavefront OBJ file"
+        );
+    }
+
+    #[test]
+    fn bad_normals_name_their_line() {
+        assert_eq!(
+            err(&format!("{TRI}vn 0 0 0\nf 1//1 2//1 3//1\n")),
+            "'x.obj' line 4: normal (0, 0, 0) used by the face on line 5 has zero length"
+        );
+        assert_eq!(
+            err(&format!("{TRI}vn 0 0 1\nvn nan 0 1\nf 1//1 2//1 3//2\n")),
+            "'x.obj' line 5: normal (NaN, 0, 1) used by the face on line 6 is NaN or infinite"
+        );
+        // An unused bad normal is harmless, and so is one on a file whose normals are
+        // recomputed because some faces have none.
+        assert!(load(&format!("{TRI}vn 0 0 1\nvn 0 0 0\nf 1//1 2//1 3//1\n")).is_ok());
+        assert!(load(&format!("{TRI}vn 0 0 0\nf 1//1 2//1 3\n")).is_ok());
+        assert_eq!(
+            err(&format!("{TRI}vn 0 0 1\nf 1//1 2//1 3//7\n")),
+            "'x.obj' line 5: face refers to normal 7 but the file defines only 1 normal(s)"
+        );
+        assert_eq!(
+            err(&format!("{TRI}vn 0 0 1\nf 1//1 2//1 3//0\n")),
+            "'x.obj' line 5: face refers to normal 0 but OBJ indices start at 1"
+        );
+        assert_eq!(
+            err(&format!("{TRI}vn 0 0 1\nf 1//-5 2//1 3//1\n")),
+            "'x.obj' line 5: face refers to normal -5 (relative) but only 1 normal(s) are defined before this line"
+        );
+        assert_eq!(
+            err(&format!("{TRI}vn 0 0\nf 1 2 3\n")),
+            "'x.obj' line 4: normal has 2 component(s) but 3 are needed"
+        );
+        assert_eq!(
+            err(&format!("{TRI}vn 0 0 z\nf 1 2 3\n")),
+            "'x.obj' line 4: normal component 'z' is not a number"
+        );
+    }
+}

@@ -1,0 +1,40 @@
+// Descriptor set and binding numbers, defined once here and handed to GLSL as `-D` macro
+// definitions by build.rs (which `include!`s this file), so the two cannot drift.
+// Sets are grouped by update rate (../STYLE.md): 0 per frame, 1 per mesh, 2 capture output.
+
+/// Set 0: per frame.
+pub const SET_FRAME: u32 = 0;
+/// Set 0, binding 0: `Frame` uniform block (camera, light, view options).
+pub const BINDING_FRAME: u32 = 0;
+
+/// Set 1: per mesh.
+pub const SET_MESH: u32 = 1;
+/// Set 1, binding 0: `CoarseTri` records, storage buffer (instanced pattern, tess).
+pub const BINDING_TRIS: u32 = 0;
+/// Set 1, binding 1: one `CoarseTri` record, dynamic uniform buffer (`ubo` submission).
+pub const BINDING_TRI_UBO: u32 = 1;
+/// Set 1, binding 2: the pattern's barycentric vertices as a storage buffer (static wireframe).
+pub const BINDING_PATTERN: u32 = 2;
+
+/// Set 2: capture output of the `CAPTURE` shader variants.
+pub const SET_CAPTURE: u32 = 2;
+/// Set 2, binding 0: evaluated vertices, `CapturedVertex[]`.
+pub const BINDING_CAPTURE: u32 = 0;
+
+/// Specialization constant ids.
+pub const SPEC_SURFACE: u32 = 0;
+pub const SPEC_SUBMIT: u32 = 1;
+
+/// Everything above, as GLSL macro definitions.
+pub const GLSL_DEFINES: &[(&str, u32)] = &[
+    ("SET_FRAME", SET_FRAME),
+    ("BINDING_FRAME", BINDING_FRAME),
+    ("SET_MESH", SET_MESH),
+    ("BINDING_TRIS", BINDING_TRIS),
+    ("BINDING_TRI_UBO", BINDING_TRI_UBO),
+    ("BINDING_PATTERN", BINDING_PATTERN),
+    ("SET_CAPTURE", SET_CAPTURE),
+    ("BINDING_CAPTURE", BINDING_CAPTURE),
+    ("SPEC_SURFACE", SPEC_SURFACE),
+    ("SPEC_SUBMIT", SPEC_SUBMIT),
+];

@@ -1,0 +1,97 @@
+//! Recording one frame: layout transitions, queries, dynamic rendering, the chosen driver.
+//! Shared by headless rendering, capture, benchmarks and the window.
+
+use super::bindings::{SET_CAPTURE, SET_FRAME, SET_MESH};
+use super::static_vbo::StaticVbo;
+use super::{pattern, static_vbo, tess, DrawConfig, Driver, GpuMesh, Renderer};
+use crate::gpu::{vk, Cmd, QueryPools};
+use crate::surface::CoarseTri;
+
+/// Where a frame is drawn.
+#[derive(Clone, Copy, Debug)]
+pub struct TargetView {
+    pub color: vk::Image,
+    pub color_view: vk::ImageView,
+    pub depth: vk::Image,
+    pub depth_view: vk::ImageView,
+    pub extent: vk::Extent2D,
+    /// Layout the colour image is left in (TRANSFER_SRC_OPTIMAL or PRESENT_SRC_KHR).
+    pub final_layout: vk::ImageLayout,
+}
+
+/// What one frame draws.
+pub struct FrameWork<'a> {
+    pub mesh: &'a GpuMesh,
+    pub records: &'a [CoarseTri],
+    pub static_vbo: Option<&'a StaticVbo>,
+    pub cfg: DrawConfig,
+    pub capture: bool,
+    pub clear: [f32; 4],
+}
+
+/// Record the frame. Pipelines must be prepared and levels checked (`Scene::prepare`).
+pub fn cmd_render(
+    cmd: &Cmd<'_>,
+    r: &Renderer,
+    target: &TargetView,
+    work: &FrameWork<'_>,
+    queries: Option<(&QueryPools, u32)>,
+) {
+    use vk::ImageLayout as L;
+    cmd.transition(
+        target.color,
+        vk::ImageAspectFlags::COLOR,
+        L::UNDEFINED,
+        L::COLOR_ATTACHMENT_OPTIMAL,
+    );
+    cmd.transition(
+        target.depth,
+        vk::ImageAspectFlags::DEPTH,
+        L::UNDEFINED,
+        L::DEPTH_ATTACHMENT_OPTIMAL,
+    );
+    if let Some((q, slot)) = queries {
+        q.cmd_begin(cmd, slot);
+    }
+    cmd.begin_rendering(
+        target.color_view,
+        target.depth_view,
+        target.extent,
+        work.clear,
+    );
+    cmd.bind_graphics_pipeline(r.pipeline(&work.cfg, work.capture));
+    cmd.bind_descriptor_set(r.layout.raw, SET_FRAME, r.frame_set, &[]);
+    cmd.bind_descriptor_set(r.layout.raw, SET_MESH, work.mesh.set, &[0]);
+    if work.capture {
+        cmd.bind_descriptor_set(r.layout.raw, SET_CAPTURE, r.capture_set, &[]);
+    }
+    match work.cfg.driver {
+        Driver::Static => {
+            let vbo = work
+                .static_vbo
+                .expect("static driver needs its vertex buffer");
+            static_vbo::cmd_draw(cmd, r, vbo);
+        }
+        Driver::Pattern => {
+            let p = work
+                .mesh
+                .pattern(work.cfg.level)
+                .expect("pattern level is in the set");
+            pattern::cmd_draw(cmd, r, work.mesh, work.records, p, work.cfg.submit);
+        }
+        Driver::Tess => tess::cmd_draw(cmd, r, work.mesh, work.cfg.level),
+    }
+    cmd.end_rendering();
+    if let Some((q, slot)) = queries {
+        q.cmd_end(cmd, slot);
+    }
+    if work.capture {
+        cmd.barrier_to_host();
+    }
+    cmd.transition(
+        target.color,
+        vk::ImageAspectFlags::COLOR,
+        L::COLOR_ATTACHMENT_OPTIMAL,
+        target.final_layout,
+    );
+}

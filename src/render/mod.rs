@@ -1,0 +1,145 @@
+//! Rendering: per-mesh GPU data ([`GpuMesh`]), pipelines ([`Renderer`]) and the three drivers
+//! that produce barycentric samples on the GPU (`static`, `pattern`, `tess`, one file each).
+//! A driver never knows which surface it draws: the surface is a specialization constant of its
+//! evaluation stage.
+
+pub mod bindings;
+mod camera;
+pub mod frame;
+mod headless;
+pub mod pattern;
+mod pipelines;
+mod scene;
+pub mod static_vbo;
+pub mod tess;
+
+pub use camera::Camera;
+pub use headless::{CaptureResult, Headless};
+pub use pipelines::Renderer;
+pub use scene::{geometry_bytes, GpuMesh, MeshData, Scene};
+
+use crate::surface::{CoarseTri, Surface};
+use bytemuck::{Pod, Zeroable};
+
+/// How barycentric samples are produced on the GPU.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default, clap::ValueEnum)]
+pub enum Driver {
+    /// The CPU refines the whole mesh into one vertex buffer (the 2005 paper's baseline).
+    Static,
+    /// The refinement pattern is drawn for every coarse triangle; the vertex shader evaluates.
+    #[default]
+    Pattern,
+    /// Vulkan tessellation shaders; the evaluation shader evaluates.
+    Tess,
+}
+
+impl Driver {
+    pub const ALL: [Driver; 3] = [Driver::Static, Driver::Pattern, Driver::Tess];
+    pub fn name(self) -> &'static str {
+        match self {
+            Driver::Static => "static",
+            Driver::Pattern => "pattern",
+            Driver::Tess => "tess",
+        }
+    }
+}
+
+/// How the `pattern` driver hands each coarse triangle's record to the vertex shader.
+/// The discriminant is the `SUBMIT` specialization constant.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default, clap::ValueEnum)]
+#[repr(u32)]
+pub enum Submit {
+    /// Per coarse triangle: push constants, then draw (the paper's loop).
+    Push = 0,
+    /// Per coarse triangle: a dynamic uniform-buffer offset, then draw.
+    Ubo = 1,
+    /// One instanced draw per pattern level; records in a storage buffer.
+    #[default]
+    Instanced = 2,
+}
+
+impl Submit {
+    pub const ALL: [Submit; 3] = [Submit::Push, Submit::Ubo, Submit::Instanced];
+    pub fn name(self) -> &'static str {
+        match self {
+            Submit::Push => "push",
+            Submit::Ubo => "ubo",
+            Submit::Instanced => "instanced",
+        }
+    }
+}
+
+/// What to draw and how.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct DrawConfig {
+    pub surface: Surface,
+    pub driver: Driver,
+    pub submit: Submit,
+    pub level: u32,
+}
+
+impl DrawConfig {
+    pub fn new(driver: Driver, submit: Submit, level: u32) -> Self {
+        Self {
+            surface: Surface::Flat,
+            driver,
+            submit,
+            level,
+        }
+    }
+
+    /// Short label such as `pattern/instanced` or `tess`.
+    pub fn label(&self) -> String {
+        match self.driver {
+            Driver::Pattern => format!("pattern/{}", self.submit.name()),
+            d => d.name().to_string(),
+        }
+    }
+}
+
+/// `Frame` uniform block (glsl/include/records.glsl), std140.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct FrameUniforms {
+    pub view_proj: [[f32; 4]; 4],
+    pub eye: [f32; 4],
+    pub light_dir: [f32; 4],
+    pub base_color: [f32; 4],
+    /// x: wireframe on/off, y: wire width in pixels.
+    pub options: [f32; 4],
+}
+
+const _: () = {
+    assert!(std::mem::size_of::<FrameUniforms>() == 128);
+    assert!(std::mem::offset_of!(FrameUniforms, eye) == 64);
+    assert!(std::mem::offset_of!(FrameUniforms, light_dir) == 80);
+    assert!(std::mem::offset_of!(FrameUniforms, base_color) == 96);
+    assert!(std::mem::offset_of!(FrameUniforms, options) == 112);
+};
+
+/// `Push` push-constant block (glsl/include/records.glsl): 128 bytes, the guaranteed minimum.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct PushBlock {
+    pub tri: CoarseTri,
+    /// x: level N; y: first triangle of the draw (tess); z: pattern vertex count; w: unused.
+    pub draw: [u32; 4],
+}
+
+const _: () = {
+    assert!(std::mem::size_of::<PushBlock>() == 128);
+    assert!(std::mem::offset_of!(PushBlock, draw) == 112);
+};
+
+/// Byte offset of `PushBlock::draw`.
+pub const PUSH_DRAW_OFFSET: u32 = 112;
+
+/// `CapturedVertex` (glsl/include/records.glsl), std430.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct CapturedVertex {
+    pub position: [f32; 4],
+    pub normal: [f32; 4],
+}
+
+const _: () = assert!(std::mem::size_of::<CapturedVertex>() == 32);

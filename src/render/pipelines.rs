@@ -1,0 +1,243 @@
+//! Layouts and pipelines shared by all drivers, the per-frame uniform buffer (set 0) and the
+//! capture output binding (set 2). Pipelines are created on first use, keyed by
+//! (driver, submission, surface, capture).
+
+use super::bindings::*;
+use super::{DrawConfig, Driver, FrameUniforms, Submit};
+use crate::gpu::conv::{topology, GEOMETRY_STAGES, PUSH_STAGES};
+use crate::gpu::{
+    vk, Buffer, BufferDesc, Context, DescriptorPool, DescriptorSetLayout, GpuError,
+    GraphicsPipelineDesc, Pipeline, PipelineLayout,
+};
+use crate::surface::Surface;
+use std::collections::HashMap;
+use std::sync::Arc;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+struct PipelineKey {
+    driver: Driver,
+    submit: Submit,
+    surface: Surface,
+    capture: bool,
+}
+
+pub struct Renderer {
+    ctx: Arc<Context>,
+    pub frame_layout: DescriptorSetLayout,
+    pub mesh_layout: DescriptorSetLayout,
+    pub capture_layout: DescriptorSetLayout,
+    pub layout: PipelineLayout,
+    pipelines: HashMap<PipelineKey, Pipeline>,
+    pub color_format: vk::Format,
+    pub depth_format: vk::Format,
+    frame_ubo: Buffer,
+    pool: DescriptorPool,
+    pub frame_set: vk::DescriptorSet,
+    pub capture_set: vk::DescriptorSet,
+}
+
+impl Renderer {
+    pub fn new(
+        ctx: &Arc<Context>,
+        color_format: vk::Format,
+        depth_format: vk::Format,
+    ) -> Result<Self, GpuError> {
+        use vk::DescriptorType as T;
+        let all = PUSH_STAGES;
+        let frame_layout = DescriptorSetLayout::new(
+            ctx,
+            &[(BINDING_FRAME, T::UNIFORM_BUFFER, all)], // camera, light, view options
+            "set 0: frame",
+        )?;
+        let mesh_layout = DescriptorSetLayout::new(
+            ctx,
+            &[
+                (BINDING_TRIS, T::STORAGE_BUFFER, GEOMETRY_STAGES), // CoarseTri[] (instanced, tess)
+                (BINDING_TRI_UBO, T::UNIFORM_BUFFER_DYNAMIC, GEOMETRY_STAGES), // one CoarseTri (ubo)
+                (BINDING_PATTERN, T::STORAGE_BUFFER, GEOMETRY_STAGES), // pattern bary (static wireframe)
+            ],
+            "set 1: mesh",
+        )?;
+        let capture_layout = DescriptorSetLayout::new(
+            ctx,
+            &[(BINDING_CAPTURE, T::STORAGE_BUFFER, GEOMETRY_STAGES)], // CapturedVertex[] output
+            "set 2: capture",
+        )?;
+        let layout = PipelineLayout::new(
+            ctx,
+            &[&frame_layout, &mesh_layout, &capture_layout],
+            std::mem::size_of::<super::PushBlock>() as u32,
+            all,
+            "drivers",
+        )?;
+        let frame_ubo = Buffer::new(
+            ctx,
+            BufferDesc::new_upload(
+                std::mem::size_of::<FrameUniforms>() as u64,
+                vk::BufferUsageFlags::UNIFORM_BUFFER,
+            ),
+            "frame uniforms",
+        )?;
+        let pool = DescriptorPool::new(
+            ctx,
+            2,
+            &[(T::UNIFORM_BUFFER, 1), (T::STORAGE_BUFFER, 1)],
+            "renderer descriptors",
+        )?;
+        let frame_set = pool.allocate(&frame_layout, "frame set")?;
+        pool.write_buffer(
+            frame_set,
+            BINDING_FRAME,
+            T::UNIFORM_BUFFER,
+            frame_ubo.raw,
+            vk::WHOLE_SIZE,
+        );
+        let capture_set = pool.allocate(&capture_layout, "capture set")?;
+        Ok(Self {
+            ctx: ctx.clone(),
+            frame_layout,
+            mesh_layout,
+            capture_layout,
+            layout,
+            pipelines: HashMap::new(),
+            color_format,
+            depth_format,
+            frame_ubo,
+            pool,
+            frame_set,
+            capture_set,
+        })
+    }
+
+    pub fn context(&self) -> &Arc<Context> {
+        &self.ctx
+    }
+
+    /// Write this frame's uniforms. The caller makes sure no pending work reads them.
+    pub fn set_frame(&mut self, f: &FrameUniforms) {
+        self.frame_ubo.write_pod(0, std::slice::from_ref(f));
+    }
+
+    /// Point the capture binding at `buffer` (not while pending work uses the set).
+    pub fn set_capture_target(&self, buffer: &Buffer) {
+        self.pool.write_buffer(
+            self.capture_set,
+            BINDING_CAPTURE,
+            vk::DescriptorType::STORAGE_BUFFER,
+            buffer.raw,
+            vk::WHOLE_SIZE,
+        );
+    }
+
+    /// Create (once) the pipeline `cfg` needs.
+    pub fn prepare(&mut self, cfg: &DrawConfig, capture: bool) -> Result<(), GpuError> {
+        let key = key(cfg, capture);
+        if !self.pipelines.contains_key(&key) {
+            let p = self.create(key)?;
+            self.pipelines.insert(key, p);
+        }
+        Ok(())
+    }
+
+    /// The pipeline for `cfg`; [`Renderer::prepare`] must have been called.
+    pub fn pipeline(&self, cfg: &DrawConfig, capture: bool) -> vk::Pipeline {
+        self.pipelines[&key(cfg, capture)].raw
+    }
+
+    fn create(&self, key: PipelineKey) -> Result<Pipeline, GpuError> {
+        let variant = |name: &str| {
+            if key.capture {
+                format!("{name}+capture")
+            } else {
+                name.to_string()
+            }
+        };
+        let frag = (
+            vk::ShaderStageFlags::FRAGMENT,
+            "shade/shade.frag".to_string(),
+        );
+        let mut desc = GraphicsPipelineDesc {
+            stages: vec![],
+            spec: vec![
+                (SPEC_SURFACE, key.surface as u32),
+                (SPEC_SUBMIT, key.submit as u32),
+            ],
+            vertex_bindings: vec![],
+            vertex_attributes: vec![],
+            topology: topology(key.driver),
+            primitive_restart: false,
+            patch_control_points: 0,
+            color_format: self.color_format,
+            depth_format: self.depth_format,
+        };
+        match key.driver {
+            Driver::Static => {
+                desc.stages = vec![
+                    (vk::ShaderStageFlags::VERTEX, "static/static.vert".into()),
+                    frag,
+                ];
+                // position + normal, 24 bytes per vertex
+                desc.vertex_bindings = vec![(0, 24, false)];
+                desc.vertex_attributes = vec![
+                    (0, 0, vk::Format::R32G32B32_SFLOAT, 0),
+                    (1, 0, vk::Format::R32G32B32_SFLOAT, 12),
+                ];
+                desc.primitive_restart = true;
+            }
+            Driver::Pattern => {
+                desc.stages = vec![
+                    (
+                        vk::ShaderStageFlags::VERTEX,
+                        variant("pattern/pattern.vert"),
+                    ),
+                    frag,
+                ];
+                desc.vertex_bindings = vec![(0, 12, false)]; // (w, u, v)
+                desc.vertex_attributes = vec![(0, 0, vk::Format::R32G32B32_SFLOAT, 0)];
+                desc.primitive_restart = true;
+            }
+            Driver::Tess => {
+                desc.stages = vec![
+                    (vk::ShaderStageFlags::VERTEX, "tess/tess.vert".into()),
+                    (
+                        vk::ShaderStageFlags::TESSELLATION_CONTROL,
+                        "tess/tess.tesc".into(),
+                    ),
+                    (
+                        vk::ShaderStageFlags::TESSELLATION_EVALUATION,
+                        variant("tess/tess.tese"),
+                    ),
+                    frag,
+                ];
+                desc.patch_control_points = 3;
+            }
+        }
+        let name = format!(
+            "{}{} ({})",
+            DrawConfig {
+                surface: key.surface,
+                driver: key.driver,
+                submit: key.submit,
+                level: 0
+            }
+            .label(),
+            if key.capture { " capture" } else { "" },
+            key.surface.name()
+        );
+        Pipeline::new_graphics(&self.ctx, &self.layout, &desc, &name)
+    }
+}
+
+fn key(cfg: &DrawConfig, capture: bool) -> PipelineKey {
+    PipelineKey {
+        driver: cfg.driver,
+        // Only the pattern driver has submission modes.
+        submit: if cfg.driver == Driver::Pattern {
+            cfg.submit
+        } else {
+            Submit::Instanced
+        },
+        surface: cfg.surface,
+        capture,
+    }
+}

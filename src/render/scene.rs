@@ -1,0 +1,340 @@
+//! Per-mesh GPU data (descriptor set 1): the coarse triangles' records, in a storage buffer and in
+//! an aligned uniform array, and the refinement patterns. Bytes uploaded per frame depend on the
+//! coarse mesh only ([`GpuMesh::update_records`]), never on the refinement level.
+
+use super::bindings::*;
+use crate::gpu::{vk, Buffer, BufferDesc, CommandPool, Context, DescriptorPool, GpuError};
+use crate::mesh::Mesh;
+use crate::pattern::{Pattern, PatternSet};
+use crate::surface::{build_records, CoarseTri};
+use std::sync::Arc;
+
+/// CPU-side data of a mesh ready to draw.
+#[derive(Clone, Debug)]
+pub struct MeshData {
+    pub mesh: Mesh,
+    pub records: Vec<CoarseTri>,
+}
+
+impl MeshData {
+    pub fn new(mesh: Mesh) -> Self {
+        let records = build_records(&mesh);
+        Self { mesh, records }
+    }
+}
+
+/// One pattern level on the GPU: barycentric vertices (vertex and storage buffer) and strips.
+pub struct GpuPattern {
+    pub level: u32,
+    pub vertices: Buffer,
+    pub indices: Buffer,
+    pub vertex_count: u32,
+    pub index_count: u32,
+}
+
+impl GpuPattern {
+    pub fn new(ctx: &Arc<Context>, pool: &CommandPool, p: &Pattern) -> Result<Self, GpuError> {
+        let vertices = Buffer::new_with_data(
+            ctx,
+            pool,
+            vk::BufferUsageFlags::VERTEX_BUFFER | vk::BufferUsageFlags::STORAGE_BUFFER,
+            &p.bary,
+            &format!("pattern {} vertices", p.level),
+        )?;
+        let indices = Buffer::new_with_data(
+            ctx,
+            pool,
+            vk::BufferUsageFlags::INDEX_BUFFER,
+            &p.indices,
+            &format!("pattern {} strips", p.level),
+        )?;
+        Ok(Self {
+            level: p.level,
+            vertices,
+            indices,
+            vertex_count: p.bary.len() as u32,
+            index_count: p.indices.len() as u32,
+        })
+    }
+
+    pub fn bytes(&self) -> u64 {
+        self.vertices.size() + self.indices.size()
+    }
+}
+
+/// GPU data of one mesh.
+pub struct GpuMesh {
+    ctx: Arc<Context>,
+    pub triangle_count: u32,
+    /// `CoarseTri[]`, storage buffer (instanced pattern, tess).
+    pub records: Buffer,
+    /// One `CoarseTri` every `ubo_stride` bytes, dynamic uniform buffer (`ubo` submission).
+    pub records_ubo: Buffer,
+    pub ubo_stride: u64,
+    pub patterns: Vec<GpuPattern>,
+    pub pool: DescriptorPool,
+    pub set: vk::DescriptorSet,
+}
+
+impl GpuMesh {
+    pub fn new(
+        ctx: &Arc<Context>,
+        cmd_pool: &CommandPool,
+        set_layout: &crate::gpu::DescriptorSetLayout,
+        data: &MeshData,
+        patterns: &PatternSet,
+    ) -> Result<Self, GpuError> {
+        let n = data.records.len() as u64;
+        let rec_size = std::mem::size_of::<CoarseTri>() as u64;
+        let limits = &ctx.info.limits;
+        if n * rec_size > limits.max_storage_buffer_range as u64 {
+            return Err(GpuError::Other(format!(
+                "{} coarse triangles need {} bytes of records, over this device's maxStorageBufferRange ({})",
+                n,
+                n * rec_size,
+                limits.max_storage_buffer_range
+            )));
+        }
+        let align = limits.min_uniform_buffer_offset_alignment.max(16);
+        let ubo_stride = rec_size.div_ceil(align) * align;
+        let mut records = Buffer::new(
+            ctx,
+            BufferDesc::new_upload(n * rec_size, vk::BufferUsageFlags::STORAGE_BUFFER),
+            "coarse records (storage)",
+        )?;
+        let mut records_ubo = Buffer::new(
+            ctx,
+            BufferDesc::new_upload(n * ubo_stride, vk::BufferUsageFlags::UNIFORM_BUFFER),
+            "coarse records (uniform)",
+        )?;
+        write_records(&mut records, &mut records_ubo, ubo_stride, &data.records);
+        let patterns = patterns
+            .patterns
+            .iter()
+            .map(|p| GpuPattern::new(ctx, cmd_pool, p))
+            .collect::<Result<Vec<_>, _>>()?;
+        let pool = DescriptorPool::new(
+            ctx,
+            1,
+            &[
+                (vk::DescriptorType::STORAGE_BUFFER, 2),
+                (vk::DescriptorType::UNIFORM_BUFFER_DYNAMIC, 1),
+            ],
+            "mesh descriptors",
+        )?;
+        let set = pool.allocate(set_layout, "mesh set")?;
+        pool.write_buffer(
+            set,
+            BINDING_TRIS,
+            vk::DescriptorType::STORAGE_BUFFER,
+            records.raw,
+            vk::WHOLE_SIZE,
+        );
+        pool.write_buffer(
+            set,
+            BINDING_TRI_UBO,
+            vk::DescriptorType::UNIFORM_BUFFER_DYNAMIC,
+            records_ubo.raw,
+            rec_size,
+        );
+        let finest = patterns.last().expect("a pattern set is never empty");
+        pool.write_buffer(
+            set,
+            BINDING_PATTERN,
+            vk::DescriptorType::STORAGE_BUFFER,
+            finest.vertices.raw,
+            vk::WHOLE_SIZE,
+        );
+        let mut mesh = Self {
+            ctx: ctx.clone(),
+            triangle_count: n as u32,
+            records,
+            records_ubo,
+            ubo_stride,
+            patterns,
+            pool,
+            set,
+        };
+        mesh.bind_pattern_storage(finest_level(&mesh));
+        Ok(mesh)
+    }
+
+    /// The pattern of `level`, if the set holds it.
+    pub fn pattern(&self, level: u32) -> Option<&GpuPattern> {
+        self.patterns.iter().find(|p| p.level == level)
+    }
+
+    /// Point the static driver's pattern binding at `level` (used for its wireframe lattice).
+    /// Only between frames: the set must not be in use by pending work.
+    pub fn bind_pattern_storage(&mut self, level: u32) {
+        if let Some(p) = self.pattern(level) {
+            self.pool.write_buffer(
+                self.set,
+                BINDING_PATTERN,
+                vk::DescriptorType::STORAGE_BUFFER,
+                p.vertices.raw,
+                vk::WHOLE_SIZE,
+            );
+        }
+    }
+
+    /// Upload new coarse records (animation). The caller makes sure no pending work reads them.
+    pub fn update_records(&mut self, records: &[CoarseTri]) {
+        assert_eq!(records.len() as u32, self.triangle_count);
+        write_records(
+            &mut self.records,
+            &mut self.records_ubo,
+            self.ubo_stride,
+            records,
+        );
+    }
+
+    /// Bytes of coarse data uploaded per frame when the mesh animates.
+    pub fn record_bytes(&self) -> u64 {
+        self.records.size() + self.records_ubo.size()
+    }
+
+    pub fn context(&self) -> &Arc<Context> {
+        &self.ctx
+    }
+}
+
+fn finest_level(m: &GpuMesh) -> u32 {
+    m.patterns.last().map(|p| p.level).unwrap_or(1)
+}
+
+fn write_records(ssbo: &mut Buffer, ubo: &mut Buffer, stride: u64, records: &[CoarseTri]) {
+    ssbo.write_pod(0, records);
+    for (i, r) in records.iter().enumerate() {
+        ubo.write_pod(i * stride as usize, std::slice::from_ref(r));
+    }
+}
+
+/// Everything needed to draw one mesh with any driver: CPU data, GPU data, the pattern set and
+/// (built on demand) the static driver's refined vertex buffer.
+pub struct Scene {
+    pub data: MeshData,
+    pub gpu: GpuMesh,
+    pub patterns: PatternSet,
+    pub static_vbo: Option<super::static_vbo::StaticVbo>,
+}
+
+impl Scene {
+    /// Upload `mesh` with patterns for LOD up to `max_level`.
+    pub fn new(
+        ctx: &Arc<Context>,
+        pool: &CommandPool,
+        renderer: &super::Renderer,
+        mesh: Mesh,
+        max_level: u32,
+    ) -> Result<Self, GpuError> {
+        Self::with_patterns(ctx, pool, renderer, mesh, PatternSet::up_to(max_level))
+    }
+
+    /// Upload `mesh` with exactly the given pattern set.
+    pub fn with_patterns(
+        ctx: &Arc<Context>,
+        pool: &CommandPool,
+        renderer: &super::Renderer,
+        mesh: Mesh,
+        patterns: PatternSet,
+    ) -> Result<Self, GpuError> {
+        let data = MeshData::new(mesh);
+        let gpu = GpuMesh::new(ctx, pool, &renderer.mesh_layout, &data, &patterns)?;
+        Ok(Self {
+            data,
+            gpu,
+            patterns,
+            static_vbo: None,
+        })
+    }
+
+    /// Check that `cfg` can be drawn here and build what it needs (pipelines, static buffers).
+    /// Only between frames: may rewrite the mesh descriptor set.
+    pub fn prepare(
+        &mut self,
+        ctx: &Arc<Context>,
+        pool: &CommandPool,
+        renderer: &mut super::Renderer,
+        cfg: &super::DrawConfig,
+        capture: bool,
+    ) -> Result<(), GpuError> {
+        if self.patterns.find(cfg.level).is_none() {
+            let levels: Vec<String> = self.patterns.levels().map(|l| l.to_string()).collect();
+            return Err(GpuError::Other(format!(
+                "level {} is not among the uploaded pattern levels ({})",
+                cfg.level,
+                levels.join(", ")
+            )));
+        }
+        if cfg.driver == super::Driver::Tess {
+            super::tess::check_level(ctx, cfg.level)?;
+        }
+        if capture && !ctx.info.vertex_stores {
+            return Err(GpuError::MissingFeature {
+                device: ctx.info.name.clone(),
+                feature: "vertexPipelineStoresAndAtomics (needed to capture evaluated vertices)",
+            });
+        }
+        if capture && cfg.driver == super::Driver::Static {
+            return Err(GpuError::Other(
+                "the static driver evaluates on the CPU: there is nothing to capture (use pattern or tess)".into(),
+            ));
+        }
+        renderer.prepare(cfg, capture)?;
+        if cfg.driver == super::Driver::Static {
+            let stale = self
+                .static_vbo
+                .as_ref()
+                .is_none_or(|v| v.level != cfg.level || v.surface != cfg.surface);
+            if stale {
+                self.static_vbo = None;
+                let idx = self.patterns.find(cfg.level).unwrap();
+                self.static_vbo = Some(super::static_vbo::StaticVbo::new(
+                    ctx,
+                    pool,
+                    cfg.surface,
+                    &self.data.records,
+                    &self.patterns.patterns[idx],
+                )?);
+                self.gpu.bind_pattern_storage(cfg.level);
+            }
+        }
+        Ok(())
+    }
+
+    /// Replace the coarse positions/normals (animation): new records are uploaded; the static
+    /// buffer, if any, becomes stale and is rebuilt by the next `prepare`. Only between frames.
+    pub fn update_mesh(&mut self, mesh: Mesh) {
+        self.data = MeshData::new(mesh);
+        self.gpu.update_records(&self.data.records);
+        self.static_vbo = None;
+    }
+
+    /// Centre and radius of the mesh's bounding sphere.
+    pub fn bounding_sphere(&self) -> (glam::Vec3, f32) {
+        let (lo, hi) = self.data.mesh.bounds();
+        let c = (lo + hi) * 0.5;
+        (c, ((hi - lo) * 0.5).length().max(1e-6))
+    }
+
+    /// GPU bytes of refined geometry each driver holds at `level` for this mesh
+    /// (pattern: that level's pattern + the records; static: the refined buffers; tess: records).
+    pub fn geometry_bytes(&self, driver: super::Driver, level: u32) -> u64 {
+        let records = self.data.records.len() as u64 * std::mem::size_of::<CoarseTri>() as u64;
+        geometry_bytes(driver, level, self.data.records.len() as u64, records)
+    }
+}
+
+/// GPU geometry bytes per driver for `triangles` coarse triangles at `level`
+/// (records: bytes of coarse records; static: 24-byte vertices + u32 strips with restarts).
+pub fn geometry_bytes(driver: super::Driver, level: u32, triangles: u64, records: u64) -> u64 {
+    use crate::pattern::{index_count, vertex_count};
+    let pv = vertex_count(level) as u64;
+    let pi = index_count(level) as u64;
+    match driver {
+        super::Driver::Static => triangles * pv * 24 + (triangles * (pi + 1)).saturating_sub(1) * 4,
+        super::Driver::Pattern => pv * 12 + pi * 4 + records,
+        super::Driver::Tess => records,
+    }
+}

@@ -1,0 +1,120 @@
+//! `static` driver: the CPU refines every coarse triangle with the surface's Rust mirror and
+//! uploads one vertex and index buffer: the "static VBO" baseline of Boubekeur & Schlick 2005 (§5,
+//! Fig. 7). Its GPU footprint grows with (coarse triangles x pattern size); an animated mesh must
+//! be refined and uploaded again every frame.
+
+use super::{Renderer, PUSH_DRAW_OFFSET};
+use crate::gpu::conv::PUSH_STAGES;
+use crate::gpu::{vk, Buffer, Cmd, CommandPool, Context, GpuError};
+use crate::pattern::{Pattern, RESTART};
+use crate::surface::{eval, CoarseTri, Surface};
+use std::sync::Arc;
+
+/// Refined vertex: position, normal.
+pub type StaticVertex = [f32; 6];
+
+/// The whole mesh refined on the CPU: vertices (pattern order, one block per coarse triangle)
+/// and strips (the pattern's strips offset per triangle, separated by restarts).
+pub fn refine_on_cpu(
+    surface: Surface,
+    records: &[CoarseTri],
+    pattern: &Pattern,
+) -> (Vec<StaticVertex>, Vec<u32>) {
+    let pv = pattern.bary.len() as u32;
+    let mut vertices = Vec::with_capacity(records.len() * pv as usize);
+    let mut indices = Vec::with_capacity(records.len() * (pattern.indices.len() + 1));
+    for (t, rec) in records.iter().enumerate() {
+        for &b in &pattern.bary {
+            let sp = eval(surface, rec, b);
+            vertices.push([
+                sp.position.x,
+                sp.position.y,
+                sp.position.z,
+                sp.normal.x,
+                sp.normal.y,
+                sp.normal.z,
+            ]);
+        }
+        if t > 0 {
+            indices.push(RESTART);
+        }
+        let base = t as u32 * pv;
+        indices.extend(
+            pattern
+                .indices
+                .iter()
+                .map(|&i| if i == RESTART { RESTART } else { base + i }),
+        );
+    }
+    (vertices, indices)
+}
+
+pub struct StaticVbo {
+    pub surface: Surface,
+    pub level: u32,
+    pub vertices: Buffer,
+    pub indices: Buffer,
+    pub index_count: u32,
+    pub vertex_count: u32,
+    pattern_vertex_count: u32,
+}
+
+impl StaticVbo {
+    pub fn new(
+        ctx: &Arc<Context>,
+        pool: &CommandPool,
+        surface: Surface,
+        records: &[CoarseTri],
+        pattern: &Pattern,
+    ) -> Result<Self, GpuError> {
+        let (v, i) = refine_on_cpu(surface, records, pattern);
+        let bytes = (v.len() * std::mem::size_of::<StaticVertex>()) as u64;
+        let heap_limit = ctx.info.limits.max_storage_buffer_range as u64 * 16;
+        if bytes > heap_limit.max(1 << 32) {
+            return Err(GpuError::Other(format!(
+                "the static vertex buffer would take {bytes} bytes: use a lower level"
+            )));
+        }
+        let vertices = Buffer::new_with_data(
+            ctx,
+            pool,
+            vk::BufferUsageFlags::VERTEX_BUFFER,
+            &v,
+            "static vertices",
+        )?;
+        let indices = Buffer::new_with_data(
+            ctx,
+            pool,
+            vk::BufferUsageFlags::INDEX_BUFFER,
+            &i,
+            "static strips",
+        )?;
+        Ok(Self {
+            surface,
+            level: pattern.level,
+            vertices,
+            indices,
+            index_count: i.len() as u32,
+            vertex_count: v.len() as u32,
+            pattern_vertex_count: pattern.bary.len() as u32,
+        })
+    }
+
+    pub fn bytes(&self) -> u64 {
+        self.vertices.size() + self.indices.size()
+    }
+}
+
+/// Record the static driver's draw (one indexed draw of the whole refined mesh).
+pub fn cmd_draw(cmd: &Cmd<'_>, r: &Renderer, vbo: &StaticVbo) {
+    let draw = [vbo.level, 0, vbo.pattern_vertex_count, 0];
+    cmd.push_constants(
+        r.layout.raw,
+        PUSH_STAGES,
+        PUSH_DRAW_OFFSET,
+        bytemuck::cast_slice(&draw),
+    );
+    cmd.bind_vertex_buffer(0, &vbo.vertices);
+    cmd.bind_index_buffer_u32(&vbo.indices);
+    cmd.draw_indexed(vbo.index_count, 1, 0, 0, 0);
+}

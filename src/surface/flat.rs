@@ -1,0 +1,16 @@
+//! `flat` surface: linear interpolation of the coarse triangle (Boubekeur & Schlick 2005, §3.2:
+//! `V = w·P0 + u·P1 + v·P2`), normals interpolated the same way and normalized.
+//! Mirror of `glsl/include/flat.glsl`. Evaluated in the same operation order as the GLSL, which
+//! marks it `precise` (no fused multiply-add), so CPU and GPU positions agree to the bit.
+
+use super::{Corners, SurfacePoint};
+
+pub fn eval(c: &Corners) -> SurfacePoint {
+    let [w0, w1, w2] = c.w;
+    let position = c.p[0] * w0 + c.p[1] * w1 + c.p[2] * w2;
+    let normal = c.n[0] * w0 + c.n[1] * w1 + c.n[2] * w2;
+    SurfacePoint {
+        position,
+        normal: normal.normalize_or_zero(),
+    }
+}
