@@ -130,8 +130,11 @@ fn run(cli: Cli) -> Result<()> {
         Command::Export(a) => {
             let mesh = load_mesh(a.mesh.as_deref())?;
             let cfg = draw_config(&a.technique);
-            if cfg.driver == Driver::Static {
-                bail!("export reads back what the GPU evaluated: choose --driver pattern or --driver tess");
+            if cfg.driver != Driver::Pattern {
+                bail!(
+                    "export reads back the pattern driver's evaluated vertices: use --driver pattern ({} cannot be exported yet)",
+                    cfg.driver.name()
+                );
             }
             let messages = {
                 let ctx = Context::new(&desc)?;

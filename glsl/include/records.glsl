@@ -16,7 +16,7 @@ layout(set = SET_FRAME, binding = BINDING_FRAME, std140) uniform Frame {
     vec4 eye;        // xyz: camera position (world)
     vec4 light_dir;  // xyz: direction towards the light (world)
     vec4 base_color; // rgb: surface colour
-    vec4 options;    // x: wireframe on (1) / off (0); y: wire width in pixels
+    vec4 options;    // reserved
 } frame;
 
 // Per draw: 128 bytes, the minimum every device offers.
@@ -25,15 +25,22 @@ layout(push_constant, std430) uniform Push {
     uvec4 draw;      // x: level N; y: first triangle of this draw (tess); z: pattern vertex count
 } pc;
 
-// What the CAPTURE variants write, one per evaluated pattern vertex.
+// What the CAPTURE variants write, one per evaluated vertex (64 bytes).
 struct CapturedVertex {
     vec4 position;   // xyz; w = 1 once written
     vec4 normal;     // xyz
+    vec4 coord;      // the sample as the driver produced it: pattern (w, u, v) or gl_TessCoord
+    uvec4 id;        // x: coarse triangle; y: pattern vertex index (pattern) or ~0u (tess)
 };
 
 #ifdef CAPTURE
 layout(set = SET_CAPTURE, binding = BINDING_CAPTURE, std430) writeonly buffer Capture {
     CapturedVertex captured[];
+};
+// Append counter (tess: the tessellator's vertices have no fixed index) and capacity.
+layout(set = SET_CAPTURE, binding = BINDING_CAPTURE_COUNT, std430) buffer CaptureCount {
+    uint capture_count;
+    uint capture_capacity;
 };
 #endif
 

@@ -8,5 +8,4 @@
 #endif
 layout(location = 0) VARYING vec3 v_position;  // world position
 layout(location = 1) VARYING vec3 v_normal;    // world normal (unnormalized after interpolation)
-layout(location = 2) VARYING vec3 v_lattice;   // (w, u, v) * N: integer on refined edges (wireframe)
 #endif

@@ -27,9 +27,9 @@ void main() {
     surface_eval(t, in_bary, p, n);
     v_position = p;
     v_normal = n;
-    v_lattice = in_bary * float(pc.draw.x);
     gl_Position = frame.view_proj * vec4(p, 1.0);
 #ifdef CAPTURE
-    captured[t.idx.w * pc.draw.z + uint(gl_VertexIndex)] = CapturedVertex(vec4(p, 1.0), vec4(n, 0.0));
+    captured[t.idx.w * pc.draw.z + uint(gl_VertexIndex)] =
+        CapturedVertex(vec4(p, 1.0), vec4(n, 0.0), vec4(in_bary, 0.0), uvec4(t.idx.w, uint(gl_VertexIndex), 0u, 0u));
 #endif
 }

@@ -1,14 +1,20 @@
 #version 460
 // Fragment stage shared by every driver: two-sided Blinn-Phong lighting of the interpolated
-// surface normal, with an optional wireframe of the refined triangles drawn from the lattice
-// coordinate (integer along every refined edge), so all drivers show the same lines.
+// surface normal. The WIRE variant (a second pass in polygon mode LINE) draws the refined
+// triangles' edges, so every driver shows the triangles it really produced.
 #define FRAGMENT_STAGE
 #include "records.glsl"
 #include "varyings.glsl"
 
+layout(constant_id = SPEC_WIRE) const uint WIRE = 0;
+
 layout(location = 0) out vec4 out_color;
 
 void main() {
+    if (WIRE != 0) {
+        out_color = vec4(0.05, 0.06, 0.09, 1.0);
+        return;
+    }
     vec3 n = normalize(v_normal);
     vec3 v = normalize(frame.eye.xyz - v_position);
     if (dot(n, v) < 0.0) {
@@ -19,12 +25,5 @@ void main() {
     float diffuse = max(dot(n, l), 0.0);
     float specular = pow(max(dot(n, h), 0.0), 48.0);
     vec3 color = frame.base_color.rgb * (0.18 + 0.82 * diffuse) + vec3(0.22 * specular);
-    if (frame.options.x > 0.5) {
-        vec3 dist = abs(fract(v_lattice + 0.5) - 0.5);      // distance to the nearest refined edge
-        vec3 px = dist / max(fwidth(v_lattice), vec3(1e-6)); // ... in pixels
-        float d = min(min(px.x, px.y), px.z);
-        float line = 1.0 - smoothstep(0.5 * frame.options.y - 0.5, 0.5 * frame.options.y + 0.5, d);
-        color = mix(color, vec3(0.04, 0.05, 0.08), line * 0.85);
-    }
     out_color = vec4(color, 1.0);
 }

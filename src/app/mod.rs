@@ -312,8 +312,14 @@ impl State {
                 .last()
                 .unwrap_or(1);
         }
-        self.scene
-            .prepare(&self.ctx, &self.pool, &mut self.renderer, &cfg, false)?;
+        self.scene.prepare(
+            &self.ctx,
+            &self.pool,
+            &mut self.renderer,
+            &cfg,
+            false,
+            self.wireframe,
+        )?;
 
         let Some(image) = self.swapchain.acquire(self.acquired.raw)? else {
             self.resize = true;
@@ -345,7 +351,7 @@ impl State {
                 .extend(0.0)
                 .to_array(),
             base_color: [0.80, 0.55, 0.35, 1.0],
-            options: [if self.wireframe { 1.0 } else { 0.0 }, 1.2, 0.0, 0.0],
+            options: [0.0; 4],
         });
         let depth = self.swapchain.depth.as_ref().expect("depth image exists");
         let target = TargetView {
@@ -366,6 +372,7 @@ impl State {
             static_vbo: self.scene.static_vbo.as_ref(),
             cfg,
             capture: false,
+            wireframe: self.wireframe,
             clear: [0.08, 0.09, 0.11, 1.0],
         };
         let screenshot_buffer = self.screenshot_buffer.as_ref().filter(|_| screenshot);

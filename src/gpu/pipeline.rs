@@ -219,6 +219,9 @@ pub struct GraphicsPipelineDesc {
     pub patch_control_points: u32,
     pub color_format: vk::Format,
     pub depth_format: vk::Format,
+    pub polygon_mode: vk::PolygonMode,
+    /// (constant factor, slope factor)
+    pub depth_bias: Option<(f32, f32)>,
 }
 
 pub struct Pipeline {
@@ -307,7 +310,10 @@ impl Pipeline {
             .viewport_count(1)
             .scissor_count(1);
         let raster = vk::PipelineRasterizationStateCreateInfo::default()
-            .polygon_mode(vk::PolygonMode::FILL)
+            .polygon_mode(desc.polygon_mode)
+            .depth_bias_enable(desc.depth_bias.is_some())
+            .depth_bias_constant_factor(desc.depth_bias.map_or(0.0, |b| b.0))
+            .depth_bias_slope_factor(desc.depth_bias.map_or(0.0, |b| b.1))
             .cull_mode(vk::CullModeFlags::NONE)
             .front_face(vk::FrontFace::COUNTER_CLOCKWISE)
             .line_width(1.0);

@@ -13,17 +13,18 @@ pub const SET_MESH: u32 = 1;
 pub const BINDING_TRIS: u32 = 0;
 /// Set 1, binding 1: one `CoarseTri` record, dynamic uniform buffer (`ubo` submission).
 pub const BINDING_TRI_UBO: u32 = 1;
-/// Set 1, binding 2: the pattern's barycentric vertices as a storage buffer (static wireframe).
-pub const BINDING_PATTERN: u32 = 2;
 
 /// Set 2: capture output of the `CAPTURE` shader variants.
 pub const SET_CAPTURE: u32 = 2;
 /// Set 2, binding 0: evaluated vertices, `CapturedVertex[]`.
 pub const BINDING_CAPTURE: u32 = 0;
+/// Set 2, binding 1: append counter and capacity (`tess` capture).
+pub const BINDING_CAPTURE_COUNT: u32 = 1;
 
 /// Specialization constant ids.
 pub const SPEC_SURFACE: u32 = 0;
 pub const SPEC_SUBMIT: u32 = 1;
+pub const SPEC_WIRE: u32 = 2;
 
 /// Everything above, as GLSL macro definitions.
 pub const GLSL_DEFINES: &[(&str, u32)] = &[
@@ -32,9 +33,10 @@ pub const GLSL_DEFINES: &[(&str, u32)] = &[
     ("SET_MESH", SET_MESH),
     ("BINDING_TRIS", BINDING_TRIS),
     ("BINDING_TRI_UBO", BINDING_TRI_UBO),
-    ("BINDING_PATTERN", BINDING_PATTERN),
     ("SET_CAPTURE", SET_CAPTURE),
     ("BINDING_CAPTURE", BINDING_CAPTURE),
+    ("BINDING_CAPTURE_COUNT", BINDING_CAPTURE_COUNT),
     ("SPEC_SURFACE", SPEC_SURFACE),
     ("SPEC_SUBMIT", SPEC_SUBMIT),
+    ("SPEC_WIRE", SPEC_WIRE),
 ];

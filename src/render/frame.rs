@@ -26,6 +26,8 @@ pub struct FrameWork<'a> {
     pub static_vbo: Option<&'a StaticVbo>,
     pub cfg: DrawConfig,
     pub capture: bool,
+    /// Draw the refined triangles' edges in a second pass (if the device supports it).
+    pub wireframe: bool,
     pub clear: [f32; 4],
 }
 
@@ -59,12 +61,34 @@ pub fn cmd_render(
         target.extent,
         work.clear,
     );
-    cmd.bind_graphics_pipeline(r.pipeline(&work.cfg, work.capture));
     cmd.bind_descriptor_set(r.layout.raw, SET_FRAME, r.frame_set, &[]);
     cmd.bind_descriptor_set(r.layout.raw, SET_MESH, work.mesh.set, &[0]);
     if work.capture {
         cmd.bind_descriptor_set(r.layout.raw, SET_CAPTURE, r.capture_set, &[]);
     }
+    cmd.bind_graphics_pipeline(r.pipeline(&work.cfg, work.capture, false));
+    cmd_draw_driver(cmd, r, work);
+    if work.wireframe && r.wireframe_supported() {
+        cmd.bind_graphics_pipeline(r.pipeline(&work.cfg, false, true));
+        cmd_draw_driver(cmd, r, work);
+    }
+    cmd.end_rendering();
+    if let Some((q, slot)) = queries {
+        q.cmd_end(cmd, slot);
+    }
+    if work.capture {
+        cmd.barrier_to_host();
+    }
+    cmd.transition(
+        target.color,
+        vk::ImageAspectFlags::COLOR,
+        L::COLOR_ATTACHMENT_OPTIMAL,
+        target.final_layout,
+    );
+}
+
+/// The chosen driver's draws (pipeline and descriptor sets already bound).
+fn cmd_draw_driver(cmd: &Cmd<'_>, r: &Renderer, work: &FrameWork<'_>) {
     match work.cfg.driver {
         Driver::Static => {
             let vbo = work
@@ -81,17 +105,4 @@ pub fn cmd_render(
         }
         Driver::Tess => tess::cmd_draw(cmd, r, work.mesh, work.cfg.level),
     }
-    cmd.end_rendering();
-    if let Some((q, slot)) = queries {
-        q.cmd_end(cmd, slot);
-    }
-    if work.capture {
-        cmd.barrier_to_host();
-    }
-    cmd.transition(
-        target.color,
-        vk::ImageAspectFlags::COLOR,
-        L::COLOR_ATTACHMENT_OPTIMAL,
-        target.final_layout,
-    );
 }

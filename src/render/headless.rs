@@ -2,7 +2,8 @@
 //! Every call records, submits and waits, so nothing is ever in flight when it returns.
 
 use super::frame::{cmd_render, FrameWork, TargetView};
-use super::{CapturedVertex, DrawConfig, FrameUniforms, Renderer, Scene};
+use super::tess::tess_vertex_count;
+use super::{CapturedVertex, DrawConfig, Driver, FrameUniforms, Renderer, Scene};
 use crate::gpu::{
     vk, Buffer, BufferDesc, CommandPool, Context, ContextDesc, GpuError, OffscreenTarget,
     PipelineStats, QueryPools, Readback, DEPTH_FORMAT, OFFSCREEN_FORMAT,
@@ -22,8 +23,11 @@ pub struct Headless {
     pub wireframe: bool,
 }
 
-/// Vertices the capture variant wrote: `pattern_vertex_count` per coarse triangle, in pattern
-/// order, triangle after triangle.
+/// Vertices the capture variant of a driver's pipeline wrote.
+/// - `pattern`: exactly `pattern_vertex_count` per coarse triangle, in pattern order, triangle
+///   after triangle (`id = (triangle, pattern vertex)`).
+/// - `tess`: every evaluation-stage invocation, in no particular order (`id.y = u32::MAX`,
+///   `coord` = gl_TessCoord); an implementation may evaluate a vertex more than once.
 pub struct CaptureResult {
     pub vertices: Vec<CapturedVertex>,
     pub pattern_vertex_count: u32,
@@ -77,7 +81,7 @@ impl Headless {
                 .extend(0.0)
                 .to_array(),
             base_color: [0.80, 0.55, 0.35, 1.0],
-            options: [if self.wireframe { 1.0 } else { 0.0 }, 1.2, 0.0, 0.0],
+            options: [0.0; 4],
         }
     }
 
@@ -109,7 +113,14 @@ impl Headless {
         camera: &Camera,
         capture: bool,
     ) -> Result<FrameTiming, GpuError> {
-        scene.prepare(&self.ctx, &self.pool, &mut self.renderer, cfg, capture)?;
+        scene.prepare(
+            &self.ctx,
+            &self.pool,
+            &mut self.renderer,
+            cfg,
+            capture,
+            self.wireframe,
+        )?;
         let uniforms = self.frame_uniforms(camera);
         self.renderer.set_frame(&uniforms);
         let view = self.view();
@@ -119,6 +130,7 @@ impl Headless {
             static_vbo: scene.static_vbo.as_ref(),
             cfg: *cfg,
             capture,
+            wireframe: self.wireframe,
             clear: [0.08, 0.09, 0.11, 1.0],
         };
         let start = Instant::now();
@@ -152,26 +164,50 @@ impl Headless {
         camera: &Camera,
     ) -> Result<CaptureResult, GpuError> {
         let pv = vertex_count(cfg.level);
-        let count = scene.gpu.triangle_count as u64 * pv as u64;
-        let bytes = count * std::mem::size_of::<CapturedVertex>() as u64;
+        let per_triangle = match cfg.driver {
+            // Room for every tessellator vertex twice (implementations may repeat invocations).
+            Driver::Tess => 2 * tess_vertex_count(cfg.level),
+            _ => pv,
+        };
+        let capacity = scene.gpu.triangle_count as u64 * per_triangle as u64;
+        let bytes = capacity * std::mem::size_of::<CapturedVertex>() as u64;
         let limit = self.ctx.info.limits.max_storage_buffer_range as u64;
-        if bytes > limit {
+        if bytes > limit || capacity > u32::MAX as u64 {
             return Err(GpuError::Other(format!(
-                "capturing {count} vertices needs {bytes} bytes, over this device's maxStorageBufferRange ({limit}): use a lower level"
+                "capturing {capacity} vertices needs {bytes} bytes, over this device's maxStorageBufferRange ({limit}): use a lower level"
             )));
         }
-        let buffer = Buffer::new(
+        let vertices = Buffer::new(
             &self.ctx,
             BufferDesc::new_readback(bytes, vk::BufferUsageFlags::STORAGE_BUFFER),
             "capture output",
         )?;
+        let mut counter = Buffer::new(
+            &self.ctx,
+            BufferDesc::new_upload(8, vk::BufferUsageFlags::STORAGE_BUFFER),
+            "capture counter",
+        )?;
+        counter.write_pod(0, &[0u32, capacity as u32]);
         // Unwritten entries keep w = 0, so a missed vertex is detectable.
         self.pool
-            .submit_and_wait(|cmd| cmd.fill_buffer(&buffer, 0))?;
-        self.renderer.set_capture_target(&buffer);
-        let timing = self.draw_inner(scene, cfg, camera, true)?;
+            .submit_and_wait(|cmd| cmd.fill_buffer(&vertices, 0))?;
+        self.renderer.set_capture_target(&vertices, &counter);
+        let wire = std::mem::replace(&mut self.wireframe, false);
+        let timing = self.draw_inner(scene, cfg, camera, true);
+        self.wireframe = wire;
+        let timing = timing?;
+        let mut out: Vec<CapturedVertex> = vertices.read_pod();
+        if cfg.driver == Driver::Tess {
+            let written = counter.read_pod::<u32>()[0] as u64;
+            if written > capacity {
+                return Err(GpuError::Other(format!(
+                    "the tessellator evaluated {written} vertices, more than the {capacity} the capture buffer holds"
+                )));
+            }
+            out.truncate(written as usize);
+        }
         Ok(CaptureResult {
-            vertices: buffer.read_pod(),
+            vertices: out,
             pattern_vertex_count: pv,
             stats: timing.stats,
         })

@@ -105,7 +105,7 @@ pub struct FrameUniforms {
     pub eye: [f32; 4],
     pub light_dir: [f32; 4],
     pub base_color: [f32; 4],
-    /// x: wireframe on/off, y: wire width in pixels.
+    /// Reserved.
     pub options: [f32; 4],
 }
 
@@ -138,8 +138,17 @@ pub const PUSH_DRAW_OFFSET: u32 = 112;
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct CapturedVertex {
+    /// xyz; w = 1 once written.
     pub position: [f32; 4],
     pub normal: [f32; 4],
+    /// The sample as the driver produced it: pattern `(w, u, v)` or `gl_TessCoord`.
+    pub coord: [f32; 4],
+    /// x: coarse triangle; y: pattern vertex index, or `u32::MAX` for tess samples.
+    pub id: [u32; 4],
 }
 
-const _: () = assert!(std::mem::size_of::<CapturedVertex>() == 32);
+const _: () = {
+    assert!(std::mem::size_of::<CapturedVertex>() == 64);
+    assert!(std::mem::offset_of!(CapturedVertex, coord) == 32);
+    assert!(std::mem::offset_of!(CapturedVertex, id) == 48);
+};

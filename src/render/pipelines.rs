@@ -19,6 +19,8 @@ struct PipelineKey {
     submit: Submit,
     surface: Surface,
     capture: bool,
+    /// Wireframe pass: polygon mode LINE, the fragment stage's WIRE variant.
+    wire: bool,
 }
 
 pub struct Renderer {
@@ -54,13 +56,15 @@ impl Renderer {
             &[
                 (BINDING_TRIS, T::STORAGE_BUFFER, GEOMETRY_STAGES), // CoarseTri[] (instanced, tess)
                 (BINDING_TRI_UBO, T::UNIFORM_BUFFER_DYNAMIC, GEOMETRY_STAGES), // one CoarseTri (ubo)
-                (BINDING_PATTERN, T::STORAGE_BUFFER, GEOMETRY_STAGES), // pattern bary (static wireframe)
             ],
             "set 1: mesh",
         )?;
         let capture_layout = DescriptorSetLayout::new(
             ctx,
-            &[(BINDING_CAPTURE, T::STORAGE_BUFFER, GEOMETRY_STAGES)], // CapturedVertex[] output
+            &[
+                (BINDING_CAPTURE, T::STORAGE_BUFFER, GEOMETRY_STAGES), // CapturedVertex[] output
+                (BINDING_CAPTURE_COUNT, T::STORAGE_BUFFER, GEOMETRY_STAGES), // append counter
+            ],
             "set 2: capture",
         )?;
         let layout = PipelineLayout::new(
@@ -81,7 +85,7 @@ impl Renderer {
         let pool = DescriptorPool::new(
             ctx,
             2,
-            &[(T::UNIFORM_BUFFER, 1), (T::STORAGE_BUFFER, 1)],
+            &[(T::UNIFORM_BUFFER, 1), (T::STORAGE_BUFFER, 2)],
             "renderer descriptors",
         )?;
         let frame_set = pool.allocate(&frame_layout, "frame set")?;
@@ -118,30 +122,49 @@ impl Renderer {
         self.frame_ubo.write_pod(0, std::slice::from_ref(f));
     }
 
-    /// Point the capture binding at `buffer` (not while pending work uses the set).
-    pub fn set_capture_target(&self, buffer: &Buffer) {
+    /// Point the capture bindings at `vertices` and `counter` (not while pending work uses the set).
+    pub fn set_capture_target(&self, vertices: &Buffer, counter: &Buffer) {
+        let t = vk::DescriptorType::STORAGE_BUFFER;
         self.pool.write_buffer(
             self.capture_set,
             BINDING_CAPTURE,
-            vk::DescriptorType::STORAGE_BUFFER,
-            buffer.raw,
+            t,
+            vertices.raw,
+            vk::WHOLE_SIZE,
+        );
+        self.pool.write_buffer(
+            self.capture_set,
+            BINDING_CAPTURE_COUNT,
+            t,
+            counter.raw,
             vk::WHOLE_SIZE,
         );
     }
 
-    /// Create (once) the pipeline `cfg` needs.
-    pub fn prepare(&mut self, cfg: &DrawConfig, capture: bool) -> Result<(), GpuError> {
-        let key = key(cfg, capture);
-        if !self.pipelines.contains_key(&key) {
-            let p = self.create(key)?;
-            self.pipelines.insert(key, p);
+    /// Whether the device can draw the wireframe pass (fillModeNonSolid).
+    pub fn wireframe_supported(&self) -> bool {
+        self.ctx.info.fill_mode_non_solid
+    }
+
+    /// Create (once) the pipelines `cfg` needs: the fill pipeline (or its capture variant), and
+    /// the wireframe pass when `wire` is set and supported.
+    pub fn prepare(&mut self, cfg: &DrawConfig, capture: bool, wire: bool) -> Result<(), GpuError> {
+        let mut keys = vec![key(cfg, capture, false)];
+        if wire && self.wireframe_supported() {
+            keys.push(key(cfg, false, true));
+        }
+        for k in keys {
+            if !self.pipelines.contains_key(&k) {
+                let p = self.create(k)?;
+                self.pipelines.insert(k, p);
+            }
         }
         Ok(())
     }
 
     /// The pipeline for `cfg`; [`Renderer::prepare`] must have been called.
-    pub fn pipeline(&self, cfg: &DrawConfig, capture: bool) -> vk::Pipeline {
-        self.pipelines[&key(cfg, capture)].raw
+    pub fn pipeline(&self, cfg: &DrawConfig, capture: bool, wire: bool) -> vk::Pipeline {
+        self.pipelines[&key(cfg, capture, wire)].raw
     }
 
     fn create(&self, key: PipelineKey) -> Result<Pipeline, GpuError> {
@@ -161,6 +184,7 @@ impl Renderer {
             spec: vec![
                 (SPEC_SURFACE, key.surface as u32),
                 (SPEC_SUBMIT, key.submit as u32),
+                (SPEC_WIRE, key.wire as u32),
             ],
             vertex_bindings: vec![],
             vertex_attributes: vec![],
@@ -169,6 +193,13 @@ impl Renderer {
             patch_control_points: 0,
             color_format: self.color_format,
             depth_format: self.depth_format,
+            polygon_mode: if key.wire {
+                vk::PolygonMode::LINE
+            } else {
+                vk::PolygonMode::FILL
+            },
+            // Pull the lines towards the camera so they win the depth test against their fill.
+            depth_bias: key.wire.then_some((-1.0, -1.0)),
         };
         match key.driver {
             Driver::Static => {
@@ -213,7 +244,7 @@ impl Renderer {
             }
         }
         let name = format!(
-            "{}{} ({})",
+            "{}{}{} ({})",
             DrawConfig {
                 surface: key.surface,
                 driver: key.driver,
@@ -222,13 +253,14 @@ impl Renderer {
             }
             .label(),
             if key.capture { " capture" } else { "" },
+            if key.wire { " wireframe" } else { "" },
             key.surface.name()
         );
         Pipeline::new_graphics(&self.ctx, &self.layout, &desc, &name)
     }
 }
 
-fn key(cfg: &DrawConfig, capture: bool) -> PipelineKey {
+fn key(cfg: &DrawConfig, capture: bool, wire: bool) -> PipelineKey {
     PipelineKey {
         driver: cfg.driver,
         // Only the pattern driver has submission modes.
@@ -239,5 +271,6 @@ fn key(cfg: &DrawConfig, capture: bool) -> PipelineKey {
         },
         surface: cfg.surface,
         capture,
+        wire,
     }
 }

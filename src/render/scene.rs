@@ -117,7 +117,7 @@ impl GpuMesh {
             ctx,
             1,
             &[
-                (vk::DescriptorType::STORAGE_BUFFER, 2),
+                (vk::DescriptorType::STORAGE_BUFFER, 1),
                 (vk::DescriptorType::UNIFORM_BUFFER_DYNAMIC, 1),
             ],
             "mesh descriptors",
@@ -137,15 +137,7 @@ impl GpuMesh {
             records_ubo.raw,
             rec_size,
         );
-        let finest = patterns.last().expect("a pattern set is never empty");
-        pool.write_buffer(
-            set,
-            BINDING_PATTERN,
-            vk::DescriptorType::STORAGE_BUFFER,
-            finest.vertices.raw,
-            vk::WHOLE_SIZE,
-        );
-        let mut mesh = Self {
+        Ok(Self {
             ctx: ctx.clone(),
             triangle_count: n as u32,
             records,
@@ -154,28 +146,12 @@ impl GpuMesh {
             patterns,
             pool,
             set,
-        };
-        mesh.bind_pattern_storage(finest_level(&mesh));
-        Ok(mesh)
+        })
     }
 
     /// The pattern of `level`, if the set holds it.
     pub fn pattern(&self, level: u32) -> Option<&GpuPattern> {
         self.patterns.iter().find(|p| p.level == level)
-    }
-
-    /// Point the static driver's pattern binding at `level` (used for its wireframe lattice).
-    /// Only between frames: the set must not be in use by pending work.
-    pub fn bind_pattern_storage(&mut self, level: u32) {
-        if let Some(p) = self.pattern(level) {
-            self.pool.write_buffer(
-                self.set,
-                BINDING_PATTERN,
-                vk::DescriptorType::STORAGE_BUFFER,
-                p.vertices.raw,
-                vk::WHOLE_SIZE,
-            );
-        }
     }
 
     /// Upload new coarse records (animation). The caller makes sure no pending work reads them.
@@ -197,10 +173,6 @@ impl GpuMesh {
     pub fn context(&self) -> &Arc<Context> {
         &self.ctx
     }
-}
-
-fn finest_level(m: &GpuMesh) -> u32 {
-    m.patterns.last().map(|p| p.level).unwrap_or(1)
 }
 
 fn write_records(ssbo: &mut Buffer, ubo: &mut Buffer, stride: u64, records: &[CoarseTri]) {
@@ -249,7 +221,8 @@ impl Scene {
         })
     }
 
-    /// Check that `cfg` can be drawn here and build what it needs (pipelines, static buffers).
+    /// Check that `cfg` can be drawn here and build what it needs (pipelines, including the
+    /// wireframe pass when `wire`, static buffers).
     /// Only between frames: may rewrite the mesh descriptor set.
     pub fn prepare(
         &mut self,
@@ -258,6 +231,7 @@ impl Scene {
         renderer: &mut super::Renderer,
         cfg: &super::DrawConfig,
         capture: bool,
+        wire: bool,
     ) -> Result<(), GpuError> {
         if self.patterns.find(cfg.level).is_none() {
             let levels: Vec<String> = self.patterns.levels().map(|l| l.to_string()).collect();
@@ -281,7 +255,7 @@ impl Scene {
                 "the static driver evaluates on the CPU: there is nothing to capture (use pattern or tess)".into(),
             ));
         }
-        renderer.prepare(cfg, capture)?;
+        renderer.prepare(cfg, capture, wire)?;
         if cfg.driver == super::Driver::Static {
             let stale = self
                 .static_vbo
@@ -297,7 +271,6 @@ impl Scene {
                     &self.data.records,
                     &self.patterns.patterns[idx],
                 )?);
-                self.gpu.bind_pattern_storage(cfg.level);
             }
         }
         Ok(())

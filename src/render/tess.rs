@@ -9,7 +9,6 @@
 use super::{GpuMesh, Renderer, PUSH_DRAW_OFFSET};
 use crate::gpu::conv::PUSH_STAGES;
 use crate::gpu::{Cmd, Context, GpuError};
-use crate::pattern::vertex_count;
 
 /// Largest evaluated-vertex count of one tessellated draw that lavapipe renders correctly.
 pub const LAVAPIPE_MAX_TESS_VERTICES_PER_DRAW: u32 = 65_535;
@@ -28,7 +27,7 @@ pub fn check_level(ctx: &Context, level: u32) -> Result<(), GpuError> {
 /// Patches per draw on this device for `level`.
 pub fn patches_per_draw(ctx: &Context, level: u32, triangles: u32) -> u32 {
     if ctx.info.is_lavapipe() {
-        (LAVAPIPE_MAX_TESS_VERTICES_PER_DRAW / vertex_count(level)).max(1)
+        (LAVAPIPE_MAX_TESS_VERTICES_PER_DRAW / tess_vertex_count(level)).max(1)
     } else {
         triangles.max(1)
     }
@@ -40,7 +39,7 @@ pub fn cmd_draw(cmd: &Cmd<'_>, r: &Renderer, mesh: &GpuMesh, level: u32) {
     let mut first = 0;
     while first < mesh.triangle_count {
         let count = per_draw.min(mesh.triangle_count - first);
-        let draw = [level, first, vertex_count(level), 0];
+        let draw = [level, first, tess_vertex_count(level), 0];
         cmd.push_constants(
             r.layout.raw,
             PUSH_STAGES,
@@ -49,5 +48,54 @@ pub fn cmd_draw(cmd: &Cmd<'_>, r: &Renderer, mesh: &GpuMesh, level: u32) {
         );
         cmd.draw(3 * count, 1, 3 * first, 0);
         first += count;
+    }
+}
+
+/// Distinct vertices the tessellator makes for one triangle patch with every level `n` (integer,
+/// equal spacing): concentric rings of `n, n-2, n-4, ...` segments per side, closed by a centre
+/// vertex (even `n`) or a last triangle (odd `n`). Vulkan spec, "Triangle Tessellation".
+pub const fn tess_vertex_count(n: u32) -> u32 {
+    if n % 2 == 0 {
+        let h = n / 2;
+        3 * h * (h + 1) + 1
+    } else {
+        let h = n.div_ceil(2);
+        3 * h * h
+    }
+}
+
+/// Triangles the tessellator makes for one patch at level `n`: a ring of `m` segments and the
+/// ring inside it (`m - 2`) are joined by `6m - 6` triangles; an innermost ring of one segment is
+/// one triangle. More than a level-`n` pattern's `n²` for `n >= 2` (1.5x as `n` grows).
+pub const fn tess_triangle_count(n: u32) -> u32 {
+    let mut m = n;
+    let mut t = 0;
+    while m >= 2 {
+        t += 6 * m - 6;
+        m -= 2;
+    }
+    if m == 1 {
+        t += 1;
+    }
+    t
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tessellator_counts() {
+        assert_eq!((tess_vertex_count(1), tess_triangle_count(1)), (3, 1));
+        assert_eq!((tess_vertex_count(2), tess_triangle_count(2)), (7, 6));
+        assert_eq!((tess_vertex_count(3), tess_triangle_count(3)), (12, 13));
+        assert_eq!((tess_vertex_count(4), tess_triangle_count(4)), (19, 24));
+        assert_eq!(tess_triangle_count(64), 6144);
+        // Euler: a triangulated disk has V - E + F = 1, E = (3F + boundary) / 2, boundary = 3n.
+        for n in 1..40u32 {
+            let (v, f) = (tess_vertex_count(n) as i64, tess_triangle_count(n) as i64);
+            let e = (3 * f + 3 * n as i64) / 2;
+            assert_eq!(v - e + f, 1, "level {n}");
+        }
     }
 }

@@ -78,6 +78,33 @@ pub fn eval(surface: Surface, rec: &CoarseTri, bary: [f32; 3]) -> SurfacePoint {
     }
 }
 
+/// Weights of a tessellator sample `tc = gl_TessCoord` at integer level `n` (tess driver).
+/// Outer-edge samples are snapped to the level-`n` lattice (`k/n`, `(n-k)/n`, exact zero), as
+/// the pattern's weights are; interior samples are used as given.
+/// Mirror of `tess_weights()` in `glsl/include/bary.glsl`.
+pub fn tess_weights(tc: [f32; 3], n: u32) -> [f32; 3] {
+    let fnn = n as f32;
+    let half_step = 0.5 / fnn;
+    if tc.iter().all(|&c| c >= half_step) {
+        return tc;
+    }
+    let mut k = tc.map(|c| {
+        if c < half_step {
+            0.0
+        } else {
+            (c * fnn).round()
+        }
+    });
+    if k[0] == 0.0 {
+        k[1] = fnn - k[2];
+    } else if k[1] == 0.0 {
+        k[2] = fnn - k[0];
+    } else {
+        k[0] = fnn - k[1];
+    }
+    k.map(|x| x / fnn)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -93,6 +120,21 @@ mod tests {
             [7, 2, 5],
             0,
         )
+    }
+
+    #[test]
+    fn tess_weights_snap_edges_only() {
+        let n = 7;
+        // On the edge v = 0, slightly off the lattice: snapped to (4/7, 3/7, 0).
+        assert_eq!(
+            tess_weights([0.571_428_5, 0.428_571_6, 0.0], n),
+            [4.0 / 7.0, 3.0 / 7.0, 0.0]
+        );
+        // A corner.
+        assert_eq!(tess_weights([0.0, 1.0, 0.0], n), [0.0, 1.0, 0.0]);
+        // Interior samples are untouched.
+        let inner = [0.2, 0.3, 0.5];
+        assert_eq!(tess_weights(inner, n), inner);
     }
 
     #[test]
