@@ -7,6 +7,7 @@
 use crate::gpu::{Context, GpuError};
 use crate::mesh::Mesh;
 use crate::pattern::{index_count, vertex_count, PatternSet};
+use crate::render::tess::tess_triangle_count;
 use crate::render::{Camera, DrawConfig, Driver, Headless, Scene, Submit};
 use crate::surface::CoarseTri;
 use glam::Vec3;
@@ -160,7 +161,11 @@ pub fn run(ctx: Arc<Context>, meshes: &[Mesh], opts: &BenchOptions) -> Result<Re
                     coarse_triangles: t,
                     level,
                     variant: cfg.label(),
-                    refined_triangles: t as u64 * level as u64 * level as u64,
+                    refined_triangles: t as u64
+                        * match driver {
+                            Driver::Tess => tess_triangle_count(level),
+                            _ => level * level,
+                        } as u64,
                     gpu_ms: None,
                     wall_ms: None,
                     stored_vertices,

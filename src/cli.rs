@@ -84,6 +84,10 @@ pub struct ViewArgs {
     /// Start with the coarse-mesh animation on.
     #[arg(long)]
     pub animate: bool,
+    /// Start with level of detail on: the level is chosen by distance to the camera among the
+    /// pattern set (powers of two up to --level).
+    #[arg(long)]
+    pub lod: bool,
     /// Where the headless fallback writes its image when no display exists.
     #[arg(long, value_name = "FILE.png", default_value = "meshrefine-view.png")]
     pub headless_output: PathBuf,

@@ -123,6 +123,7 @@ fn run(cli: Cli) -> Result<()> {
                 screenshot: a.screenshot.clone(),
                 wireframe: a.wireframe,
                 animate: a.animate,
+                lod: a.lod,
             };
             let messages = meshrefine::app::run(desc, mesh, opts)?;
             check_messages(&messages)?;

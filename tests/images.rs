@@ -8,6 +8,7 @@
 //!   than 1/255.
 //! - `tess` vs `pattern`: the tessellator triangulates differently, so rasterization differs
 //!   along refined edges by a pixel at most: at most 0.5% of pixels may differ by more than 1/255.
+//!
 //! On failure the images and a diff are written to target/test-output/.
 
 mod common;
@@ -24,7 +25,10 @@ struct Diff {
 
 fn diff(a: &Readback, b: &Readback) -> Diff {
     assert_eq!((a.width, a.height), (b.width, b.height));
-    let mut d = Diff { over_one: 0, max: 0 };
+    let mut d = Diff {
+        over_one: 0,
+        max: 0,
+    };
     for (pa, pb) in a.rgba.chunks_exact(4).zip(b.rgba.chunks_exact(4)) {
         let m = (0..3).map(|c| pa[c].abs_diff(pb[c])).max().unwrap();
         d.max = d.max.max(m);
@@ -37,23 +41,37 @@ fn diff(a: &Readback, b: &Readback) -> Diff {
 
 fn save_failure(name: &str, a: &Readback, b: &Readback) {
     let dir = output_dir();
-    a.save_png(&dir.join(format!("{name}-expected.png"))).unwrap();
+    a.save_png(&dir.join(format!("{name}-expected.png")))
+        .unwrap();
     b.save_png(&dir.join(format!("{name}-actual.png"))).unwrap();
     let rgba = a
         .rgba
         .chunks_exact(4)
         .zip(b.rgba.chunks_exact(4))
         .flat_map(|(x, y)| {
-            let m = (0..3).map(|c| x[c].abs_diff(y[c])).max().unwrap().saturating_mul(16);
+            let m = (0..3)
+                .map(|c| x[c].abs_diff(y[c]))
+                .max()
+                .unwrap()
+                .saturating_mul(16);
             [m, m, m, 255]
         })
         .collect();
-    Readback { width: a.width, height: a.height, rgba }.save_png(&dir.join(format!("{name}-diff.png"))).unwrap();
+    Readback {
+        width: a.width,
+        height: a.height,
+        rgba,
+    }
+    .save_png(&dir.join(format!("{name}-diff.png")))
+    .unwrap();
 }
 
 fn check(name: &str, a: &Readback, b: &Readback, max_over_one: usize) {
     let d = diff(a, b);
-    eprintln!("{name}: {} pixels differ by more than 1/255, largest difference {}", d.over_one, d.max);
+    eprintln!(
+        "{name}: {} pixels differ by more than 1/255, largest difference {}",
+        d.over_one, d.max
+    );
     if d.over_one > max_over_one {
         save_failure(name, a, b);
         panic!("{name}: {} pixels differ by more than 1/255 (allowed {max_over_one}); images in target/test-output", d.over_one);
@@ -68,7 +86,10 @@ fn drivers_render_the_same_image() {
         let mut scene = h.scene(default_mesh(), level).unwrap();
         let (c, r) = scene.bounding_sphere();
         let camera = Camera::framing(c, r);
-        let mut render = |driver, submit| h.render(&mut scene, &DrawConfig::new(driver, submit, level), &camera).unwrap();
+        let mut render = |driver, submit| {
+            h.render(&mut scene, &DrawConfig::new(driver, submit, level), &camera)
+                .unwrap()
+        };
         let instanced = render(Driver::Pattern, Submit::Instanced);
         let push = render(Driver::Pattern, Submit::Push);
         let ubo = render(Driver::Pattern, Submit::Ubo);
@@ -76,12 +97,24 @@ fn drivers_render_the_same_image() {
         let tess = render(Driver::Tess, Submit::Instanced);
         // The mesh covers a good part of the image (not an empty or black frame).
         let background = instanced.rgba[..4].to_vec();
-        let covered = instanced.rgba.chunks_exact(4).filter(|p| *p != &background[..]).count();
-        assert!(covered > (w * h_px / 10) as usize, "only {covered} pixels show the mesh");
+        let covered = instanced
+            .rgba
+            .chunks_exact(4)
+            .filter(|p| *p != &background[..])
+            .count();
+        assert!(
+            covered > (w * h_px / 10) as usize,
+            "only {covered} pixels show the mesh"
+        );
         assert_eq!(push.rgba, instanced.rgba, "push and instanced differ");
         assert_eq!(ubo.rgba, instanced.rgba, "ubo and instanced differ");
         check("static-vs-pattern", &instanced, &stat, 0);
-        check("tess-vs-pattern", &instanced, &tess, (w * h_px / 200) as usize);
+        check(
+            "tess-vs-pattern",
+            &instanced,
+            &tess,
+            (w * h_px / 200) as usize,
+        );
     });
 }
 
@@ -99,7 +132,12 @@ fn wireframe_pass_draws_edges() {
             let wire = h.render(&mut scene, &cfg, &camera).unwrap();
             let d = diff(&plain, &wire);
             // Lines over a 320x240 view of 372 triangles x 16: thousands of pixels darken.
-            assert!(d.over_one > 2000, "{}: wireframe changed only {} pixels", cfg.label(), d.over_one);
+            assert!(
+                d.over_one > 2000,
+                "{}: wireframe changed only {} pixels",
+                cfg.label(),
+                d.over_one
+            );
         }
         h.wireframe = false;
     });

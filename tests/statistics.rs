@@ -14,7 +14,10 @@ use meshrefine::render::{Camera, DrawConfig, Driver, Scene, Submit};
 #[test]
 fn statistics_match_geometry() {
     with_gpu(128, 128, |h| {
-        assert!(h.queries.has_statistics(), "lavapipe offers pipelineStatisticsQuery");
+        assert!(
+            h.queries.has_statistics(),
+            "lavapipe offers pipelineStatisticsQuery"
+        );
         let levels = [4u32, 7];
         let mut scene = Scene::with_patterns(
             &h.ctx,
@@ -45,16 +48,26 @@ fn statistics_match_geometry() {
                         assert_eq!(s.input_assembly_primitives, tris, "{what}");
                         assert_eq!(s.clipping_primitives, tris, "{what}");
                         let strip_indices = (index_count(n) - (n - 1)) as u64; // without restarts
-                        assert!(s.vertex_shader_invocations >= t * vertex_count(n) as u64, "{what}");
+                        assert!(
+                            s.vertex_shader_invocations >= t * vertex_count(n) as u64,
+                            "{what}"
+                        );
                         assert!(s.vertex_shader_invocations <= t * strip_indices, "{what}");
                         assert_eq!(s.tess_control_patches, 0, "{what}");
                         assert_eq!(s.tess_evaluation_invocations, 0, "{what}");
                     }
                     Driver::Tess => {
-                        assert_eq!(s.input_assembly_primitives, t, "{what}: one patch per coarse triangle");
+                        assert_eq!(
+                            s.input_assembly_primitives, t,
+                            "{what}: one patch per coarse triangle"
+                        );
                         assert_eq!(s.tess_control_patches, t, "{what}");
                         assert_eq!(s.vertex_shader_invocations, 3 * t, "{what}");
-                        assert_eq!(s.clipping_primitives, t * tess_triangle_count(n) as u64, "{what}");
+                        assert_eq!(
+                            s.clipping_primitives,
+                            t * tess_triangle_count(n) as u64,
+                            "{what}"
+                        );
                         let distinct = t * tess_vertex_count(n) as u64;
                         assert!(s.tess_evaluation_invocations >= distinct, "{what}");
                         assert!(s.tess_evaluation_invocations <= 2 * distinct, "{what}");

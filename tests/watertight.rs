@@ -57,7 +57,10 @@ fn assert_closed(triangles: &[[(u32, u32); 3]], what: &str) {
         }
     }
     let open = count.values().filter(|&&c| c != 2).count();
-    assert_eq!(open, 0, "{what}: {open} welded edges are not shared by exactly two triangles (a crack)");
+    assert_eq!(
+        open, 0,
+        "{what}: {open} welded edges are not shared by exactly two triangles (a crack)"
+    );
 }
 
 #[test]
@@ -69,7 +72,11 @@ fn static_driver_is_watertight() {
             let (v, _) = refine_on_cpu(Surface::Flat, &records, &Pattern::uniform(n));
             let distinct: HashSet<[u32; 3]> = v.iter().map(|x| bits(&x[..3])).collect();
             let inner = ((n - 1) * (n - 2) / 2) as usize;
-            assert_eq!(distinct.len(), expected(&mesh, n as usize, inner), "{file} static level {n}");
+            assert_eq!(
+                distinct.len(),
+                expected(&mesh, n as usize, inner),
+                "{file} static level {n}"
+            );
         }
     }
 }
@@ -80,8 +87,14 @@ fn pattern_and_tess_are_watertight() {
         for file in CLOSED {
             let mesh = model(file);
             let levels = [3u32, 8];
-            let mut scene =
-                Scene::with_patterns(&h.ctx, &h.pool, &h.renderer, mesh.clone(), PatternSet::from_levels(&levels)).unwrap();
+            let mut scene = Scene::with_patterns(
+                &h.ctx,
+                &h.pool,
+                &h.renderer,
+                mesh.clone(),
+                PatternSet::from_levels(&levels),
+            )
+            .unwrap();
             let (c, r) = scene.bounding_sphere();
             let camera = Camera::framing(c, r);
             for n in levels {
@@ -91,13 +104,31 @@ fn pattern_and_tess_are_watertight() {
                     let welded = weld(&cap, &Pattern::uniform(n)).unwrap();
                     let inner = ((n - 1) * (n - 2) / 2) as usize;
                     let what = format!("{file} {} level {n}", cfg.label());
-                    assert_eq!(welded.positions.len(), expected(&mesh, n as usize, inner), "{what}");
+                    assert_eq!(
+                        welded.positions.len(),
+                        expected(&mesh, n as usize, inner),
+                        "{what}"
+                    );
                     assert_closed(&welded.triangles, &what);
                 }
-                let cap = h.capture(&mut scene, &DrawConfig::new(Driver::Tess, Submit::Instanced, n), &camera).unwrap();
-                let distinct: HashSet<[u32; 3]> = cap.vertices.iter().map(|v| bits(&v.position[..3])).collect();
+                let cap = h
+                    .capture(
+                        &mut scene,
+                        &DrawConfig::new(Driver::Tess, Submit::Instanced, n),
+                        &camera,
+                    )
+                    .unwrap();
+                let distinct: HashSet<[u32; 3]> = cap
+                    .vertices
+                    .iter()
+                    .map(|v| bits(&v.position[..3]))
+                    .collect();
                 let inner = (tess_vertex_count(n) - 3 * n) as usize;
-                assert_eq!(distinct.len(), expected(&mesh, n as usize, inner), "{file} tess level {n}");
+                assert_eq!(
+                    distinct.len(),
+                    expected(&mesh, n as usize, inner),
+                    "{file} tess level {n}"
+                );
             }
         }
     });

@@ -12,7 +12,7 @@ use crate::gpu::{
 };
 use crate::mesh::Mesh;
 use crate::pattern::triangle_count;
-use crate::render::frame::{cmd_render, FrameWork, TargetView};
+use crate::render::frame::{cmd_render, FrameWork, TargetView, CLEAR_COLOR};
 use crate::render::{Camera, DrawConfig, Driver, FrameUniforms, Renderer, Scene, Submit};
 use anyhow::{anyhow, Context as _, Result};
 use raw_window_handle::{HasDisplayHandle, HasWindowHandle};
@@ -35,6 +35,8 @@ pub struct ViewOptions {
     pub screenshot: Option<PathBuf>,
     pub wireframe: bool,
     pub animate: bool,
+    /// Start with LOD by distance on.
+    pub lod: bool,
 }
 
 pub const KEY_HELP: &str = "keys: drag = orbit, wheel = zoom, 1/2/3 = static/pattern/tess, \
@@ -150,8 +152,9 @@ impl ApplicationHandler for App {
                 };
                 s.camera.zoom(0.9f32.powf(d));
             }
-            WindowEvent::KeyboardInput { event, .. } if event.state == ElementState::Pressed => {
-                if !s.key(&event.logical_key) {
+            WindowEvent::KeyboardInput { event, .. } => {
+                let quit = event.state == ElementState::Pressed && !s.key(&event.logical_key);
+                if quit {
                     event_loop.exit();
                 }
             }
@@ -228,7 +231,7 @@ impl App {
             max_level,
             wireframe: self.opts.wireframe,
             animate: self.opts.animate,
-            lod: false,
+            lod: self.opts.lod,
             start: Instant::now(),
             frames: 0,
             recorded_once: false,
@@ -373,7 +376,7 @@ impl State {
             cfg,
             capture: false,
             wireframe: self.wireframe,
-            clear: [0.08, 0.09, 0.11, 1.0],
+            clear: CLEAR_COLOR,
         };
         let screenshot_buffer = self.screenshot_buffer.as_ref().filter(|_| screenshot);
         self.pool.record(self.cmd, |cmd| {

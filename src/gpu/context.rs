@@ -125,9 +125,8 @@ pub struct Context {
     pub queue: vk::Queue,
     pub queue_family: u32,
     allocator: ManuallyDrop<Mutex<Allocator>>,
-    /// Boxed so its address, handed to the messenger as user data, is stable.
+    /// Its heap address is the messenger's user data: it outlives the messenger and instance.
     messages: Arc<Messages>,
-    _messages_ptr: Box<Arc<Messages>>,
 }
 
 unsafe extern "system" fn debug_callback(
@@ -145,9 +144,9 @@ unsafe extern "system" fn debug_callback(
         || severity.contains(vk::DebugUtilsMessageSeverityFlagsEXT::WARNING)
     {
         log::error!("vulkan validation: {text}");
-        // SAFETY: `user` is the Box<Arc<Messages>> owned by the Context, alive until after the
-        // messenger is destroyed.
-        let messages = unsafe { &*(user as *const Arc<Messages>) };
+        // SAFETY: `user` points at the Context's Arc<Messages> contents, alive until after the
+        // messenger and the instance are destroyed.
+        let messages = unsafe { &*(user as *const Messages) };
         messages.push(text);
     } else if severity.contains(vk::DebugUtilsMessageSeverityFlagsEXT::INFO) {
         log::debug!("vulkan: {text}");
@@ -204,7 +203,6 @@ impl Context {
         };
 
         let messages = Arc::new(Messages::default());
-        let messages_ptr = Box::new(messages.clone());
         let mut messenger_info = vk::DebugUtilsMessengerCreateInfoEXT::default()
             .message_severity(
                 vk::DebugUtilsMessageSeverityFlagsEXT::ERROR
@@ -217,7 +215,7 @@ impl Context {
                     | vk::DebugUtilsMessageTypeFlagsEXT::PERFORMANCE,
             )
             .pfn_user_callback(Some(debug_callback))
-            .user_data(&*messages_ptr as *const Arc<Messages> as *mut c_void);
+            .user_data(Arc::as_ptr(&messages) as *mut c_void);
         let mut instance_info = vk::InstanceCreateInfo::default()
             .application_info(&app)
             .enabled_extension_names(&ext_names)
@@ -379,7 +377,6 @@ impl Context {
             queue_family,
             allocator: ManuallyDrop::new(Mutex::new(allocator)),
             messages,
-            _messages_ptr: messages_ptr,
         }))
     }
 

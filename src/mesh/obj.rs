@@ -25,9 +25,9 @@ use super::{LoadReport, Mesh, MeshError};
 /// matter inside comments or names, which are ignored).
 pub(crate) fn load_obj(path: &Path) -> Result<(Mesh, LoadReport), MeshError> {
     let shown = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|source| MeshError::Io {
+    let bytes = std::fs::read(path).map_err(|err| MeshError::Io {
         path: shown.clone(),
-        source,
+        err,
     })?;
     let text = String::from_utf8_lossy(&bytes);
     parse_obj(&shown, mesh_name(&shown), &text)

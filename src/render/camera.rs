@@ -21,9 +21,9 @@ impl Camera {
         let radius = radius.max(1e-6);
         Self {
             target: center,
-            yaw: 0.6,
+            yaw: 2.2,
             pitch: 0.35,
-            distance: radius / (fov_y * 0.5).sin() * 1.05,
+            distance: radius / (fov_y * 0.5).sin() * 0.9,
             fov_y,
         }
     }

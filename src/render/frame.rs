@@ -7,6 +7,9 @@ use super::{pattern, static_vbo, tess, DrawConfig, Driver, GpuMesh, Renderer};
 use crate::gpu::{vk, Cmd, QueryPools};
 use crate::surface::CoarseTri;
 
+/// Background colour (linear; the targets are sRGB).
+pub const CLEAR_COLOR: [f32; 4] = [0.012, 0.014, 0.02, 1.0];
+
 /// Where a frame is drawn.
 #[derive(Clone, Copy, Debug)]
 pub struct TargetView {

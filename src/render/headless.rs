@@ -1,7 +1,7 @@
 //! Headless rendering into an offscreen target: images, capture of evaluated vertices, timings.
 //! Every call records, submits and waits, so nothing is ever in flight when it returns.
 
-use super::frame::{cmd_render, FrameWork, TargetView};
+use super::frame::{cmd_render, FrameWork, TargetView, CLEAR_COLOR};
 use super::tess::tess_vertex_count;
 use super::{CapturedVertex, DrawConfig, Driver, FrameUniforms, Renderer, Scene};
 use crate::gpu::{
@@ -131,7 +131,7 @@ impl Headless {
             cfg: *cfg,
             capture,
             wireframe: self.wireframe,
-            clear: [0.08, 0.09, 0.11, 1.0],
+            clear: CLEAR_COLOR,
         };
         let start = Instant::now();
         self.pool.submit_and_wait(|cmd| {

@@ -30,10 +30,15 @@ pub fn output_dir() -> PathBuf {
     d
 }
 
+/// Serialize GPU use within a test process.
+pub fn gpu_lock() -> MutexGuard<'static, ()> {
+    GPU_LOCK.lock().unwrap_or_else(|p| p.into_inner())
+}
+
 /// Run `f` with a fresh validated headless renderer of `width`x`height`; afterwards assert that
 /// the validation layer said nothing and that nothing leaked.
 pub fn with_gpu<R>(width: u32, height: u32, f: impl FnOnce(&mut Headless) -> R) -> R {
-    let _guard: MutexGuard<'_, ()> = GPU_LOCK.lock().unwrap_or_else(|p| p.into_inner());
+    let _guard = gpu_lock();
     assert_eq!(live_objects(), 0, "a previous test leaked Vulkan objects");
     let desc = ContextDesc {
         validate: true,

