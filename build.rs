@@ -4,12 +4,13 @@
 //!   shared code (`#include "x.glsl"` resolves next to the including file, then in `glsl/include`);
 //! - warnings are errors; optimisation for performance in release builds;
 //! - binding numbers come from `src/render/bindings.rs` as macro definitions;
-//! - a source that mentions `CAPTURE` is compiled twice: plain, and with `CAPTURE` defined
-//!   (the capture variant writes its evaluated vertices to a storage buffer);
+//! - a source that mentions `CAPTURE` is also compiled with `CAPTURE` defined (the capture
+//!   variant writes its evaluated vertices to a storage buffer), one that mentions `XFB` with
+//!   `XFB` defined (transform-feedback decorations on its outputs);
 //! - errors are printed as `file:line: message` and fail the build.
 //!
 //! Output: `$OUT_DIR/shaders.rs`, a table `SHADERS: &[(&str, &[u8])]` keyed by the path below
-//! `glsl/` (plus `+capture` for capture variants).
+//! `glsl/` (plus `+capture` / `+xfb` for the variants).
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -73,12 +74,16 @@ fn main() {
             .to_string_lossy()
             .replace('\\', "/");
         let source = std::fs::read_to_string(path).unwrap();
-        let variants: &[bool] = if source.contains("CAPTURE") {
-            &[false, true]
-        } else {
-            &[false]
-        };
-        for &capture in variants {
+        // (suffix, macro) of each variant: plain, and those the source mentions.
+        let variants: Vec<(&str, Option<&str>)> = std::iter::once(("", None))
+            .chain(
+                source
+                    .contains("CAPTURE")
+                    .then_some(("+capture", Some("CAPTURE"))),
+            )
+            .chain(source.contains("XFB").then_some(("+xfb", Some("XFB"))))
+            .collect();
+        for &(suffix, define) in &variants {
             let mut opts = shaderc::CompileOptions::new().unwrap();
             opts.set_target_env(
                 shaderc::TargetEnv::Vulkan,
@@ -95,8 +100,8 @@ fn main() {
             for (name, value) in bindings::GLSL_DEFINES {
                 opts.add_macro_definition(name, Some(&value.to_string()));
             }
-            if capture {
-                opts.add_macro_definition("CAPTURE", Some("1"));
+            if let Some(d) = define {
+                opts.add_macro_definition(d, Some("1"));
             }
             let inc = include_dir.clone();
             opts.set_include_callback(move |name, _ty, from, _depth| {
@@ -122,11 +127,7 @@ fn main() {
                         failed.push(art.get_warning_messages());
                         continue;
                     }
-                    let key = if capture {
-                        format!("{rel}+capture")
-                    } else {
-                        rel.clone()
-                    };
+                    let key = format!("{rel}{suffix}");
                     let spv = out_dir.join(format!("{}.spv", key.replace(['/', '+'], "_")));
                     std::fs::write(&spv, art.as_binary_u8()).unwrap();
                     writeln!(

@@ -5,7 +5,7 @@
 #![forbid(unsafe_code)]
 
 use crate::pattern::Pattern;
-use crate::render::CaptureResult;
+use crate::render::{CaptureResult, XfbVertex};
 use glam::Vec3;
 use std::collections::HashMap;
 use std::fmt::Write as _;
@@ -28,14 +28,7 @@ pub fn weld(capture: &CaptureResult, pattern: &Pattern) -> Result<RefinedMesh, S
             pattern.bary.len()
         ));
     }
-    let mut out = RefinedMesh::default();
-    let mut pos_index: HashMap<[u32; 3], u32> = HashMap::new();
-    let mut nrm_index: HashMap<[u32; 3], u32> = HashMap::new();
-    let bits = |v: Vec3| {
-        (v + Vec3::ZERO)
-            .to_array()
-            .map(|x| if x == 0.0 { 0 } else { x.to_bits() })
-    };
+    let mut w = Welder::default();
     let mut remap = Vec::with_capacity(capture.vertices.len());
     for (k, v) in capture.vertices.iter().enumerate() {
         if v.position[3] != 1.0 {
@@ -45,18 +38,12 @@ pub fn weld(capture: &CaptureResult, pattern: &Pattern) -> Result<RefinedMesh, S
                 k / pv
             ));
         }
-        let p = Vec3::from_slice(&v.position[..3]);
-        let n = Vec3::from_slice(&v.normal[..3]);
-        let pi = *pos_index.entry(bits(p)).or_insert_with(|| {
-            out.positions.push(p);
-            out.positions.len() as u32 - 1
-        });
-        let ni = *nrm_index.entry(bits(n)).or_insert_with(|| {
-            out.normals.push(n);
-            out.normals.len() as u32 - 1
-        });
-        remap.push((pi, ni));
+        remap.push(w.add(
+            Vec3::from_slice(&v.position[..3]),
+            Vec3::from_slice(&v.normal[..3]),
+        ));
     }
+    let mut out = w.out;
     let local = pattern.triangles();
     for t in 0..capture.vertices.len() / pv {
         for tri in &local {
@@ -64,6 +51,41 @@ pub fn weld(capture: &CaptureResult, pattern: &Pattern) -> Result<RefinedMesh, S
         }
     }
     Ok(out)
+}
+
+/// Weld the triangles transform feedback captured from the `tess` driver (corners in the order
+/// the tessellator emitted them).
+pub fn weld_triangles(triangles: &[[XfbVertex; 3]]) -> RefinedMesh {
+    let mut w = Welder::default();
+    for t in triangles {
+        let tri = t.map(|v| w.add(Vec3::from(v.position), Vec3::from(v.normal)));
+        w.out.triangles.push(tri);
+    }
+    w.out
+}
+
+#[derive(Default)]
+struct Welder {
+    out: RefinedMesh,
+    pos_index: HashMap<[u32; 3], u32>,
+    nrm_index: HashMap<[u32; 3], u32>,
+}
+
+impl Welder {
+    /// Index pair of `(p, n)`, merging bit-equal positions and bit-equal normals (+0 == -0).
+    fn add(&mut self, p: Vec3, n: Vec3) -> (u32, u32) {
+        let bits = |v: Vec3| v.to_array().map(|x| if x == 0.0 { 0 } else { x.to_bits() });
+        let out = &mut self.out;
+        let pi = *self.pos_index.entry(bits(p)).or_insert_with(|| {
+            out.positions.push(p);
+            out.positions.len() as u32 - 1
+        });
+        let ni = *self.nrm_index.entry(bits(n)).or_insert_with(|| {
+            out.normals.push(n);
+            out.normals.len() as u32 - 1
+        });
+        (pi, ni)
+    }
 }
 
 /// Wavefront OBJ text (`v`, `vn`, `f v//vn`), with `header` lines as comments.

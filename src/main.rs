@@ -131,11 +131,8 @@ fn run(cli: Cli) -> Result<()> {
         Command::Export(a) => {
             let mesh = load_mesh(a.mesh.as_deref())?;
             let cfg = draw_config(&a.technique);
-            if cfg.driver != Driver::Pattern {
-                bail!(
-                    "export reads back the pattern driver's evaluated vertices: use --driver pattern ({} cannot be exported yet)",
-                    cfg.driver.name()
-                );
+            if cfg.driver == Driver::Static {
+                bail!("export reads back what the GPU evaluated, and the static driver evaluates on the CPU: use --driver pattern or --driver tess");
             }
             let messages = {
                 let ctx = Context::new(&desc)?;
@@ -145,10 +142,15 @@ fn run(cli: Cli) -> Result<()> {
                 let name = mesh.name.clone();
                 let mut scene = h.scene(mesh, cfg.level)?;
                 let (c, r) = scene.bounding_sphere();
-                let cap = h.capture(&mut scene, &cfg, &Camera::framing(c, r))?;
-                let pattern = &scene.patterns.patterns[scene.patterns.find(cfg.level).unwrap()];
-                let refined =
-                    meshrefine::export::weld(&cap, pattern).map_err(anyhow::Error::msg)?;
+                let camera = Camera::framing(c, r);
+                let refined = if cfg.driver == Driver::Tess {
+                    let triangles = h.capture_triangles(&mut scene, &cfg, &camera)?;
+                    meshrefine::export::weld_triangles(&triangles)
+                } else {
+                    let cap = h.capture(&mut scene, &cfg, &camera)?;
+                    let pattern = &scene.patterns.patterns[scene.patterns.find(cfg.level).unwrap()];
+                    meshrefine::export::weld(&cap, pattern).map_err(anyhow::Error::msg)?
+                };
                 let header = vec![
                     format!(
                         "meshrefine export of '{name}': surface {}, driver {}, level {}",

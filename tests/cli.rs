@@ -73,6 +73,18 @@ fn ok(args: &[&str]) -> String {
     String::from_utf8_lossy(&out.stdout).into_owned()
 }
 
+/// Every exported face winds counter-clockwise around its vertex normals (outward on a sphere).
+fn assert_faces_agree_with_normals(mesh: &meshrefine::mesh::Mesh) {
+    for t in &mesh.triangles {
+        let [a, b, c] = t.p.map(|i| mesh.positions[i as usize]);
+        let n: glam::Vec3 = t.n.iter().map(|&i| mesh.normals[i as usize]).sum();
+        assert!(
+            (b - a).cross(c - a).dot(n) > 0.0,
+            "face {t:?} winds against its normals"
+        );
+    }
+}
+
 fn p(path: &Path) -> &str {
     path.to_str().unwrap()
 }
@@ -139,7 +151,7 @@ fn device_limits_and_options_are_checked() {
     expect_error(&["render", "-o", p(&out), "--width", "0"], &["0x720"]);
     expect_error(
         &["export", "--driver", "static", "-o", p(&tmp("s.obj"))],
-        &["static"],
+        &["static", "CPU"],
     );
     // clap rejects a level outside 1..=1024 before anything runs.
     let out = meshrefine(&["render", "--level", "0", "-o", "x.png"]);
@@ -222,6 +234,31 @@ fn render_export_and_headless_view_work() {
         (stats.vertices, stats.triangles, stats.boundary_edges),
         (162, 320, 0)
     );
+    assert_eq!(stats.inconsistently_oriented_edges, 0);
+    assert_faces_agree_with_normals(&mesh);
+
+    // tess is read back by transform feedback: the tessellator's rings at level 4 have 19
+    // vertices and 24 triangles per patch: 12 + 30*3 + 20*7 = 242 welded vertices.
+    let obj = tmp("export-tess.obj");
+    ok(&[
+        "--validate",
+        "export",
+        p(&model_path("icosahedron.obj")),
+        "-o",
+        p(&obj),
+        "--level",
+        "4",
+        "--driver",
+        "tess",
+    ]);
+    let (mesh, _) = meshrefine::mesh::Mesh::load_obj(&obj).unwrap();
+    let stats = mesh.stats();
+    assert_eq!(
+        (stats.vertices, stats.triangles, stats.boundary_edges),
+        (242, 480, 0)
+    );
+    assert_eq!(stats.inconsistently_oriented_edges, 0);
+    assert_faces_agree_with_normals(&mesh);
 
     // No display: `view` renders headlessly and says where the image went.
     let view_png = tmp("view.png");

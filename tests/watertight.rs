@@ -7,11 +7,11 @@
 mod common;
 
 use common::{model, with_gpu};
-use meshrefine::export::weld;
+use meshrefine::export::{weld, weld_triangles};
 use meshrefine::mesh::Mesh;
 use meshrefine::pattern::{Pattern, PatternSet};
 use meshrefine::render::static_vbo::refine_on_cpu;
-use meshrefine::render::tess::tess_vertex_count;
+use meshrefine::render::tess::{tess_triangle_count, tess_vertex_count};
 use meshrefine::render::{Camera, DrawConfig, Driver, Scene, Submit};
 use meshrefine::surface::Surface;
 use std::collections::{HashMap, HashSet};
@@ -128,6 +128,23 @@ fn pattern_and_tess_are_watertight() {
                     distinct.len(),
                     expected(&mesh, n as usize, inner),
                     "{file} tess level {n}"
+                );
+                // The tessellator's triangles (transform feedback) weld into a closed mesh too.
+                let cfg = DrawConfig::new(Driver::Tess, Submit::Instanced, n);
+                let tris = h.capture_triangles(&mut scene, &cfg, &camera).unwrap();
+                assert_eq!(
+                    tris.len(),
+                    mesh.triangles.len() * tess_triangle_count(n) as usize
+                );
+                let welded = weld_triangles(&tris);
+                assert_eq!(
+                    welded.positions.len(),
+                    expected(&mesh, n as usize, inner),
+                    "{file} tess triangles level {n}"
+                );
+                assert_closed(
+                    &welded.triangles,
+                    &format!("{file} tess triangles level {n}"),
                 );
             }
         }

@@ -6,6 +6,13 @@
 #else
 #define VARYING out
 #endif
+#ifdef XFB
+// Transform-feedback variant: each output vertex is captured as (position, pad, normal, pad).
+layout(xfb_buffer = 0, xfb_stride = 32) out;
+layout(location = 0, xfb_buffer = 0, xfb_offset = 0) VARYING vec3 v_position;
+layout(location = 1, xfb_buffer = 0, xfb_offset = 16) VARYING vec3 v_normal;
+#else
 layout(location = 0) VARYING vec3 v_position;  // world position
 layout(location = 1) VARYING vec3 v_normal;    // world normal (unnormalized after interpolation)
+#endif
 #endif

@@ -5,11 +5,16 @@
 // equal spacing its rings hold N, N-2, N-4, ... segments, so it makes more triangles than a level-N
 // pattern (src/render/tess.rs `triangle_count`).
 // gl_PrimitiveID restarts in every draw; pc.draw.y is this draw's first triangle.
+// Variants: CAPTURE (every evaluated vertex to a storage buffer, for the tests) and XFB
+// (transform feedback of the tessellator's triangles, for export).
 #include "records.glsl"
 #include "surface.glsl"
 #include "varyings.glsl"
 
-layout(triangles, equal_spacing, ccw) in;
+// `cw`: Vulkan's tessellation domain origin is upper-left, which flips the sense of the winding
+// qualifier against OpenGL's; `cw` here emits triangles wound like the coarse triangle
+// (counter-clockwise P0 P1 P2), as the export test checks against the normals.
+layout(triangles, equal_spacing, cw) in;
 
 layout(set = SET_MESH, binding = BINDING_TRIS, std430) readonly buffer Tris { CoarseTri tris[]; };
 

@@ -320,7 +320,7 @@ impl State {
             &self.pool,
             &mut self.renderer,
             &cfg,
-            false,
+            crate::render::Capture::None,
             self.wireframe,
         )?;
 
@@ -374,7 +374,8 @@ impl State {
             records: &self.scene.data.records,
             static_vbo: self.scene.static_vbo.as_ref(),
             cfg,
-            capture: false,
+            capture: crate::render::Capture::None,
+            xfb: None,
             wireframe: self.wireframe,
             clear: CLEAR_COLOR,
         };

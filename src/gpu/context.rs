@@ -90,6 +90,9 @@ pub struct DeviceInfo {
     pub pipeline_statistics: bool,
     pub vertex_stores: bool,
     pub fill_mode_non_solid: bool,
+    /// VK_EXT_transform_feedback (reads back the tessellator's triangles for export).
+    pub transform_feedback: bool,
+    pub max_transform_feedback_buffer_size: u64,
 }
 
 impl DeviceInfo {
@@ -119,6 +122,8 @@ pub struct Context {
     debug_instance: Option<ash::ext::debug_utils::Instance>,
     messenger: vk::DebugUtilsMessengerEXT,
     debug_device: Option<ash::ext::debug_utils::Device>,
+    /// VK_EXT_transform_feedback entry points, when enabled.
+    pub(crate) xfb: Option<ash::ext::transform_feedback::Device>,
     pub physical: vk::PhysicalDevice,
     pub info: DeviceInfo,
     pub device: ash::Device,
@@ -275,10 +280,28 @@ impl Context {
         // Features: required ones fail with a named error; optional ones degrade with a log line.
         // SAFETY: valid physical device.
         let available = unsafe { instance.get_physical_device_features(physical) };
+        // SAFETY: valid physical device.
+        let device_extensions =
+            unsafe { instance.enumerate_device_extension_properties(physical) }.unwrap_or_default();
+        let has_xfb = device_extensions
+            .iter()
+            .any(|e| e.extension_name_as_c_str() == Ok(ash::ext::transform_feedback::NAME));
         let mut f13 = vk::PhysicalDeviceVulkan13Features::default();
+        let mut fxfb = vk::PhysicalDeviceTransformFeedbackFeaturesEXT::default();
         let mut f2 = vk::PhysicalDeviceFeatures2::default().push_next(&mut f13);
-        // SAFETY: valid physical device; f2 chain lives on the stack.
+        if has_xfb {
+            f2 = f2.push_next(&mut fxfb);
+        }
+        // SAFETY: valid physical device; the chain lives on the stack and names only structs of
+        // supported extensions.
         unsafe { instance.get_physical_device_features2(physical, &mut f2) };
+        let transform_feedback = has_xfb && fxfb.transform_feedback == vk::TRUE;
+        let mut xfb_props = vk::PhysicalDeviceTransformFeedbackPropertiesEXT::default();
+        if transform_feedback {
+            let mut p2 = vk::PhysicalDeviceProperties2::default().push_next(&mut xfb_props);
+            // SAFETY: as above.
+            unsafe { instance.get_physical_device_properties2(physical, &mut p2) };
+        }
         let dynamic_rendering = f13.dynamic_rendering == vk::TRUE;
         let missing = if available.tessellation_shader == vk::FALSE {
             Some("tessellationShader")
@@ -298,6 +321,20 @@ impl Context {
         info.pipeline_statistics = available.pipeline_statistics_query == vk::TRUE;
         info.vertex_stores = available.vertex_pipeline_stores_and_atomics == vk::TRUE;
         info.fill_mode_non_solid = available.fill_mode_non_solid == vk::TRUE;
+        info.transform_feedback = transform_feedback;
+        info.max_transform_feedback_buffer_size = xfb_props.max_transform_feedback_buffer_size;
+        if !info.transform_feedback {
+            log::info!(
+                "{}: no transformFeedback, the tess driver cannot be exported",
+                info.name
+            );
+        }
+        if !info.fill_mode_non_solid {
+            log::warn!(
+                "{}: no fillModeNonSolid, the wireframe view is off",
+                info.name
+            );
+        }
         if !info.pipeline_statistics {
             log::warn!(
                 "{}: no pipelineStatisticsQuery, statistics are off",
@@ -324,11 +361,17 @@ impl Context {
         if !desc.surface_extensions.is_empty() {
             device_exts.push(ash::khr::swapchain::NAME.as_ptr());
         }
-        let device_info = vk::DeviceCreateInfo::default()
+        let mut enable_xfb =
+            vk::PhysicalDeviceTransformFeedbackFeaturesEXT::default().transform_feedback(true);
+        let mut device_info = vk::DeviceCreateInfo::default()
             .queue_create_infos(&queue_info)
-            .enabled_extension_names(&device_exts)
             .enabled_features(&features)
             .push_next(&mut enable13);
+        if info.transform_feedback {
+            device_exts.push(ash::ext::transform_feedback::NAME.as_ptr());
+            device_info = device_info.push_next(&mut enable_xfb);
+        }
+        let device_info = device_info.enabled_extension_names(&device_exts);
         // SAFETY: valid physical device, create info pointers outlive the call.
         let device = match unsafe { instance.create_device(physical, &device_info, None) } {
             Ok(d) => d,
@@ -342,6 +385,9 @@ impl Context {
         };
         // SAFETY: the family and index 0 were requested above.
         let queue = unsafe { device.get_device_queue(queue_family, 0) };
+        let xfb = info
+            .transform_feedback
+            .then(|| ash::ext::transform_feedback::Device::new(&instance, &device));
         let debug_device = debug_instance
             .as_ref()
             .map(|_| ash::ext::debug_utils::Device::new(&instance, &device));
@@ -370,6 +416,7 @@ impl Context {
             debug_instance,
             messenger,
             debug_device,
+            xfb,
             physical,
             info,
             device,
@@ -449,6 +496,8 @@ fn pick_device(
             pipeline_statistics: false,
             vertex_stores: false,
             fill_mode_non_solid: false,
+            transform_feedback: false,
+            max_transform_feedback_buffer_size: 0,
         };
         candidates.push((pd, family as u32, info));
     }

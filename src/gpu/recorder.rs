@@ -207,7 +207,11 @@ impl<'a> Cmd<'a> {
     /// Make shader and transfer writes visible to the host once the submission's fence signals.
     pub fn barrier_to_host(&self) {
         let barrier = vk::MemoryBarrier::default()
-            .src_access_mask(vk::AccessFlags::SHADER_WRITE | vk::AccessFlags::TRANSFER_WRITE)
+            .src_access_mask(
+                vk::AccessFlags::SHADER_WRITE
+                    | vk::AccessFlags::TRANSFER_WRITE
+                    | vk::AccessFlags::TRANSFORM_FEEDBACK_WRITE_EXT,
+            )
             .dst_access_mask(vk::AccessFlags::HOST_READ);
         // SAFETY: see `bind_graphics_pipeline`; outside a rendering instance.
         unsafe {
@@ -255,6 +259,53 @@ impl<'a> Cmd<'a> {
             self.ctx
                 .device
                 .cmd_copy_buffer(self.raw, src.raw, dst.raw, &[region])
+        };
+    }
+
+    /// Bind `buffer` as transform-feedback buffer 0 and begin transform feedback (inside a
+    /// rendering instance). Panics if the device has no VK_EXT_transform_feedback (callers check
+    /// `DeviceInfo::transform_feedback` first).
+    pub fn begin_transform_feedback(&self, buffer: &Buffer) {
+        let fp = self
+            .ctx
+            .xfb
+            .as_ref()
+            .expect("transform feedback is enabled")
+            .fp();
+        let buffers = [buffer.raw];
+        let offsets = [0u64];
+        let sizes = [buffer.size()];
+        // SAFETY: see `bind_graphics_pipeline`; the extension is enabled, the buffer was created
+        // with TRANSFORM_FEEDBACK_BUFFER usage, no counter buffers (capture starts at offset 0).
+        unsafe {
+            (fp.cmd_bind_transform_feedback_buffers_ext)(
+                self.raw,
+                0,
+                1,
+                buffers.as_ptr(),
+                offsets.as_ptr(),
+                sizes.as_ptr(),
+            );
+            (fp.cmd_begin_transform_feedback_ext)(
+                self.raw,
+                0,
+                0,
+                std::ptr::null(),
+                std::ptr::null(),
+            );
+        }
+    }
+
+    pub fn end_transform_feedback(&self) {
+        let fp = self
+            .ctx
+            .xfb
+            .as_ref()
+            .expect("transform feedback is enabled")
+            .fp();
+        // SAFETY: matches `begin_transform_feedback` in this rendering instance.
+        unsafe {
+            (fp.cmd_end_transform_feedback_ext)(self.raw, 0, 0, std::ptr::null(), std::ptr::null())
         };
     }
 

@@ -3,8 +3,8 @@
 
 use super::bindings::{SET_CAPTURE, SET_FRAME, SET_MESH};
 use super::static_vbo::StaticVbo;
-use super::{pattern, static_vbo, tess, DrawConfig, Driver, GpuMesh, Renderer};
-use crate::gpu::{vk, Cmd, QueryPools};
+use super::{pattern, static_vbo, tess, Capture, DrawConfig, Driver, GpuMesh, Renderer};
+use crate::gpu::{vk, Buffer, Cmd, QueryPools};
 use crate::surface::CoarseTri;
 
 /// Background colour (linear; the targets are sRGB).
@@ -28,7 +28,9 @@ pub struct FrameWork<'a> {
     pub records: &'a [CoarseTri],
     pub static_vbo: Option<&'a StaticVbo>,
     pub cfg: DrawConfig,
-    pub capture: bool,
+    pub capture: Capture,
+    /// Transform-feedback output (with `Capture::Triangles`).
+    pub xfb: Option<&'a Buffer>,
     /// Draw the refined triangles' edges in a second pass (if the device supports it).
     pub wireframe: bool,
     pub clear: [f32; 4],
@@ -66,20 +68,26 @@ pub fn cmd_render(
     );
     cmd.bind_descriptor_set(r.layout.raw, SET_FRAME, r.frame_set, &[]);
     cmd.bind_descriptor_set(r.layout.raw, SET_MESH, work.mesh.set, &[0]);
-    if work.capture {
+    if work.capture == Capture::Vertices {
         cmd.bind_descriptor_set(r.layout.raw, SET_CAPTURE, r.capture_set, &[]);
     }
     cmd.bind_graphics_pipeline(r.pipeline(&work.cfg, work.capture, false));
-    cmd_draw_driver(cmd, r, work);
+    if let Some(xfb) = work.xfb.filter(|_| work.capture == Capture::Triangles) {
+        cmd.begin_transform_feedback(xfb);
+        cmd_draw_driver(cmd, r, work);
+        cmd.end_transform_feedback();
+    } else {
+        cmd_draw_driver(cmd, r, work);
+    }
     if work.wireframe && r.wireframe_supported() {
-        cmd.bind_graphics_pipeline(r.pipeline(&work.cfg, false, true));
+        cmd.bind_graphics_pipeline(r.pipeline(&work.cfg, Capture::None, true));
         cmd_draw_driver(cmd, r, work);
     }
     cmd.end_rendering();
     if let Some((q, slot)) = queries {
         q.cmd_end(cmd, slot);
     }
-    if work.capture {
+    if work.capture != Capture::None {
         cmd.barrier_to_host();
     }
     cmd.transition(

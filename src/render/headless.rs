@@ -2,8 +2,10 @@
 //! Every call records, submits and waits, so nothing is ever in flight when it returns.
 
 use super::frame::{cmd_render, FrameWork, TargetView, CLEAR_COLOR};
-use super::tess::tess_vertex_count;
-use super::{CapturedVertex, DrawConfig, Driver, FrameUniforms, Renderer, Scene};
+use super::tess::{tess_triangle_count, tess_vertex_count};
+use super::{
+    Capture, CapturedVertex, DrawConfig, Driver, FrameUniforms, Renderer, Scene, XfbVertex,
+};
 use crate::gpu::{
     vk, Buffer, BufferDesc, CommandPool, Context, ContextDesc, GpuError, OffscreenTarget,
     PipelineStats, QueryPools, Readback, DEPTH_FORMAT, OFFSCREEN_FORMAT,
@@ -103,7 +105,7 @@ impl Headless {
         cfg: &DrawConfig,
         camera: &Camera,
     ) -> Result<FrameTiming, GpuError> {
-        self.draw_inner(scene, cfg, camera, false)
+        self.draw_inner(scene, cfg, camera, Capture::None, None)
     }
 
     fn draw_inner(
@@ -111,7 +113,8 @@ impl Headless {
         scene: &mut Scene,
         cfg: &DrawConfig,
         camera: &Camera,
-        capture: bool,
+        capture: Capture,
+        xfb: Option<&Buffer>,
     ) -> Result<FrameTiming, GpuError> {
         scene.prepare(
             &self.ctx,
@@ -130,6 +133,7 @@ impl Headless {
             static_vbo: scene.static_vbo.as_ref(),
             cfg: *cfg,
             capture,
+            xfb,
             wireframe: self.wireframe,
             clear: CLEAR_COLOR,
         };
@@ -193,7 +197,7 @@ impl Headless {
             .submit_and_wait(|cmd| cmd.fill_buffer(&vertices, 0))?;
         self.renderer.set_capture_target(&vertices, &counter);
         let wire = std::mem::replace(&mut self.wireframe, false);
-        let timing = self.draw_inner(scene, cfg, camera, true);
+        let timing = self.draw_inner(scene, cfg, camera, Capture::Vertices, None);
         self.wireframe = wire;
         let timing = timing?;
         let mut out: Vec<CapturedVertex> = vertices.read_pod();
@@ -211,5 +215,34 @@ impl Headless {
             pattern_vertex_count: pv,
             stats: timing.stats,
         })
+    }
+
+    /// Draw `cfg` (tess) with its transform-feedback variant and read back the triangles the
+    /// tessellator made, as evaluated: `(position, normal)` per corner, in primitive order.
+    pub fn capture_triangles(
+        &mut self,
+        scene: &mut Scene,
+        cfg: &DrawConfig,
+        camera: &Camera,
+    ) -> Result<Vec<[XfbVertex; 3]>, GpuError> {
+        let triangles = scene.gpu.triangle_count as u64 * tess_triangle_count(cfg.level) as u64;
+        let bytes = triangles * 3 * std::mem::size_of::<XfbVertex>() as u64;
+        let limit = self.ctx.info.max_transform_feedback_buffer_size;
+        if self.ctx.info.transform_feedback && bytes > limit {
+            return Err(GpuError::Other(format!(
+                "reading back {triangles} triangles needs {bytes} bytes, over this device's maxTransformFeedbackBufferSize ({limit}): use a lower level"
+            )));
+        }
+        let buffer = Buffer::new(
+            &self.ctx,
+            BufferDesc::new_readback(bytes, vk::BufferUsageFlags::TRANSFORM_FEEDBACK_BUFFER_EXT),
+            "transform feedback output",
+        )?;
+        let wire = std::mem::replace(&mut self.wireframe, false);
+        let timing = self.draw_inner(scene, cfg, camera, Capture::Triangles, Some(&buffer));
+        self.wireframe = wire;
+        timing?;
+        let flat: Vec<XfbVertex> = buffer.read_pod();
+        Ok(flat.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect())
     }
 }

@@ -14,7 +14,7 @@ pub mod static_vbo;
 pub mod tess;
 
 pub use camera::Camera;
-pub use headless::{CaptureResult, Headless};
+pub use headless::{CaptureResult, FrameTiming, Headless};
 pub use pipelines::Renderer;
 pub use scene::{geometry_bytes, GpuMesh, MeshData, Scene};
 
@@ -65,6 +65,28 @@ impl Submit {
             Submit::Push => "push",
             Submit::Ubo => "ubo",
             Submit::Instanced => "instanced",
+        }
+    }
+}
+
+/// Whether a frame also reads back what its geometry stages evaluated.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum Capture {
+    #[default]
+    None,
+    /// Every evaluated vertex to a storage buffer (the `CAPTURE` shader variants).
+    Vertices,
+    /// The triangles as rasterized, by transform feedback (the `XFB` variant; `tess` only).
+    Triangles,
+}
+
+impl Capture {
+    /// Suffix of the shader variant in the embedded table.
+    pub fn shader_suffix(self) -> &'static str {
+        match self {
+            Capture::None => "",
+            Capture::Vertices => "+capture",
+            Capture::Triangles => "+xfb",
         }
     }
 }
@@ -133,6 +155,18 @@ const _: () = {
 
 /// Byte offset of `PushBlock::draw`.
 pub const PUSH_DRAW_OFFSET: u32 = 112;
+
+/// One vertex written by transform feedback (glsl/include/varyings.glsl, `XFB` variant).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct XfbVertex {
+    pub position: [f32; 3],
+    pub _pad0: f32,
+    pub normal: [f32; 3],
+    pub _pad1: f32,
+}
+
+const _: () = assert!(std::mem::size_of::<XfbVertex>() == 32);
 
 /// `CapturedVertex` (glsl/include/records.glsl), std430.
 #[repr(C)]

@@ -3,7 +3,7 @@
 //! (driver, submission, surface, capture).
 
 use super::bindings::*;
-use super::{DrawConfig, Driver, FrameUniforms, Submit};
+use super::{Capture, DrawConfig, Driver, FrameUniforms, Submit};
 use crate::gpu::conv::{topology, GEOMETRY_STAGES, PUSH_STAGES};
 use crate::gpu::{
     vk, Buffer, BufferDesc, Context, DescriptorPool, DescriptorSetLayout, GpuError,
@@ -18,7 +18,7 @@ struct PipelineKey {
     driver: Driver,
     submit: Submit,
     surface: Surface,
-    capture: bool,
+    capture: Capture,
     /// Wireframe pass: polygon mode LINE, the fragment stage's WIRE variant.
     wire: bool,
 }
@@ -148,10 +148,15 @@ impl Renderer {
 
     /// Create (once) the pipelines `cfg` needs: the fill pipeline (or its capture variant), and
     /// the wireframe pass when `wire` is set and supported.
-    pub fn prepare(&mut self, cfg: &DrawConfig, capture: bool, wire: bool) -> Result<(), GpuError> {
+    pub fn prepare(
+        &mut self,
+        cfg: &DrawConfig,
+        capture: Capture,
+        wire: bool,
+    ) -> Result<(), GpuError> {
         let mut keys = vec![key(cfg, capture, false)];
         if wire && self.wireframe_supported() {
-            keys.push(key(cfg, false, true));
+            keys.push(key(cfg, Capture::None, true));
         }
         for k in keys {
             if !self.pipelines.contains_key(&k) {
@@ -163,18 +168,12 @@ impl Renderer {
     }
 
     /// The pipeline for `cfg`; [`Renderer::prepare`] must have been called.
-    pub fn pipeline(&self, cfg: &DrawConfig, capture: bool, wire: bool) -> vk::Pipeline {
+    pub fn pipeline(&self, cfg: &DrawConfig, capture: Capture, wire: bool) -> vk::Pipeline {
         self.pipelines[&key(cfg, capture, wire)].raw
     }
 
     fn create(&self, key: PipelineKey) -> Result<Pipeline, GpuError> {
-        let variant = |name: &str| {
-            if key.capture {
-                format!("{name}+capture")
-            } else {
-                name.to_string()
-            }
-        };
+        let variant = |name: &str| format!("{name}{}", key.capture.shader_suffix());
         let frag = (
             vk::ShaderStageFlags::FRAGMENT,
             "shade/shade.frag".to_string(),
@@ -252,7 +251,7 @@ impl Renderer {
                 level: 0
             }
             .label(),
-            if key.capture { " capture" } else { "" },
+            key.capture.shader_suffix(),
             if key.wire { " wireframe" } else { "" },
             key.surface.name()
         );
@@ -260,7 +259,7 @@ impl Renderer {
     }
 }
 
-fn key(cfg: &DrawConfig, capture: bool, wire: bool) -> PipelineKey {
+fn key(cfg: &DrawConfig, capture: Capture, wire: bool) -> PipelineKey {
     PipelineKey {
         driver: cfg.driver,
         // Only the pattern driver has submission modes.

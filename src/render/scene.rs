@@ -230,7 +230,7 @@ impl Scene {
         pool: &CommandPool,
         renderer: &mut super::Renderer,
         cfg: &super::DrawConfig,
-        capture: bool,
+        capture: super::Capture,
         wire: bool,
     ) -> Result<(), GpuError> {
         if self.patterns.find(cfg.level).is_none() {
@@ -244,13 +244,25 @@ impl Scene {
         if cfg.driver == super::Driver::Tess {
             super::tess::check_level(ctx, cfg.level)?;
         }
-        if capture && !ctx.info.vertex_stores {
+        use super::Capture;
+        if capture == Capture::Vertices && !ctx.info.vertex_stores {
             return Err(GpuError::MissingFeature {
                 device: ctx.info.name.clone(),
                 feature: "vertexPipelineStoresAndAtomics (needed to capture evaluated vertices)",
             });
         }
-        if capture && cfg.driver == super::Driver::Static {
+        if capture == Capture::Triangles && !ctx.info.transform_feedback {
+            return Err(GpuError::MissingFeature {
+                device: ctx.info.name.clone(),
+                feature: "transformFeedback (VK_EXT_transform_feedback, needed to read back the tessellator's triangles)",
+            });
+        }
+        if capture == Capture::Triangles && cfg.driver != super::Driver::Tess {
+            return Err(GpuError::Other(
+                "triangle capture is for the tess driver".into(),
+            ));
+        }
+        if capture != Capture::None && cfg.driver == super::Driver::Static {
             return Err(GpuError::Other(
                 "the static driver evaluates on the CPU: there is nothing to capture (use pattern or tess)".into(),
             ));
