@@ -11,17 +11,21 @@ use meshrefine::gpu::{Context, ContextDesc};
 use std::path::PathBuf;
 
 fn main() {
-    env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("info")).init();
     // `cargo bench` passes --bench; `cargo test --benches` runs it with no argument: do a smoke run.
     let benching = std::env::args().any(|a| a == "--bench");
+    let level = if benching { "info" } else { "warn" };
+    env_logger::Builder::from_env(env_logger::Env::default().default_filter_or(level)).init();
     let quick = !benching || std::env::var_os("MESHREFINE_BENCH_QUICK").is_some();
     let (sizes, levels, frames): (&[u32], Vec<u32>, u32) = if quick {
         (&[10, 100], vec![8, 16], 2)
     } else {
         (&[10, 100, 1000], vec![16, 32, 64, 128], 5)
     };
+    // The smoke run (`cargo test`) is a GPU test like the others: validation on, and any message
+    // fails it. Timed runs leave validation off (it slows command recording 7-10x).
     let desc = ContextDesc {
         device_name: std::env::var("MESHREFINE_DEVICE").ok(),
+        validate: !benching,
         ..Default::default()
     };
     let ctx = match Context::new(&desc) {
@@ -38,6 +42,7 @@ fn main() {
         width: 1280,
         height: 720,
     };
+    let messages = ctx.messages_handle();
     let report = match run(ctx, &meshes, &opts) {
         Ok(r) => r,
         Err(e) => {
@@ -45,6 +50,14 @@ fn main() {
             std::process::exit(1);
         }
     };
+    let problems = messages.take();
+    if !problems.is_empty() || meshrefine::gpu::live_objects() != 0 {
+        eprintln!(
+            "error: validation / leaks: {problems:?}, {} live objects",
+            meshrefine::gpu::live_objects()
+        );
+        std::process::exit(1);
+    }
     let md = report.markdown();
     println!("{md}");
     if benching && !quick {
