@@ -216,49 +216,31 @@ fn render_export_and_headless_view_work() {
     let img = std::fs::read(&png).unwrap();
     assert_eq!(&img[1..4], b"PNG");
 
-    let obj = tmp("export.obj");
-    let s = ok(&[
-        "--validate",
-        "export",
-        p(&model_path("icosahedron.obj")),
-        "-o",
-        p(&obj),
-        "--level",
-        "4",
-    ]);
-    assert!(s.contains("wrote"), "{s}");
-    let (mesh, _) = meshrefine::mesh::Mesh::load_obj(&obj).unwrap();
-    // Icosahedron: V + E(N-1) + F(N-1)(N-2)/2 = 12 + 30*3 + 20*3 = 162 welded vertices, 20*16 triangles.
-    let stats = mesh.stats();
-    assert_eq!(
-        (stats.vertices, stats.triangles, stats.boundary_edges),
-        (162, 320, 0)
-    );
-    assert_eq!(stats.inconsistently_oriented_edges, 0);
-    assert_faces_agree_with_normals(&mesh);
-
-    // tess is read back by transform feedback: the tessellator's rings at level 4 have 19
-    // vertices and 24 triangles per patch: 12 + 30*3 + 20*7 = 242 welded vertices.
-    let obj = tmp("export-tess.obj");
-    ok(&[
-        "--validate",
-        "export",
-        p(&model_path("icosahedron.obj")),
-        "-o",
-        p(&obj),
-        "--level",
-        "4",
-        "--driver",
-        "tess",
-    ]);
-    let (mesh, _) = meshrefine::mesh::Mesh::load_obj(&obj).unwrap();
-    let stats = mesh.stats();
-    assert_eq!(
-        (stats.vertices, stats.triangles, stats.boundary_edges),
-        (242, 480, 0)
-    );
-    assert_eq!(stats.inconsistently_oriented_edges, 0);
-    assert_faces_agree_with_normals(&mesh);
+    // Icosahedron at level 4 (V=12, E=30, F=20). pattern: V + E(N-1) + F(N-1)(N-2)/2 = 162
+    // welded vertices, 20*16 triangles. tess (transform feedback): the tessellator's rings have
+    // 19 vertices and 24 triangles per patch: 12 + 30*3 + 20*7 = 242 vertices, 480 triangles.
+    for (driver, vertices, triangles) in [("pattern", 162, 320), ("tess", 242, 480)] {
+        let obj = tmp(&format!("export-{driver}.obj"));
+        let ico = model_path("icosahedron.obj");
+        let s = ok(&[
+            "--validate",
+            "export",
+            p(&ico),
+            "-o",
+            p(&obj),
+            "--level",
+            "4",
+            "--driver",
+            driver,
+        ]);
+        assert!(s.contains("wrote"), "{s}");
+        let (mesh, _) = meshrefine::mesh::Mesh::load_obj(&obj).unwrap();
+        let stats = mesh.stats();
+        let counts = (stats.vertices, stats.triangles, stats.boundary_edges);
+        assert_eq!(counts, (vertices, triangles, 0), "{driver}");
+        assert_eq!(stats.inconsistently_oriented_edges, 0, "{driver}");
+        assert_faces_agree_with_normals(&mesh);
+    }
 
     // No display: `view` renders headlessly and says where the image went.
     let view_png = tmp("view.png");

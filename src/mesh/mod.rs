@@ -242,6 +242,22 @@ pub(crate) mod test_support {
     pub fn load_model(file: &str) -> (Mesh, LoadReport) {
         Mesh::load_obj(&model_path(file)).unwrap_or_else(|e| panic!("{e}"))
     }
+
+    /// Three vertices of a unit right triangle, to prefix face lines with.
+    pub const TRI: &str = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+
+    /// Load OBJ text as if it were the file `x.obj`.
+    pub fn load(text: &str) -> Result<(Mesh, LoadReport), super::MeshError> {
+        Mesh::from_obj_str("x.obj", text)
+    }
+
+    /// The error message of OBJ text that must not load.
+    pub fn err(text: &str) -> String {
+        match load(text) {
+            Ok(_) => panic!("{text:?} loaded"),
+            Err(e) => e.to_string(),
+        }
+    }
 }
 
 #[cfg(test)]

@@ -148,21 +148,8 @@ fn run_tobj(path: &str, canonical: &str) -> Result<TobjOutput, MeshError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mesh::test_support::{load_model, model_path};
+    use crate::mesh::test_support::{err, load, load_model, model_path, TRI};
     use crate::mesh::DegenerateFace;
-
-    const TRI: &str = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
-
-    fn load(text: &str) -> Result<(Mesh, LoadReport), MeshError> {
-        Mesh::from_obj_str("x.obj", text)
-    }
-
-    fn err(text: &str) -> String {
-        match load(text) {
-            Ok(_) => panic!("{text:?} loaded"),
-            Err(e) => e.to_string(),
-        }
-    }
 
     #[test]
     fn loads_a_triangle() {

@@ -379,20 +379,7 @@ impl Scanner<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mesh::{LoadReport, Mesh};
-
-    const TRI: &str = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
-
-    fn load(text: &str) -> Result<(Mesh, LoadReport), MeshError> {
-        Mesh::from_obj_str("x.obj", text)
-    }
-
-    fn err(text: &str) -> String {
-        match load(text) {
-            Ok(_) => panic!("{text:?} loaded"),
-            Err(e) => e.to_string(),
-        }
-    }
+    use crate::mesh::test_support::{err, load, TRI};
 
     #[test]
     fn canonical_text_keeps_lines_and_resolves_indices() {
