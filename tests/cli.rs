@@ -145,6 +145,19 @@ fn device_limits_and_options_are_checked() {
         &["65", "maxTessellationGenerationLevel"],
     );
     expect_error(
+        &[
+            "render",
+            p(&model_path("spot_tri.obj")),
+            "--driver",
+            "static",
+            "--level",
+            "512",
+            "-o",
+            p(&out),
+        ],
+        &["maxMemoryAllocationSize", "level 512"],
+    );
+    expect_error(
         &["render", "--device", "no-such-gpu-anywhere", "-o", p(&out)],
         &["no-such-gpu-anywhere", "available"],
     );

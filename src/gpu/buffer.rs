@@ -52,6 +52,13 @@ pub struct Buffer {
 
 impl Buffer {
     pub fn new(ctx: &Arc<Context>, desc: BufferDesc, name: &str) -> Result<Self, GpuError> {
+        let max = ctx.info.max_memory_allocation_size;
+        if desc.size > max {
+            return Err(GpuError::Other(format!(
+                "buffer '{name}' needs {} bytes, over this device's maxMemoryAllocationSize ({max})",
+                desc.size
+            )));
+        }
         let info = vk::BufferCreateInfo::default()
             .size(desc.size.max(4))
             .usage(desc.usage)

@@ -90,6 +90,8 @@ pub struct DeviceInfo {
     pub pipeline_statistics: bool,
     pub vertex_stores: bool,
     pub fill_mode_non_solid: bool,
+    /// Largest single allocation (Vulkan 1.1 maxMemoryAllocationSize).
+    pub max_memory_allocation_size: u64,
     /// VK_EXT_transform_feedback (reads back the tessellator's triangles for export).
     pub transform_feedback: bool,
     pub max_transform_feedback_buffer_size: u64,
@@ -470,7 +472,10 @@ fn pick_device(
     let mut candidates = Vec::new();
     for pd in devices {
         let mut driver = vk::PhysicalDeviceDriverProperties::default();
-        let mut props2 = vk::PhysicalDeviceProperties2::default().push_next(&mut driver);
+        let mut p11 = vk::PhysicalDeviceVulkan11Properties::default();
+        let mut props2 = vk::PhysicalDeviceProperties2::default()
+            .push_next(&mut driver)
+            .push_next(&mut p11);
         // SAFETY: valid physical device; chain on the stack.
         unsafe { instance.get_physical_device_properties2(pd, &mut props2) };
         let props = props2.properties;
@@ -496,6 +501,7 @@ fn pick_device(
             pipeline_statistics: false,
             vertex_stores: false,
             fill_mode_non_solid: false,
+            max_memory_allocation_size: p11.max_memory_allocation_size,
             transform_feedback: false,
             max_transform_feedback_buffer_size: 0,
         };

@@ -189,6 +189,7 @@ pub struct Scene {
     pub gpu: GpuMesh,
     pub patterns: PatternSet,
     pub static_vbo: Option<super::static_vbo::StaticVbo>,
+    warned_slow: bool,
 }
 
 impl Scene {
@@ -218,6 +219,7 @@ impl Scene {
             gpu,
             patterns,
             static_vbo: None,
+            warned_slow: false,
         })
     }
 
@@ -268,6 +270,21 @@ impl Scene {
             ));
         }
         renderer.prepare(cfg, capture, wire)?;
+        let per_triangle = match cfg.driver {
+            super::Driver::Tess => super::tess::tess_triangle_count(cfg.level) as u64,
+            _ => cfg.level as u64 * cfg.level as u64,
+        };
+        let refined = self.gpu.triangle_count as u64 * per_triangle;
+        if ctx.info.device_type == vk::PhysicalDeviceType::CPU
+            && refined > 50_000_000
+            && !self.warned_slow
+        {
+            log::warn!(
+                "{refined} refined triangles per frame on a software device ({}): expect seconds per frame",
+                ctx.info.name
+            );
+            self.warned_slow = true;
+        }
         if cfg.driver == super::Driver::Static {
             let stale = self
                 .static_vbo

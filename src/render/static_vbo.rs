@@ -67,14 +67,18 @@ impl StaticVbo {
         records: &[CoarseTri],
         pattern: &Pattern,
     ) -> Result<Self, GpuError> {
-        let (v, i) = refine_on_cpu(surface, records, pattern);
-        let bytes = (v.len() * std::mem::size_of::<StaticVertex>()) as u64;
-        let heap_limit = ctx.info.limits.max_storage_buffer_range as u64 * 16;
-        if bytes > heap_limit.max(1 << 32) {
+        // Check the size before refining: the CPU would hold the same bytes.
+        let bytes = records.len() as u64
+            * pattern.bary.len() as u64
+            * std::mem::size_of::<StaticVertex>() as u64;
+        let max = ctx.info.max_memory_allocation_size;
+        if bytes > max {
             return Err(GpuError::Other(format!(
-                "the static vertex buffer would take {bytes} bytes: use a lower level"
+                "the static driver needs {bytes} bytes of vertices at level {}, over this device's maxMemoryAllocationSize ({max}): use a lower level or the pattern driver",
+                pattern.level
             )));
         }
+        let (v, i) = refine_on_cpu(surface, records, pattern);
         let vertices = Buffer::new_with_data(
             ctx,
             pool,
