@@ -8,6 +8,7 @@ use std::sync::Arc;
 pub struct CommandPool {
     ctx: Arc<Context>,
     pub raw: vk::CommandPool,
+    name: String,
 }
 
 impl CommandPool {
@@ -23,6 +24,7 @@ impl CommandPool {
         Ok(Self {
             ctx: ctx.clone(),
             raw,
+            name: name.to_string(),
         })
     }
 
@@ -32,7 +34,12 @@ impl CommandPool {
             .level(vk::CommandBufferLevel::PRIMARY)
             .command_buffer_count(count);
         // SAFETY: pool from this device; externally synchronized by &self being single-threaded use.
-        unsafe { self.ctx.device.allocate_command_buffers(&info) }.call("vkAllocateCommandBuffers")
+        let cmds = unsafe { self.ctx.device.allocate_command_buffers(&info) }
+            .call("vkAllocateCommandBuffers")?;
+        for (i, &c) in cmds.iter().enumerate() {
+            self.ctx.set_name(c, &format!("{} #{i}", self.name));
+        }
+        Ok(cmds)
     }
 
     /// Record with `f`, submit, wait. Headless work and uploads go through here.
