@@ -261,3 +261,43 @@ fn render_export_and_headless_view_work() {
     assert!(s.contains("no display") && s.contains("view.png"), "{s}");
     assert!(view_png.exists());
 }
+
+#[test]
+fn bench_reports_every_variant_with_ratios() {
+    let tet = model_path("tetrahedron.obj");
+    let args = [
+        "--validate",
+        "bench",
+        p(&tet),
+        "--levels",
+        "2,4",
+        "--frames",
+        "1",
+        "--width",
+        "64",
+        "--height",
+        "64",
+    ];
+    let s = ok(&args);
+    assert!(s.contains("llvmpipe") || s.contains("Device:"), "{s}");
+    for variant in [
+        "static",
+        "pattern/push",
+        "pattern/ubo",
+        "pattern/instanced",
+        "tess",
+    ] {
+        let rows = s
+            .lines()
+            .filter(|l| l.contains(&format!("| {variant} |")))
+            .count();
+        assert_eq!(rows, 2, "{variant}: one row per level in\n{s}");
+    }
+    // static is the reference of the ratios.
+    assert!(
+        s.lines()
+            .filter(|l| l.contains("| static |"))
+            .all(|l| l.contains("| 1.00 | 1.00 |")),
+        "{s}"
+    );
+}
