@@ -227,9 +227,16 @@ impl Context {
             .application_info(&app)
             .enabled_extension_names(&ext_names)
             .enabled_layer_names(&layer_names);
+        // Synchronization validation too: hazards between commands (missing barriers) are
+        // reported like any other validation error.
+        let enabled_checks = [vk::ValidationFeatureEnableEXT::SYNCHRONIZATION_VALIDATION];
+        let mut validation_features =
+            vk::ValidationFeaturesEXT::default().enabled_validation_features(&enabled_checks);
         if desc.validate {
             // Also catch messages from vkCreateInstance / vkDestroyInstance themselves.
-            instance_info = instance_info.push_next(&mut messenger_info);
+            instance_info = instance_info
+                .push_next(&mut messenger_info)
+                .push_next(&mut validation_features);
         }
         // SAFETY: all pointers in the create info outlive the call.
         let instance =
