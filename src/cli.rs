@@ -118,8 +118,41 @@ pub struct ExportArgs {
     /// Output OBJ.
     #[arg(short, long, value_name = "FILE.obj")]
     pub output: PathBuf,
-    #[command(flatten)]
-    pub technique: Technique,
+    /// Surface defined by each coarse triangle.
+    #[arg(long, value_enum, default_value = "flat")]
+    pub surface: SurfaceArg,
+    /// Whose GPU evaluation to read back (static evaluates on the CPU: nothing to read back).
+    #[arg(long, value_enum, default_value = "pattern")]
+    pub driver: ExportDriver,
+    /// How the pattern driver hands each coarse triangle to the vertex shader.
+    #[arg(long, value_enum, default_value = "instanced")]
+    pub submit: Submit,
+    /// Refinement level N: N segments per coarse edge.
+    #[arg(long, default_value_t = 16, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    pub level: u32,
+}
+
+/// The drivers whose evaluated geometry can be read back.
+#[derive(clap::ValueEnum, Clone, Copy, Debug)]
+pub enum ExportDriver {
+    /// The refinement pattern's vertices, as the vertex shader evaluated them.
+    Pattern,
+    /// The tessellator's triangles, by transform feedback.
+    Tess,
+}
+
+impl ExportArgs {
+    pub fn technique(&self) -> Technique {
+        Technique {
+            surface: self.surface,
+            driver: match self.driver {
+                ExportDriver::Pattern => Driver::Pattern,
+                ExportDriver::Tess => Driver::Tess,
+            },
+            submit: self.submit,
+            level: self.level,
+        }
+    }
 }
 
 #[derive(Args, Debug)]
