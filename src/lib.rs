@@ -4,10 +4,13 @@
 //! the only module that calls ash; `render` composes them into the drivers (`static`, `pattern`,
 //! `tess`); `app` is the window demo; `export` writes what the GPU evaluated.
 #![deny(unsafe_op_in_unsafe_fn)]
+// Only `gpu` may use unsafe code (it is the only module that calls ash).
+#![deny(unsafe_code)]
 
 pub mod app;
 pub mod bench;
 pub mod export;
+#[allow(unsafe_code)]
 pub mod gpu;
 pub mod mesh;
 pub mod pattern;
