@@ -1,17 +1,20 @@
 //! The window demo (winit 0.30 + ash-window): orbit camera, live switching of driver, submission
-//! mode, level, LOD, wireframe and a CPU animation of the coarse mesh. The window title is the
-//! HUD: fps, GPU frame time from timestamp queries, coarse and refined triangle counts, GPU
-//! geometry bytes; the terminal gets the key help.
+//! mode, level, LOD, wireframe and a CPU animation of the coarse mesh. Two HUDs: the window title
+//! (fps, GPU frame time from timestamp queries, coarse and refined triangle counts, GPU geometry
+//! bytes) and an egui overlay panel (`ui`, key `H`) that shows the same and has the switches;
+//! the terminal gets the key help.
 //!
 //! One frame in flight: each frame waits for the previous frame's fence before it writes uniforms
-//! or records, or rebuilds anything, so nothing in flight is ever changed or destroyed.
+//! or records, uploads overlay textures, or rebuilds anything, so nothing in flight is ever
+//! changed or destroyed.
+
+mod ui;
 
 use crate::gpu::{
-    surface_extensions, vk, Buffer, BufferDesc, CommandPool, Context, ContextDesc, Fence, Messages,
-    QueryPools, Semaphore, Swapchain, DEPTH_FORMAT,
+    surface_extensions, vk, Buffer, BufferDesc, Cmd, CommandPool, Context, ContextDesc, Fence,
+    Messages, Overlay, QueryPools, Semaphore, Swapchain, DEPTH_FORMAT,
 };
 use crate::mesh::Mesh;
-use crate::pattern::triangle_count;
 use crate::render::frame::{cmd_render, FrameWork, TargetView, CLEAR_COLOR};
 use crate::render::{Camera, DrawConfig, Driver, FrameUniforms, Renderer, Scene, Submit};
 use anyhow::{anyhow, Context as _, Result};
@@ -19,6 +22,7 @@ use raw_window_handle::{HasDisplayHandle, HasWindowHandle};
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
+use ui::{Controls, PanelInfo, Ui};
 use winit::application::ApplicationHandler;
 use winit::event::{ElementState, MouseButton, MouseScrollDelta, WindowEvent};
 use winit::event_loop::{ActiveEventLoop, EventLoop};
@@ -40,7 +44,8 @@ pub struct ViewOptions {
 }
 
 pub const KEY_HELP: &str = "keys: drag = orbit, wheel = zoom, 1/2/3 = static/pattern/tess, \
-P/U/I = push/ubo/instanced, +/- = level, L = LOD by distance, W = wireframe, A = animate, Esc = quit";
+P/U/I = push/ubo/instanced, +/- = level, L = LOD by distance, W = wireframe, A = animate, \
+H = panel, Esc = quit";
 
 /// Run the demo until the window closes (or `frames` frames). Returns the context's message list
 /// so the caller can check validation and leaks after everything is dropped.
@@ -80,6 +85,7 @@ struct State {
     scene: Scene,
     base_mesh: Mesh,
     renderer: Renderer,
+    overlay: Overlay,
     queries: QueryPools,
     screenshot_buffer: Option<Buffer>,
     cmd: vk::CommandBuffer,
@@ -90,12 +96,12 @@ struct State {
     swapchain: Swapchain,
     ctx: Arc<Context>,
     window: Arc<Window>,
+    ui: Ui,
     camera: Camera,
-    cfg: DrawConfig,
+    controls: Controls,
+    /// What the last frame drew (LOD and the tessellator's limit applied).
+    drawn: DrawConfig,
     max_level: u32,
-    wireframe: bool,
-    animate: bool,
-    lod: bool,
     start: Instant,
     frames: u64,
     recorded_once: bool,
@@ -103,6 +109,7 @@ struct State {
     drag: Option<(f64, f64)>,
     cursor: (f64, f64),
     fps_window: (Instant, u64),
+    fps: f64,
     gpu_ms: f64,
 }
 
@@ -125,6 +132,8 @@ impl ApplicationHandler for App {
 
     fn window_event(&mut self, event_loop: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
         let Some(s) = self.state.as_mut() else { return };
+        // Pointer events egui takes (over or dragging the panel) leave the camera alone.
+        let egui_took = s.ui.on_window_event(&s.window, &event, s.cursor);
         match event {
             WindowEvent::CloseRequested => event_loop.exit(),
             WindowEvent::Resized(_) => s.resize = true,
@@ -133,7 +142,7 @@ impl ApplicationHandler for App {
                 button: MouseButton::Left,
                 ..
             } => {
-                s.drag = (state == ElementState::Pressed).then_some(s.cursor);
+                s.drag = (state == ElementState::Pressed && !egui_took).then_some(s.cursor);
             }
             WindowEvent::CursorMoved { position, .. } => {
                 s.cursor = (position.x, position.y);
@@ -145,14 +154,14 @@ impl ApplicationHandler for App {
                     s.drag = Some(s.cursor);
                 }
             }
-            WindowEvent::MouseWheel { delta, .. } => {
+            WindowEvent::MouseWheel { delta, .. } if !egui_took => {
                 let d = match delta {
                     MouseScrollDelta::LineDelta(_, y) => y,
                     MouseScrollDelta::PixelDelta(p) => p.y as f32 / 40.0,
                 };
                 s.camera.zoom(0.9f32.powf(d));
             }
-            WindowEvent::KeyboardInput { event, .. } => {
+            WindowEvent::KeyboardInput { event, .. } if !egui_took => {
                 let quit = event.state == ElementState::Pressed && !s.key(&event.logical_key);
                 if quit {
                     event_loop.exit();
@@ -201,6 +210,8 @@ impl App {
         let size = window.inner_size();
         let swapchain = Swapchain::new(&ctx, display, handle, (size.width, size.height))?;
         let renderer = Renderer::new(&ctx, swapchain.format, DEPTH_FORMAT)?;
+        let overlay = Overlay::new(&ctx, swapchain.format, DEPTH_FORMAT)?;
+        let ui = Ui::new(&window, ctx.info.limits.max_image_dimension2_d as usize);
         let pool = CommandPool::new(&ctx, "window commands")?;
         let cmd = pool.allocate(1)?[0];
         let mesh = self.mesh.take().expect("created once");
@@ -222,16 +233,21 @@ impl App {
             acquired: Semaphore::new(&ctx, "acquired")?,
             rendered,
             renderer,
+            overlay,
             pool,
             swapchain,
             ctx,
             window,
+            ui,
             camera: Camera::framing(c, r),
-            cfg,
+            controls: Controls {
+                cfg,
+                wireframe: self.opts.wireframe,
+                animate: self.opts.animate,
+                lod: self.opts.lod,
+            },
+            drawn: cfg,
             max_level,
-            wireframe: self.opts.wireframe,
-            animate: self.opts.animate,
-            lod: self.opts.lod,
             start: Instant::now(),
             frames: 0,
             recorded_once: false,
@@ -239,6 +255,7 @@ impl App {
             drag: None,
             cursor: (0.0, 0.0),
             fps_window: (Instant::now(), 0),
+            fps: 0.0,
             gpu_ms: 0.0,
         })
     }
@@ -248,26 +265,23 @@ impl State {
     /// Handle a key; false quits.
     fn key(&mut self, key: &Key) -> bool {
         let levels: Vec<u32> = self.scene.patterns.levels().collect();
-        let pos = levels
-            .iter()
-            .position(|&l| l == self.cfg.level)
-            .unwrap_or(0);
+        let c = &mut self.controls;
+        let pos = levels.iter().position(|&l| l == c.cfg.level).unwrap_or(0);
         match key {
             Key::Named(NamedKey::Escape) => return false,
-            Key::Character(c) => match c.as_str() {
-                "1" => self.cfg.driver = Driver::Static,
-                "2" => self.cfg.driver = Driver::Pattern,
-                "3" => self.cfg.driver = Driver::Tess,
-                "p" | "P" => (self.cfg.driver, self.cfg.submit) = (Driver::Pattern, Submit::Push),
-                "u" | "U" => (self.cfg.driver, self.cfg.submit) = (Driver::Pattern, Submit::Ubo),
-                "i" | "I" => {
-                    (self.cfg.driver, self.cfg.submit) = (Driver::Pattern, Submit::Instanced)
-                }
-                "+" | "=" => self.cfg.level = levels[(pos + 1).min(levels.len() - 1)],
-                "-" | "_" => self.cfg.level = levels[pos.saturating_sub(1)],
-                "w" | "W" => self.wireframe = !self.wireframe,
-                "a" | "A" => self.animate = !self.animate,
-                "l" | "L" => self.lod = !self.lod,
+            Key::Character(ch) => match ch.as_str() {
+                "1" => c.cfg.driver = Driver::Static,
+                "2" => c.cfg.driver = Driver::Pattern,
+                "3" => c.cfg.driver = Driver::Tess,
+                "p" | "P" => (c.cfg.driver, c.cfg.submit) = (Driver::Pattern, Submit::Push),
+                "u" | "U" => (c.cfg.driver, c.cfg.submit) = (Driver::Pattern, Submit::Ubo),
+                "i" | "I" => (c.cfg.driver, c.cfg.submit) = (Driver::Pattern, Submit::Instanced),
+                "+" | "=" => c.cfg.level = levels[(pos + 1).min(levels.len() - 1)],
+                "-" | "_" => c.cfg.level = levels[pos.saturating_sub(1)],
+                "w" | "W" => c.wireframe = !c.wireframe,
+                "a" | "A" => c.animate = !c.animate,
+                "l" | "L" => c.lod = !c.lod,
+                "h" | "H" => self.ui.visible = !self.ui.visible,
                 _ => {}
             },
             _ => {}
@@ -290,18 +304,22 @@ impl State {
             self.swapchain.recreate((size.width, size.height))?;
             self.resize = false;
         }
-        if self.animate {
+        // The panel shows the last frame and may change the switches for this one; its textures
+        // are uploaded now that the last frame is done with them.
+        let ui_frame = self.run_ui();
+        self.overlay.update_textures(&ui_frame.textures)?;
+        if self.controls.animate {
             let t = self.start.elapsed().as_secs_f32();
             self.scene.update_mesh(self.base_mesh.animated(t, 0.04));
         }
-        if self.lod {
+        if self.controls.lod {
             let (_, r) = self.scene.bounding_sphere();
-            self.cfg.level = self
+            self.controls.cfg.level = self
                 .scene
                 .patterns
                 .level_for_distance(self.camera.distance, r);
         }
-        let mut cfg = self.cfg;
+        let mut cfg = self.controls.cfg;
         if cfg.driver == Driver::Tess
             && crate::render::tess::check_level(&self.ctx, cfg.level).is_err()
         {
@@ -321,7 +339,7 @@ impl State {
             &mut self.renderer,
             &cfg,
             crate::render::Capture::None,
-            self.wireframe,
+            self.controls.wireframe,
         )?;
 
         let Some(image) = self.swapchain.acquire(self.acquired.raw)? else {
@@ -376,10 +394,16 @@ impl State {
             cfg,
             capture: crate::render::Capture::None,
             xfb: None,
-            wireframe: self.wireframe,
+            wireframe: self.controls.wireframe,
             clear: CLEAR_COLOR,
         };
         let screenshot_buffer = self.screenshot_buffer.as_ref().filter(|_| screenshot);
+        let overlay = &mut self.overlay;
+        let mut overlay_recorded = Ok(());
+        let mut cmd_overlay = |cmd: &Cmd<'_>| {
+            overlay_recorded =
+                overlay.cmd_draw(cmd, extent, ui_frame.pixels_per_point, &ui_frame.primitives);
+        };
         self.pool.record(self.cmd, |cmd| {
             cmd_render(
                 cmd,
@@ -387,6 +411,7 @@ impl State {
                 &target,
                 &work,
                 Some((&self.queries, 0)),
+                Some(&mut cmd_overlay),
             );
             if let Some(buf) = screenshot_buffer {
                 cmd.copy_image_to_buffer(image.image, extent, buf);
@@ -399,11 +424,13 @@ impl State {
                 );
             }
         })?;
+        overlay_recorded?;
         self.fence.reset()?;
         let rendered = &self.rendered[image.index as usize];
         self.pool
             .submit(self.cmd, &self.acquired, rendered, &self.fence)?;
         self.recorded_once = true;
+        self.drawn = cfg;
         let stale = self.swapchain.present(image.index, rendered.raw)? || image.suboptimal;
         if stale {
             self.resize = true;
@@ -443,27 +470,48 @@ impl State {
         .with_context(|| format!("cannot write '{}'", path.display()))
     }
 
+    /// Lay out the overlay panel for this frame, with the last frame's statistics.
+    fn run_ui(&mut self) -> ui::UiFrame {
+        let levels: Vec<u32> = self.scene.patterns.levels().collect();
+        let device = self.ctx.info.describe();
+        let d = self.drawn;
+        let coarse = self.scene.gpu.triangle_count as u64;
+        let info = PanelInfo {
+            device: &device,
+            levels: &levels,
+            wireframe_supported: self.renderer.wireframe_supported(),
+            fps: self.fps,
+            gpu_ms: self.gpu_ms,
+            drawn: d,
+            coarse,
+            refined: coarse * d.refined_per_coarse() as u64,
+            geometry_bytes: self.scene.geometry_bytes(d.driver, d.level),
+        };
+        self.ui.run(&self.window, &mut self.controls, &info)
+    }
+
     fn update_title(&mut self, cfg: &DrawConfig) {
         let (t0, n0) = self.fps_window;
         let dt = t0.elapsed().as_secs_f64();
         if dt < 0.5 {
             return;
         }
-        let fps = (self.frames - n0) as f64 / dt;
+        self.fps = (self.frames - n0) as f64 / dt;
         self.fps_window = (Instant::now(), self.frames);
         let coarse = self.scene.gpu.triangle_count as u64;
         let bytes = self.scene.geometry_bytes(cfg.driver, cfg.level);
+        let c = &self.controls;
         self.window.set_title(&format!(
             "meshrefine | {} level {}{}{}{} | {:.0} fps | GPU {:.2} ms | {} -> {} triangles | {:.2} MB geometry | max level {}",
             cfg.label(),
             cfg.level,
-            if self.lod { " (LOD)" } else { "" },
-            if self.wireframe { " wire" } else { "" },
-            if self.animate { " animated" } else { "" },
-            fps,
+            if c.lod { " (LOD)" } else { "" },
+            if c.wireframe { " wire" } else { "" },
+            if c.animate { " animated" } else { "" },
+            self.fps,
             self.gpu_ms,
             coarse,
-            coarse * triangle_count(cfg.level) as u64,
+            coarse * cfg.refined_per_coarse() as u64,
             bytes as f64 / 1e6,
             self.max_level,
         ));

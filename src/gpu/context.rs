@@ -28,6 +28,8 @@ pub enum GpuError {
     },
     #[error("the Vulkan validation layer VK_LAYER_KHRONOS_validation is not installed (apt-get install vulkan-validationlayers)")]
     NoValidationLayer,
+    #[error("the overlay renderer (egui-ash-renderer) failed: {0}")]
+    Overlay(#[from] egui_ash_renderer::RendererError),
     #[error("GPU memory allocation '{name}' failed: {source}")]
     Alloc {
         name: String,
@@ -131,7 +133,8 @@ pub struct Context {
     pub device: ash::Device,
     pub queue: vk::Queue,
     pub queue_family: u32,
-    allocator: ManuallyDrop<Mutex<Allocator>>,
+    /// Shared (an `Arc`) only with the overlay renderer, which the context outlives.
+    allocator: ManuallyDrop<Arc<Mutex<Allocator>>>,
     /// Its heap address is the messenger's user data: it outlives the messenger and instance.
     messages: Arc<Messages>,
 }
@@ -431,7 +434,7 @@ impl Context {
             device,
             queue,
             queue_family,
-            allocator: ManuallyDrop::new(Mutex::new(allocator)),
+            allocator: ManuallyDrop::new(Arc::new(Mutex::new(allocator))),
             messages,
         }))
     }
@@ -448,6 +451,12 @@ impl Context {
 
     pub(crate) fn allocator(&self) -> std::sync::MutexGuard<'_, Allocator> {
         self.allocator.lock().unwrap()
+    }
+
+    /// The allocator itself, for a renderer that allocates through it (the overlay). Its holder
+    /// also holds an `Arc<Context>`, so the allocator is never used after the context drops.
+    pub(crate) fn shared_allocator(&self) -> Arc<Mutex<Allocator>> {
+        Arc::clone(&self.allocator)
     }
 
     /// Give a Vulkan object a debug name (VK_EXT_debug_utils), when available.
@@ -554,8 +563,18 @@ impl Drop for Context {
                 ));
             }
         }
-        // SAFETY: dropped exactly once, before the device it uses.
-        unsafe { ManuallyDrop::drop(&mut self.allocator) };
+        // SAFETY: taken exactly once, here, before the device it uses is destroyed.
+        let allocator = unsafe { ManuallyDrop::take(&mut self.allocator) };
+        // Every other holder (the overlay) holds an Arc<Context> too, so none is left; should one
+        // be, leaking the allocator is the safe choice (freeing needs the device).
+        match Arc::try_unwrap(allocator) {
+            Ok(allocator) => drop(allocator),
+            Err(shared) => {
+                self.messages
+                    .push("leak: the GPU allocator is still shared when the context drops".into());
+                std::mem::forget(shared);
+            }
+        }
         // SAFETY: every child object holds an Arc<Context>, so none is alive; idle device.
         unsafe { self.device.destroy_device(None) };
         if let Some(di) = &self.debug_instance {

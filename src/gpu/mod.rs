@@ -15,6 +15,7 @@ mod commands;
 mod context;
 pub mod conv;
 mod image;
+mod overlay;
 mod pipeline;
 mod query;
 mod recorder;
@@ -24,6 +25,7 @@ pub use buffer::{Buffer, BufferDesc};
 pub use commands::{CommandPool, Fence, Semaphore};
 pub use context::{Context, ContextDesc, DeviceInfo, GpuError, Messages};
 pub use image::{Image, ImageDesc, OffscreenTarget, Readback, DEPTH_FORMAT, OFFSCREEN_FORMAT};
+pub use overlay::Overlay;
 pub use pipeline::{
     DescriptorPool, DescriptorSetLayout, GraphicsPipelineDesc, Pipeline, PipelineLayout,
     ShaderModule, SpecConstants,

@@ -1,5 +1,6 @@
 //! Recording one frame: layout transitions, queries, dynamic rendering, the chosen driver.
-//! Shared by headless rendering, capture, benchmarks and the window.
+//! Shared by headless rendering, capture, benchmarks and the window; the window adds its overlay
+//! panel through a hook recorded last in the same rendering instance.
 
 use super::bindings::{SET_CAPTURE, SET_FRAME, SET_MESH};
 use super::static_vbo::StaticVbo;
@@ -37,12 +38,15 @@ pub struct FrameWork<'a> {
 }
 
 /// Record the frame. Pipelines must be prepared and levels checked (`Scene::prepare`).
+/// `overlay` records on top of the mesh, right before the rendering instance ends (inside the
+/// timed range); it may leave its own pipeline and dynamic state bound.
 pub fn cmd_render(
     cmd: &Cmd<'_>,
     r: &Renderer,
     target: &TargetView,
     work: &FrameWork<'_>,
     queries: Option<(&QueryPools, u32)>,
+    overlay: Option<&mut dyn FnMut(&Cmd<'_>)>,
 ) {
     use vk::ImageLayout as L;
     cmd.transition(
@@ -82,6 +86,9 @@ pub fn cmd_render(
     if work.wireframe && r.wireframe_supported() {
         cmd.bind_graphics_pipeline(r.pipeline(&work.cfg, Capture::None, true));
         cmd_draw_driver(cmd, r, work);
+    }
+    if let Some(overlay) = overlay {
+        overlay(cmd);
     }
     cmd.end_rendering();
     if let Some((q, slot)) = queries {

@@ -139,7 +139,14 @@ impl Headless {
         };
         let start = Instant::now();
         self.pool.submit_and_wait(|cmd| {
-            cmd_render(cmd, &self.renderer, &view, &work, Some((&self.queries, 0)))
+            cmd_render(
+                cmd,
+                &self.renderer,
+                &view,
+                &work,
+                Some((&self.queries, 0)),
+                None,
+            )
         })?;
         let wall_ms = start.elapsed().as_secs_f64() * 1e3;
         Ok(FrameTiming {

@@ -117,6 +117,15 @@ impl DrawConfig {
             d => d.name().to_string(),
         }
     }
+
+    /// Triangles the GPU makes per coarse triangle: the pattern's level² (also what `static`
+    /// stores), or what the tessellator makes at this level.
+    pub fn refined_per_coarse(&self) -> u32 {
+        match self.driver {
+            Driver::Tess => tess::tess_triangle_count(self.level),
+            Driver::Static | Driver::Pattern => crate::pattern::triangle_count(self.level),
+        }
+    }
 }
 
 /// `Frame` uniform block (glsl/include/records.glsl), std140.

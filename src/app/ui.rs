@@ -1,0 +1,180 @@
+//! The overlay panel (egui), after the UI overlay of Sascha Willems' Vulkan samples: the last
+//! frame's statistics and the demo's switches in a small collapsible window anchored top-left,
+//! drawn over the mesh by [`crate::gpu::Overlay`]. `H` shows and hides it; the keyboard
+//! shortcuts change the same [`Controls`]. While the pointer is over the panel, or dragging in
+//! it, egui takes pointer events and the camera ignores them.
+
+use crate::render::{DrawConfig, Driver, Submit};
+use egui::{Align2, ClippedPrimitive, RichText, TexturesDelta};
+use winit::event::WindowEvent;
+use winit::window::Window;
+
+/// The demo's switches, changed by keys and by the panel.
+#[derive(Clone, Copy, Debug)]
+pub struct Controls {
+    pub cfg: DrawConfig,
+    pub wireframe: bool,
+    pub animate: bool,
+    /// Level of detail by camera distance (sets `cfg.level` every frame).
+    pub lod: bool,
+}
+
+/// What the panel reports and offers.
+pub struct PanelInfo<'a> {
+    pub device: &'a str,
+    /// The pattern set's levels, ascending.
+    pub levels: &'a [u32],
+    pub wireframe_supported: bool,
+    pub fps: f64,
+    /// GPU time of the last frame (timestamp queries).
+    pub gpu_ms: f64,
+    /// What the last frame drew (LOD and the tessellator's limit applied).
+    pub drawn: DrawConfig,
+    pub coarse: u64,
+    pub refined: u64,
+    pub geometry_bytes: u64,
+}
+
+/// One frame of egui output, ready for [`crate::gpu::Overlay`].
+pub struct UiFrame {
+    pub textures: TexturesDelta,
+    pub primitives: Vec<ClippedPrimitive>,
+    pub pixels_per_point: f32,
+}
+
+/// egui's context and its winit input state.
+pub struct Ui {
+    egui: egui::Context,
+    input: egui_winit::State,
+    pub visible: bool,
+}
+
+impl Ui {
+    pub fn new(window: &Window, max_texture_side: usize) -> Self {
+        let egui = egui::Context::default();
+        let input = egui_winit::State::new(
+            egui.clone(),
+            egui::ViewportId::ROOT,
+            window,
+            Some(window.scale_factor() as f32),
+            None,
+            Some(max_texture_side),
+        );
+        Self {
+            egui,
+            input,
+            visible: true,
+        }
+    }
+
+    /// Feed a window event to egui. True when egui takes it and the demo should ignore it: a
+    /// button or wheel event while the pointer (at `cursor`, physical pixels) is over the panel or
+    /// egui is dragging, or a key egui wants. The panel is hit-tested where it was last drawn,
+    /// not by egui's hover state of the last frame, so a slow frame cannot pass a click or a
+    /// wheel turn over the panel through to the camera.
+    pub fn on_window_event(
+        &mut self,
+        window: &Window,
+        event: &WindowEvent,
+        cursor: (f64, f64),
+    ) -> bool {
+        let response = self.input.on_window_event(window, event);
+        match event {
+            WindowEvent::MouseInput { .. } | WindowEvent::MouseWheel { .. } => {
+                self.egui.is_using_pointer() || self.over_panel(window, cursor)
+            }
+            _ => response.consumed,
+        }
+    }
+
+    fn over_panel(&self, window: &Window, (x, y): (f64, f64)) -> bool {
+        let ppp = egui_winit::pixels_per_point(&self.egui, window) as f64;
+        let pos = egui::pos2((x / ppp) as f32, (y / ppp) as f32);
+        // egui keeps a full-window background layer; the panel is a window above it.
+        self.visible
+            && self
+                .egui
+                .layer_id_at(pos)
+                .is_some_and(|layer| layer.order != egui::Order::Background)
+    }
+
+    /// Lay out one frame: the panel when visible (applying its switches to `controls`),
+    /// nothing otherwise (egui still consumes its input and keeps its textures).
+    pub fn run(&mut self, window: &Window, controls: &mut Controls, info: &PanelInfo) -> UiFrame {
+        let input = self.input.take_egui_input(window);
+        let visible = self.visible;
+        let output = self.egui.run(input, |ctx| {
+            if visible {
+                panel(ctx, controls, info);
+            }
+        });
+        self.input
+            .handle_platform_output(window, output.platform_output);
+        UiFrame {
+            textures: output.textures_delta,
+            primitives: self.egui.tessellate(output.shapes, output.pixels_per_point),
+            pixels_per_point: output.pixels_per_point,
+        }
+    }
+}
+
+fn panel(ctx: &egui::Context, c: &mut Controls, info: &PanelInfo) {
+    egui::Window::new("meshrefine")
+        .anchor(Align2::LEFT_TOP, [10.0, 10.0])
+        .default_width(250.0)
+        .resizable(false)
+        .collapsible(true)
+        .show(ctx, |ui| {
+            ui.add(egui::Label::new(info.device).wrap());
+            ui.separator();
+            egui::Grid::new("stats").num_columns(2).show(ui, |ui| {
+                let d = &info.drawn;
+                let rows = [
+                    ("fps", format!("{:.0}", info.fps)),
+                    ("GPU frame", format!("{:.2} ms", info.gpu_ms)),
+                    ("drawn", format!("{} level {}", d.label(), d.level)),
+                    ("coarse triangles", info.coarse.to_string()),
+                    ("refined triangles", info.refined.to_string()),
+                    (
+                        "GPU geometry",
+                        format!("{:.2} MB", info.geometry_bytes as f64 / 1e6),
+                    ),
+                ];
+                for (name, value) in rows {
+                    ui.label(name);
+                    ui.label(RichText::new(value).monospace());
+                    ui.end_row();
+                }
+            });
+            ui.separator();
+            ui.horizontal(|ui| {
+                ui.label("driver");
+                for d in Driver::ALL {
+                    ui.selectable_value(&mut c.cfg.driver, d, d.name());
+                }
+            });
+            ui.add_enabled_ui(c.cfg.driver == Driver::Pattern, |ui| {
+                ui.horizontal(|ui| {
+                    ui.label("submit");
+                    for s in Submit::ALL {
+                        ui.selectable_value(&mut c.cfg.submit, s, s.name());
+                    }
+                });
+            });
+            ui.add_enabled_ui(!c.lod, |ui| {
+                ui.horizontal_wrapped(|ui| {
+                    ui.label("level");
+                    for &l in info.levels {
+                        ui.selectable_value(&mut c.cfg.level, l, l.to_string());
+                    }
+                });
+            });
+            ui.checkbox(&mut c.lod, "LOD by distance");
+            ui.add_enabled(
+                info.wireframe_supported,
+                egui::Checkbox::new(&mut c.wireframe, "wireframe"),
+            );
+            ui.checkbox(&mut c.animate, "animate");
+            ui.weak("H hides this panel");
+        });
+}
