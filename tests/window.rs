@@ -133,3 +133,77 @@ fn window_demo_presents_and_screenshots() {
         );
     }
 }
+
+/// PNG size of a file.
+fn png_size(path: &std::path::Path) -> (u32, u32) {
+    let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(path).unwrap()));
+    let info = decoder.read_info().unwrap().info().clone();
+    (info.width, info.height)
+}
+
+fn xdotool(display: &str, args: &[&str]) -> String {
+    let out = Command::new("xdotool")
+        .args(args)
+        .env("DISPLAY", display)
+        .output()
+        .expect("xdotool is not installed: run scripts/setup.sh (apt-get install xdotool)");
+    String::from_utf8_lossy(&out.stdout).trim().to_string()
+}
+
+#[test]
+fn window_resizes_and_quits_with_escape() {
+    // The swapchain is rebuilt when the window is resized, and Esc ends the demo after one last
+    // frame that `--screenshot` saves: its size is the new window size.
+    let _guard = common::gpu_lock();
+    let x = Xvfb::start();
+    let shot = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("window/resized.png");
+    std::fs::create_dir_all(shot.parent().unwrap()).unwrap();
+    let _ = std::fs::remove_file(&shot);
+    let mut child = Command::new(env!("CARGO_BIN_EXE_meshrefine"))
+        .args([
+            "--validate",
+            "view",
+            "--level",
+            "4",
+            "--screenshot",
+            shot.to_str().unwrap(),
+        ])
+        .env("DISPLAY", &x.display)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let start = Instant::now();
+    let mut window = String::new();
+    while window.is_empty() && start.elapsed() < Duration::from_secs(60) {
+        std::thread::sleep(Duration::from_millis(200));
+        window = xdotool(&x.display, &["search", "--name", "^meshrefine"])
+            .lines()
+            .next()
+            .unwrap_or("")
+            .to_string();
+    }
+    assert!(!window.is_empty(), "the demo's window never appeared");
+    xdotool(&x.display, &["windowsize", &window, "640", "400"]);
+    std::thread::sleep(Duration::from_millis(500));
+    // No window manager gives the window focus: do it, then type through XTEST (winit ignores
+    // synthetic XSendEvent keys).
+    xdotool(&x.display, &["windowfocus", "--sync", &window]);
+    xdotool(&x.display, &["key", "Escape"]);
+    while child.try_wait().unwrap().is_none() {
+        if start.elapsed() > Duration::from_secs(120) {
+            let _ = child.kill();
+            panic!("Esc did not end the demo");
+        }
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(!stderr.contains("validation"), "{stderr}");
+    assert_eq!(
+        png_size(&shot),
+        (640, 400),
+        "the last frame was not drawn at the new size"
+    );
+}

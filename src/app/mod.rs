@@ -106,6 +106,8 @@ struct State {
     frames: u64,
     recorded_once: bool,
     resize: bool,
+    /// Quit was asked for: the next frame is the last (and saves the screenshot).
+    quit: bool,
     drag: Option<(f64, f64)>,
     cursor: (f64, f64),
     fps_window: (Instant, u64),
@@ -135,7 +137,7 @@ impl ApplicationHandler for App {
         // Pointer events egui takes (over or dragging the panel) leave the camera alone.
         let egui_took = s.ui.on_window_event(&s.window, &event, s.cursor);
         match event {
-            WindowEvent::CloseRequested => event_loop.exit(),
+            WindowEvent::CloseRequested => s.request_quit(&self.opts, event_loop),
             WindowEvent::Resized(_) => s.resize = true,
             WindowEvent::MouseInput {
                 state,
@@ -164,7 +166,7 @@ impl ApplicationHandler for App {
             WindowEvent::KeyboardInput { event, .. } if !egui_took => {
                 let quit = event.state == ElementState::Pressed && !s.key(&event.logical_key);
                 if quit {
-                    event_loop.exit();
+                    s.request_quit(&self.opts, event_loop);
                 }
             }
             WindowEvent::RedrawRequested => match s.frame(&self.opts) {
@@ -252,6 +254,7 @@ impl App {
             frames: 0,
             recorded_once: false,
             resize: false,
+            quit: false,
             drag: None,
             cursor: (0.0, 0.0),
             fps_window: (Instant::now(), 0),
@@ -262,6 +265,15 @@ impl App {
 }
 
 impl State {
+    /// Close or Esc: with `--screenshot`, draw one last frame to save it, then exit.
+    fn request_quit(&mut self, opts: &ViewOptions, event_loop: &ActiveEventLoop) {
+        if opts.screenshot.is_some() {
+            self.quit = true;
+        } else {
+            event_loop.exit();
+        }
+    }
+
     /// Handle a key; false quits.
     fn key(&mut self, key: &Key) -> bool {
         let levels: Vec<u32> = self.scene.patterns.levels().collect();
@@ -310,7 +322,9 @@ impl State {
         self.overlay.update_textures(&ui_frame.textures)?;
         if self.controls.animate {
             let t = self.start.elapsed().as_secs_f32();
-            self.scene.update_mesh(self.base_mesh.animated(t, 0.04));
+            // A wobble of 3% of the mesh's size, whatever its units.
+            let (_, r) = self.scene.bounding_sphere();
+            self.scene.update_mesh(self.base_mesh.animated(t, 0.03 * r));
         }
         if self.controls.lod {
             let (_, r) = self.scene.bounding_sphere();
@@ -346,7 +360,7 @@ impl State {
             self.resize = true;
             return Ok(true);
         };
-        let last = opts.frames.is_some_and(|n| self.frames + 1 >= n);
+        let last = self.quit || opts.frames.is_some_and(|n| self.frames + 1 >= n);
         let screenshot = last && opts.screenshot.is_some();
         let extent = self.swapchain.extent;
         if screenshot {
@@ -359,21 +373,9 @@ impl State {
                 "screenshot",
             )?);
         }
-        let eye = self.camera.eye();
-        self.renderer.set_frame(&FrameUniforms {
-            view_proj: self
-                .camera
-                .view_proj(extent.width as f32 / extent.height as f32)
-                .to_cols_array_2d(),
-            eye: eye.extend(1.0).to_array(),
-            light_dir: (eye - self.camera.target
-                + glam::Vec3::new(0.3, 0.8, 0.2) * self.camera.distance)
-                .normalize()
-                .extend(0.0)
-                .to_array(),
-            base_color: [0.80, 0.55, 0.35, 1.0],
-            options: [0.0; 4],
-        });
+        let aspect = extent.width as f32 / extent.height as f32;
+        self.renderer
+            .set_frame(&FrameUniforms::new(&self.camera, aspect));
         let depth = self.swapchain.depth.as_ref().expect("depth image exists");
         let target = TargetView {
             color: image.image,

@@ -72,19 +72,7 @@ impl Headless {
 
     fn frame_uniforms(&self, camera: &Camera) -> FrameUniforms {
         let e = self.target.extent();
-        let eye = camera.eye();
-        FrameUniforms {
-            view_proj: camera
-                .view_proj(e.width as f32 / e.height as f32)
-                .to_cols_array_2d(),
-            eye: eye.extend(1.0).to_array(),
-            light_dir: (eye - camera.target + glam::Vec3::new(0.3, 0.8, 0.2) * camera.distance)
-                .normalize()
-                .extend(0.0)
-                .to_array(),
-            base_color: [0.80, 0.55, 0.35, 1.0],
-            options: [0.0; 4],
-        }
+        FrameUniforms::new(camera, e.width as f32 / e.height as f32)
     }
 
     fn view(&self) -> TargetView {

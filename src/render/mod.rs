@@ -148,6 +148,22 @@ const _: () = {
     assert!(std::mem::offset_of!(FrameUniforms, options) == 112);
 };
 
+impl FrameUniforms {
+    /// The view of `camera` on a target of `aspect` (width / height), lit from above and behind
+    /// the camera's shoulder, the default surface colour, every view option off.
+    pub fn new(camera: &Camera, aspect: f32) -> Self {
+        let eye = camera.eye();
+        let light = eye - camera.target + glam::Vec3::new(0.3, 0.8, 0.2) * camera.distance;
+        Self {
+            view_proj: camera.view_proj(aspect).to_cols_array_2d(),
+            eye: eye.extend(1.0).to_array(),
+            light_dir: light.normalize().extend(0.0).to_array(),
+            base_color: [0.80, 0.55, 0.35, 1.0],
+            options: [0.0; 4],
+        }
+    }
+}
+
 /// `Push` push-constant block (glsl/include/records.glsl): 128 bytes, the guaranteed minimum.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
