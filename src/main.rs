@@ -48,6 +48,10 @@ fn load_mesh(path: Option<&Path>) -> Result<Mesh> {
                     report.dropped_degenerate.len()
                 );
             }
+            if let Err(e) = mesh.require_manifold() {
+                // Only Loop subdivision (not yet here) needs a manifold; say so anyway.
+                eprintln!("warning: {e} (the flat surface does not need one)");
+            }
             Ok(mesh)
         }
     }

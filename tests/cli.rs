@@ -190,6 +190,29 @@ fn degenerate_faces_are_dropped_with_a_warning() {
 }
 
 #[test]
+fn non_manifold_meshes_render_with_a_warning() {
+    let out = tmp("nonmanifold.png");
+    let mesh = model_path("nonmanifold_edge.obj");
+    let o = meshrefine(&[
+        "--validate",
+        "render",
+        p(&mesh),
+        "-o",
+        p(&out),
+        "--width",
+        "64",
+        "--height",
+        "64",
+    ]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("is not a manifold mesh: 1 edge(s) shared by more than two triangles"),
+        "{stderr}"
+    );
+}
+
+#[test]
 fn info_reports_topology_and_footprint() {
     let s = ok(&["info", p(&model_path("nonmanifold_edge.obj"))]);
     assert!(s.contains("non-manifold edges: 1"), "{s}");
