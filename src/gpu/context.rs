@@ -62,9 +62,6 @@ impl Messages {
     pub fn take(&self) -> Vec<String> {
         std::mem::take(&mut *self.list.lock().unwrap())
     }
-    pub fn snapshot(&self) -> Vec<String> {
-        self.list.lock().unwrap().clone()
-    }
 }
 
 /// What to create.

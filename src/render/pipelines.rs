@@ -113,10 +113,6 @@ impl Renderer {
         })
     }
 
-    pub fn context(&self) -> &Arc<Context> {
-        &self.ctx
-    }
-
     /// Write this frame's uniforms. The caller makes sure no pending work reads them.
     pub fn set_frame(&mut self, f: &FrameUniforms) {
         self.frame_ubo.write_pod(0, std::slice::from_ref(f));

@@ -56,15 +56,10 @@ impl GpuPattern {
             index_count: p.indices.len() as u32,
         })
     }
-
-    pub fn bytes(&self) -> u64 {
-        self.vertices.size() + self.indices.size()
-    }
 }
 
 /// GPU data of one mesh.
 pub struct GpuMesh {
-    ctx: Arc<Context>,
     pub triangle_count: u32,
     /// `CoarseTri[]`, storage buffer (instanced pattern, tess).
     pub records: Buffer,
@@ -138,7 +133,6 @@ impl GpuMesh {
             rec_size,
         );
         Ok(Self {
-            ctx: ctx.clone(),
             triangle_count: n as u32,
             records,
             records_ubo,
@@ -163,15 +157,6 @@ impl GpuMesh {
             self.ubo_stride,
             records,
         );
-    }
-
-    /// Bytes of coarse data uploaded per frame when the mesh animates.
-    pub fn record_bytes(&self) -> u64 {
-        self.records.size() + self.records_ubo.size()
-    }
-
-    pub fn context(&self) -> &Arc<Context> {
-        &self.ctx
     }
 }
 

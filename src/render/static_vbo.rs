@@ -103,10 +103,6 @@ impl StaticVbo {
             pattern_vertex_count: pattern.bary.len() as u32,
         })
     }
-
-    pub fn bytes(&self) -> u64 {
-        self.vertices.size() + self.indices.size()
-    }
 }
 
 /// Record the static driver's draw (one indexed draw of the whole refined mesh).
