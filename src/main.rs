@@ -105,32 +105,38 @@ fn run(cli: Cli) -> Result<()> {
             let cfg = draw_config(&a.technique);
             let has_display = std::env::var_os("DISPLAY").is_some()
                 || std::env::var_os("WAYLAND_DISPLAY").is_some();
-            if !has_display {
-                let messages = {
-                    let ctx = Context::new(&desc)?;
-                    let messages = ctx.messages_handle();
-                    render_png(ctx, mesh, &cfg, 1280, 720, a.wireframe, &a.headless_output)?;
-                    messages
+            let why_headless = if has_display {
+                let opts = meshrefine::app::ViewOptions {
+                    cfg,
+                    frames: a.frames,
+                    screenshot: a.screenshot.clone(),
+                    wireframe: a.wireframe,
+                    animate: a.animate,
+                    lod: a.lod,
                 };
-                check_messages(&messages)?;
-                let shown =
-                    std::fs::canonicalize(&a.headless_output).unwrap_or(a.headless_output.clone());
-                println!(
-                    "no display found (DISPLAY and WAYLAND_DISPLAY are unset): rendered the scene headlessly to {}",
-                    shown.display()
-                );
-                return Ok(());
-            }
-            let opts = meshrefine::app::ViewOptions {
-                cfg,
-                frames: a.frames,
-                screenshot: a.screenshot.clone(),
-                wireframe: a.wireframe,
-                animate: a.animate,
-                lod: a.lod,
+                match meshrefine::app::run(desc.clone(), mesh.clone(), opts) {
+                    Ok(messages) => return check_messages(&messages),
+                    Err(e) => match e.downcast::<meshrefine::app::NoWindowSystem>() {
+                        Ok(no_window) => no_window.to_string(),
+                        Err(e) => return Err(e),
+                    },
+                }
+            } else {
+                "no display found (DISPLAY and WAYLAND_DISPLAY are unset)".to_string()
             };
-            let messages = meshrefine::app::run(desc, mesh, opts)?;
+            let messages = {
+                let ctx = Context::new(&desc)?;
+                let messages = ctx.messages_handle();
+                render_png(ctx, mesh, &cfg, 1280, 720, a.wireframe, &a.headless_output)?;
+                messages
+            };
             check_messages(&messages)?;
+            let shown =
+                std::fs::canonicalize(&a.headless_output).unwrap_or(a.headless_output.clone());
+            println!(
+                "{why_headless}: rendered the scene headlessly to {}",
+                shown.display()
+            );
         }
         Command::Export(a) => {
             let mesh = load_mesh(a.mesh.as_deref())?;

@@ -282,6 +282,21 @@ fn render_export_and_headless_view_work() {
     let s = ok(&["view", "--headless-output", p(&view_png), "--level", "3"]);
     assert!(s.contains("no display") && s.contains("view.png"), "{s}");
     assert!(view_png.exists());
+    // A display that cannot be reached: the same fallback, saying so.
+    std::fs::remove_file(&view_png).unwrap();
+    let _guard = common::gpu_lock();
+    let o = Command::new(env!("CARGO_BIN_EXE_meshrefine"))
+        .args(["view", "--headless-output", p(&view_png), "--level", "3"])
+        .env("DISPLAY", ":97531")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .unwrap();
+    let s = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(
+        s.contains("cannot connect to the display ':97531'") && view_png.exists(),
+        "{s}"
+    );
 }
 
 #[test]

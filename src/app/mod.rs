@@ -29,6 +29,12 @@ use winit::event_loop::{ActiveEventLoop, EventLoop};
 use winit::keyboard::{Key, NamedKey};
 use winit::window::{Window, WindowId};
 
+/// The window system could not be opened (no reachable X server, say): callers may fall back
+/// to a headless render.
+#[derive(Debug, thiserror::Error)]
+#[error("cannot connect to the display '{0}'")]
+pub struct NoWindowSystem(pub String);
+
 /// Options of `meshrefine view`.
 #[derive(Clone, Debug)]
 pub struct ViewOptions {
@@ -50,8 +56,13 @@ H = panel, Esc = quit";
 /// Run the demo until the window closes (or `frames` frames). Returns the context's message list
 /// so the caller can check validation and leaks after everything is dropped.
 pub fn run(desc: ContextDesc, mesh: Mesh, opts: ViewOptions) -> Result<Arc<Messages>> {
-    let event_loop =
-        EventLoop::new().context("cannot open the window system (is DISPLAY set correctly?)")?;
+    let event_loop = EventLoop::new().map_err(|e| {
+        log::debug!("winit: {e}");
+        let display = std::env::var("WAYLAND_DISPLAY")
+            .or_else(|_| std::env::var("DISPLAY"))
+            .unwrap_or_default();
+        NoWindowSystem(display)
+    })?;
     let mut app = App {
         desc,
         mesh: Some(mesh),
