@@ -70,6 +70,14 @@ pub struct Row {
     pub note: String,
 }
 
+impl Row {
+    /// Median GPU time per refined triangle, in nanoseconds: the per-triangle cost.
+    pub fn ns_per_triangle(&self) -> Option<f64> {
+        self.gpu_ms
+            .map(|s| s.median * 1e6 / self.refined_triangles.max(1) as f64)
+    }
+}
+
 pub struct Report {
     pub device: String,
     pub frames: u32,
@@ -241,16 +249,16 @@ impl Report {
         );
         let _ = writeln!(
             s,
-            "| mesh | coarse tris | level | variant | refined tris | GPU ms | wall ms | GPU / static | wall / static | stored vertices | stored indices | geometry bytes | note |"
+            "| mesh | coarse tris | level | variant | refined tris | GPU ms | wall ms | GPU ns / refined tri | GPU / static | wall / static | stored vertices | stored indices | geometry bytes | note |"
         );
         let _ = writeln!(
             s,
-            "|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---|"
+            "|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|"
         );
         for r in &self.rows {
             let _ = writeln!(
                 s,
-                "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+                "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
                 r.mesh,
                 r.coarse_triangles,
                 r.level,
@@ -258,6 +266,9 @@ impl Report {
                 r.refined_triangles,
                 fmt_stat(&r.gpu_ms),
                 fmt_stat(&r.wall_ms),
+                r.ns_per_triangle()
+                    .map(|v| format!("{v:.2}"))
+                    .unwrap_or_else(|| "–".into()),
                 fmt_ratio(r.gpu_ratio),
                 fmt_ratio(r.wall_ratio),
                 r.stored_vertices,
@@ -271,13 +282,13 @@ impl Report {
 
     pub fn csv(&self) -> String {
         let mut s = String::from(
-            "device,mesh,coarse_triangles,level,variant,refined_triangles,gpu_ms_median,gpu_ms_min,gpu_ms_max,wall_ms_median,wall_ms_min,wall_ms_max,gpu_ratio_vs_static,wall_ratio_vs_static,stored_vertices,stored_indices,geometry_bytes,note\n",
+            "device,mesh,coarse_triangles,level,variant,refined_triangles,gpu_ms_median,gpu_ms_min,gpu_ms_max,wall_ms_median,wall_ms_min,wall_ms_max,gpu_ns_per_refined_triangle,gpu_ratio_vs_static,wall_ratio_vs_static,stored_vertices,stored_indices,geometry_bytes,note\n",
         );
         let f = |x: Option<f64>| x.map(|v| format!("{v:.4}")).unwrap_or_default();
         for r in &self.rows {
             let _ = writeln!(
                 s,
-                "\"{}\",{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},\"{}\"",
+                "\"{}\",{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},\"{}\"",
                 self.device,
                 r.mesh,
                 r.coarse_triangles,
@@ -290,6 +301,7 @@ impl Report {
                 f(r.wall_ms.map(|s| s.median)),
                 f(r.wall_ms.map(|s| s.min)),
                 f(r.wall_ms.map(|s| s.max)),
+                f(r.ns_per_triangle()),
                 f(r.gpu_ratio),
                 f(r.wall_ratio),
                 r.stored_vertices,
@@ -311,9 +323,9 @@ impl Report {
             .iter()
             .map(|r| {
                 format!(
-                    "{{\"mesh\":\"{}\",\"coarse_triangles\":{},\"level\":{},\"variant\":\"{}\",\"refined_triangles\":{},\"gpu_ms_median\":{},\"wall_ms_median\":{},\"gpu_ratio_vs_static\":{},\"wall_ratio_vs_static\":{},\"stored_vertices\":{},\"stored_indices\":{},\"geometry_bytes\":{},\"note\":\"{}\"}}",
+                    "{{\"mesh\":\"{}\",\"coarse_triangles\":{},\"level\":{},\"variant\":\"{}\",\"refined_triangles\":{},\"gpu_ms_median\":{},\"wall_ms_median\":{},\"gpu_ns_per_refined_triangle\":{},\"gpu_ratio_vs_static\":{},\"wall_ratio_vs_static\":{},\"stored_vertices\":{},\"stored_indices\":{},\"geometry_bytes\":{},\"note\":\"{}\"}}",
                     r.mesh, r.coarse_triangles, r.level, r.variant, r.refined_triangles,
-                    f(r.gpu_ms.map(|s| s.median)), f(r.wall_ms.map(|s| s.median)), f(r.gpu_ratio), f(r.wall_ratio),
+                    f(r.gpu_ms.map(|s| s.median)), f(r.wall_ms.map(|s| s.median)), f(r.ns_per_triangle()), f(r.gpu_ratio), f(r.wall_ratio),
                     r.stored_vertices, r.stored_indices, r.geometry_bytes, r.note
                 )
             })
