@@ -207,3 +207,68 @@ fn window_resizes_and_quits_with_escape() {
         "the last frame was not drawn at the new size"
     );
 }
+
+#[test]
+fn keys_switch_driver_level_and_views() {
+    // Typed keys reach the demo and change what it draws; the title (the HUD) reports it.
+    let _guard = common::gpu_lock();
+    let x = Xvfb::start();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_meshrefine"))
+        .args(["--validate", "view", "--level", "8"])
+        .env("DISPLAY", &x.display)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let start = Instant::now();
+    let mut window = String::new();
+    while window.is_empty() && start.elapsed() < Duration::from_secs(60) {
+        std::thread::sleep(Duration::from_millis(200));
+        window = xdotool(&x.display, &["search", "--name", "^meshrefine"])
+            .lines()
+            .next()
+            .unwrap_or("")
+            .to_string();
+    }
+    assert!(!window.is_empty(), "the demo's window never appeared");
+    xdotool(&x.display, &["windowfocus", "--sync", &window]);
+    let wait_title = |want: &str| {
+        let t0 = Instant::now();
+        loop {
+            let title = xdotool(&x.display, &["getwindowname", &window]);
+            if title.contains(want) {
+                return title;
+            }
+            assert!(
+                t0.elapsed() < Duration::from_secs(60),
+                "title never showed {want:?}: {title}"
+            );
+            std::thread::sleep(Duration::from_millis(100));
+        }
+    };
+    wait_title("pattern/instanced level 8");
+    for (key, want) in [
+        ("3", "tess level 8"),
+        ("minus", "tess level 4"),
+        ("w", "level 4 wire"),
+        ("u", "pattern/ubo level 4 wire"),
+        ("1", "static level 4 wire"),
+        ("l", "(LOD)"),
+        ("a", "animated"),
+    ] {
+        xdotool(&x.display, &["key", key]);
+        wait_title(want);
+    }
+    xdotool(&x.display, &["key", "Escape"]);
+    while child.try_wait().unwrap().is_none() {
+        assert!(
+            start.elapsed() < Duration::from_secs(180),
+            "Esc did not end the demo"
+        );
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(!stderr.contains("validation"), "{stderr}");
+}
