@@ -150,6 +150,64 @@ fn xdotool(display: &str, args: &[&str]) -> String {
     String::from_utf8_lossy(&out.stdout).trim().to_string()
 }
 
+/// A running `meshrefine --validate view ARGS` on `x`'s display, with its window found and
+/// focused (no window manager gives it focus; winit ignores synthetic keys, so the tests type
+/// through XTEST into the focused window).
+struct Demo<'a> {
+    x: &'a Xvfb,
+    child: Child,
+    window: String,
+    start: Instant,
+}
+
+impl<'a> Demo<'a> {
+    fn start(x: &'a Xvfb, args: &[&str]) -> Self {
+        let child = Command::new(env!("CARGO_BIN_EXE_meshrefine"))
+            .args(["--validate", "view"])
+            .args(args)
+            .env("DISPLAY", &x.display)
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        let start = Instant::now();
+        let mut window = String::new();
+        while window.is_empty() && start.elapsed() < Duration::from_secs(60) {
+            std::thread::sleep(Duration::from_millis(200));
+            let found = xdotool(&x.display, &["search", "--name", "^meshrefine"]);
+            window = found.lines().next().unwrap_or("").to_string();
+        }
+        assert!(!window.is_empty(), "the demo's window never appeared");
+        xdotool(&x.display, &["windowfocus", "--sync", &window]);
+        Self {
+            x,
+            child,
+            window,
+            start,
+        }
+    }
+
+    fn xdotool(&self, args: &[&str]) -> String {
+        xdotool(&self.x.display, args)
+    }
+
+    /// Press Esc and expect a clean exit: status 0, no validation message.
+    fn quit(mut self) {
+        self.xdotool(&["key", "Escape"]);
+        while self.child.try_wait().unwrap().is_none() {
+            if self.start.elapsed() > Duration::from_secs(180) {
+                let _ = self.child.kill();
+                panic!("Esc did not end the demo");
+            }
+            std::thread::sleep(Duration::from_millis(50));
+        }
+        let out = self.child.wait_with_output().unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{stderr}");
+        assert!(!stderr.contains("validation"), "{stderr}");
+    }
+}
+
 #[test]
 fn window_resizes_and_quits_with_escape() {
     // The swapchain is rebuilt when the window is resized, and Esc ends the demo after one last
@@ -159,48 +217,13 @@ fn window_resizes_and_quits_with_escape() {
     let shot = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("window/resized.png");
     std::fs::create_dir_all(shot.parent().unwrap()).unwrap();
     let _ = std::fs::remove_file(&shot);
-    let mut child = Command::new(env!("CARGO_BIN_EXE_meshrefine"))
-        .args([
-            "--validate",
-            "view",
-            "--level",
-            "4",
-            "--screenshot",
-            shot.to_str().unwrap(),
-        ])
-        .env("DISPLAY", &x.display)
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let start = Instant::now();
-    let mut window = String::new();
-    while window.is_empty() && start.elapsed() < Duration::from_secs(60) {
-        std::thread::sleep(Duration::from_millis(200));
-        window = xdotool(&x.display, &["search", "--name", "^meshrefine"])
-            .lines()
-            .next()
-            .unwrap_or("")
-            .to_string();
-    }
-    assert!(!window.is_empty(), "the demo's window never appeared");
-    xdotool(&x.display, &["windowsize", &window, "640", "400"]);
+    let demo = Demo::start(
+        &x,
+        &["--level", "4", "--screenshot", shot.to_str().unwrap()],
+    );
+    demo.xdotool(&["windowsize", &demo.window, "640", "400"]);
     std::thread::sleep(Duration::from_millis(500));
-    // No window manager gives the window focus: do it, then type through XTEST (winit ignores
-    // synthetic XSendEvent keys).
-    xdotool(&x.display, &["windowfocus", "--sync", &window]);
-    xdotool(&x.display, &["key", "Escape"]);
-    while child.try_wait().unwrap().is_none() {
-        if start.elapsed() > Duration::from_secs(120) {
-            let _ = child.kill();
-            panic!("Esc did not end the demo");
-        }
-        std::thread::sleep(Duration::from_millis(50));
-    }
-    let out = child.wait_with_output().unwrap();
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(out.status.success(), "{stderr}");
-    assert!(!stderr.contains("validation"), "{stderr}");
+    demo.quit();
     assert_eq!(
         png_size(&shot),
         (640, 400),
@@ -213,29 +236,11 @@ fn keys_switch_driver_level_and_views() {
     // Typed keys reach the demo and change what it draws; the title (the HUD) reports it.
     let _guard = common::gpu_lock();
     let x = Xvfb::start();
-    let mut child = Command::new(env!("CARGO_BIN_EXE_meshrefine"))
-        .args(["--validate", "view", "--level", "8"])
-        .env("DISPLAY", &x.display)
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let start = Instant::now();
-    let mut window = String::new();
-    while window.is_empty() && start.elapsed() < Duration::from_secs(60) {
-        std::thread::sleep(Duration::from_millis(200));
-        window = xdotool(&x.display, &["search", "--name", "^meshrefine"])
-            .lines()
-            .next()
-            .unwrap_or("")
-            .to_string();
-    }
-    assert!(!window.is_empty(), "the demo's window never appeared");
-    xdotool(&x.display, &["windowfocus", "--sync", &window]);
+    let demo = Demo::start(&x, &["--level", "8"]);
     let wait_title = |want: &str| {
         let t0 = Instant::now();
         loop {
-            let title = xdotool(&x.display, &["getwindowname", &window]);
+            let title = demo.xdotool(&["getwindowname", &demo.window]);
             if title.contains(want) {
                 return title;
             }
@@ -256,19 +261,8 @@ fn keys_switch_driver_level_and_views() {
         ("l", "(LOD)"),
         ("a", "animated"),
     ] {
-        xdotool(&x.display, &["key", key]);
+        demo.xdotool(&["key", key]);
         wait_title(want);
     }
-    xdotool(&x.display, &["key", "Escape"]);
-    while child.try_wait().unwrap().is_none() {
-        assert!(
-            start.elapsed() < Duration::from_secs(180),
-            "Esc did not end the demo"
-        );
-        std::thread::sleep(Duration::from_millis(50));
-    }
-    let out = child.wait_with_output().unwrap();
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(out.status.success(), "{stderr}");
-    assert!(!stderr.contains("validation"), "{stderr}");
+    demo.quit();
 }
