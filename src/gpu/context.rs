@@ -1,5 +1,6 @@
-//! Instance, physical device choice, device, queue, allocator, validation messages.
+//! Instance, device, queue, allocator, validation messages (device choice: `device.rs`).
 
+use super::device::{pick_device, DeviceInfo};
 use super::{track_drop, track_new};
 use ash::vk;
 use gpu_allocator::vulkan::{Allocator, AllocatorCreateDesc};
@@ -75,48 +76,6 @@ pub struct ContextDesc {
     pub surface_extensions: Vec<&'static CStr>,
 }
 
-/// Identity and limits of the chosen device, for logs and benchmark tables.
-#[derive(Clone, Debug)]
-pub struct DeviceInfo {
-    pub name: String,
-    pub driver_name: String,
-    pub driver_info: String,
-    pub driver_id: vk::DriverId,
-    pub device_type: vk::PhysicalDeviceType,
-    pub api_version: u32,
-    pub limits: vk::PhysicalDeviceLimits,
-    /// Optional features we enabled.
-    pub pipeline_statistics: bool,
-    pub vertex_stores: bool,
-    pub fill_mode_non_solid: bool,
-    /// Largest single allocation (Vulkan 1.1 maxMemoryAllocationSize).
-    pub max_memory_allocation_size: u64,
-    /// VK_EXT_transform_feedback (reads back the tessellator's triangles for export).
-    pub transform_feedback: bool,
-    pub max_transform_feedback_buffer_size: u64,
-}
-
-impl DeviceInfo {
-    /// lavapipe (Mesa's llvmpipe Vulkan driver): some workarounds apply only there.
-    pub fn is_lavapipe(&self) -> bool {
-        self.driver_id == vk::DriverId::MESA_LLVMPIPE
-    }
-    pub fn describe(&self) -> String {
-        format!(
-            "{} ({}, {} {}, Vulkan {}.{}.{})",
-            self.name,
-            format!("{:?}", self.device_type)
-                .to_lowercase()
-                .replace('_', " "),
-            self.driver_name,
-            self.driver_info,
-            vk::api_version_major(self.api_version),
-            vk::api_version_minor(self.api_version),
-            vk::api_version_patch(self.api_version)
-        )
-    }
-}
-
 pub struct Context {
     pub entry: ash::Entry,
     pub instance: ash::Instance,
@@ -161,13 +120,6 @@ unsafe extern "system" fn debug_callback(
         log::trace!("vulkan: {text}");
     }
     vk::FALSE
-}
-
-fn cstr_field(chars: &[c_char]) -> String {
-    // SAFETY: Vulkan fixed-size string fields are NUL-terminated.
-    unsafe { CStr::from_ptr(chars.as_ptr()) }
-        .to_string_lossy()
-        .into_owned()
 }
 
 impl Context {
@@ -473,77 +425,6 @@ impl Context {
         // SAFETY: valid device.
         unsafe { self.device.device_wait_idle() }.call("vkDeviceWaitIdle")
     }
-}
-
-fn pick_device(
-    instance: &ash::Instance,
-    desc: &ContextDesc,
-) -> Result<(vk::PhysicalDevice, u32, DeviceInfo), GpuError> {
-    // SAFETY: valid instance.
-    let devices =
-        unsafe { instance.enumerate_physical_devices() }.call("vkEnumeratePhysicalDevices")?;
-    let mut candidates = Vec::new();
-    for pd in devices {
-        let mut driver = vk::PhysicalDeviceDriverProperties::default();
-        let mut p11 = vk::PhysicalDeviceVulkan11Properties::default();
-        let mut props2 = vk::PhysicalDeviceProperties2::default()
-            .push_next(&mut driver)
-            .push_next(&mut p11);
-        // SAFETY: valid physical device; chain on the stack.
-        unsafe { instance.get_physical_device_properties2(pd, &mut props2) };
-        let props = props2.properties;
-        if props.api_version < vk::API_VERSION_1_3 {
-            continue;
-        }
-        // SAFETY: valid physical device.
-        let families = unsafe { instance.get_physical_device_queue_family_properties(pd) };
-        let Some(family) = families.iter().position(|f| {
-            f.queue_flags
-                .contains(vk::QueueFlags::GRAPHICS | vk::QueueFlags::COMPUTE)
-        }) else {
-            continue;
-        };
-        let info = DeviceInfo {
-            name: cstr_field(&props.device_name),
-            driver_name: cstr_field(&driver.driver_name),
-            driver_info: cstr_field(&driver.driver_info),
-            driver_id: driver.driver_id,
-            device_type: props.device_type,
-            api_version: props.api_version,
-            limits: props.limits,
-            pipeline_statistics: false,
-            vertex_stores: false,
-            fill_mode_non_solid: false,
-            max_memory_allocation_size: p11.max_memory_allocation_size,
-            transform_feedback: false,
-            max_transform_feedback_buffer_size: 0,
-        };
-        candidates.push((pd, family as u32, info));
-    }
-    if let Some(wanted) = &desc.device_name {
-        let w = wanted.to_lowercase();
-        let available = candidates
-            .iter()
-            .map(|c| c.2.name.clone())
-            .collect::<Vec<_>>()
-            .join(", ");
-        return candidates
-            .into_iter()
-            .find(|c| c.2.name.to_lowercase().contains(&w))
-            .ok_or(GpuError::DeviceNotFound {
-                wanted: wanted.clone(),
-                available,
-            });
-    }
-    let rank = |t: vk::PhysicalDeviceType| match t {
-        vk::PhysicalDeviceType::DISCRETE_GPU => 0,
-        vk::PhysicalDeviceType::INTEGRATED_GPU => 1,
-        vk::PhysicalDeviceType::VIRTUAL_GPU => 2,
-        vk::PhysicalDeviceType::CPU => 3,
-        _ => 4,
-    };
-    candidates.sort_by_key(|c| rank(c.2.device_type));
-    candidates.into_iter().next().ok_or(GpuError::NoDevice)
 }
 
 impl Drop for Context {

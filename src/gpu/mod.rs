@@ -14,6 +14,7 @@ mod buffer;
 mod commands;
 mod context;
 pub mod conv;
+mod device;
 mod image;
 mod overlay;
 mod pipeline;
@@ -23,7 +24,8 @@ mod swapchain;
 
 pub use buffer::{Buffer, BufferDesc};
 pub use commands::{CommandPool, Fence, Semaphore};
-pub use context::{Context, ContextDesc, DeviceInfo, GpuError, Messages};
+pub use context::{Context, ContextDesc, GpuError, Messages};
+pub use device::DeviceInfo;
 pub use image::{Image, ImageDesc, OffscreenTarget, Readback, DEPTH_FORMAT, OFFSCREEN_FORMAT};
 pub use overlay::Overlay;
 pub use pipeline::{
