@@ -61,12 +61,10 @@ fn main() {
     let md = report.markdown();
     println!("{md}");
     if benching && !quick {
-        let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("docs/bench");
-        std::fs::create_dir_all(&dir).unwrap();
-        let cmd = "cargo bench --bench fig7";
-        std::fs::write(dir.join("fig7.md"), format!("Command: `{cmd}`\n\n{md}")).unwrap();
-        std::fs::write(dir.join("fig7.csv"), report.csv()).unwrap();
-        std::fs::write(dir.join("fig7.json"), report.json()).unwrap();
-        println!("wrote {}", dir.join("fig7.{md,csv,json}").display());
+        let prefix = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("docs/bench/fig7");
+        report
+            .write_files(&prefix, "cargo bench --bench fig7")
+            .unwrap();
+        println!("wrote {}.{{md,csv,json}}", prefix.display());
     }
 }

@@ -280,6 +280,24 @@ impl Report {
         s
     }
 
+    /// Write `prefix.md` (headed by the command that made it), `prefix.csv` and `prefix.json`.
+    pub fn write_files(&self, prefix: &std::path::Path, command: &str) -> std::io::Result<()> {
+        if let Some(dir) = prefix.parent().filter(|d| !d.as_os_str().is_empty()) {
+            std::fs::create_dir_all(dir)?;
+        }
+        let with = |ext: &str| {
+            let mut p = prefix.as_os_str().to_owned();
+            p.push(ext);
+            std::path::PathBuf::from(p)
+        };
+        std::fs::write(
+            with(".md"),
+            format!("Command: `{command}`\n\n{}", self.markdown()),
+        )?;
+        std::fs::write(with(".csv"), self.csv())?;
+        std::fs::write(with(".json"), self.json())
+    }
+
     pub fn csv(&self) -> String {
         let mut s = String::from(
             "device,mesh,coarse_triangles,level,variant,refined_triangles,gpu_ms_median,gpu_ms_min,gpu_ms_max,wall_ms_median,wall_ms_min,wall_ms_max,gpu_ns_per_refined_triangle,gpu_ratio_vs_static,wall_ratio_vs_static,stored_vertices,stored_indices,geometry_bytes,note\n",

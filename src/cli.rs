@@ -169,8 +169,12 @@ pub struct BenchArgs {
     /// OBJ file (default: the embedded Spot control mesh).
     pub mesh: Option<PathBuf>,
     /// Levels to measure (comma separated).
-    #[arg(long, value_delimiter = ',', default_value = "8,16,32,64")]
+    #[arg(long, value_delimiter = ',', default_value = "8,16,32,64",
+          value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub levels: Vec<u32>,
+    /// Also write the results to PREFIX.md (with this command line), PREFIX.csv and PREFIX.json.
+    #[arg(long, value_name = "PREFIX")]
+    pub out: Option<PathBuf>,
     /// Timed frames per variant (after one warm-up frame).
     #[arg(long, default_value_t = 5)]
     pub frames: u32,

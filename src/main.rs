@@ -195,6 +195,14 @@ fn run(cli: Cli) -> Result<()> {
             let report = meshrefine::bench::run(ctx, &[mesh], &opts)?;
             println!("{}", report.markdown());
             check_messages(&messages)?;
+            if let Some(prefix) = &a.out {
+                let args: Vec<String> = std::env::args().skip(1).collect();
+                let command = format!("meshrefine {}", args.join(" "));
+                report
+                    .write_files(prefix, &command)
+                    .with_context(|| format!("cannot write '{}.md'", prefix.display()))?;
+                println!("wrote {}.{{md,csv,json}}", prefix.display());
+            }
         }
     }
     Ok(())
