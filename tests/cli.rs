@@ -315,7 +315,24 @@ fn bench_reports_every_variant_with_ratios() {
         "--height",
         "64",
     ];
+    let prefix = tmp("bench-out/tet");
+    let mut args = args.to_vec();
+    args.extend(["--out", p(&prefix)]);
     let s = ok(&args);
+    let md = std::fs::read_to_string(tmp("bench-out/tet.md")).unwrap();
+    assert!(
+        md.starts_with("Command: `meshrefine --validate bench"),
+        "{md}"
+    );
+    let csv = std::fs::read_to_string(tmp("bench-out/tet.csv")).unwrap();
+    assert_eq!(
+        csv.lines().count(),
+        1 + 2 * 5,
+        "header + 2 levels x 5 variants:\n{csv}"
+    );
+    assert!(std::fs::read_to_string(tmp("bench-out/tet.json"))
+        .unwrap()
+        .contains("\"rows\""));
     assert!(s.contains("llvmpipe") || s.contains("Device:"), "{s}");
     for variant in [
         "static",
