@@ -23,7 +23,7 @@ impl MeshData {
     }
 }
 
-/// One pattern level on the GPU: barycentric vertices (vertex and storage buffer) and strips.
+/// One pattern level on the GPU: barycentric vertices and row strips.
 pub struct GpuPattern {
     pub level: u32,
     pub vertices: Buffer,
@@ -37,7 +37,7 @@ impl GpuPattern {
         let vertices = Buffer::new_with_data(
             ctx,
             pool,
-            vk::BufferUsageFlags::VERTEX_BUFFER | vk::BufferUsageFlags::STORAGE_BUFFER,
+            vk::BufferUsageFlags::VERTEX_BUFFER,
             &p.bary,
             &format!("pattern {} vertices", p.level),
         )?;
