@@ -262,16 +262,21 @@ impl<'a> Cmd<'a> {
         };
     }
 
+    /// VK_EXT_transform_feedback entry points. Panics if the extension is not enabled (callers
+    /// check `DeviceInfo::transform_feedback` first).
+    fn xfb(&self) -> &ash::ext::transform_feedback::DeviceFn {
+        self.ctx
+            .xfb
+            .as_ref()
+            .expect("transform feedback is enabled")
+            .fp()
+    }
+
     /// Bind `buffer` as transform-feedback buffer 0 and begin transform feedback (inside a
     /// rendering instance). Panics if the device has no VK_EXT_transform_feedback (callers check
     /// `DeviceInfo::transform_feedback` first).
     pub fn begin_transform_feedback(&self, buffer: &Buffer) {
-        let fp = self
-            .ctx
-            .xfb
-            .as_ref()
-            .expect("transform feedback is enabled")
-            .fp();
+        let fp = self.xfb();
         let buffers = [buffer.raw];
         let offsets = [0u64];
         let sizes = [buffer.size()];
@@ -297,12 +302,7 @@ impl<'a> Cmd<'a> {
     }
 
     pub fn end_transform_feedback(&self) {
-        let fp = self
-            .ctx
-            .xfb
-            .as_ref()
-            .expect("transform feedback is enabled")
-            .fp();
+        let fp = self.xfb();
         // SAFETY: matches `begin_transform_feedback` in this rendering instance.
         unsafe {
             (fp.cmd_end_transform_feedback_ext)(self.raw, 0, 0, std::ptr::null(), std::ptr::null())
