@@ -2,7 +2,7 @@
 //!
 //! - stage from the extension (`.vert .tesc .tese .geom .frag .comp`); `glsl/include/` holds
 //!   shared code (`#include "x.glsl"` resolves next to the including file, then in `glsl/include`);
-//! - warnings are errors; optimisation for performance in release builds;
+//! - warnings are errors; optimisation for performance in every profile (lavapipe compiles unoptimized SPIR-V slowly);
 //! - binding numbers come from `src/render/bindings.rs` as macro definitions;
 //! - a source that mentions `CAPTURE` is also compiled with `CAPTURE` defined (the capture
 //!   variant writes its evaluated vertices to a storage buffer), one that mentions `XFB` with
@@ -53,7 +53,6 @@ fn main() {
     let glsl = root.join("glsl");
     let include_dir = glsl.join("include");
     let out_dir = PathBuf::from(std::env::var("OUT_DIR").unwrap());
-    let release = std::env::var("PROFILE").as_deref() == Ok("release");
     println!("cargo:rerun-if-changed=src/render/bindings.rs");
     println!("cargo:rerun-if-changed=glsl");
 
@@ -92,11 +91,9 @@ fn main() {
             opts.set_source_language(shaderc::SourceLanguage::GLSL);
             opts.set_warnings_as_errors();
             opts.set_generate_debug_info();
-            opts.set_optimization_level(if release {
-                shaderc::OptimizationLevel::Performance
-            } else {
-                shaderc::OptimizationLevel::Zero
-            });
+            // Optimized in every profile: unoptimized SPIR-V (every local array copied, nothing
+            // inlined) made lavapipe take seconds per pipeline at its first draw.
+            opts.set_optimization_level(shaderc::OptimizationLevel::Performance);
             for (name, value) in bindings::GLSL_DEFINES {
                 opts.add_macro_definition(name, Some(&value.to_string()));
             }

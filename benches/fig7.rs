@@ -38,6 +38,11 @@ fn main() {
     let meshes: Vec<_> = sizes.iter().map(|&n| grid_mesh(n)).collect();
     let opts = BenchOptions {
         levels,
+        surfaces: vec![(
+            meshrefine::surface::Surface::Flat,
+            meshrefine::surface::Displace::None,
+        )],
+        params: None,
         frames,
         width: 1280,
         height: 720,

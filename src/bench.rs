@@ -1,15 +1,13 @@
-//! Benchmarks shared by `cargo bench` (benches/fig7.rs) and `meshrefine bench`: every driver and
-//! submission mode on the same meshes and levels, in the same run, so the ratios against `static`
-//! compare like with like. Frame time from GPU timestamps and wall clock (submit to fence), median
+//! Benchmarks shared by `cargo bench` (benches/fig7.rs) and `meshrefine bench`: every surface x
+//! displacement x driver and submission mode on the same meshes and levels, in the same run, so the
+//! ratios against `static` (same surface, displacement, mesh and level) compare like with like. Frame time from GPU timestamps and wall clock (submit to fence), median
 //! and spread over timed frames after one warm-up frame (Mesa compiles shaders at the first draw).
 //! Timings are measured, never asserted.
 
-use crate::gpu::{Context, GpuError};
 use crate::mesh::Mesh;
 use crate::pattern::{index_count, vertex_count, PatternSet};
-use crate::render::tess::tess_triangle_count;
-use crate::render::{Camera, DrawConfig, Driver, Headless, Scene, Submit};
-use crate::surface::CoarseTri;
+use crate::render::{Camera, DrawConfig, Driver, Headless, RenderError, Scene, Submit};
+use crate::surface::{Displace, Surface, SurfaceParams};
 use glam::Vec3;
 use std::fmt::Write as _;
 use std::sync::Arc;
@@ -17,6 +15,10 @@ use std::sync::Arc;
 #[derive(Clone, Debug)]
 pub struct BenchOptions {
     pub levels: Vec<u32>,
+    /// Surface x displacement combinations measured (each against its own `static`).
+    pub surfaces: Vec<(Surface, Displace)>,
+    /// Parameters; `None`: [`SurfaceParams::for_radius`] of each mesh.
+    pub params: Option<SurfaceParams>,
     pub frames: u32,
     pub width: u32,
     pub height: u32,
@@ -56,6 +58,8 @@ pub struct Row {
     pub mesh: String,
     pub coarse_triangles: u32,
     pub level: u32,
+    pub surface: Surface,
+    pub displace: Displace,
     pub variant: String,
     pub refined_triangles: u64,
     pub gpu_ms: Option<Stat>,
@@ -131,8 +135,7 @@ pub fn grid_mesh(triangles: u32) -> Mesh {
 }
 
 fn footprint(driver: Driver, level: u32, triangles: u64) -> (u64, u64, u64) {
-    let records = triangles * std::mem::size_of::<CoarseTri>() as u64;
-    let bytes = crate::render::geometry_bytes(driver, level, triangles, records);
+    let bytes = driver.geometry_bytes(level, triangles);
     let (pv, pi) = (vertex_count(level) as u64, index_count(level) as u64);
     match driver {
         Driver::Static => (triangles * pv, triangles * (pi + 1) - 1, bytes),
@@ -142,7 +145,11 @@ fn footprint(driver: Driver, level: u32, triangles: u64) -> (u64, u64, u64) {
 }
 
 /// Measure every variant on every mesh at every level.
-pub fn run(ctx: Arc<Context>, meshes: &[Mesh], opts: &BenchOptions) -> Result<Report, GpuError> {
+pub fn run(
+    ctx: Arc<crate::gpu::Context>,
+    meshes: &[Mesh],
+    opts: &BenchOptions,
+) -> Result<Report, RenderError> {
     let device = ctx.info.describe();
     let max_tess = ctx.info.limits.max_tessellation_generation_level;
     let mut h = Headless::with_context(ctx.clone(), opts.width, opts.height)?;
@@ -157,68 +164,74 @@ pub fn run(ctx: Arc<Context>, meshes: &[Mesh], opts: &BenchOptions) -> Result<Re
         )?;
         let (c, r) = scene.bounding_sphere();
         let camera = Camera::framing(c, r);
-        let t = scene.gpu.triangle_count;
+        let t = scene.gpu.element_count;
+        let params = opts.params.unwrap_or_else(|| SurfaceParams::for_radius(r));
         for &level in &opts.levels {
-            let mut reference: Option<(f64, f64)> = None;
-            for (driver, submit) in variants() {
-                let cfg = DrawConfig::new(driver, submit, level);
-                let (stored_vertices, stored_indices, geometry_bytes) =
-                    footprint(driver, level, t as u64);
-                let mut row = Row {
-                    mesh: mesh.name.clone(),
-                    coarse_triangles: t,
-                    level,
-                    variant: cfg.label(),
-                    refined_triangles: t as u64
-                        * match driver {
-                            Driver::Tess => tess_triangle_count(level),
-                            _ => level * level,
-                        } as u64,
-                    gpu_ms: None,
-                    wall_ms: None,
-                    stored_vertices,
-                    stored_indices,
-                    geometry_bytes,
-                    gpu_ratio: None,
-                    wall_ratio: None,
-                    note: String::new(),
-                };
-                if driver == Driver::Tess && level > max_tess {
-                    row.note =
-                        format!("not drawn: level > maxTessellationGenerationLevel ({max_tess})");
+            for &(surface, displace) in &opts.surfaces {
+                let mut reference: Option<(f64, f64)> = None;
+                for (driver, submit) in variants() {
+                    let mut cfg =
+                        DrawConfig::new(driver, submit, level).with_surface(surface, displace);
+                    cfg.params = params;
+                    let (stored_vertices, stored_indices, geometry_bytes) =
+                        footprint(driver, level, t as u64);
+                    let mut row = Row {
+                        mesh: mesh.name.clone(),
+                        coarse_triangles: t,
+                        level,
+                        surface,
+                        displace,
+                        variant: cfg.label(),
+                        refined_triangles: t as u64 * cfg.refined_per_coarse() as u64,
+                        gpu_ms: None,
+                        wall_ms: None,
+                        stored_vertices,
+                        stored_indices,
+                        geometry_bytes,
+                        gpu_ratio: None,
+                        wall_ratio: None,
+                        note: String::new(),
+                    };
+                    if driver == Driver::Tess && level > max_tess {
+                        row.note = format!(
+                            "not drawn: level > maxTessellationGenerationLevel ({max_tess})"
+                        );
+                        rows.push(row);
+                        continue;
+                    }
+                    h.draw(&mut scene, &cfg, &camera)?; // warm-up: shader compilation, static VBO build
+                    let mut gpu = Vec::new();
+                    let mut wall = Vec::new();
+                    for _ in 0..opts.frames.max(1) {
+                        let f = h.draw(&mut scene, &cfg, &camera)?;
+                        gpu.push(f.gpu_ms);
+                        wall.push(f.wall_ms);
+                    }
+                    let (g, w) = (Stat::of(&gpu), Stat::of(&wall));
+                    if driver == Driver::Static {
+                        reference = Some((g.median, w.median));
+                    }
+                    if let Some((rg, rw)) = reference {
+                        row.gpu_ratio = Some(g.median / rg);
+                        row.wall_ratio = Some(w.median / rw);
+                    }
+                    row.gpu_ms = Some(g);
+                    row.wall_ms = Some(w);
+                    log::info!(
+                        "{} L{} {} + {} {}: gpu {:.2} ms wall {:.2} ms",
+                        row.mesh,
+                        level,
+                        surface.name(),
+                        displace.name(),
+                        row.variant,
+                        g.median,
+                        w.median
+                    );
                     rows.push(row);
-                    continue;
                 }
-                h.draw(&mut scene, &cfg, &camera)?; // warm-up: shader compilation, static VBO build
-                let mut gpu = Vec::new();
-                let mut wall = Vec::new();
-                for _ in 0..opts.frames.max(1) {
-                    let f = h.draw(&mut scene, &cfg, &camera)?;
-                    gpu.push(f.gpu_ms);
-                    wall.push(f.wall_ms);
-                }
-                let (g, w) = (Stat::of(&gpu), Stat::of(&wall));
-                if driver == Driver::Static {
-                    reference = Some((g.median, w.median));
-                }
-                if let Some((rg, rw)) = reference {
-                    row.gpu_ratio = Some(g.median / rg);
-                    row.wall_ratio = Some(w.median / rw);
-                }
-                row.gpu_ms = Some(g);
-                row.wall_ms = Some(w);
-                log::info!(
-                    "{} L{} {}: gpu {:.2} ms wall {:.2} ms",
-                    row.mesh,
-                    level,
-                    row.variant,
-                    g.median,
-                    w.median
-                );
-                rows.push(row);
+                // Free the static buffers of this level before the next one.
+                scene.static_vbo = None;
             }
-            // Free the static buffers of this level before the next one.
-            scene.static_vbo = None;
         }
     }
     Ok(Report {
@@ -249,19 +262,21 @@ impl Report {
         );
         let _ = writeln!(
             s,
-            "| mesh | coarse tris | level | variant | refined tris | GPU ms | wall ms | GPU ns / refined tri | GPU / static | wall / static | stored vertices | stored indices | geometry bytes | note |"
+            "| mesh | coarse tris | level | surface | displace | variant | refined tris | GPU ms | wall ms | GPU ns / refined tri | GPU / static | wall / static | stored vertices | stored indices | geometry bytes | note |"
         );
         let _ = writeln!(
             s,
-            "|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|"
+            "|---|---:|---:|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|"
         );
         for r in &self.rows {
             let _ = writeln!(
                 s,
-                "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+                "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
                 r.mesh,
                 r.coarse_triangles,
                 r.level,
+                r.surface.name(),
+                r.displace.name(),
                 r.variant,
                 r.refined_triangles,
                 fmt_stat(&r.gpu_ms),
@@ -300,17 +315,19 @@ impl Report {
 
     pub fn csv(&self) -> String {
         let mut s = String::from(
-            "device,mesh,coarse_triangles,level,variant,refined_triangles,gpu_ms_median,gpu_ms_min,gpu_ms_max,wall_ms_median,wall_ms_min,wall_ms_max,gpu_ns_per_refined_triangle,gpu_ratio_vs_static,wall_ratio_vs_static,stored_vertices,stored_indices,geometry_bytes,note\n",
+            "device,mesh,coarse_triangles,level,surface,displace,variant,refined_triangles,gpu_ms_median,gpu_ms_min,gpu_ms_max,wall_ms_median,wall_ms_min,wall_ms_max,gpu_ns_per_refined_triangle,gpu_ratio_vs_static,wall_ratio_vs_static,stored_vertices,stored_indices,geometry_bytes,note\n",
         );
         let f = |x: Option<f64>| x.map(|v| format!("{v:.4}")).unwrap_or_default();
         for r in &self.rows {
             let _ = writeln!(
                 s,
-                "\"{}\",{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},\"{}\"",
+                "\"{}\",{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},\"{}\"",
                 self.device,
                 r.mesh,
                 r.coarse_triangles,
                 r.level,
+                r.surface.name(),
+                r.displace.name(),
                 r.variant,
                 r.refined_triangles,
                 f(r.gpu_ms.map(|s| s.median)),
@@ -341,8 +358,8 @@ impl Report {
             .iter()
             .map(|r| {
                 format!(
-                    "{{\"mesh\":\"{}\",\"coarse_triangles\":{},\"level\":{},\"variant\":\"{}\",\"refined_triangles\":{},\"gpu_ms_median\":{},\"wall_ms_median\":{},\"gpu_ns_per_refined_triangle\":{},\"gpu_ratio_vs_static\":{},\"wall_ratio_vs_static\":{},\"stored_vertices\":{},\"stored_indices\":{},\"geometry_bytes\":{},\"note\":\"{}\"}}",
-                    r.mesh, r.coarse_triangles, r.level, r.variant, r.refined_triangles,
+                    "{{\"mesh\":\"{}\",\"coarse_triangles\":{},\"level\":{},\"surface\":\"{}\",\"displace\":\"{}\",\"variant\":\"{}\",\"refined_triangles\":{},\"gpu_ms_median\":{},\"wall_ms_median\":{},\"gpu_ns_per_refined_triangle\":{},\"gpu_ratio_vs_static\":{},\"wall_ratio_vs_static\":{},\"stored_vertices\":{},\"stored_indices\":{},\"geometry_bytes\":{},\"note\":\"{}\"}}",
+                    r.mesh, r.coarse_triangles, r.level, r.surface.name(), r.displace.name(), r.variant, r.refined_triangles,
                     f(r.gpu_ms.map(|s| s.median)), f(r.wall_ms.map(|s| s.median)), f(r.ns_per_triangle()), f(r.gpu_ratio), f(r.wall_ratio),
                     r.stored_vertices, r.stored_indices, r.geometry_bytes, r.note
                 )

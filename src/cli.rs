@@ -2,7 +2,7 @@
 
 use clap::{Args, Parser, Subcommand};
 use meshrefine::render::{Driver, Submit};
-use meshrefine::surface::Surface;
+use meshrefine::surface::{Displace, Surface, SurfaceParams};
 use std::path::PathBuf;
 
 #[derive(Parser, Debug)]
@@ -36,11 +36,55 @@ pub enum Command {
     Bench(BenchArgs),
 }
 
+/// The surfaces' and displacements' parameters.
 #[derive(Args, Debug, Clone)]
-pub struct Technique {
+pub struct ParamOpts {
+    /// Phong tessellation's shape factor, within [0, 1].
+    #[arg(long, default_value_t = 0.75)]
+    pub alpha: f32,
+    /// Displacement amplitude in the mesh's units (default: 3% of its bounding radius).
+    #[arg(long, allow_negative_numbers = true)]
+    pub amplitude: Option<f32>,
+    /// Displacement frequency per mesh unit (default: 24 / bounding radius).
+    #[arg(long)]
+    pub frequency: Option<f32>,
+    /// Octaves of the noise displacement.
+    #[arg(long, default_value_t = 1)]
+    pub octaves: u32,
+}
+
+impl ParamOpts {
+    /// The parameters for a mesh of bounding radius `radius`, checked.
+    pub fn params(&self, radius: f32) -> Result<SurfaceParams, String> {
+        let d = SurfaceParams::for_radius(radius);
+        let p = SurfaceParams {
+            alpha: self.alpha,
+            amplitude: self.amplitude.unwrap_or(d.amplitude),
+            frequency: self.frequency.unwrap_or(d.frequency),
+            octaves: self.octaves,
+        };
+        p.validate()?;
+        Ok(p)
+    }
+}
+
+/// Surface and displacement.
+#[derive(Args, Debug, Clone)]
+pub struct SurfaceOpts {
     /// Surface defined by each coarse triangle.
     #[arg(long, value_enum, default_value = "flat")]
-    pub surface: SurfaceArg,
+    pub surface: Surface,
+    /// Displacement along the surface's normal.
+    #[arg(long, value_enum, default_value = "none")]
+    pub displace: Displace,
+    #[command(flatten)]
+    pub params: ParamOpts,
+}
+
+#[derive(Args, Debug, Clone)]
+pub struct Technique {
+    #[command(flatten)]
+    pub surface: SurfaceOpts,
     /// How barycentric samples are produced on the GPU.
     #[arg(long, value_enum, default_value = "pattern")]
     pub driver: Driver,
@@ -50,20 +94,6 @@ pub struct Technique {
     /// Refinement level N: N segments per coarse edge, N² triangles per coarse triangle.
     #[arg(long, default_value_t = 16, value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub level: u32,
-}
-
-#[derive(clap::ValueEnum, Clone, Copy, Debug)]
-pub enum SurfaceArg {
-    /// Linear interpolation of the coarse triangle.
-    Flat,
-}
-
-impl SurfaceArg {
-    pub fn surface(self) -> Surface {
-        match self {
-            SurfaceArg::Flat => Surface::Flat,
-        }
-    }
 }
 
 #[derive(Args, Debug)]
@@ -118,9 +148,8 @@ pub struct ExportArgs {
     /// Output OBJ.
     #[arg(short, long, value_name = "FILE.obj")]
     pub output: PathBuf,
-    /// Surface defined by each coarse triangle.
-    #[arg(long, value_enum, default_value = "flat")]
-    pub surface: SurfaceArg,
+    #[command(flatten)]
+    pub surface: SurfaceOpts,
     /// Whose GPU evaluation to read back (static evaluates on the CPU: nothing to read back).
     #[arg(long, value_enum, default_value = "pattern")]
     pub driver: ExportDriver,
@@ -144,7 +173,7 @@ pub enum ExportDriver {
 impl ExportArgs {
     pub fn technique(&self) -> Technique {
         Technique {
-            surface: self.surface,
+            surface: self.surface.clone(),
             driver: match self.driver {
                 ExportDriver::Pattern => Driver::Pattern,
                 ExportDriver::Tess => Driver::Tess,
@@ -168,6 +197,14 @@ pub struct InfoArgs {
 pub struct BenchArgs {
     /// OBJ file (default: the embedded Spot control mesh).
     pub mesh: Option<PathBuf>,
+    /// Surfaces to measure (comma separated).
+    #[arg(long, value_enum, value_delimiter = ',', default_value = "flat")]
+    pub surfaces: Vec<Surface>,
+    /// Displacements to measure with every surface (comma separated).
+    #[arg(long, value_enum, value_delimiter = ',', default_value = "none")]
+    pub displacements: Vec<Displace>,
+    #[command(flatten)]
+    pub params: ParamOpts,
     /// Levels to measure (comma separated).
     #[arg(long, value_delimiter = ',', default_value = "8,16,32,64",
           value_parser = clap::value_parser!(u32).range(1..=1024))]

@@ -8,7 +8,7 @@ use clap::Parser;
 use cli::{Cli, Command, Technique};
 use meshrefine::gpu::{Context, ContextDesc, Messages};
 use meshrefine::mesh::Mesh;
-use meshrefine::render::{geometry_bytes, Camera, DrawConfig, Driver, Headless};
+use meshrefine::render::{Camera, DrawConfig, Driver, Headless};
 use std::path::Path;
 use std::process::ExitCode;
 use std::sync::Arc;
@@ -57,13 +57,20 @@ fn load_mesh(path: Option<&Path>) -> Result<Mesh> {
     }
 }
 
-fn draw_config(t: &Technique) -> DrawConfig {
-    DrawConfig {
-        surface: t.surface.surface(),
+/// What to draw: the technique's choices, parameters scaled to `mesh` where not given.
+fn draw_config(t: &Technique, mesh: &Mesh) -> Result<DrawConfig> {
+    Ok(DrawConfig {
+        surface: t.surface.surface,
+        displace: t.surface.displace,
+        params: t
+            .surface
+            .params
+            .params(mesh.bounding_radius())
+            .map_err(anyhow::Error::msg)?,
         driver: t.driver,
         submit: t.submit,
         level: t.level,
-    }
+    })
 }
 
 /// After every GPU object is gone: fail if the validation layer complained or anything leaked.
@@ -90,7 +97,7 @@ fn run(cli: Cli) -> Result<()> {
     match &cli.command {
         Command::Render(a) => {
             let mesh = load_mesh(a.mesh.as_deref())?;
-            let cfg = draw_config(&a.technique);
+            let cfg = draw_config(&a.technique, &mesh)?;
             let messages = {
                 let ctx = Context::new(&desc)?;
                 let messages = ctx.messages_handle();
@@ -102,7 +109,7 @@ fn run(cli: Cli) -> Result<()> {
         }
         Command::View(a) => {
             let mesh = load_mesh(a.mesh.as_deref())?;
-            let cfg = draw_config(&a.technique);
+            let cfg = draw_config(&a.technique, &mesh)?;
             let has_display = std::env::var_os("DISPLAY").is_some()
                 || std::env::var_os("WAYLAND_DISPLAY").is_some();
             let why_headless = if has_display {
@@ -140,7 +147,7 @@ fn run(cli: Cli) -> Result<()> {
         }
         Command::Export(a) => {
             let mesh = load_mesh(a.mesh.as_deref())?;
-            let cfg = draw_config(&a.technique());
+            let cfg = draw_config(&a.technique(), &mesh)?;
             let messages = {
                 let ctx = Context::new(&desc)?;
                 let messages = ctx.messages_handle();
@@ -160,8 +167,9 @@ fn run(cli: Cli) -> Result<()> {
                 };
                 let header = vec![
                     format!(
-                        "meshrefine export of '{name}': surface {}, driver {}, level {}",
+                        "meshrefine export of '{name}': surface {}, displacement {}, driver {}, level {}",
                         cfg.surface.name(),
+                        cfg.displace.name(),
                         cfg.label(),
                         cfg.level
                     ),
@@ -186,8 +194,19 @@ fn run(cli: Cli) -> Result<()> {
             let mesh = load_mesh(a.mesh.as_deref())?;
             let ctx = Context::new(&desc)?;
             let messages = ctx.messages_handle();
+            let params = a
+                .params
+                .params(mesh.bounding_radius())
+                .map_err(anyhow::Error::msg)?;
+            let surfaces = a
+                .surfaces
+                .iter()
+                .flat_map(|&s| a.displacements.iter().map(move |&d| (s, d)))
+                .collect();
             let opts = meshrefine::bench::BenchOptions {
                 levels: a.levels.clone(),
+                surfaces,
+                params: Some(params),
                 frames: a.frames,
                 width: a.width,
                 height: a.height,
@@ -260,7 +279,6 @@ fn info(path: &Path, level: Option<u32>) -> Result<()> {
     println!("valence histogram (valence:vertices): {}", hist.join(" "));
     if let Some(level) = level {
         let t = s.triangles as u64;
-        let records = t * std::mem::size_of::<meshrefine::surface::CoarseTri>() as u64;
         println!(
             "level {level}: {} refined triangles ({} per coarse triangle)",
             t * meshrefine::pattern::triangle_count(level) as u64,
@@ -270,7 +288,7 @@ fn info(path: &Path, level: Option<u32>) -> Result<()> {
             println!(
                 "  {:8} {:>14} bytes of GPU geometry",
                 d.name(),
-                geometry_bytes(d, level, t, records)
+                d.geometry_bytes(level, t)
             );
         }
     }

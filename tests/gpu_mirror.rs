@@ -1,14 +1,21 @@
 //! The vertices the real drawing pipelines evaluated (read back through their capture variants)
-//! equal the CPU mirror, for every GPU driver and submission mode, several meshes and levels.
+//! equal the CPU mirror, for every surface x displacement x GPU driver x submission mode, several
+//! meshes and levels.
 //!
-//! Tolerances:
-//! - `pattern` positions: exact (0 ulp). The pattern stores the same barycentric floats the
-//!   mirror uses, the flat surface is evaluated with `precise` (no FMA) in the same operation
-//!   order, and Vulkan rounds fp32 add/multiply correctly.
-//! - `tess` positions: 4 ulp of the mesh's bounding radius, the mirror evaluated at the captured
-//!   gl_TessCoord. Edge samples are snapped to k/N on the GPU, and Vulkan's division is exact
-//!   only to 2.5 ulp.
-//! - normals (both): 1e-5 per component after normalization (GPU inversesqrt is not exact).
+//! Tolerances (per position component, `r` the mesh's bounding radius, `a` the amplitude):
+//! - `pattern`, no displacement: exact (0 ulp) for every surface. The pattern stores the same
+//!   barycentric floats the mirror uses, the surfaces are evaluated with `precise` (no FMA) in the
+//!   mirror's operation order, with `dot3` instead of `dot`, multiplications by 1/3 and 1/6
+//!   instead of divisions, and Vulkan rounds fp32 add and multiply correctly.
+//! - `tess`: 4 ulp of r (flat) or 16 ulp of r (curved surfaces), the mirror evaluated at the
+//!   captured gl_TessCoord: edge samples are snapped to k/N on the GPU, and Vulkan's division is
+//!   exact only to 2.5 ulp, which the cubic PN patch amplifies.
+//! - `sine`: 2e-3·|a| more: GPU sin/cos/sqrt are not correctly rounded (Vulkan allows 2^-11
+//!   absolute error for sin on [-π, π]).
+//! - `noise`: 1e-5·|a| more: floor, fade and the lerps are exact operations, but the noise's
+//!   input is the (already rounded) surface point times the frequency.
+//! - normals: 1e-5 per component without displacement (GPU inversesqrt is not exact); 2e-3 with
+//!   (sin, cos, cross products and a second normalization).
 
 mod common;
 
@@ -17,7 +24,7 @@ use meshrefine::mesh::Mesh;
 use meshrefine::pattern::{lattice_index, Pattern, PatternSet};
 use meshrefine::render::tess::tess_vertex_count;
 use meshrefine::render::{Camera, DrawConfig, Driver, Headless, Scene, Submit};
-use meshrefine::surface::{eval, tess_weights, Surface};
+use meshrefine::surface::{eval, tess_weights, Displace, Surface, SurfaceParams};
 use std::collections::{HashMap, HashSet};
 
 fn scene_with(h: &Headless, mesh: Mesh, levels: &[u32]) -> (Scene, Camera, f32) {
@@ -33,109 +40,184 @@ fn scene_with(h: &Headless, mesh: Mesh, levels: &[u32]) -> (Scene, Camera, f32) 
     (scene, Camera::framing(c, r), r)
 }
 
-fn check_pattern(file: &str, h: &mut Headless, levels: &[u32]) {
-    let (mut scene, camera, _) = scene_with(h, model(file), levels);
+/// Position tolerance of a combination on `driver` for a mesh of radius `r`.
+fn position_tolerance(cfg: &DrawConfig, r: f32) -> f32 {
+    let eps = f32::EPSILON * r;
+    let base = match (cfg.driver, cfg.surface) {
+        (Driver::Pattern, _) => 0.0,
+        (_, Surface::Flat) => 4.0 * eps,
+        _ => 16.0 * eps,
+    };
+    let a = cfg.params.amplitude.abs();
+    base + match cfg.displace {
+        Displace::None => 0.0,
+        Displace::Sine => 2e-3 * a + 8.0 * eps,
+        Displace::Noise => 1e-5 * a + 8.0 * eps,
+    }
+}
+
+fn normal_tolerance(cfg: &DrawConfig) -> f32 {
+    if cfg.displace == Displace::None {
+        1e-5
+    } else {
+        2e-3
+    }
+}
+
+/// Every surface x displacement (the flat surface alone when `all` is false).
+fn combinations(all: bool) -> Vec<(Surface, Displace)> {
+    if !all {
+        return vec![(Surface::Flat, Displace::None)];
+    }
+    Surface::ALL
+        .iter()
+        .flat_map(|&s| Displace::ALL.iter().map(move |&d| (s, d)))
+        .collect()
+}
+
+fn check_pattern(file: &str, h: &mut Headless, levels: &[u32], all: bool) {
+    let (mut scene, camera, r) = scene_with(h, model(file), levels);
+    let params = SurfaceParams::for_radius(r);
     for &level in levels {
         let pattern = Pattern::uniform(level);
         let pv = pattern.bary.len();
-        for submit in Submit::ALL {
-            let cfg = DrawConfig::new(Driver::Pattern, submit, level);
-            let cap = h.capture(&mut scene, &cfg, &camera).unwrap();
-            assert_eq!(cap.vertices.len(), scene.data.records.len() * pv);
-            for (t, rec) in scene.data.records.iter().enumerate() {
-                for (k, (i, j)) in pattern.lattice().enumerate() {
-                    assert_eq!(lattice_index(level, i, j) as usize, k);
-                    let got = &cap.vertices[t * pv + k];
-                    let what = format!(
-                        "{file} {} L{level}: triangle {t} vertex ({i},{j})",
-                        cfg.label()
-                    );
-                    assert_eq!(got.position[3], 1.0, "{what} never written");
-                    assert_eq!(
-                        got.id,
-                        [t as u32, k as u32, 0, 0],
-                        "{what}: wrong capture slot"
-                    );
-                    let want = eval(Surface::Flat, rec, pattern.bary[k]);
-                    assert_eq!(
-                        &got.position[..3],
-                        &want.position.to_array()[..],
-                        "{what}: position differs from the mirror"
-                    );
-                    for a in 0..3 {
-                        assert!(
-                            (got.normal[a] - want.normal[a]).abs() <= 1e-5,
-                            "{what}: normal {:?} vs {:?}",
-                            &got.normal[..3],
-                            want.normal
+        for (surface, displace) in combinations(all) {
+            for submit in Submit::ALL {
+                let mut cfg =
+                    DrawConfig::new(Driver::Pattern, submit, level).with_surface(surface, displace);
+                cfg.params = params;
+                let tol = position_tolerance(&cfg, r);
+                let ntol = normal_tolerance(&cfg);
+                let cap = h.capture(&mut scene, &cfg, &camera).unwrap();
+                assert_eq!(cap.vertices.len(), scene.data.records.len() * pv);
+                let mut worst = 0.0f32;
+                for (t, rec) in scene.data.records.iter().enumerate() {
+                    for (k, (i, j)) in pattern.lattice().enumerate() {
+                        assert_eq!(lattice_index(level, i, j) as usize, k);
+                        let got = &cap.vertices[t * pv + k];
+                        let what = format!(
+                            "{file} {} + {} {} L{level}: triangle {t} vertex ({i},{j})",
+                            surface.name(),
+                            displace.name(),
+                            cfg.label()
                         );
+                        assert_eq!(got.position[3], 1.0, "{what} never written");
+                        assert_eq!(
+                            got.id,
+                            [t as u32, k as u32, 0, 0],
+                            "{what}: wrong capture slot"
+                        );
+                        let want = eval(surface, displace, &params, rec, pattern.bary[k]);
+                        for a in 0..3 {
+                            let d = (got.position[a] - want.position[a]).abs();
+                            worst = worst.max(d);
+                            assert!(
+                                d <= tol,
+                                "{what}: position {:?} differs from the mirror {} (tolerance {tol:e})",
+                                &got.position[..3],
+                                want.position
+                            );
+                            assert!(
+                                (got.normal[a] - want.normal[a]).abs() <= ntol,
+                                "{what}: normal {:?} vs {:?}",
+                                &got.normal[..3],
+                                want.normal
+                            );
+                        }
                     }
+                }
+                if submit == Submit::Instanced {
+                    eprintln!(
+                        "{file} {} + {} pattern L{level}: max position error {worst:e} (tolerance {tol:e})",
+                        surface.name(),
+                        displace.name()
+                    );
                 }
             }
         }
     }
 }
 
-fn check_tess(file: &str, h: &mut Headless, levels: &[u32]) {
+fn check_tess(file: &str, h: &mut Headless, levels: &[u32], all: bool) {
     let (mut scene, camera, r) = scene_with(h, model(file), levels);
-    let tol = 4.0 * f32::EPSILON * r;
+    let params = SurfaceParams::for_radius(r);
     for &level in levels {
-        let cfg = DrawConfig::new(Driver::Tess, Submit::Instanced, level);
-        let cap = h.capture(&mut scene, &cfg, &camera).unwrap();
-        let mut coords: HashMap<u32, HashSet<[u32; 3]>> = HashMap::new();
-        let mut worst = 0.0f32;
-        for v in &cap.vertices {
-            let t = v.id[0] as usize;
-            assert_eq!(v.id[1], u32::MAX);
-            assert_eq!(v.position[3], 1.0);
-            let tc = [v.coord[0], v.coord[1], v.coord[2]];
-            coords
-                .entry(v.id[0])
-                .or_default()
-                .insert(tc.map(f32::to_bits));
-            let want = eval(
-                Surface::Flat,
-                &scene.data.records[t],
-                tess_weights(tc, level),
+        for (surface, displace) in combinations(all) {
+            let mut cfg = DrawConfig::new(Driver::Tess, Submit::Instanced, level)
+                .with_surface(surface, displace);
+            cfg.params = params;
+            let tol = position_tolerance(&cfg, r);
+            let ntol = normal_tolerance(&cfg);
+            let cap = h.capture(&mut scene, &cfg, &camera).unwrap();
+            let mut coords: HashMap<u32, HashSet<[u32; 3]>> = HashMap::new();
+            let mut worst = 0.0f32;
+            let what = format!(
+                "{file} {} + {} tess L{level}",
+                surface.name(),
+                displace.name()
             );
-            for a in 0..3 {
-                let d = (v.position[a] - want.position[a]).abs();
-                worst = worst.max(d);
-                assert!(d <= tol, "{file} tess L{level}: triangle {t} at {tc:?}: {:?} vs mirror {:?} (tolerance {tol})", &v.position[..3], want.position);
-                assert!(
-                    (v.normal[a] - want.normal[a]).abs() <= 1e-5,
-                    "{file} tess L{level}: normal at {tc:?}"
+            for v in &cap.vertices {
+                let t = v.id[0] as usize;
+                assert_eq!(v.id[1], u32::MAX);
+                assert_eq!(v.position[3], 1.0);
+                let tc = [v.coord[0], v.coord[1], v.coord[2]];
+                coords
+                    .entry(v.id[0])
+                    .or_default()
+                    .insert(tc.map(f32::to_bits));
+                let want = eval(
+                    surface,
+                    displace,
+                    &params,
+                    &scene.data.records[t],
+                    tess_weights(tc, level),
+                );
+                for a in 0..3 {
+                    let d = (v.position[a] - want.position[a]).abs();
+                    worst = worst.max(d);
+                    assert!(
+                        d <= tol,
+                        "{what}: triangle {t} at {tc:?}: {:?} vs mirror {} (tolerance {tol:e})",
+                        &v.position[..3],
+                        want.position
+                    );
+                    assert!(
+                        (v.normal[a] - want.normal[a]).abs() <= ntol,
+                        "{what}: normal at {tc:?}: {:?} vs {}",
+                        &v.normal[..3],
+                        want.normal
+                    );
+                }
+            }
+            // Every patch was tessellated into exactly the expected set of distinct samples.
+            assert_eq!(
+                coords.len(),
+                scene.data.records.len(),
+                "{what}: patches missing"
+            );
+            for (t, set) in &coords {
+                assert_eq!(
+                    set.len() as u32,
+                    tess_vertex_count(level),
+                    "{what}: triangle {t}"
                 );
             }
-        }
-        // Every patch was tessellated into exactly the expected set of distinct samples.
-        assert_eq!(
-            coords.len(),
-            scene.data.records.len(),
-            "{file} tess L{level}: patches missing"
-        );
-        for (t, set) in &coords {
-            assert_eq!(
-                set.len() as u32,
-                tess_vertex_count(level),
-                "{file} tess L{level}: triangle {t}"
+            eprintln!(
+                "{what}: {} evaluations, max position error {worst:e} (tolerance {tol:e})",
+                cap.vertices.len()
             );
         }
-        eprintln!(
-            "{file} tess level {level}: {} evaluations, max position error {worst:e}",
-            cap.vertices.len()
-        );
     }
 }
 
 #[test]
 fn pattern_matches_mirror_exactly() {
     with_gpu(64, 64, |h| {
-        check_pattern("tetrahedron.obj", h, &[1, 2, 7, 64]);
-        check_pattern("icosahedron_vn.obj", h, &[1, 5, 16]);
-        check_pattern("grid_open_8x8.obj", h, &[3, 8]);
-        check_pattern("cylinder_hard_normals.obj", h, &[4]);
-        check_pattern("spot_control_tri.obj", h, &[6]);
+        check_pattern("tetrahedron.obj", h, &[1, 2, 7, 64], false);
+        check_pattern("icosahedron_vn.obj", h, &[1, 5, 16], false);
+        check_pattern("grid_open_8x8.obj", h, &[3, 8], false);
+        check_pattern("cylinder_hard_normals.obj", h, &[4], false);
+        check_pattern("spot_control_tri.obj", h, &[6], false);
     });
 }
 
@@ -143,10 +225,28 @@ fn pattern_matches_mirror_exactly() {
 fn tess_matches_mirror() {
     with_gpu(64, 64, |h| {
         // Level 64 on lavapipe exercises the split draws (20 patches per draw).
-        check_tess("tetrahedron.obj", h, &[1, 2, 7, 64]);
-        check_tess("icosahedron_vn.obj", h, &[3, 16]);
-        check_tess("grid_open_8x8.obj", h, &[5]);
-        check_tess("spot_control_tri.obj", h, &[6]);
+        check_tess("tetrahedron.obj", h, &[1, 2, 7, 64], false);
+        check_tess("icosahedron_vn.obj", h, &[3, 16], false);
+        check_tess("grid_open_8x8.obj", h, &[5], false);
+        check_tess("spot_control_tri.obj", h, &[6], false);
+    });
+}
+
+/// Every surface x displacement x submission mode on the pattern driver.
+#[test]
+fn every_surface_and_displacement_on_pattern() {
+    with_gpu(64, 64, |h| {
+        check_pattern("icosahedron_vn.obj", h, &[5], true);
+        check_pattern("cylinder_hard_normals.obj", h, &[4], true);
+    });
+}
+
+/// Every surface x displacement on the tess driver.
+#[test]
+fn every_surface_and_displacement_on_tess() {
+    with_gpu(64, 64, |h| {
+        check_tess("icosahedron_vn.obj", h, &[5], true);
+        check_tess("grid_open_8x8.obj", h, &[3], true);
     });
 }
 

@@ -29,7 +29,7 @@ fn statistics_match_geometry() {
         .unwrap();
         let (c, r) = scene.bounding_sphere();
         let camera = Camera::framing(c, r);
-        let t = scene.gpu.triangle_count as u64;
+        let t = scene.gpu.element_count as u64;
         for n in levels {
             let configs = [
                 DrawConfig::new(Driver::Static, Submit::Instanced, n),

@@ -13,7 +13,7 @@ use meshrefine::pattern::{Pattern, PatternSet};
 use meshrefine::render::static_vbo::refine_on_cpu;
 use meshrefine::render::tess::{tess_triangle_count, tess_vertex_count};
 use meshrefine::render::{Camera, DrawConfig, Driver, Scene, Submit};
-use meshrefine::surface::Surface;
+use meshrefine::surface::RecordKind;
 use std::collections::{HashMap, HashSet};
 
 const CLOSED: &[&str] = &[
@@ -67,9 +67,13 @@ fn assert_closed(triangles: &[[(u32, u32); 3]], what: &str) {
 fn static_driver_is_watertight() {
     for file in CLOSED {
         let mesh = model(file);
-        let records = meshrefine::surface::build_records(&mesh);
+        let records = meshrefine::surface::build_records(RecordKind::Corners, &mesh);
         for n in [2u32, 5, 16] {
-            let (v, _) = refine_on_cpu(Surface::Flat, &records, &Pattern::uniform(n));
+            let (v, _) = refine_on_cpu(
+                &DrawConfig::new(Driver::Static, Submit::Instanced, n),
+                &records,
+                &Pattern::uniform(n),
+            );
             let distinct: HashSet<[u32; 3]> = v.iter().map(|x| bits(&x[..3])).collect();
             let inner = ((n - 1) * (n - 2) / 2) as usize;
             assert_eq!(

@@ -4,13 +4,22 @@
 // bits as the CPU mirror (Vulkan rounds fp32 add and multiply correctly).
 #ifndef FLAT_GLSL
 #define FLAT_GLSL
-#include "bary.glsl"
+#include "corners.glsl"
 
-void flat_eval(Corners c, out vec3 position, out vec3 normal) {
+vec3 flat_point(Corners c) {
     precise vec3 p = c.p[0] * c.w[0] + c.p[1] * c.w[1] + c.p[2] * c.w[2];
-    vec3 n = c.n[0] * c.w[0] + c.n[1] * c.w[1] + c.n[2] * c.w[2];
-    position = p;
-    normal = normalize(n);
+    return p;
+}
+
+vec3 flat_normal(Corners c) {
+    return normalize(c.n[0] * c.w[0] + c.n[1] * c.w[1] + c.n[2] * c.w[2]);
+}
+
+// ∂P/∂b_i of each canonical corner in g.
+void flat_eval(Corners c, out vec3 position, out vec3 normal, out vec3 g[3]) {
+    position = flat_point(c);
+    normal = flat_normal(c);
+    g = c.p;
 }
 
 #endif

@@ -1,13 +1,12 @@
-// GPU-side records, mirrored in Rust (src/surface/record.rs, src/render/frame.rs); a const
+// GPU-side records, mirrored in Rust (src/surface/record.rs, src/render/mod.rs); a const
 // assertion on each Rust struct pins sizes and offsets, and a GPU test reads sentinels back.
 #ifndef RECORDS_GLSL
 #define RECORDS_GLSL
 
-// One coarse triangle (112 bytes, identical in std140 / std430 / push-constant layout).
-struct CoarseTri {
-    vec4 p[3];   // corner positions (xyz)
-    vec4 n[3];   // corner normals (xyz)
-    uvec4 idx;   // xyz: global position index of each corner (canonical order key); w: triangle index
+// One element's record, opaque to the drivers (112 bytes, identical in std140 / std430 /
+// push-constant layout). Each surface decodes its own layout (corners.glsl: `corner_record`).
+struct ElementRecord {
+    uvec4 d[7];
 };
 
 // Per frame (set 0).
@@ -16,21 +15,31 @@ layout(set = SET_FRAME, binding = BINDING_FRAME, std140) uniform Frame {
     vec4 eye;        // xyz: camera position (world)
     vec4 light_dir;  // xyz: direction towards the light (world)
     vec4 base_color; // rgb: surface colour
-    vec4 options;    // reserved
+    vec4 options;    // x: view (0 shaded, 1 normals)
+    vec4 params;     // surface and displacement: (alpha, amplitude, frequency, octaves)
 } frame;
 
-// Per draw: 128 bytes, the minimum every device offers.
+// The elements' records, one per element (set 1). Drivers read the record of the element they
+// sample; the fragment stage reads it to evaluate normal fields per fragment.
+layout(set = SET_MESH, binding = BINDING_TRIS, std430) readonly buffer Records {
+    ElementRecord records[];
+};
+
+#ifndef FRAGMENT_STAGE
+// Per draw: 128 bytes, the minimum every device offers; geometry stages only.
 layout(push_constant, std430) uniform Push {
-    CoarseTri tri;   // `push` submission: the coarse triangle of this draw
-    uvec4 draw;      // x: level N; y: first triangle of this draw (tess); z: pattern vertex count
+    ElementRecord rec; // `push` submission: the element of this draw
+    uvec4 draw;        // x: level N; y: first element of this draw; z: pattern vertex count;
+                       // w: the element of this draw (`push`, `ubo`)
 } pc;
+#endif
 
 // What the CAPTURE variants write, one per evaluated vertex (64 bytes).
 struct CapturedVertex {
     vec4 position;   // xyz; w = 1 once written
     vec4 normal;     // xyz
     vec4 coord;      // the sample as the driver produced it: pattern (w, u, v) or gl_TessCoord
-    uvec4 id;        // x: coarse triangle; y: pattern vertex index (pattern) or ~0u (tess)
+    uvec4 id;        // x: element; y: pattern vertex index (pattern) or ~0u (tess)
 };
 
 #ifdef CAPTURE

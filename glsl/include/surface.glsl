@@ -1,18 +1,58 @@
-// The one entry point every driver's evaluation stage calls: canonical corner order, then the
-// surface chosen by the SURFACE specialization constant (values: src/surface/mod.rs `Surface`).
+// The seam between drivers and surfaces (../ARCHITECTURE.md). A driver hands `evaluate` the
+// element's record, unopened, and a Sample; the surface chosen by the SURFACE specialization
+// constant (values: src/surface/mod.rs `Surface`) decodes the record, puts the corners in
+// canonical order and evaluates; displacement (DISPLACE) follows.
 // Mirror: src/surface/mod.rs `eval`.
 #ifndef SURFACE_GLSL
 #define SURFACE_GLSL
-#include "bary.glsl"
+#include "corners.glsl"
 #include "flat.glsl"
+#include "phong.glsl"
+#include "pn.glsl"
+#include "displace.glsl"
 
 layout(constant_id = SPEC_SURFACE) const uint SURFACE = 0;
 const uint SURFACE_FLAT = 0;
+const uint SURFACE_PHONG = 1;
+const uint SURFACE_PN = 2;
 
-void surface_eval(CoarseTri t, vec3 bary, out vec3 position, out vec3 normal) {
-    Corners c = canonical(t, bary);
-    // Later surfaces (phong, pn, stpn, loop) add a branch here; the constant folds it away.
-    flat_eval(c, position, normal);
+struct Sample {
+    uint element;  // which element (coarse triangle)
+    vec3 bary;     // (w, u, v): weights of the element's stored corners 0, 1, 2
+    uint index;    // the driver's sample index: pattern vertex, or ~0u (tess)
+};
+
+// The surface without displacement.
+SurfacePoint surface_eval(ElementRecord rec, Sample s) {
+    Corners c = canonical(corner_record(rec), s.bary);
+    vec3 p, n, g[3];
+    if (SURFACE == SURFACE_PHONG) {
+        phong_eval(c, frame.params.x, p, n, g);
+    } else if (SURFACE == SURFACE_PN) {
+        pn_eval(c, p, n, g);
+    } else {
+        flat_eval(c, p, n, g);
+    }
+    // Back from canonical to stored corner order: dP/du = ∂P/∂b1 - ∂P/∂b0, dP/dv = ∂P/∂b2 - ∂P/∂b0.
+    vec3 gs[3];
+    for (int i = 0; i < 3; ++i) {
+        gs[c.o[i]] = g[i];
+    }
+    return SurfacePoint(p, n, gs[1] - gs[0], gs[2] - gs[0]);
+}
+
+// What every driver computes for every sample.
+SurfacePoint evaluate(ElementRecord rec, Sample s) {
+    return displace(surface_eval(rec, s));
+}
+
+// The surface's normal field at barycentric `bary` of the element, for the fragment stage.
+vec3 surface_normal_field(ElementRecord rec, vec3 bary) {
+    Corners c = canonical(corner_record(rec), bary);
+    if (SURFACE == SURFACE_PN) {
+        return pn_normal(c);
+    }
+    return flat_normal(c);
 }
 
 #endif

@@ -1,4 +1,6 @@
-// Interface between every driver's last geometry stage and the fragment stage.
+// Interface between every driver's last geometry stage and the fragment stage: the evaluated
+// point and normal, and the sample itself (element and barycentric coordinates), so the fragment
+// stage can evaluate a surface's normal field per fragment.
 #ifndef VARYINGS_GLSL
 #define VARYINGS_GLSL
 #ifdef FRAGMENT_STAGE
@@ -15,4 +17,6 @@ layout(location = 1, xfb_buffer = 0, xfb_offset = 16) VARYING vec3 v_normal;
 layout(location = 0) VARYING vec3 v_position;  // world position
 layout(location = 1) VARYING vec3 v_normal;    // world normal (unnormalized after interpolation)
 #endif
+layout(location = 2) flat VARYING uint v_element; // the element sampled
+layout(location = 3) VARYING vec3 v_bary;         // the sample's (w, u, v) in that element
 #endif

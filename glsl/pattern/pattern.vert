@@ -1,35 +1,41 @@
 #version 460
 // `pattern` driver (Boubekeur & Schlick 2005, §3.2): the refinement pattern's vertices carry
-// barycentric coordinates (w, u, v); this stage maps each onto the coarse triangle of the draw.
-// The triangle's record comes from push constants, a dynamic uniform buffer or a storage buffer
-// indexed by gl_InstanceIndex, chosen by the SUBMIT specialization constant.
+// barycentric coordinates (w, u, v); this stage maps each onto the surface of the draw's element.
+// The element's record comes from push constants, a dynamic uniform buffer or the records buffer
+// indexed by gl_InstanceIndex, chosen by the SUBMIT specialization constant; the stage never looks
+// inside it (surface.glsl does).
 #include "records.glsl"
 #include "surface.glsl"
 #include "varyings.glsl"
 
 layout(constant_id = SPEC_SUBMIT) const uint SUBMIT = 2; // 0 push, 1 ubo, 2 instanced
 
-layout(set = SET_MESH, binding = BINDING_TRIS, std430) readonly buffer Tris { CoarseTri tris[]; };
-layout(set = SET_MESH, binding = BINDING_TRI_UBO, std140) uniform TriUbo { CoarseTri tri; } tri_ubo;
+layout(set = SET_MESH, binding = BINDING_TRI_UBO, std140) uniform RecordUbo { ElementRecord rec; } rec_ubo;
 
 layout(location = 0) in vec3 in_bary; // (w, u, v)
 
 void main() {
-    CoarseTri t;
+    ElementRecord rec;
+    uint element;
     if (SUBMIT == 0) {
-        t = pc.tri;
+        rec = pc.rec;
+        element = pc.draw.w;
     } else if (SUBMIT == 1) {
-        t = tri_ubo.tri;
+        rec = rec_ubo.rec;
+        element = pc.draw.w;
     } else {
-        t = tris[gl_InstanceIndex];
+        element = pc.draw.y + uint(gl_InstanceIndex);
+        rec = records[element];
     }
-    vec3 p, n;
-    surface_eval(t, in_bary, p, n);
-    v_position = p;
-    v_normal = n;
-    gl_Position = frame.view_proj * vec4(p, 1.0);
+    SurfacePoint sp = evaluate(rec, Sample(element, in_bary, uint(gl_VertexIndex)));
+    v_position = sp.position;
+    v_normal = sp.normal;
+    v_element = element;
+    v_bary = in_bary;
+    gl_Position = frame.view_proj * vec4(sp.position, 1.0);
 #ifdef CAPTURE
-    captured[t.idx.w * pc.draw.z + uint(gl_VertexIndex)] =
-        CapturedVertex(vec4(p, 1.0), vec4(n, 0.0), vec4(in_bary, 0.0), uvec4(t.idx.w, uint(gl_VertexIndex), 0u, 0u));
+    captured[element * pc.draw.z + uint(gl_VertexIndex)] =
+        CapturedVertex(vec4(sp.position, 1.0), vec4(sp.normal, 0.0), vec4(in_bary, 0.0),
+                       uvec4(element, uint(gl_VertexIndex), 0u, 0u));
 #endif
 }

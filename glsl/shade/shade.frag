@@ -1,12 +1,16 @@
 #version 460
-// Fragment stage shared by every driver: two-sided Blinn-Phong lighting of the interpolated
-// surface normal. The WIRE variant (a second pass in polygon mode LINE) draws the refined
-// triangles' edges, so every driver shows the triangles it really produced.
+// Fragment stage shared by every driver: two-sided Blinn-Phong lighting. Where the surface has a
+// normal field of its own (pn) and the driver hands over the sample (FRAGMENT_FIELD), the normal
+// is the field evaluated at this fragment's barycentric coordinates, so highlights do not depend
+// on the refinement level; otherwise the interpolated vertex normal. The WIRE variant (a second
+// pass in polygon mode LINE) draws the refined triangles' edges; frame.options.x = 1 shows normals.
 #define FRAGMENT_STAGE
 #include "records.glsl"
+#include "surface.glsl"
 #include "varyings.glsl"
 
 layout(constant_id = SPEC_WIRE) const uint WIRE = 0;
+layout(constant_id = SPEC_FRAGMENT_FIELD) const uint FRAGMENT_FIELD = 0;
 
 layout(location = 0) out vec4 out_color;
 
@@ -15,7 +19,11 @@ void main() {
         out_color = vec4(0.05, 0.06, 0.09, 1.0);
         return;
     }
-    vec3 n = normalize(v_normal);
+    vec3 n = FRAGMENT_FIELD != 0 ? surface_normal_field(records[v_element], v_bary) : normalize(v_normal);
+    if (frame.options.x == 1.0) {
+        out_color = vec4(n * 0.5 + 0.5, 1.0);
+        return;
+    }
     vec3 v = normalize(frame.eye.xyz - v_position);
     if (dot(n, v) < 0.0) {
         n = -n;

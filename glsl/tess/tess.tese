@@ -4,7 +4,7 @@
 // same weights by both triangles (watertight). Interior samples are the tessellator's own; with
 // equal spacing its rings hold N, N-2, N-4, ... segments, so it makes more triangles than a level-N
 // pattern (src/render/tess.rs `triangle_count`).
-// gl_PrimitiveID restarts in every draw; pc.draw.y is this draw's first triangle.
+// gl_PrimitiveID restarts in every draw; pc.draw.y is this draw's first element.
 // Variants: CAPTURE (every evaluated vertex to a storage buffer, for the tests) and XFB
 // (transform feedback of the tessellator's triangles, for export).
 #include "records.glsl"
@@ -16,22 +16,22 @@
 // (counter-clockwise P0 P1 P2), as the export test checks against the normals.
 layout(triangles, equal_spacing, cw) in;
 
-layout(set = SET_MESH, binding = BINDING_TRIS, std430) readonly buffer Tris { CoarseTri tris[]; };
-
 void main() {
     uint n = pc.draw.x;
-    CoarseTri t = tris[pc.draw.y + uint(gl_PrimitiveID)];
+    uint element = pc.draw.y + uint(gl_PrimitiveID);
     // gl_TessCoord (x, y, z) weighs patch vertices (0, 1, 2), i.e. (w, u, v).
     vec3 bary = tess_weights(gl_TessCoord, n);
-    vec3 p, nrm;
-    surface_eval(t, bary, p, nrm);
-    v_position = p;
-    v_normal = nrm;
-    gl_Position = frame.view_proj * vec4(p, 1.0);
+    SurfacePoint sp = evaluate(records[element], Sample(element, bary, ~0u));
+    v_position = sp.position;
+    v_normal = sp.normal;
+    v_element = element;
+    v_bary = bary;
+    gl_Position = frame.view_proj * vec4(sp.position, 1.0);
 #ifdef CAPTURE
     uint slot = atomicAdd(capture_count, 1u);
     if (slot < capture_capacity) {
-        captured[slot] = CapturedVertex(vec4(p, 1.0), vec4(nrm, 0.0), vec4(gl_TessCoord, 0.0), uvec4(t.idx.w, ~0u, 0u, 0u));
+        captured[slot] = CapturedVertex(vec4(sp.position, 1.0), vec4(sp.normal, 0.0), vec4(gl_TessCoord, 0.0),
+                                        uvec4(element, ~0u, 0u, 0u));
     }
 #endif
 }

@@ -17,6 +17,7 @@ use crate::gpu::{
 use crate::mesh::Mesh;
 use crate::render::frame::{cmd_render, FrameWork, TargetView, CLEAR_COLOR};
 use crate::render::{Camera, DrawConfig, Driver, FrameUniforms, Renderer, Scene, Submit};
+use crate::surface::{Displace, Surface};
 use anyhow::{anyhow, Context as _, Result};
 use raw_window_handle::{HasDisplayHandle, HasWindowHandle};
 use std::path::PathBuf;
@@ -50,8 +51,59 @@ pub struct ViewOptions {
 }
 
 pub const KEY_HELP: &str = "keys: drag = orbit, wheel = zoom, 1/2/3 = static/pattern/tess, \
-P/U/I = push/ubo/instanced, +/- = level, L = LOD by distance, W = wireframe, A = animate, \
-H = panel, Esc = quit";
+P/U/I = push/ubo/instanced, S = next surface, D = next displacement, N = normals view, \
++/- = level, L = LOD by distance, W = wireframe, A = animate, H = panel, Esc = quit";
+
+/// The value after `v` in `all`, wrapping around.
+fn next<T: Copy + PartialEq>(all: &[T], v: T) -> T {
+    let i = all.iter().position(|&x| x == v).unwrap_or(0);
+    all[(i + 1) % all.len()]
+}
+
+/// Make `items` hold exactly one item per swapchain image (`count`), creating the missing ones
+/// with `make(index)` and dropping the extra ones: a recreated swapchain may have more or fewer
+/// images than the first.
+fn per_image<T, E>(
+    items: &mut Vec<T>,
+    count: usize,
+    mut make: impl FnMut(usize) -> Result<T, E>,
+) -> Result<(), E> {
+    items.truncate(count);
+    while items.len() < count {
+        let i = items.len();
+        items.push(make(i)?);
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The swapchain recreated with more images than the first had: the frame indexes
+    /// `rendered[image]` for every image (the bug: semaphores stayed at the first count).
+    #[test]
+    fn per_image_follows_the_image_count() {
+        let mut made = 0;
+        let mut v: Vec<usize> = Vec::new();
+        per_image(&mut v, 2, |i| -> Result<usize, ()> {
+            made += 1;
+            Ok(i)
+        })
+        .unwrap();
+        assert_eq!(v, [0, 1]);
+        per_image(&mut v, 4, |i| -> Result<usize, ()> {
+            made += 1;
+            Ok(i)
+        })
+        .unwrap();
+        assert_eq!(v, [0, 1, 2, 3]);
+        assert_eq!(made, 4, "existing items are kept");
+        per_image(&mut v, 3, |i| -> Result<usize, ()> { Ok(i) }).unwrap();
+        assert_eq!(v, [0, 1, 2]);
+        assert_eq!(next(&Surface::ALL, Surface::Pn), Surface::Flat);
+    }
+}
 
 /// Run the demo until the window closes (or `frames` frames). Returns the context's message list
 /// so the caller can check validation and leaks after everything is dropped.
@@ -232,9 +284,10 @@ impl App {
         let max_level = cfg.level;
         let scene = Scene::new(&ctx, &pool, &renderer, mesh.clone(), max_level)?;
         let (c, r) = scene.bounding_sphere();
-        let rendered = (0..swapchain.images.len())
-            .map(|i| Semaphore::new(&ctx, &format!("rendered {i}")))
-            .collect::<Result<Vec<_>, _>>()?;
+        let mut rendered = Vec::new();
+        per_image(&mut rendered, swapchain.images.len(), |i| {
+            Semaphore::new(&ctx, &format!("rendered {i}"))
+        })?;
         println!("{KEY_HELP}");
         Ok(State {
             base_mesh: mesh,
@@ -258,6 +311,7 @@ impl App {
                 wireframe: self.opts.wireframe,
                 animate: self.opts.animate,
                 lod: self.opts.lod,
+                view_normals: false,
             },
             drawn: cfg,
             max_level,
@@ -296,6 +350,9 @@ impl State {
                 "1" => c.cfg.driver = Driver::Static,
                 "2" => c.cfg.driver = Driver::Pattern,
                 "3" => c.cfg.driver = Driver::Tess,
+                "s" | "S" => c.cfg.surface = next(&Surface::ALL, c.cfg.surface),
+                "d" | "D" => c.cfg.displace = next(&Displace::ALL, c.cfg.displace),
+                "n" | "N" => c.view_normals = !c.view_normals,
                 "p" | "P" => (c.cfg.driver, c.cfg.submit) = (Driver::Pattern, Submit::Push),
                 "u" | "U" => (c.cfg.driver, c.cfg.submit) = (Driver::Pattern, Submit::Ubo),
                 "i" | "I" => (c.cfg.driver, c.cfg.submit) = (Driver::Pattern, Submit::Instanced),
@@ -325,6 +382,11 @@ impl State {
         if self.resize {
             self.ctx.wait_idle()?;
             self.swapchain.recreate((size.width, size.height))?;
+            // The new swapchain may have another image count: one `rendered` semaphore each.
+            let ctx = &self.ctx;
+            per_image(&mut self.rendered, self.swapchain.images.len(), |i| {
+                Semaphore::new(ctx, &format!("rendered {i}"))
+            })?;
             self.resize = false;
         }
         // The panel shows the last frame and may change the switches for this one; its textures
@@ -385,8 +447,9 @@ impl State {
             )?);
         }
         let aspect = extent.width as f32 / extent.height as f32;
-        self.renderer
-            .set_frame(&FrameUniforms::new(&self.camera, aspect));
+        let mut uniforms = FrameUniforms::new(&self.camera, aspect, &self.controls.cfg.params);
+        uniforms.options[0] = self.controls.view_normals as u32 as f32;
+        self.renderer.set_frame(&uniforms);
         let depth = self.swapchain.depth.as_ref().expect("depth image exists");
         let target = TargetView {
             color: image.image,
@@ -488,7 +551,7 @@ impl State {
         let levels: Vec<u32> = self.scene.patterns.levels().collect();
         let device = self.ctx.info.describe();
         let d = self.drawn;
-        let coarse = self.scene.gpu.triangle_count as u64;
+        let coarse = self.scene.gpu.element_count as u64;
         let info = PanelInfo {
             device: &device,
             levels: &levels,
@@ -511,7 +574,7 @@ impl State {
         }
         self.fps = (self.frames - n0) as f64 / dt;
         self.fps_window = (Instant::now(), self.frames);
-        let coarse = self.scene.gpu.triangle_count as u64;
+        let coarse = self.scene.gpu.element_count as u64;
         let bytes = self.scene.geometry_bytes(cfg.driver, cfg.level);
         let c = &self.controls;
         self.window.set_title(&format!(

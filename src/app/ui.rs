@@ -5,6 +5,7 @@
 //! it, egui takes pointer events and the camera ignores them.
 
 use crate::render::{DrawConfig, Driver, Submit};
+use crate::surface::{Displace, Surface, SurfaceParams};
 use egui::{Align2, ClippedPrimitive, RichText, TexturesDelta};
 use winit::event::WindowEvent;
 use winit::window::Window;
@@ -17,6 +18,8 @@ pub struct Controls {
     pub animate: bool,
     /// Level of detail by camera distance (sets `cfg.level` every frame).
     pub lod: bool,
+    /// Show normals as colours.
+    pub view_normals: bool,
 }
 
 /// What the panel reports and offers.
@@ -133,6 +136,10 @@ fn panel(ctx: &egui::Context, c: &mut Controls, info: &PanelInfo) {
                     ("fps", format!("{:.0}", info.fps)),
                     ("GPU frame", format!("{:.2} ms", info.gpu_ms)),
                     ("drawn", format!("{} level {}", d.label(), d.level)),
+                    (
+                        "surface",
+                        format!("{} + {}", d.surface.name(), d.displace.name()),
+                    ),
                     ("coarse triangles", info.coarse.to_string()),
                     ("refined triangles", info.refined.to_string()),
                     (
@@ -169,6 +176,35 @@ fn panel(ctx: &egui::Context, c: &mut Controls, info: &PanelInfo) {
                     }
                 });
             });
+            ui.horizontal(|ui| {
+                ui.label("surface");
+                for s in Surface::ALL {
+                    ui.selectable_value(&mut c.cfg.surface, s, s.name());
+                }
+            });
+            ui.horizontal(|ui| {
+                ui.label("displace");
+                for d in Displace::ALL {
+                    ui.selectable_value(&mut c.cfg.displace, d, d.name());
+                }
+            });
+            let p = &mut c.cfg.params;
+            ui.add_enabled(
+                c.cfg.surface == Surface::Phong,
+                egui::Slider::new(&mut p.alpha, 0.0..=1.0).text("alpha"),
+            );
+            ui.add_enabled_ui(c.cfg.displace != Displace::None, |ui| {
+                let a = p.amplitude.abs().max(1e-3) * 4.0;
+                ui.add(egui::Slider::new(&mut p.amplitude, -a..=a).text("amplitude"));
+                let f = p.frequency.max(1e-3) * 4.0;
+                ui.add(egui::Slider::new(&mut p.frequency, 0.0..=f).text("frequency"));
+                ui.add_enabled(
+                    c.cfg.displace == Displace::Noise,
+                    egui::Slider::new(&mut p.octaves, 1..=SurfaceParams::MAX_OCTAVES)
+                        .text("octaves"),
+                );
+            });
+            ui.checkbox(&mut c.view_normals, "normals view");
             ui.checkbox(&mut c.lod, "LOD by distance");
             ui.add_enabled(
                 info.wireframe_supported,

@@ -13,7 +13,6 @@
 mod buffer;
 mod commands;
 mod context;
-pub mod conv;
 mod device;
 mod image;
 mod overlay;

@@ -188,6 +188,12 @@ impl Mesh {
         }
     }
 
+    /// Half the diagonal of [`Mesh::bounds`] (the radius the camera frames).
+    pub fn bounding_radius(&self) -> f32 {
+        let (lo, hi) = self.bounds();
+        ((hi - lo) * 0.5).length()
+    }
+
     /// CPU deformation for the demo's animation: a travelling sine wave that moves each
     /// position by at most `amplitude` along its area-weighted vertex normal, periodic in
     /// `time` (seconds) with period 2 and deterministic. Triangles are unchanged. Normals are

@@ -6,12 +6,15 @@
 pub const SET_FRAME: u32 = 0;
 /// Set 0, binding 0: `Frame` uniform block (camera, light, view options).
 pub const BINDING_FRAME: u32 = 0;
+/// Set 0, binding 1: Perlin's permutation table (`uvec4[64]` uniform block), written once.
+pub const BINDING_NOISE: u32 = 1;
 
 /// Set 1: per mesh.
 pub const SET_MESH: u32 = 1;
-/// Set 1, binding 0: `CoarseTri` records, storage buffer (instanced pattern, tess).
+/// Set 1, binding 0: `ElementRecord[]`, storage buffer (instanced pattern, tess, and the
+/// fragment stage's per-fragment normal fields).
 pub const BINDING_TRIS: u32 = 0;
-/// Set 1, binding 1: one `CoarseTri` record, dynamic uniform buffer (`ubo` submission).
+/// Set 1, binding 1: one `ElementRecord`, dynamic uniform buffer (`ubo` submission).
 pub const BINDING_TRI_UBO: u32 = 1;
 
 /// Set 2: capture output of the `CAPTURE` shader variants.
@@ -25,11 +28,14 @@ pub const BINDING_CAPTURE_COUNT: u32 = 1;
 pub const SPEC_SURFACE: u32 = 0;
 pub const SPEC_SUBMIT: u32 = 1;
 pub const SPEC_WIRE: u32 = 2;
+pub const SPEC_DISPLACE: u32 = 3;
+pub const SPEC_FRAGMENT_FIELD: u32 = 4;
 
 /// Everything above, as GLSL macro definitions.
 pub const GLSL_DEFINES: &[(&str, u32)] = &[
     ("SET_FRAME", SET_FRAME),
     ("BINDING_FRAME", BINDING_FRAME),
+    ("BINDING_NOISE", BINDING_NOISE),
     ("SET_MESH", SET_MESH),
     ("BINDING_TRIS", BINDING_TRIS),
     ("BINDING_TRI_UBO", BINDING_TRI_UBO),
@@ -39,4 +45,6 @@ pub const GLSL_DEFINES: &[(&str, u32)] = &[
     ("SPEC_SURFACE", SPEC_SURFACE),
     ("SPEC_SUBMIT", SPEC_SUBMIT),
     ("SPEC_WIRE", SPEC_WIRE),
+    ("SPEC_DISPLACE", SPEC_DISPLACE),
+    ("SPEC_FRAGMENT_FIELD", SPEC_FRAGMENT_FIELD),
 ];

@@ -6,7 +6,7 @@ use super::bindings::{SET_CAPTURE, SET_FRAME, SET_MESH};
 use super::static_vbo::StaticVbo;
 use super::{pattern, static_vbo, tess, Capture, DrawConfig, Driver, GpuMesh, Renderer};
 use crate::gpu::{vk, Buffer, Cmd, QueryPools};
-use crate::surface::CoarseTri;
+use crate::surface::ElementRecord;
 
 /// Background colour (linear; the targets are sRGB).
 pub const CLEAR_COLOR: [f32; 4] = [0.012, 0.014, 0.02, 1.0];
@@ -26,7 +26,7 @@ pub struct TargetView {
 /// What one frame draws.
 pub struct FrameWork<'a> {
     pub mesh: &'a GpuMesh,
-    pub records: &'a [CoarseTri],
+    pub records: &'a [ElementRecord],
     pub static_vbo: Option<&'a StaticVbo>,
     pub cfg: DrawConfig,
     pub capture: Capture,

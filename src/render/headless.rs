@@ -2,9 +2,10 @@
 //! Every call records, submits and waits, so nothing is ever in flight when it returns.
 
 use super::frame::{cmd_render, FrameWork, TargetView, CLEAR_COLOR};
-use super::tess::{tess_triangle_count, tess_vertex_count};
+use super::tess::tess_triangle_count;
 use super::{
-    Capture, CapturedVertex, DrawConfig, Driver, FrameUniforms, Renderer, Scene, XfbVertex,
+    Capture, CapturedVertex, DrawConfig, Driver, FrameUniforms, RenderError, Renderer, Scene,
+    XfbVertex,
 };
 use crate::gpu::{
     vk, Buffer, BufferDesc, CommandPool, Context, ContextDesc, GpuError, OffscreenTarget,
@@ -23,6 +24,8 @@ pub struct Headless {
     pub target: OffscreenTarget,
     pub queries: QueryPools,
     pub wireframe: bool,
+    /// Show normals as colours instead of shading.
+    pub view_normals: bool,
 }
 
 /// Vertices the capture variant of a driver's pipeline wrote.
@@ -62,17 +65,20 @@ impl Headless {
             target,
             queries,
             wireframe: false,
+            view_normals: false,
         })
     }
 
     /// Upload a mesh with patterns up to `max_level`.
-    pub fn scene(&self, mesh: Mesh, max_level: u32) -> Result<Scene, GpuError> {
+    pub fn scene(&self, mesh: Mesh, max_level: u32) -> Result<Scene, RenderError> {
         Scene::new(&self.ctx, &self.pool, &self.renderer, mesh, max_level)
     }
 
-    fn frame_uniforms(&self, camera: &Camera) -> FrameUniforms {
+    fn frame_uniforms(&self, camera: &Camera, cfg: &DrawConfig) -> FrameUniforms {
         let e = self.target.extent();
-        FrameUniforms::new(camera, e.width as f32 / e.height as f32)
+        let mut f = FrameUniforms::new(camera, e.width as f32 / e.height as f32, &cfg.params);
+        f.options[0] = self.view_normals as u32 as f32;
+        f
     }
 
     fn view(&self) -> TargetView {
@@ -92,7 +98,7 @@ impl Headless {
         scene: &mut Scene,
         cfg: &DrawConfig,
         camera: &Camera,
-    ) -> Result<FrameTiming, GpuError> {
+    ) -> Result<FrameTiming, RenderError> {
         self.draw_inner(scene, cfg, camera, Capture::None, None)
     }
 
@@ -103,7 +109,7 @@ impl Headless {
         camera: &Camera,
         capture: Capture,
         xfb: Option<&Buffer>,
-    ) -> Result<FrameTiming, GpuError> {
+    ) -> Result<FrameTiming, RenderError> {
         scene.prepare(
             &self.ctx,
             &self.pool,
@@ -112,7 +118,7 @@ impl Headless {
             capture,
             self.wireframe,
         )?;
-        let uniforms = self.frame_uniforms(camera);
+        let uniforms = self.frame_uniforms(camera, cfg);
         self.renderer.set_frame(&uniforms);
         let view = self.view();
         let work = FrameWork {
@@ -150,9 +156,9 @@ impl Headless {
         scene: &mut Scene,
         cfg: &DrawConfig,
         camera: &Camera,
-    ) -> Result<Readback, GpuError> {
+    ) -> Result<Readback, RenderError> {
         self.draw(scene, cfg, camera)?;
-        self.target.read(&self.pool)
+        Ok(self.target.read(&self.pool)?)
     }
 
     /// Draw with the capture variant of `cfg`'s pipeline and read back every evaluated vertex.
@@ -161,20 +167,24 @@ impl Headless {
         scene: &mut Scene,
         cfg: &DrawConfig,
         camera: &Camera,
-    ) -> Result<CaptureResult, GpuError> {
+    ) -> Result<CaptureResult, RenderError> {
         let pv = vertex_count(cfg.level);
-        let per_triangle = match cfg.driver {
-            // Room for every tessellator vertex twice (implementations may repeat invocations).
-            Driver::Tess => 2 * tess_vertex_count(cfg.level),
-            _ => pv,
-        };
-        let capacity = scene.gpu.triangle_count as u64 * per_triangle as u64;
+        let per_element = cfg.driver.capture_per_element(cfg.level).ok_or(
+            RenderError::Unsupported(
+                "the static driver evaluates on the CPU: there is nothing to capture (use pattern or tess)",
+            ),
+        )?;
+        let capacity = scene.gpu.element_count as u64 * per_element as u64;
         let bytes = capacity * std::mem::size_of::<CapturedVertex>() as u64;
         let limit = self.ctx.info.limits.max_storage_buffer_range as u64;
         if bytes > limit || capacity > u32::MAX as u64 {
-            return Err(GpuError::Other(format!(
-                "capturing {capacity} vertices needs {bytes} bytes, over this device's maxStorageBufferRange ({limit}): use a lower level"
-            )));
+            return Err(RenderError::OverLimit {
+                what: format!("capturing {capacity} evaluated vertices"),
+                needed: bytes,
+                limit: "maxStorageBufferRange",
+                max: limit,
+                remedy: "use a lower level",
+            });
         }
         let vertices = Buffer::new(
             &self.ctx,
@@ -199,9 +209,7 @@ impl Headless {
         if cfg.driver == Driver::Tess {
             let written = counter.read_pod::<u32>()[0] as u64;
             if written > capacity {
-                return Err(GpuError::Other(format!(
-                    "the tessellator evaluated {written} vertices, more than the {capacity} the capture buffer holds"
-                )));
+                return Err(RenderError::CaptureOverflow { written, capacity });
             }
             out.truncate(written as usize);
         }
@@ -219,14 +227,18 @@ impl Headless {
         scene: &mut Scene,
         cfg: &DrawConfig,
         camera: &Camera,
-    ) -> Result<Vec<[XfbVertex; 3]>, GpuError> {
-        let triangles = scene.gpu.triangle_count as u64 * tess_triangle_count(cfg.level) as u64;
+    ) -> Result<Vec<[XfbVertex; 3]>, RenderError> {
+        let triangles = scene.gpu.element_count as u64 * tess_triangle_count(cfg.level) as u64;
         let bytes = triangles * 3 * std::mem::size_of::<XfbVertex>() as u64;
         let limit = self.ctx.info.max_transform_feedback_buffer_size;
         if self.ctx.info.transform_feedback && bytes > limit {
-            return Err(GpuError::Other(format!(
-                "reading back {triangles} triangles needs {bytes} bytes, over this device's maxTransformFeedbackBufferSize ({limit}): use a lower level"
-            )));
+            return Err(RenderError::OverLimit {
+                what: format!("reading back {triangles} tessellated triangles"),
+                needed: bytes,
+                limit: "maxTransformFeedbackBufferSize",
+                max: limit,
+                remedy: "use a lower level",
+            });
         }
         let buffer = Buffer::new(
             &self.ctx,

@@ -5,6 +5,7 @@
 
 pub mod bindings;
 mod camera;
+mod error;
 pub mod frame;
 mod headless;
 pub mod pattern;
@@ -14,11 +15,12 @@ pub mod static_vbo;
 pub mod tess;
 
 pub use camera::Camera;
+pub use error::RenderError;
 pub use headless::{CaptureResult, FrameTiming, Headless};
-pub use pipelines::Renderer;
-pub use scene::{geometry_bytes, GpuMesh, MeshData, Scene};
+pub use pipelines::{Renderer, GEOMETRY_STAGES, PUSH_STAGES};
+pub use scene::{GpuMesh, MeshData, Scene};
 
-use crate::surface::{CoarseTri, Surface};
+use crate::surface::{Displace, ElementRecord, Surface, SurfaceParams, RECORD_BYTES};
 use bytemuck::{Pod, Zeroable};
 
 /// How barycentric samples are produced on the GPU.
@@ -40,6 +42,43 @@ impl Driver {
             Driver::Static => "static",
             Driver::Pattern => "pattern",
             Driver::Tess => "tess",
+        }
+    }
+
+    /// Triangles the GPU makes per element at `level`: the pattern's level² (also what `static`
+    /// stores), or what the tessellator makes.
+    pub fn refined_per_element(self, level: u32) -> u32 {
+        match self {
+            Driver::Tess => tess::tess_triangle_count(level),
+            Driver::Static | Driver::Pattern => crate::pattern::triangle_count(level),
+        }
+    }
+
+    /// GPU bytes of geometry this driver holds for `elements` elements at `level`
+    /// (pattern: that level's pattern + the records; static: the refined buffers; tess: records).
+    pub fn geometry_bytes(self, level: u32, elements: u64) -> u64 {
+        use crate::pattern::{index_count, vertex_count};
+        let records = elements * RECORD_BYTES as u64;
+        let pv = vertex_count(level) as u64;
+        let pi = index_count(level) as u64;
+        match self {
+            Driver::Static => {
+                let vertex = std::mem::size_of::<static_vbo::StaticVertex>() as u64;
+                elements * pv * vertex + (elements * (pi + 1)).saturating_sub(1) * 4
+            }
+            Driver::Pattern => pv * 12 + pi * 4 + records,
+            Driver::Tess => records,
+        }
+    }
+
+    /// Room a vertex capture needs per element at `level` (tess: every tessellator vertex twice,
+    /// since implementations may repeat evaluation invocations); `None` where nothing runs on the
+    /// GPU to capture.
+    pub fn capture_per_element(self, level: u32) -> Option<u32> {
+        match self {
+            Driver::Static => None,
+            Driver::Pattern => Some(crate::pattern::vertex_count(level)),
+            Driver::Tess => Some(2 * tess::tess_vertex_count(level)),
         }
     }
 }
@@ -91,23 +130,36 @@ impl Capture {
     }
 }
 
-/// What to draw and how.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+/// What to draw and how: surface x displacement x driver (and the pattern driver's submission
+/// mode), at a level, with the surfaces' parameters.
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DrawConfig {
     pub surface: Surface,
+    pub displace: Displace,
+    pub params: SurfaceParams,
     pub driver: Driver,
+    /// Used by the pattern driver only.
     pub submit: Submit,
     pub level: u32,
 }
 
 impl DrawConfig {
+    /// The flat surface, no displacement, default parameters.
     pub fn new(driver: Driver, submit: Submit, level: u32) -> Self {
         Self {
             surface: Surface::Flat,
+            displace: Displace::None,
+            params: SurfaceParams::default(),
             driver,
             submit,
             level,
         }
+    }
+
+    pub fn with_surface(mut self, surface: Surface, displace: Displace) -> Self {
+        self.surface = surface;
+        self.displace = displace;
+        self
     }
 
     /// Short label such as `pattern/instanced` or `tess`.
@@ -118,13 +170,17 @@ impl DrawConfig {
         }
     }
 
-    /// Triangles the GPU makes per coarse triangle: the pattern's level² (also what `static`
-    /// stores), or what the tessellator makes at this level.
+    /// Triangles the GPU makes per coarse triangle.
     pub fn refined_per_coarse(&self) -> u32 {
-        match self.driver {
-            Driver::Tess => tess::tess_triangle_count(self.level),
-            Driver::Static | Driver::Pattern => crate::pattern::triangle_count(self.level),
-        }
+        self.driver.refined_per_element(self.level)
+    }
+
+    /// Whether the fragment stage evaluates the surface's normal field: the surface has one, no
+    /// displacement perturbs it, and the driver hands the sample over (static stores normals).
+    pub fn fragment_normal_field(&self) -> bool {
+        self.surface.fragment_normal_field()
+            && self.displace == Displace::None
+            && self.driver != Driver::Static
     }
 }
 
@@ -136,22 +192,26 @@ pub struct FrameUniforms {
     pub eye: [f32; 4],
     pub light_dir: [f32; 4],
     pub base_color: [f32; 4],
-    /// Reserved.
+    /// x: view (0 shaded, 1 normals).
     pub options: [f32; 4],
+    /// The surfaces' and displacements' parameters ([`SurfaceParams::to_gpu`]).
+    pub params: [f32; 4],
 }
 
 const _: () = {
-    assert!(std::mem::size_of::<FrameUniforms>() == 128);
+    assert!(std::mem::size_of::<FrameUniforms>() == 144);
     assert!(std::mem::offset_of!(FrameUniforms, eye) == 64);
     assert!(std::mem::offset_of!(FrameUniforms, light_dir) == 80);
     assert!(std::mem::offset_of!(FrameUniforms, base_color) == 96);
     assert!(std::mem::offset_of!(FrameUniforms, options) == 112);
+    assert!(std::mem::offset_of!(FrameUniforms, params) == 128);
 };
 
 impl FrameUniforms {
     /// The view of `camera` on a target of `aspect` (width / height), lit from above and behind
-    /// the camera's shoulder, the default surface colour, every view option off.
-    pub fn new(camera: &Camera, aspect: f32) -> Self {
+    /// the camera's shoulder, the default surface colour, every view option off, `params` for
+    /// the surfaces.
+    pub fn new(camera: &Camera, aspect: f32, params: &SurfaceParams) -> Self {
         let eye = camera.eye();
         let light = eye - camera.target + glam::Vec3::new(0.3, 0.8, 0.2) * camera.distance;
         Self {
@@ -160,6 +220,7 @@ impl FrameUniforms {
             light_dir: light.normalize().extend(0.0).to_array(),
             base_color: [0.80, 0.55, 0.35, 1.0],
             options: [0.0; 4],
+            params: params.to_gpu(),
         }
     }
 }
@@ -168,10 +229,14 @@ impl FrameUniforms {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct PushBlock {
-    pub tri: CoarseTri,
-    /// x: level N; y: first triangle of the draw (tess); z: pattern vertex count; w: unused.
-    pub draw: [u32; 4],
+    /// The draw's element (`push` submission).
+    pub rec: ElementRecord,
+    pub draw: DrawWords,
 }
+
+/// `Push::draw`: x level N; y first element of the draw; z pattern vertex count; w the draw's
+/// element (`push`, `ubo`).
+pub type DrawWords = [u32; 4];
 
 const _: () = {
     assert!(std::mem::size_of::<PushBlock>() == 128);
@@ -202,7 +267,7 @@ pub struct CapturedVertex {
     pub normal: [f32; 4],
     /// The sample as the driver produced it: pattern `(w, u, v)` or `gl_TessCoord`.
     pub coord: [f32; 4],
-    /// x: coarse triangle; y: pattern vertex index, or `u32::MAX` for tess samples.
+    /// x: element; y: pattern vertex index, or `u32::MAX` for tess samples.
     pub id: [u32; 4],
 }
 

@@ -1,23 +1,49 @@
 //! Layouts and pipelines shared by all drivers, the per-frame uniform buffer (set 0) and the
 //! capture output binding (set 2). Pipelines are created on first use, keyed by
-//! (driver, submission, surface, capture).
+//! (driver, submission, surface, displacement, capture, wireframe); surface and displacement are
+//! specialization constants of the same SPIR-V modules.
 
 use super::bindings::*;
 use super::{Capture, DrawConfig, Driver, FrameUniforms, Submit};
-use crate::gpu::conv::{topology, GEOMETRY_STAGES, PUSH_STAGES};
 use crate::gpu::{
     vk, Buffer, BufferDesc, Context, DescriptorPool, DescriptorSetLayout, GpuError,
     GraphicsPipelineDesc, Pipeline, PipelineLayout,
 };
-use crate::surface::Surface;
+use crate::surface::{Displace, Surface};
 use std::collections::HashMap;
 use std::sync::Arc;
+
+const fn stages(list: &[vk::ShaderStageFlags]) -> vk::ShaderStageFlags {
+    let mut raw = 0;
+    let mut i = 0;
+    while i < list.len() {
+        raw |= list[i].as_raw();
+        i += 1;
+    }
+    vk::ShaderStageFlags::from_raw(raw)
+}
+
+/// Stages that evaluate surfaces or read per-mesh data.
+pub const GEOMETRY_STAGES: vk::ShaderStageFlags = stages(&[
+    vk::ShaderStageFlags::VERTEX,
+    vk::ShaderStageFlags::TESSELLATION_CONTROL,
+    vk::ShaderStageFlags::TESSELLATION_EVALUATION,
+]);
+
+/// Stages that read the push-constant block: the geometry stages only (a range visible to the
+/// fragment stage costs lavapipe about 36 K instructions per push, ../PLATFORM.md).
+pub const PUSH_STAGES: vk::ShaderStageFlags = GEOMETRY_STAGES;
+
+/// Every stage of every driver.
+const ALL_STAGES: vk::ShaderStageFlags = stages(&[GEOMETRY_STAGES, vk::ShaderStageFlags::FRAGMENT]);
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 struct PipelineKey {
     driver: Driver,
     submit: Submit,
     surface: Surface,
+    displace: Displace,
+    fragment_field: bool,
     capture: Capture,
     /// Wireframe pass: polygon mode LINE, the fragment stage's WIRE variant.
     wire: bool,
@@ -33,6 +59,8 @@ pub struct Renderer {
     pub color_format: vk::Format,
     pub depth_format: vk::Format,
     frame_ubo: Buffer,
+    /// Kept alive for the frame set's binding.
+    _noise_ubo: Buffer,
     pool: DescriptorPool,
     pub frame_set: vk::DescriptorSet,
     pub capture_set: vk::DescriptorSet,
@@ -45,17 +73,21 @@ impl Renderer {
         depth_format: vk::Format,
     ) -> Result<Self, GpuError> {
         use vk::DescriptorType as T;
-        let all = PUSH_STAGES;
         let frame_layout = DescriptorSetLayout::new(
             ctx,
-            &[(BINDING_FRAME, T::UNIFORM_BUFFER, all)], // camera, light, view options
+            &[
+                (BINDING_FRAME, T::UNIFORM_BUFFER, ALL_STAGES), // camera, light, options, params
+                (BINDING_NOISE, T::UNIFORM_BUFFER, ALL_STAGES), // Perlin's permutation
+            ],
             "set 0: frame",
         )?;
         let mesh_layout = DescriptorSetLayout::new(
             ctx,
             &[
-                (BINDING_TRIS, T::STORAGE_BUFFER, GEOMETRY_STAGES), // CoarseTri[] (instanced, tess)
-                (BINDING_TRI_UBO, T::UNIFORM_BUFFER_DYNAMIC, GEOMETRY_STAGES), // one CoarseTri (ubo)
+                // ElementRecord[] (instanced, tess; per-fragment normal fields)
+                (BINDING_TRIS, T::STORAGE_BUFFER, ALL_STAGES),
+                // one ElementRecord (ubo)
+                (BINDING_TRI_UBO, T::UNIFORM_BUFFER_DYNAMIC, GEOMETRY_STAGES),
             ],
             "set 1: mesh",
         )?;
@@ -71,7 +103,7 @@ impl Renderer {
             ctx,
             &[&frame_layout, &mesh_layout, &capture_layout],
             std::mem::size_of::<super::PushBlock>() as u32,
-            all,
+            PUSH_STAGES,
             "drivers",
         )?;
         let frame_ubo = Buffer::new(
@@ -82,10 +114,20 @@ impl Renderer {
             ),
             "frame uniforms",
         )?;
+        let mut noise_ubo = Buffer::new(
+            ctx,
+            BufferDesc::new_upload(256 * 4, vk::BufferUsageFlags::UNIFORM_BUFFER),
+            "noise permutation",
+        )?;
+        let table: Vec<u32> = crate::surface::noise::PERM
+            .iter()
+            .map(|&p| p as u32)
+            .collect();
+        noise_ubo.write_pod(0, &table);
         let pool = DescriptorPool::new(
             ctx,
             2,
-            &[(T::UNIFORM_BUFFER, 1), (T::STORAGE_BUFFER, 2)],
+            &[(T::UNIFORM_BUFFER, 2), (T::STORAGE_BUFFER, 2)],
             "renderer descriptors",
         )?;
         let frame_set = pool.allocate(&frame_layout, "frame set")?;
@@ -94,6 +136,13 @@ impl Renderer {
             BINDING_FRAME,
             T::UNIFORM_BUFFER,
             frame_ubo.raw,
+            vk::WHOLE_SIZE,
+        );
+        pool.write_buffer(
+            frame_set,
+            BINDING_NOISE,
+            T::UNIFORM_BUFFER,
+            noise_ubo.raw,
             vk::WHOLE_SIZE,
         );
         let capture_set = pool.allocate(&capture_layout, "capture set")?;
@@ -107,6 +156,7 @@ impl Renderer {
             color_format,
             depth_format,
             frame_ubo,
+            _noise_ubo: noise_ubo,
             pool,
             frame_set,
             capture_set,
@@ -180,10 +230,15 @@ impl Renderer {
                 (SPEC_SURFACE, key.surface as u32),
                 (SPEC_SUBMIT, key.submit as u32),
                 (SPEC_WIRE, key.wire as u32),
+                (SPEC_DISPLACE, key.displace as u32),
+                (SPEC_FRAGMENT_FIELD, key.fragment_field as u32),
             ],
             vertex_bindings: vec![],
             vertex_attributes: vec![],
-            topology: topology(key.driver),
+            topology: match key.driver {
+                Driver::Static | Driver::Pattern => vk::PrimitiveTopology::TRIANGLE_STRIP,
+                Driver::Tess => vk::PrimitiveTopology::PATCH_LIST,
+            },
             primitive_restart: false,
             patch_control_points: 0,
             color_format: self.color_format,
@@ -239,17 +294,12 @@ impl Renderer {
             }
         }
         let name = format!(
-            "{}{}{} ({})",
-            DrawConfig {
-                surface: key.surface,
-                driver: key.driver,
-                submit: key.submit,
-                level: 0
-            }
-            .label(),
+            "{}{}{} ({} + {})",
+            DrawConfig::new(key.driver, key.submit, 0).label(),
             key.capture.shader_suffix(),
             if key.wire { " wireframe" } else { "" },
-            key.surface.name()
+            key.surface.name(),
+            key.displace.name()
         );
         Pipeline::new_graphics(&self.ctx, &self.layout, &desc, &name)
     }
@@ -265,6 +315,8 @@ fn key(cfg: &DrawConfig, capture: Capture, wire: bool) -> PipelineKey {
             Submit::Instanced
         },
         surface: cfg.surface,
+        displace: cfg.displace,
+        fragment_field: cfg.fragment_normal_field(),
         capture,
         wire,
     }

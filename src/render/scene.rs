@@ -1,25 +1,31 @@
-//! Per-mesh GPU data (descriptor set 1): the coarse triangles' records, in a storage buffer and in
-//! an aligned uniform array, and the refinement patterns. Bytes uploaded per frame depend on the
+//! Per-mesh GPU data (descriptor set 1): the elements' records, in a storage buffer and in an
+//! aligned uniform array, and the refinement patterns. Bytes uploaded per frame depend on the
 //! coarse mesh only ([`GpuMesh::update_records`]), never on the refinement level.
 
 use super::bindings::*;
+use super::RenderError;
 use crate::gpu::{vk, Buffer, BufferDesc, CommandPool, Context, DescriptorPool, GpuError};
 use crate::mesh::Mesh;
 use crate::pattern::{Pattern, PatternSet};
-use crate::surface::{build_records, CoarseTri};
+use crate::surface::{build_records, ElementRecord, RecordKind, RECORD_BYTES};
 use std::sync::Arc;
 
-/// CPU-side data of a mesh ready to draw.
+/// CPU-side data of a mesh ready to draw: the mesh and its elements' records.
 #[derive(Clone, Debug)]
 pub struct MeshData {
     pub mesh: Mesh,
-    pub records: Vec<CoarseTri>,
+    pub kind: RecordKind,
+    pub records: Vec<ElementRecord>,
 }
 
 impl MeshData {
-    pub fn new(mesh: Mesh) -> Self {
-        let records = build_records(&mesh);
-        Self { mesh, records }
+    pub fn new(mesh: Mesh, kind: RecordKind) -> Self {
+        let records = build_records(kind, &mesh);
+        Self {
+            mesh,
+            kind,
+            records,
+        }
     }
 }
 
@@ -60,10 +66,10 @@ impl GpuPattern {
 
 /// GPU data of one mesh.
 pub struct GpuMesh {
-    pub triangle_count: u32,
-    /// `CoarseTri[]`, storage buffer (instanced pattern, tess).
+    pub element_count: u32,
+    /// `ElementRecord[]`, storage buffer (instanced pattern, tess, fragment normal fields).
     pub records: Buffer,
-    /// One `CoarseTri` every `ubo_stride` bytes, dynamic uniform buffer (`ubo` submission).
+    /// One `ElementRecord` every `ubo_stride` bytes, dynamic uniform buffer (`ubo` submission).
     pub records_ubo: Buffer,
     pub ubo_stride: u64,
     pub patterns: Vec<GpuPattern>,
@@ -78,17 +84,18 @@ impl GpuMesh {
         set_layout: &crate::gpu::DescriptorSetLayout,
         data: &MeshData,
         patterns: &PatternSet,
-    ) -> Result<Self, GpuError> {
+    ) -> Result<Self, RenderError> {
         let n = data.records.len() as u64;
-        let rec_size = std::mem::size_of::<CoarseTri>() as u64;
+        let rec_size = RECORD_BYTES as u64;
         let limits = &ctx.info.limits;
         if n * rec_size > limits.max_storage_buffer_range as u64 {
-            return Err(GpuError::Other(format!(
-                "{} coarse triangles need {} bytes of records, over this device's maxStorageBufferRange ({})",
-                n,
-                n * rec_size,
-                limits.max_storage_buffer_range
-            )));
+            return Err(RenderError::OverLimit {
+                what: format!("the records of {n} elements (coarse triangles)"),
+                needed: n * rec_size,
+                limit: "maxStorageBufferRange",
+                max: limits.max_storage_buffer_range as u64,
+                remedy: "use a mesh with fewer triangles",
+            });
         }
         let align = limits.min_uniform_buffer_offset_alignment.max(16);
         let ubo_stride = rec_size.div_ceil(align) * align;
@@ -133,7 +140,7 @@ impl GpuMesh {
             rec_size,
         );
         Ok(Self {
-            triangle_count: n as u32,
+            element_count: n as u32,
             records,
             records_ubo,
             ubo_stride,
@@ -149,8 +156,8 @@ impl GpuMesh {
     }
 
     /// Upload new coarse records (animation). The caller makes sure no pending work reads them.
-    pub fn update_records(&mut self, records: &[CoarseTri]) {
-        assert_eq!(records.len() as u32, self.triangle_count);
+    pub fn update_records(&mut self, records: &[ElementRecord]) {
+        assert_eq!(records.len() as u32, self.element_count);
         write_records(
             &mut self.records,
             &mut self.records_ubo,
@@ -160,7 +167,7 @@ impl GpuMesh {
     }
 }
 
-fn write_records(ssbo: &mut Buffer, ubo: &mut Buffer, stride: u64, records: &[CoarseTri]) {
+fn write_records(ssbo: &mut Buffer, ubo: &mut Buffer, stride: u64, records: &[ElementRecord]) {
     ssbo.write_pod(0, records);
     for (i, r) in records.iter().enumerate() {
         ubo.write_pod(i * stride as usize, std::slice::from_ref(r));
@@ -185,7 +192,7 @@ impl Scene {
         renderer: &super::Renderer,
         mesh: Mesh,
         max_level: u32,
-    ) -> Result<Self, GpuError> {
+    ) -> Result<Self, RenderError> {
         Self::with_patterns(ctx, pool, renderer, mesh, PatternSet::up_to(max_level))
     }
 
@@ -196,8 +203,8 @@ impl Scene {
         renderer: &super::Renderer,
         mesh: Mesh,
         patterns: PatternSet,
-    ) -> Result<Self, GpuError> {
-        let data = MeshData::new(mesh);
+    ) -> Result<Self, RenderError> {
+        let data = MeshData::new(mesh, RecordKind::Corners);
         let gpu = GpuMesh::new(ctx, pool, &renderer.mesh_layout, &data, &patterns)?;
         Ok(Self {
             data,
@@ -219,14 +226,19 @@ impl Scene {
         cfg: &super::DrawConfig,
         capture: super::Capture,
         wire: bool,
-    ) -> Result<(), GpuError> {
+    ) -> Result<(), RenderError> {
         if self.patterns.find(cfg.level).is_none() {
             let levels: Vec<String> = self.patterns.levels().map(|l| l.to_string()).collect();
-            return Err(GpuError::Other(format!(
-                "level {} is not among the uploaded pattern levels ({})",
-                cfg.level,
-                levels.join(", ")
-            )));
+            return Err(RenderError::LevelNotUploaded {
+                level: cfg.level,
+                levels: levels.join(", "),
+            });
+        }
+        if cfg.surface.record_kind() != self.data.kind {
+            let mesh = self.data.mesh.clone();
+            self.data = MeshData::new(mesh, cfg.surface.record_kind());
+            self.gpu.update_records(&self.data.records);
+            self.static_vbo = None;
         }
         if cfg.driver == super::Driver::Tess {
             super::tess::check_level(ctx, cfg.level)?;
@@ -236,30 +248,28 @@ impl Scene {
             return Err(GpuError::MissingFeature {
                 device: ctx.info.name.clone(),
                 feature: "vertexPipelineStoresAndAtomics (needed to capture evaluated vertices)",
-            });
+            }
+            .into());
         }
         if capture == Capture::Triangles && !ctx.info.transform_feedback {
             return Err(GpuError::MissingFeature {
                 device: ctx.info.name.clone(),
                 feature: "transformFeedback (VK_EXT_transform_feedback, needed to read back the tessellator's triangles)",
-            });
+            }
+            .into());
         }
         if capture == Capture::Triangles && cfg.driver != super::Driver::Tess {
-            return Err(GpuError::Other(
-                "triangle capture is for the tess driver".into(),
+            return Err(RenderError::Unsupported(
+                "triangle capture is for the tess driver",
             ));
         }
         if capture != Capture::None && cfg.driver == super::Driver::Static {
-            return Err(GpuError::Other(
-                "the static driver evaluates on the CPU: there is nothing to capture (use pattern or tess)".into(),
+            return Err(RenderError::Unsupported(
+                "the static driver evaluates on the CPU: there is nothing to capture (use pattern or tess)",
             ));
         }
         renderer.prepare(cfg, capture, wire)?;
-        let per_triangle = match cfg.driver {
-            super::Driver::Tess => super::tess::tess_triangle_count(cfg.level) as u64,
-            _ => cfg.level as u64 * cfg.level as u64,
-        };
-        let refined = self.gpu.triangle_count as u64 * per_triangle;
+        let refined = self.gpu.element_count as u64 * cfg.refined_per_coarse() as u64;
         if ctx.info.device_type == vk::PhysicalDeviceType::CPU
             && refined > 50_000_000
             && !self.warned_slow
@@ -271,17 +281,19 @@ impl Scene {
             self.warned_slow = true;
         }
         if cfg.driver == super::Driver::Static {
-            let stale = self
-                .static_vbo
-                .as_ref()
-                .is_none_or(|v| v.level != cfg.level || v.surface != cfg.surface);
+            let stale = self.static_vbo.as_ref().is_none_or(|v| {
+                v.level != cfg.level
+                    || v.cfg.surface != cfg.surface
+                    || v.cfg.displace != cfg.displace
+                    || v.cfg.params != cfg.params
+            });
             if stale {
                 self.static_vbo = None;
                 let idx = self.patterns.find(cfg.level).unwrap();
                 self.static_vbo = Some(super::static_vbo::StaticVbo::new(
                     ctx,
                     pool,
-                    cfg.surface,
+                    cfg,
                     &self.data.records,
                     &self.patterns.patterns[idx],
                 )?);
@@ -293,7 +305,7 @@ impl Scene {
     /// Replace the coarse positions/normals (animation): new records are uploaded; the static
     /// buffer, if any, becomes stale and is rebuilt by the next `prepare`. Only between frames.
     pub fn update_mesh(&mut self, mesh: Mesh) {
-        self.data = MeshData::new(mesh);
+        self.data = MeshData::new(mesh, self.data.kind);
         self.gpu.update_records(&self.data.records);
         self.static_vbo = None;
     }
@@ -305,23 +317,8 @@ impl Scene {
         (c, ((hi - lo) * 0.5).length().max(1e-6))
     }
 
-    /// GPU bytes of refined geometry each driver holds at `level` for this mesh
-    /// (pattern: that level's pattern + the records; static: the refined buffers; tess: records).
+    /// GPU bytes of refined geometry each driver holds at `level` for this mesh.
     pub fn geometry_bytes(&self, driver: super::Driver, level: u32) -> u64 {
-        let records = self.data.records.len() as u64 * std::mem::size_of::<CoarseTri>() as u64;
-        geometry_bytes(driver, level, self.data.records.len() as u64, records)
-    }
-}
-
-/// GPU geometry bytes per driver for `triangles` coarse triangles at `level`
-/// (records: bytes of coarse records; static: 24-byte vertices + u32 strips with restarts).
-pub fn geometry_bytes(driver: super::Driver, level: u32, triangles: u64, records: u64) -> u64 {
-    use crate::pattern::{index_count, vertex_count};
-    let pv = vertex_count(level) as u64;
-    let pi = index_count(level) as u64;
-    match driver {
-        super::Driver::Static => triangles * pv * 24 + (triangles * (pi + 1)).saturating_sub(1) * 4,
-        super::Driver::Pattern => pv * 12 + pi * 4 + records,
-        super::Driver::Tess => records,
+        driver.geometry_bytes(level, self.data.records.len() as u64)
     }
 }

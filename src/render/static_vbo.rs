@@ -3,11 +3,10 @@
 //! Fig. 7). Its GPU footprint grows with (coarse triangles x pattern size); an animated mesh must
 //! be refined and uploaded again every frame.
 
-use super::{Renderer, PUSH_DRAW_OFFSET};
-use crate::gpu::conv::PUSH_STAGES;
-use crate::gpu::{vk, Buffer, Cmd, CommandPool, Context, GpuError};
+use super::{DrawConfig, RenderError, Renderer, PUSH_DRAW_OFFSET, PUSH_STAGES};
+use crate::gpu::{vk, Buffer, Cmd, CommandPool, Context};
 use crate::pattern::{Pattern, RESTART};
-use crate::surface::{eval, CoarseTri, Surface};
+use crate::surface::{eval, ElementRecord};
 use std::sync::Arc;
 
 /// Refined vertex: position, normal.
@@ -15,9 +14,10 @@ pub type StaticVertex = [f32; 6];
 
 /// The whole mesh refined on the CPU: vertices (pattern order, one block per coarse triangle)
 /// and strips (the pattern's strips offset per triangle, separated by restarts).
+/// `cfg` gives the surface, displacement and parameters (its driver and level are not used).
 pub fn refine_on_cpu(
-    surface: Surface,
-    records: &[CoarseTri],
+    cfg: &DrawConfig,
+    records: &[ElementRecord],
     pattern: &Pattern,
 ) -> (Vec<StaticVertex>, Vec<u32>) {
     let pv = pattern.bary.len() as u32;
@@ -25,7 +25,7 @@ pub fn refine_on_cpu(
     let mut indices = Vec::with_capacity(records.len() * (pattern.indices.len() + 1));
     for (t, rec) in records.iter().enumerate() {
         for &b in &pattern.bary {
-            let sp = eval(surface, rec, b);
+            let sp = eval(cfg.surface, cfg.displace, &cfg.params, rec, b);
             vertices.push([
                 sp.position.x,
                 sp.position.y,
@@ -50,7 +50,8 @@ pub fn refine_on_cpu(
 }
 
 pub struct StaticVbo {
-    pub surface: Surface,
+    /// What was refined (surface, displacement, parameters, level).
+    pub cfg: DrawConfig,
     pub level: u32,
     pub vertices: Buffer,
     pub indices: Buffer,
@@ -63,22 +64,28 @@ impl StaticVbo {
     pub fn new(
         ctx: &Arc<Context>,
         pool: &CommandPool,
-        surface: Surface,
-        records: &[CoarseTri],
+        cfg: &DrawConfig,
+        records: &[ElementRecord],
         pattern: &Pattern,
-    ) -> Result<Self, GpuError> {
+    ) -> Result<Self, RenderError> {
         // Check the size before refining: the CPU would hold the same bytes.
         let bytes = records.len() as u64
             * pattern.bary.len() as u64
             * std::mem::size_of::<StaticVertex>() as u64;
         let max = ctx.info.max_memory_allocation_size;
         if bytes > max {
-            return Err(GpuError::Other(format!(
-                "the static driver needs {bytes} bytes of vertices at level {}, over this device's maxMemoryAllocationSize ({max}): use a lower level or the pattern driver",
-                pattern.level
-            )));
+            return Err(RenderError::OverLimit {
+                what: format!(
+                    "the static driver's refined mesh at level {}",
+                    pattern.level
+                ),
+                needed: bytes,
+                limit: "maxMemoryAllocationSize",
+                max,
+                remedy: "use a lower level or the pattern driver",
+            });
         }
-        let (v, i) = refine_on_cpu(surface, records, pattern);
+        let (v, i) = refine_on_cpu(cfg, records, pattern);
         let vertices = Buffer::new_with_data(
             ctx,
             pool,
@@ -94,7 +101,7 @@ impl StaticVbo {
             "static strips",
         )?;
         Ok(Self {
-            surface,
+            cfg: *cfg,
             level: pattern.level,
             vertices,
             indices,

@@ -6,20 +6,17 @@
 //! most 65,535 evaluated vertices. gl_PrimitiveID restarts in every draw, so each draw pushes its
 //! first triangle. Other devices get one draw.
 
-use super::{GpuMesh, Renderer, PUSH_DRAW_OFFSET};
-use crate::gpu::conv::PUSH_STAGES;
-use crate::gpu::{Cmd, Context, GpuError};
+use super::{GpuMesh, RenderError, Renderer, PUSH_DRAW_OFFSET, PUSH_STAGES};
+use crate::gpu::{Cmd, Context};
 
 /// Largest evaluated-vertex count of one tessellated draw that lavapipe renders correctly.
 pub const LAVAPIPE_MAX_TESS_VERTICES_PER_DRAW: u32 = 65_535;
 
 /// Check `level` against the device's maxTessellationGenerationLevel.
-pub fn check_level(ctx: &Context, level: u32) -> Result<(), GpuError> {
+pub fn check_level(ctx: &Context, level: u32) -> Result<(), RenderError> {
     let max = ctx.info.limits.max_tessellation_generation_level;
     if level > max {
-        return Err(GpuError::Other(format!(
-            "level {level} is beyond this device's maxTessellationGenerationLevel ({max}): the tess driver cannot draw it (use --driver pattern)"
-        )));
+        return Err(RenderError::TessLevel { level, max });
     }
     Ok(())
 }
@@ -35,10 +32,10 @@ pub fn patches_per_draw(ctx: &Context, level: u32, triangles: u32) -> u32 {
 
 /// Record the tessellated draws of `mesh` at `level`.
 pub fn cmd_draw(cmd: &Cmd<'_>, r: &Renderer, mesh: &GpuMesh, level: u32) {
-    let per_draw = patches_per_draw(cmd.context(), level, mesh.triangle_count);
+    let per_draw = patches_per_draw(cmd.context(), level, mesh.element_count);
     let mut first = 0;
-    while first < mesh.triangle_count {
-        let count = per_draw.min(mesh.triangle_count - first);
+    while first < mesh.element_count {
+        let count = per_draw.min(mesh.element_count - first);
         let draw = [level, first, tess_vertex_count(level), 0];
         cmd.push_constants(
             r.layout.raw,

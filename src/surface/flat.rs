@@ -3,14 +3,25 @@
 //! Mirror of `glsl/include/flat.glsl`. Evaluated in the same operation order as the GLSL, which
 //! marks it `precise` (no fused multiply-add), so CPU and GPU positions agree to the bit.
 
-use super::{Corners, SurfacePoint};
+use super::{Corners, Local};
+use glam::Vec3;
 
-pub fn eval(c: &Corners) -> SurfacePoint {
+/// The flat point `Σ w_i P_i`.
+pub fn point(c: &Corners) -> Vec3 {
     let [w0, w1, w2] = c.w;
-    let position = c.p[0] * w0 + c.p[1] * w1 + c.p[2] * w2;
-    let normal = c.n[0] * w0 + c.n[1] * w1 + c.n[2] * w2;
-    SurfacePoint {
-        position,
-        normal: normal.normalize_or_zero(),
+    c.p[0] * w0 + c.p[1] * w1 + c.p[2] * w2
+}
+
+/// The normalized linear interpolation of the corner normals.
+pub fn normal(c: &Corners) -> Vec3 {
+    let [w0, w1, w2] = c.w;
+    (c.n[0] * w0 + c.n[1] * w1 + c.n[2] * w2).normalize_or_zero()
+}
+
+pub fn eval(c: &Corners) -> Local {
+    Local {
+        position: point(c),
+        normal: normal(c),
+        grad: c.p,
     }
 }

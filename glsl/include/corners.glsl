@@ -1,25 +1,51 @@
-// Canonical corner order for a barycentric sample: what makes refinement watertight.
-// Mirror: src/surface/mod.rs `canonical`.
+// The local surfaces' record (a coarse triangle's corners) and its canonical corner order: what
+// makes refinement watertight. Mirror: src/surface/mod.rs `canonical`, src/surface/record.rs.
 //
 // Corners are sorted by global vertex index, and zero-weight corners are moved last. A point on a
 // coarse edge shared by two triangles is then evaluated from the same two corners, in the same
-// order, with the same weights, in both triangles: bit-identical positions.
-#ifndef BARY_GLSL
-#define BARY_GLSL
+// order, with the same weights, in both triangles, and every term of the third corner carries its
+// exact zero weight: bit-identical positions.
+#ifndef CORNERS_GLSL
+#define CORNERS_GLSL
 #include "records.glsl"
+
+// Layout of `CornerRecord` (src/surface/record.rs) inside an ElementRecord.
+struct CornerRecord {
+    vec3 p[3];   // corner positions
+    vec3 n[3];   // corner unit normals
+    uvec4 idx;   // xyz: global position index of each corner (canonical order key); w: triangle
+};
+
+CornerRecord corner_record(ElementRecord e) {
+    CornerRecord r;
+    for (int i = 0; i < 3; ++i) {
+        r.p[i] = uintBitsToFloat(e.d[i].xyz);
+        r.n[i] = uintBitsToFloat(e.d[3 + i].xyz);
+    }
+    r.idx = e.d[6];
+    return r;
+}
 
 struct Corners {
     vec3 p[3];
     vec3 n[3];
     vec3 w;      // weight of each corner, in canonical order
+    int o[3];    // the stored corner each canonical corner is
 };
+
+// Dot product in a fixed operation order, without fused multiply-add (the built-in `dot` leaves
+// both to the implementation). Mirror: src/surface/mod.rs `dot3`.
+float dot3(vec3 a, vec3 b) {
+    precise float d = a.x * b.x + a.y * b.y + a.z * b.z;
+    return d;
+}
 
 uint canonical_key(uint index, float weight) {
     // Zero weights sort last; then by vertex index (indices are < 2^31, see mesh loading).
     return (weight == 0.0 ? 0x80000000u : 0u) | index;
 }
 
-Corners canonical(CoarseTri t, vec3 bary) {
+Corners canonical(CornerRecord t, vec3 bary) {
     uint k[3] = uint[3](canonical_key(t.idx.x, bary.x), canonical_key(t.idx.y, bary.y),
                         canonical_key(t.idx.z, bary.z));
     int o[3] = int[3](0, 1, 2);
@@ -29,9 +55,10 @@ Corners canonical(CoarseTri t, vec3 bary) {
     if (k[o[1]] < k[o[0]]) { int s = o[0]; o[0] = o[1]; o[1] = s; }
     Corners c;
     for (int i = 0; i < 3; ++i) {
-        c.p[i] = t.p[o[i]].xyz;
-        c.n[i] = t.n[o[i]].xyz;
+        c.p[i] = t.p[o[i]];
+        c.n[i] = t.n[o[i]];
         c.w[i] = bary[o[i]];
+        c.o[i] = o[i];
     }
     return c;
 }

@@ -1,0 +1,78 @@
+// Displacement along the surface point's unit normal, chosen by the DISPLACE specialization
+// constant (values: src/surface/displace.rs `Displace`); parameters from frame.params.
+// The formulas (sine, noise, Blinn's perturbed normal) are documented in the mirror,
+// src/surface/displace.rs, which follows the same operation order.
+#ifndef DISPLACE_GLSL
+#define DISPLACE_GLSL
+#include "corners.glsl"
+#include "noise.glsl"
+
+layout(constant_id = SPEC_DISPLACE) const uint DISPLACE = 0;
+const uint DISPLACE_NONE = 0;
+const uint DISPLACE_SINE = 1;
+const uint DISPLACE_NOISE = 2;
+
+struct SurfacePoint {
+    vec3 position;
+    vec3 normal;   // unit
+    vec3 dpdu;     // tangents for the sample (w, u, v), w = 1 - u - v
+    vec3 dpdv;
+};
+
+// Height at p and its gradient.
+float displace_height(vec3 p, out vec3 grad) {
+    float a = frame.params.y;
+    float f = frame.params.z;
+    grad = vec3(0.0);
+    if (DISPLACE == DISPLACE_SINE) {
+        float r = sqrt(dot3(p, p));
+        precise float h = a * sin(f * r);
+        if (r > 0.0) {
+            grad = p * (a * f * cos(f * r) / r);
+        }
+        return h;
+    }
+    if (DISPLACE == DISPLACE_NOISE) {
+        uint octaves = uint(frame.params.w);
+        precise float h = 0.0;
+        float scale = 1.0;
+        for (uint o = 0u; o < octaves; ++o) {
+            vec3 g;
+            precise vec3 q = p * (f * scale);
+            float n = noise_grad(q, g);
+            h += n / scale;
+            grad += g * f;
+            scale *= 2.0;
+        }
+        grad = grad * a;
+        precise float ah = a * h;
+        return ah;
+    }
+    return 0.0;
+}
+
+SurfacePoint displace(SurfacePoint sp) {
+    if (DISPLACE == DISPLACE_NONE) {
+        return sp;
+    }
+    vec3 grad;
+    float h = displace_height(sp.position, grad);
+    vec3 n = sp.normal;
+    float hu = dot3(grad, sp.dpdu), hv = dot3(grad, sp.dpdv);
+    vec3 cr = cross(sp.dpdu, sp.dpdv);
+    float area = length(cr);
+    SurfacePoint r;
+    r.normal = n;
+    if (area > 0.0) {
+        float sigma = dot3(cr, n) < 0.0 ? -1.0 : 1.0;
+        vec3 bump = (cross(n, sp.dpdv) * hu - cross(n, sp.dpdu) * hv) * (sigma / area);
+        r.normal = normalize(n + bump);
+    }
+    precise vec3 pos = sp.position + n * h;
+    r.position = pos;
+    r.dpdu = sp.dpdu + n * hu;
+    r.dpdv = sp.dpdv + n * hv;
+    return r;
+}
+
+#endif

@@ -1,0 +1,61 @@
+// `pn` surface: curved PN triangles as the 2005 paper's appendix A writes them; the derivation,
+// the normal field and how it differs from Vlachos et al. are in src/surface/pn.rs (the mirror,
+// same operation order).
+#ifndef PN_GLSL
+#define PN_GLSL
+#include "corners.glsl"
+
+const float PN_THIRD = 1.0 / 3.0;
+const float PN_SIXTH = 1.0 / 6.0;
+
+// The edge point of edge ij next to corner i: (2 P_i + P_j - s_ij N_i) / 3.
+vec3 pn_edge(Corners c, int i, int j) {
+    float s = dot3(c.p[j] - c.p[i], c.n[i]);
+    precise vec3 e = (c.p[i] * 2.0 + c.p[j] - c.n[i] * s) * PN_THIRD;
+    return e;
+}
+
+// The quadratic normal field's edge control point n_ij = N_i + N_j - t_ij (P_j - P_i).
+vec3 pn_normal_control(Corners c, int i, int j) {
+    vec3 d = c.p[j] - c.p[i];
+    float len2 = dot3(d, d);
+    vec3 s = c.n[i] + c.n[j];
+    float t = len2 > 0.0 ? 4.0 * dot3(d, s) / len2 : 0.0;
+    return s - d * t;
+}
+
+vec3 pn_normal(Corners c) {
+    vec3 w = c.w;
+    vec3 n = c.n[0] * (w[0] * w[0]) + c.n[1] * (w[1] * w[1]) + c.n[2] * (w[2] * w[2])
+           + pn_normal_control(c, 0, 1) * (w[0] * w[1])
+           + pn_normal_control(c, 1, 2) * (w[1] * w[2])
+           + pn_normal_control(c, 2, 0) * (w[2] * w[0]);
+    return normalize(n);
+}
+
+void pn_eval(Corners c, out vec3 position, out vec3 normal, out vec3 g[3]) {
+    vec3 e01 = pn_edge(c, 0, 1), e10 = pn_edge(c, 1, 0), e12 = pn_edge(c, 1, 2);
+    vec3 e21 = pn_edge(c, 2, 1), e02 = pn_edge(c, 0, 2), e20 = pn_edge(c, 2, 0);
+    precise vec3 sum = e01 + e10 + e12 + e21 + e02 + e20;
+    precise vec3 mean_e = sum * PN_SIXTH;
+    precise vec3 mean_v = (c.p[0] + c.p[1] + c.p[2]) * PN_THIRD;
+    precise vec3 centre = mean_e + (mean_e - mean_v) * 0.5;
+    float w0 = c.w[0], w1 = c.w[1], w2 = c.w[2];
+    precise vec3 corners = c.p[0] * (w0 * w0 * w0) + c.p[1] * (w1 * w1 * w1) + c.p[2] * (w2 * w2 * w2);
+    precise vec3 edges = e01 * (w0 * w0 * w1) + e10 * (w0 * w1 * w1) + e12 * (w1 * w1 * w2)
+                       + e21 * (w1 * w2 * w2) + e02 * (w0 * w0 * w2) + e20 * (w0 * w2 * w2);
+    precise vec3 pos = corners + edges * 3.0 + centre * (w0 * w1 * w2 * 6.0);
+    position = pos;
+    normal = pn_normal(c);
+    g[0] = c.p[0] * (3.0 * w0 * w0)
+         + (e01 * (2.0 * w0 * w1) + e10 * (w1 * w1) + e02 * (2.0 * w0 * w2) + e20 * (w2 * w2)) * 3.0
+         + centre * (6.0 * w1 * w2);
+    g[1] = c.p[1] * (3.0 * w1 * w1)
+         + (e01 * (w0 * w0) + e10 * (2.0 * w0 * w1) + e12 * (2.0 * w1 * w2) + e21 * (w2 * w2)) * 3.0
+         + centre * (6.0 * w0 * w2);
+    g[2] = c.p[2] * (3.0 * w2 * w2)
+         + (e12 * (w1 * w1) + e21 * (2.0 * w1 * w2) + e02 * (w0 * w0) + e20 * (2.0 * w0 * w2)) * 3.0
+         + centre * (6.0 * w0 * w1);
+}
+
+#endif

@@ -1,0 +1,27 @@
+//! What can go wrong while preparing or drawing, beyond the Vulkan layer's own errors.
+
+use crate::gpu::GpuError;
+
+#[derive(Debug, thiserror::Error)]
+pub enum RenderError {
+    #[error(transparent)]
+    Gpu(#[from] GpuError),
+    /// A request needs more than one of the device's limits allows.
+    #[error("{what} needs {needed} bytes, over this device's {limit} ({max}): {remedy}")]
+    OverLimit {
+        what: String,
+        needed: u64,
+        limit: &'static str,
+        max: u64,
+        remedy: &'static str,
+    },
+    #[error("level {level} is beyond this device's maxTessellationGenerationLevel ({max}): the tess driver cannot draw it (use --driver pattern)")]
+    TessLevel { level: u32, max: u32 },
+    #[error("level {level} is not among the uploaded pattern levels ({levels})")]
+    LevelNotUploaded { level: u32, levels: String },
+    /// A combination that cannot be drawn or read back (one sentence saying why).
+    #[error("{0}")]
+    Unsupported(&'static str),
+    #[error("the tessellator evaluated {written} vertices, more than the {capacity} the capture buffer holds")]
+    CaptureOverflow { written: u64, capacity: u64 },
+}

@@ -1,0 +1,164 @@
+//! Ken Perlin's improved noise (SIGGRAPH 2002, his reference implementation): the permutation
+//! table below, fade `6t⁵ − 15t⁴ + 10t³`, gradients chosen by `hash & 15`, trilinear blend with
+//! the fade weights, in f32. Mirror of `glsl/include/noise.glsl`. [`noise_grad`] also returns the
+//! analytic gradient (derivatives of the fade weights and of the corner gradients' dot products).
+
+use glam::Vec3;
+
+/// Perlin's permutation of 0..=255.
+pub const PERM: [u8; 256] = [
+    151, 160, 137, 91, 90, 15, 131, 13, 201, 95, 96, 53, 194, 233, 7, 225, 140, 36, 103, 30, 69,
+    142, 8, 99, 37, 240, 21, 10, 23, 190, 6, 148, 247, 120, 234, 75, 0, 26, 197, 62, 94, 252, 219,
+    203, 117, 35, 11, 32, 57, 177, 33, 88, 237, 149, 56, 87, 174, 20, 125, 136, 171, 168, 68, 175,
+    74, 165, 71, 134, 139, 48, 27, 166, 77, 146, 158, 231, 83, 111, 229, 122, 60, 211, 133, 230,
+    220, 105, 92, 41, 55, 46, 245, 40, 244, 102, 143, 54, 65, 25, 63, 161, 1, 216, 80, 73, 209, 76,
+    132, 187, 208, 89, 18, 169, 200, 196, 135, 130, 116, 188, 159, 86, 164, 100, 109, 198, 173,
+    186, 3, 64, 52, 217, 226, 250, 124, 123, 5, 202, 38, 147, 118, 126, 255, 82, 85, 212, 207, 206,
+    59, 227, 47, 16, 58, 17, 182, 189, 28, 42, 223, 183, 170, 213, 119, 248, 152, 2, 44, 154, 163,
+    70, 221, 153, 101, 155, 167, 43, 172, 9, 129, 22, 39, 253, 19, 98, 108, 110, 79, 113, 224, 232,
+    178, 185, 112, 104, 218, 246, 97, 228, 251, 34, 242, 193, 238, 210, 144, 12, 191, 179, 162,
+    241, 81, 51, 145, 235, 249, 14, 239, 107, 49, 192, 214, 31, 181, 199, 106, 157, 184, 84, 204,
+    176, 115, 121, 50, 45, 127, 4, 150, 254, 138, 236, 205, 93, 222, 114, 67, 29, 24, 72, 243, 141,
+    128, 195, 78, 66, 215, 61, 156, 180,
+];
+
+fn perm(i: u32) -> u32 {
+    PERM[(i & 255) as usize] as u32
+}
+
+/// The gradient Perlin's `grad(hash, x, y, z)` dots with `(x, y, z)`: `u = h < 8 ? x : y`,
+/// `v = h < 4 ? y : (h == 12 || h == 14 ? x : z)`, signs from bits 0 and 1.
+pub fn gradient(hash: u32) -> Vec3 {
+    const G: [[f32; 3]; 16] = [
+        [1.0, 1.0, 0.0],
+        [-1.0, 1.0, 0.0],
+        [1.0, -1.0, 0.0],
+        [-1.0, -1.0, 0.0],
+        [1.0, 0.0, 1.0],
+        [-1.0, 0.0, 1.0],
+        [1.0, 0.0, -1.0],
+        [-1.0, 0.0, -1.0],
+        [0.0, 1.0, 1.0],
+        [0.0, -1.0, 1.0],
+        [0.0, 1.0, -1.0],
+        [0.0, -1.0, -1.0],
+        [1.0, 1.0, 0.0],
+        [0.0, -1.0, 1.0],
+        [-1.0, 1.0, 0.0],
+        [0.0, -1.0, -1.0],
+    ];
+    Vec3::from(G[(hash & 15) as usize])
+}
+
+fn fade(t: f32) -> f32 {
+    t * t * t * (t * (t * 6.0 - 15.0) + 10.0)
+}
+
+fn dfade(t: f32) -> f32 {
+    30.0 * t * t * (t * (t - 2.0) + 1.0)
+}
+
+fn lerp(t: f32, a: f32, b: f32) -> f32 {
+    a + t * (b - a)
+}
+
+/// Improved noise at `p` (in [-1, 1]) and its gradient.
+pub fn noise_grad(p: Vec3) -> (f32, Vec3) {
+    let fl = p.floor();
+    let cell = [fl.x as i32 as u32, fl.y as i32 as u32, fl.z as i32 as u32];
+    let f = p - fl;
+    let (u, v, w) = (fade(f.x), fade(f.y), fade(f.z));
+    let a = perm(cell[0]).wrapping_add(cell[1]);
+    let aa = perm(a).wrapping_add(cell[2]);
+    let ab = perm(a.wrapping_add(1)).wrapping_add(cell[2]);
+    let b = perm(cell[0].wrapping_add(1)).wrapping_add(cell[1]);
+    let ba = perm(b).wrapping_add(cell[2]);
+    let bb = perm(b.wrapping_add(1)).wrapping_add(cell[2]);
+    // Corners (x, y, z) in {0, 1}³: gradient and offset from the corner.
+    let corner = |h: u32, dx: f32, dy: f32, dz: f32| {
+        let g = gradient(perm(h));
+        let d = Vec3::new(f.x - dx, f.y - dy, f.z - dz);
+        (g, g.x * d.x + g.y * d.y + g.z * d.z)
+    };
+    let (g000, n000) = corner(aa, 0.0, 0.0, 0.0);
+    let (g100, n100) = corner(ba, 1.0, 0.0, 0.0);
+    let (g010, n010) = corner(ab, 0.0, 1.0, 0.0);
+    let (g110, n110) = corner(bb, 1.0, 1.0, 0.0);
+    let (g001, n001) = corner(aa.wrapping_add(1), 0.0, 0.0, 1.0);
+    let (g101, n101) = corner(ba.wrapping_add(1), 1.0, 0.0, 1.0);
+    let (g011, n011) = corner(ab.wrapping_add(1), 0.0, 1.0, 1.0);
+    let (g111, n111) = corner(bb.wrapping_add(1), 1.0, 1.0, 1.0);
+    // Value: Perlin's nested lerps, in his order.
+    let value = lerp(
+        w,
+        lerp(v, lerp(u, n000, n100), lerp(u, n010, n110)),
+        lerp(v, lerp(u, n001, n101), lerp(u, n011, n111)),
+    );
+    // Gradient: the same trilinear blend written as a polynomial in (u, v, w).
+    let k1 = n100 - n000;
+    let k2 = n010 - n000;
+    let k3 = n001 - n000;
+    let k4 = n000 - n100 - n010 + n110;
+    let k5 = n000 - n010 - n001 + n011;
+    let k6 = n000 - n100 - n001 + n101;
+    let k7 = -n000 + n100 + n010 - n110 + n001 - n101 - n011 + n111;
+    let blend = g000
+        + (g100 - g000) * u
+        + (g010 - g000) * v
+        + (g001 - g000) * w
+        + (g000 - g100 - g010 + g110) * (u * v)
+        + (g000 - g010 - g001 + g011) * (v * w)
+        + (g000 - g100 - g001 + g101) * (w * u)
+        + (-g000 + g100 + g010 - g110 + g001 - g101 - g011 + g111) * (u * v * w);
+    let weights = Vec3::new(
+        dfade(f.x) * (k1 + k4 * v + k6 * w + k7 * v * w),
+        dfade(f.y) * (k2 + k4 * u + k5 * w + k7 * u * w),
+        dfade(f.z) * (k3 + k5 * v + k6 * u + k7 * u * v),
+    );
+    (value, blend + weights)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn table_is_a_permutation() {
+        let mut seen = [false; 256];
+        for &p in &PERM {
+            assert!(!seen[p as usize], "{p} twice");
+            seen[p as usize] = true;
+        }
+    }
+
+    /// The value Perlin's Java reference prints for noise(3.14, 42, 7).
+    #[test]
+    fn matches_the_reference_implementation() {
+        let (n, _) = noise_grad(Vec3::new(3.14, 42.0, 7.0));
+        assert!((n - 0.136_919_96).abs() < 1e-5, "{n}");
+        // Zero on the integer lattice.
+        assert_eq!(noise_grad(Vec3::new(3.0, -2.0, 5.0)).0, 0.0);
+    }
+
+    #[test]
+    fn gradient_matches_finite_differences() {
+        let h = 1e-3;
+        for p in [
+            Vec3::new(0.3, 0.7, 0.1),
+            Vec3::new(-2.2, 5.5, 1.9),
+            Vec3::new(10.01, -0.49, 3.3),
+        ] {
+            let (_, g) = noise_grad(p);
+            for a in 0..3 {
+                let mut e = Vec3::ZERO;
+                e[a] = h;
+                let fd = (noise_grad(p + e).0 - noise_grad(p - e).0) / (2.0 * h);
+                assert!(
+                    (fd - g[a]).abs() < 1e-2,
+                    "axis {a} at {p}: {fd} vs {}",
+                    g[a]
+                );
+            }
+        }
+    }
+}
