@@ -24,7 +24,7 @@
 //! # Invariants of a loaded mesh
 //!
 //! - at least one triangle; every `p` index is `< positions.len()`, every `n` index is
-//!   `< normals.len()`, and all indices are at most `u32::MAX / 2` ([`MAX_INDICES`]);
+//!   `< normals.len()`, every `t` index is `< texcoords.len()`, and all indices are at most `u32::MAX / 2` ([`MAX_INDICES`]);
 //! - positions are finite and unique; normals are finite and unit length;
 //! - no triangle repeats a position index or has zero area;
 //! - when normals were computed, `normals.len() == positions.len()` and `n == p` for every
@@ -48,9 +48,9 @@ mod weld;
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
-pub use error::{MeshError, MAX_INDICES};
+pub use error::{MeshError, MAX_INDICES, MAX_OBJ_BYTES};
 pub use normals::{compute_area_weighted_normals, FALLBACK_NORMAL};
 pub use topology::mesh_stats;
 
@@ -66,6 +66,9 @@ pub struct Mesh {
     pub normals: Vec<Vec3>,
     /// At least one; none degenerate.
     pub triangles: Vec<Triangle>,
+    /// Texture coordinates `(u, v)` from the file's `vt` lines (finite), indexed by
+    /// [`Triangle::t`]; empty when the input has none.
+    pub texcoords: Vec<Vec2>,
 }
 
 /// One triangle: position indices and normal indices per corner, in input order
@@ -76,6 +79,8 @@ pub struct Triangle {
     pub p: [u32; 3],
     /// Indices into [`Mesh::normals`].
     pub n: [u32; 3],
+    /// Indices into [`Mesh::texcoords`], when every corner of the face gave one.
+    pub t: Option<[u32; 3]>,
 }
 
 /// What loading did besides building the mesh.
@@ -302,6 +307,7 @@ mod tests {
             positions: vec![],
             normals: vec![],
             triangles: vec![],
+            texcoords: vec![],
         };
         assert_eq!(empty.bounds(), (Vec3::ZERO, Vec3::ZERO));
         assert_eq!(empty.stats(), MeshStats::default());

@@ -3,7 +3,7 @@
 
 use std::collections::HashMap;
 
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 use super::normals::{compute_area_weighted_normals, corners, is_zero_area, unit};
 use super::{DegenerateFace, LoadReport, Mesh, MeshError, Triangle, FALLBACK_NORMAL, MAX_INDICES};
@@ -14,6 +14,8 @@ pub(crate) struct RawTriangle {
     pub p: [u32; 3],
     /// Indices into the given normals (ignored when normals are computed).
     pub n: [u32; 3],
+    /// Indices into the texture coordinates, if the face has them.
+    pub t: Option<[u32; 3]>,
     /// 0-based face index in file (or input) order.
     pub face: usize,
     /// 1-based line of the face, for OBJ input.
@@ -30,6 +32,8 @@ pub(crate) struct RawMesh {
     /// `Some` to keep these normals (indexed by [`RawTriangle::n`]), `None` to compute them.
     pub normals: Option<Vec<Vec3>>,
     pub triangles: Vec<RawTriangle>,
+    /// Indexed by [`RawTriangle::t`] (validated).
+    pub texcoords: Vec<Vec2>,
     pub polygons_triangulated: usize,
 }
 
@@ -62,7 +66,7 @@ pub(crate) fn assemble(raw: RawMesh) -> Result<(Mesh, LoadReport), MeshError> {
                     reason,
                 });
             }
-            None => triangles.push(Triangle { p, n: t.n }),
+            None => triangles.push(Triangle { p, n: t.n, t: t.t }),
         }
     }
     if triangles.is_empty() {
@@ -89,6 +93,7 @@ pub(crate) fn assemble(raw: RawMesh) -> Result<(Mesh, LoadReport), MeshError> {
         positions,
         normals,
         triangles,
+        texcoords: raw.texcoords,
     };
     let report = LoadReport {
         dropped_degenerate: dropped,
@@ -164,6 +169,7 @@ pub(crate) fn from_parts(
         .map(|(face, p)| RawTriangle {
             p,
             n: p,
+            t: None,
             face,
             line: None,
         })
@@ -174,6 +180,7 @@ pub(crate) fn from_parts(
         positions,
         normals,
         triangles,
+        texcoords: Vec::new(),
         polygons_triangulated: 0,
     })
 }
@@ -247,10 +254,12 @@ mod tests {
                 .map(|(face, &p)| RawTriangle {
                     p,
                     n: p,
+                    t: None,
                     face,
                     line: None,
                 })
                 .collect(),
+            texcoords: Vec::new(),
             polygons_triangulated: 0,
         }
     }
