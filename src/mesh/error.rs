@@ -51,6 +51,16 @@ pub enum MeshError {
         /// The file path as displayed, or the name given instead of one.
         path: String,
     },
+    /// Every triangle was dropped as degenerate.
+    #[error("'{path}' contains no triangles that can be drawn: all {count} are degenerate (the first, {first})")]
+    NoDrawableTriangles {
+        /// The file path as displayed, or the name given instead of one.
+        path: String,
+        /// How many triangles were dropped.
+        count: usize,
+        /// The first one and why, as [`DegenerateFace::describe`](super::DegenerateFace::describe).
+        first: String,
+    },
     /// A face refers to a vertex that does not exist. `index` is the index as written
     /// (1-based, or negative for relative OBJ indices; 0-based for
     /// [`Mesh::from_parts`](super::Mesh::from_parts)), `count` the number of vertices it

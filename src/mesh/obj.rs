@@ -501,7 +501,7 @@ mod tests {
     fn all_faces_degenerate_is_an_empty_mesh() {
         assert_eq!(
             err("v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\nf 1 1 2\n"),
-            "'x.obj' contains no triangles"
+            "'x.obj' contains no triangles that can be drawn: all 2 are degenerate (the first, at line 4, has zero area)"
         );
     }
 

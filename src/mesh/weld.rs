@@ -5,7 +5,7 @@ use std::collections::HashMap;
 
 use glam::{Vec2, Vec3};
 
-use super::normals::{compute_area_weighted_normals, corners, is_zero_area, unit};
+use super::normals::{compute_area_weighted_normals, corners, degenerate_reason, unit};
 use super::{DegenerateFace, LoadReport, Mesh, MeshError, Triangle, FALLBACK_NORMAL, MAX_INDICES};
 
 /// A triangle before welding, with where it came from.
@@ -49,14 +49,16 @@ pub(crate) fn assemble(raw: RawMesh) -> Result<(Mesh, LoadReport), MeshError> {
             Some("repeats a vertex index")
         } else {
             match corners(&positions, p) {
-                Some([a, b, c]) if !is_zero_area(a, b, c) => None,
-                _ => Some("has zero area"),
+                Some([a, b, c]) => degenerate_reason(a, b, c),
+                None => Some("has zero area"),
             }
         };
         match reason {
             Some(reason) => {
+                // One line per face only at debug level: a file can hold millions of them.
+                // Callers summarize `LoadReport::dropped_degenerate` (see `DegenerateFace`).
                 let at = t.line.map_or(String::new(), |l| format!(" at line {l}"));
-                log::warn!(
+                log::debug!(
                     "'{path}': dropping face {} (0-based){at}: it {reason}",
                     t.face
                 );
@@ -69,8 +71,12 @@ pub(crate) fn assemble(raw: RawMesh) -> Result<(Mesh, LoadReport), MeshError> {
             None => triangles.push(Triangle { p, n: t.n, t: t.t }),
         }
     }
-    if triangles.is_empty() {
-        return Err(MeshError::EmptyMesh { path });
+    if let Some(first) = dropped.first().filter(|_| triangles.is_empty()) {
+        return Err(MeshError::NoDrawableTriangles {
+            path,
+            count: dropped.len(),
+            first: first.describe(),
+        });
     }
 
     let normals_computed = raw.normals.is_none();
@@ -347,6 +353,9 @@ mod tests {
     fn all_degenerate_is_empty() {
         let p = vec![Vec3::ZERO, Vec3::X, Vec3::X * 2.0];
         let err = assemble(raw(p, &[[0, 1, 2]])).unwrap_err();
-        assert_eq!(err.to_string(), "'t' contains no triangles");
+        assert_eq!(
+            err.to_string(),
+            "'t' contains no triangles that can be drawn: all 1 are degenerate (the first, face 0, has zero area)"
+        );
     }
 }

@@ -14,7 +14,7 @@ pub mod static_vbo;
 pub mod tess;
 
 pub use camera::Camera;
-pub use headless::{CaptureResult, FrameTiming, Headless};
+pub use headless::{clear_color_srgb8, covered_pixels, CaptureResult, FrameTiming, Headless};
 pub use pipelines::Renderer;
 pub use scene::{geometry_bytes, GpuMesh, MeshData, Scene};
 
