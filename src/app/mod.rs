@@ -19,6 +19,7 @@ use crate::render::frame::{cmd_render, FrameWork, TargetView, CLEAR_COLOR};
 use crate::render::{Camera, DrawConfig, Driver, FrameUniforms, Renderer, Scene, Submit};
 use anyhow::{anyhow, Context as _, Result};
 use raw_window_handle::{HasDisplayHandle, HasWindowHandle};
+use std::io::Write as _;
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
@@ -235,7 +236,8 @@ impl App {
         let rendered = (0..swapchain.images.len())
             .map(|i| Semaphore::new(&ctx, &format!("rendered {i}")))
             .collect::<Result<Vec<_>, _>>()?;
-        println!("{KEY_HELP}");
+        // Informational only: a closed or full stdout must not stop (or panic) the demo.
+        let _ = writeln!(std::io::stdout().lock(), "{KEY_HELP}");
         Ok(State {
             base_mesh: mesh,
             scene,
@@ -454,7 +456,7 @@ impl State {
             self.fence.wait()?;
             let path = opts.screenshot.as_ref().unwrap();
             self.save_screenshot(path)?;
-            println!("saved {}", path.display());
+            let _ = writeln!(std::io::stdout().lock(), "saved {}", path.display());
         }
         Ok(!last)
     }
