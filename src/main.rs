@@ -469,3 +469,34 @@ fn info(path: &Path, level: Option<u32>) -> Result<()> {
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use meshrefine::mesh::DegenerateFace;
+
+    #[test]
+    fn degenerate_warning_is_one_line_with_the_first_runs() {
+        let face = |line, reason| DegenerateFace {
+            face: 0,
+            line: Some(line),
+            reason,
+        };
+        let mut report = LoadReport::default();
+        assert_eq!(degenerate_warning("x.obj", &report), None);
+        report.dropped_degenerate = vec![face(7, "has zero area"); 1000];
+        report
+            .dropped_degenerate
+            .extend([8, 9, 10, 11].map(|l| face(l, "repeats a vertex index")));
+        let w = degenerate_warning("x.obj", &report).unwrap();
+        assert!(!w.contains('\n'));
+        assert!(
+            w.starts_with("warning: 'x.obj': dropped 1004 degenerate face(s) "),
+            "{w}"
+        );
+        assert!(
+            w.ends_with(": at line 7, has zero area (1000 triangles); at line 8, repeats a vertex index; at line 9, repeats a vertex index; and 2 more"),
+            "{w}"
+        );
+    }
+}
