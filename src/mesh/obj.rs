@@ -9,7 +9,8 @@
 //! scan also rewrites the file into a canonical form that `tobj` cannot misread: only `v x y z`,
 //! `vn x y z` and `f` lines with absolute, range-checked `v` or `v//vn` indices remain; every
 //! other statement (groups, objects, materials, texture coordinates, lines, points) becomes
-//! an empty line, which also merges all objects and groups into one mesh. `tobj` then parses
+//! an empty line, which also merges all objects and groups into one mesh. Texture coordinates
+//! are taken from the scan itself (validated there, fanned like `tobj`'s triangles). `tobj` then parses
 //! that text and fan-triangulates polygons (`0 1 2`, `0 2 3`, ...).
 
 use std::io::{Cursor, Read as _};
