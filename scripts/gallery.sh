@@ -6,6 +6,15 @@ cargo build --quiet
 m=./target/debug/meshrefine
 out=docs/gallery
 mkdir -p "$out"
-$m render -o "$out/spot-pattern-level4.png" --width 640 --height 360 --level 4 --wireframe
-$m render -o "$out/spot-tess-level4.png" --width 640 --height 360 --level 4 --wireframe --driver tess
-$m render assets/models/torus_16x8_vn.obj -o "$out/torus-pattern-level3.png" --width 640 --height 360 --level 3 --wireframe
+$m render -o "$out/spot-pattern-level4.png" --width 640 --height 360 --level 4 --wireframe --surface flat
+$m render -o "$out/spot-tess-level4.png" --width 640 --height 360 --level 4 --wireframe --driver tess --surface flat
+$m render assets/models/torus_16x8_vn.obj -o "$out/torus-pattern-level3.png" --width 640 --height 360 --level 3 --wireframe --surface flat
+# Every surface on the default mesh (level 8), then the displacements on pn.
+for s in flat phong pn; do
+  $m render -o "$out/spot-$s.png" --width 427 --height 240 --level 8 --surface $s
+done
+$m render -o "$out/spot-pn-sine.png" --width 427 --height 240 --level 32 --surface pn --displace sine
+$m render -o "$out/spot-pn-noise.png" --width 427 --height 240 --level 32 --surface pn --displace noise --octaves 3
+$m render -o "$out/spot-phong-wire.png" --width 427 --height 240 --level 6 --surface phong --wireframe
+# PN at split normals (a position with several vn): the known PN crack, as the papers have it.
+$m render assets/models/cylinder_hard_normals.obj -o "$out/cylinder-pn.png" --width 427 --height 240 --level 8 --surface pn

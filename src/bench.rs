@@ -236,7 +236,8 @@ pub fn run(
     }
     Ok(Report {
         device,
-        frames: opts.frames,
+        // What was timed: at least one frame, whatever was asked.
+        frames: opts.frames.max(1),
         width: opts.width,
         height: opts.height,
         rows,

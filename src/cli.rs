@@ -62,6 +62,7 @@ impl ParamOpts {
             amplitude: self.amplitude.unwrap_or(d.amplitude),
             frequency: self.frequency.unwrap_or(d.frequency),
             octaves: self.octaves,
+            origin: d.origin,
         };
         p.validate()?;
         Ok(p)
@@ -71,8 +72,9 @@ impl ParamOpts {
 /// Surface and displacement.
 #[derive(Args, Debug, Clone)]
 pub struct SurfaceOpts {
-    /// Surface defined by each coarse triangle.
-    #[arg(long, value_enum, default_value = "flat")]
+    /// Surface defined by each coarse triangle (default: curved PN triangles, smooth out of the
+    /// box).
+    #[arg(long, value_enum, default_value = "pn")]
     pub surface: Surface,
     /// Displacement along the surface's normal.
     #[arg(long, value_enum, default_value = "none")]
@@ -88,12 +90,20 @@ pub struct Technique {
     /// How barycentric samples are produced on the GPU.
     #[arg(long, value_enum, default_value = "pattern")]
     pub driver: Driver,
-    /// How the pattern driver hands each coarse triangle to the vertex shader.
-    #[arg(long, value_enum, default_value = "instanced")]
-    pub submit: Submit,
+    /// How the pattern driver hands each coarse triangle to the vertex shader [default:
+    /// instanced]. Only for --driver pattern (`view` may switch to it).
+    #[arg(long, value_enum)]
+    pub submit: Option<Submit>,
     /// Refinement level N: N segments per coarse edge, N² triangles per coarse triangle.
     #[arg(long, default_value_t = 16, value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub level: u32,
+}
+
+impl Technique {
+    /// The submission mode: the one given, else `instanced`.
+    pub fn submit(&self) -> Submit {
+        self.submit.unwrap_or(Submit::Instanced)
+    }
 }
 
 #[derive(Args, Debug)]
@@ -102,8 +112,8 @@ pub struct ViewArgs {
     pub mesh: Option<PathBuf>,
     #[command(flatten)]
     pub technique: Technique,
-    /// Exit after N frames.
-    #[arg(long)]
+    /// Exit after N frames (at least 1).
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
     pub frames: Option<u64>,
     /// Save the last frame to this PNG file.
     #[arg(long, value_name = "FILE.png")]
@@ -153,9 +163,10 @@ pub struct ExportArgs {
     /// Whose GPU evaluation to read back (static evaluates on the CPU: nothing to read back).
     #[arg(long, value_enum, default_value = "pattern")]
     pub driver: ExportDriver,
-    /// How the pattern driver hands each coarse triangle to the vertex shader.
-    #[arg(long, value_enum, default_value = "instanced")]
-    pub submit: Submit,
+    /// How the pattern driver hands each coarse triangle to the vertex shader [default:
+    /// instanced]. Only for --driver pattern.
+    #[arg(long, value_enum)]
+    pub submit: Option<Submit>,
     /// Refinement level N: N segments per coarse edge.
     #[arg(long, default_value_t = 16, value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub level: u32,
@@ -212,8 +223,8 @@ pub struct BenchArgs {
     /// Also write the results to PREFIX.md (with this command line), PREFIX.csv and PREFIX.json.
     #[arg(long, value_name = "PREFIX")]
     pub out: Option<PathBuf>,
-    /// Timed frames per variant (after one warm-up frame).
-    #[arg(long, default_value_t = 5)]
+    /// Timed frames per variant (after one warm-up frame; at least 1).
+    #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..))]
     pub frames: u32,
     #[arg(long, default_value_t = 1280)]
     pub width: u32,

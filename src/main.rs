@@ -1,5 +1,11 @@
 //! `meshrefine` binary: parses the command line, runs the command, turns every failure into one
 //! clear sentence and a non-zero exit status.
+//!
+//! Standard output is written only through [`out!`], which returns write errors: a closed pipe
+//! (`meshrefine info x.obj | head -2`) ends the program quietly with status 0, as Unix filters
+//! do; any other write error (`>/dev/full`) is an `error:` line and status 1. Warnings and
+//! errors go to standard error, where a failed write is ignored (there is nowhere else to say
+//! it).
 
 mod cli;
 
@@ -7,21 +13,66 @@ use anyhow::{bail, Context as _, Result};
 use clap::Parser;
 use cli::{Cli, Command, Technique};
 use meshrefine::gpu::{Context, ContextDesc, Messages};
-use meshrefine::mesh::Mesh;
-use meshrefine::render::{Camera, DrawConfig, Driver, Headless};
+use meshrefine::mesh::{LoadReport, Mesh, MeshError};
+use meshrefine::render::{covered_pixels, Camera, DrawConfig, Driver, Headless};
+use std::io::Write as _;
 use std::path::Path;
 use std::process::ExitCode;
 use std::sync::Arc;
+
+/// A failed write to standard output.
+#[derive(Debug)]
+struct StdoutError(std::io::Error);
+
+impl std::fmt::Display for StdoutError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "cannot write to standard output: {}", self.0)
+    }
+}
+
+impl std::error::Error for StdoutError {}
+
+/// `println!` that returns a [`StdoutError`] from the enclosing function instead of panicking.
+macro_rules! out {
+    ($($arg:tt)*) => {
+        writeln!(std::io::stdout().lock(), $($arg)*).map_err(StdoutError)?
+    };
+}
+
+/// A line on standard error (warnings, validation messages); a failed write is ignored.
+fn note(line: std::fmt::Arguments) {
+    let _ = writeln!(std::io::stderr().lock(), "{line}");
+}
 
 fn main() -> ExitCode {
     env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn"))
         .format_timestamp(None)
         .init();
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        // --help, --version (to stdout) or a usage error (to stderr, status 2).
+        Err(e) => {
+            return match e.print() {
+                Err(w) if w.kind() != std::io::ErrorKind::BrokenPipe => {
+                    note(format_args!("error: {}", StdoutError(w)));
+                    ExitCode::FAILURE
+                }
+                _ => ExitCode::from(u8::try_from(e.exit_code()).unwrap_or(1)),
+            };
+        }
+    };
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {e:#}");
+            let closed_pipe = e.chain().any(|c| {
+                c.downcast_ref::<StdoutError>()
+                    .is_some_and(|s| s.0.kind() == std::io::ErrorKind::BrokenPipe)
+            });
+            if closed_pipe {
+                // The reader has gone (`| head`): nobody wants the rest. Quietly done.
+                return ExitCode::SUCCESS;
+            }
+            note(format_args!("error: {e:#}"));
             ExitCode::FAILURE
         }
     }
@@ -36,29 +87,106 @@ fn context_desc(cli: &Cli) -> ContextDesc {
     }
 }
 
-fn load_mesh(path: Option<&Path>) -> Result<Mesh> {
-    match path {
-        None => Ok(meshrefine::mesh::default_mesh()),
-        Some(p) => {
-            let (mesh, report) = Mesh::load_obj(p)?;
-            if !report.dropped_degenerate.is_empty() {
-                eprintln!(
-                    "warning: '{}': dropped {} degenerate face(s) (repeated vertex or zero area)",
-                    p.display(),
-                    report.dropped_degenerate.len()
-                );
-            }
-            if let Err(e) = mesh.require_manifold() {
-                // Only Loop subdivision (not yet here) needs a manifold; say so anyway.
-                eprintln!("warning: {e} (the flat surface does not need one)");
-            }
-            Ok(mesh)
-        }
-    }
+/// A loaded mesh and what messages call it.
+struct Input {
+    mesh: Mesh,
+    /// The path as given, or "the default mesh (spot)".
+    shown: String,
 }
 
-/// What to draw: the technique's choices, parameters scaled to `mesh` where not given.
-fn draw_config(t: &Technique, mesh: &Mesh) -> Result<DrawConfig> {
+/// How many degenerate faces a warning lists before "and N more".
+const LISTED_DEGENERATE: usize = 3;
+
+/// One warning line for every dropped face: the count, then the first few runs of faces with
+/// the same line and reason.
+fn degenerate_warning(shown: &str, report: &LoadReport) -> Option<String> {
+    let dropped = &report.dropped_degenerate;
+    if dropped.is_empty() {
+        return None;
+    }
+    let mut runs: Vec<(String, usize)> = Vec::new();
+    for d in dropped {
+        let what = d.describe();
+        match runs.last_mut() {
+            Some((last, n)) if *last == what => *n += 1,
+            _ => runs.push((what, 1)),
+        }
+    }
+    let mut listed: Vec<String> = runs
+        .iter()
+        .take(LISTED_DEGENERATE)
+        .map(|(what, n)| match n {
+            1 => what.clone(),
+            n => format!("{what} ({n} triangles)"),
+        })
+        .collect();
+    if runs.len() > LISTED_DEGENERATE {
+        listed.push(format!("and {} more", runs.len() - LISTED_DEGENERATE));
+    }
+    Some(format!(
+        "warning: '{shown}': dropped {} degenerate face(s) (repeated vertex, zero area, or an area f32 cannot represent): {}",
+        dropped.len(),
+        listed.join("; ")
+    ))
+}
+
+fn load_mesh(path: Option<&Path>) -> Result<Input> {
+    let Some(p) = path else {
+        return Ok(Input {
+            mesh: meshrefine::mesh::default_mesh(),
+            shown: "the default mesh (spot)".into(),
+        });
+    };
+    let shown = p.display().to_string();
+    let (mesh, report) = Mesh::load_obj(p)?;
+    if let Some(w) = degenerate_warning(&shown, &report) {
+        note(format_args!("{w}"));
+    }
+    if let Err(MeshError::NonManifold {
+        edges, vertices, ..
+    }) = mesh.require_manifold()
+    {
+        // Only Loop subdivision (not yet here) needs a manifold; say so anyway.
+        let e = MeshError::NonManifold {
+            path: shown.clone(),
+            edges,
+            vertices,
+        };
+        note(format_args!(
+            "warning: {e} (the flat surface does not need one)"
+        ));
+    }
+    Ok(Input { mesh, shown })
+}
+
+/// Refuses an output path whose extension says another format than the one written.
+fn require_extension(path: &Path, ext: &str, what: &str) -> Result<()> {
+    let matches = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case(ext));
+    if !matches {
+        bail!(
+            "output file '{}' does not end in .{ext}: {what} (name it .{ext})",
+            path.display()
+        );
+    }
+    Ok(())
+}
+
+/// The draw configuration for `mesh` (displacement parameters not given are scaled to it); an
+/// explicit `--submit` with another driver than `pattern` is an error unless `may_switch` (the
+/// window demo, whose keys switch to `pattern`).
+fn draw_config(t: &Technique, mesh: &Mesh, may_switch: bool) -> Result<DrawConfig> {
+    if let (Some(submit), false) = (t.submit, may_switch) {
+        if t.driver != Driver::Pattern {
+            bail!(
+                "--submit {} applies only to --driver pattern, not to --driver {}: leave --submit out or use --driver pattern",
+                submit.name(),
+                t.driver.name()
+            );
+        }
+    }
     Ok(DrawConfig {
         surface: t.surface.surface,
         displace: t.surface.displace,
@@ -68,9 +196,25 @@ fn draw_config(t: &Technique, mesh: &Mesh) -> Result<DrawConfig> {
             .params(mesh.bounding_radius())
             .map_err(anyhow::Error::msg)?,
         driver: t.driver,
-        submit: t.submit,
+        submit: t.submit(),
         level: t.level,
     })
+}
+
+/// Refuses a mesh whose coarse records do not fit one storage buffer of this device (every
+/// driver keeps them in one), naming the file and the remedy.
+fn check_records_fit(ctx: &Context, input: &Input) -> Result<()> {
+    let record = meshrefine::surface::RECORD_BYTES as u64;
+    let range = u64::from(ctx.info.limits.max_storage_buffer_range);
+    let max = range / record;
+    let triangles = input.mesh.triangles.len() as u64;
+    if triangles > max {
+        bail!(
+            "'{}' has {triangles} coarse triangles but one draw on this device holds at most {max} ({record}-byte records in maxStorageBufferRange, {range} bytes): simplify the mesh or split it into files of at most {max} triangles",
+            input.shown
+        );
+    }
+    Ok(())
 }
 
 /// After every GPU object is gone: fail if the validation layer complained or anything leaked.
@@ -82,7 +226,7 @@ fn check_messages(messages: &Arc<Messages>) -> Result<()> {
     }
     if !list.is_empty() {
         for m in &list {
-            eprintln!("validation: {m}");
+            note(format_args!("validation: {m}"));
         }
         bail!(
             "the Vulkan validation layer reported {} problem(s)",
@@ -96,36 +240,47 @@ fn run(cli: Cli) -> Result<()> {
     let desc = context_desc(&cli);
     match &cli.command {
         Command::Render(a) => {
-            let mesh = load_mesh(a.mesh.as_deref())?;
-            let cfg = draw_config(&a.technique, &mesh)?;
+            require_extension(&a.output, "png", "render writes PNG images only")?;
+            let input = load_mesh(a.mesh.as_deref())?;
+            let cfg = draw_config(&a.technique, &input.mesh, false)?;
             let messages = {
                 let ctx = Context::new(&desc)?;
                 let messages = ctx.messages_handle();
-                render_png(ctx, mesh, &cfg, a.width, a.height, a.wireframe, &a.output)?;
+                let size = (a.width, a.height);
+                render_png(ctx, input, &cfg, size, a.wireframe, &a.output)?;
                 messages
             };
             check_messages(&messages)?;
-            println!("wrote {}", a.output.display());
+            out!("wrote {}", a.output.display());
         }
         Command::View(a) => {
-            let mesh = load_mesh(a.mesh.as_deref())?;
-            let cfg = draw_config(&a.technique, &mesh)?;
+            if let Some(shot) = &a.screenshot {
+                require_extension(shot, "png", "screenshots are PNG images")?;
+            }
+            require_extension(
+                &a.headless_output,
+                "png",
+                "the headless view writes a PNG image",
+            )?;
+            let input = load_mesh(a.mesh.as_deref())?;
+            let cfg = draw_config(&a.technique, &input.mesh, true)?;
             let has_display = std::env::var_os("DISPLAY").is_some()
                 || std::env::var_os("WAYLAND_DISPLAY").is_some();
             let why_headless = if has_display {
+                let (mesh, viewed) = for_viewing(&input.mesh, &cfg);
                 let opts = meshrefine::app::ViewOptions {
-                    cfg,
+                    cfg: viewed,
                     frames: a.frames,
                     screenshot: a.screenshot.clone(),
                     wireframe: a.wireframe,
                     animate: a.animate,
                     lod: a.lod,
                 };
-                match meshrefine::app::run(desc.clone(), mesh.clone(), opts) {
+                match meshrefine::app::run(desc.clone(), mesh, opts) {
                     Ok(messages) => return check_messages(&messages),
                     Err(e) => match e.downcast::<meshrefine::app::NoWindowSystem>() {
                         Ok(no_window) => no_window.to_string(),
-                        Err(e) => return Err(e),
+                        Err(e) => return Err(e.context(format!("cannot show '{}'", input.shown))),
                     },
                 }
             } else {
@@ -134,70 +289,50 @@ fn run(cli: Cli) -> Result<()> {
             let messages = {
                 let ctx = Context::new(&desc)?;
                 let messages = ctx.messages_handle();
-                render_png(ctx, mesh, &cfg, 1280, 720, a.wireframe, &a.headless_output)?;
+                let out = &a.headless_output;
+                render_png(ctx, input, &cfg, (1280, 720), a.wireframe, out)?;
                 messages
             };
             check_messages(&messages)?;
             let shown =
                 std::fs::canonicalize(&a.headless_output).unwrap_or(a.headless_output.clone());
-            println!(
+            out!(
                 "{why_headless}: rendered the scene headlessly to {}",
                 shown.display()
             );
         }
         Command::Export(a) => {
-            let mesh = load_mesh(a.mesh.as_deref())?;
-            let cfg = draw_config(&a.technique(), &mesh)?;
-            let messages = {
+            require_extension(&a.output, "obj", "export writes Wavefront OBJ text only")?;
+            let input = load_mesh(a.mesh.as_deref())?;
+            let cfg = draw_config(&a.technique(), &input.mesh, false)?;
+            let (messages, counts) = {
                 let ctx = Context::new(&desc)?;
                 let messages = ctx.messages_handle();
-                let device = ctx.info.describe();
-                let mut h = Headless::with_context(ctx, 64, 64)?;
-                let name = mesh.name.clone();
-                let mut scene = h.scene(mesh, cfg.level)?;
-                let (c, r) = scene.bounding_sphere();
-                let camera = Camera::framing(c, r);
-                let refined = if cfg.driver == Driver::Tess {
-                    let triangles = h.capture_triangles(&mut scene, &cfg, &camera)?;
-                    meshrefine::export::weld_triangles(&triangles)
-                } else {
-                    let cap = h.capture(&mut scene, &cfg, &camera)?;
-                    let pattern = &scene.patterns.patterns[scene.patterns.find(cfg.level).unwrap()];
-                    meshrefine::export::weld(&cap, pattern).map_err(anyhow::Error::msg)?
-                };
-                let header = vec![
-                    format!(
-                        "meshrefine export of '{name}': surface {}, displacement {}, driver {}, level {}",
-                        cfg.surface.name(),
-                        cfg.displace.name(),
-                        cfg.label(),
-                        cfg.level
-                    ),
-                    format!("evaluated on {device}"),
-                    format!(
-                        "{} vertices, {} normals, {} triangles",
-                        refined.positions.len(),
-                        refined.normals.len(),
-                        refined.triangles.len()
-                    ),
-                ];
-                std::fs::write(&a.output, meshrefine::export::to_obj(&refined, &header))
-                    .with_context(|| format!("cannot write '{}'", a.output.display()))?;
-                println!("{}", header[2]);
-                messages
+                let shown = input.shown.clone();
+                let counts = export(ctx, input, &cfg, &a.output)
+                    .with_context(|| format!("cannot export '{shown}'"))?;
+                (messages, counts)
             };
             check_messages(&messages)?;
-            println!("wrote {}", a.output.display());
+            out!("{counts}");
+            out!("wrote {}", a.output.display());
         }
         Command::Info(a) => info(&a.mesh, a.level)?,
         Command::Bench(a) => {
-            let mesh = load_mesh(a.mesh.as_deref())?;
+            let input = load_mesh(a.mesh.as_deref())?;
             let ctx = Context::new(&desc)?;
+            check_records_fit(&ctx, &input)?;
             let messages = ctx.messages_handle();
+            let (mesh, _) = for_viewing(
+                &input.mesh,
+                &DrawConfig::new(Driver::Pattern, Default::default(), 1),
+            );
+            let (centre, scale) = input.mesh.viewing_transform();
             let params = a
                 .params
-                .params(mesh.bounding_radius())
-                .map_err(anyhow::Error::msg)?;
+                .params(input.mesh.bounding_radius())
+                .map_err(anyhow::Error::msg)?
+                .in_drawn_frame(centre, scale);
             let surfaces = a
                 .surfaces
                 .iter()
@@ -211,8 +346,11 @@ fn run(cli: Cli) -> Result<()> {
                 width: a.width,
                 height: a.height,
             };
-            let report = meshrefine::bench::run(ctx, &[mesh], &opts)?;
-            println!("{}", report.markdown());
+            // Drawn centred and at unit size, like `render`: the timings do not change.
+            let mut mesh = mesh;
+            mesh.name = input.mesh.name.clone();
+            let report = meshrefine::bench::run(ctx, &[mesh], &opts)
+                .with_context(|| format!("cannot benchmark '{}'", input.shown))?;
             check_messages(&messages)?;
             if let Some(prefix) = &a.out {
                 let args: Vec<String> = std::env::args().skip(1).collect();
@@ -220,50 +358,121 @@ fn run(cli: Cli) -> Result<()> {
                 report
                     .write_files(prefix, &command)
                     .with_context(|| format!("cannot write '{}.md'", prefix.display()))?;
-                println!("wrote {}.{{md,csv,json}}", prefix.display());
+            }
+            out!("{}", report.markdown());
+            if let Some(prefix) = &a.out {
+                out!("wrote {}.{{md,csv,json}}", prefix.display());
             }
         }
     }
     Ok(())
 }
 
+/// Captures what the GPU evaluated and writes it as OBJ; returns the counts line.
+fn export(ctx: Arc<Context>, input: Input, cfg: &DrawConfig, output: &Path) -> Result<String> {
+    check_records_fit(&ctx, &input)?;
+    let device = ctx.info.describe();
+    let mut h = Headless::with_context(ctx, 64, 64)?;
+    let name = input.mesh.name.clone();
+    let mut scene = h.scene(input.mesh, cfg.level)?;
+    let (c, r) = scene.bounding_sphere();
+    let camera = Camera::framing(c, r);
+    let refined = if cfg.driver == Driver::Tess {
+        let triangles = h.capture_triangles(&mut scene, cfg, &camera)?;
+        meshrefine::export::weld_triangles(&triangles)
+    } else {
+        let cap = h.capture(&mut scene, cfg, &camera)?;
+        let Some(pattern) = scene.patterns.find(cfg.level) else {
+            bail!("no pattern of level {} was made", cfg.level);
+        };
+        let pattern = &scene.patterns.patterns[pattern];
+        meshrefine::export::weld(&cap, pattern).map_err(anyhow::Error::msg)?
+    };
+    let header = vec![
+        format!(
+            "meshrefine export of '{name}': surface {}, displacement {}, driver {}, level {}",
+            cfg.surface.name(),
+            cfg.displace.name(),
+            cfg.label(),
+            cfg.level
+        ),
+        format!("evaluated on {device}"),
+        format!(
+            "{} vertices, {} normals, {} triangles",
+            refined.positions.len(),
+            refined.normals.len(),
+            refined.triangles.len()
+        ),
+    ];
+    std::fs::write(output, meshrefine::export::to_obj(&refined, &header))
+        .with_context(|| format!("cannot write '{}'", output.display()))?;
+    Ok(header[2].clone())
+}
+
+/// Renders `input` (centred and at unit size, see [`Mesh::for_viewing`]) to a PNG. A blank
+/// The mesh as drawn (centred, unit size: [`Mesh::for_viewing`]) and `cfg` with its displacement
+/// moved into the same frame, so the surface drawn is the mesh's own, only moved and scaled.
+fn for_viewing(mesh: &Mesh, cfg: &DrawConfig) -> (Mesh, DrawConfig) {
+    let (centre, scale) = mesh.viewing_transform();
+    let mut viewed = *cfg;
+    viewed.params = cfg.params.in_drawn_frame(centre, scale);
+    (mesh.for_viewing(), viewed)
+}
+
+/// image is still written, then reported as an error: it shows nothing.
 fn render_png(
     ctx: Arc<Context>,
-    mesh: Mesh,
+    input: Input,
     cfg: &DrawConfig,
-    width: u32,
-    height: u32,
+    (width, height): (u32, u32),
     wireframe: bool,
     out: &Path,
 ) -> Result<()> {
-    let mut h = Headless::with_context(ctx, width, height)?;
-    h.wireframe = wireframe;
-    let mut scene = h.scene(mesh, cfg.level)?;
-    let (c, r) = scene.bounding_sphere();
-    let image = h.render(&mut scene, cfg, &Camera::framing(c, r))?;
+    check_records_fit(&ctx, &input)?;
+    let triangles = input.mesh.triangles.len();
+    let image = {
+        let mut h = Headless::with_context(ctx, width, height)?;
+        h.wireframe = wireframe;
+        let (mesh, viewed) = for_viewing(&input.mesh, cfg);
+        let mut scene = h.scene(mesh, cfg.level)?;
+        let (c, r) = scene.bounding_sphere();
+        h.render(&mut scene, &viewed, &Camera::framing(c, r))
+    }
+    .with_context(|| format!("cannot render '{}'", input.shown))?;
     image
         .save_png(out)
-        .with_context(|| format!("cannot write '{}'", out.display()))
+        .with_context(|| format!("cannot write '{}'", out.display()))?;
+    if covered_pixels(&image) == 0 {
+        bail!(
+            "'{}' is blank: no pixel of the {width}x{height} image shows any of the {triangles} triangle(s) of '{}' (each is much smaller than a pixel when the whole mesh is framed, or seen edge-on)",
+            out.display(),
+            input.shown
+        );
+    }
+    Ok(())
 }
 
 fn info(path: &Path, level: Option<u32>) -> Result<()> {
     let (mesh, report) = Mesh::load_obj(path)?;
+    if let Some(w) = degenerate_warning(&path.display().to_string(), &report) {
+        note(format_args!("{w}"));
+    }
     let s = mesh.stats();
-    println!("mesh: {}", path.display());
-    println!("vertices: {}", s.vertices);
-    println!("triangles: {}", s.triangles);
-    println!("boundary edges: {}", s.boundary_edges);
-    println!("non-manifold edges: {}", s.nonmanifold_edges);
-    println!("non-manifold vertices: {}", s.nonmanifold_vertices);
-    println!(
+    out!("mesh: {}", path.display());
+    out!("vertices: {}", s.vertices);
+    out!("triangles: {}", s.triangles);
+    out!("boundary edges: {}", s.boundary_edges);
+    out!("non-manifold edges: {}", s.nonmanifold_edges);
+    out!("non-manifold vertices: {}", s.nonmanifold_vertices);
+    out!(
         "inconsistently oriented edges: {}",
         s.inconsistently_oriented_edges
     );
-    println!(
+    out!(
         "degenerate faces dropped: {}",
         report.dropped_degenerate.len()
     );
-    println!(
+    out!(
         "normals: {}",
         if report.normals_computed {
             "computed (area-weighted)"
@@ -276,16 +485,16 @@ fn info(path: &Path, level: Option<u32>) -> Result<()> {
         .iter()
         .map(|(v, n)| format!("{v}:{n}"))
         .collect();
-    println!("valence histogram (valence:vertices): {}", hist.join(" "));
+    out!("valence histogram (valence:vertices): {}", hist.join(" "));
     if let Some(level) = level {
         let t = s.triangles as u64;
-        println!(
+        out!(
             "level {level}: {} refined triangles ({} per coarse triangle)",
             t * meshrefine::pattern::triangle_count(level) as u64,
             meshrefine::pattern::triangle_count(level)
         );
         for d in Driver::ALL {
-            println!(
+            out!(
                 "  {:8} {:>14} bytes of GPU geometry",
                 d.name(),
                 d.geometry_bytes(level, t)
@@ -293,4 +502,35 @@ fn info(path: &Path, level: Option<u32>) -> Result<()> {
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use meshrefine::mesh::DegenerateFace;
+
+    #[test]
+    fn degenerate_warning_is_one_line_with_the_first_runs() {
+        let face = |line, reason| DegenerateFace {
+            face: 0,
+            line: Some(line),
+            reason,
+        };
+        let mut report = LoadReport::default();
+        assert_eq!(degenerate_warning("x.obj", &report), None);
+        report.dropped_degenerate = vec![face(7, "has zero area"); 1000];
+        report
+            .dropped_degenerate
+            .extend([8, 9, 10, 11].map(|l| face(l, "repeats a vertex index")));
+        let w = degenerate_warning("x.obj", &report).unwrap();
+        assert!(!w.contains('\n'));
+        assert!(
+            w.starts_with("warning: 'x.obj': dropped 1004 degenerate face(s) "),
+            "{w}"
+        );
+        assert!(
+            w.ends_with(": at line 7, has zero area (1000 triangles); at line 8, repeats a vertex index; at line 9, repeats a vertex index; and 2 more"),
+            "{w}"
+        );
+    }
 }

@@ -6,7 +6,8 @@ mod common;
 
 use common::model_path;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant};
 
 fn meshrefine(args: &[&str]) -> Output {
     let _guard = common::gpu_lock();
@@ -341,5 +342,430 @@ fn bench_reports_every_variant_with_ratios() {
             .filter(|l| l.contains("| static |"))
             .all(|l| l.contains("| 1.00 | 1.00 |")),
         "{s}"
+    );
+}
+
+// ---- Issue 7: what a hostile user found -------------------------------------------------------
+
+/// Runs meshrefine with the given stdout and stderr.
+fn meshrefine_with(args: &[&str], stdout: Stdio, stderr: Stdio) -> std::process::ExitStatus {
+    let _guard = common::gpu_lock();
+    Command::new(env!("CARGO_BIN_EXE_meshrefine"))
+        .args(args)
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .stdout(stdout)
+        .stderr(stderr)
+        .status()
+        .expect("run meshrefine")
+}
+
+/// Runs with stdout on a pipe whose reading end is closed before meshrefine writes anything.
+fn with_closed_stdout(args: &[&str]) -> Output {
+    let _guard = common::gpu_lock();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_meshrefine"))
+        .args(args)
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .env("RUST_BACKTRACE", "1")
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("run meshrefine");
+    drop(child.stdout.take());
+    child.wait_with_output().expect("wait for meshrefine")
+}
+
+/// Waits at most `limit` for a child, killing it if it is still running then.
+fn wait_at_most(mut child: std::process::Child, limit: Duration) -> Option<Output> {
+    let start = Instant::now();
+    while start.elapsed() < limit {
+        if child.try_wait().expect("poll meshrefine").is_some() {
+            return Some(child.wait_with_output().expect("collect meshrefine"));
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    child.kill().ok();
+    child.wait().ok();
+    None
+}
+
+fn stdout_commands() -> Vec<Vec<String>> {
+    let cube = model_path("cube_tri.obj").display().to_string();
+    let tet = model_path("tetrahedron.obj").display().to_string();
+    let png = tmp("stdout.png").display().to_string();
+    let obj = tmp("stdout.obj").display().to_string();
+    let small = ["--width", "32", "--height", "32"];
+    let mut render = vec!["render", &cube, "-o", &png, "--level", "2"];
+    render.extend(small);
+    let mut bench = vec!["bench", &tet, "--levels", "2", "--frames", "1"];
+    bench.extend(small);
+    [
+        vec!["info", &cube, "--level", "4"],
+        render,
+        vec!["export", &cube, "-o", &obj, "--level", "2"],
+        bench,
+        vec!["--help"],
+    ]
+    .iter()
+    .map(|a| a.iter().map(|s| s.to_string()).collect())
+    .collect()
+}
+
+#[test]
+fn a_full_stdout_is_an_error_line_and_a_closed_one_ends_quietly() {
+    for args in stdout_commands() {
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        // /dev/full: every write fails with ENOSPC.
+        let full = std::fs::File::create("/dev/full").unwrap();
+        let _guard = common::gpu_lock();
+        let out = Command::new(env!("CARGO_BIN_EXE_meshrefine"))
+            .args(&args)
+            .env_remove("DISPLAY")
+            .stdout(full)
+            .output()
+            .unwrap();
+        drop(_guard);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{args:?} >/dev/full: {stderr}");
+        assert!(!stderr.contains("panicked"), "{args:?}: {stderr}");
+        assert_eq!(
+            stderr.trim(),
+            "error: cannot write to standard output: No space left on device (os error 28)",
+            "{args:?}"
+        );
+        // A pipe closed early (`| head`, `| true`): status 0, nothing said.
+        let out = with_closed_stdout(&args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(0), "{args:?} | true: {stderr}");
+        assert!(stderr.is_empty(), "{args:?} | true: {stderr}");
+    }
+    // A full stderr while warning: warnings are dropped, the command still succeeds.
+    let degenerate = model_path("degenerate_faces.obj");
+    let full = || Stdio::from(std::fs::File::create("/dev/full").unwrap());
+    let status = meshrefine_with(&["info", p(&degenerate)], Stdio::null(), full());
+    assert_eq!(status.code(), Some(0));
+    // ... and an error still gives status 1 (not a panic's 101).
+    let status = meshrefine_with(&["info", "no-such.obj"], Stdio::null(), full());
+    assert_eq!(status.code(), Some(1));
+}
+
+#[test]
+fn unbounded_inputs_are_refused_up_front() {
+    let start = Instant::now();
+    expect_error(&["info", "/dev/zero"], &["/dev/zero", "character device"]);
+    expect_error(
+        &["info", "/dev/urandom"],
+        &["/dev/urandom", "character device"],
+    );
+    let dir = tmp("a-directory.obj");
+    std::fs::create_dir_all(&dir).unwrap();
+    expect_error(&["info", p(&dir)], &["a-directory.obj", "directory"]);
+    // 20 GB of NUL bytes, sparse: refused by its size without reading.
+    let huge = tmp("huge-sparse.obj");
+    let f = std::fs::File::create(&huge).unwrap();
+    f.set_len(20 << 30).unwrap();
+    drop(f);
+    expect_error(
+        &["info", p(&huge)],
+        &["huge-sparse.obj", "21474836480 bytes", "1073741824"],
+    );
+    std::fs::remove_file(&huge).ok();
+    // Under the limit, 512 MB of NUL bytes: refused at the first chunk.
+    let zeros = tmp("zeros.obj");
+    let f = std::fs::File::create(&zeros).unwrap();
+    f.set_len(512 << 20).unwrap();
+    drop(f);
+    expect_error(
+        &["render", p(&zeros), "-o", "z.png"],
+        &["zeros.obj", "line 1", "NUL"],
+    );
+    std::fs::remove_file(&zeros).ok();
+    assert!(
+        start.elapsed() < Duration::from_secs(20),
+        "{:?}",
+        start.elapsed()
+    );
+}
+
+#[test]
+fn a_fifo_is_refused_without_opening_it() {
+    let fifo = tmp("pipe.obj");
+    let link = tmp("link-to-pipe.obj");
+    std::fs::remove_file(&fifo).ok();
+    std::fs::remove_file(&link).ok();
+    let made = Command::new("mkfifo").arg(&fifo).status().expect("mkfifo");
+    assert!(made.success());
+    std::os::unix::fs::symlink(&fifo, &link).unwrap();
+    for path in [&fifo, &link] {
+        for args in [
+            vec!["info", p(path)],
+            vec!["render", p(path), "-o", "f.png"],
+        ] {
+            let _guard = common::gpu_lock();
+            let child = Command::new(env!("CARGO_BIN_EXE_meshrefine"))
+                .args(&args)
+                .stdout(Stdio::piped())
+                .stderr(Stdio::piped())
+                .spawn()
+                .unwrap();
+            let out = wait_at_most(child, Duration::from_secs(20))
+                .unwrap_or_else(|| panic!("{args:?} hung on a FIFO"));
+            let stderr = String::from_utf8_lossy(&out.stderr);
+            assert_eq!(out.status.code(), Some(1), "{stderr}");
+            assert!(
+                stderr.starts_with("error: ")
+                    && stderr.contains("is a FIFO")
+                    && stderr.contains(p(path)),
+                "{stderr}"
+            );
+        }
+    }
+    std::fs::remove_file(&link).ok();
+    std::fs::remove_file(&fifo).ok();
+}
+
+/// A regular tetrahedron's vertices scaled by `scale` and moved by `offset`, as OBJ text.
+fn tetrahedron(scale: f64, offset: f64) -> String {
+    let mut s = String::new();
+    for v in [
+        [1.0, 1.0, 1.0],
+        [-1.0, -1.0, 1.0],
+        [-1.0, 1.0, -1.0],
+        [1.0, -1.0, -1.0],
+    ] {
+        let c = v.map(|c: f64| (c * scale + offset) as f32);
+        s += &format!("v {:e} {:e} {:e}\n", c[0], c[1], c[2]);
+    }
+    s + "f 1 2 3\nf 1 3 4\nf 1 4 2\nf 2 4 3\n"
+}
+
+/// Pixels of a PNG written by meshrefine that are not the clear colour.
+fn covered(png_path: &Path) -> usize {
+    let decoder = png::Decoder::new(std::fs::File::open(png_path).unwrap());
+    let mut reader = decoder.read_info().unwrap();
+    let mut rgba = vec![0; reader.output_buffer_size()];
+    let info = reader.next_frame(&mut rgba).unwrap();
+    rgba.truncate(info.buffer_size());
+    meshrefine::render::covered_pixels(&meshrefine::gpu::Readback {
+        width: info.width,
+        height: info.height,
+        rgba,
+    })
+}
+
+#[test]
+fn meshes_of_any_f32_scale_are_framed_and_blank_images_are_errors() {
+    let size = ["--width", "64", "--height", "48", "--level", "2"];
+    let near_max = "v 3e38 1 1\nv 3e38 -1 1\nv 3e38 -1 -1\nv 3e38 1 -1\nf 1 2 3\nf 1 3 4\n";
+    let cases = [
+        ("edge-1e-5", tetrahedron(0.5e-5, 0.0)),
+        ("edge-2e-5", tetrahedron(1e-5, 0.0)),
+        ("edge-1e19", tetrahedron(0.5e19, 0.0)),
+        ("edge-1e-18", tetrahedron(0.5e-18, 0.0)),
+        ("offset-1e7", tetrahedron(1.0, 1e7)),
+        ("near-3e38", near_max.to_string()),
+    ];
+    for (name, text) in &cases {
+        let mesh = write(&format!("{name}.obj"), text.as_bytes());
+        for driver in ["pattern", "tess", "static"] {
+            let png = tmp(&format!("{name}-{driver}.png"));
+            let mut args = vec!["--validate", "render", p(&mesh), "-o", p(&png)];
+            args.extend(["--driver", driver]);
+            args.extend(size);
+            ok(&args);
+            let n = covered(&png);
+            assert!(
+                n > 64 * 48 / 10,
+                "{name} {driver}: only {n} pixels show the mesh"
+            );
+        }
+    }
+    // What f32 cannot draw is dropped as degenerate, and a mesh of only that is refused.
+    let subnormal = write("subnormal.obj", tetrahedron(1e-45, 0.0).as_bytes());
+    expect_error(
+        &["info", p(&subnormal)],
+        &["subnormal.obj", "underflows", "no triangles"],
+    );
+    let too_big = write("edge-1e20.obj", tetrahedron(1e20, 0.0).as_bytes());
+    expect_error(
+        &["render", p(&too_big), "-o", p(&tmp("x.png"))],
+        &["edge-1e20.obj", "overflows", "no triangles"],
+    );
+    let mut mixed = tetrahedron(1.0, 0.0);
+    mixed += "v 1e-45 0 0\nv 0 1e-45 0\nv 0 0 1e-45\nf 5 6 7\n";
+    let mixed = write("mixed-subnormal.obj", mixed.as_bytes());
+    let out = meshrefine(&["info", p(&mixed)]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("dropped 1 degenerate face(s)") && stderr.contains("at line 12"),
+        "{stderr}"
+    );
+
+    // Two specks far apart: each far below a pixel once both are framed. The image is written
+    // but reported as blank, status 1.
+    let specks = "v 0 0 0\nv 1e-6 0 0\nv 0 1e-6 0\nv 1000 0 0\nv 1000 1e-6 0\nv 1000 0 1e-6\nf 1 2 3\nf 4 5 6\n";
+    let specks = write("specks.obj", specks.as_bytes());
+    let png = tmp("specks.png");
+    std::fs::remove_file(&png).ok();
+    let mut args = vec!["render", p(&specks), "-o", p(&png)];
+    args.extend(size);
+    expect_error(&args, &["specks.png", "is blank", "specks.obj"]);
+    assert!(png.exists() && covered(&png) == 0);
+    let out = meshrefine(&args);
+    assert!(!String::from_utf8_lossy(&out.stdout).contains("wrote"));
+}
+
+#[test]
+fn texture_coordinates_are_validated() {
+    let tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+    let vt = "vt 0 0\nvt 1 0\nvt 0 1\n";
+    let refused = |name: &str, text: String, needles: [&str; 2]| {
+        let mesh = write(&format!("{name}.obj"), text.as_bytes());
+        let file = format!("{name}.obj");
+        expect_error(&["info", p(&mesh)], &[&file, needles[0], needles[1]]);
+    };
+    let zero = ["line 4", "texture coordinate 0"];
+    refused("vt-zero", format!("{tri}f 1/0 2/0 3/0\n"), zero);
+    let none = ["line 4", "no 'vt' lines"];
+    refused("vt-none", format!("{tri}f 1/2 2/2 3/2\n"), none);
+    refused(
+        "vt-range",
+        format!("{tri}{vt}f 1/99/1 2/1 3/1\n"),
+        ["line 7", "99"],
+    );
+    refused(
+        "vt-rel",
+        format!("{tri}{vt}f 1/-5 2/1 3/1\n"),
+        ["line 7", "-5"],
+    );
+    refused(
+        "vt-text",
+        format!("{tri}vt abc def\nf 1 2 3\n"),
+        ["line 4", "'abc'"],
+    );
+    refused(
+        "vt-nan",
+        format!("{tri}vt nan 0\nf 1 2 3\n"),
+        ["line 4", "NaN"],
+    );
+    let good = write(
+        "vt-good.obj",
+        format!("{tri}{vt}f 1/1 2/2 3/3\n").as_bytes(),
+    );
+    ok(&["info", p(&good)]);
+}
+
+#[test]
+fn meaningless_requests_are_refused() {
+    let cube = model_path("cube_tri.obj");
+    let jpg = tmp("x.jpg");
+    expect_error(&["render", p(&cube), "-o", p(&jpg)], &["x.jpg", ".png"]);
+    assert!(!jpg.exists());
+    let not_obj = tmp("x.png");
+    std::fs::remove_file(&not_obj).ok();
+    expect_error(&["export", p(&cube), "-o", p(&not_obj)], &["x.png", ".obj"]);
+    assert!(!not_obj.exists());
+    expect_error(
+        &["view", "--headless-output", "v.jpeg"],
+        &["v.jpeg", ".png"],
+    );
+    expect_error(&["view", "--screenshot", "s.bmp"], &["s.bmp", ".png"]);
+    let png = tmp("submit.png");
+    for (driver, submit) in [("tess", "push"), ("static", "ubo"), ("tess", "instanced")] {
+        expect_error(
+            &[
+                "render",
+                "-o",
+                p(&png),
+                "--driver",
+                driver,
+                "--submit",
+                submit,
+            ],
+            &[&format!("--submit {submit}"), &format!("--driver {driver}")],
+        );
+    }
+    expect_error(
+        &[
+            "export", "-o", "t.obj", "--driver", "tess", "--submit", "ubo",
+        ],
+        &["--submit ubo", "--driver tess"],
+    );
+    // Zero frames: clap refuses the value (usage error, status 2).
+    for args in [
+        vec!["bench", "--frames", "0"],
+        vec!["view", "--frames", "0"],
+    ] {
+        let out = meshrefine(&args);
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        assert!(String::from_utf8_lossy(&out.stderr).contains("'0'"));
+    }
+}
+
+#[test]
+fn logs_are_bounded_and_limits_name_the_file_and_the_remedy() {
+    // A cube plus one face of 2.4 million indices: 1.2 M fan triangles repeat a vertex.
+    let mut text = std::fs::read_to_string(model_path("cube_tri.obj")).unwrap();
+    let line = text.lines().count() + 1;
+    text += &format!("f {}\n", "1 2 3 4 5 ".repeat(480_000));
+    let big = write("cube-plus-big-face.obj", text.as_bytes());
+    let out = meshrefine(&["info", p(&big)]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(
+        stderr.lines().count() <= 2,
+        "{} lines: {}",
+        stderr.lines().count(),
+        &stderr[..stderr.len().min(2000)]
+    );
+    assert!(
+        stderr.contains(&format!("'{}': dropped 959998 degenerate face(s)", p(&big)))
+            && stderr.contains(&format!("at line {line}")),
+        "{stderr}"
+    );
+    // Its 1.44 M drawable triangles' records are over lavapipe's maxStorageBufferRange.
+    expect_error(
+        &["render", p(&big), "-o", p(&tmp("big.png"))],
+        &[
+            "cube-plus-big-face.obj",
+            "maxStorageBufferRange",
+            "at most 1198372",
+            "split",
+        ],
+    );
+    // The non-manifold warning names the path, not the file stem.
+    let nm = model_path("nonmanifold_edge.obj");
+    let out = meshrefine(&[
+        "render",
+        p(&nm),
+        "-o",
+        p(&tmp("nm.png")),
+        "--width",
+        "32",
+        "--height",
+        "32",
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains(&format!("warning: '{}' is not a manifold mesh", p(&nm))),
+        "{stderr}"
+    );
+    // Export's capture limit names the file and the level that fits.
+    expect_error(
+        &[
+            "export",
+            p(&model_path("spot_tri.obj")),
+            "-o",
+            p(&tmp("spot32.obj")),
+            "--level",
+            "32",
+        ],
+        &[
+            "spot_tri.obj",
+            "maxStorageBufferRange",
+            "use --level 25 or lower",
+        ],
     );
 }

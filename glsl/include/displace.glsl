@@ -56,7 +56,7 @@ SurfacePoint displace(SurfacePoint sp) {
         return sp;
     }
     vec3 grad;
-    float h = displace_height(sp.position, grad);
+    float h = displace_height(sp.position - frame.origin.xyz, grad);
     vec3 n = sp.normal;
     float hu = dot3(grad, sp.dpdu), hv = dot3(grad, sp.dpdv);
     vec3 cr = cross(sp.dpdu, sp.dpdv);

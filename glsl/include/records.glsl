@@ -17,6 +17,7 @@ layout(set = SET_FRAME, binding = BINDING_FRAME, std140) uniform Frame {
     vec4 base_color; // rgb: surface colour
     vec4 options;    // x: view (0 shaded, 1 normals)
     vec4 params;     // surface and displacement: (alpha, amplitude, frequency, octaves)
+    vec4 origin;     // xyz: the mesh's origin in drawn coordinates (displacement's frame)
 } frame;
 
 // The elements' records, one per element (set 1). Drivers read the record of the element they

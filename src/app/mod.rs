@@ -20,6 +20,7 @@ use crate::render::{Camera, DrawConfig, Driver, FrameUniforms, Renderer, Scene, 
 use crate::surface::{Displace, Surface};
 use anyhow::{anyhow, Context as _, Result};
 use raw_window_handle::{HasDisplayHandle, HasWindowHandle};
+use std::io::Write as _;
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
@@ -74,35 +75,6 @@ fn per_image<T, E>(
         items.push(make(i)?);
     }
     Ok(())
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// The swapchain recreated with more images than the first had: the frame indexes
-    /// `rendered[image]` for every image (the bug: semaphores stayed at the first count).
-    #[test]
-    fn per_image_follows_the_image_count() {
-        let mut made = 0;
-        let mut v: Vec<usize> = Vec::new();
-        per_image(&mut v, 2, |i| -> Result<usize, ()> {
-            made += 1;
-            Ok(i)
-        })
-        .unwrap();
-        assert_eq!(v, [0, 1]);
-        per_image(&mut v, 4, |i| -> Result<usize, ()> {
-            made += 1;
-            Ok(i)
-        })
-        .unwrap();
-        assert_eq!(v, [0, 1, 2, 3]);
-        assert_eq!(made, 4, "existing items are kept");
-        per_image(&mut v, 3, |i| -> Result<usize, ()> { Ok(i) }).unwrap();
-        assert_eq!(v, [0, 1, 2]);
-        assert_eq!(next(&Surface::ALL, Surface::Pn), Surface::Flat);
-    }
 }
 
 /// Run the demo until the window closes (or `frames` frames). Returns the context's message list
@@ -288,7 +260,8 @@ impl App {
         per_image(&mut rendered, swapchain.images.len(), |i| {
             Semaphore::new(&ctx, &format!("rendered {i}"))
         })?;
-        println!("{KEY_HELP}");
+        // Informational only: a closed or full stdout must not stop (or panic) the demo.
+        let _ = writeln!(std::io::stdout().lock(), "{KEY_HELP}");
         Ok(State {
             base_mesh: mesh,
             scene,
@@ -517,7 +490,7 @@ impl State {
             self.fence.wait()?;
             let path = opts.screenshot.as_ref().unwrap();
             self.save_screenshot(path)?;
-            println!("saved {}", path.display());
+            let _ = writeln!(std::io::stdout().lock(), "saved {}", path.display());
         }
         Ok(!last)
     }
@@ -597,5 +570,34 @@ impl State {
 impl Drop for State {
     fn drop(&mut self) {
         let _ = self.ctx.wait_idle();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The swapchain recreated with more images than the first had: the frame indexes
+    /// `rendered[image]` for every image (the bug: semaphores stayed at the first count).
+    #[test]
+    fn per_image_follows_the_image_count() {
+        let mut made = 0;
+        let mut v: Vec<usize> = Vec::new();
+        per_image(&mut v, 2, |i| -> Result<usize, ()> {
+            made += 1;
+            Ok(i)
+        })
+        .unwrap();
+        assert_eq!(v, [0, 1]);
+        per_image(&mut v, 4, |i| -> Result<usize, ()> {
+            made += 1;
+            Ok(i)
+        })
+        .unwrap();
+        assert_eq!(v, [0, 1, 2, 3]);
+        assert_eq!(made, 4, "existing items are kept");
+        per_image(&mut v, 3, |i| -> Result<usize, ()> { Ok(i) }).unwrap();
+        assert_eq!(v, [0, 1, 2]);
+        assert_eq!(next(&Surface::ALL, Surface::Pn), Surface::Flat);
     }
 }

@@ -54,6 +54,7 @@ pub(crate) fn animated(mesh: &Mesh, time: f32, amplitude: f32) -> Mesh {
         positions,
         normals,
         triangles: mesh.triangles.clone(),
+        texcoords: mesh.texcoords.clone(),
     }
 }
 

@@ -11,6 +11,11 @@ use thiserror::Error;
 /// (`u32::MAX / 2`), so that every index fits comfortably in a `u32` index buffer.
 pub const MAX_INDICES: usize = (u32::MAX / 2) as usize;
 
+/// The largest OBJ file read, in bytes (1 GiB). Larger files are refused from their size before
+/// anything is read: loading holds the text, a canonical copy and the parsed arrays at once,
+/// several times the file's size.
+pub const MAX_OBJ_BYTES: u64 = 1 << 30;
+
 /// Why a mesh could not be loaded or does not meet a requirement.
 #[derive(Debug, Error)]
 pub enum MeshError {
@@ -21,6 +26,14 @@ pub enum MeshError {
         path: String,
         /// The underlying I/O error.
         err: std::io::Error,
+    },
+    /// The file is larger than [`MAX_OBJ_BYTES`].
+    #[error("'{path}' is too large to load: {size} bytes, over the limit of {max} bytes (1 GiB) for an OBJ file", max = MAX_OBJ_BYTES)]
+    FileTooLarge {
+        /// The file path as displayed.
+        path: String,
+        /// Its size in bytes (or what was read before it grew past the limit).
+        size: u64,
     },
     /// The text is not a well-formed Wavefront OBJ file.
     #[error("{}", parse_message(.path, .line, .msg))]
@@ -37,6 +50,16 @@ pub enum MeshError {
     EmptyMesh {
         /// The file path as displayed, or the name given instead of one.
         path: String,
+    },
+    /// Every triangle was dropped as degenerate.
+    #[error("'{path}' contains no triangles that can be drawn: all {count} are degenerate (the first, {first})")]
+    NoDrawableTriangles {
+        /// The file path as displayed, or the name given instead of one.
+        path: String,
+        /// How many triangles were dropped.
+        count: usize,
+        /// The first one and why, as [`DegenerateFace::describe`](super::DegenerateFace::describe).
+        first: String,
     },
     /// A face refers to a vertex that does not exist. `index` is the index as written
     /// (1-based, or negative for relative OBJ indices; 0-based for
@@ -163,6 +186,13 @@ mod tests {
                     msg: "is not a Wavefront OBJ file: it defines no vertices or faces".into(),
                 },
                 "'x.obj' is not a Wavefront OBJ file: it defines no vertices or faces",
+            ),
+            (
+                MeshError::FileTooLarge {
+                    path: "x.obj".into(),
+                    size: 1 << 34,
+                },
+                "'x.obj' is too large to load: 17179869184 bytes, over the limit of 1073741824 bytes (1 GiB) for an OBJ file",
             ),
             (
                 MeshError::EmptyMesh {

@@ -13,10 +13,12 @@
 //!    as fans);
 //! 2. weld: positions that are bitwise equal (after turning `-0.0` into `0.0`) become one
 //!    index, in order of first use;
-//! 3. drop degenerate triangles, those that repeat a position index after welding or whose
-//!    area is zero (`|cross| <= 1e-12 * longest_edge^2`), each with a `log::warn!` and an
-//!    entry in [`LoadReport::dropped_degenerate`]; if none is left the load fails with
-//!    [`MeshError::EmptyMesh`];
+//! 3. drop degenerate triangles, those that repeat a position index after welding, whose
+//!    area is zero (`|cross| <= 1e-12 * longest_edge^2`), or whose area or an edge is not
+//!    representable as a normal `f32` (twice the area below `f32::MIN_POSITIVE` or above
+//!    `f32::MAX`), each with a `log::debug!` and an entry in
+//!    [`LoadReport::dropped_degenerate`] (callers summarize them); if none is left the load
+//!    fails with [`MeshError::NoDrawableTriangles`];
 //! 4. normals: an OBJ whose every face corner has a `vn` keeps those (normalized); otherwise
 //!    (none, or only some faces, which also logs a warning) area-weighted vertex normals are
 //!    computed per welded position.
@@ -24,7 +26,7 @@
 //! # Invariants of a loaded mesh
 //!
 //! - at least one triangle; every `p` index is `< positions.len()`, every `n` index is
-//!   `< normals.len()`, and all indices are at most `u32::MAX / 2` ([`MAX_INDICES`]);
+//!   `< normals.len()`, every `t` index is `< texcoords.len()`, and all indices are at most `u32::MAX / 2` ([`MAX_INDICES`]);
 //! - positions are finite and unique; normals are finite and unit length;
 //! - no triangle repeats a position index or has zero area;
 //! - when normals were computed, `normals.len() == positions.len()` and `n == p` for every
@@ -48,9 +50,9 @@ mod weld;
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
-pub use error::{MeshError, MAX_INDICES};
+pub use error::{MeshError, MAX_INDICES, MAX_OBJ_BYTES};
 pub use normals::{compute_area_weighted_normals, FALLBACK_NORMAL};
 pub use topology::mesh_stats;
 
@@ -66,6 +68,9 @@ pub struct Mesh {
     pub normals: Vec<Vec3>,
     /// At least one; none degenerate.
     pub triangles: Vec<Triangle>,
+    /// Texture coordinates `(u, v)` from the file's `vt` lines (finite), indexed by
+    /// [`Triangle::t`]; empty when the input has none.
+    pub texcoords: Vec<Vec2>,
 }
 
 /// One triangle: position indices and normal indices per corner, in input order
@@ -76,6 +81,8 @@ pub struct Triangle {
     pub p: [u32; 3],
     /// Indices into [`Mesh::normals`].
     pub n: [u32; 3],
+    /// Indices into [`Mesh::texcoords`], when every corner of the face gave one.
+    pub t: Option<[u32; 3]>,
 }
 
 /// What loading did besides building the mesh.
@@ -96,8 +103,20 @@ pub struct DegenerateFace {
     pub face: usize,
     /// 1-based line of the face in the OBJ text.
     pub line: Option<usize>,
-    /// "repeats a vertex index" or "has zero area".
+    /// "repeats a vertex index", "has zero area", or that its area is not representable in
+    /// `f32` ("has an area too small for f32 (it underflows)", "has an area or edge too large
+    /// for f32 (it overflows)").
     pub reason: &'static str,
+}
+
+impl DegenerateFace {
+    /// "at line 40, has zero area" (or "face 18, ..." without a line), for messages.
+    pub fn describe(&self) -> String {
+        match self.line {
+            Some(l) => format!("at line {l}, {}", self.reason),
+            None => format!("face {}, {}", self.face, self.reason),
+        }
+    }
 }
 
 /// Topology statistics, see [`Mesh::stats`] and [`mesh_stats`] for the definitions.
@@ -192,6 +211,35 @@ impl Mesh {
     pub fn bounding_radius(&self) -> f32 {
         let (lo, hi) = self.bounds();
         ((hi - lo) * 0.5).length()
+    }
+
+    /// The transform of [`Mesh::for_viewing`]: drawn = (mesh − centre) · scale.
+    pub fn viewing_transform(&self) -> (glam::DVec3, f64) {
+        let (lo, hi) = self.bounds();
+        let (lo, hi) = (lo.as_dvec3(), hi.as_dvec3());
+        let centre = (lo + hi) * 0.5;
+        let radius = ((hi - lo) * 0.5).length();
+        let scale = if radius > 0.0 && radius.is_finite() {
+            1.0 / radius
+        } else {
+            1.0
+        };
+        (centre, scale)
+    }
+
+    /// A copy for drawing: translated and scaled, in `f64`, so that the bounding box's centre
+    /// is the origin and its half diagonal is 1. An image is the same for a mesh and a camera
+    /// moved together, but the GPU's single-precision view transform is not: a unit mesh at
+    /// 1e7 loses all its detail there, edges of 1e-5 or 1e19 and coordinates near 3e38 leave
+    /// `f32` range in the view and projection matrices. Normals (directions) are unchanged;
+    /// triangles, texture coordinates and the name are kept.
+    pub fn for_viewing(&self) -> Mesh {
+        let (centre, scale) = self.viewing_transform();
+        let mut out = self.clone();
+        for p in &mut out.positions {
+            *p = ((p.as_dvec3() - centre) * scale).as_vec3();
+        }
+        out
     }
 
     /// CPU deformation for the demo's animation: a travelling sine wave that moves each
@@ -308,9 +356,58 @@ mod tests {
             positions: vec![],
             normals: vec![],
             triangles: vec![],
+            texcoords: vec![],
         };
         assert_eq!(empty.bounds(), (Vec3::ZERO, Vec3::ZERO));
         assert_eq!(empty.stats(), MeshStats::default());
+    }
+
+    #[test]
+    fn meshes_for_viewing_are_centred_with_unit_radius() {
+        let tet = "v 1 1 1\nv -1 -1 1\nv -1 1 -1\nv 1 -1 -1\nf 1 2 3\nf 1 3 4\nf 1 4 2\nf 2 4 3\n";
+        let (unit, _) = Mesh::from_obj_str("t.obj", tet).unwrap();
+        let unit = unit.for_viewing();
+        for (scale, offset) in [(1e-5, 0.0), (1.0, 1e7), (5e18, 0.0), (1e-18, 0.0)] {
+            let text = tet
+                .lines()
+                .map(|l| match l.strip_prefix("v ") {
+                    Some(v) => {
+                        let c: Vec<f64> = v.split(' ').map(|x| x.parse().unwrap()).collect();
+                        let f = |x: f64| (x * scale + offset) as f32;
+                        format!("v {} {} {}\n", f(c[0]), f(c[1]), f(c[2]))
+                    }
+                    None => format!("{l}\n"),
+                })
+                .collect::<String>();
+            let (mesh, report) = Mesh::from_obj_str("t.obj", &text).unwrap();
+            assert!(report.dropped_degenerate.is_empty(), "{scale} {offset}");
+            let viewed = mesh.for_viewing();
+            let (lo, hi) = viewed.bounds();
+            assert!(((lo + hi) * 0.5).length() < 1e-6, "{scale} {offset}");
+            assert!(
+                (((hi - lo) * 0.5).length() - 1.0).abs() < 1e-6,
+                "{scale} {offset}"
+            );
+            for (a, b) in viewed.positions.iter().zip(&unit.positions) {
+                assert!((*a - *b).length() < 1e-6, "{scale} {offset}: {a} vs {b}");
+            }
+            assert_eq!(viewed.normals, mesh.normals);
+            assert_eq!(viewed.triangles, mesh.triangles);
+        }
+        // Near the largest f32: what differs is drawable, and comes out at unit size.
+        let far = "v 3e38 1 1\nv 3e38 -1 1\nv 3e38 -1 -1\nf 1 2 3\n";
+        let (lo, hi) = Mesh::from_obj_str("f.obj", far)
+            .unwrap()
+            .0
+            .for_viewing()
+            .bounds();
+        assert_eq!(
+            (lo, hi),
+            (
+                Vec3::new(0.0, -0.70710677, -0.70710677),
+                Vec3::new(0.0, 0.70710677, 0.70710677)
+            )
+        );
     }
 
     #[test]

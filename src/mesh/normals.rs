@@ -68,6 +68,30 @@ pub(crate) fn is_zero_area(a: Vec3, b: Vec3, c: Vec3) -> bool {
     face_cross(a, b, c).length() <= 1e-12 * longest_sq
 }
 
+/// Why the triangle `a, b, c` cannot be drawn, or `None`: it has zero area ([`is_zero_area`]),
+/// or its area or an edge is not representable as a normal `f32` (twice the area below
+/// `f32::MIN_POSITIVE`, which underflows to a subnormal or zero where the GPU or a surface
+/// computes it in single precision, or an edge or twice the area above `f32::MAX`, which
+/// overflows to infinity).
+pub(crate) fn degenerate_reason(a: Vec3, b: Vec3, c: Vec3) -> Option<&'static str> {
+    if is_zero_area(a, b, c) {
+        return Some("has zero area");
+    }
+    let (da, db, dc) = (a.as_dvec3(), b.as_dvec3(), c.as_dvec3());
+    let longest = (db - da)
+        .length()
+        .max((dc - db).length())
+        .max((da - dc).length());
+    let twice_area = face_cross(a, b, c).length();
+    if twice_area < f64::from(f32::MIN_POSITIVE) {
+        Some("has an area too small for f32 (it underflows)")
+    } else if twice_area > f64::from(f32::MAX) || longest > f64::from(f32::MAX) {
+        Some("has an area or edge too large for f32 (it overflows)")
+    } else {
+        None
+    }
+}
+
 /// `v` scaled to unit length (computed in `f64`), or `None` if it is zero, NaN or infinite.
 pub(crate) fn unit(v: Vec3) -> Option<Vec3> {
     v.as_dvec3().try_normalize().map(|n| n.as_vec3())
@@ -145,6 +169,36 @@ mod tests {
         assert!(!is_zero_area(a, b, Vec3::new(0.5, 1e-5, 0.0)));
         // Scale invariant.
         assert!(!is_zero_area(a, b * 1e-20, Vec3::Y * 1e-20));
+    }
+
+    #[test]
+    fn unrepresentable_areas_are_degenerate() {
+        let tri = |s: f32, offset: f32| {
+            let o = Vec3::splat(offset);
+            degenerate_reason(o, o + Vec3::X * s, o + Vec3::Y * s)
+        };
+        assert_eq!(tri(1.0, 0.0), None);
+        assert_eq!(tri(1e-5, 0.0), None);
+        assert_eq!(tri(1e-18, 0.0), None);
+        assert_eq!(tri(1.0, 1e7), None);
+        assert_eq!(tri(1e19, 0.0), None);
+        // Twice the area 1e-40 is subnormal in f32; 1e-90 is zero there.
+        assert_eq!(
+            tri(1e-20, 0.0),
+            Some("has an area too small for f32 (it underflows)")
+        );
+        let subnormal = [Vec3::X * 1e-45, Vec3::Y * 1e-45, Vec3::Z * 1e-45];
+        assert!(degenerate_reason(subnormal[0], subnormal[1], subnormal[2]).is_some());
+        assert_eq!(
+            tri(2e19, 0.0),
+            Some("has an area or edge too large for f32 (it overflows)")
+        );
+        let huge = Vec3::new(3e38, 0.0, 0.0);
+        assert!(degenerate_reason(-huge, huge, Vec3::Y).is_some());
+        // A small triangle far out is fine.
+        let far = Vec3::X * 3e38;
+        assert_eq!(degenerate_reason(far, far + Vec3::Y, far + Vec3::Z), None);
+        assert_eq!(tri(0.0, 1.0), Some("has zero area"));
     }
 
     #[test]

@@ -9,28 +9,107 @@
 //! scan also rewrites the file into a canonical form that `tobj` cannot misread: only `v x y z`,
 //! `vn x y z` and `f` lines with absolute, range-checked `v` or `v//vn` indices remain; every
 //! other statement (groups, objects, materials, texture coordinates, lines, points) becomes
-//! an empty line, which also merges all objects and groups into one mesh. `tobj` then parses
+//! an empty line, which also merges all objects and groups into one mesh. Texture coordinates
+//! are taken from the scan itself (validated there, fanned like `tobj`'s triangles). `tobj` then parses
 //! that text and fan-triangulates polygons (`0 1 2`, `0 2 3`, ...).
 
-use std::io::Cursor;
+use std::io::{Cursor, Read as _};
 use std::path::Path;
 
 use glam::Vec3;
 
-use super::scan::{parse_error, Scan};
+use super::scan::{binary_data, parse_error, Scan};
 use super::weld::{assemble, mesh_name, RawMesh, RawTriangle};
-use super::{LoadReport, Mesh, MeshError};
+use super::{LoadReport, Mesh, MeshError, MAX_OBJ_BYTES};
 
 /// Reads and parses an OBJ file. Bytes that are not UTF-8 are replaced (they can only
 /// matter inside comments or names, which are ignored).
+///
+/// Only regular files are read: a directory, FIFO, socket or device (`/dev/zero`) is refused
+/// from its metadata, before it is opened (opening a FIFO for reading blocks until a writer
+/// comes). Files over [`MAX_OBJ_BYTES`] are refused from their size; the file is then read in
+/// chunks, never more than that limit, and reading stops at the first NUL byte (binary data).
 pub(crate) fn load_obj(path: &Path) -> Result<(Mesh, LoadReport), MeshError> {
     let shown = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|err| MeshError::Io {
-        path: shown.clone(),
-        err,
-    })?;
+    let bytes = read_obj_bytes(&shown, path)?;
     let text = String::from_utf8_lossy(&bytes);
     parse_obj(&shown, mesh_name(&shown), &text)
+}
+
+/// What a file that is not a regular file is, for messages ("a directory").
+fn file_kind(t: std::fs::FileType) -> &'static str {
+    use std::os::unix::fs::FileTypeExt as _;
+    if t.is_dir() {
+        "a directory"
+    } else if t.is_fifo() {
+        "a FIFO (named pipe)"
+    } else if t.is_socket() {
+        "a socket"
+    } else if t.is_char_device() {
+        "a character device"
+    } else if t.is_block_device() {
+        "a block device"
+    } else {
+        "not a regular file"
+    }
+}
+
+/// The bytes of a regular OBJ file of at most [`MAX_OBJ_BYTES`], read incrementally.
+fn read_obj_bytes(shown: &str, path: &Path) -> Result<Vec<u8>, MeshError> {
+    let io = |err| MeshError::Io {
+        path: shown.into(),
+        err,
+    };
+    let not_regular = |t: std::fs::FileType| {
+        parse_error(
+            shown,
+            None,
+            format!(
+                "is {}, not a regular file: only OBJ files are read",
+                file_kind(t)
+            ),
+        )
+    };
+    let too_large = |size: u64| MeshError::FileTooLarge {
+        path: shown.into(),
+        size,
+    };
+    // `metadata` follows symbolic links, so a link to a FIFO is refused too.
+    let meta = std::fs::metadata(path).map_err(io)?;
+    if !meta.is_file() {
+        return Err(not_regular(meta.file_type()));
+    }
+    if meta.len() > MAX_OBJ_BYTES {
+        return Err(too_large(meta.len()));
+    }
+    let mut file = std::fs::File::open(path).map_err(io)?;
+    // The path may have been replaced between the two calls: check what was opened.
+    let meta = file.metadata().map_err(io)?;
+    if !meta.is_file() {
+        return Err(not_regular(meta.file_type()));
+    }
+    let mut bytes = Vec::with_capacity(meta.len().min(MAX_OBJ_BYTES) as usize);
+    let mut chunk = vec![0u8; 1 << 16];
+    loop {
+        let n = match file.read(&mut chunk) {
+            Ok(0) => break,
+            Ok(n) => n,
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => continue,
+            Err(e) => return Err(io(e)),
+        };
+        let chunk = &chunk[..n];
+        if let Some(at) = chunk.iter().position(|&b| b == 0) {
+            let newlines = |b: &[u8]| b.iter().filter(|&&c| c == b'\n').count();
+            let line = newlines(&bytes) + newlines(&chunk[..at]) + 1;
+            return Err(binary_data(shown, line));
+        }
+        if (bytes.len() + n) as u64 > MAX_OBJ_BYTES {
+            // The file grew after its size was checked.
+            return Err(too_large((bytes.len() + n) as u64));
+        }
+        bytes.extend_from_slice(chunk);
+    }
+    Ok(bytes)
 }
 
 /// Parses OBJ text; `path` is what messages call it.
@@ -66,6 +145,7 @@ pub(crate) fn parse_obj(
     let mut triangles = Vec::with_capacity(expected);
     let mut next = 0;
     for (face, info) in scan.faces.iter().enumerate() {
+        let first = next / 3;
         for _ in 2..info.corners {
             let p = [p_idx[next], p_idx[next + 1], p_idx[next + 2]];
             let n = if use_given_normals {
@@ -73,9 +153,13 @@ pub(crate) fn parse_obj(
             } else {
                 p
             };
+            // tobj's fan: corners (0, k-1, k) for k in 2..corners.
+            let k = next / 3 - first + 2;
+            let t = info.texcoords.as_ref().map(|t| [t[0], t[k - 1], t[k]]);
             triangles.push(RawTriangle {
                 p,
                 n,
+                t,
                 face,
                 line: Some(info.line),
             });
@@ -90,6 +174,7 @@ pub(crate) fn parse_obj(
         positions,
         normals: use_given_normals.then_some(normals),
         triangles,
+        texcoords: scan.texcoords,
         polygons_triangulated,
     })?;
     log::debug!(
@@ -149,7 +234,7 @@ fn run_tobj(path: &str, canonical: &str) -> Result<TobjOutput, MeshError> {
 mod tests {
     use super::*;
     use crate::mesh::test_support::{err, load, load_model, model_path, TRI};
-    use crate::mesh::DegenerateFace;
+    use crate::mesh::{DegenerateFace, MAX_OBJ_BYTES};
 
     #[test]
     fn loads_a_triangle() {
@@ -277,6 +362,57 @@ mod tests {
     }
 
     #[test]
+    fn only_regular_files_of_bounded_size_are_read() {
+        let dir = std::env::temp_dir().join(format!("meshwork-kinds-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let msg = |p: &Path| Mesh::load_obj(p).unwrap_err().to_string();
+        let d = dir.display();
+        assert_eq!(
+            msg(&dir),
+            format!("'{d}' is a directory, not a regular file: only OBJ files are read")
+        );
+        assert!(msg(Path::new("/dev/zero")).contains("is a character device"));
+        // A FIFO is refused from its metadata: opening it would block until a writer comes.
+        let fifo = dir.join("f.obj");
+        let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+        if made.is_ok_and(|s| s.success()) {
+            assert!(
+                msg(&fifo).contains("is a FIFO (named pipe)"),
+                "{}",
+                msg(&fifo)
+            );
+        }
+        // Over the size limit: refused from the size (a sparse file: nothing is written).
+        let big = dir.join("big.obj");
+        std::fs::File::create(&big)
+            .unwrap()
+            .set_len(MAX_OBJ_BYTES + 1)
+            .unwrap();
+        assert!(matches!(
+            Mesh::load_obj(&big),
+            Err(MeshError::FileTooLarge { size, .. }) if size == MAX_OBJ_BYTES + 1
+        ));
+        // A NUL byte past the first chunk stops reading there, with its line.
+        let mut text = format!("{TRI}f 1 2 3\n").repeat(20_000).into_bytes();
+        let at = text.len() - 3;
+        text[at] = 0;
+        let nul = dir.join("nul.obj");
+        std::fs::write(&nul, &text).unwrap();
+        assert!(
+            matches!(
+                Mesh::load_obj(&nul),
+                Err(MeshError::Parse {
+                    line: Some(80_000),
+                    ..
+                })
+            ),
+            "{}",
+            msg(&nul)
+        );
+        std::fs::remove_dir_all(&dir).ok();
+    }
+
+    #[test]
     fn normals_from_the_file() {
         let text = format!("{TRI}vn 0 0 2\nf 1//1 2//1 3//1\n");
         let (m, report) = load(&text).unwrap();
@@ -284,9 +420,26 @@ mod tests {
         assert_eq!(m.normals, vec![Vec3::Z]);
         assert_eq!(m.triangles[0].n, [0, 0, 0]);
 
-        let (m, report) = load(&format!("{TRI}vn 0 0 1\nf 1/5/1 2/6/1 3/7/-1\n")).unwrap();
+        let text = format!("{TRI}vt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\nf 1/1/1 2/2/1 3/3/-1\n");
+        let (m, report) = load(&text).unwrap();
         assert!(!report.normals_computed);
         assert_eq!(m.triangles[0].n, [0, 0, 0]);
+    }
+
+    #[test]
+    fn texture_coordinates_are_loaded_per_corner() {
+        // A quad fans into (1 2 3) and (1 3 4); the second face has no texture coordinates.
+        let text = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\n\
+                    vt 0 0\nvt 1 0\nvt 1 1 0\nvt 0 1\nvt 0.5\n\
+                    f 1/1 2/2 3/3 4/-2\nf 2 5 3\n";
+        let (m, _) = load(text).unwrap();
+        assert_eq!(m.texcoords.len(), 5);
+        assert_eq!(m.texcoords[4], glam::Vec2::new(0.5, 0.0));
+        let t: Vec<_> = m.triangles.iter().map(|t| t.t).collect();
+        assert_eq!(t, vec![Some([0, 1, 2]), Some([0, 2, 3]), None]);
+        // Without vt, nothing.
+        let (m, _) = load(&format!("{TRI}f 1 2 3\n")).unwrap();
+        assert!(m.texcoords.is_empty() && m.triangles[0].t.is_none());
     }
 
     #[test]
@@ -349,7 +502,7 @@ mod tests {
     fn all_faces_degenerate_is_an_empty_mesh() {
         assert_eq!(
             err("v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\nf 1 1 2\n"),
-            "'x.obj' contains no triangles"
+            "'x.obj' contains no triangles that can be drawn: all 2 are degenerate (the first, at line 4, has zero area)"
         );
     }
 

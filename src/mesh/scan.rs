@@ -1,12 +1,13 @@
 //! The validating pre-scan of OBJ text (see `obj.rs` for why it exists).
 //!
 //! Statements understood: `v x y z [w]` or `v x y z r g b` (colours ignored), `vn x y z`,
-//! and `f` with corners `v`, `v/vt`, `v//vn` or `v/vt/vn` (positive 1-based or negative
-//! relative indices; texture indices are checked for syntax only). `#` starts a comment
+//! `vt u [v [w]]` (finite; `w` ignored), and `f` with corners `v`, `v/vt`, `v//vn` or
+//! `v/vt/vn` (positive 1-based or negative relative indices; every index, texture ones
+//! included, must refer to a statement of its kind). `#` starts a comment
 //! anywhere on a line. Everything else is ignored. Absolute indices may refer to vertices
 //! defined later in the file; relative ones count back from the current line.
 
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 use super::normals::unit;
 use super::{MeshError, MAX_INDICES};
@@ -18,6 +19,8 @@ pub(crate) struct FaceInfo {
     pub corners: usize,
     /// Corners that carry a normal index.
     pub with_normals: usize,
+    /// The 0-based texture-coordinate index of every corner, when every corner has one.
+    pub texcoords: Option<Vec<u32>>,
 }
 
 /// What the validating pass found.
@@ -26,6 +29,8 @@ pub(crate) struct Scan {
     /// 1-based `v` or `v//vn` corners, and empty lines for everything else.
     pub canonical: String,
     pub faces: Vec<FaceInfo>,
+    /// Each `vt` statement's `(u, v)`.
+    pub texcoords: Vec<Vec2>,
     /// Each `vn` statement: its line and value.
     normals: Vec<(usize, Vec3)>,
     /// For each corner with a normal: (0-based normal index, line of its face).
@@ -38,6 +43,15 @@ pub(crate) fn parse_error(path: &str, line: Option<usize>, msg: String) -> MeshE
         line,
         msg,
     }
+}
+
+/// A NUL byte on `line`: binary data.
+pub(crate) fn binary_data(path: &str, line: usize) -> MeshError {
+    parse_error(
+        path,
+        Some(line),
+        "contains a NUL byte, so this is binary data, not a Wavefront OBJ file".into(),
+    )
 }
 
 /// The keyword and the remaining words of a line, with any `#` comment removed.
@@ -74,6 +88,7 @@ struct Scanner<'a> {
     path: &'a str,
     v_total: usize,
     vn_total: usize,
+    vt_total: usize,
     v_count: usize,
     corners_total: usize,
     scan: Scan,
@@ -83,22 +98,23 @@ impl Scan {
     /// Validates `text`, reporting the first problem with its line.
     pub(crate) fn run(path: &str, text: &str) -> Result<Scan, MeshError> {
         // Pass 1: totals, for forward references, and a check for binary data.
-        let (mut v_total, mut vn_total) = (0usize, 0usize);
+        let (mut v_total, mut vn_total, mut vt_total) = (0usize, 0usize, 0usize);
         for (i, line) in text.lines().enumerate() {
             if line.contains('\0') {
-                return Err(parse_error(
-                    path,
-                    Some(i + 1),
-                    "contains a NUL byte, so this is binary data, not a Wavefront OBJ file".into(),
-                ));
+                return Err(binary_data(path, i + 1));
             }
             match statement(line).0 {
                 Some("v") => v_total += 1,
                 Some("vn") => vn_total += 1,
+                Some("vt") => vt_total += 1,
                 _ => {}
             }
         }
-        for (what, count) in [("vertices", v_total), ("normals", vn_total)] {
+        for (what, count) in [
+            ("vertices", v_total),
+            ("normals", vn_total),
+            ("texture coordinates", vt_total),
+        ] {
             if count > MAX_INDICES {
                 return Err(MeshError::TooLarge {
                     path: path.into(),
@@ -113,11 +129,13 @@ impl Scan {
             path,
             v_total,
             vn_total,
+            vt_total,
             v_count: 0,
             corners_total: 0,
             scan: Scan {
                 canonical: String::with_capacity(text.len()),
                 faces: Vec::new(),
+                texcoords: Vec::new(),
                 normals: Vec::new(),
                 normal_refs: Vec::new(),
             },
@@ -128,6 +146,7 @@ impl Scan {
             match keyword {
                 Some("v") => s.vertex(i + 1, &words)?,
                 Some("vn") => s.normal(i + 1, &words)?,
+                Some("vt") => s.texcoord(i + 1, &words)?,
                 Some("f") => s.face(i + 1, &words)?,
                 _ => {}
             }
@@ -277,6 +296,31 @@ impl Scanner<'_> {
         Ok(())
     }
 
+    /// `vt u [v [w]]`: one to three finite numbers (`v` defaults to 0, `w` is ignored).
+    fn texcoord(&mut self, ln: usize, words: &[&str]) -> Result<(), MeshError> {
+        if words.is_empty() || words.len() > 3 {
+            return Err(self.err(
+                ln,
+                format!(
+                    "texture coordinate has {} component(s) but 1 to 3 are needed",
+                    words.len()
+                ),
+            ));
+        }
+        let mut c = [0f32; 2];
+        for (c, w) in c.iter_mut().zip(words) {
+            *c = self.float(ln, w, "texture coordinate")?;
+        }
+        if let Some(w) = words.get(2) {
+            self.float(ln, w, "texture coordinate")?;
+        }
+        if !c.iter().all(|x| x.is_finite()) {
+            return Err(self.non_finite(ln, "texture coordinate"));
+        }
+        self.scan.texcoords.push(Vec2::from(c));
+        Ok(())
+    }
+
     fn face(&mut self, ln: usize, words: &[&str]) -> Result<(), MeshError> {
         if words.len() < 3 {
             return Err(self.err(
@@ -288,10 +332,20 @@ impl Scanner<'_> {
             ));
         }
         let mut with_normals = 0;
+        let mut texcoords = Some(Vec::with_capacity(words.len()));
         let mut canonical = String::from("f");
         for word in words {
-            let (v, n) = self.corner(ln, word)?;
+            let (v, t, n) = self.corner(ln, word)?;
             let v = self.position_index(ln, v)?;
+            match t {
+                Some(t) => {
+                    let t = self.texcoord_index(ln, t)?;
+                    if let Some(ts) = &mut texcoords {
+                        ts.push(t as u32);
+                    }
+                }
+                None => texcoords = None,
+            }
             canonical.push_str(&format!(" {}", v + 1));
             if let Some(n) = n {
                 let n = self.normal_index(ln, n)?;
@@ -308,13 +362,14 @@ impl Scanner<'_> {
             line: ln,
             corners: words.len(),
             with_normals,
+            texcoords,
         });
         Ok(())
     }
 
-    /// One corner `v`, `v/vt`, `v//vn` or `v/vt/vn`: the position index and the normal
-    /// index as written.
-    fn corner(&self, ln: usize, word: &str) -> Result<(i64, Option<i64>), MeshError> {
+    /// One corner `v`, `v/vt`, `v//vn` or `v/vt/vn`: the position, texture-coordinate and
+    /// normal indices as written.
+    fn corner(&self, ln: usize, word: &str) -> Result<(i64, Option<i64>, Option<i64>), MeshError> {
         let parts: Vec<&str> = word.split('/').collect();
         if parts.len() > 3 {
             return Err(self.err(
@@ -335,14 +390,15 @@ impl Scanner<'_> {
         };
         let v = index(parts[0], "position")?
             .ok_or_else(|| self.err(ln, format!("face vertex '{word}' has no position index")))?;
-        if let Some(t) = parts.get(1) {
-            index(t, "texture coordinate")?;
-        }
+        let t = match parts.get(1) {
+            Some(s) => index(s, "texture coordinate")?,
+            None => None,
+        };
         let n = match parts.get(2) {
             Some(s) => index(s, "normal")?,
             None => None,
         };
-        Ok((v, n))
+        Ok((v, t, n))
     }
 
     fn position_index(&self, ln: usize, index: i64) -> Result<usize, MeshError> {
@@ -361,15 +417,35 @@ impl Scanner<'_> {
 
     fn normal_index(&self, ln: usize, index: i64) -> Result<usize, MeshError> {
         let so_far = self.scan.normals.len();
-        let msg = match resolve(index, so_far, self.vn_total) {
+        self.attribute_index(ln, index, so_far, self.vn_total, "normal")
+    }
+
+    fn texcoord_index(&self, ln: usize, index: i64) -> Result<usize, MeshError> {
+        let so_far = self.scan.texcoords.len();
+        self.attribute_index(ln, index, so_far, self.vt_total, "texture coordinate")
+    }
+
+    /// A `vn` or `vt` index: `so_far` defined before this line, `total` in the file.
+    fn attribute_index(
+        &self,
+        ln: usize,
+        index: i64,
+        so_far: usize,
+        total: usize,
+        what: &str,
+    ) -> Result<usize, MeshError> {
+        let msg = match resolve(index, so_far, total) {
             Resolved::Ok(r) => return Ok(r),
-            Resolved::Zero => "face refers to normal 0 but OBJ indices start at 1".to_string(),
+            Resolved::Zero => format!("face refers to {what} 0 but OBJ indices start at 1"),
+            Resolved::AfterLast if total == 0 => format!(
+                "face refers to {what} {index} but the file defines no {what}s (no '{}' lines)",
+                if what == "normal" { "vn" } else { "vt" }
+            ),
             Resolved::AfterLast => format!(
-                "face refers to normal {index} but the file defines only {} normal(s)",
-                self.vn_total
+                "face refers to {what} {index} but the file defines only {total} {what}(s)"
             ),
             Resolved::BeforeFirst => format!(
-                "face refers to normal {index} (relative) but only {so_far} normal(s) are defined before this line"
+                "face refers to {what} {index} (relative) but only {so_far} {what}(s) are defined before this line"
             ),
         };
         Err(self.err(ln, msg))
@@ -531,6 +607,62 @@ mod tests {
             err("v 0 0 0\n\u{0}\u{1}"),
             "'x.obj' line 2: contains a NUL byte, so this is binary data, not a Wavefront OBJ file"
         );
+    }
+
+    #[test]
+    fn texture_coordinates_are_validated_like_normals() {
+        let vt = "vt 0 0\nvt 1 0\nvt 0 1\n";
+        for (text, want) in [
+            (
+                format!("{TRI}f 1/0 2/0 3/0\n"),
+                "'x.obj' line 4: face refers to texture coordinate 0 but OBJ indices start at 1",
+            ),
+            (
+                format!("{TRI}f 1/2 2/2 3/2\n"),
+                "'x.obj' line 4: face refers to texture coordinate 2 but the file defines no texture coordinates (no 'vt' lines)",
+            ),
+            (
+                format!("{TRI}{vt}f 1/99/1 2/1 3/1\n"),
+                "'x.obj' line 7: face refers to texture coordinate 99 but the file defines only 3 texture coordinate(s)",
+            ),
+            (
+                format!("{TRI}{vt}f 1/-5 2/1 3/1\n"),
+                "'x.obj' line 7: face refers to texture coordinate -5 (relative) but only 3 texture coordinate(s) are defined before this line",
+            ),
+            (
+                format!("{TRI}vt abc def\nf 1 2 3\n"),
+                "'x.obj' line 4: texture coordinate 'abc' is not a number",
+            ),
+            (
+                format!("{TRI}vt nan 0\nf 1 2 3\n"),
+                "'x.obj' line 4: texture coordinate is NaN or infinite",
+            ),
+            (
+                format!("{TRI}vt 0 inf\nf 1 2 3\n"),
+                "'x.obj' line 4: texture coordinate is NaN or infinite",
+            ),
+            (
+                format!("{TRI}vt\nf 1 2 3\n"),
+                "'x.obj' line 4: texture coordinate has 0 component(s) but 1 to 3 are needed",
+            ),
+            (
+                format!("{TRI}vt 0 0 0 0\nf 1 2 3\n"),
+                "'x.obj' line 4: texture coordinate has 4 component(s) but 1 to 3 are needed",
+            ),
+            (
+                format!("{TRI}vt 0 0 w\nf 1 2 3\n"),
+                "'x.obj' line 4: texture coordinate 'w' is not a number",
+            ),
+            (
+                format!("{TRI}f 1//1 2//1 3//1\n"),
+                "'x.obj' line 4: face refers to normal 1 but the file defines no normals (no 'vn' lines)",
+            ),
+        ] {
+            assert_eq!(err(&text), want, "{text:?}");
+        }
+        // A relative index counts back from the line; a forward absolute one is fine.
+        assert!(load(&format!("{TRI}{vt}f 1/-3 2/-2 3/-1\n")).is_ok());
+        assert!(load(&format!("{TRI}f 1/1 2/1 3/1\nvt 0 0\n")).is_ok());
     }
 
     #[test]

@@ -3,9 +3,9 @@
 
 use std::collections::HashMap;
 
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
-use super::normals::{compute_area_weighted_normals, corners, is_zero_area, unit};
+use super::normals::{compute_area_weighted_normals, corners, degenerate_reason, unit};
 use super::{DegenerateFace, LoadReport, Mesh, MeshError, Triangle, FALLBACK_NORMAL, MAX_INDICES};
 
 /// A triangle before welding, with where it came from.
@@ -14,6 +14,8 @@ pub(crate) struct RawTriangle {
     pub p: [u32; 3],
     /// Indices into the given normals (ignored when normals are computed).
     pub n: [u32; 3],
+    /// Indices into the texture coordinates, if the face has them.
+    pub t: Option<[u32; 3]>,
     /// 0-based face index in file (or input) order.
     pub face: usize,
     /// 1-based line of the face, for OBJ input.
@@ -30,6 +32,8 @@ pub(crate) struct RawMesh {
     /// `Some` to keep these normals (indexed by [`RawTriangle::n`]), `None` to compute them.
     pub normals: Option<Vec<Vec3>>,
     pub triangles: Vec<RawTriangle>,
+    /// Indexed by [`RawTriangle::t`] (validated).
+    pub texcoords: Vec<Vec2>,
     pub polygons_triangulated: usize,
 }
 
@@ -45,14 +49,16 @@ pub(crate) fn assemble(raw: RawMesh) -> Result<(Mesh, LoadReport), MeshError> {
             Some("repeats a vertex index")
         } else {
             match corners(&positions, p) {
-                Some([a, b, c]) if !is_zero_area(a, b, c) => None,
-                _ => Some("has zero area"),
+                Some([a, b, c]) => degenerate_reason(a, b, c),
+                None => Some("has zero area"),
             }
         };
         match reason {
             Some(reason) => {
+                // One line per face only at debug level: a file can hold millions of them.
+                // Callers summarize `LoadReport::dropped_degenerate` (see `DegenerateFace`).
                 let at = t.line.map_or(String::new(), |l| format!(" at line {l}"));
-                log::warn!(
+                log::debug!(
                     "'{path}': dropping face {} (0-based){at}: it {reason}",
                     t.face
                 );
@@ -62,11 +68,15 @@ pub(crate) fn assemble(raw: RawMesh) -> Result<(Mesh, LoadReport), MeshError> {
                     reason,
                 });
             }
-            None => triangles.push(Triangle { p, n: t.n }),
+            None => triangles.push(Triangle { p, n: t.n, t: t.t }),
         }
     }
-    if triangles.is_empty() {
-        return Err(MeshError::EmptyMesh { path });
+    if let Some(first) = dropped.first().filter(|_| triangles.is_empty()) {
+        return Err(MeshError::NoDrawableTriangles {
+            path,
+            count: dropped.len(),
+            first: first.describe(),
+        });
     }
 
     let normals_computed = raw.normals.is_none();
@@ -89,6 +99,7 @@ pub(crate) fn assemble(raw: RawMesh) -> Result<(Mesh, LoadReport), MeshError> {
         positions,
         normals,
         triangles,
+        texcoords: raw.texcoords,
     };
     let report = LoadReport {
         dropped_degenerate: dropped,
@@ -164,6 +175,7 @@ pub(crate) fn from_parts(
         .map(|(face, p)| RawTriangle {
             p,
             n: p,
+            t: None,
             face,
             line: None,
         })
@@ -174,6 +186,7 @@ pub(crate) fn from_parts(
         positions,
         normals,
         triangles,
+        texcoords: Vec::new(),
         polygons_triangulated: 0,
     })
 }
@@ -247,10 +260,12 @@ mod tests {
                 .map(|(face, &p)| RawTriangle {
                     p,
                     n: p,
+                    t: None,
                     face,
                     line: None,
                 })
                 .collect(),
+            texcoords: Vec::new(),
             polygons_triangulated: 0,
         }
     }
@@ -338,6 +353,9 @@ mod tests {
     fn all_degenerate_is_empty() {
         let p = vec![Vec3::ZERO, Vec3::X, Vec3::X * 2.0];
         let err = assemble(raw(p, &[[0, 1, 2]])).unwrap_err();
-        assert_eq!(err.to_string(), "'t' contains no triangles");
+        assert_eq!(
+            err.to_string(),
+            "'t' contains no triangles that can be drawn: all 1 are degenerate (the first, face 0, has zero area)"
+        );
     }
 }

@@ -13,7 +13,7 @@ pub enum RenderError {
         needed: u64,
         limit: &'static str,
         max: u64,
-        remedy: &'static str,
+        remedy: String,
     },
     #[error("level {level} is beyond this device's maxTessellationGenerationLevel ({max}): the tess driver cannot draw it (use --driver pattern)")]
     TessLevel { level: u32, max: u32 },

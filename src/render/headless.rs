@@ -47,6 +47,36 @@ pub struct FrameTiming {
     pub stats: Option<PipelineStats>,
 }
 
+/// The clear colour as the sRGB offscreen target stores it (8 bits per channel).
+pub fn clear_color_srgb8() -> [u8; 4] {
+    let encode = |c: f32| {
+        let s = if c <= 0.003_130_8 {
+            12.92 * c
+        } else {
+            1.055 * c.powf(1.0 / 2.4) - 0.055
+        };
+        (s.clamp(0.0, 1.0) * 255.0).round() as u8
+    };
+    let [r, g, b, a] = CLEAR_COLOR;
+    [
+        encode(r),
+        encode(g),
+        encode(b),
+        (a.clamp(0.0, 1.0) * 255.0).round() as u8,
+    ]
+}
+
+/// Pixels of a headless image that differ from the clear colour (by more than the rounding of
+/// the sRGB conversion): 0 means nothing was drawn.
+pub fn covered_pixels(image: &Readback) -> usize {
+    let clear = clear_color_srgb8();
+    image
+        .rgba
+        .chunks_exact(4)
+        .filter(|px| px.iter().zip(clear).any(|(&p, c)| p.abs_diff(c) > 1))
+        .count()
+}
+
 impl Headless {
     pub fn new(desc: &ContextDesc, width: u32, height: u32) -> Result<Self, GpuError> {
         let ctx = Context::new(desc)?;
@@ -174,16 +204,36 @@ impl Headless {
                 "the static driver evaluates on the CPU: there is nothing to capture (use pattern or tess)",
             ),
         )?;
-        let capacity = scene.gpu.element_count as u64 * per_element as u64;
-        let bytes = capacity * std::mem::size_of::<CapturedVertex>() as u64;
+        // Vertices and bytes to capture at a level.
+        let size = |level: u32| {
+            let per = cfg.driver.capture_per_element(level).unwrap_or(0);
+            let capacity = scene.gpu.element_count as u64 * per as u64;
+            (
+                capacity,
+                capacity * std::mem::size_of::<CapturedVertex>() as u64,
+            )
+        };
         let limit = self.ctx.info.limits.max_storage_buffer_range as u64;
-        if bytes > limit || capacity > u32::MAX as u64 {
+        let fits = |level: u32| {
+            let (capacity, bytes) = size(level);
+            bytes <= limit && capacity <= u32::MAX as u64
+        };
+        let (capacity, bytes) = size(cfg.level);
+        debug_assert_eq!(
+            capacity,
+            scene.gpu.element_count as u64 * per_element as u64
+        );
+        if !fits(cfg.level) {
+            let remedy = match (1..cfg.level).rev().find(|&l| fits(l)) {
+                Some(l) => format!("use --level {l} or lower, or a mesh with fewer triangles"),
+                None => "use a mesh with fewer triangles".to_string(),
+            };
             return Err(RenderError::OverLimit {
                 what: format!("capturing {capacity} evaluated vertices"),
                 needed: bytes,
                 limit: "maxStorageBufferRange",
                 max: limit,
-                remedy: "use a lower level",
+                remedy,
             });
         }
         let vertices = Buffer::new(
@@ -237,7 +287,7 @@ impl Headless {
                 needed: bytes,
                 limit: "maxTransformFeedbackBufferSize",
                 max: limit,
-                remedy: "use a lower level",
+                remedy: "use a lower level".into(),
             });
         }
         let buffer = Buffer::new(

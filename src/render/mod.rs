@@ -16,7 +16,7 @@ pub mod tess;
 
 pub use camera::Camera;
 pub use error::RenderError;
-pub use headless::{CaptureResult, FrameTiming, Headless};
+pub use headless::{clear_color_srgb8, covered_pixels, CaptureResult, FrameTiming, Headless};
 pub use pipelines::{Renderer, GEOMETRY_STAGES, PUSH_STAGES};
 pub use scene::{GpuMesh, MeshData, Scene};
 
@@ -196,10 +196,12 @@ pub struct FrameUniforms {
     pub options: [f32; 4],
     /// The surfaces' and displacements' parameters ([`SurfaceParams::to_gpu`]).
     pub params: [f32; 4],
+    /// xyz: [`SurfaceParams::origin`].
+    pub origin: [f32; 4],
 }
 
 const _: () = {
-    assert!(std::mem::size_of::<FrameUniforms>() == 144);
+    assert!(std::mem::size_of::<FrameUniforms>() == 160);
     assert!(std::mem::offset_of!(FrameUniforms, eye) == 64);
     assert!(std::mem::offset_of!(FrameUniforms, light_dir) == 80);
     assert!(std::mem::offset_of!(FrameUniforms, base_color) == 96);
@@ -221,6 +223,7 @@ impl FrameUniforms {
             base_color: [0.80, 0.55, 0.35, 1.0],
             options: [0.0; 4],
             params: params.to_gpu(),
+            origin: params.origin.extend(0.0).to_array(),
         }
     }
 }

@@ -94,7 +94,7 @@ impl GpuMesh {
                 needed: n * rec_size,
                 limit: "maxStorageBufferRange",
                 max: limits.max_storage_buffer_range as u64,
-                remedy: "use a mesh with fewer triangles",
+                remedy: "use a mesh with fewer triangles".into(),
             });
         }
         let align = limits.min_uniform_buffer_offset_alignment.max(16);

@@ -82,7 +82,7 @@ impl StaticVbo {
                 needed: bytes,
                 limit: "maxMemoryAllocationSize",
                 max,
-                remedy: "use a lower level or the pattern driver",
+                remedy: "use a lower level or the pattern driver".into(),
             });
         }
         let (v, i) = refine_on_cpu(cfg, records, pattern);

@@ -77,7 +77,7 @@ pub fn apply(d: Displace, params: &SurfaceParams, sp: SurfacePoint) -> SurfacePo
     if d == Displace::None {
         return sp;
     }
-    let (h, grad) = height(d, params, sp.position);
+    let (h, grad) = height(d, params, sp.position - params.origin);
     let n = sp.normal;
     let (hu, hv) = (dot3(grad, sp.dpdu), dot3(grad, sp.dpdv));
     let cross = sp.dpdu.cross(sp.dpdv);

@@ -74,6 +74,10 @@ pub struct SurfaceParams {
     pub frequency: f32,
     /// Octaves of the noise displacement (each doubles the frequency and halves the amplitude).
     pub octaves: u32,
+    /// Where the mesh's own origin is in the coordinates drawn (zero unless the mesh is drawn
+    /// moved and scaled, see [`SurfaceParams::in_drawn_frame`]): displacement is a function of
+    /// the point in the mesh's coordinates.
+    pub origin: Vec3,
 }
 
 impl Default for SurfaceParams {
@@ -83,6 +87,7 @@ impl Default for SurfaceParams {
             amplitude: 0.03,
             frequency: 24.0,
             octaves: 1,
+            origin: Vec3::ZERO,
         }
     }
 }
@@ -131,6 +136,18 @@ impl SurfaceParams {
             ));
         }
         Ok(())
+    }
+
+    /// The same displacement for a mesh drawn as `(P − centre) · scale` (what
+    /// `Mesh::for_viewing` draws): amplitude in drawn units, frequency per drawn unit, and the
+    /// mesh's origin where it lands.
+    pub fn in_drawn_frame(&self, centre: glam::DVec3, scale: f64) -> Self {
+        Self {
+            amplitude: (self.amplitude as f64 * scale) as f32,
+            frequency: (self.frequency as f64 / scale) as f32,
+            origin: (-centre * scale).as_vec3() + self.origin,
+            ..*self
+        }
     }
 
     /// As the `Frame` block's `params` vector: (alpha, amplitude, frequency, octaves).
