@@ -285,6 +285,7 @@ impl App {
                 animate: self.opts.animate,
                 lod: self.opts.lod,
                 view_normals: false,
+                initial: cfg.params,
             },
             drawn: cfg,
             max_level,

@@ -20,6 +20,8 @@ pub struct Controls {
     pub lod: bool,
     /// Show normals as colours.
     pub view_normals: bool,
+    /// The parameters the demo started with: the sliders' ranges are scaled to them.
+    pub initial: SurfaceParams,
 }
 
 /// What the panel reports and offers.
@@ -194,9 +196,9 @@ fn panel(ctx: &egui::Context, c: &mut Controls, info: &PanelInfo) {
                 egui::Slider::new(&mut p.alpha, 0.0..=1.0).text("alpha"),
             );
             ui.add_enabled_ui(c.cfg.displace != Displace::None, |ui| {
-                let a = p.amplitude.abs().max(1e-3) * 4.0;
+                let a = c.initial.amplitude.abs().max(1e-6) * 4.0;
                 ui.add(egui::Slider::new(&mut p.amplitude, -a..=a).text("amplitude"));
-                let f = p.frequency.max(1e-3) * 4.0;
+                let f = c.initial.frequency.max(1e-6) * 4.0;
                 ui.add(egui::Slider::new(&mut p.frequency, 0.0..=f).text("frequency"));
                 ui.add_enabled(
                     c.cfg.displace == Displace::Noise,
