@@ -46,7 +46,7 @@ pub struct ParamOpts {
     #[arg(long, allow_negative_numbers = true)]
     pub amplitude: Option<f32>,
     /// Displacement frequency per mesh unit (default: 24 / bounding radius).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub frequency: Option<f32>,
     /// Octaves of the noise displacement.
     #[arg(long, default_value_t = 1)]

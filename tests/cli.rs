@@ -769,3 +769,83 @@ fn logs_are_bounded_and_limits_name_the_file_and_the_remedy() {
         ],
     );
 }
+
+/// Surface and displacement parameters out of range: one sentence naming the option, exit 1.
+#[test]
+fn surface_parameters_out_of_range_are_errors() {
+    let out = tmp("params.png");
+    let o = out.to_str().unwrap();
+    for (args, needle) in [
+        (&["--alpha", "2"][..], "--alpha 2 is not within [0, 1]"),
+        (&["--alpha", "nan"], "--alpha NaN"),
+        (&["--octaves", "0"], "--octaves 0 is not within [1, 8]"),
+        (&["--octaves", "9"], "--octaves 9"),
+        (
+            &["--amplitude", "inf"],
+            "--amplitude inf is not a finite number",
+        ),
+        (
+            &["--frequency", "-1"],
+            "--frequency -1 is not a finite number >= 0",
+        ),
+    ] {
+        let mut all = vec!["render", "-o", o, "--level", "2"];
+        all.extend_from_slice(args);
+        expect_error(&all, &[needle]);
+    }
+}
+
+/// Every surface x displacement renders from the command line, and an export of a displaced
+/// curved surface reloads as a closed mesh with the refined counts.
+#[test]
+fn surfaces_and_displacements_render_and_export() {
+    let png = tmp("surfaces.png");
+    for s in ["flat", "phong", "pn"] {
+        for d in ["none", "sine", "noise"] {
+            let out = meshrefine(&[
+                "render",
+                "-o",
+                png.to_str().unwrap(),
+                "--width",
+                "96",
+                "--height",
+                "64",
+                "--level",
+                "4",
+                "--surface",
+                s,
+                "--displace",
+                d,
+            ]);
+            assert!(
+                out.status.success(),
+                "{s} + {d}: {}",
+                String::from_utf8_lossy(&out.stderr)
+            );
+        }
+    }
+    let obj = tmp("pn-sine.obj");
+    let ico = model_path("icosahedron.obj");
+    let out = meshrefine(&[
+        "export",
+        ico.to_str().unwrap(),
+        "-o",
+        obj.to_str().unwrap(),
+        "--level",
+        "4",
+        "--surface",
+        "pn",
+        "--displace",
+        "sine",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let (mesh, _) = meshrefine::mesh::Mesh::load_obj(&obj).unwrap();
+    // 20 faces x 16 triangles; 12 + 30 x 3 + 20 x 3 distinct vertices (welded: watertight).
+    assert_eq!(mesh.triangles.len(), 320);
+    assert_eq!(mesh.stats().vertices, 12 + 30 * 3 + 20 * 3);
+    assert_eq!(mesh.stats().boundary_edges, 0);
+}
