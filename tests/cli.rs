@@ -9,9 +9,17 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
+/// The binary, with the validation layer on for every GPU run (a validation message then fails
+/// the command, see `check_messages` in main.rs).
+fn bin() -> Command {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_meshrefine"));
+    c.env("MESHREFINE_VALIDATE", "1");
+    c
+}
+
 fn meshrefine(args: &[&str]) -> Output {
     let _guard = common::gpu_lock();
-    Command::new(env!("CARGO_BIN_EXE_meshrefine"))
+    bin()
         .args(args)
         .env_remove("DISPLAY")
         .env_remove("WAYLAND_DISPLAY")
@@ -274,7 +282,7 @@ fn render_export_and_headless_view_work() {
     // A display that cannot be reached: the same fallback, saying so.
     std::fs::remove_file(&view_png).unwrap();
     let _guard = common::gpu_lock();
-    let o = Command::new(env!("CARGO_BIN_EXE_meshrefine"))
+    let o = bin()
         .args(["view", "--headless-output", p(&view_png), "--level", "3"])
         .env("DISPLAY", ":97531")
         .env_remove("WAYLAND_DISPLAY")
@@ -350,7 +358,7 @@ fn bench_reports_every_variant_with_ratios() {
 /// Runs meshrefine with the given stdout and stderr.
 fn meshrefine_with(args: &[&str], stdout: Stdio, stderr: Stdio) -> std::process::ExitStatus {
     let _guard = common::gpu_lock();
-    Command::new(env!("CARGO_BIN_EXE_meshrefine"))
+    bin()
         .args(args)
         .env_remove("DISPLAY")
         .env_remove("WAYLAND_DISPLAY")
@@ -363,7 +371,7 @@ fn meshrefine_with(args: &[&str], stdout: Stdio, stderr: Stdio) -> std::process:
 /// Runs with stdout on a pipe whose reading end is closed before meshrefine writes anything.
 fn with_closed_stdout(args: &[&str]) -> Output {
     let _guard = common::gpu_lock();
-    let mut child = Command::new(env!("CARGO_BIN_EXE_meshrefine"))
+    let mut child = bin()
         .args(args)
         .env_remove("DISPLAY")
         .env_remove("WAYLAND_DISPLAY")
@@ -419,7 +427,7 @@ fn a_full_stdout_is_an_error_line_and_a_closed_one_ends_quietly() {
         // /dev/full: every write fails with ENOSPC.
         let full = std::fs::File::create("/dev/full").unwrap();
         let _guard = common::gpu_lock();
-        let out = Command::new(env!("CARGO_BIN_EXE_meshrefine"))
+        let out = bin()
             .args(&args)
             .env_remove("DISPLAY")
             .stdout(full)
@@ -503,7 +511,7 @@ fn a_fifo_is_refused_without_opening_it() {
             vec!["render", p(path), "-o", "f.png"],
         ] {
             let _guard = common::gpu_lock();
-            let child = Command::new(env!("CARGO_BIN_EXE_meshrefine"))
+            let child = bin()
                 .args(&args)
                 .stdout(Stdio::piped())
                 .stderr(Stdio::piped())

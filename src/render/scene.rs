@@ -234,12 +234,9 @@ impl Scene {
                 levels: levels.join(", "),
             });
         }
-        if cfg.surface.record_kind() != self.data.kind {
-            let mesh = self.data.mesh.clone();
-            self.data = MeshData::new(mesh, cfg.surface.record_kind());
-            self.gpu.update_records(&self.data.records);
-            self.static_vbo = None;
-        }
+        // Every surface today shares the corner records the scene was built with; a surface
+        // with records of another kind (Loop's M1 faces) needs a scene of its own.
+        debug_assert_eq!(cfg.surface.record_kind(), self.data.kind);
         if cfg.driver == super::Driver::Tess {
             super::tess::check_level(ctx, cfg.level)?;
         }
