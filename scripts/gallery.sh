@@ -16,5 +16,8 @@ done
 $m render -o "$out/spot-pn-sine.png" --width 427 --height 240 --level 32 --surface pn --displace sine
 $m render -o "$out/spot-pn-noise.png" --width 427 --height 240 --level 32 --surface pn --displace noise --octaves 3
 $m render -o "$out/spot-phong-wire.png" --width 427 --height 240 --level 6 --surface phong --wireframe
-# PN at split normals (a position with several vn): the known PN crack, as the papers have it.
-$m render assets/models/cylinder_hard_normals.obj -o "$out/cylinder-pn.png" --width 427 --height 240 --level 8 --surface pn
+# PN at split normals (a position with several vn): crack-free by default, the papers' crack open.
+for seams in closed open; do
+  $m render assets/models/cylinder_hard_normals.obj -o "$out/cylinder-pn-$seams.png" --width 427 --height 240 --level 8 --surface pn --pn-seams $seams
+  $m render assets/models/cube_face_normals.obj -o "$out/cube-pn-$seams.png" --width 427 --height 240 --level 8 --surface pn --pn-seams $seams
+done

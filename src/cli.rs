@@ -2,7 +2,7 @@
 
 use clap::{Args, Parser, Subcommand};
 use meshrefine::render::{Driver, Submit};
-use meshrefine::surface::{Displace, Surface, SurfaceParams};
+use meshrefine::surface::{Displace, Seams, Surface, SurfaceParams};
 use std::path::PathBuf;
 
 #[derive(Parser, Debug)]
@@ -51,6 +51,10 @@ pub struct ParamOpts {
     /// Octaves of the noise displacement.
     #[arg(long, default_value_t = 1)]
     pub octaves: u32,
+    /// PN and Phong geometry at split normals (a position with several vn): `closed` is
+    /// crack-free, `open` is the papers' behaviour (cracks).
+    #[arg(long, value_enum, default_value = "closed")]
+    pub pn_seams: Seams,
 }
 
 impl ParamOpts {
@@ -63,6 +67,7 @@ impl ParamOpts {
             frequency: self.frequency.unwrap_or(d.frequency),
             octaves: self.octaves,
             origin: d.origin,
+            seams: self.pn_seams,
         };
         p.validate()?;
         Ok(p)

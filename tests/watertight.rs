@@ -19,7 +19,7 @@ use meshrefine::pattern::{Pattern, PatternSet};
 use meshrefine::render::static_vbo::refine_on_cpu;
 use meshrefine::render::tess::{tess_triangle_count, tess_vertex_count};
 use meshrefine::render::{Camera, DrawConfig, Driver, Scene, Submit};
-use meshrefine::surface::{Displace, RecordKind, Surface, SurfaceParams};
+use meshrefine::surface::{Displace, RecordKind, Seams, Surface, SurfaceParams};
 
 /// Surface x displacement combinations checked on every driver.
 const SURFACES: &[(Surface, Displace)] = &[
@@ -51,7 +51,17 @@ const CLOSED: &[&str] = &[
     "bicone16.obj",
     "uvsphere12.obj",
     "spot_control_tri.obj",
+    // Split normals (several `vn` at a position): watertight with closed seams (the default).
+    "cylinder_hard_normals.obj",
+    "cube_face_normals.obj",
 ];
+
+/// Distinct positions of `records` refined on the CPU at level `n`.
+fn static_positions(cfg: &DrawConfig, records: &[meshrefine::surface::ElementRecord]) -> usize {
+    let (v, _) = refine_on_cpu(cfg, records, &Pattern::uniform(cfg.level));
+    let distinct: HashSet<[u32; 3]> = v.iter().map(|x| bits(&x[..3])).collect();
+    distinct.len()
+}
 
 fn edges(mesh: &Mesh) -> usize {
     let mut e = HashSet::new();
@@ -93,16 +103,14 @@ fn assert_closed(triangles: &[[(u32, u32); 3]], what: &str) {
 fn static_driver_is_watertight() {
     for file in CLOSED {
         let mesh = model(file);
-        let records = meshrefine::surface::build_records(RecordKind::Corners, &mesh);
+        let records = meshrefine::surface::build_records(RecordKind::Corners, &mesh, Seams::Closed);
         let r = mesh.bounding_radius();
         for &combo in SURFACES {
             for n in [2u32, 5, 16] {
                 let cfg = config(Driver::Static, Submit::Instanced, n, combo, r);
-                let (v, _) = refine_on_cpu(&cfg, &records, &Pattern::uniform(n));
-                let distinct: HashSet<[u32; 3]> = v.iter().map(|x| bits(&x[..3])).collect();
                 let inner = ((n - 1) * (n - 2) / 2) as usize;
                 assert_eq!(
-                    distinct.len(),
+                    static_positions(&cfg, &records),
                     expected(&mesh, n as usize, inner),
                     "{file} {} + {} static level {n}",
                     combo.0.name(),
@@ -180,4 +188,35 @@ fn pattern_and_tess_are_watertight() {
             }
         }
     });
+}
+
+/// With the papers' open seams, PN and Phong crack at split normals: the cylinder, whose rim
+/// carries radial and axial normals, welds into more vertices than a crack-free refinement has
+/// (this is what `--pn-seams closed` fixes). A cube with face normals does not crack even open:
+/// its edges are perpendicular to every normal there, so both surfaces keep them straight.
+#[test]
+fn open_seams_crack_at_split_normals() {
+    for file in ["cylinder_hard_normals.obj"] {
+        let mesh = model(file);
+        let records = meshrefine::surface::build_records(RecordKind::Corners, &mesh, Seams::Open);
+        let r = mesh.bounding_radius();
+        for surface in [Surface::Phong, Surface::Pn] {
+            let n = 5;
+            let mut cfg = config(
+                Driver::Static,
+                Submit::Instanced,
+                n,
+                (surface, Displace::None),
+                r,
+            );
+            cfg.params.seams = Seams::Open;
+            let crack_free = expected(&mesh, n as usize, ((n - 1) * (n - 2) / 2) as usize);
+            let got = static_positions(&cfg, &records);
+            assert!(
+                got > crack_free,
+                "{file} {} with open seams: {got} distinct positions, not more than the crack-free {crack_free}",
+                surface.name()
+            );
+        }
+    }
 }

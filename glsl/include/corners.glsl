@@ -12,15 +12,32 @@
 // Layout of `CornerRecord` (src/surface/record.rs) inside an ElementRecord.
 struct CornerRecord {
     vec3 p[3];   // corner positions
-    vec3 n[3];   // corner unit normals
-    uvec4 idx;   // xyz: global position index of each corner (canonical order key); w: triangle
+    vec3 n[3];   // corner unit normals (shading)
+    vec3 g[3];   // position normals at split positions (closed seams), n elsewhere
+    uvec4 idx;   // xyz: global position index of each corner (canonical order key); w: seam flags
 };
+
+// `w` of a position marking a corner whose geometry normal is its normal (src/surface/record.rs).
+const float SMOOTH_CORNER = 2.0;
+
+float sign_not_zero(float v) { return v >= 0.0 ? 1.0 : -1.0; }
+
+// Unit vector of an octahedral encoding. Mirror: src/surface/record.rs `oct_decode`.
+vec3 oct_decode(vec2 e) {
+    vec3 v = vec3(e.x, e.y, 1.0 - abs(e.x) - abs(e.y));
+    if (v.z < 0.0) {
+        v.xy = vec2((1.0 - abs(v.y)) * sign_not_zero(v.x), (1.0 - abs(v.x)) * sign_not_zero(v.y));
+    }
+    return normalize(v);
+}
 
 CornerRecord corner_record(ElementRecord e) {
     CornerRecord r;
     for (int i = 0; i < 3; ++i) {
         r.p[i] = uintBitsToFloat(e.d[i].xyz);
         r.n[i] = uintBitsToFloat(e.d[3 + i].xyz);
+        vec2 oct = vec2(uintBitsToFloat(e.d[i].w), uintBitsToFloat(e.d[3 + i].w));
+        r.g[i] = oct.x == SMOOTH_CORNER ? r.n[i] : oct_decode(oct);
     }
     r.idx = e.d[6];
     return r;
@@ -28,7 +45,10 @@ CornerRecord corner_record(ElementRecord e) {
 
 struct Corners {
     vec3 p[3];
-    vec3 n[3];
+    vec3 n[3];   // shading normals
+    vec3 g[3];   // position normals at split positions
+    bool seam_pn[3];    // canonical edge e (corners e, e+1 mod 3) builds PN geometry from g
+    bool seam_phong[3]; // ... Phong geometry
     vec3 w;      // weight of each corner, in canonical order
     int o[3];    // the stored corner each canonical corner is
 };
@@ -38,6 +58,12 @@ struct Corners {
 float dot3(vec3 a, vec3 b) {
     precise float d = a.x * b.x + a.y * b.y + a.z * b.z;
     return d;
+}
+
+// The edge (0: corners 0-1, 1: 1-2, 2: 2-0) joining corners i and j, either way round.
+// Mirror: src/surface/mod.rs `edge_of`.
+int edge_of(int i, int j) {
+    return (i + 1) % 3 == j ? i : j;
 }
 
 uint canonical_key(uint index, float weight) {
@@ -57,6 +83,11 @@ Corners canonical(CornerRecord t, vec3 bary) {
     for (int i = 0; i < 3; ++i) {
         c.p[i] = t.p[o[i]];
         c.n[i] = t.n[o[i]];
+        c.g[i] = t.g[o[i]];
+        // Seam flags (src/surface/record.rs `SeamFlags`) of canonical edge i, by its stored edge.
+        int e = edge_of(o[i], o[(i + 1) % 3]);
+        c.seam_pn[i] = ((t.idx.w >> uint(e)) & 1u) == 1u;
+        c.seam_phong[i] = ((t.idx.w >> uint(3 + e)) & 1u) == 1u;
         c.w[i] = bary[o[i]];
         c.o[i] = o[i];
     }

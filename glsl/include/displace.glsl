@@ -15,6 +15,7 @@ const uint DISPLACE_NOISE = 2;
 struct SurfacePoint {
     vec3 position;
     vec3 normal;   // unit
+    vec3 direction; // unit: what displacement moves along (src/surface/mod.rs `SurfacePoint`)
     vec3 dpdu;     // tangents for the sample (w, u, v), w = 1 - u - v
     vec3 dpdv;
 };
@@ -68,10 +69,12 @@ SurfacePoint displace(SurfacePoint sp) {
         vec3 bump = (cross(n, sp.dpdv) * hu - cross(n, sp.dpdu) * hv) * (sigma / area);
         r.normal = normalize(n + bump);
     }
-    precise vec3 pos = sp.position + n * h;
+    vec3 dir = sp.direction;
+    precise vec3 pos = sp.position + dir * h;
     r.position = pos;
-    r.dpdu = sp.dpdu + n * hu;
-    r.dpdv = sp.dpdv + n * hv;
+    r.direction = dir;
+    r.dpdu = sp.dpdu + dir * hu;
+    r.dpdv = sp.dpdv + dir * hv;
     return r;
 }
 

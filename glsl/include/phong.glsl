@@ -11,11 +11,24 @@ vec3 phong_project(vec3 q, vec3 p, vec3 n) {
     return r;
 }
 
+// The normal corner i's tangent plane uses (seams blended inside the triangle, exactly one
+// choice on an edge). Mirror: src/surface/phong.rs `corner_normal`.
+vec3 phong_corner_normal(Corners c, int i) {
+    int j = (i + 1) % 3, k = (i + 2) % 3;
+    vec3 a_ij = c.seam_phong[edge_of(i, j)] ? c.g[i] : c.n[i];
+    vec3 a_ik = c.seam_phong[edge_of(i, k)] ? c.g[i] : c.n[i];
+    if (a_ij == a_ik || c.w[k] == 0.0) return a_ij;
+    if (c.w[j] == 0.0) return a_ik;
+    return normalize(a_ij * c.w[j] + a_ik * c.w[k]);
+}
+
 void phong_eval(Corners c, float alpha, out vec3 position, out vec3 normal, out vec3 g[3]) {
     vec3 p = flat_point(c);
     vec3 pi[3];
+    vec3 cn[3];
     for (int i = 0; i < 3; ++i) {
-        pi[i] = phong_project(p, c.p[i], c.n[i]);
+        cn[i] = phong_corner_normal(c, i);
+        pi[i] = phong_project(p, c.p[i], cn[i]);
     }
     precise vec3 curved = pi[0] * c.w[0] + pi[1] * c.w[1] + pi[2] * c.w[2];
     precise vec3 pos = p * (1.0 - alpha) + curved * alpha;
@@ -25,7 +38,7 @@ void phong_eval(Corners c, float alpha, out vec3 position, out vec3 normal, out 
         vec3 pj = c.p[j];
         vec3 moved = vec3(0.0);
         for (int i = 0; i < 3; ++i) {
-            moved += (pj - c.n[i] * dot3(pj, c.n[i])) * c.w[i];
+            moved += (pj - cn[i] * dot3(pj, cn[i])) * c.w[i];
         }
         g[j] = pj * (1.0 - alpha) + (pi[j] + moved) * alpha;
     }

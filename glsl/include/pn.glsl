@@ -8,11 +8,18 @@
 const float PN_THIRD = 1.0 / 3.0;
 const float PN_SIXTH = 1.0 / 6.0;
 
-// The edge point of edge ij next to corner i: (2 P_i + P_j - s_ij N_i) / 3.
-vec3 pn_edge(Corners c, int i, int j) {
-    float s = dot3(c.p[j] - c.p[i], c.n[i]);
-    precise vec3 e = (c.p[i] * 2.0 + c.p[j] - c.n[i] * s) * PN_THIRD;
+// The edge point of edge (pi, pj) next to pi for normal n there: (2 P_i + P_j - s N) / 3.
+// Mirror: src/surface/pn.rs `edge_point`.
+vec3 pn_edge_point(vec3 pi, vec3 pj, vec3 n) {
+    float s = dot3(pj - pi, n);
+    precise vec3 e = (pi * 2.0 + pj - n * s) * PN_THIRD;
     return e;
+}
+
+// The edge point of edge ij next to corner i: with the position normal on a seam-flagged edge.
+vec3 pn_edge(Corners c, int i, int j) {
+    vec3 n = c.seam_pn[edge_of(i, j)] ? c.g[i] : c.n[i];
+    return pn_edge_point(c.p[i], c.p[j], n);
 }
 
 // The quadratic normal field's edge control point n_ij = N_i + N_j - t_ij (P_j - P_i).

@@ -22,6 +22,11 @@ struct Sample {
     uint index;    // the driver's sample index: pattern vertex, or ~0u (tess)
 };
 
+// The surface's normal field on ordered corners. Mirror: src/surface/mod.rs `normal_field`.
+vec3 surface_normal(Corners c) {
+    return SURFACE == SURFACE_PN ? pn_normal(c) : flat_normal(c);
+}
+
 // The surface without displacement.
 SurfacePoint surface_eval(ElementRecord rec, Sample s) {
     Corners c = canonical(corner_record(rec), s.bary);
@@ -38,7 +43,15 @@ SurfacePoint surface_eval(ElementRecord rec, Sample s) {
     for (int i = 0; i < 3; ++i) {
         gs[c.o[i]] = g[i];
     }
-    return SurfacePoint(p, n, gs[1] - gs[0], gs[2] - gs[0]);
+    // Displacement direction: the normal field with the geometry normals (n itself unless a
+    // corner is at a split normal with closed seams).
+    vec3 dir = n;
+    if (c.g[0] != c.n[0] || c.g[1] != c.n[1] || c.g[2] != c.n[2]) {
+        Corners cg = c;
+        cg.n = c.g;
+        dir = surface_normal(cg);
+    }
+    return SurfacePoint(p, n, dir, gs[1] - gs[0], gs[2] - gs[0]);
 }
 
 // What every driver computes for every sample.
@@ -48,11 +61,7 @@ SurfacePoint evaluate(ElementRecord rec, Sample s) {
 
 // The surface's normal field at barycentric `bary` of the element, for the fragment stage.
 vec3 surface_normal_field(ElementRecord rec, vec3 bary) {
-    Corners c = canonical(corner_record(rec), bary);
-    if (SURFACE == SURFACE_PN) {
-        return pn_normal(c);
-    }
-    return flat_normal(c);
+    return surface_normal(canonical(corner_record(rec), bary));
 }
 
 #endif

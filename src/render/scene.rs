@@ -7,7 +7,7 @@ use super::RenderError;
 use crate::gpu::{vk, Buffer, BufferDesc, CommandPool, Context, DescriptorPool, GpuError};
 use crate::mesh::Mesh;
 use crate::pattern::{Pattern, PatternSet};
-use crate::surface::{build_records, ElementRecord, RecordKind, RECORD_BYTES};
+use crate::surface::{build_records, ElementRecord, RecordKind, Seams, RECORD_BYTES};
 use std::sync::Arc;
 
 /// CPU-side data of a mesh ready to draw: the mesh and its elements' records.
@@ -15,15 +15,18 @@ use std::sync::Arc;
 pub struct MeshData {
     pub mesh: Mesh,
     pub kind: RecordKind,
+    /// The seams the records were built for.
+    pub seams: Seams,
     pub records: Vec<ElementRecord>,
 }
 
 impl MeshData {
-    pub fn new(mesh: Mesh, kind: RecordKind) -> Self {
-        let records = build_records(kind, &mesh);
+    pub fn new(mesh: Mesh, kind: RecordKind, seams: Seams) -> Self {
+        let records = build_records(kind, &mesh, seams);
         Self {
             mesh,
             kind,
+            seams,
             records,
         }
     }
@@ -204,7 +207,7 @@ impl Scene {
         mesh: Mesh,
         patterns: PatternSet,
     ) -> Result<Self, RenderError> {
-        let data = MeshData::new(mesh, RecordKind::Corners);
+        let data = MeshData::new(mesh, RecordKind::Corners, Seams::default());
         let gpu = GpuMesh::new(ctx, pool, &renderer.mesh_layout, &data, &patterns)?;
         Ok(Self {
             data,
@@ -237,6 +240,12 @@ impl Scene {
         // Every surface today shares the corner records the scene was built with; a surface
         // with records of another kind (Loop's M1 faces) needs a scene of its own.
         debug_assert_eq!(cfg.surface.record_kind(), self.data.kind);
+        if cfg.params.seams != self.data.seams {
+            self.data.records = build_records(self.data.kind, &self.data.mesh, cfg.params.seams);
+            self.data.seams = cfg.params.seams;
+            self.gpu.update_records(&self.data.records);
+            self.static_vbo = None;
+        }
         if cfg.driver == super::Driver::Tess {
             super::tess::check_level(ctx, cfg.level)?;
         }
@@ -302,7 +311,7 @@ impl Scene {
     /// Replace the coarse positions/normals (animation): new records are uploaded; the static
     /// buffer, if any, becomes stale and is rebuilt by the next `prepare`. Only between frames.
     pub fn update_mesh(&mut self, mesh: Mesh) {
-        self.data = MeshData::new(mesh, self.data.kind);
+        self.data = MeshData::new(mesh, self.data.kind, self.data.seams);
         self.gpu.update_records(&self.data.records);
         self.static_vbo = None;
     }

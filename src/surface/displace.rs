@@ -2,7 +2,9 @@
 //! every surface. Mirror of `glsl/include/displace.glsl`.
 //!
 //! - `sine`: `P′ = P + a·sin(f·|P|)·N` (Boubekeur & Schlick 2005, Fig. 4), P and N the undisplaced
-//!   point and the unit normal of the surface's normal field, in the mesh's coordinates;
+//!   point and the unit normal of the surface's normal field, in the mesh's coordinates (at split
+//!   normals with closed seams, N is that field evaluated with the shared geometry normals:
+//!   [`SurfacePoint::direction`]);
 //! - `noise`: `P′ = P + a·Σ_o noise(2^o f·P)/2^o·N`, Ken Perlin's improved noise ([`super::noise`]).
 //!
 //! Normals: the height `h` has analytic derivatives `h_u = ∇h·dP/du`, `h_v = ∇h·dP/dv`; the
@@ -12,7 +14,7 @@
 //! `(dP/du × dP/dv)·N`: it equals the surface's own normal where the height is flat, so the
 //! surface's normal field (not its geometric normal) is what displacement perturbs.
 //!
-//! Watertight: `P′` depends on P and N only, which are bit-identical on shared edges.
+//! Watertight: `P′` depends on P and the direction only, which are bit-identical on shared edges.
 
 use super::{dot3, noise, SurfaceParams, SurfacePoint};
 use glam::Vec3;
@@ -79,6 +81,7 @@ pub fn apply(d: Displace, params: &SurfaceParams, sp: SurfacePoint) -> SurfacePo
     }
     let (h, grad) = height(d, params, sp.position - params.origin);
     let n = sp.normal;
+    let dir = sp.direction;
     let (hu, hv) = (dot3(grad, sp.dpdu), dot3(grad, sp.dpdv));
     let cross = sp.dpdu.cross(sp.dpdv);
     let area = cross.length();
@@ -90,9 +93,10 @@ pub fn apply(d: Displace, params: &SurfaceParams, sp: SurfacePoint) -> SurfacePo
         n
     };
     SurfacePoint {
-        position: sp.position + n * h,
+        position: sp.position + dir * h,
         normal,
-        dpdu: sp.dpdu + n * hu,
-        dpdv: sp.dpdv + n * hv,
+        direction: dir,
+        dpdu: sp.dpdu + dir * hu,
+        dpdv: sp.dpdv + dir * hv,
     }
 }

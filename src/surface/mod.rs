@@ -24,7 +24,8 @@ mod record;
 
 pub use displace::Displace;
 pub use record::{
-    build_records, corner_records, CornerRecord, ElementRecord, RecordKind, RECORD_BYTES,
+    build_records, corner_records, oct_decode, oct_encode, split_positions, CornerRecord,
+    ElementRecord, RecordKind, RECORD_BYTES, SMOOTH_CORNER,
 };
 
 use glam::Vec3;
@@ -63,6 +64,17 @@ impl Surface {
     }
 }
 
+/// What the curved surfaces' geometry does at split normals (a position with several `vn`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default, clap::ValueEnum)]
+pub enum Seams {
+    /// Crack-free: the geometry uses one normal per split position (its area-weighted normal);
+    /// shading keeps the corners' own normals.
+    #[default]
+    Closed,
+    /// As the papers: the geometry uses each corner's own normal, which opens cracks there.
+    Open,
+}
+
 /// Parameters of the surfaces and displacements (the `Frame` block's `params` on the GPU).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SurfaceParams {
@@ -78,6 +90,8 @@ pub struct SurfaceParams {
     /// moved and scaled, see [`SurfaceParams::in_drawn_frame`]): displacement is a function of
     /// the point in the mesh's coordinates.
     pub origin: Vec3,
+    /// Geometry at split normals (built into the element records, not sent per frame).
+    pub seams: Seams,
 }
 
 impl Default for SurfaceParams {
@@ -88,6 +102,7 @@ impl Default for SurfaceParams {
             frequency: 24.0,
             octaves: 1,
             origin: Vec3::ZERO,
+            seams: Seams::Closed,
         }
     }
 }
@@ -167,6 +182,10 @@ pub struct SurfacePoint {
     pub position: Vec3,
     /// Unit normal (of the surface's normal field, which need not be the geometric one).
     pub normal: Vec3,
+    /// Unit direction displacement moves along: the normal field evaluated with the geometry
+    /// normals (`normal` itself except at split normals with closed seams, where it is shared by
+    /// the triangles meeting there, so displacement stays crack-free).
+    pub direction: Vec3,
     /// dP/du and dP/dv for the sample `(w, u, v)`, w = 1 - u - v (corner 1 and corner 2 of the
     /// element as stored).
     pub dpdu: Vec3,
@@ -177,7 +196,13 @@ pub struct SurfacePoint {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Corners {
     pub p: [Vec3; 3],
+    /// Shading normals.
     pub n: [Vec3; 3],
+    /// Position normals at split positions ([`CornerRecord::geometry_normal`]), `n` elsewhere.
+    pub g: [Vec3; 3],
+    /// Whether canonical edge `e` ([`edge_of`]) builds its PN / Phong geometry from `g`.
+    pub seam_pn: [bool; 3],
+    pub seam_phong: [bool; 3],
     /// Barycentric weight of each corner.
     pub w: [f32; 3],
     /// The stored corner each canonical corner is.
@@ -207,11 +232,38 @@ pub fn canonical(rec: &CornerRecord, bary: [f32; 3]) -> Corners {
     // Sorting key: zero weights last, then global index.
     let key = |c: usize| ((bary[c] == 0.0) as u64) << 32 | rec.idx[c] as u64;
     order.sort_by_key(|&c| key(c));
+    let flags = rec.seam_flags();
+    // Canonical edge e joins canonical corners (e, e + 1 mod 3): its stored edge.
+    let stored = |e: usize| stored_edge(order[e], order[(e + 1) % 3]);
     Corners {
         p: order.map(|c| rec.position(c)),
         n: order.map(|c| rec.normal(c)),
+        g: order.map(|c| rec.geometry_normal(c)),
+        seam_pn: [0, 1, 2].map(|e| flags.pn(stored(e))),
+        seam_phong: [0, 1, 2].map(|e| flags.phong(stored(e))),
         w: order.map(|c| bary[c]),
         order,
+    }
+}
+
+/// The edge (0: corners 0-1, 1: 1-2, 2: 2-0) joining corners `i` and `j`, either way round.
+pub fn edge_of(i: usize, j: usize) -> usize {
+    stored_edge(i, j)
+}
+
+fn stored_edge(i: usize, j: usize) -> usize {
+    if (i + 1) % 3 == j {
+        i
+    } else {
+        j
+    }
+}
+
+/// The surface's normal field on already ordered corners (unit).
+pub fn normal_field(surface: Surface, c: &Corners) -> Vec3 {
+    match surface {
+        Surface::Flat | Surface::Phong => flat::normal(c),
+        Surface::Pn => pn::normal(c),
     }
 }
 
@@ -238,9 +290,15 @@ pub fn eval_surface(
     for i in 0..3 {
         g[c.order[i]] = l.grad[i];
     }
+    let direction = if c.g == c.n {
+        l.normal
+    } else {
+        normal_field(surface, &Corners { n: c.g, ..c })
+    };
     SurfacePoint {
         position: l.position,
         normal: l.normal,
+        direction,
         dpdu: g[1] - g[0],
         dpdv: g[2] - g[0],
     }
@@ -298,7 +356,6 @@ mod tests {
             ],
             [Vec3::Z, Vec3::X, Vec3::Y],
             [7, 2, 5],
-            0,
         )
     }
 
@@ -350,7 +407,6 @@ mod tests {
             [t * 0.3 + b * 0.1, t * 1.9 - b * 0.2, t * 0.4 + b * 1.6],
             [n; 3],
             [7, 2, 5],
-            0,
         )
         .encode();
         let params = SurfaceParams {
@@ -392,13 +448,11 @@ mod tests {
             [a, b, Vec3::new(5.0, 5.0, 5.0)],
             [na, nb, Vec3::new(0.1, 0.2, 0.9).normalize()],
             [3, 9, 4],
-            0,
         );
         let t2 = CornerRecord::new(
             [b, a, Vec3::new(-5.0, 2.0, 1.0)],
             [nb, na, Vec3::new(0.8, -0.1, 0.3).normalize()],
             [9, 3, 11],
-            1,
         );
         (t1.encode(), t2.encode())
     }
@@ -441,6 +495,9 @@ mod tests {
         let stored = |r: &CornerRecord, w: [f32; 3]| Corners {
             p: [0, 1, 2].map(|i| r.position(i)),
             n: [0, 1, 2].map(|i| r.normal(i)),
+            g: [0, 1, 2].map(|i| r.normal(i)),
+            seam_pn: [false; 3],
+            seam_phong: [false; 3],
             w,
             order: [0, 1, 2],
         };

@@ -6,9 +6,9 @@
 //!
 //! On a coarse edge the third corner's weight is an exact zero, so its projection drops out and
 //! the point depends on the edge's two corners only: Phong tessellation is watertight wherever
-//! the corners share normals.
+//! the corners share geometry normals (everywhere with closed seams, src/surface/record.rs).
 
-use super::{dot3, flat, Corners, Local};
+use super::{dot3, edge_of, flat, Corners, Local};
 use glam::Vec3;
 
 /// Projection of `q` onto the plane through `p` with unit normal `n`.
@@ -16,18 +16,35 @@ pub fn project(q: Vec3, p: Vec3, n: Vec3) -> Vec3 {
     q - n * dot3(q - p, n)
 }
 
+/// The normal corner `i`'s tangent plane uses: its own normal, or the position normal on an edge
+/// flagged as a seam (src/surface/record.rs). Inside the triangle the choices of the corner's two
+/// edges are blended by the weights of their other corners, so the surface stays continuous and
+/// each edge uses exactly its own choice (the other weight is an exact zero there).
+/// Mirror of `phong_corner_normal` in phong.glsl.
+pub fn corner_normal(c: &Corners, i: usize) -> glam::Vec3 {
+    let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+    let pick = |e: usize| if c.seam_phong[e] { c.g[i] } else { c.n[i] };
+    let (a_ij, a_ik) = (pick(edge_of(i, j)), pick(edge_of(i, k)));
+    if a_ij == a_ik || c.w[k] == 0.0 {
+        a_ij
+    } else if c.w[j] == 0.0 {
+        a_ik
+    } else {
+        (a_ij * c.w[j] + a_ik * c.w[k]).normalize()
+    }
+}
+
 pub fn eval(c: &Corners, alpha: f32) -> Local {
     let [w0, w1, w2] = c.w;
     let p = flat::point(c);
-    let pi = [0, 1, 2].map(|i| project(p, c.p[i], c.n[i]));
+    let g = [0, 1, 2].map(|i| corner_normal(c, i));
+    let pi = [0, 1, 2].map(|i| project(p, c.p[i], g[i]));
     let curved = pi[0] * w0 + pi[1] * w1 + pi[2] * w2;
     let position = p * (1.0 - alpha) + curved * alpha;
     // ∂/∂b_j: p moves by P_j, each projection by P_j minus its normal component.
     let grad = [0, 1, 2].map(|j| {
         let pj = c.p[j];
-        let moved: Vec3 = (0..3)
-            .map(|i| (pj - c.n[i] * dot3(pj, c.n[i])) * c.w[i])
-            .sum();
+        let moved: Vec3 = (0..3).map(|i| (pj - g[i] * dot3(pj, g[i])) * c.w[i]).sum();
         pj * (1.0 - alpha) + (pi[j] + moved) * alpha
     });
     Local {

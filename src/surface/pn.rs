@@ -17,7 +17,9 @@
 //! exactly Vlachos' intended mid-edge normal direction.
 //!
 //! Watertight: the terms with the third corner carry its exact zero weight on an edge, and the
-//! edge's control points depend on the edge's corners only (in canonical order).
+//! edge's control points depend on the edge's corners only (in canonical order). The geometry
+//! uses the corners' geometry normals `g` (equal to `n` except at split normals with closed
+//! seams, see src/surface/record.rs); the normal field uses the shading normals `n`.
 
 use super::{dot3, Corners, Local};
 use glam::Vec3;
@@ -32,10 +34,21 @@ pub struct Control {
 const THIRD: f32 = 1.0 / 3.0;
 const SIXTH: f32 = 1.0 / 6.0;
 
+/// The edge point of edge (p_i, p_j) next to p_i for normal `n` at p_i:
+/// `(2 P_i + P_j − ((P_j − P_i)·N) N) / 3`. Mirror of `pn_edge_point` in pn.glsl.
+pub fn edge_point(pi: Vec3, pj: Vec3, n: Vec3) -> Vec3 {
+    let s = dot3(pj - pi, n);
+    (pi * 2.0 + pj - n * s) * THIRD
+}
+
 pub fn control(c: &Corners) -> Control {
     let edge = |i: usize, j: usize| {
-        let s = dot3(c.p[j] - c.p[i], c.n[i]);
-        (c.p[i] * 2.0 + c.p[j] - c.n[i] * s) * THIRD
+        let n = if c.seam_pn[super::edge_of(i, j)] {
+            c.g[i]
+        } else {
+            c.n[i]
+        };
+        edge_point(c.p[i], c.p[j], n)
     };
     let mut e = [[Vec3::ZERO; 3]; 3];
     for (i, j) in [(0, 1), (1, 0), (1, 2), (2, 1), (0, 2), (2, 0)] {
@@ -125,6 +138,9 @@ mod tests {
         Corners {
             p,
             n,
+            g: n,
+            seam_pn: [false; 3],
+            seam_phong: [false; 3],
             w,
             order: [0, 1, 2],
         }
