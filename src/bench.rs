@@ -68,6 +68,8 @@ pub struct Row {
     pub stored_vertices: u64,
     pub stored_indices: u64,
     pub geometry_bytes: u64,
+    /// Vertex-shader invocations of the last timed frame (pipeline statistics), where queried.
+    pub vertex_invocations: Option<u64>,
     /// GPU and wall time relative to `static` at the same mesh and level (same run).
     pub gpu_ratio: Option<f64>,
     pub wall_ratio: Option<f64>,
@@ -138,7 +140,7 @@ fn footprint(driver: Driver, level: u32, triangles: u64) -> (u64, u64, u64) {
     let bytes = driver.geometry_bytes(level, triangles);
     let (pv, pi) = (vertex_count(level) as u64, index_count(level) as u64);
     match driver {
-        Driver::Static => (triangles * pv, triangles * (pi + 1) - 1, bytes),
+        Driver::Static => (triangles * pv, triangles * pi, bytes),
         Driver::Pattern => (pv, pi, bytes),
         Driver::Tess => (0, 0, bytes),
     }
@@ -188,6 +190,7 @@ pub fn run(
                         stored_vertices,
                         stored_indices,
                         geometry_bytes,
+                        vertex_invocations: None,
                         gpu_ratio: None,
                         wall_ratio: None,
                         note: String::new(),
@@ -204,6 +207,7 @@ pub fn run(
                     let mut wall = Vec::new();
                     for _ in 0..opts.frames.max(1) {
                         let f = h.draw(&mut scene, &cfg, &camera)?;
+                        row.vertex_invocations = f.stats.map(|s| s.vertex_shader_invocations);
                         gpu.push(f.gpu_ms);
                         wall.push(f.wall_ms);
                     }
@@ -263,16 +267,16 @@ impl Report {
         );
         let _ = writeln!(
             s,
-            "| mesh | coarse tris | level | surface | displace | variant | refined tris | GPU ms | wall ms | GPU ns / refined tri | GPU / static | wall / static | stored vertices | stored indices | geometry bytes | note |"
+            "| mesh | coarse tris | level | surface | displace | variant | refined tris | GPU ms | wall ms | GPU ns / refined tri | GPU / static | wall / static | stored vertices | stored indices | geometry bytes | VS invocations | note |"
         );
         let _ = writeln!(
             s,
-            "|---|---:|---:|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|"
+            "|---|---:|---:|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|"
         );
         for r in &self.rows {
             let _ = writeln!(
                 s,
-                "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+                "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
                 r.mesh,
                 r.coarse_triangles,
                 r.level,
@@ -290,6 +294,7 @@ impl Report {
                 r.stored_vertices,
                 r.stored_indices,
                 r.geometry_bytes,
+                r.vertex_invocations.map(|v| v.to_string()).unwrap_or_else(|| "–".into()),
                 r.note
             );
         }
@@ -316,13 +321,13 @@ impl Report {
 
     pub fn csv(&self) -> String {
         let mut s = String::from(
-            "device,mesh,coarse_triangles,level,surface,displace,variant,refined_triangles,gpu_ms_median,gpu_ms_min,gpu_ms_max,wall_ms_median,wall_ms_min,wall_ms_max,gpu_ns_per_refined_triangle,gpu_ratio_vs_static,wall_ratio_vs_static,stored_vertices,stored_indices,geometry_bytes,note\n",
+            "device,mesh,coarse_triangles,level,surface,displace,variant,refined_triangles,gpu_ms_median,gpu_ms_min,gpu_ms_max,wall_ms_median,wall_ms_min,wall_ms_max,gpu_ns_per_refined_triangle,gpu_ratio_vs_static,wall_ratio_vs_static,stored_vertices,stored_indices,geometry_bytes,vertex_invocations,note\n",
         );
         let f = |x: Option<f64>| x.map(|v| format!("{v:.4}")).unwrap_or_default();
         for r in &self.rows {
             let _ = writeln!(
                 s,
-                "\"{}\",{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},\"{}\"",
+                "\"{}\",{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},\"{}\"",
                 self.device,
                 r.mesh,
                 r.coarse_triangles,
@@ -343,6 +348,9 @@ impl Report {
                 r.stored_vertices,
                 r.stored_indices,
                 r.geometry_bytes,
+                r.vertex_invocations
+                    .map(|v| v.to_string())
+                    .unwrap_or_default(),
                 r.note
             );
         }
@@ -359,10 +367,11 @@ impl Report {
             .iter()
             .map(|r| {
                 format!(
-                    "{{\"mesh\":\"{}\",\"coarse_triangles\":{},\"level\":{},\"surface\":\"{}\",\"displace\":\"{}\",\"variant\":\"{}\",\"refined_triangles\":{},\"gpu_ms_median\":{},\"wall_ms_median\":{},\"gpu_ns_per_refined_triangle\":{},\"gpu_ratio_vs_static\":{},\"wall_ratio_vs_static\":{},\"stored_vertices\":{},\"stored_indices\":{},\"geometry_bytes\":{},\"note\":\"{}\"}}",
+                    "{{\"mesh\":\"{}\",\"coarse_triangles\":{},\"level\":{},\"surface\":\"{}\",\"displace\":\"{}\",\"variant\":\"{}\",\"refined_triangles\":{},\"gpu_ms_median\":{},\"wall_ms_median\":{},\"gpu_ns_per_refined_triangle\":{},\"gpu_ratio_vs_static\":{},\"wall_ratio_vs_static\":{},\"stored_vertices\":{},\"stored_indices\":{},\"geometry_bytes\":{},\"vertex_invocations\":{},\"note\":\"{}\"}}",
                     r.mesh, r.coarse_triangles, r.level, r.surface.name(), r.displace.name(), r.variant, r.refined_triangles,
                     f(r.gpu_ms.map(|s| s.median)), f(r.wall_ms.map(|s| s.median)), f(r.ns_per_triangle()), f(r.gpu_ratio), f(r.wall_ratio),
-                    r.stored_vertices, r.stored_indices, r.geometry_bytes, r.note
+                    r.stored_vertices, r.stored_indices, r.geometry_bytes,
+                    r.vertex_invocations.map(|v| v.to_string()).unwrap_or_else(|| "null".into()), r.note
                 )
             })
             .collect();

@@ -218,9 +218,10 @@ fn info_reports_topology_and_footprint() {
     assert!(s.contains("triangles: 128"), "{s}");
     assert!(s.contains("boundary edges: 32"), "{s}");
     assert!(s.contains("valence histogram"), "{s}");
-    // 128 coarse triangles x 4096 = 524288 refined triangles; static holds 128 x 2145 vertices.
+    // 128 coarse triangles x 4096 = 524288 refined triangles; static holds 128 x 2145 vertices
+    // and 3 indices per refined triangle.
     assert!(s.contains("524288 refined triangles"), "{s}");
-    let static_bytes = 128u64 * 2145 * 24 + (128 * (4287 + 1) - 1) * 4;
+    let static_bytes = 128u64 * 2145 * 24 + 524288 * 3 * 4;
     assert!(
         s.contains(&format!("static {static_bytes:>15}")) || s.contains(&static_bytes.to_string()),
         "{s}"

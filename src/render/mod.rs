@@ -64,7 +64,7 @@ impl Driver {
         match self {
             Driver::Static => {
                 let vertex = std::mem::size_of::<static_vbo::StaticVertex>() as u64;
-                elements * pv * vertex + (elements * (pi + 1)).saturating_sub(1) * 4
+                elements * pv * vertex + elements * pi * 4
             }
             Driver::Pattern => pv * 12 + pi * 4 + records,
             Driver::Tess => records,

@@ -236,7 +236,7 @@ impl Renderer {
             vertex_bindings: vec![],
             vertex_attributes: vec![],
             topology: match key.driver {
-                Driver::Static | Driver::Pattern => vk::PrimitiveTopology::TRIANGLE_STRIP,
+                Driver::Static | Driver::Pattern => vk::PrimitiveTopology::TRIANGLE_LIST,
                 Driver::Tess => vk::PrimitiveTopology::PATCH_LIST,
             },
             primitive_restart: false,
@@ -263,7 +263,6 @@ impl Renderer {
                     (0, 0, vk::Format::R32G32B32_SFLOAT, 0),
                     (1, 0, vk::Format::R32G32B32_SFLOAT, 12),
                 ];
-                desc.primitive_restart = true;
             }
             Driver::Pattern => {
                 desc.stages = vec![
@@ -275,7 +274,6 @@ impl Renderer {
                 ];
                 desc.vertex_bindings = vec![(0, 12, false)]; // (w, u, v)
                 desc.vertex_attributes = vec![(0, 0, vk::Format::R32G32B32_SFLOAT, 0)];
-                desc.primitive_restart = true;
             }
             Driver::Tess => {
                 desc.stages = vec![

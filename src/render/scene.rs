@@ -32,7 +32,7 @@ impl MeshData {
     }
 }
 
-/// One pattern level on the GPU: barycentric vertices and row strips.
+/// One pattern level on the GPU: barycentric vertices and its triangle list.
 pub struct GpuPattern {
     pub level: u32,
     pub vertices: Buffer,
@@ -55,7 +55,7 @@ impl GpuPattern {
             pool,
             vk::BufferUsageFlags::INDEX_BUFFER,
             &p.indices,
-            &format!("pattern {} strips", p.level),
+            &format!("pattern {} triangles", p.level),
         )?;
         Ok(Self {
             level: p.level,

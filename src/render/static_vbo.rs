@@ -5,7 +5,7 @@
 
 use super::{DrawConfig, RenderError, Renderer, PUSH_DRAW_OFFSET, PUSH_STAGES};
 use crate::gpu::{vk, Buffer, Cmd, CommandPool, Context};
-use crate::pattern::{Pattern, RESTART};
+use crate::pattern::Pattern;
 use crate::surface::{eval, ElementRecord};
 use std::sync::Arc;
 
@@ -13,7 +13,8 @@ use std::sync::Arc;
 pub type StaticVertex = [f32; 6];
 
 /// The whole mesh refined on the CPU: vertices (pattern order, one block per coarse triangle)
-/// and strips (the pattern's strips offset per triangle, separated by restarts).
+/// and the pattern's triangle list offset per triangle (the same vertex-cache order as the
+/// pattern driver's, so the baseline shades as few vertices as the pattern does).
 /// `cfg` gives the surface, displacement and parameters (its driver and level are not used).
 pub fn refine_on_cpu(
     cfg: &DrawConfig,
@@ -22,7 +23,7 @@ pub fn refine_on_cpu(
 ) -> (Vec<StaticVertex>, Vec<u32>) {
     let pv = pattern.bary.len() as u32;
     let mut vertices = Vec::with_capacity(records.len() * pv as usize);
-    let mut indices = Vec::with_capacity(records.len() * (pattern.indices.len() + 1));
+    let mut indices = Vec::with_capacity(records.len() * pattern.indices.len());
     for (t, rec) in records.iter().enumerate() {
         for &b in &pattern.bary {
             let sp = eval(cfg.surface, cfg.displace, &cfg.params, rec, b);
@@ -35,16 +36,8 @@ pub fn refine_on_cpu(
                 sp.normal.z,
             ]);
         }
-        if t > 0 {
-            indices.push(RESTART);
-        }
         let base = t as u32 * pv;
-        indices.extend(
-            pattern
-                .indices
-                .iter()
-                .map(|&i| if i == RESTART { RESTART } else { base + i }),
-        );
+        indices.extend(pattern.indices.iter().map(|&i| base + i));
     }
     (vertices, indices)
 }
@@ -98,7 +91,7 @@ impl StaticVbo {
             pool,
             vk::BufferUsageFlags::INDEX_BUFFER,
             &i,
-            "static strips",
+            "static triangles",
         )?;
         Ok(Self {
             cfg: *cfg,
