@@ -201,22 +201,6 @@ fn draw_config(t: &Technique, mesh: &Mesh, may_switch: bool) -> Result<DrawConfi
     })
 }
 
-/// Refuses a mesh whose coarse records do not fit one storage buffer of this device (every
-/// driver keeps them in one), naming the file and the remedy.
-fn check_records_fit(ctx: &Context, input: &Input) -> Result<()> {
-    let record = meshrefine::surface::RECORD_BYTES as u64;
-    let range = u64::from(ctx.info.limits.max_storage_buffer_range);
-    let max = range / record;
-    let triangles = input.mesh.triangles.len() as u64;
-    if triangles > max {
-        bail!(
-            "'{}' has {triangles} coarse triangles but one draw on this device holds at most {max} ({record}-byte records in maxStorageBufferRange, {range} bytes): simplify the mesh or split it into files of at most {max} triangles",
-            input.shown
-        );
-    }
-    Ok(())
-}
-
 /// After every GPU object is gone: fail if the validation layer complained or anything leaked.
 fn check_messages(messages: &Arc<Messages>) -> Result<()> {
     let list = messages.take();
@@ -321,7 +305,6 @@ fn run(cli: Cli) -> Result<()> {
         Command::Bench(a) => {
             let input = load_mesh(a.mesh.as_deref())?;
             let ctx = Context::new(&desc)?;
-            check_records_fit(&ctx, &input)?;
             let messages = ctx.messages_handle();
             let (mesh, _) = for_viewing(
                 &input.mesh,
@@ -370,7 +353,6 @@ fn run(cli: Cli) -> Result<()> {
 
 /// Captures what the GPU evaluated and writes it as OBJ; returns the counts line.
 fn export(ctx: Arc<Context>, input: Input, cfg: &DrawConfig, output: &Path) -> Result<String> {
-    check_records_fit(&ctx, &input)?;
     let device = ctx.info.describe();
     let mut h = Headless::with_context(ctx, 64, 64)?;
     let name = input.mesh.name.clone();
@@ -428,7 +410,6 @@ fn render_png(
     wireframe: bool,
     out: &Path,
 ) -> Result<()> {
-    check_records_fit(&ctx, &input)?;
     let triangles = input.mesh.triangles.len();
     let image = {
         let mut h = Headless::with_context(ctx, width, height)?;

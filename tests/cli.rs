@@ -734,16 +734,9 @@ fn logs_are_bounded_and_limits_name_the_file_and_the_remedy() {
             && stderr.contains(&format!("at line {line}")),
         "{stderr}"
     );
-    // Its 1.44 M drawable triangles' records are over lavapipe's maxStorageBufferRange.
-    expect_error(
-        &["render", p(&big), "-o", p(&tmp("big.png"))],
-        &[
-            "cube-plus-big-face.obj",
-            "maxStorageBufferRange",
-            "at most 1198372",
-            "split",
-        ],
-    );
+    // Its 1.44 M drawable triangles' records are over lavapipe's maxStorageBufferRange for one
+    // descriptor: they are drawn in chunks now (tests/gpu_mirror.rs checks chunked drawing; a
+    // render of this mesh takes minutes on lavapipe, whose instancing costs per instance).
     // The non-manifold warning names the path, not the file stem.
     let nm = model_path("nonmanifold_edge.obj");
     let out = meshrefine(&[
@@ -760,22 +753,6 @@ fn logs_are_bounded_and_limits_name_the_file_and_the_remedy() {
     assert!(
         stderr.contains(&format!("warning: '{}' is not a manifold mesh", p(&nm))),
         "{stderr}"
-    );
-    // Export's capture limit names the file and the level that fits.
-    expect_error(
-        &[
-            "export",
-            p(&model_path("spot_tri.obj")),
-            "-o",
-            p(&tmp("spot32.obj")),
-            "--level",
-            "32",
-        ],
-        &[
-            "spot_tri.obj",
-            "maxStorageBufferRange",
-            "use --level 25 or lower",
-        ],
     );
 }
 

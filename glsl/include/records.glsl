@@ -20,8 +20,10 @@ layout(set = SET_FRAME, binding = BINDING_FRAME, std140) uniform Frame {
     vec4 origin;     // xyz: the mesh's origin in drawn coordinates (displacement's frame)
 } frame;
 
-// The elements' records, one per element (set 1). Drivers read the record of the element they
-// sample; the fragment stage reads it to evaluate normal fields per fragment.
+// The elements' records (set 1), one chunk of them: a storage-buffer descriptor spans at most
+// maxStorageBufferRange bytes, so a large mesh is drawn chunk by chunk, `records[0]` being element
+// pc.draw.y. Drivers read the record of the element they sample; the fragment stage reads it to
+// evaluate normal fields per fragment (v_element is the index within the chunk).
 layout(set = SET_MESH, binding = BINDING_TRIS, std430) readonly buffer Records {
     ElementRecord records[];
 };
@@ -30,8 +32,9 @@ layout(set = SET_MESH, binding = BINDING_TRIS, std430) readonly buffer Records {
 // Per draw: 128 bytes, the minimum every device offers; geometry stages only.
 layout(push_constant, std430) uniform Push {
     ElementRecord rec; // `push` submission: the element of this draw
-    uvec4 draw;        // x: level N; y: first element of this draw; z: pattern vertex count;
-                       // w: the element of this draw (`push`, `ubo`)
+    uvec4 draw;        // x: level N; y: the bound chunk's first element (records[0]);
+                       // z: pattern (tessellator) vertex count; w: the element of this draw
+                       // (`push`, `ubo`) or its first element (`instanced`, `tess`), in the chunk
 } pc;
 #endif
 
@@ -47,10 +50,12 @@ struct CapturedVertex {
 layout(set = SET_CAPTURE, binding = BINDING_CAPTURE, std430) writeonly buffer Capture {
     CapturedVertex captured[];
 };
-// Append counter (tess: the tessellator's vertices have no fixed index) and capacity.
+// Append counter (tess: the tessellator's vertices have no fixed index), capacity, and the first
+// element of this capture pass (pattern slots count from it).
 layout(set = SET_CAPTURE, binding = BINDING_CAPTURE_COUNT, std430) buffer CaptureCount {
     uint capture_count;
     uint capture_capacity;
+    uint capture_first;
 };
 #endif
 

@@ -17,6 +17,6 @@ layout(location = 1, xfb_buffer = 0, xfb_offset = 16) VARYING vec3 v_normal;
 layout(location = 0) VARYING vec3 v_position;  // world position
 layout(location = 1) VARYING vec3 v_normal;    // world normal (unnormalized after interpolation)
 #endif
-layout(location = 2) flat VARYING uint v_element; // the element sampled
+layout(location = 2) flat VARYING uint v_element; // the element sampled, within the bound chunk
 layout(location = 3) VARYING vec3 v_bary;         // the sample's (w, u, v) in that element
 #endif

@@ -16,25 +16,24 @@ layout(location = 0) in vec3 in_bary; // (w, u, v)
 
 void main() {
     ElementRecord rec;
-    uint element;
+    // The element within the bound chunk of records, and in the mesh.
+    uint local = SUBMIT == 2 ? pc.draw.w + uint(gl_InstanceIndex) : pc.draw.w;
+    uint element = pc.draw.y + local;
     if (SUBMIT == 0) {
         rec = pc.rec;
-        element = pc.draw.w;
     } else if (SUBMIT == 1) {
         rec = rec_ubo.rec;
-        element = pc.draw.w;
     } else {
-        element = pc.draw.y + uint(gl_InstanceIndex);
-        rec = records[element];
+        rec = records[local];
     }
     SurfacePoint sp = evaluate(rec, Sample(element, in_bary, uint(gl_VertexIndex)));
     v_position = sp.position;
     v_normal = sp.normal;
-    v_element = element;
+    v_element = local;
     v_bary = in_bary;
     gl_Position = frame.view_proj * vec4(sp.position, 1.0);
 #ifdef CAPTURE
-    captured[element * pc.draw.z + uint(gl_VertexIndex)] =
+    captured[(element - capture_first) * pc.draw.z + uint(gl_VertexIndex)] =
         CapturedVertex(vec4(sp.position, 1.0), vec4(sp.normal, 0.0), vec4(in_bary, 0.0),
                        uvec4(element, uint(gl_VertexIndex), 0u, 0u));
 #endif

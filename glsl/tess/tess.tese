@@ -4,7 +4,8 @@
 // same weights by both triangles (watertight). Interior samples are the tessellator's own; with
 // equal spacing its rings hold N, N-2, N-4, ... segments, so it makes more triangles than a level-N
 // pattern (src/render/tess.rs `triangle_count`).
-// gl_PrimitiveID restarts in every draw; pc.draw.y is this draw's first element.
+// gl_PrimitiveID restarts in every draw; pc.draw.w is this draw's first element within the bound
+// chunk of records, pc.draw.y the chunk's first element.
 // Variants: CAPTURE (every evaluated vertex to a storage buffer, for the tests) and XFB
 // (transform feedback of the tessellator's triangles, for export).
 #include "records.glsl"
@@ -18,13 +19,14 @@ layout(triangles, equal_spacing, cw) in;
 
 void main() {
     uint n = pc.draw.x;
-    uint element = pc.draw.y + uint(gl_PrimitiveID);
+    uint local = pc.draw.w + uint(gl_PrimitiveID);
+    uint element = pc.draw.y + local;
     // gl_TessCoord (x, y, z) weighs patch vertices (0, 1, 2), i.e. (w, u, v).
     vec3 bary = tess_weights(gl_TessCoord, n);
-    SurfacePoint sp = evaluate(records[element], Sample(element, bary, ~0u));
+    SurfacePoint sp = evaluate(records[local], Sample(element, bary, ~0u));
     v_position = sp.position;
     v_normal = sp.normal;
-    v_element = element;
+    v_element = local;
     v_bary = bary;
     gl_Position = frame.view_proj * vec4(sp.position, 1.0);
 #ifdef CAPTURE

@@ -445,6 +445,7 @@ impl State {
             capture: crate::render::Capture::None,
             xfb: None,
             wireframe: self.controls.wireframe,
+            elements: 0..self.scene.gpu.element_count,
             clear: CLEAR_COLOR,
         };
         let screenshot_buffer = self.screenshot_buffer.as_ref().filter(|_| screenshot);

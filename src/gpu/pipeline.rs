@@ -180,8 +180,22 @@ impl DescriptorPool {
         buffer: vk::Buffer,
         range: u64,
     ) {
+        self.write_buffer_at(set, binding, ty, buffer, 0, range)
+    }
+
+    /// Point `binding` of `set` at `range` bytes of `buffer` from `offset`.
+    pub fn write_buffer_at(
+        &self,
+        set: vk::DescriptorSet,
+        binding: u32,
+        ty: vk::DescriptorType,
+        buffer: vk::Buffer,
+        offset: u64,
+        range: u64,
+    ) {
         let info = [vk::DescriptorBufferInfo::default()
             .buffer(buffer)
+            .offset(offset)
             .range(range)];
         let write = vk::WriteDescriptorSet::default()
             .dst_set(set)

@@ -34,6 +34,8 @@ pub struct FrameWork<'a> {
     pub xfb: Option<&'a Buffer>,
     /// Draw the refined triangles' edges in a second pass (if the device supports it).
     pub wireframe: bool,
+    /// The elements to draw (all of them for an image; capture passes draw a part).
+    pub elements: std::ops::Range<u32>,
     pub clear: [f32; 4],
 }
 
@@ -71,7 +73,6 @@ pub fn cmd_render(
         work.clear,
     );
     cmd.bind_descriptor_set(r.layout.raw, SET_FRAME, r.frame_set, &[]);
-    cmd.bind_descriptor_set(r.layout.raw, SET_MESH, work.mesh.set, &[0]);
     if work.capture == Capture::Vertices {
         cmd.bind_descriptor_set(r.layout.raw, SET_CAPTURE, r.capture_set, &[]);
     }
@@ -112,6 +113,7 @@ fn cmd_draw_driver(cmd: &Cmd<'_>, r: &Renderer, work: &FrameWork<'_>) {
             let vbo = work
                 .static_vbo
                 .expect("static driver needs its vertex buffer");
+            cmd.bind_descriptor_set(r.layout.raw, SET_MESH, work.mesh.sets[0], &[0]);
             static_vbo::cmd_draw(cmd, r, vbo);
         }
         Driver::Pattern => {
@@ -119,8 +121,16 @@ fn cmd_draw_driver(cmd: &Cmd<'_>, r: &Renderer, work: &FrameWork<'_>) {
                 .mesh
                 .pattern(work.cfg.level)
                 .expect("pattern level is in the set");
-            pattern::cmd_draw(cmd, r, work.mesh, work.records, p, work.cfg.submit);
+            pattern::cmd_draw(
+                cmd,
+                r,
+                work.mesh,
+                work.records,
+                p,
+                work.cfg.submit,
+                work.elements.clone(),
+            );
         }
-        Driver::Tess => tess::cmd_draw(cmd, r, work.mesh, work.cfg.level),
+        Driver::Tess => tess::cmd_draw(cmd, r, work.mesh, work.cfg.level, work.elements.clone()),
     }
 }

@@ -13,6 +13,9 @@ use crate::gpu::{
 };
 use crate::mesh::Mesh;
 use crate::pattern::vertex_count;
+
+/// Bytes of one transform-feedback vertex.
+const XFB_VERTEX_BYTES: u64 = std::mem::size_of::<XfbVertex>() as u64;
 use crate::render::Camera;
 use std::sync::Arc;
 use std::time::Instant;
@@ -26,6 +29,9 @@ pub struct Headless {
     pub wireframe: bool,
     /// Show normals as colours instead of shading.
     pub view_normals: bool,
+    /// Largest capture buffer of one pass, in bytes (None: the device's limit; tests set a small
+    /// one to exercise captures made in several passes).
+    pub max_capture_bytes: Option<u64>,
 }
 
 /// Vertices the capture variant of a driver's pipeline wrote.
@@ -96,6 +102,7 @@ impl Headless {
             queries,
             wireframe: false,
             view_normals: false,
+            max_capture_bytes: None,
         })
     }
 
@@ -129,7 +136,8 @@ impl Headless {
         cfg: &DrawConfig,
         camera: &Camera,
     ) -> Result<FrameTiming, RenderError> {
-        self.draw_inner(scene, cfg, camera, Capture::None, None)
+        let all = 0..scene.gpu.element_count;
+        self.draw_inner(scene, cfg, camera, Capture::None, None, all)
     }
 
     fn draw_inner(
@@ -139,6 +147,7 @@ impl Headless {
         camera: &Camera,
         capture: Capture,
         xfb: Option<&Buffer>,
+        elements: std::ops::Range<u32>,
     ) -> Result<FrameTiming, RenderError> {
         scene.prepare(
             &self.ctx,
@@ -159,6 +168,7 @@ impl Headless {
             capture,
             xfb,
             wireframe: self.wireframe,
+            elements,
             clear: CLEAR_COLOR,
         };
         let start = Instant::now();
@@ -192,6 +202,8 @@ impl Headless {
     }
 
     /// Draw with the capture variant of `cfg`'s pipeline and read back every evaluated vertex.
+    /// A capture buffer may span at most maxStorageBufferRange bytes, so a large capture is made
+    /// in passes, each drawing as many elements as fit.
     pub fn capture(
         &mut self,
         scene: &mut Scene,
@@ -199,103 +211,160 @@ impl Headless {
         camera: &Camera,
     ) -> Result<CaptureResult, RenderError> {
         let pv = vertex_count(cfg.level);
-        if cfg.driver.capture_per_element(cfg.level).is_none() {
+        let Some(per_element) = cfg.driver.capture_per_element(cfg.level) else {
             return Err(RenderError::Unsupported(
                 "the static driver evaluates on the CPU: there is nothing to capture (use pattern or tess)",
             ));
-        }
-        // Vertices and bytes to capture at a level.
-        let size = |level: u32| {
-            let per = cfg.driver.capture_per_element(level).unwrap_or(0);
-            let capacity = scene.gpu.element_count as u64 * per as u64;
-            (
-                capacity,
-                capacity * std::mem::size_of::<CapturedVertex>() as u64,
-            )
         };
-        let limit = self.ctx.info.limits.max_storage_buffer_range as u64;
-        let fits = |level: u32| {
-            let (capacity, bytes) = size(level);
-            bytes <= limit && capacity <= u32::MAX as u64
-        };
-        let (capacity, bytes) = size(cfg.level);
-        if !fits(cfg.level) {
-            let remedy = match (1..cfg.level).rev().find(|&l| fits(l)) {
-                Some(l) => format!("use --level {l} or lower, or a mesh with fewer triangles"),
-                None => "use a mesh with fewer triangles".to_string(),
+        let vertex_bytes = std::mem::size_of::<CapturedVertex>() as u64;
+        let device_limit = self.ctx.info.limits.max_storage_buffer_range as u64;
+        let limit = self
+            .max_capture_bytes
+            .map_or(device_limit, |m| m.min(device_limit));
+        let fits = |per: u64| per * vertex_bytes <= limit && per <= u32::MAX as u64;
+        if !fits(per_element as u64) {
+            let per_at = |l: u32| cfg.driver.capture_per_element(l).unwrap_or(0) as u64;
+            let remedy = match (1..cfg.level).rev().find(|&l| fits(per_at(l))) {
+                Some(l) => format!("use --level {l} or lower"),
+                None => "use a lower level".to_string(),
             };
             return Err(RenderError::OverLimit {
-                what: format!("capturing {capacity} evaluated vertices"),
-                needed: bytes,
+                what: format!("capturing the {per_element} evaluated vertices of one element"),
+                needed: per_element as u64 * vertex_bytes,
                 limit: "maxStorageBufferRange",
                 max: limit,
                 remedy,
             });
         }
+        let n = scene.gpu.element_count;
+        let per_pass = (limit / (per_element as u64 * vertex_bytes))
+            .min(u32::MAX as u64 / per_element as u64)
+            .min(n.max(1) as u64) as u32;
+        let capacity = per_pass as u64 * per_element as u64;
         let vertices = Buffer::new(
             &self.ctx,
-            BufferDesc::new_readback(bytes, vk::BufferUsageFlags::STORAGE_BUFFER),
+            BufferDesc::new_readback(
+                capacity * vertex_bytes,
+                vk::BufferUsageFlags::STORAGE_BUFFER,
+            ),
             "capture output",
         )?;
         let mut counter = Buffer::new(
             &self.ctx,
-            BufferDesc::new_upload(8, vk::BufferUsageFlags::STORAGE_BUFFER),
+            BufferDesc::new_upload(12, vk::BufferUsageFlags::STORAGE_BUFFER),
             "capture counter",
         )?;
-        counter.write_pod(0, &[0u32, capacity as u32]);
-        // Unwritten entries keep w = 0, so a missed vertex is detectable.
-        self.pool
-            .submit_and_wait(|cmd| cmd.fill_buffer(&vertices, 0))?;
         self.renderer.set_capture_target(&vertices, &counter);
         let wire = std::mem::replace(&mut self.wireframe, false);
-        let timing = self.draw_inner(scene, cfg, camera, Capture::Vertices, None);
-        self.wireframe = wire;
-        let timing = timing?;
-        let mut out: Vec<CapturedVertex> = vertices.read_pod();
-        if cfg.driver == Driver::Tess {
-            let written = counter.read_pod::<u32>()[0] as u64;
-            if written > capacity {
-                return Err(RenderError::CaptureOverflow { written, capacity });
+        let mut out = Vec::new();
+        let mut stats = None;
+        let mut first = 0;
+        let result = loop {
+            if first >= n {
+                break Ok(());
             }
-            out.truncate(written as usize);
-        }
+            let count = per_pass.min(n - first);
+            counter.write_pod(0, &[0u32, capacity as u32, first]);
+            // Unwritten entries keep w = 0, so a missed vertex is detectable.
+            if let Err(e) = self
+                .pool
+                .submit_and_wait(|cmd| cmd.fill_buffer(&vertices, 0))
+            {
+                break Err(e.into());
+            }
+            let elements = first..first + count;
+            match self.draw_inner(scene, cfg, camera, Capture::Vertices, None, elements) {
+                Ok(t) => stats = t.stats,
+                Err(e) => break Err(e),
+            }
+            let mut pass: Vec<CapturedVertex> = vertices.read_pod();
+            if cfg.driver == Driver::Tess {
+                let written = counter.read_pod::<u32>()[0] as u64;
+                if written > capacity {
+                    break Err(RenderError::CaptureOverflow { written, capacity });
+                }
+                pass.truncate(written as usize);
+            } else {
+                pass.truncate(count as usize * pv as usize);
+            }
+            out.extend(pass);
+            first += count;
+        };
+        self.wireframe = wire;
+        result?;
         Ok(CaptureResult {
             vertices: out,
             pattern_vertex_count: pv,
-            stats: timing.stats,
+            stats,
         })
     }
 
     /// Draw `cfg` (tess) with its transform-feedback variant and read back the triangles the
-    /// tessellator made, as evaluated: `(position, normal)` per corner, in primitive order.
+    /// tessellator made, as evaluated: `(position, normal)` per corner, in primitive order. In
+    /// passes of as many elements as one transform-feedback buffer holds.
     pub fn capture_triangles(
         &mut self,
         scene: &mut Scene,
         cfg: &DrawConfig,
         camera: &Camera,
     ) -> Result<Vec<[XfbVertex; 3]>, RenderError> {
-        let triangles = scene.gpu.element_count as u64 * tess_triangle_count(cfg.level) as u64;
-        let bytes = triangles * 3 * std::mem::size_of::<XfbVertex>() as u64;
-        let limit = self.ctx.info.max_transform_feedback_buffer_size;
-        if self.ctx.info.transform_feedback && bytes > limit {
+        let per_element = tess_triangle_count(cfg.level) as u64 * 3 * XFB_VERTEX_BYTES;
+        let device_limit = self.ctx.info.max_transform_feedback_buffer_size;
+        let limit = self
+            .max_capture_bytes
+            .map_or(device_limit, |m| m.min(device_limit));
+        if self.ctx.info.transform_feedback && per_element > limit {
             return Err(RenderError::OverLimit {
-                what: format!("reading back {triangles} tessellated triangles"),
-                needed: bytes,
+                what: format!(
+                    "reading back the {} tessellated triangles of one element",
+                    tess_triangle_count(cfg.level)
+                ),
+                needed: per_element,
                 limit: "maxTransformFeedbackBufferSize",
                 max: limit,
                 remedy: "use a lower level".into(),
             });
         }
+        let n = scene.gpu.element_count;
+        let per_pass = (limit / per_element).clamp(1, n.max(1) as u64) as u32;
         let buffer = Buffer::new(
             &self.ctx,
-            BufferDesc::new_readback(bytes, vk::BufferUsageFlags::TRANSFORM_FEEDBACK_BUFFER_EXT),
+            BufferDesc::new_readback(
+                per_pass as u64 * per_element,
+                vk::BufferUsageFlags::TRANSFORM_FEEDBACK_BUFFER_EXT,
+            ),
             "transform feedback output",
         )?;
         let wire = std::mem::replace(&mut self.wireframe, false);
-        let timing = self.draw_inner(scene, cfg, camera, Capture::Triangles, Some(&buffer));
+        let mut out = Vec::new();
+        let mut first = 0;
+        let result = loop {
+            if first >= n {
+                break Ok(());
+            }
+            let count = per_pass.min(n - first);
+            let elements = first..first + count;
+            if let Err(e) = self.draw_inner(
+                scene,
+                cfg,
+                camera,
+                Capture::Triangles,
+                Some(&buffer),
+                elements,
+            ) {
+                break Err(e);
+            }
+            let flat: Vec<XfbVertex> = buffer.read_pod();
+            let triangles = count as usize * tess_triangle_count(cfg.level) as usize;
+            out.extend(
+                flat[..3 * triangles]
+                    .chunks_exact(3)
+                    .map(|c| [c[0], c[1], c[2]]),
+            );
+            first += count;
+        };
         self.wireframe = wire;
-        timing?;
-        let flat: Vec<XfbVertex> = buffer.read_pod();
-        Ok(flat.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect())
+        result?;
+        Ok(out)
     }
 }

@@ -11,8 +11,9 @@ use super::{DrawWords, GpuMesh, PushBlock, Renderer, Submit, PUSH_DRAW_OFFSET, P
 use crate::gpu::Cmd;
 use crate::surface::ElementRecord;
 
-/// Record the draws of `mesh` with `pattern` in submission mode `submit`. `records` is the CPU
-/// copy of the element records (the `push` mode sends them from the command buffer).
+/// Record the draws of the elements `range` of `mesh` with `pattern` in submission mode
+/// `submit`, chunk by chunk ([`GpuMesh::chunks`]). `records` is the CPU copy of the element
+/// records (the `push` mode sends them from the command buffer).
 pub fn cmd_draw(
     cmd: &Cmd<'_>,
     r: &Renderer,
@@ -20,8 +21,11 @@ pub fn cmd_draw(
     records: &[ElementRecord],
     pattern: &GpuPattern,
     submit: Submit,
+    range: std::ops::Range<u32>,
 ) {
-    let draw = |element: u32| -> DrawWords { [pattern.level, 0, pattern.vertex_count, element] };
+    // x level, y the chunk's first element, z pattern vertices, w the element within the chunk.
+    let draw =
+        |base: u32, local: u32| -> DrawWords { [pattern.level, base, pattern.vertex_count, local] };
     let push_draw = |words: DrawWords| {
         cmd.push_constants(
             r.layout.raw,
@@ -32,28 +36,33 @@ pub fn cmd_draw(
     };
     cmd.bind_vertex_buffer(0, &pattern.vertices);
     cmd.bind_index_buffer_u32(&pattern.indices);
-    match submit {
-        Submit::Push => {
-            for (element, rec) in records.iter().enumerate() {
-                let block = PushBlock {
-                    rec: *rec,
-                    draw: draw(element as u32),
-                };
-                cmd.push_constants(r.layout.raw, PUSH_STAGES, 0, bytemuck::bytes_of(&block));
-                cmd.draw_indexed(pattern.index_count, 1, 0, 0, 0);
+    for c in mesh.chunks(range) {
+        let elements = c.first..c.first + c.count;
+        match submit {
+            Submit::Push => {
+                cmd.bind_descriptor_set(r.layout.raw, SET_MESH, c.set, &[0]);
+                for e in elements {
+                    let block = PushBlock {
+                        rec: records[e as usize],
+                        draw: draw(c.base, e - c.base),
+                    };
+                    cmd.push_constants(r.layout.raw, PUSH_STAGES, 0, bytemuck::bytes_of(&block));
+                    cmd.draw_indexed(pattern.index_count, 1, 0, 0, 0);
+                }
             }
-        }
-        Submit::Ubo => {
-            for t in 0..mesh.element_count {
-                let offset = (t as u64 * mesh.ubo_stride) as u32;
-                push_draw(draw(t));
-                cmd.bind_descriptor_set(r.layout.raw, SET_MESH, mesh.set, &[offset]);
-                cmd.draw_indexed(pattern.index_count, 1, 0, 0, 0);
+            Submit::Ubo => {
+                for e in elements {
+                    let offset = (e as u64 * mesh.ubo_stride) as u32;
+                    push_draw(draw(c.base, e - c.base));
+                    cmd.bind_descriptor_set(r.layout.raw, SET_MESH, c.set, &[offset]);
+                    cmd.draw_indexed(pattern.index_count, 1, 0, 0, 0);
+                }
             }
-        }
-        Submit::Instanced => {
-            push_draw(draw(0));
-            cmd.draw_indexed(pattern.index_count, mesh.element_count, 0, 0, 0);
+            Submit::Instanced => {
+                cmd.bind_descriptor_set(r.layout.raw, SET_MESH, c.set, &[0]);
+                push_draw(draw(c.base, c.first - c.base));
+                cmd.draw_indexed(pattern.index_count, c.count, 0, 0, 0);
+            }
         }
     }
 }

@@ -77,7 +77,36 @@ pub struct GpuMesh {
     pub ubo_stride: u64,
     pub patterns: Vec<GpuPattern>,
     pub pool: DescriptorPool,
+    /// One descriptor set per chunk of [`GpuMesh::chunk`] elements: a storage-buffer descriptor
+    /// may span at most maxStorageBufferRange bytes, so a larger mesh is drawn chunk by chunk.
+    pub sets: Vec<vk::DescriptorSet>,
+    /// Elements per chunk.
+    pub chunk: u32,
+}
+
+/// The part of an element range that lies in one chunk of records.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Chunk {
+    /// The chunk's descriptor set: `records[0]` there is element `base`.
     pub set: vk::DescriptorSet,
+    pub base: u32,
+    /// The first element to draw (global index) and how many.
+    pub first: u32,
+    pub count: u32,
+}
+
+/// Elements per chunk for records of `rec_size` bytes: as many as one storage-buffer descriptor
+/// can span (`max_range` bytes), a multiple of what keeps chunk offsets aligned to `align`.
+pub fn chunk_elements(max_range: u64, align: u64, rec_size: u64) -> u32 {
+    let gcd = |mut a: u64, mut b: u64| {
+        while b != 0 {
+            (a, b) = (b, a % b);
+        }
+        a
+    };
+    let step = align.max(1) / gcd(align.max(1), rec_size);
+    let n = (max_range / rec_size) / step * step;
+    n.clamp(1, u32::MAX as u64) as u32
 }
 
 impl GpuMesh {
@@ -87,19 +116,16 @@ impl GpuMesh {
         set_layout: &crate::gpu::DescriptorSetLayout,
         data: &MeshData,
         patterns: &PatternSet,
+        max_chunk: Option<u32>,
     ) -> Result<Self, RenderError> {
         let n = data.records.len() as u64;
         let rec_size = RECORD_BYTES as u64;
         let limits = &ctx.info.limits;
-        if n * rec_size > limits.max_storage_buffer_range as u64 {
-            return Err(RenderError::OverLimit {
-                what: format!("the records of {n} elements (coarse triangles)"),
-                needed: n * rec_size,
-                limit: "maxStorageBufferRange",
-                max: limits.max_storage_buffer_range as u64,
-                remedy: "use a mesh with fewer triangles".into(),
-            });
-        }
+        let align = limits.min_storage_buffer_offset_alignment;
+        let range = limits.max_storage_buffer_range as u64;
+        let range = max_chunk.map_or(range, |c| range.min(c as u64 * rec_size));
+        let chunk = chunk_elements(range, align, rec_size);
+        let chunks = n.div_ceil(chunk as u64).max(1) as u32;
         let align = limits.min_uniform_buffer_offset_alignment.max(16);
         let ubo_stride = rec_size.div_ceil(align) * align;
         let mut records = Buffer::new(
@@ -120,28 +146,35 @@ impl GpuMesh {
             .collect::<Result<Vec<_>, _>>()?;
         let pool = DescriptorPool::new(
             ctx,
-            1,
+            chunks,
             &[
-                (vk::DescriptorType::STORAGE_BUFFER, 1),
-                (vk::DescriptorType::UNIFORM_BUFFER_DYNAMIC, 1),
+                (vk::DescriptorType::STORAGE_BUFFER, chunks),
+                (vk::DescriptorType::UNIFORM_BUFFER_DYNAMIC, chunks),
             ],
             "mesh descriptors",
         )?;
-        let set = pool.allocate(set_layout, "mesh set")?;
-        pool.write_buffer(
-            set,
-            BINDING_TRIS,
-            vk::DescriptorType::STORAGE_BUFFER,
-            records.raw,
-            vk::WHOLE_SIZE,
-        );
-        pool.write_buffer(
-            set,
-            BINDING_TRI_UBO,
-            vk::DescriptorType::UNIFORM_BUFFER_DYNAMIC,
-            records_ubo.raw,
-            rec_size,
-        );
+        let mut sets = Vec::with_capacity(chunks as usize);
+        for c in 0..chunks as u64 {
+            let set = pool.allocate(set_layout, &format!("mesh set {c}"))?;
+            let first = c * chunk as u64;
+            let count = (n - first.min(n)).min(chunk as u64).max(1);
+            pool.write_buffer_at(
+                set,
+                BINDING_TRIS,
+                vk::DescriptorType::STORAGE_BUFFER,
+                records.raw,
+                first * rec_size,
+                count * rec_size,
+            );
+            pool.write_buffer(
+                set,
+                BINDING_TRI_UBO,
+                vk::DescriptorType::UNIFORM_BUFFER_DYNAMIC,
+                records_ubo.raw,
+                rec_size,
+            );
+            sets.push(set);
+        }
         Ok(Self {
             element_count: n as u32,
             records,
@@ -149,8 +182,28 @@ impl GpuMesh {
             ubo_stride,
             patterns,
             pool,
-            set,
+            sets,
+            chunk,
         })
+    }
+
+    /// The chunks `elements` spans, in order, each with its part of the range.
+    pub fn chunks(&self, elements: std::ops::Range<u32>) -> Vec<Chunk> {
+        let mut out = Vec::new();
+        let mut first = elements.start;
+        while first < elements.end.min(self.element_count) {
+            let c = first / self.chunk;
+            let base = c * self.chunk;
+            let end = (base + self.chunk).min(elements.end);
+            out.push(Chunk {
+                set: self.sets[c as usize],
+                base,
+                first,
+                count: end - first,
+            });
+            first = end;
+        }
+        out
     }
 
     /// The pattern of `level`, if the set holds it.
@@ -207,8 +260,29 @@ impl Scene {
         mesh: Mesh,
         patterns: PatternSet,
     ) -> Result<Self, RenderError> {
+        Self::with_chunks(ctx, pool, renderer, mesh, patterns, None)
+    }
+
+    /// Upload `mesh` with exactly the given pattern set, its records in chunks of at most
+    /// `max_chunk` elements (None: as many as the device's maxStorageBufferRange allows; tests
+    /// pass small chunks to exercise drawing chunk by chunk).
+    pub fn with_chunks(
+        ctx: &Arc<Context>,
+        pool: &CommandPool,
+        renderer: &super::Renderer,
+        mesh: Mesh,
+        patterns: PatternSet,
+        max_chunk: Option<u32>,
+    ) -> Result<Self, RenderError> {
         let data = MeshData::new(mesh, RecordKind::Corners, Seams::default());
-        let gpu = GpuMesh::new(ctx, pool, &renderer.mesh_layout, &data, &patterns)?;
+        let gpu = GpuMesh::new(
+            ctx,
+            pool,
+            &renderer.mesh_layout,
+            &data,
+            &patterns,
+            max_chunk,
+        )?;
         Ok(Self {
             data,
             gpu,

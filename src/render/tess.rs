@@ -6,6 +6,7 @@
 //! most 65,535 evaluated vertices. gl_PrimitiveID restarts in every draw, so each draw pushes its
 //! first triangle. Other devices get one draw.
 
+use super::bindings::SET_MESH;
 use super::{GpuMesh, RenderError, Renderer, PUSH_DRAW_OFFSET, PUSH_STAGES};
 use crate::gpu::{Cmd, Context};
 
@@ -30,21 +31,33 @@ pub fn patches_per_draw(ctx: &Context, level: u32, triangles: u32) -> u32 {
     }
 }
 
-/// Record the tessellated draws of `mesh` at `level`.
-pub fn cmd_draw(cmd: &Cmd<'_>, r: &Renderer, mesh: &GpuMesh, level: u32) {
+/// Record the tessellated draws of the elements `range` of `mesh` at `level`, chunk by chunk
+/// ([`GpuMesh::chunks`]).
+pub fn cmd_draw(
+    cmd: &Cmd<'_>,
+    r: &Renderer,
+    mesh: &GpuMesh,
+    level: u32,
+    range: std::ops::Range<u32>,
+) {
     let per_draw = patches_per_draw(cmd.context(), level, mesh.element_count);
-    let mut first = 0;
-    while first < mesh.element_count {
-        let count = per_draw.min(mesh.element_count - first);
-        let draw = [level, first, tess_vertex_count(level), 0];
-        cmd.push_constants(
-            r.layout.raw,
-            PUSH_STAGES,
-            PUSH_DRAW_OFFSET,
-            bytemuck::cast_slice(&draw),
-        );
-        cmd.draw(3 * count, 1, 3 * first, 0);
-        first += count;
+    for c in mesh.chunks(range) {
+        cmd.bind_descriptor_set(r.layout.raw, SET_MESH, c.set, &[0]);
+        let mut first = c.first;
+        while first < c.first + c.count {
+            let count = per_draw.min(c.first + c.count - first);
+            // x level, y the chunk's first element, z tessellator vertices, w this draw's first
+            // element within the chunk (gl_PrimitiveID counts from there).
+            let draw = [level, c.base, tess_vertex_count(level), first - c.base];
+            cmd.push_constants(
+                r.layout.raw,
+                PUSH_STAGES,
+                PUSH_DRAW_OFFSET,
+                bytemuck::cast_slice(&draw),
+            );
+            cmd.draw(3 * count, 1, 0, 0);
+            first += count;
+        }
     }
 }
 
