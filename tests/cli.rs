@@ -835,3 +835,27 @@ fn surfaces_and_displacements_render_and_export() {
     assert_eq!(mesh.stats().vertices, 12 + 30 * 3 + 20 * 3);
     assert_eq!(mesh.stats().boundary_edges, 0);
 }
+
+/// A text file that is not an OBJ stops at its first line, as it is read: a 20 MB file of
+/// words (or of bytes that are not UTF-8) is refused naming line 1, not read to its end and then
+/// found empty. OBJ files that begin with comments, blank lines or any OBJ statement still load.
+#[test]
+fn text_that_is_not_obj_stops_at_its_first_line() {
+    let words = write("words.obj", "hello world\n".repeat(1 << 21).as_bytes());
+    expect_error(
+        &["info", p(&words)],
+        &["words.obj' line 1", "'hello'", "not a Wavefront OBJ file"],
+    );
+    let latin1 = write("latin1.obj", b"\xe9t\xe9\nv 0 0 0\n");
+    expect_error(&["info", p(&latin1)], &["line 1", "not UTF-8 text"]);
+    let ok = write(
+        "comments-first.obj",
+        b"# made by hand\n\n  mtllib x.mtl\no tri\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+    );
+    let out = meshrefine(&["info", p(&ok)]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}

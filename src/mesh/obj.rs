@@ -90,6 +90,9 @@ fn read_obj_bytes(shown: &str, path: &Path) -> Result<Vec<u8>, MeshError> {
     }
     let mut bytes = Vec::with_capacity(meta.len().min(MAX_OBJ_BYTES) as usize);
     let mut chunk = vec![0u8; 1 << 16];
+    // Until the first statement is seen, every chunk's complete lines are checked, so a file
+    // that is not an OBJ stops at its first line, not after a gigabyte.
+    let mut head = Some(Head::default());
     loop {
         let n = match file.read(&mut chunk) {
             Ok(0) => break,
@@ -108,8 +111,99 @@ fn read_obj_bytes(shown: &str, path: &Path) -> Result<Vec<u8>, MeshError> {
             return Err(too_large((bytes.len() + n) as u64));
         }
         bytes.extend_from_slice(chunk);
+        if let Some(h) = &mut head {
+            if h.check(shown, &bytes)? {
+                head = None;
+            }
+        }
     }
     Ok(bytes)
+}
+
+/// Every statement keyword of the OBJ format (Wavefront's "Object Files (.obj)", appendix B1),
+/// including those meshrefine ignores (groups, materials, free-form geometry).
+const OBJ_KEYWORDS: &[&str] = &[
+    "v",
+    "vt",
+    "vn",
+    "vp",
+    "f",
+    "l",
+    "p",
+    "o",
+    "g",
+    "s",
+    "mg",
+    "usemtl",
+    "mtllib",
+    "cstype",
+    "deg",
+    "bmat",
+    "step",
+    "curv",
+    "curv2",
+    "surf",
+    "parm",
+    "trim",
+    "hole",
+    "scrv",
+    "sp",
+    "end",
+    "con",
+    "bevel",
+    "c_interp",
+    "d_interp",
+    "lod",
+    "shadow_obj",
+    "trace_obj",
+    "ctech",
+    "stech",
+    "maplib",
+    "usemap",
+];
+
+/// The check of a file's first statement while it is read.
+#[derive(Default)]
+struct Head {
+    /// Bytes of complete lines already checked, and their count.
+    checked: usize,
+    lines: usize,
+}
+
+impl Head {
+    /// Checks the complete lines of `bytes` not checked yet: true once a first OBJ statement is
+    /// found, an error at a first line that is not UTF-8 text or not an OBJ statement.
+    fn check(&mut self, shown: &str, bytes: &[u8]) -> Result<bool, MeshError> {
+        let not_obj = |line: usize, what: String| {
+            parse_error(
+                shown,
+                Some(line),
+                format!("{what}: this is not a Wavefront OBJ file"),
+            )
+        };
+        while let Some(len) = bytes[self.checked..].iter().position(|&b| b == b'\n') {
+            let raw = &bytes[self.checked..self.checked + len];
+            self.checked += len + 1;
+            self.lines += 1;
+            let Ok(line) = std::str::from_utf8(raw) else {
+                return Err(not_obj(self.lines, "is not UTF-8 text".into()));
+            };
+            let line = line.trim();
+            if line.is_empty() || line.starts_with('#') {
+                continue;
+            }
+            let word = line.split_whitespace().next().unwrap_or("");
+            if OBJ_KEYWORDS.contains(&word) {
+                return Ok(true);
+            }
+            let shown_word: String = word.chars().take(40).collect();
+            return Err(not_obj(
+                self.lines,
+                format!("starts with '{shown_word}', which is no OBJ statement"),
+            ));
+        }
+        Ok(false)
+    }
 }
 
 /// Parses OBJ text; `path` is what messages call it.
