@@ -21,3 +21,5 @@ for seams in closed open; do
   $m render assets/models/cylinder_hard_normals.obj -o "$out/cylinder-pn-$seams.png" --width 427 --height 240 --level 8 --surface pn --pn-seams $seams
   $m render assets/models/cube_face_normals.obj -o "$out/cube-pn-$seams.png" --width 427 --height 240 --level 8 --surface pn --pn-seams $seams
 done
+# The height map (the generated default) on a mesh with texture coordinates, pn, level 32.
+$m render assets/models/grid_uv_8x8.obj -o "$out/grid-pn-heightmap.png" --width 427 --height 240 --level 32 --surface pn --displace heightmap

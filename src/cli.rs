@@ -55,6 +55,26 @@ pub struct ParamOpts {
     /// crack-free, `open` is the papers' behaviour (cracks).
     #[arg(long, value_enum, default_value = "closed")]
     pub pn_seams: Seams,
+    /// Height map displacement: P' = P + a·(h − bias)·N, h in [0, 1].
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub bias: f32,
+}
+
+impl SurfaceOpts {
+    /// The height map `--heightmap` names (None: the scene's generated one). Refused with any
+    /// displacement but `heightmap`, where it would be ignored.
+    pub fn heightmap(&self) -> Result<Option<meshrefine::surface::Heightmap>, String> {
+        let Some(path) = &self.heightmap else {
+            return Ok(None);
+        };
+        if self.displace != Displace::Heightmap {
+            return Err(format!(
+                "--heightmap applies only to --displace heightmap, not to --displace {}: leave it out or use --displace heightmap",
+                self.displace.name()
+            ));
+        }
+        meshrefine::surface::Heightmap::load_png(path).map(Some)
+    }
 }
 
 impl ParamOpts {
@@ -68,6 +88,7 @@ impl ParamOpts {
             octaves: self.octaves,
             origin: d.origin,
             seams: self.pn_seams,
+            bias: self.bias,
         };
         p.validate()?;
         Ok(p)
@@ -84,6 +105,10 @@ pub struct SurfaceOpts {
     /// Displacement along the surface's normal.
     #[arg(long, value_enum, default_value = "none")]
     pub displace: Displace,
+    /// Grayscale PNG (8 or 16 bits) for --displace heightmap, sampled at the mesh's texture
+    /// coordinates (default: a generated map of smooth bumps).
+    #[arg(long, value_name = "FILE.png")]
+    pub heightmap: Option<PathBuf>,
     #[command(flatten)]
     pub params: ParamOpts,
 }

@@ -92,6 +92,8 @@ struct Input {
     mesh: Mesh,
     /// The path as given, or "the default mesh (spot)".
     shown: String,
+    /// `--heightmap`, loaded (None: the scene's generated map).
+    heightmap: Option<meshrefine::surface::Heightmap>,
 }
 
 /// How many degenerate faces a warning lists before "and N more".
@@ -135,6 +137,7 @@ fn load_mesh(path: Option<&Path>) -> Result<Input> {
         return Ok(Input {
             mesh: meshrefine::mesh::default_mesh(),
             shown: "the default mesh (spot)".into(),
+            heightmap: None,
         });
     };
     let shown = p.display().to_string();
@@ -156,7 +159,11 @@ fn load_mesh(path: Option<&Path>) -> Result<Input> {
             "warning: {e} (the flat surface does not need one)"
         ));
     }
-    Ok(Input { mesh, shown })
+    Ok(Input {
+        mesh,
+        shown,
+        heightmap: None,
+    })
 }
 
 /// Refuses an output path whose extension says another format than the one written.
@@ -225,8 +232,13 @@ fn run(cli: Cli) -> Result<()> {
     match &cli.command {
         Command::Render(a) => {
             require_extension(&a.output, "png", "render writes PNG images only")?;
-            let input = load_mesh(a.mesh.as_deref())?;
+            let mut input = load_mesh(a.mesh.as_deref())?;
             let cfg = draw_config(&a.technique, &input.mesh, false)?;
+            input.heightmap = a
+                .technique
+                .surface
+                .heightmap()
+                .map_err(anyhow::Error::msg)?;
             let messages = {
                 let ctx = Context::new(&desc)?;
                 let messages = ctx.messages_handle();
@@ -246,8 +258,13 @@ fn run(cli: Cli) -> Result<()> {
                 "png",
                 "the headless view writes a PNG image",
             )?;
-            let input = load_mesh(a.mesh.as_deref())?;
+            let mut input = load_mesh(a.mesh.as_deref())?;
             let cfg = draw_config(&a.technique, &input.mesh, true)?;
+            input.heightmap = a
+                .technique
+                .surface
+                .heightmap()
+                .map_err(anyhow::Error::msg)?;
             let has_display = std::env::var_os("DISPLAY").is_some()
                 || std::env::var_os("WAYLAND_DISPLAY").is_some();
             let why_headless = if has_display {
@@ -259,6 +276,7 @@ fn run(cli: Cli) -> Result<()> {
                     wireframe: a.wireframe,
                     animate: a.animate,
                     lod: a.lod,
+                    heightmap: input.heightmap.clone(),
                 };
                 match meshrefine::app::run(desc.clone(), mesh, opts) {
                     Ok(messages) => return check_messages(&messages),
@@ -287,8 +305,9 @@ fn run(cli: Cli) -> Result<()> {
         }
         Command::Export(a) => {
             require_extension(&a.output, "obj", "export writes Wavefront OBJ text only")?;
-            let input = load_mesh(a.mesh.as_deref())?;
+            let mut input = load_mesh(a.mesh.as_deref())?;
             let cfg = draw_config(&a.technique(), &input.mesh, false)?;
+            input.heightmap = a.surface.heightmap().map_err(anyhow::Error::msg)?;
             let (messages, counts) = {
                 let ctx = Context::new(&desc)?;
                 let messages = ctx.messages_handle();
@@ -357,6 +376,9 @@ fn export(ctx: Arc<Context>, input: Input, cfg: &DrawConfig, output: &Path) -> R
     let mut h = Headless::with_context(ctx, 64, 64)?;
     let name = input.mesh.name.clone();
     let mut scene = h.scene(input.mesh, cfg.level)?;
+    if let Some(map) = input.heightmap {
+        h.set_heightmap(&mut scene, map)?;
+    }
     let (c, r) = scene.bounding_sphere();
     let camera = Camera::framing(c, r);
     let refined = if cfg.driver == Driver::Tess {
@@ -416,6 +438,9 @@ fn render_png(
         h.wireframe = wireframe;
         let (mesh, viewed) = for_viewing(&input.mesh, cfg);
         let mut scene = h.scene(mesh, cfg.level)?;
+        if let Some(map) = input.heightmap.clone() {
+            h.set_heightmap(&mut scene, map)?;
+        }
         let (c, r) = scene.bounding_sphere();
         h.render(&mut scene, &viewed, &Camera::framing(c, r))
     }

@@ -756,6 +756,19 @@ fn logs_are_bounded_and_limits_name_the_file_and_the_remedy() {
     );
 }
 
+/// Runs `export` with `args` (after `export`), expects success, and reloads what it wrote.
+fn export_and_reload(obj: &Path, args: &[&str]) -> meshrefine::mesh::Mesh {
+    let mut all = vec!["export", "-o", p(obj)];
+    all.extend_from_slice(args);
+    let out = meshrefine(&all);
+    assert!(
+        out.status.success(),
+        "{all:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    meshrefine::mesh::Mesh::load_obj(obj).unwrap().0
+}
+
 /// Surface and displacement parameters out of range: one sentence naming the option, exit 1.
 #[test]
 fn surface_parameters_out_of_range_are_errors() {
@@ -812,24 +825,18 @@ fn surfaces_and_displacements_render_and_export() {
     }
     let obj = tmp("pn-sine.obj");
     let ico = model_path("icosahedron.obj");
-    let out = meshrefine(&[
-        "export",
-        ico.to_str().unwrap(),
-        "-o",
-        obj.to_str().unwrap(),
-        "--level",
-        "4",
-        "--surface",
-        "pn",
-        "--displace",
-        "sine",
-    ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    let mesh = export_and_reload(
+        &obj,
+        &[
+            p(&ico),
+            "--level",
+            "4",
+            "--surface",
+            "pn",
+            "--displace",
+            "sine",
+        ],
     );
-    let (mesh, _) = meshrefine::mesh::Mesh::load_obj(&obj).unwrap();
     // 20 faces x 16 triangles; 12 + 30 x 3 + 20 x 3 distinct vertices (welded: watertight).
     assert_eq!(mesh.triangles.len(), 320);
     assert_eq!(mesh.stats().vertices, 12 + 30 * 3 + 20 * 3);
@@ -858,4 +865,88 @@ fn text_that_is_not_obj_stops_at_its_first_line() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
+}
+
+/// The height map: a grayscale PNG (or the generated default) on a mesh with texture
+/// coordinates renders and exports; without coordinates, with a missing, non-PNG or colour image,
+/// or with `--heightmap` for another displacement, one sentence and exit 1.
+#[test]
+fn heightmap_displacement_and_its_errors() {
+    let grid = model_path("grid_uv_8x8.obj");
+    let png = tmp("hm.png");
+    // 4 x 2, 8-bit grayscale.
+    {
+        let mut e = png::Encoder::new(std::fs::File::create(&png).unwrap(), 4, 2);
+        e.set_color(png::ColorType::Grayscale);
+        e.set_depth(png::BitDepth::Eight);
+        e.write_header()
+            .unwrap()
+            .write_image_data(&[0, 64, 128, 255, 255, 128, 64, 0])
+            .unwrap();
+    }
+    let out_png = tmp("hm-render.png");
+    for extra in [vec![], vec!["--heightmap", p(&png), "--bias", "0.5"]] {
+        let mut args = vec![
+            "render",
+            p(&grid),
+            "-o",
+            p(&out_png),
+            "--width",
+            "96",
+            "--height",
+            "64",
+            "--level",
+            "8",
+            "--displace",
+            "heightmap",
+        ];
+        args.extend(extra);
+        let out = meshrefine(&args);
+        assert!(
+            out.status.success(),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+    let obj = tmp("hm.obj");
+    let mesh = export_and_reload(&obj, &[p(&grid), "--level", "4", "--displace", "heightmap"]);
+    // Watertight: 81 + 208 edges x 3 + 128 x 3 distinct vertices.
+    assert_eq!(mesh.stats().vertices, 81 + 208 * 3 + 128 * 3);
+
+    let o = p(&out_png);
+    expect_error(
+        &[
+            "render",
+            p(&model_path("icosahedron.obj")),
+            "-o",
+            o,
+            "--displace",
+            "heightmap",
+        ],
+        &["icosahedron.obj", "no texture coordinates"],
+    );
+    let text = write("not-a.png", b"hello");
+    let hm = ["--displace", "heightmap", "--heightmap"];
+    for (extra, needle) in [
+        (
+            vec![hm[0], hm[1], hm[2], "nope.png"],
+            "cannot read height map 'nope.png'",
+        ),
+        (
+            vec![hm[0], hm[1], hm[2], p(&text)],
+            "is not a readable PNG image",
+        ),
+        (
+            vec!["--heightmap", p(&png)],
+            "--heightmap applies only to --displace heightmap",
+        ),
+        (
+            vec![hm[0], hm[1], "--bias", "nan"],
+            "--bias NaN is not a finite number",
+        ),
+    ] {
+        let mut args = vec!["render", p(&grid), "-o", o];
+        args.extend(extra);
+        expect_error(&args, &[needle]);
+    }
 }

@@ -18,7 +18,7 @@ use meshrefine::mesh::Mesh;
 use meshrefine::pattern::{Pattern, PatternSet};
 use meshrefine::render::static_vbo::refine_on_cpu;
 use meshrefine::render::tess::{tess_triangle_count, tess_vertex_count};
-use meshrefine::render::{Camera, DrawConfig, Driver, Scene, Submit};
+use meshrefine::render::{Camera, DrawConfig, Driver, Headless, Scene, Submit};
 use meshrefine::surface::{Displace, RecordKind, Seams, Surface, SurfaceParams};
 
 /// Surface x displacement combinations checked on every driver.
@@ -56,9 +56,34 @@ const CLOSED: &[&str] = &[
     "cube_face_normals.obj",
 ];
 
+/// `mesh` uploaded with patterns of `levels`, and a camera framing it.
+fn scene_at(h: &Headless, mesh: &Mesh, levels: &[u32]) -> (Scene, Camera) {
+    let scene = Scene::with_patterns(
+        &h.ctx,
+        &h.pool,
+        &h.renderer,
+        mesh.clone(),
+        PatternSet::from_levels(levels),
+    )
+    .unwrap();
+    let (c, r) = scene.bounding_sphere();
+    (scene, Camera::framing(c, r))
+}
+
+/// Distinct positions the tess driver's capture variant evaluated for `cfg`.
+fn tess_positions(h: &mut Headless, scene: &mut Scene, cfg: &DrawConfig, camera: &Camera) -> usize {
+    let cap = h.capture(scene, cfg, camera).unwrap();
+    let distinct: HashSet<[u32; 3]> = cap
+        .vertices
+        .iter()
+        .map(|v| bits(&v.position[..3]))
+        .collect();
+    distinct.len()
+}
+
 /// Distinct positions of `records` refined on the CPU at level `n`.
 fn static_positions(cfg: &DrawConfig, records: &[meshrefine::surface::ElementRecord]) -> usize {
-    let (v, _) = refine_on_cpu(cfg, records, &Pattern::uniform(cfg.level));
+    let (v, _) = refine_on_cpu(cfg, records, &Pattern::uniform(cfg.level), None);
     let distinct: HashSet<[u32; 3]> = v.iter().map(|x| bits(&x[..3])).collect();
     distinct.len()
 }
@@ -127,16 +152,7 @@ fn pattern_and_tess_are_watertight() {
         for file in CLOSED {
             let mesh = model(file);
             let levels = [3u32, 8];
-            let mut scene = Scene::with_patterns(
-                &h.ctx,
-                &h.pool,
-                &h.renderer,
-                mesh.clone(),
-                PatternSet::from_levels(&levels),
-            )
-            .unwrap();
-            let (c, r) = scene.bounding_sphere();
-            let camera = Camera::framing(c, r);
+            let (mut scene, camera) = scene_at(h, &mesh, &levels);
             let r = mesh.bounding_radius();
             for (n, &combo) in levels
                 .iter()
@@ -157,15 +173,9 @@ fn pattern_and_tess_are_watertight() {
                     assert_closed(&welded.triangles, &what);
                 }
                 let cfg = config(Driver::Tess, Submit::Instanced, n, combo, r);
-                let cap = h.capture(&mut scene, &cfg, &camera).unwrap();
-                let distinct: HashSet<[u32; 3]> = cap
-                    .vertices
-                    .iter()
-                    .map(|v| bits(&v.position[..3]))
-                    .collect();
                 let inner = (tess_vertex_count(n) - 3 * n) as usize;
                 assert_eq!(
-                    distinct.len(),
+                    tess_positions(h, &mut scene, &cfg, &camera),
                     expected(&mesh, n as usize, inner),
                     "{file} {name} tess level {n}"
                 );
@@ -219,4 +229,51 @@ fn open_seams_crack_at_split_normals() {
             );
         }
     }
+}
+
+/// The height map is watertight where texture coordinates are continuous: a point on a shared
+/// edge reads the map at coordinates interpolated from the edge's ends in canonical order, so
+/// both sides displace it alike. (At UV seams, where a position carries several `vt`, the two
+/// sides read different places of the map: see the README.)
+#[test]
+fn heightmap_on_continuous_coordinates_is_watertight() {
+    let file = "grid_uv_8x8.obj";
+    let mesh = model(file);
+    let r = mesh.bounding_radius();
+    let combo = (Surface::Pn, Displace::Heightmap);
+    with_gpu(64, 64, |h| {
+        let levels = [3u32, 8];
+        let (mut scene, camera) = scene_at(h, &mesh, &levels);
+        for n in levels {
+            let inner = ((n - 1) * (n - 2) / 2) as usize;
+            let want = expected(&mesh, n as usize, inner);
+            let cfg = config(Driver::Static, Submit::Instanced, n, combo, r);
+            let (v, _) = refine_on_cpu(
+                &cfg,
+                &scene.data.records,
+                &Pattern::uniform(n),
+                scene.heightmap_inputs(n).as_ref(),
+            );
+            let distinct: HashSet<[u32; 3]> = v.iter().map(|x| bits(&x[..3])).collect();
+            assert_eq!(distinct.len(), want, "{file} static level {n}");
+            for submit in Submit::ALL {
+                let cfg = config(Driver::Pattern, submit, n, combo, r);
+                let cap = h.capture(&mut scene, &cfg, &camera).unwrap();
+                let welded = weld(&cap, &Pattern::uniform(n)).unwrap();
+                assert_eq!(
+                    welded.positions.len(),
+                    want,
+                    "{file} {} level {n}",
+                    cfg.label()
+                );
+            }
+            let cfg = config(Driver::Tess, Submit::Instanced, n, combo, r);
+            let inner = (tess_vertex_count(n) - 3 * n) as usize;
+            assert_eq!(
+                tess_positions(h, &mut scene, &cfg, &camera),
+                expected(&mesh, n as usize, inner),
+                "{file} tess level {n}"
+            );
+        }
+    });
 }

@@ -6,11 +6,13 @@
 #define DISPLACE_GLSL
 #include "corners.glsl"
 #include "noise.glsl"
+#include "heightmap.glsl"
 
 layout(constant_id = SPEC_DISPLACE) const uint DISPLACE = 0;
 const uint DISPLACE_NONE = 0;
 const uint DISPLACE_SINE = 1;
 const uint DISPLACE_NOISE = 2;
+const uint DISPLACE_HEIGHTMAP = 3;
 
 struct SurfacePoint {
     vec3 position;
@@ -18,6 +20,9 @@ struct SurfacePoint {
     vec3 direction; // unit: what displacement moves along (src/surface/mod.rs `SurfacePoint`)
     vec3 dpdu;     // tangents for the sample (w, u, v), w = 1 - u - v
     vec3 dpdv;
+    vec2 uv;       // texture coordinates (heightmap only), and their derivatives by u and v
+    vec2 duv_du;
+    vec2 duv_dv;
 };
 
 // Height at p and its gradient.
@@ -56,13 +61,25 @@ SurfacePoint displace(SurfacePoint sp) {
     if (DISPLACE == DISPLACE_NONE) {
         return sp;
     }
-    vec3 grad;
-    float h = displace_height(sp.position - frame.origin.xyz, grad);
+    float h, hu, hv;
+    if (DISPLACE == DISPLACE_HEIGHTMAP) {
+        vec2 g;
+        float t = heightmap_sample(sp.uv, frame.extra.y, g);
+        float a = frame.params.y;
+        precise float ht = a * (t - frame.extra.x);
+        h = ht;
+        hu = a * (g.x * sp.duv_du.x + g.y * sp.duv_du.y);
+        hv = a * (g.x * sp.duv_dv.x + g.y * sp.duv_dv.y);
+    } else {
+        vec3 grad;
+        h = displace_height(sp.position - frame.origin.xyz, grad);
+        hu = dot3(grad, sp.dpdu);
+        hv = dot3(grad, sp.dpdv);
+    }
     vec3 n = sp.normal;
-    float hu = dot3(grad, sp.dpdu), hv = dot3(grad, sp.dpdv);
     vec3 cr = cross(sp.dpdu, sp.dpdv);
     float area = length(cr);
-    SurfacePoint r;
+    SurfacePoint r = sp;
     r.normal = n;
     if (area > 0.0) {
         float sigma = dot3(cr, n) < 0.0 ? -1.0 : 1.0;

@@ -18,6 +18,7 @@ layout(set = SET_FRAME, binding = BINDING_FRAME, std140) uniform Frame {
     vec4 options;    // x: view (0 shaded, 1 normals)
     vec4 params;     // surface and displacement: (alpha, amplitude, frequency, octaves)
     vec4 origin;     // xyz: the mesh's origin in drawn coordinates (displacement's frame)
+    vec4 extra;      // x: height map bias; y: height map pyramid level to read
 } frame;
 
 // The elements' records (set 1), one chunk of them: a storage-buffer descriptor spans at most
@@ -26,6 +27,11 @@ layout(set = SET_FRAME, binding = BINDING_FRAME, std140) uniform Frame {
 // evaluate normal fields per fragment (v_element is the index within the chunk).
 layout(set = SET_MESH, binding = BINDING_TRIS, std430) readonly buffer Records {
     ElementRecord records[];
+};
+
+// Each element's texture coordinates (stored corner order), same chunking as the records.
+layout(set = SET_MESH, binding = BINDING_UVS, std430) readonly buffer ElementUvs {
+    vec4 element_uv[]; // two per element: (uv0, uv1), (uv2, 0)
 };
 
 #ifndef FRAGMENT_STAGE

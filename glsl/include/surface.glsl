@@ -18,6 +18,7 @@ const uint SURFACE_PN = 2;
 
 struct Sample {
     uint element;  // which element (coarse triangle)
+    uint local;    // the element's index in the bound chunk of records
     vec3 bary;     // (w, u, v): weights of the element's stored corners 0, 1, 2
     uint index;    // the driver's sample index: pattern vertex, or ~0u (tess)
 };
@@ -51,7 +52,17 @@ SurfacePoint surface_eval(ElementRecord rec, Sample s) {
         cg.n = c.g;
         dir = surface_normal(cg);
     }
-    return SurfacePoint(p, n, dir, gs[1] - gs[0], gs[2] - gs[0]);
+    SurfacePoint sp = SurfacePoint(p, n, dir, gs[1] - gs[0], gs[2] - gs[0], vec2(0.0), vec2(0.0), vec2(0.0));
+    if (DISPLACE == DISPLACE_HEIGHTMAP) {
+        // Texture coordinates in canonical order (src/surface/mod.rs `eval_surface`).
+        vec4 a = element_uv[2u * s.local], b = element_uv[2u * s.local + 1u];
+        vec2 t[3] = vec2[3](a.xy, a.zw, b.xy);
+        precise vec2 uv = t[c.o[0]] * c.w[0] + t[c.o[1]] * c.w[1] + t[c.o[2]] * c.w[2];
+        sp.uv = uv;
+        sp.duv_du = t[1] - t[0];
+        sp.duv_dv = t[2] - t[0];
+    }
+    return sp;
 }
 
 // What every driver computes for every sample.

@@ -26,7 +26,7 @@ void main() {
     } else {
         rec = records[local];
     }
-    SurfacePoint sp = evaluate(rec, Sample(element, in_bary, uint(gl_VertexIndex)));
+    SurfacePoint sp = evaluate(rec, Sample(element, local, in_bary, uint(gl_VertexIndex)));
     v_position = sp.position;
     v_normal = sp.normal;
     v_element = local;

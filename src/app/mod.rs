@@ -49,6 +49,8 @@ pub struct ViewOptions {
     pub animate: bool,
     /// Start with LOD by distance on.
     pub lod: bool,
+    /// The height map (None: the generated one).
+    pub heightmap: Option<crate::surface::Heightmap>,
 }
 
 pub const KEY_HELP: &str = "keys: drag = orbit, wheel = zoom, 1/2/3 = static/pattern/tess, \
@@ -254,7 +256,10 @@ impl App {
         let mesh = self.mesh.take().expect("created once");
         let cfg = self.opts.cfg;
         let max_level = cfg.level;
-        let scene = Scene::new(&ctx, &pool, &renderer, mesh.clone(), max_level)?;
+        let mut scene = Scene::new(&ctx, &pool, &renderer, mesh.clone(), max_level)?;
+        if let Some(map) = self.opts.heightmap.clone() {
+            scene.set_heightmap(&ctx, &pool, &renderer, map)?;
+        }
         let (c, r) = scene.bounding_sphere();
         let mut rendered = Vec::new();
         per_image(&mut rendered, swapchain.images.len(), |i| {
@@ -325,7 +330,13 @@ impl State {
                 "2" => c.cfg.driver = Driver::Pattern,
                 "3" => c.cfg.driver = Driver::Tess,
                 "s" | "S" => c.cfg.surface = next(&Surface::ALL, c.cfg.surface),
-                "d" | "D" => c.cfg.displace = next(&Displace::ALL, c.cfg.displace),
+                "d" | "D" => {
+                    c.cfg.displace = next(&Displace::ALL, c.cfg.displace);
+                    // The height map needs texture coordinates: skip it on meshes without.
+                    if c.cfg.displace == Displace::Heightmap && self.scene.data.uvs.is_none() {
+                        c.cfg.displace = next(&Displace::ALL, c.cfg.displace);
+                    }
+                }
                 "n" | "N" => c.view_normals = !c.view_normals,
                 "p" | "P" => (c.cfg.driver, c.cfg.submit) = (Driver::Pattern, Submit::Push),
                 "u" | "U" => (c.cfg.driver, c.cfg.submit) = (Driver::Pattern, Submit::Ubo),
@@ -423,6 +434,7 @@ impl State {
         let aspect = extent.width as f32 / extent.height as f32;
         let mut uniforms = FrameUniforms::new(&self.camera, aspect, &self.controls.cfg.params);
         uniforms.options[0] = self.controls.view_normals as u32 as f32;
+        uniforms.extra[1] = self.scene.heightmap_lod(self.drawn.level);
         self.renderer.set_frame(&uniforms);
         let depth = self.swapchain.depth.as_ref().expect("depth image exists");
         let target = TargetView {
@@ -537,6 +549,7 @@ impl State {
             coarse,
             refined: coarse * d.refined_per_coarse() as u64,
             geometry_bytes: self.scene.geometry_bytes(d.driver, d.level),
+            has_texcoords: self.scene.data.uvs.is_some(),
         };
         self.ui.run(&self.window, &mut self.controls, &info)
     }

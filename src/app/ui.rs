@@ -38,6 +38,8 @@ pub struct PanelInfo<'a> {
     pub coarse: u64,
     pub refined: u64,
     pub geometry_bytes: u64,
+    /// Whether the mesh has texture coordinates (the height map needs them).
+    pub has_texcoords: bool,
 }
 
 /// One frame of egui output, ready for [`crate::gpu::Overlay`].
@@ -187,7 +189,11 @@ fn panel(ctx: &egui::Context, c: &mut Controls, info: &PanelInfo) {
             ui.horizontal(|ui| {
                 ui.label("displace");
                 for d in Displace::ALL {
-                    ui.selectable_value(&mut c.cfg.displace, d, d.name());
+                    let usable = d != Displace::Heightmap || info.has_texcoords;
+                    ui.add_enabled_ui(usable, |ui| {
+                        ui.selectable_value(&mut c.cfg.displace, d, d.name())
+                            .on_disabled_hover_text("the mesh has no texture coordinates (vt)");
+                    });
                 }
             });
             let p = &mut c.cfg.params;
@@ -200,6 +206,10 @@ fn panel(ctx: &egui::Context, c: &mut Controls, info: &PanelInfo) {
                 ui.add(egui::Slider::new(&mut p.amplitude, -a..=a).text("amplitude"));
                 let f = c.initial.frequency.max(1e-6) * 4.0;
                 ui.add(egui::Slider::new(&mut p.frequency, 0.0..=f).text("frequency"));
+                ui.add_enabled(
+                    c.cfg.displace == Displace::Heightmap,
+                    egui::Slider::new(&mut p.bias, 0.0..=1.0).text("bias"),
+                );
                 ui.add_enabled(
                     c.cfg.displace == Displace::Noise,
                     egui::Slider::new(&mut p.octaves, 1..=SurfaceParams::MAX_OCTAVES)

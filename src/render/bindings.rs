@@ -17,6 +17,12 @@ pub const BINDING_TRIS: u32 = 0;
 /// Set 1, binding 1: one `ElementRecord`, dynamic uniform buffer (`ubo` submission).
 pub const BINDING_TRI_UBO: u32 = 1;
 
+/// Set 1, binding 2: each element's texture coordinates, three `vec2` padded to 32 bytes
+/// (`heightmap` displacement), chunked like the records.
+pub const BINDING_UVS: u32 = 2;
+/// Set 1, binding 3: the height map's mip pyramid (`Heightmap::to_gpu`).
+pub const BINDING_HEIGHTMAP: u32 = 3;
+
 /// Set 2: capture output of the `CAPTURE` shader variants.
 pub const SET_CAPTURE: u32 = 2;
 /// Set 2, binding 0: evaluated vertices, `CapturedVertex[]`.
@@ -39,6 +45,8 @@ pub const GLSL_DEFINES: &[(&str, u32)] = &[
     ("SET_MESH", SET_MESH),
     ("BINDING_TRIS", BINDING_TRIS),
     ("BINDING_TRI_UBO", BINDING_TRI_UBO),
+    ("BINDING_UVS", BINDING_UVS),
+    ("BINDING_HEIGHTMAP", BINDING_HEIGHTMAP),
     ("SET_CAPTURE", SET_CAPTURE),
     ("BINDING_CAPTURE", BINDING_CAPTURE),
     ("BINDING_CAPTURE_COUNT", BINDING_CAPTURE_COUNT),

@@ -111,10 +111,20 @@ impl Headless {
         Scene::new(&self.ctx, &self.pool, &self.renderer, mesh, max_level)
     }
 
-    fn frame_uniforms(&self, camera: &Camera, cfg: &DrawConfig) -> FrameUniforms {
+    /// Give `scene` the height map `map`.
+    pub fn set_heightmap(
+        &self,
+        scene: &mut Scene,
+        map: crate::surface::Heightmap,
+    ) -> Result<(), RenderError> {
+        scene.set_heightmap(&self.ctx, &self.pool, &self.renderer, map)
+    }
+
+    fn frame_uniforms(&self, camera: &Camera, cfg: &DrawConfig, scene: &Scene) -> FrameUniforms {
         let e = self.target.extent();
         let mut f = FrameUniforms::new(camera, e.width as f32 / e.height as f32, &cfg.params);
         f.options[0] = self.view_normals as u32 as f32;
+        f.extra[1] = scene.heightmap_lod(cfg.level);
         f
     }
 
@@ -157,7 +167,7 @@ impl Headless {
             capture,
             self.wireframe,
         )?;
-        let uniforms = self.frame_uniforms(camera, cfg);
+        let uniforms = self.frame_uniforms(camera, cfg, scene);
         self.renderer.set_frame(&uniforms);
         let view = self.view();
         let work = FrameWork {

@@ -198,10 +198,12 @@ pub struct FrameUniforms {
     pub params: [f32; 4],
     /// xyz: [`SurfaceParams::origin`].
     pub origin: [f32; 4],
+    /// x: height map bias; y: height map pyramid level ([`Scene::heightmap_lod`]).
+    pub extra: [f32; 4],
 }
 
 const _: () = {
-    assert!(std::mem::size_of::<FrameUniforms>() == 160);
+    assert!(std::mem::size_of::<FrameUniforms>() == 176);
     assert!(std::mem::offset_of!(FrameUniforms, eye) == 64);
     assert!(std::mem::offset_of!(FrameUniforms, light_dir) == 80);
     assert!(std::mem::offset_of!(FrameUniforms, base_color) == 96);
@@ -224,6 +226,7 @@ impl FrameUniforms {
             options: [0.0; 4],
             params: params.to_gpu(),
             origin: params.origin.extend(0.0).to_array(),
+            extra: [params.bias, 0.0, 0.0, 0.0],
         }
     }
 }

@@ -88,6 +88,9 @@ impl Renderer {
                 (BINDING_TRIS, T::STORAGE_BUFFER, ALL_STAGES),
                 // one ElementRecord (ubo)
                 (BINDING_TRI_UBO, T::UNIFORM_BUFFER_DYNAMIC, GEOMETRY_STAGES),
+                // texture coordinates and the height map (heightmap displacement)
+                (BINDING_UVS, T::STORAGE_BUFFER, ALL_STAGES),
+                (BINDING_HEIGHTMAP, T::STORAGE_BUFFER, ALL_STAGES),
             ],
             "set 1: mesh",
         )?;

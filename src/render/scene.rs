@@ -7,7 +7,7 @@ use super::RenderError;
 use crate::gpu::{vk, Buffer, BufferDesc, CommandPool, Context, DescriptorPool, GpuError};
 use crate::mesh::Mesh;
 use crate::pattern::{Pattern, PatternSet};
-use crate::surface::{build_records, ElementRecord, RecordKind, Seams, RECORD_BYTES};
+use crate::surface::{build_records, ElementRecord, Heightmap, RecordKind, Seams, RECORD_BYTES};
 use std::sync::Arc;
 
 /// CPU-side data of a mesh ready to draw: the mesh and its elements' records.
@@ -18,16 +18,40 @@ pub struct MeshData {
     /// The seams the records were built for.
     pub seams: Seams,
     pub records: Vec<ElementRecord>,
+    /// Each element's texture coordinates (stored corner order), when every triangle has them.
+    pub uvs: Option<Vec<[[f32; 2]; 3]>>,
+    /// Mean longest texture-space edge of the elements (0 without coordinates).
+    pub uv_extent: f32,
 }
 
 impl MeshData {
     pub fn new(mesh: Mesh, kind: RecordKind, seams: Seams) -> Self {
         let records = build_records(kind, &mesh, seams);
+        let uvs: Option<Vec<[[f32; 2]; 3]>> = mesh
+            .triangles
+            .iter()
+            .map(|t| {
+                t.t.map(|c| c.map(|i| mesh.texcoords[i as usize].to_array()))
+            })
+            .collect();
+        let uv_extent = uvs.as_ref().map_or(0.0, |uvs| {
+            let longest = |t: &[[f32; 2]; 3]| {
+                (0..3)
+                    .map(|k| {
+                        let (a, b) = (glam::Vec2::from(t[k]), glam::Vec2::from(t[(k + 1) % 3]));
+                        (a - b).length() as f64
+                    })
+                    .fold(0.0, f64::max)
+            };
+            (uvs.iter().map(longest).sum::<f64>() / uvs.len().max(1) as f64) as f32
+        });
         Self {
             mesh,
             kind,
             seams,
             records,
+            uvs,
+            uv_extent,
         }
     }
 }
@@ -75,6 +99,9 @@ pub struct GpuMesh {
     /// One `ElementRecord` every `ubo_stride` bytes, dynamic uniform buffer (`ubo` submission).
     pub records_ubo: Buffer,
     pub ubo_stride: u64,
+    /// Each element's texture coordinates (`heightmap`), and the height map's pyramid.
+    pub uvs: Buffer,
+    pub heightmap: Buffer,
     pub patterns: Vec<GpuPattern>,
     pub pool: DescriptorPool,
     /// One descriptor set per chunk of [`GpuMesh::chunk`] elements: a storage-buffer descriptor
@@ -95,19 +122,28 @@ pub struct Chunk {
     pub count: u32,
 }
 
-/// Elements per chunk for records of `rec_size` bytes: as many as one storage-buffer descriptor
-/// can span (`max_range` bytes), a multiple of what keeps chunk offsets aligned to `align`.
-pub fn chunk_elements(max_range: u64, align: u64, rec_size: u64) -> u32 {
+/// Elements per chunk for per-element arrays of `sizes` bytes each: as many as one
+/// storage-buffer descriptor can span (`max_range` bytes) for the largest, a multiple of what
+/// keeps every array's chunk offsets aligned to `align`.
+pub fn chunk_elements(max_range: u64, align: u64, sizes: &[u64]) -> u32 {
     let gcd = |mut a: u64, mut b: u64| {
         while b != 0 {
             (a, b) = (b, a % b);
         }
         a
     };
-    let step = align.max(1) / gcd(align.max(1), rec_size);
-    let n = (max_range / rec_size) / step * step;
+    let align = align.max(1);
+    let step = sizes.iter().fold(1, |step, &s| {
+        let k = align / gcd(align, s);
+        step / gcd(step, k) * k
+    });
+    let largest = sizes.iter().copied().max().unwrap_or(1);
+    let n = (max_range / largest) / step * step;
     n.clamp(1, u32::MAX as u64) as u32
 }
+
+/// Bytes of one element's texture coordinates on the GPU (three `vec2`, padded).
+const UV_BYTES: u64 = 32;
 
 impl GpuMesh {
     pub fn new(
@@ -117,6 +153,7 @@ impl GpuMesh {
         data: &MeshData,
         patterns: &PatternSet,
         max_chunk: Option<u32>,
+        heightmap: &Heightmap,
     ) -> Result<Self, RenderError> {
         let n = data.records.len() as u64;
         let rec_size = RECORD_BYTES as u64;
@@ -124,7 +161,7 @@ impl GpuMesh {
         let align = limits.min_storage_buffer_offset_alignment;
         let range = limits.max_storage_buffer_range as u64;
         let range = max_chunk.map_or(range, |c| range.min(c as u64 * rec_size));
-        let chunk = chunk_elements(range, align, rec_size);
+        let chunk = chunk_elements(range, align, &[rec_size, UV_BYTES]);
         let chunks = n.div_ceil(chunk as u64).max(1) as u32;
         let align = limits.min_uniform_buffer_offset_alignment.max(16);
         let ubo_stride = rec_size.div_ceil(align) * align;
@@ -139,6 +176,37 @@ impl GpuMesh {
             "coarse records (uniform)",
         )?;
         write_records(&mut records, &mut records_ubo, ubo_stride, &data.records);
+        // Texture coordinates (zeros without them: the binding is always valid).
+        let uv_words: Vec<[f32; 8]> = match &data.uvs {
+            Some(uvs) => uvs
+                .iter()
+                .map(|t| {
+                    [
+                        t[0][0], t[0][1], t[1][0], t[1][1], t[2][0], t[2][1], 0.0, 0.0,
+                    ]
+                })
+                .collect(),
+            None => vec![[0.0; 8]; n.max(1) as usize],
+        };
+        let mut uvs = Buffer::new(
+            ctx,
+            BufferDesc::new_upload(
+                uv_words.len() as u64 * UV_BYTES,
+                vk::BufferUsageFlags::STORAGE_BUFFER,
+            ),
+            "element texture coordinates",
+        )?;
+        uvs.write_pod(0, &uv_words);
+        let hm_words = heightmap.to_gpu();
+        let mut hm = Buffer::new(
+            ctx,
+            BufferDesc::new_upload(
+                hm_words.len() as u64 * 4,
+                vk::BufferUsageFlags::STORAGE_BUFFER,
+            ),
+            "height map pyramid",
+        )?;
+        hm.write_pod(0, &hm_words);
         let patterns = patterns
             .patterns
             .iter()
@@ -148,7 +216,7 @@ impl GpuMesh {
             ctx,
             chunks,
             &[
-                (vk::DescriptorType::STORAGE_BUFFER, chunks),
+                (vk::DescriptorType::STORAGE_BUFFER, 3 * chunks),
                 (vk::DescriptorType::UNIFORM_BUFFER_DYNAMIC, chunks),
             ],
             "mesh descriptors",
@@ -173,6 +241,22 @@ impl GpuMesh {
                 records_ubo.raw,
                 rec_size,
             );
+            let uv_first = if data.uvs.is_some() { first } else { 0 };
+            pool.write_buffer_at(
+                set,
+                BINDING_UVS,
+                vk::DescriptorType::STORAGE_BUFFER,
+                uvs.raw,
+                uv_first * UV_BYTES,
+                count.min(uv_words.len() as u64) * UV_BYTES,
+            );
+            pool.write_buffer(
+                set,
+                BINDING_HEIGHTMAP,
+                vk::DescriptorType::STORAGE_BUFFER,
+                hm.raw,
+                vk::WHOLE_SIZE,
+            );
             sets.push(set);
         }
         Ok(Self {
@@ -180,6 +264,8 @@ impl GpuMesh {
             records,
             records_ubo,
             ubo_stride,
+            uvs,
+            heightmap: hm,
             patterns,
             pool,
             sets,
@@ -235,6 +321,9 @@ fn write_records(ssbo: &mut Buffer, ubo: &mut Buffer, stride: u64, records: &[El
 pub struct Scene {
     pub data: MeshData,
     pub gpu: GpuMesh,
+    /// The `heightmap` displacement's map (a generated one until [`Scene::set_heightmap`]).
+    pub heightmap: Heightmap,
+    max_chunk: Option<u32>,
     pub patterns: PatternSet,
     pub static_vbo: Option<super::static_vbo::StaticVbo>,
     warned_slow: bool,
@@ -275,6 +364,7 @@ impl Scene {
         max_chunk: Option<u32>,
     ) -> Result<Self, RenderError> {
         let data = MeshData::new(mesh, RecordKind::Corners, Seams::default());
+        let heightmap = Heightmap::generated();
         let gpu = GpuMesh::new(
             ctx,
             pool,
@@ -282,10 +372,13 @@ impl Scene {
             &data,
             &patterns,
             max_chunk,
+            &heightmap,
         )?;
         Ok(Self {
             data,
             gpu,
+            heightmap,
+            max_chunk,
             patterns,
             static_vbo: None,
             warned_slow: false,
@@ -314,6 +407,11 @@ impl Scene {
         // Every surface today shares the corner records the scene was built with; a surface
         // with records of another kind (Loop's M1 faces) needs a scene of its own.
         debug_assert_eq!(cfg.surface.record_kind(), self.data.kind);
+        if cfg.displace == crate::surface::Displace::Heightmap && self.data.uvs.is_none() {
+            return Err(RenderError::Unsupported(
+                "the mesh has no texture coordinates (vt on every face): the heightmap displacement reads the map there",
+            ));
+        }
         if cfg.params.seams != self.data.seams {
             self.data.records = build_records(self.data.kind, &self.data.mesh, cfg.params.seams);
             self.data.seams = cfg.params.seams;
@@ -376,6 +474,7 @@ impl Scene {
                     cfg,
                     &self.data.records,
                     &self.patterns.patterns[idx],
+                    self.heightmap_inputs(cfg.level).as_ref(),
                 )?);
             }
         }
@@ -388,6 +487,45 @@ impl Scene {
         self.data = MeshData::new(mesh, self.data.kind, self.data.seams);
         self.gpu.update_records(&self.data.records);
         self.static_vbo = None;
+    }
+
+    /// Replace the height map (between frames): uploaded, and the static buffer rebuilt.
+    pub fn set_heightmap(
+        &mut self,
+        ctx: &Arc<Context>,
+        pool: &CommandPool,
+        renderer: &super::Renderer,
+        map: Heightmap,
+    ) -> Result<(), RenderError> {
+        self.gpu = GpuMesh::new(
+            ctx,
+            pool,
+            &renderer.mesh_layout,
+            &self.data,
+            &self.patterns,
+            self.max_chunk,
+            &map,
+        )?;
+        self.heightmap = map;
+        self.static_vbo = None;
+        Ok(())
+    }
+
+    /// The height map's pyramid level for refinement level `level` ([`Heightmap::lod_for`]).
+    pub fn heightmap_lod(&self, level: u32) -> f32 {
+        self.heightmap.lod_for(self.data.uv_extent, level)
+    }
+
+    /// What the CPU mirror needs to evaluate the height map, when the mesh has coordinates.
+    pub fn heightmap_inputs(&self, level: u32) -> Option<super::static_vbo::HeightmapInputs<'_>> {
+        self.data
+            .uvs
+            .as_ref()
+            .map(|uvs| super::static_vbo::HeightmapInputs {
+                uvs,
+                map: &self.heightmap,
+                lod: self.heightmap_lod(level),
+            })
     }
 
     /// Centre and radius of the mesh's bounding sphere.

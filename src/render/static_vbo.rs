@@ -6,7 +6,16 @@
 use super::{DrawConfig, RenderError, Renderer, PUSH_DRAW_OFFSET, PUSH_STAGES};
 use crate::gpu::{vk, Buffer, Cmd, CommandPool, Context};
 use crate::pattern::Pattern;
-use crate::surface::{eval, ElementRecord};
+use crate::surface::{eval_with, ElementRecord, Heightmap, Inputs};
+
+/// The height map's inputs for a whole mesh: per-element texture coordinates, the map, and the
+/// pyramid level.
+#[derive(Clone, Copy, Debug)]
+pub struct HeightmapInputs<'a> {
+    pub uvs: &'a [[[f32; 2]; 3]],
+    pub map: &'a Heightmap,
+    pub lod: f32,
+}
 use std::sync::Arc;
 
 /// Refined vertex: position, normal.
@@ -20,13 +29,19 @@ pub fn refine_on_cpu(
     cfg: &DrawConfig,
     records: &[ElementRecord],
     pattern: &Pattern,
+    heightmap: Option<&HeightmapInputs>,
 ) -> (Vec<StaticVertex>, Vec<u32>) {
     let pv = pattern.bary.len() as u32;
     let mut vertices = Vec::with_capacity(records.len() * pv as usize);
     let mut indices = Vec::with_capacity(records.len() * pattern.indices.len());
     for (t, rec) in records.iter().enumerate() {
+        let inputs = heightmap.map_or_else(Inputs::default, |h| Inputs {
+            uv: Some(&h.uvs[t]),
+            heightmap: Some(h.map),
+            lod: h.lod,
+        });
         for &b in &pattern.bary {
-            let sp = eval(cfg.surface, cfg.displace, &cfg.params, rec, b);
+            let sp = eval_with(cfg.surface, cfg.displace, &cfg.params, rec, b, &inputs);
             vertices.push([
                 sp.position.x,
                 sp.position.y,
@@ -60,6 +75,7 @@ impl StaticVbo {
         cfg: &DrawConfig,
         records: &[ElementRecord],
         pattern: &Pattern,
+        heightmap: Option<&HeightmapInputs>,
     ) -> Result<Self, RenderError> {
         // Check the size before refining: the CPU would hold the same bytes.
         let bytes = records.len() as u64
@@ -78,7 +94,7 @@ impl StaticVbo {
                 remedy: "use a lower level or the pattern driver".into(),
             });
         }
-        let (v, i) = refine_on_cpu(cfg, records, pattern);
+        let (v, i) = refine_on_cpu(cfg, records, pattern, heightmap);
         let vertices = Buffer::new_with_data(
             ctx,
             pool,

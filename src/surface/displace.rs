@@ -5,7 +5,10 @@
 //!   point and the unit normal of the surface's normal field, in the mesh's coordinates (at split
 //!   normals with closed seams, N is that field evaluated with the shared geometry normals:
 //!   [`SurfacePoint::direction`]);
-//! - `noise`: `P′ = P + a·Σ_o noise(2^o f·P)/2^o·N`, Ken Perlin's improved noise ([`super::noise`]).
+//! - `noise`: `P′ = P + a·Σ_o noise(2^o f·P)/2^o·N`, Ken Perlin's improved noise ([`super::noise`]);
+//! - `heightmap`: `P′ = P + a·(h − b)·N`, h in [0, 1] read from a grayscale image at the OBJ's
+//!   texture coordinates ([`super::heightmap`]), b = `--bias`; its derivatives come from the
+//!   filtered map's own differences and the texture coordinates' derivatives.
 //!
 //! Normals: the height `h` has analytic derivatives `h_u = ∇h·dP/du`, `h_v = ∇h·dP/dv`; the
 //! displaced tangents are `dP/du + h_u N`, `dP/dv + h_v N` (N held constant over the sample's
@@ -16,7 +19,7 @@
 //!
 //! Watertight: `P′` depends on P and the direction only, which are bit-identical on shared edges.
 
-use super::{dot3, noise, SurfaceParams, SurfacePoint};
+use super::{dot3, noise, Inputs, SurfaceParams, SurfacePoint};
 use glam::Vec3;
 
 /// The displacement applied after the surface. The discriminant is the `DISPLACE`
@@ -31,25 +34,33 @@ pub enum Displace {
     Sine = 1,
     /// a·Perlin noise(f·P) along the normal, --octaves octaves.
     Noise = 2,
+    /// a·(h − bias) along the normal, h from a grayscale PNG at the mesh's texture coordinates.
+    Heightmap = 3,
 }
 
 impl Displace {
-    pub const ALL: [Displace; 3] = [Displace::None, Displace::Sine, Displace::Noise];
+    pub const ALL: [Displace; 4] = [
+        Displace::None,
+        Displace::Sine,
+        Displace::Noise,
+        Displace::Heightmap,
+    ];
 
     pub fn name(self) -> &'static str {
         match self {
             Displace::None => "none",
             Displace::Sine => "sine",
             Displace::Noise => "noise",
+            Displace::Heightmap => "heightmap",
         }
     }
 }
 
-/// Height `h` at `p` and its gradient with respect to `p`.
+/// Height `h` at `p` and its gradient with respect to `p` (the procedural displacements).
 pub fn height(d: Displace, params: &SurfaceParams, p: Vec3) -> (f32, Vec3) {
     let (a, f) = (params.amplitude, params.frequency);
     match d {
-        Displace::None => (0.0, Vec3::ZERO),
+        Displace::None | Displace::Heightmap => (0.0, Vec3::ZERO),
         Displace::Sine => {
             let r = dot3(p, p).sqrt();
             let h = a * (f * r).sin();
@@ -75,14 +86,37 @@ pub fn height(d: Displace, params: &SurfaceParams, p: Vec3) -> (f32, Vec3) {
     }
 }
 
-pub fn apply(d: Displace, params: &SurfaceParams, sp: SurfacePoint) -> SurfacePoint {
+/// Height and its derivatives by the sample's `u` and `v`.
+fn height_uv(d: Displace, params: &SurfaceParams, sp: &SurfacePoint, inputs: &Inputs) -> [f32; 3] {
+    if d == Displace::Heightmap {
+        let Some(map) = inputs.heightmap else {
+            return [0.0; 3];
+        };
+        let (t, g) = map.sample(sp.uv, inputs.lod);
+        let a = params.amplitude;
+        let [du, dv] = sp.duv;
+        return [
+            a * (t - params.bias),
+            a * (g.x * du.x + g.y * du.y),
+            a * (g.x * dv.x + g.y * dv.y),
+        ];
+    }
+    let (h, grad) = height(d, params, sp.position - params.origin);
+    [h, dot3(grad, sp.dpdu), dot3(grad, sp.dpdv)]
+}
+
+pub fn apply(
+    d: Displace,
+    params: &SurfaceParams,
+    sp: SurfacePoint,
+    inputs: &Inputs,
+) -> SurfacePoint {
     if d == Displace::None {
         return sp;
     }
-    let (h, grad) = height(d, params, sp.position - params.origin);
+    let [h, hu, hv] = height_uv(d, params, &sp, inputs);
     let n = sp.normal;
     let dir = sp.direction;
-    let (hu, hv) = (dot3(grad, sp.dpdu), dot3(grad, sp.dpdv));
     let cross = sp.dpdu.cross(sp.dpdv);
     let area = cross.length();
     let normal = if area > 0.0 {
@@ -98,5 +132,6 @@ pub fn apply(d: Displace, params: &SurfaceParams, sp: SurfacePoint) -> SurfacePo
         direction: dir,
         dpdu: sp.dpdu + dir * hu,
         dpdv: sp.dpdv + dir * hv,
+        ..sp
     }
 }

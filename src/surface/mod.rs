@@ -17,12 +17,14 @@
 
 pub mod displace;
 pub mod flat;
+pub mod heightmap;
 pub mod noise;
 pub mod phong;
 pub mod pn;
 mod record;
 
 pub use displace::Displace;
+pub use heightmap::Heightmap;
 pub use record::{
     build_records, corner_records, oct_decode, oct_encode, split_positions, CornerRecord,
     ElementRecord, RecordKind, RECORD_BYTES, SMOOTH_CORNER,
@@ -92,6 +94,8 @@ pub struct SurfaceParams {
     pub origin: Vec3,
     /// Geometry at split normals (built into the element records, not sent per frame).
     pub seams: Seams,
+    /// The height map displacement's bias b: `P′ = P + a·(h − b)·N`.
+    pub bias: f32,
 }
 
 impl Default for SurfaceParams {
@@ -103,6 +107,7 @@ impl Default for SurfaceParams {
             octaves: 1,
             origin: Vec3::ZERO,
             seams: Seams::Closed,
+            bias: 0.0,
         }
     }
 }
@@ -142,6 +147,9 @@ impl SurfaceParams {
                 "--frequency {} is not a finite number >= 0",
                 self.frequency
             ));
+        }
+        if !self.bias.is_finite() {
+            return Err(format!("--bias {} is not a finite number", self.bias));
         }
         if !(1..=Self::MAX_OCTAVES).contains(&self.octaves) {
             return Err(format!(
@@ -190,6 +198,20 @@ pub struct SurfacePoint {
     /// element as stored).
     pub dpdu: Vec3,
     pub dpdv: Vec3,
+    /// Texture coordinates at the sample (zero when the element has none), and their
+    /// derivatives by `u` and `v`.
+    pub uv: glam::Vec2,
+    pub duv: [glam::Vec2; 2],
+}
+
+/// What the `heightmap` displacement reads besides the record: the element's texture
+/// coordinates (stored corner order), the map, and the pyramid level to read (one per mesh and
+/// refinement level, [`Heightmap::lod_for`]).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Inputs<'a> {
+    pub uv: Option<&'a [[f32; 2]; 3]>,
+    pub heightmap: Option<&'a Heightmap>,
+    pub lod: f32,
 }
 
 /// Corner data of a coarse triangle in canonical order, with the sample's weights.
@@ -283,6 +305,7 @@ pub fn eval_surface(
     params: &SurfaceParams,
     rec: &ElementRecord,
     bary: [f32; 3],
+    inputs: &Inputs,
 ) -> SurfacePoint {
     let c = canonical(&CornerRecord::decode(rec), bary);
     let l = eval_corners(surface, params, &c);
@@ -295,10 +318,25 @@ pub fn eval_surface(
     } else {
         normal_field(surface, &Corners { n: c.g, ..c })
     };
+    // Texture coordinates in canonical order, so both sides of a shared edge (with the same
+    // coordinates at its ends) read the same point of the map.
+    let (uv, duv) = match inputs.uv {
+        Some(t) => {
+            let t = t.map(glam::Vec2::from);
+            let o = c.order;
+            (
+                t[o[0]] * c.w[0] + t[o[1]] * c.w[1] + t[o[2]] * c.w[2],
+                [t[1] - t[0], t[2] - t[0]],
+            )
+        }
+        None => (glam::Vec2::ZERO, [glam::Vec2::ZERO; 2]),
+    };
     SurfacePoint {
         position: l.position,
         normal: l.normal,
         direction,
+        uv,
+        duv,
         dpdu: g[1] - g[0],
         dpdv: g[2] - g[0],
     }
@@ -313,7 +351,20 @@ pub fn eval(
     rec: &ElementRecord,
     bary: [f32; 3],
 ) -> SurfacePoint {
-    displace::apply(displace, params, eval_surface(surface, params, rec, bary))
+    eval_with(surface, displace, params, rec, bary, &Inputs::default())
+}
+
+/// [`eval`] with the height map's inputs.
+pub fn eval_with(
+    surface: Surface,
+    displace: Displace,
+    params: &SurfaceParams,
+    rec: &ElementRecord,
+    bary: [f32; 3],
+    inputs: &Inputs,
+) -> SurfacePoint {
+    let sp = eval_surface(surface, params, rec, bary, inputs);
+    displace::apply(displace, params, sp, inputs)
 }
 
 /// Weights of a tessellator sample `tc = gl_TessCoord` at integer level `n` (tess driver).

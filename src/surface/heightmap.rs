@@ -1,0 +1,326 @@
+//! Height maps for the `heightmap` displacement: a grayscale image as heights in [0, 1] with its
+//! mip pyramid, sampled at texture coordinates with level-aware filtering. Mirror of
+//! `glsl/include/heightmap.glsl`.
+//!
+//! The GPU samples the pyramid by hand from a storage buffer (bilinear within a level, linear
+//! between the two levels around the requested one, coordinates repeating), not through a
+//! sampler: hardware filtering's sub-texel precision differs between devices (Vulkan requires only
+//! 4 bits), and this way the CPU mirror computes the same arithmetic. The level is chosen from the
+//! refinement level (see [`Heightmap::lod_for`]), so coarse refinement reads a correspondingly
+//! blurred map instead of aliasing (the 2005 paper's complaint about unfiltered vertex-texture
+//! reads).
+
+use glam::Vec2;
+use std::path::Path;
+
+/// Largest accepted image side.
+pub const MAX_SIDE: u32 = 8192;
+
+/// Most pyramid levels the GPU layout holds (a 8192² image has 14).
+pub const MAX_LEVELS: usize = 16;
+
+/// One pyramid level: `w` × `h` heights, row-major, top row first.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Level {
+    pub w: u32,
+    pub h: u32,
+    pub texels: Vec<f32>,
+}
+
+/// A height map and its mip pyramid (level 0 first, each half the size of the one before, down
+/// to 1 × 1; 2 × 2 box filter, the last row or column of an odd side folded into its neighbour).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Heightmap {
+    /// Where it came from, for messages (a path, or "generated").
+    pub source: String,
+    pub levels: Vec<Level>,
+}
+
+impl Heightmap {
+    /// From heights (row-major `w` × `h`, each in [0, 1]).
+    pub fn from_heights(source: &str, w: u32, h: u32, texels: Vec<f32>) -> Self {
+        assert_eq!(texels.len(), (w * h) as usize);
+        let mut levels = vec![Level { w, h, texels }];
+        while levels.len() < MAX_LEVELS {
+            let l = levels.last().unwrap();
+            if l.w == 1 && l.h == 1 {
+                break;
+            }
+            let (nw, nh) = ((l.w / 2).max(1), (l.h / 2).max(1));
+            let mut t = Vec::with_capacity((nw * nh) as usize);
+            for y in 0..nh {
+                for x in 0..nw {
+                    // The source texels this one covers (3 on an odd side's last one).
+                    let xs = 2 * x..(2 * x + 2 + (x + 1 == nw && l.w % 2 == 1) as u32).min(l.w);
+                    let ys = 2 * y..(2 * y + 2 + (y + 1 == nh && l.h % 2 == 1) as u32).min(l.h);
+                    let (mut sum, mut n) = (0.0f64, 0u32);
+                    for sy in ys.clone() {
+                        for sx in xs.clone() {
+                            sum += l.texels[(sy * l.w + sx) as usize] as f64;
+                            n += 1;
+                        }
+                    }
+                    t.push((sum / n as f64) as f32);
+                }
+            }
+            levels.push(Level {
+                w: nw,
+                h: nh,
+                texels: t,
+            });
+        }
+        Self {
+            source: source.to_string(),
+            levels,
+        }
+    }
+
+    /// The map used when no file is given: 256 × 256 smooth bumps, 8 × 8 of them over the unit
+    /// square, periodic (so repeating coordinates do not show a seam).
+    pub fn generated() -> Self {
+        let n = 256u32;
+        let mut t = Vec::with_capacity((n * n) as usize);
+        for y in 0..n {
+            for x in 0..n {
+                let (u, v) = (
+                    (x as f64 + 0.5) / n as f64 * std::f64::consts::TAU,
+                    (y as f64 + 0.5) / n as f64 * std::f64::consts::TAU,
+                );
+                let h =
+                    0.5 + 0.25 * ((8.0 * u).sin() * (8.0 * v).sin() + (3.0 * u + 2.0 * v).cos());
+                t.push(h.clamp(0.0, 1.0) as f32);
+            }
+        }
+        Self::from_heights("the generated default height map", n, n, t)
+    }
+
+    /// Reads a grayscale PNG (8 or 16 bits per sample, with or without alpha, which is ignored):
+    /// one sentence naming the file on any problem.
+    pub fn load_png(path: &Path) -> Result<Self, String> {
+        let shown = path.display();
+        let file = std::fs::File::open(path)
+            .map_err(|e| format!("cannot read height map '{shown}': {e}"))?;
+        let meta = file
+            .metadata()
+            .map_err(|e| format!("cannot read height map '{shown}': {e}"))?;
+        if !meta.is_file() {
+            return Err(format!("height map '{shown}' is not a regular file"));
+        }
+        let mut decoder = png::Decoder::new(std::io::BufReader::new(file));
+        decoder.set_transformations(png::Transformations::IDENTITY);
+        let mut reader = decoder
+            .read_info()
+            .map_err(|e| format!("height map '{shown}' is not a readable PNG image: {e}"))?;
+        let info = reader.info();
+        let (w, h) = (info.width, info.height);
+        if w == 0 || h == 0 || w > MAX_SIDE || h > MAX_SIDE {
+            return Err(format!(
+                "height map '{shown}' is {w} x {h} pixels: each side must be within 1 to {MAX_SIDE}"
+            ));
+        }
+        let (color, depth) = (info.color_type, info.bit_depth);
+        let channels = match color {
+            png::ColorType::Grayscale => 1,
+            png::ColorType::GrayscaleAlpha => 2,
+            other => {
+                return Err(format!(
+                    "height map '{shown}' is a {other:?} PNG: a height map must be grayscale (8 or 16 bits)"
+                ))
+            }
+        };
+        if !matches!(depth, png::BitDepth::Eight | png::BitDepth::Sixteen) {
+            return Err(format!(
+                "height map '{shown}' has {depth:?} samples: a height map must have 8 or 16 bits per sample"
+            ));
+        }
+        let mut buf = vec![0u8; reader.output_buffer_size()];
+        let frame = reader
+            .next_frame(&mut buf)
+            .map_err(|e| format!("height map '{shown}' is not a readable PNG image: {e}"))?;
+        let bytes = &buf[..frame.buffer_size()];
+        let row = frame.line_size;
+        let mut t = Vec::with_capacity((w * h) as usize);
+        for y in 0..h as usize {
+            let line = &bytes[y * row..];
+            for x in 0..w as usize {
+                let v = if depth == png::BitDepth::Eight {
+                    line[x * channels] as f32 / 255.0
+                } else {
+                    let i = 2 * x * channels;
+                    u16::from_be_bytes([line[i], line[i + 1]]) as f32 / 65535.0
+                };
+                t.push(v);
+            }
+        }
+        Ok(Self::from_heights(&shown.to_string(), w, h, t))
+    }
+
+    /// The pyramid level to read when each refined triangle spans `uv_extent` of texture space
+    /// along its edges (the mesh's mean coarse-triangle UV edge length over `level` segments):
+    /// `log2` of that footprint in level-0 texels, at least 0, at most the last level. One value
+    /// for the whole mesh, so both sides of every shared edge read the same level.
+    pub fn lod_for(&self, uv_extent: f32, level: u32) -> f32 {
+        let side = self.levels[0].w.max(self.levels[0].h) as f32;
+        let texels = uv_extent * side / level.max(1) as f32;
+        let lod = if texels > 1.0 { texels.log2() } else { 0.0 };
+        lod.min((self.levels.len() - 1) as f32)
+    }
+
+    /// The buffer the GPU samples (`Heightmap` block in heightmap.glsl): `uvec4` header (level
+    /// count), [`MAX_LEVELS`] `uvec4` (offset in texels, width, height, 0), then every level's
+    /// heights as `f32` bits.
+    pub fn to_gpu(&self) -> Vec<u32> {
+        let mut out = vec![0u32; 4 + 4 * MAX_LEVELS];
+        out[0] = self.levels.len() as u32;
+        let mut offset = 0u32;
+        for (i, l) in self.levels.iter().enumerate() {
+            out[4 + 4 * i] = offset;
+            out[5 + 4 * i] = l.w;
+            out[6 + 4 * i] = l.h;
+            offset += l.w * l.h;
+        }
+        for l in &self.levels {
+            out.extend(l.texels.iter().map(|t| t.to_bits()));
+        }
+        out
+    }
+
+    /// Bilinear sample of level `l` at `uv` (repeating) and its derivative by `uv`.
+    /// Mirror of `heightmap_bilinear`.
+    fn bilinear(&self, l: usize, uv: Vec2) -> (f32, Vec2) {
+        let lv = &self.levels[l];
+        let (w, h) = (lv.w as f32, lv.h as f32);
+        let x = uv.x * w - 0.5;
+        let y = uv.y * h - 0.5;
+        let (x0, y0) = (x.floor(), y.floor());
+        let (fx, fy) = (x - x0, y - y0);
+        let wrap = |i: f32, n: u32| (i as i64).rem_euclid(n as i64) as u32;
+        let (ix0, iy0) = (wrap(x0, lv.w), wrap(y0, lv.h));
+        let (ix1, iy1) = ((ix0 + 1) % lv.w, (iy0 + 1) % lv.h);
+        let t = |ix: u32, iy: u32| lv.texels[(iy * lv.w + ix) as usize];
+        let (t00, t10, t01, t11) = (t(ix0, iy0), t(ix1, iy0), t(ix0, iy1), t(ix1, iy1));
+        let top = t00 + fx * (t10 - t00);
+        let bottom = t01 + fx * (t11 - t01);
+        let value = top + fy * (bottom - top);
+        let dx = (t10 - t00) + fy * ((t11 - t01) - (t10 - t00));
+        let dy = bottom - top;
+        (value, Vec2::new(dx * w, dy * h))
+    }
+
+    /// Height at `uv` (repeating) read at pyramid level `lod` (linear between the two levels
+    /// around it), and its derivative by `uv`. Mirror of `heightmap_sample` in heightmap.glsl.
+    pub fn sample(&self, uv: Vec2, lod: f32) -> (f32, Vec2) {
+        let last = self.levels.len() - 1;
+        let l0 = (lod.max(0.0).floor() as usize).min(last);
+        let l1 = (l0 + 1).min(last);
+        let f = (lod.max(0.0) - l0 as f32).clamp(0.0, 1.0);
+        let (a, da) = self.bilinear(l0, uv);
+        if l1 == l0 || f == 0.0 {
+            return (a, da);
+        }
+        let (b, db) = self.bilinear(l1, uv);
+        (a + f * (b - a), da + (db - da) * f)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pyramid_halves_to_one_texel_and_keeps_the_mean() {
+        let (w, h) = (7u32, 4u32);
+        let t: Vec<f32> = (0..w * h).map(|i| (i % 5) as f32 / 4.0).collect();
+        let mean = t.iter().map(|&x| x as f64).sum::<f64>() / t.len() as f64;
+        let m = Heightmap::from_heights("t", w, h, t);
+        let sizes: Vec<(u32, u32)> = m.levels.iter().map(|l| (l.w, l.h)).collect();
+        assert_eq!(sizes, [(7, 4), (3, 2), (1, 1)]);
+        assert!((m.levels[2].texels[0] as f64 - mean).abs() < 0.05);
+    }
+
+    #[test]
+    fn texel_centres_read_their_texel_and_the_gradient_is_the_derivative() {
+        let m = Heightmap::generated();
+        let l = &m.levels[0];
+        for (x, y) in [(3u32, 5u32), (100, 17), (255, 255)] {
+            let uv = Vec2::new((x as f32 + 0.5) / l.w as f32, (y as f32 + 0.5) / l.h as f32);
+            assert!((m.sample(uv, 0.0).0 - l.texels[(y * l.w + x) as usize]).abs() < 1e-6);
+        }
+        // A small step: the filtered map's derivative jumps at texel boundaries.
+        let e = 2e-5;
+        for uv in [Vec2::new(0.3, 0.7), Vec2::new(0.91, 0.12)] {
+            for lod in [0.0, 1.5] {
+                let (_, g) = m.sample(uv, lod);
+                let fx = (m.sample(uv + Vec2::X * e, lod).0 - m.sample(uv - Vec2::X * e, lod).0)
+                    / (2.0 * e);
+                let fy = (m.sample(uv + Vec2::Y * e, lod).0 - m.sample(uv - Vec2::Y * e, lod).0)
+                    / (2.0 * e);
+                assert!(
+                    (fx - g.x).abs() < 0.05 * (1.0 + g.x.abs()),
+                    "{fx} vs {}",
+                    g.x
+                );
+                assert!(
+                    (fy - g.y).abs() < 0.05 * (1.0 + g.y.abs()),
+                    "{fy} vs {}",
+                    g.y
+                );
+            }
+        }
+        // Coordinates repeat.
+        assert_eq!(
+            m.sample(Vec2::new(0.25, 0.5), 0.0).0,
+            m.sample(Vec2::new(1.25, -0.5), 0.0).0
+        );
+    }
+
+    #[test]
+    fn lod_follows_the_refinement_level() {
+        let m = Heightmap::generated();
+        // A coarse triangle spanning the whole map: 256 texels per edge.
+        assert_eq!(m.lod_for(1.0, 256), 0.0);
+        assert_eq!(m.lod_for(1.0, 16), 4.0);
+        assert_eq!(m.lod_for(1.0, 1), 8.0);
+    }
+
+    #[test]
+    fn png_errors_name_the_file() {
+        let dir = std::env::temp_dir().join("meshrefine-heightmap-test");
+        std::fs::create_dir_all(&dir).unwrap();
+        let missing = dir.join("missing.png");
+        assert!(Heightmap::load_png(&missing)
+            .unwrap_err()
+            .contains("missing.png"));
+        let text = dir.join("text.png");
+        std::fs::write(&text, "not a png").unwrap();
+        assert!(Heightmap::load_png(&text)
+            .unwrap_err()
+            .contains("is not a readable PNG image"));
+        // An RGB image is refused; a 16-bit grayscale one loads.
+        let write = |name: &str, color, depth, data: &[u8]| {
+            let p = dir.join(name);
+            let mut e = png::Encoder::new(std::fs::File::create(&p).unwrap(), 2, 1);
+            e.set_color(color);
+            e.set_depth(depth);
+            e.write_header().unwrap().write_image_data(data).unwrap();
+            p
+        };
+        let rgb = write(
+            "rgb.png",
+            png::ColorType::Rgb,
+            png::BitDepth::Eight,
+            &[0; 6],
+        );
+        assert!(Heightmap::load_png(&rgb)
+            .unwrap_err()
+            .contains("must be grayscale"));
+        let g16 = write(
+            "g16.png",
+            png::ColorType::Grayscale,
+            png::BitDepth::Sixteen,
+            &[0, 0, 0xff, 0xff],
+        );
+        let m = Heightmap::load_png(&g16).unwrap();
+        assert_eq!(m.levels[0].texels, [0.0, 1.0]);
+    }
+}
