@@ -10,7 +10,9 @@
 
 layout(constant_id = SPEC_SUBMIT) const uint SUBMIT = 2; // 0 push, 1 ubo, 2 instanced
 
-layout(set = SET_MESH, binding = BINDING_TRI_UBO, std140) uniform RecordUbo { ElementRecord rec; } rec_ubo;
+// `ubo` submission: a window of UBO_WINDOW records starting at a multiple of UBO_WINDOW, placed by
+// the dynamic offset (src/render/pattern.rs); the draw's record is selected in it by index.
+layout(set = SET_MESH, binding = BINDING_TRI_UBO, std140) uniform RecordUbo { ElementRecord recs[UBO_WINDOW]; } rec_ubo;
 
 layout(location = 0) in vec3 in_bary; // (w, u, v)
 
@@ -22,7 +24,7 @@ void main() {
     if (SUBMIT == 0) {
         rec = pc.rec;
     } else if (SUBMIT == 1) {
-        rec = rec_ubo.rec;
+        rec = rec_ubo.recs[element % uint(UBO_WINDOW)];
     } else {
         rec = records[local];
     }

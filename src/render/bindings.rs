@@ -14,8 +14,13 @@ pub const SET_MESH: u32 = 1;
 /// Set 1, binding 0: `ElementRecord[]`, storage buffer (instanced pattern, tess, and the
 /// fragment stage's per-fragment normal fields).
 pub const BINDING_TRIS: u32 = 0;
-/// Set 1, binding 1: one `ElementRecord`, dynamic uniform buffer (`ubo` submission).
+/// Set 1, binding 1: a window of [`UBO_WINDOW`] `ElementRecord`s, dynamic uniform buffer (`ubo`
+/// submission).
 pub const BINDING_TRI_UBO: u32 = 1;
+/// Records per `ubo` window: 144 × 112 bytes fit the 16 KiB every device's maxUniformBufferRange
+/// offers, and window offsets (multiples of 144 × 112) meet any minUniformBufferOffsetAlignment
+/// up to the 256 bytes Vulkan allows.
+pub const UBO_WINDOW: u32 = 144;
 
 /// Set 1, binding 2: each element's texture coordinates, three `vec2` padded to 32 bytes
 /// (`heightmap` displacement), chunked like the records.
@@ -45,6 +50,7 @@ pub const GLSL_DEFINES: &[(&str, u32)] = &[
     ("SET_MESH", SET_MESH),
     ("BINDING_TRIS", BINDING_TRIS),
     ("BINDING_TRI_UBO", BINDING_TRI_UBO),
+    ("UBO_WINDOW", UBO_WINDOW),
     ("BINDING_UVS", BINDING_UVS),
     ("BINDING_HEIGHTMAP", BINDING_HEIGHTMAP),
     ("SET_CAPTURE", SET_CAPTURE),

@@ -5,11 +5,11 @@
 //! - `ubo`: for each element, a dynamic uniform-buffer offset and the draw words, then a draw;
 //! - `instanced`: one instanced draw, records in a storage buffer indexed by gl_InstanceIndex.
 
-use super::bindings::SET_MESH;
+use super::bindings::{SET_MESH, UBO_WINDOW};
 use super::scene::GpuPattern;
 use super::{DrawWords, GpuMesh, PushBlock, Renderer, Submit, PUSH_DRAW_OFFSET, PUSH_STAGES};
 use crate::gpu::Cmd;
-use crate::surface::ElementRecord;
+use crate::surface::{ElementRecord, RECORD_BYTES};
 
 /// Record the draws of the elements `range` of `mesh` with `pattern` in submission mode
 /// `submit`, chunk by chunk ([`GpuMesh::chunks`]). `records` is the CPU copy of the element
@@ -51,10 +51,17 @@ pub fn cmd_draw(
                 }
             }
             Submit::Ubo => {
+                // The window of UBO_WINDOW records holding `e` is bound when `e` enters it;
+                // the shader picks `e % UBO_WINDOW` in it.
+                let mut window = None;
                 for e in elements {
-                    let offset = (e as u64 * mesh.ubo_stride) as u32;
+                    let w = e / UBO_WINDOW;
+                    if window != Some(w) {
+                        let offset = (w as u64 * UBO_WINDOW as u64 * RECORD_BYTES as u64) as u32;
+                        cmd.bind_descriptor_set(r.layout.raw, SET_MESH, c.set, &[offset]);
+                        window = Some(w);
+                    }
                     push_draw(draw(c.base, e - c.base));
-                    cmd.bind_descriptor_set(r.layout.raw, SET_MESH, c.set, &[offset]);
                     cmd.draw_indexed(pattern.index_count, 1, 0, 0, 0);
                 }
             }

@@ -94,11 +94,10 @@ impl GpuPattern {
 /// GPU data of one mesh.
 pub struct GpuMesh {
     pub element_count: u32,
-    /// `ElementRecord[]`, storage buffer (instanced pattern, tess, fragment normal fields).
+    /// `ElementRecord[]`, bound as a storage buffer (instanced pattern, tess, fragment normal
+    /// fields) and, in windows of [`UBO_WINDOW`] records, as a dynamic uniform buffer (`ubo`
+    /// submission); padded to whole windows.
     pub records: Buffer,
-    /// One `ElementRecord` every `ubo_stride` bytes, dynamic uniform buffer (`ubo` submission).
-    pub records_ubo: Buffer,
-    pub ubo_stride: u64,
     /// Each element's texture coordinates (`heightmap`), and the height map's pyramid.
     pub uvs: Buffer,
     pub heightmap: Buffer,
@@ -163,19 +162,15 @@ impl GpuMesh {
         let range = max_chunk.map_or(range, |c| range.min(c as u64 * rec_size));
         let chunk = chunk_elements(range, align, &[rec_size, UV_BYTES]);
         let chunks = n.div_ceil(chunk as u64).max(1) as u32;
-        let align = limits.min_uniform_buffer_offset_alignment.max(16);
-        let ubo_stride = rec_size.div_ceil(align) * align;
         let mut records = Buffer::new(
             ctx,
-            BufferDesc::new_upload(n * rec_size, vk::BufferUsageFlags::STORAGE_BUFFER),
-            "coarse records (storage)",
+            BufferDesc::new_upload(
+                n.div_ceil(UBO_WINDOW as u64).max(1) * UBO_WINDOW as u64 * rec_size,
+                vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::UNIFORM_BUFFER,
+            ),
+            "element records",
         )?;
-        let mut records_ubo = Buffer::new(
-            ctx,
-            BufferDesc::new_upload(n * ubo_stride, vk::BufferUsageFlags::UNIFORM_BUFFER),
-            "coarse records (uniform)",
-        )?;
-        write_records(&mut records, &mut records_ubo, ubo_stride, &data.records);
+        records.write_pod(0, &data.records);
         // Texture coordinates (zeros without them: the binding is always valid).
         let uv_words: Vec<[f32; 8]> = match &data.uvs {
             Some(uvs) => uvs
@@ -238,8 +233,8 @@ impl GpuMesh {
                 set,
                 BINDING_TRI_UBO,
                 vk::DescriptorType::UNIFORM_BUFFER_DYNAMIC,
-                records_ubo.raw,
-                rec_size,
+                records.raw,
+                UBO_WINDOW as u64 * rec_size,
             );
             let uv_first = if data.uvs.is_some() { first } else { 0 };
             pool.write_buffer_at(
@@ -262,8 +257,6 @@ impl GpuMesh {
         Ok(Self {
             element_count: n as u32,
             records,
-            records_ubo,
-            ubo_stride,
             uvs,
             heightmap: hm,
             patterns,
@@ -300,19 +293,7 @@ impl GpuMesh {
     /// Upload new coarse records (animation). The caller makes sure no pending work reads them.
     pub fn update_records(&mut self, records: &[ElementRecord]) {
         assert_eq!(records.len() as u32, self.element_count);
-        write_records(
-            &mut self.records,
-            &mut self.records_ubo,
-            self.ubo_stride,
-            records,
-        );
-    }
-}
-
-fn write_records(ssbo: &mut Buffer, ubo: &mut Buffer, stride: u64, records: &[ElementRecord]) {
-    ssbo.write_pod(0, records);
-    for (i, r) in records.iter().enumerate() {
-        ubo.write_pod(i * stride as usize, std::slice::from_ref(r));
+        self.records.write_pod(0, records);
     }
 }
 
