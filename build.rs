@@ -4,6 +4,8 @@
 //!   shared code (`#include "x.glsl"` resolves next to the including file, then in `glsl/include`);
 //! - warnings are errors; optimisation for performance in every profile (lavapipe compiles unoptimized SPIR-V slowly);
 //! - binding numbers come from `src/render/bindings.rs` as macro definitions;
+//! - a source that mentions `ELEMENT_ATTRIBUTES` is also compiled with it defined (`+elements`:
+//!   the static driver's vertices carry their element and sample);
 //! - a source that mentions `CAPTURE` is also compiled with `CAPTURE` defined (the capture
 //!   variant writes its evaluated vertices to a storage buffer), one that mentions `XFB` with
 //!   `XFB` defined (transform-feedback decorations on its outputs);
@@ -81,6 +83,11 @@ fn main() {
                     .then_some(("+capture", Some("CAPTURE"))),
             )
             .chain(source.contains("XFB").then_some(("+xfb", Some("XFB"))))
+            .chain(
+                source
+                    .contains("ELEMENT_ATTRIBUTES")
+                    .then_some(("+elements", Some("ELEMENT_ATTRIBUTES"))),
+            )
             .collect();
         for &(suffix, define) in &variants {
             let mut opts = shaderc::CompileOptions::new().unwrap();

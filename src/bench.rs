@@ -136,10 +136,11 @@ pub fn grid_mesh(triangles: u32) -> Mesh {
     mesh
 }
 
-fn footprint(driver: Driver, level: u32, triangles: u64) -> (u64, u64, u64) {
-    let bytes = driver.geometry_bytes(level, triangles);
+fn footprint(cfg: &DrawConfig, triangles: u64) -> (u64, u64, u64) {
+    let bytes = cfg.geometry_bytes(triangles);
+    let level = cfg.level;
     let (pv, pi) = (vertex_count(level) as u64, index_count(level) as u64);
-    match driver {
+    match cfg.driver {
         Driver::Static => (triangles * pv, triangles * pi, bytes),
         Driver::Pattern => (pv, pi, bytes),
         Driver::Tess => (0, 0, bytes),
@@ -176,7 +177,7 @@ pub fn run(
                         DrawConfig::new(driver, submit, level).with_surface(surface, displace);
                     cfg.params = params;
                     let (stored_vertices, stored_indices, geometry_bytes) =
-                        footprint(driver, level, t as u64);
+                        footprint(&cfg, t as u64);
                     let mut row = Row {
                         mesh: mesh.name.clone(),
                         coarse_triangles: t,

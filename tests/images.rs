@@ -17,6 +17,7 @@ use common::{output_dir, with_gpu};
 use meshrefine::gpu::Readback;
 use meshrefine::mesh::default_mesh;
 use meshrefine::render::{Camera, DrawConfig, Driver, Submit};
+use meshrefine::surface::{Displace, Surface};
 
 struct Diff {
     over_one: usize,
@@ -86,35 +87,44 @@ fn drivers_render_the_same_image() {
         let mut scene = h.scene(default_mesh(), level).unwrap();
         let (c, r) = scene.bounding_sphere();
         let camera = Camera::framing(c, r);
-        let mut render = |driver, submit| {
-            h.render(&mut scene, &DrawConfig::new(driver, submit, level), &camera)
-                .unwrap()
-        };
-        let instanced = render(Driver::Pattern, Submit::Instanced);
-        let push = render(Driver::Pattern, Submit::Push);
-        let ubo = render(Driver::Pattern, Submit::Ubo);
-        let stat = render(Driver::Static, Submit::Instanced);
-        let tess = render(Driver::Tess, Submit::Instanced);
-        // The mesh covers a good part of the image (not an empty or black frame).
-        let background = instanced.rgba[..4].to_vec();
-        let covered = instanced
-            .rgba
-            .chunks_exact(4)
-            .filter(|p| *p != &background[..])
-            .count();
-        assert!(
-            covered > (w * h_px / 10) as usize,
-            "only {covered} pixels show the mesh"
-        );
-        assert_eq!(push.rgba, instanced.rgba, "push and instanced differ");
-        assert_eq!(ubo.rgba, instanced.rgba, "ubo and instanced differ");
-        check("static-vs-pattern", &instanced, &stat, 0);
-        check(
-            "tess-vs-pattern",
-            &instanced,
-            &tess,
-            (w * h_px / 200) as usize,
-        );
+        // Every surface; pn's normal field is evaluated per fragment in every driver (static
+        // through its vertices' element and sample attributes).
+        for surface in Surface::ALL {
+            let mut render = |driver, submit| {
+                let cfg =
+                    DrawConfig::new(driver, submit, level).with_surface(surface, Displace::None);
+                h.render(&mut scene, &cfg, &camera).unwrap()
+            };
+            let instanced = render(Driver::Pattern, Submit::Instanced);
+            let push = render(Driver::Pattern, Submit::Push);
+            let ubo = render(Driver::Pattern, Submit::Ubo);
+            let stat = render(Driver::Static, Submit::Instanced);
+            let tess = render(Driver::Tess, Submit::Instanced);
+            // The mesh covers a good part of the image (not an empty or black frame).
+            let background = instanced.rgba[..4].to_vec();
+            let covered = instanced
+                .rgba
+                .chunks_exact(4)
+                .filter(|p| *p != &background[..])
+                .count();
+            assert!(
+                covered > (w * h_px / 10) as usize,
+                "only {covered} pixels show the mesh"
+            );
+            let name = surface.name();
+            assert_eq!(
+                push.rgba, instanced.rgba,
+                "{name}: push and instanced differ"
+            );
+            assert_eq!(ubo.rgba, instanced.rgba, "{name}: ubo and instanced differ");
+            check(&format!("{name}-static-vs-pattern"), &instanced, &stat, 0);
+            check(
+                &format!("{name}-tess-vs-pattern"),
+                &instanced,
+                &tess,
+                (w * h_px / 200) as usize,
+            );
+        }
     });
 }
 

@@ -548,7 +548,7 @@ impl State {
             drawn: d,
             coarse,
             refined: coarse * d.refined_per_coarse() as u64,
-            geometry_bytes: self.scene.geometry_bytes(d.driver, d.level),
+            geometry_bytes: d.geometry_bytes(self.scene.gpu.element_count as u64),
             has_texcoords: self.scene.data.uvs.is_some(),
         };
         self.ui.run(&self.window, &mut self.controls, &info)
@@ -563,7 +563,7 @@ impl State {
         self.fps = (self.frames - n0) as f64 / dt;
         self.fps_window = (Instant::now(), self.frames);
         let coarse = self.scene.gpu.element_count as u64;
-        let bytes = self.scene.geometry_bytes(cfg.driver, cfg.level);
+        let bytes = cfg.geometry_bytes(self.scene.gpu.element_count as u64);
         let c = &self.controls;
         self.window.set_title(&format!(
             "meshrefine | {} level {}{}{}{} | {:.0} fps | GPU {:.2} ms | {} -> {} triangles | {:.2} MB geometry | max level {}",

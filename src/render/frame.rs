@@ -2,7 +2,7 @@
 //! Shared by headless rendering, capture, benchmarks and the window; the window adds its overlay
 //! panel through a hook recorded last in the same rendering instance.
 
-use super::bindings::{SET_CAPTURE, SET_FRAME, SET_MESH};
+use super::bindings::{SET_CAPTURE, SET_FRAME};
 use super::static_vbo::StaticVbo;
 use super::{pattern, static_vbo, tess, Capture, DrawConfig, Driver, GpuMesh, Renderer};
 use crate::gpu::{vk, Buffer, Cmd, QueryPools};
@@ -113,8 +113,7 @@ fn cmd_draw_driver(cmd: &Cmd<'_>, r: &Renderer, work: &FrameWork<'_>) {
             let vbo = work
                 .static_vbo
                 .expect("static driver needs its vertex buffer");
-            cmd.bind_descriptor_set(r.layout.raw, SET_MESH, work.mesh.sets[0], &[0]);
-            static_vbo::cmd_draw(cmd, r, vbo);
+            static_vbo::cmd_draw(cmd, r, work.mesh, vbo, work.elements.clone());
         }
         Driver::Pattern => {
             let p = work

@@ -175,12 +175,24 @@ impl DrawConfig {
         self.driver.refined_per_element(self.level)
     }
 
-    /// Whether the fragment stage evaluates the surface's normal field: the surface has one, no
-    /// displacement perturbs it, and the driver hands the sample over (static stores normals).
+    /// Whether the fragment stage evaluates the surface's normal field: the surface has one and
+    /// no displacement perturbs it (every driver hands the sample over; `static` then stores each
+    /// refined vertex's element and sample beside it).
     pub fn fragment_normal_field(&self) -> bool {
-        self.surface.fragment_normal_field()
-            && self.displace == Displace::None
-            && self.driver != Driver::Static
+        self.surface.fragment_normal_field() && self.displace == Displace::None
+    }
+
+    /// GPU bytes of geometry for `elements` elements ([`Driver::geometry_bytes`], plus the
+    /// static buffer's element attributes when the normal field is evaluated per fragment).
+    pub fn geometry_bytes(&self, elements: u64) -> u64 {
+        let extra = if self.driver == Driver::Static && self.fragment_normal_field() {
+            elements
+                * crate::pattern::vertex_count(self.level) as u64
+                * std::mem::size_of::<static_vbo::ElementVertex>() as u64
+        } else {
+            0
+        };
+        self.driver.geometry_bytes(self.level, elements) + extra
     }
 }
 

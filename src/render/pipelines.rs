@@ -256,16 +256,26 @@ impl Renderer {
         };
         match key.driver {
             Driver::Static => {
-                desc.stages = vec![
-                    (vk::ShaderStageFlags::VERTEX, "static/static.vert".into()),
-                    frag,
-                ];
+                let vert = if key.fragment_field {
+                    "static/static.vert+elements"
+                } else {
+                    "static/static.vert"
+                };
+                desc.stages = vec![(vk::ShaderStageFlags::VERTEX, vert.into()), frag];
                 // position + normal, 24 bytes per vertex
                 desc.vertex_bindings = vec![(0, 24, false)];
                 desc.vertex_attributes = vec![
                     (0, 0, vk::Format::R32G32B32_SFLOAT, 0),
                     (1, 0, vk::Format::R32G32B32_SFLOAT, 12),
                 ];
+                if key.fragment_field {
+                    // (w, u, v) + element, 16 bytes per vertex (static_vbo::ElementVertex)
+                    desc.vertex_bindings.push((1, 16, false));
+                    desc.vertex_attributes.extend([
+                        (2, 1, vk::Format::R32G32B32_SFLOAT, 0),
+                        (3, 1, vk::Format::R32_UINT, 12),
+                    ]);
+                }
             }
             Driver::Pattern => {
                 desc.stages = vec![

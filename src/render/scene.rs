@@ -515,9 +515,4 @@ impl Scene {
         let c = (lo + hi) * 0.5;
         (c, ((hi - lo) * 0.5).length().max(1e-6))
     }
-
-    /// GPU bytes of refined geometry each driver holds at `level` for this mesh.
-    pub fn geometry_bytes(&self, driver: super::Driver, level: u32) -> u64 {
-        driver.geometry_bytes(level, self.data.records.len() as u64)
-    }
 }

@@ -3,7 +3,8 @@
 //! Fig. 7). Its GPU footprint grows with (coarse triangles x pattern size); an animated mesh must
 //! be refined and uploaded again every frame.
 
-use super::{DrawConfig, RenderError, Renderer, PUSH_DRAW_OFFSET, PUSH_STAGES};
+use super::bindings::SET_MESH;
+use super::{DrawConfig, GpuMesh, RenderError, Renderer, PUSH_DRAW_OFFSET, PUSH_STAGES};
 use crate::gpu::{vk, Buffer, Cmd, CommandPool, Context};
 use crate::pattern::Pattern;
 use crate::surface::{eval_with, ElementRecord, Heightmap, Inputs};
@@ -20,6 +21,9 @@ use std::sync::Arc;
 
 /// Refined vertex: position, normal.
 pub type StaticVertex = [f32; 6];
+
+/// A refined vertex's sample, for the per-fragment normal field: `(w, u, v)` bits and element.
+pub type ElementVertex = [u32; 4];
 
 /// The whole mesh refined on the CPU: vertices (pattern order, one block per coarse triangle)
 /// and the pattern's triangle list offset per triangle (the same vertex-cache order as the
@@ -62,10 +66,14 @@ pub struct StaticVbo {
     pub cfg: DrawConfig,
     pub level: u32,
     pub vertices: Buffer,
+    /// Each vertex's element and sample ([`ElementVertex`]), when the normal field is evaluated
+    /// per fragment.
+    pub elements: Option<Buffer>,
     pub indices: Buffer,
     pub index_count: u32,
     pub vertex_count: u32,
     pattern_vertex_count: u32,
+    pattern_index_count: u32,
 }
 
 impl StaticVbo {
@@ -109,10 +117,31 @@ impl StaticVbo {
             &i,
             "static triangles",
         )?;
+        let elements = if cfg.fragment_normal_field() {
+            let e: Vec<ElementVertex> = (0..records.len() as u32)
+                .flat_map(|t| {
+                    pattern
+                        .bary
+                        .iter()
+                        .map(move |b| [b[0].to_bits(), b[1].to_bits(), b[2].to_bits(), t])
+                })
+                .collect();
+            Some(Buffer::new_with_data(
+                ctx,
+                pool,
+                vk::BufferUsageFlags::VERTEX_BUFFER,
+                &e,
+                "static vertex samples",
+            )?)
+        } else {
+            None
+        };
         Ok(Self {
             cfg: *cfg,
             level: pattern.level,
             vertices,
+            elements,
+            pattern_index_count: pattern.indices.len() as u32,
             indices,
             index_count: i.len() as u32,
             vertex_count: v.len() as u32,
@@ -121,16 +150,31 @@ impl StaticVbo {
     }
 }
 
-/// Record the static driver's draw (one indexed draw of the whole refined mesh).
-pub fn cmd_draw(cmd: &Cmd<'_>, r: &Renderer, vbo: &StaticVbo) {
-    let draw = [vbo.level, 0, vbo.pattern_vertex_count, 0];
-    cmd.push_constants(
-        r.layout.raw,
-        PUSH_STAGES,
-        PUSH_DRAW_OFFSET,
-        bytemuck::cast_slice(&draw),
-    );
+/// Record the static driver's draws of the elements `range`: one indexed draw per chunk of
+/// records ([`GpuMesh::chunks`]; the fragment stage reads records of the bound chunk), a single
+/// draw for every mesh that fits one.
+pub fn cmd_draw(
+    cmd: &Cmd<'_>,
+    r: &Renderer,
+    mesh: &GpuMesh,
+    vbo: &StaticVbo,
+    range: std::ops::Range<u32>,
+) {
     cmd.bind_vertex_buffer(0, &vbo.vertices);
+    if let Some(e) = &vbo.elements {
+        cmd.bind_vertex_buffer(1, e);
+    }
     cmd.bind_index_buffer_u32(&vbo.indices);
-    cmd.draw_indexed(vbo.index_count, 1, 0, 0, 0);
+    for c in mesh.chunks(range) {
+        cmd.bind_descriptor_set(r.layout.raw, SET_MESH, c.set, &[0]);
+        let draw = [vbo.level, c.base, vbo.pattern_vertex_count, 0];
+        cmd.push_constants(
+            r.layout.raw,
+            PUSH_STAGES,
+            PUSH_DRAW_OFFSET,
+            bytemuck::cast_slice(&draw),
+        );
+        let per = vbo.pattern_index_count;
+        cmd.draw_indexed(c.count * per, 1, c.first * per, 0, 0);
+    }
 }
