@@ -7,7 +7,9 @@
 //!   normal's last bit may differ (CPU vs GPU normalize), which must not move any pixel by more
 //!   than 1/255.
 //! - `tess` vs `pattern`: the tessellator triangulates differently, so rasterization differs
-//!   along refined edges by a pixel at most: at most 0.5% of pixels may differ by more than 1/255.
+//!   along refined edges by a pixel at most: at most 0.5% of pixels may differ by more than 1/255
+//!   (3% with sine displacement, which level 8 under-samples, so other samples move it more;
+//!   noise is not compared with tess).
 //!
 //! On failure the images and a diff are written to target/test-output/.
 
@@ -87,12 +89,15 @@ fn drivers_render_the_same_image() {
         let mut scene = h.scene(default_mesh(), level).unwrap();
         let (c, r) = scene.bounding_sphere();
         let camera = Camera::framing(c, r);
-        // Every surface; pn's normal field is evaluated per fragment in every driver (static
-        // through its vertices' element and sample attributes).
-        for surface in Surface::ALL {
+        // Every surface, and pn displaced; pn's normal (field or displaced) is evaluated per
+        // fragment in every driver (static through its vertices' element and sample attributes).
+        let combos = Surface::ALL.iter().map(|&s| (s, Displace::None)).chain([
+            (Surface::Pn, Displace::Sine),
+            (Surface::Pn, Displace::Noise),
+        ]);
+        for (surface, displace) in combos {
             let mut render = |driver, submit| {
-                let cfg =
-                    DrawConfig::new(driver, submit, level).with_surface(surface, Displace::None);
+                let cfg = DrawConfig::new(driver, submit, level).with_surface(surface, displace);
                 h.render(&mut scene, &cfg, &camera).unwrap()
             };
             let instanced = render(Driver::Pattern, Submit::Instanced);
@@ -111,19 +116,30 @@ fn drivers_render_the_same_image() {
                 covered > (w * h_px / 10) as usize,
                 "only {covered} pixels show the mesh"
             );
-            let name = surface.name();
+            let name = format!("{}+{}", surface.name(), displace.name());
             assert_eq!(
                 push.rgba, instanced.rgba,
                 "{name}: push and instanced differ"
             );
             assert_eq!(ubo.rgba, instanced.rgba, "{name}: ubo and instanced differ");
             check(&format!("{name}-static-vs-pattern"), &instanced, &stat, 0);
-            check(
-                &format!("{name}-tess-vs-pattern"),
-                &instanced,
-                &tess,
-                (w * h_px / 200) as usize,
-            );
+            // The tessellator samples the surface elsewhere inside each coarse triangle; with
+            // displacement at level 8 (under-sampled) that moves the surface more: 3 % of pixels
+            // for sine. Noise at its default frequency is too under-sampled there for a
+            // comparison to mean anything, so only the pattern and static drivers are compared.
+            let tess_allowed = match displace {
+                Displace::None => Some(w * h_px / 200),
+                Displace::Sine => Some(w * h_px * 3 / 100),
+                _ => None,
+            };
+            if let Some(allowed) = tess_allowed {
+                check(
+                    &format!("{name}-tess-vs-pattern"),
+                    &instanced,
+                    &tess,
+                    allowed as usize,
+                );
+            }
         }
     });
 }

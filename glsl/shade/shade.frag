@@ -1,8 +1,8 @@
 #version 460
 // Fragment stage shared by every driver: two-sided Blinn-Phong lighting. Where the surface has a
-// normal field of its own (pn) and the driver hands over the sample (FRAGMENT_FIELD), the normal
-// is the field evaluated at this fragment's barycentric coordinates, so highlights do not depend
-// on the refinement level; otherwise the interpolated vertex normal. The WIRE variant (a second
+// normal field of its own (pn: FRAGMENT_FIELD), the normal is evaluated at this fragment's
+// barycentric coordinates (the field, or with displacement the displaced normal), so highlights
+// do not depend on the refinement level; otherwise the interpolated vertex normal. The WIRE variant (a second
 // pass in polygon mode LINE) draws the refined triangles' edges; frame.options.x = 1 shows normals.
 #define FRAGMENT_STAGE
 #include "records.glsl"
@@ -19,7 +19,15 @@ void main() {
         out_color = vec4(0.05, 0.06, 0.09, 1.0);
         return;
     }
-    vec3 n = FRAGMENT_FIELD != 0 ? surface_normal_field(records[v_element], v_bary) : normalize(v_normal);
+    vec3 n;
+    if (FRAGMENT_FIELD == 0) {
+        n = normalize(v_normal);
+    } else if (DISPLACE == DISPLACE_NONE) {
+        n = surface_normal_field(records[v_element], v_bary);
+    } else {
+        // The displaced normal at this fragment's sample: the whole evaluation, per fragment.
+        n = evaluate(records[v_element], Sample(v_element, v_element, v_bary, ~0u)).normal;
+    }
     if (frame.options.x == 1.0) {
         out_color = vec4(n * 0.5 + 0.5, 1.0);
         return;

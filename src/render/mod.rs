@@ -175,11 +175,12 @@ impl DrawConfig {
         self.driver.refined_per_element(self.level)
     }
 
-    /// Whether the fragment stage evaluates the surface's normal field: the surface has one and
-    /// no displacement perturbs it (every driver hands the sample over; `static` then stores each
-    /// refined vertex's element and sample beside it).
+    /// Whether the fragment stage evaluates the normal per fragment: the surface has a normal
+    /// field of its own (with displacement, the fragment evaluates the displaced normal). Every
+    /// driver hands the sample over; `static` then stores each refined vertex's element and sample
+    /// beside it.
     pub fn fragment_normal_field(&self) -> bool {
-        self.surface.fragment_normal_field() && self.displace == Displace::None
+        self.surface.fragment_normal_field()
     }
 
     /// GPU bytes of geometry for `elements` elements ([`Driver::geometry_bytes`], plus the
