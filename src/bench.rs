@@ -386,3 +386,59 @@ impl Report {
         )
     }
 }
+
+/// What a `cargo bench` target measures: its meshes and options, timed or as a smoke run.
+pub struct Harness {
+    /// `cargo bench` passed `--bench` (a timed run); otherwise `cargo test --benches` runs a
+    /// validated smoke run.
+    pub benching: bool,
+    /// A smaller set (a smoke run, or `MESHREFINE_BENCH_QUICK=1`).
+    pub quick: bool,
+}
+
+impl Harness {
+    /// Reads the command line and environment, and sets up logging.
+    pub fn from_env() -> Self {
+        let benching = std::env::args().any(|a| a == "--bench");
+        let level = if benching { "info" } else { "warn" };
+        env_logger::Builder::from_env(env_logger::Env::default().default_filter_or(level)).init();
+        let quick = !benching || std::env::var_os("MESHREFINE_BENCH_QUICK").is_some();
+        Self { benching, quick }
+    }
+
+    /// Runs `opts` on `meshes` and prints the table; a full timed run also writes
+    /// `docs/bench/<name>.{md,csv,json}`. The smoke run is a GPU test like the others: validation
+    /// on, and any message or leak fails it; timed runs leave validation off (it slows command
+    /// recording 7-10x). Device: the first Vulkan device (MESHREFINE_DEVICE picks one by name).
+    pub fn run(&self, name: &str, meshes: &[Mesh], opts: &BenchOptions) {
+        let desc = crate::gpu::ContextDesc {
+            device_name: std::env::var("MESHREFINE_DEVICE").ok(),
+            validate: !self.benching,
+            ..Default::default()
+        };
+        let fail = |e: &dyn std::fmt::Display| -> ! {
+            eprintln!("error: {e}");
+            std::process::exit(1)
+        };
+        let ctx = crate::gpu::Context::new(&desc).unwrap_or_else(|e| fail(&e));
+        let messages = ctx.messages_handle();
+        let report = run(ctx, meshes, opts).unwrap_or_else(|e| fail(&e));
+        let problems = messages.take();
+        if !problems.is_empty() || crate::gpu::live_objects() != 0 {
+            fail(&format!(
+                "validation / leaks: {problems:?}, {} live objects",
+                crate::gpu::live_objects()
+            ));
+        }
+        println!("{}", report.markdown());
+        if self.benching && !self.quick {
+            let prefix = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+                .join("docs/bench")
+                .join(name);
+            report
+                .write_files(&prefix, &format!("cargo bench --bench {name}"))
+                .unwrap_or_else(|e| fail(&e));
+            println!("wrote {}.{{md,csv,json}}", prefix.display());
+        }
+    }
+}

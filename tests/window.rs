@@ -16,11 +16,12 @@ struct Xvfb {
 impl Xvfb {
     fn start() -> Self {
         for n in 90..130u32 {
-            if PathBuf::from(format!("/tmp/.X11-unix/X{n}")).exists()
-                || PathBuf::from(format!("/tmp/.X{n}-lock")).exists()
-            {
+            if display_in_use(n) {
                 continue;
             }
+            // A stale lock or socket of a killed server: Xvfb refuses to start over them.
+            let _ = std::fs::remove_file(format!("/tmp/.X{n}-lock"));
+            let _ = std::fs::remove_file(format!("/tmp/.X11-unix/X{n}"));
             let child = Command::new("Xvfb")
                 .args([
                     format!(":{n}").as_str(),
@@ -53,6 +54,24 @@ impl Drop for Xvfb {
     fn drop(&mut self) {
         let _ = self.child.kill();
         let _ = self.child.wait();
+        // A killed server leaves its lock file and socket behind; remove them, or repeated runs
+        // on one machine use up the display numbers.
+        let n = &self.display[1..];
+        let _ = std::fs::remove_file(format!("/tmp/.X{n}-lock"));
+        let _ = std::fs::remove_file(format!("/tmp/.X11-unix/X{n}"));
+    }
+}
+
+/// Whether display `n`'s lock file names a process that is still alive (a stale lock, left by a
+/// killed server, does not).
+fn display_in_use(n: u32) -> bool {
+    let lock = PathBuf::from(format!("/tmp/.X{n}-lock"));
+    match std::fs::read_to_string(&lock) {
+        Ok(pid) => pid
+            .trim()
+            .parse::<u32>()
+            .is_ok_and(|pid| PathBuf::from(format!("/proc/{pid}")).exists()),
+        Err(_) => PathBuf::from(format!("/tmp/.X11-unix/X{n}")).exists(),
     }
 }
 

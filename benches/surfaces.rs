@@ -1,0 +1,37 @@
+//! Every surface x procedural displacement x driver on the default mesh (Spot, 372 triangles) at
+//! levels 16 and 32: GPU time, per-refined-triangle cost and ratios against `static` of the same
+//! surface and displacement, in one run. Writes docs/bench/surfaces.{md,csv,json} (see
+//! `meshrefine::bench::Harness`); `MESHREFINE_BENCH_QUICK=1` runs a smaller set. (The height map
+//! needs texture coordinates, which the default mesh lacks: `meshrefine bench MESH
+//! --displacements heightmap` measures it on a mesh that has them.)
+
+use meshrefine::bench::{BenchOptions, Harness};
+use meshrefine::surface::{Displace, Surface};
+
+fn main() {
+    let h = Harness::from_env();
+    let (levels, frames) = if h.quick {
+        (vec![4], 1)
+    } else {
+        (vec![16, 32], 3)
+    };
+    let surfaces = Surface::ALL
+        .iter()
+        .flat_map(|&s| {
+            [Displace::None, Displace::Sine, Displace::Noise]
+                .into_iter()
+                .map(move |d| (s, d))
+        })
+        .collect();
+    // Drawn centred and at unit size, as `meshrefine render` draws it.
+    let mesh = meshrefine::mesh::default_mesh().for_viewing();
+    let opts = BenchOptions {
+        levels,
+        surfaces,
+        params: None,
+        frames,
+        width: 1280,
+        height: 720,
+    };
+    h.run("surfaces", &[mesh], &opts);
+}
