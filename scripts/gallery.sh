@@ -23,3 +23,5 @@ for seams in closed open; do
 done
 # The height map (the generated default) on a mesh with texture coordinates, pn, level 32.
 $m render assets/models/grid_uv_8x8.obj -o "$out/grid-pn-heightmap.png" --width 427 --height 240 --level 32 --surface pn --displace heightmap
+# Scalar-tagged PN: the cylinder's rims as creases, derived from its hard normals (stpn) against pn.
+$m render assets/models/cylinder_hard_normals.obj -o "$out/cylinder-stpn.png" --width 427 --height 240 --level 8 --surface stpn

@@ -61,6 +61,38 @@ pub struct ParamOpts {
 }
 
 impl SurfaceOpts {
+    /// The tags `--tags` names for `mesh` (None: the scene's derived ones), parsed over the
+    /// derived tags and checked against appendix B's restrictions. Refused with another surface.
+    pub fn tags(
+        &self,
+        mesh: &meshrefine::mesh::Mesh,
+    ) -> Result<Option<Vec<meshrefine::surface::stpn::VertexTag>>, String> {
+        use meshrefine::surface::stpn;
+        let Some(path) = &self.tags else {
+            return Ok(None);
+        };
+        if self.surface != Surface::Stpn {
+            return Err(format!(
+                "--tags applies only to --surface stpn, not to --surface {}: leave it out or use --surface stpn",
+                self.surface.name()
+            ));
+        }
+        let shown = path.display().to_string();
+        let meta =
+            std::fs::metadata(path).map_err(|e| format!("cannot read tags file '{shown}': {e}"))?;
+        if !meta.is_file() || meta.len() > 1 << 28 {
+            return Err(format!(
+                "tags file '{shown}' is not a regular file of at most 256 MiB"
+            ));
+        }
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| format!("cannot read tags file '{shown}': {e}"))?;
+        let (base, _) = stpn::derive(mesh);
+        let tags = stpn::parse(&shown, &text, mesh, &base)?;
+        stpn::check(mesh, &tags).map_err(|e| format!("tags file '{shown}': {e}"))?;
+        Ok(Some(tags))
+    }
+
     /// The height map `--heightmap` names (None: the scene's generated one). Refused with any
     /// displacement but `heightmap`, where it would be ignored.
     pub fn heightmap(&self) -> Result<Option<meshrefine::surface::Heightmap>, String> {
@@ -109,6 +141,10 @@ pub struct SurfaceOpts {
     /// coordinates (default: a generated map of smooth bumps).
     #[arg(long, value_name = "FILE.png")]
     pub heightmap: Option<PathBuf>,
+    /// Scalar tags for --surface stpn (lines `t X Y Z TENSION [SHARPNESS BIAS DX DY DZ]`;
+    /// default: tags derived from the mesh's hard edges).
+    #[arg(long, value_name = "FILE")]
+    pub tags: Option<PathBuf>,
     #[command(flatten)]
     pub params: ParamOpts,
 }

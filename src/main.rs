@@ -94,6 +94,40 @@ struct Input {
     shown: String,
     /// `--heightmap`, loaded (None: the scene's generated map).
     heightmap: Option<meshrefine::surface::Heightmap>,
+    /// `--tags`, parsed and checked (None: the scene's tags derived from hard edges).
+    tags: Option<Vec<meshrefine::surface::stpn::VertexTag>>,
+}
+
+/// Loads what `--heightmap` and `--tags` name for `input`'s mesh; with `--surface stpn` and no
+/// tags file, says where derived tags cannot keep a crease.
+fn attach_surface_inputs(input: &mut Input, s: &cli::SurfaceOpts) -> Result<()> {
+    input.heightmap = s.heightmap().map_err(anyhow::Error::msg)?;
+    input.tags = s.tags(&input.mesh).map_err(anyhow::Error::msg)?;
+    if s.surface == meshrefine::surface::Surface::Stpn && input.tags.is_none() {
+        let (_, corners) = meshrefine::surface::stpn::derive(&input.mesh);
+        if corners > 0 {
+            note(format_args!(
+                "warning: '{}': {corners} vertices where three or more hard edges meet stay smooth under stpn (scalar-tagged PN triangles allow one crease per vertex; give tags with --tags)",
+                input.shown
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Gives `scene` the height map and tags `input` carries.
+fn apply_surface_inputs(
+    h: &Headless,
+    scene: &mut meshrefine::render::Scene,
+    input: &Input,
+) -> Result<()> {
+    if let Some(map) = input.heightmap.clone() {
+        h.set_heightmap(scene, map)?;
+    }
+    if let Some(tags) = input.tags.clone() {
+        scene.set_tags(&h.ctx, &h.pool, &h.renderer, tags)?;
+    }
+    Ok(())
 }
 
 /// How many degenerate faces a warning lists before "and N more".
@@ -138,6 +172,7 @@ fn load_mesh(path: Option<&Path>) -> Result<Input> {
             mesh: meshrefine::mesh::default_mesh(),
             shown: "the default mesh (spot)".into(),
             heightmap: None,
+            tags: None,
         });
     };
     let shown = p.display().to_string();
@@ -163,6 +198,7 @@ fn load_mesh(path: Option<&Path>) -> Result<Input> {
         mesh,
         shown,
         heightmap: None,
+        tags: None,
     })
 }
 
@@ -234,11 +270,7 @@ fn run(cli: Cli) -> Result<()> {
             require_extension(&a.output, "png", "render writes PNG images only")?;
             let mut input = load_mesh(a.mesh.as_deref())?;
             let cfg = draw_config(&a.technique, &input.mesh, false)?;
-            input.heightmap = a
-                .technique
-                .surface
-                .heightmap()
-                .map_err(anyhow::Error::msg)?;
+            attach_surface_inputs(&mut input, &a.technique.surface)?;
             let messages = {
                 let ctx = Context::new(&desc)?;
                 let messages = ctx.messages_handle();
@@ -260,11 +292,7 @@ fn run(cli: Cli) -> Result<()> {
             )?;
             let mut input = load_mesh(a.mesh.as_deref())?;
             let cfg = draw_config(&a.technique, &input.mesh, true)?;
-            input.heightmap = a
-                .technique
-                .surface
-                .heightmap()
-                .map_err(anyhow::Error::msg)?;
+            attach_surface_inputs(&mut input, &a.technique.surface)?;
             let has_display = std::env::var_os("DISPLAY").is_some()
                 || std::env::var_os("WAYLAND_DISPLAY").is_some();
             let why_headless = if has_display {
@@ -277,6 +305,7 @@ fn run(cli: Cli) -> Result<()> {
                     animate: a.animate,
                     lod: a.lod,
                     heightmap: input.heightmap.clone(),
+                    tags: input.tags.clone(),
                 };
                 match meshrefine::app::run(desc.clone(), mesh, opts) {
                     Ok(messages) => return check_messages(&messages),
@@ -307,7 +336,7 @@ fn run(cli: Cli) -> Result<()> {
             require_extension(&a.output, "obj", "export writes Wavefront OBJ text only")?;
             let mut input = load_mesh(a.mesh.as_deref())?;
             let cfg = draw_config(&a.technique(), &input.mesh, false)?;
-            input.heightmap = a.surface.heightmap().map_err(anyhow::Error::msg)?;
+            attach_surface_inputs(&mut input, &a.surface)?;
             let (messages, counts) = {
                 let ctx = Context::new(&desc)?;
                 let messages = ctx.messages_handle();
@@ -375,10 +404,8 @@ fn export(ctx: Arc<Context>, input: Input, cfg: &DrawConfig, output: &Path) -> R
     let device = ctx.info.describe();
     let mut h = Headless::with_context(ctx, 64, 64)?;
     let name = input.mesh.name.clone();
-    let mut scene = h.scene(input.mesh, cfg.level)?;
-    if let Some(map) = input.heightmap {
-        h.set_heightmap(&mut scene, map)?;
-    }
+    let mut scene = h.scene(input.mesh.clone(), cfg.level)?;
+    apply_surface_inputs(&h, &mut scene, &input)?;
     let (c, r) = scene.bounding_sphere();
     let camera = Camera::framing(c, r);
     let refined = if cfg.driver == Driver::Tess {
@@ -438,9 +465,7 @@ fn render_png(
         h.wireframe = wireframe;
         let (mesh, viewed) = for_viewing(&input.mesh, cfg);
         let mut scene = h.scene(mesh, cfg.level)?;
-        if let Some(map) = input.heightmap.clone() {
-            h.set_heightmap(&mut scene, map)?;
-        }
+        apply_surface_inputs(&h, &mut scene, &input)?;
         let (c, r) = scene.bounding_sphere();
         h.render(&mut scene, &viewed, &Camera::framing(c, r))
     }

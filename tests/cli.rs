@@ -756,16 +756,21 @@ fn logs_are_bounded_and_limits_name_the_file_and_the_remedy() {
     );
 }
 
+/// Runs and expects success (the error output in the message otherwise).
+fn expect_success(args: &[&str]) {
+    let out = meshrefine(args);
+    assert!(
+        out.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
 /// Runs `export` with `args` (after `export`), expects success, and reloads what it wrote.
 fn export_and_reload(obj: &Path, args: &[&str]) -> meshrefine::mesh::Mesh {
     let mut all = vec!["export", "-o", p(obj)];
     all.extend_from_slice(args);
-    let out = meshrefine(&all);
-    assert!(
-        out.status.success(),
-        "{all:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    expect_success(&all);
     meshrefine::mesh::Mesh::load_obj(obj).unwrap().0
 }
 
@@ -901,12 +906,7 @@ fn heightmap_displacement_and_its_errors() {
             "heightmap",
         ];
         args.extend(extra);
-        let out = meshrefine(&args);
-        assert!(
-            out.status.success(),
-            "{args:?}: {}",
-            String::from_utf8_lossy(&out.stderr)
-        );
+        expect_success(&args);
     }
     let obj = tmp("hm.obj");
     let mesh = export_and_reload(&obj, &[p(&grid), "--level", "4", "--displace", "heightmap"]);
@@ -946,6 +946,68 @@ fn heightmap_displacement_and_its_errors() {
         ),
     ] {
         let mut args = vec!["render", p(&grid), "-o", o];
+        args.extend(extra);
+        expect_error(&args, &[needle]);
+    }
+}
+
+/// Scalar-tagged PN: renders with tags derived from hard edges or from a tags file; bad tag
+/// files, broken restrictions and `--tags` with another surface are one sentence and exit 1.
+#[test]
+fn stpn_tags_render_and_their_errors() {
+    let cyl = model_path("cylinder_hard_normals.obj");
+    let png = tmp("stpn.png");
+    let o = p(&png);
+    let size = ["--width", "96", "--height", "64", "--level", "6"];
+    let mut args = vec!["render", p(&cyl), "-o", o, "--surface", "stpn"];
+    args.extend(size);
+    expect_success(&args);
+    // A tags file on the tetrahedron: tension at its first vertex.
+    let tet = model_path("tetrahedron.obj");
+    let mesh = meshrefine::mesh::Mesh::load_obj(&tet).unwrap().0;
+    let v = mesh.positions[0];
+    let good = write(
+        "good.tags",
+        format!("# tension\nt {} {} {} 0.6\n", v.x, v.y, v.z).as_bytes(),
+    );
+    let mut args = vec![
+        "render",
+        p(&tet),
+        "-o",
+        o,
+        "--surface",
+        "stpn",
+        "--tags",
+        p(&good),
+    ];
+    args.extend(size);
+    expect_success(&args);
+    let bad = write("bad.tags", b"t 1 2\n");
+    let three: String = mesh
+        .positions
+        .iter()
+        .map(|q| format!("t {} {} {} 0 1 0 1 0 0\n", q.x, q.y, q.z))
+        .collect();
+    let three = write("three.tags", three.as_bytes());
+    for (extra, needle) in [
+        (
+            vec!["--surface", "stpn", "--tags", p(&bad)],
+            "bad.tags' line 1: 2 numbers",
+        ),
+        (
+            vec!["--surface", "stpn", "--tags", p(&three)],
+            "three crease vertices",
+        ),
+        (
+            vec!["--surface", "stpn", "--tags", "missing.tags"],
+            "cannot read tags file 'missing.tags'",
+        ),
+        (
+            vec!["--surface", "pn", "--tags", p(&good)],
+            "--tags applies only to --surface stpn",
+        ),
+    ] {
+        let mut args = vec!["render", p(&tet), "-o", o];
         args.extend(extra);
         expect_error(&args, &[needle]);
     }

@@ -25,22 +25,13 @@ mod common;
 use common::{model, with_gpu};
 use meshrefine::mesh::Mesh;
 use meshrefine::pattern::{lattice_index, Pattern, PatternSet};
-use meshrefine::render::static_vbo::HeightmapInputs;
 use meshrefine::render::tess::tess_vertex_count;
 use meshrefine::render::{Camera, DrawConfig, Driver, Headless, Scene, Submit};
 use meshrefine::surface::{
-    eval_with, tess_weights, CornerRecord, Displace, ElementRecord, Inputs, Surface, SurfaceParams,
+    eval_with, tess_weights, CornerRecord, Displace, ElementRecord, Surface, SurfaceParams,
     SMOOTH_CORNER,
 };
 
-/// The mirror's inputs for element `t` (the height map's, where the mesh has coordinates).
-fn inputs<'a>(h: &'a Option<HeightmapInputs<'a>>, t: usize) -> Inputs<'a> {
-    h.as_ref().map_or_else(Inputs::default, |h| Inputs {
-        uv: Some(&h.uvs[t]),
-        heightmap: Some(h.map),
-        lod: h.lod,
-    })
-}
 use std::collections::{HashMap, HashSet};
 
 fn scene_with(h: &Headless, mesh: Mesh, levels: &[u32]) -> (Scene, Camera, f32) {
@@ -145,7 +136,7 @@ fn check_pattern_chunked(
                 let tol = position_tolerance(&cfg, r, seamed(&scene.data.records));
                 let ntol = normal_tolerance(&cfg);
                 let cap = h.capture(&mut scene, &cfg, &camera).unwrap();
-                let hm = scene.heightmap_inputs(level);
+                let hm = scene.inputs(level);
                 assert_eq!(cap.vertices.len(), scene.data.records.len() * pv);
                 let mut worst = 0.0f32;
                 for (t, rec) in scene.data.records.iter().enumerate() {
@@ -170,7 +161,7 @@ fn check_pattern_chunked(
                             &params,
                             rec,
                             pattern.bary[k],
-                            &inputs(&hm, t),
+                            &hm.element(t),
                         );
                         for a in 0..3 {
                             let d = (got.position[a] - want.position[a]).abs();
@@ -217,7 +208,7 @@ fn check_tess_chunked(file: &str, h: &mut Headless, levels: &[u32], all: bool, c
             let tol = position_tolerance(&cfg, r, seamed(&scene.data.records));
             let ntol = normal_tolerance(&cfg);
             let cap = h.capture(&mut scene, &cfg, &camera).unwrap();
-            let hm = scene.heightmap_inputs(level);
+            let hm = scene.inputs(level);
             let mut coords: HashMap<u32, HashSet<[u32; 3]>> = HashMap::new();
             let mut worst = 0.0f32;
             let what = format!(
@@ -240,7 +231,7 @@ fn check_tess_chunked(file: &str, h: &mut Headless, levels: &[u32], all: bool, c
                     &params,
                     &scene.data.records[t],
                     tess_weights(tc, level),
-                    &inputs(&hm, t),
+                    &hm.element(t),
                 );
                 for a in 0..3 {
                     let d = (v.position[a] - want.position[a]).abs();

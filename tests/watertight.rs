@@ -16,7 +16,7 @@ use common::{model, with_gpu};
 use meshrefine::export::{weld, weld_triangles};
 use meshrefine::mesh::Mesh;
 use meshrefine::pattern::{Pattern, PatternSet};
-use meshrefine::render::static_vbo::refine_on_cpu;
+use meshrefine::render::static_vbo::{refine_on_cpu, MeshInputs};
 use meshrefine::render::tess::{tess_triangle_count, tess_vertex_count};
 use meshrefine::render::{Camera, DrawConfig, Driver, Headless, Scene, Submit};
 use meshrefine::surface::{Displace, RecordKind, Seams, Surface, SurfaceParams};
@@ -27,6 +27,8 @@ const SURFACES: &[(Surface, Displace)] = &[
     (Surface::Phong, Displace::Sine),
     (Surface::Pn, Displace::None),
     (Surface::Pn, Displace::Noise),
+    // Tags derived from the hard edges: the cylinder's rims become creases, closed.
+    (Surface::Stpn, Displace::None),
 ];
 
 fn config(
@@ -82,8 +84,21 @@ fn tess_positions(h: &mut Headless, scene: &mut Scene, cfg: &DrawConfig, camera:
 }
 
 /// Distinct positions of `records` refined on the CPU at level `n`.
-fn static_positions(cfg: &DrawConfig, records: &[meshrefine::surface::ElementRecord]) -> usize {
-    let (v, _) = refine_on_cpu(cfg, records, &Pattern::uniform(cfg.level), None);
+fn static_positions(
+    cfg: &DrawConfig,
+    records: &[meshrefine::surface::ElementRecord],
+    mesh: &Mesh,
+) -> usize {
+    // The scalar tags a scene derives from the mesh's hard edges (stpn).
+    let (tags, _) = meshrefine::surface::stpn::derive(mesh);
+    let map = meshrefine::surface::Heightmap::generated();
+    let inputs = MeshInputs {
+        uvs: None,
+        map: &map,
+        lod: 0.0,
+        tags: &tags,
+    };
+    let (v, _) = refine_on_cpu(cfg, records, &Pattern::uniform(cfg.level), Some(&inputs));
     let distinct: HashSet<[u32; 3]> = v.iter().map(|x| bits(&x[..3])).collect();
     distinct.len()
 }
@@ -135,7 +150,7 @@ fn static_driver_is_watertight() {
                 let cfg = config(Driver::Static, Submit::Instanced, n, combo, r);
                 let inner = ((n - 1) * (n - 2) / 2) as usize;
                 assert_eq!(
-                    static_positions(&cfg, &records),
+                    static_positions(&cfg, &records, &mesh),
                     expected(&mesh, n as usize, inner),
                     "{file} {} + {} static level {n}",
                     combo.0.name(),
@@ -221,7 +236,7 @@ fn open_seams_crack_at_split_normals() {
             );
             cfg.params.seams = Seams::Open;
             let crack_free = expected(&mesh, n as usize, ((n - 1) * (n - 2) / 2) as usize);
-            let got = static_positions(&cfg, &records);
+            let got = static_positions(&cfg, &records, &mesh);
             assert!(
                 got > crack_free,
                 "{file} {} with open seams: {got} distinct positions, not more than the crack-free {crack_free}",
@@ -252,7 +267,7 @@ fn heightmap_on_continuous_coordinates_is_watertight() {
                 &cfg,
                 &scene.data.records,
                 &Pattern::uniform(n),
-                scene.heightmap_inputs(n).as_ref(),
+                Some(&scene.inputs(n)),
             );
             let distinct: HashSet<[u32; 3]> = v.iter().map(|x| bits(&x[..3])).collect();
             assert_eq!(distinct.len(), want, "{file} static level {n}");

@@ -40,9 +40,10 @@ vec3 pn_normal(Corners c) {
     return normalize(n);
 }
 
-void pn_eval(Corners c, out vec3 position, out vec3 normal, out vec3 g[3]) {
-    vec3 e01 = pn_edge(c, 0, 1), e10 = pn_edge(c, 1, 0), e12 = pn_edge(c, 1, 2);
-    vec3 e21 = pn_edge(c, 2, 1), e02 = pn_edge(c, 0, 2), e20 = pn_edge(c, 2, 0);
+// The cubic patch from its six edge points (e_ij: the one of edge ij next to corner i), the
+// normal field on c.n. Mirror: src/surface/pn.rs `eval_with_edges`.
+void pn_eval_edges(Corners c, vec3 e01, vec3 e10, vec3 e12, vec3 e21, vec3 e02, vec3 e20,
+                   out vec3 position, out vec3 normal, out vec3 g[3]) {
     precise vec3 sum = e01 + e10 + e12 + e21 + e02 + e20;
     precise vec3 mean_e = sum * PN_SIXTH;
     precise vec3 mean_v = (c.p[0] + c.p[1] + c.p[2]) * PN_THIRD;
@@ -63,6 +64,12 @@ void pn_eval(Corners c, out vec3 position, out vec3 normal, out vec3 g[3]) {
     g[2] = c.p[2] * (3.0 * w2 * w2)
          + (e12 * (w1 * w1) + e21 * (2.0 * w1 * w2) + e02 * (w0 * w0) + e20 * (2.0 * w0 * w2)) * 3.0
          + centre * (6.0 * w0 * w1);
+}
+
+void pn_eval(Corners c, out vec3 position, out vec3 normal, out vec3 g[3]) {
+    vec3 e01 = pn_edge(c, 0, 1), e10 = pn_edge(c, 1, 0), e12 = pn_edge(c, 1, 2);
+    vec3 e21 = pn_edge(c, 2, 1), e02 = pn_edge(c, 0, 2), e20 = pn_edge(c, 2, 0);
+    pn_eval_edges(c, e01, e10, e12, e21, e02, e20, position, normal, g);
 }
 
 #endif

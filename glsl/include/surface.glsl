@@ -9,12 +9,14 @@
 #include "flat.glsl"
 #include "phong.glsl"
 #include "pn.glsl"
+#include "stpn.glsl"
 #include "displace.glsl"
 
 layout(constant_id = SPEC_SURFACE) const uint SURFACE = 0;
 const uint SURFACE_FLAT = 0;
 const uint SURFACE_PHONG = 1;
 const uint SURFACE_PN = 2;
+const uint SURFACE_STPN = 3;
 
 struct Sample {
     uint element;  // which element (coarse triangle)
@@ -23,16 +25,28 @@ struct Sample {
     uint index;    // the driver's sample index: pattern vertex, or ~0u (tess)
 };
 
-// The surface's normal field on ordered corners. Mirror: src/surface/mod.rs `normal_field`.
-vec3 surface_normal(Corners c) {
+// The surface's normal field on ordered corners (t: their scalar tags, for stpn).
+// Mirror: src/surface/mod.rs `normal_field`.
+vec3 surface_normal(Corners c, StTag t[3]) {
+    if (SURFACE == SURFACE_STPN) {
+        stpn_shading_normals(c, t);
+        return pn_normal(c);
+    }
     return SURFACE == SURFACE_PN ? pn_normal(c) : flat_normal(c);
 }
 
 // The surface without displacement.
 SurfacePoint surface_eval(ElementRecord rec, Sample s) {
-    Corners c = canonical(corner_record(rec), s.bary);
+    CornerRecord r = corner_record(rec);
+    Corners c = canonical(r, s.bary);
+    StTag tags[3];
+    if (SURFACE == SURFACE_STPN) {
+        stpn_corner_tags(r, c, tags);
+    }
     vec3 p, n, g[3];
-    if (SURFACE == SURFACE_PHONG) {
+    if (SURFACE == SURFACE_STPN) {
+        stpn_eval(c, tags, p, n, g);
+    } else if (SURFACE == SURFACE_PHONG) {
         phong_eval(c, frame.params.x, p, n, g);
     } else if (SURFACE == SURFACE_PN) {
         pn_eval(c, p, n, g);
@@ -50,7 +64,7 @@ SurfacePoint surface_eval(ElementRecord rec, Sample s) {
     if (c.g[0] != c.n[0] || c.g[1] != c.n[1] || c.g[2] != c.n[2]) {
         Corners cg = c;
         cg.n = c.g;
-        dir = surface_normal(cg);
+        dir = surface_normal(cg, tags);
     }
     SurfacePoint sp = SurfacePoint(p, n, dir, gs[1] - gs[0], gs[2] - gs[0], vec2(0.0), vec2(0.0), vec2(0.0));
     if (DISPLACE == DISPLACE_HEIGHTMAP) {
@@ -72,7 +86,13 @@ SurfacePoint evaluate(ElementRecord rec, Sample s) {
 
 // The surface's normal field at barycentric `bary` of the element, for the fragment stage.
 vec3 surface_normal_field(ElementRecord rec, vec3 bary) {
-    return surface_normal(canonical(corner_record(rec), bary));
+    CornerRecord r = corner_record(rec);
+    Corners c = canonical(r, bary);
+    StTag tags[3];
+    if (SURFACE == SURFACE_STPN) {
+        stpn_corner_tags(r, c, tags);
+    }
+    return surface_normal(c, tags);
 }
 
 #endif

@@ -51,6 +51,8 @@ pub struct ViewOptions {
     pub lod: bool,
     /// The height map (None: the generated one).
     pub heightmap: Option<crate::surface::Heightmap>,
+    /// The scalar tags (None: derived from the mesh's hard edges).
+    pub tags: Option<Vec<crate::surface::stpn::VertexTag>>,
 }
 
 pub const KEY_HELP: &str = "keys: drag = orbit, wheel = zoom, 1/2/3 = static/pattern/tess, \
@@ -259,6 +261,9 @@ impl App {
         let mut scene = Scene::new(&ctx, &pool, &renderer, mesh.clone(), max_level)?;
         if let Some(map) = self.opts.heightmap.clone() {
             scene.set_heightmap(&ctx, &pool, &renderer, map)?;
+        }
+        if let Some(tags) = self.opts.tags.clone() {
+            scene.set_tags(&ctx, &pool, &renderer, tags)?;
         }
         let (c, r) = scene.bounding_sphere();
         let mut rendered = Vec::new();
@@ -613,6 +618,6 @@ mod tests {
         assert_eq!(made, 4, "existing items are kept");
         per_image(&mut v, 3, |i| -> Result<usize, ()> { Ok(i) }).unwrap();
         assert_eq!(v, [0, 1, 2]);
-        assert_eq!(next(&Surface::ALL, Surface::Pn), Surface::Flat);
+        assert_eq!(next(&Surface::ALL, Surface::Stpn), Surface::Flat);
     }
 }

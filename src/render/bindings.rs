@@ -27,6 +27,8 @@ pub const UBO_WINDOW: u32 = 144;
 pub const BINDING_UVS: u32 = 2;
 /// Set 1, binding 3: the height map's mip pyramid (`Heightmap::to_gpu`).
 pub const BINDING_HEIGHTMAP: u32 = 3;
+/// Set 1, binding 4: every vertex's scalar tags (`stpn`), three `vec4` each.
+pub const BINDING_TAGS: u32 = 4;
 
 /// Set 2: capture output of the `CAPTURE` shader variants.
 pub const SET_CAPTURE: u32 = 2;
@@ -53,6 +55,7 @@ pub const GLSL_DEFINES: &[(&str, u32)] = &[
     ("UBO_WINDOW", UBO_WINDOW),
     ("BINDING_UVS", BINDING_UVS),
     ("BINDING_HEIGHTMAP", BINDING_HEIGHTMAP),
+    ("BINDING_TAGS", BINDING_TAGS),
     ("SET_CAPTURE", SET_CAPTURE),
     ("BINDING_CAPTURE", BINDING_CAPTURE),
     ("BINDING_CAPTURE_COUNT", BINDING_CAPTURE_COUNT),

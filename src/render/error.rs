@@ -22,6 +22,9 @@ pub enum RenderError {
     /// A combination that cannot be drawn or read back (one sentence saying why).
     #[error("{0}")]
     Unsupported(&'static str),
+    /// The scalar tags break a restriction of scalar-tagged PN triangles.
+    #[error("{0}")]
+    Tags(String),
     #[error("the tessellator evaluated {written} vertices, more than the {capacity} the capture buffer holds")]
     CaptureOverflow { written: u64, capacity: u64 },
 }

@@ -91,6 +91,8 @@ impl Renderer {
                 // texture coordinates and the height map (heightmap displacement)
                 (BINDING_UVS, T::STORAGE_BUFFER, ALL_STAGES),
                 (BINDING_HEIGHTMAP, T::STORAGE_BUFFER, ALL_STAGES),
+                // every vertex's scalar tags (stpn)
+                (BINDING_TAGS, T::STORAGE_BUFFER, ALL_STAGES),
             ],
             "set 1: mesh",
         )?;

@@ -7,6 +7,7 @@ use super::RenderError;
 use crate::gpu::{vk, Buffer, BufferDesc, CommandPool, Context, DescriptorPool, GpuError};
 use crate::mesh::Mesh;
 use crate::pattern::{Pattern, PatternSet};
+use crate::surface::stpn::VertexTag;
 use crate::surface::{build_records, ElementRecord, Heightmap, RecordKind, Seams, RECORD_BYTES};
 use std::sync::Arc;
 
@@ -101,6 +102,8 @@ pub struct GpuMesh {
     /// Each element's texture coordinates (`heightmap`), and the height map's pyramid.
     pub uvs: Buffer,
     pub heightmap: Buffer,
+    /// Every vertex's scalar tags (`stpn`).
+    pub tags: Buffer,
     pub patterns: Vec<GpuPattern>,
     pub pool: DescriptorPool,
     /// One descriptor set per chunk of [`GpuMesh::chunk`] elements: a storage-buffer descriptor
@@ -108,6 +111,13 @@ pub struct GpuMesh {
     pub sets: Vec<vk::DescriptorSet>,
     /// Elements per chunk.
     pub chunk: u32,
+}
+
+/// What the mesh set binds besides records and texture coordinates.
+#[derive(Clone, Copy)]
+pub struct Extras<'a> {
+    pub heightmap: &'a Heightmap,
+    pub tags: &'a [VertexTag],
 }
 
 /// The part of an element range that lies in one chunk of records.
@@ -152,8 +162,9 @@ impl GpuMesh {
         data: &MeshData,
         patterns: &PatternSet,
         max_chunk: Option<u32>,
-        heightmap: &Heightmap,
+        extras: Extras<'_>,
     ) -> Result<Self, RenderError> {
+        let Extras { heightmap, tags } = extras;
         let n = data.records.len() as u64;
         let rec_size = RECORD_BYTES as u64;
         let limits = &ctx.info.limits;
@@ -202,6 +213,20 @@ impl GpuMesh {
             "height map pyramid",
         )?;
         hm.write_pod(0, &hm_words);
+        let tag_words: Vec<[f32; 12]> = if tags.is_empty() {
+            vec![[0.0; 12]]
+        } else {
+            tags.iter().map(VertexTag::to_gpu).collect()
+        };
+        let mut tags_buffer = Buffer::new(
+            ctx,
+            BufferDesc::new_upload(
+                tag_words.len() as u64 * 48,
+                vk::BufferUsageFlags::STORAGE_BUFFER,
+            ),
+            "vertex scalar tags",
+        )?;
+        tags_buffer.write_pod(0, &tag_words);
         let patterns = patterns
             .patterns
             .iter()
@@ -211,7 +236,7 @@ impl GpuMesh {
             ctx,
             chunks,
             &[
-                (vk::DescriptorType::STORAGE_BUFFER, 3 * chunks),
+                (vk::DescriptorType::STORAGE_BUFFER, 4 * chunks),
                 (vk::DescriptorType::UNIFORM_BUFFER_DYNAMIC, chunks),
             ],
             "mesh descriptors",
@@ -252,6 +277,13 @@ impl GpuMesh {
                 hm.raw,
                 vk::WHOLE_SIZE,
             );
+            pool.write_buffer(
+                set,
+                BINDING_TAGS,
+                vk::DescriptorType::STORAGE_BUFFER,
+                tags_buffer.raw,
+                vk::WHOLE_SIZE,
+            );
             sets.push(set);
         }
         Ok(Self {
@@ -259,6 +291,7 @@ impl GpuMesh {
             records,
             uvs,
             heightmap: hm,
+            tags: tags_buffer,
             patterns,
             pool,
             sets,
@@ -304,6 +337,9 @@ pub struct Scene {
     pub gpu: GpuMesh,
     /// The `heightmap` displacement's map (a generated one until [`Scene::set_heightmap`]).
     pub heightmap: Heightmap,
+    /// Every vertex's scalar tags (`stpn`): derived from the mesh's hard edges until
+    /// [`Scene::set_tags`].
+    pub tags: Vec<VertexTag>,
     max_chunk: Option<u32>,
     pub patterns: PatternSet,
     pub static_vbo: Option<super::static_vbo::StaticVbo>,
@@ -346,6 +382,7 @@ impl Scene {
     ) -> Result<Self, RenderError> {
         let data = MeshData::new(mesh, RecordKind::Corners, Seams::default());
         let heightmap = Heightmap::generated();
+        let (tags, _) = crate::surface::stpn::derive(&data.mesh);
         let gpu = GpuMesh::new(
             ctx,
             pool,
@@ -353,12 +390,16 @@ impl Scene {
             &data,
             &patterns,
             max_chunk,
-            &heightmap,
+            Extras {
+                heightmap: &heightmap,
+                tags: &tags,
+            },
         )?;
         Ok(Self {
             data,
             gpu,
             heightmap,
+            tags,
             max_chunk,
             patterns,
             static_vbo: None,
@@ -388,6 +429,9 @@ impl Scene {
         // Every surface today shares the corner records the scene was built with; a surface
         // with records of another kind (Loop's M1 faces) needs a scene of its own.
         debug_assert_eq!(cfg.surface.record_kind(), self.data.kind);
+        if cfg.surface == crate::surface::Surface::Stpn {
+            crate::surface::stpn::check(&self.data.mesh, &self.tags).map_err(RenderError::Tags)?;
+        }
         if cfg.displace == crate::surface::Displace::Heightmap && self.data.uvs.is_none() {
             return Err(RenderError::Unsupported(
                 "the mesh has no texture coordinates (vt on every face): the heightmap displacement reads the map there",
@@ -455,7 +499,7 @@ impl Scene {
                     cfg,
                     &self.data.records,
                     &self.patterns.patterns[idx],
-                    self.heightmap_inputs(cfg.level).as_ref(),
+                    Some(&self.inputs(cfg.level)),
                 )?);
             }
         }
@@ -478,6 +522,29 @@ impl Scene {
         renderer: &super::Renderer,
         map: Heightmap,
     ) -> Result<(), RenderError> {
+        self.heightmap = map;
+        self.reupload(ctx, pool, renderer)
+    }
+
+    /// Replace the scalar tags (between frames), checked against appendix B's restrictions.
+    pub fn set_tags(
+        &mut self,
+        ctx: &Arc<Context>,
+        pool: &CommandPool,
+        renderer: &super::Renderer,
+        tags: Vec<VertexTag>,
+    ) -> Result<(), RenderError> {
+        assert_eq!(tags.len(), self.data.mesh.positions.len());
+        self.tags = tags;
+        self.reupload(ctx, pool, renderer)
+    }
+
+    fn reupload(
+        &mut self,
+        ctx: &Arc<Context>,
+        pool: &CommandPool,
+        renderer: &super::Renderer,
+    ) -> Result<(), RenderError> {
         self.gpu = GpuMesh::new(
             ctx,
             pool,
@@ -485,9 +552,11 @@ impl Scene {
             &self.data,
             &self.patterns,
             self.max_chunk,
-            &map,
+            Extras {
+                heightmap: &self.heightmap,
+                tags: &self.tags,
+            },
         )?;
-        self.heightmap = map;
         self.static_vbo = None;
         Ok(())
     }
@@ -497,16 +566,14 @@ impl Scene {
         self.heightmap.lod_for(self.data.uv_extent, level)
     }
 
-    /// What the CPU mirror needs to evaluate the height map, when the mesh has coordinates.
-    pub fn heightmap_inputs(&self, level: u32) -> Option<super::static_vbo::HeightmapInputs<'_>> {
-        self.data
-            .uvs
-            .as_ref()
-            .map(|uvs| super::static_vbo::HeightmapInputs {
-                uvs,
-                map: &self.heightmap,
-                lod: self.heightmap_lod(level),
-            })
+    /// What the CPU mirror reads besides the records (texture coordinates, height map, tags).
+    pub fn inputs(&self, level: u32) -> super::static_vbo::MeshInputs<'_> {
+        super::static_vbo::MeshInputs {
+            uvs: self.data.uvs.as_deref(),
+            map: &self.heightmap,
+            lod: self.heightmap_lod(level),
+            tags: &self.tags,
+        }
     }
 
     /// Centre and radius of the mesh's bounding sphere.

@@ -7,15 +7,29 @@ use super::bindings::SET_MESH;
 use super::{DrawConfig, GpuMesh, RenderError, Renderer, PUSH_DRAW_OFFSET, PUSH_STAGES};
 use crate::gpu::{vk, Buffer, Cmd, CommandPool, Context};
 use crate::pattern::Pattern;
+use crate::surface::stpn::VertexTag;
 use crate::surface::{eval_with, ElementRecord, Heightmap, Inputs};
 
-/// The height map's inputs for a whole mesh: per-element texture coordinates, the map, and the
-/// pyramid level.
+/// What the mirror reads besides the records, for a whole mesh: per-element texture
+/// coordinates (if any), the height map and its pyramid level, and the vertices' scalar tags.
 #[derive(Clone, Copy, Debug)]
-pub struct HeightmapInputs<'a> {
-    pub uvs: &'a [[[f32; 2]; 3]],
+pub struct MeshInputs<'a> {
+    pub uvs: Option<&'a [[[f32; 2]; 3]]>,
     pub map: &'a Heightmap,
     pub lod: f32,
+    pub tags: &'a [VertexTag],
+}
+
+impl<'a> MeshInputs<'a> {
+    /// The inputs of element `t`.
+    pub fn element(&self, t: usize) -> Inputs<'a> {
+        Inputs {
+            uv: self.uvs.map(|u| &u[t]),
+            heightmap: Some(self.map),
+            lod: self.lod,
+            tags: Some(self.tags),
+        }
+    }
 }
 use std::sync::Arc;
 
@@ -33,17 +47,13 @@ pub fn refine_on_cpu(
     cfg: &DrawConfig,
     records: &[ElementRecord],
     pattern: &Pattern,
-    heightmap: Option<&HeightmapInputs>,
+    inputs: Option<&MeshInputs>,
 ) -> (Vec<StaticVertex>, Vec<u32>) {
     let pv = pattern.bary.len() as u32;
     let mut vertices = Vec::with_capacity(records.len() * pv as usize);
     let mut indices = Vec::with_capacity(records.len() * pattern.indices.len());
     for (t, rec) in records.iter().enumerate() {
-        let inputs = heightmap.map_or_else(Inputs::default, |h| Inputs {
-            uv: Some(&h.uvs[t]),
-            heightmap: Some(h.map),
-            lod: h.lod,
-        });
+        let inputs = inputs.map_or_else(Inputs::default, |h| h.element(t));
         for &b in &pattern.bary {
             let sp = eval_with(cfg.surface, cfg.displace, &cfg.params, rec, b, &inputs);
             vertices.push([
@@ -83,7 +93,7 @@ impl StaticVbo {
         cfg: &DrawConfig,
         records: &[ElementRecord],
         pattern: &Pattern,
-        heightmap: Option<&HeightmapInputs>,
+        inputs: Option<&MeshInputs>,
     ) -> Result<Self, RenderError> {
         // Check the size before refining: the CPU would hold the same bytes.
         let bytes = records.len() as u64
@@ -102,7 +112,7 @@ impl StaticVbo {
                 remedy: "use a lower level or the pattern driver".into(),
             });
         }
-        let (v, i) = refine_on_cpu(cfg, records, pattern, heightmap);
+        let (v, i) = refine_on_cpu(cfg, records, pattern, inputs);
         let vertices = Buffer::new_with_data(
             ctx,
             pool,

@@ -22,6 +22,7 @@ pub mod noise;
 pub mod phong;
 pub mod pn;
 mod record;
+pub mod stpn;
 
 pub use displace::Displace;
 pub use heightmap::Heightmap;
@@ -46,23 +47,27 @@ pub enum Surface {
     /// Curved PN triangles (Vlachos et al. 2001, as in Boubekeur & Schlick 2005, appendix A):
     /// cubic Bézier geometry, quadratic normal field evaluated per fragment.
     Pn = 2,
+    /// Scalar-tagged PN triangles (Boubekeur, Reuter & Schlick 2005): PN with per-vertex tension,
+    /// sharpness, bias and crease direction (--tags, or derived from the mesh's hard edges).
+    Stpn = 3,
 }
 
 impl Surface {
-    pub const ALL: [Surface; 3] = [Surface::Flat, Surface::Phong, Surface::Pn];
+    pub const ALL: [Surface; 4] = [Surface::Flat, Surface::Phong, Surface::Pn, Surface::Stpn];
 
     pub fn name(self) -> &'static str {
         match self {
             Surface::Flat => "flat",
             Surface::Phong => "phong",
             Surface::Pn => "pn",
+            Surface::Stpn => "stpn",
         }
     }
 
     /// Whether the fragment stage evaluates this surface's normal field (instead of
     /// interpolating the vertices' normals), so highlights do not depend on the level.
     pub fn fragment_normal_field(self) -> bool {
-        matches!(self, Surface::Pn)
+        matches!(self, Surface::Pn | Surface::Stpn)
     }
 }
 
@@ -212,6 +217,8 @@ pub struct Inputs<'a> {
     pub uv: Option<&'a [[f32; 2]; 3]>,
     pub heightmap: Option<&'a Heightmap>,
     pub lod: f32,
+    /// The scalar tags of every vertex (`stpn`; neutral without).
+    pub tags: Option<&'a [stpn::VertexTag]>,
 }
 
 /// Corner data of a coarse triangle in canonical order, with the sample's weights.
@@ -281,20 +288,31 @@ fn stored_edge(i: usize, j: usize) -> usize {
     }
 }
 
-/// The surface's normal field on already ordered corners (unit).
-pub fn normal_field(surface: Surface, c: &Corners) -> Vec3 {
+/// The surface's normal field on already ordered corners (unit); `tags` are the corners' scalar
+/// tags (used by `stpn`).
+pub fn normal_field(surface: Surface, c: &Corners, tags: &[stpn::VertexTag; 3]) -> Vec3 {
     match surface {
         Surface::Flat | Surface::Phong => flat::normal(c),
         Surface::Pn => pn::normal(c),
+        Surface::Stpn => pn::normal(&Corners {
+            n: stpn::shading_normals(c, tags),
+            ..*c
+        }),
     }
 }
 
 /// Evaluate a local surface on already ordered corners.
-pub fn eval_corners(surface: Surface, params: &SurfaceParams, c: &Corners) -> Local {
+pub fn eval_corners(
+    surface: Surface,
+    params: &SurfaceParams,
+    c: &Corners,
+    tags: &[stpn::VertexTag; 3],
+) -> Local {
     match surface {
         Surface::Flat => flat::eval(c),
         Surface::Phong => phong::eval(c, params.alpha),
         Surface::Pn => pn::eval(c),
+        Surface::Stpn => stpn::eval(c, tags),
     }
 }
 
@@ -307,8 +325,12 @@ pub fn eval_surface(
     bary: [f32; 3],
     inputs: &Inputs,
 ) -> SurfacePoint {
-    let c = canonical(&CornerRecord::decode(rec), bary);
-    let l = eval_corners(surface, params, &c);
+    let r = CornerRecord::decode(rec);
+    let c = canonical(&r, bary);
+    let tags = inputs.tags.map_or([stpn::VertexTag::default(); 3], |t| {
+        stpn::corner_tags(t, &r.idx, c.order)
+    });
+    let l = eval_corners(surface, params, &c, &tags);
     let mut g = [Vec3::ZERO; 3];
     for i in 0..3 {
         g[c.order[i]] = l.grad[i];
@@ -316,7 +338,7 @@ pub fn eval_surface(
     let direction = if c.g == c.n {
         l.normal
     } else {
-        normal_field(surface, &Corners { n: c.g, ..c })
+        normal_field(surface, &Corners { n: c.g, ..c }, &tags)
     };
     // Texture coordinates in canonical order, so both sides of a shared edge (with the same
     // coordinates at its ends) read the same point of the map.
@@ -559,8 +581,10 @@ mod tests {
             for k in 1..n {
                 let wa = crate::pattern::weight(n - k, n);
                 let wb = crate::pattern::weight(k, n);
-                let p1 = eval_corners(s, &params, &stored(&r1, [wa, wb, 0.0])).position;
-                let p2 = eval_corners(s, &params, &stored(&r2, [wb, wa, 0.0])).position;
+                let p1 = eval_corners(s, &params, &stored(&r1, [wa, wb, 0.0]), &Default::default())
+                    .position;
+                let p2 = eval_corners(s, &params, &stored(&r2, [wb, wa, 0.0]), &Default::default())
+                    .position;
                 if p1.to_array().map(f32::to_bits) != p2.to_array().map(f32::to_bits) {
                     differ += 1;
                 }

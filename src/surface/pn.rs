@@ -41,15 +41,18 @@ pub fn edge_point(pi: Vec3, pj: Vec3, n: Vec3) -> Vec3 {
     (pi * 2.0 + pj - n * s) * THIRD
 }
 
-pub fn control(c: &Corners) -> Control {
-    let edge = |i: usize, j: usize| {
-        let n = if c.seam_pn[super::edge_of(i, j)] {
-            c.g[i]
-        } else {
-            c.n[i]
-        };
-        edge_point(c.p[i], c.p[j], n)
+/// The edge point of edge ij next to corner i, with the position normal on a seam edge.
+fn seam_edge_point(c: &Corners, i: usize, j: usize) -> Vec3 {
+    let n = if c.seam_pn[super::edge_of(i, j)] {
+        c.g[i]
+    } else {
+        c.n[i]
     };
+    edge_point(c.p[i], c.p[j], n)
+}
+
+/// The control points with edge points from `edge(i, j)` (the one of edge ij next to corner i).
+pub fn control_with(c: &Corners, edge: &dyn Fn(usize, usize) -> Vec3) -> Control {
     let mut e = [[Vec3::ZERO; 3]; 3];
     for (i, j) in [(0, 1), (1, 0), (1, 2), (2, 1), (0, 2), (2, 0)] {
         e[i][j] = edge(i, j);
@@ -88,9 +91,19 @@ pub fn normal(c: &Corners) -> Vec3 {
     n.normalize_or_zero()
 }
 
+pub fn control(c: &Corners) -> Control {
+    control_with(c, &|i, j| seam_edge_point(c, i, j))
+}
+
 pub fn eval(c: &Corners) -> Local {
+    eval_with_edges(c, &|i, j| seam_edge_point(c, i, j))
+}
+
+/// The cubic patch with edge points from `edge` (PN's own, or scalar-tagged ones), the normal
+/// field on `c.n`.
+pub fn eval_with_edges(c: &Corners, edge: &dyn Fn(usize, usize) -> Vec3) -> Local {
     let [w0, w1, w2] = c.w;
-    let b = control(c);
+    let b = control_with(c, edge);
     let e = &b.e;
     let corners = c.p[0] * (w0 * w0 * w0) + c.p[1] * (w1 * w1 * w1) + c.p[2] * (w2 * w2 * w2);
     let edges = e[0][1] * (w0 * w0 * w1)

@@ -157,7 +157,7 @@ pub enum RecordKind {
 impl Surface {
     pub fn record_kind(self) -> RecordKind {
         match self {
-            Surface::Flat | Surface::Phong | Surface::Pn => RecordKind::Corners,
+            Surface::Flat | Surface::Phong | Surface::Pn | Surface::Stpn => RecordKind::Corners,
         }
     }
 }

@@ -1,0 +1,378 @@
+//! `stpn` surface: scalar-tagged PN triangles (Boubekeur, Reuter & Schlick 2005; the 2005
+//! refinement paper's appendix B). Mirror of `glsl/include/stpn.glsl`.
+//!
+//! Each vertex carries a tension q, a sharpness σ, a bias β and a crease direction D (zero for a
+//! smooth vertex; a crease vertex also has the shared normal N of the position). The tangent
+//! coefficient of edge (j, k) next to vertex j is `b = d + e` with `d = P_j + (1 − q_j)/3 ·
+//! (P_k − P_j)` and, with `Π(p, n, q) = −n·(q − p)`:
+//! - at a smooth vertex, `e = Π(P_j, N_j, d) N_j`: d projected on the tangent plane, which for
+//!   q = 0 is PN's edge point (neutral tags give PN triangles);
+//! - at a crease vertex, `e = Π(P_j, N_j, d) Y_j` with `Y_j = (N_j + β_j D_j)/|N_j + β_j D_j|`
+//!   and N_j the shared normal: both triangles along the crease build the same edge, so the
+//!   crease stays closed, and the bias tilts it.
+//!
+//! Shading: at a crease vertex a triangle uses the sharp normal of its side,
+//! `N′± = (N ± σ D)/|N ± σ D|`, the side being the sign of `(centroid − P_j)·D_j`; the normal
+//! field is then PN's quadratic one on those normals (per fragment, like `pn`).
+//!
+//! Appendix B's restrictions: at most one crease through a vertex (one D per vertex, by
+//! construction) and at most two crease vertices per triangle ([`check`]).
+//!
+//! Tags come from a sidecar file ([`parse`]) or, without one, from the mesh's hard edges
+//! ([`derive`]): a position carrying exactly two distinct normals N_a, N_b becomes a crease
+//! vertex with N = (N_a + N_b)/|…|, D = (N_a − N_b)/|…| and σ = tan(θ/2), θ the angle between them,
+//! so that N′± are N_a and N_b again.
+
+use super::{dot3, Corners, Local};
+use crate::mesh::Mesh;
+use glam::Vec3;
+
+/// One vertex's tags.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VertexTag {
+    pub tension: f32,
+    pub sharpness: f32,
+    pub bias: f32,
+    /// Crease direction (unit), zero for a smooth vertex.
+    pub direction: Vec3,
+    /// The position's shared normal at a crease vertex (unit; unused when smooth).
+    pub normal: Vec3,
+}
+
+impl Default for VertexTag {
+    fn default() -> Self {
+        Self {
+            tension: 0.0,
+            sharpness: 0.0,
+            bias: 0.0,
+            direction: Vec3::ZERO,
+            normal: Vec3::ZERO,
+        }
+    }
+}
+
+impl VertexTag {
+    pub fn crease(&self) -> bool {
+        self.direction != Vec3::ZERO
+    }
+
+    /// As the GPU reads it (`vertex_tags` in stpn.glsl): three `vec4` per vertex.
+    pub fn to_gpu(&self) -> [f32; 12] {
+        let (d, n) = (self.direction, self.normal);
+        [
+            self.tension,
+            self.sharpness,
+            self.bias,
+            self.crease() as u32 as f32,
+            d.x,
+            d.y,
+            d.z,
+            0.0,
+            n.x,
+            n.y,
+            n.z,
+            0.0,
+        ]
+    }
+}
+
+/// Tags derived from the mesh's hard edges (see the module documentation); a position with
+/// three or more distinct normals (a corner where several creases meet, which appendix B cannot
+/// express) stays smooth and is counted in the second value.
+pub fn derive(mesh: &Mesh) -> (Vec<VertexTag>, usize) {
+    let mut groups: Vec<Vec<Vec3>> = vec![Vec::new(); mesh.positions.len()];
+    for t in &mesh.triangles {
+        for k in 0..3 {
+            let n = mesh.normals[t.n[k] as usize];
+            let g = &mut groups[t.p[k] as usize];
+            if !g
+                .iter()
+                .any(|m| m.to_array().map(f32::to_bits) == n.to_array().map(f32::to_bits))
+            {
+                g.push(n);
+            }
+        }
+    }
+    let mut corners = 0;
+    let tags = groups
+        .iter()
+        .map(|g| match g.as_slice() {
+            [a, b] => {
+                let n = (*a + *b).normalize_or_zero();
+                let d = (*a - *b).normalize_or_zero();
+                let half = 0.5 * a.angle_between(*b);
+                if n == Vec3::ZERO || d == Vec3::ZERO {
+                    return VertexTag::default();
+                }
+                VertexTag {
+                    sharpness: half.tan(),
+                    direction: d,
+                    normal: n,
+                    ..VertexTag::default()
+                }
+            }
+            g if g.len() > 2 => {
+                corners += 1;
+                VertexTag::default()
+            }
+            _ => VertexTag::default(),
+        })
+        .collect();
+    (tags, corners)
+}
+
+/// Reads a tags file for `mesh`. Format (documented in the README): `#` comments and blank lines;
+/// one line per tagged vertex, `t X Y Z TENSION [SHARPNESS BIAS DX DY DZ]`, the vertex named by
+/// its coordinates exactly as its `v` line gives them. Untagged vertices keep `base`.
+pub fn parse(
+    shown: &str,
+    text: &str,
+    mesh: &Mesh,
+    base: &[VertexTag],
+) -> Result<Vec<VertexTag>, String> {
+    let index: std::collections::HashMap<[u32; 3], usize> = mesh
+        .positions
+        .iter()
+        .enumerate()
+        .map(|(i, p)| ((*p + Vec3::ZERO).to_array().map(f32::to_bits), i))
+        .collect();
+    let normals =
+        crate::mesh::compute_area_weighted_normals(&mesh.positions, &mesh.position_indices());
+    let mut tags = base.to_vec();
+    for (i, line) in text.lines().enumerate() {
+        let at = |msg: String| format!("tags file '{shown}' line {}: {msg}", i + 1);
+        let line = line.trim();
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        let words: Vec<&str> = line.split_whitespace().collect();
+        if words[0] != "t" {
+            return Err(at(format!(
+                "'{}' is not a tag line (expected `t X Y Z TENSION [SHARPNESS BIAS DX DY DZ]`)",
+                words[0]
+            )));
+        }
+        if words.len() != 5 && words.len() != 10 {
+            return Err(at(format!(
+                "{} numbers, expected 4 (X Y Z TENSION) or 9 (with SHARPNESS BIAS DX DY DZ)",
+                words.len() - 1
+            )));
+        }
+        let mut v = Vec::with_capacity(9);
+        for w in &words[1..] {
+            match w.parse::<f32>() {
+                Ok(x) if x.is_finite() => v.push(x),
+                _ => return Err(at(format!("'{w}' is not a finite number"))),
+            }
+        }
+        let p = Vec3::new(v[0], v[1], v[2]) + Vec3::ZERO;
+        let Some(&vi) = index.get(&p.to_array().map(f32::to_bits)) else {
+            return Err(at(format!(
+                "no vertex of the mesh is at ({}, {}, {})",
+                v[0], v[1], v[2]
+            )));
+        };
+        if !(-1.0..=1.0).contains(&v[3]) {
+            return Err(at(format!("tension {} is not within [-1, 1]", v[3])));
+        }
+        let mut tag = VertexTag {
+            tension: v[3],
+            ..tags[vi]
+        };
+        if v.len() == 9 {
+            if v[4] < 0.0 {
+                return Err(at(format!("sharpness {} is negative", v[4])));
+            }
+            let d = Vec3::new(v[6], v[7], v[8]);
+            let n = if tags[vi].crease() {
+                tags[vi].normal
+            } else {
+                normals[vi]
+            };
+            // The crease direction lies in the tangent plane.
+            let d = (d - n * d.dot(n)).normalize_or_zero();
+            tag.sharpness = v[4];
+            tag.bias = v[5];
+            tag.direction = d;
+            tag.normal = n;
+        }
+        tags[vi] = tag;
+    }
+    Ok(tags)
+}
+
+/// Appendix B's restriction that tags must meet: at most two crease vertices per triangle.
+pub fn check(mesh: &Mesh, tags: &[VertexTag]) -> Result<(), String> {
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        if tri.p.iter().all(|&p| tags[p as usize].crease()) {
+            let p = tri.p.map(|i| mesh.positions[i as usize]);
+            return Err(format!(
+                "triangle {} has three crease vertices ({}, {}, {}): scalar-tagged PN triangles allow at most two per triangle",
+                t + 1, p[0], p[1], p[2]
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The tags of a triangle's canonical corners (`Corners::order` into the record's stored
+/// corners, whose global indices are `idx`).
+pub fn corner_tags(tags: &[VertexTag], idx: &[u32; 4], order: [usize; 3]) -> [VertexTag; 3] {
+    order.map(|c| tags.get(idx[c] as usize).copied().unwrap_or_default())
+}
+
+const THIRD: f32 = 1.0 / 3.0;
+
+/// The tangent coefficient of edge (i, j) next to corner i. Mirror of `stpn_edge`.
+pub fn edge_point(c: &Corners, t: &[VertexTag; 3], i: usize, j: usize) -> Vec3 {
+    let d = c.p[i] + (c.p[j] - c.p[i]) * ((1.0 - t[i].tension) * THIRD);
+    if t[i].crease() {
+        let n = t[i].normal;
+        let y = (n + t[i].direction * t[i].bias).normalize_or_zero();
+        d + y * -dot3(n, d - c.p[i])
+    } else {
+        let n = c.n[i];
+        d + n * -dot3(n, d - c.p[i])
+    }
+}
+
+/// The shading normals of the corners: a crease corner's sharp normal of this triangle's side.
+pub fn shading_normals(c: &Corners, t: &[VertexTag; 3]) -> [Vec3; 3] {
+    let centroid = (c.p[0] + c.p[1] + c.p[2]) * THIRD;
+    [0, 1, 2].map(|i| {
+        if !t[i].crease() {
+            return c.n[i];
+        }
+        let side = if dot3(centroid - c.p[i], t[i].direction) >= 0.0 {
+            1.0
+        } else {
+            -1.0
+        };
+        (t[i].normal + t[i].direction * (side * t[i].sharpness)).normalize_or_zero()
+    })
+}
+
+pub fn eval(c: &Corners, t: &[VertexTag; 3]) -> Local {
+    let shaded = Corners {
+        n: shading_normals(c, t),
+        ..*c
+    };
+    super::pn::eval_with_edges(&shaded, &|i, j| edge_point(c, t, i, j))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::test_support::load_model;
+    use crate::surface::{eval_with, Inputs, Surface, SurfaceParams};
+
+    /// Neutral tags give PN triangles: the same points to 4 ulp of the mesh's radius (the edge
+    /// coefficient is the same point computed another way: `P + (Q − P)/3` projected, not
+    /// `(2P + Q − sN)/3`).
+    #[test]
+    fn neutral_tags_are_pn() {
+        let (mesh, _) = load_model("icosahedron_vn.obj");
+        let records = crate::surface::build_records(
+            crate::surface::RecordKind::Corners,
+            &mesh,
+            crate::surface::Seams::Open,
+        );
+        let tags = vec![VertexTag::default(); mesh.positions.len()];
+        let inputs = Inputs {
+            tags: Some(&tags),
+            ..Default::default()
+        };
+        let p = SurfaceParams::default();
+        let tol = 4.0 * f32::EPSILON * mesh.bounding_radius();
+        for r in &records {
+            for b in [[0.2f32, 0.3, 0.5], [0.5, 0.5, 0.0], [0.1, 0.1, 0.8]] {
+                let a = eval_with(
+                    Surface::Pn,
+                    crate::surface::Displace::None,
+                    &p,
+                    r,
+                    b,
+                    &inputs,
+                );
+                let s = eval_with(
+                    Surface::Stpn,
+                    crate::surface::Displace::None,
+                    &p,
+                    r,
+                    b,
+                    &inputs,
+                );
+                assert!(
+                    (a.position - s.position).abs().max_element() <= tol,
+                    "{} vs {}",
+                    a.position,
+                    s.position
+                );
+                assert!((a.normal - s.normal).length() < 1e-6);
+            }
+        }
+    }
+
+    /// Tags derived from the cylinder's hard rims: its rim vertices become creases whose sharp
+    /// normals are the two given ones, the other vertices stay smooth, and the restrictions hold.
+    #[test]
+    fn derived_tags_reproduce_the_hard_normals() {
+        let (mesh, _) = load_model("cylinder_hard_normals.obj");
+        let (tags, corners) = derive(&mesh);
+        assert_eq!(corners, 0);
+        let creases = tags.iter().filter(|t| t.crease()).count();
+        assert!(creases > 0 && creases < mesh.positions.len());
+        for t in tags.iter().filter(|t| t.crease()) {
+            let a = (t.normal + t.direction * t.sharpness).normalize();
+            let b = (t.normal - t.direction * t.sharpness).normalize();
+            assert!((a.angle_between(b) - 2.0 * t.sharpness.atan()).abs() < 1e-5);
+        }
+        check(&mesh, &tags).unwrap();
+    }
+
+    #[test]
+    fn tag_files_are_parsed_with_line_errors() {
+        let (mesh, _) = load_model("tetrahedron.obj");
+        let base = vec![VertexTag::default(); mesh.positions.len()];
+        let p = mesh.positions[0];
+        let ok = format!("# tags\n\nt {} {} {} 0.5\n", p.x, p.y, p.z);
+        let tags = parse("t.tags", &ok, &mesh, &base).unwrap();
+        assert_eq!(tags[0].tension, 0.5);
+        for (text, needle) in [
+            ("x 1 2 3 0\n".to_string(), "line 1: 'x' is not a tag line"),
+            ("\nt 1 2\n".to_string(), "line 2: 2 numbers"),
+            (
+                "t 9 9 9 0\n".to_string(),
+                "no vertex of the mesh is at (9, 9, 9)",
+            ),
+            (
+                format!("t {} {} {} 2\n", p.x, p.y, p.z),
+                "tension 2 is not within [-1, 1]",
+            ),
+            (
+                format!("t {} {} {} nan\n", p.x, p.y, p.z),
+                "'nan' is not a finite number",
+            ),
+            (
+                format!("t {} {} {} 0 -1 0 1 0 0\n", p.x, p.y, p.z),
+                "sharpness -1 is negative",
+            ),
+        ] {
+            let e = parse("t.tags", &text, &mesh, &base).unwrap_err();
+            assert!(
+                e.contains("tags file 't.tags'") && e.contains(needle),
+                "{e}"
+            );
+        }
+        // Three crease vertices in one triangle break appendix B's restriction.
+        let all = mesh
+            .positions
+            .iter()
+            .map(|q| format!("t {} {} {} 0 1 0 1 0 0\n", q.x, q.y, q.z))
+            .collect::<String>();
+        let tags = parse("t.tags", &all, &mesh, &base).unwrap();
+        assert!(check(&mesh, &tags)
+            .unwrap_err()
+            .contains("three crease vertices"));
+    }
+}
