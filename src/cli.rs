@@ -68,15 +68,30 @@ impl SurfaceOpts {
         mesh: &meshrefine::mesh::Mesh,
     ) -> Result<Option<Vec<meshrefine::surface::stpn::VertexTag>>, String> {
         use meshrefine::surface::stpn;
-        let Some(path) = &self.tags else {
+        if self.tags.is_none() && self.crease_angle.is_none() {
             return Ok(None);
-        };
+        }
         if self.surface != Surface::Stpn {
+            let what = if self.tags.is_some() {
+                "--tags"
+            } else {
+                "--crease-angle"
+            };
             return Err(format!(
-                "--tags applies only to --surface stpn, not to --surface {}: leave it out or use --surface stpn",
+                "{what} applies only to --surface stpn, not to --surface {}: leave it out or use --surface stpn",
                 self.surface.name()
             ));
         }
+        if let Some(a) = self.crease_angle {
+            if !(a.is_finite() && a > 0.0 && a < 180.0) {
+                return Err(format!("--crease-angle {a} is not within (0, 180) degrees"));
+            }
+        }
+        let (base, _) = stpn::derive_with_angle(mesh, self.crease_angle);
+        let Some(path) = &self.tags else {
+            stpn::check(mesh, &base)?;
+            return Ok(Some(base));
+        };
         let shown = path.display().to_string();
         let meta =
             std::fs::metadata(path).map_err(|e| format!("cannot read tags file '{shown}': {e}"))?;
@@ -87,7 +102,6 @@ impl SurfaceOpts {
         }
         let text = std::fs::read_to_string(path)
             .map_err(|e| format!("cannot read tags file '{shown}': {e}"))?;
-        let (base, _) = stpn::derive(mesh);
         let tags = stpn::parse(&shown, &text, mesh, &base)?;
         stpn::check(mesh, &tags).map_err(|e| format!("tags file '{shown}': {e}"))?;
         Ok(Some(tags))
@@ -145,6 +159,10 @@ pub struct SurfaceOpts {
     /// default: tags derived from the mesh's hard edges).
     #[arg(long, value_name = "FILE")]
     pub tags: Option<PathBuf>,
+    /// For --surface stpn without --tags (or under it): edges whose faces meet at more than this
+    /// many degrees are creases too (default: only positions with two vn are).
+    #[arg(long, value_name = "DEGREES")]
+    pub crease_angle: Option<f32>,
     #[command(flatten)]
     pub params: ParamOpts,
 }

@@ -103,8 +103,9 @@ struct Input {
 fn attach_surface_inputs(input: &mut Input, s: &cli::SurfaceOpts) -> Result<()> {
     input.heightmap = s.heightmap().map_err(anyhow::Error::msg)?;
     input.tags = s.tags(&input.mesh).map_err(anyhow::Error::msg)?;
-    if s.surface == meshrefine::surface::Surface::Stpn && input.tags.is_none() {
-        let (_, corners) = meshrefine::surface::stpn::derive(&input.mesh);
+    if s.surface == meshrefine::surface::Surface::Stpn && s.tags.is_none() {
+        let (_, corners) =
+            meshrefine::surface::stpn::derive_with_angle(&input.mesh, s.crease_angle);
         if corners > 0 {
             note(format_args!(
                 "warning: '{}': {corners} vertices where three or more hard edges meet stay smooth under stpn (scalar-tagged PN triangles allow one crease per vertex; give tags with --tags)",

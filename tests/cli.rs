@@ -962,6 +962,31 @@ fn stpn_tags_render_and_their_errors() {
     let mut args = vec!["render", p(&cyl), "-o", o, "--surface", "stpn"];
     args.extend(size);
     expect_success(&args);
+    // Creases from dihedral angles: the cube's edges (90°) with a 60° crease angle; its
+    // corners, where three creases meet, stay smooth with a warning.
+    let cube = model_path("cube_tri.obj");
+    let out = meshrefine(&[
+        "render",
+        p(&cube),
+        "-o",
+        o,
+        "--surface",
+        "stpn",
+        "--crease-angle",
+        "60",
+        "--level",
+        "4",
+        "--width",
+        "64",
+        "--height",
+        "64",
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("8 vertices where three or more hard edges meet"),
+        "{stderr}"
+    );
     // A tags file on the tetrahedron: tension at its first vertex.
     let tet = model_path("tetrahedron.obj");
     let mesh = meshrefine::mesh::Mesh::load_obj(&tet).unwrap().0;

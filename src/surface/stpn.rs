@@ -80,6 +80,130 @@ impl VertexTag {
 /// three or more distinct normals (a corner where several creases meet, which appendix B cannot
 /// express) stays smooth and is counted in the second value.
 pub fn derive(mesh: &Mesh) -> (Vec<VertexTag>, usize) {
+    derive_with_angle(mesh, None)
+}
+
+/// A crease tag from the two normals either side of it (`None` if they are degenerate).
+fn crease_tag(a: Vec3, b: Vec3) -> Option<VertexTag> {
+    let n = (a + b).normalize_or_zero();
+    let d = (a - b).normalize_or_zero();
+    if n == Vec3::ZERO || d == Vec3::ZERO {
+        return None;
+    }
+    Some(VertexTag {
+        sharpness: (0.5 * a.angle_between(b)).tan(),
+        direction: d,
+        normal: n,
+        ..VertexTag::default()
+    })
+}
+
+/// [`derive`], and with `crease_angle` (degrees) also from the geometry: at a position with one
+/// normal, the faces around it are grouped across the edges whose dihedral angle is at most
+/// `crease_angle`; exactly two groups make a crease through it, N_a and N_b being the groups'
+/// area-weighted face normals.
+pub fn derive_with_angle(mesh: &Mesh, crease_angle: Option<f32>) -> (Vec<VertexTag>, usize) {
+    let (mut tags, mut corners) = derive_from_normals(mesh);
+    if let Some(angle) = crease_angle {
+        let (more, more_corners) = derive_from_dihedrals(mesh, angle.to_radians());
+        for (t, m) in tags.iter_mut().zip(more) {
+            if !t.crease() {
+                *t = m;
+            }
+        }
+        corners += more_corners;
+    }
+    (tags, corners)
+}
+
+fn derive_from_dihedrals(mesh: &Mesh, angle: f32) -> (Vec<VertexTag>, usize) {
+    let face_normal = |t: &crate::mesh::Triangle| {
+        let [a, b, c] = t.p.map(|i| mesh.positions[i as usize]);
+        (b - a).cross(c - a) // area-weighted
+    };
+    let normals: Vec<Vec3> = mesh.triangles.iter().map(face_normal).collect();
+    // Faces of every undirected edge.
+    let mut edge_faces: std::collections::HashMap<(u32, u32), Vec<usize>> =
+        std::collections::HashMap::new();
+    for (f, t) in mesh.triangles.iter().enumerate() {
+        for k in 0..3 {
+            let (a, b) = (t.p[k], t.p[(k + 1) % 3]);
+            edge_faces.entry((a.min(b), a.max(b))).or_default().push(f);
+        }
+    }
+    let mut around: Vec<Vec<usize>> = vec![Vec::new(); mesh.positions.len()];
+    for (f, t) in mesh.triangles.iter().enumerate() {
+        for &p in &t.p {
+            around[p as usize].push(f);
+        }
+    }
+    let mut corners = 0;
+    let tags = around
+        .iter()
+        .enumerate()
+        .map(|(v, faces)| {
+            // Union-find over the faces around v, joined across smooth edges at v.
+            let mut parent: Vec<usize> = (0..faces.len()).collect();
+            fn root(p: &mut [usize], mut i: usize) -> usize {
+                while p[i] != i {
+                    p[i] = p[p[i]];
+                    i = p[i];
+                }
+                i
+            }
+            // The edges at v, each once: those of the faces around it that contain v.
+            let mut edges: Vec<(u32, u32)> = faces
+                .iter()
+                .flat_map(|&f| {
+                    let t = &mesh.triangles[f];
+                    (0..3).map(move |k| (t.p[k], t.p[(k + 1) % 3]))
+                })
+                .filter(|&(a, b)| a as usize == v || b as usize == v)
+                .map(|(a, b)| (a.min(b), a.max(b)))
+                .collect();
+            edges.sort_unstable();
+            edges.dedup();
+            for e in edges {
+                let fs = &edge_faces[&e];
+                if fs.len() != 2 {
+                    continue;
+                }
+                if normals[fs[0]].angle_between(normals[fs[1]]) > angle {
+                    continue;
+                }
+                let (i, j) = (
+                    faces.iter().position(|&f| f == fs[0]),
+                    faces.iter().position(|&f| f == fs[1]),
+                );
+                if let (Some(i), Some(j)) = (i, j) {
+                    let (ri, rj) = (root(&mut parent, i), root(&mut parent, j));
+                    parent[ri] = rj;
+                }
+            }
+            let mut sums: Vec<(usize, Vec3)> = Vec::new();
+            for i in 0..faces.len() {
+                let r = root(&mut parent, i);
+                match sums.iter_mut().find(|(k, _)| *k == r) {
+                    Some((_, s)) => *s += normals[faces[i]],
+                    None => sums.push((r, normals[faces[i]])),
+                }
+            }
+            match sums.as_slice() {
+                [(_, a), (_, b)] => {
+                    crease_tag(a.normalize_or_zero(), b.normalize_or_zero()).unwrap_or_default()
+                }
+                s if s.len() > 2 => {
+                    corners += 1;
+                    VertexTag::default()
+                }
+                _ => VertexTag::default(),
+            }
+        })
+        .collect();
+    (tags, corners)
+}
+
+fn derive_from_normals(mesh: &Mesh) -> (Vec<VertexTag>, usize) {
     let mut groups: Vec<Vec<Vec3>> = vec![Vec::new(); mesh.positions.len()];
     for t in &mesh.triangles {
         for k in 0..3 {
@@ -97,20 +221,7 @@ pub fn derive(mesh: &Mesh) -> (Vec<VertexTag>, usize) {
     let tags = groups
         .iter()
         .map(|g| match g.as_slice() {
-            [a, b] => {
-                let n = (*a + *b).normalize_or_zero();
-                let d = (*a - *b).normalize_or_zero();
-                let half = 0.5 * a.angle_between(*b);
-                if n == Vec3::ZERO || d == Vec3::ZERO {
-                    return VertexTag::default();
-                }
-                VertexTag {
-                    sharpness: half.tan(),
-                    direction: d,
-                    normal: n,
-                    ..VertexTag::default()
-                }
-            }
+            [a, b] => crease_tag(*a, *b).unwrap_or_default(),
             g if g.len() > 2 => {
                 corners += 1;
                 VertexTag::default()
@@ -311,6 +422,25 @@ mod tests {
                 assert!((a.normal - s.normal).length() < 1e-6);
             }
         }
+    }
+
+    /// Without split normals, the crease angle finds the same creases from the geometry: a
+    /// cylinder whose normals are computed (one per position) gets creases at its rims with a
+    /// 60° crease angle, and none without one.
+    #[test]
+    fn crease_angle_finds_creases_from_dihedral_angles() {
+        let (hard, _) = load_model("cylinder_hard_normals.obj");
+        let (mesh, _) =
+            Mesh::from_parts("cyl", hard.positions.clone(), None, hard.position_indices()).unwrap();
+        let (none, _) = derive_with_angle(&mesh, None);
+        assert!(none.iter().all(|t| !t.crease()));
+        let (tags, corners) = derive_with_angle(&mesh, Some(60.0));
+        assert_eq!(corners, 0);
+        let (expected, _) = derive(&hard);
+        let creases: Vec<bool> = tags.iter().map(VertexTag::crease).collect();
+        let want: Vec<bool> = expected.iter().map(VertexTag::crease).collect();
+        assert_eq!(creases, want);
+        check(&mesh, &tags).unwrap();
     }
 
     /// Tags derived from the cylinder's hard rims: its rim vertices become creases whose sharp
