@@ -25,3 +25,5 @@ done
 $m render assets/models/grid_uv_8x8.obj -o "$out/grid-pn-heightmap.png" --width 427 --height 240 --level 32 --surface pn --displace heightmap
 # Scalar-tagged PN: the cylinder's rims as creases, derived from its hard normals (stpn) against pn.
 $m render assets/models/cylinder_hard_normals.obj -o "$out/cylinder-stpn.png" --width 427 --height 240 --level 8 --surface stpn
+# Scalar-tagged PN with a tags file: a cone-like tip, a fuller vertex and a crease.
+$m render assets/models/tetrahedron.obj -o "$out/tetrahedron-stpn-tags.png" --width 427 --height 240 --level 16 --surface stpn --tags assets/examples/tetrahedron.tags
