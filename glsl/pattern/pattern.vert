@@ -1,9 +1,9 @@
 #version 460
 // `pattern` driver (Boubekeur & Schlick 2005, §3.2): the refinement pattern's vertices carry
 // barycentric coordinates (w, u, v); this stage maps each onto the surface of the draw's element.
-// The element's record comes from push constants, a dynamic uniform buffer or the records buffer
-// indexed by gl_InstanceIndex, chosen by the SUBMIT specialization constant; the stage never looks
-// inside it (surface.glsl does).
+// The element's record comes from push constants, a window of a uniform buffer, or instance-rate
+// vertex attributes, chosen by the SUBMIT specialization constant; the stage never looks inside
+// it (surface.glsl does).
 #include "records.glsl"
 #include "surface.glsl"
 #include "varyings.glsl"
@@ -15,18 +15,22 @@ layout(constant_id = SPEC_SUBMIT) const uint SUBMIT = 2; // 0 push, 1 ubo, 2 ins
 layout(set = SET_MESH, binding = BINDING_TRI_UBO, std140) uniform RecordUbo { ElementRecord recs[UBO_WINDOW]; } rec_ubo;
 
 layout(location = 0) in vec3 in_bary; // (w, u, v)
+// `instanced`: the element's record as instance-rate attributes (no storage-buffer read per
+// vertex; src/render/pattern.rs binds the records as vertex buffer 1).
+layout(location = 1) in uvec4 in_rec[7];
 
 void main() {
     ElementRecord rec;
-    // The element within the bound chunk of records, and in the mesh.
-    uint local = SUBMIT == 2 ? pc.draw.w + uint(gl_InstanceIndex) : pc.draw.w;
-    uint element = pc.draw.y + local;
+    // The element in the mesh, and within the bound chunk of records (gl_InstanceIndex counts
+    // from the first element of an instanced draw).
+    uint element = SUBMIT == 2 ? uint(gl_InstanceIndex) : pc.draw.y + pc.draw.w;
+    uint local = element - pc.draw.y;
     if (SUBMIT == 0) {
         rec = pc.rec;
     } else if (SUBMIT == 1) {
         rec = rec_ubo.recs[element % uint(UBO_WINDOW)];
     } else {
-        rec = records[local];
+        rec = ElementRecord(in_rec);
     }
     SurfacePoint sp = evaluate(rec, Sample(element, local, in_bary, uint(gl_VertexIndex)));
     v_position = sp.position;

@@ -3,7 +3,8 @@
 //! over the element's record (opaque to the driver), all measured by the benchmark:
 //! - `push`: for each element, push constants (record + draw words) then a draw (the paper's loop);
 //! - `ubo`: for each element, a dynamic uniform-buffer offset and the draw words, then a draw;
-//! - `instanced`: one instanced draw, records in a storage buffer indexed by gl_InstanceIndex.
+//! - `instanced`: one instanced draw per chunk, the records read as instance-rate vertex
+//!   attributes (the records buffer as vertex buffer 1, `firstInstance` = the first element).
 
 use super::bindings::{SET_MESH, UBO_WINDOW};
 use super::scene::GpuPattern;
@@ -35,6 +36,9 @@ pub fn cmd_draw(
         )
     };
     cmd.bind_vertex_buffer(0, &pattern.vertices);
+    // The records as instance-rate attributes (`instanced` reads them; the other modes draw
+    // instance 0 and ignore it).
+    cmd.bind_vertex_buffer(1, &mesh.records);
     cmd.bind_index_buffer_u32(&pattern.indices);
     for c in mesh.chunks(range) {
         let elements = c.first..c.first + c.count;
@@ -67,8 +71,10 @@ pub fn cmd_draw(
             }
             Submit::Instanced => {
                 cmd.bind_descriptor_set(r.layout.raw, SET_MESH, c.set, &[0]);
-                push_draw(draw(c.base, c.first - c.base));
-                cmd.draw_indexed(pattern.index_count, c.count, 0, 0, 0);
+                // gl_InstanceIndex counts from first_instance = the first element: the record
+                // attributes are fetched by element, whatever chunk is bound.
+                push_draw(draw(c.base, 0));
+                cmd.draw_indexed(pattern.index_count, c.count, 0, 0, c.first);
             }
         }
     }

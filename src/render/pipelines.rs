@@ -9,7 +9,7 @@ use crate::gpu::{
     vk, Buffer, BufferDesc, Context, DescriptorPool, DescriptorSetLayout, GpuError,
     GraphicsPipelineDesc, Pipeline, PipelineLayout,
 };
-use crate::surface::{Displace, Surface};
+use crate::surface::{Displace, Surface, RECORD_BYTES};
 use std::collections::HashMap;
 use std::sync::Arc;
 
@@ -287,8 +287,13 @@ impl Renderer {
                     ),
                     frag,
                 ];
-                desc.vertex_bindings = vec![(0, 12, false)]; // (w, u, v)
+                // (w, u, v) per vertex; the element's record per instance (`instanced`).
+                desc.vertex_bindings = vec![(0, 12, false), (1, RECORD_BYTES as u32, true)];
                 desc.vertex_attributes = vec![(0, 0, vk::Format::R32G32B32_SFLOAT, 0)];
+                desc.vertex_attributes.extend(
+                    (0..RECORD_BYTES as u32 / 16)
+                        .map(|k| (1 + k, 1, vk::Format::R32G32B32A32_UINT, 16 * k)),
+                );
             }
             Driver::Tess => {
                 desc.stages = vec![

@@ -177,7 +177,9 @@ impl GpuMesh {
             ctx,
             BufferDesc::new_upload(
                 n.div_ceil(UBO_WINDOW as u64).max(1) * UBO_WINDOW as u64 * rec_size,
-                vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::UNIFORM_BUFFER,
+                vk::BufferUsageFlags::STORAGE_BUFFER
+                    | vk::BufferUsageFlags::UNIFORM_BUFFER
+                    | vk::BufferUsageFlags::VERTEX_BUFFER,
             ),
             "element records",
         )?;
