@@ -3,6 +3,7 @@
 //! ratios against `static` (same surface, displacement, mesh and level) compare like with like. Frame time from GPU timestamps and wall clock (submit to fence), median
 //! and spread over timed frames after one warm-up frame (Mesa compiles shaders at the first draw).
 //! Timings are measured, never asserted.
+#![forbid(unsafe_code)]
 
 use crate::mesh::Mesh;
 use crate::pattern::{index_count, vertex_count, PatternSet};

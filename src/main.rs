@@ -6,6 +6,7 @@
 //! do; any other write error (`>/dev/full`) is an `error:` line and status 1. Warnings and
 //! errors go to standard error, where a failed write is ignored (there is nowhere else to say
 //! it).
+#![forbid(unsafe_code)]
 
 mod cli;
 

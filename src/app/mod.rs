@@ -7,6 +7,7 @@
 //! One frame in flight: each frame waits for the previous frame's fence before it writes uniforms
 //! or records, uploads overlay textures, or rebuilds anything, so nothing in flight is ever
 //! changed or destroyed.
+#![forbid(unsafe_code)]
 
 mod ui;
 

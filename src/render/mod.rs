@@ -2,6 +2,7 @@
 //! that produce barycentric samples on the GPU (`static`, `pattern`, `tess`, one file each).
 //! A driver never knows which surface it draws: the surface is a specialization constant of its
 //! evaluation stage.
+#![forbid(unsafe_code)]
 
 pub mod bindings;
 mod camera;
