@@ -7,7 +7,7 @@
 
 use crate::mesh::Mesh;
 use crate::pattern::{index_count, vertex_count, PatternSet};
-use crate::render::{Camera, DrawConfig, Driver, Headless, RenderError, Scene, Submit};
+use crate::render::{Camera, DrawConfig, Driver, Headless, RenderError, Scene};
 use crate::surface::{Displace, Surface, SurfaceParams};
 use glam::Vec3;
 use std::fmt::Write as _;
@@ -93,17 +93,6 @@ pub struct Report {
     pub rows: Vec<Row>,
 }
 
-/// The variants measured, `static` first (the reference of the ratios).
-pub fn variants() -> Vec<(Driver, Submit)> {
-    vec![
-        (Driver::Static, Submit::Instanced),
-        (Driver::Pattern, Submit::Push),
-        (Driver::Pattern, Submit::Ubo),
-        (Driver::Pattern, Submit::Instanced),
-        (Driver::Tess, Submit::Instanced),
-    ]
-}
-
 /// A planar grid of exactly `triangles` triangles (an even count) facing +z, 1 unit tall:
 /// the coarse meshes of the 2005 paper's Fig. 7 are "10, 100, 1000 triangles".
 pub fn grid_mesh(triangles: u32) -> Mesh {
@@ -143,7 +132,7 @@ fn footprint(cfg: &DrawConfig, triangles: u64) -> (u64, u64, u64) {
     let (pv, pi) = (vertex_count(level) as u64, index_count(level) as u64);
     match cfg.driver {
         Driver::Static => (triangles * pv, triangles * pi, bytes),
-        Driver::Pattern => (pv, pi, bytes),
+        Driver::Pattern(_) => (pv, pi, bytes),
         Driver::Tess => (0, 0, bytes),
     }
 }
@@ -173,9 +162,9 @@ pub fn run(
         for &level in &opts.levels {
             for &(surface, displace) in &opts.surfaces {
                 let mut reference: Option<(f64, f64)> = None;
-                for (driver, submit) in variants() {
-                    let mut cfg =
-                        DrawConfig::new(driver, submit, level).with_surface(surface, displace);
+                // `static` first: the reference of the ratios.
+                for driver in Driver::VARIANTS {
+                    let mut cfg = DrawConfig::new(driver, level).with_surface(surface, displace);
                     cfg.params = params;
                     let (stored_vertices, stored_indices, geometry_bytes) =
                         footprint(&cfg, t as u64);

@@ -270,7 +270,7 @@ impl ExportArgs {
         Technique {
             surface: self.surface.clone(),
             driver: match self.driver {
-                ExportDriver::Pattern => Driver::Pattern,
+                ExportDriver::Pattern => Driver::Pattern(Submit::Instanced),
                 ExportDriver::Tess => Driver::Tess,
             },
             submit: self.submit,

@@ -224,7 +224,7 @@ fn require_extension(path: &Path, ext: &str, what: &str) -> Result<()> {
 /// window demo, whose keys switch to `pattern`).
 fn draw_config(t: &Technique, mesh: &Mesh, may_switch: bool) -> Result<DrawConfig> {
     if let (Some(submit), false) = (t.submit, may_switch) {
-        if t.driver != Driver::Pattern {
+        if t.driver.submit().is_none() {
             bail!(
                 "--submit {} applies only to --driver pattern, not to --driver {}: leave --submit out or use --driver pattern",
                 submit.name(),
@@ -240,8 +240,11 @@ fn draw_config(t: &Technique, mesh: &Mesh, may_switch: bool) -> Result<DrawConfi
             .params
             .params(mesh.bounding_radius())
             .map_err(anyhow::Error::msg)?,
-        driver: t.driver,
-        submit: t.submit(),
+        // `--driver pattern` parses as the pattern driver; `--submit` gives its mode.
+        driver: match t.driver {
+            Driver::Pattern(_) => Driver::Pattern(t.submit()),
+            d => d,
+        },
         level: t.level,
     })
 }
@@ -356,10 +359,7 @@ fn run(cli: Cli) -> Result<()> {
             let input = load_mesh(a.mesh.as_deref())?;
             let ctx = Context::new(&desc)?;
             let messages = ctx.messages_handle();
-            let (mesh, _) = for_viewing(
-                &input.mesh,
-                &DrawConfig::new(Driver::Pattern, Default::default(), 1),
-            );
+            let (mesh, _) = for_viewing(&input.mesh, &DrawConfig::new(Driver::default(), 1));
             let (centre, scale) = input.mesh.viewing_transform();
             let params = a
                 .params

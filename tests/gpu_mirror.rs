@@ -69,7 +69,7 @@ fn seamed(records: &[ElementRecord]) -> bool {
 fn position_tolerance(cfg: &DrawConfig, r: f32, seamed: bool) -> f32 {
     let eps = f32::EPSILON * r;
     let base = match (cfg.driver, cfg.surface) {
-        (Driver::Pattern, _) => 0.0,
+        (Driver::Pattern(_), _) => 0.0,
         (_, Surface::Flat) => 4.0 * eps,
         _ => 16.0 * eps,
     };
@@ -131,7 +131,7 @@ fn check_pattern_chunked(
         for (surface, displace) in combinations(all, scene.data.uvs.is_some()) {
             for submit in Submit::ALL {
                 let mut cfg =
-                    DrawConfig::new(Driver::Pattern, submit, level).with_surface(surface, displace);
+                    DrawConfig::new(Driver::Pattern(submit), level).with_surface(surface, displace);
                 cfg.params = params;
                 let tol = position_tolerance(&cfg, r, seamed(&scene.data.records));
                 let ntol = normal_tolerance(&cfg);
@@ -202,8 +202,7 @@ fn check_tess_chunked(file: &str, h: &mut Headless, levels: &[u32], all: bool, c
     let params = SurfaceParams::for_radius(r);
     for &level in levels {
         for (surface, displace) in combinations(all, scene.data.uvs.is_some()) {
-            let mut cfg = DrawConfig::new(Driver::Tess, Submit::Instanced, level)
-                .with_surface(surface, displace);
+            let mut cfg = DrawConfig::new(Driver::Tess, level).with_surface(surface, displace);
             cfg.params = params;
             let tol = position_tolerance(&cfg, r, seamed(&scene.data.records));
             let ntol = normal_tolerance(&cfg);
@@ -328,14 +327,11 @@ fn chunked_records_and_capture_passes_match_the_mirror() {
         let (mut whole, camera, _) = scene_with(h, model("icosahedron_vn.obj"), &[5]);
         let (mut chunked, _, _) = scene_chunked(h, model("icosahedron_vn.obj"), &[5], Some(7));
         assert_eq!(chunked.gpu.sets.len(), 3);
-        for submit in Submit::ALL {
-            for driver in [Driver::Pattern, Driver::Tess] {
-                let cfg =
-                    DrawConfig::new(driver, submit, 5).with_surface(Surface::Pn, Displace::None);
-                let a = h.render(&mut whole, &cfg, &camera).unwrap();
-                let b = h.render(&mut chunked, &cfg, &camera).unwrap();
-                assert!(a.rgba == b.rgba, "{}: chunked image differs", cfg.label());
-            }
+        for driver in Driver::VARIANTS {
+            let cfg = DrawConfig::new(driver, 5).with_surface(Surface::Pn, Displace::None);
+            let a = h.render(&mut whole, &cfg, &camera).unwrap();
+            let b = h.render(&mut chunked, &cfg, &camera).unwrap();
+            assert!(a.rgba == b.rgba, "{}: chunked image differs", cfg.label());
         }
     });
 }
@@ -364,7 +360,7 @@ fn record_fields_reach_every_submission_path() {
     with_gpu(32, 32, |h| {
         let (mut scene, camera, _) = scene_with(h, mesh, &[1]);
         for submit in Submit::ALL {
-            let cfg = DrawConfig::new(Driver::Pattern, submit, 1);
+            let cfg = DrawConfig::new(Driver::Pattern(submit), 1);
             let cap = h.capture(&mut scene, &cfg, &camera).unwrap();
             // Level 1: vertices (0,0) -> corner 0, (1,0) -> corner 1, (0,1) -> corner 2.
             for (t, tri) in [[0usize, 1, 2], [3, 2, 1]].iter().enumerate() {
@@ -386,11 +382,7 @@ fn record_fields_reach_every_submission_path() {
             }
         }
         let cap = h
-            .capture(
-                &mut scene,
-                &DrawConfig::new(Driver::Tess, Submit::Instanced, 1),
-                &camera,
-            )
+            .capture(&mut scene, &DrawConfig::new(Driver::Tess, 1), &camera)
             .unwrap();
         for v in &cap.vertices {
             let corner = [[0usize, 1, 2], [3, 2, 1]][v.id[0] as usize]

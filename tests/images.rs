@@ -96,15 +96,15 @@ fn drivers_render_the_same_image() {
             (Surface::Pn, Displace::Noise),
         ]);
         for (surface, displace) in combos {
-            let mut render = |driver, submit| {
-                let cfg = DrawConfig::new(driver, submit, level).with_surface(surface, displace);
+            let mut render = |driver| {
+                let cfg = DrawConfig::new(driver, level).with_surface(surface, displace);
                 h.render(&mut scene, &cfg, &camera).unwrap()
             };
-            let instanced = render(Driver::Pattern, Submit::Instanced);
-            let push = render(Driver::Pattern, Submit::Push);
-            let ubo = render(Driver::Pattern, Submit::Ubo);
-            let stat = render(Driver::Static, Submit::Instanced);
-            let tess = render(Driver::Tess, Submit::Instanced);
+            let instanced = render(Driver::Pattern(Submit::Instanced));
+            let push = render(Driver::Pattern(Submit::Push));
+            let ubo = render(Driver::Pattern(Submit::Ubo));
+            let stat = render(Driver::Static);
+            let tess = render(Driver::Tess);
             // The mesh covers a good part of the image (not an empty or black frame).
             let background = instanced.rgba[..4].to_vec();
             let covered = instanced
@@ -150,8 +150,8 @@ fn wireframe_pass_draws_edges() {
         let mut scene = h.scene(default_mesh(), 4).unwrap();
         let (c, r) = scene.bounding_sphere();
         let camera = Camera::framing(c, r);
-        for driver in [Driver::Static, Driver::Pattern, Driver::Tess] {
-            let cfg = DrawConfig::new(driver, Submit::Instanced, 4);
+        for driver in Driver::ALL {
+            let cfg = DrawConfig::new(driver, 4);
             h.wireframe = false;
             let plain = h.render(&mut scene, &cfg, &camera).unwrap();
             h.wireframe = true;

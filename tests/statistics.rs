@@ -32,18 +32,18 @@ fn statistics_match_geometry() {
         let t = scene.gpu.element_count as u64;
         for n in levels {
             let configs = [
-                DrawConfig::new(Driver::Static, Submit::Instanced, n),
-                DrawConfig::new(Driver::Pattern, Submit::Push, n),
-                DrawConfig::new(Driver::Pattern, Submit::Ubo, n),
-                DrawConfig::new(Driver::Pattern, Submit::Instanced, n),
-                DrawConfig::new(Driver::Tess, Submit::Instanced, n),
+                DrawConfig::new(Driver::Static, n),
+                DrawConfig::new(Driver::Pattern(Submit::Push), n),
+                DrawConfig::new(Driver::Pattern(Submit::Ubo), n),
+                DrawConfig::new(Driver::Pattern(Submit::Instanced), n),
+                DrawConfig::new(Driver::Tess, n),
             ];
             for cfg in configs {
                 let s = h.draw(&mut scene, &cfg, &camera).unwrap().stats.unwrap();
                 let what = format!("{} level {n}: {s:?}", cfg.label());
                 eprintln!("{what}");
                 match cfg.driver {
-                    Driver::Static | Driver::Pattern => {
+                    Driver::Static | Driver::Pattern(_) => {
                         let tris = t * triangle_count(n) as u64;
                         assert_eq!(s.input_assembly_primitives, tris, "{what}");
                         assert_eq!(s.clipping_primitives, tris, "{what}");

@@ -31,14 +31,8 @@ const SURFACES: &[(Surface, Displace)] = &[
     (Surface::Stpn, Displace::None),
 ];
 
-fn config(
-    driver: Driver,
-    submit: Submit,
-    n: u32,
-    (s, d): (Surface, Displace),
-    r: f32,
-) -> DrawConfig {
-    let mut cfg = DrawConfig::new(driver, submit, n).with_surface(s, d);
+fn config(driver: Driver, n: u32, (s, d): (Surface, Displace), r: f32) -> DrawConfig {
+    let mut cfg = DrawConfig::new(driver, n).with_surface(s, d);
     cfg.params = SurfaceParams::for_radius(r);
     cfg
 }
@@ -147,7 +141,7 @@ fn static_driver_is_watertight() {
         let r = mesh.bounding_radius();
         for &combo in SURFACES {
             for n in [2u32, 5, 16] {
-                let cfg = config(Driver::Static, Submit::Instanced, n, combo, r);
+                let cfg = config(Driver::Static, n, combo, r);
                 let inner = ((n - 1) * (n - 2) / 2) as usize;
                 assert_eq!(
                     static_positions(&cfg, &records, &mesh),
@@ -175,7 +169,7 @@ fn pattern_and_tess_are_watertight() {
             {
                 let name = format!("{} + {}", combo.0.name(), combo.1.name());
                 for submit in Submit::ALL {
-                    let cfg = config(Driver::Pattern, submit, n, combo, r);
+                    let cfg = config(Driver::Pattern(submit), n, combo, r);
                     let cap = h.capture(&mut scene, &cfg, &camera).unwrap();
                     let welded = weld(&cap, &Pattern::uniform(n)).unwrap();
                     let inner = ((n - 1) * (n - 2) / 2) as usize;
@@ -187,7 +181,7 @@ fn pattern_and_tess_are_watertight() {
                     );
                     assert_closed(&welded.triangles, &what);
                 }
-                let cfg = config(Driver::Tess, Submit::Instanced, n, combo, r);
+                let cfg = config(Driver::Tess, n, combo, r);
                 let inner = (tess_vertex_count(n) - 3 * n) as usize;
                 assert_eq!(
                     tess_positions(h, &mut scene, &cfg, &camera),
@@ -227,13 +221,7 @@ fn open_seams_crack_at_split_normals() {
         let r = mesh.bounding_radius();
         for surface in [Surface::Phong, Surface::Pn] {
             let n = 5;
-            let mut cfg = config(
-                Driver::Static,
-                Submit::Instanced,
-                n,
-                (surface, Displace::None),
-                r,
-            );
+            let mut cfg = config(Driver::Static, n, (surface, Displace::None), r);
             cfg.params.seams = Seams::Open;
             let crack_free = expected(&mesh, n as usize, ((n - 1) * (n - 2) / 2) as usize);
             let got = static_positions(&cfg, &records, &mesh);
@@ -262,7 +250,7 @@ fn heightmap_on_continuous_coordinates_is_watertight() {
         for n in levels {
             let inner = ((n - 1) * (n - 2) / 2) as usize;
             let want = expected(&mesh, n as usize, inner);
-            let cfg = config(Driver::Static, Submit::Instanced, n, combo, r);
+            let cfg = config(Driver::Static, n, combo, r);
             let (v, _) = refine_on_cpu(
                 &cfg,
                 &scene.data.records,
@@ -272,7 +260,7 @@ fn heightmap_on_continuous_coordinates_is_watertight() {
             let distinct: HashSet<[u32; 3]> = v.iter().map(|x| bits(&x[..3])).collect();
             assert_eq!(distinct.len(), want, "{file} static level {n}");
             for submit in Submit::ALL {
-                let cfg = config(Driver::Pattern, submit, n, combo, r);
+                let cfg = config(Driver::Pattern(submit), n, combo, r);
                 let cap = h.capture(&mut scene, &cfg, &camera).unwrap();
                 let welded = weld(&cap, &Pattern::uniform(n)).unwrap();
                 assert_eq!(
@@ -282,7 +270,7 @@ fn heightmap_on_continuous_coordinates_is_watertight() {
                     cfg.label()
                 );
             }
-            let cfg = config(Driver::Tess, Submit::Instanced, n, combo, r);
+            let cfg = config(Driver::Tess, n, combo, r);
             let inner = (tess_vertex_count(n) - 3 * n) as usize;
             assert_eq!(
                 tess_positions(h, &mut scene, &cfg, &camera),

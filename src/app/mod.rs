@@ -297,6 +297,7 @@ impl App {
                 lod: self.opts.lod,
                 view_normals: false,
                 initial: cfg.params,
+                submit: cfg.driver.submit().unwrap_or_default(),
             },
             drawn: cfg,
             max_level,
@@ -333,7 +334,7 @@ impl State {
             Key::Named(NamedKey::Escape) => return false,
             Key::Character(ch) => match ch.as_str() {
                 "1" => c.cfg.driver = Driver::Static,
-                "2" => c.cfg.driver = Driver::Pattern,
+                "2" => c.cfg.driver = Driver::Pattern(c.submit),
                 "3" => c.cfg.driver = Driver::Tess,
                 "s" | "S" => c.cfg.surface = next(&Surface::ALL, c.cfg.surface),
                 "d" | "D" => {
@@ -344,9 +345,9 @@ impl State {
                     }
                 }
                 "n" | "N" => c.view_normals = !c.view_normals,
-                "p" | "P" => (c.cfg.driver, c.cfg.submit) = (Driver::Pattern, Submit::Push),
-                "u" | "U" => (c.cfg.driver, c.cfg.submit) = (Driver::Pattern, Submit::Ubo),
-                "i" | "I" => (c.cfg.driver, c.cfg.submit) = (Driver::Pattern, Submit::Instanced),
+                "p" | "P" => c.set_submit(Submit::Push),
+                "u" | "U" => c.set_submit(Submit::Ubo),
+                "i" | "I" => c.set_submit(Submit::Instanced),
                 "+" | "=" => c.cfg.level = levels[(pos + 1).min(levels.len() - 1)],
                 "-" | "_" => c.cfg.level = levels[pos.saturating_sub(1)],
                 "w" | "W" => c.wireframe = !c.wireframe,

@@ -22,6 +22,24 @@ pub struct Controls {
     pub view_normals: bool,
     /// The parameters the demo started with: the sliders' ranges are scaled to them.
     pub initial: SurfaceParams,
+    /// The pattern driver's submission mode, remembered while another driver is drawn.
+    pub submit: Submit,
+}
+
+impl Controls {
+    /// The pattern driver with submission `s`.
+    pub fn set_submit(&mut self, s: Submit) {
+        self.submit = s;
+        self.cfg.driver = Driver::Pattern(s);
+    }
+
+    /// Switch to the kind of driver `d` (the pattern driver with the remembered submission).
+    pub fn set_driver(&mut self, d: Driver) {
+        self.cfg.driver = match d {
+            Driver::Pattern(_) => Driver::Pattern(self.submit),
+            other => other,
+        };
+    }
 }
 
 /// What the panel reports and offers.
@@ -161,14 +179,21 @@ fn panel(ctx: &egui::Context, c: &mut Controls, info: &PanelInfo) {
             ui.horizontal(|ui| {
                 ui.label("driver");
                 for d in Driver::ALL {
-                    ui.selectable_value(&mut c.cfg.driver, d, d.name());
+                    if ui
+                        .selectable_label(c.cfg.driver.same_kind(d), d.name())
+                        .clicked()
+                    {
+                        c.set_driver(d);
+                    }
                 }
             });
-            ui.add_enabled_ui(c.cfg.driver == Driver::Pattern, |ui| {
+            ui.add_enabled_ui(c.cfg.driver.submit().is_some(), |ui| {
                 ui.horizontal(|ui| {
                     ui.label("submit");
                     for s in Submit::ALL {
-                        ui.selectable_value(&mut c.cfg.submit, s, s.name());
+                        if ui.selectable_label(c.submit == s, s.name()).clicked() {
+                            c.set_submit(s);
+                        }
                     }
                 });
             });

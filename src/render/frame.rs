@@ -115,7 +115,7 @@ fn cmd_draw_driver(cmd: &Cmd<'_>, r: &Renderer, work: &FrameWork<'_>) {
                 .expect("static driver needs its vertex buffer");
             static_vbo::cmd_draw(cmd, r, work.mesh, vbo, work.elements.clone());
         }
-        Driver::Pattern => {
+        Driver::Pattern(submit) => {
             let p = work
                 .mesh
                 .pattern(work.cfg.level)
@@ -126,7 +126,7 @@ fn cmd_draw_driver(cmd: &Cmd<'_>, r: &Renderer, work: &FrameWork<'_>) {
                 work.mesh,
                 work.records,
                 p,
-                work.cfg.submit,
+                submit,
                 work.elements.clone(),
             );
         }

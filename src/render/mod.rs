@@ -24,26 +24,77 @@ pub use scene::{GpuMesh, MeshData, Scene};
 use crate::surface::{Displace, ElementRecord, Surface, SurfaceParams, RECORD_BYTES};
 use bytemuck::{Pod, Zeroable};
 
-/// How barycentric samples are produced on the GPU.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default, clap::ValueEnum)]
+/// How barycentric samples are produced on the GPU. The submission mode belongs to the pattern
+/// driver alone.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Driver {
     /// The CPU refines the whole mesh into one vertex buffer (the 2005 paper's baseline).
     Static,
     /// The refinement pattern is drawn for every coarse triangle; the vertex shader evaluates.
-    #[default]
-    Pattern,
+    Pattern(Submit),
     /// Vulkan tessellation shaders; the evaluation shader evaluates.
     Tess,
 }
 
+impl Default for Driver {
+    fn default() -> Self {
+        Driver::Pattern(Submit::default())
+    }
+}
+
+/// `--driver static|pattern|tess` (the pattern driver with its default submission; `--submit`
+/// picks another).
+impl clap::ValueEnum for Driver {
+    fn value_variants<'a>() -> &'a [Self] {
+        &Driver::ALL
+    }
+
+    fn to_possible_value(&self) -> Option<clap::builder::PossibleValue> {
+        let help = match self {
+            Driver::Static => "The CPU refines the whole mesh into one vertex buffer (the 2005 paper's baseline)",
+            Driver::Pattern(_) => "The refinement pattern is drawn for every coarse triangle; the vertex shader evaluates",
+            Driver::Tess => "Vulkan tessellation shaders; the evaluation shader evaluates",
+        };
+        Some(clap::builder::PossibleValue::new(self.name()).help(help))
+    }
+}
+
 impl Driver {
-    pub const ALL: [Driver; 3] = [Driver::Static, Driver::Pattern, Driver::Tess];
+    /// The three drivers (the pattern driver with its default submission).
+    pub const ALL: [Driver; 3] = [
+        Driver::Static,
+        Driver::Pattern(Submit::Instanced),
+        Driver::Tess,
+    ];
+
+    /// Every driver and submission mode, `static` first (the benchmarks' reference).
+    pub const VARIANTS: [Driver; 5] = [
+        Driver::Static,
+        Driver::Pattern(Submit::Push),
+        Driver::Pattern(Submit::Ubo),
+        Driver::Pattern(Submit::Instanced),
+        Driver::Tess,
+    ];
+
     pub fn name(self) -> &'static str {
         match self {
             Driver::Static => "static",
-            Driver::Pattern => "pattern",
+            Driver::Pattern(_) => "pattern",
             Driver::Tess => "tess",
         }
+    }
+
+    /// The pattern driver's submission mode.
+    pub fn submit(self) -> Option<Submit> {
+        match self {
+            Driver::Pattern(s) => Some(s),
+            _ => None,
+        }
+    }
+
+    /// The same kind of driver as `other` (submission modes aside).
+    pub fn same_kind(self, other: Driver) -> bool {
+        std::mem::discriminant(&self) == std::mem::discriminant(&other)
     }
 
     /// Triangles the GPU makes per element at `level`: the pattern's level² (also what `static`
@@ -51,7 +102,7 @@ impl Driver {
     pub fn refined_per_element(self, level: u32) -> u32 {
         match self {
             Driver::Tess => tess::tess_triangle_count(level),
-            Driver::Static | Driver::Pattern => crate::pattern::triangle_count(level),
+            Driver::Static | Driver::Pattern(_) => crate::pattern::triangle_count(level),
         }
     }
 
@@ -67,7 +118,7 @@ impl Driver {
                 let vertex = std::mem::size_of::<static_vbo::StaticVertex>() as u64;
                 elements * pv * vertex + elements * pi * 4
             }
-            Driver::Pattern => pv * 12 + pi * 4 + records,
+            Driver::Pattern(_) => pv * 12 + pi * 4 + records,
             Driver::Tess => records,
         }
     }
@@ -78,7 +129,7 @@ impl Driver {
     pub fn capture_per_element(self, level: u32) -> Option<u32> {
         match self {
             Driver::Static => None,
-            Driver::Pattern => Some(crate::pattern::vertex_count(level)),
+            Driver::Pattern(_) => Some(crate::pattern::vertex_count(level)),
             Driver::Tess => Some(2 * tess::tess_vertex_count(level)),
         }
     }
@@ -91,9 +142,9 @@ impl Driver {
 pub enum Submit {
     /// Per coarse triangle: push constants, then draw (the paper's loop).
     Push = 0,
-    /// Per coarse triangle: a dynamic uniform-buffer offset, then draw.
+    /// Per coarse triangle: the record read from a uniform-buffer window, then draw.
     Ubo = 1,
-    /// One instanced draw per pattern level; records in a storage buffer.
+    /// One instanced draw; each record read as instance-rate vertex attributes.
     #[default]
     Instanced = 2,
 }
@@ -139,20 +190,17 @@ pub struct DrawConfig {
     pub displace: Displace,
     pub params: SurfaceParams,
     pub driver: Driver,
-    /// Used by the pattern driver only.
-    pub submit: Submit,
     pub level: u32,
 }
 
 impl DrawConfig {
     /// The flat surface, no displacement, default parameters.
-    pub fn new(driver: Driver, submit: Submit, level: u32) -> Self {
+    pub fn new(driver: Driver, level: u32) -> Self {
         Self {
             surface: Surface::Flat,
             displace: Displace::None,
             params: SurfaceParams::default(),
             driver,
-            submit,
             level,
         }
     }
@@ -166,7 +214,7 @@ impl DrawConfig {
     /// Short label such as `pattern/instanced` or `tess`.
     pub fn label(&self) -> String {
         match self.driver {
-            Driver::Pattern => format!("pattern/{}", self.submit.name()),
+            Driver::Pattern(s) => format!("pattern/{}", s.name()),
             d => d.name().to_string(),
         }
     }

@@ -4,7 +4,7 @@
 //! specialization constants of the same SPIR-V modules.
 
 use super::bindings::*;
-use super::{Capture, DrawConfig, Driver, FrameUniforms, Submit};
+use super::{Capture, DrawConfig, Driver, FrameUniforms};
 use crate::gpu::{
     vk, Buffer, BufferDesc, Context, DescriptorPool, DescriptorSetLayout, GpuError,
     GraphicsPipelineDesc, Pipeline, PipelineLayout,
@@ -40,7 +40,6 @@ const ALL_STAGES: vk::ShaderStageFlags = stages(&[GEOMETRY_STAGES, vk::ShaderSta
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 struct PipelineKey {
     driver: Driver,
-    submit: Submit,
     surface: Surface,
     displace: Displace,
     fragment_field: bool,
@@ -233,7 +232,7 @@ impl Renderer {
             stages: vec![],
             spec: vec![
                 (SPEC_SURFACE, key.surface as u32),
-                (SPEC_SUBMIT, key.submit as u32),
+                (SPEC_SUBMIT, key.driver.submit().unwrap_or_default() as u32),
                 (SPEC_WIRE, key.wire as u32),
                 (SPEC_DISPLACE, key.displace as u32),
                 (SPEC_FRAGMENT_FIELD, key.fragment_field as u32),
@@ -241,7 +240,7 @@ impl Renderer {
             vertex_bindings: vec![],
             vertex_attributes: vec![],
             topology: match key.driver {
-                Driver::Static | Driver::Pattern => vk::PrimitiveTopology::TRIANGLE_LIST,
+                Driver::Static | Driver::Pattern(_) => vk::PrimitiveTopology::TRIANGLE_LIST,
                 Driver::Tess => vk::PrimitiveTopology::PATCH_LIST,
             },
             primitive_restart: false,
@@ -279,7 +278,7 @@ impl Renderer {
                     ]);
                 }
             }
-            Driver::Pattern => {
+            Driver::Pattern(_) => {
                 desc.stages = vec![
                     (
                         vk::ShaderStageFlags::VERTEX,
@@ -313,7 +312,7 @@ impl Renderer {
         }
         let name = format!(
             "{}{}{} ({} + {})",
-            DrawConfig::new(key.driver, key.submit, 0).label(),
+            DrawConfig::new(key.driver, 0).label(),
             key.capture.shader_suffix(),
             if key.wire { " wireframe" } else { "" },
             key.surface.name(),
@@ -325,13 +324,8 @@ impl Renderer {
 
 fn key(cfg: &DrawConfig, capture: Capture, wire: bool) -> PipelineKey {
     PipelineKey {
+        // The driver carries the pattern driver's submission mode.
         driver: cfg.driver,
-        // Only the pattern driver has submission modes.
-        submit: if cfg.driver == Driver::Pattern {
-            cfg.submit
-        } else {
-            Submit::Instanced
-        },
         surface: cfg.surface,
         displace: cfg.displace,
         fragment_field: cfg.fragment_normal_field(),
