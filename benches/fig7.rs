@@ -14,7 +14,7 @@ fn main() {
     let (sizes, levels, frames): (&[u32], Vec<u32>, u32) = if h.quick {
         (&[10, 100], vec![8, 16], 2)
     } else {
-        (&[10, 100, 1000], vec![16, 32, 64, 128], 5)
+        (&[10, 100, 1000], vec![16, 32, 64, 128], 11)
     };
     let meshes: Vec<_> = sizes.iter().map(|&n| grid_mesh(n)).collect();
     let opts = BenchOptions {
