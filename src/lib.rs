@@ -15,4 +15,5 @@ pub mod gpu;
 pub mod mesh;
 pub mod pattern;
 pub mod render;
+pub mod subdiv;
 pub mod surface;
