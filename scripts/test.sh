@@ -13,6 +13,8 @@ if cargo clippy --version >/dev/null 2>&1; then cargo clippy --all-targets --qui
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 cargo test --all-targets 2>&1 | tee "$log"
+# The CPU Loop reference against OpenSubdiv (limit positions, several meshes and steps).
+bash scripts/check-loop-osd.sh
 # One closing line for the whole suite (cargo prints one per test binary).
 awk '/^test result:/ { for (i = 1; i <= NF; i++) { if ($i ~ /^passed;?$/) p += $(i-1); if ($i ~ /^failed;?$/) f += $(i-1) } }
      END { printf "%d passed, %d failed\n", p, f }' "$log"
