@@ -271,6 +271,75 @@ pub fn loop_step(topo: &Topology, positions: &[DVec3], boundary: Boundary) -> Re
     }
 }
 
+/// One refined vertex as a weighted sum of parent vertices: the 2010 paper's "computational
+/// entry" (parent indices and weights), built once per topology and applied to new positions
+/// every frame.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Stencil {
+    pub parents: Vec<u32>,
+    pub weights: Vec<f64>,
+}
+
+impl Stencil {
+    pub fn apply(&self, positions: &[DVec3]) -> DVec3 {
+        self.parents
+            .iter()
+            .zip(&self.weights)
+            .map(|(&i, &w)| positions[i as usize] * w)
+            .sum()
+    }
+}
+
+/// The computational entries of one Loop step over `topo`, in [`loop_step`]'s vertex order
+/// (the vertices' new positions, then one edge point per edge).
+pub fn stencils(topo: &Topology, boundary: Boundary) -> Vec<Stencil> {
+    let mut out = Vec::with_capacity(topo.vertex_count + topo.twin.len() / 2 + 8);
+    for v in 0..topo.vertex_count as u32 {
+        let (ring, on_boundary) = topo.one_ring(v);
+        out.push(if ring.is_empty() || corner(&ring, on_boundary, boundary) {
+            Stencil {
+                parents: vec![v],
+                weights: vec![1.0],
+            }
+        } else if on_boundary {
+            Stencil {
+                parents: vec![v, ring[0], *ring.last().unwrap()],
+                weights: vec![0.75, 0.125, 0.125],
+            }
+        } else {
+            let b = beta(ring.len());
+            let mut parents = vec![v];
+            parents.extend(&ring);
+            let mut weights = vec![1.0 - ring.len() as f64 * b];
+            weights.extend(std::iter::repeat_n(b, ring.len()));
+            Stencil { parents, weights }
+        });
+    }
+    let mut done = vec![false; topo.twin.len()];
+    for h in 0..topo.twin.len() as u32 {
+        if done[h as usize] {
+            continue;
+        }
+        let (a, b) = (topo.tail(h), topo.head(h));
+        let opposite = |h: u32| topo.faces[h as usize / 3][(h as usize % 3 + 2) % 3];
+        out.push(match topo.twin[h as usize] {
+            Some(t) => {
+                done[t as usize] = true;
+                Stencil {
+                    parents: vec![a, b, opposite(h), opposite(t)],
+                    weights: vec![0.375, 0.375, 0.125, 0.125],
+                }
+            }
+            None => Stencil {
+                parents: vec![a, b],
+                weights: vec![0.5, 0.5],
+            },
+        });
+        done[h as usize] = true;
+    }
+    out
+}
+
 /// The limit position of every vertex of `topo`.
 pub fn limit_positions(topo: &Topology, positions: &[DVec3], boundary: Boundary) -> Vec<DVec3> {
     (0..topo.vertex_count as u32)
@@ -408,6 +477,33 @@ mod tests {
                     corners.positions[v as usize],
                     grid.positions[v as usize].as_dvec3()
                 );
+            }
+        }
+    }
+
+    /// The computational entries reproduce the Loop step: applied to the coarse positions they
+    /// give the same refined positions, and each one's weights sum to one.
+    #[test]
+    fn stencils_reproduce_the_loop_step() {
+        for file in [
+            "spot_control_tri.obj",
+            "grid_open_8x8.obj",
+            "fan24_open.obj",
+        ] {
+            let (mesh, _) = load_model(file);
+            let topo = Topology::of_mesh(&mesh).unwrap();
+            let pos: Vec<DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();
+            for boundary in [Boundary::EdgeOnly, Boundary::EdgeAndCorner] {
+                let r = loop_step(&topo, &pos, boundary);
+                let s = stencils(&topo, boundary);
+                assert_eq!(s.len(), r.positions.len(), "{file}");
+                for (i, st) in s.iter().enumerate() {
+                    assert!((st.weights.iter().sum::<f64>() - 1.0).abs() < 1e-12);
+                    assert!(
+                        (st.apply(&pos) - r.positions[i]).length() < 1e-12,
+                        "{file} vertex {i}"
+                    );
+                }
             }
         }
     }
