@@ -313,7 +313,11 @@ impl Context {
             .pipeline_statistics_query(info.pipeline_statistics)
             .vertex_pipeline_stores_and_atomics(info.vertex_stores)
             .fill_mode_non_solid(info.fill_mode_non_solid);
-        let mut enable13 = vk::PhysicalDeviceVulkan13Features::default().dynamic_rendering(true);
+        // maintenance4: every Vulkan 1.3 device has it, and SPIR-V for 1.3 may state compute
+        // workgroup sizes with LocalSizeId, which needs it enabled.
+        let mut enable13 = vk::PhysicalDeviceVulkan13Features::default()
+            .dynamic_rendering(true)
+            .maintenance4(true);
         let priorities = [1.0f32];
         let queue_info = [vk::DeviceQueueCreateInfo::default()
             .queue_family_index(queue_family)

@@ -363,20 +363,52 @@ impl Pipeline {
             info = info.tessellation_state(&tessellation);
         }
         // SAFETY: every pointer in the create info outlives the call.
-        let raw = unsafe {
+        let created = unsafe {
             ctx.device
                 .create_graphics_pipelines(vk::PipelineCache::null(), &[info], None)
-        }
-        .map_err(|(_, e)| GpuError::Vk {
-            call: "vkCreateGraphicsPipelines",
-            result: e,
-        })?[0];
+        };
+        Self::adopt(ctx, created, "vkCreateGraphicsPipelines", name)
+    }
+
+    /// The wrapper of the one pipeline a create call made (named and counted).
+    fn adopt(
+        ctx: &Arc<Context>,
+        created: Result<Vec<vk::Pipeline>, (Vec<vk::Pipeline>, vk::Result)>,
+        call: &'static str,
+        name: &str,
+    ) -> Result<Self, GpuError> {
+        let raw = created.map_err(|(_, result)| GpuError::Vk { call, result })?[0];
         ctx.set_name(raw, name);
         track_new();
         Ok(Self {
             ctx: ctx.clone(),
             raw,
         })
+    }
+}
+
+impl Pipeline {
+    /// A compute pipeline running the embedded shader `shader` (a `.comp` below `glsl/`).
+    pub fn new_compute(
+        ctx: &Arc<Context>,
+        layout: &PipelineLayout,
+        shader: &str,
+        name: &str,
+    ) -> Result<Self, GpuError> {
+        let module = ShaderModule::new(ctx, shader)?;
+        let stage = vk::PipelineShaderStageCreateInfo::default()
+            .stage(vk::ShaderStageFlags::COMPUTE)
+            .module(module.raw)
+            .name(c"main");
+        let info = vk::ComputePipelineCreateInfo::default()
+            .stage(stage)
+            .layout(layout.raw);
+        // SAFETY: every pointer in the create info outlives the call.
+        let created = unsafe {
+            ctx.device
+                .create_compute_pipelines(vk::PipelineCache::null(), &[info], None)
+        };
+        Self::adopt(ctx, created, "vkCreateComputePipelines", name)
     }
 }
 

@@ -39,15 +39,78 @@ impl<'a> Cmd<'a> {
         set: vk::DescriptorSet,
         dynamic_offsets: &[u32],
     ) {
+        self.bind_descriptor_set_at(
+            vk::PipelineBindPoint::GRAPHICS,
+            layout,
+            set_index,
+            set,
+            dynamic_offsets,
+        )
+    }
+
+    fn bind_descriptor_set_at(
+        &self,
+        point: vk::PipelineBindPoint,
+        layout: vk::PipelineLayout,
+        set_index: u32,
+        set: vk::DescriptorSet,
+        dynamic_offsets: &[u32],
+    ) {
         // SAFETY: see `bind_graphics_pipeline`.
         unsafe {
             self.ctx.device.cmd_bind_descriptor_sets(
                 self.raw,
-                vk::PipelineBindPoint::GRAPHICS,
+                point,
                 layout,
                 set_index,
                 &[set],
                 dynamic_offsets,
+            )
+        };
+    }
+
+    pub fn bind_compute_pipeline(&self, pipeline: vk::Pipeline) {
+        // SAFETY: see `bind_graphics_pipeline`.
+        unsafe {
+            self.ctx
+                .device
+                .cmd_bind_pipeline(self.raw, vk::PipelineBindPoint::COMPUTE, pipeline)
+        };
+    }
+
+    pub fn bind_compute_descriptor_set(
+        &self,
+        layout: vk::PipelineLayout,
+        set_index: u32,
+        set: vk::DescriptorSet,
+    ) {
+        self.bind_descriptor_set_at(vk::PipelineBindPoint::COMPUTE, layout, set_index, set, &[])
+    }
+
+    pub fn dispatch(&self, x: u32, y: u32, z: u32) {
+        // SAFETY: see `bind_graphics_pipeline`; outside a rendering instance.
+        unsafe { self.ctx.device.cmd_dispatch(self.raw, x, y, z) };
+    }
+
+    /// Make a compute pass's storage writes visible to later vertex, tessellation and compute
+    /// stages and to vertex input (the next draw reads what the pass wrote).
+    pub fn barrier_compute_to_draw(&self) {
+        let barrier = vk::MemoryBarrier::default()
+            .src_access_mask(vk::AccessFlags::SHADER_WRITE)
+            .dst_access_mask(vk::AccessFlags::SHADER_READ | vk::AccessFlags::VERTEX_ATTRIBUTE_READ);
+        // SAFETY: see `bind_graphics_pipeline`; outside a rendering instance.
+        unsafe {
+            self.ctx.device.cmd_pipeline_barrier(
+                self.raw,
+                vk::PipelineStageFlags::COMPUTE_SHADER,
+                vk::PipelineStageFlags::VERTEX_INPUT
+                    | vk::PipelineStageFlags::VERTEX_SHADER
+                    | vk::PipelineStageFlags::TESSELLATION_EVALUATION_SHADER
+                    | vk::PipelineStageFlags::COMPUTE_SHADER,
+                vk::DependencyFlags::empty(),
+                &[barrier],
+                &[],
+                &[],
             )
         };
     }

@@ -37,6 +37,13 @@ pub const BINDING_CAPTURE: u32 = 0;
 /// Set 2, binding 1: append counter and capacity (`tess` capture).
 pub const BINDING_CAPTURE_COUNT: u32 = 1;
 
+/// The Loop step's compute pass (its own set 0): per-M1-vertex entry offsets, entries
+/// (parent, weight), M0 positions in, M1 positions out.
+pub const LOOP_BINDING_OFFSETS: u32 = 0;
+pub const LOOP_BINDING_ENTRIES: u32 = 1;
+pub const LOOP_BINDING_M0: u32 = 2;
+pub const LOOP_BINDING_M1: u32 = 3;
+
 /// Specialization constant ids.
 pub const SPEC_SURFACE: u32 = 0;
 pub const SPEC_SUBMIT: u32 = 1;
@@ -59,6 +66,10 @@ pub const GLSL_DEFINES: &[(&str, u32)] = &[
     ("SET_CAPTURE", SET_CAPTURE),
     ("BINDING_CAPTURE", BINDING_CAPTURE),
     ("BINDING_CAPTURE_COUNT", BINDING_CAPTURE_COUNT),
+    ("LOOP_BINDING_OFFSETS", LOOP_BINDING_OFFSETS),
+    ("LOOP_BINDING_ENTRIES", LOOP_BINDING_ENTRIES),
+    ("LOOP_BINDING_M0", LOOP_BINDING_M0),
+    ("LOOP_BINDING_M1", LOOP_BINDING_M1),
     ("SPEC_SURFACE", SPEC_SURFACE),
     ("SPEC_SUBMIT", SPEC_SUBMIT),
     ("SPEC_WIRE", SPEC_WIRE),

@@ -9,6 +9,7 @@ mod camera;
 mod error;
 pub mod frame;
 mod headless;
+pub mod loop_pass;
 pub mod pattern;
 mod pipelines;
 mod scene;
