@@ -340,6 +340,32 @@ pub fn stencils(topo: &Topology, boundary: Boundary) -> Vec<Stencil> {
     out
 }
 
+/// Each vertex's normal from its one-ring (counter-clockwise, with the boundary flag): the
+/// normalized sum of the cross products of consecutive ring edges, i.e. the area-weighted normal
+/// of the faces around it (on a boundary, only between the two boundary neighbours). The normals
+/// subdivision shading starts from at the M1 vertices.
+pub fn ring_normals(topo: &Topology, positions: &[DVec3]) -> Vec<DVec3> {
+    (0..topo.vertex_count as u32)
+        .map(|v| {
+            let (ring, on_boundary) = topo.one_ring(v);
+            let p = positions[v as usize];
+            let pairs = if on_boundary {
+                ring.len().saturating_sub(1)
+            } else {
+                ring.len()
+            };
+            let n: DVec3 = (0..pairs)
+                .map(|i| {
+                    let a = positions[ring[i] as usize] - p;
+                    let b = positions[ring[(i + 1) % ring.len()] as usize] - p;
+                    a.cross(b)
+                })
+                .sum();
+            n.normalize_or_zero()
+        })
+        .collect()
+}
+
 /// The limit position of every vertex of `topo`.
 pub fn limit_positions(topo: &Topology, positions: &[DVec3], boundary: Boundary) -> Vec<DVec3> {
     (0..topo.vertex_count as u32)
@@ -505,6 +531,25 @@ mod tests {
                     );
                 }
             }
+        }
+    }
+
+    /// Ring normals point outwards on a closed convex mesh (along the vertex direction from the
+    /// centre, for the octahedron exactly) and along +z on the planar grid, boundary included.
+    #[test]
+    fn ring_normals_follow_the_orientation() {
+        let (oct, _) = load_model("octahedron.obj");
+        let topo = Topology::of_mesh(&oct).unwrap();
+        let pos: Vec<DVec3> = oct.positions.iter().map(|p| p.as_dvec3()).collect();
+        for (n, p) in ring_normals(&topo, &pos).iter().zip(&pos) {
+            assert!((*n - p.normalize()).length() < 1e-12, "{n} vs {p}");
+        }
+        let (grid, _) = load_model("grid_open_8x8.obj");
+        let topo = Topology::of_mesh(&grid).unwrap();
+        let pos: Vec<DVec3> = grid.positions.iter().map(|p| p.as_dvec3()).collect();
+        let up = grid.normals[0].as_dvec3();
+        for n in ring_normals(&topo, &pos) {
+            assert!((n - up).length() < 1e-12, "{n}");
         }
     }
 
