@@ -14,39 +14,41 @@ struct Xvfb {
 }
 
 impl Xvfb {
+    /// Starts a server on a display number it chooses itself (`-displayfd`): the server takes
+    /// the first number whose lock it can create, so tests running in parallel (and other
+    /// servers on the machine) never race for one, and stale locks are the server's business.
     fn start() -> Self {
-        for n in 90..130u32 {
-            if display_in_use(n) {
-                continue;
-            }
-            // A stale lock or socket of a killed server: Xvfb refuses to start over them.
-            let _ = std::fs::remove_file(format!("/tmp/.X{n}-lock"));
-            let _ = std::fs::remove_file(format!("/tmp/.X11-unix/X{n}"));
-            let child = Command::new("Xvfb")
-                .args([
-                    format!(":{n}").as_str(),
-                    "-screen",
-                    "0",
-                    "1280x1024x24",
-                    "-nolisten",
-                    "tcp",
-                ])
-                .stdout(Stdio::null())
-                .stderr(Stdio::null())
-                .spawn()
-                .expect("Xvfb is not installed: run scripts/setup.sh (apt-get install xvfb)");
-            let socket = PathBuf::from(format!("/tmp/.X11-unix/X{n}"));
-            let start = Instant::now();
-            while !socket.exists() && start.elapsed() < Duration::from_secs(20) {
-                std::thread::sleep(Duration::from_millis(50));
-            }
-            assert!(socket.exists(), "Xvfb :{n} did not start");
-            return Self {
-                child,
-                display: format!(":{n}"),
-            };
+        use std::io::BufRead;
+        let mut child = Command::new("Xvfb")
+            .args([
+                "-displayfd",
+                "1",
+                "-screen",
+                "0",
+                "1280x1024x24",
+                "-nolisten",
+                "tcp",
+            ])
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("Xvfb is not installed: run scripts/setup.sh (apt-get install xvfb)");
+        let stdout = child.stdout.take().unwrap();
+        let (tx, rx) = std::sync::mpsc::channel();
+        std::thread::spawn(move || {
+            let mut line = String::new();
+            let _ = std::io::BufReader::new(stdout).read_line(&mut line);
+            let _ = tx.send(line);
+        });
+        let line = rx.recv_timeout(Duration::from_secs(30)).unwrap_or_default();
+        let Ok(n) = line.trim().parse::<u32>() else {
+            let _ = child.kill();
+            panic!("Xvfb did not report a display within 30 s (printed {line:?})");
+        };
+        Self {
+            child,
+            display: format!(":{n}"),
         }
-        panic!("no free X display number");
     }
 }
 
@@ -55,23 +57,10 @@ impl Drop for Xvfb {
         let _ = self.child.kill();
         let _ = self.child.wait();
         // A killed server leaves its lock file and socket behind; remove them, or repeated runs
-        // on one machine use up the display numbers.
+        // on one machine fill /tmp with them.
         let n = &self.display[1..];
         let _ = std::fs::remove_file(format!("/tmp/.X{n}-lock"));
         let _ = std::fs::remove_file(format!("/tmp/.X11-unix/X{n}"));
-    }
-}
-
-/// Whether display `n`'s lock file names a process that is still alive (a stale lock, left by a
-/// killed server, does not).
-fn display_in_use(n: u32) -> bool {
-    let lock = PathBuf::from(format!("/tmp/.X{n}-lock"));
-    match std::fs::read_to_string(&lock) {
-        Ok(pid) => pid
-            .trim()
-            .parse::<u32>()
-            .is_ok_and(|pid| PathBuf::from(format!("/proc/{pid}")).exists()),
-        Err(_) => PathBuf::from(format!("/tmp/.X11-unix/X{n}")).exists(),
     }
 }
 
