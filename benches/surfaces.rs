@@ -15,7 +15,7 @@ fn main() {
     } else {
         (vec![16, 32], 3)
     };
-    let surfaces = Surface::ALL
+    let surfaces = Surface::LOCAL
         .iter()
         .flat_map(|&s| {
             [Displace::None, Displace::Sine, Displace::Noise]

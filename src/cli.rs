@@ -58,6 +58,11 @@ pub struct ParamOpts {
     /// Height map displacement: P' = P + a·(h − bias)·N, h in [0, 1].
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     pub bias: f32,
+    /// Loop subdivision's boundaries (--surface loop): `edge-only` keeps boundary edges sharp
+    /// (OpenSubdiv's VTX_BOUNDARY_EDGE_ONLY), `edge-and-corner` also pins boundary vertices of
+    /// valence 2 (VTX_BOUNDARY_EDGE_AND_CORNER).
+    #[arg(long, value_enum, default_value = "edge-only")]
+    pub boundary: meshrefine::subdiv::Boundary,
 }
 
 impl SurfaceOpts {
@@ -135,6 +140,7 @@ impl ParamOpts {
             origin: d.origin,
             seams: self.pn_seams,
             bias: self.bias,
+            boundary: self.boundary,
         };
         p.validate()?;
         Ok(p)
@@ -286,6 +292,13 @@ pub struct InfoArgs {
     /// Also print the GPU geometry bytes each driver would hold at this level.
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub level: Option<u32>,
+    /// Also report what this surface builds (`loop`: M1, valences, configurations and the basis
+    /// function tables' memory).
+    #[arg(long, value_enum)]
+    pub surface: Option<Surface>,
+    /// Loop subdivision's boundaries (with --surface loop).
+    #[arg(long, value_enum, default_value = "edge-only")]
+    pub boundary: meshrefine::subdiv::Boundary,
 }
 
 #[derive(Args, Debug)]

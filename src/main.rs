@@ -16,6 +16,8 @@ use cli::{Cli, Command, Technique};
 use meshrefine::gpu::{Context, ContextDesc, Messages};
 use meshrefine::mesh::{LoadReport, Mesh, MeshError};
 use meshrefine::render::{covered_pixels, Camera, DrawConfig, Driver, Headless};
+use meshrefine::surface::subdivision::LoopData;
+use meshrefine::surface::Surface;
 use std::io::Write as _;
 use std::path::Path;
 use std::process::ExitCode;
@@ -186,15 +188,13 @@ fn load_mesh(path: Option<&Path>) -> Result<Input> {
         edges, vertices, ..
     }) = mesh.require_manifold()
     {
-        // Only Loop subdivision (not yet here) needs a manifold; say so anyway.
+        // Only Loop subdivision needs a manifold (and refuses the mesh when it is drawn).
         let e = MeshError::NonManifold {
             path: shown.clone(),
             edges,
             vertices,
         };
-        note(format_args!(
-            "warning: {e} (the flat surface does not need one)"
-        ));
+        note(format_args!("warning: {e} (only --surface loop needs one)"));
     }
     Ok(Input {
         mesh,
@@ -354,7 +354,7 @@ fn run(cli: Cli) -> Result<()> {
             out!("{counts}");
             out!("wrote {}", a.output.display());
         }
-        Command::Info(a) => info(&a.mesh, a.level)?,
+        Command::Info(a) => info(a)?,
         Command::Bench(a) => {
             let input = load_mesh(a.mesh.as_deref())?;
             let ctx = Context::new(&desc)?;
@@ -485,7 +485,8 @@ fn render_png(
     Ok(())
 }
 
-fn info(path: &Path, level: Option<u32>) -> Result<()> {
+fn info(a: &cli::InfoArgs) -> Result<()> {
+    let (path, level) = (a.mesh.as_path(), a.level);
     let (mesh, report) = Mesh::load_obj(path)?;
     if let Some(w) = degenerate_warning(&path.display().to_string(), &report) {
         note(format_args!("{w}"));
@@ -533,6 +534,44 @@ fn info(path: &Path, level: Option<u32>) -> Result<()> {
                 d.geometry_bytes(level, t)
             );
         }
+    }
+    if a.surface == Some(Surface::Loop) {
+        let started = std::time::Instant::now();
+        let data = LoopData::new(&mesh, a.boundary, |done, total| {
+            if done < total && started.elapsed().as_secs_f32() > 1.0 {
+                note(format_args!(
+                    "building basis function tables: {done} of {total} configurations"
+                ));
+            }
+        })
+        .map_err(|e| {
+            anyhow::anyhow!(
+                "'{}': the loop surface needs a manifold, consistently oriented mesh: {e}",
+                path.display()
+            )
+        })?;
+        out!(
+            "loop: M1 has {} vertices and {} faces ({:?} boundaries)",
+            data.m1.vertex_count,
+            data.m1.faces.len(),
+            a.boundary
+        );
+        let configs: Vec<String> = data
+            .valences()
+            .iter()
+            .map(|&(v, b, n)| format!("{v}{}:{n}", if b { "b" } else { "" }))
+            .collect();
+        out!(
+            "configurations: {} (valence:tables, b = on a boundary): {}",
+            data.tables.configs.len(),
+            configs.join(" ")
+        );
+        out!(
+            "control points per face: {} to {}",
+            data.faces.iter().map(|f| f[1]).min().unwrap_or(0),
+            data.faces.iter().map(|f| f[1]).max().unwrap_or(0)
+        );
+        out!("basis function tables: {} bytes", data.table_bytes());
     }
     Ok(())
 }

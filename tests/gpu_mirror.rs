@@ -27,6 +27,7 @@ use meshrefine::mesh::Mesh;
 use meshrefine::pattern::{lattice_index, Pattern, PatternSet};
 use meshrefine::render::tess::tess_vertex_count;
 use meshrefine::render::{Camera, DrawConfig, Driver, Headless, Scene, Submit};
+use meshrefine::subdiv::Boundary;
 use meshrefine::surface::{
     eval_with, tess_weights, CornerRecord, Displace, ElementRecord, Surface, SurfaceParams,
     SMOOTH_CORNER,
@@ -69,11 +70,15 @@ fn seamed(records: &[ElementRecord]) -> bool {
 fn position_tolerance(cfg: &DrawConfig, r: f32, seamed: bool) -> f32 {
     let eps = f32::EPSILON * r;
     let base = match (cfg.driver, cfg.surface) {
+        // Sums of up to 30 table-weighted M1 points (M1 itself made by the GPU's Loop pass);
+        // the GPU may fuse multiply-adds the mirror rounds twice.
+        (_, Surface::Loop) => 64.0 * eps,
         (Driver::Pattern(_), _) => 0.0,
         (_, Surface::Flat) => 4.0 * eps,
         _ => 16.0 * eps,
     };
-    let uses_normals = cfg.surface != Surface::Flat || cfg.displace != Displace::None;
+    let uses_normals =
+        !matches!(cfg.surface, Surface::Flat | Surface::Loop) || cfg.displace != Displace::None;
     let base = base
         + if seamed && uses_normals {
             4.0 * eps
@@ -99,20 +104,70 @@ fn normal_tolerance(cfg: &DrawConfig) -> f32 {
     }
 }
 
-/// Every surface x displacement (the flat surface alone when `all` is false; the height map
-/// only on meshes with texture coordinates).
-fn combinations(all: bool, uvs: bool) -> Vec<(Surface, Displace)> {
-    if !all {
-        return vec![(Surface::Flat, Displace::None)];
+/// Which combinations a check runs: `false` the flat surface alone, `true` every surface x
+/// displacement, or [`Loop`] the loop surface alone with a boundary rule and every displacement
+/// it takes.
+#[derive(Clone, Copy)]
+enum Which {
+    Flat,
+    All,
+    Loop(Boundary),
+}
+
+impl From<bool> for Which {
+    fn from(all: bool) -> Self {
+        if all {
+            Which::All
+        } else {
+            Which::Flat
+        }
+    }
+}
+
+/// The scene of `file` (records in chunks of `chunk`), its camera, the parameters `which` runs
+/// with, and the mesh's radius.
+fn setup(
+    h: &Headless,
+    file: &str,
+    levels: &[u32],
+    which: Which,
+    chunk: Option<u32>,
+) -> (Scene, Camera, SurfaceParams, f32) {
+    let (scene, camera, r) = scene_chunked(h, model(file), levels, chunk);
+    let boundary = match which {
+        Which::Loop(b) => b,
+        _ => Boundary::EdgeOnly,
+    };
+    let params = SurfaceParams {
+        boundary,
+        ..SurfaceParams::for_radius(r)
+    };
+    (scene, camera, params, r)
+}
+
+/// Every surface x displacement of `which` (the height map only on meshes with texture
+/// coordinates).
+fn combinations(which: Which, uvs: bool) -> Vec<(Surface, Displace)> {
+    match which {
+        Which::Flat => return vec![(Surface::Flat, Displace::None)],
+        Which::Loop(_) => {
+            return vec![
+                (Surface::Loop, Displace::None),
+                (Surface::Loop, Displace::Sine),
+                (Surface::Loop, Displace::Noise),
+            ]
+        }
+        Which::All => {}
     }
     Surface::ALL
         .iter()
         .flat_map(|&s| Displace::ALL.iter().map(move |&d| (s, d)))
-        .filter(|&(_, d)| uvs || d != Displace::Heightmap)
+        // The height map reads texture coordinates (loop has none).
+        .filter(|&(s, d)| d != Displace::Heightmap || (uvs && s != Surface::Loop))
         .collect()
 }
 
-fn check_pattern(file: &str, h: &mut Headless, levels: &[u32], all: bool) {
+fn check_pattern(file: &str, h: &mut Headless, levels: &[u32], all: impl Into<Which>) {
     check_pattern_chunked(file, h, levels, all, None)
 }
 
@@ -120,11 +175,11 @@ fn check_pattern_chunked(
     file: &str,
     h: &mut Headless,
     levels: &[u32],
-    all: bool,
+    all: impl Into<Which>,
     chunk: Option<u32>,
 ) {
-    let (mut scene, camera, r) = scene_chunked(h, model(file), levels, chunk);
-    let params = SurfaceParams::for_radius(r);
+    let all = all.into();
+    let (mut scene, camera, params, r) = setup(h, file, levels, all, chunk);
     for &level in levels {
         let pattern = Pattern::uniform(level);
         let pv = pattern.bary.len();
@@ -137,9 +192,10 @@ fn check_pattern_chunked(
                 let ntol = normal_tolerance(&cfg);
                 let cap = h.capture(&mut scene, &cfg, &camera).unwrap();
                 let hm = scene.inputs(level);
-                assert_eq!(cap.vertices.len(), scene.data.records.len() * pv);
+                let records = scene.records(surface);
+                assert_eq!(cap.vertices.len(), records.len() * pv);
                 let mut worst = 0.0f32;
-                for (t, rec) in scene.data.records.iter().enumerate() {
+                for (t, rec) in records.iter().enumerate() {
                     for (k, (i, j)) in pattern.lattice().enumerate() {
                         assert_eq!(lattice_index(level, i, j) as usize, k);
                         let got = &cap.vertices[t * pv + k];
@@ -193,13 +249,19 @@ fn check_pattern_chunked(
     }
 }
 
-fn check_tess(file: &str, h: &mut Headless, levels: &[u32], all: bool) {
+fn check_tess(file: &str, h: &mut Headless, levels: &[u32], all: impl Into<Which>) {
     check_tess_chunked(file, h, levels, all, None)
 }
 
-fn check_tess_chunked(file: &str, h: &mut Headless, levels: &[u32], all: bool, chunk: Option<u32>) {
-    let (mut scene, camera, r) = scene_chunked(h, model(file), levels, chunk);
-    let params = SurfaceParams::for_radius(r);
+fn check_tess_chunked(
+    file: &str,
+    h: &mut Headless,
+    levels: &[u32],
+    all: impl Into<Which>,
+    chunk: Option<u32>,
+) {
+    let all = all.into();
+    let (mut scene, camera, params, r) = setup(h, file, levels, all, chunk);
     for &level in levels {
         for (surface, displace) in combinations(all, scene.data.uvs.is_some()) {
             let mut cfg = DrawConfig::new(Driver::Tess, level).with_surface(surface, displace);
@@ -228,7 +290,7 @@ fn check_tess_chunked(file: &str, h: &mut Headless, levels: &[u32], all: bool, c
                     surface,
                     displace,
                     &params,
-                    &scene.data.records[t],
+                    &scene.records(surface)[t],
                     tess_weights(tc, level),
                     &hm.element(t),
                 );
@@ -252,7 +314,7 @@ fn check_tess_chunked(file: &str, h: &mut Headless, levels: &[u32], all: bool, c
             // Every patch was tessellated into exactly the expected set of distinct samples.
             assert_eq!(
                 coords.len(),
-                scene.data.records.len(),
+                scene.records(surface).len(),
                 "{what}: patches missing"
             );
             for (t, set) in &coords {
@@ -289,6 +351,9 @@ fn tess_matches_mirror() {
         check_tess("icosahedron_vn.obj", h, &[3, 16], false);
         check_tess("grid_open_8x8.obj", h, &[5], false);
         check_tess("spot_control_tri.obj", h, &[6], false);
+        // 5,856 patches: past lavapipe's 1,365 patches per draw, where its gl_PrimitiveID
+        // starts over (src/render/tess.rs).
+        check_tess("spot_tri.obj", h, &[2], false);
     });
 }
 
@@ -308,6 +373,26 @@ fn every_surface_and_displacement_on_tess() {
     with_gpu(64, 64, |h| {
         check_tess("icosahedron_vn.obj", h, &[5], true);
         check_tess("grid_uv_8x8.obj", h, &[3], true);
+    });
+}
+
+/// The loop surface (the GPU's M0 -> M1 and normals passes, then the tables through the owners)
+/// against the mirror, on both GPU drivers and every submission mode: a closed mesh (valences 3
+/// to 10), an open fan with a valence-24 vertex, an open grid with pinned corners; pattern levels
+/// dividing 32 (exact lattice rows) and not (interpolated), tess below and above 32. Chunked
+/// records too (an owner may be in another chunk).
+#[test]
+fn loop_matches_mirror_on_every_driver() {
+    with_gpu(64, 64, |h| {
+        let l = Which::Loop(Boundary::EdgeOnly);
+        check_pattern("spot_control_tri.obj", h, &[1, 4, 7], l);
+        check_tess("spot_control_tri.obj", h, &[4, 7], l);
+        check_pattern("fan24_open.obj", h, &[8, 32], l);
+        check_tess("fan24_open.obj", h, &[5, 64], l);
+        let corners = Which::Loop(Boundary::EdgeAndCorner);
+        check_pattern("grid_open_8x8.obj", h, &[3, 16], corners);
+        check_tess("grid_open_8x8.obj", h, &[6], corners);
+        check_pattern_chunked("tetrahedron.obj", h, &[4], l, Some(5));
     });
 }
 

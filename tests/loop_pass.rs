@@ -2,6 +2,7 @@
 //! equals the CPU step (`subdiv::loop_step`) to f32 precision: within 4e-7 of the mesh's radius
 //! per coordinate (the entries' weights are f32, the sums have at most 25 terms). Animated M0
 //! positions are re-uploaded alone: the bytes per frame are M0's 16 per vertex, whatever the level.
+//! M1's one-ring normals (the second pass) equal their CPU mirror within 1e-5.
 //! Validation (synchronization included) is on: the pass's barrier to the draws is checked.
 
 mod common;
@@ -9,7 +10,8 @@ mod common;
 use common::{model, with_gpu};
 use glam::{DVec3, Vec3};
 use meshrefine::render::loop_pass::LoopPass;
-use meshrefine::subdiv::{loop_step, stencils, Boundary, Topology};
+use meshrefine::subdiv::{loop_step, Boundary, Topology};
+use meshrefine::surface::subdivision::LoopData;
 
 #[test]
 fn gpu_loop_step_matches_the_cpu() {
@@ -18,13 +20,8 @@ fn gpu_loop_step_matches_the_cpu() {
             let mesh = model(file);
             let topo = Topology::of_mesh(&mesh).unwrap();
             let r = mesh.bounding_radius();
-            let mut pass = LoopPass::new(
-                &h.ctx,
-                &h.pool,
-                &stencils(&topo, Boundary::EdgeOnly),
-                mesh.positions.len(),
-            )
-            .unwrap();
+            let data = LoopData::new(&mesh, Boundary::EdgeOnly, |_, _| {}).unwrap();
+            let mut pass = LoopPass::new(&h.ctx, &h.pool, &data, &mesh.positions).unwrap();
             assert_eq!(pass.upload_bytes(), mesh.positions.len() as u64 * 16);
             for frame in 0..2 {
                 // The second frame moves every vertex (an animated coarse mesh).
@@ -41,6 +38,17 @@ fn gpu_loop_step_matches_the_cpu() {
                     })
                     .unwrap();
                 let got: Vec<[f32; 4]> = pass.m1.read_pod();
+                // The normals pass against its mirror, on the GPU's own M1 (unit normals, f32
+                // sums of up to 2 x valence cross products).
+                let m1: Vec<Vec3> = got.iter().map(|g| Vec3::new(g[0], g[1], g[2])).collect();
+                let normals: Vec<[f32; 4]> = pass.n1.read_pod();
+                for (i, (g, w)) in normals.iter().zip(data.m1_normals(&m1)).enumerate() {
+                    let d = (Vec3::new(g[0], g[1], g[2]) - w).abs().max_element();
+                    assert!(
+                        d <= 1e-5,
+                        "{file} frame {frame}: M1 normal {i} {g:?} vs {w}"
+                    );
+                }
                 let want = loop_step(
                     &topo,
                     &m0.iter().map(|p| p.as_dvec3()).collect::<Vec<DVec3>>(),

@@ -19,6 +19,7 @@ use meshrefine::pattern::{Pattern, PatternSet};
 use meshrefine::render::static_vbo::{refine_on_cpu, MeshInputs};
 use meshrefine::render::tess::{tess_triangle_count, tess_vertex_count};
 use meshrefine::render::{Camera, DrawConfig, Driver, Headless, Scene, Submit};
+use meshrefine::surface::subdivision::{LoopData, LoopFrame};
 use meshrefine::surface::{Displace, RecordKind, Seams, Surface, SurfaceParams};
 
 /// Surface x displacement combinations checked on every driver.
@@ -83,6 +84,16 @@ fn static_positions(
     records: &[meshrefine::surface::ElementRecord],
     mesh: &Mesh,
 ) -> usize {
+    static_positions_with(cfg, records, mesh, None)
+}
+
+/// [`static_positions`] with the loop surface's tables and M1.
+fn static_positions_with(
+    cfg: &DrawConfig,
+    records: &[meshrefine::surface::ElementRecord],
+    mesh: &Mesh,
+    subdiv: Option<(&LoopData, &LoopFrame)>,
+) -> usize {
     // The scalar tags a scene derives from the mesh's hard edges (stpn).
     let (tags, _) = meshrefine::surface::stpn::derive(mesh);
     let map = meshrefine::surface::Heightmap::generated();
@@ -91,6 +102,7 @@ fn static_positions(
         map: &map,
         lod: 0.0,
         tags: &tags,
+        subdiv,
     };
     let (v, _) = refine_on_cpu(cfg, records, &Pattern::uniform(cfg.level), Some(&inputs));
     let distinct: HashSet<[u32; 3]> = v.iter().map(|x| bits(&x[..3])).collect();
@@ -277,6 +289,74 @@ fn heightmap_on_continuous_coordinates_is_watertight() {
                 expected(&mesh, n as usize, inner),
                 "{file} tess level {n}"
             );
+        }
+    });
+}
+
+/// Loop's limit surface is watertight by ownership (src/surface/subdivision.rs): a sample on a
+/// shared M1 edge or corner is evaluated by its owner from both sides. Every driver's vertices
+/// weld on exact bits into exactly the vertex count of a crack-free refinement of M1, and the
+/// welded pattern and tessellator meshes are closed; at levels dividing 32 (lattice rows) and
+/// not (interpolated), with displacement too.
+#[test]
+fn loop_is_watertight_on_every_driver() {
+    use meshrefine::subdiv::Boundary;
+    let files = [
+        "tetrahedron.obj",
+        "icosahedron.obj",
+        "torus_16x8.obj",
+        "bicone16.obj",
+        "spot_control_tri.obj",
+    ];
+    with_gpu(64, 64, |h| {
+        for file in files {
+            let mesh = model(file);
+            let data = LoopData::new(&mesh, Boundary::EdgeOnly, |_, _| {}).unwrap();
+            let frame = data.frame(&mesh.positions);
+            let m1_edges = data.m1.twin.len() / 2;
+            let m1_expected = |n: u32, inner: usize| {
+                data.m1.vertex_count + m1_edges * (n as usize - 1) + data.m1.faces.len() * inner
+            };
+            let levels = [3u32, 8];
+            let (mut scene, camera) = scene_at(h, &mesh, &levels);
+            let r = mesh.bounding_radius();
+            for n in levels {
+                for combo in [
+                    (Surface::Loop, Displace::None),
+                    (Surface::Loop, Displace::Noise),
+                ] {
+                    let name = format!("{file} loop + {} level {n}", combo.1.name());
+                    let inner = ((n - 1) * (n - 2) / 2) as usize;
+                    // static: the mirror.
+                    let cfg = config(Driver::Static, n, combo, r);
+                    let distinct =
+                        static_positions_with(&cfg, &data.records, &mesh, Some((&data, &frame)));
+                    assert_eq!(distinct, m1_expected(n, inner), "{name} static");
+                    for submit in Submit::ALL {
+                        let cfg = config(Driver::Pattern(submit), n, combo, r);
+                        let cap = h.capture(&mut scene, &cfg, &camera).unwrap();
+                        let welded = weld(&cap, &Pattern::uniform(n)).unwrap();
+                        let what = format!("{name} {}", cfg.label());
+                        assert_eq!(welded.positions.len(), m1_expected(n, inner), "{what}");
+                        assert_closed(&welded.triangles, &what);
+                    }
+                    let cfg = config(Driver::Tess, n, combo, r);
+                    let inner = (tess_vertex_count(n) - 3 * n) as usize;
+                    assert_eq!(
+                        tess_positions(h, &mut scene, &cfg, &camera),
+                        m1_expected(n, inner),
+                        "{name} tess"
+                    );
+                    let tris = h.capture_triangles(&mut scene, &cfg, &camera).unwrap();
+                    let welded = weld_triangles(&tris);
+                    assert_eq!(
+                        welded.positions.len(),
+                        m1_expected(n, inner),
+                        "{name} tess triangles"
+                    );
+                    assert_closed(&welded.triangles, &format!("{name} tess triangles"));
+                }
+            }
         }
     });
 }

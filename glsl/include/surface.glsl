@@ -11,12 +11,16 @@
 #include "pn.glsl"
 #include "stpn.glsl"
 #include "displace.glsl"
+#ifndef FRAGMENT_STAGE
+#include "loop.glsl"
+#endif
 
 layout(constant_id = SPEC_SURFACE) const uint SURFACE = 0;
 const uint SURFACE_FLAT = 0;
 const uint SURFACE_PHONG = 1;
 const uint SURFACE_PN = 2;
 const uint SURFACE_STPN = 3;
+const uint SURFACE_LOOP = 4;
 
 struct Sample {
     uint element;  // which element (coarse triangle)
@@ -81,6 +85,11 @@ SurfacePoint surface_eval(ElementRecord rec, Sample s) {
 
 // What every driver computes for every sample.
 SurfacePoint evaluate(ElementRecord rec, Sample s) {
+#ifndef FRAGMENT_STAGE
+    if (SURFACE == SURFACE_LOOP) {
+        return displace(loop_eval(rec, s.bary));
+    }
+#endif
     return displace(surface_eval(rec, s));
 }
 

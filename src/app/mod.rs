@@ -336,7 +336,7 @@ impl State {
                 "1" => c.cfg.driver = Driver::Static,
                 "2" => c.cfg.driver = Driver::Pattern(c.submit),
                 "3" => c.cfg.driver = Driver::Tess,
-                "s" | "S" => c.cfg.surface = next(&Surface::ALL, c.cfg.surface),
+                "s" | "S" => c.cfg.surface = next(&Surface::LOCAL, c.cfg.surface),
                 "d" | "D" => {
                     c.cfg.displace = next(&Displace::ALL, c.cfg.displace);
                     // The height map needs texture coordinates: skip it on meshes without.
@@ -457,14 +457,15 @@ impl State {
             },
         };
         let work = FrameWork {
-            mesh: &self.scene.gpu,
-            records: &self.scene.data.records,
+            mesh: self.scene.elements(cfg.surface),
+            records: self.scene.records(cfg.surface),
             static_vbo: self.scene.static_vbo.as_ref(),
+            pre_pass: self.scene.pre_pass(cfg.surface),
             cfg,
             capture: crate::render::Capture::None,
             xfb: None,
             wireframe: self.controls.wireframe,
-            elements: 0..self.scene.gpu.element_count,
+            elements: 0..self.scene.elements(cfg.surface).element_count,
             clear: CLEAR_COLOR,
         };
         let screenshot_buffer = self.screenshot_buffer.as_ref().filter(|_| screenshot);
@@ -545,7 +546,7 @@ impl State {
         let levels: Vec<u32> = self.scene.patterns.levels().collect();
         let device = self.ctx.info.describe();
         let d = self.drawn;
-        let coarse = self.scene.gpu.element_count as u64;
+        let coarse = self.scene.elements(d.surface).element_count as u64;
         let info = PanelInfo {
             device: &device,
             levels: &levels,
@@ -555,7 +556,7 @@ impl State {
             drawn: d,
             coarse,
             refined: coarse * d.refined_per_coarse() as u64,
-            geometry_bytes: d.geometry_bytes(self.scene.gpu.element_count as u64),
+            geometry_bytes: d.geometry_bytes(coarse),
             has_texcoords: self.scene.data.uvs.is_some(),
         };
         self.ui.run(&self.window, &mut self.controls, &info)
@@ -569,8 +570,8 @@ impl State {
         }
         self.fps = (self.frames - n0) as f64 / dt;
         self.fps_window = (Instant::now(), self.frames);
-        let coarse = self.scene.gpu.element_count as u64;
-        let bytes = cfg.geometry_bytes(self.scene.gpu.element_count as u64);
+        let coarse = self.scene.elements(cfg.surface).element_count as u64;
+        let bytes = cfg.geometry_bytes(coarse);
         let c = &self.controls;
         self.window.set_title(&format!(
             "meshrefine | {} level {}{}{}{} | {:.0} fps | GPU {:.2} ms | {} -> {} triangles | {:.2} MB geometry | max level {}",
@@ -620,6 +621,6 @@ mod tests {
         assert_eq!(made, 4, "existing items are kept");
         per_image(&mut v, 3, |i| -> Result<usize, ()> { Ok(i) }).unwrap();
         assert_eq!(v, [0, 1, 2]);
-        assert_eq!(next(&Surface::ALL, Surface::Stpn), Surface::Flat);
+        assert_eq!(next(&Surface::LOCAL, Surface::Stpn), Surface::Flat);
     }
 }

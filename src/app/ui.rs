@@ -207,7 +207,7 @@ fn panel(ctx: &egui::Context, c: &mut Controls, info: &PanelInfo) {
             });
             ui.horizontal(|ui| {
                 ui.label("surface");
-                for s in Surface::ALL {
+                for s in Surface::LOCAL {
                     ui.selectable_value(&mut c.cfg.surface, s, s.name());
                 }
             });

@@ -115,6 +115,26 @@ impl<'a> Cmd<'a> {
         };
     }
 
+    /// Wait for earlier draws' reads before a compute pass overwrites what they read (a
+    /// write-after-read hazard: an execution dependency suffices).
+    pub fn barrier_draw_to_compute(&self) {
+        // SAFETY: see `bind_graphics_pipeline`; outside a rendering instance.
+        unsafe {
+            self.ctx.device.cmd_pipeline_barrier(
+                self.raw,
+                vk::PipelineStageFlags::VERTEX_INPUT
+                    | vk::PipelineStageFlags::VERTEX_SHADER
+                    | vk::PipelineStageFlags::TESSELLATION_EVALUATION_SHADER
+                    | vk::PipelineStageFlags::COMPUTE_SHADER,
+                vk::PipelineStageFlags::COMPUTE_SHADER,
+                vk::DependencyFlags::empty(),
+                &[],
+                &[],
+                &[],
+            )
+        };
+    }
+
     pub fn push_constants(
         &self,
         layout: vk::PipelineLayout,

@@ -30,6 +30,17 @@ pub const BINDING_HEIGHTMAP: u32 = 3;
 /// Set 1, binding 4: every vertex's scalar tags (`stpn`), three `vec4` each.
 pub const BINDING_TAGS: u32 = 4;
 
+/// Set 1, bindings 5-9: the `loop` surface (src/surface/subdivision.rs): M1's positions and
+/// normals (`vec4`, written by the Loop passes), each M1 face's table entry (`uvec4`: first
+/// weight, control points, first control index, rotation), the faces' control points (M1 vertex
+/// indices) and the basis function tables (`float`). Unchunked: one face's owners may be in
+/// another chunk.
+pub const BINDING_LOOP_P1: u32 = 5;
+pub const BINDING_LOOP_N1: u32 = 6;
+pub const BINDING_LOOP_FACES: u32 = 7;
+pub const BINDING_LOOP_CONTROL: u32 = 8;
+pub const BINDING_LOOP_TABLES: u32 = 9;
+
 /// Set 2: capture output of the `CAPTURE` shader variants.
 pub const SET_CAPTURE: u32 = 2;
 /// Set 2, binding 0: evaluated vertices, `CapturedVertex[]`.
@@ -43,6 +54,10 @@ pub const LOOP_BINDING_OFFSETS: u32 = 0;
 pub const LOOP_BINDING_ENTRIES: u32 = 1;
 pub const LOOP_BINDING_M0: u32 = 2;
 pub const LOOP_BINDING_M1: u32 = 3;
+/// The normals pass (same set): M1's one-rings and M1's normals out.
+pub const LOOP_BINDING_RING_OFFSETS: u32 = 4;
+pub const LOOP_BINDING_RINGS: u32 = 5;
+pub const LOOP_BINDING_N1: u32 = 6;
 
 /// Specialization constant ids.
 pub const SPEC_SURFACE: u32 = 0;
@@ -70,6 +85,14 @@ pub const GLSL_DEFINES: &[(&str, u32)] = &[
     ("LOOP_BINDING_ENTRIES", LOOP_BINDING_ENTRIES),
     ("LOOP_BINDING_M0", LOOP_BINDING_M0),
     ("LOOP_BINDING_M1", LOOP_BINDING_M1),
+    ("LOOP_BINDING_RING_OFFSETS", LOOP_BINDING_RING_OFFSETS),
+    ("LOOP_BINDING_RINGS", LOOP_BINDING_RINGS),
+    ("LOOP_BINDING_N1", LOOP_BINDING_N1),
+    ("BINDING_LOOP_P1", BINDING_LOOP_P1),
+    ("BINDING_LOOP_N1", BINDING_LOOP_N1),
+    ("BINDING_LOOP_FACES", BINDING_LOOP_FACES),
+    ("BINDING_LOOP_CONTROL", BINDING_LOOP_CONTROL),
+    ("BINDING_LOOP_TABLES", BINDING_LOOP_TABLES),
     ("SPEC_SURFACE", SPEC_SURFACE),
     ("SPEC_SUBMIT", SPEC_SUBMIT),
     ("SPEC_WIRE", SPEC_WIRE),

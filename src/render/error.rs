@@ -25,6 +25,9 @@ pub enum RenderError {
     /// The scalar tags break a restriction of scalar-tagged PN triangles.
     #[error("{0}")]
     Tags(String),
+    /// The mesh cannot be Loop-subdivided (the `loop` surface).
+    #[error("the loop surface needs a manifold, consistently oriented mesh: {0}")]
+    Subdivision(#[from] crate::subdiv::TopologyError),
     #[error("the tessellator evaluated {written} vertices, more than the {capacity} the capture buffer holds")]
     CaptureOverflow { written: u64, capacity: u64 },
 }

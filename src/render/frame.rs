@@ -28,6 +28,8 @@ pub struct FrameWork<'a> {
     pub mesh: &'a GpuMesh,
     pub records: &'a [ElementRecord],
     pub static_vbo: Option<&'a StaticVbo>,
+    /// Passes to run before drawing (the `loop` surface's M0 -> M1), inside the timed range.
+    pub pre_pass: Option<&'a super::loop_pass::LoopPass>,
     pub cfg: DrawConfig,
     pub capture: Capture,
     /// Transform-feedback output (with `Capture::Triangles`).
@@ -65,6 +67,9 @@ pub fn cmd_render(
     );
     if let Some((q, slot)) = queries {
         q.cmd_begin(cmd, slot);
+    }
+    if let Some(pass) = work.pre_pass {
+        pass.cmd_apply(cmd);
     }
     cmd.begin_rendering(
         target.color_view,

@@ -139,6 +139,36 @@ impl Headless {
         }
     }
 
+    /// Prepare `scene` for `cfg` and say how many elements it draws.
+    pub fn prepared_elements(
+        &mut self,
+        scene: &mut Scene,
+        cfg: &DrawConfig,
+        capture: Capture,
+    ) -> Result<u32, RenderError> {
+        scene.prepare(
+            &self.ctx,
+            &self.pool,
+            &mut self.renderer,
+            cfg,
+            capture,
+            self.wireframe,
+        )?;
+        Ok(scene.elements(cfg.surface).element_count)
+    }
+
+    /// Draw the elements in `elements` only (none: the frame's other work alone, e.g. the loop
+    /// surface's passes), wait, and return its timing and statistics.
+    pub fn draw_elements(
+        &mut self,
+        scene: &mut Scene,
+        cfg: &DrawConfig,
+        camera: &Camera,
+        elements: std::ops::Range<u32>,
+    ) -> Result<FrameTiming, RenderError> {
+        self.draw_inner(scene, cfg, camera, Capture::None, None, elements)
+    }
+
     /// Draw one frame, wait, and return its timing and statistics.
     pub fn draw(
         &mut self,
@@ -146,8 +176,7 @@ impl Headless {
         cfg: &DrawConfig,
         camera: &Camera,
     ) -> Result<FrameTiming, RenderError> {
-        let all = 0..scene.gpu.element_count;
-        self.draw_inner(scene, cfg, camera, Capture::None, None, all)
+        self.draw_inner(scene, cfg, camera, Capture::None, None, 0..u32::MAX)
     }
 
     fn draw_inner(
@@ -159,21 +188,17 @@ impl Headless {
         xfb: Option<&Buffer>,
         elements: std::ops::Range<u32>,
     ) -> Result<FrameTiming, RenderError> {
-        scene.prepare(
-            &self.ctx,
-            &self.pool,
-            &mut self.renderer,
-            cfg,
-            capture,
-            self.wireframe,
-        )?;
+        // The element count is the surface's (M1 faces for loop, known once prepared).
+        let count = self.prepared_elements(scene, cfg, capture)?;
+        let elements = elements.start..elements.end.min(count);
         let uniforms = self.frame_uniforms(camera, cfg, scene);
         self.renderer.set_frame(&uniforms);
         let view = self.view();
         let work = FrameWork {
-            mesh: &scene.gpu,
-            records: &scene.data.records,
+            mesh: scene.elements(cfg.surface),
+            records: scene.records(cfg.surface),
             static_vbo: scene.static_vbo.as_ref(),
+            pre_pass: scene.pre_pass(cfg.surface),
             cfg: *cfg,
             capture,
             xfb,
@@ -246,7 +271,7 @@ impl Headless {
                 remedy,
             });
         }
-        let n = scene.gpu.element_count;
+        let n = self.prepared_elements(scene, cfg, Capture::Vertices)?;
         let per_pass = (limit / (per_element as u64 * vertex_bytes))
             .min(u32::MAX as u64 / per_element as u64)
             .min(n.max(1) as u64) as u32;
@@ -335,7 +360,7 @@ impl Headless {
                 remedy: "use a lower level".into(),
             });
         }
-        let n = scene.gpu.element_count;
+        let n = self.prepared_elements(scene, cfg, Capture::Triangles)?;
         let per_pass = (limit / per_element).clamp(1, n.max(1) as u64) as u32;
         let buffer = Buffer::new(
             &self.ctx,

@@ -1,7 +1,8 @@
 //! The Loop step M0 -> M1 on the GPU (Holländer & Boubekeur 2010): the computational entries
 //! ([`crate::subdiv::stencils`]) are uploaded once per topology; every frame only M0's positions
 //! are uploaded (bytes independent of the refinement level) and a compute pass applies the
-//! entries, followed by a barrier that makes M1 visible to the draws.
+//! entries, a second pass computes M1's one-ring normals, and barriers make both visible to the
+//! draws. The tables the draws read are uploaded here too.
 
 use super::bindings::*;
 use super::RenderError;
@@ -9,7 +10,7 @@ use crate::gpu::{
     vk, Buffer, BufferDesc, Cmd, CommandPool, Context, DescriptorPool, DescriptorSetLayout,
     Pipeline, PipelineLayout,
 };
-use crate::subdiv::Stencil;
+use crate::surface::subdivision::LoopData;
 use glam::Vec3;
 use std::sync::Arc;
 
@@ -17,12 +18,20 @@ use std::sync::Arc;
 const GROUP: u32 = 64;
 
 pub struct LoopPass {
-    /// M1 positions (`vec4`, w = 1), written by the pass.
+    /// M1 positions and normals (`vec4`), written by the passes, read by the draws.
     pub m1: Buffer,
+    pub n1: Buffer,
+    /// The draws' tables: per-face entries, control points, weights.
+    pub faces: Buffer,
+    pub control: Buffer,
+    pub tables: Buffer,
     m0: Buffer,
     _offsets: Buffer,
     _entries: Buffer,
-    pipeline: Pipeline,
+    _ring_offsets: Buffer,
+    _rings: Buffer,
+    step: Pipeline,
+    normals: Pipeline,
     pipeline_layout: PipelineLayout,
     _pool: DescriptorPool,
     set: vk::DescriptorSet,
@@ -32,32 +41,43 @@ pub struct LoopPass {
 }
 
 impl LoopPass {
-    /// The pass for `stencils` (one per M1 vertex) over `m0_count` M0 vertices.
+    /// The passes and tables of `data`, with M0 at `m0`.
     pub fn new(
         ctx: &Arc<Context>,
         pool: &CommandPool,
-        stencils: &[Stencil],
-        m0_count: usize,
+        data: &LoopData,
+        m0: &[Vec3],
     ) -> Result<Self, RenderError> {
         use vk::DescriptorType as T;
         let c = vk::ShaderStageFlags::COMPUTE;
+        let bindings = [
+            LOOP_BINDING_OFFSETS,
+            LOOP_BINDING_ENTRIES,
+            LOOP_BINDING_M0,
+            LOOP_BINDING_M1,
+            LOOP_BINDING_RING_OFFSETS,
+            LOOP_BINDING_RINGS,
+            LOOP_BINDING_N1,
+        ];
         let set_layout = DescriptorSetLayout::new(
             ctx,
-            &[
-                (LOOP_BINDING_OFFSETS, T::STORAGE_BUFFER, c),
-                (LOOP_BINDING_ENTRIES, T::STORAGE_BUFFER, c),
-                (LOOP_BINDING_M0, T::STORAGE_BUFFER, c),
-                (LOOP_BINDING_M1, T::STORAGE_BUFFER, c),
-            ],
-            "loop step set",
+            &bindings.map(|b| (b, T::STORAGE_BUFFER, c)),
+            "loop passes set",
         )?;
-        let pipeline_layout = PipelineLayout::new(ctx, &[&set_layout], 4, c, "loop step")?;
-        let pipeline = Pipeline::new_compute(
+        let pipeline_layout = PipelineLayout::new(ctx, &[&set_layout], 4, c, "loop passes")?;
+        let step = Pipeline::new_compute(
             ctx,
             &pipeline_layout,
             "subdiv/loop_step.comp",
             "loop step (M0 -> M1)",
         )?;
+        let normals = Pipeline::new_compute(
+            ctx,
+            &pipeline_layout,
+            "subdiv/loop_normals.comp",
+            "loop normals (M1 one-rings)",
+        )?;
+        let stencils = &data.stencils;
         let mut offsets = Vec::with_capacity(stencils.len() + 1);
         let mut entries: Vec<[u32; 2]> = Vec::new();
         offsets.push(0u32);
@@ -71,46 +91,81 @@ impl LoopPass {
             entries.push([0, 0]);
         }
         let storage = vk::BufferUsageFlags::STORAGE_BUFFER;
-        let offsets_buf =
-            Buffer::new_with_data(ctx, pool, storage, &offsets, "loop entry offsets")?;
+        let upload =
+            |data: &[u32], name: &str| Buffer::new_with_data(ctx, pool, storage, data, name);
+        let offsets_buf = upload(&offsets, "loop entry offsets")?;
         let entries_buf = Buffer::new_with_data(ctx, pool, storage, &entries, "loop entries")?;
-        let m0 = Buffer::new(
+        let ring_offsets = upload(&data.ring_offsets, "M1 ring offsets")?;
+        let rings = upload(nonempty(&data.rings), "M1 rings")?;
+        let faces = Buffer::new_with_data(ctx, pool, storage, &data.faces, "loop face tables")?;
+        let control = upload(nonempty(&data.control), "loop control points")?;
+        let tables = Buffer::new_with_data(
             ctx,
-            BufferDesc::new_upload(m0_count.max(1) as u64 * 16, storage),
+            pool,
+            storage,
+            if data.weights.is_empty() {
+                &[0.0f32][..]
+            } else {
+                &data.weights
+            },
+            "basis function tables",
+        )?;
+        let m0_buf = Buffer::new(
+            ctx,
+            BufferDesc::new_upload(data.m0_count.max(1) as u64 * 16, storage),
             "M0 positions",
         )?;
+        let m1_bytes = stencils.len().max(1) as u64 * 16;
         let m1 = Buffer::new(
             ctx,
-            BufferDesc::new_readback(
-                stencils.len().max(1) as u64 * 16,
-                storage | vk::BufferUsageFlags::VERTEX_BUFFER,
-            ),
+            BufferDesc::new_readback(m1_bytes, storage),
             "M1 positions",
         )?;
-        let dpool =
-            DescriptorPool::new(ctx, 1, &[(T::STORAGE_BUFFER, 4)], "loop step descriptors")?;
-        let set = dpool.allocate(&set_layout, "loop step set")?;
+        let n1 = Buffer::new(
+            ctx,
+            BufferDesc::new_readback(m1_bytes, storage),
+            "M1 normals",
+        )?;
+        let dpool = DescriptorPool::new(
+            ctx,
+            1,
+            &[(T::STORAGE_BUFFER, bindings.len() as u32)],
+            "loop passes descriptors",
+        )?;
+        let set = dpool.allocate(&set_layout, "loop passes set")?;
         for (binding, buffer) in [
             (LOOP_BINDING_OFFSETS, &offsets_buf),
             (LOOP_BINDING_ENTRIES, &entries_buf),
-            (LOOP_BINDING_M0, &m0),
+            (LOOP_BINDING_M0, &m0_buf),
             (LOOP_BINDING_M1, &m1),
+            (LOOP_BINDING_RING_OFFSETS, &ring_offsets),
+            (LOOP_BINDING_RINGS, &rings),
+            (LOOP_BINDING_N1, &n1),
         ] {
             dpool.write_buffer(set, binding, T::STORAGE_BUFFER, buffer.raw, vk::WHOLE_SIZE);
         }
-        Ok(Self {
+        let mut pass = Self {
             m1,
-            m0,
+            n1,
+            faces,
+            control,
+            tables,
+            m0: m0_buf,
             _offsets: offsets_buf,
             _entries: entries_buf,
-            pipeline,
+            _ring_offsets: ring_offsets,
+            _rings: rings,
+            step,
+            normals,
             pipeline_layout,
             _pool: dpool,
             set,
             _set_layout: set_layout,
-            m0_count: m0_count as u32,
+            m0_count: data.m0_count as u32,
             m1_count: stencils.len() as u32,
-        })
+        };
+        pass.upload_m0(m0);
+        Ok(pass)
     }
 
     /// Upload M0's positions (animation: every frame). The caller makes sure no pending work
@@ -130,9 +185,10 @@ impl LoopPass {
         self.m1_count
     }
 
-    /// Record the pass and the barrier to the draws that read M1.
+    /// Record both passes (M0 -> M1, then M1's normals) and the barriers around them: after the
+    /// previous draws' reads of M1, and before this frame's.
     pub fn cmd_apply(&self, cmd: &Cmd<'_>) {
-        cmd.bind_compute_pipeline(self.pipeline.raw);
+        cmd.barrier_draw_to_compute();
         cmd.bind_compute_descriptor_set(self.pipeline_layout.raw, 0, self.set);
         cmd.push_constants(
             self.pipeline_layout.raw,
@@ -140,7 +196,21 @@ impl LoopPass {
             0,
             bytemuck::bytes_of(&self.m1_count),
         );
-        cmd.dispatch(self.m1_count.div_ceil(GROUP).max(1), 1, 1);
+        let groups = self.m1_count.div_ceil(GROUP).max(1);
+        cmd.bind_compute_pipeline(self.step.raw);
+        cmd.dispatch(groups, 1, 1);
         cmd.barrier_compute_to_draw();
+        cmd.bind_compute_pipeline(self.normals.raw);
+        cmd.dispatch(groups, 1, 1);
+        cmd.barrier_compute_to_draw();
+    }
+}
+
+/// A storage buffer may not be empty.
+fn nonempty(v: &[u32]) -> &[u32] {
+    if v.is_empty() {
+        &[0]
+    } else {
+        v
     }
 }

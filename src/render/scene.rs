@@ -3,11 +3,14 @@
 //! coarse mesh only ([`GpuMesh::update_records`]), never on the refinement level.
 
 use super::bindings::*;
+use super::loop_pass::LoopPass;
 use super::RenderError;
 use crate::gpu::{vk, Buffer, BufferDesc, CommandPool, Context, DescriptorPool, GpuError};
 use crate::mesh::Mesh;
 use crate::pattern::{Pattern, PatternSet};
 use crate::surface::stpn::VertexTag;
+use crate::surface::subdivision::{LoopData, LoopFrame};
+use crate::surface::Surface;
 use crate::surface::{build_records, ElementRecord, Heightmap, RecordKind, Seams, RECORD_BYTES};
 use std::sync::Arc;
 
@@ -111,6 +114,8 @@ pub struct GpuMesh {
     pub sets: Vec<vk::DescriptorSet>,
     /// Elements per chunk.
     pub chunk: u32,
+    /// Bound where a surface's buffers are absent (every binding must be valid).
+    _placeholder: Buffer,
 }
 
 /// What the mesh set binds besides records and texture coordinates.
@@ -118,6 +123,8 @@ pub struct GpuMesh {
 pub struct Extras<'a> {
     pub heightmap: &'a Heightmap,
     pub tags: &'a [VertexTag],
+    /// The `loop` surface's M1 and tables (a placeholder is bound without).
+    pub subdiv: Option<&'a LoopPass>,
 }
 
 /// The part of an element range that lies in one chunk of records.
@@ -164,7 +171,11 @@ impl GpuMesh {
         max_chunk: Option<u32>,
         extras: Extras<'_>,
     ) -> Result<Self, RenderError> {
-        let Extras { heightmap, tags } = extras;
+        let Extras {
+            heightmap,
+            tags,
+            subdiv,
+        } = extras;
         let n = data.records.len() as u64;
         let rec_size = RECORD_BYTES as u64;
         let limits = &ctx.info.limits;
@@ -238,11 +249,22 @@ impl GpuMesh {
             ctx,
             chunks,
             &[
-                (vk::DescriptorType::STORAGE_BUFFER, 4 * chunks),
+                (vk::DescriptorType::STORAGE_BUFFER, 9 * chunks),
                 (vk::DescriptorType::UNIFORM_BUFFER_DYNAMIC, chunks),
             ],
             "mesh descriptors",
         )?;
+        let placeholder = Buffer::new_with_data(
+            ctx,
+            cmd_pool,
+            vk::BufferUsageFlags::STORAGE_BUFFER,
+            &[0u32; 4],
+            "placeholder",
+        )?;
+        let loop_buffers = match subdiv {
+            Some(l) => [&l.m1, &l.n1, &l.faces, &l.control, &l.tables],
+            None => [&placeholder; 5],
+        };
         let mut sets = Vec::with_capacity(chunks as usize);
         for c in 0..chunks as u64 {
             let set = pool.allocate(set_layout, &format!("mesh set {c}"))?;
@@ -286,6 +308,24 @@ impl GpuMesh {
                 tags_buffer.raw,
                 vk::WHOLE_SIZE,
             );
+            for (binding, buffer) in [
+                BINDING_LOOP_P1,
+                BINDING_LOOP_N1,
+                BINDING_LOOP_FACES,
+                BINDING_LOOP_CONTROL,
+                BINDING_LOOP_TABLES,
+            ]
+            .into_iter()
+            .zip(loop_buffers)
+            {
+                pool.write_buffer(
+                    set,
+                    binding,
+                    vk::DescriptorType::STORAGE_BUFFER,
+                    buffer.raw,
+                    vk::WHOLE_SIZE,
+                );
+            }
             sets.push(set);
         }
         Ok(Self {
@@ -298,6 +338,7 @@ impl GpuMesh {
             pool,
             sets,
             chunk,
+            _placeholder: placeholder,
         })
     }
 
@@ -345,7 +386,82 @@ pub struct Scene {
     max_chunk: Option<u32>,
     pub patterns: PatternSet,
     pub static_vbo: Option<super::static_vbo::StaticVbo>,
+    /// The `loop` surface's M1 faces, built by the first `prepare` that draws it.
+    pub subdiv: Option<LoopScene>,
     warned_slow: bool,
+}
+
+/// The `loop` surface of a scene: tables and records (CPU), its passes and M1 faces (GPU), and
+/// M1 as the CPU mirror computes it (the static driver and the tests read it).
+pub struct LoopScene {
+    pub data: LoopData,
+    pub frame: LoopFrame,
+    pub gpu: GpuMesh,
+    pub pass: LoopPass,
+}
+
+impl LoopScene {
+    fn new(
+        ctx: &Arc<Context>,
+        pool: &CommandPool,
+        renderer: &super::Renderer,
+        scene: &Scene,
+        boundary: crate::subdiv::Boundary,
+    ) -> Result<Self, RenderError> {
+        let mesh = &scene.data.mesh;
+        let started = std::time::Instant::now();
+        let data = LoopData::new(mesh, boundary, |done, total| {
+            if done < total && started.elapsed().as_secs_f32() > 1.0 {
+                log::info!("building basis function tables: {done} of {total} configurations");
+            }
+        })?;
+        let limit = ctx.info.limits.max_storage_buffer_range as u64;
+        for (what, bytes) in [
+            ("M1 positions", data.stencils.len() as u64 * 16),
+            ("M1 face tables", data.faces.len() as u64 * 16),
+            ("control points", data.control.len() as u64 * 4),
+            ("basis function tables", data.table_bytes()),
+        ] {
+            if bytes > limit {
+                return Err(RenderError::OverLimit {
+                    what: format!("the loop surface's {what}"),
+                    needed: bytes,
+                    limit: "maxStorageBufferRange",
+                    max: limit,
+                    remedy: "use a coarser mesh".into(),
+                });
+            }
+        }
+        let frame = data.frame(&mesh.positions);
+        let pass = LoopPass::new(ctx, pool, &data, &mesh.positions)?;
+        let elements = MeshData {
+            mesh: mesh.clone(),
+            kind: RecordKind::LoopFaces,
+            seams: scene.data.seams,
+            records: data.records.clone(),
+            uvs: None,
+            uv_extent: 0.0,
+        };
+        let gpu = GpuMesh::new(
+            ctx,
+            pool,
+            &renderer.mesh_layout,
+            &elements,
+            &scene.patterns,
+            scene.max_chunk,
+            Extras {
+                heightmap: &scene.heightmap,
+                tags: &scene.tags,
+                subdiv: Some(&pass),
+            },
+        )?;
+        Ok(Self {
+            data,
+            frame,
+            gpu,
+            pass,
+        })
+    }
 }
 
 impl Scene {
@@ -395,6 +511,7 @@ impl Scene {
             Extras {
                 heightmap: &heightmap,
                 tags: &tags,
+                subdiv: None,
             },
         )?;
         Ok(Self {
@@ -405,6 +522,7 @@ impl Scene {
             max_chunk,
             patterns,
             static_vbo: None,
+            subdiv: None,
             warned_slow: false,
         })
     }
@@ -428,9 +546,27 @@ impl Scene {
                 levels: levels.join(", "),
             });
         }
-        // Every surface today shares the corner records the scene was built with; a surface
-        // with records of another kind (Loop's M1 faces) needs a scene of its own.
-        debug_assert_eq!(cfg.surface.record_kind(), self.data.kind);
+        if cfg.surface == Surface::Loop
+            && self
+                .subdiv
+                .as_ref()
+                .is_none_or(|l| l.data.boundary != cfg.params.boundary)
+        {
+            self.subdiv = None;
+            self.static_vbo = None;
+            self.subdiv = Some(LoopScene::new(
+                ctx,
+                pool,
+                renderer,
+                self,
+                cfg.params.boundary,
+            )?);
+        }
+        if cfg.surface == Surface::Loop && cfg.displace == crate::surface::Displace::Heightmap {
+            return Err(RenderError::Unsupported(
+                "the loop surface has no texture coordinates: the heightmap displacement needs them (use sine or noise)",
+            ));
+        }
         if cfg.surface == crate::surface::Surface::Stpn {
             crate::surface::stpn::check(&self.data.mesh, &self.tags).map_err(RenderError::Tags)?;
         }
@@ -474,7 +610,8 @@ impl Scene {
             ));
         }
         renderer.prepare(cfg, capture, wire)?;
-        let refined = self.gpu.element_count as u64 * cfg.refined_per_coarse() as u64;
+        let refined =
+            self.elements(cfg.surface).element_count as u64 * cfg.refined_per_coarse() as u64;
         if ctx.info.device_type == vk::PhysicalDeviceType::CPU
             && refined > 50_000_000
             && !self.warned_slow
@@ -491,6 +628,7 @@ impl Scene {
                     || v.cfg.surface != cfg.surface
                     || v.cfg.displace != cfg.displace
                     || v.cfg.params != cfg.params
+                    || cfg.surface == Surface::Loop
             });
             if stale {
                 self.static_vbo = None;
@@ -499,7 +637,7 @@ impl Scene {
                     ctx,
                     pool,
                     cfg,
-                    &self.data.records,
+                    self.records(cfg.surface),
                     &self.patterns.patterns[idx],
                     Some(&self.inputs(cfg.level)),
                 )?);
@@ -513,7 +651,37 @@ impl Scene {
     pub fn update_mesh(&mut self, mesh: Mesh) {
         self.data = MeshData::new(mesh, self.data.kind, self.data.seams);
         self.gpu.update_records(&self.data.records);
+        if let Some(l) = &mut self.subdiv {
+            // Loop: only M0's positions go up; the passes make M1 on the GPU.
+            l.pass.upload_m0(&self.data.mesh.positions);
+            l.frame = l.data.frame(&self.data.mesh.positions);
+        }
         self.static_vbo = None;
+    }
+
+    /// The elements `surface` draws: M1 faces for `loop` (once prepared), coarse triangles
+    /// otherwise.
+    pub fn elements(&self, surface: Surface) -> &GpuMesh {
+        match (&self.subdiv, surface) {
+            (Some(l), Surface::Loop) => &l.gpu,
+            _ => &self.gpu,
+        }
+    }
+
+    /// The records of [`Scene::elements`].
+    pub fn records(&self, surface: Surface) -> &[ElementRecord] {
+        match (&self.subdiv, surface) {
+            (Some(l), Surface::Loop) => &l.data.records,
+            _ => &self.data.records,
+        }
+    }
+
+    /// The passes `surface` runs before drawing (Loop's M0 -> M1).
+    pub fn pre_pass(&self, surface: Surface) -> Option<&LoopPass> {
+        match (&self.subdiv, surface) {
+            (Some(l), Surface::Loop) => Some(&l.pass),
+            _ => None,
+        }
     }
 
     /// Replace the height map (between frames): uploaded, and the static buffer rebuilt.
@@ -557,6 +725,7 @@ impl Scene {
             Extras {
                 heightmap: &self.heightmap,
                 tags: &self.tags,
+                subdiv: None,
             },
         )?;
         self.static_vbo = None;
@@ -575,6 +744,7 @@ impl Scene {
             map: &self.heightmap,
             lod: self.heightmap_lod(level),
             tags: &self.tags,
+            subdiv: self.subdiv.as_ref().map(|l| (&l.data, &l.frame)),
         }
     }
 

@@ -18,16 +18,23 @@ pub struct MeshInputs<'a> {
     pub map: &'a Heightmap,
     pub lod: f32,
     pub tags: &'a [VertexTag],
+    /// The `loop` surface's tables and M1.
+    pub subdiv: Option<(
+        &'a crate::surface::subdivision::LoopData,
+        &'a crate::surface::subdivision::LoopFrame,
+    )>,
 }
 
 impl<'a> MeshInputs<'a> {
     /// The inputs of element `t`.
     pub fn element(&self, t: usize) -> Inputs<'a> {
         Inputs {
-            uv: self.uvs.map(|u| &u[t]),
+            // (Loop's elements are M1 faces, beyond the coarse coordinates: it reads none.)
+            uv: self.uvs.and_then(|u| u.get(t)),
             heightmap: Some(self.map),
             lod: self.lod,
             tags: Some(self.tags),
+            subdiv: self.subdiv,
         }
     }
 }

@@ -4,7 +4,11 @@
 //! lavapipe workaround (../PLATFORM.md): a tessellated draw whose evaluation stage emits more than
 //! 65,536 vertices renders garbage there, so on lavapipe the patches are split into draws of at
 //! most 65,535 evaluated vertices. gl_PrimitiveID restarts in every draw, so each draw pushes its
-//! first triangle. Other devices get one draw.
+//! first triangle. A second lavapipe bug, found by the loop surface's tests (2026-12-01): past
+//! 4,095 patch vertices (1,365 triangle patches) in one draw its gl_PrimitiveID in the evaluation
+//! stage starts over (Mesa's draw module splits draws into chunks of 4,096 vertices), so patches
+//! past that read another element's record; draws on lavapipe also hold at most 1,365 patches.
+//! Other devices get one draw.
 
 use super::bindings::SET_MESH;
 use super::{GpuMesh, RenderError, Renderer, PUSH_DRAW_OFFSET, PUSH_STAGES};
@@ -12,6 +16,9 @@ use crate::gpu::{Cmd, Context};
 
 /// Largest evaluated-vertex count of one tessellated draw that lavapipe renders correctly.
 pub const LAVAPIPE_MAX_TESS_VERTICES_PER_DRAW: u32 = 65_535;
+
+/// Most triangle patches of one tessellated draw whose gl_PrimitiveID lavapipe numbers right.
+pub const LAVAPIPE_MAX_PATCHES_PER_DRAW: u32 = 4_095 / 3;
 
 /// Check `level` against the device's maxTessellationGenerationLevel.
 pub fn check_level(ctx: &Context, level: u32) -> Result<(), RenderError> {
@@ -25,7 +32,8 @@ pub fn check_level(ctx: &Context, level: u32) -> Result<(), RenderError> {
 /// Patches per draw on this device for `level`.
 pub fn patches_per_draw(ctx: &Context, level: u32, triangles: u32) -> u32 {
     if ctx.info.is_lavapipe() {
-        (LAVAPIPE_MAX_TESS_VERTICES_PER_DRAW / tess_vertex_count(level)).max(1)
+        (LAVAPIPE_MAX_TESS_VERTICES_PER_DRAW / tess_vertex_count(level))
+            .clamp(1, LAVAPIPE_MAX_PATCHES_PER_DRAW)
     } else {
         triangles.max(1)
     }

@@ -18,6 +18,8 @@ use crate::mesh::Mesh;
 use glam::DVec3;
 use std::collections::HashMap;
 
+pub mod bft;
+
 /// How boundaries are subdivided.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default, clap::ValueEnum)]
 pub enum Boundary {
@@ -257,6 +259,16 @@ pub fn loop_step(topo: &Topology, positions: &[DVec3], boundary: Boundary) -> Re
             edge_point[t as usize] = i;
         }
     }
+    Refined {
+        positions: out,
+        faces: children(topo, &edge_point),
+    }
+}
+
+/// The four faces of every face after one step, given each half-edge's edge point: face f's
+/// children are `4f .. 4f + 4`, the corner faces `[t_k, e_k, e_(k+2)]` (k = 0, 1, 2, the vertex
+/// point first) then the middle face `[e0, e1, e2]`, with `e_k` the point of edge (t_k, t_(k+1)).
+fn children(topo: &Topology, edge_point: &[u32]) -> Vec<[u32; 3]> {
     let mut faces = Vec::with_capacity(4 * topo.faces.len());
     for (f, t) in topo.faces.iter().enumerate() {
         let e = [0, 1, 2].map(|k| edge_point[3 * f + k]);
@@ -265,10 +277,24 @@ pub fn loop_step(topo: &Topology, positions: &[DVec3], boundary: Boundary) -> Re
         faces.push([t[2], e[2], e[1]]);
         faces.push([e[0], e[1], e[2]]);
     }
-    Refined {
-        positions: out,
-        faces,
+    faces
+}
+
+/// The faces of one Loop step over `topo` (as [`loop_step`] numbers them), without positions.
+pub fn refined_faces(topo: &Topology) -> Vec<[u32; 3]> {
+    let mut edge_point: Vec<u32> = vec![u32::MAX; topo.twin.len()];
+    let mut next = topo.vertex_count as u32;
+    for h in 0..topo.twin.len() {
+        if edge_point[h] != u32::MAX {
+            continue;
+        }
+        edge_point[h] = next;
+        if let Some(t) = topo.twin[h] {
+            edge_point[t as usize] = next;
+        }
+        next += 1;
     }
+    children(topo, &edge_point)
 }
 
 /// One refined vertex as a weighted sum of parent vertices: the 2010 paper's "computational
@@ -295,25 +321,9 @@ impl Stencil {
 pub fn stencils(topo: &Topology, boundary: Boundary) -> Vec<Stencil> {
     let mut out = Vec::with_capacity(topo.vertex_count + topo.twin.len() / 2 + 8);
     for v in 0..topo.vertex_count as u32 {
-        let (ring, on_boundary) = topo.one_ring(v);
-        out.push(if ring.is_empty() || corner(&ring, on_boundary, boundary) {
-            Stencil {
-                parents: vec![v],
-                weights: vec![1.0],
-            }
-        } else if on_boundary {
-            Stencil {
-                parents: vec![v, ring[0], *ring.last().unwrap()],
-                weights: vec![0.75, 0.125, 0.125],
-            }
-        } else {
-            let b = beta(ring.len());
-            let mut parents = vec![v];
-            parents.extend(&ring);
-            let mut weights = vec![1.0 - ring.len() as f64 * b];
-            weights.extend(std::iter::repeat_n(b, ring.len()));
-            Stencil { parents, weights }
-        });
+        out.push(vertex_stencil(topo, v, boundary, |n| {
+            (0.75, 0.125, beta(n))
+        }));
     }
     let mut done = vec![false; topo.twin.len()];
     for h in 0..topo.twin.len() as u32 {
@@ -366,27 +376,53 @@ pub fn ring_normals(topo: &Topology, positions: &[DVec3]) -> Vec<DVec3> {
         .collect()
 }
 
+/// The limit mask of vertex `v`: its limit position as a weighted sum of its one-ring.
+pub fn limit_stencil(topo: &Topology, v: u32, boundary: Boundary) -> Stencil {
+    vertex_stencil(topo, v, boundary, |n| {
+        (
+            4.0 / 6.0,
+            1.0 / 6.0,
+            1.0 / (n as f64 + 3.0 / (8.0 * beta(n))),
+        )
+    })
+}
+
+/// A vertex rule on `v`'s one-ring: fixed at corners; `(centre, neighbour)` weights on a
+/// boundary (the two boundary neighbours); inside, weight `w` on each of the n neighbours and
+/// `1 - n w` on the centre. `weights(n)` gives (boundary centre, boundary neighbour, w).
+fn vertex_stencil(
+    topo: &Topology,
+    v: u32,
+    boundary: Boundary,
+    weights: impl Fn(usize) -> (f64, f64, f64),
+) -> Stencil {
+    let (ring, on_boundary) = topo.one_ring(v);
+    if ring.is_empty() || corner(&ring, on_boundary, boundary) {
+        return Stencil {
+            parents: vec![v],
+            weights: vec![1.0],
+        };
+    }
+    let n = ring.len();
+    let (bc, bn, w) = weights(n);
+    if on_boundary {
+        Stencil {
+            parents: vec![v, ring[0], ring[n - 1]],
+            weights: vec![bc, bn, bn],
+        }
+    } else {
+        let mut parents = vec![v];
+        parents.extend(&ring);
+        let mut weights = vec![1.0 - n as f64 * w];
+        weights.extend(std::iter::repeat_n(w, n));
+        Stencil { parents, weights }
+    }
+}
+
 /// The limit position of every vertex of `topo`.
 pub fn limit_positions(topo: &Topology, positions: &[DVec3], boundary: Boundary) -> Vec<DVec3> {
     (0..topo.vertex_count as u32)
-        .map(|v| {
-            let p = positions[v as usize];
-            let (ring, on_boundary) = topo.one_ring(v);
-            if ring.is_empty() || corner(&ring, on_boundary, boundary) {
-                p
-            } else if on_boundary {
-                let (a, b) = (
-                    positions[ring[0] as usize],
-                    positions[*ring.last().unwrap() as usize],
-                );
-                (a + p * 4.0 + b) / 6.0
-            } else {
-                let n = ring.len();
-                let chi = 1.0 / (n as f64 + 3.0 / (8.0 * beta(n)));
-                let sum: DVec3 = ring.iter().map(|&i| positions[i as usize]).sum();
-                p * (1.0 - n as f64 * chi) + sum * chi
-            }
-        })
+        .map(|v| limit_stencil(topo, v, boundary).apply(positions))
         .collect()
 }
 

@@ -23,6 +23,7 @@ pub mod phong;
 pub mod pn;
 mod record;
 pub mod stpn;
+pub mod subdivision;
 
 pub use displace::Displace;
 pub use heightmap::Heightmap;
@@ -50,10 +51,21 @@ pub enum Surface {
     /// Scalar-tagged PN triangles (Boubekeur, Reuter & Schlick 2005): PN with per-vertex tension,
     /// sharpness, bias and crease direction (--tags, or derived from the mesh's hard edges).
     Stpn = 3,
+    /// The limit surface of Loop subdivision (Holländer & Boubekeur 2010): elements are the faces
+    /// of one Loop step M1, evaluated from basis function tables (src/surface/subdivision.rs).
+    Loop = 4,
 }
 
 impl Surface {
-    pub const ALL: [Surface; 4] = [Surface::Flat, Surface::Phong, Surface::Pn, Surface::Stpn];
+    /// The local surfaces: defined by each coarse triangle's corners alone (corner records).
+    pub const LOCAL: [Surface; 4] = [Surface::Flat, Surface::Phong, Surface::Pn, Surface::Stpn];
+    pub const ALL: [Surface; 5] = [
+        Surface::Flat,
+        Surface::Phong,
+        Surface::Pn,
+        Surface::Stpn,
+        Surface::Loop,
+    ];
 
     pub fn name(self) -> &'static str {
         match self {
@@ -61,6 +73,7 @@ impl Surface {
             Surface::Phong => "phong",
             Surface::Pn => "pn",
             Surface::Stpn => "stpn",
+            Surface::Loop => "loop",
         }
     }
 
@@ -101,6 +114,8 @@ pub struct SurfaceParams {
     pub seams: Seams,
     /// The height map displacement's bias b: `P′ = P + a·(h − b)·N`.
     pub bias: f32,
+    /// Loop subdivision's boundary rule (built into the `loop` surface's tables).
+    pub boundary: crate::subdiv::Boundary,
 }
 
 impl Default for SurfaceParams {
@@ -113,6 +128,7 @@ impl Default for SurfaceParams {
             origin: Vec3::ZERO,
             seams: Seams::Closed,
             bias: 0.0,
+            boundary: crate::subdiv::Boundary::EdgeOnly,
         }
     }
 }
@@ -219,6 +235,8 @@ pub struct Inputs<'a> {
     pub lod: f32,
     /// The scalar tags of every vertex (`stpn`; neutral without).
     pub tags: Option<&'a [stpn::VertexTag]>,
+    /// The `loop` surface's tables and M1 (required by it).
+    pub subdiv: Option<(&'a subdivision::LoopData, &'a subdivision::LoopFrame)>,
 }
 
 /// Corner data of a coarse triangle in canonical order, with the sample's weights.
@@ -298,6 +316,7 @@ pub fn normal_field(surface: Surface, c: &Corners, tags: &[stpn::VertexTag; 3]) 
             n: stpn::shading_normals(c, tags),
             ..*c
         }),
+        Surface::Loop => unreachable!("loop is not a local surface"),
     }
 }
 
@@ -313,6 +332,7 @@ pub fn eval_corners(
         Surface::Phong => phong::eval(c, params.alpha),
         Surface::Pn => pn::eval(c),
         Surface::Stpn => stpn::eval(c, tags),
+        Surface::Loop => unreachable!("loop is not a local surface"),
     }
 }
 
@@ -325,6 +345,12 @@ pub fn eval_surface(
     bary: [f32; 3],
     inputs: &Inputs,
 ) -> SurfacePoint {
+    if surface == Surface::Loop {
+        let (data, frame) = inputs
+            .subdiv
+            .expect("the loop surface is evaluated with its M1 and tables (Inputs::subdiv)");
+        return subdivision::eval(data, frame, rec, bary);
+    }
     let r = CornerRecord::decode(rec);
     let c = canonical(&r, bary);
     let tags = inputs.tags.map_or([stpn::VertexTag::default(); 3], |t| {
@@ -488,7 +514,7 @@ mod tests {
             ..Default::default()
         };
         let h = 1e-3f32;
-        for s in Surface::ALL {
+        for s in Surface::LOCAL {
             for d in Displace::ALL {
                 let r = if d == Displace::None { curved } else { planar };
                 for (u, v) in [(0.2f32, 0.3f32), (0.6, 0.1), (0.15, 0.7)] {
@@ -538,7 +564,7 @@ mod tests {
         for k in 0..=n {
             let wa = crate::pattern::weight(n - k, n);
             let wb = crate::pattern::weight(k, n);
-            for s in Surface::ALL {
+            for s in Surface::LOCAL {
                 for d in Displace::ALL {
                     let p1 = eval(s, d, &params, &t1, [wa, wb, 0.0]);
                     let p2 = eval(s, d, &params, &t2, [wb, wa, 0.0]);

@@ -152,12 +152,15 @@ impl CornerRecord {
 pub enum RecordKind {
     /// [`CornerRecord`], one per coarse triangle.
     Corners,
+    /// One record per face of M1 (src/surface/subdivision.rs).
+    LoopFaces,
 }
 
 impl Surface {
     pub fn record_kind(self) -> RecordKind {
         match self {
             Surface::Flat | Surface::Phong | Surface::Pn | Surface::Stpn => RecordKind::Corners,
+            Surface::Loop => RecordKind::LoopFaces,
         }
     }
 }
@@ -170,6 +173,12 @@ pub fn build_records(kind: RecordKind, mesh: &Mesh, seams: Seams) -> Vec<Element
             .iter()
             .map(CornerRecord::encode)
             .collect(),
+        // Loop's records depend on M1's topology and are built with its tables.
+        RecordKind::LoopFaces => {
+            super::subdivision::LoopData::new(mesh, Default::default(), |_, _| {})
+                .map(|d| d.records)
+                .unwrap_or_default()
+        }
     }
 }
 

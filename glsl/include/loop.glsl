@@ -1,0 +1,119 @@
+// The `loop` surface (Holländer & Boubekeur 2010): Loop subdivision's limit surface over every
+// M1 face from basis function tables, normals by subdivision shading. Elements are M1 faces;
+// their records hold the face and the owners of its edges and corners (a sample on a shared edge
+// or corner is evaluated by its owner, with the same weights on the same vertices, so both sides
+// compute the very same call: watertight). Mirror: src/surface/subdivision.rs.
+#ifndef LOOP_GLSL
+#define LOOP_GLSL
+#include "displace.glsl"
+
+// Written by the Loop passes (glsl/subdiv), read here.
+layout(set = SET_MESH, binding = BINDING_LOOP_P1, std430) readonly buffer LoopP1 { vec4 loop_p1[]; };
+layout(set = SET_MESH, binding = BINDING_LOOP_N1, std430) readonly buffer LoopN1 { vec4 loop_n1[]; };
+// Per M1 face: (first weight, control points K, first control index, rotation).
+layout(set = SET_MESH, binding = BINDING_LOOP_FACES, std430) readonly buffer LoopFaces { uvec4 loop_faces[]; };
+layout(set = SET_MESH, binding = BINDING_LOOP_CONTROL, std430) readonly buffer LoopControl { uint loop_control[]; };
+// Row r of a face's table is K weights at weights[first + r * K].
+layout(set = SET_MESH, binding = BINDING_LOOP_TABLES, std430) readonly buffer LoopTables { float bft[]; };
+
+const uint BFT_SEGMENTS = 32u; // src/subdiv/bft.rs SEGMENTS (2^LMAX)
+
+// Row of lattice point (i, j). Mirror: bft::row.
+uint bft_row(uint i, uint j) {
+    uint s = BFT_SEGMENTS + 1u;
+    return j * s - (j * (j > 0u ? j - 1u : 0u)) / 2u + i;
+}
+
+// Which face evaluates sample `bary` of the face `rec`, with which weights on its corners.
+// Mirror: subdivision::owner.
+uint loop_owner(ElementRecord rec, vec3 bary, out vec3 b) {
+    uvec4 a = rec.d[0], c = rec.d[1];
+    uint packed = c.w;
+    b = vec3(0.0);
+    uint zeros = uint(bary.x == 0.0) + uint(bary.y == 0.0) + uint(bary.z == 0.0);
+    if (zeros >= 2u) {
+        uint i = bary.x != 0.0 ? 0u : (bary.y != 0.0 ? 1u : 2u);
+        b[(packed >> (12u + 2u * i)) & 3u] = bary[i];
+        return i == 0u ? c.x : (i == 1u ? c.y : c.z);
+    }
+    if (zeros == 1u) {
+        // Edge e joins corners e, e + 1; the third weight is the zero.
+        uint e = bary.z == 0.0 ? 0u : (bary.x == 0.0 ? 1u : 2u);
+        b[(packed >> (4u * e)) & 3u] = bary[e];
+        b[(packed >> (4u * e + 2u)) & 3u] = bary[(e + 1u) % 3u];
+        return e == 0u ? a.y : (e == 1u ? a.z : a.w);
+    }
+    b = bary;
+    return a.x;
+}
+
+// Face g at weights b of its stored corners. Mirror: subdivision::eval_face (and `cell`).
+SurfacePoint loop_eval_face(uint g, vec3 b) {
+    uvec4 f = loop_faces[g];
+    uint offset = f.x, k = f.y, first = f.z, rot = f.w;
+    float s = float(BFT_SEGMENTS);
+    float x = b[(rot + 1u) % 3u] * s;
+    float y = b[(rot + 2u) % 3u] * s;
+    float i0 = clamp(floor(x), 0.0, s);
+    float j0 = clamp(floor(y), 0.0, s);
+    float fx = x - i0;
+    float fy = y - j0;
+    if (i0 + j0 >= s) {
+        if (i0 > 0.0) {
+            i0 -= 1.0;
+            fx += 1.0;
+        } else {
+            j0 -= 1.0;
+            fy += 1.0;
+        }
+    }
+    uint i = uint(i0), j = uint(j0);
+    uint rows[3];
+    vec3 l;
+    bool upper = fx + fy > 1.0 && i + j + 2u <= BFT_SEGMENTS;
+    if (upper) {
+        rows = uint[3](bft_row(i + 1u, j + 1u), bft_row(i, j + 1u), bft_row(i + 1u, j));
+        l = vec3(fx + fy - 1.0, 1.0 - fx, 1.0 - fy);
+    } else {
+        rows = uint[3](bft_row(i, j), bft_row(i + 1u, j), bft_row(i, j + 1u));
+        l = vec3(1.0 - fx - fy, fx, fy);
+    }
+    vec3 p[3] = vec3[3](vec3(0.0), vec3(0.0), vec3(0.0));
+    vec3 n[3] = vec3[3](vec3(0.0), vec3(0.0), vec3(0.0));
+    uint r0 = offset + rows[0] * k, r1 = offset + rows[1] * k, r2 = offset + rows[2] * k;
+    for (uint c = 0u; c < k; ++c) {
+        uint v = loop_control[first + c];
+        vec3 pv = loop_p1[v].xyz, nv = loop_n1[v].xyz;
+        float w0 = bft[r0 + c], w1 = bft[r1 + c], w2 = bft[r2 + c];
+        p[0] += pv * w0;
+        n[0] += nv * w0;
+        p[1] += pv * w1;
+        n[1] += nv * w1;
+        p[2] += pv * w2;
+        n[2] += nv * w2;
+    }
+    vec3 position = p[0] * l.x + p[1] * l.y + p[2] * l.z;
+    vec3 ns = n[0] * l.x + n[1] * l.y + n[2] * l.z;
+    float nl = length(ns);
+    vec3 normal = nl > 0.0 ? ns / nl : vec3(0.0);
+    // Tangents: the lattice triangle's edges per unit weight of canonical corners 1 and 2, back
+    // to the stored corners.
+    vec3 dx = (upper ? p[0] - p[1] : p[1] - p[0]) * s;
+    vec3 dy = (upper ? p[0] - p[2] : p[2] - p[0]) * s;
+    vec3 canon[3] = vec3[3](vec3(0.0), dx, dy);
+    vec3 grad[3];
+    for (uint t = 0u; t < 3u; ++t) {
+        grad[(rot + t) % 3u] = canon[t];
+    }
+    return SurfacePoint(position, normal, normal, grad[1] - grad[0], grad[2] - grad[0], vec2(0.0), vec2(0.0),
+                        vec2(0.0));
+}
+
+// Mirror: subdivision::eval.
+SurfacePoint loop_eval(ElementRecord rec, vec3 bary) {
+    vec3 b;
+    uint g = loop_owner(rec, bary, b);
+    return loop_eval_face(g, b);
+}
+
+#endif

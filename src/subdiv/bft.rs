@@ -1,0 +1,487 @@
+//! Basis function tables (Holländer & Boubekeur 2010, §4): after one Loop step every M1 face has
+//! at most one extraordinary vertex, and the limit surface over it is a fixed linear combination
+//! of the face's *control points* (the vertices of the faces around its corners, M1's one-ring of
+//! the face), with weights that depend only on the topology there: the face's *configuration*.
+//! For every configuration the table holds, at every point of the face's level-[`LMAX`] lattice,
+//! the weight of each control point in the limit position there.
+//!
+//! Configurations are found, not enumerated: each M1 face's neighbourhood is labelled
+//! canonically (the face's corners, then each corner's one-ring counter-clockwise from the next
+//! corner), and the labelled faces around the corners are its key; the rotation of the face with
+//! the smallest key is stored, so a configuration is stored once whatever corner the face starts
+//! at. Any valence and any boundary case works, and only the configurations the mesh has are
+//! built.
+//!
+//! A table is computed as the paper's configuration meshes: the faces within two rings of the face
+//! are cut out (vertices where the cut makes two fans are split), each vertex carries its weights
+//! on the cut-out vertices (the identity at first), [`LMAX`] Loop steps apply the computational
+//! entries to the weights, and the limit masks at the face's lattice vertices give the rows. The
+//! cut's own boundary is subdivided as a boundary, which is wrong, but the error travels at most
+//! one ring inwards over all steps (half a ring, then a quarter, ...), so the face, two rings in,
+//! is exact; the weights on the second ring come out exactly zero (checked by the tests), so they
+//! are dropped. All in f64, stored as f32.
+
+use super::{limit_stencil, refined_faces, stencils, Boundary, Topology, TopologyError};
+use std::collections::HashMap;
+
+/// The tables' level: 2^LMAX segments per M1-face edge.
+pub const LMAX: u32 = 5;
+/// Segments per M1-face edge in the tables' lattice.
+pub const SEGMENTS: u32 = 1 << LMAX;
+/// Lattice points per face: (S + 1)(S + 2) / 2.
+pub const ROWS: usize = ((SEGMENTS + 1) * (SEGMENTS + 2) / 2) as usize;
+
+/// The row of lattice point (i, j): weight i/S on the face's canonical corner 1, j/S on corner 2.
+/// Mirror of `bft_row` in glsl/include/loop.glsl.
+pub fn row(i: u32, j: u32) -> usize {
+    debug_assert!(i + j <= SEGMENTS);
+    let s = SEGMENTS + 1;
+    (j * s - j * (j.saturating_sub(1)) / 2 + i) as usize
+}
+
+/// A configuration: its key and its table.
+#[derive(Clone, Debug)]
+pub struct Config {
+    /// The faces around the canonical corners, in canonical labels (each rotated to start at its
+    /// smallest label), sorted.
+    pub key: Vec<[u32; 3]>,
+    /// Control points (labels 0 .. control: the face's corners first).
+    pub control: usize,
+    /// The largest valence among the face's corners that is not regular (6 inside, 4 on a
+    /// boundary), or the regular valence of corner 0.
+    pub valence: usize,
+    /// Whether any corner of the face is on the boundary.
+    pub boundary: bool,
+    /// `ROWS × control` weights, row-major.
+    pub weights: Vec<f64>,
+    /// The largest weight found outside the control points (exactly zero by the argument above).
+    pub outside: f64,
+}
+
+/// The configuration of one face: which table, which of the face's corners is its canonical
+/// corner 0, and its control points (M1 vertex indices, in label order).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct FaceConfig {
+    pub config: u32,
+    pub rotation: u8,
+    pub control: Vec<u32>,
+}
+
+/// Every face of a mesh (M1) with its configuration, and the configurations' tables.
+#[derive(Clone, Debug)]
+pub struct Tables {
+    pub configs: Vec<Config>,
+    pub faces: Vec<FaceConfig>,
+}
+
+impl Tables {
+    /// Bytes of the tables as stored on the GPU (f32).
+    pub fn bytes(&self) -> u64 {
+        self.configs
+            .iter()
+            .map(|c| (c.weights.len() * 4) as u64)
+            .sum()
+    }
+}
+
+/// Faces incident to each vertex.
+fn vertex_faces(topo: &Topology) -> Vec<Vec<u32>> {
+    let mut vf = vec![Vec::new(); topo.vertex_count];
+    for (f, t) in topo.faces.iter().enumerate() {
+        for &v in t {
+            vf[v as usize].push(f as u32);
+        }
+    }
+    vf
+}
+
+/// Canonical labelling of face `f` rotated by `rot`: the corners, then each corner's one-ring.
+fn label(topo: &Topology, f: usize, rot: usize) -> (Vec<u32>, HashMap<u32, u32>) {
+    let t = topo.faces[f];
+    let corners = [0, 1, 2].map(|k| t[(rot + k) % 3]);
+    let mut order: Vec<u32> = corners.to_vec();
+    let mut labels: HashMap<u32, u32> = corners
+        .iter()
+        .enumerate()
+        .map(|(i, &v)| (v, i as u32))
+        .collect();
+    for k in 0..3 {
+        let (mut ring, on_boundary) = topo.one_ring(corners[k]);
+        if !on_boundary {
+            // Start at the face's next corner (a neighbour, since the face is (c_k, c_k+1, ...)).
+            let next = corners[(k + 1) % 3];
+            let at = ring.iter().position(|&v| v == next).unwrap_or(0);
+            ring.rotate_left(at);
+        }
+        for v in ring {
+            if let std::collections::hash_map::Entry::Vacant(e) = labels.entry(v) {
+                e.insert(order.len() as u32);
+                order.push(v);
+            }
+        }
+    }
+    (order, labels)
+}
+
+/// A face's key in labels: rotated to start at its smallest label.
+fn labelled(t: &[u32; 3], labels: &HashMap<u32, u32>) -> [u32; 3] {
+    let l = t.map(|v| labels[&v]);
+    let m = (0..3).min_by_key(|&k| l[k]).unwrap();
+    [l[m], l[(m + 1) % 3], l[(m + 2) % 3]]
+}
+
+fn key_of(topo: &Topology, vf: &[Vec<u32>], f: usize, rot: usize) -> (Vec<[u32; 3]>, Vec<u32>) {
+    let (order, labels) = label(topo, f, rot);
+    let corners = [0, 1, 2].map(|k| order[k]);
+    let mut faces: Vec<u32> = corners
+        .iter()
+        .flat_map(|&c| vf[c as usize].iter().copied())
+        .collect();
+    faces.sort_unstable();
+    faces.dedup();
+    let mut key: Vec<[u32; 3]> = faces
+        .iter()
+        .map(|&g| labelled(&topo.faces[g as usize], &labels))
+        .collect();
+    key.sort_unstable();
+    (key, order)
+}
+
+/// Find every face's configuration in `topo` (M1) and build the tables of those it has.
+/// `progress` is told (done, total) configurations as tables are built.
+pub fn build(
+    topo: &Topology,
+    boundary: Boundary,
+    mut progress: impl FnMut(usize, usize),
+) -> Result<Tables, TopologyError> {
+    let vf = vertex_faces(topo);
+    let mut ids: HashMap<Vec<[u32; 3]>, u32> = HashMap::new();
+    // The representative face and rotation of each configuration.
+    let mut reps: Vec<(usize, usize, Vec<[u32; 3]>)> = Vec::new();
+    let mut faces = Vec::with_capacity(topo.faces.len());
+    for f in 0..topo.faces.len() {
+        let (key, order, rot) = (0..3)
+            .map(|r| {
+                let (k, o) = key_of(topo, &vf, f, r);
+                (k, o, r)
+            })
+            .min_by(|a, b| a.0.cmp(&b.0))
+            .unwrap();
+        let next = ids.len() as u32;
+        let id = *ids.entry(key.clone()).or_insert_with(|| {
+            reps.push((f, rot, key));
+            next
+        });
+        faces.push(FaceConfig {
+            config: id,
+            rotation: rot as u8,
+            control: order,
+        });
+    }
+    let total = reps.len();
+    let mut configs = Vec::with_capacity(total);
+    for (done, (f, rot, key)) in reps.into_iter().enumerate() {
+        progress(done, total);
+        configs.push(table(topo, &vf, f, rot, key, boundary)?);
+    }
+    progress(total, total);
+    // Control points: only those the table weighs (the labels of the face's one-ring).
+    for fc in &mut faces {
+        fc.control.truncate(configs[fc.config as usize].control);
+    }
+    Ok(Tables { configs, faces })
+}
+
+/// The table of face `f` rotated by `rot`, from its two-ring configuration mesh.
+fn table(
+    topo: &Topology,
+    vf: &[Vec<u32>],
+    f: usize,
+    rot: usize,
+    key: Vec<[u32; 3]>,
+    boundary: Boundary,
+) -> Result<Config, TopologyError> {
+    let (mut order, mut labels) = label(topo, f, rot);
+    let control = order.len();
+    // Faces within two rings: those around the control points (the face first, rotated).
+    let t = topo.faces[f];
+    let mut local: Vec<[u32; 3]> = vec![[0, 1, 2].map(|k| t[(rot + k) % 3])];
+    let mut seen: std::collections::HashSet<u32> = [f as u32].into();
+    for i in 0..control {
+        for &g in &vf[order[i] as usize] {
+            if seen.insert(g) {
+                local.push(topo.faces[g as usize]);
+            }
+        }
+    }
+    for face in &local {
+        for &v in face {
+            if let std::collections::hash_map::Entry::Vacant(e) = labels.entry(v) {
+                e.insert(order.len() as u32);
+                order.push(v);
+            }
+        }
+    }
+    let mut local: Vec<[u32; 3]> = local.iter().map(|t| t.map(|v| labels[&v])).collect();
+    let mut count = order.len();
+    split_fans(&mut local, &mut count, control as u32);
+    let dims = count;
+    // Weights of every local vertex on the cut-out vertices, level by level.
+    let mut w: Vec<f64> = vec![0.0; count * dims];
+    for v in 0..count {
+        w[v * dims + v] = 1.0;
+    }
+    let mut topo_l = Topology::new(&local, count)?;
+    // Lattice coordinates (in units of 1/SEGMENTS) of the tracked faces' corners.
+    let s = SEGMENTS;
+    let mut tracked: Vec<(usize, [[u32; 2]; 3])> = vec![(0, [[0, 0], [s, 0], [0, s]])];
+    for _ in 0..LMAX {
+        let st = stencils(&topo_l, boundary);
+        let mut next = vec![0.0; st.len() * dims];
+        for (i, sv) in st.iter().enumerate() {
+            let out = &mut next[i * dims..(i + 1) * dims];
+            for (&p, &wt) in sv.parents.iter().zip(&sv.weights) {
+                let src = &w[p as usize * dims..(p as usize + 1) * dims];
+                for (o, &x) in out.iter_mut().zip(src) {
+                    *o += wt * x;
+                }
+            }
+        }
+        w = next;
+        tracked = children_in_lattice(&tracked);
+        let faces = refined_faces(&topo_l);
+        count = st.len();
+        topo_l = Topology::new(&faces, count)?;
+    }
+    // The lattice vertex at each row, then its limit mask.
+    let mut at_row = vec![u32::MAX; ROWS];
+    for &(face, coords) in &tracked {
+        for k in 0..3 {
+            at_row[row(coords[k][0], coords[k][1])] = topo_l.faces[face][k];
+        }
+    }
+    let mut weights = vec![0.0; ROWS * control];
+    let mut outside: f64 = 0.0;
+    for (r, &v) in at_row.iter().enumerate() {
+        debug_assert_ne!(v, u32::MAX);
+        let mask = limit_stencil(&topo_l, v, boundary);
+        let mut full = vec![0.0; dims];
+        for (&p, &wt) in mask.parents.iter().zip(&mask.weights) {
+            for (o, &x) in full
+                .iter_mut()
+                .zip(&w[p as usize * dims..(p as usize + 1) * dims])
+            {
+                *o += wt * x;
+            }
+        }
+        weights[r * control..(r + 1) * control].copy_from_slice(&full[..control]);
+        outside = full[control..].iter().fold(outside, |m, &x| m.max(x.abs()));
+    }
+    // Valence and boundary of the face's corners.
+    let corners = [0, 1, 2].map(|k| t[(rot + k) % 3]);
+    let rings = corners.map(|c| topo.one_ring(c));
+    let is_boundary = rings.iter().any(|r| r.1);
+    let valence = rings
+        .iter()
+        .map(|(ring, b)| (ring.len(), *b))
+        .find(|&(n, b)| n != if b { 4 } else { 6 })
+        .map_or(rings[0].0.len(), |(n, _)| n);
+    Ok(Config {
+        key,
+        control,
+        valence,
+        boundary: is_boundary,
+        weights,
+        outside,
+    })
+}
+
+/// Faces with their corners' lattice coordinates, after one more step: each face's four
+/// children (numbered as [`super::loop_step`] does, `4f + k`) with the midpoints.
+pub fn children_in_lattice(faces: &[(usize, [[u32; 2]; 3])]) -> Vec<(usize, [[u32; 2]; 3])> {
+    let mid = |a: [u32; 2], b: [u32; 2]| [(a[0] + b[0]) / 2, (a[1] + b[1]) / 2];
+    faces
+        .iter()
+        .flat_map(|&(face, [a, b, c])| {
+            let (ab, bc, ca) = (mid(a, b), mid(b, c), mid(c, a));
+            [
+                (4 * face, [a, ab, ca]),
+                (4 * face + 1, [b, bc, ab]),
+                (4 * face + 2, [c, ca, bc]),
+                (4 * face + 3, [ab, bc, ca]),
+            ]
+        })
+        .collect()
+}
+
+/// Split every vertex at or above `from` whose faces form several fans (the cut's rim can pinch)
+/// into one vertex per fan, so the configuration mesh is a manifold.
+fn split_fans(faces: &mut [[u32; 3]], count: &mut usize, from: u32) {
+    let mut at: Vec<Vec<usize>> = vec![Vec::new(); *count];
+    for (f, t) in faces.iter().enumerate() {
+        for &v in t {
+            at[v as usize].push(f);
+        }
+    }
+    for (v, fs) in at.iter().enumerate().skip(from as usize) {
+        if fs.len() < 2 {
+            continue;
+        }
+        // Union faces that share an edge at v.
+        let mut parent: Vec<usize> = (0..fs.len()).collect();
+        fn find(p: &mut [usize], i: usize) -> usize {
+            let mut i = i;
+            while p[i] != i {
+                p[i] = p[p[i]];
+                i = p[i];
+            }
+            i
+        }
+        let others = |f: usize| {
+            let t = faces[f];
+            let k = t.iter().position(|&x| x == v as u32).unwrap();
+            [t[(k + 1) % 3], t[(k + 2) % 3]]
+        };
+        for a in 0..fs.len() {
+            for b in a + 1..fs.len() {
+                let (oa, ob) = (others(fs[a]), others(fs[b]));
+                if oa.iter().any(|x| ob.contains(x)) {
+                    let (ra, rb) = (find(&mut parent, a), find(&mut parent, b));
+                    parent[ra] = rb;
+                }
+            }
+        }
+        let mut fan_label: HashMap<usize, u32> = HashMap::new();
+        let fs = fs.clone();
+        for (i, &f) in fs.iter().enumerate() {
+            let root = find(&mut parent, i);
+            let first = fan_label.is_empty();
+            let l = *fan_label.entry(root).or_insert_with(|| {
+                if first {
+                    v as u32
+                } else {
+                    *count += 1;
+                    (*count - 1) as u32
+                }
+            });
+            for x in faces[f].iter_mut() {
+                if *x == v as u32 {
+                    *x = l;
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::test_support::load_model;
+    use crate::subdiv::{loop_step, subdivide_to_limit};
+    use glam::DVec3;
+
+    #[test]
+    fn rows_cover_the_lattice_once() {
+        let mut seen = vec![false; ROWS];
+        for j in 0..=SEGMENTS {
+            for i in 0..=SEGMENTS - j {
+                assert!(!std::mem::replace(&mut seen[row(i, j)], true));
+            }
+        }
+        assert!(seen.iter().all(|&s| s));
+        assert_eq!(ROWS, 561);
+    }
+
+    /// Tables evaluated at the lattice are the limit positions of M^(1 + LMAX), face by face, on
+    /// closed and open meshes with both boundary rules; the second ring's weights are zero, and
+    /// each row's weights sum to one.
+    #[test]
+    fn tables_give_the_limit_surface() {
+        for (file, boundaries) in [
+            ("tetrahedron.obj", &[Boundary::EdgeOnly][..]),
+            (
+                "grid_open_8x8.obj",
+                &[Boundary::EdgeOnly, Boundary::EdgeAndCorner][..],
+            ),
+            ("fan24_open.obj", &[Boundary::EdgeOnly][..]),
+        ] {
+            let (mesh, _) = load_model(file);
+            for &boundary in boundaries {
+                let topo0 = Topology::of_mesh(&mesh).unwrap();
+                let p0: Vec<DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();
+                let m1 = loop_step(&topo0, &p0, boundary);
+                let t1 = Topology::new(&m1.faces, m1.positions.len()).unwrap();
+                let tables = build(&t1, boundary, |_, _| {}).unwrap();
+                for c in &tables.configs {
+                    assert_eq!(c.outside, 0.0, "{file}: weight outside the control points");
+                    for r in 0..ROWS {
+                        let s: f64 = c.weights[r * c.control..(r + 1) * c.control].iter().sum();
+                        assert!((s - 1.0).abs() < 1e-12, "{file}: row {r} sums to {s}");
+                    }
+                }
+                // The reference: LMAX more steps, then limits; the lattice vertices of each M1
+                // face are found by the same face numbering (4f + child).
+                let reference = subdivide_to_limit(&mesh, 1 + LMAX, boundary).unwrap();
+                let diag = {
+                    let (lo, hi) = mesh.bounds();
+                    (hi - lo).length() as f64
+                };
+                let mut worst: f64 = 0.0;
+                for (f, fc) in tables.faces.iter().enumerate() {
+                    let c = &tables.configs[fc.config as usize];
+                    let eval = |i: u32, j: u32| -> DVec3 {
+                        let r = row(i, j);
+                        (0..c.control)
+                            .map(|k| {
+                                m1.positions[fc.control[k] as usize] * c.weights[r * c.control + k]
+                            })
+                            .sum()
+                    };
+                    // Canonical corners of the face, by the sub-face walk from face f.
+                    let s = SEGMENTS;
+                    let mut tracked: Vec<(usize, [[u32; 2]; 3])> = vec![(f, {
+                        let base = [[0, 0], [s, 0], [0, s]];
+                        let rot = fc.rotation as usize;
+                        // Stored corner k is canonical corner (k - rot) mod 3.
+                        [0, 1, 2].map(|k| base[(k + 3 - rot) % 3])
+                    })];
+                    for _ in 0..LMAX {
+                        tracked = children_in_lattice(&tracked);
+                    }
+                    for (face, coords) in tracked {
+                        for (&v, c) in reference.faces[face].iter().zip(coords) {
+                            let d = (eval(c[0], c[1]) - reference.positions[v as usize]).length();
+                            worst = worst.max(d / diag);
+                        }
+                    }
+                }
+                assert!(
+                    worst < 1e-12,
+                    "{file} {boundary:?}: {worst:e} of the diagonal"
+                );
+            }
+        }
+    }
+
+    /// The tetrahedron's M1 has two configurations: the corner faces (one vertex of valence 3,
+    /// in any rotation) and the middle faces (regular corners; the one-ring wraps round the small
+    /// mesh, so 9 control points, not 12).
+    #[test]
+    fn configurations_are_few_and_canonical() {
+        let (mesh, _) = load_model("tetrahedron.obj");
+        let topo0 = Topology::of_mesh(&mesh).unwrap();
+        let p0: Vec<DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();
+        let m1 = loop_step(&topo0, &p0, Boundary::EdgeOnly);
+        let t1 = Topology::new(&m1.faces, m1.positions.len()).unwrap();
+        let tables = build(&t1, Boundary::EdgeOnly, |_, _| {}).unwrap();
+        let mut valences: Vec<usize> = tables.configs.iter().map(|c| c.valence).collect();
+        valences.sort();
+        assert_eq!(valences, [3, 6]);
+        // Each M0 face's three corner children share one table, rotated to their EV.
+        for f in 0..4 {
+            let c = &tables.faces[4 * f..4 * f + 3];
+            assert!(c.iter().all(|fc| fc.config == c[0].config));
+        }
+        assert!(valences.contains(&3), "{valences:?}");
+    }
+}
