@@ -24,6 +24,7 @@ fn main() {
         frames,
         width: 1280,
         height: 720,
+        drivers: vec![],
     };
     h.run("fig7", &meshes, &opts);
 }

@@ -32,6 +32,7 @@ fn main() {
         frames,
         width: 1280,
         height: 720,
+        drivers: vec![],
     };
     h.run("surfaces", &[mesh], &opts);
 }

@@ -23,6 +23,8 @@ pub struct BenchOptions {
     pub frames: u32,
     pub width: u32,
     pub height: u32,
+    /// The driver variants measured (empty: every one; `static` is the reference of the ratios).
+    pub drivers: Vec<Driver>,
 }
 
 /// Median, min and max of a sample.
@@ -58,6 +60,8 @@ impl Stat {
 pub struct Row {
     pub mesh: String,
     pub coarse_triangles: u32,
+    /// What the surface refines: the coarse triangles, or M1's faces for `loop`.
+    pub elements: u32,
     pub level: u32,
     pub surface: Surface,
     pub displace: Displace,
@@ -74,6 +78,13 @@ pub struct Row {
     /// GPU and wall time relative to `static` at the same mesh and level (same run).
     pub gpu_ratio: Option<f64>,
     pub wall_ratio: Option<f64>,
+    /// Refined triangles per GPU millisecond relative to `flat` with the same variant, mesh,
+    /// level and displacement (same run; when flat was measured).
+    pub throughput_vs_flat: Option<f64>,
+    /// `loop`: GPU time of the M0 -> M1 and normals passes (timed alone, per frame), and the
+    /// basis function tables' bytes.
+    pub pre_pass_ms: Option<f64>,
+    pub table_bytes: Option<u64>,
     pub note: String,
 }
 
@@ -112,17 +123,86 @@ pub fn grid_mesh(triangles: u32) -> Mesh {
             ));
         }
     }
-    let mut tris = Vec::new();
-    let at = |i: u32, j: u32| j * (cols + 1) + i;
+    let tris = quad_triangles(cols, rows, |i, j| j * (cols + 1) + i);
+    let (mut mesh, _) =
+        Mesh::from_parts("grid", positions, None, tris).expect("a grid is a valid mesh");
+    mesh.name = format!("grid{}", 2 * quads);
+    mesh
+}
+
+/// Two triangles per quad of a `cols` x `rows` lattice whose vertex (i, j) is `at(i, j)`.
+fn quad_triangles(cols: u32, rows: u32, at: impl Fn(u32, u32) -> u32) -> Vec<[u32; 3]> {
+    let mut tris = Vec::with_capacity(2 * (cols * rows) as usize);
     for j in 0..rows {
         for i in 0..cols {
             tris.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
             tris.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
         }
     }
+    tris
+}
+
+/// A torus of `u` x `v` quads (2uv triangles, every vertex of valence 6), radii 1 and 0.4.
+pub fn torus_mesh(u: u32, v: u32) -> Mesh {
+    let tau = std::f32::consts::TAU;
+    let mut positions = Vec::new();
+    for j in 0..v {
+        for i in 0..u {
+            let (a, b) = (tau * i as f32 / u as f32, tau * j as f32 / v as f32);
+            let r = 1.0 + 0.4 * b.cos();
+            positions.push(Vec3::new(r * a.cos(), r * a.sin(), 0.4 * b.sin()));
+        }
+    }
+    let tris = quad_triangles(u, v, |i, j| (j % v) * u + (i % u));
     let (mut mesh, _) =
-        Mesh::from_parts("grid", positions, None, tris).expect("a grid is a valid mesh");
-    mesh.name = format!("grid{}", 2 * quads);
+        Mesh::from_parts("torus", positions, None, tris).expect("a torus is a valid mesh");
+    mesh.name = format!("torus{}", 2 * u * v);
+    mesh
+}
+
+/// A UV sphere of `segments` x `rings` (poles of valence `segments`: extraordinary vertices
+/// beyond the 2010 paper's tables when over 18).
+pub fn sphere_mesh(segments: u32, rings: u32) -> Mesh {
+    let (pi, tau) = (std::f32::consts::PI, std::f32::consts::TAU);
+    let mut positions = vec![Vec3::Z, -Vec3::Z];
+    for j in 1..rings {
+        let t = pi * j as f32 / rings as f32;
+        for i in 0..segments {
+            let a = tau * i as f32 / segments as f32;
+            positions.push(Vec3::new(t.sin() * a.cos(), t.sin() * a.sin(), t.cos()));
+        }
+    }
+    let at = |i: u32, j: u32| 2 + (j - 1) * segments + i % segments;
+    let mut tris = Vec::new();
+    for i in 0..segments {
+        tris.push([0, at(i, 1), at(i + 1, 1)]);
+        tris.push([1, at(i + 1, rings - 1), at(i, rings - 1)]);
+    }
+    for j in 1..rings - 1 {
+        for i in 0..segments {
+            tris.push([at(i, j), at(i, j + 1), at(i + 1, j + 1)]);
+            tris.push([at(i, j), at(i + 1, j + 1), at(i + 1, j)]);
+        }
+    }
+    let (mut mesh, _) =
+        Mesh::from_parts("sphere", positions, None, tris).expect("a sphere is a valid mesh");
+    mesh.name = format!("sphere{}", mesh.triangles.len());
+    mesh
+}
+
+/// An open, wavy grid of `cols` x `rows` quads (boundary configurations everywhere round it).
+pub fn wavy_grid_mesh(cols: u32, rows: u32) -> Mesh {
+    let mut positions = Vec::new();
+    for j in 0..=rows {
+        for i in 0..=cols {
+            let (x, y) = (i as f32 / rows as f32, j as f32 / rows as f32);
+            positions.push(Vec3::new(x, y, 0.08 * (6.0 * x).sin() * (5.0 * y).cos()));
+        }
+    }
+    let tris = quad_triangles(cols, rows, |i, j| j * (cols + 1) + i);
+    let (mut mesh, _) =
+        Mesh::from_parts("wavy", positions, None, tris).expect("a grid is a valid mesh");
+    mesh.name = format!("wavygrid{}", 2 * cols * rows);
     mesh
 }
 
@@ -157,20 +237,50 @@ pub fn run(
         )?;
         let (c, r) = scene.bounding_sphere();
         let camera = Camera::framing(c, r);
-        let t = scene.gpu.element_count;
+        let coarse = scene.gpu.element_count;
         let params = opts.params.unwrap_or_else(|| SurfaceParams::for_radius(r));
+        // Flat first (the reference of the throughput ratios), then as asked.
+        let mut surfaces = opts.surfaces.clone();
+        surfaces.sort_by_key(|&(s, _)| s != Surface::Flat);
+        // The loop passes' cost, timed alone (median of the timed frames).
+        let pre_pass_ms = if surfaces.iter().any(|&(s, _)| s == Surface::Loop) {
+            let mut cfg =
+                DrawConfig::new(Driver::default(), opts.levels.first().copied().unwrap_or(1));
+            cfg.surface = Surface::Loop;
+            cfg.params = params;
+            let mut times = Vec::new();
+            for _ in 0..=opts.frames.max(1) {
+                times.extend(h.time_pre_pass(&mut scene, &cfg)?);
+            }
+            Some(Stat::of(&times[1..]).median)
+        } else {
+            None
+        };
         for &level in &opts.levels {
-            for &(surface, displace) in &opts.surfaces {
+            // Refined triangles per GPU ms of `flat` by variant and displacement.
+            let mut flat_rate: Vec<(String, Displace, f64)> = Vec::new();
+            for &(surface, displace) in &surfaces {
                 let mut reference: Option<(f64, f64)> = None;
                 // `static` first: the reference of the ratios.
                 for driver in Driver::VARIANTS {
                     let mut cfg = DrawConfig::new(driver, level).with_surface(surface, displace);
                     cfg.params = params;
+                    if !opts.drivers.is_empty() && !opts.drivers.contains(&driver) {
+                        continue;
+                    }
+                    let t = if driver == Driver::Tess && level > max_tess {
+                        // Not drawn (below); loop's M1 is there once another driver drew it.
+                        scene.elements(surface).element_count
+                    } else {
+                        h.prepared_elements(&mut scene, &cfg, crate::render::Capture::None)?
+                    };
                     let (stored_vertices, stored_indices, geometry_bytes) =
                         footprint(&cfg, t as u64);
+                    let loop_scene = scene.subdiv.as_ref().filter(|_| surface == Surface::Loop);
                     let mut row = Row {
                         mesh: mesh.name.clone(),
-                        coarse_triangles: t,
+                        coarse_triangles: coarse,
+                        elements: t,
                         level,
                         surface,
                         displace,
@@ -184,6 +294,9 @@ pub fn run(
                         vertex_invocations: None,
                         gpu_ratio: None,
                         wall_ratio: None,
+                        throughput_vs_flat: None,
+                        pre_pass_ms: loop_scene.and(pre_pass_ms),
+                        table_bytes: loop_scene.map(|l| l.data.table_bytes()),
                         note: String::new(),
                     };
                     if driver == Driver::Tess && level > max_tess {
@@ -210,6 +323,14 @@ pub fn run(
                         row.gpu_ratio = Some(g.median / rg);
                         row.wall_ratio = Some(w.median / rw);
                     }
+                    let rate = row.refined_triangles as f64 / g.median.max(1e-9);
+                    if surface == Surface::Flat {
+                        flat_rate.push((row.variant.clone(), displace, rate));
+                    }
+                    row.throughput_vs_flat = flat_rate
+                        .iter()
+                        .find(|(v, d, _)| *v == row.variant && *d == displace)
+                        .map(|&(_, _, f)| rate / f);
                     row.gpu_ms = Some(g);
                     row.wall_ms = Some(w);
                     log::info!(
@@ -253,23 +374,24 @@ impl Report {
         let mut s = String::new();
         let _ = writeln!(
             s,
-            "Device: {}. {}x{} offscreen, median (min–max) of {} timed frames after one warm-up frame; ratios are against `static` at the same mesh and level, measured in the same run.\n",
+            "Device: {}. {}x{} offscreen, median (min–max) of {} timed frames after one warm-up frame; ratios are against `static` at the same mesh and level, and throughput (refined triangles per GPU ms) against `flat` with the same variant, measured in the same run. Elements: the coarse triangles, or M1's faces for `loop`.\n",
             self.device, self.width, self.height, self.frames
         );
         let _ = writeln!(
             s,
-            "| mesh | coarse tris | level | surface | displace | variant | refined tris | GPU ms | wall ms | GPU ns / refined tri | GPU / static | wall / static | stored vertices | stored indices | geometry bytes | VS invocations | note |"
+            "| mesh | coarse tris | elements | level | surface | displace | variant | refined tris | GPU ms | wall ms | GPU ns / refined tri | GPU / static | wall / static | throughput / flat | M0→M1 ms | table bytes | stored vertices | stored indices | geometry bytes | VS invocations | note |"
         );
         let _ = writeln!(
             s,
-            "|---|---:|---:|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|"
+            "|---|---:|---:|---:|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|"
         );
         for r in &self.rows {
             let _ = writeln!(
                 s,
-                "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+                "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
                 r.mesh,
                 r.coarse_triangles,
+                r.elements,
                 r.level,
                 r.surface.name(),
                 r.displace.name(),
@@ -282,6 +404,9 @@ impl Report {
                     .unwrap_or_else(|| "–".into()),
                 fmt_ratio(r.gpu_ratio),
                 fmt_ratio(r.wall_ratio),
+                fmt_ratio(r.throughput_vs_flat),
+                r.pre_pass_ms.map(|v| format!("{v:.3}")).unwrap_or_else(|| "–".into()),
+                r.table_bytes.map(|v| v.to_string()).unwrap_or_else(|| "–".into()),
                 r.stored_vertices,
                 r.stored_indices,
                 r.geometry_bytes,
@@ -312,16 +437,17 @@ impl Report {
 
     pub fn csv(&self) -> String {
         let mut s = String::from(
-            "device,mesh,coarse_triangles,level,surface,displace,variant,refined_triangles,gpu_ms_median,gpu_ms_min,gpu_ms_max,wall_ms_median,wall_ms_min,wall_ms_max,gpu_ns_per_refined_triangle,gpu_ratio_vs_static,wall_ratio_vs_static,stored_vertices,stored_indices,geometry_bytes,vertex_invocations,note\n",
+            "device,mesh,coarse_triangles,elements,level,surface,displace,variant,refined_triangles,gpu_ms_median,gpu_ms_min,gpu_ms_max,wall_ms_median,wall_ms_min,wall_ms_max,gpu_ns_per_refined_triangle,gpu_ratio_vs_static,wall_ratio_vs_static,throughput_vs_flat,pre_pass_ms,table_bytes,stored_vertices,stored_indices,geometry_bytes,vertex_invocations,note\n",
         );
         let f = |x: Option<f64>| x.map(|v| format!("{v:.4}")).unwrap_or_default();
         for r in &self.rows {
             let _ = writeln!(
                 s,
-                "\"{}\",{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},\"{}\"",
+                "\"{}\",{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},\"{}\"",
                 self.device,
                 r.mesh,
                 r.coarse_triangles,
+                r.elements,
                 r.level,
                 r.surface.name(),
                 r.displace.name(),
@@ -336,6 +462,9 @@ impl Report {
                 f(r.ns_per_triangle()),
                 f(r.gpu_ratio),
                 f(r.wall_ratio),
+                f(r.throughput_vs_flat),
+                f(r.pre_pass_ms),
+                r.table_bytes.map(|v| v.to_string()).unwrap_or_default(),
                 r.stored_vertices,
                 r.stored_indices,
                 r.geometry_bytes,
@@ -358,9 +487,10 @@ impl Report {
             .iter()
             .map(|r| {
                 format!(
-                    "{{\"mesh\":\"{}\",\"coarse_triangles\":{},\"level\":{},\"surface\":\"{}\",\"displace\":\"{}\",\"variant\":\"{}\",\"refined_triangles\":{},\"gpu_ms_median\":{},\"wall_ms_median\":{},\"gpu_ns_per_refined_triangle\":{},\"gpu_ratio_vs_static\":{},\"wall_ratio_vs_static\":{},\"stored_vertices\":{},\"stored_indices\":{},\"geometry_bytes\":{},\"vertex_invocations\":{},\"note\":\"{}\"}}",
-                    r.mesh, r.coarse_triangles, r.level, r.surface.name(), r.displace.name(), r.variant, r.refined_triangles,
+                    "{{\"mesh\":\"{}\",\"coarse_triangles\":{},\"elements\":{},\"level\":{},\"surface\":\"{}\",\"displace\":\"{}\",\"variant\":\"{}\",\"refined_triangles\":{},\"gpu_ms_median\":{},\"wall_ms_median\":{},\"gpu_ns_per_refined_triangle\":{},\"gpu_ratio_vs_static\":{},\"wall_ratio_vs_static\":{},\"throughput_vs_flat\":{},\"pre_pass_ms\":{},\"table_bytes\":{},\"stored_vertices\":{},\"stored_indices\":{},\"geometry_bytes\":{},\"vertex_invocations\":{},\"note\":\"{}\"}}",
+                    r.mesh, r.coarse_triangles, r.elements, r.level, r.surface.name(), r.displace.name(), r.variant, r.refined_triangles,
                     f(r.gpu_ms.map(|s| s.median)), f(r.wall_ms.map(|s| s.median)), f(r.ns_per_triangle()), f(r.gpu_ratio), f(r.wall_ratio),
+                    f(r.throughput_vs_flat), f(r.pre_pass_ms), r.table_bytes.map(|v| v.to_string()).unwrap_or_else(|| "null".into()),
                     r.stored_vertices, r.stored_indices, r.geometry_bytes,
                     r.vertex_invocations.map(|v| v.to_string()).unwrap_or_else(|| "null".into()), r.note
                 )

@@ -311,6 +311,10 @@ pub struct BenchArgs {
     /// Displacements to measure with every surface (comma separated).
     #[arg(long, value_enum, value_delimiter = ',', default_value = "none")]
     pub displacements: Vec<Displace>,
+    /// Drivers to measure (comma separated; default: every driver and submission mode; `pattern`
+    /// means all three submissions; the ratios to static need `static` among them).
+    #[arg(long, value_enum, value_delimiter = ',')]
+    pub drivers: Vec<Driver>,
     #[command(flatten)]
     pub params: ParamOpts,
     /// Levels to measure (comma separated).

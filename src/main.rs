@@ -378,6 +378,11 @@ fn run(cli: Cli) -> Result<()> {
                 frames: a.frames,
                 width: a.width,
                 height: a.height,
+                // `pattern` stands for its three submission modes.
+                drivers: Driver::VARIANTS
+                    .into_iter()
+                    .filter(|v| a.drivers.iter().any(|d| d.same_kind(*v)))
+                    .collect(),
             };
             // Drawn centred and at unit size, like `render`: the timings do not change.
             let mut mesh = mesh;
@@ -546,7 +551,7 @@ fn info(a: &cli::InfoArgs) -> Result<()> {
         })
         .map_err(|e| {
             anyhow::anyhow!(
-                "'{}': the loop surface needs a manifold, consistently oriented mesh: {e}",
+                "'{}': the loop surface cannot subdivide it: {e}",
                 path.display()
             )
         })?;

@@ -1037,3 +1037,143 @@ fn stpn_tags_render_and_their_errors() {
         expect_error(&args, &[needle]);
     }
 }
+
+/// `--surface loop` from the command line: `info` reports M1, the configurations and the
+/// tables' bytes; render works on every driver with both boundary rules; an export of a closed
+/// mesh reloads closed (welded on exact bits) with M1's counts; a mesh Loop cannot subdivide,
+/// the height map (no texture coordinates on M1) and an unknown boundary rule are one sentence
+/// each; bench rows carry the surface, the tables' bytes and the passes' cost.
+#[test]
+fn loop_surface_from_the_command_line() {
+    let spot = model_path("spot_control_tri.obj");
+    let info = ok(&["info", p(&spot), "--surface", "loop"]);
+    assert!(
+        info.contains("loop: M1 has 746 vertices and 1488 faces"),
+        "{info}"
+    );
+    assert!(info.contains("configurations: 9"), "{info}");
+    let bytes = info
+        .lines()
+        .find_map(|l| l.strip_prefix("basis function tables: "))
+        .and_then(|l| l.strip_suffix(" bytes"))
+        .and_then(|n| n.parse::<u64>().ok())
+        .unwrap_or_else(|| panic!("no table line: {info}"));
+    assert!(bytes > 0 && bytes <= 1 << 20, "{bytes}");
+    let png = tmp("loop.png");
+    let grid = model_path("grid_open_8x8.obj");
+    for driver in ["static", "pattern", "tess"] {
+        for (mesh, boundary) in [(&spot, "edge-only"), (&grid, "edge-and-corner")] {
+            expect_success(&[
+                "render",
+                p(mesh),
+                "-o",
+                p(&png),
+                "--width",
+                "96",
+                "--height",
+                "64",
+                "--level",
+                "5",
+                "--surface",
+                "loop",
+                "--boundary",
+                boundary,
+                "--driver",
+                driver,
+            ]);
+        }
+    }
+    let obj = tmp("loop.obj");
+    let ico = model_path("icosahedron.obj");
+    for driver in ["pattern", "tess"] {
+        let mesh = export_and_reload(
+            &obj,
+            &[
+                p(&ico),
+                "--level",
+                "4",
+                "--surface",
+                "loop",
+                "--driver",
+                driver,
+            ],
+        );
+        assert_eq!(
+            mesh.stats().boundary_edges,
+            0,
+            "{driver}: the export is not closed"
+        );
+        if driver == "pattern" {
+            // 80 M1 faces x 16 triangles; 42 + 120 x 3 + 80 x 3 distinct vertices.
+            assert_eq!(mesh.triangles.len(), 80 * 16);
+            assert_eq!(mesh.stats().vertices, 42 + 120 * 3 + 80 * 3);
+        }
+    }
+    let bad = model_path("nonmanifold_edge.obj");
+    expect_error(
+        &["render", p(&bad), "-o", p(&png), "--surface", "loop"],
+        &[
+            "nonmanifold_edge.obj",
+            "loop surface cannot subdivide",
+            "edge (0, 1)",
+        ],
+    );
+    expect_error(
+        &["info", p(&bad), "--surface", "loop"],
+        &["nonmanifold_edge.obj", "more than two faces"],
+    );
+    let uv = model_path("grid_uv_8x8.obj");
+    expect_error(
+        &[
+            "render",
+            p(&uv),
+            "-o",
+            p(&png),
+            "--surface",
+            "loop",
+            "--displace",
+            "heightmap",
+        ],
+        &["loop surface has no texture coordinates"],
+    );
+    let out = meshrefine(&[
+        "render",
+        "-o",
+        p(&png),
+        "--surface",
+        "loop",
+        "--boundary",
+        "sharp",
+    ]);
+    assert_eq!(out.status.code(), Some(2), "clap refuses an unknown value");
+    let prefix = tmp("loop-bench");
+    ok(&[
+        "bench",
+        "--surfaces",
+        "flat,loop",
+        "--levels",
+        "2",
+        "--drivers",
+        "pattern,tess",
+        "--frames",
+        "1",
+        "--width",
+        "64",
+        "--height",
+        "64",
+        "--out",
+        p(&prefix),
+    ]);
+    let json = std::fs::read_to_string(prefix.with_extension("json")).unwrap();
+    let loop_rows: Vec<&str> = json
+        .lines()
+        .filter(|l| l.contains("\"surface\":\"loop\""))
+        .collect();
+    assert_eq!(loop_rows.len(), 4, "{json}");
+    for r in loop_rows {
+        assert!(r.contains(&format!("\"table_bytes\":{bytes}")), "{r}");
+        assert!(r.contains("\"elements\":1488"), "{r}");
+        assert!(!r.contains("\"pre_pass_ms\":null"), "{r}");
+        assert!(!r.contains("\"throughput_vs_flat\":null"), "{r}");
+    }
+}

@@ -336,11 +336,19 @@ impl State {
                 "1" => c.cfg.driver = Driver::Static,
                 "2" => c.cfg.driver = Driver::Pattern(c.submit),
                 "3" => c.cfg.driver = Driver::Tess,
-                "s" | "S" => c.cfg.surface = next(&Surface::LOCAL, c.cfg.surface),
+                "s" | "S" => {
+                    c.cfg.surface = next(&Surface::ALL, c.cfg.surface);
+                    // Loop's M1 has no texture coordinates for the height map.
+                    if c.cfg.surface == Surface::Loop && c.cfg.displace == Displace::Heightmap {
+                        c.cfg.displace = Displace::None;
+                    }
+                }
                 "d" | "D" => {
                     c.cfg.displace = next(&Displace::ALL, c.cfg.displace);
                     // The height map needs texture coordinates: skip it on meshes without.
-                    if c.cfg.displace == Displace::Heightmap && self.scene.data.uvs.is_none() {
+                    if c.cfg.displace == Displace::Heightmap
+                        && (self.scene.data.uvs.is_none() || c.cfg.surface == Surface::Loop)
+                    {
                         c.cfg.displace = next(&Displace::ALL, c.cfg.displace);
                     }
                 }
@@ -389,7 +397,10 @@ impl State {
             let t = self.start.elapsed().as_secs_f32();
             // A wobble of 3% of the mesh's size, whatever its units.
             let (_, r) = self.scene.bounding_sphere();
-            self.scene.update_mesh(self.base_mesh.animated(t, 0.03 * r));
+            self.scene.update_mesh(
+                self.base_mesh.animated(t, 0.03 * r),
+                self.controls.cfg.surface,
+            );
         }
         if self.controls.lod {
             let (_, r) = self.scene.bounding_sphere();
@@ -412,14 +423,22 @@ impl State {
                 .last()
                 .unwrap_or(1);
         }
-        self.scene.prepare(
-            &self.ctx,
-            &self.pool,
-            &mut self.renderer,
-            &cfg,
-            crate::render::Capture::None,
-            self.controls.wireframe,
-        )?;
+        let wire = self.controls.wireframe;
+        let mut prepare = |cfg: &DrawConfig| {
+            let none = crate::render::Capture::None;
+            self.scene
+                .prepare(&self.ctx, &self.pool, &mut self.renderer, cfg, none, wire)
+        };
+        match prepare(&cfg) {
+            // A mesh Loop cannot subdivide (non-manifold): say so and stay on the other surfaces.
+            Err(e) if cfg.surface == Surface::Loop => {
+                log::warn!("{e}: showing pn instead");
+                cfg.surface = Surface::Pn;
+                prepare(&cfg)?;
+                self.controls.cfg.surface = Surface::Pn;
+            }
+            other => other?,
+        }
 
         let Some(image) = self.swapchain.acquire(self.acquired.raw)? else {
             self.resize = true;
@@ -557,6 +576,13 @@ impl State {
             coarse,
             refined: coarse * d.refined_per_coarse() as u64,
             geometry_bytes: d.geometry_bytes(coarse),
+            upload_bytes: self.scene.upload_bytes(&d),
+            table_bytes: self
+                .scene
+                .subdiv
+                .as_ref()
+                .filter(|_| d.surface == Surface::Loop)
+                .map(|l| l.data.table_bytes()),
             has_texcoords: self.scene.data.uvs.is_some(),
         };
         self.ui.run(&self.window, &mut self.controls, &info)
@@ -621,6 +647,7 @@ mod tests {
         assert_eq!(made, 4, "existing items are kept");
         per_image(&mut v, 3, |i| -> Result<usize, ()> { Ok(i) }).unwrap();
         assert_eq!(v, [0, 1, 2]);
-        assert_eq!(next(&Surface::LOCAL, Surface::Stpn), Surface::Flat);
+        assert_eq!(next(&Surface::ALL, Surface::Stpn), Surface::Loop);
+        assert_eq!(next(&Surface::ALL, Surface::Loop), Surface::Flat);
     }
 }

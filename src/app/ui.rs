@@ -56,6 +56,10 @@ pub struct PanelInfo<'a> {
     pub coarse: u64,
     pub refined: u64,
     pub geometry_bytes: u64,
+    /// Bytes an animated frame uploads (level-independent but for static).
+    pub upload_bytes: u64,
+    /// The loop surface's basis function tables.
+    pub table_bytes: Option<u64>,
     /// Whether the mesh has texture coordinates (the height map needs them).
     pub has_texcoords: bool,
 }
@@ -154,7 +158,7 @@ fn panel(ctx: &egui::Context, c: &mut Controls, info: &PanelInfo) {
             ui.separator();
             egui::Grid::new("stats").num_columns(2).show(ui, |ui| {
                 let d = &info.drawn;
-                let rows = [
+                let mut rows = vec![
                     ("fps", format!("{:.0}", info.fps)),
                     ("GPU frame", format!("{:.2} ms", info.gpu_ms)),
                     ("drawn", format!("{} level {}", d.label(), d.level)),
@@ -162,13 +166,27 @@ fn panel(ctx: &egui::Context, c: &mut Controls, info: &PanelInfo) {
                         "surface",
                         format!("{} + {}", d.surface.name(), d.displace.name()),
                     ),
-                    ("coarse triangles", info.coarse.to_string()),
+                    (
+                        if d.surface == Surface::Loop {
+                            "M1 faces"
+                        } else {
+                            "coarse triangles"
+                        },
+                        info.coarse.to_string(),
+                    ),
                     ("refined triangles", info.refined.to_string()),
                     (
                         "GPU geometry",
                         format!("{:.2} MB", info.geometry_bytes as f64 / 1e6),
                     ),
+                    (
+                        "animated upload",
+                        format!("{:.1} KB / frame", info.upload_bytes as f64 / 1e3),
+                    ),
                 ];
+                if let Some(t) = info.table_bytes {
+                    rows.push(("BF tables", format!("{:.1} KB", t as f64 / 1e3)));
+                }
                 for (name, value) in rows {
                     ui.label(name);
                     ui.label(RichText::new(value).monospace());
@@ -207,17 +225,20 @@ fn panel(ctx: &egui::Context, c: &mut Controls, info: &PanelInfo) {
             });
             ui.horizontal(|ui| {
                 ui.label("surface");
-                for s in Surface::LOCAL {
+                for s in Surface::ALL {
                     ui.selectable_value(&mut c.cfg.surface, s, s.name());
                 }
             });
             ui.horizontal(|ui| {
                 ui.label("displace");
                 for d in Displace::ALL {
-                    let usable = d != Displace::Heightmap || info.has_texcoords;
+                    let usable = d != Displace::Heightmap
+                        || (info.has_texcoords && c.cfg.surface != Surface::Loop);
                     ui.add_enabled_ui(usable, |ui| {
                         ui.selectable_value(&mut c.cfg.displace, d, d.name())
-                            .on_disabled_hover_text("the mesh has no texture coordinates (vt)");
+                            .on_disabled_hover_text(
+                                "needs texture coordinates (vt; the loop surface has none)",
+                            );
                     });
                 }
             });

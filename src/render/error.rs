@@ -26,8 +26,14 @@ pub enum RenderError {
     #[error("{0}")]
     Tags(String),
     /// The mesh cannot be Loop-subdivided (the `loop` surface).
-    #[error("the loop surface needs a manifold, consistently oriented mesh: {0}")]
-    Subdivision(#[from] crate::subdiv::TopologyError),
+    #[error("the loop surface cannot subdivide it: {0}")]
+    Subdivision(crate::subdiv::TopologyError),
     #[error("the tessellator evaluated {written} vertices, more than the {capacity} the capture buffer holds")]
     CaptureOverflow { written: u64, capacity: u64 },
+}
+
+impl From<crate::subdiv::TopologyError> for RenderError {
+    fn from(e: crate::subdiv::TopologyError) -> Self {
+        RenderError::Subdivision(e)
+    }
 }

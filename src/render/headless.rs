@@ -169,6 +169,26 @@ impl Headless {
         self.draw_inner(scene, cfg, camera, Capture::None, None, elements)
     }
 
+    /// GPU milliseconds of the passes `cfg`'s surface runs before drawing (the loop surface's
+    /// M0 -> M1 and normals), alone in a submission; None for a surface without any.
+    pub fn time_pre_pass(
+        &mut self,
+        scene: &mut Scene,
+        cfg: &DrawConfig,
+    ) -> Result<Option<f64>, RenderError> {
+        self.prepared_elements(scene, cfg, Capture::None)?;
+        let Some(pass) = scene.pre_pass(cfg.surface) else {
+            return Ok(None);
+        };
+        let queries = &self.queries;
+        self.pool.submit_and_wait(|cmd| {
+            queries.cmd_begin(cmd, 0);
+            pass.cmd_apply(cmd);
+            queries.cmd_end(cmd, 0);
+        })?;
+        Ok(Some(self.queries.gpu_ms(0)?))
+    }
+
     /// Draw one frame, wait, and return its timing and statistics.
     pub fn draw(
         &mut self,

@@ -388,6 +388,9 @@ pub struct Scene {
     pub static_vbo: Option<super::static_vbo::StaticVbo>,
     /// The `loop` surface's M1 faces, built by the first `prepare` that draws it.
     pub subdiv: Option<LoopScene>,
+    /// The coarse records on the GPU are older than `data` (an animated frame drawn with loop,
+    /// which does not read them, uploads M0 only); the next other surface uploads them.
+    records_stale: bool,
     warned_slow: bool,
 }
 
@@ -523,6 +526,7 @@ impl Scene {
             patterns,
             static_vbo: None,
             subdiv: None,
+            records_stale: false,
             warned_slow: false,
         })
     }
@@ -562,6 +566,10 @@ impl Scene {
                 cfg.params.boundary,
             )?);
         }
+        if cfg.surface != Surface::Loop && self.records_stale {
+            self.gpu.update_records(&self.data.records);
+            self.records_stale = false;
+        }
         if cfg.surface == Surface::Loop && cfg.displace == crate::surface::Displace::Heightmap {
             return Err(RenderError::Unsupported(
                 "the loop surface has no texture coordinates: the heightmap displacement needs them (use sine or noise)",
@@ -575,7 +583,7 @@ impl Scene {
                 "the mesh has no texture coordinates (vt on every face): the heightmap displacement reads the map there",
             ));
         }
-        if cfg.params.seams != self.data.seams {
+        if cfg.params.seams != self.data.seams && cfg.surface != Surface::Loop {
             self.data.records = build_records(self.data.kind, &self.data.mesh, cfg.params.seams);
             self.data.seams = cfg.params.seams;
             self.gpu.update_records(&self.data.records);
@@ -646,17 +654,38 @@ impl Scene {
         Ok(())
     }
 
-    /// Replace the coarse positions/normals (animation): new records are uploaded; the static
-    /// buffer, if any, becomes stale and is rebuilt by the next `prepare`. Only between frames.
-    pub fn update_mesh(&mut self, mesh: Mesh) {
+    /// Replace the coarse positions/normals (animation), for drawing `surface` next: its new
+    /// data is uploaded (the records, or for loop M0's positions alone, what
+    /// [`Scene::upload_bytes`] counts); the static buffer, if any, becomes stale and is rebuilt
+    /// by the next `prepare`. Only between frames.
+    pub fn update_mesh(&mut self, mesh: Mesh, surface: Surface) {
         self.data = MeshData::new(mesh, self.data.kind, self.data.seams);
-        self.gpu.update_records(&self.data.records);
         if let Some(l) = &mut self.subdiv {
-            // Loop: only M0's positions go up; the passes make M1 on the GPU.
+            // Loop: only M0's positions go up; the passes make M1 on the GPU (and the mirror's
+            // M1, for the static driver and the tests, on the CPU).
             l.pass.upload_m0(&self.data.mesh.positions);
             l.frame = l.data.frame(&self.data.mesh.positions);
         }
+        if surface == Surface::Loop && self.subdiv.is_some() {
+            self.records_stale = true;
+        } else {
+            self.gpu.update_records(&self.data.records);
+            self.records_stale = false;
+        }
         self.static_vbo = None;
+    }
+
+    /// Bytes an animated frame uploads when drawing `cfg`: the refined vertices (static), the
+    /// coarse records (the local surfaces), or M0's positions (loop): the last two independent
+    /// of the level.
+    pub fn upload_bytes(&self, cfg: &super::DrawConfig) -> u64 {
+        match (cfg.driver, self.pre_pass(cfg.surface)) {
+            (super::Driver::Static, _) => {
+                cfg.geometry_bytes(self.elements(cfg.surface).element_count as u64)
+            }
+            (_, Some(pass)) => pass.upload_bytes(),
+            _ => self.gpu.element_count as u64 * RECORD_BYTES as u64,
+        }
     }
 
     /// The elements `surface` draws: M1 faces for `loop` (once prepared), coarse triangles
