@@ -10,7 +10,8 @@
 // Written by the Loop passes (glsl/subdiv), read here.
 layout(set = SET_MESH, binding = BINDING_LOOP_P1, std430) readonly buffer LoopP1 { vec4 loop_p1[]; };
 layout(set = SET_MESH, binding = BINDING_LOOP_N1, std430) readonly buffer LoopN1 { vec4 loop_n1[]; };
-// Per M1 face: (first weight, control points K, first control index, rotation).
+// Per M1 face: (first weight, control points K, first control index, orientation: rotation in
+// bits 0-1, bit 2 set where the face is its configuration's mirror image).
 layout(set = SET_MESH, binding = BINDING_LOOP_FACES, std430) readonly buffer LoopFaces { uvec4 loop_faces[]; };
 layout(set = SET_MESH, binding = BINDING_LOOP_CONTROL, std430) readonly buffer LoopControl { uint loop_control[]; };
 // Row r of a face's table is K weights at weights[first + r * K].
@@ -47,13 +48,36 @@ uint loop_owner(ElementRecord rec, vec3 bary, out vec3 b) {
     return a.x;
 }
 
+// The stored corner that is canonical corner i. Mirror: bft::Orient::stored.
+uint loop_stored(uint orient, uint i) {
+    uint rot = orient & 3u;
+    return (orient & 4u) != 0u ? (rot + 3u - i) % 3u : (rot + i) % 3u;
+}
+
 // Face g at weights b of its stored corners. Mirror: subdivision::eval_face (and `cell`).
 SurfacePoint loop_eval_face(uint g, vec3 b) {
     uvec4 f = loop_faces[g];
-    uint offset = f.x, k = f.y, first = f.z, rot = f.w;
+    uint offset = f.x, k = f.y, first = f.z, orient = f.w;
     float s = float(BFT_SEGMENTS);
-    float x = b[(rot + 1u) % 3u] * s;
-    float y = b[(rot + 2u) % 3u] * s;
+    float x = b[loop_stored(orient, 1u)] * s;
+    float y = b[loop_stored(orient, 2u)] * s;
+    // A lattice point without displacement (which would need the tangents): one table row.
+    // The general path below gives the very same bits there (weights 1, 0, 0 on the same row),
+    // so the mirror, which always takes it, agrees exactly.
+    if (DISPLACE == DISPLACE_NONE && x == floor(x) && y == floor(y)) {
+        uint r = offset + bft_row(uint(x), uint(y)) * k;
+        vec3 p = vec3(0.0), n = vec3(0.0);
+        for (uint c = 0u; c < k; ++c) {
+            uint v = loop_control[first + c];
+            float w = bft[r + c];
+            p += loop_p1[v].xyz * w;
+            n += loop_n1[v].xyz * w;
+        }
+        float nl = length(n);
+        vec3 normal = nl > 0.0 ? n / nl : vec3(0.0);
+        // Tangents are not used without displacement.
+        return SurfacePoint(p, normal, normal, vec3(0.0), vec3(0.0), vec2(0.0), vec2(0.0), vec2(0.0));
+    }
     float i0 = clamp(floor(x), 0.0, s);
     float j0 = clamp(floor(y), 0.0, s);
     float fx = x - i0;
@@ -103,7 +127,7 @@ SurfacePoint loop_eval_face(uint g, vec3 b) {
     vec3 canon[3] = vec3[3](vec3(0.0), dx, dy);
     vec3 grad[3];
     for (uint t = 0u; t < 3u; ++t) {
-        grad[(rot + t) % 3u] = canon[t];
+        grad[loop_stored(orient, t)] = canon[t];
     }
     return SurfacePoint(position, normal, normal, grad[1] - grad[0], grad[2] - grad[0], vec2(0.0), vec2(0.0),
                         vec2(0.0));

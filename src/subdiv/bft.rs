@@ -7,10 +7,12 @@
 //!
 //! Configurations are found, not enumerated: each M1 face's neighbourhood is labelled
 //! canonically (the face's corners, then each corner's one-ring counter-clockwise from the next
-//! corner), and the labelled faces around the corners are its key; the rotation of the face with
-//! the smallest key is stored, so a configuration is stored once whatever corner the face starts
-//! at. Any valence and any boundary case works, and only the configurations the mesh has are
-//! built.
+//! corner), and the labelled faces around the corners are its key. Of the face's three rotations
+//! and their three mirror images (corners and rings in the opposite order) the one with the
+//! smallest key is used, so a configuration is stored once whatever corner the face starts at,
+//! and a configuration and its mirror image (a boundary face and its reflection across the
+//! extraordinary vertex) share one table, read with u and v swapped ([`Orient`]). Any valence and
+//! any boundary case works, and only the configurations the mesh has are built.
 //!
 //! A table is computed as the paper's configuration meshes: the faces within two rings of the face
 //! are cut out (vertices where the cut makes two fans are split), each vertex carries its weights
@@ -58,12 +60,50 @@ pub struct Config {
     pub outside: f64,
 }
 
-/// The configuration of one face: which table, which of the face's corners is its canonical
-/// corner 0, and its control points (M1 vertex indices, in label order).
+/// How a face's stored corners map to its configuration's canonical corners: canonical corner i
+/// is stored corner `rot + i` (mod 3), or `rot - i` when the face is the configuration's mirror
+/// image (its table is the mirror's, read with u and v swapped).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub struct Orient {
+    pub rot: u8,
+    pub mirror: bool,
+}
+
+impl Orient {
+    /// The stored corner that is canonical corner `i`. Mirror of `loop_stored` in loop.glsl.
+    pub fn stored(self, i: usize) -> usize {
+        let r = self.rot as usize;
+        if self.mirror {
+            (r + 3 - i) % 3
+        } else {
+            (r + i) % 3
+        }
+    }
+
+    /// The canonical corner stored corner `k` is.
+    pub fn canonical(self, k: usize) -> usize {
+        (0..3).find(|&i| self.stored(i) == k).unwrap()
+    }
+
+    /// All six.
+    pub fn all() -> impl Iterator<Item = Orient> {
+        [false, true]
+            .into_iter()
+            .flat_map(|mirror| (0..3).map(move |rot| Orient { rot, mirror }))
+    }
+
+    /// As the GPU's face entry stores it: rotation in bits 0-1, mirror in bit 2.
+    pub fn bits(self) -> u32 {
+        self.rot as u32 | (self.mirror as u32) << 2
+    }
+}
+
+/// The configuration of one face: which table, how its corners map to the table's, and its
+/// control points (M1 vertex indices, in label order).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct FaceConfig {
     pub config: u32,
-    pub rotation: u8,
+    pub orient: Orient,
     pub control: Vec<u32>,
 }
 
@@ -95,10 +135,11 @@ fn vertex_faces(topo: &Topology) -> Vec<Vec<u32>> {
     vf
 }
 
-/// Canonical labelling of face `f` rotated by `rot`: the corners, then each corner's one-ring.
-fn label(topo: &Topology, f: usize, rot: usize) -> (Vec<u32>, HashMap<u32, u32>) {
+/// Canonical labelling of face `f` in orientation `o`: the corners, then each corner's one-ring
+/// (counter-clockwise, or clockwise for the mirror image, from the next canonical corner).
+fn label(topo: &Topology, f: usize, o: Orient) -> (Vec<u32>, HashMap<u32, u32>) {
     let t = topo.faces[f];
-    let corners = [0, 1, 2].map(|k| t[(rot + k) % 3]);
+    let corners = [0, 1, 2].map(|i| t[o.stored(i)]);
     let mut order: Vec<u32> = corners.to_vec();
     let mut labels: HashMap<u32, u32> = corners
         .iter()
@@ -107,6 +148,9 @@ fn label(topo: &Topology, f: usize, rot: usize) -> (Vec<u32>, HashMap<u32, u32>)
         .collect();
     for k in 0..3 {
         let (mut ring, on_boundary) = topo.one_ring(corners[k]);
+        if o.mirror {
+            ring.reverse();
+        }
         if !on_boundary {
             // Start at the face's next corner (a neighbour, since the face is (c_k, c_k+1, ...)).
             let next = corners[(k + 1) % 3];
@@ -123,15 +167,18 @@ fn label(topo: &Topology, f: usize, rot: usize) -> (Vec<u32>, HashMap<u32, u32>)
     (order, labels)
 }
 
-/// A face's key in labels: rotated to start at its smallest label.
-fn labelled(t: &[u32; 3], labels: &HashMap<u32, u32>) -> [u32; 3] {
-    let l = t.map(|v| labels[&v]);
+/// A face's key in labels (reversed for a mirror image): rotated to start at its smallest label.
+fn labelled(t: &[u32; 3], labels: &HashMap<u32, u32>, mirror: bool) -> [u32; 3] {
+    let mut l = t.map(|v| labels[&v]);
+    if mirror {
+        l.swap(1, 2);
+    }
     let m = (0..3).min_by_key(|&k| l[k]).unwrap();
     [l[m], l[(m + 1) % 3], l[(m + 2) % 3]]
 }
 
-fn key_of(topo: &Topology, vf: &[Vec<u32>], f: usize, rot: usize) -> (Vec<[u32; 3]>, Vec<u32>) {
-    let (order, labels) = label(topo, f, rot);
+fn key_of(topo: &Topology, vf: &[Vec<u32>], f: usize, o: Orient) -> (Vec<[u32; 3]>, Vec<u32>) {
+    let (order, labels) = label(topo, f, o);
     let corners = [0, 1, 2].map(|k| order[k]);
     let mut faces: Vec<u32> = corners
         .iter()
@@ -141,7 +188,7 @@ fn key_of(topo: &Topology, vf: &[Vec<u32>], f: usize, rot: usize) -> (Vec<[u32; 
     faces.dedup();
     let mut key: Vec<[u32; 3]> = faces
         .iter()
-        .map(|&g| labelled(&topo.faces[g as usize], &labels))
+        .map(|&g| labelled(&topo.faces[g as usize], &labels, o.mirror))
         .collect();
     key.sort_unstable();
     (key, order)
@@ -156,33 +203,35 @@ pub fn build(
 ) -> Result<Tables, TopologyError> {
     let vf = vertex_faces(topo);
     let mut ids: HashMap<Vec<[u32; 3]>, u32> = HashMap::new();
-    // The representative face and rotation of each configuration.
-    let mut reps: Vec<(usize, usize, Vec<[u32; 3]>)> = Vec::new();
+    // The representative face and orientation of each configuration.
+    let mut reps: Vec<(usize, Orient, Vec<[u32; 3]>)> = Vec::new();
     let mut faces = Vec::with_capacity(topo.faces.len());
     for f in 0..topo.faces.len() {
-        let (key, order, rot) = (0..3)
-            .map(|r| {
-                let (k, o) = key_of(topo, &vf, f, r);
-                (k, o, r)
+        // The smallest key over the three rotations and the mirror image: a configuration and
+        // its mirror share one table.
+        let (key, order, orient) = Orient::all()
+            .map(|o| {
+                let (k, order) = key_of(topo, &vf, f, o);
+                (k, order, o)
             })
             .min_by(|a, b| a.0.cmp(&b.0))
             .unwrap();
         let next = ids.len() as u32;
         let id = *ids.entry(key.clone()).or_insert_with(|| {
-            reps.push((f, rot, key));
+            reps.push((f, orient, key));
             next
         });
         faces.push(FaceConfig {
             config: id,
-            rotation: rot as u8,
+            orient,
             control: order,
         });
     }
     let total = reps.len();
     let mut configs = Vec::with_capacity(total);
-    for (done, (f, rot, key)) in reps.into_iter().enumerate() {
+    for (done, (f, orient, key)) in reps.into_iter().enumerate() {
         progress(done, total);
-        configs.push(table(topo, &vf, f, rot, key, boundary)?);
+        configs.push(table(topo, &vf, f, orient, key, boundary)?);
     }
     progress(total, total);
     // Control points: only those the table weighs (the labels of the face's one-ring).
@@ -192,20 +241,20 @@ pub fn build(
     Ok(Tables { configs, faces })
 }
 
-/// The table of face `f` rotated by `rot`, from its two-ring configuration mesh.
+/// The table of face `f` in orientation `o`, from its two-ring configuration mesh.
 fn table(
     topo: &Topology,
     vf: &[Vec<u32>],
     f: usize,
-    rot: usize,
+    o: Orient,
     key: Vec<[u32; 3]>,
     boundary: Boundary,
 ) -> Result<Config, TopologyError> {
-    let (mut order, mut labels) = label(topo, f, rot);
+    let (mut order, mut labels) = label(topo, f, o);
     let control = order.len();
-    // Faces within two rings: those around the control points (the face first, rotated).
+    // Faces within two rings: those around the control points (the face first).
     let t = topo.faces[f];
-    let mut local: Vec<[u32; 3]> = vec![[0, 1, 2].map(|k| t[(rot + k) % 3])];
+    let mut local: Vec<[u32; 3]> = vec![t];
     let mut seen: std::collections::HashSet<u32> = [f as u32].into();
     for i in 0..control {
         for &g in &vf[order[i] as usize] {
@@ -232,9 +281,9 @@ fn table(
         w[v * dims + v] = 1.0;
     }
     let mut topo_l = Topology::new(&local, count)?;
-    // Lattice coordinates (in units of 1/SEGMENTS) of the tracked faces' corners.
-    let s = SEGMENTS;
-    let mut tracked: Vec<(usize, [[u32; 2]; 3])> = vec![(0, [[0, 0], [s, 0], [0, s]])];
+    // Lattice coordinates (in units of 1/SEGMENTS) of the tracked faces' corners; the face's
+    // stored corner k is canonical corner `o.canonical(k)`.
+    let mut tracked: Vec<(usize, [[u32; 2]; 3])> = vec![(0, lattice_corners(o))];
     for _ in 0..LMAX {
         let st = stencils(&topo_l, boundary);
         let mut next = vec![0.0; st.len() * dims];
@@ -278,7 +327,7 @@ fn table(
         outside = full[control..].iter().fold(outside, |m, &x| m.max(x.abs()));
     }
     // Valence and boundary of the face's corners.
-    let corners = [0, 1, 2].map(|k| t[(rot + k) % 3]);
+    let corners = [0, 1, 2].map(|i| t[o.stored(i)]);
     let rings = corners.map(|c| topo.one_ring(c));
     let is_boundary = rings.iter().any(|r| r.1);
     let valence = rings
@@ -294,6 +343,13 @@ fn table(
         weights,
         outside,
     })
+}
+
+/// Lattice coordinates (units of 1/SEGMENTS) of a face's stored corners in orientation `o`.
+pub fn lattice_corners(o: Orient) -> [[u32; 2]; 3] {
+    let s = SEGMENTS;
+    let base = [[0, 0], [s, 0], [0, s]];
+    [0, 1, 2].map(|k| base[o.canonical(k)])
 }
 
 /// Faces with their corners' lattice coordinates, after one more step: each face's four
@@ -438,13 +494,8 @@ mod tests {
                             .sum()
                     };
                     // Canonical corners of the face, by the sub-face walk from face f.
-                    let s = SEGMENTS;
-                    let mut tracked: Vec<(usize, [[u32; 2]; 3])> = vec![(f, {
-                        let base = [[0, 0], [s, 0], [0, s]];
-                        let rot = fc.rotation as usize;
-                        // Stored corner k is canonical corner (k - rot) mod 3.
-                        [0, 1, 2].map(|k| base[(k + 3 - rot) % 3])
-                    })];
+                    let mut tracked: Vec<(usize, [[u32; 2]; 3])> =
+                        vec![(f, lattice_corners(fc.orient))];
                     for _ in 0..LMAX {
                         tracked = children_in_lattice(&tracked);
                     }

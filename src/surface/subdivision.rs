@@ -15,7 +15,7 @@
 
 use super::{ElementRecord, SurfacePoint};
 use crate::mesh::Mesh;
-use crate::subdiv::bft::{self, Tables, ROWS, SEGMENTS};
+use crate::subdiv::bft::{self, Orient, Tables, ROWS, SEGMENTS};
 use crate::subdiv::{stencils, Boundary, Stencil, Topology, TopologyError};
 use glam::{DVec3, Vec3};
 
@@ -28,7 +28,8 @@ pub struct LoopData {
     pub stencils: Vec<Stencil>,
     pub m1: Topology,
     pub tables: Tables,
-    /// Per M1 face: (first table weight, control points, first control index, rotation).
+    /// Per M1 face: (first table weight, control points, first control index, orientation:
+    /// [`crate::subdiv::bft::Orient::bits`]).
     pub faces: Vec<[u32; 4]>,
     /// Control points of every face, M1 vertex indices.
     pub control: Vec<u32>,
@@ -108,7 +109,7 @@ impl LoopData {
                 offsets[fc.config as usize],
                 fc.control.len() as u32,
                 control.len() as u32,
-                fc.rotation as u32,
+                fc.orient.bits(),
             ]);
             control.extend(&fc.control);
         }
@@ -330,12 +331,15 @@ pub fn cell(x: f32, y: f32) -> ([usize; 3], [f32; 3], [[usize; 2]; 2]) {
 
 /// Evaluate face `g` at weights `b` of its stored corners. Mirror of `loop_eval_face`.
 pub fn eval_face(data: &LoopData, frame: &LoopFrame, g: u32, b: [f32; 3]) -> SurfacePoint {
-    let [offset, k, first, rot] = data.faces[g as usize];
-    let rot = rot as usize;
-    // Canonical corner i is stored corner (rot + i) mod 3.
+    let [offset, k, first, orient] = data.faces[g as usize];
+    let o = Orient {
+        rot: (orient & 3) as u8,
+        mirror: orient & 4 != 0,
+    };
+    // Canonical corner i is stored corner o.stored(i).
     let s = SEGMENTS as f32;
-    let x = b[(rot + 1) % 3] * s;
-    let y = b[(rot + 2) % 3] * s;
+    let x = b[o.stored(1)] * s;
+    let y = b[o.stored(2)] * s;
     let (rows, l, d) = cell(x, y);
     debug_assert!(rows.iter().all(|&r| r < ROWS));
     let mut p = [Vec3::ZERO; 3];
@@ -357,8 +361,8 @@ pub fn eval_face(data: &LoopData, frame: &LoopFrame, g: u32, b: [f32; 3]) -> Sur
     let dy = (p[d[1][0]] - p[d[1][1]]) * s;
     let canon = [Vec3::ZERO, dx, dy];
     let mut grad = [Vec3::ZERO; 3];
-    for i in 0..3 {
-        grad[(rot + i) % 3] = canon[i];
+    for (i, &c) in canon.iter().enumerate() {
+        grad[o.stored(i)] = c;
     }
     SurfacePoint {
         position,
