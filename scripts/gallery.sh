@@ -27,3 +27,12 @@ $m render assets/models/grid_uv_8x8.obj -o "$out/grid-pn-heightmap.png" --width 
 $m render assets/models/cylinder_hard_normals.obj -o "$out/cylinder-stpn.png" --width 427 --height 240 --level 8 --surface stpn
 # Scalar-tagged PN with a tags file: a cone-like tip, a fuller vertex and a crease.
 $m render assets/models/tetrahedron.obj -o "$out/tetrahedron-stpn-tags.png" --width 427 --height 240 --level 16 --surface stpn --tags assets/examples/tetrahedron.tags
+# Loop subdivision's limit surface (basis function tables) against pn and flat on the same meshes;
+# the wireframe shows M1's faces, each refined at level 2; an open mesh (sharp boundary); and the loop surface's normals
+# (subdivision shading) on the coarse tetrahedron, flat and pn beside it.
+$m render -o "$out/spot-loop.png" --width 427 --height 240 --level 8 --surface loop
+$m render -o "$out/spot-loop-wire.png" --width 640 --height 360 --level 2 --surface loop --wireframe
+for s in flat pn loop; do
+  $m render assets/models/tetrahedron.obj -o "$out/tetrahedron-$s.png" --width 320 --height 240 --level 16 --surface $s
+done
+$m render assets/models/spot_open.obj -o "$out/spot-open-loop.png" --width 427 --height 240 --level 8 --surface loop

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Per-triangle cost against level (the 2010 paper's Fig. 8) from docs/bench/fig8.csv, written
 by `cargo bench --bench table1`: one line per surface and driver, GPU nanoseconds per refined
-triangle against the level (log scale). Writes docs/bench/fig8.svg. Plain Python 3, no packages."""
+triangle against the level (log scales). Writes docs/bench/fig8.svg. Plain Python 3, no packages."""
 import csv
 import math
 import os
@@ -25,11 +25,13 @@ W, H, L, R, T, B = 760, 460, 70, 190, 50, 50
 levels = sorted({l for s in series.values() for l, _ in s})
 costs = [c for s in series.values() for _, c in s]
 lo, hi = math.log2(min(levels)), math.log2(max(levels))
-ymax = max(costs) * 1.1
+# Log scale on both axes: the cost per triangle falls by orders of magnitude with the level.
+ylo = math.floor(math.log10(min(costs)))
+yhi = math.ceil(math.log10(max(costs)))
 def x(l):
     return L + (math.log2(l) - lo) / max(hi - lo, 1e-9) * (W - L - R)
 def y(c):
-    return T + (1 - c / ymax) * (H - T - B)
+    return T + (1 - (math.log10(c) - ylo) / max(yhi - ylo, 1e-9)) * (H - T - B)
 
 colors = {"flat": "#888888", "phong": "#2f7ed8", "pn": "#8bbc21", "stpn": "#910000", "loop": "#e06000"}
 out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{W}" height="{H}" font-family="sans-serif" font-size="12">',
@@ -41,10 +43,15 @@ out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{W}" height="{H}" font-f
 for l in levels:
     out.append(f'<text x="{x(l):.1f}" y="{H-B+18}" text-anchor="middle">{l}</text>')
 out.append(f'<text x="{(L+W-R)/2:.1f}" y="{H-12}" text-anchor="middle">level N (segments per element edge)</text>')
-for k in range(6):
-    c = ymax * k / 5
-    out.append(f'<text x="{L-8}" y="{y(c)+4:.1f}" text-anchor="end">{c:.0f}</text>')
-    out.append(f'<line x1="{L}" y1="{y(c):.1f}" x2="{W-R}" y2="{y(c):.1f}" stroke="#eee"/>')
+for e in range(ylo, yhi + 1):
+    for m in (1, 2, 5):
+        c = m * 10 ** e
+        if c > 10 ** yhi:
+            break
+        label = f"{c:g}" if m == 1 else ""
+        out.append(f'<text x="{L-8}" y="{y(c)+4:.1f}" text-anchor="end">{label}</text>')
+        out.append(f'<line x1="{L}" y1="{y(c):.1f}" x2="{W-R}" y2="{y(c):.1f}" stroke="#eee"/>')
+out.append(f'<text x="16" y="{(T+H-B)/2:.1f}" transform="rotate(-90 16 {(T+H-B)/2:.1f})" text-anchor="middle">GPU ns per refined triangle (log)</text>')
 for i, ((surface, variant), pts) in enumerate(sorted(series.items())):
     pts.sort()
     color = colors.get(surface, "black")
