@@ -102,28 +102,28 @@ SurfacePoint loop_eval_face(uint g, vec3 b) {
         rows = uint[3](bft_row(i, j), bft_row(i + 1u, j), bft_row(i, j + 1u));
         l = vec3(1.0 - fx - fy, fx, fy);
     }
-    vec3 p[3] = vec3[3](vec3(0.0), vec3(0.0), vec3(0.0));
-    vec3 n[3] = vec3[3](vec3(0.0), vec3(0.0), vec3(0.0));
+    // The three rows' weights interpolated first, then one weighted sum (and two for the
+    // tangents, the lattice triangle's edges, only where displacement uses them).
+    vec3 p = vec3(0.0), ns = vec3(0.0), dx = vec3(0.0), dy = vec3(0.0);
     uint r0 = offset + rows[0] * k, r1 = offset + rows[1] * k, r2 = offset + rows[2] * k;
     for (uint c = 0u; c < k; ++c) {
         uint v = loop_control[first + c];
-        vec3 pv = loop_p1[v].xyz, nv = loop_n1[v].xyz;
+        vec3 pv = loop_p1[v].xyz;
         float w0 = bft[r0 + c], w1 = bft[r1 + c], w2 = bft[r2 + c];
-        p[0] += pv * w0;
-        n[0] += nv * w0;
-        p[1] += pv * w1;
-        n[1] += nv * w1;
-        p[2] += pv * w2;
-        n[2] += nv * w2;
+        float w = w0 * l.x + w1 * l.y + w2 * l.z;
+        p += pv * w;
+        ns += loop_n1[v].xyz * w;
+        if (DISPLACE != DISPLACE_NONE) {
+            dx += pv * (upper ? w0 - w1 : w1 - w0);
+            dy += pv * (upper ? w0 - w2 : w2 - w0);
+        }
     }
-    vec3 position = p[0] * l.x + p[1] * l.y + p[2] * l.z;
-    vec3 ns = n[0] * l.x + n[1] * l.y + n[2] * l.z;
+    vec3 position = p;
     float nl = length(ns);
     vec3 normal = nl > 0.0 ? ns / nl : vec3(0.0);
-    // Tangents: the lattice triangle's edges per unit weight of canonical corners 1 and 2, back
-    // to the stored corners.
-    vec3 dx = (upper ? p[0] - p[1] : p[1] - p[0]) * s;
-    vec3 dy = (upper ? p[0] - p[2] : p[2] - p[0]) * s;
+    // Tangents per unit weight of canonical corners 1 and 2, back to the stored corners.
+    dx *= s;
+    dy *= s;
     vec3 canon[3] = vec3[3](vec3(0.0), dx, dy);
     vec3 grad[3];
     for (uint t = 0u; t < 3u; ++t) {

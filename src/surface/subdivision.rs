@@ -342,23 +342,23 @@ pub fn eval_face(data: &LoopData, frame: &LoopFrame, g: u32, b: [f32; 3]) -> Sur
     let y = b[o.stored(2)] * s;
     let (rows, l, d) = cell(x, y);
     debug_assert!(rows.iter().all(|&r| r < ROWS));
-    let mut p = [Vec3::ZERO; 3];
-    let mut n = [Vec3::ZERO; 3];
-    for c in 0..k as usize {
+    // The three rows' weights interpolated first, then one weighted sum, and two for the
+    // tangents (the lattice triangle's edges).
+    let (mut p, mut n, mut dx, mut dy) = (Vec3::ZERO, Vec3::ZERO, Vec3::ZERO, Vec3::ZERO);
+    let k = k as usize;
+    for c in 0..k {
         let v = data.control[first as usize + c] as usize;
         let (pv, nv) = (frame.positions[v], frame.normals[v]);
-        for t in 0..3 {
-            let w = data.weights[offset as usize + rows[t] * k as usize + c];
-            p[t] += pv * w;
-            n[t] += nv * w;
-        }
+        let w3 = rows.map(|r| data.weights[offset as usize + r * k + c]);
+        let w = w3[0] * l[0] + w3[1] * l[1] + w3[2] * l[2];
+        p += pv * w;
+        n += nv * w;
+        dx += pv * (w3[d[0][0]] - w3[d[0][1]]);
+        dy += pv * (w3[d[1][0]] - w3[d[1][1]]);
     }
-    let position = p[0] * l[0] + p[1] * l[1] + p[2] * l[2];
-    let normal = (n[0] * l[0] + n[1] * l[1] + n[2] * l[2]).normalize_or_zero();
-    // Tangents: the lattice triangle's edges, per unit weight (∂/∂b_i of canonical corners 1, 2;
-    // corner 0's weight does not appear), back to the stored corners.
-    let dx = (p[d[0][0]] - p[d[0][1]]) * s;
-    let dy = (p[d[1][0]] - p[d[1][1]]) * s;
+    let position = p;
+    let normal = n.normalize_or_zero();
+    let (dx, dy) = (dx * s, dy * s);
     let canon = [Vec3::ZERO, dx, dy];
     let mut grad = [Vec3::ZERO; 3];
     for (i, &c) in canon.iter().enumerate() {
