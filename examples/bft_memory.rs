@@ -49,7 +49,7 @@ fn main() {
             let p: Vec<glam::DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();
             let m1 = loop_step(&topo, &p, boundary);
             let t1 = Topology::new(&m1.faces, m1.positions.len()).unwrap();
-            let tables = build(&t1, boundary, |_, _| {}).unwrap();
+            let tables = build(&t1, boundary, |_| {}).unwrap();
             for c in tables.configs {
                 all.insert(c.key, c.control);
             }

@@ -542,11 +542,9 @@ fn info(a: &cli::InfoArgs) -> Result<()> {
     }
     if a.surface == Some(Surface::Loop) {
         let started = std::time::Instant::now();
-        let data = LoopData::new(&mesh, a.boundary, |done, total| {
-            if done < total && started.elapsed().as_secs_f32() > 1.0 {
-                note(format_args!(
-                    "building basis function tables: {done} of {total} configurations"
-                ));
+        let data = LoopData::new(&mesh, a.boundary, |p| {
+            if started.elapsed().as_secs_f32() > 1.0 {
+                note(format_args!("{}: {p}", path.display()));
             }
         })
         .map_err(|e| {

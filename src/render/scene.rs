@@ -413,9 +413,9 @@ impl LoopScene {
     ) -> Result<Self, RenderError> {
         let mesh = &scene.data.mesh;
         let started = std::time::Instant::now();
-        let data = LoopData::new(mesh, boundary, |done, total| {
-            if done < total && started.elapsed().as_secs_f32() > 1.0 {
-                log::info!("building basis function tables: {done} of {total} configurations");
+        let data = LoopData::new(mesh, boundary, |p| {
+            if started.elapsed().as_secs_f32() > 1.0 {
+                log::info!("loop surface: {p}");
             }
         })?;
         let limit = ctx.info.limits.max_storage_buffer_range as u64;

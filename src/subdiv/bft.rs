@@ -194,12 +194,28 @@ fn key_of(topo: &Topology, vf: &[Vec<u32>], f: usize, o: Orient) -> (Vec<[u32; 3
     (key, order)
 }
 
+/// How far [`build`] is: faces classified, then tables built (done, total).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Progress {
+    Faces(usize, usize),
+    Tables(usize, usize),
+}
+
+impl std::fmt::Display for Progress {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Progress::Faces(d, t) => write!(f, "{d} of {t} M1 faces classified"),
+            Progress::Tables(d, t) => write!(f, "{d} of {t} basis function tables built"),
+        }
+    }
+}
+
 /// Find every face's configuration in `topo` (M1) and build the tables of those it has.
-/// `progress` is told (done, total) configurations as tables are built.
+/// `progress` hears how far it is, every 16,384 faces and every table.
 pub fn build(
     topo: &Topology,
     boundary: Boundary,
-    mut progress: impl FnMut(usize, usize),
+    mut progress: impl FnMut(Progress),
 ) -> Result<Tables, TopologyError> {
     let vf = vertex_faces(topo);
     let mut ids: HashMap<Vec<[u32; 3]>, u32> = HashMap::new();
@@ -207,6 +223,9 @@ pub fn build(
     let mut reps: Vec<(usize, Orient, Vec<[u32; 3]>)> = Vec::new();
     let mut faces = Vec::with_capacity(topo.faces.len());
     for f in 0..topo.faces.len() {
+        if f % 16_384 == 0 {
+            progress(Progress::Faces(f, topo.faces.len()));
+        }
         // The smallest key over the three rotations and the mirror image: a configuration and
         // its mirror share one table.
         let (key, order, orient) = Orient::all()
@@ -230,10 +249,10 @@ pub fn build(
     let total = reps.len();
     let mut configs = Vec::with_capacity(total);
     for (done, (f, orient, key)) in reps.into_iter().enumerate() {
-        progress(done, total);
+        progress(Progress::Tables(done, total));
         configs.push(table(topo, &vf, f, orient, key, boundary)?);
     }
-    progress(total, total);
+    progress(Progress::Tables(total, total));
     // Control points: only those the table weighs (the labels of the face's one-ring).
     for fc in &mut faces {
         fc.control.truncate(configs[fc.config as usize].control);
@@ -273,7 +292,7 @@ fn table(
     }
     let mut local: Vec<[u32; 3]> = local.iter().map(|t| t.map(|v| labels[&v])).collect();
     let mut count = order.len();
-    split_fans(&mut local, &mut count, control as u32);
+    split_fans(&mut local, &mut count, |v| v >= control as u32);
     let dims = count;
     // Weights of every local vertex on the cut-out vertices, level by level.
     let mut w: Vec<f64> = vec![0.0; count * dims];
@@ -296,10 +315,23 @@ fn table(
                 }
             }
         }
-        w = next;
         tracked = children_in_lattice(&tracked);
-        let faces = refined_faces(&topo_l);
-        count = st.len();
+        // Only what is within PRUNE_RINGS rings of the face goes on (a valence-300 vertex
+        // would otherwise make a million-face configuration mesh at the last level); the new
+        // rim is subdivided wrongly too, and its error stays beyond the face as the first cut's.
+        let (mut faces, old_of, rim) =
+            prune(&refined_faces(&topo_l), st.len(), &mut tracked, PRUNE_RINGS);
+        count = old_of.len();
+        let origin = split_fans(&mut faces, &mut count, |v| rim[v as usize]);
+        w = old_of
+            .iter()
+            .chain(origin.iter().map(|&o| &old_of[o as usize]))
+            .flat_map(|&old| {
+                next[old as usize * dims..(old as usize + 1) * dims]
+                    .iter()
+                    .copied()
+            })
+            .collect();
         topo_l = Topology::new(&faces, count)?;
     }
     // The lattice vertex at each row, then its limit mask.
@@ -370,17 +402,88 @@ pub fn children_in_lattice(faces: &[(usize, [[u32; 2]; 3])]) -> Vec<(usize, [[u3
         .collect()
 }
 
-/// Split every vertex at or above `from` whose faces form several fans (the cut's rim can pinch)
-/// into one vertex per fan, so the configuration mesh is a manifold.
-fn split_fans(faces: &mut [[u32; 3]], count: &mut usize, from: u32) {
+/// Rings of faces kept around the face after each step of a configuration mesh.
+const PRUNE_RINGS: usize = 3;
+
+/// The faces of `faces` (over `count` vertices) within `rings` rings of the tracked faces'
+/// vertices, renumbered: the kept faces (tracked face indices updated), each new vertex's old
+/// index, and which new vertices are on the rim (their neighbourhoods cut).
+fn prune(
+    faces: &[[u32; 3]],
+    count: usize,
+    tracked: &mut [(usize, [[u32; 2]; 3])],
+    rings: usize,
+) -> (Vec<[u32; 3]>, Vec<u32>, Vec<bool>) {
+    let mut vf: Vec<Vec<u32>> = vec![Vec::new(); count];
+    for (f, t) in faces.iter().enumerate() {
+        for &v in t {
+            vf[v as usize].push(f as u32);
+        }
+    }
+    let mut dist = vec![usize::MAX; count];
+    let mut frontier: Vec<u32> = Vec::new();
+    for &(f, _) in tracked.iter() {
+        for &v in &faces[f] {
+            if dist[v as usize] == usize::MAX {
+                dist[v as usize] = 0;
+                frontier.push(v);
+            }
+        }
+    }
+    for r in 0..rings {
+        let mut next = Vec::new();
+        for &v in &frontier {
+            for &f in &vf[v as usize] {
+                for &u in &faces[f as usize] {
+                    if dist[u as usize] == usize::MAX {
+                        dist[u as usize] = r + 1;
+                        next.push(u);
+                    }
+                }
+            }
+        }
+        frontier = next;
+    }
+    let mut new_of = vec![u32::MAX; count];
+    let mut old_of = Vec::new();
+    let mut face_of = vec![u32::MAX; faces.len()];
+    let mut kept = Vec::new();
+    for (f, t) in faces.iter().enumerate() {
+        if t.iter().any(|&v| dist[v as usize] < rings) {
+            face_of[f] = kept.len() as u32;
+            kept.push(t.map(|v| {
+                if new_of[v as usize] == u32::MAX {
+                    new_of[v as usize] = old_of.len() as u32;
+                    old_of.push(v);
+                }
+                new_of[v as usize]
+            }));
+        }
+    }
+    for (f, _) in tracked.iter_mut() {
+        *f = face_of[*f] as usize;
+    }
+    let rim = old_of.iter().map(|&v| dist[v as usize] >= rings).collect();
+    (kept, old_of, rim)
+}
+
+/// Split every vertex `splittable` says may be (on a cut's rim, which can pinch) whose faces form
+/// several fans into one vertex per fan, so the configuration mesh is a manifold. Returns the
+/// original of each vertex added (numbered from the old `count` on).
+fn split_fans(
+    faces: &mut [[u32; 3]],
+    count: &mut usize,
+    splittable: impl Fn(u32) -> bool,
+) -> Vec<u32> {
     let mut at: Vec<Vec<usize>> = vec![Vec::new(); *count];
     for (f, t) in faces.iter().enumerate() {
         for &v in t {
             at[v as usize].push(f);
         }
     }
-    for (v, fs) in at.iter().enumerate().skip(from as usize) {
-        if fs.len() < 2 {
+    let mut origin = Vec::new();
+    for (v, fs) in at.iter().enumerate() {
+        if fs.len() < 2 || !splittable(v as u32) {
             continue;
         }
         // Union faces that share an edge at v.
@@ -416,6 +519,7 @@ fn split_fans(faces: &mut [[u32; 3]], count: &mut usize, from: u32) {
                 if first {
                     v as u32
                 } else {
+                    origin.push(v as u32);
                     *count += 1;
                     (*count - 1) as u32
                 }
@@ -427,6 +531,7 @@ fn split_fans(faces: &mut [[u32; 3]], count: &mut usize, from: u32) {
             }
         }
     }
+    origin
 }
 
 #[cfg(test)]
@@ -467,7 +572,7 @@ mod tests {
                 let p0: Vec<DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();
                 let m1 = loop_step(&topo0, &p0, boundary);
                 let t1 = Topology::new(&m1.faces, m1.positions.len()).unwrap();
-                let tables = build(&t1, boundary, |_, _| {}).unwrap();
+                let tables = build(&t1, boundary, |_| {}).unwrap();
                 for c in &tables.configs {
                     assert_eq!(c.outside, 0.0, "{file}: weight outside the control points");
                     for r in 0..ROWS {
@@ -524,7 +629,7 @@ mod tests {
         let p0: Vec<DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();
         let m1 = loop_step(&topo0, &p0, Boundary::EdgeOnly);
         let t1 = Topology::new(&m1.faces, m1.positions.len()).unwrap();
-        let tables = build(&t1, Boundary::EdgeOnly, |_, _| {}).unwrap();
+        let tables = build(&t1, Boundary::EdgeOnly, |_| {}).unwrap();
         let mut valences: Vec<usize> = tables.configs.iter().map(|c| c.valence).collect();
         valences.sort();
         assert_eq!(valences, [3, 6]);

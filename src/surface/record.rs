@@ -175,7 +175,7 @@ pub fn build_records(kind: RecordKind, mesh: &Mesh, seams: Seams) -> Vec<Element
             .collect(),
         // Loop's records depend on M1's topology and are built with its tables.
         RecordKind::LoopFaces => {
-            super::subdivision::LoopData::new(mesh, Default::default(), |_, _| {})
+            super::subdivision::LoopData::new(mesh, Default::default(), |_| {})
                 .map(|d| d.records)
                 .unwrap_or_default()
         }

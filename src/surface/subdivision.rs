@@ -86,11 +86,11 @@ impl FaceRecord {
 
 impl LoopData {
     /// Topology, M1, configurations and tables of `mesh` (positions welded by index); `progress`
-    /// hears (done, total) as tables are built.
+    /// hears how far the tables are ([`bft::Progress`]).
     pub fn new(
         mesh: &Mesh,
         boundary: Boundary,
-        progress: impl FnMut(usize, usize),
+        progress: impl FnMut(bft::Progress),
     ) -> Result<Self, TopologyError> {
         let topo0 = Topology::of_mesh(mesh)?;
         let stencils = stencils(&topo0, boundary);
@@ -383,7 +383,7 @@ mod tests {
 
     fn setup(file: &str, boundary: Boundary) -> (Mesh, LoopData, LoopFrame) {
         let (mesh, _) = load_model(file);
-        let data = LoopData::new(&mesh, boundary, |_, _| {}).unwrap();
+        let data = LoopData::new(&mesh, boundary, |_| {}).unwrap();
         let frame = data.frame(&mesh.positions);
         (mesh, data, frame)
     }
