@@ -99,6 +99,23 @@ Corners canonical(CornerRecord t, vec3 bary) {
 // an exact zero, as the pattern's are, so both triangles sharing the edge get the same weights.
 // Interior points (every coordinate >= 1/n) are used as the tessellator made them.
 // Mirror: src/surface/mod.rs `tess_weights`.
+// The corners in stored order, for `flat` (src/surface/mod.rs `stored_order`: its two non-zero
+// terms on a shared edge add the same in either order, `precise` keeps them unfused).
+Corners stored_corners(CornerRecord t, vec3 bary) {
+    Corners c;
+    for (int i = 0; i < 3; ++i) {
+        c.p[i] = t.p[i];
+        c.n[i] = t.n[i];
+        c.g[i] = t.g[i];
+        int e = i;
+        c.seam_pn[i] = ((t.idx.w >> uint(e)) & 1u) == 1u;
+        c.seam_phong[i] = ((t.idx.w >> uint(3 + e)) & 1u) == 1u;
+        c.w[i] = bary[i];
+        c.o[i] = i;
+    }
+    return c;
+}
+
 vec3 tess_weights(vec3 tc, uint n) {
     float fn = float(n);
     float half_step = 0.5 / fn;

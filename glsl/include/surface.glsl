@@ -42,7 +42,7 @@ vec3 surface_normal(Corners c, StTag t[3]) {
 // The surface without displacement.
 SurfacePoint surface_eval(ElementRecord rec, Sample s) {
     CornerRecord r = corner_record(rec);
-    Corners c = canonical(r, s.bary);
+    Corners c = SURFACE == SURFACE_FLAT ? stored_corners(r, s.bary) : canonical(r, s.bary);
     StTag tags[3];
     if (SURFACE == SURFACE_STPN) {
         stpn_corner_tags(r, c, tags);

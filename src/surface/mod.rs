@@ -279,6 +279,18 @@ pub fn canonical(rec: &CornerRecord, bary: [f32; 3]) -> Corners {
     // Sorting key: zero weights last, then global index.
     let key = |c: usize| ((bary[c] == 0.0) as u64) << 32 | rec.idx[c] as u64;
     order.sort_by_key(|&c| key(c));
+    corners_in(rec, bary, order)
+}
+
+/// The corners in their stored order, for `flat`: its points and normals are sums of products
+/// of a weight and a corner, and on a shared edge the third weight is an exact zero, so both
+/// triangles add the same two non-zero terms (addition commutes; the GLSL is `precise`) and
+/// agree to the bit in any order. Mirror of `stored_corners()` in corners.glsl.
+pub fn stored_order(rec: &CornerRecord, bary: [f32; 3]) -> Corners {
+    corners_in(rec, bary, [0, 1, 2])
+}
+
+fn corners_in(rec: &CornerRecord, bary: [f32; 3], order: [usize; 3]) -> Corners {
     let flags = rec.seam_flags();
     // Canonical edge e joins canonical corners (e, e + 1 mod 3): its stored edge.
     let stored = |e: usize| stored_edge(order[e], order[(e + 1) % 3]);
@@ -352,7 +364,13 @@ pub fn eval_surface(
         return subdivision::eval(data, frame, rec, bary);
     }
     let r = CornerRecord::decode(rec);
-    let c = canonical(&r, bary);
+    // `flat` needs no canonical order (see `stored_order`), and skipping the sort per vertex is
+    // most of what the pattern driver does beyond the static buffer's work.
+    let c = if surface == Surface::Flat {
+        stored_order(&r, bary)
+    } else {
+        canonical(&r, bary)
+    };
     let tags = inputs.tags.map_or([stpn::VertexTag::default(); 3], |t| {
         stpn::corner_tags(t, &r.idx, c.order)
     });
