@@ -1,8 +1,9 @@
 //! Benchmarks shared by `cargo bench` (benches/fig7.rs) and `meshrefine bench`: every surface x
 //! displacement x driver and submission mode on the same meshes and levels, in the same run, so the
 //! ratios against `static` (same surface, displacement, mesh and level) compare like with like. Frame time from GPU timestamps and wall clock (submit to fence), median
-//! and spread over timed frames after one warm-up frame (Mesa compiles shaders at the first draw).
-//! Timings are measured, never asserted.
+//! and spread over timed frames after one warm-up frame (Mesa compiles shaders at the first draw);
+//! the timed frames go round the variants in turn (static, push, ubo, instanced, tess, static, ...),
+//! so a drift of the machine touches every variant alike. Timings are measured, never asserted.
 #![forbid(unsafe_code)]
 
 use crate::mesh::Mesh;
@@ -217,6 +218,15 @@ fn footprint(cfg: &DrawConfig, triangles: u64) -> (u64, u64, u64) {
     }
 }
 
+/// One variant's row and timed frames while the frames go round the variants.
+struct Run {
+    row: Row,
+    cfg: DrawConfig,
+    drawn: bool,
+    gpu: Vec<f64>,
+    wall: Vec<f64>,
+}
+
 /// Measure every variant on every mesh at every level.
 pub fn run(
     ctx: Arc<crate::gpu::Context>,
@@ -260,19 +270,22 @@ pub fn run(
             // Refined triangles per GPU ms of `flat` by variant and displacement.
             let mut flat_rate: Vec<(String, Displace, f64)> = Vec::new();
             for &(surface, displace) in &surfaces {
-                let mut reference: Option<(f64, f64)> = None;
-                // `static` first: the reference of the ratios.
+                // Every variant is warmed up, then the timed frames go round the variants in
+                // turn, so a slow drift of the machine (this one moves ±25 % from run to run)
+                // touches every variant alike and the ratios compare like with like.
+                let mut runs: Vec<Run> = Vec::new();
                 for driver in Driver::VARIANTS {
                     let mut cfg = DrawConfig::new(driver, level).with_surface(surface, displace);
                     cfg.params = params;
                     if !opts.drivers.is_empty() && !opts.drivers.contains(&driver) {
                         continue;
                     }
-                    let t = if driver == Driver::Tess && level > max_tess {
-                        // Not drawn (below); loop's M1 is there once another driver drew it.
-                        scene.elements(surface).element_count
-                    } else {
+                    let drawn = !(driver == Driver::Tess && level > max_tess);
+                    let t = if drawn {
                         h.prepared_elements(&mut scene, &cfg, crate::render::Capture::None)?
+                    } else {
+                        // Not drawn; loop's M1 is there once another driver drew it.
+                        scene.elements(surface).element_count
                     };
                     let (stored_vertices, stored_indices, geometry_bytes) =
                         footprint(&cfg, t as u64);
@@ -299,26 +312,46 @@ pub fn run(
                         table_bytes: loop_scene.map(|l| l.data.table_bytes()),
                         note: String::new(),
                     };
-                    if driver == Driver::Tess && level > max_tess {
+                    if drawn {
+                        h.draw(&mut scene, &cfg, &camera)?; // warm-up: shaders, static VBO
+                    } else {
                         row.note = format!(
                             "not drawn: level > maxTessellationGenerationLevel ({max_tess})"
                         );
+                    }
+                    runs.push(Run {
+                        row,
+                        cfg,
+                        drawn,
+                        gpu: Vec::new(),
+                        wall: Vec::new(),
+                    });
+                }
+                for _ in 0..opts.frames.max(1) {
+                    for r in runs.iter_mut().filter(|r| r.drawn) {
+                        let f = h.draw(&mut scene, &r.cfg, &camera)?;
+                        r.row.vertex_invocations = f.stats.map(|s| s.vertex_shader_invocations);
+                        r.gpu.push(f.gpu_ms);
+                        r.wall.push(f.wall_ms);
+                    }
+                }
+                let reference = runs
+                    .iter()
+                    .find(|r| r.drawn && r.cfg.driver == Driver::Static)
+                    .map(|r| (Stat::of(&r.gpu).median, Stat::of(&r.wall).median));
+                for Run {
+                    mut row,
+                    drawn,
+                    gpu,
+                    wall,
+                    ..
+                } in runs
+                {
+                    if !drawn {
                         rows.push(row);
                         continue;
                     }
-                    h.draw(&mut scene, &cfg, &camera)?; // warm-up: shader compilation, static VBO build
-                    let mut gpu = Vec::new();
-                    let mut wall = Vec::new();
-                    for _ in 0..opts.frames.max(1) {
-                        let f = h.draw(&mut scene, &cfg, &camera)?;
-                        row.vertex_invocations = f.stats.map(|s| s.vertex_shader_invocations);
-                        gpu.push(f.gpu_ms);
-                        wall.push(f.wall_ms);
-                    }
                     let (g, w) = (Stat::of(&gpu), Stat::of(&wall));
-                    if driver == Driver::Static {
-                        reference = Some((g.median, w.median));
-                    }
                     if let Some((rg, rw)) = reference {
                         row.gpu_ratio = Some(g.median / rg);
                         row.wall_ratio = Some(w.median / rw);
@@ -374,7 +407,7 @@ impl Report {
         let mut s = String::new();
         let _ = writeln!(
             s,
-            "Device: {}. {}x{} offscreen, median (min–max) of {} timed frames after one warm-up frame; ratios are against `static` at the same mesh and level, and throughput (refined triangles per GPU ms) against `flat` with the same variant, measured in the same run. Elements: the coarse triangles, or M1's faces for `loop`.\n",
+            "Device: {}. {}x{} offscreen, median (min–max) of {} timed frames after one warm-up frame, taken round the variants in turn; ratios are against `static` at the same mesh and level, and throughput (refined triangles per GPU ms) against `flat` with the same variant, measured in the same run. Elements: the coarse triangles, or M1's faces for `loop`.\n",
             self.device, self.width, self.height, self.frames
         );
         let _ = writeln!(

@@ -6,7 +6,7 @@
 //!
 //! Run on the curved surfaces too, and with displacement: on `flat` (and `phong`) an edge point is
 //! a sum of two non-zero terms and addition commutes, so those stay watertight even without the
-//! canonical order; `pn`'s cubic weight products do not (see the unit test
+//! canonical order (`flat` is evaluated in stored order for that reason); `pn`'s cubic weight products do not (see the unit test
 //! `stored_order_breaks_bit_identity_on_curved_surfaces`), so these tests fail if the canonical
 //! order is removed.
 

@@ -636,7 +636,6 @@ impl Scene {
                     || v.cfg.surface != cfg.surface
                     || v.cfg.displace != cfg.displace
                     || v.cfg.params != cfg.params
-                    || cfg.surface == Surface::Loop
             });
             if stale {
                 self.static_vbo = None;
