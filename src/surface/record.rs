@@ -173,12 +173,11 @@ pub fn build_records(kind: RecordKind, mesh: &Mesh, seams: Seams) -> Vec<Element
             .iter()
             .map(CornerRecord::encode)
             .collect(),
-        // Loop's records depend on M1's topology and are built with its tables.
-        RecordKind::LoopFaces => {
-            super::subdivision::LoopData::new(mesh, Default::default(), |_| {})
-                .map(|d| d.records)
-                .unwrap_or_default()
-        }
+        // M1's faces: none for a mesh Loop cannot subdivide (`LoopData::new`, which the scene
+        // builds first, says why).
+        RecordKind::LoopFaces => super::subdivision::m1_topology(mesh)
+            .map(|m1| super::subdivision::face_records(&m1))
+            .unwrap_or_default(),
     }
 }
 

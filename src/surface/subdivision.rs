@@ -121,39 +121,7 @@ impl LoopData {
             rings.extend(ring);
         }
         ring_offsets.push(rings.len() as u32);
-        // Owners: of each edge the lower face, of each vertex the lowest face around it.
-        let mut vertex_owner = vec![u32::MAX; m1.vertex_count];
-        for (f, t) in m1.faces.iter().enumerate() {
-            for &v in t {
-                vertex_owner[v as usize] = vertex_owner[v as usize].min(f as u32);
-            }
-        }
-        let corner_in =
-            |g: u32, v: u32| m1.faces[g as usize].iter().position(|&x| x == v).unwrap() as u32;
-        let records = (0..m1.faces.len())
-            .map(|f| {
-                let t = m1.faces[f];
-                let mut packed = 0;
-                let edge_owner = [0, 1, 2].map(|e| {
-                    let g = m1.twin[3 * f + e].map_or(f as u32, |h| (h / 3).min(f as u32));
-                    packed |= corner_in(g, t[e]) << (4 * e);
-                    packed |= corner_in(g, t[(e + 1) % 3]) << (4 * e + 2);
-                    g
-                });
-                let corner_owner = [0, 1, 2].map(|i| {
-                    let h = vertex_owner[t[i] as usize];
-                    packed |= corner_in(h, t[i]) << (12 + 2 * i);
-                    h
-                });
-                FaceRecord {
-                    face: f as u32,
-                    edge_owner,
-                    corner_owner,
-                    packed,
-                }
-                .encode()
-            })
-            .collect();
+        let records = face_records(&m1);
         Ok(Self {
             boundary,
             m0_count: topo0.vertex_count,
@@ -237,6 +205,56 @@ impl LoopData {
         let p1: Vec<DVec3> = self.stencils.iter().map(|s| s.apply(&p0)).collect();
         crate::subdiv::limit_positions(&self.m1, &p1, self.boundary)
     }
+}
+
+/// One record per face of M1 (`m1`): the face, the owners of its edges (the lower numbered of
+/// the two faces) and corners (the lowest numbered face around the vertex), and where its
+/// corners are in them. Topology only: the same for either boundary rule.
+pub fn face_records(m1: &Topology) -> Vec<ElementRecord> {
+    let mut vertex_owner = vec![u32::MAX; m1.vertex_count];
+    for (f, t) in m1.faces.iter().enumerate() {
+        for &v in t {
+            vertex_owner[v as usize] = vertex_owner[v as usize].min(f as u32);
+        }
+    }
+    let corner_in =
+        |g: u32, v: u32| m1.faces[g as usize].iter().position(|&x| x == v).unwrap() as u32;
+    (0..m1.faces.len())
+        .map(|f| {
+            let t = m1.faces[f];
+            let mut packed = 0;
+            let edge_owner = [0, 1, 2].map(|e| {
+                let g = m1.twin[3 * f + e].map_or(f as u32, |h| (h / 3).min(f as u32));
+                packed |= corner_in(g, t[e]) << (4 * e);
+                packed |= corner_in(g, t[(e + 1) % 3]) << (4 * e + 2);
+                g
+            });
+            let corner_owner = [0, 1, 2].map(|i| {
+                let h = vertex_owner[t[i] as usize];
+                packed |= corner_in(h, t[i]) << (12 + 2 * i);
+                h
+            });
+            FaceRecord {
+                face: f as u32,
+                edge_owner,
+                corner_owner,
+                packed,
+            }
+            .encode()
+        })
+        .collect()
+}
+
+/// M1's topology from `mesh` (one Loop step of its position topology).
+pub fn m1_topology(mesh: &Mesh) -> Result<Topology, TopologyError> {
+    let topo0 = Topology::of_mesh(mesh)?;
+    let edges = (topo0.twin.iter().enumerate())
+        .filter(|&(h, t)| t.is_none_or(|t| t as usize > h))
+        .count();
+    Topology::new(
+        &crate::subdiv::refined_faces(&topo0),
+        topo0.vertex_count + edges,
+    )
 }
 
 /// Mirror of `ring_normal` in glsl/subdiv/loop_normals.comp.
@@ -386,6 +404,20 @@ mod tests {
         let data = LoopData::new(&mesh, boundary, |_| {}).unwrap();
         let frame = data.frame(&mesh.positions);
         (mesh, data, frame)
+    }
+
+    /// The records `build_records` makes for loop (topology only) are the ones `LoopData` holds.
+    #[test]
+    fn face_records_need_only_the_topology() {
+        for file in ["spot_open.obj", "tetrahedron.obj"] {
+            let (mesh, data, _) = setup(file, Boundary::EdgeAndCorner);
+            let records = crate::surface::build_records(
+                crate::surface::RecordKind::LoopFaces,
+                &mesh,
+                Default::default(),
+            );
+            assert_eq!(records, data.records, "{file}");
+        }
     }
 
     /// Every M1 edge, sampled at every level-n point from both of its faces, gives bit-identical
