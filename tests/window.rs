@@ -130,6 +130,15 @@ fn window_demo_presents_and_screenshots() {
         ("pattern", vec!["--wireframe", "--animate"]),
         ("tess", vec!["--driver", "tess", "--level", "8"]),
         ("static", vec!["--driver", "static", "--level", "4"]),
+        // Loop, animated: the M0 -> M1 passes run every frame before the draws.
+        (
+            "loop",
+            vec!["--surface", "loop", "--animate", "--level", "4"],
+        ),
+        (
+            "loop-tess",
+            vec!["--surface", "loop", "--driver", "tess", "--level", "4"],
+        ),
     ] {
         let shot = dir.join(format!("{name}.png"));
         let _ = std::fs::remove_file(&shot);
