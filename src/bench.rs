@@ -207,14 +207,14 @@ pub fn wavy_grid_mesh(cols: u32, rows: u32) -> Mesh {
     mesh
 }
 
-fn footprint(cfg: &DrawConfig, triangles: u64) -> (u64, u64, u64) {
-    let bytes = cfg.geometry_bytes(triangles);
+/// Refined vertices and indices stored on the GPU.
+fn footprint(cfg: &DrawConfig, triangles: u64) -> (u64, u64) {
     let level = cfg.level;
     let (pv, pi) = (vertex_count(level) as u64, index_count(level) as u64);
     match cfg.driver {
-        Driver::Static => (triangles * pv, triangles * pi, bytes),
-        Driver::Pattern(_) => (pv, pi, bytes),
-        Driver::Tess => (0, 0, bytes),
+        Driver::Static => (triangles * pv, triangles * pi),
+        Driver::Pattern(_) => (pv, pi),
+        Driver::Tess => (0, 0),
     }
 }
 
@@ -287,8 +287,8 @@ pub fn run(
                         // Not drawn; loop's M1 is there once another driver drew it.
                         scene.elements(surface).element_count
                     };
-                    let (stored_vertices, stored_indices, geometry_bytes) =
-                        footprint(&cfg, t as u64);
+                    let (stored_vertices, stored_indices) = footprint(&cfg, t as u64);
+                    let geometry_bytes = scene.geometry_bytes(&cfg);
                     let loop_scene = scene.subdiv.as_ref().filter(|_| surface == Surface::Loop);
                     let mut row = Row {
                         mesh: mesh.name.clone(),

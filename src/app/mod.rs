@@ -479,7 +479,7 @@ impl State {
             mesh: self.scene.elements(cfg.surface),
             records: self.scene.records(cfg.surface),
             static_vbo: self.scene.static_vbo.as_ref(),
-            pre_pass: self.scene.pre_pass(cfg.surface),
+            pre_pass: self.scene.pre_pass(&cfg),
             cfg,
             capture: crate::render::Capture::None,
             xfb: None,
@@ -575,7 +575,7 @@ impl State {
             drawn: d,
             coarse,
             refined: coarse * d.refined_per_coarse() as u64,
-            geometry_bytes: d.geometry_bytes(coarse),
+            geometry_bytes: self.scene.geometry_bytes(&d),
             upload_bytes: self.scene.upload_bytes(&d),
             table_bytes: self
                 .scene
@@ -597,7 +597,7 @@ impl State {
         self.fps = (self.frames - n0) as f64 / dt;
         self.fps_window = (Instant::now(), self.frames);
         let coarse = self.scene.elements(cfg.surface).element_count as u64;
-        let bytes = cfg.geometry_bytes(coarse);
+        let bytes = self.scene.geometry_bytes(cfg);
         let c = &self.controls;
         self.window.set_title(&format!(
             "meshrefine | {} level {}{}{}{} | {:.0} fps | GPU {:.2} ms | {} -> {} triangles | {:.2} MB geometry | max level {}",

@@ -177,7 +177,11 @@ impl Headless {
         cfg: &DrawConfig,
     ) -> Result<Option<f64>, RenderError> {
         self.prepared_elements(scene, cfg, Capture::None)?;
-        let Some(pass) = scene.pre_pass(cfg.surface) else {
+        let gpu = DrawConfig {
+            driver: Driver::default(),
+            ..*cfg
+        };
+        let Some(pass) = scene.pre_pass(&gpu) else {
             return Ok(None);
         };
         let queries = &self.queries;
@@ -218,7 +222,7 @@ impl Headless {
             mesh: scene.elements(cfg.surface),
             records: scene.records(cfg.surface),
             static_vbo: scene.static_vbo.as_ref(),
-            pre_pass: scene.pre_pass(cfg.surface),
+            pre_pass: scene.pre_pass(cfg),
             cfg: *cfg,
             capture,
             xfb,

@@ -181,6 +181,27 @@ impl LoopPass {
         self.m0_count as u64 * 16
     }
 
+    /// GPU bytes the loop surface holds besides the element records: M0, M1's positions and
+    /// normals, the computational entries, the one-rings, the faces' table entries and control
+    /// points, and the tables. None of it grows with the level.
+    pub fn gpu_bytes(&self) -> u64 {
+        [
+            &self.m0,
+            &self.m1,
+            &self.n1,
+            &self._offsets,
+            &self._entries,
+            &self._ring_offsets,
+            &self._rings,
+            &self.faces,
+            &self.control,
+            &self.tables,
+        ]
+        .iter()
+        .map(|b| b.size())
+        .sum()
+    }
+
     pub fn m1_count(&self) -> u32 {
         self.m1_count
     }

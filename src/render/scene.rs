@@ -678,7 +678,7 @@ impl Scene {
     /// coarse records (the local surfaces), or M0's positions (loop): the last two independent
     /// of the level.
     pub fn upload_bytes(&self, cfg: &super::DrawConfig) -> u64 {
-        match (cfg.driver, self.pre_pass(cfg.surface)) {
+        match (cfg.driver, self.pre_pass(cfg)) {
             (super::Driver::Static, _) => {
                 cfg.geometry_bytes(self.elements(cfg.surface).element_count as u64)
             }
@@ -704,10 +704,19 @@ impl Scene {
         }
     }
 
-    /// The passes `surface` runs before drawing (Loop's M0 -> M1).
-    pub fn pre_pass(&self, surface: Surface) -> Option<&LoopPass> {
-        match (&self.subdiv, surface) {
-            (Some(l), Surface::Loop) => Some(&l.pass),
+    /// GPU bytes of geometry `cfg` draws from: the driver's own ([`super::DrawConfig::geometry_bytes`]
+    /// of the elements) and, for loop, M1, its passes' data and the tables.
+    pub fn geometry_bytes(&self, cfg: &super::DrawConfig) -> u64 {
+        let elements = self.elements(cfg.surface).element_count as u64;
+        cfg.geometry_bytes(elements) + self.pre_pass(cfg).map_or(0, |p| p.gpu_bytes())
+    }
+
+    /// The passes `cfg` runs before drawing (Loop's M0 -> M1 on the GPU drivers; `static`
+    /// draws what the CPU evaluated).
+    pub fn pre_pass(&self, cfg: &super::DrawConfig) -> Option<&LoopPass> {
+        match (&self.subdiv, cfg.surface, cfg.driver) {
+            (_, _, super::Driver::Static) => None,
+            (Some(l), Surface::Loop, _) => Some(&l.pass),
             _ => None,
         }
     }
