@@ -2,8 +2,8 @@
 //! pipelines evaluate at level N = 2^k (k <= 5, lattice rows of the tables) equal the limit
 //! positions of M^(1 + k) (the CPU reference, itself checked against OpenSubdiv by
 //! scripts/check-loop-osd.sh) within 1e-5 of the bounding-box diagonal: closed meshes (valences
-//! 3 to 16), open meshes with both boundary rules, and a vertex of valence 24 (beyond the 2010
-//! paper's tables, which stop at 18). Validation on.
+//! 3 to 16, and a sphere with valence-40 poles), open meshes with both boundary rules, and a
+//! vertex of valence 24 (beyond the 2010 paper's tables, which stop at 18). Validation on.
 
 mod common;
 
@@ -34,21 +34,32 @@ fn scene(
 
 #[test]
 fn dyadic_levels_are_the_limit_surface() {
-    let cases = [
+    let all = vec![1u32, 2, 4, 8, 32];
+    let mut cases: Vec<(String, meshrefine::mesh::Mesh, Boundary, Vec<u32>)> = [
         ("spot_control_tri.obj", Boundary::EdgeOnly),
         ("bicone16.obj", Boundary::EdgeOnly),
         ("fan24_open.obj", Boundary::EdgeOnly),
         ("grid_open_8x8.obj", Boundary::EdgeAndCorner),
         ("spot_open.obj", Boundary::EdgeOnly),
-    ];
+    ]
+    .into_iter()
+    .map(|(f, b)| (f.to_string(), model(f), b, all.clone()))
+    .collect();
+    // Two valence-40 poles: configuration meshes pruned level by level (src/subdiv/bft.rs); the
+    // reference at level 32 (M^6) would be 1.6 M faces, so up to 8 here.
+    cases.push((
+        "sphere, valence-40 poles".into(),
+        meshrefine::bench::sphere_mesh(40, 6),
+        Boundary::EdgeOnly,
+        vec![1, 2, 4, 8],
+    ));
     with_gpu(64, 64, |h| {
-        for (file, boundary) in cases {
-            let mesh = model(file);
-            let levels = [1u32, 2, 4, 8, 32];
-            let (mut scene, camera, r) = scene(h, mesh.clone(), &levels);
+        for (file, mesh, boundary, levels) in cases {
+            let levels = &levels[..];
+            let (mut scene, camera, r) = scene(h, mesh.clone(), levels);
             let (lo, hi) = mesh.bounds();
             let diag = (hi - lo).length() as f64;
-            for n in levels {
+            for &n in levels {
                 let k = n.trailing_zeros();
                 let mut cfg = DrawConfig::new(Driver::Pattern(Submit::Instanced), n)
                     .with_surface(Surface::Loop, Displace::None);
