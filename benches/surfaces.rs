@@ -33,6 +33,7 @@ fn main() {
         width: 1280,
         height: 720,
         drivers: vec![],
+        min_total_ms: 0.0,
     };
     h.run("surfaces", &[mesh], &opts);
 }

@@ -53,6 +53,7 @@ fn main() {
         width: 1280,
         height: 720,
         drivers: drivers.clone(),
+        min_total_ms: 0.0,
     };
     h.run("table1", &meshes, &opts);
     let fig8 = BenchOptions {

@@ -26,6 +26,10 @@ pub struct BenchOptions {
     pub height: u32,
     /// The driver variants measured (empty: every one; `static` is the reference of the ratios).
     pub drivers: Vec<Driver>,
+    /// Keep taking rounds past `frames` until every variant has this much GPU time in total
+    /// (milliseconds; 0: exactly `frames`), so frames of a few milliseconds, whose timestamps
+    /// jitter most, get more samples. At most 20 × `frames` rounds.
+    pub min_total_ms: f64,
 }
 
 /// Median, min and max of a sample.
@@ -327,13 +331,25 @@ pub fn run(
                         wall: Vec::new(),
                     });
                 }
-                for _ in 0..opts.frames.max(1) {
+                let frames = opts.frames.max(1) as usize;
+                let enough = |runs: &[Run]| {
+                    runs.iter().filter(|r| r.drawn).all(|r| {
+                        r.gpu.len() >= frames
+                            && (r.gpu.iter().sum::<f64>() >= opts.min_total_ms
+                                || r.gpu.len() >= 20 * frames)
+                    })
+                };
+                while !enough(&runs) {
                     for r in runs.iter_mut().filter(|r| r.drawn) {
                         let f = h.draw(&mut scene, &r.cfg, &camera)?;
                         r.row.vertex_invocations = f.stats.map(|s| s.vertex_shader_invocations);
                         r.gpu.push(f.gpu_ms);
                         r.wall.push(f.wall_ms);
                     }
+                }
+                let timed = runs.iter().map(|r| r.gpu.len()).max().unwrap_or(0);
+                for r in runs.iter_mut().filter(|r| r.drawn && timed > frames) {
+                    r.row.note = format!("{timed} timed frames");
                 }
                 let reference = runs
                     .iter()
@@ -407,7 +423,7 @@ impl Report {
         let mut s = String::new();
         let _ = writeln!(
             s,
-            "Device: {}. {}x{} offscreen, median (min–max) of {} timed frames after one warm-up frame, taken round the variants in turn; ratios are against `static` at the same mesh and level, and throughput (refined triangles per GPU ms) against `flat` with the same variant, measured in the same run. Elements: the coarse triangles, or M1's faces for `loop`.\n",
+            "Device: {}. {}x{} offscreen, median (min–max) of {} timed frames (more where a note says so) after one warm-up frame, taken round the variants in turn; ratios are against `static` at the same mesh and level, and throughput (refined triangles per GPU ms) against `flat` with the same variant, measured in the same run. Elements: the coarse triangles, or M1's faces for `loop`.\n",
             self.device, self.width, self.height, self.frames
         );
         let _ = writeln!(

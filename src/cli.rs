@@ -327,6 +327,10 @@ pub struct BenchArgs {
     /// Timed frames per variant (after one warm-up frame; at least 1).
     #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..))]
     pub frames: u32,
+    /// Keep timing past --frames until every variant has this many GPU milliseconds in total
+    /// (at most 20 x --frames frames): more samples for short frames, whose timestamps jitter.
+    #[arg(long, default_value_t = 0.0)]
+    pub min_total_ms: f64,
     #[arg(long, default_value_t = 1280)]
     pub width: u32,
     #[arg(long, default_value_t = 720)]

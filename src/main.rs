@@ -356,6 +356,12 @@ fn run(cli: Cli) -> Result<()> {
         }
         Command::Info(a) => info(a)?,
         Command::Bench(a) => {
+            if !(a.min_total_ms.is_finite() && a.min_total_ms >= 0.0) {
+                bail!(
+                    "--min-total-ms {} is not a finite number >= 0",
+                    a.min_total_ms
+                );
+            }
             let input = load_mesh(a.mesh.as_deref())?;
             let ctx = Context::new(&desc)?;
             let messages = ctx.messages_handle();
@@ -383,6 +389,7 @@ fn run(cli: Cli) -> Result<()> {
                     .into_iter()
                     .filter(|v| a.drivers.iter().any(|d| d.same_kind(*v)))
                     .collect(),
+                min_total_ms: a.min_total_ms,
             };
             // Drawn centred and at unit size, like `render`: the timings do not change.
             let mut mesh = mesh;
