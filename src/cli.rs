@@ -329,7 +329,7 @@ pub struct BenchArgs {
     pub frames: u32,
     /// Keep timing past --frames until every variant has this many GPU milliseconds in total
     /// (at most 20 x --frames frames): more samples for short frames, whose timestamps jitter.
-    #[arg(long, default_value_t = 0.0)]
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     pub min_total_ms: f64,
     #[arg(long, default_value_t = 1280)]
     pub width: u32,

@@ -1177,3 +1177,14 @@ fn loop_surface_from_the_command_line() {
         assert!(!r.contains("\"throughput_vs_flat\":null"), "{r}");
     }
 }
+
+/// `bench --min-total-ms` must be a finite number of milliseconds >= 0.
+#[test]
+fn bench_min_total_ms_is_checked() {
+    for v in ["nan", "-1", "inf"] {
+        expect_error(
+            &["bench", "--min-total-ms", v, "--levels", "1", "--frames", "1"],
+            &["--min-total-ms", "is not a finite number >= 0"],
+        );
+    }
+}
