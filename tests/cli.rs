@@ -1183,7 +1183,15 @@ fn loop_surface_from_the_command_line() {
 fn bench_min_total_ms_is_checked() {
     for v in ["nan", "-1", "inf"] {
         expect_error(
-            &["bench", "--min-total-ms", v, "--levels", "1", "--frames", "1"],
+            &[
+                "bench",
+                "--min-total-ms",
+                v,
+                "--levels",
+                "1",
+                "--frames",
+                "1",
+            ],
             &["--min-total-ms", "is not a finite number >= 0"],
         );
     }
