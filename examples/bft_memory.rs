@@ -2,11 +2,12 @@
 //! union of the configurations of closed spheres whose poles have valence n = 3 .. max (interior
 //! extraordinary vertices) and of open half-disc fans of k = 1 .. max - 1 triangles (boundary
 //! vertices of k + 1 edges), deduplicated by key as one mesh's are.
-//! `cargo run --release --example bft_memory [MAX_VALENCE]`.
+//! For table levels 4 and 5 (and 6 when asked: `cargo run --release --example bft_memory
+//! [MAX_VALENCE] [LEVEL...]`).
 
 use meshrefine::bench::sphere_mesh;
 use meshrefine::mesh::Mesh;
-use meshrefine::subdiv::bft::{build, ROWS};
+use meshrefine::subdiv::bft::{build, Lattice};
 use meshrefine::subdiv::{loop_step, Boundary, Topology};
 use std::collections::HashMap;
 
@@ -34,29 +35,38 @@ fn fan(k: u32) -> Mesh {
 }
 
 fn main() {
-    let max: u32 = std::env::args()
-        .nth(1)
-        .and_then(|a| a.parse().ok())
-        .unwrap_or(18);
+    let args: Vec<u32> = std::env::args()
+        .skip(1)
+        .filter_map(|a| a.parse().ok())
+        .collect();
+    let max = args.first().copied().unwrap_or(18);
+    let levels = if args.len() > 1 {
+        args[1..].to_vec()
+    } else {
+        vec![4, 5]
+    };
     let mut meshes: Vec<(String, Mesh)> = (3..=max)
         .map(|n| (format!("sphere{n}"), sphere_mesh(n, 8)))
         .collect();
     meshes.extend((1..max).map(|k| (format!("fan{k}"), fan(k))));
-    for boundary in [Boundary::EdgeOnly, Boundary::EdgeAndCorner] {
+    for lmax in levels {
+        let lattice = Lattice::new(lmax);
+        let boundary = Boundary::EdgeOnly;
         let mut all: HashMap<Vec<[u32; 3]>, usize> = HashMap::new();
         for (_, mesh) in &meshes {
             let topo = Topology::of_mesh(mesh).unwrap();
             let p: Vec<glam::DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();
             let m1 = loop_step(&topo, &p, boundary);
             let t1 = Topology::new(&m1.faces, m1.positions.len()).unwrap();
-            let tables = build(&t1, boundary, |_| {}).unwrap();
+            let tables = build(&t1, boundary, lattice, |_| {}).unwrap();
             for c in tables.configs {
                 all.insert(c.key, c.control);
             }
         }
-        let bytes: usize = all.values().map(|&k| ROWS * k * 4).sum();
+        let bytes: usize = all.values().map(|&k| lattice.rows() * k * 4).sum();
         println!(
-            "{boundary:?}: {} configurations up to valence {max}, {bytes} bytes of tables ({:.2} MiB)",
+            "table level {lmax} ({} segments): {} configurations up to valence {max}, {bytes} bytes ({:.2} MiB)",
+            lattice.segments(),
             all.len(),
             bytes as f64 / (1 << 20) as f64
         );

@@ -63,6 +63,11 @@ pub struct ParamOpts {
     /// valence 2 (VTX_BOUNDARY_EDGE_AND_CORNER).
     #[arg(long, value_enum, default_value = "edge-only")]
     pub boundary: meshrefine::subdiv::Boundary,
+    /// The loop surface's basis function tables' level (--surface loop): 2^N segments per
+    /// M1-face edge, the lattice whose points are exact limit points; each level up takes four
+    /// times the memory.
+    #[arg(long, default_value_t = meshrefine::subdiv::bft::DEFAULT_LMAX)]
+    pub bft_level: u32,
 }
 
 impl SurfaceOpts {
@@ -141,6 +146,7 @@ impl ParamOpts {
             seams: self.pn_seams,
             bias: self.bias,
             boundary: self.boundary,
+            bft_level: self.bft_level,
         };
         p.validate()?;
         Ok(p)
@@ -299,6 +305,10 @@ pub struct InfoArgs {
     /// Loop subdivision's boundaries (with --surface loop).
     #[arg(long, value_enum, default_value = "edge-only")]
     pub boundary: meshrefine::subdiv::Boundary,
+    /// The loop surface's table level (with --surface loop): 2^N segments per M1-face edge.
+    #[arg(long, default_value_t = meshrefine::subdiv::bft::DEFAULT_LMAX,
+          value_parser = clap::value_parser!(u32).range(1..=meshrefine::subdiv::bft::MAX_LMAX as i64))]
+    pub bft_level: u32,
 }
 
 #[derive(Args, Debug)]

@@ -549,7 +549,8 @@ fn info(a: &cli::InfoArgs) -> Result<()> {
     }
     if a.surface == Some(Surface::Loop) {
         let started = std::time::Instant::now();
-        let data = LoopData::new(&mesh, a.boundary, |p| {
+        let lattice = meshrefine::subdiv::bft::Lattice::new(a.bft_level);
+        let data = LoopData::new(&mesh, a.boundary, lattice, |p| {
             if started.elapsed().as_secs_f32() > 1.0 {
                 note(format_args!("{}: {p}", path.display()));
             }
@@ -580,6 +581,12 @@ fn info(a: &cli::InfoArgs) -> Result<()> {
             "control points per face: {} to {}",
             data.faces.iter().map(|f| f[1]).min().unwrap_or(0),
             data.faces.iter().map(|f| f[1]).max().unwrap_or(0)
+        );
+        out!(
+            "table level: {} ({} segments per M1-face edge, {} lattice points)",
+            lattice.lmax,
+            lattice.segments(),
+            lattice.rows()
         );
         out!("basis function tables: {} bytes", data.table_bytes());
     }

@@ -111,7 +111,8 @@ fn normal_tolerance(cfg: &DrawConfig) -> f32 {
 enum Which {
     Flat,
     All,
-    Loop(Boundary),
+    /// The loop surface with a boundary rule and a table level.
+    Loop(Boundary, u32),
 }
 
 impl From<bool> for Which {
@@ -134,12 +135,13 @@ fn setup(
     chunk: Option<u32>,
 ) -> (Scene, Camera, SurfaceParams, f32) {
     let (scene, camera, r) = scene_chunked(h, model(file), levels, chunk);
-    let boundary = match which {
-        Which::Loop(b) => b,
-        _ => Boundary::EdgeOnly,
+    let (boundary, bft_level) = match which {
+        Which::Loop(b, l) => (b, l),
+        _ => (Boundary::EdgeOnly, 5),
     };
     let params = SurfaceParams {
         boundary,
+        bft_level,
         ..SurfaceParams::for_radius(r)
     };
     (scene, camera, params, r)
@@ -150,7 +152,7 @@ fn setup(
 fn combinations(which: Which, uvs: bool) -> Vec<(Surface, Displace)> {
     match which {
         Which::Flat => return vec![(Surface::Flat, Displace::None)],
-        Which::Loop(_) => {
+        Which::Loop(..) => {
             return vec![
                 (Surface::Loop, Displace::None),
                 (Surface::Loop, Displace::Sine),
@@ -384,15 +386,19 @@ fn every_surface_and_displacement_on_tess() {
 #[test]
 fn loop_matches_mirror_on_every_driver() {
     with_gpu(64, 64, |h| {
-        let l = Which::Loop(Boundary::EdgeOnly);
+        let l = Which::Loop(Boundary::EdgeOnly, 5);
         check_pattern("spot_control_tri.obj", h, &[1, 4, 7], l);
         check_tess("spot_control_tri.obj", h, &[4, 7], l);
         check_pattern("fan24_open.obj", h, &[8, 32], l);
         check_tess("fan24_open.obj", h, &[5, 64], l);
-        let corners = Which::Loop(Boundary::EdgeAndCorner);
+        let corners = Which::Loop(Boundary::EdgeAndCorner, 5);
         check_pattern("grid_open_8x8.obj", h, &[3, 16], corners);
         check_tess("grid_open_8x8.obj", h, &[6], corners);
         check_pattern_chunked("tetrahedron.obj", h, &[4], l, Some(5));
+        // Another table level: level 8 is its lattice, 5 and 12 are not.
+        let coarse = Which::Loop(Boundary::EdgeOnly, 3);
+        check_pattern("spot_control_tri.obj", h, &[8, 5, 12], coarse);
+        check_tess("spot_control_tri.obj", h, &[6], coarse);
     });
 }
 

@@ -35,7 +35,7 @@ fn scene(
 #[test]
 fn dyadic_levels_are_the_limit_surface() {
     let all = vec![1u32, 2, 4, 8, 32];
-    let mut cases: Vec<(String, meshrefine::mesh::Mesh, Boundary, Vec<u32>)> = [
+    let mut cases: Vec<(String, meshrefine::mesh::Mesh, Boundary, Vec<u32>, u32)> = [
         ("spot_control_tri.obj", Boundary::EdgeOnly),
         ("bicone16.obj", Boundary::EdgeOnly),
         ("fan24_open.obj", Boundary::EdgeOnly),
@@ -43,8 +43,16 @@ fn dyadic_levels_are_the_limit_surface() {
         ("spot_open.obj", Boundary::EdgeOnly),
     ]
     .into_iter()
-    .map(|(f, b)| (f.to_string(), model(f), b, all.clone()))
+    .map(|(f, b)| (f.to_string(), model(f), b, all.clone(), 5))
     .collect();
+    // A coarser table (--bft-level 3): its lattice is level 8.
+    cases.push((
+        "spot_control_tri.obj, table level 3".into(),
+        model("spot_control_tri.obj"),
+        Boundary::EdgeOnly,
+        vec![1, 2, 4, 8],
+        3,
+    ));
     // Two valence-40 poles: configuration meshes pruned level by level (src/subdiv/bft.rs); the
     // reference at level 32 (M^6) would be 1.6 M faces, so up to 8 here.
     cases.push((
@@ -52,9 +60,10 @@ fn dyadic_levels_are_the_limit_surface() {
         meshrefine::bench::sphere_mesh(40, 6),
         Boundary::EdgeOnly,
         vec![1, 2, 4, 8],
+        5,
     ));
     with_gpu(64, 64, |h| {
-        for (file, mesh, boundary, levels) in cases {
+        for (file, mesh, boundary, levels, bft_level) in cases {
             let levels = &levels[..];
             let (mut scene, camera, r) = scene(h, mesh.clone(), levels);
             let (lo, hi) = mesh.bounds();
@@ -65,6 +74,7 @@ fn dyadic_levels_are_the_limit_surface() {
                     .with_surface(Surface::Loop, Displace::None);
                 cfg.params = SurfaceParams {
                     boundary,
+                    bft_level,
                     ..SurfaceParams::for_radius(r)
                 };
                 let cap = h.capture(&mut scene, &cfg, &camera).unwrap();

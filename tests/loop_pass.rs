@@ -20,7 +20,8 @@ fn gpu_loop_step_matches_the_cpu() {
             let mesh = model(file);
             let topo = Topology::of_mesh(&mesh).unwrap();
             let r = mesh.bounding_radius();
-            let data = LoopData::new(&mesh, Boundary::EdgeOnly, |_| {}).unwrap();
+            let data =
+                LoopData::new(&mesh, Boundary::EdgeOnly, Default::default(), |_| {}).unwrap();
             let mut pass = LoopPass::new(&h.ctx, &h.pool, &data, &mesh.positions).unwrap();
             assert_eq!(pass.upload_bytes(), mesh.positions.len() as u64 * 16);
             for frame in 0..2 {

@@ -311,7 +311,8 @@ fn loop_is_watertight_on_every_driver() {
     with_gpu(64, 64, |h| {
         for file in files {
             let mesh = model(file);
-            let data = LoopData::new(&mesh, Boundary::EdgeOnly, |_| {}).unwrap();
+            let data =
+                LoopData::new(&mesh, Boundary::EdgeOnly, Default::default(), |_| {}).unwrap();
             let frame = data.frame(&mesh.positions);
             let m1_edges = data.m1.twin.len() / 2;
             let m1_expected = |n: u32, inner: usize| {

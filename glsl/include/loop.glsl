@@ -11,17 +11,16 @@
 layout(set = SET_MESH, binding = BINDING_LOOP_P1, std430) readonly buffer LoopP1 { vec4 loop_p1[]; };
 layout(set = SET_MESH, binding = BINDING_LOOP_N1, std430) readonly buffer LoopN1 { vec4 loop_n1[]; };
 // Per M1 face: (first weight, control points K, first control index, orientation: rotation in
-// bits 0-1, bit 2 set where the face is its configuration's mirror image).
+// bits 0-1, bit 2 set where the face is its configuration's mirror image, the tables' level
+// from bit 3: 2^level segments per edge).
 layout(set = SET_MESH, binding = BINDING_LOOP_FACES, std430) readonly buffer LoopFaces { uvec4 loop_faces[]; };
 layout(set = SET_MESH, binding = BINDING_LOOP_CONTROL, std430) readonly buffer LoopControl { uint loop_control[]; };
 // Row r of a face's table is K weights at weights[first + r * K].
 layout(set = SET_MESH, binding = BINDING_LOOP_TABLES, std430) readonly buffer LoopTables { float bft[]; };
 
-const uint BFT_SEGMENTS = 32u; // src/subdiv/bft.rs SEGMENTS (2^LMAX)
-
-// Row of lattice point (i, j). Mirror: bft::row.
-uint bft_row(uint i, uint j) {
-    uint s = BFT_SEGMENTS + 1u;
+// Row of lattice point (i, j) of a lattice of `seg` segments. Mirror: bft::Lattice::row.
+uint bft_row(uint seg, uint i, uint j) {
+    uint s = seg + 1u;
     return j * s - (j * (j > 0u ? j - 1u : 0u)) / 2u + i;
 }
 
@@ -57,15 +56,16 @@ uint loop_stored(uint orient, uint i) {
 // Face g at weights b of its stored corners. Mirror: subdivision::eval_face (and `cell`).
 SurfacePoint loop_eval_face(uint g, vec3 b) {
     uvec4 f = loop_faces[g];
-    uint offset = f.x, k = f.y, first = f.z, orient = f.w;
-    float s = float(BFT_SEGMENTS);
+    uint offset = f.x, k = f.y, first = f.z, orient = f.w & 7u;
+    uint seg = 1u << (f.w >> 3u);
+    float s = float(seg);
     float x = b[loop_stored(orient, 1u)] * s;
     float y = b[loop_stored(orient, 2u)] * s;
     // A lattice point without displacement (which would need the tangents): one table row.
     // The general path below gives the very same bits there (weights 1, 0, 0 on the same row),
     // so the mirror, which always takes it, agrees exactly.
     if (DISPLACE == DISPLACE_NONE && x == floor(x) && y == floor(y)) {
-        uint r = offset + bft_row(uint(x), uint(y)) * k;
+        uint r = offset + bft_row(seg, uint(x), uint(y)) * k;
         vec3 p = vec3(0.0), n = vec3(0.0);
         for (uint c = 0u; c < k; ++c) {
             uint v = loop_control[first + c];
@@ -94,12 +94,12 @@ SurfacePoint loop_eval_face(uint g, vec3 b) {
     uint i = uint(i0), j = uint(j0);
     uint rows[3];
     vec3 l;
-    bool upper = fx + fy > 1.0 && i + j + 2u <= BFT_SEGMENTS;
+    bool upper = fx + fy > 1.0 && i + j + 2u <= seg;
     if (upper) {
-        rows = uint[3](bft_row(i + 1u, j + 1u), bft_row(i, j + 1u), bft_row(i + 1u, j));
+        rows = uint[3](bft_row(seg, i + 1u, j + 1u), bft_row(seg, i, j + 1u), bft_row(seg, i + 1u, j));
         l = vec3(fx + fy - 1.0, 1.0 - fx, 1.0 - fy);
     } else {
-        rows = uint[3](bft_row(i, j), bft_row(i + 1u, j), bft_row(i, j + 1u));
+        rows = uint[3](bft_row(seg, i, j), bft_row(seg, i + 1u, j), bft_row(seg, i, j + 1u));
         l = vec3(1.0 - fx - fy, fx, fy);
     }
     // The three rows' weights interpolated first, then one weighted sum (and two for the

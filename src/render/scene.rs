@@ -410,10 +410,11 @@ impl LoopScene {
         renderer: &super::Renderer,
         scene: &Scene,
         boundary: crate::subdiv::Boundary,
+        lattice: crate::subdiv::bft::Lattice,
     ) -> Result<Self, RenderError> {
         let mesh = &scene.data.mesh;
         let started = std::time::Instant::now();
-        let data = LoopData::new(mesh, boundary, |p| {
+        let data = LoopData::new(mesh, boundary, lattice, |p| {
             if started.elapsed().as_secs_f32() > 1.0 {
                 log::info!("loop surface: {p}");
             }
@@ -551,19 +552,21 @@ impl Scene {
             });
         }
         if cfg.surface == Surface::Loop
-            && self
-                .subdiv
-                .as_ref()
-                .is_none_or(|l| l.data.boundary != cfg.params.boundary)
+            && self.subdiv.as_ref().is_none_or(|l| {
+                l.data.boundary != cfg.params.boundary
+                    || l.data.tables.lattice.lmax != cfg.params.bft_level
+            })
         {
             self.subdiv = None;
             self.static_vbo = None;
+            let lattice = crate::subdiv::bft::Lattice::new(cfg.params.bft_level);
             self.subdiv = Some(LoopScene::new(
                 ctx,
                 pool,
                 renderer,
                 self,
                 cfg.params.boundary,
+                lattice,
             )?);
         }
         if cfg.surface != Surface::Loop && self.records_stale {

@@ -2,7 +2,8 @@
 //! at most one extraordinary vertex, and the limit surface over it is a fixed linear combination
 //! of the face's *control points* (the vertices of the faces around its corners, M1's one-ring of
 //! the face), with weights that depend only on the topology there: the face's *configuration*.
-//! For every configuration the table holds, at every point of the face's level-[`LMAX`] lattice,
+//! For every configuration the table holds, at every point of the face's level-`lmax` lattice
+//! ([`Lattice`]; [`DEFAULT_LMAX`] = 5: 32 segments per edge, 561 points),
 //! the weight of each control point in the limit position there.
 //!
 //! Configurations are found, not enumerated: each M1 face's neighbourhood is labelled
@@ -16,7 +17,7 @@
 //!
 //! A table is computed as the paper's configuration meshes: the faces within two rings of the face
 //! are cut out (vertices where the cut makes two fans are split), each vertex carries its weights
-//! on the cut-out vertices (the identity at first), [`LMAX`] Loop steps apply the computational
+//! on the cut-out vertices (the identity at first), `lmax` Loop steps apply the computational
 //! entries to the weights, and the limit masks at the face's lattice vertices give the rows. The
 //! cut's own boundary is subdivided as a boundary, which is wrong, but the error travels at most
 //! one ring inwards over all steps (half a ring, then a quarter, ...), so the face, two rings in,
@@ -26,19 +27,50 @@
 use super::{limit_stencil, refined_faces, stencils, Boundary, Topology, TopologyError};
 use std::collections::HashMap;
 
-/// The tables' level: 2^LMAX segments per M1-face edge.
-pub const LMAX: u32 = 5;
-/// Segments per M1-face edge in the tables' lattice.
-pub const SEGMENTS: u32 = 1 << LMAX;
-/// Lattice points per face: (S + 1)(S + 2) / 2.
-pub const ROWS: usize = ((SEGMENTS + 1) * (SEGMENTS + 2) / 2) as usize;
+/// The tables' default level: 2^5 = 32 segments per M1-face edge (`--bft-level`).
+pub const DEFAULT_LMAX: u32 = 5;
+/// The highest level offered: 2^7 = 128 segments, 8,385 rows a table.
+pub const MAX_LMAX: u32 = 7;
 
-/// The row of lattice point (i, j): weight i/S on the face's canonical corner 1, j/S on corner 2.
-/// Mirror of `bft_row` in glsl/include/loop.glsl.
-pub fn row(i: u32, j: u32) -> usize {
-    debug_assert!(i + j <= SEGMENTS);
-    let s = SEGMENTS + 1;
-    (j * s - j * (j.saturating_sub(1)) / 2 + i) as usize
+/// The tables' lattice: 2^lmax segments per M1-face edge.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Lattice {
+    pub lmax: u32,
+}
+
+impl Default for Lattice {
+    fn default() -> Self {
+        Self { lmax: DEFAULT_LMAX }
+    }
+}
+
+impl Lattice {
+    pub fn new(lmax: u32) -> Self {
+        assert!(
+            (1..=MAX_LMAX).contains(&lmax),
+            "lmax {lmax} out of 1..={MAX_LMAX}"
+        );
+        Self { lmax }
+    }
+
+    /// Segments per M1-face edge.
+    pub fn segments(self) -> u32 {
+        1 << self.lmax
+    }
+
+    /// Lattice points per face: (S + 1)(S + 2) / 2.
+    pub fn rows(self) -> usize {
+        let s = self.segments() as usize;
+        (s + 1) * (s + 2) / 2
+    }
+
+    /// The row of lattice point (i, j): weight i/S on the face's canonical corner 1, j/S on
+    /// corner 2. Mirror of `bft_row` in glsl/include/loop.glsl.
+    pub fn row(self, i: u32, j: u32) -> usize {
+        debug_assert!(i + j <= self.segments());
+        let s = self.segments() + 1;
+        (j * s - j * (j.saturating_sub(1)) / 2 + i) as usize
+    }
 }
 
 /// A configuration: its key and its table.
@@ -54,7 +86,7 @@ pub struct Config {
     pub valence: usize,
     /// Whether any corner of the face is on the boundary.
     pub boundary: bool,
-    /// `ROWS × control` weights, row-major.
+    /// `rows × control` weights, row-major.
     pub weights: Vec<f64>,
     /// The largest weight found outside the control points (exactly zero by the argument above).
     pub outside: f64,
@@ -110,6 +142,7 @@ pub struct FaceConfig {
 /// Every face of a mesh (M1) with its configuration, and the configurations' tables.
 #[derive(Clone, Debug)]
 pub struct Tables {
+    pub lattice: Lattice,
     pub configs: Vec<Config>,
     pub faces: Vec<FaceConfig>,
 }
@@ -215,6 +248,7 @@ impl std::fmt::Display for Progress {
 pub fn build(
     topo: &Topology,
     boundary: Boundary,
+    lattice: Lattice,
     mut progress: impl FnMut(Progress),
 ) -> Result<Tables, TopologyError> {
     let vf = vertex_faces(topo);
@@ -250,14 +284,18 @@ pub fn build(
     let mut configs = Vec::with_capacity(total);
     for (done, (f, orient, key)) in reps.into_iter().enumerate() {
         progress(Progress::Tables(done, total));
-        configs.push(table(topo, &vf, f, orient, key, boundary)?);
+        configs.push(table(topo, &vf, f, orient, key, boundary, lattice)?);
     }
     progress(Progress::Tables(total, total));
     // Control points: only those the table weighs (the labels of the face's one-ring).
     for fc in &mut faces {
         fc.control.truncate(configs[fc.config as usize].control);
     }
-    Ok(Tables { configs, faces })
+    Ok(Tables {
+        lattice,
+        configs,
+        faces,
+    })
 }
 
 /// The table of face `f` in orientation `o`, from its two-ring configuration mesh.
@@ -268,6 +306,7 @@ fn table(
     o: Orient,
     key: Vec<[u32; 3]>,
     boundary: Boundary,
+    lattice: Lattice,
 ) -> Result<Config, TopologyError> {
     let (mut order, mut labels) = label(topo, f, o);
     let control = order.len();
@@ -300,10 +339,10 @@ fn table(
         w[v * dims + v] = 1.0;
     }
     let mut topo_l = Topology::new(&local, count)?;
-    // Lattice coordinates (in units of 1/SEGMENTS) of the tracked faces' corners; the face's
-    // stored corner k is canonical corner `o.canonical(k)`.
-    let mut tracked: Vec<(usize, [[u32; 2]; 3])> = vec![(0, lattice_corners(o))];
-    for _ in 0..LMAX {
+    // Lattice coordinates (in units of 1/S) of the tracked faces' corners; the face's stored
+    // corner k is canonical corner `o.canonical(k)`.
+    let mut tracked: Vec<(usize, [[u32; 2]; 3])> = vec![(0, lattice_corners(o, lattice))];
+    for _ in 0..lattice.lmax {
         let st = stencils(&topo_l, boundary);
         let mut next = vec![0.0; st.len() * dims];
         for (i, sv) in st.iter().enumerate() {
@@ -335,13 +374,14 @@ fn table(
         topo_l = Topology::new(&faces, count)?;
     }
     // The lattice vertex at each row, then its limit mask.
-    let mut at_row = vec![u32::MAX; ROWS];
+    let rows = lattice.rows();
+    let mut at_row = vec![u32::MAX; rows];
     for &(face, coords) in &tracked {
         for k in 0..3 {
-            at_row[row(coords[k][0], coords[k][1])] = topo_l.faces[face][k];
+            at_row[lattice.row(coords[k][0], coords[k][1])] = topo_l.faces[face][k];
         }
     }
-    let mut weights = vec![0.0; ROWS * control];
+    let mut weights = vec![0.0; rows * control];
     let mut outside: f64 = 0.0;
     for (r, &v) in at_row.iter().enumerate() {
         debug_assert_ne!(v, u32::MAX);
@@ -377,9 +417,9 @@ fn table(
     })
 }
 
-/// Lattice coordinates (units of 1/SEGMENTS) of a face's stored corners in orientation `o`.
-pub fn lattice_corners(o: Orient) -> [[u32; 2]; 3] {
-    let s = SEGMENTS;
+/// Lattice coordinates (units of 1/S) of a face's stored corners in orientation `o`.
+pub fn lattice_corners(o: Orient, lattice: Lattice) -> [[u32; 2]; 3] {
+    let s = lattice.segments();
     let base = [[0, 0], [s, 0], [0, s]];
     [0, 1, 2].map(|k| base[o.canonical(k)])
 }
@@ -543,46 +583,54 @@ mod tests {
 
     #[test]
     fn rows_cover_the_lattice_once() {
-        let mut seen = vec![false; ROWS];
-        for j in 0..=SEGMENTS {
-            for i in 0..=SEGMENTS - j {
-                assert!(!std::mem::replace(&mut seen[row(i, j)], true));
+        for lmax in 1..=MAX_LMAX {
+            let l = Lattice::new(lmax);
+            let mut seen = vec![false; l.rows()];
+            for j in 0..=l.segments() {
+                for i in 0..=l.segments() - j {
+                    assert!(!std::mem::replace(&mut seen[l.row(i, j)], true));
+                }
             }
+            assert!(seen.iter().all(|&s| s));
         }
-        assert!(seen.iter().all(|&s| s));
-        assert_eq!(ROWS, 561);
+        assert_eq!(Lattice::default().rows(), 561);
     }
 
-    /// Tables evaluated at the lattice are the limit positions of M^(1 + LMAX), face by face, on
+    /// Tables evaluated at the lattice are the limit positions of M^(1 + lmax), face by face, on
     /// closed and open meshes with both boundary rules; the second ring's weights are zero, and
     /// each row's weights sum to one.
     #[test]
     fn tables_give_the_limit_surface() {
-        for (file, boundaries) in [
-            ("tetrahedron.obj", &[Boundary::EdgeOnly][..]),
+        for (file, boundaries, lmax) in [
+            ("tetrahedron.obj", &[Boundary::EdgeOnly][..], DEFAULT_LMAX),
             (
                 "grid_open_8x8.obj",
                 &[Boundary::EdgeOnly, Boundary::EdgeAndCorner][..],
+                DEFAULT_LMAX,
             ),
-            ("fan24_open.obj", &[Boundary::EdgeOnly][..]),
+            ("fan24_open.obj", &[Boundary::EdgeOnly][..], DEFAULT_LMAX),
+            // Other table levels (--bft-level).
+            ("spot_control_tri.obj", &[Boundary::EdgeOnly][..], 3),
+            ("fan24_open.obj", &[Boundary::EdgeAndCorner][..], 2),
         ] {
             let (mesh, _) = load_model(file);
+            let lattice = Lattice::new(lmax);
             for &boundary in boundaries {
                 let topo0 = Topology::of_mesh(&mesh).unwrap();
                 let p0: Vec<DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();
                 let m1 = loop_step(&topo0, &p0, boundary);
                 let t1 = Topology::new(&m1.faces, m1.positions.len()).unwrap();
-                let tables = build(&t1, boundary, |_| {}).unwrap();
+                let tables = build(&t1, boundary, lattice, |_| {}).unwrap();
                 for c in &tables.configs {
                     assert_eq!(c.outside, 0.0, "{file}: weight outside the control points");
-                    for r in 0..ROWS {
+                    for r in 0..lattice.rows() {
                         let s: f64 = c.weights[r * c.control..(r + 1) * c.control].iter().sum();
                         assert!((s - 1.0).abs() < 1e-12, "{file}: row {r} sums to {s}");
                     }
                 }
-                // The reference: LMAX more steps, then limits; the lattice vertices of each M1
+                // The reference: lmax more steps, then limits; the lattice vertices of each M1
                 // face are found by the same face numbering (4f + child).
-                let reference = subdivide_to_limit(&mesh, 1 + LMAX, boundary).unwrap();
+                let reference = subdivide_to_limit(&mesh, 1 + lmax, boundary).unwrap();
                 let diag = {
                     let (lo, hi) = mesh.bounds();
                     (hi - lo).length() as f64
@@ -591,7 +639,7 @@ mod tests {
                 for (f, fc) in tables.faces.iter().enumerate() {
                     let c = &tables.configs[fc.config as usize];
                     let eval = |i: u32, j: u32| -> DVec3 {
-                        let r = row(i, j);
+                        let r = lattice.row(i, j);
                         (0..c.control)
                             .map(|k| {
                                 m1.positions[fc.control[k] as usize] * c.weights[r * c.control + k]
@@ -600,8 +648,8 @@ mod tests {
                     };
                     // Canonical corners of the face, by the sub-face walk from face f.
                     let mut tracked: Vec<(usize, [[u32; 2]; 3])> =
-                        vec![(f, lattice_corners(fc.orient))];
-                    for _ in 0..LMAX {
+                        vec![(f, lattice_corners(fc.orient, lattice))];
+                    for _ in 0..lmax {
                         tracked = children_in_lattice(&tracked);
                     }
                     for (face, coords) in tracked {
@@ -613,7 +661,7 @@ mod tests {
                 }
                 assert!(
                     worst < 1e-12,
-                    "{file} {boundary:?}: {worst:e} of the diagonal"
+                    "{file} {boundary:?} lmax {lmax}: {worst:e} of the diagonal"
                 );
             }
         }
@@ -629,7 +677,7 @@ mod tests {
         let p0: Vec<DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();
         let m1 = loop_step(&topo0, &p0, Boundary::EdgeOnly);
         let t1 = Topology::new(&m1.faces, m1.positions.len()).unwrap();
-        let tables = build(&t1, Boundary::EdgeOnly, |_| {}).unwrap();
+        let tables = build(&t1, Boundary::EdgeOnly, Lattice::default(), |_| {}).unwrap();
         let mut valences: Vec<usize> = tables.configs.iter().map(|c| c.valence).collect();
         valences.sort();
         assert_eq!(valences, [3, 6]);

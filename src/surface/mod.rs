@@ -116,6 +116,9 @@ pub struct SurfaceParams {
     pub bias: f32,
     /// Loop subdivision's boundary rule (built into the `loop` surface's tables).
     pub boundary: crate::subdiv::Boundary,
+    /// The `loop` surface's table level: 2^level segments per M1-face edge, the lattice whose
+    /// points are exact (`--bft-level`, default 5).
+    pub bft_level: u32,
 }
 
 impl Default for SurfaceParams {
@@ -129,6 +132,7 @@ impl Default for SurfaceParams {
             seams: Seams::Closed,
             bias: 0.0,
             boundary: crate::subdiv::Boundary::EdgeOnly,
+            bft_level: crate::subdiv::bft::DEFAULT_LMAX,
         }
     }
 }
@@ -171,6 +175,13 @@ impl SurfaceParams {
         }
         if !self.bias.is_finite() {
             return Err(format!("--bias {} is not a finite number", self.bias));
+        }
+        if !(1..=crate::subdiv::bft::MAX_LMAX).contains(&self.bft_level) {
+            return Err(format!(
+                "--bft-level {} is not within [1, {}]",
+                self.bft_level,
+                crate::subdiv::bft::MAX_LMAX
+            ));
         }
         if !(1..=Self::MAX_OCTAVES).contains(&self.octaves) {
             return Err(format!(

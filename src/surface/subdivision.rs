@@ -15,7 +15,7 @@
 
 use super::{ElementRecord, SurfacePoint};
 use crate::mesh::Mesh;
-use crate::subdiv::bft::{self, Orient, Tables, ROWS, SEGMENTS};
+use crate::subdiv::bft::{self, Lattice, Orient, Tables};
 use crate::subdiv::{stencils, Boundary, Stencil, Topology, TopologyError};
 use glam::{DVec3, Vec3};
 
@@ -28,8 +28,8 @@ pub struct LoopData {
     pub stencils: Vec<Stencil>,
     pub m1: Topology,
     pub tables: Tables,
-    /// Per M1 face: (first table weight, control points, first control index, orientation:
-    /// [`crate::subdiv::bft::Orient::bits`]).
+    /// Per M1 face: (first table weight, control points, first control index, orientation
+    /// ([`crate::subdiv::bft::Orient::bits`]) | the tables' level << 3).
     pub faces: Vec<[u32; 4]>,
     /// Control points of every face, M1 vertex indices.
     pub control: Vec<u32>,
@@ -90,12 +90,13 @@ impl LoopData {
     pub fn new(
         mesh: &Mesh,
         boundary: Boundary,
+        lattice: Lattice,
         progress: impl FnMut(bft::Progress),
     ) -> Result<Self, TopologyError> {
         let topo0 = Topology::of_mesh(mesh)?;
         let stencils = stencils(&topo0, boundary);
         let m1 = Topology::new(&crate::subdiv::refined_faces(&topo0), stencils.len())?;
-        let tables = bft::build(&m1, boundary, progress)?;
+        let tables = bft::build(&m1, boundary, lattice, progress)?;
         let mut offsets = Vec::with_capacity(tables.configs.len());
         let mut weights = Vec::new();
         for c in &tables.configs {
@@ -109,7 +110,7 @@ impl LoopData {
                 offsets[fc.config as usize],
                 fc.control.len() as u32,
                 control.len() as u32,
-                fc.orient.bits(),
+                fc.orient.bits() | lattice.lmax << 3,
             ]);
             control.extend(&fc.control);
         }
@@ -308,12 +309,12 @@ pub fn eval(
     eval_face(data, frame, g, b)
 }
 
-/// The lattice triangle around canonical lattice coordinates (x, y) (units of 1/SEGMENTS): its
+/// The lattice triangle around canonical lattice coordinates (x, y) (units of 1/S): its
 /// three rows, their interpolation weights, and the rows whose differences are d/dx and d/dy
 /// (`(plus, minus)` index pairs into the three). Mirror of `bft_cell` in loop.glsl.
-pub fn cell(x: f32, y: f32) -> ([usize; 3], [f32; 3], [[usize; 2]; 2]) {
+pub fn cell(lattice: Lattice, x: f32, y: f32) -> ([usize; 3], [f32; 3], [[usize; 2]; 2]) {
     // d: indices into the three rows.
-    let s = SEGMENTS as f32;
+    let s = lattice.segments() as f32;
     let mut i0 = x.floor().clamp(0.0, s);
     let mut j0 = y.floor().clamp(0.0, s);
     let mut fx = x - i0;
@@ -329,20 +330,20 @@ pub fn cell(x: f32, y: f32) -> ([usize; 3], [f32; 3], [[usize; 2]; 2]) {
         }
     }
     let (i, j) = (i0 as u32, j0 as u32);
-    if fx + fy > 1.0 && i + j + 2 <= SEGMENTS {
+    if fx + fy > 1.0 && i + j + 2 <= lattice.segments() {
         // Upper triangle: (i+1, j+1), (i, j+1), (i+1, j).
-        let a = bft::row(i + 1, j + 1);
-        let b = bft::row(i, j + 1);
-        let c = bft::row(i + 1, j);
+        let a = lattice.row(i + 1, j + 1);
+        let b = lattice.row(i, j + 1);
+        let c = lattice.row(i + 1, j);
         (
             [a, b, c],
             [fx + fy - 1.0, 1.0 - fx, 1.0 - fy],
             [[0, 1], [0, 2]],
         )
     } else {
-        let a = bft::row(i, j);
-        let b = bft::row(i + 1, j);
-        let c = bft::row(i, j + 1);
+        let a = lattice.row(i, j);
+        let b = lattice.row(i + 1, j);
+        let c = lattice.row(i, j + 1);
         ([a, b, c], [1.0 - fx - fy, fx, fy], [[1, 0], [2, 0]])
     }
 }
@@ -354,12 +355,13 @@ pub fn eval_face(data: &LoopData, frame: &LoopFrame, g: u32, b: [f32; 3]) -> Sur
         rot: (orient & 3) as u8,
         mirror: orient & 4 != 0,
     };
+    let lattice = Lattice::new(orient >> 3);
     // Canonical corner i is stored corner o.stored(i).
-    let s = SEGMENTS as f32;
+    let s = lattice.segments() as f32;
     let x = b[o.stored(1)] * s;
     let y = b[o.stored(2)] * s;
-    let (rows, l, d) = cell(x, y);
-    debug_assert!(rows.iter().all(|&r| r < ROWS));
+    let (rows, l, d) = cell(lattice, x, y);
+    debug_assert!(rows.iter().all(|&r| r < lattice.rows()));
     // The three rows' weights interpolated first, then one weighted sum, and two for the
     // tangents (the lattice triangle's edges).
     let (mut p, mut n, mut dx, mut dy) = (Vec3::ZERO, Vec3::ZERO, Vec3::ZERO, Vec3::ZERO);
@@ -401,7 +403,7 @@ mod tests {
 
     fn setup(file: &str, boundary: Boundary) -> (Mesh, LoopData, LoopFrame) {
         let (mesh, _) = load_model(file);
-        let data = LoopData::new(&mesh, boundary, |_| {}).unwrap();
+        let data = LoopData::new(&mesh, boundary, Lattice::default(), |_| {}).unwrap();
         let frame = data.frame(&mesh.positions);
         (mesh, data, frame)
     }
