@@ -1136,6 +1136,23 @@ fn loop_surface_from_the_command_line() {
         ],
         &["loop surface has no texture coordinates"],
     );
+    expect_error(
+        &[
+            "render",
+            "-o",
+            p(&png),
+            "--surface",
+            "loop",
+            "--bft-level",
+            "9",
+        ],
+        &["--bft-level 9 is not within [1, 7]"],
+    );
+    let coarse = ok(&["info", p(&spot), "--surface", "loop", "--bft-level", "3"]);
+    assert!(
+        coarse.contains("table level: 3 (8 segments per M1-face edge, 45 lattice points)"),
+        "{coarse}"
+    );
     let out = meshrefine(&[
         "render",
         "-o",
