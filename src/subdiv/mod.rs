@@ -1,7 +1,7 @@
-//! Loop subdivision on the CPU (issue 6's foundation; no Vulkan): a half-edge topology that
-//! refuses what Loop cannot subdivide, one Loop step with OpenSubdiv's boundary rules, and limit
-//! positions. The CPU reference the GPU paths (computational entries, basis function tables) will
-//! be checked against.
+//! Loop subdivision on the CPU (no Vulkan): a half-edge topology that refuses what Loop cannot
+//! subdivide, one Loop step with OpenSubdiv's boundary rules, its computational entries, and
+//! limit positions: the reference the GPU paths are checked against (itself checked against
+//! OpenSubdiv by scripts/check-loop-osd.sh). [`bft`] builds the basis function tables.
 //!
 //! Rules (Loop 1987; boundaries as OpenSubdiv's Loop scheme):
 //! - interior vertex of valence n: `(1 − nβ) P + β Σ P_i`, `β = (1/n)(5/8 − (3/8 + cos(2π/n)/4)²)`;

@@ -26,8 +26,11 @@
 //! - displacement moves along the normal field of the position normals, shared by both sides.
 //!
 //! The corners' own normals still drive shading, so a hard edge stays hard in the light. With
-//! [`Seams::Open`] the geometry uses the corners' own normals, as the papers do (and cracks). Loop's elements will be M1 faces whose record holds one-ring indices into a
-//! buffer of its own.
+//! [`Seams::Open`] the geometry uses the corners' own normals, as the papers do (and cracks).
+//!
+//! The `loop` surface's elements are M1 faces ([`RecordKind::LoopFaces`]): each record holds the
+//! face and the owners of its edges and corners (`surface::subdivision::face_records`); the
+//! control points and tables live in buffers of their own.
 
 use super::{Seams, Surface};
 use crate::mesh::Mesh;
