@@ -96,6 +96,35 @@ fn position_tolerance(cfg: &DrawConfig, r: f32, seamed: bool) -> f32 {
     }
 }
 
+/// Assert a captured vertex equals the mirror's point within the tolerances (per component);
+/// returns the largest position difference.
+fn compare(
+    got: &meshrefine::render::CapturedVertex,
+    want: &meshrefine::surface::SurfacePoint,
+    tol: f32,
+    ntol: f32,
+    what: &str,
+) -> f32 {
+    let mut worst = 0.0f32;
+    for a in 0..3 {
+        let d = (got.position[a] - want.position[a]).abs();
+        worst = worst.max(d);
+        assert!(
+            d <= tol,
+            "{what}: position {:?} differs from the mirror {} (tolerance {tol:e})",
+            &got.position[..3],
+            want.position
+        );
+        assert!(
+            (got.normal[a] - want.normal[a]).abs() <= ntol,
+            "{what}: normal {:?} vs {}",
+            &got.normal[..3],
+            want.normal
+        );
+    }
+    worst
+}
+
 fn normal_tolerance(cfg: &DrawConfig) -> f32 {
     if cfg.displace == Displace::None {
         1e-5
@@ -221,22 +250,7 @@ fn check_pattern_chunked(
                             pattern.bary[k],
                             &hm.element(t),
                         );
-                        for a in 0..3 {
-                            let d = (got.position[a] - want.position[a]).abs();
-                            worst = worst.max(d);
-                            assert!(
-                                d <= tol,
-                                "{what}: position {:?} differs from the mirror {} (tolerance {tol:e})",
-                                &got.position[..3],
-                                want.position
-                            );
-                            assert!(
-                                (got.normal[a] - want.normal[a]).abs() <= ntol,
-                                "{what}: normal {:?} vs {:?}",
-                                &got.normal[..3],
-                                want.normal
-                            );
-                        }
+                        worst = worst.max(compare(got, &want, tol, ntol, &what));
                     }
                 }
                 if submit == Submit::Instanced {
@@ -296,22 +310,8 @@ fn check_tess_chunked(
                     tess_weights(tc, level),
                     &hm.element(t),
                 );
-                for a in 0..3 {
-                    let d = (v.position[a] - want.position[a]).abs();
-                    worst = worst.max(d);
-                    assert!(
-                        d <= tol,
-                        "{what}: triangle {t} at {tc:?}: {:?} vs mirror {} (tolerance {tol:e})",
-                        &v.position[..3],
-                        want.position
-                    );
-                    assert!(
-                        (v.normal[a] - want.normal[a]).abs() <= ntol,
-                        "{what}: normal at {tc:?}: {:?} vs {}",
-                        &v.normal[..3],
-                        want.normal
-                    );
-                }
+                let at = format!("{what}: triangle {t} at {tc:?}");
+                worst = worst.max(compare(v, &want, tol, ntol, &at));
             }
             // Every patch was tessellated into exactly the expected set of distinct samples.
             assert_eq!(

@@ -395,10 +395,11 @@ pub struct Scene {
 }
 
 /// The `loop` surface of a scene: tables and records (CPU), its passes and M1 faces (GPU), and
-/// M1 as the CPU mirror computes it (the static driver and the tests read it).
+/// M1 as the CPU mirror computes it (the static driver and the tests read it), computed when
+/// first read after M0 moved: an animated frame drawn on the GPU does no M1 work on the CPU.
 pub struct LoopScene {
     pub data: LoopData,
-    pub frame: LoopFrame,
+    frame: std::cell::OnceCell<LoopFrame>,
     pub gpu: GpuMesh,
     pub pass: LoopPass,
 }
@@ -436,7 +437,6 @@ impl LoopScene {
                 });
             }
         }
-        let frame = data.frame(&mesh.positions);
         let pass = LoopPass::new(ctx, pool, &data, &mesh.positions)?;
         let elements = MeshData {
             mesh: mesh.clone(),
@@ -461,7 +461,7 @@ impl LoopScene {
         )?;
         Ok(Self {
             data,
-            frame,
+            frame: std::cell::OnceCell::new(),
             gpu,
             pass,
         })
@@ -663,10 +663,10 @@ impl Scene {
     pub fn update_mesh(&mut self, mesh: Mesh, surface: Surface) {
         self.data = MeshData::new(mesh, self.data.kind, self.data.seams);
         if let Some(l) = &mut self.subdiv {
-            // Loop: only M0's positions go up; the passes make M1 on the GPU (and the mirror's
-            // M1, for the static driver and the tests, on the CPU).
+            // Loop: only M0's positions go up; the passes make M1 on the GPU (the mirror's M1
+            // follows when it is read).
             l.pass.upload_m0(&self.data.mesh.positions);
-            l.frame = l.data.frame(&self.data.mesh.positions);
+            l.frame = std::cell::OnceCell::new();
         }
         if surface == Surface::Loop && self.subdiv.is_some() {
             self.records_stale = true;
@@ -784,7 +784,12 @@ impl Scene {
             map: &self.heightmap,
             lod: self.heightmap_lod(level),
             tags: &self.tags,
-            subdiv: self.subdiv.as_ref().map(|l| (&l.data, &l.frame)),
+            subdiv: self.subdiv.as_ref().map(|l| {
+                let frame = l
+                    .frame
+                    .get_or_init(|| l.data.frame(&self.data.mesh.positions));
+                (&l.data, frame)
+            }),
         }
     }
 
