@@ -8,15 +8,19 @@
 #include "displace.glsl"
 
 // Written by the Loop passes (glsl/subdiv), read here.
-layout(set = SET_MESH, binding = BINDING_LOOP_P1, std430) readonly buffer LoopP1 { vec4 loop_p1[]; };
-layout(set = SET_MESH, binding = BINDING_LOOP_N1, std430) readonly buffer LoopN1 { vec4 loop_n1[]; };
+layout(set = SET_MESH, binding = BINDING_LOOP_P1) uniform samplerBuffer loop_p1_t;
+layout(set = SET_MESH, binding = BINDING_LOOP_N1) uniform samplerBuffer loop_n1_t;
 // Per M1 face: (first weight, control points K, first control index, orientation: rotation in
 // bits 0-1, bit 2 set where the face is its configuration's mirror image, the tables' level
 // from bit 3: 2^level segments per edge).
-layout(set = SET_MESH, binding = BINDING_LOOP_FACES, std430) readonly buffer LoopFaces { uvec4 loop_faces[]; };
-layout(set = SET_MESH, binding = BINDING_LOOP_CONTROL, std430) readonly buffer LoopControl { uint loop_control[]; };
+layout(set = SET_MESH, binding = BINDING_LOOP_FACES) uniform usamplerBuffer loop_faces_t;
+layout(set = SET_MESH, binding = BINDING_LOOP_CONTROL) uniform usamplerBuffer loop_control_t;
 // Row r of a face's table is K weights at weights[first + r * K].
-layout(set = SET_MESH, binding = BINDING_LOOP_TABLES, std430) readonly buffer LoopTables { float bft[]; };
+layout(set = SET_MESH, binding = BINDING_LOOP_TABLES) uniform samplerBuffer bft_t;
+#define loop_p1_at(i) texelFetch(loop_p1_t, int(i))
+#define loop_n1_at(i) texelFetch(loop_n1_t, int(i))
+#define loop_control_at(i) texelFetch(loop_control_t, int(i)).x
+#define bft_at(i) texelFetch(bft_t, int(i)).x
 
 // Row of lattice point (i, j) of a lattice of `seg` segments. Mirror: bft::Lattice::row.
 uint bft_row(uint seg, uint i, uint j) {
@@ -55,7 +59,7 @@ uint loop_stored(uint orient, uint i) {
 
 // Face g at weights b of its stored corners. Mirror: subdivision::eval_face (and `cell`).
 SurfacePoint loop_eval_face(uint g, vec3 b) {
-    uvec4 f = loop_faces[g];
+    uvec4 f = texelFetch(loop_faces_t, int(g));
     uint offset = f.x, k = f.y, first = f.z, orient = f.w & 7u;
     uint seg = 1u << (f.w >> 3u);
     float s = float(seg);
@@ -68,10 +72,10 @@ SurfacePoint loop_eval_face(uint g, vec3 b) {
         uint r = offset + bft_row(seg, uint(x), uint(y)) * k;
         vec3 p = vec3(0.0), n = vec3(0.0);
         for (uint c = 0u; c < k; ++c) {
-            uint v = loop_control[first + c];
-            float w = bft[r + c];
-            p += loop_p1[v].xyz * w;
-            n += loop_n1[v].xyz * w;
+            uint v = loop_control_at(first + c);
+            float w = bft_at(r + c);
+            p += loop_p1_at(v).xyz * w;
+            n += loop_n1_at(v).xyz * w;
         }
         float nl = length(n);
         vec3 normal = nl > 0.0 ? n / nl : vec3(0.0);
@@ -107,12 +111,12 @@ SurfacePoint loop_eval_face(uint g, vec3 b) {
     vec3 p = vec3(0.0), ns = vec3(0.0), dx = vec3(0.0), dy = vec3(0.0);
     uint r0 = offset + rows[0] * k, r1 = offset + rows[1] * k, r2 = offset + rows[2] * k;
     for (uint c = 0u; c < k; ++c) {
-        uint v = loop_control[first + c];
-        vec3 pv = loop_p1[v].xyz;
-        float w0 = bft[r0 + c], w1 = bft[r1 + c], w2 = bft[r2 + c];
+        uint v = loop_control_at(first + c);
+        vec3 pv = loop_p1_at(v).xyz;
+        float w0 = bft_at(r0 + c), w1 = bft_at(r1 + c), w2 = bft_at(r2 + c);
         float w = w0 * l.x + w1 * l.y + w2 * l.z;
         p += pv * w;
-        ns += loop_n1[v].xyz * w;
+        ns += loop_n1_at(v).xyz * w;
         if (DISPLACE != DISPLACE_NONE) {
             dx += pv * (upper ? w0 - w1 : w1 - w0);
             dy += pv * (upper ? w0 - w2 : w2 - w0);

@@ -181,3 +181,42 @@ impl Drop for Buffer {
         track_drop();
     }
 }
+
+/// A typed view of a buffer, for a texel-buffer descriptor (`samplerBuffer` in GLSL).
+pub struct BufferView {
+    ctx: Arc<Context>,
+    pub raw: vk::BufferView,
+}
+
+impl BufferView {
+    /// The whole of `buffer` as texels of `format`.
+    pub fn new(
+        ctx: &Arc<Context>,
+        buffer: &Buffer,
+        format: vk::Format,
+        name: &str,
+    ) -> Result<Self, GpuError> {
+        let info = vk::BufferViewCreateInfo::default()
+            .buffer(buffer.raw)
+            .format(format)
+            .offset(0)
+            .range(vk::WHOLE_SIZE);
+        // SAFETY: the buffer outlives the view (its owner keeps both and drops the view first).
+        let raw =
+            unsafe { ctx.device.create_buffer_view(&info, None) }.call("vkCreateBufferView")?;
+        ctx.set_name(raw, name);
+        track_new();
+        Ok(Self {
+            ctx: ctx.clone(),
+            raw,
+        })
+    }
+}
+
+impl Drop for BufferView {
+    fn drop(&mut self) {
+        // SAFETY: no pending GPU work uses the view.
+        unsafe { self.ctx.device.destroy_buffer_view(self.raw, None) };
+        track_drop();
+    }
+}

@@ -21,7 +21,7 @@ mod query;
 mod recorder;
 mod swapchain;
 
-pub use buffer::{Buffer, BufferDesc};
+pub use buffer::{Buffer, BufferDesc, BufferView};
 pub use commands::{CommandPool, Fence, Semaphore};
 pub use context::{Context, ContextDesc, GpuError, Messages};
 pub use device::DeviceInfo;

@@ -205,6 +205,24 @@ impl DescriptorPool {
         // SAFETY: set not in use by pending work while it is written (written before recording).
         unsafe { self.ctx.device.update_descriptor_sets(&[write], &[]) };
     }
+
+    /// Point texel-buffer `binding` of `set` at `view`.
+    pub fn write_texel_buffer(
+        &self,
+        set: vk::DescriptorSet,
+        binding: u32,
+        ty: vk::DescriptorType,
+        view: vk::BufferView,
+    ) {
+        let views = [view];
+        let write = vk::WriteDescriptorSet::default()
+            .dst_set(set)
+            .dst_binding(binding)
+            .descriptor_type(ty)
+            .texel_buffer_view(&views);
+        // SAFETY: set not in use by pending work while it is written (written before recording).
+        unsafe { self.ctx.device.update_descriptor_sets(&[write], &[]) };
+    }
 }
 
 impl Drop for DescriptorPool {

@@ -7,10 +7,12 @@ pub enum RenderError {
     #[error(transparent)]
     Gpu(#[from] GpuError),
     /// A request needs more than one of the device's limits allows.
-    #[error("{what} needs {needed} bytes, over this device's {limit} ({max}): {remedy}")]
+    #[error("{what} needs {needed} {unit}, over this device's {limit} ({max}): {remedy}")]
     OverLimit {
         what: String,
         needed: u64,
+        /// What `needed` and `max` count: "bytes" or "texels".
+        unit: &'static str,
         limit: &'static str,
         max: u64,
         remedy: String,

@@ -290,6 +290,7 @@ impl Headless {
             return Err(RenderError::OverLimit {
                 what: format!("capturing the {per_element} evaluated vertices of one element"),
                 needed: per_element as u64 * vertex_bytes,
+                unit: "bytes",
                 limit: "maxStorageBufferRange",
                 max: limit,
                 remedy,
@@ -379,6 +380,7 @@ impl Headless {
                     tess_triangle_count(cfg.level)
                 ),
                 needed: per_element,
+                unit: "bytes",
                 limit: "maxTransformFeedbackBufferSize",
                 max: limit,
                 remedy: "use a lower level".into(),

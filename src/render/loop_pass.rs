@@ -90,7 +90,8 @@ impl LoopPass {
         if entries.is_empty() {
             entries.push([0, 0]);
         }
-        let storage = vk::BufferUsageFlags::STORAGE_BUFFER;
+        let storage =
+            vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::UNIFORM_TEXEL_BUFFER;
         let upload =
             |data: &[u32], name: &str| Buffer::new_with_data(ctx, pool, storage, data, name);
         let offsets_buf = upload(&offsets, "loop entry offsets")?;

@@ -93,11 +93,19 @@ impl Renderer {
                 // every vertex's scalar tags (stpn)
                 (BINDING_TAGS, T::STORAGE_BUFFER, ALL_STAGES),
                 // the loop surface: M1, per-face table entries, control points, tables
-                (BINDING_LOOP_P1, T::STORAGE_BUFFER, GEOMETRY_STAGES),
-                (BINDING_LOOP_N1, T::STORAGE_BUFFER, GEOMETRY_STAGES),
-                (BINDING_LOOP_FACES, T::STORAGE_BUFFER, GEOMETRY_STAGES),
-                (BINDING_LOOP_CONTROL, T::STORAGE_BUFFER, GEOMETRY_STAGES),
-                (BINDING_LOOP_TABLES, T::STORAGE_BUFFER, GEOMETRY_STAGES),
+                (BINDING_LOOP_P1, T::UNIFORM_TEXEL_BUFFER, GEOMETRY_STAGES),
+                (BINDING_LOOP_N1, T::UNIFORM_TEXEL_BUFFER, GEOMETRY_STAGES),
+                (BINDING_LOOP_FACES, T::UNIFORM_TEXEL_BUFFER, GEOMETRY_STAGES),
+                (
+                    BINDING_LOOP_CONTROL,
+                    T::UNIFORM_TEXEL_BUFFER,
+                    GEOMETRY_STAGES,
+                ),
+                (
+                    BINDING_LOOP_TABLES,
+                    T::UNIFORM_TEXEL_BUFFER,
+                    GEOMETRY_STAGES,
+                ),
             ],
             "set 1: mesh",
         )?;

@@ -5,7 +5,9 @@
 use super::bindings::*;
 use super::loop_pass::LoopPass;
 use super::RenderError;
-use crate::gpu::{vk, Buffer, BufferDesc, CommandPool, Context, DescriptorPool, GpuError};
+use crate::gpu::{
+    vk, Buffer, BufferDesc, BufferView, CommandPool, Context, DescriptorPool, GpuError,
+};
 use crate::mesh::Mesh;
 use crate::pattern::{Pattern, PatternSet};
 use crate::surface::stpn::VertexTag;
@@ -114,6 +116,8 @@ pub struct GpuMesh {
     pub sets: Vec<vk::DescriptorSet>,
     /// Elements per chunk.
     pub chunk: u32,
+    /// The loop buffers' texel views (dropped before the buffers).
+    _views: Vec<BufferView>,
     /// Bound where a surface's buffers are absent (every binding must be valid).
     _placeholder: Buffer,
 }
@@ -249,7 +253,8 @@ impl GpuMesh {
             ctx,
             chunks,
             &[
-                (vk::DescriptorType::STORAGE_BUFFER, 9 * chunks),
+                (vk::DescriptorType::STORAGE_BUFFER, 4 * chunks),
+                (vk::DescriptorType::UNIFORM_TEXEL_BUFFER, 5 * chunks),
                 (vk::DescriptorType::UNIFORM_BUFFER_DYNAMIC, chunks),
             ],
             "mesh descriptors",
@@ -257,7 +262,7 @@ impl GpuMesh {
         let placeholder = Buffer::new_with_data(
             ctx,
             cmd_pool,
-            vk::BufferUsageFlags::STORAGE_BUFFER,
+            vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::UNIFORM_TEXEL_BUFFER,
             &[0u32; 4],
             "placeholder",
         )?;
@@ -265,6 +270,19 @@ impl GpuMesh {
             Some(l) => [&l.m1, &l.n1, &l.faces, &l.control, &l.tables],
             None => [&placeholder; 5],
         };
+        let formats = [
+            vk::Format::R32G32B32A32_SFLOAT,
+            vk::Format::R32G32B32A32_SFLOAT,
+            vk::Format::R32G32B32A32_UINT,
+            vk::Format::R32_UINT,
+            vk::Format::R32_SFLOAT,
+        ];
+        let views = loop_buffers
+            .iter()
+            .zip(formats)
+            .enumerate()
+            .map(|(i, (b, f))| BufferView::new(ctx, b, f, &format!("loop view {i}")))
+            .collect::<Result<Vec<_>, _>>()?;
         let mut sets = Vec::with_capacity(chunks as usize);
         for c in 0..chunks as u64 {
             let set = pool.allocate(set_layout, &format!("mesh set {c}"))?;
@@ -308,7 +326,7 @@ impl GpuMesh {
                 tags_buffer.raw,
                 vk::WHOLE_SIZE,
             );
-            for (binding, buffer) in [
+            for (binding, view) in [
                 BINDING_LOOP_P1,
                 BINDING_LOOP_N1,
                 BINDING_LOOP_FACES,
@@ -316,14 +334,13 @@ impl GpuMesh {
                 BINDING_LOOP_TABLES,
             ]
             .into_iter()
-            .zip(loop_buffers)
+            .zip(&views)
             {
-                pool.write_buffer(
+                pool.write_texel_buffer(
                     set,
                     binding,
-                    vk::DescriptorType::STORAGE_BUFFER,
-                    buffer.raw,
-                    vk::WHOLE_SIZE,
+                    vk::DescriptorType::UNIFORM_TEXEL_BUFFER,
+                    view.raw,
                 );
             }
             sets.push(set);
@@ -338,6 +355,7 @@ impl GpuMesh {
             pool,
             sets,
             chunk,
+            _views: views,
             _placeholder: placeholder,
         })
     }
@@ -420,20 +438,50 @@ impl LoopScene {
                 log::info!("loop surface: {p}");
             }
         })?;
-        let limit = ctx.info.limits.max_storage_buffer_range as u64;
-        for (what, bytes) in [
-            ("M1 positions", data.stencils.len() as u64 * 16),
-            ("M1 face tables", data.faces.len() as u64 * 16),
-            ("control points", data.control.len() as u64 * 4),
-            ("basis function tables", data.table_bytes()),
-        ] {
-            if bytes > limit {
+        // The compute passes write M1 as storage buffers; the drawing stages read every loop
+        // buffer as a texel buffer (lavapipe fetches texels as vector gathers, storage-buffer
+        // reads lane by lane: 15-20 % of loop's frame time at level 32).
+        let limits = &ctx.info.limits;
+        let m1 = data.stencils.len() as u64;
+        let checks = [
+            ("M1 positions", m1 * 16, m1),
+            (
+                "M1 face tables",
+                data.faces.len() as u64 * 16,
+                data.faces.len() as u64,
+            ),
+            (
+                "control points",
+                data.control.len() as u64 * 4,
+                data.control.len() as u64,
+            ),
+            (
+                "basis function tables",
+                data.table_bytes(),
+                data.table_bytes() / 4,
+            ),
+        ];
+        for (i, (what, bytes, texels)) in checks.into_iter().enumerate() {
+            let storage = limits.max_storage_buffer_range as u64;
+            if i == 0 && bytes > storage {
                 return Err(RenderError::OverLimit {
                     what: format!("the loop surface's {what}"),
                     needed: bytes,
+                    unit: "bytes",
                     limit: "maxStorageBufferRange",
-                    max: limit,
+                    max: storage,
                     remedy: "use a coarser mesh".into(),
+                });
+            }
+            let max = limits.max_texel_buffer_elements as u64;
+            if texels > max {
+                return Err(RenderError::OverLimit {
+                    what: format!("the loop surface's {what} (texels)"),
+                    needed: texels,
+                    unit: "texels",
+                    limit: "maxTexelBufferElements",
+                    max,
+                    remedy: "use a coarser mesh or a lower --bft-level".into(),
                 });
             }
         }

@@ -114,6 +114,7 @@ impl StaticVbo {
                     pattern.level
                 ),
                 needed: bytes,
+                unit: "bytes",
                 limit: "maxMemoryAllocationSize",
                 max,
                 remedy: "use a lower level or the pattern driver".into(),
