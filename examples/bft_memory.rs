@@ -63,7 +63,11 @@ fn main() {
                 all.insert(c.key, c.control);
             }
         }
-        let bytes: usize = all.values().map(|&k| lattice.rows() * k * 4).sum();
+        // As stored on the GPU: rows padded to a multiple of four weights.
+        let bytes: usize = all
+            .values()
+            .map(|&k| lattice.rows() * meshrefine::surface::subdivision::padded(k) * 4)
+            .sum();
         println!(
             "table level {lmax} ({} segments): {} configurations up to valence {max}, {bytes} bytes ({:.2} MiB)",
             lattice.segments(),

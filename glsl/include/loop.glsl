@@ -14,13 +14,15 @@ layout(set = SET_MESH, binding = BINDING_LOOP_N1) uniform samplerBuffer loop_n1_
 // bits 0-1, bit 2 set where the face is its configuration's mirror image, the tables' level
 // from bit 3: 2^level segments per edge).
 layout(set = SET_MESH, binding = BINDING_LOOP_FACES) uniform usamplerBuffer loop_faces_t;
-layout(set = SET_MESH, binding = BINDING_LOOP_CONTROL) uniform usamplerBuffer loop_control_t;
-// Row r of a face's table is K weights at weights[first + r * K].
-layout(set = SET_MESH, binding = BINDING_LOOP_TABLES) uniform samplerBuffer bft_t;
+// Control points, four M1 vertex indices a texel: a face's K padded to K4, a multiple of four
+// (the padding repeats its first control point, with weight zero).
+layout(set = SET_MESH, binding = BINDING_LOOP_CONTROL) uniform usamplerBuffer loop_control4;
+// Four weights a texel: row r of a face's table is K4 weights from weights[first + r * K4], the
+// padding zero. Read four at a time, as the control points: texel buffers, because lavapipe
+// fetches texels as vector gathers but reads storage buffers lane by lane.
+layout(set = SET_MESH, binding = BINDING_LOOP_TABLES) uniform samplerBuffer bft4;
 #define loop_p1_at(i) texelFetch(loop_p1_t, int(i))
 #define loop_n1_at(i) texelFetch(loop_n1_t, int(i))
-#define loop_control_at(i) texelFetch(loop_control_t, int(i)).x
-#define bft_at(i) texelFetch(bft_t, int(i)).x
 
 // Row of lattice point (i, j) of a lattice of `seg` segments. Mirror: bft::Lattice::row.
 uint bft_row(uint seg, uint i, uint j) {
@@ -60,7 +62,7 @@ uint loop_stored(uint orient, uint i) {
 // Face g at weights b of its stored corners. Mirror: subdivision::eval_face (and `cell`).
 SurfacePoint loop_eval_face(uint g, vec3 b) {
     uvec4 f = texelFetch(loop_faces_t, int(g));
-    uint offset = f.x, k = f.y, first = f.z, orient = f.w & 7u;
+    uint offset = f.x, k4 = (f.y + 3u) & ~3u, first = f.z, orient = f.w & 7u;
     uint seg = 1u << (f.w >> 3u);
     float s = float(seg);
     float x = b[loop_stored(orient, 1u)] * s;
@@ -69,13 +71,15 @@ SurfacePoint loop_eval_face(uint g, vec3 b) {
     // The general path below gives the very same bits there (weights 1, 0, 0 on the same row),
     // so the mirror, which always takes it, agrees exactly.
     if (DISPLACE == DISPLACE_NONE && x == floor(x) && y == floor(y)) {
-        uint r = offset + bft_row(seg, uint(x), uint(y)) * k;
+        uint r = (offset + bft_row(seg, uint(x), uint(y)) * k4) / 4u;
         vec3 p = vec3(0.0), n = vec3(0.0);
-        for (uint c = 0u; c < k; ++c) {
-            uint v = loop_control_at(first + c);
-            float w = bft_at(r + c);
-            p += loop_p1_at(v).xyz * w;
-            n += loop_n1_at(v).xyz * w;
+        for (uint c = 0u; c < k4 / 4u; ++c) {
+            uvec4 v = texelFetch(loop_control4, int(first / 4u + c));
+            vec4 w = texelFetch(bft4, int(r + c));
+            for (uint e = 0u; e < 4u; ++e) {
+                p += loop_p1_at(v[e]).xyz * w[e];
+                n += loop_n1_at(v[e]).xyz * w[e];
+            }
         }
         float nl = length(n);
         vec3 normal = nl > 0.0 ? n / nl : vec3(0.0);
@@ -109,17 +113,19 @@ SurfacePoint loop_eval_face(uint g, vec3 b) {
     // The three rows' weights interpolated first, then one weighted sum (and two for the
     // tangents, the lattice triangle's edges, only where displacement uses them).
     vec3 p = vec3(0.0), ns = vec3(0.0), dx = vec3(0.0), dy = vec3(0.0);
-    uint r0 = offset + rows[0] * k, r1 = offset + rows[1] * k, r2 = offset + rows[2] * k;
-    for (uint c = 0u; c < k; ++c) {
-        uint v = loop_control_at(first + c);
-        vec3 pv = loop_p1_at(v).xyz;
-        float w0 = bft_at(r0 + c), w1 = bft_at(r1 + c), w2 = bft_at(r2 + c);
-        float w = w0 * l.x + w1 * l.y + w2 * l.z;
-        p += pv * w;
-        ns += loop_n1_at(v).xyz * w;
-        if (DISPLACE != DISPLACE_NONE) {
-            dx += pv * (upper ? w0 - w1 : w1 - w0);
-            dy += pv * (upper ? w0 - w2 : w2 - w0);
+    uint r0 = (offset + rows[0] * k4) / 4u, r1 = (offset + rows[1] * k4) / 4u, r2 = (offset + rows[2] * k4) / 4u;
+    for (uint c = 0u; c < k4 / 4u; ++c) {
+        uvec4 v = texelFetch(loop_control4, int(first / 4u + c));
+        vec4 w0 = texelFetch(bft4, int(r0 + c)), w1 = texelFetch(bft4, int(r1 + c)), w2 = texelFetch(bft4, int(r2 + c));
+        vec4 w = w0 * l.x + w1 * l.y + w2 * l.z;
+        for (uint e = 0u; e < 4u; ++e) {
+            vec3 pv = loop_p1_at(v[e]).xyz;
+            p += pv * w[e];
+            ns += loop_n1_at(v[e]).xyz * w[e];
+            if (DISPLACE != DISPLACE_NONE) {
+                dx += pv * (upper ? w0[e] - w1[e] : w1[e] - w0[e]);
+                dy += pv * (upper ? w0[e] - w2[e] : w2[e] - w0[e]);
+            }
         }
     }
     vec3 position = p;

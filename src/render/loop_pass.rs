@@ -99,13 +99,21 @@ impl LoopPass {
         let ring_offsets = upload(&data.ring_offsets, "M1 ring offsets")?;
         let rings = upload(nonempty(&data.rings), "M1 rings")?;
         let faces = Buffer::new_with_data(ctx, pool, storage, &data.faces, "loop face tables")?;
-        let control = upload(nonempty(&data.control), "loop control points")?;
+        // Read as texels of four (at least one texel, as every buffer view needs).
+        let control = upload(
+            if data.control.is_empty() {
+                &[0; 4]
+            } else {
+                &data.control
+            },
+            "loop control points",
+        )?;
         let tables = Buffer::new_with_data(
             ctx,
             pool,
             storage,
             if data.weights.is_empty() {
-                &[0.0f32][..]
+                &[0.0f32; 4][..]
             } else {
                 &data.weights
             },

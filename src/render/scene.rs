@@ -274,8 +274,8 @@ impl GpuMesh {
             vk::Format::R32G32B32A32_SFLOAT,
             vk::Format::R32G32B32A32_SFLOAT,
             vk::Format::R32G32B32A32_UINT,
-            vk::Format::R32_UINT,
-            vk::Format::R32_SFLOAT,
+            vk::Format::R32G32B32A32_UINT,
+            vk::Format::R32G32B32A32_SFLOAT,
         ];
         let views = loop_buffers
             .iter()

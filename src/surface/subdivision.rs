@@ -28,12 +28,15 @@ pub struct LoopData {
     pub stencils: Vec<Stencil>,
     pub m1: Topology,
     pub tables: Tables,
-    /// Per M1 face: (first table weight, control points, first control index, orientation
+    /// Per M1 face: (first table weight, control points K, first control index, orientation
     /// ([`crate::subdiv::bft::Orient::bits`]) | the tables' level << 3).
     pub faces: Vec<[u32; 4]>,
-    /// Control points of every face, M1 vertex indices.
+    /// Control points of every face, M1 vertex indices, [`padded`]`(K)` a face (the padding
+    /// repeats the face's first control point, with weight zero).
     pub control: Vec<u32>,
-    /// Every table, f32, configuration after configuration.
+    /// Every table, f32, configuration after configuration, rows of [`padded`]`(K)` weights
+    /// (the padding zero), so that rows and control lists start at multiples of four and the
+    /// drawing stages read them four at a time.
     pub weights: Vec<f32>,
     /// Per M1 vertex: the start of its one-ring in `rings` (bit 31: on the boundary), plus one
     /// end entry.
@@ -101,7 +104,11 @@ impl LoopData {
         let mut weights = Vec::new();
         for c in &tables.configs {
             offsets.push(weights.len() as u32);
-            weights.extend(c.weights.iter().map(|&w| w as f32));
+            let k4 = padded(c.control);
+            for row in c.weights.chunks(c.control) {
+                weights.extend(row.iter().map(|&w| w as f32));
+                weights.extend(std::iter::repeat_n(0.0, k4 - c.control));
+            }
         }
         let mut faces = Vec::with_capacity(m1.faces.len());
         let mut control = Vec::new();
@@ -113,6 +120,8 @@ impl LoopData {
                 fc.orient.bits() | lattice.lmax << 3,
             ]);
             control.extend(&fc.control);
+            let k4 = padded(fc.control.len());
+            control.extend(std::iter::repeat_n(fc.control[0], k4 - fc.control.len()));
         }
         let mut ring_offsets = Vec::with_capacity(m1.vertex_count + 1);
         let mut rings = Vec::new();
@@ -138,7 +147,7 @@ impl LoopData {
         })
     }
 
-    /// Bytes of the basis function tables (f32).
+    /// Bytes of the basis function tables (f32, rows padded to multiples of four).
     pub fn table_bytes(&self) -> u64 {
         self.weights.len() as u64 * 4
     }
@@ -348,6 +357,12 @@ pub fn cell(lattice: Lattice, x: f32, y: f32) -> ([usize; 3], [f32; 3], [[usize;
     }
 }
 
+/// `k` rounded up to a multiple of four: the stride of a configuration's table rows and of a
+/// face's control points. Mirror of the `k4` in `loop_eval_face`.
+pub fn padded(k: usize) -> usize {
+    k.next_multiple_of(4)
+}
+
 /// Evaluate face `g` at weights `b` of its stored corners. Mirror of `loop_eval_face`.
 pub fn eval_face(data: &LoopData, frame: &LoopFrame, g: u32, b: [f32; 3]) -> SurfacePoint {
     let [offset, k, first, orient] = data.faces[g as usize];
@@ -365,7 +380,8 @@ pub fn eval_face(data: &LoopData, frame: &LoopFrame, g: u32, b: [f32; 3]) -> Sur
     // The three rows' weights interpolated first, then one weighted sum, and two for the
     // tangents (the lattice triangle's edges).
     let (mut p, mut n, mut dx, mut dy) = (Vec3::ZERO, Vec3::ZERO, Vec3::ZERO, Vec3::ZERO);
-    let k = k as usize;
+    // Padded columns too, as the GPU sums them (weight zero: the sum keeps its value).
+    let k = padded(k as usize);
     for c in 0..k {
         let v = data.control[first as usize + c] as usize;
         let (pv, nv) = (frame.positions[v], frame.normals[v]);
