@@ -30,11 +30,11 @@ pub const BINDING_HEIGHTMAP: u32 = 3;
 /// Set 1, binding 4: every vertex's scalar tags (`stpn`), three `vec4` each.
 pub const BINDING_TAGS: u32 = 4;
 
-/// Set 1, bindings 5-9: the `loop` surface (src/surface/subdivision.rs): M1's positions and
-/// normals (`vec4`, written by the Loop passes), each M1 face's table entry (`uvec4`: first
-/// weight, control points, first control index, rotation), the faces' control points (M1 vertex
-/// indices) and the basis function tables (`float`). Unchunked: one face's owners may be in
-/// another chunk.
+/// Set 1, bindings 5-9, texel buffers: the `loop` surface (src/surface/subdivision.rs): M1's
+/// positions and normals (`vec4`, written by the Loop passes), each M1 face's table entry
+/// (`uvec4`: first weight, control points, first control index, rotation), the faces' control
+/// points (M1 vertex indices, four a texel) and the basis function tables (`float`, four a
+/// texel). Unchunked: one face's owners may be in another chunk.
 pub const BINDING_LOOP_P1: u32 = 5;
 pub const BINDING_LOOP_N1: u32 = 6;
 pub const BINDING_LOOP_FACES: u32 = 7;

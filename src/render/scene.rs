@@ -422,6 +422,45 @@ pub struct LoopScene {
     pub pass: LoopPass,
 }
 
+/// Whether the loop surface's buffers fit the device: the compute passes write M1 as storage
+/// buffers; the drawing stages read M1, the face entries, the control points and the tables as
+/// texel buffers (lavapipe fetches texels as vector gathers but reads storage buffers lane by
+/// lane), four-component texels each.
+fn loop_limits(data: &LoopData, limits: &vk::PhysicalDeviceLimits) -> Result<(), RenderError> {
+    let m1 = data.stencils.len() as u64 * 16;
+    let storage = limits.max_storage_buffer_range as u64;
+    if m1 > storage {
+        return Err(RenderError::OverLimit {
+            what: "the loop surface's M1 positions".into(),
+            needed: m1,
+            unit: "bytes",
+            limit: "maxStorageBufferRange",
+            max: storage,
+            remedy: "use a coarser mesh".into(),
+        });
+    }
+    let max = limits.max_texel_buffer_elements as u64;
+    for (what, bytes) in [
+        ("M1 positions", m1),
+        ("M1 face tables", data.faces.len() as u64 * 16),
+        ("control points", data.control.len() as u64 * 4),
+        ("basis function tables", data.table_bytes()),
+    ] {
+        let texels = bytes.div_ceil(16);
+        if texels > max {
+            return Err(RenderError::OverLimit {
+                what: format!("the loop surface's {what}"),
+                needed: texels,
+                unit: "texels",
+                limit: "maxTexelBufferElements",
+                max,
+                remedy: "use a coarser mesh or a lower --bft-level".into(),
+            });
+        }
+    }
+    Ok(())
+}
+
 impl LoopScene {
     fn new(
         ctx: &Arc<Context>,
@@ -438,53 +477,7 @@ impl LoopScene {
                 log::info!("loop surface: {p}");
             }
         })?;
-        // The compute passes write M1 as storage buffers; the drawing stages read every loop
-        // buffer as a texel buffer (lavapipe fetches texels as vector gathers, storage-buffer
-        // reads lane by lane: 15-20 % of loop's frame time at level 32).
-        let limits = &ctx.info.limits;
-        let m1 = data.stencils.len() as u64;
-        let checks = [
-            ("M1 positions", m1 * 16, m1),
-            (
-                "M1 face tables",
-                data.faces.len() as u64 * 16,
-                data.faces.len() as u64,
-            ),
-            (
-                "control points",
-                data.control.len() as u64 * 4,
-                data.control.len() as u64,
-            ),
-            (
-                "basis function tables",
-                data.table_bytes(),
-                data.table_bytes() / 4,
-            ),
-        ];
-        for (i, (what, bytes, texels)) in checks.into_iter().enumerate() {
-            let storage = limits.max_storage_buffer_range as u64;
-            if i == 0 && bytes > storage {
-                return Err(RenderError::OverLimit {
-                    what: format!("the loop surface's {what}"),
-                    needed: bytes,
-                    unit: "bytes",
-                    limit: "maxStorageBufferRange",
-                    max: storage,
-                    remedy: "use a coarser mesh".into(),
-                });
-            }
-            let max = limits.max_texel_buffer_elements as u64;
-            if texels > max {
-                return Err(RenderError::OverLimit {
-                    what: format!("the loop surface's {what} (texels)"),
-                    needed: texels,
-                    unit: "texels",
-                    limit: "maxTexelBufferElements",
-                    max,
-                    remedy: "use a coarser mesh or a lower --bft-level".into(),
-                });
-            }
-        }
+        loop_limits(&data, &ctx.info.limits)?;
         let pass = LoopPass::new(ctx, pool, &data, &mesh.positions)?;
         let elements = MeshData {
             mesh: mesh.clone(),
@@ -846,5 +839,44 @@ impl Scene {
         let (lo, hi) = self.data.mesh.bounds();
         let c = (lo + hi) * 0.5;
         (c, ((hi - lo) * 0.5).length().max(1e-6))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::test_support::load_model;
+    use crate::subdiv::{bft::Lattice, Boundary};
+
+    /// A loop surface over a device's limits is one sentence naming the buffer, the limit and
+    /// what to do; texels count four components.
+    #[test]
+    fn loop_buffers_are_checked_against_the_limits() {
+        let (mesh, _) = load_model("spot_control_tri.obj");
+        let data = LoopData::new(&mesh, Boundary::EdgeOnly, Lattice::default(), |_| {}).unwrap();
+        let tables = data.table_bytes() / 16;
+        let mut limits = vk::PhysicalDeviceLimits {
+            max_storage_buffer_range: u32::MAX,
+            max_texel_buffer_elements: tables as u32,
+            ..Default::default()
+        };
+        loop_limits(&data, &limits).unwrap();
+        limits.max_texel_buffer_elements = tables as u32 - 1;
+        let e = loop_limits(&data, &limits).unwrap_err().to_string();
+        assert_eq!(
+            e,
+            format!(
+                "the loop surface's basis function tables needs {tables} texels, over this \
+                 device's maxTexelBufferElements ({}): use a coarser mesh or a lower --bft-level",
+                tables - 1
+            )
+        );
+        limits.max_storage_buffer_range = 1024;
+        let e = loop_limits(&data, &limits).unwrap_err().to_string();
+        assert!(
+            e.starts_with("the loop surface's M1 positions needs")
+                && e.contains("bytes, over this device's maxStorageBufferRange (1024)"),
+            "{e}"
+        );
     }
 }
