@@ -17,7 +17,7 @@ layout(set = SET_MESH, binding = BINDING_LOOP_FACES) uniform usamplerBuffer loop
 // Control points, four M1 vertex indices a texel: a face's K padded to K4, a multiple of four
 // (the padding repeats its first control point, with weight zero).
 layout(set = SET_MESH, binding = BINDING_LOOP_CONTROL) uniform usamplerBuffer loop_control4;
-// Four weights a texel: row r of a face's table is K4 weights from weights[first + r * K4], the
+// Four weights a texel: row r of a face's table is K4 weights from weights[offset + r * K4], the
 // padding zero. Read four at a time, as the control points: texel buffers, because lavapipe
 // fetches texels as vector gathers but reads storage buffers lane by lane.
 layout(set = SET_MESH, binding = BINDING_LOOP_TABLES) uniform samplerBuffer bft4;

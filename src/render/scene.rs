@@ -116,7 +116,8 @@ pub struct GpuMesh {
     pub sets: Vec<vk::DescriptorSet>,
     /// Elements per chunk.
     pub chunk: u32,
-    /// The loop buffers' texel views (dropped before the buffers).
+    /// The loop buffers' texel views (a [`LoopScene`] drops its `gpu` before its `pass`, which
+    /// owns the buffers; the placeholder's views before the placeholder, declared after).
     _views: Vec<BufferView>,
     /// Bound where a surface's buffers are absent (every binding must be valid).
     _placeholder: Buffer,
@@ -280,8 +281,14 @@ impl GpuMesh {
         let views = loop_buffers
             .iter()
             .zip(formats)
-            .enumerate()
-            .map(|(i, (b, f))| BufferView::new(ctx, b, f, &format!("loop view {i}")))
+            .zip([
+                "M1 positions",
+                "M1 normals",
+                "face entries",
+                "control",
+                "tables",
+            ])
+            .map(|((b, f), name)| BufferView::new(ctx, b, f, &format!("loop {name} view")))
             .collect::<Result<Vec<_>, _>>()?;
         let mut sets = Vec::with_capacity(chunks as usize);
         for c in 0..chunks as u64 {
