@@ -170,7 +170,26 @@ fn degenerate_warning(shown: &str, report: &LoadReport) -> Option<String> {
     ))
 }
 
-fn load_mesh(path: Option<&Path>) -> Result<Input> {
+/// Loop subdivides the file's topology, which a dropped face would change (a hole where it
+/// was): with `--surface loop` the first dropped face is an error, not a warning.
+fn refuse_dropped_for_loop(shown: &str, report: &LoadReport) -> Result<()> {
+    let Some(d) = report.dropped_degenerate.first() else {
+        return Ok(());
+    };
+    let face = match d.line {
+        Some(l) => format!("the face at line {l}"),
+        None => format!("face {}", d.face),
+    };
+    bail!(
+        "'{shown}': the loop surface cannot subdivide it: {face} {} ({} degenerate face(s) in all): Loop subdivision needs every face of the file as a triangle of three distinct vertices, and dropping it, as the other surfaces do, would open a hole",
+        d.reason,
+        report.dropped_degenerate.len()
+    )
+}
+
+/// Loads `path` (the default mesh when `None`); `for_loop` when the loop surface will subdivide
+/// it, which refuses degenerate faces instead of dropping them.
+fn load_mesh(path: Option<&Path>, for_loop: bool) -> Result<Input> {
     let Some(p) = path else {
         return Ok(Input {
             mesh: meshrefine::mesh::default_mesh(),
@@ -181,6 +200,9 @@ fn load_mesh(path: Option<&Path>) -> Result<Input> {
     };
     let shown = p.display().to_string();
     let (mesh, report) = Mesh::load_obj(p)?;
+    if for_loop {
+        refuse_dropped_for_loop(&shown, &report)?;
+    }
     if let Some(w) = degenerate_warning(&shown, &report) {
         note(format_args!("{w}"));
     }
@@ -273,7 +295,8 @@ fn run(cli: Cli) -> Result<()> {
     match &cli.command {
         Command::Render(a) => {
             require_extension(&a.output, "png", "render writes PNG images only")?;
-            let mut input = load_mesh(a.mesh.as_deref())?;
+            let for_loop = a.technique.surface.surface == Surface::Loop;
+            let mut input = load_mesh(a.mesh.as_deref(), for_loop)?;
             let cfg = draw_config(&a.technique, &input.mesh, false)?;
             attach_surface_inputs(&mut input, &a.technique.surface)?;
             let messages = {
@@ -295,7 +318,8 @@ fn run(cli: Cli) -> Result<()> {
                 "png",
                 "the headless view writes a PNG image",
             )?;
-            let mut input = load_mesh(a.mesh.as_deref())?;
+            let for_loop = a.technique.surface.surface == Surface::Loop;
+            let mut input = load_mesh(a.mesh.as_deref(), for_loop)?;
             let cfg = draw_config(&a.technique, &input.mesh, true)?;
             attach_surface_inputs(&mut input, &a.technique.surface)?;
             let has_display = std::env::var_os("DISPLAY").is_some()
@@ -339,7 +363,8 @@ fn run(cli: Cli) -> Result<()> {
         }
         Command::Export(a) => {
             require_extension(&a.output, "obj", "export writes Wavefront OBJ text only")?;
-            let mut input = load_mesh(a.mesh.as_deref())?;
+            let for_loop = a.surface.surface == Surface::Loop;
+            let mut input = load_mesh(a.mesh.as_deref(), for_loop)?;
             let cfg = draw_config(&a.technique(), &input.mesh, false)?;
             attach_surface_inputs(&mut input, &a.surface)?;
             let (messages, counts) = {
@@ -362,7 +387,7 @@ fn run(cli: Cli) -> Result<()> {
                     a.min_total_ms
                 );
             }
-            let input = load_mesh(a.mesh.as_deref())?;
+            let input = load_mesh(a.mesh.as_deref(), a.surfaces.contains(&Surface::Loop))?;
             let ctx = Context::new(&desc)?;
             let messages = ctx.messages_handle();
             let (mesh, _) = for_viewing(&input.mesh, &DrawConfig::new(Driver::default(), 1));
@@ -500,6 +525,9 @@ fn render_png(
 fn info(a: &cli::InfoArgs) -> Result<()> {
     let (path, level) = (a.mesh.as_path(), a.level);
     let (mesh, report) = Mesh::load_obj(path)?;
+    if a.surface == Some(Surface::Loop) {
+        refuse_dropped_for_loop(&path.display().to_string(), &report)?;
+    }
     if let Some(w) = degenerate_warning(&path.display().to_string(), &report) {
         note(format_args!("{w}"));
     }

@@ -1122,6 +1122,37 @@ fn loop_surface_from_the_command_line() {
         &["info", p(&bad), "--surface", "loop"],
         &["nonmanifold_edge.obj", "more than two faces"],
     );
+    // The other refusals name the first offending vertex or edge, and a face that repeats a
+    // vertex, which the other surfaces drop with a warning, is an error: dropping it would
+    // change the topology Loop subdivides.
+    let tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv -1 0 0\nv 0 -1 0\n";
+    for (name, faces, want) in [
+        (
+            "loop_repeat.obj",
+            "f 1 2 3\nf 2 4 4\n",
+            "the face at line 8 repeats a vertex index",
+        ),
+        (
+            "loop_orient.obj",
+            "f 1 2 3\nf 2 3 4\n",
+            "edge (1, 2) is used twice in the same direction",
+        ),
+        (
+            "loop_bowtie.obj",
+            "f 1 2 3\nf 1 5 6\n",
+            "vertex 0 is non-manifold",
+        ),
+    ] {
+        let path = write(name, format!("{tri}{faces}").as_bytes());
+        for cmd in ["render", "export"] {
+            let out_file = if cmd == "render" { &png } else { &obj };
+            expect_error(
+                &[cmd, p(&path), "-o", p(out_file), "--surface", "loop"],
+                &[name, "loop surface cannot subdivide", want],
+            );
+        }
+        expect_error(&["info", p(&path), "--surface", "loop"], &[name, want]);
+    }
     let uv = model_path("grid_uv_8x8.obj");
     expect_error(
         &[
