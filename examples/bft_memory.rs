@@ -1,7 +1,8 @@
 //! The basis function tables' memory for every configuration up to a valence (default 18): the
 //! union of the configurations of closed spheres whose poles have valence n = 3 .. max (interior
 //! extraordinary vertices) and of open half-disc fans of k = 1 .. max - 1 triangles (boundary
-//! vertices of k + 1 edges), deduplicated by key as one mesh's are.
+//! vertices of k + 1 edges), configurations deduplicated by key and tables by content, as one
+//! mesh's are.
 //! For table levels 4 and 5 (and 6 when asked: `cargo run --release --example bft_memory
 //! [MAX_VALENCE] [LEVEL...]`).
 
@@ -52,15 +53,24 @@ fn main() {
     for lmax in levels {
         let lattice = Lattice::new(lmax);
         let boundary = Boundary::EdgeOnly;
-        let mut all: HashMap<Vec<[u32; 3]>, usize> = HashMap::new();
+        // Configurations by key, tables by content (as `build` shares them within a mesh).
+        let mut keys: HashMap<Vec<[u32; 3]>, ()> = HashMap::new();
+        let mut all: HashMap<Vec<i64>, usize> = HashMap::new();
         for (_, mesh) in &meshes {
             let topo = Topology::of_mesh(mesh).unwrap();
             let p: Vec<glam::DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();
             let m1 = loop_step(&topo, &p, boundary);
             let t1 = Topology::new(&m1.faces, m1.positions.len()).unwrap();
             let tables = build(&t1, boundary, lattice, |_| {}).unwrap();
+            keys.extend(tables.keys.into_iter().map(|k| (k, ())));
             for c in tables.configs {
-                all.insert(c.key, c.control);
+                all.insert(
+                    c.weights
+                        .iter()
+                        .map(|w| (w * (1u64 << 40) as f64).round() as i64)
+                        .collect(),
+                    c.control,
+                );
             }
         }
         // As stored on the GPU: rows padded to a multiple of four weights.
@@ -69,8 +79,9 @@ fn main() {
             .map(|&k| lattice.rows() * meshrefine::surface::subdivision::padded(k) * 4)
             .sum();
         println!(
-            "table level {lmax} ({} segments): {} configurations up to valence {max}, {bytes} bytes ({:.2} MiB)",
+            "table level {lmax} ({} segments): {} configurations in {} tables up to valence {max}, {bytes} bytes ({:.2} MiB)",
             lattice.segments(),
+            keys.len(),
             all.len(),
             bytes as f64 / (1 << 20) as f64
         );

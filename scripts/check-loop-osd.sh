@@ -17,7 +17,7 @@ g++ -O1 -std=c++14 -o "$work/osd_limit" tools/osd_limit.cpp -losdCPU
 cargo build --quiet --example loop_limit
 ours=target/debug/examples/loop_limit
 fails=0
-for mesh in tetrahedron octahedron icosahedron cube_tri torus_16x8 bicone16 uvsphere12 spot_control_tri grid_open_8x8 fan24_open spot_open; do
+for mesh in tetrahedron octahedron icosahedron cube_tri torus_16x8 bicone16 uvsphere12 spot_control_tri grid_open_8x8 fan24_open halfdisc17_open spot_open; do
   for steps in 0 1 2; do
     for boundary in edge-only edge-and-corner; do
       m=assets/models/$mesh.obj

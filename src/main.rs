@@ -601,7 +601,8 @@ fn info(a: &cli::InfoArgs) -> Result<()> {
             .map(|&(v, b, n)| format!("{v}{}:{n}", if b { "b" } else { "" }))
             .collect();
         out!(
-            "configurations: {} (valence:tables, b = on a boundary): {}",
+            "configurations: {} in {} tables (valence:tables, b = on a boundary): {}",
+            data.tables.keys.len(),
             data.tables.configs.len(),
             configs.join(" ")
         );

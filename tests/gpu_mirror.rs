@@ -380,7 +380,8 @@ fn every_surface_and_displacement_on_tess() {
 
 /// The loop surface (the GPU's M0 -> M1 and normals passes, then the tables through the owners)
 /// against the mirror, on both GPU drivers and every submission mode: a closed mesh (valences 3
-/// to 10), an open fan with a valence-24 vertex, an open grid with pinned corners; pattern levels
+/// to 10), an open fan with a valence-24 vertex, an open half disc with a boundary vertex of 18
+/// edges, an open grid with pinned corners; pattern levels
 /// dividing 32 (exact lattice rows) and not (interpolated), tess below and above 32. Chunked
 /// records too (an owner may be in another chunk).
 #[test]
@@ -391,6 +392,8 @@ fn loop_matches_mirror_on_every_driver() {
         check_tess("spot_control_tri.obj", h, &[4, 7], l);
         check_pattern("fan24_open.obj", h, &[8, 32], l);
         check_tess("fan24_open.obj", h, &[5, 64], l);
+        // A boundary vertex of 18 edges: its faces' tables dropped the columns they do not weigh.
+        check_pattern("halfdisc17_open.obj", h, &[32], l);
         let corners = Which::Loop(Boundary::EdgeAndCorner, 5);
         check_pattern("grid_open_8x8.obj", h, &[3, 16], corners);
         check_tess("grid_open_8x8.obj", h, &[6], corners);

@@ -39,6 +39,7 @@ fn dyadic_levels_are_the_limit_surface() {
         ("spot_control_tri.obj", Boundary::EdgeOnly),
         ("bicone16.obj", Boundary::EdgeOnly),
         ("fan24_open.obj", Boundary::EdgeOnly),
+        ("halfdisc17_open.obj", Boundary::EdgeOnly),
         ("grid_open_8x8.obj", Boundary::EdgeAndCorner),
         ("spot_open.obj", Boundary::EdgeOnly),
     ]

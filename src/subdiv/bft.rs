@@ -79,7 +79,8 @@ pub struct Config {
     /// The faces around the canonical corners, in canonical labels (each rotated to start at its
     /// smallest label), sorted.
     pub key: Vec<[u32; 3]>,
-    /// Control points (labels 0 .. control: the face's corners first).
+    /// Control points: the columns of `weights` (built as labels 0 .. control, the face's
+    /// corners first; [`build`] then keeps only the labels some row weighs, in label order).
     pub control: usize,
     /// The largest valence among the face's corners that is not regular (6 inside, 4 on a
     /// boundary), or the regular valence of corner 0.
@@ -131,7 +132,7 @@ impl Orient {
 }
 
 /// The configuration of one face: which table, how its corners map to the table's, and its
-/// control points (M1 vertex indices, in label order).
+/// control points (M1 vertex indices, one per column of the table).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct FaceConfig {
     pub config: u32,
@@ -139,10 +140,14 @@ pub struct FaceConfig {
     pub control: Vec<u32>,
 }
 
-/// Every face of a mesh (M1) with its configuration, and the configurations' tables.
+/// Every face of a mesh (M1) with its table, and the tables.
 #[derive(Clone, Debug)]
 pub struct Tables {
     pub lattice: Lattice,
+    /// The key of every configuration found; those whose tables are equal share one, so
+    /// `configs` may be fewer.
+    pub keys: Vec<Vec<[u32; 3]>>,
+    /// The distinct tables, each with the key of the first configuration that has it.
     pub configs: Vec<Config>,
     pub faces: Vec<FaceConfig>,
 }
@@ -281,21 +286,73 @@ pub fn build(
         });
     }
     let total = reps.len();
-    let mut configs = Vec::with_capacity(total);
+    let mut built = Vec::with_capacity(total);
+    let mut keys = Vec::with_capacity(total);
     for (done, (f, orient, key)) in reps.into_iter().enumerate() {
         progress(Progress::Tables(done, total));
-        configs.push(table(topo, &vf, f, orient, key, boundary, lattice)?);
+        keys.push(key.clone());
+        built.push(table(topo, &vf, f, orient, key, boundary, lattice)?);
     }
     progress(Progress::Tables(total, total));
-    // Control points: only those the table weighs (the labels of the face's one-ring).
+    let (configs, kept) = compact(built, lattice);
+    // Control points: only those the table weighs.
     for fc in &mut faces {
-        fc.control.truncate(configs[fc.config as usize].control);
+        let (id, columns) = &kept[fc.config as usize];
+        fc.control = columns.iter().map(|&j| fc.control[j]).collect();
+        fc.config = *id;
     }
     Ok(Tables {
         lattice,
+        keys,
         configs,
         faces,
     })
+}
+
+/// Drops the columns no row weighs (a boundary vertex's fan beyond the face's reach: its rule
+/// does not mix the sectors of its fan, so over `lmax` steps a sector reaches only a few
+/// sectors on), then lets configurations whose remaining tables are equal share one (their
+/// topology differs only where the face does not reach). Dropping a column changes no sum: its
+/// terms were zero weights, and the others keep their order. Returns the tables and, per
+/// configuration, its table and kept columns.
+/// Tables whose weights round to the same multiples of 1 / TABLE_EQUAL are shared.
+const TABLE_EQUAL: f64 = (1u64 << 40) as f64;
+
+fn compact(built: Vec<Config>, lattice: Lattice) -> (Vec<Config>, Vec<(u32, Vec<usize>)>) {
+    let rows = lattice.rows();
+    let mut ids: HashMap<(usize, Vec<u64>), u32> = HashMap::new();
+    let mut configs: Vec<Config> = Vec::new();
+    let mut kept = Vec::with_capacity(built.len());
+    for c in built {
+        let k = c.control;
+        let columns: Vec<usize> = (0..k)
+            .filter(|&j| (0..rows).any(|r| c.weights[r * k + j] != 0.0))
+            .collect();
+        let all = &c.weights;
+        let weights: Vec<f64> = (0..rows)
+            .flat_map(|r| columns.iter().map(move |&j| all[r * k + j]))
+            .collect();
+        // Equal to 2^-40 (weights are within [0, 1]): the same table computed on two
+        // configuration meshes can differ in the last bits of f64.
+        let bits = (
+            columns.len(),
+            weights
+                .iter()
+                .map(|w| (w * TABLE_EQUAL).round() as i64 as u64)
+                .collect(),
+        );
+        let next = configs.len() as u32;
+        let id = *ids.entry(bits).or_insert_with(|| {
+            configs.push(Config {
+                control: columns.len(),
+                weights,
+                ..c
+            });
+            next
+        });
+        kept.push((id, columns));
+    }
+    (configs, kept)
 }
 
 /// The table of face `f` in orientation `o`, from its two-ring configuration mesh.
@@ -609,6 +666,11 @@ mod tests {
                 DEFAULT_LMAX,
             ),
             ("fan24_open.obj", &[Boundary::EdgeOnly][..], DEFAULT_LMAX),
+            (
+                "halfdisc17_open.obj",
+                &[Boundary::EdgeOnly, Boundary::EdgeAndCorner][..],
+                DEFAULT_LMAX,
+            ),
             // Other table levels (--bft-level).
             ("spot_control_tri.obj", &[Boundary::EdgeOnly][..], 3),
             ("fan24_open.obj", &[Boundary::EdgeAndCorner][..], 2),
@@ -667,17 +729,60 @@ mod tests {
         }
     }
 
-    /// The tetrahedron's M1 has two configurations: the corner faces (one vertex of valence 3,
-    /// in any rotation) and the middle faces (regular corners; the one-ring wraps round the small
-    /// mesh, so 9 control points, not 12).
-    #[test]
-    fn configurations_are_few_and_canonical() {
-        let (mesh, _) = load_model("tetrahedron.obj");
+    /// M1 of a model and its tables at the default level, `EdgeOnly` boundaries.
+    fn default_tables(file: &str) -> (Topology, Tables) {
+        let (mesh, _) = load_model(file);
         let topo0 = Topology::of_mesh(&mesh).unwrap();
         let p0: Vec<DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();
         let m1 = loop_step(&topo0, &p0, Boundary::EdgeOnly);
         let t1 = Topology::new(&m1.faces, m1.positions.len()).unwrap();
         let tables = build(&t1, Boundary::EdgeOnly, Lattice::default(), |_| {}).unwrap();
+        (t1, tables)
+    }
+
+    /// A boundary vertex's rule does not mix its fan's sectors, so a face of a wide boundary fan
+    /// does not reach its far sectors: those columns are exactly zero and dropped, and faces
+    /// whose tables are then equal share one. (That the compacted tables are still the limit
+    /// surface: `tables_give_the_limit_surface`.)
+    #[test]
+    fn wide_boundary_fans_keep_only_the_columns_they_weigh() {
+        let (t1, tables) = default_tables("halfdisc17_open.obj");
+        let mut dropped = 0;
+        for (f, fc) in tables.faces.iter().enumerate() {
+            let c = &tables.configs[fc.config as usize];
+            assert_eq!(fc.control.len(), c.control);
+            // The face's one-ring: what the tables weighed before the zero columns went.
+            let mut ring: Vec<u32> = t1.faces[f]
+                .iter()
+                .flat_map(|&v| t1.one_ring(v).0.into_iter().chain([v]))
+                .collect();
+            ring.sort_unstable();
+            ring.dedup();
+            assert!(fc.control.iter().all(|v| ring.contains(v)));
+            dropped = dropped.max(ring.len() - fc.control.len());
+            for j in 0..c.control {
+                assert!(
+                    (0..Lattice::default().rows()).any(|r| c.weights[r * c.control + j] != 0.0),
+                    "face {f}: kept column {j} weighs nothing"
+                );
+            }
+        }
+        // The centre's faces: 17 in its fan; the middle one weighs 9 fewer of its 24.
+        assert_eq!(dropped, 9, "columns dropped from the widest face");
+        assert!(
+            tables.configs.len() < tables.keys.len(),
+            "{} tables for {} configurations",
+            tables.configs.len(),
+            tables.keys.len()
+        );
+    }
+
+    /// The tetrahedron's M1 has two configurations: the corner faces (one vertex of valence 3,
+    /// in any rotation) and the middle faces (regular corners; the one-ring wraps round the small
+    /// mesh, so 9 control points, not 12).
+    #[test]
+    fn configurations_are_few_and_canonical() {
+        let (_, tables) = default_tables("tetrahedron.obj");
         let mut valences: Vec<usize> = tables.configs.iter().map(|c| c.valence).collect();
         valences.sort();
         assert_eq!(valences, [3, 6]);

@@ -442,7 +442,12 @@ mod tests {
     /// positions and normals; so does every corner from every face around it.
     #[test]
     fn shared_edges_and_corners_are_bit_identical() {
-        for file in ["spot_control_tri.obj", "fan24_open.obj", "tetrahedron.obj"] {
+        for file in [
+            "spot_control_tri.obj",
+            "fan24_open.obj",
+            "halfdisc17_open.obj",
+            "tetrahedron.obj",
+        ] {
             let (_, data, frame) = setup(file, Boundary::EdgeOnly);
             let m1 = &data.m1;
             for n in [3u32, 8, 37] {
