@@ -99,6 +99,8 @@ struct Input {
     heightmap: Option<meshrefine::surface::Heightmap>,
     /// `--tags`, parsed and checked (None: the scene's tags derived from hard edges).
     tags: Option<Vec<meshrefine::surface::stpn::VertexTag>>,
+    /// Why `--surface loop` must refuse the mesh though it loaded ([`loop_refusal`]).
+    loop_refusal: Option<String>,
 }
 
 /// Loads what `--heightmap` and `--tags` name for `input`'s mesh; with `--surface stpn` and no
@@ -172,19 +174,17 @@ fn degenerate_warning(shown: &str, report: &LoadReport) -> Option<String> {
 
 /// Loop subdivides the file's topology, which a dropped face would change (a hole where it
 /// was): with `--surface loop` the first dropped face is an error, not a warning.
-fn refuse_dropped_for_loop(shown: &str, report: &LoadReport) -> Result<()> {
-    let Some(d) = report.dropped_degenerate.first() else {
-        return Ok(());
-    };
+fn loop_refusal(shown: &str, report: &LoadReport) -> Option<String> {
+    let d = report.dropped_degenerate.first()?;
     let face = match d.line {
         Some(l) => format!("the face at line {l}"),
         None => format!("face {}", d.face),
     };
-    bail!(
+    Some(format!(
         "'{shown}': the loop surface cannot subdivide it: {face} {} ({} degenerate face(s) in all): Loop subdivision needs every face of the file as a triangle of three distinct vertices, and dropping it, as the other surfaces do, would open a hole",
         d.reason,
         report.dropped_degenerate.len()
-    )
+    ))
 }
 
 /// Loads `path` (the default mesh when `None`); `for_loop` when the loop surface will subdivide
@@ -196,12 +196,14 @@ fn load_mesh(path: Option<&Path>, for_loop: bool) -> Result<Input> {
             shown: "the default mesh (spot)".into(),
             heightmap: None,
             tags: None,
+            loop_refusal: None,
         });
     };
     let shown = p.display().to_string();
     let (mesh, report) = Mesh::load_obj(p)?;
-    if for_loop {
-        refuse_dropped_for_loop(&shown, &report)?;
+    let loop_refusal = loop_refusal(&shown, &report);
+    if let Some(why) = loop_refusal.as_ref().filter(|_| for_loop) {
+        bail!("{why}");
     }
     if let Some(w) = degenerate_warning(&shown, &report) {
         note(format_args!("{w}"));
@@ -223,6 +225,7 @@ fn load_mesh(path: Option<&Path>, for_loop: bool) -> Result<Input> {
         shown,
         heightmap: None,
         tags: None,
+        loop_refusal,
     })
 }
 
@@ -335,6 +338,7 @@ fn run(cli: Cli) -> Result<()> {
                     lod: a.lod,
                     heightmap: input.heightmap.clone(),
                     tags: input.tags.clone(),
+                    loop_refusal: input.loop_refusal.clone(),
                 };
                 match meshrefine::app::run(desc.clone(), mesh, opts) {
                     Ok(messages) => return check_messages(&messages),
@@ -525,8 +529,10 @@ fn render_png(
 fn info(a: &cli::InfoArgs) -> Result<()> {
     let (path, level) = (a.mesh.as_path(), a.level);
     let (mesh, report) = Mesh::load_obj(path)?;
-    if a.surface == Some(Surface::Loop) {
-        refuse_dropped_for_loop(&path.display().to_string(), &report)?;
+    if let Some(why) = loop_refusal(&path.display().to_string(), &report) {
+        if a.surface == Some(Surface::Loop) {
+            bail!("{why}");
+        }
     }
     if let Some(w) = degenerate_warning(&path.display().to_string(), &report) {
         note(format_args!("{w}"));

@@ -208,8 +208,8 @@ impl<'a> Demo<'a> {
         xdotool(&self.x.display, args)
     }
 
-    /// Press Esc and expect a clean exit: status 0, no validation message.
-    fn quit(mut self) {
+    /// Press Esc and expect a clean exit: status 0, no validation message. Returns stderr.
+    fn quit(mut self) -> String {
         self.xdotool(&["key", "Escape"]);
         while self.child.try_wait().unwrap().is_none() {
             if self.start.elapsed() > Duration::from_secs(180) {
@@ -222,6 +222,7 @@ impl<'a> Demo<'a> {
         let stderr = String::from_utf8_lossy(&out.stderr);
         assert!(out.status.success(), "{stderr}");
         assert!(!stderr.contains("validation"), "{stderr}");
+        stderr.into_owned()
     }
 }
 
@@ -245,6 +246,34 @@ fn window_resizes_and_quits_with_escape() {
         png_size(&shot),
         (640, 400),
         "the last frame was not drawn at the new size"
+    );
+}
+
+#[test]
+fn switching_to_loop_on_a_mesh_it_refuses_shows_pn() {
+    // The file loads for the other surfaces (its degenerate face dropped with a warning), but
+    // Loop would subdivide a hole: S from stpn to loop says why and shows pn instead.
+    let _guard = common::gpu_lock();
+    let x = Xvfb::start();
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("window");
+    std::fs::create_dir_all(&dir).unwrap();
+    let obj = dir.join("loop_refused.obj");
+    let cube = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/assets/models/cube_tri.obj"
+    ))
+    .unwrap();
+    std::fs::write(&obj, format!("{cube}\nf 1 2 2\n")).unwrap();
+    let demo = Demo::start(&x, &[obj.to_str().unwrap(), "--surface", "stpn"]);
+    demo.xdotool(&["key", "s"]);
+    std::thread::sleep(Duration::from_secs(2));
+    let stderr = demo.quit();
+    assert!(stderr.contains("dropped 1 degenerate face"), "{stderr}");
+    assert!(
+        stderr.contains("the loop surface cannot subdivide it")
+            && stderr.contains("repeats a vertex index")
+            && stderr.contains("showing pn instead"),
+        "{stderr}"
     );
 }
 

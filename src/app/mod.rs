@@ -54,6 +54,9 @@ pub struct ViewOptions {
     pub heightmap: Option<crate::surface::Heightmap>,
     /// The scalar tags (None: derived from the mesh's hard edges).
     pub tags: Option<Vec<crate::surface::stpn::VertexTag>>,
+    /// Why the loop surface must not subdivide this mesh though it loaded (the file had faces
+    /// the loader dropped): switching to loop then warns with it and shows pn.
+    pub loop_refusal: Option<String>,
 }
 
 pub const KEY_HELP: &str = "keys: drag = orbit, wheel = zoom, 1/2/3 = static/pattern/tess, \
@@ -429,8 +432,17 @@ impl State {
             self.scene
                 .prepare(&self.ctx, &self.pool, &mut self.renderer, cfg, none, wire)
         };
-        match prepare(&cfg) {
-            // A mesh Loop cannot subdivide (non-manifold): say so and stay on the other surfaces.
+        let refused = opts
+            .loop_refusal
+            .as_ref()
+            .filter(|_| cfg.surface == Surface::Loop);
+        let prepared = match refused {
+            Some(why) => Err(anyhow::anyhow!("{why}")),
+            None => prepare(&cfg).map_err(anyhow::Error::from),
+        };
+        match prepared {
+            // A mesh Loop cannot subdivide (non-manifold, or faces dropped at loading): say so
+            // and stay on the other surfaces.
             Err(e) if cfg.surface == Surface::Loop => {
                 log::warn!("{e}: showing pn instead");
                 cfg.surface = Surface::Pn;
