@@ -17,12 +17,14 @@
 //!
 //! A table is computed as the paper's configuration meshes: the faces within two rings of the face
 //! are cut out (vertices where the cut makes two fans are split), each vertex carries its weights
-//! on the cut-out vertices (the identity at first), `lmax` Loop steps apply the computational
-//! entries to the weights, and the limit masks at the face's lattice vertices give the rows. The
-//! cut's own boundary is subdivided as a boundary, which is wrong, but the error travels at most
-//! one ring inwards over all steps (half a ring, then a quarter, ...), so the face, two rings in,
-//! is exact; the weights on the second ring come out exactly zero (checked by the tests), so they
-//! are dropped. All in f64, stored as f32.
+//! on the control points and on the rest of the cut-out vertices together (the identity at
+//! first), `lmax` Loop steps apply the computational entries to the weights, and the limit masks
+//! at the face's lattice vertices give the rows. The cut's own boundary is subdivided as a
+//! boundary, which is wrong, but the error travels at most one ring inwards over all steps (half
+//! a ring, then a quarter, ...), so the face, two rings in, is exact; the weights on the second
+//! ring come out exactly zero (checked by the tests), so they are dropped, and so are the control
+//! points a face does not reach (a wide boundary fan's far sectors, `compact`). All in f64,
+//! stored as f32.
 
 use super::{limit_stencil, refined_faces, stencils, Boundary, Topology, TopologyError};
 use std::collections::HashMap;
@@ -89,7 +91,8 @@ pub struct Config {
     pub boundary: bool,
     /// `rows × control` weights, row-major.
     pub weights: Vec<f64>,
-    /// The largest weight found outside the control points (exactly zero by the argument above).
+    /// The weight found on the cut-out vertices beyond the control points, all together, at the
+    /// lattice point where it is largest (exactly zero by the argument above).
     pub outside: f64,
 }
 
@@ -389,11 +392,15 @@ fn table(
     let mut local: Vec<[u32; 3]> = local.iter().map(|t| t.map(|v| labels[&v])).collect();
     let mut count = order.len();
     split_fans(&mut local, &mut count, |v| v >= control as u32);
-    let dims = count;
-    // Weights of every local vertex on the cut-out vertices, level by level.
+    // Weights of every local vertex on the control points, level by level, and in one more
+    // column its weight on all the other cut-out vertices together: every rule and limit mask
+    // weighs with non-negative weights, so that sum is zero exactly when each of them is (the
+    // columns are independent: the control points' weights are the same bits as with a column
+    // for each cut-out vertex, at a fraction of the work).
+    let dims = control + 1;
     let mut w: Vec<f64> = vec![0.0; count * dims];
     for v in 0..count {
-        w[v * dims + v] = 1.0;
+        w[v * dims + v.min(control)] = 1.0;
     }
     let mut topo_l = Topology::new(&local, count)?;
     // Lattice coordinates (in units of 1/S) of the tracked faces' corners; the face's stored
@@ -403,6 +410,7 @@ fn table(
         let st = stencils(&topo_l, boundary);
         let mut next = vec![0.0; st.len() * dims];
         for (i, sv) in st.iter().enumerate() {
+            debug_assert!(sv.weights.iter().all(|&x| x >= 0.0), "negative rule weight");
             let out = &mut next[i * dims..(i + 1) * dims];
             for (&p, &wt) in sv.parents.iter().zip(&sv.weights) {
                 let src = &w[p as usize * dims..(p as usize + 1) * dims];
@@ -443,6 +451,10 @@ fn table(
     for (r, &v) in at_row.iter().enumerate() {
         debug_assert_ne!(v, u32::MAX);
         let mask = limit_stencil(&topo_l, v, boundary);
+        debug_assert!(
+            mask.weights.iter().all(|&x| x >= 0.0),
+            "negative limit weight"
+        );
         let mut full = vec![0.0; dims];
         for (&p, &wt) in mask.parents.iter().zip(&mask.weights) {
             for (o, &x) in full
@@ -453,7 +465,7 @@ fn table(
             }
         }
         weights[r * control..(r + 1) * control].copy_from_slice(&full[..control]);
-        outside = full[control..].iter().fold(outside, |m, &x| m.max(x.abs()));
+        outside = outside.max(full[control].abs());
     }
     // Valence and boundary of the face's corners.
     let corners = [0, 1, 2].map(|i| t[o.stored(i)]);
