@@ -181,7 +181,7 @@ fn loop_refusal(shown: &str, report: &LoadReport) -> Option<String> {
         None => format!("face {}", d.face),
     };
     Some(format!(
-        "'{shown}': the loop surface cannot subdivide it: {face} {} ({} degenerate face(s) in all): Loop subdivision needs every face of the file as a triangle of three distinct vertices, and dropping it, as the other surfaces do, would open a hole",
+        "'{shown}': the loop surface cannot subdivide it: {face} {} ({} degenerate face(s) in all): Loop subdivision needs every face of the file, and dropping it, as the other surfaces do, would open a hole",
         d.reason,
         report.dropped_degenerate.len()
     ))
