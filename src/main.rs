@@ -582,13 +582,14 @@ fn info(a: &cli::InfoArgs) -> Result<()> {
         }
     }
     if a.surface == Some(Surface::Loop) {
-        let started = std::time::Instant::now();
         let lattice = meshrefine::subdiv::bft::Lattice::new(a.bft_level);
-        let data = LoopData::new(&mesh, a.boundary, lattice, |p| {
-            if started.elapsed().as_secs_f32() > 1.0 {
-                note(format_args!("{}: {p}", path.display()));
-            }
-        })
+        let report = |p| note(format_args!("{}: {p}", path.display()));
+        let data = LoopData::new(
+            &mesh,
+            a.boundary,
+            lattice,
+            meshrefine::subdiv::bft::throttled(report),
+        )
         .map_err(|e| {
             anyhow::anyhow!(
                 "'{}': the loop surface cannot subdivide it: {e}",

@@ -478,12 +478,12 @@ impl LoopScene {
         lattice: crate::subdiv::bft::Lattice,
     ) -> Result<Self, RenderError> {
         let mesh = &scene.data.mesh;
-        let started = std::time::Instant::now();
-        let data = LoopData::new(mesh, boundary, lattice, |p| {
-            if started.elapsed().as_secs_f32() > 1.0 {
-                log::info!("loop surface: {p}");
-            }
-        })?;
+        let data = LoopData::new(
+            mesh,
+            boundary,
+            lattice,
+            crate::subdiv::bft::throttled(|p| log::info!("loop surface: {p}")),
+        )?;
         loop_limits(&data, &ctx.info.limits)?;
         let pass = LoopPass::new(ctx, pool, &data, &mesh.positions)?;
         let elements = MeshData {

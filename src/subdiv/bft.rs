@@ -176,41 +176,90 @@ fn vertex_faces(topo: &Topology) -> Vec<Vec<u32>> {
     vf
 }
 
-/// Canonical labelling of face `f` in orientation `o`: the corners, then each corner's one-ring
-/// (counter-clockwise, or clockwise for the mirror image, from the next canonical corner).
-fn label(topo: &Topology, f: usize, o: Orient) -> (Vec<u32>, HashMap<u32, u32>) {
-    let t = topo.faces[f];
-    let corners = [0, 1, 2].map(|i| t[o.stored(i)]);
-    let mut order: Vec<u32> = corners.to_vec();
-    let mut labels: HashMap<u32, u32> = corners
-        .iter()
-        .enumerate()
-        .map(|(i, &v)| (v, i as u32))
-        .collect();
-    for k in 0..3 {
-        let (mut ring, on_boundary) = topo.one_ring(corners[k]);
-        if o.mirror {
-            ring.reverse();
-        }
-        if !on_boundary {
-            // Start at the face's next corner (a neighbour, since the face is (c_k, c_k+1, ...)).
-            let next = corners[(k + 1) % 3];
-            let at = ring.iter().position(|&v| v == next).unwrap_or(0);
-            ring.rotate_left(at);
-        }
-        for v in ring {
-            if let std::collections::hash_map::Entry::Vacant(e) = labels.entry(v) {
-                e.insert(order.len() as u32);
-                order.push(v);
-            }
+/// What classification reads of M1 again and again: the faces at each vertex and each vertex's
+/// one-ring (counter-clockwise, with its boundary flag).
+struct Neighbourhoods {
+    faces: Vec<Vec<u32>>,
+    rings: Vec<(Vec<u32>, bool)>,
+}
+
+impl Neighbourhoods {
+    fn new(topo: &Topology) -> Self {
+        Self {
+            faces: vertex_faces(topo),
+            rings: (0..topo.vertex_count as u32)
+                .map(|v| topo.one_ring(v))
+                .collect(),
         }
     }
-    (order, labels)
+}
+
+/// A labelling in progress: the vertices in label order, and the label of every M1 vertex
+/// (`u32::MAX` for none). Reused face after face: [`Labels::clear`] resets only what was set.
+struct Labels {
+    of: Vec<u32>,
+    order: Vec<u32>,
+}
+
+impl Labels {
+    fn new(vertex_count: usize) -> Self {
+        Self {
+            of: vec![u32::MAX; vertex_count],
+            order: Vec::new(),
+        }
+    }
+
+    /// Labels `v` next unless it has a label.
+    fn add(&mut self, v: u32) {
+        if self.of[v as usize] == u32::MAX {
+            self.of[v as usize] = self.order.len() as u32;
+            self.order.push(v);
+        }
+    }
+
+    fn of(&self, v: u32) -> u32 {
+        self.of[v as usize]
+    }
+
+    fn clear(&mut self) {
+        for &v in &self.order {
+            self.of[v as usize] = u32::MAX;
+        }
+        self.order.clear();
+    }
+}
+
+/// Canonical labelling of face `f` in orientation `o` into `labels` (cleared first): the corners,
+/// then each corner's one-ring (counter-clockwise, or clockwise for the mirror image, from the
+/// next canonical corner).
+fn label(topo: &Topology, nb: &Neighbourhoods, f: usize, o: Orient, labels: &mut Labels) {
+    labels.clear();
+    let t = topo.faces[f];
+    let corners = [0, 1, 2].map(|i| t[o.stored(i)]);
+    for &c in &corners {
+        labels.add(c);
+    }
+    for k in 0..3 {
+        let (ring, on_boundary) = &nb.rings[corners[k] as usize];
+        let n = ring.len();
+        // The ring as walked: reversed for the mirror image, and (inside) started at the face's
+        // next corner, a neighbour since the face is (c_k, c_k+1, ...).
+        let at = |i: usize| if o.mirror { ring[n - 1 - i] } else { ring[i] };
+        let next = corners[(k + 1) % 3];
+        let start = if *on_boundary {
+            0
+        } else {
+            (0..n).find(|&i| at(i) == next).unwrap_or(0)
+        };
+        for i in 0..n {
+            labels.add(at((start + i) % n));
+        }
+    }
 }
 
 /// A face's key in labels (reversed for a mirror image): rotated to start at its smallest label.
-fn labelled(t: &[u32; 3], labels: &HashMap<u32, u32>, mirror: bool) -> [u32; 3] {
-    let mut l = t.map(|v| labels[&v]);
+fn labelled(t: &[u32; 3], labels: &Labels, mirror: bool) -> [u32; 3] {
+    let mut l = t.map(|v| labels.of(v));
     if mirror {
         l.swap(1, 2);
     }
@@ -218,21 +267,74 @@ fn labelled(t: &[u32; 3], labels: &HashMap<u32, u32>, mirror: bool) -> [u32; 3] 
     [l[m], l[(m + 1) % 3], l[(m + 2) % 3]]
 }
 
-fn key_of(topo: &Topology, vf: &[Vec<u32>], f: usize, o: Orient) -> (Vec<[u32; 3]>, Vec<u32>) {
-    let (order, labels) = label(topo, f, o);
-    let corners = [0, 1, 2].map(|k| order[k]);
-    let mut faces: Vec<u32> = corners
+/// The key of face `f` in orientation `o`, its labels left in `labels`.
+fn key_of(
+    topo: &Topology,
+    nb: &Neighbourhoods,
+    f: usize,
+    o: Orient,
+    labels: &mut Labels,
+) -> Vec<[u32; 3]> {
+    label(topo, nb, f, o, labels);
+    let mut faces: Vec<u32> = labels.order[..3]
         .iter()
-        .flat_map(|&c| vf[c as usize].iter().copied())
+        .flat_map(|&c| nb.faces[c as usize].iter().copied())
         .collect();
     faces.sort_unstable();
     faces.dedup();
     let mut key: Vec<[u32; 3]> = faces
         .iter()
-        .map(|&g| labelled(&topo.faces[g as usize], &labels, o.mirror))
+        .map(|&g| labelled(&topo.faces[g as usize], labels, o.mirror))
         .collect();
     key.sort_unstable();
-    (key, order)
+    key
+}
+
+/// One thread's share of the faces, classified: its distinct keys in order of first appearance
+/// (with the face and orientation that showed each first), and every face's key (an index into
+/// those), orientation and control points.
+struct Classified {
+    keys: Vec<(Vec<[u32; 3]>, usize, Orient)>,
+    faces: Vec<(u32, Orient, Vec<u32>)>,
+}
+
+/// Classifies `range`'s faces; every 1,024 faces adds them to `done` and calls `tick`.
+fn classify(
+    topo: &Topology,
+    nb: &Neighbourhoods,
+    range: std::ops::Range<usize>,
+    done: &std::sync::atomic::AtomicUsize,
+    tick: &mut dyn FnMut(),
+) -> Classified {
+    let mut labels = Labels::new(topo.vertex_count);
+    let mut ids: HashMap<Vec<[u32; 3]>, u32> = HashMap::new();
+    let mut out = Classified {
+        keys: Vec::new(),
+        faces: Vec::with_capacity(range.len()),
+    };
+    for (i, f) in range.enumerate() {
+        if i % 1024 == 1023 {
+            done.fetch_add(1024, std::sync::atomic::Ordering::Relaxed);
+            tick();
+        }
+        // The smallest key over the three rotations and the mirror image: a configuration and
+        // its mirror share one table.
+        let mut best: Option<(Vec<[u32; 3]>, Orient, Vec<u32>)> = None;
+        for o in Orient::all() {
+            let key = key_of(topo, nb, f, o, &mut labels);
+            if best.as_ref().is_none_or(|b| key < b.0) {
+                best = Some((key, o, labels.order.clone()));
+            }
+        }
+        let (key, orient, order) = best.expect("six orientations");
+        let next = out.keys.len() as u32;
+        let id = *ids.entry(key).or_insert_with_key(|key| {
+            out.keys.push((key.clone(), f, orient));
+            next
+        });
+        out.faces.push((id, orient, order));
+    }
+    out
 }
 
 /// How far [`build`] is: faces classified, then tables built (done, total).
@@ -251,51 +353,164 @@ impl std::fmt::Display for Progress {
     }
 }
 
+/// `report` behind a throttle, for [`build`]'s `progress`: quiet in the first second (most builds
+/// take less), then at most one report a second, and the last one (every table built) when it
+/// has reported anything.
+pub fn throttled(mut report: impl FnMut(Progress)) -> impl FnMut(Progress) {
+    let start = std::time::Instant::now();
+    let second = std::time::Duration::from_secs(1);
+    let mut last: Option<(std::time::Instant, Progress)> = None;
+    move |p| {
+        let now = std::time::Instant::now();
+        let finished = matches!(p, Progress::Tables(d, t) if d == t);
+        let due = match last {
+            None => now - start >= second,
+            Some((at, prev)) => prev != p && (finished || now - at >= second),
+        };
+        if due {
+            last = Some((now, p));
+            report(p);
+        }
+    }
+}
+
 /// Find every face's configuration in `topo` (M1) and build the tables of those it has.
 /// `progress` hears how far it is, every 16,384 faces and every table.
 pub fn build(
     topo: &Topology,
     boundary: Boundary,
     lattice: Lattice,
-    mut progress: impl FnMut(Progress),
+    progress: impl FnMut(Progress),
 ) -> Result<Tables, TopologyError> {
-    let vf = vertex_faces(topo);
+    let cores = std::thread::available_parallelism().map_or(1, |t| t.get());
+    // A thread for at most every 4,096 faces: fewer are not worth a thread.
+    let threads = cores.clamp(1, topo.faces.len().div_ceil(4096).max(1));
+    build_on(topo, boundary, lattice, progress, threads, cores)
+}
+
+/// [`build`] with faces classified on `threads` threads and tables built on up to `cores`.
+fn build_on(
+    topo: &Topology,
+    boundary: Boundary,
+    lattice: Lattice,
+    mut progress: impl FnMut(Progress),
+    threads: usize,
+    cores: usize,
+) -> Result<Tables, TopologyError> {
+    let nb = Neighbourhoods::new(topo);
+    let n = topo.faces.len();
+    // Faces are classified independently: in contiguous shares, one a thread, merged in face
+    // order, so configurations are numbered by first appearance whatever the thread count.
+    let share = n.div_ceil(threads);
+    let ranges: Vec<_> = (0..threads)
+        .map(|t| t * share..((t + 1) * share).min(n))
+        .collect();
+    let done = std::sync::atomic::AtomicUsize::new(0);
+    progress(Progress::Faces(0, n));
+    let shares: Vec<Classified> = std::thread::scope(|s| {
+        let others: Vec<_> = ranges[1..]
+            .iter()
+            .map(|r| {
+                let (nb, done) = (&nb, &done);
+                s.spawn(move || classify(topo, nb, r.clone(), done, &mut || {}))
+            })
+            .collect();
+        // This thread takes the first share and reports how far all of them are.
+        let mut ticks = 0;
+        let mut report = || {
+            ticks += 1;
+            if ticks % 16 == 0 {
+                let d = done.load(std::sync::atomic::Ordering::Relaxed);
+                progress(Progress::Faces(d.min(n), n));
+            }
+        };
+        let first = classify(topo, &nb, ranges[0].clone(), &done, &mut report);
+        std::iter::once(first)
+            .chain(
+                others
+                    .into_iter()
+                    .map(|h| h.join().expect("classification thread")),
+            )
+            .collect()
+    });
+    progress(Progress::Faces(n, n));
     let mut ids: HashMap<Vec<[u32; 3]>, u32> = HashMap::new();
     // The representative face and orientation of each configuration.
     let mut reps: Vec<(usize, Orient, Vec<[u32; 3]>)> = Vec::new();
-    let mut faces = Vec::with_capacity(topo.faces.len());
-    for f in 0..topo.faces.len() {
-        if f % 16_384 == 0 {
-            progress(Progress::Faces(f, topo.faces.len()));
-        }
-        // The smallest key over the three rotations and the mirror image: a configuration and
-        // its mirror share one table.
-        let (key, order, orient) = Orient::all()
-            .map(|o| {
-                let (k, order) = key_of(topo, &vf, f, o);
-                (k, order, o)
+    let mut faces = Vec::with_capacity(n);
+    for share in shares {
+        let global: Vec<u32> = share
+            .keys
+            .into_iter()
+            .map(|(key, f, orient)| {
+                let next = reps.len() as u32;
+                *ids.entry(key).or_insert_with_key(|key| {
+                    reps.push((f, orient, key.clone()));
+                    next
+                })
             })
-            .min_by(|a, b| a.0.cmp(&b.0))
-            .unwrap();
-        let next = ids.len() as u32;
-        let id = *ids.entry(key.clone()).or_insert_with(|| {
-            reps.push((f, orient, key));
-            next
-        });
-        faces.push(FaceConfig {
-            config: id,
-            orient,
-            control: order,
-        });
+            .collect();
+        faces.extend(
+            share
+                .faces
+                .into_iter()
+                .map(|(id, orient, control)| FaceConfig {
+                    config: global[id as usize],
+                    orient,
+                    control,
+                }),
+        );
     }
     let total = reps.len();
-    let mut built = Vec::with_capacity(total);
-    let mut keys = Vec::with_capacity(total);
-    for (done, (f, orient, key)) in reps.into_iter().enumerate() {
-        progress(Progress::Tables(done, total));
-        keys.push(key.clone());
-        built.push(table(topo, &vf, f, orient, key, boundary, lattice)?);
-    }
+    let keys: Vec<Vec<[u32; 3]>> = reps.iter().map(|r| r.2.clone()).collect();
+    // Tables too are independent: thread t builds configurations t, t + T, t + 2T, ...
+    let threads = cores.min(total).max(1);
+    let done = std::sync::atomic::AtomicUsize::new(0);
+    let build_share = |t: usize, tick: &mut dyn FnMut()| {
+        let mut labels = Labels::new(topo.vertex_count);
+        let mut out = Vec::new();
+        for (i, (f, orient, key)) in reps.iter().enumerate().skip(t).step_by(threads) {
+            out.push((
+                i,
+                table(
+                    topo,
+                    &nb,
+                    &mut labels,
+                    *f,
+                    *orient,
+                    key.clone(),
+                    boundary,
+                    lattice,
+                ),
+            ));
+            done.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            tick();
+        }
+        out
+    };
+    progress(Progress::Tables(0, total));
+    let mut built: Vec<(usize, Result<Config, TopologyError>)> = std::thread::scope(|s| {
+        let others: Vec<_> = (1..threads)
+            .map(|t| {
+                let build_share = &build_share;
+                s.spawn(move || build_share(t, &mut || {}))
+            })
+            .collect();
+        let mut report = || {
+            let d = done.load(std::sync::atomic::Ordering::Relaxed);
+            progress(Progress::Tables(d.min(total), total));
+        };
+        let mut all = build_share(0, &mut report);
+        for h in others {
+            all.extend(h.join().expect("table thread"));
+        }
+        all
+    });
+    built.sort_by_key(|b| b.0);
+    let built = built
+        .into_iter()
+        .map(|b| b.1)
+        .collect::<Result<Vec<Config>, TopologyError>>()?;
     progress(Progress::Tables(total, total));
     let (configs, kept) = compact(built, lattice);
     // Control points: only those the table weighs.
@@ -359,23 +574,25 @@ fn compact(built: Vec<Config>, lattice: Lattice) -> (Vec<Config>, Vec<(u32, Vec<
 }
 
 /// The table of face `f` in orientation `o`, from its two-ring configuration mesh.
+#[allow(clippy::too_many_arguments)]
 fn table(
     topo: &Topology,
-    vf: &[Vec<u32>],
+    nb: &Neighbourhoods,
+    labels: &mut Labels,
     f: usize,
     o: Orient,
     key: Vec<[u32; 3]>,
     boundary: Boundary,
     lattice: Lattice,
 ) -> Result<Config, TopologyError> {
-    let (mut order, mut labels) = label(topo, f, o);
-    let control = order.len();
+    label(topo, nb, f, o, labels);
+    let control = labels.order.len();
     // Faces within two rings: those around the control points (the face first).
     let t = topo.faces[f];
     let mut local: Vec<[u32; 3]> = vec![t];
     let mut seen: std::collections::HashSet<u32> = [f as u32].into();
     for i in 0..control {
-        for &g in &vf[order[i] as usize] {
+        for &g in &nb.faces[labels.order[i] as usize] {
             if seen.insert(g) {
                 local.push(topo.faces[g as usize]);
             }
@@ -383,14 +600,11 @@ fn table(
     }
     for face in &local {
         for &v in face {
-            if let std::collections::hash_map::Entry::Vacant(e) = labels.entry(v) {
-                e.insert(order.len() as u32);
-                order.push(v);
-            }
+            labels.add(v);
         }
     }
-    let mut local: Vec<[u32; 3]> = local.iter().map(|t| t.map(|v| labels[&v])).collect();
-    let mut count = order.len();
+    let mut local: Vec<[u32; 3]> = local.iter().map(|t| t.map(|v| labels.of(v))).collect();
+    let mut count = labels.order.len();
     split_fans(&mut local, &mut count, |v| v >= control as u32);
     // Weights of every local vertex on the control points, level by level, and in one more
     // column its weight on all the other cut-out vertices together: every rule and limit mask
@@ -741,13 +955,18 @@ mod tests {
         }
     }
 
-    /// M1 of a model and its tables at the default level, `EdgeOnly` boundaries.
-    fn default_tables(file: &str) -> (Topology, Tables) {
+    /// M1 of a model (`EdgeOnly` boundaries).
+    fn m1_of(file: &str) -> Topology {
         let (mesh, _) = load_model(file);
         let topo0 = Topology::of_mesh(&mesh).unwrap();
         let p0: Vec<DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();
         let m1 = loop_step(&topo0, &p0, Boundary::EdgeOnly);
-        let t1 = Topology::new(&m1.faces, m1.positions.len()).unwrap();
+        Topology::new(&m1.faces, m1.positions.len()).unwrap()
+    }
+
+    /// M1 of a model and its tables at the default level, `EdgeOnly` boundaries.
+    fn default_tables(file: &str) -> (Topology, Tables) {
+        let t1 = m1_of(file);
         let tables = build(&t1, Boundary::EdgeOnly, Lattice::default(), |_| {}).unwrap();
         (t1, tables)
     }
@@ -787,6 +1006,37 @@ mod tests {
             tables.configs.len(),
             tables.keys.len()
         );
+    }
+
+    /// However many threads classify the faces and build the tables, the result is the same.
+    #[test]
+    fn threads_do_not_change_the_tables() {
+        let t1 = m1_of("spot_open.obj");
+        let lattice = Lattice::new(3);
+        let one = build_on(&t1, Boundary::EdgeOnly, lattice, |_| {}, 1, 1).unwrap();
+        let three = build_on(&t1, Boundary::EdgeOnly, lattice, |_| {}, 3, 3).unwrap();
+        assert_eq!(one.keys, three.keys);
+        assert_eq!(one.faces, three.faces);
+        assert_eq!(one.configs.len(), three.configs.len());
+        for (a, b) in one.configs.iter().zip(&three.configs) {
+            assert_eq!((&a.key, &a.weights), (&b.key, &b.weights));
+        }
+    }
+
+    /// Reports wait a second, then come at most once a second, and never twice the same.
+    #[test]
+    fn progress_is_throttled() {
+        let mut heard = Vec::new();
+        {
+            let mut p = throttled(|p| heard.push(p));
+            p(Progress::Faces(0, 10));
+            std::thread::sleep(std::time::Duration::from_millis(1050));
+            p(Progress::Faces(5, 10));
+            p(Progress::Faces(6, 10));
+            p(Progress::Tables(2, 2));
+            p(Progress::Tables(2, 2));
+        }
+        assert_eq!(heard, [Progress::Faces(5, 10), Progress::Tables(2, 2)]);
     }
 
     /// The tetrahedron's M1 has two configurations: the corner faces (one vertex of valence 3,
