@@ -1,8 +1,9 @@
 //! How exact the basis function tables stay when their weights are stored smaller: every lattice
 //! point of every M1 face of a few test meshes, summed with the weights rounded to f32 (as
-//! stored), to 16-bit unorm (the weights are within [0, 1]) and to half floats, against the f64
-//! sum; the largest distance as a fraction of the mesh's bounding-box diagonal. The dyadic
-//! exports must be within 1e-5 of it (`cargo run --release --example bft_precision`).
+//! stored), to 16-bit unorm (the weights are within [0, 1]), to 16-bit unorm with each row
+//! rounded to sum to exactly one (largest remainders rounded up), and to half floats, against
+//! the f64 sum; the largest distance as a fraction of the mesh's bounding-box diagonal. The
+//! dyadic exports must be within 1e-5 of it (`cargo run --release --example bft_precision`).
 
 use glam::DVec3;
 use meshrefine::subdiv::{bft, loop_step, Boundary, Topology};
@@ -43,6 +44,7 @@ fn main() {
         let (lo, hi) = mesh.bounds();
         let diag = (hi - lo).length() as f64;
         let mut worst = [0.0f64; 3];
+        let mut worst_lr = 0.0f64;
         for fc in &tables.faces {
             let c = &tables.configs[fc.config as usize];
             for row in c.weights.chunks(c.control) {
@@ -56,6 +58,24 @@ fn main() {
                 for (k, (_, q)) in formats.iter().enumerate() {
                     worst[k] = worst[k].max((sum(q) - exact).length() / diag);
                 }
+                // Rounded down, then the largest remainders up: the row sums to exactly 65535.
+                let mut q: Vec<i64> = row.iter().map(|&w| (w * 65535.0).floor() as i64).collect();
+                let mut rem: Vec<(f64, usize)> = row
+                    .iter()
+                    .enumerate()
+                    .map(|(i, &w)| (w * 65535.0 - (w * 65535.0).floor(), i))
+                    .collect();
+                rem.sort_by(|a, b| b.0.partial_cmp(&a.0).unwrap());
+                let short = 65535 - q.iter().sum::<i64>();
+                for k in 0..short.max(0) as usize {
+                    q[rem[k].1] += 1;
+                }
+                let p: DVec3 = q
+                    .iter()
+                    .zip(&fc.control)
+                    .map(|(&qq, &v)| m1.positions[v as usize] * ((qq as f32 / 65535.0) as f64))
+                    .sum();
+                worst_lr = worst_lr.max((p - exact).length() / diag);
             }
         }
         let figures: Vec<String> = formats
@@ -63,6 +83,9 @@ fn main() {
             .zip(worst)
             .map(|((name, _), w)| format!("{name} {w:.1e}"))
             .collect();
-        println!("{file}: {} of the diagonal", figures.join(", "));
+        println!(
+            "{file}: {}, unorm16 summing to one {worst_lr:.1e} of the diagonal",
+            figures.join(", ")
+        );
     }
 }
