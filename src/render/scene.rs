@@ -109,7 +109,8 @@ pub struct GpuMesh {
     pub heightmap: Buffer,
     /// Every vertex's scalar tags (`stpn`).
     pub tags: Buffer,
-    pub patterns: Vec<GpuPattern>,
+    /// Shared by the scene's meshes (the loop surface's M1 draws the same patterns).
+    pub patterns: Arc<Vec<GpuPattern>>,
     pub pool: DescriptorPool,
     /// One descriptor set per chunk of [`GpuMesh::chunk`] elements: a storage-buffer descriptor
     /// may span at most maxStorageBufferRange bytes, so a larger mesh is drawn chunk by chunk.
@@ -121,6 +122,12 @@ pub struct GpuMesh {
     _views: Vec<BufferView>,
     /// Bound where a surface's buffers are absent (every binding must be valid).
     _placeholder: Buffer,
+}
+
+/// The patterns a [`GpuMesh`] draws: uploaded for it, or another mesh's, shared.
+pub enum Patterns<'a> {
+    Upload(&'a PatternSet),
+    Share(&'a Arc<Vec<GpuPattern>>),
 }
 
 /// What the mesh set binds besides records and texture coordinates.
@@ -172,7 +179,7 @@ impl GpuMesh {
         cmd_pool: &CommandPool,
         set_layout: &crate::gpu::DescriptorSetLayout,
         data: &MeshData,
-        patterns: &PatternSet,
+        patterns: Patterns<'_>,
         max_chunk: Option<u32>,
         extras: Extras<'_>,
     ) -> Result<Self, RenderError> {
@@ -245,11 +252,15 @@ impl GpuMesh {
             "vertex scalar tags",
         )?;
         tags_buffer.write_pod(0, &tag_words);
-        let patterns = patterns
-            .patterns
-            .iter()
-            .map(|p| GpuPattern::new(ctx, cmd_pool, p))
-            .collect::<Result<Vec<_>, _>>()?;
+        let patterns = match patterns {
+            Patterns::Upload(set) => Arc::new(
+                set.patterns
+                    .iter()
+                    .map(|p| GpuPattern::new(ctx, cmd_pool, p))
+                    .collect::<Result<Vec<_>, _>>()?,
+            ),
+            Patterns::Share(uploaded) => uploaded.clone(),
+        };
         let pool = DescriptorPool::new(
             ctx,
             chunks,
@@ -499,7 +510,7 @@ impl LoopScene {
             pool,
             &renderer.mesh_layout,
             &elements,
-            &scene.patterns,
+            Patterns::Share(&scene.gpu.patterns),
             scene.max_chunk,
             Extras {
                 heightmap: &scene.heightmap,
@@ -558,7 +569,7 @@ impl Scene {
             pool,
             &renderer.mesh_layout,
             &data,
-            &patterns,
+            Patterns::Upload(&patterns),
             max_chunk,
             Extras {
                 heightmap: &heightmap,
@@ -808,7 +819,7 @@ impl Scene {
             pool,
             &renderer.mesh_layout,
             &self.data,
-            &self.patterns,
+            Patterns::Upload(&self.patterns),
             self.max_chunk,
             Extras {
                 heightmap: &self.heightmap,
