@@ -15,7 +15,8 @@ layout(push_constant, std430) uniform Push {
 } pc;
 
 void main() {
-    uint i = gl_GlobalInvocationID.x;
+    // A grid of rows of workgroups (a row may hold at most maxComputeWorkGroupCount[0]).
+    uint i = gl_GlobalInvocationID.y * gl_NumWorkGroups.x * gl_WorkGroupSize.x + gl_GlobalInvocationID.x;
     if (i >= pc.count) {
         return;
     }

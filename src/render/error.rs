@@ -11,7 +11,7 @@ pub enum RenderError {
     OverLimit {
         what: String,
         needed: u64,
-        /// What `needed` and `max` count: "bytes" or "texels".
+        /// What `needed` and `max` count: "bytes", "texels" or "vertices".
         unit: &'static str,
         limit: &'static str,
         max: u64,

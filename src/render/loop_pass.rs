@@ -38,6 +38,16 @@ pub struct LoopPass {
     _set_layout: DescriptorSetLayout,
     m0_count: u32,
     m1_count: u32,
+    /// Workgroups per dispatch row, and rows.
+    grid: [u32; 2],
+}
+
+/// `groups` workgroups as rows of at most `max[0]` (maxComputeWorkGroupCount's first two), or
+/// `None` where even `max[1]` rows of them are too few.
+pub fn dispatch_grid(groups: u32, max: [u32; 2]) -> Option<[u32; 2]> {
+    let x = groups.clamp(1, max[0].max(1));
+    let y = groups.div_ceil(x).max(1);
+    (y <= max[1]).then_some([x, y])
 }
 
 impl LoopPass {
@@ -172,9 +182,29 @@ impl LoopPass {
             _set_layout: set_layout,
             m0_count: data.m0_count as u32,
             m1_count: stencils.len() as u32,
+            grid: [1, 1],
         };
+        let max = ctx.info.limits.max_compute_work_group_count;
+        pass.grid =
+            dispatch_grid(pass.m1_count.div_ceil(GROUP), [max[0], max[1]]).ok_or_else(|| {
+                RenderError::OverLimit {
+                    what: "the loop surface's M1 vertices".into(),
+                    needed: pass.m1_count as u64,
+                    unit: "vertices",
+                    limit: "maxComputeWorkGroupCount",
+                    max: max[0] as u64 * max[1] as u64 * GROUP as u64,
+                    remedy: "use a coarser mesh".into(),
+                }
+            })?;
         pass.upload_m0(m0);
         Ok(pass)
+    }
+
+    /// Dispatch rows of at most `width` workgroups (less than the device allows: for tests of the
+    /// second dimension, which only meshes of millions of M1 vertices need).
+    #[doc(hidden)]
+    pub fn narrow_grid(&mut self, width: u32) {
+        self.grid = dispatch_grid(self.m1_count.div_ceil(GROUP), [width, u32::MAX]).unwrap();
     }
 
     /// Upload M0's positions (animation: every frame). The caller makes sure no pending work
@@ -226,12 +256,12 @@ impl LoopPass {
             0,
             bytemuck::bytes_of(&self.m1_count),
         );
-        let groups = self.m1_count.div_ceil(GROUP).max(1);
+        let [x, y] = self.grid;
         cmd.bind_compute_pipeline(self.step.raw);
-        cmd.dispatch(groups, 1, 1);
+        cmd.dispatch(x, y, 1);
         cmd.barrier_compute_to_draw();
         cmd.bind_compute_pipeline(self.normals.raw);
-        cmd.dispatch(groups, 1, 1);
+        cmd.dispatch(x, y, 1);
         cmd.barrier_compute_to_draw();
     }
 }
@@ -242,5 +272,20 @@ fn nonempty(v: &[u32]) -> &[u32] {
         &[0]
     } else {
         v
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::dispatch_grid;
+
+    #[test]
+    fn dispatch_grids_cover_every_group_within_the_limits() {
+        assert_eq!(dispatch_grid(12, [65535, 65535]), Some([12, 1]));
+        assert_eq!(dispatch_grid(0, [65535, 65535]), Some([1, 1]));
+        // 8.4 M vertices (lavapipe's maxStorageBufferRange of M1) in rows of 65,535 groups.
+        assert_eq!(dispatch_grid(131_072, [65535, 65535]), Some([65535, 3]));
+        assert_eq!(dispatch_grid(10, [3, 4]), Some([3, 4]));
+        assert_eq!(dispatch_grid(13, [3, 4]), None);
     }
 }
