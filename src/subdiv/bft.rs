@@ -375,7 +375,8 @@ pub fn throttled(mut report: impl FnMut(Progress)) -> impl FnMut(Progress) {
 }
 
 /// Find every face's configuration in `topo` (M1) and build the tables of those it has.
-/// `progress` hears how far it is, every 16,384 faces and every table.
+/// `progress` hears how far it is as the work goes (faces classified, tables built), always on
+/// the calling thread, while the work is shared among the cores.
 pub fn build(
     topo: &Topology,
     boundary: Boundary,
