@@ -465,12 +465,12 @@ fn build_on(
     let total = reps.len();
     let keys: Vec<Vec<[u32; 3]>> = reps.iter().map(|r| r.2.clone()).collect();
     // Tables too are independent: thread t builds configurations t, t + T, t + 2T, ...
-    let threads = cores.min(total).max(1);
+    let builders = cores.min(total).max(1);
     let done = std::sync::atomic::AtomicUsize::new(0);
     let build_share = |t: usize, tick: &mut dyn FnMut()| {
         let mut labels = Labels::new(topo.vertex_count);
         let mut out = Vec::new();
-        for (i, (f, orient, key)) in reps.iter().enumerate().skip(t).step_by(threads) {
+        for (i, (f, orient, key)) in reps.iter().enumerate().skip(t).step_by(builders) {
             out.push((
                 i,
                 table(
@@ -491,7 +491,7 @@ fn build_on(
     };
     progress(Progress::Tables(0, total));
     let mut built: Vec<(usize, Result<Config, TopologyError>)> = std::thread::scope(|s| {
-        let others: Vec<_> = (1..threads)
+        let others: Vec<_> = (1..builders)
             .map(|t| {
                 let build_share = &build_share;
                 s.spawn(move || build_share(t, &mut || {}))
