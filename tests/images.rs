@@ -144,6 +144,52 @@ fn drivers_render_the_same_image() {
     });
 }
 
+/// From `LOOP_FRAGMENT_NORMALS` up, loop's subdivision-shading normal is summed per fragment
+/// instead of per vertex (pattern and tess, no displacement): every submission mode gives the
+/// same image, tess nearly, and it shades like the per-vertex normals one level below (the
+/// triangles there are about a pixel, so interpolating their normals changes little).
+#[test]
+fn loop_normals_per_fragment_shade_as_per_vertex() {
+    let (w, h_px) = (320u32, 240u32);
+    with_gpu(w, h_px, |h| {
+        let high = meshrefine::render::LOOP_FRAGMENT_NORMALS;
+        let mut scene = meshrefine::render::Scene::with_patterns(
+            &h.ctx,
+            &h.pool,
+            &h.renderer,
+            default_mesh(),
+            meshrefine::pattern::PatternSet::from_levels(&[high - 1, high]),
+        )
+        .unwrap();
+        let (c, r) = scene.bounding_sphere();
+        let camera = Camera::framing(c, r);
+        let mut render = |driver, level| {
+            let cfg = DrawConfig::new(driver, level).with_surface(Surface::Loop, Displace::None);
+            assert_eq!(cfg.fragment_normal_field(), level >= high, "{level}");
+            h.render(&mut scene, &cfg, &camera).unwrap()
+        };
+        let instanced = render(Driver::Pattern(Submit::Instanced), high);
+        let push = render(Driver::Pattern(Submit::Push), high);
+        let ubo = render(Driver::Pattern(Submit::Ubo), high);
+        let tess = render(Driver::Tess, high);
+        let per_vertex = render(Driver::Pattern(Submit::Instanced), high - 1);
+        assert_eq!(push.rgba, instanced.rgba, "push and instanced differ");
+        assert_eq!(ubo.rgba, instanced.rgba, "ubo and instanced differ");
+        check(
+            "loop-fragment-normals-tess-vs-pattern",
+            &instanced,
+            &tess,
+            (w * h_px / 200) as usize,
+        );
+        check(
+            "loop-fragment-normals-vs-vertex-normals",
+            &instanced,
+            &per_vertex,
+            (w * h_px / 500) as usize,
+        );
+    });
+}
+
 #[test]
 fn wireframe_pass_draws_edges() {
     with_gpu(320, 240, |h| {

@@ -23,6 +23,21 @@ layout(set = SET_MESH, binding = BINDING_LOOP_CONTROL) uniform usamplerBuffer lo
 layout(set = SET_MESH, binding = BINDING_LOOP_TABLES) uniform samplerBuffer bft4;
 #define loop_p1_at(i) texelFetch(loop_p1_t, int(i))
 #define loop_n1_at(i) texelFetch(loop_n1_t, int(i))
+// What this stage sums: positions where it places vertices (and for displacement, which needs
+// them in the fragment stage too); M1's normals (subdivision shading) except in the drawing
+// stages when the fragment stage sums them (FRAGMENT_FIELD: loop at high levels, without
+// displacement; src/render/mod.rs `DrawConfig::fragment_normal_field`), and always for the
+// tests' captures.
+#if defined(FRAGMENT_STAGE)
+const bool LOOP_POSITIONS = DISPLACE != DISPLACE_NONE;
+const bool LOOP_NORMALS = true;
+#elif defined(CAPTURE) || defined(XFB)
+const bool LOOP_POSITIONS = true;
+const bool LOOP_NORMALS = true;
+#else
+const bool LOOP_POSITIONS = true;
+const bool LOOP_NORMALS = FRAGMENT_FIELD == 0u;
+#endif
 
 // Row of lattice point (i, j) of a lattice of `seg` segments. Mirror: bft::Lattice::row.
 uint bft_row(uint seg, uint i, uint j) {
@@ -77,8 +92,12 @@ SurfacePoint loop_eval_face(uint g, vec3 b) {
             uvec4 v = texelFetch(loop_control4, int(first / 4u + c));
             vec4 w = texelFetch(bft4, int(r + c));
             for (uint e = 0u; e < 4u; ++e) {
-                p += loop_p1_at(v[e]).xyz * w[e];
-                n += loop_n1_at(v[e]).xyz * w[e];
+                if (LOOP_POSITIONS) {
+                    p += loop_p1_at(v[e]).xyz * w[e];
+                }
+                if (LOOP_NORMALS) {
+                    n += loop_n1_at(v[e]).xyz * w[e];
+                }
             }
         }
         float nl = length(n);
@@ -119,9 +138,11 @@ SurfacePoint loop_eval_face(uint g, vec3 b) {
         vec4 w0 = texelFetch(bft4, int(r0 + c)), w1 = texelFetch(bft4, int(r1 + c)), w2 = texelFetch(bft4, int(r2 + c));
         vec4 w = w0 * l.x + w1 * l.y + w2 * l.z;
         for (uint e = 0u; e < 4u; ++e) {
-            vec3 pv = loop_p1_at(v[e]).xyz;
+            vec3 pv = LOOP_POSITIONS ? loop_p1_at(v[e]).xyz : vec3(0.0);
             p += pv * w[e];
-            ns += loop_n1_at(v[e]).xyz * w[e];
+            if (LOOP_NORMALS) {
+                ns += loop_n1_at(v[e]).xyz * w[e];
+            }
             if (DISPLACE != DISPLACE_NONE) {
                 dx += pv * (upper ? w0[e] - w1[e] : w1[e] - w0[e]);
                 dy += pv * (upper ? w0[e] - w2[e] : w2[e] - w0[e]);

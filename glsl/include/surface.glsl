@@ -11,9 +11,10 @@
 #include "pn.glsl"
 #include "stpn.glsl"
 #include "displace.glsl"
-#ifndef FRAGMENT_STAGE
+// Whether the fragment stage evaluates the surface's normal field (pn, stpn; loop at high
+// levels, whose drawing stages then sum positions only).
+layout(constant_id = SPEC_FRAGMENT_FIELD) const uint FRAGMENT_FIELD = 0;
 #include "loop.glsl"
-#endif
 
 layout(constant_id = SPEC_SURFACE) const uint SURFACE = 0;
 const uint SURFACE_FLAT = 0;
@@ -85,16 +86,17 @@ SurfacePoint surface_eval(ElementRecord rec, Sample s) {
 
 // What every driver computes for every sample.
 SurfacePoint evaluate(ElementRecord rec, Sample s) {
-#ifndef FRAGMENT_STAGE
     if (SURFACE == SURFACE_LOOP) {
         return displace(loop_eval(rec, s.bary));
     }
-#endif
     return displace(surface_eval(rec, s));
 }
 
 // The surface's normal field at barycentric `bary` of the element, for the fragment stage.
 vec3 surface_normal_field(ElementRecord rec, vec3 bary) {
+    if (SURFACE == SURFACE_LOOP) {
+        return loop_eval(rec, bary).normal;
+    }
     CornerRecord r = corner_record(rec);
     Corners c = canonical(r, bary);
     StTag tags[3];

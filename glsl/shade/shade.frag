@@ -10,7 +10,6 @@
 #include "varyings.glsl"
 
 layout(constant_id = SPEC_WIRE) const uint WIRE = 0;
-layout(constant_id = SPEC_FRAGMENT_FIELD) const uint FRAGMENT_FIELD = 0;
 
 layout(location = 0) out vec4 out_color;
 

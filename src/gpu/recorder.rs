@@ -106,6 +106,7 @@ impl<'a> Cmd<'a> {
                 vk::PipelineStageFlags::VERTEX_INPUT
                     | vk::PipelineStageFlags::VERTEX_SHADER
                     | vk::PipelineStageFlags::TESSELLATION_EVALUATION_SHADER
+                    | vk::PipelineStageFlags::FRAGMENT_SHADER
                     | vk::PipelineStageFlags::COMPUTE_SHADER,
                 vk::DependencyFlags::empty(),
                 &[barrier],
@@ -125,6 +126,7 @@ impl<'a> Cmd<'a> {
                 vk::PipelineStageFlags::VERTEX_INPUT
                     | vk::PipelineStageFlags::VERTEX_SHADER
                     | vk::PipelineStageFlags::TESSELLATION_EVALUATION_SHADER
+                    | vk::PipelineStageFlags::FRAGMENT_SHADER
                     | vk::PipelineStageFlags::COMPUTE_SHADER,
                 vk::PipelineStageFlags::COMPUTE_SHADER,
                 vk::DependencyFlags::empty(),

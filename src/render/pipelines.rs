@@ -93,19 +93,11 @@ impl Renderer {
                 // every vertex's scalar tags (stpn)
                 (BINDING_TAGS, T::STORAGE_BUFFER, ALL_STAGES),
                 // the loop surface: M1, per-face table entries, control points, tables
-                (BINDING_LOOP_P1, T::UNIFORM_TEXEL_BUFFER, GEOMETRY_STAGES),
-                (BINDING_LOOP_N1, T::UNIFORM_TEXEL_BUFFER, GEOMETRY_STAGES),
-                (BINDING_LOOP_FACES, T::UNIFORM_TEXEL_BUFFER, GEOMETRY_STAGES),
-                (
-                    BINDING_LOOP_CONTROL,
-                    T::UNIFORM_TEXEL_BUFFER,
-                    GEOMETRY_STAGES,
-                ),
-                (
-                    BINDING_LOOP_TABLES,
-                    T::UNIFORM_TEXEL_BUFFER,
-                    GEOMETRY_STAGES,
-                ),
+                (BINDING_LOOP_P1, T::UNIFORM_TEXEL_BUFFER, ALL_STAGES),
+                (BINDING_LOOP_N1, T::UNIFORM_TEXEL_BUFFER, ALL_STAGES),
+                (BINDING_LOOP_FACES, T::UNIFORM_TEXEL_BUFFER, ALL_STAGES),
+                (BINDING_LOOP_CONTROL, T::UNIFORM_TEXEL_BUFFER, ALL_STAGES),
+                (BINDING_LOOP_TABLES, T::UNIFORM_TEXEL_BUFFER, ALL_STAGES),
             ],
             "set 1: mesh",
         )?;
