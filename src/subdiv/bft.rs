@@ -75,12 +75,9 @@ impl Lattice {
     }
 }
 
-/// A configuration: its key and its table.
+/// A table: the limit-position weights of a configuration (of every configuration that shares it).
 #[derive(Clone, Debug)]
 pub struct Config {
-    /// The faces around the canonical corners, in canonical labels (each rotated to start at its
-    /// smallest label), sorted.
-    pub key: Vec<[u32; 3]>,
     /// Control points: the columns of `weights` (built as labels 0 .. control, the face's
     /// corners first; [`build`] then keeps only the labels some row weighs, in label order).
     pub control: usize,
@@ -147,10 +144,11 @@ pub struct FaceConfig {
 #[derive(Clone, Debug)]
 pub struct Tables {
     pub lattice: Lattice,
-    /// The key of every configuration found; those whose tables are equal share one, so
-    /// `configs` may be fewer.
+    /// The key of every configuration found (the faces around the canonical corners, in canonical
+    /// labels, each rotated to start at its smallest label, sorted); those whose tables are equal
+    /// share one, so `configs` may be fewer.
     pub keys: Vec<Vec<[u32; 3]>>,
-    /// The distinct tables, each with the key of the first configuration that has it.
+    /// The distinct tables.
     pub configs: Vec<Config>,
     pub faces: Vec<FaceConfig>,
 }
@@ -470,19 +468,10 @@ fn build_on(
     let build_share = |t: usize, tick: &mut dyn FnMut()| {
         let mut labels = Labels::new(topo.vertex_count);
         let mut out = Vec::new();
-        for (i, (f, orient, key)) in reps.iter().enumerate().skip(t).step_by(builders) {
+        for (i, (f, orient, _)) in reps.iter().enumerate().skip(t).step_by(builders) {
             out.push((
                 i,
-                table(
-                    topo,
-                    &nb,
-                    &mut labels,
-                    *f,
-                    *orient,
-                    key.clone(),
-                    boundary,
-                    lattice,
-                ),
+                table(topo, &nb, &mut labels, *f, *orient, boundary, lattice),
             ));
             done.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
             tick();
@@ -575,14 +564,12 @@ fn compact(built: Vec<Config>, lattice: Lattice) -> (Vec<Config>, Vec<(u32, Vec<
 }
 
 /// The table of face `f` in orientation `o`, from its two-ring configuration mesh.
-#[allow(clippy::too_many_arguments)]
 fn table(
     topo: &Topology,
     nb: &Neighbourhoods,
     labels: &mut Labels,
     f: usize,
     o: Orient,
-    key: Vec<[u32; 3]>,
     boundary: Boundary,
     lattice: Lattice,
 ) -> Result<Config, TopologyError> {
@@ -692,7 +679,6 @@ fn table(
         .find(|&(n, b)| n != if b { 4 } else { 6 })
         .map_or(rings[0].0.len(), |(n, _)| n);
     Ok(Config {
-        key,
         control,
         valence,
         boundary: is_boundary,
@@ -1020,7 +1006,7 @@ mod tests {
         assert_eq!(one.faces, three.faces);
         assert_eq!(one.configs.len(), three.configs.len());
         for (a, b) in one.configs.iter().zip(&three.configs) {
-            assert_eq!((&a.key, &a.weights), (&b.key, &b.weights));
+            assert_eq!(a.weights, b.weights);
         }
     }
 
