@@ -195,6 +195,70 @@ pub fn sphere_mesh(segments: u32, rings: u32) -> Mesh {
     mesh
 }
 
+/// A boundary vertex with `k` triangles over a half disc (a boundary vertex of k + 1 edges),
+/// and a second ring so the fan's own boundary vertices have neighbours beyond it.
+pub fn half_disc_fan_mesh(k: u32) -> Mesh {
+    let mut positions = vec![Vec3::ZERO];
+    for ring in 1..=2 {
+        for i in 0..=k * ring {
+            let a = std::f32::consts::PI * i as f32 / (k * ring) as f32;
+            positions.push(Vec3::new(a.cos(), a.sin(), 0.0) * ring as f32);
+        }
+    }
+    let r1 = |i: u32| 1 + i;
+    let r2 = |i: u32| 2 + k + i;
+    let mut tris = Vec::new();
+    for i in 0..k {
+        tris.push([0, r1(i), r1(i + 1)]);
+        // Two outer triangles per inner one (ring 2 has 2k segments).
+        tris.push([r1(i), r2(2 * i), r2(2 * i + 1)]);
+        tris.push([r1(i), r2(2 * i + 1), r1(i + 1)]);
+        tris.push([r1(i + 1), r2(2 * i + 1), r2(2 * i + 2)]);
+    }
+    Mesh::from_parts("fan", positions, None, tris)
+        .expect("a fan is a valid mesh")
+        .0
+}
+
+/// Every configuration up to valence `max`, as the 2010 paper counts its tables: the union of
+/// the configurations of closed spheres whose poles have valence 3 ..= max (inside
+/// extraordinary vertices) and of half-disc fans of 1 .. max triangles (boundary vertices of 2
+/// ..= max edges). Returns the number of configurations (distinct keys) and the distinct
+/// tables (by content), as one mesh with all of them would have them (for
+/// [`bft::pack`](crate::subdiv::bft::pack)).
+pub fn every_configuration(
+    max: u32,
+    boundary: crate::subdiv::Boundary,
+    lattice: crate::subdiv::bft::Lattice,
+) -> (usize, Vec<crate::subdiv::bft::Config>) {
+    use crate::subdiv::{bft, loop_step, Topology};
+    let meshes = (3..=max)
+        .map(|n| sphere_mesh(n, 8))
+        .chain((1..max).map(half_disc_fan_mesh));
+    let mut keys = std::collections::HashSet::new();
+    let mut seen = std::collections::HashSet::new();
+    let mut tables = Vec::new();
+    for mesh in meshes {
+        let topo = Topology::of_mesh(&mesh).expect("a manifold mesh");
+        let p: Vec<glam::DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();
+        let m1 = loop_step(&topo, &p, boundary);
+        let t1 = Topology::new(&m1.faces, m1.positions.len()).expect("a manifold M1");
+        let built = bft::build(&t1, boundary, lattice, |_| {}).expect("tables");
+        keys.extend(built.keys);
+        for c in built.configs {
+            let bits: Vec<i64> = c
+                .weights
+                .iter()
+                .map(|w| (w * (1u64 << 40) as f64).round() as i64)
+                .collect();
+            if seen.insert(bits) {
+                tables.push(c);
+            }
+        }
+    }
+    (keys.len(), tables)
+}
+
 /// An open, wavy grid of `cols` x `rows` quads (boundary configurations everywhere round it).
 pub fn wavy_grid_mesh(cols: u32, rows: u32) -> Mesh {
     let mut positions = Vec::new();

@@ -10,17 +10,22 @@
 // Written by the Loop passes (glsl/subdiv), read here.
 layout(set = SET_MESH, binding = BINDING_LOOP_P1) uniform samplerBuffer loop_p1_t;
 layout(set = SET_MESH, binding = BINDING_LOOP_N1) uniform samplerBuffer loop_n1_t;
-// Per M1 face: (first weight, control points K, first control index, orientation: rotation in
-// bits 0-1, bit 2 set where the face is its configuration's mirror image, the tables' level
-// from bit 3: 2^level segments per edge).
+// Per M1 face: (its table's first row-map entry, control points K | the table's column pairs
+// << 16, first control index, orientation: rotation in bits 0-1, bit 2 set where the face is its
+// configuration's mirror image, the tables' level from bit 3: 2^level segments per edge).
 layout(set = SET_MESH, binding = BINDING_LOOP_FACES) uniform usamplerBuffer loop_faces_t;
 // Control points, four M1 vertex indices a texel: a face's K padded to K4, a multiple of four
 // (the padding repeats its first control point, with weight zero).
 layout(set = SET_MESH, binding = BINDING_LOOP_CONTROL) uniform usamplerBuffer loop_control4;
-// Four weights a texel: row r of a face's table is K4 weights from weights[offset + r * K4], the
-// padding zero. Read four at a time, as the control points: texel buffers, because lavapipe
-// fetches texels as vector gathers but reads storage buffers lane by lane.
+// The tables' distinct rows, four weights a texel, each row at least K4 weights (the padding
+// zero) for every table that reads it. Read four at a time, as the control points: texel
+// buffers, because lavapipe fetches texels as vector gathers but reads storage buffers lane by
+// lane. Mirror: bft::Packed.
 layout(set = SET_MESH, binding = BINDING_LOOP_TABLES) uniform samplerBuffer bft4;
+// Every table's rows: the row's first texel in bft4 times two, plus one where the row is the
+// mirror image of the stored one (a symmetric table's row across its axis: the weights of its
+// column pairs swapped).
+layout(set = SET_MESH, binding = BINDING_LOOP_ROWS) uniform usamplerBuffer bft_rows_t;
 #define loop_p1_at(i) texelFetch(loop_p1_t, int(i))
 #define loop_n1_at(i) texelFetch(loop_n1_t, int(i))
 // What this stage sums: positions where it places vertices (and for displacement, which needs
@@ -43,6 +48,17 @@ const bool LOOP_NORMALS = FRAGMENT_FIELD == 0u;
 uint bft_row(uint seg, uint i, uint j) {
     uint s = seg + 1u;
     return j * s - (j * (j > 0u ? j - 1u : 0u)) / 2u + i;
+}
+
+// Texel c (weights 4c .. 4c + 3) of a row at row-map entry `e`, of a table whose first `pe`
+// columns are pairs. Mirror: bft::Packed::weight.
+vec4 bft_weights(uint e, uint c, uint pe) {
+    vec4 w = texelFetch(bft4, int((e >> 1u) + c));
+    if ((e & 1u) != 0u) {
+        uint s = 4u * c;
+        w = s + 4u <= pe ? w.yxwz : (s + 2u <= pe ? w.yxzw : w);
+    }
+    return w;
 }
 
 // Which face evaluates sample `bary` of the face `rec`, with which weights on its corners.
@@ -77,7 +93,7 @@ uint loop_stored(uint orient, uint i) {
 // Face g at weights b of its stored corners. Mirror: subdivision::eval_face (and `cell`).
 SurfacePoint loop_eval_face(uint g, vec3 b) {
     uvec4 f = texelFetch(loop_faces_t, int(g));
-    uint offset = f.x, k4 = (f.y + 3u) & ~3u, first = f.z, orient = f.w & 7u;
+    uint base = f.x, k4 = ((f.y & 0xffffu) + 3u) & ~3u, pe = 2u * (f.y >> 16u), first = f.z, orient = f.w & 7u;
     uint seg = 1u << (f.w >> 3u);
     float s = float(seg);
     float x = b[loop_stored(orient, 1u)] * s;
@@ -86,11 +102,11 @@ SurfacePoint loop_eval_face(uint g, vec3 b) {
     // The general path below gives the very same bits there (weights 1, 0, 0 on the same row),
     // so the mirror, which always takes it, agrees exactly.
     if (DISPLACE == DISPLACE_NONE && x == floor(x) && y == floor(y)) {
-        uint r = (offset + bft_row(seg, uint(x), uint(y)) * k4) / 4u;
+        uint e = texelFetch(bft_rows_t, int(base + bft_row(seg, uint(x), uint(y)))).x;
         vec3 p = vec3(0.0), n = vec3(0.0);
         for (uint c = 0u; c < k4 / 4u; ++c) {
             uvec4 v = texelFetch(loop_control4, int(first / 4u + c));
-            vec4 w = texelFetch(bft4, int(r + c));
+            vec4 w = bft_weights(e, c, pe);
             for (uint e = 0u; e < 4u; ++e) {
                 if (LOOP_POSITIONS) {
                     p += loop_p1_at(v[e]).xyz * w[e];
@@ -132,10 +148,11 @@ SurfacePoint loop_eval_face(uint g, vec3 b) {
     // The three rows' weights interpolated first, then one weighted sum (and two for the
     // tangents, the lattice triangle's edges, only where displacement uses them).
     vec3 p = vec3(0.0), ns = vec3(0.0), dx = vec3(0.0), dy = vec3(0.0);
-    uint r0 = (offset + rows[0] * k4) / 4u, r1 = (offset + rows[1] * k4) / 4u, r2 = (offset + rows[2] * k4) / 4u;
+    uint e0 = texelFetch(bft_rows_t, int(base + rows[0])).x, e1 = texelFetch(bft_rows_t, int(base + rows[1])).x,
+         e2 = texelFetch(bft_rows_t, int(base + rows[2])).x;
     for (uint c = 0u; c < k4 / 4u; ++c) {
         uvec4 v = texelFetch(loop_control4, int(first / 4u + c));
-        vec4 w0 = texelFetch(bft4, int(r0 + c)), w1 = texelFetch(bft4, int(r1 + c)), w2 = texelFetch(bft4, int(r2 + c));
+        vec4 w0 = bft_weights(e0, c, pe), w1 = bft_weights(e1, c, pe), w2 = bft_weights(e2, c, pe);
         vec4 w = w0 * l.x + w1 * l.y + w2 * l.z;
         for (uint e = 0u; e < 4u; ++e) {
             vec3 pv = LOOP_POSITIONS ? loop_p1_at(v[e]).xyz : vec3(0.0);

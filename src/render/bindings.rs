@@ -30,16 +30,18 @@ pub const BINDING_HEIGHTMAP: u32 = 3;
 /// Set 1, binding 4: every vertex's scalar tags (`stpn`), three `vec4` each.
 pub const BINDING_TAGS: u32 = 4;
 
-/// Set 1, bindings 5-9, texel buffers: the `loop` surface (src/surface/subdivision.rs): M1's
+/// Set 1, bindings 5-10, texel buffers: the `loop` surface (src/surface/subdivision.rs): M1's
 /// positions and normals (`vec4`, written by the Loop passes), each M1 face's table entry
-/// (`uvec4`: first weight, control points, first control index, rotation), the faces' control
-/// points (M1 vertex indices, four a texel) and the basis function tables (`float`, four a
-/// texel). Unchunked: one face's owners may be in another chunk.
+/// (`uvec4`: its table's rows, control points and column pairs, first control index,
+/// orientation), the faces' control points (M1 vertex indices, four a texel), the basis
+/// function tables' distinct rows (`float`, four a texel) and every table's row map (`uint`).
+/// Unchunked: one face's owners may be in another chunk.
 pub const BINDING_LOOP_P1: u32 = 5;
 pub const BINDING_LOOP_N1: u32 = 6;
 pub const BINDING_LOOP_FACES: u32 = 7;
 pub const BINDING_LOOP_CONTROL: u32 = 8;
 pub const BINDING_LOOP_TABLES: u32 = 9;
+pub const BINDING_LOOP_ROWS: u32 = 10;
 
 /// Set 2: capture output of the `CAPTURE` shader variants.
 pub const SET_CAPTURE: u32 = 2;
@@ -93,6 +95,7 @@ pub const GLSL_DEFINES: &[(&str, u32)] = &[
     ("BINDING_LOOP_FACES", BINDING_LOOP_FACES),
     ("BINDING_LOOP_CONTROL", BINDING_LOOP_CONTROL),
     ("BINDING_LOOP_TABLES", BINDING_LOOP_TABLES),
+    ("BINDING_LOOP_ROWS", BINDING_LOOP_ROWS),
     ("SPEC_SURFACE", SPEC_SURFACE),
     ("SPEC_SUBMIT", SPEC_SUBMIT),
     ("SPEC_WIRE", SPEC_WIRE),

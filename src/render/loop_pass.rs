@@ -21,10 +21,11 @@ pub struct LoopPass {
     /// M1 positions and normals (`vec4`), written by the passes, read by the draws.
     pub m1: Buffer,
     pub n1: Buffer,
-    /// The draws' tables: per-face entries, control points, weights.
+    /// The draws' tables: per-face entries, control points, the tables' rows and their maps.
     pub faces: Buffer,
     pub control: Buffer,
     pub tables: Buffer,
+    pub table_rows: Buffer,
     m0: Buffer,
     _offsets: Buffer,
     _entries: Buffer,
@@ -118,17 +119,19 @@ impl LoopPass {
             },
             "loop control points",
         )?;
+        let packed = &data.tables.packed;
         let tables = Buffer::new_with_data(
             ctx,
             pool,
             storage,
-            if data.weights.is_empty() {
+            if packed.pool.is_empty() {
                 &[0.0f32; 4][..]
             } else {
-                &data.weights
+                &packed.pool
             },
             "basis function tables",
         )?;
+        let table_rows = upload(nonempty(&packed.rows), "basis function table rows")?;
         let m0_buf = Buffer::new(
             ctx,
             BufferDesc::new_upload(data.m0_count.max(1) as u64 * 16, storage),
@@ -169,6 +172,7 @@ impl LoopPass {
             faces,
             control,
             tables,
+            table_rows,
             m0: m0_buf,
             _offsets: offsets_buf,
             _entries: entries_buf,
@@ -235,6 +239,7 @@ impl LoopPass {
             &self.faces,
             &self.control,
             &self.tables,
+            &self.table_rows,
         ]
         .iter()
         .map(|b| b.size())

@@ -92,12 +92,13 @@ impl Renderer {
                 (BINDING_HEIGHTMAP, T::STORAGE_BUFFER, ALL_STAGES),
                 // every vertex's scalar tags (stpn)
                 (BINDING_TAGS, T::STORAGE_BUFFER, ALL_STAGES),
-                // the loop surface: M1, per-face table entries, control points, tables
+                // the loop surface: M1, per-face table entries, control points, tables, row maps
                 (BINDING_LOOP_P1, T::UNIFORM_TEXEL_BUFFER, ALL_STAGES),
                 (BINDING_LOOP_N1, T::UNIFORM_TEXEL_BUFFER, ALL_STAGES),
                 (BINDING_LOOP_FACES, T::UNIFORM_TEXEL_BUFFER, ALL_STAGES),
                 (BINDING_LOOP_CONTROL, T::UNIFORM_TEXEL_BUFFER, ALL_STAGES),
                 (BINDING_LOOP_TABLES, T::UNIFORM_TEXEL_BUFFER, ALL_STAGES),
+                (BINDING_LOOP_ROWS, T::UNIFORM_TEXEL_BUFFER, ALL_STAGES),
             ],
             "set 1: mesh",
         )?;

@@ -266,7 +266,7 @@ impl GpuMesh {
             chunks,
             &[
                 (vk::DescriptorType::STORAGE_BUFFER, 4 * chunks),
-                (vk::DescriptorType::UNIFORM_TEXEL_BUFFER, 5 * chunks),
+                (vk::DescriptorType::UNIFORM_TEXEL_BUFFER, 6 * chunks),
                 (vk::DescriptorType::UNIFORM_BUFFER_DYNAMIC, chunks),
             ],
             "mesh descriptors",
@@ -279,8 +279,8 @@ impl GpuMesh {
             "placeholder",
         )?;
         let loop_buffers = match subdiv {
-            Some(l) => [&l.m1, &l.n1, &l.faces, &l.control, &l.tables],
-            None => [&placeholder; 5],
+            Some(l) => [&l.m1, &l.n1, &l.faces, &l.control, &l.tables, &l.table_rows],
+            None => [&placeholder; 6],
         };
         let formats = [
             vk::Format::R32G32B32A32_SFLOAT,
@@ -288,6 +288,7 @@ impl GpuMesh {
             vk::Format::R32G32B32A32_UINT,
             vk::Format::R32G32B32A32_UINT,
             vk::Format::R32G32B32A32_SFLOAT,
+            vk::Format::R32_UINT,
         ];
         let views = loop_buffers
             .iter()
@@ -298,6 +299,7 @@ impl GpuMesh {
                 "face entries",
                 "control",
                 "tables",
+                "table rows",
             ])
             .map(|((b, f), name)| BufferView::new(ctx, b, f, &format!("loop {name} view")))
             .collect::<Result<Vec<_>, _>>()?;
@@ -350,6 +352,7 @@ impl GpuMesh {
                 BINDING_LOOP_FACES,
                 BINDING_LOOP_CONTROL,
                 BINDING_LOOP_TABLES,
+                BINDING_LOOP_ROWS,
             ]
             .into_iter()
             .zip(&views)
@@ -443,7 +446,7 @@ pub struct LoopScene {
 /// Whether the loop surface's buffers fit the device: the compute passes write M1 as storage
 /// buffers; the drawing stages read M1, the face entries, the control points and the tables as
 /// texel buffers (lavapipe fetches texels as vector gathers but reads storage buffers lane by
-/// lane), four-component texels each.
+/// lane), four-component texels each, and the tables' row maps, one entry a texel.
 fn loop_limits(data: &LoopData, limits: &vk::PhysicalDeviceLimits) -> Result<(), RenderError> {
     let m1 = data.stencils.len() as u64 * 16;
     let storage = limits.max_storage_buffer_range as u64;
@@ -458,13 +461,18 @@ fn loop_limits(data: &LoopData, limits: &vk::PhysicalDeviceLimits) -> Result<(),
         });
     }
     let max = limits.max_texel_buffer_elements as u64;
-    for (what, bytes) in [
-        ("M1 positions", m1),
-        ("M1 face tables", data.faces.len() as u64 * 16),
-        ("control points", data.control.len() as u64 * 4),
-        ("basis function tables", data.table_bytes()),
+    let packed = &data.tables.packed;
+    for (what, texels) in [
+        ("M1 positions", m1.div_ceil(16)),
+        ("M1 face tables", data.faces.len() as u64),
+        ("control points", (data.control.len() as u64).div_ceil(4)),
+        (
+            "basis function tables",
+            (packed.pool.len() as u64).div_ceil(4),
+        ),
+        // One entry a texel.
+        ("basis function table rows", packed.rows.len() as u64),
     ] {
-        let texels = bytes.div_ceil(16);
         if texels > max {
             return Err(RenderError::OverLimit {
                 what: format!("the loop surface's {what}"),
@@ -872,7 +880,7 @@ mod tests {
     fn loop_buffers_are_checked_against_the_limits() {
         let (mesh, _) = load_model("spot_control_tri.obj");
         let data = LoopData::new(&mesh, Boundary::EdgeOnly, Lattice::default(), |_| {}).unwrap();
-        let tables = data.table_bytes() / 16;
+        let tables = data.tables.packed.pool.len() as u64 / 4;
         let mut limits = vk::PhysicalDeviceLimits {
             max_storage_buffer_range: u32::MAX,
             max_texel_buffer_elements: tables as u32,

@@ -25,6 +25,16 @@
 //! ring come out exactly zero (checked by the tests), so they are dropped, and so are the control
 //! points a face does not reach (a wide boundary fan's far sectors, `compact`). All in f64,
 //! stored as f32.
+//!
+//! Stored ([`pack`]), a table is a map from its rows to distinct rows kept once. A table that is
+//! its own mirror image (every inside face: the reflection through its extraordinary vertex)
+//! keeps the rows on one side of its axis and reads the others as their mirror images, its
+//! columns in the pairs the reflection swaps ([`arrange`]); and tables whose faces look alike as
+//! far as a lattice point's limit reaches (a boundary fan's faces far from the fan's ends,
+//! whatever its width) share that row, their columns put in an order that depends only on the
+//! weights far from corner 0, in frames that put the extraordinary vertex at corner 0
+//! ([`frame`]). Every configuration up to valence 18 takes 0.77 MiB at level 5 so, 1.91 MiB
+//! as whole tables.
 
 use super::{limit_stencil, refined_faces, stencils, Boundary, Topology, TopologyError};
 use std::collections::HashMap;
@@ -91,6 +101,15 @@ pub struct Config {
     /// The weight found on the cut-out vertices beyond the control points, all together, at the
     /// lattice point where it is largest (exactly zero by the argument above).
     pub outside: f64,
+    /// The canonical corner a reflection of the lattice fixes, where the table is its own
+    /// mirror image under it (an inside face at its extraordinary vertex: the reflection swaps
+    /// the other two corners). Its columns then come as the pairs that the reflection swaps,
+    /// then the columns it fixes, so that [`pack`] stores only the rows on one side of the axis
+    /// and reads the others as their mirror images with each pair's weights swapped.
+    pub symmetry: Option<u8>,
+    /// With a `symmetry`, columns 2m and 2m + 1 for m < `pairs` are the pairs it swaps, and the
+    /// columns after them those it fixes.
+    pub pairs: usize,
 }
 
 /// How a face's stored corners map to its configuration's canonical corners: canonical corner i
@@ -151,15 +170,54 @@ pub struct Tables {
     /// The distinct tables.
     pub configs: Vec<Config>,
     pub faces: Vec<FaceConfig>,
+    /// The tables as stored on the GPU.
+    pub packed: Packed,
 }
 
 impl Tables {
-    /// Bytes of the tables as stored on the GPU (f32).
+    /// Bytes of the tables as stored on the GPU.
     pub fn bytes(&self) -> u64 {
-        self.configs
-            .iter()
-            .map(|c| (c.weights.len() * 4) as u64)
-            .sum()
+        self.packed.bytes()
+    }
+}
+
+/// Tables as the drawing stages read them: distinct rows stored once in `pool`, and for every
+/// table a map from its rows to theirs. Two tables share a row where their faces' neighbourhoods
+/// agree as far as that lattice point reaches (a boundary fan's faces far from its extraordinary
+/// vertex, whatever the fan's width), and a symmetric table ([`Config::symmetry`]) reads the rows
+/// on one side of its axis as its own with every column pair swapped.
+#[derive(Clone, Debug, Default)]
+pub struct Packed {
+    /// The distinct rows, f32, each padded with zeros to the longest (multiple of four) of the
+    /// tables that read it, so every row starts at a multiple of four.
+    pub pool: Vec<f32>,
+    /// Table t's row r at `t * rows + r`: the row's first weight in `pool` over four, times
+    /// two, plus one where the row is read as its mirror image ([`ROW_SWAPPED`]).
+    pub rows: Vec<u32>,
+}
+
+/// Bit 0 of a [`Packed::rows`] entry: the row is the mirror image of the stored one, read with
+/// the weights of columns 2m and 2m + 1 swapped for m < [`Config::pairs`] (a symmetric table's
+/// row across its axis).
+pub const ROW_SWAPPED: u32 = 1;
+
+impl Packed {
+    /// Bytes on the GPU: the pool and the row maps.
+    pub fn bytes(&self) -> u64 {
+        (self.pool.len() + self.rows.len()) as u64 * 4
+    }
+
+    /// Entry `i` of [`Packed::rows`] (table t's row r is `t * rows + r`): where its weights
+    /// start in `pool`, and whether it is read as its mirror image.
+    pub fn entry(&self, i: usize) -> (usize, bool) {
+        let e = self.rows[i];
+        ((e >> 1) as usize * 4, e & ROW_SWAPPED != 0)
+    }
+
+    /// Weight `c` of a row at `entry` of a table with `pairs` column pairs, as the GPU reads
+    /// it. Mirror of `bft_weights` in loop.glsl.
+    pub fn weight(&self, (at, swapped): (usize, bool), c: usize, pairs: usize) -> f32 {
+        self.pool[at + if swapped && c < 2 * pairs { c ^ 1 } else { c }]
     }
 }
 
@@ -255,6 +313,30 @@ fn label(topo: &Topology, nb: &Neighbourhoods, f: usize, o: Orient, labels: &mut
     }
 }
 
+/// How well orientation `o` of face `f` frames it, smaller first: canonical corner 0 is its
+/// extraordinary vertex where it has one (else a boundary vertex, else any), and where that
+/// corner is on the boundary, canonical corner 1 is on the side of its fan's nearer end.
+/// Topological, so alike configurations take alike frames: the rows of two tables for faces
+/// whose neighbourhoods agree near the face (a boundary fan's middle faces, whatever the fan's
+/// width) then agree far from corner 0, and [`pack`] stores them once.
+fn frame(topo: &Topology, nb: &Neighbourhoods, f: usize, o: Orient) -> (u8, usize) {
+    let t = topo.faces[f];
+    let (c0, c1) = (t[o.stored(0)], t[o.stored(1)]);
+    let (ring, on_boundary) = &nb.rings[c0 as usize];
+    let class = match (*on_boundary, ring.len()) {
+        (false, 6) => 2,
+        (true, 4) => 1,
+        _ => 0,
+    };
+    if !on_boundary {
+        return (class, 0);
+    }
+    // The ring as `label` walks it: from the boundary, reversed for the mirror image.
+    let n = ring.len();
+    let at = |i: usize| if o.mirror { ring[n - 1 - i] } else { ring[i] };
+    (class, (0..n).find(|&i| at(i) == c1).unwrap_or(n))
+}
+
 /// A face's key in labels (reversed for a mirror image): rotated to start at its smallest label.
 fn labelled(t: &[u32; 3], labels: &Labels, mirror: bool) -> [u32; 3] {
     let mut l = t.map(|v| labels.of(v));
@@ -288,6 +370,9 @@ fn key_of(
     key
 }
 
+/// An orientation's [`frame`] rank and key: the smallest is the face's canonical orientation.
+type Framed = ((u8, usize), Vec<[u32; 3]>);
+
 /// One thread's share of the faces, classified: its distinct keys in order of first appearance
 /// (with the face and orientation that showed each first), and every face's key (an index into
 /// those), orientation and control points.
@@ -315,16 +400,17 @@ fn classify(
             done.fetch_add(1024, std::sync::atomic::Ordering::Relaxed);
             tick();
         }
-        // The smallest key over the three rotations and the mirror image: a configuration and
-        // its mirror share one table.
-        let mut best: Option<(Vec<[u32; 3]>, Orient, Vec<u32>)> = None;
+        // The smallest (frame, key) over the three rotations and the mirror image: a
+        // configuration and its mirror share one table, and faces alike near their
+        // extraordinary vertex are in the same frame ([`frame`]).
+        let mut best: Option<(Framed, Orient, Vec<u32>)> = None;
         for o in Orient::all() {
-            let key = key_of(topo, nb, f, o, &mut labels);
-            if best.as_ref().is_none_or(|b| key < b.0) {
-                best = Some((key, o, labels.order.clone()));
+            let framed = (frame(topo, nb, f, o), key_of(topo, nb, f, o, &mut labels));
+            if best.as_ref().is_none_or(|b| framed < b.0) {
+                best = Some((framed, o, labels.order.clone()));
             }
         }
-        let (key, orient, order) = best.expect("six orientations");
+        let ((_, key), orient, order) = best.expect("six orientations");
         let next = out.keys.len() as u32;
         let id = *ids.entry(key).or_insert_with_key(|key| {
             out.keys.push((key.clone(), f, orient));
@@ -502,19 +588,177 @@ fn build_on(
         .map(|b| b.1)
         .collect::<Result<Vec<Config>, TopologyError>>()?;
     progress(Progress::Tables(total, total));
-    let (configs, kept) = compact(built, lattice);
-    // Control points: only those the table weighs.
+    let (mut configs, kept) = compact(built, lattice);
+    // Columns in the order `arrange` gives them.
+    let layouts: Vec<Vec<usize>> = configs.iter_mut().map(|c| arrange(c, lattice)).collect();
+    // Control points: only those the table weighs, in its columns' order.
     for fc in &mut faces {
         let (id, columns) = &kept[fc.config as usize];
-        fc.control = columns.iter().map(|&j| fc.control[j]).collect();
+        fc.control = layouts[*id as usize]
+            .iter()
+            .map(|&l| fc.control[columns[l]])
+            .collect();
         fc.config = *id;
     }
+    let packed = pack(&configs.iter().collect::<Vec<_>>(), lattice);
     Ok(Tables {
         lattice,
         keys,
         configs,
         faces,
+        packed,
     })
+}
+
+/// Weights rounded to multiples of 1 / TABLE_EQUAL, to compare tables, rows and columns.
+fn rounded(w: f64) -> i64 {
+    (w * TABLE_EQUAL).round() as i64
+}
+
+/// The lattice reflection that fixes canonical corner `a`: it swaps the other two corners'
+/// weights. Row r's mirror image, for every row.
+fn reflection(lattice: Lattice, a: u8) -> Vec<usize> {
+    let s = lattice.segments();
+    let mut image = vec![0; lattice.rows()];
+    for j in 0..=s {
+        for i in 0..=s - j {
+            let k = s - i - j;
+            let (x, y) = match a {
+                0 => (j, i),
+                1 => (i, k),
+                _ => (k, j),
+            };
+            image[lattice.row(i, j)] = lattice.row(x, y);
+        }
+    }
+    image
+}
+
+/// Puts `c`'s columns in an order that depends only on their weights, so that two tables whose
+/// rows agree far from canonical corner 0 order the columns weighing there alike and [`pack`]
+/// can share those rows: by their weights at the lattice points from the edge opposite corner
+/// 0 inwards, larger first, a column that weighs nothing there after those that do. Where the
+/// table is its own mirror image under a reflection (found from the weights: every column
+/// reflected is another column), the columns come in the pairs it swaps instead
+/// ([`Config::symmetry`]). Rewrites `c` and returns its new columns as indices of its old.
+fn arrange(c: &mut Config, lattice: Lattice) -> Vec<usize> {
+    let (rows, k) = (lattice.rows(), c.control);
+    let column =
+        |j: usize| -> Vec<i64> { (0..rows).map(|r| rounded(c.weights[r * k + j])).collect() };
+    let columns: Vec<Vec<i64>> = (0..k).map(column).collect();
+    // Far from corner 0 first: the rows by decreasing i + j, then by i.
+    let s = lattice.segments();
+    let mut far: Vec<usize> = Vec::with_capacity(rows);
+    for d in (0..=s).rev() {
+        for i in (0..=d).rev() {
+            far.push(lattice.row(i, d - i));
+        }
+    }
+    let sort_key = |j: usize| -> Vec<i64> { far.iter().map(|&r| -columns[j][r]).collect() };
+    let keys: Vec<Vec<i64>> = (0..k).map(sort_key).collect();
+    let mut order: Vec<usize> = (0..k).collect();
+    order.sort_by(|&a, &b| keys[a].cmp(&keys[b]).then(a.cmp(&b)));
+    // A reflection under which every column is another column's mirror image, to 1e-12 of
+    // each weight (the two are summed in different orders, every term non-negative; a far
+    // column's weights are as small as 1e-13).
+    let w = &c.weights;
+    let same = |a: f64, b: f64| (a - b).abs() <= 1e-12 * a.abs().max(b.abs());
+    // Only inside faces fold: a boundary face's far rows are shared with its neighbours'
+    // tables, which the pairs' order would lose (for every configuration to valence 18,
+    // folding the boundary's symmetric tables too takes 0.82 MiB instead of 0.77).
+    let symmetric = (0..3u8).filter(|_| !c.boundary).find_map(|a| {
+        let image = reflection(lattice, a);
+        let mirrors =
+            |j: usize, d: usize| (0..rows).all(|r| same(w[image[r] * k + j], w[r * k + d]));
+        // Paired greedily: columns can be equal (the far ring of a high valence vertex, reached
+        // only through the vertex's own rule), and any of equal columns will do.
+        let mut sigma = vec![usize::MAX; k];
+        for j in 0..k {
+            if sigma[j] == usize::MAX {
+                let d = (j + 1..k)
+                    .chain([j])
+                    .find(|&d| sigma[d] == usize::MAX && mirrors(j, d))?;
+                sigma[j] = d;
+                sigma[d] = j;
+            }
+        }
+        // The reflection is an involution, so d mirrors j exactly when j mirrors d.
+        (0..k).all(|j| mirrors(sigma[j], j)).then_some((a, sigma))
+    });
+    let (layout, pairs) = match &symmetric {
+        None => (order, 0),
+        Some((_, sigma)) => {
+            // The pairs (j, σj) in the order of their first column, then the fixed columns.
+            let mut layout: Vec<usize> = Vec::with_capacity(k);
+            for &j in &order {
+                if sigma[j] != j && !layout.contains(&j) {
+                    layout.extend([j, sigma[j]]);
+                }
+            }
+            let pairs = layout.len() / 2;
+            layout.extend(order.iter().filter(|&&j| sigma[j] == j));
+            (layout, pairs)
+        }
+    };
+    c.weights = (0..rows)
+        .flat_map(|r| layout.iter().map(move |&j| r * k + j))
+        .map(|i| c.weights[i])
+        .collect();
+    c.symmetry = symmetric.map(|(a, _)| a);
+    c.pairs = pairs;
+    layout
+}
+
+/// Stores `tables` as the GPU reads them ([`Packed`]): every row once, rows with the same
+/// weights (as f32, trailing zeros aside) shared among tables, a symmetric table's rows across
+/// its axis read as their mirror images with the column pairs swapped.
+pub fn pack(tables: &[&Config], lattice: Lattice) -> Packed {
+    let rows = lattice.rows();
+    let images: Vec<Vec<usize>> = (0..3u8).map(|a| reflection(lattice, a)).collect();
+    // The distinct rows (f32 bits, trailing zeros trimmed) and the longest table reading each.
+    let mut ids: HashMap<Vec<u32>, usize> = HashMap::new();
+    let mut distinct: Vec<(Vec<u32>, usize)> = Vec::new();
+    // Per table row: (distinct row, swapped).
+    let mut refs: Vec<(usize, bool)> = Vec::with_capacity(tables.len() * rows);
+    for (t, c) in tables.iter().enumerate() {
+        let k = c.control;
+        let image = c.symmetry.map(|a| &images[a as usize]);
+        for r in 0..rows {
+            if let Some(image) = image {
+                if image[r] < r {
+                    let (id, _) = refs[t * rows + image[r]];
+                    refs.push((id, true));
+                    continue;
+                }
+            }
+            let mut bits: Vec<u32> = c.weights[r * k..(r + 1) * k]
+                .iter()
+                .map(|&w| (w as f32).to_bits())
+                .collect();
+            while bits.last() == Some(&0) {
+                bits.pop();
+            }
+            let next = distinct.len();
+            let id = *ids.entry(bits).or_insert_with_key(|bits| {
+                distinct.push((bits.clone(), 0));
+                next
+            });
+            distinct[id].1 = distinct[id].1.max(k.next_multiple_of(4));
+            refs.push((id, false));
+        }
+    }
+    let mut first = Vec::with_capacity(distinct.len());
+    let mut pool = Vec::new();
+    for (bits, len) in &distinct {
+        first.push(pool.len());
+        pool.extend(bits.iter().map(|&b| f32::from_bits(b)));
+        pool.resize(first.last().unwrap() + len, 0.0);
+    }
+    let rows = refs
+        .iter()
+        .map(|&(id, swapped)| (first[id] / 4) as u32 * 2 + swapped as u32)
+        .collect();
+    Packed { pool, rows }
 }
 
 /// Drops the columns no row weighs (a boundary vertex's fan beyond the face's reach: its rule
@@ -684,6 +928,8 @@ fn table(
         boundary: is_boundary,
         weights,
         outside,
+        symmetry: None,
+        pairs: 0,
     })
 }
 
@@ -995,6 +1241,121 @@ mod tests {
         );
     }
 
+    /// The packed tables, read as the GPU reads them (the shared rows, a symmetric table's rows
+    /// across its axis as their mirror images), are every table's own rows in f32: the same
+    /// bits, or for a mirror image within an ulp (its weights were summed in another order).
+    #[test]
+    fn packed_rows_are_the_tables() {
+        for file in [
+            "tetrahedron.obj",
+            "spot_control_tri.obj",
+            "fan24_open.obj",
+            "halfdisc17_open.obj",
+            "grid_open_8x8.obj",
+        ] {
+            let (_, tables) = default_tables(file);
+            let lattice = tables.lattice;
+            let p = &tables.packed;
+            assert_eq!(p.rows.len(), tables.configs.len() * lattice.rows());
+            let mut swapped = 0;
+            for (t, c) in tables.configs.iter().enumerate() {
+                for r in 0..lattice.rows() {
+                    let at = p.entry(t * lattice.rows() + r);
+                    swapped += at.1 as usize;
+                    assert!(!at.1 || c.symmetry.is_some(), "{file}: table {t} swaps");
+                    for j in 0..c.control.next_multiple_of(4) {
+                        let want = if j < c.control {
+                            c.weights[r * c.control + j] as f32
+                        } else {
+                            0.0
+                        };
+                        let got = p.weight(at, j, c.pairs);
+                        let ulp = if at.1 { want.abs() * f32::EPSILON } else { 0.0 };
+                        assert!(
+                            (got - want).abs() <= ulp,
+                            "{file}: table {t} row {r} column {j}: {got} for {want}"
+                        );
+                    }
+                }
+            }
+            // Every inside table folds: the rows across its axis are mirror images.
+            for c in tables.configs.iter().filter(|c| !c.boundary) {
+                assert!(
+                    c.symmetry.is_some(),
+                    "{file}: an inside table does not fold"
+                );
+            }
+            if tables.configs.iter().any(|c| !c.boundary) {
+                assert!(swapped > 0, "{file}: no row is a mirror image");
+            }
+        }
+    }
+
+    /// A symmetric table's columns are the pairs its reflection swaps, then the columns it
+    /// fixes: the reflected lattice point's weight on column j is the weight on its partner.
+    #[test]
+    fn symmetric_tables_pair_their_columns() {
+        let (_, tables) = default_tables("spot_control_tri.obj");
+        let lattice = tables.lattice;
+        let mut folded = 0;
+        for c in &tables.configs {
+            let Some(a) = c.symmetry else { continue };
+            folded += 1;
+            let image = reflection(lattice, a);
+            let k = c.control;
+            let partner = |j: usize| if j < 2 * c.pairs { j ^ 1 } else { j };
+            for (r, &m) in image.iter().enumerate() {
+                for j in 0..k {
+                    let (x, y) = (c.weights[m * k + j], c.weights[r * k + partner(j)]);
+                    assert!(
+                        (x - y).abs() <= 1e-12 * x.abs().max(y.abs()),
+                        "row {r} column {j}"
+                    );
+                }
+            }
+        }
+        assert_eq!(
+            folded,
+            tables.configs.len(),
+            "Spot is closed: every table folds"
+        );
+    }
+
+    /// Boundary fans' tables share the rows far from their extraordinary vertex: the half disc's
+    /// 14 tables (8 of them for faces of its 18-edge fan) store two thirds of their rows.
+    #[test]
+    fn boundary_tables_share_rows() {
+        let (_, tables) = default_tables("halfdisc17_open.obj");
+        let p = &tables.packed;
+        let mut distinct: Vec<u32> = p.rows.iter().map(|e| e >> 1).collect();
+        distinct.sort_unstable();
+        distinct.dedup();
+        let rows = p.rows.len();
+        assert!(
+            distinct.len() * 10 < rows * 7,
+            "{} distinct rows of {rows}",
+            distinct.len()
+        );
+        // And the pool, with the row maps, is smaller than the tables whole.
+        let whole: usize = tables
+            .configs
+            .iter()
+            .map(|c| c.control.next_multiple_of(4) * tables.lattice.rows() * 4)
+            .sum();
+        assert!(p.bytes() * 4 < whole as u64 * 3, "{} of {whole}", p.bytes());
+    }
+
+    /// The 2010 paper's set, every configuration up to valence 18 inside and on the boundary,
+    /// fits in 1 MiB at the default level (it stored about 9 MB).
+    #[test]
+    fn every_configuration_to_valence_18_fits_in_a_mebibyte() {
+        let lattice = Lattice::default();
+        let (keys, union) = crate::bench::every_configuration(18, Boundary::EdgeOnly, lattice);
+        assert_eq!((keys, union.len()), (99, 54));
+        let bytes = pack(&union.iter().collect::<Vec<_>>(), lattice).bytes();
+        assert!(bytes <= 1 << 20, "{bytes} bytes");
+    }
+
     /// However many threads classify the faces and build the tables, the result is the same.
     #[test]
     fn threads_do_not_change_the_tables() {
@@ -1008,6 +1369,8 @@ mod tests {
         for (a, b) in one.configs.iter().zip(&three.configs) {
             assert_eq!(a.weights, b.weights);
         }
+        assert_eq!(one.packed.pool, three.packed.pool);
+        assert_eq!(one.packed.rows, three.packed.rows);
     }
 
     /// Reports wait a second, then come at most once a second, and never twice the same.

@@ -28,16 +28,15 @@ pub struct LoopData {
     pub stencils: Vec<Stencil>,
     pub m1: Topology,
     pub tables: Tables,
-    /// Per M1 face: (first table weight, control points K, first control index, orientation
+    /// Per M1 face: (its table's first entry in `table_rows`, control points K | the table's
+    /// column pairs ([`bft::Config::pairs`]) << 16, first control index, orientation
     /// ([`crate::subdiv::bft::Orient::bits`]) | the tables' level << 3).
     pub faces: Vec<[u32; 4]>,
     /// Control points of every face, M1 vertex indices, [`padded`]`(K)` a face (the padding
-    /// repeats the face's first control point, with weight zero).
+    /// repeats the face's first control point, with weight zero), so that the drawing stages
+    /// read them four at a time, as the tables' rows ([`bft::Packed`]: each at a multiple of
+    /// four, at least [`padded`]`(K)` weights long for every table that reads it).
     pub control: Vec<u32>,
-    /// Every table, f32, configuration after configuration, rows of [`padded`]`(K)` weights
-    /// (the padding zero), so that rows and control lists start at multiples of four and the
-    /// drawing stages read them four at a time.
-    pub weights: Vec<f32>,
     /// Per M1 vertex: the start of its one-ring in `rings` (bit 31: on the boundary), plus one
     /// end entry.
     pub ring_offsets: Vec<u32>,
@@ -100,22 +99,14 @@ impl LoopData {
         let stencils = stencils(&topo0, boundary);
         let m1 = Topology::new(&crate::subdiv::refined_faces(&topo0), stencils.len())?;
         let tables = bft::build(&m1, boundary, lattice, progress)?;
-        let mut offsets = Vec::with_capacity(tables.configs.len());
-        let mut weights = Vec::new();
-        for c in &tables.configs {
-            offsets.push(weights.len() as u32);
-            let k4 = padded(c.control);
-            for row in c.weights.chunks(c.control) {
-                weights.extend(row.iter().map(|&w| w as f32));
-                weights.extend(std::iter::repeat_n(0.0, k4 - c.control));
-            }
-        }
         let mut faces = Vec::with_capacity(m1.faces.len());
         let mut control = Vec::new();
         for fc in &tables.faces {
+            let c = &tables.configs[fc.config as usize];
+            debug_assert!(c.control < 1 << 16);
             faces.push([
-                offsets[fc.config as usize],
-                fc.control.len() as u32,
+                fc.config * lattice.rows() as u32,
+                c.control as u32 | (c.pairs as u32) << 16,
                 control.len() as u32,
                 fc.orient.bits() | lattice.lmax << 3,
             ]);
@@ -140,16 +131,16 @@ impl LoopData {
             tables,
             faces,
             control,
-            weights,
             ring_offsets,
             rings,
             records,
         })
     }
 
-    /// Bytes of the basis function tables (f32, rows padded to multiples of four).
+    /// Bytes of the basis function tables: their distinct rows (f32, padded to multiples of
+    /// four) and the tables' row maps.
     pub fn table_bytes(&self) -> u64 {
-        self.weights.len() as u64 * 4
+        self.tables.bytes()
     }
 
     /// M1's positions from M0's. Mirror of glsl/subdiv/loop_step.comp.
@@ -365,7 +356,8 @@ pub fn padded(k: usize) -> usize {
 
 /// Evaluate face `g` at weights `b` of its stored corners. Mirror of `loop_eval_face`.
 pub fn eval_face(data: &LoopData, frame: &LoopFrame, g: u32, b: [f32; 3]) -> SurfacePoint {
-    let [offset, k, first, orient] = data.faces[g as usize];
+    let [base, kp, first, orient] = data.faces[g as usize];
+    let (k, pairs) = ((kp & 0xffff) as usize, (kp >> 16) as usize);
     let o = Orient {
         rot: (orient & 3) as u8,
         mirror: orient & 4 != 0,
@@ -380,12 +372,15 @@ pub fn eval_face(data: &LoopData, frame: &LoopFrame, g: u32, b: [f32; 3]) -> Sur
     // The three rows' weights interpolated first, then one weighted sum, and two for the
     // tangents (the lattice triangle's edges).
     let (mut p, mut n, mut dx, mut dy) = (Vec3::ZERO, Vec3::ZERO, Vec3::ZERO, Vec3::ZERO);
+    // Each row: where it starts, and whether it is read as its mirror image (column pairs
+    // swapped).
+    let packed = &data.tables.packed;
+    let rows = rows.map(|r| packed.entry(base as usize + r));
     // Padded columns too, as the GPU sums them (weight zero: the sum keeps its value).
-    let k = padded(k as usize);
-    for c in 0..k {
+    for c in 0..padded(k) {
         let v = data.control[first as usize + c] as usize;
         let (pv, nv) = (frame.positions[v], frame.normals[v]);
-        let w3 = rows.map(|r| data.weights[offset as usize + r * k + c]);
+        let w3 = rows.map(|at| packed.weight(at, c, pairs));
         let w = w3[0] * l[0] + w3[1] * l[1] + w3[2] * l[2];
         p += pv * w;
         n += nv * w;
