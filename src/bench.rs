@@ -3,7 +3,9 @@
 //! ratios against `static` (same surface, displacement, mesh and level) compare like with like. Frame time from GPU timestamps and wall clock (submit to fence), median
 //! and spread over timed frames after one warm-up frame (Mesa compiles shaders at the first draw);
 //! the timed frames go round the variants in turn (static, push, ubo, instanced, tess, static, ...),
-//! so a drift of the machine touches every variant alike. Timings are measured, never asserted.
+//! with several surfaces round every surface's variants together (each surface's `static` timed
+//! alone before them: its buffer of refined vertices is one surface's), so a drift of the machine
+//! touches every variant alike. Timings are measured, never asserted.
 #![forbid(unsafe_code)]
 
 use crate::mesh::Mesh;
@@ -337,11 +339,12 @@ pub fn run(
         for &level in &opts.levels {
             // Refined triangles per GPU ms of `flat` by variant and displacement.
             let mut flat_rate: Vec<(String, Displace, f64)> = Vec::new();
+            // Every variant of every surface is warmed up, then the timed frames go round the
+            // variants of every surface in turn, so a slow drift of the machine (this one moves
+            // ±25 % from run to run) touches every variant alike and the ratios against `flat`
+            // compare like with like (`static`, with several surfaces, aside: below).
+            let mut runs: Vec<Run> = Vec::new();
             for &(surface, displace) in &surfaces {
-                // Every variant is warmed up, then the timed frames go round the variants in
-                // turn, so a slow drift of the machine (this one moves ±25 % from run to run)
-                // touches every variant alike and the ratios compare like with like.
-                let mut runs: Vec<Run> = Vec::new();
                 for driver in Driver::VARIANTS {
                     let mut cfg = DrawConfig::new(driver, level).with_surface(surface, displace);
                     cfg.params = params;
@@ -395,38 +398,73 @@ pub fn run(
                         wall: Vec::new(),
                     });
                 }
-                let frames = opts.frames.max(1) as usize;
-                let enough = |runs: &[Run]| {
-                    runs.iter().filter(|r| r.drawn).all(|r| {
-                        r.gpu.len() >= frames
-                            && (r.gpu.iter().sum::<f64>() >= opts.min_total_ms
-                                || r.gpu.len() >= 20 * frames)
-                    })
-                };
-                while !enough(&runs) {
-                    for r in runs.iter_mut().filter(|r| r.drawn) {
-                        let f = h.draw(&mut scene, &r.cfg, &camera)?;
+            }
+            let frames = opts.frames.max(1) as usize;
+            let enough = |r: &Run| {
+                r.gpu.len() >= frames
+                    && (r.gpu.iter().sum::<f64>() >= opts.min_total_ms
+                        || r.gpu.len() >= 20 * frames)
+            };
+            // `static` draws one buffer of refined vertices, rebuilt for another surface: with
+            // several surfaces, each surface's `static` is timed alone (after a frame that builds
+            // its buffer), then the other variants of every surface go round together.
+            let drawn: Vec<usize> = (0..runs.len()).filter(|&i| runs[i].drawn).collect();
+            let is_static = |i: &usize| runs[*i].cfg.driver == Driver::Static;
+            let groups: Vec<Vec<usize>> = if surfaces.len() > 1 {
+                let (alone, together): (Vec<usize>, Vec<usize>) =
+                    drawn.iter().partition(|i| is_static(i));
+                alone
+                    .into_iter()
+                    .map(|i| vec![i])
+                    .chain([together])
+                    .collect()
+            } else {
+                vec![drawn]
+            };
+            for group in groups {
+                if surfaces.len() > 1 && group.len() == 1 {
+                    h.draw(&mut scene, &runs[group[0]].cfg, &camera)?;
+                }
+                while !group.iter().all(|&i| enough(&runs[i])) {
+                    for &i in &group {
+                        let f = h.draw(&mut scene, &runs[i].cfg, &camera)?;
+                        let r = &mut runs[i];
                         r.row.vertex_invocations = f.stats.map(|s| s.vertex_shader_invocations);
                         r.gpu.push(f.gpu_ms);
                         r.wall.push(f.wall_ms);
                     }
                 }
-                let timed = runs.iter().map(|r| r.gpu.len()).max().unwrap_or(0);
-                for r in runs.iter_mut().filter(|r| r.drawn && timed > frames) {
-                    r.row.note = format!("{timed} timed frames");
-                }
-                let reference = runs
-                    .iter()
-                    .find(|r| r.drawn && r.cfg.driver == Driver::Static)
-                    .map(|r| (Stat::of(&r.gpu).median, Stat::of(&r.wall).median));
-                for Run {
-                    mut row,
-                    drawn,
-                    gpu,
-                    wall,
-                    ..
-                } in runs
+            }
+            for r in runs.iter_mut().filter(|r| r.gpu.len() > frames) {
+                r.row.note = format!("{} timed frames", r.gpu.len());
+            }
+            // Each variant's `static` of the same surface and displacement.
+            let references: Vec<Option<(f64, f64)>> = runs
+                .iter()
+                .map(|r| {
+                    runs.iter()
+                        .find(|s| {
+                            s.drawn
+                                && s.cfg.driver == Driver::Static
+                                && (s.cfg.surface, s.cfg.displace)
+                                    == (r.cfg.surface, r.cfg.displace)
+                        })
+                        .map(|s| (Stat::of(&s.gpu).median, Stat::of(&s.wall).median))
+                })
+                .collect();
+            {
+                for (
+                    Run {
+                        mut row,
+                        cfg,
+                        drawn,
+                        gpu,
+                        wall,
+                    },
+                    reference,
+                ) in runs.into_iter().zip(references)
                 {
+                    let (surface, displace) = (cfg.surface, cfg.displace);
                     if !drawn {
                         rows.push(row);
                         continue;
@@ -487,7 +525,7 @@ impl Report {
         let mut s = String::new();
         let _ = writeln!(
             s,
-            "Device: {}. {}x{} offscreen, median (min–max) of {} timed frames (more where a note says so) after one warm-up frame, taken round the variants in turn; ratios are against `static` at the same mesh and level, and throughput (refined triangles per GPU ms) against `flat` with the same variant, measured in the same run. Elements: the coarse triangles, or M1's faces for `loop`.\n",
+            "Device: {}. {}x{} offscreen, median (min–max) of {} timed frames (more where a note says so) after one warm-up frame, taken round the variants (of every surface together; with several surfaces each `static` alone first) in turn; ratios are against `static` at the same mesh and level, and throughput (refined triangles per GPU ms) against `flat` with the same variant, measured in the same run. Elements: the coarse triangles, or M1's faces for `loop`.\n",
             self.device, self.width, self.height, self.frames
         );
         let _ = writeln!(

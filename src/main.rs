@@ -615,8 +615,18 @@ fn info(a: &cli::InfoArgs) -> Result<()> {
         );
         out!(
             "control points per face: {} to {}",
-            data.faces.iter().map(|f| f[1]).min().unwrap_or(0),
-            data.faces.iter().map(|f| f[1]).max().unwrap_or(0)
+            data.tables
+                .faces
+                .iter()
+                .map(|f| f.control.len())
+                .min()
+                .unwrap_or(0),
+            data.tables
+                .faces
+                .iter()
+                .map(|f| f.control.len())
+                .max()
+                .unwrap_or(0)
         );
         out!(
             "table level: {} ({} segments per M1-face edge, {} lattice points)",

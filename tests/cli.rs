@@ -1052,6 +1052,8 @@ fn loop_surface_from_the_command_line() {
         "{info}"
     );
     assert!(info.contains("configurations: 9"), "{info}");
+    // Valences 3 to 10: 3 + 6 to 10 + 6 control points.
+    assert!(info.contains("control points per face: 9 to 16"), "{info}");
     let bytes = info
         .lines()
         .find_map(|l| l.strip_prefix("basis function tables: "))
