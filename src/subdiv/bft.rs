@@ -29,12 +29,12 @@
 //! Stored ([`pack`]), a table is a map from its rows to distinct rows kept once. A table that is
 //! its own mirror image (every inside face: the reflection through its extraordinary vertex)
 //! keeps the rows on one side of its axis and reads the others as their mirror images, its
-//! columns in the pairs the reflection swaps ([`arrange`]); and tables whose faces look alike as
+//! columns in the pairs the reflection swaps (`arrange`); and tables whose faces look alike as
 //! far as a lattice point's limit reaches (a boundary fan's faces far from the fan's ends,
 //! whatever its width) share that row, their columns put in an order that depends only on the
 //! weights far from corner 0, in frames that put the extraordinary vertex at corner 0
-//! ([`frame`]). Every configuration up to valence 18 takes 0.77 MiB at level 5 so, 1.91 MiB
-//! as whole tables.
+//! (`frame`). Stored so, every configuration up to valence 18 takes 0.77 MiB at level 5;
+//! as whole tables, 1.91 MiB.
 
 use super::{limit_stencil, refined_faces, stencils, Boundary, Topology, TopologyError};
 use std::collections::HashMap;
@@ -89,7 +89,8 @@ impl Lattice {
 #[derive(Clone, Debug)]
 pub struct Config {
     /// Control points: the columns of `weights` (built as labels 0 .. control, the face's
-    /// corners first; [`build`] then keeps only the labels some row weighs, in label order).
+    /// corners first; [`build`] then keeps only the labels some row weighs, in the order
+    /// `arrange` gives them).
     pub control: usize,
     /// The largest valence among the face's corners that is not regular (6 inside, 4 on a
     /// boundary), or the regular valence of corner 0.
