@@ -5,7 +5,8 @@
 //! ([`displace`]) maps a surface point to a surface point and combines with every surface.
 //!
 //! The seam between drivers and surfaces (../ARCHITECTURE.md): a driver hands over the element's
-//! [`ElementRecord`] (opaque to it) and a [`Sample`]; the surface decodes the record itself.
+//! [`ElementRecord`] (opaque to it) and a sample (barycentric coordinates of a point of its
+//! pattern or patch); the surface decodes the record itself.
 //!
 //! Watertightness: the local surfaces first put the triangle's corners in a canonical order
 //! ([`canonical`]): by global vertex index, with the corners whose weight is zero moved last. A

@@ -88,7 +88,7 @@ pub struct CornerRecord {
     /// Corner unit normals (`xyz`); `w`: the second number of the geometry normal (0 if smooth).
     pub n: [[f32; 4]; 3],
     /// Global position index of each corner (the canonical ordering key), then the seam flags
-    /// ([`SeamFlags`]).
+    /// (`SeamFlags`).
     pub idx: [u32; 4],
 }
 

@@ -19,7 +19,7 @@
 //! construction) and at most two crease vertices per triangle ([`check`]).
 //!
 //! Tags come from a sidecar file ([`parse`]) or, without one, from the mesh's hard edges
-//! ([`derive`]): a position carrying exactly two distinct normals N_a, N_b becomes a crease
+//! ([`derive()`]): a position carrying exactly two distinct normals N_a, N_b becomes a crease
 //! vertex with N = (N_a + N_b)/|…|, D = (N_a − N_b)/|…| and σ = tan(θ/2), θ the angle between them,
 //! so that N′± are N_a and N_b again.
 
@@ -98,7 +98,7 @@ fn crease_tag(a: Vec3, b: Vec3) -> Option<VertexTag> {
     })
 }
 
-/// [`derive`], and with `crease_angle` (degrees) also from the geometry: at a position with one
+/// [`derive()`], and with `crease_angle` (degrees) also from the geometry: at a position with one
 /// normal, the faces around it are grouped across the edges whose dihedral angle is at most
 /// `crease_angle`; exactly two groups make a crease through it, N_a and N_b being the groups'
 /// area-weighted face normals.
