@@ -248,11 +248,7 @@ pub fn every_configuration(
         let built = bft::build(&t1, boundary, lattice, |_| {}).expect("tables");
         keys.extend(built.keys);
         for c in built.configs {
-            let bits: Vec<i64> = c
-                .weights
-                .iter()
-                .map(|w| (w * (1u64 << 40) as f64).round() as i64)
-                .collect();
+            let bits: Vec<i64> = c.weights.iter().map(|&w| bft::rounded(w)).collect();
             if seen.insert(bits) {
                 tables.push(c);
             }
@@ -452,53 +448,51 @@ pub fn run(
                         .map(|s| (Stat::of(&s.gpu).median, Stat::of(&s.wall).median))
                 })
                 .collect();
+            for (
+                Run {
+                    mut row,
+                    cfg,
+                    drawn,
+                    gpu,
+                    wall,
+                },
+                reference,
+            ) in runs.into_iter().zip(references)
             {
-                for (
-                    Run {
-                        mut row,
-                        cfg,
-                        drawn,
-                        gpu,
-                        wall,
-                    },
-                    reference,
-                ) in runs.into_iter().zip(references)
-                {
-                    let (surface, displace) = (cfg.surface, cfg.displace);
-                    if !drawn {
-                        rows.push(row);
-                        continue;
-                    }
-                    let (g, w) = (Stat::of(&gpu), Stat::of(&wall));
-                    if let Some((rg, rw)) = reference {
-                        row.gpu_ratio = Some(g.median / rg);
-                        row.wall_ratio = Some(w.median / rw);
-                    }
-                    let rate = row.refined_triangles as f64 / g.median.max(1e-9);
-                    if surface == Surface::Flat {
-                        flat_rate.push((row.variant.clone(), displace, rate));
-                    }
-                    row.throughput_vs_flat = flat_rate
-                        .iter()
-                        .find(|(v, d, _)| *v == row.variant && *d == displace)
-                        .map(|&(_, _, f)| rate / f);
-                    row.gpu_ms = Some(g);
-                    row.wall_ms = Some(w);
-                    log::info!(
-                        "{} L{} {} + {} {}: gpu {:.2} ms wall {:.2} ms",
-                        row.mesh,
-                        level,
-                        surface.name(),
-                        displace.name(),
-                        row.variant,
-                        g.median,
-                        w.median
-                    );
+                let (surface, displace) = (cfg.surface, cfg.displace);
+                if !drawn {
                     rows.push(row);
+                    continue;
                 }
-                // Free the static buffers of this level before the next one.
-                scene.static_vbo = None;
+                let (g, w) = (Stat::of(&gpu), Stat::of(&wall));
+                if let Some((rg, rw)) = reference {
+                    row.gpu_ratio = Some(g.median / rg);
+                    row.wall_ratio = Some(w.median / rw);
+                }
+                let rate = row.refined_triangles as f64 / g.median.max(1e-9);
+                if surface == Surface::Flat {
+                    flat_rate.push((row.variant.clone(), displace, rate));
+                }
+                row.throughput_vs_flat = flat_rate
+                    .iter()
+                    .find(|(v, d, _)| *v == row.variant && *d == displace)
+                    .map(|&(_, _, f)| rate / f);
+                row.gpu_ms = Some(g);
+                row.wall_ms = Some(w);
+                log::info!(
+                    "{} L{} {} + {} {}: gpu {:.2} ms wall {:.2} ms",
+                    row.mesh,
+                    level,
+                    surface.name(),
+                    displace.name(),
+                    row.variant,
+                    g.median,
+                    w.median
+                );
+                rows.push(row);
             }
+            // Free the static buffers of this level before the next one.
+            scene.static_vbo = None;
         }
     }
     Ok(Report {

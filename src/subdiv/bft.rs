@@ -611,8 +611,9 @@ fn build_on(
     })
 }
 
-/// Weights rounded to multiples of 1 / TABLE_EQUAL, to compare tables, rows and columns.
-fn rounded(w: f64) -> i64 {
+/// A weight rounded to a multiple of 1 / TABLE_EQUAL: equal tables, built on different
+/// configuration meshes, round alike.
+pub fn rounded(w: f64) -> i64 {
     (w * TABLE_EQUAL).round() as i64
 }
 
@@ -644,9 +645,6 @@ fn reflection(lattice: Lattice, a: u8) -> Vec<usize> {
 /// ([`Config::symmetry`]). Rewrites `c` and returns its new columns as indices of its old.
 fn arrange(c: &mut Config, lattice: Lattice) -> Vec<usize> {
     let (rows, k) = (lattice.rows(), c.control);
-    let column =
-        |j: usize| -> Vec<i64> { (0..rows).map(|r| rounded(c.weights[r * k + j])).collect() };
-    let columns: Vec<Vec<i64>> = (0..k).map(column).collect();
     // Far from corner 0 first: the rows by decreasing i + j, then by i.
     let s = lattice.segments();
     let mut far: Vec<usize> = Vec::with_capacity(rows);
@@ -655,8 +653,14 @@ fn arrange(c: &mut Config, lattice: Lattice) -> Vec<usize> {
             far.push(lattice.row(i, d - i));
         }
     }
-    let sort_key = |j: usize| -> Vec<i64> { far.iter().map(|&r| -columns[j][r]).collect() };
-    let keys: Vec<Vec<i64>> = (0..k).map(sort_key).collect();
+    // Larger weights first (negated), so a column weighing nothing there comes after.
+    let keys: Vec<Vec<i64>> = (0..k)
+        .map(|j| {
+            far.iter()
+                .map(|&r| -rounded(c.weights[r * k + j]))
+                .collect()
+        })
+        .collect();
     let mut order: Vec<usize> = (0..k).collect();
     order.sort_by(|&a, &b| keys[a].cmp(&keys[b]).then(a.cmp(&b)));
     // A reflection under which every column is another column's mirror image, to 1e-12 of
@@ -789,10 +793,7 @@ fn compact(built: Vec<Config>, lattice: Lattice) -> (Vec<Config>, Vec<(u32, Vec<
         // configuration meshes can differ in the last bits of f64.
         let bits = (
             columns.len(),
-            weights
-                .iter()
-                .map(|w| (w * TABLE_EQUAL).round() as i64 as u64)
-                .collect(),
+            weights.iter().map(|&w| rounded(w) as u64).collect(),
         );
         let next = configs.len() as u32;
         let id = *ids.entry(bits).or_insert_with(|| {
