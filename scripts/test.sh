@@ -10,6 +10,8 @@ if [ -z "${MESHREFINE_TEST_DEVICE_ANY:-}" ] && [ -f /usr/share/vulkan/icd.d/lvp_
 fi
 if cargo fmt --version >/dev/null 2>&1; then cargo fmt --all -- --check; fi
 if cargo clippy --version >/dev/null 2>&1; then cargo clippy --all-targets --quiet -- -D warnings; fi
+# The library's documentation builds without a warning (broken links, private items).
+RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --lib --quiet
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 cargo test --all-targets 2>&1 | tee "$log"

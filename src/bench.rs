@@ -9,7 +9,7 @@
 #![forbid(unsafe_code)]
 
 use crate::mesh::Mesh;
-use crate::pattern::{index_count, vertex_count, PatternSet};
+use crate::pattern::PatternSet;
 use crate::render::{Camera, DrawConfig, Driver, Headless, RenderError, Scene};
 use crate::surface::{Displace, Surface, SurfaceParams};
 use glam::Vec3;
@@ -273,17 +273,6 @@ pub fn wavy_grid_mesh(cols: u32, rows: u32) -> Mesh {
     mesh
 }
 
-/// Refined vertices and indices stored on the GPU.
-fn footprint(cfg: &DrawConfig, triangles: u64) -> (u64, u64) {
-    let level = cfg.level;
-    let (pv, pi) = (vertex_count(level) as u64, index_count(level) as u64);
-    match cfg.driver {
-        Driver::Static => (triangles * pv, triangles * pi),
-        Driver::Pattern(_) => (pv, pi),
-        Driver::Tess => (0, 0),
-    }
-}
-
 /// One variant's row and timed frames while the frames go round the variants.
 struct Run {
     row: Row,
@@ -300,7 +289,6 @@ pub fn run(
     opts: &BenchOptions,
 ) -> Result<Report, RenderError> {
     let device = ctx.info.describe();
-    let max_tess = ctx.info.limits.max_tessellation_generation_level;
     let mut h = Headless::with_context(ctx.clone(), opts.width, opts.height)?;
     let mut rows = Vec::new();
     for mesh in meshes {
@@ -347,14 +335,16 @@ pub fn run(
                     if !opts.drivers.is_empty() && !opts.drivers.contains(&driver) {
                         continue;
                     }
-                    let drawn = !(driver == Driver::Tess && level > max_tess);
+                    let max_level = driver.kind().max_level(&ctx).filter(|&m| level > m);
+                    let drawn = max_level.is_none();
                     let t = if drawn {
                         h.prepared_elements(&mut scene, &cfg, crate::render::Capture::None)?
                     } else {
                         // Not drawn; loop's M1 is there once another driver drew it.
                         scene.elements(surface).element_count
                     };
-                    let (stored_vertices, stored_indices) = footprint(&cfg, t as u64);
+                    let (stored_vertices, stored_indices) =
+                        cfg.driver.kind().stored(cfg.level, t as u64);
                     let geometry_bytes = scene.geometry_bytes(&cfg);
                     let loop_scene = scene.subdiv.as_ref().filter(|_| surface == Surface::Loop);
                     let mut row = Row {
@@ -381,10 +371,9 @@ pub fn run(
                     };
                     if drawn {
                         h.draw(&mut scene, &cfg, &camera)?; // warm-up: shaders, static VBO
-                    } else {
-                        row.note = format!(
-                            "not drawn: level > maxTessellationGenerationLevel ({max_tess})"
-                        );
+                    } else if let Some(max) = max_level {
+                        row.note =
+                            format!("not drawn: level > maxTessellationGenerationLevel ({max})");
                     }
                     runs.push(Run {
                         row,
@@ -405,7 +394,7 @@ pub fn run(
             // several surfaces, each surface's `static` is timed alone (after a frame that builds
             // its buffer), then the other variants of every surface go round together.
             let drawn: Vec<usize> = (0..runs.len()).filter(|&i| runs[i].drawn).collect();
-            let is_static = |i: &usize| runs[*i].cfg.driver == Driver::Static;
+            let is_static = |i: &usize| runs[*i].cfg.driver.kind().refines_on_cpu();
             let groups: Vec<Vec<usize>> = if surfaces.len() > 1 {
                 let (alone, together): (Vec<usize>, Vec<usize>) =
                     drawn.iter().partition(|i| is_static(i));
@@ -441,7 +430,7 @@ pub fn run(
                     runs.iter()
                         .find(|s| {
                             s.drawn
-                                && s.cfg.driver == Driver::Static
+                                && s.cfg.driver.kind().refines_on_cpu()
                                 && (s.cfg.surface, s.cfg.displace)
                                     == (r.cfg.surface, r.cfg.displace)
                         })

@@ -3,9 +3,9 @@
 //! The math modules (`mesh`, `pattern`, `surface`) hold no Vulkan and no unsafe code; `gpu` is
 //! the only module that calls ash; `render` composes them into the drivers (`static`, `pattern`,
 //! `tess`); `app` is the window demo; `export` writes what the GPU evaluated.
-#![deny(unsafe_op_in_unsafe_fn)]
-// Only `gpu` may use unsafe code (it is the only module that calls ash).
-#![deny(unsafe_code)]
+//!
+//! Design: docs/architecture.md. Lints: the `[lints]` table of Cargo.toml (`unsafe_code` is
+//! denied everywhere but `gpu`).
 
 pub mod app;
 pub mod bench;

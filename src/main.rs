@@ -15,7 +15,7 @@ use clap::Parser;
 use cli::{Cli, Command, Technique};
 use meshrefine::gpu::{Context, ContextDesc, Messages};
 use meshrefine::mesh::{LoadReport, Mesh, MeshError};
-use meshrefine::render::{covered_pixels, Camera, DrawConfig, Driver, Headless};
+use meshrefine::render::{covered_pixels, Camera, Capture, DrawConfig, Driver, Headless};
 use meshrefine::surface::subdivision::LoopData;
 use meshrefine::surface::Surface;
 use std::io::Write as _;
@@ -451,7 +451,7 @@ fn export(ctx: Arc<Context>, input: Input, cfg: &DrawConfig, output: &Path) -> R
     apply_surface_inputs(&h, &mut scene, &input)?;
     let (c, r) = scene.bounding_sphere();
     let camera = Camera::framing(c, r);
-    let refined = if cfg.driver == Driver::Tess {
+    let refined = if cfg.driver.kind().export_capture() == Some(Capture::Triangles) {
         let triangles = h.capture_triangles(&mut scene, cfg, &camera)?;
         meshrefine::export::weld_triangles(&triangles)
     } else {

@@ -25,12 +25,11 @@ mod common;
 use common::{model, with_gpu};
 use meshrefine::mesh::Mesh;
 use meshrefine::pattern::{lattice_index, Pattern, PatternSet};
-use meshrefine::render::tess::tess_vertex_count;
+use meshrefine::render::tess::{tess_vertex_count, tess_weights};
 use meshrefine::render::{Camera, DrawConfig, Driver, Headless, Scene, Submit};
 use meshrefine::subdiv::Boundary;
 use meshrefine::surface::{
-    eval_with, tess_weights, CornerRecord, Displace, ElementRecord, Surface, SurfaceParams,
-    SMOOTH_CORNER,
+    eval_with, CornerRecord, Displace, ElementRecord, Surface, SurfaceParams, SMOOTH_CORNER,
 };
 
 use std::collections::{HashMap, HashSet};

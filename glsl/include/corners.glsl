@@ -94,11 +94,6 @@ Corners canonical(CornerRecord t, vec3 bary) {
     return c;
 }
 
-// Weights of a tessellator sample at integer level n (tess driver). Points on the patch's outer
-// edges lie on the level-n lattice: their weights are rebuilt from integers, k/n and (n-k)/n with
-// an exact zero, as the pattern's are, so both triangles sharing the edge get the same weights.
-// Interior points (every coordinate >= 1/n) are used as the tessellator made them.
-// Mirror: src/surface/mod.rs `tess_weights`.
 // The corners in stored order, for `flat` (src/surface/mod.rs `stored_order`: its two non-zero
 // terms on a shared edge add the same in either order, `precise` keeps them unfused).
 Corners stored_corners(CornerRecord t, vec3 bary) {
@@ -114,23 +109,6 @@ Corners stored_corners(CornerRecord t, vec3 bary) {
         c.o[i] = i;
     }
     return c;
-}
-
-vec3 tess_weights(vec3 tc, uint n) {
-    float fn = float(n);
-    float half_step = 0.5 / fn;
-    if (min(tc.x, min(tc.y, tc.z)) >= half_step) {
-        return tc;
-    }
-    vec3 k = round(tc * fn);
-    if (tc.x < half_step) k.x = 0.0;
-    if (tc.y < half_step) k.y = 0.0;
-    if (tc.z < half_step) k.z = 0.0;
-    // Two of the three are the edge's own; the third is zero. Renormalize the pair to sum to n.
-    if (k.x == 0.0) k.y = fn - k.z;
-    else if (k.y == 0.0) k.z = fn - k.x;
-    else k.x = fn - k.y;
-    return k / fn;
 }
 
 #endif

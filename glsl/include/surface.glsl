@@ -1,5 +1,5 @@
-// The seam between drivers and surfaces (../ARCHITECTURE.md). A driver hands `evaluate` the
-// element's record, unopened, and a Sample; the surface chosen by the SURFACE specialization
+// The seam between drivers and surfaces (docs/architecture.md, "The seam"). A driver hands
+// `evaluate` the element's record, unopened, and a Sample; the surface chosen by the SURFACE specialization
 // constant (values: src/surface/mod.rs `Surface`) decodes the record, puts the corners in
 // canonical order and evaluates; displacement (DISPLACE) follows.
 // Mirror: src/surface/mod.rs `eval`.

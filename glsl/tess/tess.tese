@@ -11,6 +11,7 @@
 #include "records.glsl"
 #include "surface.glsl"
 #include "varyings.glsl"
+#include "tess_weights.glsl"
 
 // `cw`: Vulkan's tessellation domain origin is upper-left, which flips the sense of the winding
 // qualifier against OpenGL's; `cw` here emits triangles wound like the coarse triangle

@@ -336,9 +336,7 @@ impl State {
         match key {
             Key::Named(NamedKey::Escape) => return false,
             Key::Character(ch) => match ch.as_str() {
-                "1" => c.cfg.driver = Driver::Static,
-                "2" => c.cfg.driver = Driver::Pattern(c.submit),
-                "3" => c.cfg.driver = Driver::Tess,
+                "1" | "2" | "3" => c.set_driver(Driver::ALL[(ch.as_bytes()[0] - b'1') as usize]),
                 "s" | "S" => {
                     c.cfg.surface = next(&Surface::ALL, c.cfg.surface);
                     // Loop's M1 has no texture coordinates for the height map.
@@ -413,11 +411,13 @@ impl State {
                 .level_for_distance(self.camera.distance, r);
         }
         let mut cfg = self.controls.cfg;
-        if cfg.driver == Driver::Tess
-            && crate::render::tess::check_level(&self.ctx, cfg.level).is_err()
+        if let Some(max) = cfg
+            .driver
+            .kind()
+            .max_level(&self.ctx)
+            .filter(|&m| cfg.level > m)
         {
-            // Show the finest level the tessellator can make rather than failing mid-demo.
-            let max = self.ctx.info.limits.max_tessellation_generation_level;
+            // Show the finest level the driver can make rather than failing mid-demo.
             cfg.level = self
                 .scene
                 .patterns

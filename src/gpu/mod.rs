@@ -1,10 +1,10 @@
 //! The Vulkan layer: the only module that calls `ash` (and the only one with `unsafe`).
 //!
-//! Ownership follows ../STYLE.md: one [`Context`] (entry, instance, debug messenger, device, queue,
-//! allocator) behind an `Arc`; every resource wrapper holds an `Arc<Context>` and destroys its
-//! handle in `Drop`, so parents outlive children. Headless code submits and waits, so nothing
-//! in flight is ever destroyed; the window loop waits for the frame's fence before reusing or
-//! dropping anything that frame used.
+//! Ownership follows docs/architecture.md ("Vulkan objects"): one [`Context`] (entry, instance,
+//! debug messenger, device, queue, allocator) behind an `Arc`; every resource wrapper holds an
+//! `Arc<Context>` and destroys its handle in `Drop`, so parents outlive children. Headless code
+//! submits and waits, so nothing in flight is ever destroyed; the window loop waits for the frame's
+//! fence before reusing or dropping anything that frame used.
 //!
 //! Leak checks: [`live_objects`] counts wrappers alive (every owning wrapper registers itself), and
 //! dropping the context reports gpu-allocator allocations that were never freed as an error

@@ -1,6 +1,7 @@
 // Descriptor set and binding numbers, defined once here and handed to GLSL as `-D` macro
 // definitions by build.rs (which `include!`s this file), so the two cannot drift.
-// Sets are grouped by update rate (../STYLE.md): 0 per frame, 1 per mesh, 2 capture output.
+// Sets are grouped by update rate (docs/architecture.md, "Descriptors"): 0 per frame, 1 per
+// mesh, 2 capture output.
 
 /// Set 0: per frame.
 pub const SET_FRAME: u32 = 0;

@@ -4,7 +4,7 @@
 
 use super::bindings::{SET_CAPTURE, SET_FRAME};
 use super::static_vbo::StaticVbo;
-use super::{pattern, static_vbo, tess, Capture, DrawConfig, Driver, GpuMesh, Renderer};
+use super::{Capture, DrawConfig, GpuMesh, Renderer};
 use crate::gpu::{vk, Buffer, Cmd, QueryPools};
 use crate::surface::ElementRecord;
 
@@ -113,28 +113,5 @@ pub fn cmd_render(
 
 /// The chosen driver's draws (pipeline and descriptor sets already bound).
 fn cmd_draw_driver(cmd: &Cmd<'_>, r: &Renderer, work: &FrameWork<'_>) {
-    match work.cfg.driver {
-        Driver::Static => {
-            let vbo = work
-                .static_vbo
-                .expect("static driver needs its vertex buffer");
-            static_vbo::cmd_draw(cmd, r, work.mesh, vbo, work.elements.clone());
-        }
-        Driver::Pattern(submit) => {
-            let p = work
-                .mesh
-                .pattern(work.cfg.level)
-                .expect("pattern level is in the set");
-            pattern::cmd_draw(
-                cmd,
-                r,
-                work.mesh,
-                work.records,
-                p,
-                submit,
-                work.elements.clone(),
-            );
-        }
-        Driver::Tess => tess::cmd_draw(cmd, r, work.mesh, work.cfg.level, work.elements.clone()),
-    }
+    work.cfg.driver.kind().cmd_draw(cmd, r, work);
 }

@@ -338,7 +338,7 @@ impl Headless {
                 Err(e) => break Err(e),
             }
             let mut pass: Vec<CapturedVertex> = vertices.read_pod();
-            if cfg.driver == Driver::Tess {
+            if cfg.driver.kind().capture_appends() {
                 let written = counter.read_pod::<u32>()[0] as u64;
                 if written > capacity {
                     break Err(RenderError::CaptureOverflow { written, capacity });

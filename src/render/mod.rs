@@ -6,6 +6,7 @@
 
 pub mod bindings;
 mod camera;
+pub mod driver;
 mod error;
 pub mod frame;
 mod headless;
@@ -17,31 +18,14 @@ pub mod static_vbo;
 pub mod tess;
 
 pub use camera::Camera;
+pub use driver::{Driver, DriverKind, Submit};
 pub use error::RenderError;
 pub use headless::{clear_color_srgb8, covered_pixels, CaptureResult, FrameTiming, Headless};
 pub use pipelines::{Renderer, GEOMETRY_STAGES, PUSH_STAGES};
 pub use scene::{GpuMesh, MeshData, Scene};
 
-use crate::surface::{Displace, ElementRecord, Surface, SurfaceParams, RECORD_BYTES};
+use crate::surface::{Displace, ElementRecord, Surface, SurfaceParams};
 use bytemuck::{Pod, Zeroable};
-
-/// How barycentric samples are produced on the GPU. The submission mode belongs to the pattern
-/// driver alone.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Driver {
-    /// The CPU refines the whole mesh into one vertex buffer (the 2005 paper's baseline).
-    Static,
-    /// The refinement pattern is drawn for every coarse triangle; the vertex shader evaluates.
-    Pattern(Submit),
-    /// Vulkan tessellation shaders; the evaluation shader evaluates.
-    Tess,
-}
-
-impl Default for Driver {
-    fn default() -> Self {
-        Driver::Pattern(Submit::default())
-    }
-}
 
 /// `--driver static|pattern|tess` (the pattern driver with its default submission; `--submit`
 /// picks another).
@@ -51,113 +35,7 @@ impl clap::ValueEnum for Driver {
     }
 
     fn to_possible_value(&self) -> Option<clap::builder::PossibleValue> {
-        let help = match self {
-            Driver::Static => "The CPU refines the whole mesh into one vertex buffer (the 2005 paper's baseline)",
-            Driver::Pattern(_) => "The refinement pattern is drawn for every coarse triangle; the vertex shader evaluates",
-            Driver::Tess => "Vulkan tessellation shaders; the evaluation shader evaluates",
-        };
-        Some(clap::builder::PossibleValue::new(self.name()).help(help))
-    }
-}
-
-impl Driver {
-    /// The three drivers (the pattern driver with its default submission).
-    pub const ALL: [Driver; 3] = [
-        Driver::Static,
-        Driver::Pattern(Submit::Instanced),
-        Driver::Tess,
-    ];
-
-    /// Every driver and submission mode, `static` first (the benchmarks' reference).
-    pub const VARIANTS: [Driver; 5] = [
-        Driver::Static,
-        Driver::Pattern(Submit::Push),
-        Driver::Pattern(Submit::Ubo),
-        Driver::Pattern(Submit::Instanced),
-        Driver::Tess,
-    ];
-
-    pub fn name(self) -> &'static str {
-        match self {
-            Driver::Static => "static",
-            Driver::Pattern(_) => "pattern",
-            Driver::Tess => "tess",
-        }
-    }
-
-    /// The pattern driver's submission mode.
-    pub fn submit(self) -> Option<Submit> {
-        match self {
-            Driver::Pattern(s) => Some(s),
-            _ => None,
-        }
-    }
-
-    /// The same kind of driver as `other` (submission modes aside).
-    pub fn same_kind(self, other: Driver) -> bool {
-        std::mem::discriminant(&self) == std::mem::discriminant(&other)
-    }
-
-    /// Triangles the GPU makes per element at `level`: the pattern's level² (also what `static`
-    /// stores), or what the tessellator makes.
-    pub fn refined_per_element(self, level: u32) -> u32 {
-        match self {
-            Driver::Tess => tess::tess_triangle_count(level),
-            Driver::Static | Driver::Pattern(_) => crate::pattern::triangle_count(level),
-        }
-    }
-
-    /// GPU bytes of geometry this driver holds for `elements` elements at `level`
-    /// (pattern: that level's pattern + the records; static: the refined buffers; tess: records).
-    pub fn geometry_bytes(self, level: u32, elements: u64) -> u64 {
-        use crate::pattern::{index_count, vertex_count};
-        let records = elements * RECORD_BYTES as u64;
-        let pv = vertex_count(level) as u64;
-        let pi = index_count(level) as u64;
-        match self {
-            Driver::Static => {
-                let vertex = std::mem::size_of::<static_vbo::StaticVertex>() as u64;
-                elements * pv * vertex + elements * pi * 4
-            }
-            Driver::Pattern(_) => pv * 12 + pi * 4 + records,
-            Driver::Tess => records,
-        }
-    }
-
-    /// Room a vertex capture needs per element at `level` (tess: every tessellator vertex twice,
-    /// since implementations may repeat evaluation invocations); `None` where nothing runs on the
-    /// GPU to capture.
-    pub fn capture_per_element(self, level: u32) -> Option<u32> {
-        match self {
-            Driver::Static => None,
-            Driver::Pattern(_) => Some(crate::pattern::vertex_count(level)),
-            Driver::Tess => Some(2 * tess::tess_vertex_count(level)),
-        }
-    }
-}
-
-/// How the `pattern` driver hands each coarse triangle's record to the vertex shader.
-/// The discriminant is the `SUBMIT` specialization constant.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default, clap::ValueEnum)]
-#[repr(u32)]
-pub enum Submit {
-    /// Per coarse triangle: push constants, then draw (the paper's loop).
-    Push = 0,
-    /// Per coarse triangle: the record read from a uniform-buffer window, then draw.
-    Ubo = 1,
-    /// One instanced draw; each record read as instance-rate vertex attributes.
-    #[default]
-    Instanced = 2,
-}
-
-impl Submit {
-    pub const ALL: [Submit; 3] = [Submit::Push, Submit::Ubo, Submit::Instanced];
-    pub fn name(self) -> &'static str {
-        match self {
-            Submit::Push => "push",
-            Submit::Ubo => "ubo",
-            Submit::Instanced => "instanced",
-        }
+        Some(clap::builder::PossibleValue::new(self.name()).help(self.help()))
     }
 }
 
@@ -240,21 +118,16 @@ impl DrawConfig {
         self.surface.fragment_normal_field()
             || (self.surface == Surface::Loop
                 && self.displace == Displace::None
-                && self.driver != Driver::Static
+                && !self.driver.kind().refines_on_cpu()
                 && self.level >= LOOP_FRAGMENT_NORMALS)
     }
 
     /// GPU bytes of geometry for `elements` elements ([`Driver::geometry_bytes`], plus the
     /// static buffer's element attributes when the normal field is evaluated per fragment).
     pub fn geometry_bytes(&self, elements: u64) -> u64 {
-        let extra = if self.driver == Driver::Static && self.fragment_normal_field() {
-            elements
-                * crate::pattern::vertex_count(self.level) as u64
-                * std::mem::size_of::<static_vbo::ElementVertex>() as u64
-        } else {
-            0
-        };
-        self.driver.geometry_bytes(self.level, elements) + extra
+        self.driver
+            .kind()
+            .geometry_bytes(self.level, elements, self.fragment_normal_field())
     }
 }
 

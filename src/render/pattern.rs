@@ -7,9 +7,14 @@
 //!   attributes (the records buffer as vertex buffer 1, `firstInstance` = the first element).
 
 use super::bindings::{SET_MESH, UBO_WINDOW};
+use super::driver::DriverKind;
+use super::frame::FrameWork;
 use super::scene::GpuPattern;
-use super::{DrawWords, GpuMesh, PushBlock, Renderer, Submit, PUSH_DRAW_OFFSET, PUSH_STAGES};
-use crate::gpu::Cmd;
+use super::{
+    Capture, DrawWords, GpuMesh, PushBlock, Renderer, Submit, PUSH_DRAW_OFFSET, PUSH_STAGES,
+};
+use crate::gpu::{vk, Cmd, GraphicsPipelineDesc};
+use crate::pattern::{index_count, vertex_count};
 use crate::surface::{ElementRecord, RECORD_BYTES};
 
 /// Record the draws of the elements `range` of `mesh` with `pattern` in submission mode
@@ -77,5 +82,79 @@ pub fn cmd_draw(
                 cmd.draw_indexed(pattern.index_count, c.count, 0, 0, c.first);
             }
         }
+    }
+}
+
+/// The `pattern` driver's answers ([`DriverKind`]); the submission mode travels in
+/// [`super::Driver::Pattern`].
+pub struct PatternDriver;
+
+impl DriverKind for PatternDriver {
+    fn name(&self) -> &'static str {
+        "pattern"
+    }
+
+    fn help(&self) -> &'static str {
+        "The refinement pattern is drawn for every coarse triangle; the vertex shader evaluates"
+    }
+
+    /// The pattern's level².
+    fn refined_per_element(&self, level: u32) -> u32 {
+        crate::pattern::triangle_count(level)
+    }
+
+    /// One pattern, whatever the element count.
+    fn stored(&self, level: u32, _elements: u64) -> (u64, u64) {
+        (vertex_count(level) as u64, index_count(level) as u64)
+    }
+
+    /// The pattern (12 bytes a vertex, 4 an index) and the records.
+    fn geometry_bytes(&self, level: u32, elements: u64, _fragment_field: bool) -> u64 {
+        let (vertices, indices) = self.stored(level, elements);
+        vertices * 12 + indices * 4 + elements * RECORD_BYTES as u64
+    }
+
+    fn capture_per_element(&self, level: u32) -> Option<u32> {
+        Some(vertex_count(level))
+    }
+
+    fn export_capture(&self) -> Option<Capture> {
+        Some(Capture::Vertices)
+    }
+
+    fn describe_pipeline(
+        &self,
+        desc: &mut GraphicsPipelineDesc,
+        _fragment_field: bool,
+        variant: &dyn Fn(&str) -> String,
+    ) {
+        desc.stages = vec![(
+            vk::ShaderStageFlags::VERTEX,
+            variant("pattern/pattern.vert"),
+        )];
+        desc.topology = vk::PrimitiveTopology::TRIANGLE_LIST;
+        // (w, u, v) per vertex; the element's record per instance (`instanced`).
+        desc.vertex_bindings = vec![(0, 12, false), (1, RECORD_BYTES as u32, true)];
+        desc.vertex_attributes = vec![(0, 0, vk::Format::R32G32B32_SFLOAT, 0)];
+        desc.vertex_attributes.extend(
+            (0..RECORD_BYTES as u32 / 16)
+                .map(|k| (1 + k, 1, vk::Format::R32G32B32A32_UINT, 16 * k)),
+        );
+    }
+
+    fn cmd_draw(&self, cmd: &Cmd<'_>, r: &Renderer, work: &FrameWork<'_>) {
+        let p = work
+            .mesh
+            .pattern(work.cfg.level)
+            .expect("pattern level is in the set");
+        cmd_draw(
+            cmd,
+            r,
+            work.mesh,
+            work.records,
+            p,
+            work.cfg.driver.submit().unwrap_or_default(),
+            work.elements.clone(),
+        );
     }
 }

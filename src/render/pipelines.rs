@@ -9,7 +9,7 @@ use crate::gpu::{
     vk, Buffer, BufferDesc, Context, DescriptorPool, DescriptorSetLayout, GpuError,
     GraphicsPipelineDesc, Pipeline, PipelineLayout,
 };
-use crate::surface::{Displace, Surface, RECORD_BYTES};
+use crate::surface::{Displace, Surface};
 use std::collections::HashMap;
 use std::sync::Arc;
 
@@ -31,7 +31,7 @@ pub const GEOMETRY_STAGES: vk::ShaderStageFlags = stages(&[
 ]);
 
 /// Stages that read the push-constant block: the geometry stages only (a range visible to the
-/// fragment stage costs lavapipe about 36 K instructions per push, ../PLATFORM.md).
+/// fragment stage costs lavapipe about 36 K instructions per push, docs/platform.md).
 pub const PUSH_STAGES: vk::ShaderStageFlags = GEOMETRY_STAGES;
 
 /// Every stage of every driver.
@@ -231,10 +231,6 @@ impl Renderer {
 
     fn create(&self, key: PipelineKey) -> Result<Pipeline, GpuError> {
         let variant = |name: &str| format!("{name}{}", key.capture.shader_suffix());
-        let frag = (
-            vk::ShaderStageFlags::FRAGMENT,
-            "shade/shade.frag".to_string(),
-        );
         let mut desc = GraphicsPipelineDesc {
             stages: vec![],
             spec: vec![
@@ -246,10 +242,7 @@ impl Renderer {
             ],
             vertex_bindings: vec![],
             vertex_attributes: vec![],
-            topology: match key.driver {
-                Driver::Static | Driver::Pattern(_) => vk::PrimitiveTopology::TRIANGLE_LIST,
-                Driver::Tess => vk::PrimitiveTopology::PATCH_LIST,
-            },
+            topology: vk::PrimitiveTopology::TRIANGLE_LIST,
             primitive_restart: false,
             patch_control_points: 0,
             color_format: self.color_format,
@@ -262,61 +255,13 @@ impl Renderer {
             // Pull the lines towards the camera so they win the depth test against their fill.
             depth_bias: key.wire.then_some((-1.0, -1.0)),
         };
-        match key.driver {
-            Driver::Static => {
-                let vert = if key.fragment_field {
-                    "static/static.vert+elements"
-                } else {
-                    "static/static.vert"
-                };
-                desc.stages = vec![(vk::ShaderStageFlags::VERTEX, vert.into()), frag];
-                // position + normal, 24 bytes per vertex
-                desc.vertex_bindings = vec![(0, 24, false)];
-                desc.vertex_attributes = vec![
-                    (0, 0, vk::Format::R32G32B32_SFLOAT, 0),
-                    (1, 0, vk::Format::R32G32B32_SFLOAT, 12),
-                ];
-                if key.fragment_field {
-                    // (w, u, v) + element, 16 bytes per vertex (static_vbo::ElementVertex)
-                    desc.vertex_bindings.push((1, 16, false));
-                    desc.vertex_attributes.extend([
-                        (2, 1, vk::Format::R32G32B32_SFLOAT, 0),
-                        (3, 1, vk::Format::R32_UINT, 12),
-                    ]);
-                }
-            }
-            Driver::Pattern(_) => {
-                desc.stages = vec![
-                    (
-                        vk::ShaderStageFlags::VERTEX,
-                        variant("pattern/pattern.vert"),
-                    ),
-                    frag,
-                ];
-                // (w, u, v) per vertex; the element's record per instance (`instanced`).
-                desc.vertex_bindings = vec![(0, 12, false), (1, RECORD_BYTES as u32, true)];
-                desc.vertex_attributes = vec![(0, 0, vk::Format::R32G32B32_SFLOAT, 0)];
-                desc.vertex_attributes.extend(
-                    (0..RECORD_BYTES as u32 / 16)
-                        .map(|k| (1 + k, 1, vk::Format::R32G32B32A32_UINT, 16 * k)),
-                );
-            }
-            Driver::Tess => {
-                desc.stages = vec![
-                    (vk::ShaderStageFlags::VERTEX, "tess/tess.vert".into()),
-                    (
-                        vk::ShaderStageFlags::TESSELLATION_CONTROL,
-                        "tess/tess.tesc".into(),
-                    ),
-                    (
-                        vk::ShaderStageFlags::TESSELLATION_EVALUATION,
-                        variant("tess/tess.tese"),
-                    ),
-                    frag,
-                ];
-                desc.patch_control_points = 3;
-            }
-        }
+        key.driver
+            .kind()
+            .describe_pipeline(&mut desc, key.fragment_field, &variant);
+        desc.stages.push((
+            vk::ShaderStageFlags::FRAGMENT,
+            "shade/shade.frag".to_string(),
+        ));
         let name = format!(
             "{}{}{} ({} + {})",
             DrawConfig::new(key.driver, 0).label(),

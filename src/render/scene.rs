@@ -659,9 +659,7 @@ impl Scene {
             self.gpu.update_records(&self.data.records);
             self.static_vbo = None;
         }
-        if cfg.driver == super::Driver::Tess {
-            super::tess::check_level(ctx, cfg.level)?;
-        }
+        super::driver::check_level(ctx, cfg)?;
         use super::Capture;
         if capture == Capture::Vertices && !ctx.info.vertex_stores {
             return Err(GpuError::MissingFeature {
@@ -677,12 +675,13 @@ impl Scene {
             }
             .into());
         }
-        if capture == Capture::Triangles && cfg.driver != super::Driver::Tess {
+        let kind = cfg.driver.kind();
+        if capture == Capture::Triangles && kind.export_capture() != Some(Capture::Triangles) {
             return Err(RenderError::Unsupported(
                 "triangle capture is for the tess driver",
             ));
         }
-        if capture != Capture::None && cfg.driver == super::Driver::Static {
+        if capture != Capture::None && kind.capture_per_element(cfg.level).is_none() {
             return Err(RenderError::Unsupported(
                 "the static driver evaluates on the CPU: there is nothing to capture (use pattern or tess)",
             ));
@@ -700,26 +699,7 @@ impl Scene {
             );
             self.warned_slow = true;
         }
-        if cfg.driver == super::Driver::Static {
-            let stale = self.static_vbo.as_ref().is_none_or(|v| {
-                v.level != cfg.level
-                    || v.cfg.surface != cfg.surface
-                    || v.cfg.displace != cfg.displace
-                    || v.cfg.params != cfg.params
-            });
-            if stale {
-                self.static_vbo = None;
-                let idx = self.patterns.find(cfg.level).unwrap();
-                self.static_vbo = Some(super::static_vbo::StaticVbo::new(
-                    ctx,
-                    pool,
-                    cfg,
-                    self.records(cfg.surface),
-                    &self.patterns.patterns[idx],
-                    Some(&self.inputs(cfg.level)),
-                )?);
-            }
-        }
+        kind.prepare(self, ctx, pool, cfg)?;
         Ok(())
     }
 
@@ -748,12 +728,12 @@ impl Scene {
     /// coarse records (the local surfaces), or M0's positions (loop): the last two independent
     /// of the level.
     pub fn upload_bytes(&self, cfg: &super::DrawConfig) -> u64 {
-        match (cfg.driver, self.pre_pass(cfg)) {
-            (super::Driver::Static, _) => {
-                cfg.geometry_bytes(self.elements(cfg.surface).element_count as u64)
-            }
-            (_, Some(pass)) => pass.upload_bytes(),
-            _ => self.gpu.element_count as u64 * RECORD_BYTES as u64,
+        if cfg.driver.kind().refines_on_cpu() {
+            return cfg.geometry_bytes(self.elements(cfg.surface).element_count as u64);
+        }
+        match self.pre_pass(cfg) {
+            Some(pass) => pass.upload_bytes(),
+            None => self.gpu.element_count as u64 * RECORD_BYTES as u64,
         }
     }
 
@@ -784,9 +764,9 @@ impl Scene {
     /// The passes `cfg` runs before drawing (Loop's M0 -> M1 on the GPU drivers; `static`
     /// draws what the CPU evaluated).
     pub fn pre_pass(&self, cfg: &super::DrawConfig) -> Option<&LoopPass> {
-        match (&self.subdiv, cfg.surface, cfg.driver) {
-            (_, _, super::Driver::Static) => None,
-            (Some(l), Surface::Loop, _) => Some(&l.pass),
+        match (&self.subdiv, cfg.surface) {
+            _ if cfg.driver.kind().refines_on_cpu() => None,
+            (Some(l), Surface::Loop) => Some(&l.pass),
             _ => None,
         }
     }

@@ -4,9 +4,13 @@
 //! be refined and uploaded again every frame.
 
 use super::bindings::SET_MESH;
-use super::{DrawConfig, GpuMesh, RenderError, Renderer, PUSH_DRAW_OFFSET, PUSH_STAGES};
-use crate::gpu::{vk, Buffer, Cmd, CommandPool, Context};
-use crate::pattern::Pattern;
+use super::driver::DriverKind;
+use super::frame::FrameWork;
+use super::{
+    Capture, DrawConfig, GpuMesh, RenderError, Renderer, Scene, PUSH_DRAW_OFFSET, PUSH_STAGES,
+};
+use crate::gpu::{vk, Buffer, Cmd, CommandPool, Context, GraphicsPipelineDesc};
+use crate::pattern::{index_count, vertex_count, Pattern};
 use crate::surface::stpn::VertexTag;
 use crate::surface::{eval_with, ElementRecord, Heightmap, Inputs};
 
@@ -194,5 +198,116 @@ pub fn cmd_draw(
         );
         let per = vbo.pattern_index_count;
         cmd.draw_indexed(c.count * per, 1, c.first * per, 0, 0);
+    }
+}
+
+/// The `static` driver's answers ([`DriverKind`]).
+pub struct StaticDriver;
+
+impl DriverKind for StaticDriver {
+    fn name(&self) -> &'static str {
+        "static"
+    }
+
+    fn help(&self) -> &'static str {
+        "The CPU refines the whole mesh into one vertex buffer (the 2005 paper's baseline)"
+    }
+
+    fn refines_on_cpu(&self) -> bool {
+        true
+    }
+
+    /// The pattern's level² (what the static buffer stores).
+    fn refined_per_element(&self, level: u32) -> u32 {
+        crate::pattern::triangle_count(level)
+    }
+
+    fn stored(&self, level: u32, elements: u64) -> (u64, u64) {
+        (
+            elements * vertex_count(level) as u64,
+            elements * index_count(level) as u64,
+        )
+    }
+
+    fn geometry_bytes(&self, level: u32, elements: u64, fragment_field: bool) -> u64 {
+        let (vertices, indices) = self.stored(level, elements);
+        let mut per_vertex = std::mem::size_of::<StaticVertex>() as u64;
+        if fragment_field {
+            per_vertex += std::mem::size_of::<ElementVertex>() as u64;
+        }
+        vertices * per_vertex + indices * 4
+    }
+
+    fn capture_per_element(&self, _level: u32) -> Option<u32> {
+        None
+    }
+
+    fn export_capture(&self) -> Option<Capture> {
+        None
+    }
+
+    fn describe_pipeline(
+        &self,
+        desc: &mut GraphicsPipelineDesc,
+        fragment_field: bool,
+        _variant: &dyn Fn(&str) -> String,
+    ) {
+        let vert = if fragment_field {
+            "static/static.vert+elements"
+        } else {
+            "static/static.vert"
+        };
+        desc.stages = vec![(vk::ShaderStageFlags::VERTEX, vert.into())];
+        desc.topology = vk::PrimitiveTopology::TRIANGLE_LIST;
+        // position + normal, 24 bytes per vertex
+        desc.vertex_bindings = vec![(0, 24, false)];
+        desc.vertex_attributes = vec![
+            (0, 0, vk::Format::R32G32B32_SFLOAT, 0),
+            (1, 0, vk::Format::R32G32B32_SFLOAT, 12),
+        ];
+        if fragment_field {
+            // (w, u, v) + element, 16 bytes per vertex (ElementVertex)
+            desc.vertex_bindings.push((1, 16, false));
+            desc.vertex_attributes.extend([
+                (2, 1, vk::Format::R32G32B32_SFLOAT, 0),
+                (3, 1, vk::Format::R32_UINT, 12),
+            ]);
+        }
+    }
+
+    /// Refine the mesh on the CPU unless the buffer already holds `cfg`'s surface at its level.
+    fn prepare(
+        &self,
+        scene: &mut Scene,
+        ctx: &Arc<Context>,
+        pool: &CommandPool,
+        cfg: &DrawConfig,
+    ) -> Result<(), RenderError> {
+        let stale = scene.static_vbo.as_ref().is_none_or(|v| {
+            v.level != cfg.level
+                || v.cfg.surface != cfg.surface
+                || v.cfg.displace != cfg.displace
+                || v.cfg.params != cfg.params
+        });
+        if stale {
+            scene.static_vbo = None;
+            let idx = scene.patterns.find(cfg.level).unwrap();
+            scene.static_vbo = Some(StaticVbo::new(
+                ctx,
+                pool,
+                cfg,
+                scene.records(cfg.surface),
+                &scene.patterns.patterns[idx],
+                Some(&scene.inputs(cfg.level)),
+            )?);
+        }
+        Ok(())
+    }
+
+    fn cmd_draw(&self, cmd: &Cmd<'_>, r: &Renderer, work: &FrameWork<'_>) {
+        let vbo = work
+            .static_vbo
+            .expect("static driver needs its vertex buffer");
+        cmd_draw(cmd, r, work.mesh, vbo, work.elements.clone());
     }
 }

@@ -1,33 +1,27 @@
 //! `tess` driver: Vulkan tessellation shaders. Each coarse triangle is a 3-vertex patch; the
 //! control stage sets every level to N, the evaluation stage evaluates the surface.
 //!
-//! lavapipe workaround (../PLATFORM.md): a tessellated draw whose evaluation stage emits more than
+//! lavapipe workaround (docs/platform.md): a tessellated draw whose evaluation stage emits more than
 //! 65,536 vertices renders garbage there, so on lavapipe the patches are split into draws of at
 //! most 65,535 evaluated vertices. gl_PrimitiveID restarts in every draw, so each draw pushes its
-//! first triangle. A second lavapipe bug, found by the loop surface's tests (2026-12-01): past
+//! first triangle. A second lavapipe bug, found by the loop surface's tests: past
 //! 4,095 patch vertices (1,365 triangle patches) in one draw its gl_PrimitiveID in the evaluation
 //! stage starts over (Mesa's draw module splits draws into chunks of 4,096 vertices), so patches
 //! past that read another element's record; draws on lavapipe also hold at most 1,365 patches.
 //! Other devices get one draw.
 
 use super::bindings::SET_MESH;
-use super::{GpuMesh, RenderError, Renderer, PUSH_DRAW_OFFSET, PUSH_STAGES};
-use crate::gpu::{Cmd, Context};
+use super::driver::DriverKind;
+use super::frame::FrameWork;
+use super::{Capture, GpuMesh, Renderer, PUSH_DRAW_OFFSET, PUSH_STAGES};
+use crate::gpu::{vk, Cmd, Context, GraphicsPipelineDesc};
+use crate::surface::RECORD_BYTES;
 
 /// Largest evaluated-vertex count of one tessellated draw that lavapipe renders correctly.
 pub const LAVAPIPE_MAX_TESS_VERTICES_PER_DRAW: u32 = 65_535;
 
 /// Most triangle patches of one tessellated draw whose gl_PrimitiveID lavapipe numbers right.
 pub const LAVAPIPE_MAX_PATCHES_PER_DRAW: u32 = 4_095 / 3;
-
-/// Check `level` against the device's maxTessellationGenerationLevel.
-pub fn check_level(ctx: &Context, level: u32) -> Result<(), RenderError> {
-    let max = ctx.info.limits.max_tessellation_generation_level;
-    if level > max {
-        return Err(RenderError::TessLevel { level, max });
-    }
-    Ok(())
-}
 
 /// Patches per draw on this device for `level`.
 pub fn patches_per_draw(ctx: &Context, level: u32, triangles: u32) -> u32 {
@@ -36,6 +30,76 @@ pub fn patches_per_draw(ctx: &Context, level: u32, triangles: u32) -> u32 {
             .clamp(1, LAVAPIPE_MAX_PATCHES_PER_DRAW)
     } else {
         triangles.max(1)
+    }
+}
+
+/// The `tess` driver's answers ([`DriverKind`]).
+pub struct TessDriver;
+
+impl DriverKind for TessDriver {
+    fn name(&self) -> &'static str {
+        "tess"
+    }
+
+    fn help(&self) -> &'static str {
+        "Vulkan tessellation shaders; the evaluation shader evaluates"
+    }
+
+    fn refined_per_element(&self, level: u32) -> u32 {
+        tess_triangle_count(level)
+    }
+
+    /// The tessellator stores nothing.
+    fn stored(&self, _level: u32, _elements: u64) -> (u64, u64) {
+        (0, 0)
+    }
+
+    /// The records alone.
+    fn geometry_bytes(&self, _level: u32, elements: u64, _fragment_field: bool) -> u64 {
+        elements * RECORD_BYTES as u64
+    }
+
+    /// Every tessellator vertex twice, since implementations may repeat evaluation invocations.
+    fn capture_per_element(&self, level: u32) -> Option<u32> {
+        Some(2 * tess_vertex_count(level))
+    }
+
+    fn capture_appends(&self) -> bool {
+        true
+    }
+
+    fn export_capture(&self) -> Option<Capture> {
+        Some(Capture::Triangles)
+    }
+
+    /// maxTessellationGenerationLevel.
+    fn max_level(&self, ctx: &Context) -> Option<u32> {
+        Some(ctx.info.limits.max_tessellation_generation_level)
+    }
+
+    fn describe_pipeline(
+        &self,
+        desc: &mut GraphicsPipelineDesc,
+        _fragment_field: bool,
+        variant: &dyn Fn(&str) -> String,
+    ) {
+        desc.stages = vec![
+            (vk::ShaderStageFlags::VERTEX, "tess/tess.vert".into()),
+            (
+                vk::ShaderStageFlags::TESSELLATION_CONTROL,
+                "tess/tess.tesc".into(),
+            ),
+            (
+                vk::ShaderStageFlags::TESSELLATION_EVALUATION,
+                variant("tess/tess.tese"),
+            ),
+        ];
+        desc.topology = vk::PrimitiveTopology::PATCH_LIST;
+        desc.patch_control_points = 3;
+    }
+
+    fn cmd_draw(&self, cmd: &Cmd<'_>, r: &Renderer, work: &FrameWork<'_>) {
+        cmd_draw(cmd, r, work.mesh, work.cfg.level, work.elements.clone());
     }
 }
 
@@ -67,6 +131,33 @@ pub fn cmd_draw(
             first += count;
         }
     }
+}
+
+/// Weights of a tessellator sample `tc = gl_TessCoord` at integer level `n` (tess driver).
+/// Outer-edge samples are snapped to the level-`n` lattice (`k/n`, `(n-k)/n`, exact zero), as
+/// the pattern's weights are; interior samples are used as given.
+/// Mirror of `tess_weights()` in `glsl/tess/tess_weights.glsl`.
+pub fn tess_weights(tc: [f32; 3], n: u32) -> [f32; 3] {
+    let fnn = n as f32;
+    let half_step = 0.5 / fnn;
+    if tc.iter().all(|&c| c >= half_step) {
+        return tc;
+    }
+    let mut k = tc.map(|c| {
+        if c < half_step {
+            0.0
+        } else {
+            (c * fnn).round()
+        }
+    });
+    if k[0] == 0.0 {
+        k[1] = fnn - k[2];
+    } else if k[1] == 0.0 {
+        k[2] = fnn - k[0];
+    } else {
+        k[0] = fnn - k[1];
+    }
+    k.map(|x| x / fnn)
 }
 
 /// Distinct vertices the tessellator makes for one triangle patch with every level `n` (integer,
@@ -101,6 +192,21 @@ pub const fn tess_triangle_count(n: u32) -> u32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn tess_weights_snap_edges_only() {
+        let n = 7;
+        // On the edge v = 0, slightly off the lattice: snapped to (4/7, 3/7, 0).
+        assert_eq!(
+            tess_weights([0.571_428_5, 0.428_571_6, 0.0], n),
+            [4.0 / 7.0, 3.0 / 7.0, 0.0]
+        );
+        // A corner.
+        assert_eq!(tess_weights([0.0, 1.0, 0.0], n), [0.0, 1.0, 0.0]);
+        // Interior samples are untouched.
+        let inner = [0.2, 0.3, 0.5];
+        assert_eq!(tess_weights(inner, n), inner);
+    }
 
     #[test]
     fn tessellator_counts() {

@@ -4,9 +4,9 @@
 //! the two together by reading back what the drawing pipelines evaluated. Displacement
 //! ([`displace`]) maps a surface point to a surface point and combines with every surface.
 //!
-//! The seam between drivers and surfaces (../ARCHITECTURE.md): a driver hands over the element's
-//! [`ElementRecord`] (opaque to it) and a sample (barycentric coordinates of a point of its
-//! pattern or patch); the surface decodes the record itself.
+//! The seam between drivers and surfaces (docs/architecture.md, "The seam"): a driver hands over
+//! the element's [`ElementRecord`] (opaque to it) and a sample (barycentric coordinates of a point
+//! of its pattern or patch); the surface decodes the record itself.
 //!
 //! Watertightness: the local surfaces first put the triangle's corners in a canonical order
 //! ([`canonical`]): by global vertex index, with the corners whose weight is zero moved last. A
@@ -445,33 +445,6 @@ pub fn eval_with(
     displace::apply(displace, params, sp, inputs)
 }
 
-/// Weights of a tessellator sample `tc = gl_TessCoord` at integer level `n` (tess driver).
-/// Outer-edge samples are snapped to the level-`n` lattice (`k/n`, `(n-k)/n`, exact zero), as
-/// the pattern's weights are; interior samples are used as given.
-/// Mirror of `tess_weights()` in `glsl/include/corners.glsl`.
-pub fn tess_weights(tc: [f32; 3], n: u32) -> [f32; 3] {
-    let fnn = n as f32;
-    let half_step = 0.5 / fnn;
-    if tc.iter().all(|&c| c >= half_step) {
-        return tc;
-    }
-    let mut k = tc.map(|c| {
-        if c < half_step {
-            0.0
-        } else {
-            (c * fnn).round()
-        }
-    });
-    if k[0] == 0.0 {
-        k[1] = fnn - k[2];
-    } else if k[1] == 0.0 {
-        k[2] = fnn - k[0];
-    } else {
-        k[0] = fnn - k[1];
-    }
-    k.map(|x| x / fnn)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -486,21 +459,6 @@ mod tests {
             [Vec3::Z, Vec3::X, Vec3::Y],
             [7, 2, 5],
         )
-    }
-
-    #[test]
-    fn tess_weights_snap_edges_only() {
-        let n = 7;
-        // On the edge v = 0, slightly off the lattice: snapped to (4/7, 3/7, 0).
-        assert_eq!(
-            tess_weights([0.571_428_5, 0.428_571_6, 0.0], n),
-            [4.0 / 7.0, 3.0 / 7.0, 0.0]
-        );
-        // A corner.
-        assert_eq!(tess_weights([0.0, 1.0, 0.0], n), [0.0, 1.0, 0.0]);
-        // Interior samples are untouched.
-        let inner = [0.2, 0.3, 0.5];
-        assert_eq!(tess_weights(inner, n), inner);
     }
 
     #[test]

@@ -1,0 +1,205 @@
+//! The driver seam (docs/architecture.md, "Drivers"): how barycentric samples are produced on the
+//! GPU. [`Driver`] is the value users choose (`--driver static|pattern|tess`); [`DriverKind`] is
+//! everything one driver answers about itself, each implemented in its own file
+//! (`static_vbo.rs`, `pattern.rs`, `tess.rs`): its pipeline (stages, vertex input, topology), what
+//! it prepares before drawing (the static buffer, level checks against the device), its counts
+//! (refined triangles, stored vertices and indices, capture room, geometry bytes) and recording
+//! its draws. [`Driver::kind`] is the one place that matches on the driver.
+//!
+//! A driver never knows which surface it draws: the surface is a specialization constant of its
+//! evaluation stage, and the element records are opaque to it.
+
+use super::frame::FrameWork;
+use super::{Capture, DrawConfig, RenderError, Renderer, Scene};
+use crate::gpu::{CommandPool, Context, GraphicsPipelineDesc};
+use std::sync::Arc;
+
+/// How barycentric samples are produced on the GPU. The submission mode belongs to the pattern
+/// driver alone.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Driver {
+    /// The CPU refines the whole mesh into one vertex buffer (the 2005 paper's baseline).
+    Static,
+    /// The refinement pattern is drawn for every coarse triangle; the vertex shader evaluates.
+    Pattern(Submit),
+    /// Vulkan tessellation shaders; the evaluation shader evaluates.
+    Tess,
+}
+
+impl Default for Driver {
+    fn default() -> Self {
+        Driver::Pattern(Submit::default())
+    }
+}
+
+impl Driver {
+    /// The three drivers (the pattern driver with its default submission).
+    pub const ALL: [Driver; 3] = [
+        Driver::Static,
+        Driver::Pattern(Submit::Instanced),
+        Driver::Tess,
+    ];
+
+    /// Every driver and submission mode, `static` first (the benchmarks' reference).
+    pub const VARIANTS: [Driver; 5] = [
+        Driver::Static,
+        Driver::Pattern(Submit::Push),
+        Driver::Pattern(Submit::Ubo),
+        Driver::Pattern(Submit::Instanced),
+        Driver::Tess,
+    ];
+
+    /// Everything this driver answers about itself (the one `match` on drivers).
+    pub fn kind(self) -> &'static dyn DriverKind {
+        match self {
+            Driver::Static => &super::static_vbo::StaticDriver,
+            Driver::Pattern(_) => &super::pattern::PatternDriver,
+            Driver::Tess => &super::tess::TessDriver,
+        }
+    }
+
+    /// `static`, `pattern` or `tess`.
+    pub fn name(self) -> &'static str {
+        self.kind().name()
+    }
+
+    /// One line for `--help`.
+    pub fn help(self) -> &'static str {
+        self.kind().help()
+    }
+
+    /// The pattern driver's submission mode.
+    pub fn submit(self) -> Option<Submit> {
+        match self {
+            Driver::Pattern(s) => Some(s),
+            _ => None,
+        }
+    }
+
+    /// The same kind of driver as `other` (submission modes aside).
+    pub fn same_kind(self, other: Driver) -> bool {
+        std::mem::discriminant(&self) == std::mem::discriminant(&other)
+    }
+
+    /// Triangles the GPU makes per element at `level` ([`DriverKind::refined_per_element`]).
+    pub fn refined_per_element(self, level: u32) -> u32 {
+        self.kind().refined_per_element(level)
+    }
+
+    /// GPU bytes of geometry this driver holds for `elements` elements at `level`
+    /// ([`DriverKind::geometry_bytes`], without per-fragment sample attributes).
+    pub fn geometry_bytes(self, level: u32, elements: u64) -> u64 {
+        self.kind().geometry_bytes(level, elements, false)
+    }
+
+    /// Room a vertex capture needs per element at `level` ([`DriverKind::capture_per_element`]).
+    pub fn capture_per_element(self, level: u32) -> Option<u32> {
+        self.kind().capture_per_element(level)
+    }
+}
+
+/// How the `pattern` driver hands each coarse triangle's record to the vertex shader.
+/// The discriminant is the `SUBMIT` specialization constant.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default, clap::ValueEnum)]
+#[repr(u32)]
+pub enum Submit {
+    /// Per coarse triangle: push constants, then draw (the paper's loop).
+    Push = 0,
+    /// Per coarse triangle: the record read from a uniform-buffer window, then draw.
+    Ubo = 1,
+    /// One instanced draw; each record read as instance-rate vertex attributes.
+    #[default]
+    Instanced = 2,
+}
+
+impl Submit {
+    pub const ALL: [Submit; 3] = [Submit::Push, Submit::Ubo, Submit::Instanced];
+    pub fn name(self) -> &'static str {
+        match self {
+            Submit::Push => "push",
+            Submit::Ubo => "ubo",
+            Submit::Instanced => "instanced",
+        }
+    }
+}
+
+/// What one driver answers about itself. Implemented by a unit struct in the driver's own file;
+/// reached through [`Driver::kind`].
+pub trait DriverKind: Sync {
+    /// The name on the command line.
+    fn name(&self) -> &'static str;
+
+    /// One line for `--help`.
+    fn help(&self) -> &'static str;
+
+    /// Whether the CPU refines the mesh (the surface's Rust mirror) and the GPU only draws the
+    /// result: nothing to capture, no GPU pre-pass (Loop's M0 -> M1), an animated frame uploads
+    /// the refined mesh.
+    fn refines_on_cpu(&self) -> bool {
+        false
+    }
+
+    /// Triangles made per element at `level`.
+    fn refined_per_element(&self, level: u32) -> u32;
+
+    /// Refined vertices and indices stored on the GPU for `elements` elements at `level`.
+    fn stored(&self, level: u32, elements: u64) -> (u64, u64);
+
+    /// GPU bytes of geometry held for `elements` elements at `level` (the pattern and the
+    /// records, or the refined buffers); `fragment_field`: the fragment stage evaluates the
+    /// normal field, so every refined vertex the CPU stored also carries its sample.
+    fn geometry_bytes(&self, level: u32, elements: u64, fragment_field: bool) -> u64;
+
+    /// Room a vertex capture needs per element at `level`; `None` where nothing runs on the
+    /// GPU to capture.
+    fn capture_per_element(&self, level: u32) -> Option<u32>;
+
+    /// Whether a vertex capture appends (an atomic counter says how many were written, since
+    /// evaluation invocations may repeat) rather than writing fixed slots per element.
+    fn capture_appends(&self) -> bool {
+        false
+    }
+
+    /// How `export` reads back what this driver drew: the evaluated vertices (welded by their
+    /// pattern index) or the rasterized triangles (transform feedback); `None`: nothing to read.
+    fn export_capture(&self) -> Option<Capture>;
+
+    /// The finest level this device lets the driver draw, where the device limits it.
+    fn max_level(&self, _ctx: &Context) -> Option<u32> {
+        None
+    }
+
+    /// Fill in the pipeline's stages, vertex input and topology. `variant` appends the capture
+    /// variant's suffix to a shader name; `fragment`: the fragment stage.
+    fn describe_pipeline(
+        &self,
+        desc: &mut GraphicsPipelineDesc,
+        fragment_field: bool,
+        variant: &dyn Fn(&str) -> String,
+    );
+
+    /// Build what drawing `cfg` needs besides the pipelines (after the scene's checks).
+    fn prepare(
+        &self,
+        _scene: &mut Scene,
+        _ctx: &Arc<Context>,
+        _pool: &CommandPool,
+        _cfg: &DrawConfig,
+    ) -> Result<(), RenderError> {
+        Ok(())
+    }
+
+    /// Record the draws of `work.elements` (pipeline and frame sets already bound).
+    fn cmd_draw(&self, cmd: &crate::gpu::Cmd<'_>, r: &Renderer, work: &FrameWork<'_>);
+}
+
+/// Check `cfg.level` against the device's limit for its driver.
+pub fn check_level(ctx: &Context, cfg: &DrawConfig) -> Result<(), RenderError> {
+    match cfg.driver.kind().max_level(ctx) {
+        Some(max) if cfg.level > max => Err(RenderError::TessLevel {
+            level: cfg.level,
+            max,
+        }),
+        _ => Ok(()),
+    }
+}
