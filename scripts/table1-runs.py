@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """Loop's throughput against flat at level 32 across several Table I runs (`cargo bench --bench
-table1` writes docs/bench/table1.csv; earlier runs kept as table1-runN.csv): every mesh and
+table1` writes docs/bench/table1.csv; earlier runs kept in table1.md under "Runs compared"): every mesh and
 driver, each run's ratio and their median.
 
-    python3 scripts/table1-runs.py docs/bench/table1.csv docs/bench/table1-run7.csv ...
+    python3 scripts/table1-runs.py docs/bench/table1.csv OTHER-RUN.csv ...
 """
 import csv
 import statistics

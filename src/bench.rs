@@ -689,9 +689,34 @@ impl Harness {
             let prefix = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
                 .join("docs/bench")
                 .join(name);
+            // The bench target (argv[0] is `target/<profile>/deps/<target>-<hash>`), which may
+            // write several tables.
+            let target = std::env::args()
+                .next()
+                .and_then(|a| {
+                    let stem = std::path::Path::new(&a).file_stem()?.to_str()?.to_owned();
+                    Some(stem.split('-').next().unwrap_or(&stem).to_owned())
+                })
+                .unwrap_or_else(|| name.to_owned());
+            let command = if target == name {
+                format!("cargo bench --bench {name}")
+            } else {
+                format!("cargo bench --bench {target}` (its part written as `{name}")
+            };
+            // A hand-written "## Runs compared" section (earlier runs beside this one) is kept.
+            let md = prefix.with_extension("md");
+            let kept = std::fs::read_to_string(&md).ok().and_then(|old| {
+                old.find("\n## Runs compared")
+                    .map(|at| old[at..].to_owned())
+            });
             report
-                .write_files(&prefix, &format!("cargo bench --bench {name}"))
+                .write_files(&prefix, &command)
                 .unwrap_or_else(|e| fail(&e));
+            if let Some(section) = kept {
+                let mut s = std::fs::read_to_string(&md).unwrap_or_else(|e| fail(&e));
+                s.push_str(&section);
+                std::fs::write(&md, s).unwrap_or_else(|e| fail(&e));
+            }
             println!("wrote {}.{{md,csv,json}}", prefix.display());
         }
     }

@@ -249,7 +249,7 @@ fn open_seams_crack_at_split_normals() {
 /// The height map is watertight where texture coordinates are continuous: a point on a shared
 /// edge reads the map at coordinates interpolated from the edge's ends in canonical order, so
 /// both sides displace it alike. (At UV seams, where a position carries several `vt`, the two
-/// sides read different places of the map: see the README.)
+/// sides read different places of the map: see docs/surfaces.md.)
 #[test]
 fn heightmap_on_continuous_coordinates_is_watertight() {
     let file = "grid_uv_8x8.obj";

@@ -232,7 +232,7 @@ fn derive_from_normals(mesh: &Mesh) -> (Vec<VertexTag>, usize) {
     (tags, corners)
 }
 
-/// Reads a tags file for `mesh`. Format (documented in the README): `#` comments and blank lines;
+/// Reads a tags file for `mesh`. Format (documented in docs/surfaces.md): `#` comments and blank lines;
 /// one line per tagged vertex, `t X Y Z TENSION [SHARPNESS BIAS DX DY DZ]`, the vertex named by
 /// its coordinates exactly as its `v` line gives them. Untagged vertices keep `base`.
 pub fn parse(
