@@ -4,11 +4,14 @@
 //!   shared code (`#include "x.glsl"` resolves next to the including file, then in `glsl/include`);
 //! - warnings are errors; optimisation for performance in every profile (lavapipe compiles unoptimized SPIR-V slowly);
 //! - binding numbers come from `src/render/bindings.rs` as macro definitions;
-//! - a source that mentions `ELEMENT_ATTRIBUTES` is also compiled with it defined (`+elements`:
-//!   the static driver's vertices carry their element and sample);
-//! - a source that mentions `CAPTURE` is also compiled with `CAPTURE` defined (the capture
-//!   variant writes its evaluated vertices to a storage buffer), one that mentions `XFB` with
-//!   `XFB` defined (transform-feedback decorations on its outputs);
+//! - variants are declared in [`VARIANTS`]: a stage compiled again with a macro defined, e.g.
+//!   `CAPTURE` (the capture variant writes its evaluated vertices to a storage buffer), `XFB`
+//!   (transform-feedback decorations on its outputs), `ELEMENT_ATTRIBUTES` (the static driver's
+//!   vertices carry their element and sample). A source that tests a variant macro it does not
+//!   declare, or declares one it never tests, fails the build;
+//! - every embedded name is also a constant in `names` (`tess/tess.tese+xfb` is
+//!   `names::TESS_TESS_TESE_XFB`), so code that asks for a variant that is not built does not
+//!   compile;
 //! - errors are printed as `file:line: message` and fail the build.
 //!
 //! Output: `$OUT_DIR/shaders.rs`, a table `SHADERS: &[(&str, &[u8])]` keyed by the path below
@@ -22,6 +25,19 @@ mod bindings {
     include!("src/render/bindings.rs");
 }
 
+/// The variants: (source below `glsl/`, name suffix, macro defined).
+const VARIANTS: &[(&str, &str, &str)] = &[
+    ("pattern/pattern.vert", "capture", "CAPTURE"),
+    ("static/static.vert", "elements", "ELEMENT_ATTRIBUTES"),
+    ("tess/tess.tese", "capture", "CAPTURE"),
+    ("tess/tess.tese", "xfb", "XFB"),
+];
+
+/// The constant naming an embedded shader: `tess/tess.tese+xfb` -> `TESS_TESS_TESE_XFB`.
+fn const_name(key: &str) -> String {
+    key.to_uppercase().replace(['/', '.', '+'], "_")
+}
+
 fn stage(path: &Path) -> Option<shaderc::ShaderKind> {
     use shaderc::ShaderKind::*;
     Some(match path.extension()?.to_str()? {
@@ -33,6 +49,32 @@ fn stage(path: &Path) -> Option<shaderc::ShaderKind> {
         "comp" => Compute,
         _ => return None,
     })
+}
+
+/// `path`'s text followed by its includes' (recursively; for checking which macros it tests).
+fn with_includes(path: &Path, include_dir: &Path) -> String {
+    let mut text = std::fs::read_to_string(path).unwrap_or_default();
+    let mut seen = vec![path.to_path_buf()];
+    let mut k = 0;
+    while k < seen.len() {
+        let src = std::fs::read_to_string(&seen[k]).unwrap_or_default();
+        let dir = seen[k].parent().map(Path::to_path_buf).unwrap_or_default();
+        for line in src.lines() {
+            let Some(name) = line.trim().strip_prefix("#include \"") else {
+                continue;
+            };
+            let name = name.trim_end_matches('"');
+            let found = [dir.join(name), include_dir.join(name)]
+                .into_iter()
+                .find(|p| p.exists());
+            if let Some(p) = found.filter(|p| !seen.contains(p)) {
+                text.push_str(&std::fs::read_to_string(&p).unwrap_or_default());
+                seen.push(p);
+            }
+        }
+        k += 1;
+    }
+    text
 }
 
 fn walk(dir: &Path, out: &mut Vec<PathBuf>) {
@@ -66,6 +108,8 @@ fn main() {
 
     let compiler = shaderc::Compiler::new().expect("shaderc compiler");
     let mut table = String::from("pub static SHADERS: &[(&str, &[u8])] = &[\n");
+    let mut names =
+        String::from("/// Every embedded shader's name.\n#[allow(dead_code)]\npub mod names {\n");
     let mut failed = Vec::new();
     for path in files.iter().filter(|p| stage(p).is_some()) {
         let kind = stage(path).unwrap();
@@ -75,21 +119,28 @@ fn main() {
             .to_string_lossy()
             .replace('\\', "/");
         let source = std::fs::read_to_string(path).unwrap();
-        // (suffix, macro) of each variant: plain, and those the source mentions.
-        let variants: Vec<(&str, Option<&str>)> = std::iter::once(("", None))
-            .chain(
-                source
-                    .contains("CAPTURE")
-                    .then_some(("+capture", Some("CAPTURE"))),
-            )
-            .chain(source.contains("XFB").then_some(("+xfb", Some("XFB"))))
-            .chain(
-                source
-                    .contains("ELEMENT_ATTRIBUTES")
-                    .then_some(("+elements", Some("ELEMENT_ATTRIBUTES"))),
-            )
+        // (suffix, macro) of each variant: plain, and those declared for this source.
+        let declared: Vec<(String, Option<&str>)> = VARIANTS
+            .iter()
+            .filter(|v| v.0 == rel)
+            .map(|v| (format!("+{}", v.1), Some(v.2)))
             .collect();
-        for &(suffix, define) in &variants {
+        let expanded = with_includes(path, &include_dir);
+        for (_, m) in &declared {
+            let m = m.unwrap();
+            if !(expanded.contains(&format!("ifdef {m}"))
+                || expanded.contains(&format!("defined({m})")))
+            {
+                failed.push(format!(
+                    "{}: the variant macro {m} is declared (build.rs VARIANTS) but neither the file nor its includes test it",
+                    path.display()
+                ));
+            }
+        }
+        let variants: Vec<(String, Option<&str>)> = std::iter::once((String::new(), None))
+            .chain(declared)
+            .collect();
+        for (suffix, define) in &variants {
             let mut opts = shaderc::CompileOptions::new().unwrap();
             opts.set_target_env(
                 shaderc::TargetEnv::Vulkan,
@@ -132,6 +183,7 @@ fn main() {
                         continue;
                     }
                     let key = format!("{rel}{suffix}");
+                    writeln!(names, "    pub const {}: &str = {key:?};", const_name(&key)).unwrap();
                     let spv = out_dir.join(format!("{}.spv", key.replace(['/', '+'], "_")));
                     std::fs::write(&spv, art.as_binary_u8()).unwrap();
                     writeln!(
@@ -146,6 +198,8 @@ fn main() {
         }
     }
     table.push_str("];\n");
+    names.push_str("}\n");
+    table.push_str(&names);
     if !failed.is_empty() {
         for msg in &failed {
             // shaderc prints "file:line: error: message"; keep it as is, one per line.

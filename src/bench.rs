@@ -335,8 +335,8 @@ pub fn run(
                     if !opts.drivers.is_empty() && !opts.drivers.contains(&driver) {
                         continue;
                     }
-                    let max_level = driver.kind().max_level(&ctx).filter(|&m| level > m);
-                    let drawn = max_level.is_none();
+                    let refused = crate::render::driver::check_level(&ctx, &cfg).err();
+                    let drawn = refused.is_none();
                     let t = if drawn {
                         h.prepared_elements(&mut scene, &cfg, crate::render::Capture::None)?
                     } else {
@@ -355,7 +355,7 @@ pub fn run(
                         surface,
                         displace,
                         variant: cfg.label(),
-                        refined_triangles: t as u64 * cfg.refined_per_coarse() as u64,
+                        refined_triangles: t as u64 * cfg.refined_per_element() as u64,
                         gpu_ms: None,
                         wall_ms: None,
                         stored_vertices,
@@ -371,9 +371,8 @@ pub fn run(
                     };
                     if drawn {
                         h.draw(&mut scene, &cfg, &camera)?; // warm-up: shaders, static VBO
-                    } else if let Some(max) = max_level {
-                        row.note =
-                            format!("not drawn: level > maxTessellationGenerationLevel ({max})");
+                    } else if let Some(e) = refused {
+                        row.note = format!("not drawn: {e}");
                     }
                     runs.push(Run {
                         row,
@@ -674,16 +673,15 @@ impl Harness {
             eprintln!("error: {e}");
             std::process::exit(1)
         };
-        let ctx = crate::gpu::Context::new(&desc).unwrap_or_else(|e| fail(&e));
-        let messages = ctx.messages_handle();
-        let report = run(ctx, meshes, opts).unwrap_or_else(|e| fail(&e));
-        let problems = messages.take();
-        if !problems.is_empty() || crate::gpu::live_objects() != 0 {
-            fail(&format!(
-                "validation / leaks: {problems:?}, {} live objects",
-                crate::gpu::live_objects()
-            ));
-        }
+        let report = crate::gpu::with_context(&desc, |ctx| {
+            run(ctx, meshes, opts).map_err(Box::<dyn std::error::Error>::from)
+        })
+        .unwrap_or_else(|e| {
+            if let Some(crate::gpu::ShutdownError::Validation(list)) = e.downcast_ref() {
+                list.iter().for_each(|m| eprintln!("validation: {m}"));
+            }
+            fail(&e)
+        });
         println!("{}", report.markdown());
         if self.benching && !self.quick {
             let prefix = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))

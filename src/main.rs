@@ -13,7 +13,7 @@ mod cli;
 use anyhow::{bail, Context as _, Result};
 use clap::Parser;
 use cli::{Cli, Command, Technique};
-use meshrefine::gpu::{Context, ContextDesc, Messages};
+use meshrefine::gpu::{Context, ContextDesc, Messages, ShutdownError};
 use meshrefine::mesh::{LoadReport, Mesh, MeshError};
 use meshrefine::render::{covered_pixels, Camera, Capture, DrawConfig, Driver, Headless};
 use meshrefine::surface::subdivision::LoopData;
@@ -276,21 +276,25 @@ fn draw_config(t: &Technique, mesh: &Mesh, may_switch: bool) -> Result<DrawConfi
 
 /// After every GPU object is gone: fail if the validation layer complained or anything leaked.
 fn check_messages(messages: &Arc<Messages>) -> Result<()> {
-    let list = messages.take();
-    let leaked = meshrefine::gpu::live_objects();
-    if leaked != 0 {
-        bail!("{leaked} Vulkan object(s) were still alive at shutdown");
-    }
-    if !list.is_empty() {
-        for m in &list {
+    meshrefine::gpu::check_shutdown(messages).map_err(noted)
+}
+
+/// The validation layer's messages as notes, before the error that counts them.
+fn noted(e: ShutdownError) -> anyhow::Error {
+    if let ShutdownError::Validation(list) = &e {
+        for m in list {
             note(format_args!("validation: {m}"));
         }
-        bail!(
-            "the Vulkan validation layer reported {} problem(s)",
-            list.len()
-        );
     }
-    Ok(())
+    e.into()
+}
+
+/// [`meshrefine::gpu::with_context`] with the validation layer's messages printed as notes.
+fn with_context<R>(desc: &ContextDesc, f: impl FnOnce(Arc<Context>) -> Result<R>) -> Result<R> {
+    meshrefine::gpu::with_context(desc, f).map_err(|e| match e.downcast::<ShutdownError>() {
+        Ok(s) => noted(s),
+        Err(e) => e,
+    })
 }
 
 fn run(cli: Cli) -> Result<()> {
@@ -302,14 +306,10 @@ fn run(cli: Cli) -> Result<()> {
             let mut input = load_mesh(a.mesh.as_deref(), for_loop)?;
             let cfg = draw_config(&a.technique, &input.mesh, false)?;
             attach_surface_inputs(&mut input, &a.technique.surface)?;
-            let messages = {
-                let ctx = Context::new(&desc)?;
-                let messages = ctx.messages_handle();
-                let size = (a.width, a.height);
-                render_png(ctx, input, &cfg, size, a.wireframe, &a.output)?;
-                messages
-            };
-            check_messages(&messages)?;
+            let size = (a.width, a.height);
+            with_context(&desc, |ctx| {
+                render_png(ctx, input, &cfg, size, a.wireframe, &a.output)
+            })?;
             out!("wrote {}", a.output.display());
         }
         Command::View(a) => {
@@ -350,14 +350,10 @@ fn run(cli: Cli) -> Result<()> {
             } else {
                 "no display found (DISPLAY and WAYLAND_DISPLAY are unset)".to_string()
             };
-            let messages = {
-                let ctx = Context::new(&desc)?;
-                let messages = ctx.messages_handle();
+            with_context(&desc, |ctx| {
                 let out = &a.headless_output;
-                render_png(ctx, input, &cfg, (1280, 720), a.wireframe, out)?;
-                messages
-            };
-            check_messages(&messages)?;
+                render_png(ctx, input, &cfg, (1280, 720), a.wireframe, out)
+            })?;
             let shown =
                 std::fs::canonicalize(&a.headless_output).unwrap_or(a.headless_output.clone());
             out!(
@@ -371,15 +367,11 @@ fn run(cli: Cli) -> Result<()> {
             let mut input = load_mesh(a.mesh.as_deref(), for_loop)?;
             let cfg = draw_config(&a.technique(), &input.mesh, false)?;
             attach_surface_inputs(&mut input, &a.surface)?;
-            let (messages, counts) = {
-                let ctx = Context::new(&desc)?;
-                let messages = ctx.messages_handle();
+            let counts = with_context(&desc, |ctx| {
                 let shown = input.shown.clone();
-                let counts = export(ctx, input, &cfg, &a.output)
-                    .with_context(|| format!("cannot export '{shown}'"))?;
-                (messages, counts)
-            };
-            check_messages(&messages)?;
+                export(ctx, input, &cfg, &a.output)
+                    .with_context(|| format!("cannot export '{shown}'"))
+            })?;
             out!("{counts}");
             out!("wrote {}", a.output.display());
         }
@@ -392,8 +384,6 @@ fn run(cli: Cli) -> Result<()> {
                 );
             }
             let input = load_mesh(a.mesh.as_deref(), a.surfaces.contains(&Surface::Loop))?;
-            let ctx = Context::new(&desc)?;
-            let messages = ctx.messages_handle();
             let (mesh, _) = for_viewing(&input.mesh, &DrawConfig::new(Driver::default(), 1));
             let (centre, scale) = input.mesh.viewing_transform();
             let params = a
@@ -423,9 +413,10 @@ fn run(cli: Cli) -> Result<()> {
             // Drawn centred and at unit size, like `render`: the timings do not change.
             let mut mesh = mesh;
             mesh.name = input.mesh.name.clone();
-            let report = meshrefine::bench::run(ctx, &[mesh], &opts)
-                .with_context(|| format!("cannot benchmark '{}'", input.shown))?;
-            check_messages(&messages)?;
+            let report = with_context(&desc, |ctx| {
+                meshrefine::bench::run(ctx, &[mesh], &opts)
+                    .with_context(|| format!("cannot benchmark '{}'", input.shown))
+            })?;
             if let Some(prefix) = &a.out {
                 let args: Vec<String> = std::env::args().skip(1).collect();
                 let command = format!("meshrefine {}", args.join(" "));

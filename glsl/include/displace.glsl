@@ -64,9 +64,9 @@ SurfacePoint displace(SurfacePoint sp) {
     float h, hu, hv;
     if (DISPLACE == DISPLACE_HEIGHTMAP) {
         vec2 g;
-        float t = heightmap_sample(sp.uv, frame.extra.y, g);
+        float t = heightmap_sample(sp.uv, frame.heightmap_lod, g);
         float a = frame.params.y;
-        precise float ht = a * (t - frame.extra.x);
+        precise float ht = a * (t - frame.heightmap_bias);
         h = ht;
         hu = a * (g.x * sp.duv_du.x + g.y * sp.duv_du.y);
         hv = a * (g.x * sp.duv_dv.x + g.y * sp.duv_dv.y);

@@ -15,17 +15,22 @@ layout(set = SET_FRAME, binding = BINDING_FRAME, std140) uniform Frame {
     vec4 eye;        // xyz: camera position (world)
     vec4 light_dir;  // xyz: direction towards the light (world)
     vec4 base_color; // rgb: surface colour
-    vec4 options;    // x: view (0 shaded, 1 normals)
     vec4 params;     // surface and displacement: (alpha, amplitude, frequency, octaves)
     vec4 origin;     // xyz: the mesh's origin in drawn coordinates (displacement's frame)
-    vec4 extra;      // x: height map bias; y: height map pyramid level to read
+    uint view;       // VIEW_SHADED, VIEW_NORMALS (src/render/mod.rs `View`)
+    float heightmap_bias;
+    float heightmap_lod; // the height map pyramid level to read
+    float frame_pad;
 } frame;
+
+const uint VIEW_SHADED = 0u;
+const uint VIEW_NORMALS = 1u;
 
 // The elements' records (set 1), one chunk of them: a storage-buffer descriptor spans at most
 // maxStorageBufferRange bytes, so a large mesh is drawn chunk by chunk, `records[0]` being element
 // pc.draw.y. Drivers read the record of the element they sample; the fragment stage reads it to
 // evaluate normal fields per fragment (v_element is the index within the chunk).
-layout(set = SET_MESH, binding = BINDING_TRIS, std430) readonly buffer Records {
+layout(set = SET_MESH, binding = BINDING_ELEMENTS, std430) readonly buffer Records {
     ElementRecord records[];
 };
 

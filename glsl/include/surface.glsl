@@ -24,10 +24,8 @@ const uint SURFACE_STPN = 3;
 const uint SURFACE_LOOP = 4;
 
 struct Sample {
-    uint element;  // which element (coarse triangle)
     uint local;    // the element's index in the bound chunk of records
     vec3 bary;     // (w, u, v): weights of the element's stored corners 0, 1, 2
-    uint index;    // the driver's sample index: pattern vertex, or ~0u (tess)
 };
 
 // The surface's normal field on ordered corners (t: their scalar tags, for stpn).

@@ -12,7 +12,7 @@ layout(constant_id = SPEC_SUBMIT) const uint SUBMIT = 2; // 0 push, 1 ubo, 2 ins
 
 // `ubo` submission: a window of UBO_WINDOW records starting at a multiple of UBO_WINDOW, placed by
 // the dynamic offset (src/render/pattern.rs); the draw's record is selected in it by index.
-layout(set = SET_MESH, binding = BINDING_TRI_UBO, std140) uniform RecordUbo { ElementRecord recs[UBO_WINDOW]; } rec_ubo;
+layout(set = SET_MESH, binding = BINDING_ELEMENT_UBO, std140) uniform RecordUbo { ElementRecord recs[UBO_WINDOW]; } rec_ubo;
 
 layout(location = 0) in vec3 in_bary; // (w, u, v)
 // `instanced`: the element's record as instance-rate attributes (no storage-buffer read per
@@ -32,7 +32,7 @@ void main() {
     } else {
         rec = ElementRecord(in_rec);
     }
-    SurfacePoint sp = evaluate(rec, Sample(element, local, in_bary, uint(gl_VertexIndex)));
+    SurfacePoint sp = evaluate(rec, Sample(local, in_bary));
     v_position = sp.position;
     v_normal = sp.normal;
     v_element = local;

@@ -3,7 +3,7 @@
 // normal field of its own (pn: FRAGMENT_FIELD), the normal is evaluated at this fragment's
 // barycentric coordinates (the field, or with displacement the displaced normal), so highlights
 // do not depend on the refinement level; otherwise the interpolated vertex normal. The WIRE variant (a second
-// pass in polygon mode LINE) draws the refined triangles' edges; frame.options.x = 1 shows normals.
+// pass in polygon mode LINE) draws the refined triangles' edges; frame.view = VIEW_NORMALS shows normals.
 #define FRAGMENT_STAGE
 #include "records.glsl"
 #include "surface.glsl"
@@ -25,9 +25,9 @@ void main() {
         n = surface_normal_field(records[v_element], v_bary);
     } else {
         // The displaced normal at this fragment's sample: the whole evaluation, per fragment.
-        n = evaluate(records[v_element], Sample(v_element, v_element, v_bary, ~0u)).normal;
+        n = evaluate(records[v_element], Sample(v_element, v_bary)).normal;
     }
-    if (frame.options.x == 1.0) {
+    if (frame.view == VIEW_NORMALS) {
         out_color = vec4(n * 0.5 + 0.5, 1.0);
         return;
     }

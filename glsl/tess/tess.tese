@@ -24,7 +24,7 @@ void main() {
     uint element = pc.draw.y + local;
     // gl_TessCoord (x, y, z) weighs patch vertices (0, 1, 2), i.e. (w, u, v).
     vec3 bary = tess_weights(gl_TessCoord, n);
-    SurfacePoint sp = evaluate(records[local], Sample(element, local, bary, ~0u));
+    SurfacePoint sp = evaluate(records[local], Sample(local, bary));
     v_position = sp.position;
     v_normal = sp.normal;
     v_element = local;

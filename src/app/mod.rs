@@ -9,16 +9,17 @@
 //! changed or destroyed.
 #![forbid(unsafe_code)]
 
+mod input;
 mod ui;
 
 use crate::gpu::{
     surface_extensions, vk, Buffer, BufferDesc, Cmd, CommandPool, Context, ContextDesc, Fence,
-    Messages, Overlay, QueryPools, Semaphore, Swapchain, DEPTH_FORMAT,
+    Messages, Overlay, QueryPools, Semaphore, Swapchain, SwapchainFrame, DEPTH_FORMAT,
 };
 use crate::mesh::Mesh;
-use crate::render::frame::{cmd_render, FrameWork, TargetView, CLEAR_COLOR};
-use crate::render::{Camera, DrawConfig, Driver, FrameUniforms, Renderer, Scene, Submit};
-use crate::surface::{Displace, Surface};
+use crate::render::frame::{cmd_render, FrameWork, TargetView};
+use crate::render::{Camera, DrawConfig, FrameUniforms, Renderer, Scene, View};
+use crate::surface::Surface;
 use anyhow::{anyhow, Context as _, Result};
 use raw_window_handle::{HasDisplayHandle, HasWindowHandle};
 use std::io::Write as _;
@@ -26,11 +27,8 @@ use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
 use ui::{Controls, PanelInfo, Ui};
-use winit::application::ApplicationHandler;
-use winit::event::{ElementState, MouseButton, MouseScrollDelta, WindowEvent};
 use winit::event_loop::{ActiveEventLoop, EventLoop};
-use winit::keyboard::{Key, NamedKey};
-use winit::window::{Window, WindowId};
+use winit::window::Window;
 
 /// The window system could not be opened (no reachable X server, say): callers may fall back
 /// to a headless render.
@@ -145,6 +143,8 @@ struct State {
     /// What the last frame drew (LOD and the tessellator's limit applied).
     drawn: DrawConfig,
     max_level: u32,
+    /// The level last lowered to what the driver can draw (said once).
+    level_note: Option<u32>,
     start: Instant,
     frames: u64,
     recorded_once: bool,
@@ -156,79 +156,6 @@ struct State {
     fps_window: (Instant, u64),
     fps: f64,
     gpu_ms: f64,
-}
-
-impl ApplicationHandler for App {
-    fn resumed(&mut self, event_loop: &ActiveEventLoop) {
-        if self.state.is_some() {
-            return;
-        }
-        match self.create(event_loop) {
-            Ok(s) => {
-                self.messages = Some(s.ctx.messages_handle());
-                self.state = Some(s);
-            }
-            Err(e) => {
-                self.error = Some(e);
-                event_loop.exit();
-            }
-        }
-    }
-
-    fn window_event(&mut self, event_loop: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
-        let Some(s) = self.state.as_mut() else { return };
-        // Pointer events egui takes (over or dragging the panel) leave the camera alone.
-        let egui_took = s.ui.on_window_event(&s.window, &event, s.cursor);
-        match event {
-            WindowEvent::CloseRequested => s.request_quit(&self.opts, event_loop),
-            WindowEvent::Resized(_) => s.resize = true,
-            WindowEvent::MouseInput {
-                state,
-                button: MouseButton::Left,
-                ..
-            } => {
-                s.drag = (state == ElementState::Pressed && !egui_took).then_some(s.cursor);
-            }
-            WindowEvent::CursorMoved { position, .. } => {
-                s.cursor = (position.x, position.y);
-                if let Some((x, y)) = s.drag {
-                    s.camera.orbit(
-                        ((position.x - x) * 0.01) as f32,
-                        ((position.y - y) * 0.01) as f32,
-                    );
-                    s.drag = Some(s.cursor);
-                }
-            }
-            WindowEvent::MouseWheel { delta, .. } if !egui_took => {
-                let d = match delta {
-                    MouseScrollDelta::LineDelta(_, y) => y,
-                    MouseScrollDelta::PixelDelta(p) => p.y as f32 / 40.0,
-                };
-                s.camera.zoom(0.9f32.powf(d));
-            }
-            WindowEvent::KeyboardInput { event, .. } if !egui_took => {
-                let quit = event.state == ElementState::Pressed && !s.key(&event.logical_key);
-                if quit {
-                    s.request_quit(&self.opts, event_loop);
-                }
-            }
-            WindowEvent::RedrawRequested => match s.frame(&self.opts) {
-                Ok(true) => {}
-                Ok(false) => event_loop.exit(),
-                Err(e) => {
-                    self.error = Some(e);
-                    event_loop.exit();
-                }
-            },
-            _ => {}
-        }
-    }
-
-    fn about_to_wait(&mut self, _event_loop: &ActiveEventLoop) {
-        if let Some(s) = &self.state {
-            s.window.request_redraw();
-        }
-    }
 }
 
 impl App {
@@ -298,12 +225,13 @@ impl App {
                 wireframe: self.opts.wireframe,
                 animate: self.opts.animate,
                 lod: self.opts.lod,
-                view_normals: false,
+                view: View::Shaded,
                 initial: cfg.params,
                 submit: cfg.driver.submit().unwrap_or_default(),
             },
             drawn: cfg,
             max_level,
+            level_note: None,
             start: Instant::now(),
             frames: 0,
             recorded_once: false,
@@ -319,70 +247,56 @@ impl App {
 }
 
 impl State {
-    /// Close or Esc: with `--screenshot`, draw one last frame to save it, then exit.
-    fn request_quit(&mut self, opts: &ViewOptions, event_loop: &ActiveEventLoop) {
-        if opts.screenshot.is_some() {
-            self.quit = true;
-        } else {
-            event_loop.exit();
-        }
-    }
-
-    /// Handle a key; false quits.
-    fn key(&mut self, key: &Key) -> bool {
-        let levels: Vec<u32> = self.scene.patterns.levels().collect();
-        let c = &mut self.controls;
-        let pos = levels.iter().position(|&l| l == c.cfg.level).unwrap_or(0);
-        match key {
-            Key::Named(NamedKey::Escape) => return false,
-            Key::Character(ch) => match ch.as_str() {
-                "1" | "2" | "3" => c.set_driver(Driver::ALL[(ch.as_bytes()[0] - b'1') as usize]),
-                "s" | "S" => {
-                    c.cfg.surface = next(&Surface::ALL, c.cfg.surface);
-                    // Loop's M1 has no texture coordinates for the height map.
-                    if c.cfg.surface == Surface::Loop && c.cfg.displace == Displace::Heightmap {
-                        c.cfg.displace = Displace::None;
-                    }
-                }
-                "d" | "D" => {
-                    c.cfg.displace = next(&Displace::ALL, c.cfg.displace);
-                    // The height map needs texture coordinates: skip it on meshes without.
-                    if c.cfg.displace == Displace::Heightmap
-                        && (self.scene.data.uvs.is_none() || c.cfg.surface == Surface::Loop)
-                    {
-                        c.cfg.displace = next(&Displace::ALL, c.cfg.displace);
-                    }
-                }
-                "n" | "N" => c.view_normals = !c.view_normals,
-                "p" | "P" => c.set_submit(Submit::Push),
-                "u" | "U" => c.set_submit(Submit::Ubo),
-                "i" | "I" => c.set_submit(Submit::Instanced),
-                "+" | "=" => c.cfg.level = levels[(pos + 1).min(levels.len() - 1)],
-                "-" | "_" => c.cfg.level = levels[pos.saturating_sub(1)],
-                "w" | "W" => c.wireframe = !c.wireframe,
-                "a" | "A" => c.animate = !c.animate,
-                "l" | "L" => c.lod = !c.lod,
-                "h" | "H" => self.ui.visible = !self.ui.visible,
-                _ => {}
-            },
-            _ => {}
-        }
-        true
-    }
-
-    /// Draw one frame; false once the requested frame count is reached.
+    /// One frame in named phases; false once the last frame asked for is shown.
     fn frame(&mut self, opts: &ViewOptions) -> Result<bool> {
         let size = self.window.inner_size();
         if size.width == 0 || size.height == 0 {
             return Ok(true); // minimised: pause rendering
         }
+        self.finish_previous_frame((size.width, size.height))?;
+        // The panel shows the last frame and may change the switches for this one; its textures
+        // are uploaded now that the last frame is done with them.
+        let ui_frame = self.run_ui();
+        self.overlay.update_textures(&ui_frame.textures)?;
+        self.advance_scene();
+        let cfg = self.prepare_config(opts)?;
+        let Some(image) = self.swapchain.acquire(self.acquired.raw)? else {
+            self.resize = true;
+            return Ok(true);
+        };
+        let last = self.quit || opts.frames.is_some_and(|n| self.frames + 1 >= n);
+        let screenshot = last && opts.screenshot.is_some();
+        self.record(&cfg, &image, &ui_frame, screenshot)?;
+        self.fence.reset()?;
+        let rendered = &self.rendered[image.index as usize];
+        self.pool
+            .submit(self.cmd, &self.acquired, rendered, &self.fence)?;
+        self.recorded_once = true;
+        self.drawn = cfg;
+        let stale = self.swapchain.present(image.index, rendered.raw)? || image.suboptimal;
+        if stale {
+            self.resize = true;
+        }
+        self.frames += 1;
+        self.update_title(&cfg);
+        if screenshot {
+            self.fence.wait()?;
+            let path = opts.screenshot.as_ref().unwrap();
+            self.save_screenshot(path)?;
+            let _ = writeln!(std::io::stdout().lock(), "saved {}", path.display());
+        }
+        Ok(!last)
+    }
+
+    /// Wait for the previous frame, read its GPU time, and rebuild the swapchain after a resize.
+    fn finish_previous_frame(&mut self, size: (u32, u32)) -> Result<()> {
         self.fence.wait()?;
         if self.recorded_once {
             self.gpu_ms = self.queries.gpu_ms(0)?;
         }
         if self.resize {
             self.ctx.wait_idle()?;
-            self.swapchain.recreate((size.width, size.height))?;
+            self.swapchain.recreate(size)?;
             // The new swapchain may have another image count: one `rendered` semaphore each.
             let ctx = &self.ctx;
             per_image(&mut self.rendered, self.swapchain.images.len(), |i| {
@@ -390,10 +304,11 @@ impl State {
             })?;
             self.resize = false;
         }
-        // The panel shows the last frame and may change the switches for this one; its textures
-        // are uploaded now that the last frame is done with them.
-        let ui_frame = self.run_ui();
-        self.overlay.update_textures(&ui_frame.textures)?;
+        Ok(())
+    }
+
+    /// The CPU side of the frame: the animated mesh, and the level chosen by distance.
+    fn advance_scene(&mut self) {
         if self.controls.animate {
             let t = self.start.elapsed().as_secs_f32();
             // A wobble of 3% of the mesh's size, whatever its units.
@@ -410,14 +325,21 @@ impl State {
                 .patterns
                 .level_for_distance(self.camera.distance, r);
         }
+    }
+
+    /// The configuration this frame draws, prepared: the level lowered to what the driver can
+    /// draw, and `pn` shown where Loop refuses the mesh.
+    fn prepare_config(&mut self, opts: &ViewOptions) -> Result<DrawConfig> {
         let mut cfg = self.controls.cfg;
-        if let Some(max) = cfg
-            .driver
-            .kind()
-            .max_level(&self.ctx)
-            .filter(|&m| cfg.level > m)
+        if let Err(e @ crate::render::RenderError::DriverLevel { max, .. }) =
+            crate::render::driver::check_level(&self.ctx, &cfg)
         {
-            // Show the finest level the driver can make rather than failing mid-demo.
+            // Show the finest level the driver can make rather than failing mid-demo, and say
+            // why once per level asked for.
+            if self.level_note != Some(cfg.level) {
+                log::warn!("{e}: showing level {max}");
+                self.level_note = Some(cfg.level);
+            }
             cfg.level = self
                 .scene
                 .patterns
@@ -451,13 +373,17 @@ impl State {
             }
             other => other?,
         }
+        Ok(cfg)
+    }
 
-        let Some(image) = self.swapchain.acquire(self.acquired.raw)? else {
-            self.resize = true;
-            return Ok(true);
-        };
-        let last = self.quit || opts.frames.is_some_and(|n| self.frames + 1 >= n);
-        let screenshot = last && opts.screenshot.is_some();
+    /// Record the frame into `self.cmd`: the scene, the panel on top, and the screenshot copy.
+    fn record(
+        &mut self,
+        cfg: &DrawConfig,
+        image: &SwapchainFrame,
+        ui_frame: &ui::UiFrame,
+        screenshot: bool,
+    ) -> Result<()> {
         let extent = self.swapchain.extent;
         if screenshot {
             self.screenshot_buffer = Some(Buffer::new(
@@ -470,9 +396,8 @@ impl State {
             )?);
         }
         let aspect = extent.width as f32 / extent.height as f32;
-        let mut uniforms = FrameUniforms::new(&self.camera, aspect, &self.controls.cfg.params);
-        uniforms.options[0] = self.controls.view_normals as u32 as f32;
-        uniforms.extra[1] = self.scene.heightmap_lod(self.drawn.level);
+        let uniforms =
+            FrameUniforms::new(&self.camera, aspect, cfg, &self.scene, self.controls.view);
         self.renderer.set_frame(&uniforms);
         let depth = self.swapchain.depth.as_ref().expect("depth image exists");
         let target = TargetView {
@@ -488,16 +413,8 @@ impl State {
             },
         };
         let work = FrameWork {
-            mesh: self.scene.elements(cfg.surface),
-            records: self.scene.records(cfg.surface),
-            static_vbo: self.scene.static_vbo.as_ref(),
-            pre_pass: self.scene.pre_pass(&cfg),
-            cfg,
-            capture: crate::render::Capture::None,
-            xfb: None,
             wireframe: self.controls.wireframe,
-            elements: 0..self.scene.elements(cfg.surface).element_count,
-            clear: CLEAR_COLOR,
+            ..FrameWork::new(&self.scene, *cfg)
         };
         let screenshot_buffer = self.screenshot_buffer.as_ref().filter(|_| screenshot);
         let overlay = &mut self.overlay;
@@ -527,25 +444,7 @@ impl State {
             }
         })?;
         overlay_recorded?;
-        self.fence.reset()?;
-        let rendered = &self.rendered[image.index as usize];
-        self.pool
-            .submit(self.cmd, &self.acquired, rendered, &self.fence)?;
-        self.recorded_once = true;
-        self.drawn = cfg;
-        let stale = self.swapchain.present(image.index, rendered.raw)? || image.suboptimal;
-        if stale {
-            self.resize = true;
-        }
-        self.frames += 1;
-        self.update_title(&cfg);
-        if screenshot {
-            self.fence.wait()?;
-            let path = opts.screenshot.as_ref().unwrap();
-            self.save_screenshot(path)?;
-            let _ = writeln!(std::io::stdout().lock(), "saved {}", path.display());
-        }
-        Ok(!last)
+        Ok(())
     }
 
     fn save_screenshot(&mut self, path: &std::path::Path) -> Result<()> {
@@ -586,7 +485,7 @@ impl State {
             gpu_ms: self.gpu_ms,
             drawn: d,
             coarse,
-            refined: coarse * d.refined_per_coarse() as u64,
+            refined: coarse * d.refined_per_element() as u64,
             geometry_bytes: self.scene.geometry_bytes(&d),
             upload_bytes: self.scene.upload_bytes(&d),
             table_bytes: self
@@ -621,7 +520,7 @@ impl State {
             self.fps,
             self.gpu_ms,
             coarse,
-            coarse * cfg.refined_per_coarse() as u64,
+            coarse * cfg.refined_per_element() as u64,
             bytes as f64 / 1e6,
             self.max_level,
         ));

@@ -4,7 +4,7 @@
 //! shortcuts change the same [`Controls`]. While the pointer is over the panel, or dragging in
 //! it, egui takes pointer events and the camera ignores them.
 
-use crate::render::{DrawConfig, Driver, Submit};
+use crate::render::{DrawConfig, Driver, Submit, View};
 use crate::surface::{Displace, Surface, SurfaceParams};
 use egui::{Align2, ClippedPrimitive, RichText, TexturesDelta};
 use winit::event::WindowEvent;
@@ -18,8 +18,8 @@ pub struct Controls {
     pub animate: bool,
     /// Level of detail by camera distance (sets `cfg.level` every frame).
     pub lod: bool,
-    /// Show normals as colours.
-    pub view_normals: bool,
+    /// What the fragment stage shows.
+    pub view: View,
     /// The parameters the demo started with: the sliders' ranges are scaled to them.
     pub initial: SurfaceParams,
     /// The pattern driver's submission mode, remembered while another driver is drawn.
@@ -262,7 +262,10 @@ fn panel(ctx: &egui::Context, c: &mut Controls, info: &PanelInfo) {
                         .text("octaves"),
                 );
             });
-            ui.checkbox(&mut c.view_normals, "normals view");
+            let mut normals = c.view == View::Normals;
+            if ui.checkbox(&mut normals, "normals view").changed() {
+                c.view = if normals { View::Normals } else { View::Shaded };
+            }
             ui.checkbox(&mut c.lod, "LOD by distance");
             ui.add_enabled(
                 info.wireframe_supported,

@@ -122,8 +122,18 @@ unsafe extern "system" fn debug_callback(
     vk::FALSE
 }
 
-impl Context {
-    pub fn new(desc: &ContextDesc) -> Result<Arc<Self>, GpuError> {
+/// The instance and its debug messenger: the first phase of [`Context::new`].
+struct InstanceParts {
+    entry: ash::Entry,
+    instance: ash::Instance,
+    debug_instance: Option<ash::ext::debug_utils::Instance>,
+    messenger: vk::DebugUtilsMessengerEXT,
+}
+
+impl InstanceParts {
+    /// Load the loader, check for the validation layer, create the instance (with the
+    /// messenger collecting into `messages` when validating).
+    fn new(desc: &ContextDesc, messages: &Arc<Messages>) -> Result<Self, GpuError> {
         // SAFETY: loads the system Vulkan loader; no other Vulkan call happens before.
         let entry = unsafe { ash::Entry::load() }.map_err(|e| GpuError::Loading(e.to_string()))?;
 
@@ -161,7 +171,6 @@ impl Context {
             vec![]
         };
 
-        let messages = Arc::new(Messages::default());
         let mut messenger_info = vk::DebugUtilsMessengerCreateInfoEXT::default()
             .message_severity(
                 vk::DebugUtilsMessageSeverityFlagsEXT::ERROR
@@ -174,7 +183,7 @@ impl Context {
                     | vk::DebugUtilsMessageTypeFlagsEXT::PERFORMANCE,
             )
             .pfn_user_callback(Some(debug_callback))
-            .user_data(Arc::as_ptr(&messages) as *mut c_void);
+            .user_data(Arc::as_ptr(messages) as *mut c_void);
         let mut instance_info = vk::InstanceCreateInfo::default()
             .application_info(&app)
             .enabled_extension_names(&ext_names)
@@ -217,137 +226,169 @@ impl Context {
         } else {
             (None, vk::DebugUtilsMessengerEXT::null())
         };
+        Ok(Self {
+            entry,
+            instance,
+            debug_instance,
+            messenger,
+        })
+    }
 
-        let destroy_instance = |instance: &ash::Instance| {
-            if let Some(di) = &debug_instance {
-                if messenger != vk::DebugUtilsMessengerEXT::null() {
-                    // SAFETY: messenger created above from this instance.
-                    unsafe { di.destroy_debug_utils_messenger(messenger, None) };
-                }
+    /// Destroy the messenger and the instance (a later phase failed; nothing else was made).
+    fn destroy(&self) {
+        if let Some(di) = &self.debug_instance {
+            if self.messenger != vk::DebugUtilsMessengerEXT::null() {
+                // SAFETY: messenger created from this instance; nothing uses it any more.
+                unsafe { di.destroy_debug_utils_messenger(self.messenger, None) };
             }
-            // SAFETY: no child object remains.
-            unsafe { instance.destroy_instance(None) };
-        };
+        }
+        // SAFETY: no child object remains.
+        unsafe { self.instance.destroy_instance(None) };
+    }
+}
 
-        let picked = match pick_device(&instance, desc) {
-            Ok(p) => p,
+/// What the chosen device offers beyond the required features: gathered once, before the device
+/// is opened (as wgpu-hal's `expose_adapter` does), each missing optional feature said once.
+fn query_capabilities(
+    instance: &ash::Instance,
+    physical: vk::PhysicalDevice,
+    mut info: DeviceInfo,
+) -> Result<DeviceInfo, GpuError> {
+    // Features: required ones fail with a named error; optional ones degrade with a log line.
+    // SAFETY: valid physical device.
+    let available = unsafe { instance.get_physical_device_features(physical) };
+    // SAFETY: valid physical device.
+    let device_extensions =
+        unsafe { instance.enumerate_device_extension_properties(physical) }.unwrap_or_default();
+    let has_xfb = device_extensions
+        .iter()
+        .any(|e| e.extension_name_as_c_str() == Ok(ash::ext::transform_feedback::NAME));
+    let mut f13 = vk::PhysicalDeviceVulkan13Features::default();
+    let mut fxfb = vk::PhysicalDeviceTransformFeedbackFeaturesEXT::default();
+    let mut f2 = vk::PhysicalDeviceFeatures2::default().push_next(&mut f13);
+    if has_xfb {
+        f2 = f2.push_next(&mut fxfb);
+    }
+    // SAFETY: valid physical device; the chain lives on the stack and names only structs of
+    // supported extensions.
+    unsafe { instance.get_physical_device_features2(physical, &mut f2) };
+    let transform_feedback = has_xfb && fxfb.transform_feedback == vk::TRUE;
+    let mut xfb_props = vk::PhysicalDeviceTransformFeedbackPropertiesEXT::default();
+    if transform_feedback {
+        let mut p2 = vk::PhysicalDeviceProperties2::default().push_next(&mut xfb_props);
+        // SAFETY: as above.
+        unsafe { instance.get_physical_device_properties2(physical, &mut p2) };
+    }
+    let dynamic_rendering = f13.dynamic_rendering == vk::TRUE;
+    let missing = if available.tessellation_shader == vk::FALSE {
+        Some("tessellationShader")
+    } else if !dynamic_rendering {
+        Some("dynamicRendering")
+    } else {
+        None
+    };
+    if let Some(feature) = missing {
+        return Err(GpuError::MissingFeature {
+            device: info.name.clone(),
+            feature,
+        });
+    }
+    info.pipeline_statistics = available.pipeline_statistics_query == vk::TRUE;
+    info.vertex_stores = available.vertex_pipeline_stores_and_atomics == vk::TRUE;
+    info.fill_mode_non_solid = available.fill_mode_non_solid == vk::TRUE;
+    info.transform_feedback = transform_feedback;
+    info.max_transform_feedback_buffer_size = xfb_props.max_transform_feedback_buffer_size;
+    if !info.transform_feedback {
+        log::info!(
+            "{}: no transformFeedback, the tess driver cannot be exported",
+            info.name
+        );
+    }
+    if !info.fill_mode_non_solid {
+        log::warn!(
+            "{}: no fillModeNonSolid, the wireframe view is off",
+            info.name
+        );
+    }
+    if !info.pipeline_statistics {
+        log::warn!(
+            "{}: no pipelineStatisticsQuery, statistics are off",
+            info.name
+        );
+    }
+    if !info.vertex_stores {
+        log::warn!(
+            "{}: no vertexPipelineStoresAndAtomics, capture (export) is unavailable",
+            info.name
+        );
+    }
+    Ok(info)
+}
+
+/// Open the device with the features `info` says are there, and one queue of `queue_family`.
+fn open_device(
+    instance: &ash::Instance,
+    physical: vk::PhysicalDevice,
+    queue_family: u32,
+    info: &DeviceInfo,
+    desc: &ContextDesc,
+) -> Result<ash::Device, GpuError> {
+    let features = vk::PhysicalDeviceFeatures::default()
+        .tessellation_shader(true)
+        .pipeline_statistics_query(info.pipeline_statistics)
+        .vertex_pipeline_stores_and_atomics(info.vertex_stores)
+        .fill_mode_non_solid(info.fill_mode_non_solid);
+    // maintenance4: every Vulkan 1.3 device has it, and SPIR-V for 1.3 may state compute
+    // workgroup sizes with LocalSizeId, which needs it enabled.
+    let mut enable13 = vk::PhysicalDeviceVulkan13Features::default()
+        .dynamic_rendering(true)
+        .maintenance4(true);
+    let priorities = [1.0f32];
+    let queue_info = [vk::DeviceQueueCreateInfo::default()
+        .queue_family_index(queue_family)
+        .queue_priorities(&priorities)];
+    let mut device_exts: Vec<*const c_char> = Vec::new();
+    if !desc.surface_extensions.is_empty() {
+        device_exts.push(ash::khr::swapchain::NAME.as_ptr());
+    }
+    let mut enable_xfb =
+        vk::PhysicalDeviceTransformFeedbackFeaturesEXT::default().transform_feedback(true);
+    let mut device_info = vk::DeviceCreateInfo::default()
+        .queue_create_infos(&queue_info)
+        .enabled_features(&features)
+        .push_next(&mut enable13);
+    if info.transform_feedback {
+        device_exts.push(ash::ext::transform_feedback::NAME.as_ptr());
+        device_info = device_info.push_next(&mut enable_xfb);
+    }
+    let device_info = device_info.enabled_extension_names(&device_exts);
+    // SAFETY: valid physical device, create info pointers outlive the call.
+    unsafe { instance.create_device(physical, &device_info, None) }.call("vkCreateDevice")
+}
+
+impl Context {
+    /// Instance, then the device's capabilities, then the device opened with them.
+    pub fn new(desc: &ContextDesc) -> Result<Arc<Self>, GpuError> {
+        let messages = Arc::new(Messages::default());
+        let parts = InstanceParts::new(desc, &messages)?;
+        let opened = pick_device(&parts.instance, desc).and_then(|(physical, family, info)| {
+            let info = query_capabilities(&parts.instance, physical, info)?;
+            let device = open_device(&parts.instance, physical, family, &info, desc)?;
+            Ok((physical, family, info, device))
+        });
+        let (physical, queue_family, info, device) = match opened {
+            Ok(o) => o,
             Err(e) => {
-                destroy_instance(&instance);
+                parts.destroy();
                 return Err(e);
             }
         };
-        let (physical, queue_family, info) = picked;
-
-        // Features: required ones fail with a named error; optional ones degrade with a log line.
-        // SAFETY: valid physical device.
-        let available = unsafe { instance.get_physical_device_features(physical) };
-        // SAFETY: valid physical device.
-        let device_extensions =
-            unsafe { instance.enumerate_device_extension_properties(physical) }.unwrap_or_default();
-        let has_xfb = device_extensions
-            .iter()
-            .any(|e| e.extension_name_as_c_str() == Ok(ash::ext::transform_feedback::NAME));
-        let mut f13 = vk::PhysicalDeviceVulkan13Features::default();
-        let mut fxfb = vk::PhysicalDeviceTransformFeedbackFeaturesEXT::default();
-        let mut f2 = vk::PhysicalDeviceFeatures2::default().push_next(&mut f13);
-        if has_xfb {
-            f2 = f2.push_next(&mut fxfb);
-        }
-        // SAFETY: valid physical device; the chain lives on the stack and names only structs of
-        // supported extensions.
-        unsafe { instance.get_physical_device_features2(physical, &mut f2) };
-        let transform_feedback = has_xfb && fxfb.transform_feedback == vk::TRUE;
-        let mut xfb_props = vk::PhysicalDeviceTransformFeedbackPropertiesEXT::default();
-        if transform_feedback {
-            let mut p2 = vk::PhysicalDeviceProperties2::default().push_next(&mut xfb_props);
-            // SAFETY: as above.
-            unsafe { instance.get_physical_device_properties2(physical, &mut p2) };
-        }
-        let dynamic_rendering = f13.dynamic_rendering == vk::TRUE;
-        let missing = if available.tessellation_shader == vk::FALSE {
-            Some("tessellationShader")
-        } else if !dynamic_rendering {
-            Some("dynamicRendering")
-        } else {
-            None
-        };
-        if let Some(feature) = missing {
-            destroy_instance(&instance);
-            return Err(GpuError::MissingFeature {
-                device: info.name.clone(),
-                feature,
-            });
-        }
-        let mut info = info;
-        info.pipeline_statistics = available.pipeline_statistics_query == vk::TRUE;
-        info.vertex_stores = available.vertex_pipeline_stores_and_atomics == vk::TRUE;
-        info.fill_mode_non_solid = available.fill_mode_non_solid == vk::TRUE;
-        info.transform_feedback = transform_feedback;
-        info.max_transform_feedback_buffer_size = xfb_props.max_transform_feedback_buffer_size;
-        if !info.transform_feedback {
-            log::info!(
-                "{}: no transformFeedback, the tess driver cannot be exported",
-                info.name
-            );
-        }
-        if !info.fill_mode_non_solid {
-            log::warn!(
-                "{}: no fillModeNonSolid, the wireframe view is off",
-                info.name
-            );
-        }
-        if !info.pipeline_statistics {
-            log::warn!(
-                "{}: no pipelineStatisticsQuery, statistics are off",
-                info.name
-            );
-        }
-        if !info.vertex_stores {
-            log::warn!(
-                "{}: no vertexPipelineStoresAndAtomics, capture (export) is unavailable",
-                info.name
-            );
-        }
-        let features = vk::PhysicalDeviceFeatures::default()
-            .tessellation_shader(true)
-            .pipeline_statistics_query(info.pipeline_statistics)
-            .vertex_pipeline_stores_and_atomics(info.vertex_stores)
-            .fill_mode_non_solid(info.fill_mode_non_solid);
-        // maintenance4: every Vulkan 1.3 device has it, and SPIR-V for 1.3 may state compute
-        // workgroup sizes with LocalSizeId, which needs it enabled.
-        let mut enable13 = vk::PhysicalDeviceVulkan13Features::default()
-            .dynamic_rendering(true)
-            .maintenance4(true);
-        let priorities = [1.0f32];
-        let queue_info = [vk::DeviceQueueCreateInfo::default()
-            .queue_family_index(queue_family)
-            .queue_priorities(&priorities)];
-        let mut device_exts: Vec<*const c_char> = Vec::new();
-        if !desc.surface_extensions.is_empty() {
-            device_exts.push(ash::khr::swapchain::NAME.as_ptr());
-        }
-        let mut enable_xfb =
-            vk::PhysicalDeviceTransformFeedbackFeaturesEXT::default().transform_feedback(true);
-        let mut device_info = vk::DeviceCreateInfo::default()
-            .queue_create_infos(&queue_info)
-            .enabled_features(&features)
-            .push_next(&mut enable13);
-        if info.transform_feedback {
-            device_exts.push(ash::ext::transform_feedback::NAME.as_ptr());
-            device_info = device_info.push_next(&mut enable_xfb);
-        }
-        let device_info = device_info.enabled_extension_names(&device_exts);
-        // SAFETY: valid physical device, create info pointers outlive the call.
-        let device = match unsafe { instance.create_device(physical, &device_info, None) } {
-            Ok(d) => d,
-            Err(e) => {
-                destroy_instance(&instance);
-                return Err(GpuError::Vk {
-                    call: "vkCreateDevice",
-                    result: e,
-                });
-            }
-        };
+        let InstanceParts {
+            entry,
+            instance,
+            debug_instance,
+            messenger,
+        } = parts;
         // SAFETY: the family and index 0 were requested above.
         let queue = unsafe { device.get_device_queue(queue_family, 0) };
         let xfb = info

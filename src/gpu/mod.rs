@@ -11,6 +11,7 @@
 //! message (collected like validation messages), which the tests turn into failures.
 
 mod buffer;
+mod checked;
 mod commands;
 mod context;
 mod device;
@@ -22,6 +23,7 @@ mod recorder;
 mod swapchain;
 
 pub use buffer::{Buffer, BufferDesc, BufferView};
+pub use checked::{check_shutdown, with_context, ShutdownError};
 pub use commands::{CommandPool, Fence, Semaphore};
 pub use context::{Context, ContextDesc, GpuError, Messages};
 pub use device::DeviceInfo;

@@ -14,10 +14,10 @@ pub const BINDING_NOISE: u32 = 1;
 pub const SET_MESH: u32 = 1;
 /// Set 1, binding 0: `ElementRecord[]`, storage buffer (instanced pattern, tess, and the
 /// fragment stage's per-fragment normal fields).
-pub const BINDING_TRIS: u32 = 0;
+pub const BINDING_ELEMENTS: u32 = 0;
 /// Set 1, binding 1: a window of [`UBO_WINDOW`] `ElementRecord`s, dynamic uniform buffer (`ubo`
 /// submission).
-pub const BINDING_TRI_UBO: u32 = 1;
+pub const BINDING_ELEMENT_UBO: u32 = 1;
 /// Records per `ubo` window: 144 × 112 bytes fit the 16 KiB every device's maxUniformBufferRange
 /// offers, and window offsets (multiples of 144 × 112) meet any minUniformBufferOffsetAlignment
 /// up to the 256 bytes Vulkan allows.
@@ -75,8 +75,8 @@ pub const GLSL_DEFINES: &[(&str, u32)] = &[
     ("BINDING_FRAME", BINDING_FRAME),
     ("BINDING_NOISE", BINDING_NOISE),
     ("SET_MESH", SET_MESH),
-    ("BINDING_TRIS", BINDING_TRIS),
-    ("BINDING_TRI_UBO", BINDING_TRI_UBO),
+    ("BINDING_ELEMENTS", BINDING_ELEMENTS),
+    ("BINDING_ELEMENT_UBO", BINDING_ELEMENT_UBO),
     ("UBO_WINDOW", UBO_WINDOW),
     ("BINDING_UVS", BINDING_UVS),
     ("BINDING_HEIGHTMAP", BINDING_HEIGHTMAP),

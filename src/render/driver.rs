@@ -164,18 +164,19 @@ pub trait DriverKind: Sync {
     /// pattern index) or the rasterized triangles (transform feedback); `None`: nothing to read.
     fn export_capture(&self) -> Option<Capture>;
 
-    /// The finest level this device lets the driver draw, where the device limits it.
-    fn max_level(&self, _ctx: &Context) -> Option<u32> {
+    /// The finest level this device lets the driver draw and the limit's name, where the
+    /// device limits it.
+    fn level_limit(&self, _ctx: &Context) -> Option<(u32, &'static str)> {
         None
     }
 
-    /// Fill in the pipeline's stages, vertex input and topology. `variant` appends the capture
-    /// variant's suffix to a shader name; `fragment`: the fragment stage.
+    /// Fill in the pipeline's geometry stages (the variant that `capture` needs), vertex input
+    /// and topology; `fragment_field`: the fragment stage evaluates the normal field.
     fn describe_pipeline(
         &self,
         desc: &mut GraphicsPipelineDesc,
         fragment_field: bool,
-        variant: &dyn Fn(&str) -> String,
+        capture: Capture,
     );
 
     /// Build what drawing `cfg` needs besides the pipelines (after the scene's checks).
@@ -193,11 +194,16 @@ pub trait DriverKind: Sync {
     fn cmd_draw(&self, cmd: &crate::gpu::Cmd<'_>, r: &Renderer, work: &FrameWork<'_>);
 }
 
-/// Check `cfg.level` against the device's limit for its driver.
+/// Check `cfg.level` against the device's limit for its driver. The one level policy: the
+/// command line refuses with this error; the window lowers the level and the benchmark skips the
+/// row, each showing the same sentence.
 pub fn check_level(ctx: &Context, cfg: &DrawConfig) -> Result<(), RenderError> {
-    match cfg.driver.kind().max_level(ctx) {
-        Some(max) if cfg.level > max => Err(RenderError::TessLevel {
+    let kind = cfg.driver.kind();
+    match kind.level_limit(ctx) {
+        Some((max, limit)) if cfg.level > max => Err(RenderError::DriverLevel {
+            driver: kind.name(),
             level: cfg.level,
+            limit,
             max,
         }),
         _ => Ok(()),

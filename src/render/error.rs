@@ -17,8 +17,15 @@ pub enum RenderError {
         max: u64,
         remedy: String,
     },
-    #[error("level {level} is beyond this device's maxTessellationGenerationLevel ({max}): the tess driver cannot draw it (use --driver pattern)")]
-    TessLevel { level: u32, max: u32 },
+    /// A level beyond what the device lets a driver draw (the one message for refusing,
+    /// lowering or skipping it).
+    #[error("level {level} is beyond this device's {limit} ({max}): the {driver} driver cannot draw it (use --driver pattern)")]
+    DriverLevel {
+        driver: &'static str,
+        level: u32,
+        limit: &'static str,
+        max: u32,
+    },
     #[error("level {level} is not among the uploaded pattern levels ({levels})")]
     LevelNotUploaded { level: u32, levels: String },
     /// A combination that cannot be drawn or read back (one sentence saying why).

@@ -4,7 +4,7 @@
 
 use super::bindings::{SET_CAPTURE, SET_FRAME};
 use super::static_vbo::StaticVbo;
-use super::{Capture, DrawConfig, GpuMesh, Renderer};
+use super::{Capture, DrawConfig, GpuMesh, Renderer, Scene};
 use crate::gpu::{vk, Buffer, Cmd, QueryPools};
 use crate::surface::ElementRecord;
 
@@ -39,6 +39,27 @@ pub struct FrameWork<'a> {
     /// The elements to draw (all of them for an image; capture passes draw a part).
     pub elements: std::ops::Range<u32>,
     pub clear: [f32; 4],
+}
+
+impl<'a> FrameWork<'a> {
+    /// Every element of `scene` drawn as `cfg` says, with the passes it needs first, no capture,
+    /// no wireframe, on the default background: the one way every frame (headless, window,
+    /// benchmark) is described; callers change the fields that differ.
+    pub fn new(scene: &'a Scene, cfg: DrawConfig) -> Self {
+        let mesh = scene.elements(cfg.surface);
+        Self {
+            mesh,
+            records: scene.records(cfg.surface),
+            static_vbo: scene.static_vbo.as_ref(),
+            pre_pass: scene.pre_pass(&cfg),
+            cfg,
+            capture: Capture::None,
+            xfb: None,
+            wireframe: false,
+            elements: 0..mesh.element_count,
+            clear: CLEAR_COLOR,
+        }
+    }
 }
 
 /// Record the frame. Pipelines must be prepared and levels checked (`Scene::prepare`).

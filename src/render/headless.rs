@@ -4,7 +4,7 @@
 use super::frame::{cmd_render, FrameWork, TargetView, CLEAR_COLOR};
 use super::tess::tess_triangle_count;
 use super::{
-    Capture, CapturedVertex, DrawConfig, Driver, FrameUniforms, RenderError, Renderer, Scene,
+    Capture, CapturedVertex, DrawConfig, Driver, FrameUniforms, RenderError, Renderer, Scene, View,
     XfbVertex,
 };
 use crate::gpu::{
@@ -27,8 +27,8 @@ pub struct Headless {
     pub target: OffscreenTarget,
     pub queries: QueryPools,
     pub wireframe: bool,
-    /// Show normals as colours instead of shading.
-    pub view_normals: bool,
+    /// What the fragment stage shows.
+    pub view: View,
     /// Largest capture buffer of one pass, in bytes (None: the device's limit; tests set a small
     /// one to exercise captures made in several passes).
     pub max_capture_bytes: Option<u64>,
@@ -101,7 +101,7 @@ impl Headless {
             target,
             queries,
             wireframe: false,
-            view_normals: false,
+            view: View::Shaded,
             max_capture_bytes: None,
         })
     }
@@ -122,10 +122,13 @@ impl Headless {
 
     fn frame_uniforms(&self, camera: &Camera, cfg: &DrawConfig, scene: &Scene) -> FrameUniforms {
         let e = self.target.extent();
-        let mut f = FrameUniforms::new(camera, e.width as f32 / e.height as f32, &cfg.params);
-        f.options[0] = self.view_normals as u32 as f32;
-        f.extra[1] = scene.heightmap_lod(cfg.level);
-        f
+        FrameUniforms::new(
+            camera,
+            e.width as f32 / e.height as f32,
+            cfg,
+            scene,
+            self.view,
+        )
     }
 
     fn view(&self) -> TargetView {
@@ -219,16 +222,11 @@ impl Headless {
         self.renderer.set_frame(&uniforms);
         let view = self.view();
         let work = FrameWork {
-            mesh: scene.elements(cfg.surface),
-            records: scene.records(cfg.surface),
-            static_vbo: scene.static_vbo.as_ref(),
-            pre_pass: scene.pre_pass(cfg),
-            cfg: *cfg,
             capture,
             xfb,
             wireframe: self.wireframe,
             elements,
-            clear: CLEAR_COLOR,
+            ..FrameWork::new(scene, *cfg)
         };
         let start = Instant::now();
         self.pool.submit_and_wait(|cmd| {

@@ -51,7 +51,7 @@ pub enum Capture {
 }
 
 impl Capture {
-    /// Suffix of the shader variant in the embedded table.
+    /// Suffix of the capture variant in pipeline and shader names.
     pub fn shader_suffix(self) -> &'static str {
         match self {
             Capture::None => "",
@@ -102,8 +102,8 @@ impl DrawConfig {
         }
     }
 
-    /// Triangles the GPU makes per coarse triangle.
-    pub fn refined_per_coarse(&self) -> u32 {
+    /// Triangles the GPU makes per element.
+    pub fn refined_per_element(&self) -> u32 {
         self.driver.refined_per_element(self.level)
     }
 
@@ -131,49 +131,72 @@ impl DrawConfig {
     }
 }
 
+/// What the fragment stage shows (`Frame::view`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+#[repr(u32)]
+pub enum View {
+    /// Lit surface.
+    #[default]
+    Shaded = 0,
+    /// The normal field as colour.
+    Normals = 1,
+}
+
 /// `Frame` uniform block (glsl/include/records.glsl), std140.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct FrameUniforms {
     pub view_proj: [[f32; 4]; 4],
+    /// xyz: camera position.
     pub eye: [f32; 4],
+    /// xyz: direction towards the light.
     pub light_dir: [f32; 4],
+    /// rgb: surface colour.
     pub base_color: [f32; 4],
-    /// x: view (0 shaded, 1 normals).
-    pub options: [f32; 4],
     /// The surfaces' and displacements' parameters ([`SurfaceParams::to_gpu`]).
     pub params: [f32; 4],
     /// xyz: [`SurfaceParams::origin`].
     pub origin: [f32; 4],
-    /// x: height map bias; y: height map pyramid level ([`Scene::heightmap_lod`]).
-    pub extra: [f32; 4],
+    /// [`View`].
+    pub view: u32,
+    /// The height map displacement's bias ([`SurfaceParams::bias`]).
+    pub heightmap_bias: f32,
+    /// The height map pyramid level to read ([`Scene::heightmap_lod`]).
+    pub heightmap_lod: f32,
+    pub _pad: f32,
 }
 
 const _: () = {
-    assert!(std::mem::size_of::<FrameUniforms>() == 176);
+    assert!(std::mem::size_of::<FrameUniforms>() == 160);
     assert!(std::mem::offset_of!(FrameUniforms, eye) == 64);
     assert!(std::mem::offset_of!(FrameUniforms, light_dir) == 80);
     assert!(std::mem::offset_of!(FrameUniforms, base_color) == 96);
-    assert!(std::mem::offset_of!(FrameUniforms, options) == 112);
-    assert!(std::mem::offset_of!(FrameUniforms, params) == 128);
+    assert!(std::mem::offset_of!(FrameUniforms, params) == 112);
+    assert!(std::mem::offset_of!(FrameUniforms, origin) == 128);
+    assert!(std::mem::offset_of!(FrameUniforms, view) == 144);
+    assert!(std::mem::offset_of!(FrameUniforms, heightmap_bias) == 148);
+    assert!(std::mem::offset_of!(FrameUniforms, heightmap_lod) == 152);
 };
 
 impl FrameUniforms {
-    /// The view of `camera` on a target of `aspect` (width / height), lit from above and behind
-    /// the camera's shoulder, the default surface colour, every view option off, `params` for
-    /// the surfaces.
-    pub fn new(camera: &Camera, aspect: f32, params: &SurfaceParams) -> Self {
+    /// The frame that draws `cfg` of `scene` seen by `camera` on a target of `aspect` (width /
+    /// height), showing `view`: lit from above and behind the camera's shoulder, the default
+    /// surface colour. The one way every frame (headless, window, benchmark) gets its uniforms.
+    pub fn new(camera: &Camera, aspect: f32, cfg: &DrawConfig, scene: &Scene, view: View) -> Self {
         let eye = camera.eye();
         let light = eye - camera.target + glam::Vec3::new(0.3, 0.8, 0.2) * camera.distance;
+        let params = &cfg.params;
         Self {
             view_proj: camera.view_proj(aspect).to_cols_array_2d(),
             eye: eye.extend(1.0).to_array(),
             light_dir: light.normalize().extend(0.0).to_array(),
             base_color: [0.80, 0.55, 0.35, 1.0],
-            options: [0.0; 4],
             params: params.to_gpu(),
             origin: params.origin.extend(0.0).to_array(),
-            extra: [params.bias, 0.0, 0.0, 0.0],
+            view: view as u32,
+            heightmap_bias: params.bias,
+            heightmap_lod: scene.heightmap_lod(cfg.level),
+            _pad: 0.0,
         }
     }
 }

@@ -13,6 +13,7 @@ use super::scene::GpuPattern;
 use super::{
     Capture, DrawWords, GpuMesh, PushBlock, Renderer, Submit, PUSH_DRAW_OFFSET, PUSH_STAGES,
 };
+use crate::gpu::shaders::names;
 use crate::gpu::{vk, Cmd, GraphicsPipelineDesc};
 use crate::pattern::{index_count, vertex_count};
 use crate::surface::{ElementRecord, RECORD_BYTES};
@@ -126,12 +127,13 @@ impl DriverKind for PatternDriver {
         &self,
         desc: &mut GraphicsPipelineDesc,
         _fragment_field: bool,
-        variant: &dyn Fn(&str) -> String,
+        capture: Capture,
     ) {
-        desc.stages = vec![(
-            vk::ShaderStageFlags::VERTEX,
-            variant("pattern/pattern.vert"),
-        )];
+        let vert = match capture {
+            Capture::Vertices => names::PATTERN_PATTERN_VERT_CAPTURE,
+            Capture::None | Capture::Triangles => names::PATTERN_PATTERN_VERT,
+        };
+        desc.stages = vec![(vk::ShaderStageFlags::VERTEX, vert.into())];
         desc.topology = vk::PrimitiveTopology::TRIANGLE_LIST;
         // (w, u, v) per vertex; the element's record per instance (`instanced`).
         desc.vertex_bindings = vec![(0, 12, false), (1, RECORD_BYTES as u32, true)];

@@ -84,9 +84,13 @@ impl Renderer {
             ctx,
             &[
                 // ElementRecord[] (instanced, tess; per-fragment normal fields)
-                (BINDING_TRIS, T::STORAGE_BUFFER, ALL_STAGES),
+                (BINDING_ELEMENTS, T::STORAGE_BUFFER, ALL_STAGES),
                 // one ElementRecord (ubo)
-                (BINDING_TRI_UBO, T::UNIFORM_BUFFER_DYNAMIC, GEOMETRY_STAGES),
+                (
+                    BINDING_ELEMENT_UBO,
+                    T::UNIFORM_BUFFER_DYNAMIC,
+                    GEOMETRY_STAGES,
+                ),
                 // texture coordinates and the height map (heightmap displacement)
                 (BINDING_UVS, T::STORAGE_BUFFER, ALL_STAGES),
                 (BINDING_HEIGHTMAP, T::STORAGE_BUFFER, ALL_STAGES),
@@ -230,7 +234,6 @@ impl Renderer {
     }
 
     fn create(&self, key: PipelineKey) -> Result<Pipeline, GpuError> {
-        let variant = |name: &str| format!("{name}{}", key.capture.shader_suffix());
         let mut desc = GraphicsPipelineDesc {
             stages: vec![],
             spec: vec![
@@ -257,10 +260,10 @@ impl Renderer {
         };
         key.driver
             .kind()
-            .describe_pipeline(&mut desc, key.fragment_field, &variant);
+            .describe_pipeline(&mut desc, key.fragment_field, key.capture);
         desc.stages.push((
             vk::ShaderStageFlags::FRAGMENT,
-            "shade/shade.frag".to_string(),
+            crate::gpu::shaders::names::SHADE_SHADE_FRAG.to_string(),
         ));
         let name = format!(
             "{}{}{} ({} + {})",

@@ -310,7 +310,7 @@ impl GpuMesh {
             let count = (n - first.min(n)).min(chunk as u64).max(1);
             pool.write_buffer_at(
                 set,
-                BINDING_TRIS,
+                BINDING_ELEMENTS,
                 vk::DescriptorType::STORAGE_BUFFER,
                 records.raw,
                 first * rec_size,
@@ -318,7 +318,7 @@ impl GpuMesh {
             );
             pool.write_buffer(
                 set,
-                BINDING_TRI_UBO,
+                BINDING_ELEMENT_UBO,
                 vk::DescriptorType::UNIFORM_BUFFER_DYNAMIC,
                 records.raw,
                 UBO_WINDOW as u64 * rec_size,
@@ -688,7 +688,7 @@ impl Scene {
         }
         renderer.prepare(cfg, capture, wire)?;
         let refined =
-            self.elements(cfg.surface).element_count as u64 * cfg.refined_per_coarse() as u64;
+            self.elements(cfg.surface).element_count as u64 * cfg.refined_per_element() as u64;
         if ctx.info.device_type == vk::PhysicalDeviceType::CPU
             && refined > 50_000_000
             && !self.warned_slow

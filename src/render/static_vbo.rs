@@ -9,6 +9,7 @@ use super::frame::FrameWork;
 use super::{
     Capture, DrawConfig, GpuMesh, RenderError, Renderer, Scene, PUSH_DRAW_OFFSET, PUSH_STAGES,
 };
+use crate::gpu::shaders::names;
 use crate::gpu::{vk, Buffer, Cmd, CommandPool, Context, GraphicsPipelineDesc};
 use crate::pattern::{index_count, vertex_count, Pattern};
 use crate::surface::stpn::VertexTag;
@@ -250,12 +251,12 @@ impl DriverKind for StaticDriver {
         &self,
         desc: &mut GraphicsPipelineDesc,
         fragment_field: bool,
-        _variant: &dyn Fn(&str) -> String,
+        _capture: Capture,
     ) {
         let vert = if fragment_field {
-            "static/static.vert+elements"
+            names::STATIC_STATIC_VERT_ELEMENTS
         } else {
-            "static/static.vert"
+            names::STATIC_STATIC_VERT
         };
         desc.stages = vec![(vk::ShaderStageFlags::VERTEX, vert.into())];
         desc.topology = vk::PrimitiveTopology::TRIANGLE_LIST;

@@ -14,6 +14,7 @@ use super::bindings::SET_MESH;
 use super::driver::DriverKind;
 use super::frame::FrameWork;
 use super::{Capture, GpuMesh, Renderer, PUSH_DRAW_OFFSET, PUSH_STAGES};
+use crate::gpu::shaders::names;
 use crate::gpu::{vk, Cmd, Context, GraphicsPipelineDesc};
 use crate::surface::RECORD_BYTES;
 
@@ -72,27 +73,31 @@ impl DriverKind for TessDriver {
         Some(Capture::Triangles)
     }
 
-    /// maxTessellationGenerationLevel.
-    fn max_level(&self, ctx: &Context) -> Option<u32> {
-        Some(ctx.info.limits.max_tessellation_generation_level)
+    fn level_limit(&self, ctx: &Context) -> Option<(u32, &'static str)> {
+        Some((
+            ctx.info.limits.max_tessellation_generation_level,
+            "maxTessellationGenerationLevel",
+        ))
     }
 
     fn describe_pipeline(
         &self,
         desc: &mut GraphicsPipelineDesc,
         _fragment_field: bool,
-        variant: &dyn Fn(&str) -> String,
+        capture: Capture,
     ) {
+        let tese = match capture {
+            Capture::None => names::TESS_TESS_TESE,
+            Capture::Vertices => names::TESS_TESS_TESE_CAPTURE,
+            Capture::Triangles => names::TESS_TESS_TESE_XFB,
+        };
         desc.stages = vec![
-            (vk::ShaderStageFlags::VERTEX, "tess/tess.vert".into()),
+            (vk::ShaderStageFlags::VERTEX, names::TESS_TESS_VERT.into()),
             (
                 vk::ShaderStageFlags::TESSELLATION_CONTROL,
-                "tess/tess.tesc".into(),
+                names::TESS_TESS_TESC.into(),
             ),
-            (
-                vk::ShaderStageFlags::TESSELLATION_EVALUATION,
-                variant("tess/tess.tese"),
-            ),
+            (vk::ShaderStageFlags::TESSELLATION_EVALUATION, tese.into()),
         ];
         desc.topology = vk::PrimitiveTopology::PATCH_LIST;
         desc.patch_control_points = 3;

@@ -3,7 +3,7 @@
 //! validation warning or error, leaked Vulkan object or leaked allocation fails the test.
 #![allow(dead_code)]
 
-use meshrefine::gpu::{live_objects, ContextDesc};
+use meshrefine::gpu::{check_shutdown, live_objects, ContextDesc, ShutdownError};
 use meshrefine::mesh::Mesh;
 use meshrefine::render::Headless;
 use std::path::PathBuf;
@@ -49,12 +49,11 @@ pub fn with_gpu<R>(width: u32, height: u32, f: impl FnOnce(&mut Headless) -> R) 
     let messages = h.ctx.messages_handle();
     let out = f(&mut h);
     drop(h);
-    let list = messages.take();
-    assert!(
-        list.is_empty(),
-        "validation layer / leak reports:\n{}",
-        list.join("\n")
-    );
-    assert_eq!(live_objects(), 0, "Vulkan objects leaked");
-    out
+    match check_shutdown(&messages) {
+        Ok(()) => out,
+        Err(ShutdownError::Validation(list)) => {
+            panic!("validation layer / leak reports:\n{}", list.join("\n"))
+        }
+        Err(e) => panic!("{e}"),
+    }
 }

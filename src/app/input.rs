@@ -1,0 +1,141 @@
+//! The window's events: winit's callbacks, the mouse's orbit and zoom, and the keys.
+
+use super::{next, App, State, ViewOptions};
+use crate::render::{Driver, Submit, View};
+use crate::surface::{Displace, Surface};
+use winit::application::ApplicationHandler;
+use winit::event::{ElementState, MouseButton, MouseScrollDelta, WindowEvent};
+use winit::event_loop::ActiveEventLoop;
+use winit::keyboard::{Key, NamedKey};
+use winit::window::WindowId;
+
+impl ApplicationHandler for App {
+    fn resumed(&mut self, event_loop: &ActiveEventLoop) {
+        if self.state.is_some() {
+            return;
+        }
+        match self.create(event_loop) {
+            Ok(s) => {
+                self.messages = Some(s.ctx.messages_handle());
+                self.state = Some(s);
+            }
+            Err(e) => {
+                self.error = Some(e);
+                event_loop.exit();
+            }
+        }
+    }
+
+    fn window_event(&mut self, event_loop: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
+        let Some(s) = self.state.as_mut() else { return };
+        // Pointer events egui takes (over or dragging the panel) leave the camera alone.
+        let egui_took = s.ui.on_window_event(&s.window, &event, s.cursor);
+        match event {
+            WindowEvent::CloseRequested => s.request_quit(&self.opts, event_loop),
+            WindowEvent::Resized(_) => s.resize = true,
+            WindowEvent::MouseInput {
+                state,
+                button: MouseButton::Left,
+                ..
+            } => {
+                s.drag = (state == ElementState::Pressed && !egui_took).then_some(s.cursor);
+            }
+            WindowEvent::CursorMoved { position, .. } => {
+                s.cursor = (position.x, position.y);
+                if let Some((x, y)) = s.drag {
+                    s.camera.orbit(
+                        ((position.x - x) * 0.01) as f32,
+                        ((position.y - y) * 0.01) as f32,
+                    );
+                    s.drag = Some(s.cursor);
+                }
+            }
+            WindowEvent::MouseWheel { delta, .. } if !egui_took => {
+                let d = match delta {
+                    MouseScrollDelta::LineDelta(_, y) => y,
+                    MouseScrollDelta::PixelDelta(p) => p.y as f32 / 40.0,
+                };
+                s.camera.zoom(0.9f32.powf(d));
+            }
+            WindowEvent::KeyboardInput { event, .. } if !egui_took => {
+                let quit = event.state == ElementState::Pressed && !s.key(&event.logical_key);
+                if quit {
+                    s.request_quit(&self.opts, event_loop);
+                }
+            }
+            WindowEvent::RedrawRequested => match s.frame(&self.opts) {
+                Ok(true) => {}
+                Ok(false) => event_loop.exit(),
+                Err(e) => {
+                    self.error = Some(e);
+                    event_loop.exit();
+                }
+            },
+            _ => {}
+        }
+    }
+
+    fn about_to_wait(&mut self, _event_loop: &ActiveEventLoop) {
+        if let Some(s) = &self.state {
+            s.window.request_redraw();
+        }
+    }
+}
+
+impl State {
+    /// Close or Esc: with `--screenshot`, draw one last frame to save it, then exit.
+    pub(super) fn request_quit(&mut self, opts: &ViewOptions, event_loop: &ActiveEventLoop) {
+        if opts.screenshot.is_some() {
+            self.quit = true;
+        } else {
+            event_loop.exit();
+        }
+    }
+
+    /// Handle a key; false quits.
+    pub(super) fn key(&mut self, key: &Key) -> bool {
+        let levels: Vec<u32> = self.scene.patterns.levels().collect();
+        let c = &mut self.controls;
+        let pos = levels.iter().position(|&l| l == c.cfg.level).unwrap_or(0);
+        match key {
+            Key::Named(NamedKey::Escape) => return false,
+            Key::Character(ch) => match ch.as_str() {
+                "1" | "2" | "3" => c.set_driver(Driver::ALL[(ch.as_bytes()[0] - b'1') as usize]),
+                "s" | "S" => {
+                    c.cfg.surface = next(&Surface::ALL, c.cfg.surface);
+                    // Loop's M1 has no texture coordinates for the height map.
+                    if c.cfg.surface == Surface::Loop && c.cfg.displace == Displace::Heightmap {
+                        c.cfg.displace = Displace::None;
+                    }
+                }
+                "d" | "D" => {
+                    c.cfg.displace = next(&Displace::ALL, c.cfg.displace);
+                    // The height map needs texture coordinates: skip it on meshes without.
+                    if c.cfg.displace == Displace::Heightmap
+                        && (self.scene.data.uvs.is_none() || c.cfg.surface == Surface::Loop)
+                    {
+                        c.cfg.displace = next(&Displace::ALL, c.cfg.displace);
+                    }
+                }
+                "n" | "N" => {
+                    c.view = match c.view {
+                        View::Normals => View::Shaded,
+                        View::Shaded => View::Normals,
+                    }
+                }
+                "p" | "P" => c.set_submit(Submit::Push),
+                "u" | "U" => c.set_submit(Submit::Ubo),
+                "i" | "I" => c.set_submit(Submit::Instanced),
+                "+" | "=" => c.cfg.level = levels[(pos + 1).min(levels.len() - 1)],
+                "-" | "_" => c.cfg.level = levels[pos.saturating_sub(1)],
+                "w" | "W" => c.wireframe = !c.wireframe,
+                "a" | "A" => c.animate = !c.animate,
+                "l" | "L" => c.lod = !c.lod,
+                "h" | "H" => self.ui.visible = !self.ui.visible,
+                _ => {}
+            },
+            _ => {}
+        }
+        true
+    }
+}
