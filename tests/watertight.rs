@@ -19,7 +19,7 @@ use meshrefine::pattern::{Pattern, PatternSet};
 use meshrefine::render::static_vbo::{refine_on_cpu, MeshInputs};
 use meshrefine::render::tess::{tess_triangle_count, tess_vertex_count};
 use meshrefine::render::{Camera, DrawConfig, Driver, Headless, Scene, Submit};
-use meshrefine::surface::subdivision::{LoopData, LoopFrame};
+use meshrefine::subdiv::{LoopData, LoopFrame};
 use meshrefine::surface::{Displace, RecordKind, Seams, Surface, SurfaceParams};
 
 /// Surface x displacement combinations checked on every driver.

@@ -19,6 +19,9 @@ use glam::DVec3;
 use std::collections::HashMap;
 
 pub mod bft;
+mod data;
+
+pub use data::{face_records, m1_topology, padded, FaceRecord, LoopData, LoopFrame, RING_BOUNDARY};
 
 /// How boundaries are subdivided.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default, clap::ValueEnum)]
