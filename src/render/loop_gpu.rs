@@ -88,13 +88,13 @@ impl LoopPass {
         let step = Pipeline::new_compute(
             ctx,
             &pipeline_layout,
-            "subdiv/loop_step.comp",
+            "loop/loop_step.comp",
             "loop step (M0 -> M1)",
         )?;
         let normals = Pipeline::new_compute(
             ctx,
             &pipeline_layout,
-            "subdiv/loop_normals.comp",
+            "loop/loop_normals.comp",
             "loop normals (M1 one-rings)",
         )?;
         let stencils = &data.stencils;

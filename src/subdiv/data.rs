@@ -141,7 +141,7 @@ impl LoopData {
         self.tables.bytes()
     }
 
-    /// M1's positions from M0's. Mirror of glsl/subdiv/loop_step.comp.
+    /// M1's positions from M0's. Mirror of glsl/loop/loop_step.comp.
     pub fn m1_positions(&self, m0: &[Vec3]) -> Vec<Vec3> {
         self.stencils
             .iter()
@@ -155,7 +155,7 @@ impl LoopData {
             .collect()
     }
 
-    /// M1's one-ring normals. Mirror of glsl/subdiv/loop_normals.comp.
+    /// M1's one-ring normals. Mirror of glsl/loop/loop_normals.comp.
     pub fn m1_normals(&self, p1: &[Vec3]) -> Vec<Vec3> {
         (0..self.m1.vertex_count)
             .map(|v| {
@@ -253,7 +253,7 @@ pub fn m1_topology(mesh: &Mesh) -> Result<Topology, TopologyError> {
     Topology::new(&refined_faces(&topo0), topo0.vertex_count + edges)
 }
 
-/// Mirror of `ring_normal` in glsl/subdiv/loop_normals.comp.
+/// Mirror of `ring_normal` in glsl/loop/loop_normals.comp.
 fn ring_normal(p: &[Vec3], c: Vec3, ring: &[u32], boundary: bool) -> Vec3 {
     let n = ring.len();
     let pairs = if boundary { n.saturating_sub(1) } else { n };

@@ -29,7 +29,7 @@
 //! [`Seams::Open`] the geometry uses the corners' own normals, as the papers do (and cracks).
 //!
 //! The `loop` surface's elements are M1 faces ([`RecordKind::LoopFaces`]): each record holds the
-//! face and the owners of its edges and corners (`subdiv::face_records`); the
+//! face and the owners of its edges and corners (`loop_::element_records`); the
 //! control points and tables live in buffers of their own.
 
 use super::{Seams, Surface};
