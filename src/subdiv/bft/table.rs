@@ -13,7 +13,7 @@ use std::collections::HashMap;
 #[derive(Clone, Debug)]
 pub struct Config {
     /// Control points: the columns of `weights` (built as labels 0 .. control, the face's
-    /// corners first; [`build`] then keeps only the labels some row weighs, in the order
+    /// corners first; [`build`](super::build) then keeps only the labels some row weighs, in the order
     /// `arrange` gives them).
     pub control: usize,
     /// The largest valence among the face's corners that is not regular (6 inside, 4 on a
@@ -29,7 +29,7 @@ pub struct Config {
     /// The canonical corner a reflection of the lattice fixes, where the table is its own
     /// mirror image under it (an inside face at its extraordinary vertex: the reflection swaps
     /// the other two corners). Its columns then come as the pairs that the reflection swaps,
-    /// then the columns it fixes, so that [`pack`] stores only the rows on one side of the axis
+    /// then the columns it fixes, so that [`pack`](super::pack) stores only the rows on one side of the axis
     /// and reads the others as their mirror images with each pair's weights swapped.
     pub symmetry: Option<u8>,
     /// With a `symmetry`, columns 2m and 2m + 1 for m < `pairs` are the pairs it swaps, and the
