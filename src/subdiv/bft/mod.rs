@@ -35,6 +35,11 @@
 //! weights far from corner 0, in frames that put the extraordinary vertex at corner 0
 //! (`frame`). Stored so, every configuration up to valence 18 takes 0.77 MiB at level 5;
 //! as whole tables, 1.91 MiB.
+//!
+//! One idea a file: `lattice.rs` (the lattice, a face's orientation in it), `classification.rs`
+//! (which configuration each face has), `table.rs` (one configuration's table, and sharing equal
+//! ones), `packing.rs` (rows stored once, as the drawing stages read them); this file builds them
+//! for a mesh on every core and reports how far it is.
 #![forbid(unsafe_code)]
 
 mod classification;
