@@ -8,7 +8,8 @@
 //! Writes docs/bench/fig7.{md,csv,json} (see `meshrefine::bench::Harness`).
 //! `MESHREFINE_BENCH_QUICK=1` runs a smaller set.
 
-use meshrefine::bench::{grid_mesh, BenchOptions, Harness};
+use meshrefine::bench::{BenchOptions, Harness};
+use meshrefine::mesh::generate::grid_mesh;
 use meshrefine::surface::{Displace, Surface};
 
 fn main() {

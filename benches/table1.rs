@@ -10,7 +10,8 @@
 //! Writes docs/bench/{table1,fig8}.{md,csv,json} (see `meshrefine::bench::Harness`);
 //! `MESHREFINE_BENCH_QUICK=1` (and `cargo test --benches`) runs a smaller, validated set.
 
-use meshrefine::bench::{sphere_mesh, torus_mesh, wavy_grid_mesh, BenchOptions, Harness};
+use meshrefine::bench::{BenchOptions, Harness};
+use meshrefine::mesh::generate::{sphere_mesh, torus_mesh, wavy_grid_mesh};
 use meshrefine::render::{Driver, Submit};
 use meshrefine::surface::{Displace, Surface};
 

@@ -62,11 +62,11 @@ pub struct ParamOpts {
     /// (OpenSubdiv's VTX_BOUNDARY_EDGE_ONLY), `edge-and-corner` also pins boundary vertices of
     /// valence 2 (VTX_BOUNDARY_EDGE_AND_CORNER).
     #[arg(long, value_enum, default_value = "edge-only")]
-    pub boundary: meshrefine::subdiv::Boundary,
+    pub boundary: meshrefine::surface::loop_::Boundary,
     /// The loop surface's basis function tables' level (--surface loop): 2^N segments per
     /// M1-face edge, the lattice whose points are exact limit points; each level up takes four
     /// times the memory.
-    #[arg(long, default_value_t = meshrefine::subdiv::bft::DEFAULT_LMAX)]
+    #[arg(long, default_value_t = meshrefine::surface::loop_::DEFAULT_LMAX)]
     pub bft_level: u32,
 }
 
@@ -304,10 +304,10 @@ pub struct InfoArgs {
     pub surface: Option<Surface>,
     /// Loop subdivision's boundaries (with --surface loop).
     #[arg(long, value_enum, default_value = "edge-only")]
-    pub boundary: meshrefine::subdiv::Boundary,
+    pub boundary: meshrefine::surface::loop_::Boundary,
     /// The loop surface's table level (with --surface loop): 2^N segments per M1-face edge.
-    #[arg(long, default_value_t = meshrefine::subdiv::bft::DEFAULT_LMAX,
-          value_parser = clap::value_parser!(u32).range(1..=meshrefine::subdiv::bft::MAX_LMAX as i64))]
+    #[arg(long, default_value_t = meshrefine::surface::loop_::DEFAULT_LMAX,
+          value_parser = clap::value_parser!(u32).range(1..=meshrefine::surface::loop_::MAX_LMAX as i64))]
     pub bft_level: u32,
 }
 

@@ -16,7 +16,7 @@ use cli::{Cli, Command, Technique};
 use meshrefine::gpu::{Context, ContextDesc, Messages, ShutdownError};
 use meshrefine::mesh::{LoadReport, Mesh, MeshError};
 use meshrefine::render::{covered_pixels, Camera, Capture, DrawConfig, Driver, Headless};
-use meshrefine::surface::subdivision::LoopData;
+use meshrefine::surface::loop_::LoopData;
 use meshrefine::surface::Surface;
 use std::io::Write as _;
 use std::path::Path;
@@ -573,13 +573,13 @@ fn info(a: &cli::InfoArgs) -> Result<()> {
         }
     }
     if a.surface == Some(Surface::Loop) {
-        let lattice = meshrefine::subdiv::bft::Lattice::new(a.bft_level);
+        let lattice = meshrefine::surface::loop_::Lattice::new(a.bft_level);
         let report = |p| note(format_args!("{}: {p}", path.display()));
         let data = LoopData::new(
             &mesh,
             a.boundary,
             lattice,
-            meshrefine::subdiv::bft::throttled(report),
+            meshrefine::surface::loop_::throttled(report),
         )
         .map_err(|e| {
             anyhow::anyhow!(

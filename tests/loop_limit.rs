@@ -54,11 +54,11 @@ fn dyadic_levels_are_the_limit_surface() {
         vec![1, 2, 4, 8],
         3,
     ));
-    // Two valence-40 poles: configuration meshes pruned level by level (src/subdiv/bft.rs); the
+    // Two valence-40 poles: configuration meshes pruned level by level (src/subdiv/bft/table.rs); the
     // reference at level 32 (M^6) would be 1.6 M faces, so up to 8 here.
     cases.push((
         "sphere, valence-40 poles".into(),
-        meshrefine::bench::sphere_mesh(40, 6),
+        meshrefine::mesh::generate::sphere_mesh(40, 6),
         Boundary::EdgeOnly,
         vec![1, 2, 4, 8],
         5,

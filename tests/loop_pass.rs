@@ -9,9 +9,9 @@ mod common;
 
 use common::{model, with_gpu};
 use glam::{DVec3, Vec3};
-use meshrefine::render::loop_pass::LoopPass;
+use meshrefine::render::loop_gpu::LoopPass;
+use meshrefine::subdiv::LoopData;
 use meshrefine::subdiv::{loop_step, Boundary, Topology};
-use meshrefine::surface::subdivision::LoopData;
 
 #[test]
 fn gpu_loop_step_matches_the_cpu() {

@@ -19,7 +19,7 @@ use meshrefine::pattern::{Pattern, PatternSet};
 use meshrefine::render::static_vbo::{refine_on_cpu, MeshInputs};
 use meshrefine::render::tess::{tess_triangle_count, tess_vertex_count};
 use meshrefine::render::{Camera, DrawConfig, Driver, Headless, Scene, Submit};
-use meshrefine::surface::subdivision::{LoopData, LoopFrame};
+use meshrefine::subdiv::{LoopData, LoopFrame};
 use meshrefine::surface::{Displace, RecordKind, Seams, Surface, SurfaceParams};
 
 /// Surface x displacement combinations checked on every driver.
@@ -293,7 +293,7 @@ fn heightmap_on_continuous_coordinates_is_watertight() {
     });
 }
 
-/// Loop's limit surface is watertight by ownership (src/surface/subdivision.rs): a sample on a
+/// Loop's limit surface is watertight by ownership (src/surface/loop.rs): a sample on a
 /// shared M1 edge or corner is evaluated by its owner from both sides. Every driver's vertices
 /// weld on exact bits into exactly the vertex count of a crack-free refinement of M1, and the
 /// welded pattern and tessellator meshes are closed; at levels dividing 32 (lattice rows) and

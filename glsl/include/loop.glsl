@@ -2,12 +2,12 @@
 // M1 face from basis function tables, normals by subdivision shading. Elements are M1 faces;
 // their records hold the face and the owners of its edges and corners (a sample on a shared edge
 // or corner is evaluated by its owner, with the same weights on the same vertices, so both sides
-// compute the very same call: watertight). Mirror: src/surface/subdivision.rs.
+// compute the very same call: watertight). Mirror: src/surface/loop.rs.
 #ifndef LOOP_GLSL
 #define LOOP_GLSL
 #include "displace.glsl"
 
-// Written by the Loop passes (glsl/subdiv), read here.
+// Written by the Loop passes (glsl/loop), read here.
 layout(set = SET_MESH, binding = BINDING_LOOP_P1) uniform samplerBuffer loop_p1_t;
 layout(set = SET_MESH, binding = BINDING_LOOP_N1) uniform samplerBuffer loop_n1_t;
 // Per M1 face: (its table's first row-map entry, control points K | the table's column pairs
@@ -62,7 +62,7 @@ vec4 bft_weights(uint e, uint c, uint pe) {
 }
 
 // Which face evaluates sample `bary` of the face `rec`, with which weights on its corners.
-// Mirror: subdivision::owner.
+// Mirror: loop_::owner.
 uint loop_owner(ElementRecord rec, vec3 bary, out vec3 b) {
     uvec4 a = rec.d[0], c = rec.d[1];
     uint packed = c.w;
@@ -90,7 +90,7 @@ uint loop_stored(uint orient, uint i) {
     return (orient & 4u) != 0u ? (rot + 3u - i) % 3u : (rot + i) % 3u;
 }
 
-// Face g at weights b of its stored corners. Mirror: subdivision::eval_face (and `cell`).
+// Face g at weights b of its stored corners. Mirror: loop_::eval_face (and `cell`).
 SurfacePoint loop_eval_face(uint g, vec3 b) {
     uvec4 f = texelFetch(loop_faces_t, int(g));
     uint base = f.x, k4 = ((f.y & 0xffffu) + 3u) & ~3u, pe = 2u * (f.y >> 16u), first = f.z, orient = f.w & 7u;
@@ -181,7 +181,7 @@ SurfacePoint loop_eval_face(uint g, vec3 b) {
                         vec2(0.0));
 }
 
-// Mirror: subdivision::eval.
+// Mirror: loop_::eval.
 SurfacePoint loop_eval(ElementRecord rec, vec3 bary) {
     vec3 b;
     uint g = loop_owner(rec, bary, b);

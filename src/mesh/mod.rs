@@ -41,6 +41,7 @@
 
 mod animate;
 mod error;
+pub mod generate;
 mod normals;
 mod obj;
 mod scan;

@@ -39,7 +39,9 @@ pub const fn index_count(n: u32) -> u32 {
     3 * n * n
 }
 
-/// Index of lattice vertex `(i, j)` (`i` along `u`, `j` along `v`) in a level-`n` pattern.
+/// Index of lattice vertex `(i, j)` (`i` along `u`, `j` along `v`) in a level-`n` pattern: the one
+/// function that numbers a triangular lattice (the basis function tables number their rows with
+/// it too; `bft_row` in glsl/include/loop.glsl mirrors it).
 pub const fn lattice_index(n: u32, i: u32, j: u32) -> u32 {
     // Rows before j hold (n+1) + n + ... + (n-j+2) vertices.
     j * (n + 1) - j * j.saturating_sub(1) / 2 + i

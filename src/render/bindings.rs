@@ -31,7 +31,7 @@ pub const BINDING_HEIGHTMAP: u32 = 3;
 /// Set 1, binding 4: every vertex's scalar tags (`stpn`), three `vec4` each.
 pub const BINDING_TAGS: u32 = 4;
 
-/// Set 1, bindings 5-10, texel buffers: the `loop` surface (src/surface/subdivision.rs): M1's
+/// Set 1, bindings 5-10, texel buffers: the `loop` surface (src/render/loop_gpu.rs uploads them): M1's
 /// positions and normals (`vec4`, written by the Loop passes), each M1 face's table entry
 /// (`uvec4`: its table's rows, control points and column pairs, first control index,
 /// orientation), the faces' control points (M1 vertex indices, four a texel), the basis

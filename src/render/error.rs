@@ -36,13 +36,13 @@ pub enum RenderError {
     Tags(String),
     /// The mesh cannot be Loop-subdivided (the `loop` surface).
     #[error("the loop surface cannot subdivide it: {0}")]
-    Subdivision(crate::subdiv::TopologyError),
+    Loop(crate::surface::loop_::TopologyError),
     #[error("the tessellator evaluated {written} vertices, more than the {capacity} the capture buffer holds")]
     CaptureOverflow { written: u64, capacity: u64 },
 }
 
-impl From<crate::subdiv::TopologyError> for RenderError {
-    fn from(e: crate::subdiv::TopologyError) -> Self {
-        RenderError::Subdivision(e)
+impl From<crate::surface::loop_::TopologyError> for RenderError {
+    fn from(e: crate::surface::loop_::TopologyError) -> Self {
+        RenderError::Loop(e)
     }
 }

@@ -29,7 +29,7 @@ pub struct FrameWork<'a> {
     pub records: &'a [ElementRecord],
     pub static_vbo: Option<&'a StaticVbo>,
     /// Passes to run before drawing (the `loop` surface's M0 -> M1), inside the timed range.
-    pub pre_pass: Option<&'a super::loop_pass::LoopPass>,
+    pub pre_pass: Option<&'a super::loop_gpu::LoopPass>,
     pub cfg: DrawConfig,
     pub capture: Capture,
     /// Transform-feedback output (with `Capture::Triangles`).

@@ -10,7 +10,7 @@ pub mod driver;
 mod error;
 pub mod frame;
 mod headless;
-pub mod loop_pass;
+pub mod loop_gpu;
 pub mod pattern;
 mod pipelines;
 mod scene;

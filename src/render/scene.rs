@@ -3,7 +3,7 @@
 //! coarse mesh only ([`GpuMesh::update_records`]), never on the refinement level.
 
 use super::bindings::*;
-use super::loop_pass::LoopPass;
+use super::loop_gpu::{LoopPass, LoopScene};
 use super::RenderError;
 use crate::gpu::{
     vk, Buffer, BufferDesc, BufferView, CommandPool, Context, DescriptorPool, GpuError,
@@ -11,7 +11,6 @@ use crate::gpu::{
 use crate::mesh::Mesh;
 use crate::pattern::{Pattern, PatternSet};
 use crate::surface::stpn::VertexTag;
-use crate::surface::subdivision::{LoopData, LoopFrame};
 use crate::surface::Surface;
 use crate::surface::{build_records, ElementRecord, Heightmap, RecordKind, Seams, RECORD_BYTES};
 use std::sync::Arc;
@@ -422,7 +421,7 @@ pub struct Scene {
     /// Every vertex's scalar tags (`stpn`): derived from the mesh's hard edges until
     /// [`Scene::set_tags`].
     pub tags: Vec<VertexTag>,
-    max_chunk: Option<u32>,
+    pub(super) max_chunk: Option<u32>,
     pub patterns: PatternSet,
     pub static_vbo: Option<super::static_vbo::StaticVbo>,
     /// The `loop` surface's M1 faces, built by the first `prepare` that draws it.
@@ -431,108 +430,6 @@ pub struct Scene {
     /// which does not read them, uploads M0 only); the next other surface uploads them.
     records_stale: bool,
     warned_slow: bool,
-}
-
-/// The `loop` surface of a scene: tables and records (CPU), its passes and M1 faces (GPU), and
-/// M1 as the CPU mirror computes it (the static driver and the tests read it), computed when
-/// first read after M0 moved: an animated frame drawn on the GPU does no M1 work on the CPU.
-pub struct LoopScene {
-    pub data: LoopData,
-    frame: std::cell::OnceCell<LoopFrame>,
-    pub gpu: GpuMesh,
-    pub pass: LoopPass,
-}
-
-/// Whether the loop surface's buffers fit the device: the compute passes write M1 as storage
-/// buffers; the drawing stages read M1, the face entries, the control points and the tables as
-/// texel buffers (lavapipe fetches texels as vector gathers but reads storage buffers lane by
-/// lane), four-component texels each, and the tables' row maps, one entry a texel.
-fn loop_limits(data: &LoopData, limits: &vk::PhysicalDeviceLimits) -> Result<(), RenderError> {
-    let m1 = data.stencils.len() as u64 * 16;
-    let storage = limits.max_storage_buffer_range as u64;
-    if m1 > storage {
-        return Err(RenderError::OverLimit {
-            what: "the loop surface's M1 positions".into(),
-            needed: m1,
-            unit: "bytes",
-            limit: "maxStorageBufferRange",
-            max: storage,
-            remedy: "use a coarser mesh".into(),
-        });
-    }
-    let max = limits.max_texel_buffer_elements as u64;
-    let packed = &data.tables.packed;
-    for (what, texels) in [
-        ("M1 positions", m1.div_ceil(16)),
-        ("M1 face tables", data.faces.len() as u64),
-        ("control points", (data.control.len() as u64).div_ceil(4)),
-        (
-            "basis function tables",
-            (packed.pool.len() as u64).div_ceil(4),
-        ),
-        // One entry a texel.
-        ("basis function table rows", packed.rows.len() as u64),
-    ] {
-        if texels > max {
-            return Err(RenderError::OverLimit {
-                what: format!("the loop surface's {what}"),
-                needed: texels,
-                unit: "texels",
-                limit: "maxTexelBufferElements",
-                max,
-                remedy: "use a coarser mesh or a lower --bft-level".into(),
-            });
-        }
-    }
-    Ok(())
-}
-
-impl LoopScene {
-    fn new(
-        ctx: &Arc<Context>,
-        pool: &CommandPool,
-        renderer: &super::Renderer,
-        scene: &Scene,
-        boundary: crate::subdiv::Boundary,
-        lattice: crate::subdiv::bft::Lattice,
-    ) -> Result<Self, RenderError> {
-        let mesh = &scene.data.mesh;
-        let data = LoopData::new(
-            mesh,
-            boundary,
-            lattice,
-            crate::subdiv::bft::throttled(|p| log::info!("loop surface: {p}")),
-        )?;
-        loop_limits(&data, &ctx.info.limits)?;
-        let pass = LoopPass::new(ctx, pool, &data, &mesh.positions)?;
-        let elements = MeshData {
-            mesh: mesh.clone(),
-            kind: RecordKind::LoopFaces,
-            seams: scene.data.seams,
-            records: data.records.clone(),
-            uvs: None,
-            uv_extent: 0.0,
-        };
-        let gpu = GpuMesh::new(
-            ctx,
-            pool,
-            &renderer.mesh_layout,
-            &elements,
-            Patterns::Share(&scene.gpu.patterns),
-            scene.max_chunk,
-            Extras {
-                heightmap: &scene.heightmap,
-                tags: &scene.tags,
-                subdiv: Some(&pass),
-            },
-        )?;
-        Ok(Self {
-            data,
-            frame: std::cell::OnceCell::new(),
-            gpu,
-            pass,
-        })
-    }
 }
 
 impl Scene {
@@ -626,7 +523,7 @@ impl Scene {
         {
             self.subdiv = None;
             self.static_vbo = None;
-            let lattice = crate::subdiv::bft::Lattice::new(cfg.params.bft_level);
+            let lattice = crate::surface::loop_::Lattice::new(cfg.params.bft_level);
             self.subdiv = Some(LoopScene::new(
                 ctx,
                 pool,
@@ -845,44 +742,5 @@ impl Scene {
         let (lo, hi) = self.data.mesh.bounds();
         let c = (lo + hi) * 0.5;
         (c, ((hi - lo) * 0.5).length().max(1e-6))
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::mesh::test_support::load_model;
-    use crate::subdiv::{bft::Lattice, Boundary};
-
-    /// A loop surface over a device's limits is one sentence naming the buffer, the limit and
-    /// what to do; texels count four components.
-    #[test]
-    fn loop_buffers_are_checked_against_the_limits() {
-        let (mesh, _) = load_model("spot_control_tri.obj");
-        let data = LoopData::new(&mesh, Boundary::EdgeOnly, Lattice::default(), |_| {}).unwrap();
-        let tables = data.tables.packed.pool.len() as u64 / 4;
-        let mut limits = vk::PhysicalDeviceLimits {
-            max_storage_buffer_range: u32::MAX,
-            max_texel_buffer_elements: tables as u32,
-            ..Default::default()
-        };
-        loop_limits(&data, &limits).unwrap();
-        limits.max_texel_buffer_elements = tables as u32 - 1;
-        let e = loop_limits(&data, &limits).unwrap_err().to_string();
-        assert_eq!(
-            e,
-            format!(
-                "the loop surface's basis function tables needs {tables} texels, over this \
-                 device's maxTexelBufferElements ({}): use a coarser mesh or a lower --bft-level",
-                tables - 1
-            )
-        );
-        limits.max_storage_buffer_range = 1024;
-        let e = loop_limits(&data, &limits).unwrap_err().to_string();
-        assert!(
-            e.starts_with("the loop surface's M1 positions needs")
-                && e.contains("bytes, over this device's maxStorageBufferRange (1024)"),
-            "{e}"
-        );
     }
 }

@@ -24,10 +24,7 @@ pub struct MeshInputs<'a> {
     pub lod: f32,
     pub tags: &'a [VertexTag],
     /// The `loop` surface's tables and M1.
-    pub subdiv: Option<(
-        &'a crate::surface::subdivision::LoopData,
-        &'a crate::surface::subdivision::LoopFrame,
-    )>,
+    pub subdiv: Option<crate::surface::loop_::Inputs<'a>>,
 }
 
 impl<'a> MeshInputs<'a> {

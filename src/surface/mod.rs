@@ -19,12 +19,13 @@
 pub mod displace;
 pub mod flat;
 pub mod heightmap;
+#[path = "loop.rs"]
+pub mod loop_;
 pub mod noise;
 pub mod phong;
 pub mod pn;
 mod record;
 pub mod stpn;
-pub mod subdivision;
 
 pub use displace::Displace;
 pub use heightmap::Heightmap;
@@ -53,7 +54,7 @@ pub enum Surface {
     /// sharpness, bias and crease direction (--tags, or derived from the mesh's hard edges).
     Stpn = 3,
     /// The limit surface of Loop subdivision (Holländer & Boubekeur 2010): elements are the faces
-    /// of one Loop step M1, evaluated from basis function tables (src/surface/subdivision.rs).
+    /// of one Loop step M1, evaluated from basis function tables (src/surface/loop.rs).
     Loop = 4,
 }
 
@@ -116,7 +117,7 @@ pub struct SurfaceParams {
     /// The height map displacement's bias b: `P′ = P + a·(h − b)·N`.
     pub bias: f32,
     /// Loop subdivision's boundary rule (built into the `loop` surface's tables).
-    pub boundary: crate::subdiv::Boundary,
+    pub boundary: loop_::Boundary,
     /// The `loop` surface's table level: 2^level segments per M1-face edge, the lattice whose
     /// points are exact (`--bft-level`, default 5).
     pub bft_level: u32,
@@ -132,8 +133,8 @@ impl Default for SurfaceParams {
             origin: Vec3::ZERO,
             seams: Seams::Closed,
             bias: 0.0,
-            boundary: crate::subdiv::Boundary::EdgeOnly,
-            bft_level: crate::subdiv::bft::DEFAULT_LMAX,
+            boundary: loop_::Boundary::EdgeOnly,
+            bft_level: loop_::DEFAULT_LMAX,
         }
     }
 }
@@ -177,11 +178,11 @@ impl SurfaceParams {
         if !self.bias.is_finite() {
             return Err(format!("--bias {} is not a finite number", self.bias));
         }
-        if !(1..=crate::subdiv::bft::MAX_LMAX).contains(&self.bft_level) {
+        if !(1..=loop_::MAX_LMAX).contains(&self.bft_level) {
             return Err(format!(
                 "--bft-level {} is not within [1, {}]",
                 self.bft_level,
-                crate::subdiv::bft::MAX_LMAX
+                loop_::MAX_LMAX
             ));
         }
         if !(1..=Self::MAX_OCTAVES).contains(&self.octaves) {
@@ -248,7 +249,7 @@ pub struct Inputs<'a> {
     /// The scalar tags of every vertex (`stpn`; neutral without).
     pub tags: Option<&'a [stpn::VertexTag]>,
     /// The `loop` surface's tables and M1 (required by it).
-    pub subdiv: Option<(&'a subdivision::LoopData, &'a subdivision::LoopFrame)>,
+    pub subdiv: Option<loop_::Inputs<'a>>,
 }
 
 /// Corner data of a coarse triangle in canonical order, with the sample's weights.
@@ -373,7 +374,7 @@ pub fn eval_surface(
         let (data, frame) = inputs
             .subdiv
             .expect("the loop surface is evaluated with its M1 and tables (Inputs::subdiv)");
-        return subdivision::eval(data, frame, rec, bary);
+        return loop_::eval(data, frame, rec, bary);
     }
     let r = CornerRecord::decode(rec);
     // `flat` needs no canonical order (see `stored_order`), and skipping the sort per vertex is

@@ -29,7 +29,7 @@
 //! [`Seams::Open`] the geometry uses the corners' own normals, as the papers do (and cracks).
 //!
 //! The `loop` surface's elements are M1 faces ([`RecordKind::LoopFaces`]): each record holds the
-//! face and the owners of its edges and corners (`surface::subdivision::face_records`); the
+//! face and the owners of its edges and corners (`loop_::element_records`); the
 //! control points and tables live in buffers of their own.
 
 use super::{Seams, Surface};
@@ -155,7 +155,7 @@ impl CornerRecord {
 pub enum RecordKind {
     /// [`CornerRecord`], one per coarse triangle.
     Corners,
-    /// One record per face of M1 (src/surface/subdivision.rs).
+    /// One record per face of M1 (src/subdiv/data.rs).
     LoopFaces,
 }
 
@@ -176,11 +176,7 @@ pub fn build_records(kind: RecordKind, mesh: &Mesh, seams: Seams) -> Vec<Element
             .iter()
             .map(CornerRecord::encode)
             .collect(),
-        // M1's faces: none for a mesh Loop cannot subdivide (`LoopData::new`, which the scene
-        // builds first, says why).
-        RecordKind::LoopFaces => super::subdivision::m1_topology(mesh)
-            .map(|m1| super::subdivision::face_records(&m1))
-            .unwrap_or_default(),
+        RecordKind::LoopFaces => super::loop_::element_records(mesh),
     }
 }
 

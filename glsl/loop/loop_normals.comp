@@ -2,7 +2,7 @@
 // M1's vertex normals from their one-rings (Holländer & Boubekeur 2010: the one-ring indices,
 // counter-clockwise, with a boundary flag): the normalized sum of the cross products of
 // consecutive ring edges, the normals subdivision shading starts from. Runs after loop_step.comp.
-// Mirror: src/surface/subdivision.rs `LoopData::m1_normals`.
+// Mirror: src/subdiv/data.rs `LoopData::m1_normals`.
 layout(local_size_x = 64) in;
 
 // Vertex i's ring is rings[ring_offsets[i] .. ring_offsets[i + 1]) (bit 31 of the first: on

@@ -1,16 +1,25 @@
+//! The `loop` surface on the GPU: the one place Loop's CPU data ([`crate::subdiv`]: M0 -> M1
+//! entries, M1's one-rings, per-face words, control points and the packed basis function tables)
+//! becomes GPU buffers, as OpenSubdiv's `GLPatchTable::Create` is for its far tables, and where
+//! the passes that make M1 each frame are recorded.
+//!
 //! The Loop step M0 -> M1 on the GPU (Holländer & Boubekeur 2010): the computational entries
 //! ([`crate::subdiv::stencils`]) are uploaded once per topology; every frame only M0's positions
 //! are uploaded (bytes independent of the refinement level) and a compute pass applies the
 //! entries, a second pass computes M1's one-ring normals, and barriers make both visible to the
-//! draws. The tables the draws read are uploaded here too.
+//! draws. The tables the draws read are uploaded here too ([`LoopPass`]); [`LoopScene`] is a
+//! scene's loop surface: its data, passes and M1-face records on the GPU.
 
 use super::bindings::*;
+use super::scene::{Extras, GpuMesh, MeshData, Patterns, Scene};
 use super::RenderError;
 use crate::gpu::{
     vk, Buffer, BufferDesc, Cmd, CommandPool, Context, DescriptorPool, DescriptorSetLayout,
     Pipeline, PipelineLayout,
 };
-use crate::surface::subdivision::LoopData;
+use crate::subdiv::bft::{throttled, Lattice};
+use crate::subdiv::{Boundary, LoopData, LoopFrame};
+use crate::surface::RecordKind;
 use glam::Vec3;
 use std::sync::Arc;
 
@@ -79,13 +88,13 @@ impl LoopPass {
         let step = Pipeline::new_compute(
             ctx,
             &pipeline_layout,
-            "subdiv/loop_step.comp",
+            "loop/loop_step.comp",
             "loop step (M0 -> M1)",
         )?;
         let normals = Pipeline::new_compute(
             ctx,
             &pipeline_layout,
-            "subdiv/loop_normals.comp",
+            "loop/loop_normals.comp",
             "loop normals (M1 one-rings)",
         )?;
         let stencils = &data.stencils;
@@ -280,9 +289,112 @@ fn nonempty(v: &[u32]) -> &[u32] {
     }
 }
 
+/// The `loop` surface of a scene: tables and records (CPU), its passes and M1 faces (GPU), and
+/// M1 as the CPU mirror computes it (the static driver and the tests read it), computed when
+/// first read after M0 moved: an animated frame drawn on the GPU does no M1 work on the CPU.
+pub struct LoopScene {
+    pub data: LoopData,
+    pub(super) frame: std::cell::OnceCell<LoopFrame>,
+    pub gpu: GpuMesh,
+    pub pass: LoopPass,
+}
+
+/// Whether the loop surface's buffers fit the device: the compute passes write M1 as storage
+/// buffers; the drawing stages read M1, the face entries, the control points and the tables as
+/// texel buffers (lavapipe fetches texels as vector gathers but reads storage buffers lane by
+/// lane), four-component texels each, and the tables' row maps, one entry a texel.
+fn loop_limits(data: &LoopData, limits: &vk::PhysicalDeviceLimits) -> Result<(), RenderError> {
+    let m1 = data.stencils.len() as u64 * 16;
+    let storage = limits.max_storage_buffer_range as u64;
+    if m1 > storage {
+        return Err(RenderError::OverLimit {
+            what: "the loop surface's M1 positions".into(),
+            needed: m1,
+            unit: "bytes",
+            limit: "maxStorageBufferRange",
+            max: storage,
+            remedy: "use a coarser mesh".into(),
+        });
+    }
+    let max = limits.max_texel_buffer_elements as u64;
+    let packed = &data.tables.packed;
+    for (what, texels) in [
+        ("M1 positions", m1.div_ceil(16)),
+        ("M1 face tables", data.faces.len() as u64),
+        ("control points", (data.control.len() as u64).div_ceil(4)),
+        (
+            "basis function tables",
+            (packed.pool.len() as u64).div_ceil(4),
+        ),
+        // One entry a texel.
+        ("basis function table rows", packed.rows.len() as u64),
+    ] {
+        if texels > max {
+            return Err(RenderError::OverLimit {
+                what: format!("the loop surface's {what}"),
+                needed: texels,
+                unit: "texels",
+                limit: "maxTexelBufferElements",
+                max,
+                remedy: "use a coarser mesh or a lower --bft-level".into(),
+            });
+        }
+    }
+    Ok(())
+}
+
+impl LoopScene {
+    pub(super) fn new(
+        ctx: &Arc<Context>,
+        pool: &CommandPool,
+        renderer: &super::Renderer,
+        scene: &Scene,
+        boundary: Boundary,
+        lattice: Lattice,
+    ) -> Result<Self, RenderError> {
+        let mesh = &scene.data.mesh;
+        let data = LoopData::new(
+            mesh,
+            boundary,
+            lattice,
+            throttled(|p| log::info!("loop surface: {p}")),
+        )?;
+        loop_limits(&data, &ctx.info.limits)?;
+        let pass = LoopPass::new(ctx, pool, &data, &mesh.positions)?;
+        let elements = MeshData {
+            mesh: mesh.clone(),
+            kind: RecordKind::LoopFaces,
+            seams: scene.data.seams,
+            records: data.records.clone(),
+            uvs: None,
+            uv_extent: 0.0,
+        };
+        let gpu = GpuMesh::new(
+            ctx,
+            pool,
+            &renderer.mesh_layout,
+            &elements,
+            Patterns::Share(&scene.gpu.patterns),
+            scene.max_chunk,
+            Extras {
+                heightmap: &scene.heightmap,
+                tags: &scene.tags,
+                subdiv: Some(&pass),
+            },
+        )?;
+        Ok(Self {
+            data,
+            frame: std::cell::OnceCell::new(),
+            gpu,
+            pass,
+        })
+    }
+}
+
 #[cfg(test)]
 mod tests {
-    use super::dispatch_grid;
+    use super::*;
+    use crate::mesh::test_support::load_model;
 
     #[test]
     fn dispatch_grids_cover_every_group_within_the_limits() {
@@ -292,5 +404,37 @@ mod tests {
         assert_eq!(dispatch_grid(131_072, [65535, 65535]), Some([65535, 3]));
         assert_eq!(dispatch_grid(10, [3, 4]), Some([3, 4]));
         assert_eq!(dispatch_grid(13, [3, 4]), None);
+    }
+
+    /// A loop surface over a device's limits is one sentence naming the buffer, the limit and
+    /// what to do; texels count four components.
+    #[test]
+    fn loop_buffers_are_checked_against_the_limits() {
+        let (mesh, _) = load_model("spot_control_tri.obj");
+        let data = LoopData::new(&mesh, Boundary::EdgeOnly, Lattice::default(), |_| {}).unwrap();
+        let tables = data.tables.packed.pool.len() as u64 / 4;
+        let mut limits = vk::PhysicalDeviceLimits {
+            max_storage_buffer_range: u32::MAX,
+            max_texel_buffer_elements: tables as u32,
+            ..Default::default()
+        };
+        loop_limits(&data, &limits).unwrap();
+        limits.max_texel_buffer_elements = tables as u32 - 1;
+        let e = loop_limits(&data, &limits).unwrap_err().to_string();
+        assert_eq!(
+            e,
+            format!(
+                "the loop surface's basis function tables needs {tables} texels, over this \
+                 device's maxTexelBufferElements ({}): use a coarser mesh or a lower --bft-level",
+                tables - 1
+            )
+        );
+        limits.max_storage_buffer_range = 1024;
+        let e = loop_limits(&data, &limits).unwrap_err().to_string();
+        assert!(
+            e.starts_with("the loop surface's M1 positions needs")
+                && e.contains("bytes, over this device's maxStorageBufferRange (1024)"),
+            "{e}"
+        );
     }
 }

@@ -1,7 +1,8 @@
 //! The `loop` surface (Holländer & Boubekeur 2010): the limit surface of Loop subdivision over
 //! every face of M1 (one Loop step of the coarse mesh, M0), evaluated from basis function tables
 //! ([`crate::subdiv::bft`]); normals by subdivision shading (the same weights applied to M1's
-//! one-ring normals, then normalized). Mirror of `glsl/include/loop.glsl`.
+//! one-ring normals, then normalized). Mirror of `glsl/include/loop.glsl`, the file of the same
+//! name; what it reads is [`LoopData`] and [`LoopFrame`], built in [`crate::subdiv`].
 //!
 //! Elements are M1 faces. A sample is evaluated on the face's table: a lattice point is one row
 //! (the exact limit point), any other point interpolates the rows of the lattice triangle around
@@ -12,268 +13,30 @@
 //! face around the vertex), with the same weights on the same vertices. Both sides of an edge make
 //! the very same call, so its points are bit-identical from either side, in every driver; the
 //! tangents there are the owner's (another parametrization of the same tangent plane).
+#![forbid(unsafe_code)]
 
 use super::{ElementRecord, SurfacePoint};
 use crate::mesh::Mesh;
-use crate::subdiv::bft::{self, Lattice, Orient, Tables};
-use crate::subdiv::{stencils, Boundary, Stencil, Topology, TopologyError};
-use glam::{DVec3, Vec3};
+use crate::subdiv::bft::Orient;
+use crate::subdiv::{padded, FaceRecord};
+use glam::Vec3;
 
-/// What the `loop` surface needs of one mesh topology and boundary rule, built once.
-#[derive(Clone, Debug)]
-pub struct LoopData {
-    pub boundary: Boundary,
-    pub m0_count: usize,
-    /// M1 from M0: one computational entry per M1 vertex.
-    pub stencils: Vec<Stencil>,
-    pub m1: Topology,
-    pub tables: Tables,
-    /// Per M1 face: (its table's first entry in `table_rows`, control points K | the table's
-    /// column pairs ([`bft::Config::pairs`]) << 16, first control index, orientation
-    /// ([`crate::subdiv::bft::Orient::bits`]) | the tables' level << 3).
-    pub faces: Vec<[u32; 4]>,
-    /// Control points of every face, M1 vertex indices, [`padded`]`(K)` a face (the padding
-    /// repeats the face's first control point, with weight zero), so that the drawing stages
-    /// read them four at a time, as the tables' rows ([`bft::Packed`]: each at a multiple of
-    /// four, at least [`padded`]`(K)` weights long for every table that reads it).
-    pub control: Vec<u32>,
-    /// Per M1 vertex: the start of its one-ring in `rings` (bit 31: on the boundary), plus one
-    /// end entry.
-    pub ring_offsets: Vec<u32>,
-    pub rings: Vec<u32>,
-    /// One record per M1 face.
-    pub records: Vec<ElementRecord>,
-}
+/// What the rest of the crate names of Loop subdivision (`crate::subdiv`), through this surface:
+/// its boundary rule and table levels (build options), the per-mesh data and M1 the mirror
+/// reads, the error of a mesh Loop cannot subdivide, and the tables' progress reports.
+pub use crate::subdiv::bft::{throttled, Lattice, Progress, DEFAULT_LMAX, MAX_LMAX};
+pub use crate::subdiv::{Boundary, LoopData, LoopFrame, TopologyError};
 
-/// Bit 31 of a ring offset: the vertex is on the boundary.
-pub const RING_BOUNDARY: u32 = 1 << 31;
+/// What the mirror reads besides the record: the mesh's tables and M1.
+pub type Inputs<'a> = (&'a LoopData, &'a LoopFrame);
 
-/// M1's positions and normals, as the GPU passes compute them (f32, same order of operations).
-#[derive(Clone, Debug, Default)]
-pub struct LoopFrame {
-    pub positions: Vec<Vec3>,
-    pub normals: Vec<Vec3>,
-}
-
-/// A face's record: words 0 face, 1-3 the owners of edges 0-2 (edge e joins corners e, e + 1),
-/// 4-6 the owners of corners 0-2, 7 where those corners are in the owners (2 bits each: edge e's
-/// two corners at bits 4e and 4e + 2, corner i at bit 12 + 2i).
-struct FaceRecord {
-    face: u32,
-    edge_owner: [u32; 3],
-    corner_owner: [u32; 3],
-    packed: u32,
-}
-
-impl FaceRecord {
-    fn encode(&self) -> ElementRecord {
-        let mut words = [0u32; 28];
-        words[0] = self.face;
-        words[1..4].copy_from_slice(&self.edge_owner);
-        words[4..7].copy_from_slice(&self.corner_owner);
-        words[7] = self.packed;
-        ElementRecord { words }
-    }
-
-    fn decode(r: &ElementRecord) -> Self {
-        let w = &r.words;
-        Self {
-            face: w[0],
-            edge_owner: [w[1], w[2], w[3]],
-            corner_owner: [w[4], w[5], w[6]],
-            packed: w[7],
-        }
-    }
-}
-
-impl LoopData {
-    /// Topology, M1, configurations and tables of `mesh` (positions welded by index); `progress`
-    /// hears how far the tables are ([`bft::Progress`]).
-    pub fn new(
-        mesh: &Mesh,
-        boundary: Boundary,
-        lattice: Lattice,
-        progress: impl FnMut(bft::Progress),
-    ) -> Result<Self, TopologyError> {
-        let topo0 = Topology::of_mesh(mesh)?;
-        let stencils = stencils(&topo0, boundary);
-        let m1 = Topology::new(&crate::subdiv::refined_faces(&topo0), stencils.len())?;
-        let tables = bft::build(&m1, boundary, lattice, progress)?;
-        let mut faces = Vec::with_capacity(m1.faces.len());
-        let mut control = Vec::new();
-        for fc in &tables.faces {
-            let c = &tables.configs[fc.config as usize];
-            debug_assert!(c.control < 1 << 16);
-            faces.push([
-                fc.config * lattice.rows() as u32,
-                c.control as u32 | (c.pairs as u32) << 16,
-                control.len() as u32,
-                fc.orient.bits() | lattice.lmax << 3,
-            ]);
-            control.extend(&fc.control);
-            let k4 = padded(fc.control.len());
-            control.extend(std::iter::repeat_n(fc.control[0], k4 - fc.control.len()));
-        }
-        let mut ring_offsets = Vec::with_capacity(m1.vertex_count + 1);
-        let mut rings = Vec::new();
-        for v in 0..m1.vertex_count as u32 {
-            let (ring, b) = m1.one_ring(v);
-            ring_offsets.push(rings.len() as u32 | if b { RING_BOUNDARY } else { 0 });
-            rings.extend(ring);
-        }
-        ring_offsets.push(rings.len() as u32);
-        let records = face_records(&m1);
-        Ok(Self {
-            boundary,
-            m0_count: topo0.vertex_count,
-            stencils,
-            m1,
-            tables,
-            faces,
-            control,
-            ring_offsets,
-            rings,
-            records,
-        })
-    }
-
-    /// Bytes of the basis function tables: their distinct rows (f32, padded to multiples of
-    /// four) and the tables' row maps.
-    pub fn table_bytes(&self) -> u64 {
-        self.tables.bytes()
-    }
-
-    /// M1's positions from M0's. Mirror of glsl/subdiv/loop_step.comp.
-    pub fn m1_positions(&self, m0: &[Vec3]) -> Vec<Vec3> {
-        self.stencils
-            .iter()
-            .map(|s| {
-                let mut p = Vec3::ZERO;
-                for (&i, &w) in s.parents.iter().zip(&s.weights) {
-                    p += m0[i as usize] * (w as f32);
-                }
-                p
-            })
-            .collect()
-    }
-
-    /// M1's one-ring normals. Mirror of glsl/subdiv/loop_normals.comp.
-    pub fn m1_normals(&self, p1: &[Vec3]) -> Vec<Vec3> {
-        (0..self.m1.vertex_count)
-            .map(|v| {
-                let (start, end) = (
-                    self.ring_offsets[v] & !RING_BOUNDARY,
-                    self.ring_offsets[v + 1] & !RING_BOUNDARY,
-                );
-                let boundary = self.ring_offsets[v] & RING_BOUNDARY != 0;
-                ring_normal(
-                    p1,
-                    p1[v],
-                    &self.rings[start as usize..end as usize],
-                    boundary,
-                )
-            })
-            .collect()
-    }
-
-    /// M1's positions and normals for M0 positions `m0`.
-    pub fn frame(&self, m0: &[Vec3]) -> LoopFrame {
-        let positions = self.m1_positions(m0);
-        let normals = self.m1_normals(&positions);
-        LoopFrame { positions, normals }
-    }
-
-    /// The faces' valences and boundary cases, for reports: (valence, on a boundary) pairs with
-    /// how many configurations each.
-    pub fn valences(&self) -> Vec<(usize, bool, usize)> {
-        let mut v: Vec<(usize, bool, usize)> = Vec::new();
-        for c in &self.tables.configs {
-            match v
-                .iter_mut()
-                .find(|(n, b, _)| *n == c.valence && *b == c.boundary)
-            {
-                Some(e) => e.2 += 1,
-                None => v.push((c.valence, c.boundary, 1)),
-            }
-        }
-        v.sort();
-        v
-    }
-
-    /// The exact limit position of every M1 vertex (f64), for tests and reports.
-    pub fn m1_limit(&self, m0: &[Vec3]) -> Vec<DVec3> {
-        let p0: Vec<DVec3> = m0.iter().map(|p| p.as_dvec3()).collect();
-        let p1: Vec<DVec3> = self.stencils.iter().map(|s| s.apply(&p0)).collect();
-        crate::subdiv::limit_positions(&self.m1, &p1, self.boundary)
-    }
-}
-
-/// One record per face of M1 (`m1`): the face, the owners of its edges (the lower numbered of
-/// the two faces) and corners (the lowest numbered face around the vertex), and where its
-/// corners are in them. Topology only: the same for either boundary rule.
-pub fn face_records(m1: &Topology) -> Vec<ElementRecord> {
-    let mut vertex_owner = vec![u32::MAX; m1.vertex_count];
-    for (f, t) in m1.faces.iter().enumerate() {
-        for &v in t {
-            vertex_owner[v as usize] = vertex_owner[v as usize].min(f as u32);
-        }
-    }
-    let corner_in =
-        |g: u32, v: u32| m1.faces[g as usize].iter().position(|&x| x == v).unwrap() as u32;
-    (0..m1.faces.len())
-        .map(|f| {
-            let t = m1.faces[f];
-            let mut packed = 0;
-            let edge_owner = [0, 1, 2].map(|e| {
-                let g = m1.twin[3 * f + e].map_or(f as u32, |h| (h / 3).min(f as u32));
-                packed |= corner_in(g, t[e]) << (4 * e);
-                packed |= corner_in(g, t[(e + 1) % 3]) << (4 * e + 2);
-                g
-            });
-            let corner_owner = [0, 1, 2].map(|i| {
-                let h = vertex_owner[t[i] as usize];
-                packed |= corner_in(h, t[i]) << (12 + 2 * i);
-                h
-            });
-            FaceRecord {
-                face: f as u32,
-                edge_owner,
-                corner_owner,
-                packed,
-            }
-            .encode()
-        })
-        .collect()
-}
-
-/// M1's topology from `mesh` (one Loop step of its position topology).
-pub fn m1_topology(mesh: &Mesh) -> Result<Topology, TopologyError> {
-    let topo0 = Topology::of_mesh(mesh)?;
-    let edges = (topo0.twin.iter().enumerate())
-        .filter(|&(h, t)| t.is_none_or(|t| t as usize > h))
-        .count();
-    Topology::new(
-        &crate::subdiv::refined_faces(&topo0),
-        topo0.vertex_count + edges,
-    )
-}
-
-/// Mirror of `ring_normal` in glsl/subdiv/loop_normals.comp.
-fn ring_normal(p: &[Vec3], c: Vec3, ring: &[u32], boundary: bool) -> Vec3 {
-    let n = ring.len();
-    let pairs = if boundary { n.saturating_sub(1) } else { n };
-    let mut s = Vec3::ZERO;
-    for k in 0..pairs {
-        let a = p[ring[k] as usize] - c;
-        let b = p[ring[(k + 1) % n] as usize] - c;
-        s += a.cross(b);
-    }
-    let l = s.length();
-    if l > 0.0 {
-        s / l
-    } else {
-        Vec3::ZERO
-    }
+/// The surface's elements: one record per face of M1 (the faces and the owners of their edges
+/// and corners), none for a mesh Loop cannot subdivide (`LoopData::new`, which the scene builds
+/// first, says why).
+pub fn element_records(mesh: &Mesh) -> Vec<ElementRecord> {
+    crate::subdiv::m1_topology(mesh)
+        .map(|m1| crate::subdiv::face_records(&m1))
+        .unwrap_or_default()
 }
 
 /// Which face evaluates sample `bary` of `rec`'s face, and with which weights on its corners:
@@ -346,12 +109,6 @@ pub fn cell(lattice: Lattice, x: f32, y: f32) -> ([usize; 3], [f32; 3], [[usize;
         let c = lattice.row(i, j + 1);
         ([a, b, c], [1.0 - fx - fy, fx, fy], [[1, 0], [2, 0]])
     }
-}
-
-/// `k` rounded up to a multiple of four: the stride of a configuration's table rows and of a
-/// face's control points. Mirror of the `k4` in `loop_eval_face`.
-pub fn padded(k: usize) -> usize {
-    k.next_multiple_of(4)
 }
 
 /// Evaluate face `g` at weights `b` of its stored corners. Mirror of `loop_eval_face`.

@@ -6,8 +6,7 @@
 //! For table levels 4 and 5 (and 6 when asked: `cargo run --release --example bft_memory
 //! [MAX_VALENCE] [LEVEL...]`).
 
-use meshrefine::bench::every_configuration;
-use meshrefine::subdiv::bft::{pack, Config, Lattice};
+use meshrefine::subdiv::bft::{every_configuration, pack, Config, Lattice};
 use meshrefine::subdiv::Boundary;
 
 fn main() {
