@@ -122,6 +122,9 @@ impl LoadReport {
     }
 }
 
+/// [`DegenerateFace::reason`] of a triangle on the same three vertices as an earlier one.
+pub const DUPLICATE_FACE: &str = "repeats the three vertices of an earlier face";
+
 /// A triangle dropped because it is degenerate. A polygon's fan triangles share its `face`.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct DegenerateFace {

@@ -37,9 +37,6 @@ pub(crate) struct RawMesh {
     pub polygons_triangulated: usize,
 }
 
-/// Why a triangle on the same three vertices as an earlier one is dropped.
-pub(crate) const DUPLICATE: &str = "repeats the three vertices of an earlier face";
-
 /// Welds, drops degenerate and duplicate triangles (with a debug line each), and sets up
 /// normals.
 pub(crate) fn assemble(raw: RawMesh) -> Result<(Mesh, LoadReport), MeshError> {
@@ -65,7 +62,7 @@ pub(crate) fn assemble(raw: RawMesh) -> Result<(Mesh, LoadReport), MeshError> {
         let reason = reason.or_else(|| {
             let mut key = p;
             key.sort_unstable();
-            (!seen.insert(key)).then_some(DUPLICATE)
+            (!seen.insert(key)).then_some(super::DUPLICATE_FACE)
         });
         match reason {
             Some(reason) => {

@@ -122,6 +122,17 @@ pub struct SurfaceParams {
     pub bft_level: u32,
 }
 
+/// `x` for messages: as typed for ordinary magnitudes, in exponent form for huge or tiny ones
+/// (`3.4e38`, not 39 digits).
+pub fn shown_number(x: f32) -> String {
+    let a = x.abs();
+    if a != 0.0 && a.is_finite() && !(1e-4..1e7).contains(&a) {
+        format!("{x:e}")
+    } else {
+        format!("{x}")
+    }
+}
+
 /// Largest displacement reach accepted, in bounding radii of the mesh
 /// ([`SurfaceParams::check_displacement`]).
 pub const MAX_REACH_RADII: f64 = 1e6;
@@ -213,6 +224,20 @@ impl SurfaceParams {
         (self.amplitude as f64).abs() * h
     }
 
+    /// The options that set [`SurfaceParams::reach`], for messages: "--amplitude 2" or
+    /// "--amplitude 2 with --bias 0.5".
+    pub fn reach_options(&self, d: Displace) -> String {
+        if d == Displace::Heightmap && self.bias != 0.0 {
+            format!(
+                "--amplitude {} with --bias {}",
+                shown_number(self.amplitude),
+                shown_number(self.bias)
+            )
+        } else {
+            format!("--amplitude {}", shown_number(self.amplitude))
+        }
+    }
+
     /// Refuses a displacement whose result would not be finite or meaningful on a mesh of
     /// bounding radius `radius` whose points are at most `extent` from the origin, before
     /// anything is drawn: the reach at most [`MAX_REACH_RADII`] radii, the highest frequency
@@ -230,11 +255,7 @@ impl SurfaceParams {
             1.0
         };
         let reach = self.reach(d);
-        let by = if d == Displace::Heightmap && self.bias != 0.0 {
-            format!("--amplitude {} with --bias {}", self.amplitude, self.bias)
-        } else {
-            format!("--amplitude {}", self.amplitude)
-        };
+        let by = self.reach_options(d);
         if reach > MAX_REACH_RADII * r {
             return Err(format!(
                 "{by} moves the surface up to {:.3e} times the mesh's bounding radius ({r:.3e}); at most {MAX_REACH_RADII:e} times is accepted (beyond that positions and normals are not finite)",
@@ -261,7 +282,7 @@ impl SurfaceParams {
                 };
                 return Err(format!(
                     "--frequency {} is {top:.3e} radians per bounding radius of the mesh{with}; at most {MAX_FREQUENCY_RADII:e} is accepted (beyond that the displacement is noise at any level and its normals are not finite)",
-                    self.frequency
+                    shown_number(self.frequency)
                 ));
             }
         }
@@ -636,16 +657,16 @@ mod tests {
             amplitude: 3.4e38,
             ..Default::default()
         };
-        refused(big, Displace::Sine, "--amplitude 340000000000000000000000000000000000000 moves the surface up to 3.400e38 times");
+        refused(
+            big,
+            Displace::Sine,
+            "--amplitude 3.4e38 moves the surface up to 3.400e38 times",
+        );
         let fast = SurfaceParams {
             frequency: 1e25,
             ..Default::default()
         };
-        refused(
-            fast,
-            Displace::Sine,
-            "--frequency 10000000000000000000000000 is 1.000e25 radians",
-        );
+        refused(fast, Displace::Sine, "--frequency 1e25 is 1.000e25 radians");
         // Octaves double the frequency: the last one counts.
         let octaves = SurfaceParams {
             frequency: 2e5,
@@ -661,11 +682,7 @@ mod tests {
             bias: 1e7,
             ..Default::default()
         };
-        refused(
-            bias,
-            Displace::Heightmap,
-            "--amplitude 1 with --bias 10000000",
-        );
+        refused(bias, Displace::Heightmap, "--amplitude 1 with --bias 1e7");
         // A mesh near f32's range leaves no room to displace outwards.
         let e = SurfaceParams::default()
             .check_displacement(Displace::Sine, 1e38, 3e38)

@@ -312,13 +312,13 @@ pub fn parse(
             if !(0.0..=MAX_SHARPNESS).contains(&v[4]) {
                 return Err(at(format!(
                     "sharpness {} is not within [0, {MAX_SHARPNESS:e}]",
-                    v[4]
+                    super::shown_number(v[4])
                 )));
             }
             if v[5].abs() > MAX_SHARPNESS {
                 return Err(at(format!(
                     "bias {} is not within [-{MAX_SHARPNESS:e}, {MAX_SHARPNESS:e}]",
-                    v[5]
+                    super::shown_number(v[5])
                 )));
             }
             let given = Vec3::new(v[6], v[7], v[8]);
@@ -563,11 +563,11 @@ mod tests {
             // Overflowing sharpness or bias would normalize to NaN normals.
             (
                 format!("t {} {} {} 0 1e20 0 1 0 0\n", p.x, p.y, p.z),
-                "line 1: sharpness 100000000000000000000 is not within [0, 1e6]",
+                "line 1: sharpness 1e20 is not within [0, 1e6]",
             ),
             (
                 format!("t {} {} {} 0 1 -1e20 1 0 0\n", p.x, p.y, p.z),
-                "bias -100000000000000000000 is not within [-1e6, 1e6]",
+                "bias -1e20 is not within [-1e6, 1e6]",
             ),
             (
                 format!("t {} {} {} 0 1 0 0 0 0\n", p.x, p.y, p.z),
