@@ -383,6 +383,10 @@ fn run(cli: Cli) -> Result<()> {
             require_extension(&a.output, "obj", "export writes Wavefront OBJ text only")?;
             let for_loop = a.surface.surface == Surface::Loop;
             let mut input = load_mesh(a.mesh.as_deref(), for_loop)?;
+            // Loop's elements are M1's faces, four per triangle.
+            let elements = input.mesh.triangles.len() as u64 * if for_loop { 4 } else { 1 };
+            meshrefine::export::check_size(elements, a.level)
+                .map_err(|e| anyhow::anyhow!("cannot export '{}': {e}", input.shown))?;
             let cfg = draw_config(&a.technique(), &input.mesh)?;
             attach_surface_inputs(&mut input, &a.surface, false)?;
             let (messages, counts) = {
@@ -626,10 +630,11 @@ fn info(a: &cli::InfoArgs) -> Result<()> {
             )
         })?;
         out!(
-            "loop: M1 has {} vertices and {} faces ({:?} boundaries)",
+            "loop: M1 has {} vertices and {} faces ({} boundaries)",
             data.m1.vertex_count,
             data.m1.faces.len(),
-            a.boundary
+            clap::ValueEnum::to_possible_value(&a.boundary)
+                .map_or(String::new(), |v| v.get_name().to_string())
         );
         let configs: Vec<String> = data
             .valences()

@@ -184,7 +184,14 @@ pub fn warnings(cli: &Cli, given: &Given) -> Vec<String> {
         }),
         Command::Info(a) => {
             let surfaces: Vec<Surface> = a.surface.into_iter().collect();
-            check(&Chosen {
+            let mut out = Vec::new();
+            if let Some(s) = a.surface.filter(|&s| s != Surface::Loop) {
+                out.push(format!(
+                    "info --surface reports only what --surface loop builds, not --surface {}: it is ignored",
+                    s.name()
+                ));
+            }
+            out.extend(check(&Chosen {
                 surfaces: &surfaces,
                 surface_shown: match a.surface {
                     Some(s) => format!("--surface {}", s.name()),
@@ -193,7 +200,8 @@ pub fn warnings(cli: &Cli, given: &Given) -> Vec<String> {
                 displaces: &[],
                 displace_shown: String::new(),
                 driver: None,
-            })
+            }));
+            out
         }
     }
 }

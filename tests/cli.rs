@@ -1049,7 +1049,7 @@ fn loop_surface_from_the_command_line() {
     let spot = model_path("spot_control_tri.obj");
     let info = ok(&["info", p(&spot), "--surface", "loop"]);
     assert!(
-        info.contains("loop: M1 has 746 vertices and 1488 faces"),
+        info.contains("loop: M1 has 746 vertices and 1488 faces (edge-only boundaries)"),
         "{info}"
     );
     assert!(info.contains("configurations: 9"), "{info}");
@@ -1376,11 +1376,26 @@ fn options_that_do_not_apply_warn_and_are_ignored() {
         warnings_of(&args),
         ["warning: --octaves applies only to --displace noise, not to --displacements none: it is ignored"]
     );
-    // info reads the loop options only with --surface loop.
+    // info reads the loop options only with --surface loop, and reports only for loop.
     let w = warnings_of(&["info", p(&tet), "--bft-level", "3"]);
     assert_eq!(
         w,
         ["warning: --bft-level applies only to --surface loop, not to info without --surface: it is ignored"]
+    );
+    let w = warnings_of(&[
+        "info",
+        p(&tet),
+        "--surface",
+        "pn",
+        "--boundary",
+        "edge-and-corner",
+    ]);
+    assert_eq!(
+        w,
+        [
+            "warning: info --surface reports only what --surface loop builds, not --surface pn: it is ignored",
+            "warning: --boundary applies only to --surface loop, not to --surface pn: it is ignored"
+        ]
     );
 }
 
@@ -1681,4 +1696,47 @@ fn stpn_and_heightmap_errors_name_the_cause() {
     );
     let out = meshrefine(&args);
     assert!(!String::from_utf8_lossy(&out.stderr).contains("Indexed"));
+}
+
+/// An export whose refined size passes the documented limit is refused before anything is
+/// evaluated, naming the estimate and the highest level that fits.
+#[test]
+fn exports_past_the_size_limit_are_refused_up_front() {
+    let spot = model_path("spot_tri.obj");
+    let obj = tmp("too-big.obj");
+    std::fs::remove_file(&obj).ok();
+    // 5856 triangles x 1024^2; 2^24 / 5856 fits level 53.
+    expect_error(
+        &[
+            "export",
+            p(&spot),
+            "-o",
+            p(&obj),
+            "--level",
+            "1024",
+            "--surface",
+            "flat",
+        ],
+        &[
+            "cannot export '",
+            "spot_tri.obj': --level 1024 would export 6140461056 refined triangles",
+            "at most 16777216 (2^24)",
+            "use --level 53 or lower",
+        ],
+    );
+    // Loop's elements are M1's faces: four per triangle.
+    expect_error(
+        &[
+            "export",
+            p(&spot),
+            "-o",
+            p(&obj),
+            "--level",
+            "64",
+            "--surface",
+            "loop",
+        ],
+        &["(23424 elements x 4096)", "use --level 26 or lower"],
+    );
+    assert!(!obj.exists());
 }
