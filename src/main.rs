@@ -337,6 +337,10 @@ fn run(cli: Cli) -> Result<()> {
             )?;
             let for_loop = a.technique.surface.surface == Surface::Loop;
             let mut input = load_mesh(a.mesh.as_deref(), for_loop)?;
+            if input.loop_refusal.is_none() && a.mesh.is_some() {
+                // The panel can switch to loop later: say then, in the file's terms, why not.
+                input.loop_refusal = loop_refusal(&input.shown, &input.mesh, &input.report, true);
+            }
             let cfg = draw_config(&a.technique, &input.mesh)?;
             attach_surface_inputs(&mut input, &a.technique.surface, true)?;
             let has_display = std::env::var_os("DISPLAY").is_some()
