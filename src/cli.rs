@@ -101,11 +101,9 @@ impl SurfaceOpts {
             }
             None => Ok(()),
         };
+        // Derived tags are not checked here: the triangles with three crease corners they
+        // give are split (`split_three_creases` in main.rs).
         if self.tags.is_none() && self.crease_angle.is_none() {
-            if self.surface == Surface::Stpn {
-                let (base, _) = stpn::derive(mesh);
-                check(&base, "the mesh's split normals: give tags with --tags")?;
-            }
             return Ok(None);
         }
         if let Some(a) = self.crease_angle {
@@ -115,11 +113,6 @@ impl SurfaceOpts {
         }
         let (base, _) = stpn::derive_with_angle(mesh, self.crease_angle);
         let Some(path) = &self.tags else {
-            let a = self.crease_angle.unwrap_or_default();
-            check(
-                &base,
-                &format!("--crease-angle {a}: a larger angle makes fewer creases, or give tags with --tags"),
-            )?;
             return Ok(Some(base));
         };
         let shown_tags = path.display().to_string();

@@ -117,6 +117,7 @@ fn attach_surface_inputs(input: &mut Input, s: &cli::SurfaceOpts, any: bool) -> 
     let lines = &input.report.triangle_lines;
     input.tags = (s.tags(&input.mesh, &input.shown, lines, any)).map_err(anyhow::Error::msg)?;
     if s.surface == meshrefine::surface::Surface::Stpn && s.tags.is_none() {
+        split_three_creases(input, s.crease_angle)?;
         let (_, corners) =
             meshrefine::surface::stpn::derive_with_angle(&input.mesh, s.crease_angle);
         if corners > 0 {
@@ -126,6 +127,48 @@ fn attach_surface_inputs(input: &mut Input, s: &cli::SurfaceOpts, any: bool) -> 
             ));
         }
     }
+    Ok(())
+}
+
+/// Scalar-tagged PN allows two crease corners per triangle: a triangle whose three corners
+/// carry derived creases (from split normals or `--crease-angle`) is split at its centroid
+/// (`Mesh::split_at_centroids`: the new vertex is smooth, the old edges stay, so the surface
+/// stays watertight), with one warning; `input` then carries the tags.
+fn split_three_creases(input: &mut Input, crease_angle: Option<f32>) -> Result<()> {
+    use meshrefine::surface::stpn;
+    let mut tags = match input.tags.take() {
+        Some(t) => t,
+        None => stpn::derive(&input.mesh).0,
+    };
+    let which: Vec<usize> = (input.mesh.triangles.iter().enumerate())
+        .filter(|(_, t)| t.p.iter().all(|&p| tags[p as usize].crease()))
+        .map(|(i, _)| i)
+        .collect();
+    let source = match crease_angle {
+        Some(a) => format!("--crease-angle {a}"),
+        None => "the mesh's split normals".to_string(),
+    };
+    if let Some(&first) = which.first() {
+        let face = input.report.face(first);
+        let origin = input.mesh.split_at_centroids(&which).map_err(|e| {
+            anyhow::anyhow!(
+                "'{}': {face} {} (the creases come from {source}), and it cannot be split: {e}",
+                input.shown,
+                stpn::three_creases_message(&input.mesh, first)
+            )
+        })?;
+        let lines = &input.report.triangle_lines;
+        if !lines.is_empty() {
+            input.report.triangle_lines = origin.iter().map(|&t| lines[t]).collect();
+        }
+        tags.resize(input.mesh.positions.len(), stpn::VertexTag::default());
+        note(format_args!(
+            "warning: '{}': split {} triangle(s) at their centroids, whose three corners are crease vertices (from {source}; scalar-tagged PN triangles allow two; the first: {face})",
+            input.shown,
+            which.len()
+        ));
+    }
+    input.tags = Some(tags);
     Ok(())
 }
 

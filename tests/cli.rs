@@ -1650,27 +1650,63 @@ fn duplicate_triangles_are_dropped_and_loop_names_them() {
     );
 }
 
-/// Derived creases that break scalar-tagged PN's restriction name the file, the face's line
-/// and the option that made them; height-map errors are words, not Rust's debug text.
+/// Derived creases that break scalar-tagged PN's restriction (three crease corners) split
+/// those triangles, with a warning naming the file, the first face's line and the option, and
+/// the export stays closed; a tags file that breaks it is an error naming the mesh's face line
+/// and the tags file. Height-map errors are words, not Rust's debug text.
 #[test]
 fn stpn_and_heightmap_errors_name_the_cause() {
     let spot = model_path("spot_control_tri.obj");
     let png = tmp("cause.png");
+    let obj = tmp("spot-creases.obj");
+    let out = meshrefine(&[
+        "export",
+        p(&spot),
+        "-o",
+        p(&obj),
+        "--surface",
+        "stpn",
+        "--crease-angle",
+        "30",
+        "--level",
+        "4",
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("spot_control_tri.obj': split 2 triangle(s) at their centroids")
+            && stderr.contains("from --crease-angle 30")
+            && stderr.contains("the first: the face at line 214)"),
+        "{stderr}"
+    );
+    let (mesh, _) = meshrefine::mesh::Mesh::load_obj(&obj).unwrap();
+    // 372 triangles, two of them split in three: 376 elements of 16 triangles; closed.
+    assert_eq!(mesh.triangles.len(), 376 * 16);
+    assert_eq!(mesh.stats().boundary_edges, 0, "the split opened a crack");
+    let tet = model_path("tetrahedron.obj");
+    let all: String = meshrefine::mesh::Mesh::load_obj(&tet)
+        .unwrap()
+        .0
+        .positions
+        .iter()
+        .map(|q| format!("t {} {} {} 0 1 0 1 0 0\n", q.x, q.y, q.z))
+        .collect();
+    let three = write("all-creases.tags", all.as_bytes());
     expect_error(
         &[
             "render",
-            p(&spot),
+            p(&tet),
             "-o",
             p(&png),
             "--surface",
             "stpn",
-            "--crease-angle",
-            "30",
+            "--tags",
+            p(&three),
         ],
         &[
-            "spot_control_tri.obj': the face at line ",
+            "tetrahedron.obj': the face at line ",
             "has three crease vertices",
-            "--crease-angle 30",
+            "(the creases come from tags file '",
         ],
     );
     let indexed = tmp("indexed.png");

@@ -45,6 +45,7 @@ mod error;
 mod normals;
 mod obj;
 mod scan;
+mod split;
 mod topology;
 mod weld;
 
