@@ -15,8 +15,9 @@
 //! - the folder that will hold the file must exist (it is never created);
 //! - a path that names a directory (or ends in `/`) is refused: outputs are files, and the
 //!   command does not invent names inside a folder;
-//! - a single-file output (`render -o`, `export -o`, `view --screenshot`) may be an existing
-//!   device or FIFO (`-o /dev/null`), which is then written as Unix tools do;
+//! - a single-file output (`render -o`, `export -o`, `view --screenshot`) may name an existing
+//!   device or FIFO, which is then written as Unix tools do (the commands still require the
+//!   format's extension);
 //! - a prefix output (`bench --out PREFIX` writes `PREFIX.md`, `.csv`, `.json`) must not name
 //!   an existing file that is not a regular file: the files would be created beside it
 //!   (`/dev/full.md`), which nobody means.
