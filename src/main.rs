@@ -456,7 +456,11 @@ fn run(cli: Cli) -> Result<()> {
                     a.min_total_ms
                 );
             }
-            let input = load_mesh(a.mesh.as_deref(), a.surfaces.contains(&Surface::Loop))?;
+            let mut input = load_mesh(a.mesh.as_deref(), a.surfaces.contains(&Surface::Loop))?;
+            if a.surfaces.contains(&Surface::Stpn) {
+                // As render does: every surface is then timed on the same, split, mesh.
+                split_three_creases(&mut input, None)?;
+            }
             let ctx = Context::new(&desc)?;
             let messages = ctx.messages_handle();
             let (mesh, _) = for_viewing(&input.mesh, &DrawConfig::new(Driver::default(), 1));

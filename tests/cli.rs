@@ -1778,3 +1778,59 @@ fn exports_past_the_size_limit_are_refused_up_front() {
     );
     assert!(!obj.exists());
 }
+
+/// A triangle whose three corners carry creases derived from split normals (two `vn` at each)
+/// is split the same way by every command that draws stpn, `bench` included, whose scene
+/// would otherwise refuse it without naming the file.
+#[test]
+fn derived_three_crease_triangles_are_split_for_bench_too() {
+    let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv -1 -1 -1\nv 2 -1 -1\nv -1 2 -1\nvn 0 0 1\nvn 0 1 0\n\
+                f 1//1 2//1 3//1\nf 1//2 4//2 2//2\nf 2//2 5//2 3//2\nf 3//2 6//2 1//2\n";
+    let obj = write("three-creases.obj", text.as_bytes());
+    let png = tmp("three-creases.png");
+    let split = "three-creases.obj': split 1 triangle(s) at their centroids, whose three corners are crease vertices (from the mesh's split normals; scalar-tagged PN triangles allow two; the first: the face at line 9)";
+    let w = warnings_of(&[
+        "render",
+        p(&obj),
+        "-o",
+        p(&png),
+        "--surface",
+        "stpn",
+        "--level",
+        "2",
+        "--width",
+        "32",
+        "--height",
+        "32",
+    ]);
+    assert!(w.len() == 1 && w[0].ends_with(split), "{w:#?}");
+    let prefix = tmp("three-creases-bench");
+    let w = warnings_of(&[
+        "bench",
+        p(&obj),
+        "--surfaces",
+        "flat,stpn",
+        "--levels",
+        "1",
+        "--frames",
+        "1",
+        "--drivers",
+        "static",
+        "--width",
+        "32",
+        "--height",
+        "32",
+        "--out",
+        p(&prefix),
+    ]);
+    assert!(w.len() == 1 && w[0].ends_with(split), "{w:#?}");
+    // Both surfaces timed on the split mesh: 4 triangles, one of them in three.
+    let csv = std::fs::read_to_string(prefix.with_extension("csv")).unwrap();
+    let rows: Vec<&str> = csv.lines().skip(1).collect();
+    assert_eq!(rows.len(), 2, "{csv}");
+    assert!(
+        // mesh, coarse triangles, elements, after the quoted device (which holds commas).
+        rows.iter().all(|r| r.contains("\",three-creases,6,6,1,")),
+        "{csv}"
+    );
+}
