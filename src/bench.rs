@@ -388,10 +388,8 @@ impl Report {
     }
 
     /// Write `prefix.md` (headed by the command that made it), `prefix.csv` and `prefix.json`.
+    /// The folder must exist: outputs never create folders (the command line checks the prefix up front, `meshrefine::paths`).
     pub fn write_files(&self, prefix: &std::path::Path, command: &str) -> std::io::Result<()> {
-        if let Some(dir) = prefix.parent().filter(|d| !d.as_os_str().is_empty()) {
-            std::fs::create_dir_all(dir)?;
-        }
         let with = |ext: &str| {
             let mut p = prefix.as_os_str().to_owned();
             p.push(ext);

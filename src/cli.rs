@@ -72,25 +72,39 @@ pub struct ParamOpts {
 
 impl SurfaceOpts {
     /// The tags `--tags` names for `mesh` (None: the scene's derived ones), parsed over the
-    /// derived tags and checked against appendix B's restrictions. Refused with another surface.
+    /// derived tags and checked against appendix B's restrictions. With another surface than
+    /// stpn, None (the option is ignored with a warning, see options.rs) unless `any_surface`
+    /// (the window, which can switch to stpn). `shown` and `lines` (each triangle's line, from
+    /// the load report) name the mesh and its faces in messages.
     pub fn tags(
         &self,
         mesh: &meshrefine::mesh::Mesh,
+        shown: &str,
+        lines: &[usize],
+        any_surface: bool,
     ) -> Result<Option<Vec<meshrefine::surface::stpn::VertexTag>>, String> {
         use meshrefine::surface::stpn;
-        if self.tags.is_none() && self.crease_angle.is_none() {
+        if self.surface != Surface::Stpn && !any_surface {
             return Ok(None);
         }
-        if self.surface != Surface::Stpn {
-            let what = if self.tags.is_some() {
-                "--tags"
-            } else {
-                "--crease-angle"
-            };
-            return Err(format!(
-                "{what} applies only to --surface stpn, not to --surface {}: leave it out or use --surface stpn",
-                self.surface.name()
-            ));
+        // Appendix B's restriction, named by the face's line and what made the creases.
+        let check = |tags: &[stpn::VertexTag], source: &str| match stpn::three_creases(mesh, tags) {
+            Some(t) => {
+                let face = match lines.get(t) {
+                    Some(l) => format!("the face at line {l}"),
+                    None => format!("triangle {} (0-based)", t),
+                };
+                Err(format!(
+                    "'{shown}': {face} {} (the creases come from {source})",
+                    stpn::three_creases_message(mesh, t)
+                ))
+            }
+            None => Ok(()),
+        };
+        // Derived tags are not checked here: the triangles with three crease corners they
+        // give are split (`split_three_creases` in main.rs).
+        if self.tags.is_none() && self.crease_angle.is_none() {
+            return Ok(None);
         }
         if let Some(a) = self.crease_angle {
             if !(a.is_finite() && a > 0.0 && a < 180.0) {
@@ -99,35 +113,39 @@ impl SurfaceOpts {
         }
         let (base, _) = stpn::derive_with_angle(mesh, self.crease_angle);
         let Some(path) = &self.tags else {
-            stpn::check(mesh, &base)?;
             return Ok(Some(base));
         };
-        let shown = path.display().to_string();
-        let meta =
-            std::fs::metadata(path).map_err(|e| format!("cannot read tags file '{shown}': {e}"))?;
-        if !meta.is_file() || meta.len() > 1 << 28 {
+        let shown_tags = path.display().to_string();
+        let (file, meta) = meshrefine::paths::open_input(path, "tags file")?;
+        const MAX_TAGS_BYTES: u64 = 1 << 28;
+        if meta.len() > MAX_TAGS_BYTES {
             return Err(format!(
-                "tags file '{shown}' is not a regular file of at most 256 MiB"
+                "tags file '{shown_tags}' is {} bytes: at most 256 MiB is read",
+                meta.len()
             ));
         }
-        let text = std::fs::read_to_string(path)
-            .map_err(|e| format!("cannot read tags file '{shown}': {e}"))?;
-        let tags = stpn::parse(&shown, &text, mesh, &base)?;
-        stpn::check(mesh, &tags).map_err(|e| format!("tags file '{shown}': {e}"))?;
+        let mut text = String::new();
+        use std::io::Read as _;
+        file.take(MAX_TAGS_BYTES)
+            .read_to_string(&mut text)
+            .map_err(|e| format!("cannot read tags file '{shown_tags}': {e}"))?;
+        let tags = stpn::parse(&shown_tags, &text, mesh, &base)?;
+        check(&tags, &format!("tags file '{shown_tags}'"))?;
         Ok(Some(tags))
     }
 
-    /// The height map `--heightmap` names (None: the scene's generated one). Refused with any
-    /// displacement but `heightmap`, where it would be ignored.
-    pub fn heightmap(&self) -> Result<Option<meshrefine::surface::Heightmap>, String> {
+    /// The height map `--heightmap` names (None: the scene's generated one). With another
+    /// displacement, None (ignored with a warning, see options.rs) unless `any_displacement`
+    /// (the window, which can switch to it).
+    pub fn heightmap(
+        &self,
+        any_displacement: bool,
+    ) -> Result<Option<meshrefine::surface::Heightmap>, String> {
         let Some(path) = &self.heightmap else {
             return Ok(None);
         };
-        if self.displace != Displace::Heightmap {
-            return Err(format!(
-                "--heightmap applies only to --displace heightmap, not to --displace {}: leave it out or use --displace heightmap",
-                self.displace.name()
-            ));
+        if self.displace != Displace::Heightmap && !any_displacement {
+            return Ok(None);
         }
         meshrefine::surface::Heightmap::load_png(path).map(Some)
     }
@@ -149,6 +167,24 @@ impl ParamOpts {
             bft_level: self.bft_level,
         };
         p.validate()?;
+        Ok(p)
+    }
+
+    /// [`ParamOpts::params`] for `mesh`, with every displacement in `displaces` checked against
+    /// the mesh's scale (`SurfaceParams::check_displacement`): a result that would not be
+    /// finite is refused before anything is drawn.
+    pub fn params_for(
+        &self,
+        mesh: &meshrefine::mesh::Mesh,
+        displaces: &[Displace],
+    ) -> Result<SurfaceParams, String> {
+        let radius = mesh.bounding_radius();
+        let p = self.params(radius)?;
+        let (lo, hi) = mesh.bounds();
+        let extent = lo.abs().max(hi.abs()).length();
+        for &d in displaces {
+            p.check_displacement(d, radius, extent)?;
+        }
         Ok(p)
     }
 }

@@ -13,6 +13,7 @@ pub mod export;
 #[allow(unsafe_code)]
 pub mod gpu;
 pub mod mesh;
+pub mod paths;
 pub mod pattern;
 pub mod render;
 pub mod subdiv;

@@ -9,9 +9,10 @@
 #![forbid(unsafe_code)]
 
 mod cli;
+mod loop_check;
+mod options;
 
 use anyhow::{bail, Context as _, Result};
-use clap::Parser;
 use cli::{Cli, Command, Technique};
 use meshrefine::gpu::{Context, ContextDesc, Messages, ShutdownError};
 use meshrefine::mesh::{LoadReport, Mesh, MeshError};
@@ -51,8 +52,8 @@ fn main() -> ExitCode {
     env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn"))
         .format_timestamp(None)
         .init();
-    let cli = match Cli::try_parse() {
-        Ok(cli) => cli,
+    let (cli, given) = match options::parse() {
+        Ok(parsed) => parsed,
         // --help, --version (to stdout) or a usage error (to stderr, status 2).
         Err(e) => {
             return match e.print() {
@@ -64,6 +65,9 @@ fn main() -> ExitCode {
             };
         }
     };
+    for w in options::warnings(&cli, &given) {
+        note(format_args!("warning: {w}"));
+    }
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
@@ -101,14 +105,19 @@ struct Input {
     tags: Option<Vec<meshrefine::surface::stpn::VertexTag>>,
     /// Why `--surface loop` must refuse the mesh though it loaded ([`loop_refusal`]).
     loop_refusal: Option<String>,
+    /// What loading did (the faces' lines and the file's vertex numbers, for messages).
+    report: LoadReport,
 }
 
 /// Loads what `--heightmap` and `--tags` name for `input`'s mesh; with `--surface stpn` and no
 /// tags file, says where derived tags cannot keep a crease.
-fn attach_surface_inputs(input: &mut Input, s: &cli::SurfaceOpts) -> Result<()> {
-    input.heightmap = s.heightmap().map_err(anyhow::Error::msg)?;
-    input.tags = s.tags(&input.mesh).map_err(anyhow::Error::msg)?;
+/// `any` for the window, whose panel can switch to the surface or displacement they apply to.
+fn attach_surface_inputs(input: &mut Input, s: &cli::SurfaceOpts, any: bool) -> Result<()> {
+    input.heightmap = s.heightmap(any).map_err(anyhow::Error::msg)?;
+    let lines = &input.report.triangle_lines;
+    input.tags = (s.tags(&input.mesh, &input.shown, lines, any)).map_err(anyhow::Error::msg)?;
     if s.surface == meshrefine::surface::Surface::Stpn && s.tags.is_none() {
+        split_three_creases(input, s.crease_angle)?;
         let (_, corners) =
             meshrefine::surface::stpn::derive_with_angle(&input.mesh, s.crease_angle);
         if corners > 0 {
@@ -118,6 +127,48 @@ fn attach_surface_inputs(input: &mut Input, s: &cli::SurfaceOpts) -> Result<()> 
             ));
         }
     }
+    Ok(())
+}
+
+/// Scalar-tagged PN allows two crease corners per triangle: a triangle whose three corners
+/// carry derived creases (from split normals or `--crease-angle`) is split at its centroid
+/// (`Mesh::split_at_centroids`: the new vertex is smooth, the old edges stay, so the surface
+/// stays watertight), with one warning; `input` then carries the tags.
+fn split_three_creases(input: &mut Input, crease_angle: Option<f32>) -> Result<()> {
+    use meshrefine::surface::stpn;
+    let mut tags = match input.tags.take() {
+        Some(t) => t,
+        None => stpn::derive(&input.mesh).0,
+    };
+    let which: Vec<usize> = (input.mesh.triangles.iter().enumerate())
+        .filter(|(_, t)| t.p.iter().all(|&p| tags[p as usize].crease()))
+        .map(|(i, _)| i)
+        .collect();
+    let source = match crease_angle {
+        Some(a) => format!("--crease-angle {a}"),
+        None => "the mesh's split normals".to_string(),
+    };
+    if let Some(&first) = which.first() {
+        let face = input.report.face(first);
+        let origin = input.mesh.split_at_centroids(&which).map_err(|e| {
+            anyhow::anyhow!(
+                "'{}': {face} {} (the creases come from {source}), and it cannot be split: {e}",
+                input.shown,
+                stpn::three_creases_message(&input.mesh, first)
+            )
+        })?;
+        let lines = &input.report.triangle_lines;
+        if !lines.is_empty() {
+            input.report.triangle_lines = origin.iter().map(|&t| lines[t]).collect();
+        }
+        tags.resize(input.mesh.positions.len(), stpn::VertexTag::default());
+        note(format_args!(
+            "warning: '{}': split {} triangle(s) at their centroids, whose three corners are crease vertices (from {source}; scalar-tagged PN triangles allow two; the first: {face})",
+            input.shown,
+            which.len()
+        ));
+    }
+    input.tags = Some(tags);
     Ok(())
 }
 
@@ -166,20 +217,32 @@ fn degenerate_warning(shown: &str, report: &LoadReport) -> Option<String> {
         listed.push(format!("and {} more", runs.len() - LISTED_DEGENERATE));
     }
     Some(format!(
-        "warning: '{shown}': dropped {} degenerate face(s) (repeated vertex, zero area, or an area f32 cannot represent): {}",
+        "warning: '{shown}': dropped {} degenerate face(s) (repeated vertex, zero area, an area f32 cannot represent, or the same three vertices as an earlier face): {}",
         dropped.len(),
         listed.join("; ")
     ))
 }
 
 /// Loop subdivides the file's topology, which a dropped face would change (a hole where it
-/// was): with `--surface loop` the first dropped face is an error, not a warning.
-fn loop_refusal(shown: &str, report: &LoadReport) -> Option<String> {
-    let d = report.dropped_degenerate.first()?;
+/// was): with `--surface loop` the first dropped face is an error, not a warning. With
+/// `topology`, also what Loop cannot subdivide in the faces kept ([`loop_check`]).
+fn loop_refusal(shown: &str, mesh: &Mesh, report: &LoadReport, topology: bool) -> Option<String> {
+    let Some(d) = report.dropped_degenerate.first() else {
+        return topology
+            .then(|| loop_check::topology_refusal(mesh, report))
+            .flatten()
+            .map(|why| format!("'{shown}': the loop surface cannot subdivide it: {why}"));
+    };
     let face = match d.line {
         Some(l) => format!("the face at line {l}"),
         None => format!("face {}", d.face),
     };
+    if d.reason == meshrefine::mesh::DUPLICATE_FACE {
+        return Some(format!(
+            "'{shown}': the loop surface cannot subdivide it: {face} {}: Loop subdivision cannot take two faces on the same three vertices (after one step their edges would be shared by four faces), and dropping one, as the other surfaces do, would open a hole",
+            d.reason
+        ));
+    }
     Some(format!(
         "'{shown}': the loop surface cannot subdivide it: {face} {} ({} degenerate face(s) in all): Loop subdivision needs every face of the file, and dropping it, as the other surfaces do, would open a hole",
         d.reason,
@@ -197,11 +260,12 @@ fn load_mesh(path: Option<&Path>, for_loop: bool) -> Result<Input> {
             heightmap: None,
             tags: None,
             loop_refusal: None,
+            report: LoadReport::default(),
         });
     };
     let shown = p.display().to_string();
     let (mesh, report) = Mesh::load_obj(p)?;
-    let loop_refusal = loop_refusal(&shown, &report);
+    let loop_refusal = loop_refusal(&shown, &mesh, &report, for_loop);
     if let Some(why) = loop_refusal.as_ref().filter(|_| for_loop) {
         bail!("{why}");
     }
@@ -226,6 +290,7 @@ fn load_mesh(path: Option<&Path>, for_loop: bool) -> Result<Input> {
         heightmap: None,
         tags: None,
         loop_refusal,
+        report,
     })
 }
 
@@ -244,26 +309,17 @@ fn require_extension(path: &Path, ext: &str, what: &str) -> Result<()> {
     Ok(())
 }
 
-/// The draw configuration for `mesh` (displacement parameters not given are scaled to it); an
-/// explicit `--submit` with another driver than `pattern` is an error unless `may_switch` (the
-/// window demo, whose keys switch to `pattern`).
-fn draw_config(t: &Technique, mesh: &Mesh, may_switch: bool) -> Result<DrawConfig> {
-    if let (Some(submit), false) = (t.submit, may_switch) {
-        if t.driver.submit().is_none() {
-            bail!(
-                "--submit {} applies only to --driver pattern, not to --driver {}: leave --submit out or use --driver pattern",
-                submit.name(),
-                t.driver.name()
-            );
-        }
-    }
+/// The draw configuration for `mesh` (displacement parameters not given are scaled to it, and
+/// checked against its scale). An explicit `--submit` with another driver than `pattern` is
+/// ignored with a warning (options.rs).
+fn draw_config(t: &Technique, mesh: &Mesh) -> Result<DrawConfig> {
     Ok(DrawConfig {
         surface: t.surface.surface,
         displace: t.surface.displace,
         params: t
             .surface
             .params
-            .params(mesh.bounding_radius())
+            .params_for(mesh, &[t.surface.displace])
             .map_err(anyhow::Error::msg)?,
         // `--driver pattern` parses as the pattern driver; `--submit` gives its mode.
         driver: match t.driver {
@@ -299,13 +355,14 @@ fn with_context<R>(desc: &ContextDesc, f: impl FnOnce(Arc<Context>) -> Result<R>
 
 fn run(cli: Cli) -> Result<()> {
     let desc = context_desc(&cli);
+    options::check_outputs(&cli).map_err(anyhow::Error::msg)?;
     match &cli.command {
         Command::Render(a) => {
             require_extension(&a.output, "png", "render writes PNG images only")?;
             let for_loop = a.technique.surface.surface == Surface::Loop;
             let mut input = load_mesh(a.mesh.as_deref(), for_loop)?;
-            let cfg = draw_config(&a.technique, &input.mesh, false)?;
-            attach_surface_inputs(&mut input, &a.technique.surface)?;
+            let cfg = draw_config(&a.technique, &input.mesh)?;
+            attach_surface_inputs(&mut input, &a.technique.surface, false)?;
             let size = (a.width, a.height);
             with_context(&desc, |ctx| {
                 render_png(ctx, input, &cfg, size, a.wireframe, &a.output)
@@ -323,8 +380,12 @@ fn run(cli: Cli) -> Result<()> {
             )?;
             let for_loop = a.technique.surface.surface == Surface::Loop;
             let mut input = load_mesh(a.mesh.as_deref(), for_loop)?;
-            let cfg = draw_config(&a.technique, &input.mesh, true)?;
-            attach_surface_inputs(&mut input, &a.technique.surface)?;
+            if input.loop_refusal.is_none() && a.mesh.is_some() {
+                // The panel can switch to loop later: say then, in the file's terms, why not.
+                input.loop_refusal = loop_refusal(&input.shown, &input.mesh, &input.report, true);
+            }
+            let cfg = draw_config(&a.technique, &input.mesh)?;
+            attach_surface_inputs(&mut input, &a.technique.surface, true)?;
             let has_display = std::env::var_os("DISPLAY").is_some()
                 || std::env::var_os("WAYLAND_DISPLAY").is_some();
             let why_headless = if has_display {
@@ -365,8 +426,12 @@ fn run(cli: Cli) -> Result<()> {
             require_extension(&a.output, "obj", "export writes Wavefront OBJ text only")?;
             let for_loop = a.surface.surface == Surface::Loop;
             let mut input = load_mesh(a.mesh.as_deref(), for_loop)?;
-            let cfg = draw_config(&a.technique(), &input.mesh, false)?;
-            attach_surface_inputs(&mut input, &a.surface)?;
+            // Loop's elements are M1's faces, four per triangle.
+            let elements = input.mesh.triangles.len() as u64 * if for_loop { 4 } else { 1 };
+            meshrefine::export::check_size(elements, a.level)
+                .map_err(|e| anyhow::anyhow!("cannot export '{}': {e}", input.shown))?;
+            let cfg = draw_config(&a.technique(), &input.mesh)?;
+            attach_surface_inputs(&mut input, &a.surface, false)?;
             let counts = with_context(&desc, |ctx| {
                 let shown = input.shown.clone();
                 export(ctx, input, &cfg, &a.output)
@@ -383,12 +448,16 @@ fn run(cli: Cli) -> Result<()> {
                     a.min_total_ms
                 );
             }
-            let input = load_mesh(a.mesh.as_deref(), a.surfaces.contains(&Surface::Loop))?;
+            let mut input = load_mesh(a.mesh.as_deref(), a.surfaces.contains(&Surface::Loop))?;
+            if a.surfaces.contains(&Surface::Stpn) {
+                // As render does: every surface is then timed on the same, split, mesh.
+                split_three_creases(&mut input, None)?;
+            }
             let (mesh, _) = for_viewing(&input.mesh, &DrawConfig::new(Driver::default(), 1));
             let (centre, scale) = input.mesh.viewing_transform();
             let params = a
                 .params
-                .params(input.mesh.bounding_radius())
+                .params_for(&input.mesh, &a.displacements)
                 .map_err(anyhow::Error::msg)?
                 .in_drawn_frame(centre, scale);
             let surfaces = a
@@ -508,8 +577,22 @@ fn render_png(
         .save_png(out)
         .with_context(|| format!("cannot write '{}'", out.display()))?;
     if covered_pixels(&image) == 0 {
+        // The camera frames the undisplaced mesh: a displacement larger than the mesh moves
+        // the surface out of the picture, whatever the triangles' size.
+        let radius = input.mesh.bounding_radius() as f64;
+        let reach = cfg.params.reach(cfg.displace);
+        let why = if reach > radius {
+            format!(
+                "the displacement ({}) moves the surface up to {:.3e} times the mesh's bounding radius, out of the frame, which shows the undisplaced mesh",
+                cfg.params.reach_options(cfg.displace),
+                reach / radius
+            )
+        } else {
+            "each is much smaller than a pixel when the whole mesh is framed, or seen edge-on"
+                .to_string()
+        };
         bail!(
-            "'{}' is blank: no pixel of the {width}x{height} image shows any of the {triangles} triangle(s) of '{}' (each is much smaller than a pixel when the whole mesh is framed, or seen edge-on)",
+            "'{}' is blank: no pixel of the {width}x{height} image shows any of the {triangles} triangle(s) of '{}' ({why})",
             out.display(),
             input.shown
         );
@@ -520,8 +603,9 @@ fn render_png(
 fn info(a: &cli::InfoArgs) -> Result<()> {
     let (path, level) = (a.mesh.as_path(), a.level);
     let (mesh, report) = Mesh::load_obj(path)?;
-    if let Some(why) = loop_refusal(&path.display().to_string(), &report) {
-        if a.surface == Some(Surface::Loop) {
+    let for_loop = a.surface == Some(Surface::Loop);
+    if let Some(why) = loop_refusal(&path.display().to_string(), &mesh, &report, for_loop) {
+        if for_loop {
             bail!("{why}");
         }
     }
@@ -588,10 +672,11 @@ fn info(a: &cli::InfoArgs) -> Result<()> {
             )
         })?;
         out!(
-            "loop: M1 has {} vertices and {} faces ({:?} boundaries)",
+            "loop: M1 has {} vertices and {} faces ({} boundaries)",
             data.m1.vertex_count,
             data.m1.faces.len(),
-            a.boundary
+            clap::ValueEnum::to_possible_value(&a.boundary)
+                .map_or(String::new(), |v| v.get_name().to_string())
         );
         let configs: Vec<String> = data
             .valences()

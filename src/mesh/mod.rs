@@ -13,7 +13,8 @@
 //!    as fans);
 //! 2. weld: positions that are bitwise equal (after turning `-0.0` into `0.0`) become one
 //!    index, in order of first use;
-//! 3. drop degenerate triangles, those that repeat a position index after welding, whose
+//! 3. drop degenerate triangles, those that repeat a position index after welding, or the
+//!    three positions of an earlier triangle (in any rotation or orientation), or whose
 //!    area is zero (`|cross| <= 1e-12 * longest_edge^2`), or whose area or an edge is not
 //!    representable as a normal `f32` (twice the area below `f32::MIN_POSITIVE` or above
 //!    `f32::MAX`), each with a `log::debug!` and an entry in
@@ -45,6 +46,7 @@ pub mod generate;
 mod normals;
 mod obj;
 mod scan;
+mod split;
 mod topology;
 mod weld;
 
@@ -95,7 +97,35 @@ pub struct LoadReport {
     pub normals_computed: bool,
     /// Faces with more than three corners that were split into triangles.
     pub polygons_triangulated: usize,
+    /// For OBJ input, the line of each kept triangle's face, indexed like [`Mesh::triangles`]
+    /// (empty otherwise): messages name faces as the file does.
+    pub triangle_lines: Vec<usize>,
+    /// For OBJ input, the 1-based number of the first `v` statement that gave each welded
+    /// position, indexed like [`Mesh::positions`] (empty otherwise): messages name vertices
+    /// as the file numbers them.
+    pub vertex_numbers: Vec<usize>,
 }
+
+impl LoadReport {
+    /// "vertex 7" in the file's numbering (or "vertex 6 (0-based)" without one).
+    pub fn vertex(&self, v: u32) -> String {
+        match self.vertex_numbers.get(v as usize) {
+            Some(n) => format!("vertex {n}"),
+            None => format!("vertex {v} (0-based)"),
+        }
+    }
+
+    /// "the face at line 12" (or "triangle 3 (0-based)" without lines).
+    pub fn face(&self, t: usize) -> String {
+        match self.triangle_lines.get(t) {
+            Some(l) => format!("the face at line {l}"),
+            None => format!("triangle {t} (0-based)"),
+        }
+    }
+}
+
+/// [`DegenerateFace::reason`] of a triangle on the same three vertices as an earlier one.
+pub const DUPLICATE_FACE: &str = "repeats the three vertices of an earlier face";
 
 /// A triangle dropped because it is degenerate. A polygon's fan triangles share its `face`.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -106,7 +136,8 @@ pub struct DegenerateFace {
     pub line: Option<usize>,
     /// "repeats a vertex index", "has zero area", or that its area is not representable in
     /// `f32` ("has an area too small for f32 (it underflows)", "has an area or edge too large
-    /// for f32 (it overflows)").
+    /// for f32 (it overflows)"), or "repeats the three vertices of an earlier face" (an exact
+    /// duplicate in any rotation or orientation).
     pub reason: &'static str,
 }
 

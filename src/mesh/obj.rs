@@ -36,23 +36,7 @@ pub(crate) fn load_obj(path: &Path) -> Result<(Mesh, LoadReport), MeshError> {
     parse_obj(&shown, mesh_name(&shown), &text)
 }
 
-/// What a file that is not a regular file is, for messages ("a directory").
-fn file_kind(t: std::fs::FileType) -> &'static str {
-    use std::os::unix::fs::FileTypeExt as _;
-    if t.is_dir() {
-        "a directory"
-    } else if t.is_fifo() {
-        "a FIFO (named pipe)"
-    } else if t.is_socket() {
-        "a socket"
-    } else if t.is_char_device() {
-        "a character device"
-    } else if t.is_block_device() {
-        "a block device"
-    } else {
-        "not a regular file"
-    }
-}
+use crate::paths::file_kind;
 
 /// The bytes of a regular OBJ file of at most [`MAX_OBJ_BYTES`], read incrementally.
 fn read_obj_bytes(shown: &str, path: &Path) -> Result<Vec<u8>, MeshError> {
@@ -262,7 +246,7 @@ pub(crate) fn parse_obj(
     }
 
     let polygons_triangulated = scan.faces.iter().filter(|f| f.corners > 3).count();
-    let result = assemble(RawMesh {
+    let mut result = assemble(RawMesh {
         path: path.into(),
         name,
         positions,
@@ -271,6 +255,7 @@ pub(crate) fn parse_obj(
         texcoords: scan.texcoords,
         polygons_triangulated,
     })?;
+    result.1.vertex_numbers = vertex_numbers(&result.0.positions, &scan.positions);
     log::debug!(
         "'{path}': {} vertices, {} triangles, normals {}",
         result.0.positions.len(),
@@ -282,6 +267,21 @@ pub(crate) fn parse_obj(
         }
     );
     Ok(result)
+}
+
+/// For each welded position, the 1-based number of the first `v` statement that gives it (the
+/// same bits after turning `-0.0` into `0.0`, as welding compares them).
+fn vertex_numbers(welded: &[Vec3], file: &[Vec3]) -> Vec<usize> {
+    let key = |p: Vec3| (p + Vec3::ZERO).to_array().map(f32::to_bits);
+    let mut first: std::collections::HashMap<[u32; 3], usize> =
+        std::collections::HashMap::with_capacity(file.len());
+    for (i, &p) in file.iter().enumerate() {
+        first.entry(key(p)).or_insert(i + 1);
+    }
+    welded
+        .iter()
+        .map(|&p| first.get(&key(p)).copied().unwrap_or(0))
+        .collect()
 }
 
 type TobjOutput = (Vec<Vec3>, Vec<Vec3>, Vec<u32>, Vec<u32>);
@@ -590,6 +590,28 @@ mod tests {
         let path = model_path("degenerate_faces.obj");
         let text = std::fs::read_to_string(&path).unwrap();
         assert_eq!(text.lines().nth(41), Some("f 6 6 7"));
+    }
+
+    #[test]
+    fn duplicate_triangles_are_dropped_in_any_rotation_or_orientation() {
+        // Vertex 4 repeats vertex 1's position (welded), so `f 4 2 3` is `f 1 2 3` again.
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 0\nv 0 0 1\nf 1 2 3\nf 2 3 1\nf 1 3 2\nf 4 2 3\nf 1 2 5\n";
+        let (mesh, report) = load(text).unwrap();
+        assert_eq!(mesh.triangles.len(), 2);
+        let dup = |face, line| DegenerateFace {
+            face,
+            line: Some(line),
+            reason: "repeats the three vertices of an earlier face",
+        };
+        assert_eq!(
+            report.dropped_degenerate,
+            vec![dup(1, 7), dup(2, 8), dup(3, 9)]
+        );
+        // Kept faces keep their lines; welded positions are numbered by their first `v`.
+        assert_eq!(report.triangle_lines, [6, 10]);
+        assert_eq!(report.vertex_numbers, [1, 2, 3, 5]);
+        assert_eq!(report.vertex(3), "vertex 5");
+        assert_eq!(report.face(1), "the face at line 10");
     }
 
     #[test]

@@ -31,6 +31,9 @@ pub(crate) struct Scan {
     pub faces: Vec<FaceInfo>,
     /// Each `vt` statement's `(u, v)`.
     pub texcoords: Vec<Vec2>,
+    /// Each `v` statement's position, in file order (so messages can number vertices as the
+    /// file does).
+    pub positions: Vec<Vec3>,
     /// Each `vn` statement: its line and value.
     normals: Vec<(usize, Vec3)>,
     /// For each corner with a normal: (0-based normal index, line of its face).
@@ -136,8 +139,9 @@ impl Scan {
                 canonical: String::with_capacity(text.len()),
                 faces: Vec::new(),
                 texcoords: Vec::new(),
-                normals: Vec::new(),
+                positions: Vec::with_capacity(v_total),
                 normal_refs: Vec::new(),
+                normals: Vec::new(),
             },
         };
         for (i, line) in text.lines().enumerate() {
@@ -270,6 +274,7 @@ impl Scanner<'_> {
             return Err(self.non_finite(ln, "vertex coordinate"));
         }
         self.v_count += 1;
+        self.scan.positions.push(p);
         // `Display` for f32 prints the shortest text that parses back to the same value.
         self.scan
             .canonical

@@ -1,7 +1,7 @@
 //! Turning validated raw geometry into a [`Mesh`]: welding, dropping degenerate triangles,
 //! and choosing or computing normals. Shared by the OBJ loader and [`Mesh::from_parts`].
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 use glam::{Vec2, Vec3};
 
@@ -37,12 +37,18 @@ pub(crate) struct RawMesh {
     pub polygons_triangulated: usize,
 }
 
-/// Welds, drops degenerate triangles (with a warning each), and sets up normals.
+/// Welds, drops degenerate and duplicate triangles (with a debug line each), and sets up
+/// normals.
 pub(crate) fn assemble(raw: RawMesh) -> Result<(Mesh, LoadReport), MeshError> {
     let path = raw.path;
     let (positions, remap) = weld(&raw.positions);
     let mut dropped = Vec::new();
     let mut triangles = Vec::with_capacity(raw.triangles.len());
+    let mut triangle_lines = Vec::new();
+    // The vertex sets of the triangles kept so far: a triangle on the same three vertices as an
+    // earlier one (any rotation or orientation) adds nothing but overdraw and, for Loop, an
+    // edge shared by more than two faces after one step.
+    let mut seen: HashSet<[u32; 3]> = HashSet::with_capacity(raw.triangles.len());
     for t in &raw.triangles {
         let p = t.p.map(|i| remap[i as usize]);
         let reason = if p[0] == p[1] || p[1] == p[2] || p[2] == p[0] {
@@ -53,6 +59,11 @@ pub(crate) fn assemble(raw: RawMesh) -> Result<(Mesh, LoadReport), MeshError> {
                 None => Some("has zero area"),
             }
         };
+        let reason = reason.or_else(|| {
+            let mut key = p;
+            key.sort_unstable();
+            (!seen.insert(key)).then_some(super::DUPLICATE_FACE)
+        });
         match reason {
             Some(reason) => {
                 // One line per face only at debug level: a file can hold millions of them.
@@ -68,7 +79,10 @@ pub(crate) fn assemble(raw: RawMesh) -> Result<(Mesh, LoadReport), MeshError> {
                     reason,
                 });
             }
-            None => triangles.push(Triangle { p, n: t.n, t: t.t }),
+            None => {
+                triangles.push(Triangle { p, n: t.n, t: t.t });
+                triangle_lines.extend(t.line);
+            }
         }
     }
     if let Some(first) = dropped.first().filter(|_| triangles.is_empty()) {
@@ -79,6 +93,9 @@ pub(crate) fn assemble(raw: RawMesh) -> Result<(Mesh, LoadReport), MeshError> {
         });
     }
 
+    if triangle_lines.len() != triangles.len() {
+        triangle_lines.clear();
+    }
     let normals_computed = raw.normals.is_none();
     let normals = match raw.normals {
         Some(given) => given
@@ -105,6 +122,8 @@ pub(crate) fn assemble(raw: RawMesh) -> Result<(Mesh, LoadReport), MeshError> {
         dropped_degenerate: dropped,
         normals_computed,
         polygons_triangulated: raw.polygons_triangulated,
+        triangle_lines,
+        vertex_numbers: Vec::new(),
     };
     Ok((mesh, report))
 }

@@ -98,14 +98,8 @@ impl Heightmap {
     /// one sentence naming the file on any problem.
     pub fn load_png(path: &Path) -> Result<Self, String> {
         let shown = path.display();
-        let file = std::fs::File::open(path)
-            .map_err(|e| format!("cannot read height map '{shown}': {e}"))?;
-        let meta = file
-            .metadata()
-            .map_err(|e| format!("cannot read height map '{shown}': {e}"))?;
-        if !meta.is_file() {
-            return Err(format!("height map '{shown}' is not a regular file"));
-        }
+        // Checked before opening: opening a FIFO would block (crate::paths).
+        let (file, _) = crate::paths::open_input(path, "height map")?;
         let mut decoder = png::Decoder::new(std::io::BufReader::new(file));
         decoder.set_transformations(png::Transformations::IDENTITY);
         let mut reader = decoder
@@ -123,14 +117,27 @@ impl Heightmap {
             png::ColorType::Grayscale => 1,
             png::ColorType::GrayscaleAlpha => 2,
             other => {
+                let what = match other {
+                    png::ColorType::Rgb => "an RGB colour",
+                    png::ColorType::Rgba => "an RGBA colour",
+                    png::ColorType::Indexed => "a palette (indexed colour)",
+                    _ => "a colour",
+                };
                 return Err(format!(
-                    "height map '{shown}' is a {other:?} PNG: a height map must be grayscale (8 or 16 bits)"
-                ))
+                    "height map '{shown}' is {what} PNG image: a height map must be grayscale (8 or 16 bits per sample)"
+                ));
             }
         };
         if !matches!(depth, png::BitDepth::Eight | png::BitDepth::Sixteen) {
+            let bits = match depth {
+                png::BitDepth::One => 1,
+                png::BitDepth::Two => 2,
+                png::BitDepth::Four => 4,
+                png::BitDepth::Eight => 8,
+                png::BitDepth::Sixteen => 16,
+            };
             return Err(format!(
-                "height map '{shown}' has {depth:?} samples: a height map must have 8 or 16 bits per sample"
+                "height map '{shown}' has {bits}-bit samples: a height map must have 8 or 16 bits per sample"
             ));
         }
         let mut buf = vec![0u8; reader.output_buffer_size()];
@@ -311,9 +318,36 @@ mod tests {
             png::BitDepth::Eight,
             &[0; 6],
         );
-        assert!(Heightmap::load_png(&rgb)
-            .unwrap_err()
-            .contains("must be grayscale"));
+        let e = Heightmap::load_png(&rgb).unwrap_err();
+        assert!(
+            e.contains("is an RGB colour PNG image: a height map must be grayscale"),
+            "{e}"
+        );
+        let indexed = dir.join("indexed.png");
+        {
+            let mut e = png::Encoder::new(std::fs::File::create(&indexed).unwrap(), 2, 1);
+            e.set_color(png::ColorType::Indexed);
+            e.set_depth(png::BitDepth::Eight);
+            e.set_palette(vec![0u8; 6]);
+            e.write_header().unwrap().write_image_data(&[0, 1]).unwrap();
+        }
+        let e = Heightmap::load_png(&indexed).unwrap_err();
+        assert!(e.contains("is a palette (indexed colour) PNG image"), "{e}");
+        let one_bit = write(
+            "one-bit.png",
+            png::ColorType::Grayscale,
+            png::BitDepth::One,
+            &[0b1000_0000],
+        );
+        let e = Heightmap::load_png(&one_bit).unwrap_err();
+        assert!(
+            e.contains("has 1-bit samples: a height map must have 8 or 16"),
+            "{e}"
+        );
+        assert!(!e.contains("One"), "{e}");
+        // Not a regular file: refused without opening (a FIFO would block).
+        let e = Heightmap::load_png(&dir).unwrap_err();
+        assert!(e.contains("is a directory, not a regular file"), "{e}");
         let g16 = write(
             "g16.png",
             png::ColorType::Grayscale,

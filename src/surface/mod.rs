@@ -123,6 +123,24 @@ pub struct SurfaceParams {
     pub bft_level: u32,
 }
 
+/// `x` for messages: as typed for ordinary magnitudes, in exponent form for huge or tiny ones
+/// (`3.4e38`, not 39 digits).
+pub fn shown_number(x: f32) -> String {
+    let a = x.abs();
+    if a != 0.0 && a.is_finite() && !(1e-4..1e7).contains(&a) {
+        format!("{x:e}")
+    } else {
+        format!("{x}")
+    }
+}
+
+/// Largest displacement reach accepted, in bounding radii of the mesh
+/// ([`SurfaceParams::check_displacement`]).
+pub const MAX_REACH_RADII: f64 = 1e6;
+
+/// Largest displacement frequency accepted, in radians per bounding radius of the mesh.
+pub const MAX_FREQUENCY_RADII: f64 = 1e6;
+
 impl Default for SurfaceParams {
     fn default() -> Self {
         Self {
@@ -191,6 +209,83 @@ impl SurfaceParams {
                 self.octaves,
                 Self::MAX_OCTAVES
             ));
+        }
+        Ok(())
+    }
+
+    /// How far displacement `d` can move a point, in the mesh's units: |a| times the largest
+    /// |height| (1 for sine, 2 for noise's octaves, 1 + |bias| for a height map).
+    pub fn reach(&self, d: Displace) -> f64 {
+        let h = match d {
+            Displace::None => 0.0,
+            Displace::Sine => 1.0,
+            Displace::Noise => 2.0,
+            Displace::Heightmap => 1.0 + (self.bias as f64).abs(),
+        };
+        (self.amplitude as f64).abs() * h
+    }
+
+    /// The options that set [`SurfaceParams::reach`], for messages: "--amplitude 2" or
+    /// "--amplitude 2 with --bias 0.5".
+    pub fn reach_options(&self, d: Displace) -> String {
+        if d == Displace::Heightmap && self.bias != 0.0 {
+            format!(
+                "--amplitude {} with --bias {}",
+                shown_number(self.amplitude),
+                shown_number(self.bias)
+            )
+        } else {
+            format!("--amplitude {}", shown_number(self.amplitude))
+        }
+    }
+
+    /// Refuses a displacement whose result would not be finite or meaningful on a mesh of
+    /// bounding radius `radius` whose points are at most `extent` from the origin, before
+    /// anything is drawn: the reach at most [`MAX_REACH_RADII`] radii, the highest frequency
+    /// (the last octave's) at most [`MAX_FREQUENCY_RADII`] radians per radius, and the
+    /// displaced points within `f32`. Within these limits positions, tangents and normals stay
+    /// finite (the normal's perturbation is at most about a·f, whose square is far from
+    /// overflowing).
+    pub fn check_displacement(&self, d: Displace, radius: f32, extent: f32) -> Result<(), String> {
+        if d == Displace::None {
+            return Ok(());
+        }
+        let r = if radius.is_finite() && radius > 0.0 {
+            radius as f64
+        } else {
+            1.0
+        };
+        let reach = self.reach(d);
+        let by = self.reach_options(d);
+        if reach > MAX_REACH_RADII * r {
+            return Err(format!(
+                "{by} moves the surface up to {:.3e} times the mesh's bounding radius ({r:.3e}); at most {MAX_REACH_RADII:e} times is accepted (beyond that positions and normals are not finite)",
+                reach / r
+            ));
+        }
+        if extent as f64 + reach > f32::MAX as f64 / 4.0 {
+            return Err(format!(
+                "{by} moves the surface beyond the range of f32 coordinates (the mesh reaches {extent:e} from the origin)"
+            ));
+        }
+        if matches!(d, Displace::Sine | Displace::Noise) {
+            let octaves = if d == Displace::Noise {
+                self.octaves.max(1)
+            } else {
+                1
+            };
+            let top = self.frequency as f64 * r * 2f64.powi(octaves as i32 - 1);
+            if top > MAX_FREQUENCY_RADII {
+                let with = if octaves > 1 {
+                    format!(" (with --octaves {octaves}, the last octave's)")
+                } else {
+                    String::new()
+                };
+                return Err(format!(
+                    "--frequency {} is {top:.3e} radians per bounding radius of the mesh{with}; at most {MAX_FREQUENCY_RADII:e} is accepted (beyond that the displacement is noise at any level and its normals are not finite)",
+                    shown_number(self.frequency)
+                ));
+            }
         }
         Ok(())
     }
@@ -486,6 +581,77 @@ mod tests {
     /// Displaced tangents hold the normal constant (src/surface/displace.rs), which is exact where
     /// the normal field is constant: displacement is checked on a planar triangle with its face
     /// normal at every corner, where every surface is the plane itself.
+    /// At the displacement limits every local surface's points and normals are finite (the
+    /// triangle's radius is about 1); just past them the parameters are refused up front, with
+    /// the option named.
+    #[test]
+    fn displacement_within_the_limits_is_finite_and_beyond_them_refused() {
+        let r = rec().encode();
+        let radius = 1.0f32;
+        let at_limit = SurfaceParams {
+            amplitude: (MAX_REACH_RADII / 2.0) as f32,
+            frequency: MAX_FREQUENCY_RADII as f32 / 4.0,
+            octaves: 3,
+            ..Default::default()
+        };
+        for d in [Displace::Sine, Displace::Noise] {
+            at_limit.check_displacement(d, radius, 2.0).unwrap();
+            for s in Surface::LOCAL {
+                for bary in [[0.2, 0.3, 0.5], [0.6, 0.1, 0.3], [1.0, 0.0, 0.0]] {
+                    let p = eval(s, d, &at_limit, &r, bary);
+                    assert!(
+                        p.position.is_finite() && (p.normal.length() - 1.0).abs() < 1e-3,
+                        "{} + {}: {p:?}",
+                        s.name(),
+                        d.name()
+                    );
+                }
+            }
+        }
+        let refused = |p: SurfaceParams, d, needle: &str| {
+            let e = p.check_displacement(d, radius, 2.0).unwrap_err();
+            assert!(e.contains(needle), "{e}");
+        };
+        let big = SurfaceParams {
+            amplitude: 3.4e38,
+            ..Default::default()
+        };
+        refused(
+            big,
+            Displace::Sine,
+            "--amplitude 3.4e38 moves the surface up to 3.400e38 times",
+        );
+        let fast = SurfaceParams {
+            frequency: 1e25,
+            ..Default::default()
+        };
+        refused(fast, Displace::Sine, "--frequency 1e25 is 1.000e25 radians");
+        // Octaves double the frequency: the last one counts.
+        let octaves = SurfaceParams {
+            frequency: 2e5,
+            octaves: 4,
+            ..Default::default()
+        };
+        octaves
+            .check_displacement(Displace::Sine, radius, 2.0)
+            .unwrap();
+        refused(octaves, Displace::Noise, "with --octaves 4");
+        let bias = SurfaceParams {
+            amplitude: 1.0,
+            bias: 1e7,
+            ..Default::default()
+        };
+        refused(bias, Displace::Heightmap, "--amplitude 1 with --bias 1e7");
+        // A mesh near f32's range leaves no room to displace outwards.
+        let e = SurfaceParams::default()
+            .check_displacement(Displace::Sine, 1e38, 3e38)
+            .unwrap_err();
+        assert!(e.contains("beyond the range of f32"), "{e}");
+        SurfaceParams::default()
+            .check_displacement(Displace::None, radius, f32::MAX)
+            .unwrap();
+    }
+
     #[test]
     fn tangents_are_the_derivatives() {
         let curved = rec().encode();

@@ -232,6 +232,15 @@ fn derive_from_normals(mesh: &Mesh) -> (Vec<VertexTag>, usize) {
     (tags, corners)
 }
 
+/// Largest sharpness and bias magnitude a tags file may give: `N ± σD` and `N + βD` are
+/// normalized in `f32`, whose squares overflow near 1.8e19 (NaN normals); beyond 1e6 the sharp
+/// normal is within 0.0001° of ±D anyway.
+pub const MAX_SHARPNESS: f32 = 1e6;
+
+/// A crease direction is refused when its part across the normal is less than this fraction
+/// of its length (within about 0.06° of the normal): what is left is rounding, not a direction.
+const MIN_ACROSS: f32 = 1e-3;
+
 /// Reads a tags file for `mesh`. Format (documented in docs/surfaces.md): `#` comments and blank lines;
 /// one line per tagged vertex, `t X Y Z TENSION [SHARPNESS BIAS DX DY DZ]`, the vertex named by
 /// its coordinates exactly as its `v` line gives them. Untagged vertices keep `base`.
@@ -250,10 +259,13 @@ pub fn parse(
     let normals =
         crate::mesh::compute_area_weighted_normals(&mesh.positions, &mesh.position_indices());
     let mut tags = base.to_vec();
+    // The line that tagged each vertex so far.
+    let mut tagged_at: std::collections::HashMap<usize, usize> = std::collections::HashMap::new();
     for (i, line) in text.lines().enumerate() {
         let at = |msg: String| format!("tags file '{shown}' line {}: {msg}", i + 1);
-        let line = line.trim();
-        if line.is_empty() || line.starts_with('#') {
+        // A `#` starts a comment, at the start of a line or after the numbers.
+        let line = line.split('#').next().unwrap_or("").trim();
+        if line.is_empty() {
             continue;
         }
         let words: Vec<&str> = line.split_whitespace().collect();
@@ -283,6 +295,12 @@ pub fn parse(
                 v[0], v[1], v[2]
             )));
         };
+        if let Some(first) = tagged_at.insert(vi, i + 1) {
+            return Err(at(format!(
+                "the vertex at ({}, {}, {}) was already tagged at line {first}: one line per vertex (a vertex has at most one crease)",
+                v[0], v[1], v[2]
+            )));
+        }
         if !(-1.0..=1.0).contains(&v[3]) {
             return Err(at(format!("tension {} is not within [-1, 1]", v[3])));
         }
@@ -291,17 +309,42 @@ pub fn parse(
             ..tags[vi]
         };
         if v.len() == 9 {
-            if v[4] < 0.0 {
-                return Err(at(format!("sharpness {} is negative", v[4])));
+            if !(0.0..=MAX_SHARPNESS).contains(&v[4]) {
+                return Err(at(format!(
+                    "sharpness {} is not within [0, {MAX_SHARPNESS:e}]",
+                    super::shown_number(v[4])
+                )));
             }
-            let d = Vec3::new(v[6], v[7], v[8]);
+            if v[5].abs() > MAX_SHARPNESS {
+                return Err(at(format!(
+                    "bias {} is not within [-{MAX_SHARPNESS:e}, {MAX_SHARPNESS:e}]",
+                    super::shown_number(v[5])
+                )));
+            }
+            let given = Vec3::new(v[6], v[7], v[8]);
             let n = if tags[vi].crease() {
                 tags[vi].normal
             } else {
                 normals[vi]
             };
-            // The crease direction lies in the tangent plane.
-            let d = (d - n * d.dot(n)).normalize_or_zero();
+            // The crease direction lies in the tangent plane. Scaled to a largest component of
+            // 1 first, so a huge direction does not overflow.
+            let largest = given.abs().max_element();
+            if largest == 0.0 {
+                return Err(at(format!(
+                    "crease direction ({}, {}, {}) is zero: give a direction across the crease, or only X Y Z TENSION for a smooth vertex",
+                    v[6], v[7], v[8]
+                )));
+            }
+            let d = given / largest;
+            let across = d - n * d.dot(n);
+            if across.length() < MIN_ACROSS * d.length() {
+                return Err(at(format!(
+                    "crease direction ({}, {}, {}) is parallel to the vertex's normal ({}, {}, {}): it must point across the crease, in the tangent plane",
+                    v[6], v[7], v[8], n.x, n.y, n.z
+                )));
+            }
+            let d = across.normalize();
             tag.sharpness = v[4];
             tag.bias = v[5];
             tag.direction = d;
@@ -314,16 +357,30 @@ pub fn parse(
 
 /// Appendix B's restriction that tags must meet: at most two crease vertices per triangle.
 pub fn check(mesh: &Mesh, tags: &[VertexTag]) -> Result<(), String> {
-    for (t, tri) in mesh.triangles.iter().enumerate() {
-        if tri.p.iter().all(|&p| tags[p as usize].crease()) {
-            let p = tri.p.map(|i| mesh.positions[i as usize]);
-            return Err(format!(
-                "triangle {} has three crease vertices ({}, {}, {}): scalar-tagged PN triangles allow at most two per triangle",
-                t + 1, p[0], p[1], p[2]
-            ));
-        }
+    match three_creases(mesh, tags) {
+        Some(t) => Err(format!(
+            "triangle {} {}",
+            t + 1,
+            three_creases_message(mesh, t)
+        )),
+        None => Ok(()),
     }
-    Ok(())
+}
+
+/// The first triangle whose three corners are crease vertices (appendix B's restriction).
+pub fn three_creases(mesh: &Mesh, tags: &[VertexTag]) -> Option<usize> {
+    mesh.triangles
+        .iter()
+        .position(|tri| tri.p.iter().all(|&p| tags[p as usize].crease()))
+}
+
+/// "has three crease vertices (P, Q, R): ..." for triangle `t`, after the caller names it.
+pub fn three_creases_message(mesh: &Mesh, t: usize) -> String {
+    let p = mesh.triangles[t].p.map(|i| mesh.positions[i as usize]);
+    format!(
+        "has three crease vertices ({}, {}, {}): scalar-tagged PN triangles allow at most two per triangle",
+        p[0], p[1], p[2]
+    )
 }
 
 /// The tags of a triangle's canonical corners (`Corners::order` into the record's stored
@@ -468,6 +525,22 @@ mod tests {
         let ok = format!("# tags\n\nt {} {} {} 0.5\n", p.x, p.y, p.z);
         let tags = parse("t.tags", &ok, &mesh, &base).unwrap();
         assert_eq!(tags[0].tension, 0.5);
+        let n0 =
+            crate::mesh::compute_area_weighted_normals(&mesh.positions, &mesh.position_indices())
+                [0];
+        // Comments after the numbers; a huge direction is the same direction, not dropped.
+        let small = format!("t {} {} {} 0.5 2 0 1 0 0 # note\n", p.x, p.y, p.z);
+        let huge = format!("t {} {} {} 0.5 2 0 1e30 0 0\n", p.x, p.y, p.z);
+        let small = parse("t.tags", &small, &mesh, &base).unwrap();
+        let huge = parse("t.tags", &huge, &mesh, &base).unwrap();
+        assert!(small[0].crease() && small[0].direction.is_normalized());
+        assert!(
+            (huge[0].direction - small[0].direction).length() < 1e-6,
+            "{:?} {:?}",
+            huge[0].direction,
+            small[0].direction
+        );
+        assert!((huge[0].direction.dot(n0)).abs() < 1e-6);
         for (text, needle) in [
             ("x 1 2 3 0\n".to_string(), "line 1: 'x' is not a tag line"),
             ("\nt 1 2\n".to_string(), "line 2: 2 numbers"),
@@ -485,7 +558,41 @@ mod tests {
             ),
             (
                 format!("t {} {} {} 0 -1 0 1 0 0\n", p.x, p.y, p.z),
-                "sharpness -1 is negative",
+                "sharpness -1 is not within [0, 1e6]",
+            ),
+            // Overflowing sharpness or bias would normalize to NaN normals.
+            (
+                format!("t {} {} {} 0 1e20 0 1 0 0\n", p.x, p.y, p.z),
+                "line 1: sharpness 1e20 is not within [0, 1e6]",
+            ),
+            (
+                format!("t {} {} {} 0 1 -1e20 1 0 0\n", p.x, p.y, p.z),
+                "bias -1e20 is not within [-1e6, 1e6]",
+            ),
+            (
+                format!("t {} {} {} 0 1 0 0 0 0\n", p.x, p.y, p.z),
+                "line 1: crease direction (0, 0, 0) is zero",
+            ),
+            (
+                format!(
+                    "t {} {} {} 0 1 0 {} {} {}\n",
+                    p.x,
+                    p.y,
+                    p.z,
+                    -n0.x * 5.0,
+                    -n0.y * 5.0,
+                    -n0.z * 5.0
+                ),
+                "is parallel to the vertex's normal",
+            ),
+            // A comment after the numbers is not counted as numbers; a second line for the
+            // same vertex is an error naming the first.
+            (
+                format!(
+                    "t {} {} {} 0 1 0 1 0 0 # x\n\nt {} {} {} 0.5\n",
+                    p.x, p.y, p.z, p.x, p.y, p.z
+                ),
+                "line 3: the vertex at",
             ),
         ] {
             let e = parse("t.tags", &text, &mesh, &base).unwrap_err();

@@ -1,0 +1,143 @@
+//! What Loop subdivision cannot take in a loaded mesh, said in the file's own terms.
+//!
+//! `subdiv::Topology` reports problems with the welded mesh's 0-based indices, and for M1 (the
+//! mesh after one Loop step) with vertices the file does not have. Before anything is built,
+//! the command checks M0 and M1 here and names the file's vertices (by the number of their
+//! first `v` line) and faces (by their line), from the [`LoadReport`]. Faces on the same three
+//! vertices as an earlier one, which make M1 non-manifold though M0 is, are refused earlier, as
+//! dropped faces (see `loop_refusal` in main.rs).
+#![forbid(unsafe_code)]
+
+use meshrefine::mesh::{LoadReport, Mesh};
+use meshrefine::subdiv::{Topology, TopologyError};
+
+/// The faces (their names in messages, first two at most) that use edge (a, b), either way.
+fn faces_on_edge(mesh: &Mesh, report: &LoadReport, a: u32, b: u32) -> Vec<String> {
+    mesh.triangles
+        .iter()
+        .enumerate()
+        .filter(|(_, t)| t.p.contains(&a) && t.p.contains(&b))
+        .map(|(i, _)| report.face(i))
+        .collect()
+}
+
+/// The first face that uses vertex `v`.
+fn face_at(mesh: &Mesh, report: &LoadReport, v: u32) -> Option<String> {
+    let i = mesh.triangles.iter().position(|t| t.p.contains(&v))?;
+    Some(report.face(i))
+}
+
+/// Why Loop cannot subdivide `mesh` (one clause for "'x.obj': the loop surface cannot subdivide
+/// it: ..."), or None when it can.
+pub fn topology_refusal(mesh: &Mesh, report: &LoadReport) -> Option<String> {
+    let m0 = match Topology::of_mesh(mesh) {
+        Ok(t) => t,
+        Err(e) => return Some(m0_message(mesh, report, &e)),
+    };
+    // M0 passed: M1 can only fail where M0 is manifold but one step is not (not expected once
+    // duplicate faces are gone); said without M1's indices, which mean nothing to the user.
+    let m1 = meshrefine::surface::subdivision::m1_topology(mesh);
+    drop(m0);
+    m1.err().map(|e| {
+        format!(
+            "after one Loop step its topology breaks ({}), which Loop subdivision cannot continue from",
+            match e {
+                TopologyError::RepeatedVertex { .. } => "a face repeats a vertex",
+                TopologyError::NonManifoldEdge { .. } => "an edge is shared by more than two faces",
+                TopologyError::OrientationConflict { .. } => "the faces are not consistently oriented",
+                TopologyError::NonManifoldVertex { .. } => "a vertex joins separate fans of faces",
+            }
+        )
+    })
+}
+
+fn m0_message(mesh: &Mesh, report: &LoadReport, e: &TopologyError) -> String {
+    let v = |i: u32| report.vertex(i);
+    match *e {
+        TopologyError::RepeatedVertex { face, vertex } => format!(
+            "{} repeats {}: Loop subdivision needs triangles of three distinct vertices",
+            report.face(face),
+            v(vertex)
+        ),
+        TopologyError::NonManifoldEdge { a, b } => {
+            let faces = faces_on_edge(mesh, report, a, b);
+            format!(
+                "the edge between {} and {} is shared by more than two faces ({}): Loop subdivision needs a manifold mesh",
+                v(a),
+                v(b),
+                list(&faces)
+            )
+        }
+        TopologyError::OrientationConflict { a, b } => {
+            let faces: Vec<String> = mesh
+                .triangles
+                .iter()
+                .enumerate()
+                .filter(|(_, t)| (0..3).any(|k| t.p[k] == a && t.p[(k + 1) % 3] == b))
+                .map(|(i, _)| report.face(i))
+                .collect();
+            format!(
+                "{} both run from {} to {}: the faces around that edge are not consistently oriented, which Loop subdivision needs (flip one of them)",
+                list(&faces),
+                v(a),
+                v(b)
+            )
+        }
+        TopologyError::NonManifoldVertex { vertex, fans } => format!(
+            "{}{} is non-manifold: its faces form {fans} separate fans, not one disk or half-disk, which Loop subdivision needs",
+            v(vertex),
+            face_at(mesh, report, vertex)
+                .map(|f| format!(" (used by {f})"))
+                .unwrap_or_default()
+        ),
+    }
+}
+
+/// "A and B", "A, B and C", or the first three and how many more.
+fn list(items: &[String]) -> String {
+    match items {
+        [] => String::new(),
+        [a] => a.clone(),
+        [rest @ .., last] if rest.len() < 3 => format!("{} and {last}", rest.join(", ")),
+        _ => format!("{} and {} more", items[..3].join(", "), items.len() - 3),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn refusal(text: &str) -> Option<String> {
+        let (mesh, report) = Mesh::from_obj_str("x.obj", text).unwrap();
+        topology_refusal(&mesh, &report)
+    }
+
+    #[test]
+    fn messages_use_the_files_numbers_and_lines() {
+        // Three faces on the edge between vertices 1 and 2 (a fin), listed after a vertex that
+        // no face uses: the file's numbering, not the welded one.
+        let fin =
+            "v 9 9 9\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 2 3 4\nf 3 2 5\nf 2 3 6\n";
+        let e = refusal(fin).unwrap();
+        assert_eq!(
+            e,
+            "the edge between vertex 2 and vertex 3 is shared by more than two faces (the face at line 7, the face at line 8 and the face at line 9): Loop subdivision needs a manifold mesh"
+        );
+        let flipped = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 3 4\n";
+        let e = refusal(flipped).unwrap();
+        assert!(
+            e.starts_with(
+                "the face at line 5 and the face at line 6 both run from vertex 2 to vertex 3"
+            ),
+            "{e}"
+        );
+        // Two fans meeting at vertex 1 (a bow tie).
+        let bowtie = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv -1 0 0\nv 0 -1 0\nf 1 2 3\nf 1 4 5\n";
+        let e = refusal(bowtie).unwrap();
+        assert!(
+            e.starts_with("vertex 1 (used by the face at line 6) is non-manifold: its faces form 2 separate fans"),
+            "{e}"
+        );
+        assert_eq!(refusal("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"), None);
+    }
+}

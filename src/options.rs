@@ -1,0 +1,296 @@
+//! Options that do not apply to what was chosen: one rule for all of them.
+//!
+//! An option that only one surface, displacement or driver reads (`--alpha` only phong,
+//! `--tags` only stpn, `--submit` only the pattern driver, ...) but was given with another is
+//! ignored with one warning line naming the option, what it applies to and what was chosen; the
+//! run goes on. A warning, not an error, because nothing about the request is wrong: the
+//! option is merely unused (scripts that pass the same options to every surface keep working),
+//! and the warning says so where a typo would otherwise go unnoticed. `view` warns about none
+//! of them: its panel switches surfaces, displacements and drivers, so every option can apply
+//! later.
+//!
+//! Whether an option was given is read from clap's matches ([`Given`]), so options with a
+//! default (`--alpha 0.75`) are told apart from the default itself.
+#![forbid(unsafe_code)]
+
+use crate::cli::Cli;
+use clap::parser::ValueSource;
+use clap::{CommandFactory as _, FromArgMatches as _};
+use meshrefine::surface::{Displace, Surface};
+use std::collections::HashSet;
+
+/// The ids (field names) of the options given on the command line, not left at their defaults.
+#[derive(Debug, Default)]
+pub struct Given(HashSet<String>);
+
+impl Given {
+    pub fn has(&self, id: &str) -> bool {
+        self.0.contains(id)
+    }
+}
+
+/// Parses the command line like `Cli::try_parse`, and says which options were given.
+pub fn parse() -> Result<(Cli, Given), clap::Error> {
+    let mut command = Cli::command();
+    let matches = command.try_get_matches_from_mut(std::env::args_os())?;
+    let cli = Cli::from_arg_matches(&matches).map_err(|e| e.format(&mut command))?;
+    let given = matches
+        .subcommand()
+        .map(|(_, sub)| {
+            sub.ids()
+                .filter(|id| sub.value_source(id.as_str()) == Some(ValueSource::CommandLine))
+                .map(|id| id.as_str().to_string())
+                .collect()
+        })
+        .unwrap_or_default();
+    Ok((cli, Given(given)))
+}
+
+/// What a command chose: the surfaces and displacements it draws (several for `bench`), with
+/// the option that chose them for messages, and whether the driver is the pattern driver.
+pub struct Chosen<'a> {
+    pub surfaces: &'a [Surface],
+    /// "--surface pn" or "--surfaces flat,pn".
+    pub surface_shown: String,
+    pub displaces: &'a [Displace],
+    pub displace_shown: String,
+    /// `Some((is the pattern driver, "--driver tess"))` where the command has a driver.
+    pub driver: Option<(bool, String)>,
+}
+
+/// "--surface pn" / "--surfaces flat,pn" for messages.
+pub fn shown<T: Copy>(option: &str, values: &[T], name: impl Fn(T) -> &'static str) -> String {
+    let names: Vec<&str> = values.iter().map(|&v| name(v)).collect();
+    format!("{option} {}", names.join(","))
+}
+
+/// One warning line (without "warning: ") for every given option that nothing chosen reads.
+pub fn inapplicable(given: &Given, c: &Chosen) -> Vec<String> {
+    use Displace as D;
+    use Surface as S;
+    let surface = |list: &'static [Surface], what: &'static str| {
+        let applies = c.surfaces.iter().any(|s| list.contains(s));
+        (applies, what, c.surface_shown.clone())
+    };
+    let displace = |list: &'static [Displace], what: &'static str| {
+        let applies = c.displaces.iter().any(|d| list.contains(d));
+        (applies, what, c.displace_shown.clone())
+    };
+    let rules: Vec<(&str, &str, (bool, &str, String))> = vec![
+        ("alpha", "--alpha", surface(&[S::Phong], "--surface phong")),
+        (
+            "pn_seams",
+            "--pn-seams",
+            surface(&[S::Phong, S::Pn, S::Stpn], "--surface phong, pn or stpn"),
+        ),
+        ("tags", "--tags", surface(&[S::Stpn], "--surface stpn")),
+        (
+            "crease_angle",
+            "--crease-angle",
+            surface(&[S::Stpn], "--surface stpn"),
+        ),
+        (
+            "boundary",
+            "--boundary",
+            surface(&[S::Loop], "--surface loop"),
+        ),
+        (
+            "bft_level",
+            "--bft-level",
+            surface(&[S::Loop], "--surface loop"),
+        ),
+        (
+            "amplitude",
+            "--amplitude",
+            displace(
+                &[D::Sine, D::Noise, D::Heightmap],
+                "--displace sine, noise or heightmap",
+            ),
+        ),
+        (
+            "frequency",
+            "--frequency",
+            displace(&[D::Sine, D::Noise], "--displace sine or noise"),
+        ),
+        (
+            "octaves",
+            "--octaves",
+            displace(&[D::Noise], "--displace noise"),
+        ),
+        (
+            "bias",
+            "--bias",
+            displace(&[D::Heightmap], "--displace heightmap"),
+        ),
+        (
+            "heightmap",
+            "--heightmap",
+            displace(&[D::Heightmap], "--displace heightmap"),
+        ),
+    ];
+    let mut out: Vec<String> = rules
+        .into_iter()
+        .filter(|(id, _, (applies, _, _))| given.has(id) && !applies)
+        .map(|(_, option, (_, what, chosen))| {
+            format!("{option} applies only to {what}, not to {chosen}: it is ignored")
+        })
+        .collect();
+    if let Some((false, driver)) = &c.driver {
+        if given.has("submit") {
+            out.push(format!(
+                "--submit applies only to --driver pattern, not to {driver}: it is ignored"
+            ));
+        }
+    }
+    out
+}
+
+/// The warnings (without "warning: ") for the options `cli`'s command ignores.
+pub fn warnings(cli: &Cli, given: &Given) -> Vec<String> {
+    use crate::cli::{Command, ExportDriver};
+    let one = |s: &crate::cli::SurfaceOpts,
+               driver: (bool, String),
+               f: &dyn Fn(&Chosen) -> Vec<String>| {
+        f(&Chosen {
+            surfaces: std::slice::from_ref(&s.surface),
+            surface_shown: format!("--surface {}", s.surface.name()),
+            displaces: std::slice::from_ref(&s.displace),
+            displace_shown: format!("--displace {}", s.displace.name()),
+            driver: Some(driver),
+        })
+    };
+    let check = |c: &Chosen| inapplicable(given, c);
+    match &cli.command {
+        // The window's panel can switch to whatever an option applies to.
+        Command::View(_) => Vec::new(),
+        Command::Render(a) => {
+            let d = a.technique.driver;
+            let driver = (d.submit().is_some(), format!("--driver {}", d.name()));
+            one(&a.technique.surface, driver, &check)
+        }
+        Command::Export(a) => {
+            let driver = match a.driver {
+                ExportDriver::Pattern => (true, "--driver pattern".to_string()),
+                ExportDriver::Tess => (false, "--driver tess".to_string()),
+            };
+            one(&a.surface, driver, &check)
+        }
+        Command::Bench(a) => check(&Chosen {
+            surfaces: &a.surfaces,
+            surface_shown: shown("--surfaces", &a.surfaces, Surface::name),
+            displaces: &a.displacements,
+            displace_shown: shown("--displacements", &a.displacements, Displace::name),
+            driver: None,
+        }),
+        Command::Info(a) => {
+            let surfaces: Vec<Surface> = a.surface.into_iter().collect();
+            let mut out = Vec::new();
+            if let Some(s) = a.surface.filter(|&s| s != Surface::Loop) {
+                out.push(format!(
+                    "info --surface reports only what --surface loop builds, not --surface {}: it is ignored",
+                    s.name()
+                ));
+            }
+            out.extend(check(&Chosen {
+                surfaces: &surfaces,
+                surface_shown: match a.surface {
+                    Some(s) => format!("--surface {}", s.name()),
+                    None => "info without --surface".to_string(),
+                },
+                displaces: &[],
+                displace_shown: String::new(),
+                driver: None,
+            }));
+            out
+        }
+    }
+}
+
+/// Checks every output path of `cli`'s command by the rules of `meshrefine::paths`, before any
+/// work is done.
+pub fn check_outputs(cli: &Cli) -> Result<(), String> {
+    use crate::cli::Command;
+    use meshrefine::paths::{check_output, Output};
+    match &cli.command {
+        Command::Render(a) => check_output(&a.output, "-o", Output::File),
+        Command::Export(a) => check_output(&a.output, "-o", Output::File),
+        Command::View(a) => {
+            if let Some(shot) = &a.screenshot {
+                check_output(shot, "--screenshot", Output::File)?;
+            }
+            check_output(&a.headless_output, "--headless-output", Output::File)
+        }
+        Command::Bench(a) => match &a.out {
+            Some(prefix) => check_output(prefix, "--out", Output::Prefix),
+            None => Ok(()),
+        },
+        Command::Info(_) => Ok(()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn given(ids: &[&str]) -> Given {
+        Given(ids.iter().map(|s| s.to_string()).collect())
+    }
+
+    fn chosen<'a>(surfaces: &'a [Surface], displaces: &'a [Displace]) -> Chosen<'a> {
+        Chosen {
+            surfaces,
+            surface_shown: shown("--surfaces", surfaces, Surface::name),
+            displaces,
+            displace_shown: shown("--displace", displaces, Displace::name),
+            driver: Some((false, "--driver tess".into())),
+        }
+    }
+
+    #[test]
+    fn every_option_warns_only_where_nothing_chosen_reads_it() {
+        let all = [
+            "alpha",
+            "pn_seams",
+            "tags",
+            "crease_angle",
+            "boundary",
+            "bft_level",
+            "amplitude",
+            "frequency",
+            "octaves",
+            "bias",
+            "heightmap",
+            "submit",
+        ];
+        let w = inapplicable(&given(&all), &chosen(&[Surface::Flat], &[Displace::None]));
+        assert_eq!(w.len(), all.len(), "{w:#?}");
+        assert_eq!(
+            w[0],
+            "--alpha applies only to --surface phong, not to --surfaces flat: it is ignored"
+        );
+        assert_eq!(
+            w[11],
+            "--submit applies only to --driver pattern, not to --driver tess: it is ignored"
+        );
+        // Each surface or displacement silences exactly its own options.
+        let w = inapplicable(
+            &given(&all),
+            &chosen(&[Surface::Flat, Surface::Phong], &[Displace::Noise]),
+        );
+        let named: Vec<&str> = w.iter().map(|l| l.split(' ').next().unwrap()).collect();
+        assert_eq!(
+            named,
+            [
+                "--tags",
+                "--crease-angle",
+                "--boundary",
+                "--bft-level",
+                "--bias",
+                "--heightmap",
+                "--submit"
+            ]
+        );
+        // Options not given never warn.
+        assert!(inapplicable(&given(&[]), &chosen(&[Surface::Flat], &[Displace::None])).is_empty());
+    }
+}

@@ -1,0 +1,187 @@
+//! The rules every file path given on the command line follows, in one place.
+//!
+//! # Inputs
+//!
+//! Every input (the OBJ mesh, `--tags`, `--heightmap`) must be a regular file. That is checked
+//! from the path's metadata *before* the file is opened, because opening a FIFO for reading
+//! blocks until a writer comes (a hang, not an error), and again on the opened file, in case
+//! the path was replaced in between. `metadata` follows symbolic links, so a link to a FIFO is
+//! refused too. The message names the file and what it is instead ("is a FIFO (named pipe)").
+//!
+//! # Outputs
+//!
+//! Checked up front, before any work, so that a long render or export does not end in a
+//! refusal:
+//! - the folder that will hold the file must exist (it is never created);
+//! - a path that names a directory (or ends in `/`) is refused: outputs are files, and the
+//!   command does not invent names inside a folder;
+//! - a single-file output (`render -o`, `export -o`, `view --screenshot`) may name an existing
+//!   device or FIFO, which is then written as Unix tools do (the commands still require the
+//!   format's extension);
+//! - a prefix output (`bench --out PREFIX` writes `PREFIX.md`, `.csv`, `.json`) must not name
+//!   an existing file that is not a regular file: the files would be created beside it
+//!   (`/dev/full.md`), which nobody means.
+#![forbid(unsafe_code)]
+
+use std::fs::{File, FileType, Metadata};
+use std::path::Path;
+
+/// What a file that is not a regular file is, for messages ("a directory").
+pub fn file_kind(t: FileType) -> &'static str {
+    use std::os::unix::fs::FileTypeExt as _;
+    if t.is_dir() {
+        "a directory"
+    } else if t.is_fifo() {
+        "a FIFO (named pipe)"
+    } else if t.is_socket() {
+        "a socket"
+    } else if t.is_char_device() {
+        "a character device"
+    } else if t.is_block_device() {
+        "a block device"
+    } else {
+        "not a regular file"
+    }
+}
+
+/// Opens the input file `path`, which messages call `what` ("height map"), refusing anything
+/// but a regular file without opening it first (see the module notes). Returns the file and its
+/// metadata, or one sentence naming the file.
+pub fn open_input(path: &Path, what: &str) -> Result<(File, Metadata), String> {
+    let shown = path.display();
+    let io = |e: std::io::Error| format!("cannot read {what} '{shown}': {e}");
+    let not_regular = |t: FileType| {
+        format!(
+            "{what} '{shown}' is {}, not a regular file: only regular files are read",
+            file_kind(t)
+        )
+    };
+    let meta = std::fs::metadata(path).map_err(io)?;
+    if !meta.is_file() {
+        return Err(not_regular(meta.file_type()));
+    }
+    let file = File::open(path).map_err(io)?;
+    let meta = file.metadata().map_err(io)?;
+    if !meta.is_file() {
+        return Err(not_regular(meta.file_type()));
+    }
+    Ok((file, meta))
+}
+
+/// How an output path is used.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Output {
+    /// The path is the file written (a device or FIFO there is written as it is).
+    File,
+    /// The path is a prefix: files named PREFIX + extension are written beside it.
+    Prefix,
+}
+
+/// Checks the output path that option `option` ("-o", "--out") names, before any work (see the
+/// module notes): one sentence naming the path, or Ok.
+pub fn check_output(path: &Path, option: &str, kind: Output) -> Result<(), String> {
+    let shown = path.display();
+    let text = path.as_os_str().to_string_lossy();
+    if text.is_empty() {
+        return Err(format!("{option} is empty: name a file"));
+    }
+    let name_it = match kind {
+        Output::File => "name a file inside it",
+        Output::Prefix => {
+            "name a prefix inside it (PREFIX gives PREFIX.md, PREFIX.csv and PREFIX.json)"
+        }
+    };
+    if text.ends_with('/') || path.is_dir() {
+        return Err(format!(
+            "{option} '{shown}' is a directory, not a file: {name_it}"
+        ));
+    }
+    let parent = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    match std::fs::metadata(parent) {
+        Ok(m) if m.is_dir() => {}
+        Ok(m) => {
+            return Err(format!(
+                "{option} '{shown}': '{}' is {}, not a folder",
+                parent.display(),
+                file_kind(m.file_type())
+            ))
+        }
+        Err(_) => {
+            return Err(format!(
+                "{option} '{shown}': the folder '{}' does not exist (outputs never create folders)",
+                parent.display()
+            ))
+        }
+    }
+    if kind == Output::Prefix {
+        if let Ok(m) = std::fs::metadata(path) {
+            if !m.is_file() {
+                return Err(format!(
+                    "{option} '{shown}' is {}: {option} takes a prefix, and PREFIX.md, PREFIX.csv and PREFIX.json would be created beside it",
+                    file_kind(m.file_type())
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn dir() -> std::path::PathBuf {
+        let d = std::env::temp_dir().join("meshrefine-paths-test");
+        std::fs::create_dir_all(&d).unwrap();
+        d
+    }
+
+    #[test]
+    fn inputs_must_be_regular_files() {
+        let d = dir();
+        let f = d.join("file.txt");
+        std::fs::write(&f, "x").unwrap();
+        assert!(open_input(&f, "tags file").is_ok());
+        let e = open_input(&d, "height map").unwrap_err();
+        assert!(
+            e.starts_with("height map '") && e.contains("is a directory"),
+            "{e}"
+        );
+        let e = open_input(&d.join("missing"), "tags file").unwrap_err();
+        assert!(e.starts_with("cannot read tags file '"), "{e}");
+        let e = open_input(Path::new("/dev/null"), "height map").unwrap_err();
+        assert!(e.contains("is a character device"), "{e}");
+    }
+
+    #[test]
+    fn outputs_need_an_existing_folder_and_a_file_name() {
+        let d = dir();
+        let ok = d.join("x.png");
+        assert_eq!(check_output(&ok, "-o", Output::File), Ok(()));
+        assert_eq!(check_output(Path::new("x.png"), "-o", Output::File), Ok(()));
+        for kind in [Output::File, Output::Prefix] {
+            let e = check_output(&d, "-o", kind).unwrap_err();
+            assert!(e.contains("is a directory, not a file"), "{e}");
+            let slash = format!("{}/", d.join("sub").display());
+            let e = check_output(Path::new(&slash), "--out", kind).unwrap_err();
+            assert!(e.contains("is a directory, not a file"), "{e}");
+            let e = check_output(&d.join("nodir/x"), "-o", kind).unwrap_err();
+            assert!(
+                e.contains("the folder '") && e.contains("nodir' does not exist"),
+                "{e}"
+            );
+        }
+        // A device is written as it is by a single-file output, never beside by a prefix.
+        assert_eq!(
+            check_output(Path::new("/dev/null"), "-o", Output::File),
+            Ok(())
+        );
+        let e = check_output(Path::new("/dev/null"), "--out", Output::Prefix).unwrap_err();
+        assert!(e.contains("is a character device"), "{e}");
+        let e = check_output(Path::new("/dev/null/x"), "-o", Output::File).unwrap_err();
+        assert!(e.contains("is a character device, not a folder"), "{e}");
+    }
+}
