@@ -36,7 +36,7 @@ pub fn topology_refusal(mesh: &Mesh, report: &LoadReport) -> Option<String> {
     };
     // M0 passed: M1 can only fail where M0 is manifold but one step is not (not expected once
     // duplicate faces are gone); said without M1's indices, which mean nothing to the user.
-    let m1 = meshrefine::surface::subdivision::m1_topology(mesh);
+    let m1 = meshrefine::subdiv::m1_topology(mesh);
     drop(m0);
     m1.err().map(|e| {
         format!(
