@@ -95,6 +95,7 @@ impl State {
     /// Handle a key; false quits.
     pub(super) fn key(&mut self, key: &Key) -> bool {
         let levels: Vec<u32> = self.scene.patterns.levels().collect();
+        let uvs = self.scene.data.uvs.is_some();
         let c = &mut self.controls;
         let pos = levels.iter().position(|&l| l == c.cfg.level).unwrap_or(0);
         match key {
@@ -103,17 +104,17 @@ impl State {
                 "1" | "2" | "3" => c.set_driver(Driver::ALL[(ch.as_bytes()[0] - b'1') as usize]),
                 "s" | "S" => {
                     c.cfg.surface = next(&Surface::ALL, c.cfg.surface);
-                    // Loop's M1 has no texture coordinates for the height map.
-                    if c.cfg.surface == Surface::Loop && c.cfg.displace == Displace::Heightmap {
-                        c.cfg.displace = Displace::None;
+                    // A displacement the new surface cannot take (Loop's M1 has no texture
+                    // coordinates for the height map) is switched off.
+                    if c.cfg.surface.incompatibility(c.cfg.displace, uvs).is_some() {
+                        c.cfg.displace = Displace::default();
                     }
                 }
                 "d" | "D" => {
+                    // Skip the displacements this surface and mesh cannot take (no displacement
+                    // always can).
                     c.cfg.displace = next(&Displace::ALL, c.cfg.displace);
-                    // The height map needs texture coordinates: skip it on meshes without.
-                    if c.cfg.displace == Displace::Heightmap
-                        && (self.scene.data.uvs.is_none() || c.cfg.surface == Surface::Loop)
-                    {
+                    while c.cfg.surface.incompatibility(c.cfg.displace, uvs).is_some() {
                         c.cfg.displace = next(&Displace::ALL, c.cfg.displace);
                     }
                 }

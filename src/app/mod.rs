@@ -357,19 +357,20 @@ impl State {
         let refused = opts
             .loop_refusal
             .as_ref()
-            .filter(|_| cfg.surface == Surface::Loop);
+            .filter(|_| cfg.surface.facts().needs_every_face);
         let prepared = match refused {
             Some(why) => Err(anyhow::anyhow!("{why}")),
             None => prepare(&cfg).map_err(anyhow::Error::from),
         };
         match prepared {
-            // A mesh Loop cannot subdivide (non-manifold, or faces dropped at loading): say so
-            // and stay on the other surfaces.
-            Err(e) if cfg.surface == Surface::Loop => {
-                log::warn!("{e}: showing pn instead");
-                cfg.surface = Surface::Pn;
+            // A mesh this surface cannot draw (Loop: non-manifold, or faces dropped at
+            // loading): say so and show the fallback surface.
+            Err(e) if cfg.surface != Surface::FALLBACK => {
+                let fallback = Surface::FALLBACK;
+                log::warn!("{e}: showing {} instead", fallback.name());
+                cfg.surface = fallback;
                 prepare(&cfg)?;
-                self.controls.cfg.surface = Surface::Pn;
+                self.controls.cfg.surface = fallback;
             }
             other => other?,
         }
@@ -492,7 +493,7 @@ impl State {
                 .scene
                 .subdiv
                 .as_ref()
-                .filter(|_| d.surface == Surface::Loop)
+                .filter(|_| d.surface.uses_loop_faces())
                 .map(|l| l.data.table_bytes()),
             has_texcoords: self.scene.data.uvs.is_some(),
         };

@@ -28,6 +28,10 @@ pub enum RenderError {
     },
     #[error("level {level} is not among the uploaded pattern levels ({levels})")]
     LevelNotUploaded { level: u32, levels: String },
+    /// A surface and displacement that cannot be drawn together on this mesh
+    /// ([`crate::surface::Surface::incompatibility`]).
+    #[error("{0}")]
+    Incompatible(String),
     /// A combination that cannot be drawn or read back (one sentence saying why).
     #[error("{0}")]
     Unsupported(&'static str),

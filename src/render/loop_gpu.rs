@@ -11,7 +11,8 @@
 //! scene's loop surface: its data, passes and M1-face records on the GPU.
 
 use super::bindings::*;
-use super::scene::{Extras, GpuMesh, MeshData, Patterns, Scene};
+use super::gpu_mesh::{Extras, GpuMesh, MeshData, Patterns};
+use super::scene::Scene;
 use super::RenderError;
 use crate::gpu::{
     vk, Buffer, BufferDesc, Cmd, CommandPool, Context, DescriptorPool, DescriptorSetLayout,

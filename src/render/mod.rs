@@ -9,6 +9,7 @@ mod camera;
 pub mod driver;
 mod error;
 pub mod frame;
+mod gpu_mesh;
 mod headless;
 pub mod loop_gpu;
 pub mod pattern;
@@ -20,9 +21,10 @@ pub mod tess;
 pub use camera::Camera;
 pub use driver::{Driver, DriverKind, Submit};
 pub use error::RenderError;
+pub use gpu_mesh::{GpuMesh, GpuPattern, MeshData};
 pub use headless::{clear_color_srgb8, covered_pixels, CaptureResult, FrameTiming, Headless};
 pub use pipelines::{Renderer, GEOMETRY_STAGES, PUSH_STAGES};
-pub use scene::{GpuMesh, MeshData, Scene};
+pub use scene::Scene;
 
 use crate::surface::{Displace, ElementRecord, Surface, SurfaceParams};
 use bytemuck::{Pod, Zeroable};
@@ -72,9 +74,9 @@ pub struct DrawConfig {
     pub level: u32,
 }
 
-/// The level from which `loop` evaluates its normals per fragment ([`DrawConfig::fragment_normal_field`]):
-/// 153 pattern vertices per M1 face, about as many refined vertices as pixels for Spot at 1280×720.
-pub const LOOP_FRAGMENT_NORMALS: u32 = 16;
+/// The level from which `loop` evaluates its normals per fragment
+/// ([`DrawConfig::fragment_normal_field`]; declared by the surface).
+pub const LOOP_FRAGMENT_NORMALS: u32 = crate::surface::loop_::FRAGMENT_NORMALS_FROM;
 
 impl DrawConfig {
     /// The flat surface, no displacement, default parameters.
@@ -113,13 +115,13 @@ impl DrawConfig {
     /// beside it. Also `loop` from [`LOOP_FRAGMENT_NORMALS`] up through the pattern and the
     /// tessellator without displacement: its subdivision-shading normal is a second table sum,
     /// which the fragment stage then does instead of every vertex (cheaper where the refined
-    /// vertices outnumber the pixels: about 15 % of loop's frame at level 32 on lavapipe).
+    /// vertices outnumber the pixels: docs/bench/resolution).
     pub fn fragment_normal_field(&self) -> bool {
-        self.surface.fragment_normal_field()
-            || (self.surface == Surface::Loop
-                && self.displace == Displace::None
-                && !self.driver.kind().refines_on_cpu()
-                && self.level >= LOOP_FRAGMENT_NORMALS)
+        self.surface.fragment_normal_field(
+            self.displace,
+            self.level,
+            !self.driver.kind().refines_on_cpu(),
+        )
     }
 
     /// GPU bytes of geometry for `elements` elements ([`Driver::geometry_bytes`], plus the

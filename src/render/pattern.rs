@@ -9,7 +9,7 @@
 use super::bindings::{SET_MESH, UBO_WINDOW};
 use super::driver::DriverKind;
 use super::frame::FrameWork;
-use super::scene::GpuPattern;
+use super::gpu_mesh::GpuPattern;
 use super::{
     Capture, DrawWords, GpuMesh, PushBlock, Renderer, Submit, PUSH_DRAW_OFFSET, PUSH_STAGES,
 };

@@ -19,7 +19,7 @@
 //!
 //! Watertight: `P′` depends on P and the direction only, which are bit-identical on shared edges.
 
-use super::{dot3, noise, Inputs, SurfaceParams, SurfacePoint};
+use super::{dot3, noise, DisplaceFacts, Inputs, SurfaceParams, SurfacePoint};
 use glam::Vec3;
 
 /// The displacement applied after the surface. The discriminant is the `DISPLACE`
@@ -46,13 +46,38 @@ impl Displace {
         Displace::Heightmap,
     ];
 
-    pub fn name(self) -> &'static str {
+    /// What the displacement declares about itself.
+    pub fn facts(self) -> &'static DisplaceFacts {
+        const NONE: DisplaceFacts = DisplaceFacts {
+            name: "none",
+            options: &[],
+            texture_coordinates: false,
+        };
+        const SINE: DisplaceFacts = DisplaceFacts {
+            name: "sine",
+            options: &["amplitude", "frequency"],
+            texture_coordinates: false,
+        };
+        const NOISE: DisplaceFacts = DisplaceFacts {
+            name: "noise",
+            options: &["amplitude", "frequency", "octaves"],
+            texture_coordinates: false,
+        };
+        const HEIGHTMAP: DisplaceFacts = DisplaceFacts {
+            name: "heightmap",
+            options: &["amplitude", "bias", "heightmap"],
+            texture_coordinates: true,
+        };
         match self {
-            Displace::None => "none",
-            Displace::Sine => "sine",
-            Displace::Noise => "noise",
-            Displace::Heightmap => "heightmap",
+            Displace::None => &NONE,
+            Displace::Sine => &SINE,
+            Displace::Noise => &NOISE,
+            Displace::Heightmap => &HEIGHTMAP,
         }
+    }
+
+    pub fn name(self) -> &'static str {
+        self.facts().name
     }
 }
 

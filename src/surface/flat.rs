@@ -3,8 +3,20 @@
 //! Mirror of `glsl/include/flat.glsl`. Evaluated in the same operation order as the GLSL, which
 //! marks it `precise` (no fused multiply-add), so CPU and GPU positions agree to the bit.
 
+use super::facts::{Elements, FragmentNormals, SurfaceFacts};
 use super::{Corners, Local};
 use glam::Vec3;
+
+/// What `flat` declares about itself (docs/architecture.md, "Surfaces as plug-ins").
+pub const FACTS: SurfaceFacts = SurfaceFacts {
+    name: "flat",
+    elements: Elements::CoarseTriangles,
+    options: &[],
+    texture_coordinates: true,
+    needs_every_face: false,
+    tags: false,
+    fragment_normals: FragmentNormals::Never,
+};
 
 /// The flat point `Σ w_i P_i`.
 pub fn point(c: &Corners) -> Vec3 {

@@ -15,6 +15,7 @@
 //! tangents there are the owner's (another parametrization of the same tangent plane).
 #![forbid(unsafe_code)]
 
+use super::facts::{Elements, FragmentNormals, SurfaceFacts};
 use super::{ElementRecord, SurfacePoint};
 use crate::mesh::Mesh;
 use crate::subdiv::bft::Orient;
@@ -26,6 +27,21 @@ use glam::Vec3;
 /// reads, the error of a mesh Loop cannot subdivide, and the tables' progress reports.
 pub use crate::subdiv::bft::{throttled, Lattice, Progress, DEFAULT_LMAX, MAX_LMAX};
 pub use crate::subdiv::{Boundary, LoopData, LoopFrame, TopologyError};
+
+/// The level from which the normal field is summed per fragment instead of per vertex: 153
+/// pattern vertices per M1 face, about as many refined vertices as pixels for Spot at 1280×720.
+pub const FRAGMENT_NORMALS_FROM: u32 = 16;
+
+/// What `loop` declares about itself (docs/architecture.md, "Surfaces as plug-ins").
+pub const FACTS: SurfaceFacts = SurfaceFacts {
+    name: "loop",
+    elements: Elements::LoopFaces,
+    options: &["boundary", "bft_level"],
+    texture_coordinates: false,
+    needs_every_face: true,
+    tags: false,
+    fragment_normals: FragmentNormals::FromLevel(FRAGMENT_NORMALS_FROM),
+};
 
 /// What the mirror reads besides the record: the mesh's tables and M1.
 pub type Inputs<'a> = (&'a LoopData, &'a LoopFrame);

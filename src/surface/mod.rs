@@ -17,6 +17,7 @@
 #![forbid(unsafe_code)]
 
 pub mod displace;
+pub mod facts;
 pub mod flat;
 pub mod heightmap;
 #[path = "loop.rs"]
@@ -28,6 +29,7 @@ mod record;
 pub mod stpn;
 
 pub use displace::Displace;
+pub use facts::{DisplaceFacts, Elements, FragmentNormals, SurfaceFacts};
 pub use heightmap::Heightmap;
 pub use record::{
     build_records, corner_records, oct_decode, oct_encode, split_positions, CornerRecord,
@@ -69,20 +71,46 @@ impl Surface {
         Surface::Loop,
     ];
 
-    pub fn name(self) -> &'static str {
+    /// What the window shows instead when a mesh cannot be drawn with the surface chosen
+    /// (Loop refuses non-manifold meshes).
+    pub const FALLBACK: Surface = Surface::Pn;
+
+    /// What the surface declares about itself, in its own module (the one `match` on surfaces
+    /// outside the evaluation).
+    pub fn facts(self) -> &'static SurfaceFacts {
         match self {
-            Surface::Flat => "flat",
-            Surface::Phong => "phong",
-            Surface::Pn => "pn",
-            Surface::Stpn => "stpn",
-            Surface::Loop => "loop",
+            Surface::Flat => &flat::FACTS,
+            Surface::Phong => &phong::FACTS,
+            Surface::Pn => &pn::FACTS,
+            Surface::Stpn => &stpn::FACTS,
+            Surface::Loop => &loop_::FACTS,
         }
     }
 
+    pub fn name(self) -> &'static str {
+        self.facts().name
+    }
+
     /// Whether the fragment stage evaluates this surface's normal field (instead of
-    /// interpolating the vertices' normals), so highlights do not depend on the level.
-    pub fn fragment_normal_field(self) -> bool {
-        matches!(self, Surface::Pn | Surface::Stpn)
+    /// interpolating the vertices' normals) when drawn with `displace` at `level`, by a driver
+    /// that evaluates on the GPU (`gpu`) or not.
+    pub fn fragment_normal_field(self, displace: Displace, level: u32, gpu: bool) -> bool {
+        match self.facts().fragment_normals {
+            FragmentNormals::Never => false,
+            FragmentNormals::Always => true,
+            FragmentNormals::FromLevel(from) => displace == Displace::None && gpu && level >= from,
+        }
+    }
+
+    /// Whether the surface's elements are Loop's M1 faces (made by a pre-pass every frame).
+    pub fn uses_loop_faces(self) -> bool {
+        self.facts().elements == Elements::LoopFaces
+    }
+
+    /// Why this surface cannot be drawn with `displace` on a mesh with (or without) texture
+    /// coordinates on every face; `None` when it can.
+    pub fn incompatibility(self, displace: Displace, mesh_has_texcoords: bool) -> Option<String> {
+        facts::incompatibility(self.facts(), displace.facts(), mesh_has_texcoords)
     }
 }
 

@@ -8,8 +8,20 @@
 //! the point depends on the edge's two corners only: Phong tessellation is watertight wherever
 //! the corners share geometry normals (everywhere with closed seams, src/surface/record.rs).
 
+use super::facts::{Elements, FragmentNormals, SurfaceFacts};
 use super::{dot3, edge_of, flat, Corners, Local};
 use glam::Vec3;
+
+/// What `phong` declares about itself (docs/architecture.md, "Surfaces as plug-ins").
+pub const FACTS: SurfaceFacts = SurfaceFacts {
+    name: "phong",
+    elements: Elements::CoarseTriangles,
+    options: &["alpha", "pn_seams"],
+    texture_coordinates: true,
+    needs_every_face: false,
+    tags: false,
+    fragment_normals: FragmentNormals::Never,
+};
 
 /// Projection of `q` onto the plane through `p` with unit normal `n`.
 pub fn project(q: Vec3, p: Vec3, n: Vec3) -> Vec3 {

@@ -21,8 +21,20 @@
 //! uses the corners' geometry normals `g` (equal to `n` except at split normals with closed
 //! seams, see src/surface/record.rs); the normal field uses the shading normals `n`.
 
+use super::facts::{Elements, FragmentNormals, SurfaceFacts};
 use super::{dot3, Corners, Local};
 use glam::Vec3;
+
+/// What `pn` declares about itself (docs/architecture.md, "Surfaces as plug-ins").
+pub const FACTS: SurfaceFacts = SurfaceFacts {
+    name: "pn",
+    elements: Elements::CoarseTriangles,
+    options: &["pn_seams"],
+    texture_coordinates: true,
+    needs_every_face: false,
+    tags: false,
+    fragment_normals: FragmentNormals::Always,
+};
 
 /// Control points in canonical corner order.
 pub struct Control {

@@ -23,9 +23,21 @@
 //! vertex with N = (N_a + N_b)/|…|, D = (N_a − N_b)/|…| and σ = tan(θ/2), θ the angle between them,
 //! so that N′± are N_a and N_b again.
 
+use super::facts::{Elements, FragmentNormals, SurfaceFacts};
 use super::{dot3, Corners, Local};
 use crate::mesh::Mesh;
 use glam::Vec3;
+
+/// What `stpn` declares about itself (docs/architecture.md, "Surfaces as plug-ins").
+pub const FACTS: SurfaceFacts = SurfaceFacts {
+    name: "stpn",
+    elements: Elements::CoarseTriangles,
+    options: &["pn_seams", "tags", "crease_angle"],
+    texture_coordinates: true,
+    needs_every_face: false,
+    tags: true,
+    fragment_normals: FragmentNormals::Always,
+};
 
 /// One vertex's tags.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -1,0 +1,465 @@
+//! Per-mesh GPU data (descriptor set 1): the elements' records, in a storage buffer and in an
+//! aligned uniform array, the inputs the surfaces read (texture coordinates, the height map,
+//! scalar tags, Loop's texel buffers), and the refinement patterns. Bytes uploaded per frame
+//! depend on the coarse mesh only ([`GpuMesh::update_records`]), never on the refinement level.
+
+use super::bindings::*;
+use super::loop_gpu::LoopPass;
+use super::RenderError;
+use crate::gpu::{
+    vk, Buffer, BufferDesc, BufferView, CommandPool, Context, DescriptorPool, GpuError,
+};
+use crate::mesh::Mesh;
+use crate::pattern::{Pattern, PatternSet};
+use crate::surface::stpn::VertexTag;
+use crate::surface::{build_records, ElementRecord, Heightmap, RecordKind, Seams, RECORD_BYTES};
+use std::sync::Arc;
+
+/// CPU-side data of a mesh ready to draw: the mesh and its elements' records.
+#[derive(Clone, Debug)]
+pub struct MeshData {
+    pub mesh: Mesh,
+    pub kind: RecordKind,
+    /// The seams the records were built for.
+    pub seams: Seams,
+    pub records: Vec<ElementRecord>,
+    /// Each element's texture coordinates (stored corner order), when every triangle has them.
+    pub uvs: Option<Vec<[[f32; 2]; 3]>>,
+    /// Mean longest texture-space edge of the elements (0 without coordinates).
+    pub uv_extent: f32,
+}
+
+impl MeshData {
+    pub fn new(mesh: Mesh, kind: RecordKind, seams: Seams) -> Self {
+        let records = build_records(kind, &mesh, seams);
+        let uvs: Option<Vec<[[f32; 2]; 3]>> = mesh
+            .triangles
+            .iter()
+            .map(|t| {
+                t.t.map(|c| c.map(|i| mesh.texcoords[i as usize].to_array()))
+            })
+            .collect();
+        let uv_extent = uvs.as_ref().map_or(0.0, |uvs| {
+            let longest = |t: &[[f32; 2]; 3]| {
+                (0..3)
+                    .map(|k| {
+                        let (a, b) = (glam::Vec2::from(t[k]), glam::Vec2::from(t[(k + 1) % 3]));
+                        (a - b).length() as f64
+                    })
+                    .fold(0.0, f64::max)
+            };
+            (uvs.iter().map(longest).sum::<f64>() / uvs.len().max(1) as f64) as f32
+        });
+        Self {
+            mesh,
+            kind,
+            seams,
+            records,
+            uvs,
+            uv_extent,
+        }
+    }
+}
+
+/// One pattern level on the GPU: barycentric vertices and its triangle list.
+pub struct GpuPattern {
+    pub level: u32,
+    pub vertices: Buffer,
+    pub indices: Buffer,
+    pub vertex_count: u32,
+    pub index_count: u32,
+}
+
+impl GpuPattern {
+    pub fn new(ctx: &Arc<Context>, pool: &CommandPool, p: &Pattern) -> Result<Self, GpuError> {
+        let vertices = Buffer::new_with_data(
+            ctx,
+            pool,
+            vk::BufferUsageFlags::VERTEX_BUFFER,
+            &p.bary,
+            &format!("pattern {} vertices", p.level),
+        )?;
+        let indices = Buffer::new_with_data(
+            ctx,
+            pool,
+            vk::BufferUsageFlags::INDEX_BUFFER,
+            &p.indices,
+            &format!("pattern {} triangles", p.level),
+        )?;
+        Ok(Self {
+            level: p.level,
+            vertices,
+            indices,
+            vertex_count: p.bary.len() as u32,
+            index_count: p.indices.len() as u32,
+        })
+    }
+}
+
+/// GPU data of one mesh.
+pub struct GpuMesh {
+    pub element_count: u32,
+    /// `ElementRecord[]`, bound as a storage buffer (instanced pattern, tess, fragment normal
+    /// fields) and, in windows of [`UBO_WINDOW`] records, as a dynamic uniform buffer (`ubo`
+    /// submission); padded to whole windows.
+    pub records: Buffer,
+    /// Each element's texture coordinates (`heightmap`), and the height map's pyramid.
+    pub uvs: Buffer,
+    pub heightmap: Buffer,
+    /// Every vertex's scalar tags (`stpn`).
+    pub tags: Buffer,
+    /// Shared by the scene's meshes (the loop surface's M1 draws the same patterns).
+    pub patterns: Arc<Vec<GpuPattern>>,
+    pub pool: DescriptorPool,
+    /// One descriptor set per chunk of [`GpuMesh::chunk`] elements: a storage-buffer descriptor
+    /// may span at most maxStorageBufferRange bytes, so a larger mesh is drawn chunk by chunk.
+    pub sets: Vec<vk::DescriptorSet>,
+    /// Elements per chunk.
+    pub chunk: u32,
+    /// The loop buffers' texel views (a [`LoopScene`] drops its `gpu` before its `pass`, which
+    /// owns the buffers; the placeholder's views before the placeholder, declared after).
+    _views: Vec<BufferView>,
+    /// Bound where a surface's buffers are absent (every binding must be valid).
+    _placeholder: Buffer,
+}
+
+/// The patterns a [`GpuMesh`] draws: uploaded for it, or another mesh's, shared.
+pub enum Patterns<'a> {
+    Upload(&'a PatternSet),
+    Share(&'a Arc<Vec<GpuPattern>>),
+}
+
+/// What the mesh set binds besides records and texture coordinates.
+#[derive(Clone, Copy)]
+pub struct Extras<'a> {
+    pub heightmap: &'a Heightmap,
+    pub tags: &'a [VertexTag],
+    /// The `loop` surface's M1 and tables (a placeholder is bound without).
+    pub subdiv: Option<&'a LoopPass>,
+}
+
+/// The part of an element range that lies in one chunk of records.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Chunk {
+    /// The chunk's descriptor set: `records[0]` there is element `base`.
+    pub set: vk::DescriptorSet,
+    pub base: u32,
+    /// The first element to draw (global index) and how many.
+    pub first: u32,
+    pub count: u32,
+}
+
+/// Elements per chunk for per-element arrays of `sizes` bytes each: as many as one
+/// storage-buffer descriptor can span (`max_range` bytes) for the largest, a multiple of what
+/// keeps every array's chunk offsets aligned to `align`.
+pub fn chunk_elements(max_range: u64, align: u64, sizes: &[u64]) -> u32 {
+    let gcd = |mut a: u64, mut b: u64| {
+        while b != 0 {
+            (a, b) = (b, a % b);
+        }
+        a
+    };
+    let align = align.max(1);
+    let step = sizes.iter().fold(1, |step, &s| {
+        let k = align / gcd(align, s);
+        step / gcd(step, k) * k
+    });
+    let largest = sizes.iter().copied().max().unwrap_or(1);
+    let n = (max_range / largest) / step * step;
+    n.clamp(1, u32::MAX as u64) as u32
+}
+
+/// Bytes of one element's texture coordinates on the GPU (three `vec2`, padded).
+const UV_BYTES: u64 = 32;
+
+impl GpuMesh {
+    /// Upload `data`'s records and every per-mesh input the surfaces read, and write one
+    /// descriptor set per chunk of records.
+    pub fn new(
+        ctx: &Arc<Context>,
+        cmd_pool: &CommandPool,
+        set_layout: &crate::gpu::DescriptorSetLayout,
+        data: &MeshData,
+        patterns: Patterns<'_>,
+        max_chunk: Option<u32>,
+        extras: Extras<'_>,
+    ) -> Result<Self, RenderError> {
+        let n = data.records.len() as u64;
+        let chunk = chunk_size(ctx, max_chunk);
+        let chunks = n.div_ceil(chunk as u64).max(1) as u32;
+        let records = upload_records(ctx, &data.records)?;
+        let inputs = SurfaceInputs::upload(ctx, data, &extras)?;
+        let patterns = match patterns {
+            Patterns::Upload(set) => Arc::new(
+                set.patterns
+                    .iter()
+                    .map(|p| GpuPattern::new(ctx, cmd_pool, p))
+                    .collect::<Result<Vec<_>, _>>()?,
+            ),
+            Patterns::Share(uploaded) => uploaded.clone(),
+        };
+        let pool = DescriptorPool::new(
+            ctx,
+            chunks,
+            &[
+                (vk::DescriptorType::STORAGE_BUFFER, 4 * chunks),
+                (vk::DescriptorType::UNIFORM_TEXEL_BUFFER, 6 * chunks),
+                (vk::DescriptorType::UNIFORM_BUFFER_DYNAMIC, chunks),
+            ],
+            "mesh descriptors",
+        )?;
+        let placeholder = Buffer::new_with_data(
+            ctx,
+            cmd_pool,
+            vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::UNIFORM_TEXEL_BUFFER,
+            &[0u32; 4],
+            "placeholder",
+        )?;
+        let views = loop_views(ctx, extras.subdiv, &placeholder)?;
+        let sets = (0..chunks as u64)
+            .map(|c| {
+                let set = pool.allocate(set_layout, &format!("mesh set {c}"))?;
+                let first = c * chunk as u64;
+                let count = (n - first.min(n)).min(chunk as u64).max(1);
+                write_mesh_set(&pool, set, &records, &inputs, &views, first, count);
+                Ok(set)
+            })
+            .collect::<Result<Vec<_>, GpuError>>()?;
+        Ok(Self {
+            element_count: n as u32,
+            records,
+            uvs: inputs.uvs,
+            heightmap: inputs.heightmap,
+            tags: inputs.tags,
+            patterns,
+            pool,
+            sets,
+            chunk,
+            _views: views,
+            _placeholder: placeholder,
+        })
+    }
+
+    /// The chunks `elements` spans, in order, each with its part of the range.
+    pub fn chunks(&self, elements: std::ops::Range<u32>) -> Vec<Chunk> {
+        let mut out = Vec::new();
+        let mut first = elements.start;
+        while first < elements.end.min(self.element_count) {
+            let c = first / self.chunk;
+            let base = c * self.chunk;
+            let end = (base + self.chunk).min(elements.end);
+            out.push(Chunk {
+                set: self.sets[c as usize],
+                base,
+                first,
+                count: end - first,
+            });
+            first = end;
+        }
+        out
+    }
+
+    /// The pattern of `level`, if the set holds it.
+    pub fn pattern(&self, level: u32) -> Option<&GpuPattern> {
+        self.patterns.iter().find(|p| p.level == level)
+    }
+
+    /// Upload new coarse records (animation). The caller makes sure no pending work reads them.
+    pub fn update_records(&mut self, records: &[ElementRecord]) {
+        assert_eq!(records.len() as u32, self.element_count);
+        self.records.write_pod(0, records);
+    }
+}
+
+/// Elements per chunk on this device: as many records (and texture coordinates) as one
+/// storage-buffer descriptor spans, or `max_chunk` (tests use small chunks).
+fn chunk_size(ctx: &Context, max_chunk: Option<u32>) -> u32 {
+    let rec_size = RECORD_BYTES as u64;
+    let limits = &ctx.info.limits;
+    let align = limits.min_storage_buffer_offset_alignment;
+    let range = limits.max_storage_buffer_range as u64;
+    let range = max_chunk.map_or(range, |c| range.min(c as u64 * rec_size));
+    chunk_elements(range, align, &[rec_size, UV_BYTES])
+}
+
+/// The records, padded to whole `ubo` windows (storage, uniform and vertex buffer alike).
+fn upload_records(ctx: &Arc<Context>, data: &[ElementRecord]) -> Result<Buffer, GpuError> {
+    let n = data.len() as u64;
+    let rec_size = RECORD_BYTES as u64;
+    let mut records = Buffer::new(
+        ctx,
+        BufferDesc::new_upload(
+            n.div_ceil(UBO_WINDOW as u64).max(1) * UBO_WINDOW as u64 * rec_size,
+            vk::BufferUsageFlags::STORAGE_BUFFER
+                | vk::BufferUsageFlags::UNIFORM_BUFFER
+                | vk::BufferUsageFlags::VERTEX_BUFFER,
+        ),
+        "element records",
+    )?;
+    records.write_pod(0, data);
+    Ok(records)
+}
+
+/// The per-mesh inputs the surfaces and displacements read besides the records: texture
+/// coordinates and the height map (`heightmap`), scalar tags (`stpn`). Each buffer holds at
+/// least one entry: every binding must be valid whatever is drawn.
+struct SurfaceInputs {
+    uvs: Buffer,
+    /// Entries in `uvs`, and whether they are the elements' own (else one zero entry).
+    uv_count: u64,
+    own_uvs: bool,
+    heightmap: Buffer,
+    tags: Buffer,
+}
+
+impl SurfaceInputs {
+    fn upload(ctx: &Arc<Context>, data: &MeshData, extras: &Extras<'_>) -> Result<Self, GpuError> {
+        let n = data.records.len() as u64;
+        // Texture coordinates (zeros without them: the binding is always valid).
+        let uv_words: Vec<[f32; 8]> = match &data.uvs {
+            Some(uvs) => uvs
+                .iter()
+                .map(|t| {
+                    [
+                        t[0][0], t[0][1], t[1][0], t[1][1], t[2][0], t[2][1], 0.0, 0.0,
+                    ]
+                })
+                .collect(),
+            None => vec![[0.0; 8]; n.max(1) as usize],
+        };
+        let tag_words: Vec<[f32; 12]> = if extras.tags.is_empty() {
+            vec![[0.0; 12]]
+        } else {
+            extras.tags.iter().map(VertexTag::to_gpu).collect()
+        };
+        Ok(Self {
+            uvs: storage(ctx, &uv_words, "element texture coordinates")?,
+            uv_count: uv_words.len() as u64,
+            own_uvs: data.uvs.is_some(),
+            heightmap: storage(ctx, &extras.heightmap.to_gpu(), "height map pyramid")?,
+            tags: storage(ctx, &tag_words, "vertex scalar tags")?,
+        })
+    }
+}
+
+/// A host-visible storage buffer holding `words`.
+fn storage<T: bytemuck::Pod>(
+    ctx: &Arc<Context>,
+    words: &[T],
+    name: &str,
+) -> Result<Buffer, GpuError> {
+    let mut b = Buffer::new(
+        ctx,
+        BufferDesc::new_upload(
+            std::mem::size_of_val(words) as u64,
+            vk::BufferUsageFlags::STORAGE_BUFFER,
+        ),
+        name,
+    )?;
+    b.write_pod(0, words);
+    Ok(b)
+}
+
+/// Texel views of the `loop` surface's buffers (M1, face entries, control points, tables, row
+/// maps), or of `placeholder` where the mesh is not drawn as `loop`.
+fn loop_views(
+    ctx: &Arc<Context>,
+    subdiv: Option<&LoopPass>,
+    placeholder: &Buffer,
+) -> Result<Vec<BufferView>, GpuError> {
+    let loop_buffers = match subdiv {
+        Some(l) => [&l.m1, &l.n1, &l.faces, &l.control, &l.tables, &l.table_rows],
+        None => [placeholder; 6],
+    };
+    let formats = [
+        vk::Format::R32G32B32A32_SFLOAT,
+        vk::Format::R32G32B32A32_SFLOAT,
+        vk::Format::R32G32B32A32_UINT,
+        vk::Format::R32G32B32A32_UINT,
+        vk::Format::R32G32B32A32_SFLOAT,
+        vk::Format::R32_UINT,
+    ];
+    loop_buffers
+        .iter()
+        .zip(formats)
+        .zip([
+            "M1 positions",
+            "M1 normals",
+            "face entries",
+            "control",
+            "tables",
+            "table rows",
+        ])
+        .map(|((b, f), name)| BufferView::new(ctx, b, f, &format!("loop {name} view")))
+        .collect()
+}
+
+/// Write set 1 for the chunk of `count` elements from `first`: its records (storage and `ubo`
+/// window), its texture coordinates, the height map, the tags and the loop views.
+fn write_mesh_set(
+    pool: &DescriptorPool,
+    set: vk::DescriptorSet,
+    records: &Buffer,
+    inputs: &SurfaceInputs,
+    views: &[BufferView],
+    first: u64,
+    count: u64,
+) {
+    let rec_size = RECORD_BYTES as u64;
+    pool.write_buffer_at(
+        set,
+        BINDING_ELEMENTS,
+        vk::DescriptorType::STORAGE_BUFFER,
+        records.raw,
+        first * rec_size,
+        count * rec_size,
+    );
+    pool.write_buffer(
+        set,
+        BINDING_ELEMENT_UBO,
+        vk::DescriptorType::UNIFORM_BUFFER_DYNAMIC,
+        records.raw,
+        UBO_WINDOW as u64 * rec_size,
+    );
+    let uv_first = if inputs.own_uvs { first } else { 0 };
+    pool.write_buffer_at(
+        set,
+        BINDING_UVS,
+        vk::DescriptorType::STORAGE_BUFFER,
+        inputs.uvs.raw,
+        uv_first * UV_BYTES,
+        count.min(inputs.uv_count) * UV_BYTES,
+    );
+    pool.write_buffer(
+        set,
+        BINDING_HEIGHTMAP,
+        vk::DescriptorType::STORAGE_BUFFER,
+        inputs.heightmap.raw,
+        vk::WHOLE_SIZE,
+    );
+    pool.write_buffer(
+        set,
+        BINDING_TAGS,
+        vk::DescriptorType::STORAGE_BUFFER,
+        inputs.tags.raw,
+        vk::WHOLE_SIZE,
+    );
+    for (binding, view) in [
+        BINDING_LOOP_P1,
+        BINDING_LOOP_N1,
+        BINDING_LOOP_FACES,
+        BINDING_LOOP_CONTROL,
+        BINDING_LOOP_TABLES,
+        BINDING_LOOP_ROWS,
+    ]
+    .into_iter()
+    .zip(views)
+    {
+        pool.write_texel_buffer(
+            set,
+            binding,
+            vk::DescriptorType::UNIFORM_TEXEL_BUFFER,
+            view.raw,
+        );
+    }
+}

@@ -1,0 +1,82 @@
+//! What each surface and displacement declares about itself: its elements, the options it
+//! reads, what inputs it needs, where its normal field is evaluated. Each surface's module
+//! holds its own `FACTS` (`flat.rs`, `phong.rs`, `pn.rs`, `stpn.rs`, `loop.rs`), each
+//! displacement's is in `displace.rs`; [`super::Surface::facts`] and
+//! [`super::Displace::facts`] are the one place that matches on them. The scene, the window,
+//! the command line and the benchmark ask these questions instead of naming surfaces.
+
+/// What a surface's elements are.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Elements {
+    /// The coarse mesh's triangles, one record each (the local surfaces).
+    CoarseTriangles,
+    /// The faces of one Loop step M1, which a pre-pass makes on the GPU every frame from the
+    /// coarse positions (`loop`).
+    LoopFaces,
+}
+
+/// Where a surface's normal field is evaluated.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FragmentNormals {
+    /// Interpolated from the refined vertices.
+    Never,
+    /// In the fragment stage, always: highlights do not depend on the level.
+    Always,
+    /// In the fragment stage from this level up, without displacement and on the GPU drivers
+    /// (where refined vertices outnumber pixels, evaluating per fragment costs less).
+    FromLevel(u32),
+}
+
+/// What a surface declares about itself.
+#[derive(Clone, Copy, Debug)]
+pub struct SurfaceFacts {
+    /// The name on the command line, in the GLSL and of the module.
+    pub name: &'static str,
+    pub elements: Elements,
+    /// The command-line options (clap ids) that this surface reads and no other surface needs
+    /// to (`alpha` for phong): an option read by none of the chosen surfaces is reported.
+    pub options: &'static [&'static str],
+    /// Whether its elements carry the coarse triangles' texture coordinates (what a height map
+    /// is sampled at).
+    pub texture_coordinates: bool,
+    /// Whether it needs every face of the file: one dropped at loading (degenerate or
+    /// duplicate) would open a hole in what it refines.
+    pub needs_every_face: bool,
+    /// Whether it reads per-vertex scalar tags (`--tags`, or derived from hard edges).
+    pub tags: bool,
+    pub fragment_normals: FragmentNormals,
+}
+
+/// What a displacement declares about itself.
+#[derive(Clone, Copy, Debug)]
+pub struct DisplaceFacts {
+    pub name: &'static str,
+    /// The command-line options (clap ids) it reads.
+    pub options: &'static [&'static str],
+    /// Whether it reads the elements' texture coordinates.
+    pub texture_coordinates: bool,
+}
+
+/// Why `surface` cannot be drawn with `displace` on a mesh that has (or lacks) texture
+/// coordinates on every face: one sentence, or `None` when it can.
+pub fn incompatibility(
+    surface: &SurfaceFacts,
+    displace: &DisplaceFacts,
+    mesh_has_texcoords: bool,
+) -> Option<String> {
+    if !displace.texture_coordinates {
+        return None;
+    }
+    if !surface.texture_coordinates {
+        return Some(format!(
+            "the {} surface has no texture coordinates: the {} displacement needs them (use sine or noise)",
+            surface.name, displace.name
+        ));
+    }
+    (!mesh_has_texcoords).then(|| {
+        format!(
+            "the mesh has no texture coordinates (vt on every face): the {} displacement reads the map there",
+            displace.name
+        )
+    })
+}
