@@ -52,21 +52,25 @@ impl Displace {
             name: "none",
             options: &[],
             texture_coordinates: false,
+            bindings: &[],
         };
         const SINE: DisplaceFacts = DisplaceFacts {
             name: "sine",
             options: &["amplitude", "frequency"],
             texture_coordinates: false,
+            bindings: &[],
         };
         const NOISE: DisplaceFacts = DisplaceFacts {
             name: "noise",
             options: &["amplitude", "frequency", "octaves"],
             texture_coordinates: false,
+            bindings: &["BINDING_NOISE"],
         };
         const HEIGHTMAP: DisplaceFacts = DisplaceFacts {
             name: "heightmap",
             options: &["amplitude", "bias", "heightmap"],
             texture_coordinates: true,
+            bindings: &["BINDING_UVS", "BINDING_HEIGHTMAP"],
         };
         match self {
             Displace::None => &NONE,

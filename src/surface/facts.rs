@@ -45,6 +45,9 @@ pub struct SurfaceFacts {
     /// Whether it reads per-vertex scalar tags (`--tags`, or derived from hard edges).
     pub tags: bool,
     pub fragment_normals: FragmentNormals,
+    /// The per-mesh bindings (set 1, `src/render/bindings.rs`) its GLSL include declares
+    /// beyond the element records, which the mesh's descriptor sets must hold.
+    pub bindings: &'static [&'static str],
 }
 
 /// What a displacement declares about itself.
@@ -55,6 +58,8 @@ pub struct DisplaceFacts {
     pub options: &'static [&'static str],
     /// Whether it reads the elements' texture coordinates.
     pub texture_coordinates: bool,
+    /// The bindings its GLSL reads (besides the frame's uniforms).
+    pub bindings: &'static [&'static str],
 }
 
 /// Why `surface` cannot be drawn with `displace` on a mesh that has (or lacks) texture
@@ -79,4 +84,63 @@ pub fn incompatibility(
             displace.name
         )
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{Displace, Surface};
+
+    /// The `binding = BINDING_X` names a GLSL source declares.
+    fn declared(source: &str) -> Vec<&str> {
+        let mut out: Vec<&str> = source
+            .match_indices("binding = ")
+            .map(|(i, m)| {
+                let rest = &source[i + m.len()..];
+                let end = rest
+                    .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+                    .unwrap_or(rest.len());
+                &rest[..end]
+            })
+            .collect();
+        out.sort_unstable();
+        out
+    }
+
+    fn glsl(name: &str) -> String {
+        let path = format!("{}/glsl/include/{name}.glsl", env!("CARGO_MANIFEST_DIR"));
+        std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"))
+    }
+
+    /// Each surface's declared bindings are exactly those its GLSL include declares.
+    #[test]
+    fn surfaces_declare_the_bindings_their_glsl_reads() {
+        for s in Surface::ALL {
+            let mut want: Vec<&str> = s.facts().bindings.to_vec();
+            want.sort_unstable();
+            assert_eq!(declared(&glsl(s.name())), want, "{}", s.name());
+        }
+    }
+
+    /// Each displacement with a GLSL file of its own declares the bindings that file reads
+    /// (texture coordinates live with the records, glsl/include/records.glsl).
+    #[test]
+    fn displacements_declare_the_bindings_their_glsl_reads() {
+        for d in Displace::ALL {
+            let path = format!(
+                "{}/glsl/include/{}.glsl",
+                env!("CARGO_MANIFEST_DIR"),
+                d.name()
+            );
+            let Ok(source) = std::fs::read_to_string(path) else {
+                continue;
+            };
+            for b in declared(&source) {
+                assert!(d.facts().bindings.contains(&b), "{}: {b}", d.name());
+            }
+        }
+        assert!(Displace::Heightmap
+            .facts()
+            .bindings
+            .contains(&"BINDING_UVS"));
+    }
 }

@@ -16,6 +16,7 @@ pub const FACTS: SurfaceFacts = SurfaceFacts {
     needs_every_face: false,
     tags: false,
     fragment_normals: FragmentNormals::Never,
+    bindings: &[],
 };
 
 /// The flat point `Σ w_i P_i`.

@@ -41,6 +41,14 @@ pub const FACTS: SurfaceFacts = SurfaceFacts {
     needs_every_face: true,
     tags: false,
     fragment_normals: FragmentNormals::FromLevel(FRAGMENT_NORMALS_FROM),
+    bindings: &[
+        "BINDING_LOOP_P1",
+        "BINDING_LOOP_N1",
+        "BINDING_LOOP_FACES",
+        "BINDING_LOOP_CONTROL",
+        "BINDING_LOOP_TABLES",
+        "BINDING_LOOP_ROWS",
+    ],
 };
 
 /// What the mirror reads besides the record: the mesh's tables and M1.

@@ -21,6 +21,7 @@ pub const FACTS: SurfaceFacts = SurfaceFacts {
     needs_every_face: false,
     tags: false,
     fragment_normals: FragmentNormals::Never,
+    bindings: &[],
 };
 
 /// Projection of `q` onto the plane through `p` with unit normal `n`.

@@ -34,6 +34,7 @@ pub const FACTS: SurfaceFacts = SurfaceFacts {
     needs_every_face: false,
     tags: false,
     fragment_normals: FragmentNormals::Always,
+    bindings: &[],
 };
 
 /// Control points in canonical corner order.

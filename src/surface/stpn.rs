@@ -37,6 +37,7 @@ pub const FACTS: SurfaceFacts = SurfaceFacts {
     needs_every_face: false,
     tags: true,
     fragment_normals: FragmentNormals::Always,
+    bindings: &["BINDING_TAGS"],
 };
 
 /// One vertex's tags.
