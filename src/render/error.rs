@@ -32,6 +32,9 @@ pub enum RenderError {
     /// ([`crate::surface::Surface::incompatibility`]).
     #[error("{0}")]
     Incompatible(String),
+    /// What a capture read back cannot be welded into a mesh.
+    #[error("the capture cannot be welded: {0}")]
+    Capture(String),
     /// A combination that cannot be drawn or read back (one sentence saying why).
     #[error("{0}")]
     Unsupported(&'static str),

@@ -426,4 +426,32 @@ impl Headless {
         result?;
         Ok(out)
     }
+
+    /// The refined mesh `cfg`'s driver draws, read back from its real drawing pipeline and
+    /// welded on exact bits (what `meshrefine export` writes): the evaluated vertices joined by
+    /// the pattern's triangles, or the tessellator's triangles by transform feedback.
+    pub fn refined_mesh(
+        &mut self,
+        scene: &mut Scene,
+        cfg: &DrawConfig,
+        camera: &Camera,
+    ) -> Result<crate::export::RefinedMesh, RenderError> {
+        match cfg.driver.kind().export_capture() {
+            Some(Capture::Triangles) => Ok(crate::export::weld_triangles(
+                &self.capture_triangles(scene, cfg, camera)?,
+            )),
+            Some(_) => {
+                let cap = self.capture(scene, cfg, camera)?;
+                let pattern = scene
+                    .patterns
+                    .find(cfg.level)
+                    .map(|i| &scene.patterns.patterns[i])
+                    .ok_or(RenderError::Unsupported("no pattern of this level was made"))?;
+                crate::export::weld(&cap, pattern).map_err(RenderError::Capture)
+            }
+            None => Err(RenderError::Unsupported(
+                "the static driver evaluates on the CPU: there is nothing to capture (use pattern or tess)",
+            )),
+        }
+    }
 }
