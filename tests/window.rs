@@ -312,3 +312,27 @@ fn keys_switch_driver_level_and_views() {
     }
     demo.quit();
 }
+
+#[test]
+fn a_window_destroyed_by_another_client_ends_the_demo_with_a_sentence() {
+    // `xdotool windowclose` destroys the window under winit's feet (X then answers BadDrawable
+    // where winit expects a geometry): one sentence and status 1, no panic, no hang.
+    let _guard = common::gpu_lock();
+    let x = Xvfb::start();
+    let mut demo = Demo::start(&x, &["--level", "2"]);
+    demo.xdotool(&["windowclose", &demo.window]);
+    while demo.child.try_wait().unwrap().is_none() {
+        if demo.start.elapsed() > Duration::from_secs(120) {
+            let _ = demo.child.kill();
+            panic!("the demo did not end after its window was destroyed");
+        }
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    let out = demo.child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert!(stderr.contains("window"), "{stderr}");
+    assert!(!stderr.contains("validation"), "{stderr}");
+    assert_eq!(stderr.trim().lines().count(), 1, "{stderr}");
+}

@@ -32,6 +32,11 @@ impl ApplicationHandler for App {
         let egui_took = s.ui.on_window_event(&s.window, &event, s.cursor);
         match event {
             WindowEvent::CloseRequested => s.request_quit(&self.opts, event_loop),
+            // Another client destroyed the window: nothing more can be shown.
+            WindowEvent::Destroyed => {
+                self.error = Some(anyhow::anyhow!("the window was closed by another program"));
+                event_loop.exit();
+            }
             WindowEvent::Resized(_) => s.resize = true,
             WindowEvent::MouseInput {
                 state,
@@ -63,14 +68,20 @@ impl ApplicationHandler for App {
                     s.request_quit(&self.opts, event_loop);
                 }
             }
-            WindowEvent::RedrawRequested => match s.frame(&self.opts) {
-                Ok(true) => {}
-                Ok(false) => event_loop.exit(),
-                Err(e) => {
-                    self.error = Some(e);
-                    event_loop.exit();
+            WindowEvent::RedrawRequested => {
+                match s.frame(&self.opts) {
+                    Ok(true) => {}
+                    Ok(false) => event_loop.exit(),
+                    Err(e) => {
+                        self.error = Some(if surface_lost(&e) {
+                            anyhow::anyhow!("the window was closed by another program (its Vulkan surface is lost)")
+                        } else {
+                            e
+                        });
+                        event_loop.exit();
+                    }
                 }
-            },
+            }
             _ => {}
         }
     }
@@ -139,4 +150,15 @@ impl State {
         }
         true
     }
+}
+
+/// Whether `e` says the window's surface is gone (the window was destroyed under the demo).
+fn surface_lost(e: &anyhow::Error) -> bool {
+    matches!(
+        e.downcast_ref::<crate::gpu::GpuError>(),
+        Some(crate::gpu::GpuError::Vk {
+            result: crate::gpu::vk::Result::ERROR_SURFACE_LOST_KHR,
+            ..
+        })
+    )
 }

@@ -101,10 +101,33 @@ pub fn run(desc: ContextDesc, mesh: Mesh, opts: ViewOptions) -> Result<Arc<Messa
         error: None,
         messages: None,
     };
-    event_loop
-        .run_app(&mut app)
-        .context("window event loop failed")?;
+    // The window system may fail under winit's feet (another client destroys the window: X
+    // answers BadDrawable where winit expects a reply and panics). That ends the demo with one
+    // sentence, not a backtrace: the panic message is kept instead of printed.
+    let panicked = Arc::new(std::sync::Mutex::new(None::<String>));
+    let previous = std::panic::take_hook();
+    let record = panicked.clone();
+    std::panic::set_hook(Box::new(move |info| {
+        *record.lock().unwrap_or_else(|p| p.into_inner()) = Some(info.to_string());
+    }));
+    let ran = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        event_loop.run_app(&mut app)
+    }));
+    std::panic::set_hook(previous);
     app.state = None; // drop every Vulkan object before reporting
+    match ran {
+        Ok(result) => result.context("window event loop failed")?,
+        Err(_) => {
+            let why = panicked.lock().unwrap_or_else(|p| p.into_inner()).take();
+            log::debug!("window system panic: {why:?}");
+            return Err(anyhow!(
+                "the window system failed (was the window closed by another program?): {}",
+                why.as_deref()
+                    .and_then(|w| w.lines().last())
+                    .unwrap_or("no reason given")
+            ));
+        }
+    }
     if let Some(e) = app.error {
         return Err(e);
     }
