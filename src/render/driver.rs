@@ -100,7 +100,7 @@ impl Driver {
 
 /// How the `pattern` driver hands each coarse triangle's record to the vertex shader.
 /// The discriminant is the `SUBMIT` specialization constant.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
 #[repr(u32)]
 pub enum Submit {
     /// Per coarse triangle: push constants, then draw (the paper's loop).

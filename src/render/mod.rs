@@ -29,18 +29,6 @@ pub use scene::Scene;
 use crate::surface::{Displace, ElementRecord, Surface, SurfaceParams};
 use bytemuck::{Pod, Zeroable};
 
-/// `--driver static|pattern|tess` (the pattern driver with its default submission; `--submit`
-/// picks another).
-impl clap::ValueEnum for Driver {
-    fn value_variants<'a>() -> &'a [Self] {
-        &Driver::ALL
-    }
-
-    fn to_possible_value(&self) -> Option<clap::builder::PossibleValue> {
-        Some(clap::builder::PossibleValue::new(self.name()).help(self.help()))
-    }
-}
-
 /// Whether a frame also reads back what its geometry stages evaluated.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
 pub enum Capture {

@@ -28,7 +28,7 @@ pub use step::{beta, loop_step, refined_faces, ring_normals, stencils, Refined, 
 pub use topology::{Topology, TopologyError};
 
 /// How boundaries are subdivided.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
 pub enum Boundary {
     /// Boundary edges infinitely sharp (OpenSubdiv's VTX_BOUNDARY_EDGE_ONLY).
     #[default]

@@ -24,7 +24,7 @@ use glam::Vec3;
 
 /// The displacement applied after the surface. The discriminant is the `DISPLACE`
 /// specialization constant.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
 #[repr(u32)]
 pub enum Displace {
     /// No displacement.

@@ -40,7 +40,7 @@ use glam::Vec3;
 
 /// The surface each element defines. The discriminant is the `SURFACE` specialization constant
 /// of every driver's evaluation stage (glsl/include/surface.glsl).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
 #[repr(u32)]
 pub enum Surface {
     /// Linear interpolation of the coarse triangle's positions and normals.
@@ -115,7 +115,7 @@ impl Surface {
 }
 
 /// What the curved surfaces' geometry does at split normals (a position with several `vn`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
 pub enum Seams {
     /// Crack-free: the geometry uses one normal per split position (its area-weighted normal);
     /// shading keeps the corners' own normals.

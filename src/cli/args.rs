@@ -1,7 +1,12 @@
-//! Command line: `meshrefine view | render | export | info | bench`.
+//! The command line's arguments: `meshrefine view | render | export | info | bench`, declared
+//! with clap's derive. Options that take a library value (surface, displacement, driver, ...)
+//! parse through [`choices`], which maps names to the library's enums.
+#![forbid(unsafe_code)]
 
+use super::choices;
 use clap::{Args, Parser, Subcommand};
 use meshrefine::render::{Driver, Submit};
+use meshrefine::surface::loop_::Boundary;
 use meshrefine::surface::{Displace, Seams, Surface, SurfaceParams};
 use std::path::PathBuf;
 
@@ -53,7 +58,7 @@ pub struct ParamOpts {
     pub octaves: u32,
     /// PN and Phong geometry at split normals (a position with several vn): `closed` is
     /// crack-free, `open` is the papers' behaviour (cracks).
-    #[arg(long, value_enum, default_value = "closed")]
+    #[arg(long, value_parser = choices::seams(), default_value = "closed")]
     pub pn_seams: Seams,
     /// Height map displacement: P' = P + a·(h − bias)·N, h in [0, 1].
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
@@ -61,94 +66,13 @@ pub struct ParamOpts {
     /// Loop subdivision's boundaries (--surface loop): `edge-only` keeps boundary edges sharp
     /// (OpenSubdiv's VTX_BOUNDARY_EDGE_ONLY), `edge-and-corner` also pins boundary vertices of
     /// valence 2 (VTX_BOUNDARY_EDGE_AND_CORNER).
-    #[arg(long, value_enum, default_value = "edge-only")]
-    pub boundary: meshrefine::surface::loop_::Boundary,
+    #[arg(long, value_parser = choices::boundary(), default_value = "edge-only")]
+    pub boundary: Boundary,
     /// The loop surface's basis function tables' level (--surface loop): 2^N segments per
     /// M1-face edge, the lattice whose points are exact limit points; each level up takes four
     /// times the memory.
     #[arg(long, default_value_t = meshrefine::surface::loop_::DEFAULT_LMAX)]
     pub bft_level: u32,
-}
-
-impl SurfaceOpts {
-    /// The tags `--tags` names for `mesh` (None: the scene's derived ones), parsed over the
-    /// derived tags and checked against appendix B's restrictions. With another surface than
-    /// stpn, None (the option is ignored with a warning, see options.rs) unless `any_surface`
-    /// (the window, which can switch to stpn). `shown` and `lines` (each triangle's line, from
-    /// the load report) name the mesh and its faces in messages.
-    pub fn tags(
-        &self,
-        mesh: &meshrefine::mesh::Mesh,
-        shown: &str,
-        lines: &[usize],
-        any_surface: bool,
-    ) -> Result<Option<Vec<meshrefine::surface::stpn::VertexTag>>, String> {
-        use meshrefine::surface::stpn;
-        if self.surface != Surface::Stpn && !any_surface {
-            return Ok(None);
-        }
-        // Appendix B's restriction, named by the face's line and what made the creases.
-        let check = |tags: &[stpn::VertexTag], source: &str| match stpn::three_creases(mesh, tags) {
-            Some(t) => {
-                let face = match lines.get(t) {
-                    Some(l) => format!("the face at line {l}"),
-                    None => format!("triangle {} (0-based)", t),
-                };
-                Err(format!(
-                    "'{shown}': {face} {} (the creases come from {source})",
-                    stpn::three_creases_message(mesh, t)
-                ))
-            }
-            None => Ok(()),
-        };
-        // Derived tags are not checked here: the triangles with three crease corners they
-        // give are split (`split_three_creases` in main.rs).
-        if self.tags.is_none() && self.crease_angle.is_none() {
-            return Ok(None);
-        }
-        if let Some(a) = self.crease_angle {
-            if !(a.is_finite() && a > 0.0 && a < 180.0) {
-                return Err(format!("--crease-angle {a} is not within (0, 180) degrees"));
-            }
-        }
-        let (base, _) = stpn::derive_with_angle(mesh, self.crease_angle);
-        let Some(path) = &self.tags else {
-            return Ok(Some(base));
-        };
-        let shown_tags = path.display().to_string();
-        let (file, meta) = meshrefine::paths::open_input(path, "tags file")?;
-        const MAX_TAGS_BYTES: u64 = 1 << 28;
-        if meta.len() > MAX_TAGS_BYTES {
-            return Err(format!(
-                "tags file '{shown_tags}' is {} bytes: at most 256 MiB is read",
-                meta.len()
-            ));
-        }
-        let mut text = String::new();
-        use std::io::Read as _;
-        file.take(MAX_TAGS_BYTES)
-            .read_to_string(&mut text)
-            .map_err(|e| format!("cannot read tags file '{shown_tags}': {e}"))?;
-        let tags = stpn::parse(&shown_tags, &text, mesh, &base)?;
-        check(&tags, &format!("tags file '{shown_tags}'"))?;
-        Ok(Some(tags))
-    }
-
-    /// The height map `--heightmap` names (None: the scene's generated one). With another
-    /// displacement, None (ignored with a warning, see options.rs) unless `any_displacement`
-    /// (the window, which can switch to it).
-    pub fn heightmap(
-        &self,
-        any_displacement: bool,
-    ) -> Result<Option<meshrefine::surface::Heightmap>, String> {
-        let Some(path) = &self.heightmap else {
-            return Ok(None);
-        };
-        if self.displace != Displace::Heightmap && !any_displacement {
-            return Ok(None);
-        }
-        meshrefine::surface::Heightmap::load_png(path).map(Some)
-    }
 }
 
 impl ParamOpts {
@@ -194,10 +118,10 @@ impl ParamOpts {
 pub struct SurfaceOpts {
     /// Surface defined by each coarse triangle (default: curved PN triangles, smooth out of the
     /// box).
-    #[arg(long, value_enum, default_value = "pn")]
+    #[arg(long, value_parser = choices::surface(), default_value = "pn")]
     pub surface: Surface,
     /// Displacement along the surface's normal.
-    #[arg(long, value_enum, default_value = "none")]
+    #[arg(long, value_parser = choices::displace(), default_value = "none")]
     pub displace: Displace,
     /// Grayscale PNG (8 or 16 bits) for --displace heightmap, sampled at the mesh's texture
     /// coordinates (default: a generated map of smooth bumps).
@@ -220,11 +144,11 @@ pub struct Technique {
     #[command(flatten)]
     pub surface: SurfaceOpts,
     /// How barycentric samples are produced on the GPU.
-    #[arg(long, value_enum, default_value = "pattern")]
+    #[arg(long, value_parser = choices::driver(), default_value = "pattern")]
     pub driver: Driver,
     /// How the pattern driver hands each coarse triangle to the vertex shader [default:
     /// instanced]. Only for --driver pattern (`view` may switch to it).
-    #[arg(long, value_enum)]
+    #[arg(long, value_parser = choices::submit())]
     pub submit: Option<Submit>,
     /// Refinement level N: N segments per coarse edge, N² triangles per coarse triangle.
     #[arg(long, default_value_t = 16, value_parser = clap::value_parser!(u32).range(1..=1024))]
@@ -297,7 +221,7 @@ pub struct ExportArgs {
     pub driver: ExportDriver,
     /// How the pattern driver hands each coarse triangle to the vertex shader [default:
     /// instanced]. Only for --driver pattern.
-    #[arg(long, value_enum)]
+    #[arg(long, value_parser = choices::submit())]
     pub submit: Option<Submit>,
     /// Refinement level N: N segments per coarse edge.
     #[arg(long, default_value_t = 16, value_parser = clap::value_parser!(u32).range(1..=1024))]
@@ -336,11 +260,11 @@ pub struct InfoArgs {
     pub level: Option<u32>,
     /// Also report what this surface builds (`loop`: M1, valences, configurations and the basis
     /// function tables' memory).
-    #[arg(long, value_enum)]
+    #[arg(long, value_parser = choices::surface())]
     pub surface: Option<Surface>,
     /// Loop subdivision's boundaries (with --surface loop).
-    #[arg(long, value_enum, default_value = "edge-only")]
-    pub boundary: meshrefine::surface::loop_::Boundary,
+    #[arg(long, value_parser = choices::boundary(), default_value = "edge-only")]
+    pub boundary: Boundary,
     /// The loop surface's table level (with --surface loop): 2^N segments per M1-face edge.
     #[arg(long, default_value_t = meshrefine::surface::loop_::DEFAULT_LMAX,
           value_parser = clap::value_parser!(u32).range(1..=meshrefine::surface::loop_::MAX_LMAX as i64))]
@@ -352,14 +276,14 @@ pub struct BenchArgs {
     /// OBJ file (default: the embedded Spot control mesh).
     pub mesh: Option<PathBuf>,
     /// Surfaces to measure (comma separated).
-    #[arg(long, value_enum, value_delimiter = ',', default_value = "flat")]
+    #[arg(long, value_parser = choices::surface(), value_delimiter = ',', default_value = "flat")]
     pub surfaces: Vec<Surface>,
     /// Displacements to measure with every surface (comma separated).
-    #[arg(long, value_enum, value_delimiter = ',', default_value = "none")]
+    #[arg(long, value_parser = choices::displace(), value_delimiter = ',', default_value = "none")]
     pub displacements: Vec<Displace>,
     /// Drivers to measure (comma separated; default: every driver and submission mode; `pattern`
     /// means all three submissions; the ratios to static need `static` among them).
-    #[arg(long, value_enum, value_delimiter = ',')]
+    #[arg(long, value_parser = choices::driver(), value_delimiter = ',')]
     pub drivers: Vec<Driver>,
     #[command(flatten)]
     pub params: ParamOpts,

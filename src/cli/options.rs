@@ -13,7 +13,7 @@
 //! default (`--alpha 0.75`) are told apart from the default itself.
 #![forbid(unsafe_code)]
 
-use crate::cli::Cli;
+use super::args::Cli;
 use clap::parser::ValueSource;
 use clap::{CommandFactory as _, FromArgMatches as _};
 use meshrefine::surface::{Displace, Surface};
@@ -147,8 +147,8 @@ pub fn inapplicable(given: &Given, c: &Chosen) -> Vec<String> {
 
 /// The warnings (without "warning: ") for the options `cli`'s command ignores.
 pub fn warnings(cli: &Cli, given: &Given) -> Vec<String> {
-    use crate::cli::{Command, ExportDriver};
-    let one = |s: &crate::cli::SurfaceOpts,
+    use super::args::{Command, ExportDriver};
+    let one = |s: &super::args::SurfaceOpts,
                driver: (bool, String),
                f: &dyn Fn(&Chosen) -> Vec<String>| {
         f(&Chosen {
@@ -209,7 +209,7 @@ pub fn warnings(cli: &Cli, given: &Given) -> Vec<String> {
 /// Checks every output path of `cli`'s command by the rules of `meshrefine::paths`, before any
 /// work is done.
 pub fn check_outputs(cli: &Cli) -> Result<(), String> {
-    use crate::cli::Command;
+    use super::args::Command;
     use meshrefine::paths::{check_output, Output};
     match &cli.command {
         Command::Render(a) => check_output(&a.output, "-o", Output::File),

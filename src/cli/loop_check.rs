@@ -5,11 +5,43 @@
 //! the command checks M0 and M1 here and names the file's vertices (by the number of their
 //! first `v` line) and faces (by their line), from the [`LoadReport`]. Faces on the same three
 //! vertices as an earlier one, which make M1 non-manifold though M0 is, are refused earlier, as
-//! dropped faces (see `loop_refusal` in main.rs).
+//! dropped faces ([`loop_refusal`]).
 #![forbid(unsafe_code)]
 
 use meshrefine::mesh::{LoadReport, Mesh};
 use meshrefine::subdiv::{Topology, TopologyError};
+
+/// Loop subdivides the file's topology, which a dropped face would change (a hole where it
+/// was): with `--surface loop` the first dropped face is an error, not a warning. With
+/// `topology`, also what Loop cannot subdivide in the faces kept ([`loop_check`]).
+pub fn loop_refusal(
+    shown: &str,
+    mesh: &Mesh,
+    report: &LoadReport,
+    topology: bool,
+) -> Option<String> {
+    let Some(d) = report.dropped_degenerate.first() else {
+        return topology
+            .then(|| topology_refusal(mesh, report))
+            .flatten()
+            .map(|why| format!("'{shown}': the loop surface cannot subdivide it: {why}"));
+    };
+    let face = match d.line {
+        Some(l) => format!("the face at line {l}"),
+        None => format!("face {}", d.face),
+    };
+    if d.reason == meshrefine::mesh::DUPLICATE_FACE {
+        return Some(format!(
+            "'{shown}': the loop surface cannot subdivide it: {face} {}: Loop subdivision cannot take two faces on the same three vertices (after one step their edges would be shared by four faces), and dropping one, as the other surfaces do, would open a hole",
+            d.reason
+        ));
+    }
+    Some(format!(
+        "'{shown}': the loop surface cannot subdivide it: {face} {} ({} degenerate face(s) in all): Loop subdivision needs every face of the file, and dropping it, as the other surfaces do, would open a hole",
+        d.reason,
+        report.dropped_degenerate.len()
+    ))
+}
 
 /// The faces (their names in messages, first two at most) that use edge (a, b), either way.
 fn faces_on_edge(mesh: &Mesh, report: &LoadReport, a: u32, b: u32) -> Vec<String> {

@@ -1,0 +1,72 @@
+//! `meshrefine bench`: every driver and submission mode timed on one mesh, the table printed
+//! and optionally written as markdown, CSV and JSON.
+#![forbid(unsafe_code)]
+
+use super::args::BenchArgs;
+use super::input::{for_viewing, load_mesh, split_three_creases};
+use super::with_context;
+use anyhow::{bail, Context as _, Result};
+use meshrefine::gpu::ContextDesc;
+use meshrefine::render::{DrawConfig, Driver};
+use meshrefine::surface::Surface;
+use std::io::Write as _;
+
+/// Runs `meshrefine bench` with `a`.
+pub fn run(a: &BenchArgs, desc: &ContextDesc) -> Result<()> {
+    if !(a.min_total_ms.is_finite() && a.min_total_ms >= 0.0) {
+        bail!(
+            "--min-total-ms {} is not a finite number >= 0",
+            a.min_total_ms
+        );
+    }
+    let mut input = load_mesh(a.mesh.as_deref(), a.surfaces.contains(&Surface::Loop))?;
+    if a.surfaces.contains(&Surface::Stpn) {
+        // As render does: every surface is then timed on the same, split, mesh.
+        split_three_creases(&mut input, None)?;
+    }
+    let (mesh, _) = for_viewing(&input.mesh, &DrawConfig::new(Driver::default(), 1));
+    let (centre, scale) = input.mesh.viewing_transform();
+    let params = a
+        .params
+        .params_for(&input.mesh, &a.displacements)
+        .map_err(anyhow::Error::msg)?
+        .in_drawn_frame(centre, scale);
+    let surfaces = a
+        .surfaces
+        .iter()
+        .flat_map(|&s| a.displacements.iter().map(move |&d| (s, d)))
+        .collect();
+    let opts = meshrefine::bench::BenchOptions {
+        levels: a.levels.clone(),
+        surfaces,
+        params: Some(params),
+        frames: a.frames,
+        width: a.width,
+        height: a.height,
+        // `pattern` stands for its three submission modes.
+        drivers: Driver::VARIANTS
+            .into_iter()
+            .filter(|v| a.drivers.iter().any(|d| d.same_kind(*v)))
+            .collect(),
+        min_total_ms: a.min_total_ms,
+    };
+    // Drawn centred and at unit size, like `render`: the timings do not change.
+    let mut mesh = mesh;
+    mesh.name = input.mesh.name.clone();
+    let report = with_context(desc, |ctx| {
+        meshrefine::bench::run(ctx, &[mesh], &opts)
+            .with_context(|| format!("cannot benchmark '{}'", input.shown))
+    })?;
+    if let Some(prefix) = &a.out {
+        let args: Vec<String> = std::env::args().skip(1).collect();
+        let command = format!("meshrefine {}", args.join(" "));
+        report
+            .write_files(prefix, &command)
+            .with_context(|| format!("cannot write '{}.md'", prefix.display()))?;
+    }
+    out!("{}", report.markdown());
+    if let Some(prefix) = &a.out {
+        out!("wrote {}.{{md,csv,json}}", prefix.display());
+    }
+    Ok(())
+}

@@ -1,0 +1,176 @@
+//! The library's enums as command-line values: the CLI adapts them, the library knows nothing
+//! of clap.
+//!
+//! Each option that takes a surface, displacement, driver, submission mode, seam rule or
+//! boundary rule parses with [`parser`]: a list of possible values, each with its name and one
+//! line of help for `--help`, mapped back to the library's value. Names come from the library
+//! where it has them (`Surface::name`, `Driver::name`, ...), since messages and exports use the
+//! same words; the help lines, written for the command line, live here. Each help function
+//! matches every variant, so a value added to the library is a compile error here until it has
+//! its line.
+#![forbid(unsafe_code)]
+
+use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
+use meshrefine::render::{Driver, Submit};
+use meshrefine::surface::loop_::Boundary;
+use meshrefine::surface::{Displace, Seams, Surface};
+
+/// A value parser that accepts `name(v)` for every `v` of `values` (listed in `--help` in that
+/// order, each with `help(v)`) and yields `v`.
+pub fn parser<T>(
+    values: &[T],
+    name: fn(T) -> &'static str,
+    help: fn(T) -> &'static str,
+) -> impl TypedValueParser<Value = T>
+where
+    T: Copy + Send + Sync + 'static,
+{
+    let values = values.to_vec();
+    let possible: Vec<PossibleValue> = (values.iter())
+        .map(|&v| PossibleValue::new(name(v)).help(help(v)))
+        .collect();
+    PossibleValuesParser::new(possible).try_map(move |s: String| {
+        (values.iter().copied())
+            .find(|&v| name(v) == s)
+            .ok_or_else(|| format!("'{s}' is not one of the possible values"))
+    })
+}
+
+/// `--surface`, `--surfaces`.
+pub fn surface() -> impl TypedValueParser<Value = Surface> {
+    parser(&Surface::ALL, Surface::name, surface_help)
+}
+
+fn surface_help(s: Surface) -> &'static str {
+    match s {
+        Surface::Flat => "Linear interpolation of the coarse triangle's positions and normals",
+        Surface::Phong => "Phong tessellation (Boubekeur & Alexa 2008): the flat point pulled towards the corners' tangent planes by the shape factor --alpha",
+        Surface::Pn => "Curved PN triangles (Vlachos et al. 2001, as in Boubekeur & Schlick 2005, appendix A): cubic Bézier geometry, quadratic normal field evaluated per fragment",
+        Surface::Stpn => "Scalar-tagged PN triangles (Boubekeur, Reuter & Schlick 2005): PN with per-vertex tension, sharpness, bias and crease direction (--tags, or derived from the mesh's hard edges)",
+        Surface::Loop => "The limit surface of Loop subdivision (Holländer & Boubekeur 2010): elements are the faces of one Loop step M1, evaluated from basis function tables (src/surface/loop.rs)",
+    }
+}
+
+/// `--displace`, `--displacements`.
+pub fn displace() -> impl TypedValueParser<Value = Displace> {
+    parser(&Displace::ALL, Displace::name, displace_help)
+}
+
+fn displace_help(d: Displace) -> &'static str {
+    match d {
+        Displace::None => "No displacement",
+        Displace::Sine => "a·sin(f·|P|) along the normal (the 2005 paper's Fig. 4)",
+        Displace::Noise => "a·Perlin noise(f·P) along the normal, --octaves octaves",
+        Displace::Heightmap => "a·(h − bias) along the normal, h from a grayscale PNG at the mesh's texture coordinates",
+    }
+}
+
+/// `--driver`, `--drivers`: `pattern` parses as the pattern driver with its default submission
+/// (`--submit` picks another). The library says what each driver is.
+pub fn driver() -> impl TypedValueParser<Value = Driver> {
+    parser(&Driver::ALL, Driver::name, Driver::help)
+}
+
+/// `--submit`.
+pub fn submit() -> impl TypedValueParser<Value = Submit> {
+    parser(&Submit::ALL, Submit::name, submit_help)
+}
+
+fn submit_help(s: Submit) -> &'static str {
+    match s {
+        Submit::Push => "Per coarse triangle: push constants, then draw (the paper's loop)",
+        Submit::Ubo => {
+            "Per coarse triangle: the record read from a uniform-buffer window, then draw"
+        }
+        Submit::Instanced => {
+            "One instanced draw; each record read as instance-rate vertex attributes"
+        }
+    }
+}
+
+/// `--pn-seams`.
+pub fn seams() -> impl TypedValueParser<Value = Seams> {
+    parser(&[Seams::Closed, Seams::Open], seams_name, seams_help)
+}
+
+fn seams_name(s: Seams) -> &'static str {
+    match s {
+        Seams::Closed => "closed",
+        Seams::Open => "open",
+    }
+}
+
+fn seams_help(s: Seams) -> &'static str {
+    match s {
+        Seams::Closed => "Crack-free: the geometry uses one normal per split position (its area-weighted normal); shading keeps the corners' own normals",
+        Seams::Open => "As the papers: the geometry uses each corner's own normal, which opens cracks there",
+    }
+}
+
+/// `--boundary`.
+pub fn boundary() -> impl TypedValueParser<Value = Boundary> {
+    parser(
+        &[Boundary::EdgeOnly, Boundary::EdgeAndCorner],
+        boundary_name,
+        boundary_help,
+    )
+}
+
+/// The name `--boundary` takes, for messages too (`info`).
+pub fn boundary_name(b: Boundary) -> &'static str {
+    match b {
+        Boundary::EdgeOnly => "edge-only",
+        Boundary::EdgeAndCorner => "edge-and-corner",
+    }
+}
+
+fn boundary_help(b: Boundary) -> &'static str {
+    match b {
+        Boundary::EdgeOnly => "Boundary edges infinitely sharp (OpenSubdiv's VTX_BOUNDARY_EDGE_ONLY)",
+        Boundary::EdgeAndCorner => "As edge-only, and boundary vertices of valence 2 stay fixed (VTX_BOUNDARY_EDGE_AND_CORNER)",
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Parses `s` with `p` as the value of a bare argument.
+    fn parse<T: Send + Sync + Clone + 'static>(
+        p: &impl TypedValueParser<Value = T>,
+        s: &str,
+    ) -> Result<T, clap::Error> {
+        let cmd = clap::Command::new("t");
+        let arg = clap::Arg::new("x");
+        p.parse_ref(&cmd, Some(&arg), std::ffi::OsStr::new(s))
+    }
+
+    #[test]
+    fn every_library_value_parses_from_its_name_and_nothing_else_does() {
+        for s in Surface::ALL {
+            assert_eq!(parse(&surface(), s.name()).unwrap(), s);
+        }
+        for d in Displace::ALL {
+            assert_eq!(parse(&displace(), d.name()).unwrap(), d);
+        }
+        for d in Driver::ALL {
+            assert_eq!(parse(&driver(), d.name()).unwrap(), d);
+        }
+        for s in Submit::ALL {
+            assert_eq!(parse(&submit(), s.name()).unwrap(), s);
+        }
+        for (name, s) in [("closed", Seams::Closed), ("open", Seams::Open)] {
+            assert_eq!(parse(&seams(), name).unwrap(), s);
+        }
+        for (name, b) in [
+            ("edge-only", Boundary::EdgeOnly),
+            ("edge-and-corner", Boundary::EdgeAndCorner),
+        ] {
+            assert_eq!(parse(&boundary(), name).unwrap(), b);
+            assert_eq!(boundary_name(b), name);
+        }
+        assert!(parse(&surface(), "Flat").is_err());
+        assert!(parse(&driver(), "instanced").is_err());
+        assert!(parse(&boundary(), "edge").is_err());
+    }
+}

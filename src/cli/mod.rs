@@ -1,0 +1,90 @@
+//! The command line: arguments ([`args`], with [`choices`] adapting the library's enums), the
+//! rule for options that do not apply ([`options`]), what every command loads ([`input`], with
+//! Loop's refusals in [`loop_check`]), and one file per command: [`render`], [`view`],
+//! [`export`], [`info`], [`bench`].
+//!
+//! Each command checks its output paths and the options it can check without reading anything
+//! first, then loads its inputs, then creates a GPU context (validated when asked) and runs;
+//! every failure is one sentence for `main` to print.
+#![forbid(unsafe_code)]
+
+mod args;
+mod bench;
+mod choices;
+mod export;
+mod info;
+mod input;
+mod loop_check;
+mod options;
+mod render;
+mod view;
+
+pub use args::Cli;
+pub use options::{parse, warnings};
+
+use crate::note;
+use anyhow::{bail, Result};
+use args::Command;
+use meshrefine::gpu::{Context, ContextDesc, Messages, ShutdownError};
+use std::path::Path;
+use std::sync::Arc;
+
+/// Runs `cli`'s command.
+pub fn run(cli: Cli) -> Result<()> {
+    let desc = context_desc(&cli);
+    options::check_outputs(&cli).map_err(anyhow::Error::msg)?;
+    match &cli.command {
+        Command::Render(a) => render::run(a, &desc),
+        Command::View(a) => view::run(a, &desc),
+        Command::Export(a) => export::run(a, &desc),
+        Command::Info(a) => info::run(a),
+        Command::Bench(a) => bench::run(a, &desc),
+    }
+}
+
+fn context_desc(cli: &Cli) -> ContextDesc {
+    let env = std::env::var("MESHREFINE_VALIDATE").is_ok_and(|v| !v.is_empty() && v != "0");
+    ContextDesc {
+        validate: cli.validate || env,
+        device_name: cli.device.clone(),
+        surface_extensions: vec![],
+    }
+}
+
+/// Refuses an output path whose extension says another format than the one written.
+pub fn require_extension(path: &Path, ext: &str, what: &str) -> Result<()> {
+    let matches = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case(ext));
+    if !matches {
+        bail!(
+            "output file '{}' does not end in .{ext}: {what} (name it .{ext})",
+            path.display()
+        );
+    }
+    Ok(())
+}
+
+/// After every GPU object is gone: fail if the validation layer complained or anything leaked.
+pub fn check_messages(messages: &Arc<Messages>) -> Result<()> {
+    meshrefine::gpu::check_shutdown(messages).map_err(noted)
+}
+
+/// The validation layer's messages as notes, before the error that counts them.
+fn noted(e: ShutdownError) -> anyhow::Error {
+    if let ShutdownError::Validation(list) = &e {
+        for m in list {
+            note(format_args!("validation: {m}"));
+        }
+    }
+    e.into()
+}
+
+/// [`meshrefine::gpu::with_context`] with the validation layer's messages printed as notes.
+pub fn with_context<R>(desc: &ContextDesc, f: impl FnOnce(Arc<Context>) -> Result<R>) -> Result<R> {
+    meshrefine::gpu::with_context(desc, f).map_err(|e| match e.downcast::<ShutdownError>() {
+        Ok(s) => noted(s),
+        Err(e) => e,
+    })
+}

@@ -1,0 +1,80 @@
+//! `meshrefine render`: one frame of a mesh, drawn headlessly, to a PNG.
+#![forbid(unsafe_code)]
+
+use super::args::RenderArgs;
+use super::input::{
+    apply_surface_inputs, attach_surface_inputs, draw_config, for_viewing, load_mesh, Input,
+};
+use super::{require_extension, with_context};
+use anyhow::{bail, Context as _, Result};
+use meshrefine::gpu::{Context, ContextDesc};
+use meshrefine::render::{covered_pixels, Camera, DrawConfig, Headless};
+use meshrefine::surface::Surface;
+use std::io::Write as _;
+use std::path::Path;
+use std::sync::Arc;
+
+/// Runs `meshrefine render` with `a`.
+pub fn run(a: &RenderArgs, desc: &ContextDesc) -> Result<()> {
+    require_extension(&a.output, "png", "render writes PNG images only")?;
+    let for_loop = a.technique.surface.surface == Surface::Loop;
+    let mut input = load_mesh(a.mesh.as_deref(), for_loop)?;
+    let cfg = draw_config(&a.technique, &input.mesh)?;
+    attach_surface_inputs(&mut input, &a.technique.surface, false)?;
+    let size = (a.width, a.height);
+    with_context(desc, |ctx| {
+        render_png(ctx, input, &cfg, size, a.wireframe, &a.output)
+    })?;
+    out!("wrote {}", a.output.display());
+    Ok(())
+}
+
+/// Renders `input` (centred and at unit size, see [`Mesh::for_viewing`]) to a PNG. A blank
+/// image is still written, then reported as an error: it shows nothing.
+///
+/// [`Mesh::for_viewing`]: meshrefine::mesh::Mesh::for_viewing
+pub fn render_png(
+    ctx: Arc<Context>,
+    input: Input,
+    cfg: &DrawConfig,
+    (width, height): (u32, u32),
+    wireframe: bool,
+    out: &Path,
+) -> Result<()> {
+    let triangles = input.mesh.triangles.len();
+    let image = {
+        let mut h = Headless::with_context(ctx, width, height)?;
+        h.wireframe = wireframe;
+        let (mesh, viewed) = for_viewing(&input.mesh, cfg);
+        let mut scene = h.scene(mesh, cfg.level)?;
+        apply_surface_inputs(&h, &mut scene, &input)?;
+        let (c, r) = scene.bounding_sphere();
+        h.render(&mut scene, &viewed, &Camera::framing(c, r))
+    }
+    .with_context(|| format!("cannot render '{}'", input.shown))?;
+    image
+        .save_png(out)
+        .with_context(|| format!("cannot write '{}'", out.display()))?;
+    if covered_pixels(&image) == 0 {
+        // The camera frames the undisplaced mesh: a displacement larger than the mesh moves
+        // the surface out of the picture, whatever the triangles' size.
+        let radius = input.mesh.bounding_radius() as f64;
+        let reach = cfg.params.reach(cfg.displace);
+        let why = if reach > radius {
+            format!(
+                "the displacement ({}) moves the surface up to {:.3e} times the mesh's bounding radius, out of the frame, which shows the undisplaced mesh",
+                cfg.params.reach_options(cfg.displace),
+                reach / radius
+            )
+        } else {
+            "each is much smaller than a pixel when the whole mesh is framed, or seen edge-on"
+                .to_string()
+        };
+        bail!(
+            "'{}' is blank: no pixel of the {width}x{height} image shows any of the {triangles} triangle(s) of '{}' ({why})",
+            out.display(),
+            input.shown
+        );
+    }
+    Ok(())
+}

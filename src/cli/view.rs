@@ -1,0 +1,68 @@
+//! `meshrefine view`: the window demo, or, where no display exists, one frame rendered
+//! headlessly to a PNG (which says why).
+#![forbid(unsafe_code)]
+
+use super::args::ViewArgs;
+use super::input::{attach_surface_inputs, draw_config, for_viewing, load_mesh};
+use super::loop_check::loop_refusal;
+use super::render::render_png;
+use super::{check_messages, require_extension, with_context};
+use anyhow::Result;
+use meshrefine::gpu::ContextDesc;
+use meshrefine::surface::Surface;
+use std::io::Write as _;
+
+/// Runs `meshrefine view` with `a`.
+pub fn run(a: &ViewArgs, desc: &ContextDesc) -> Result<()> {
+    if let Some(shot) = &a.screenshot {
+        require_extension(shot, "png", "screenshots are PNG images")?;
+    }
+    require_extension(
+        &a.headless_output,
+        "png",
+        "the headless view writes a PNG image",
+    )?;
+    let for_loop = a.technique.surface.surface == Surface::Loop;
+    let mut input = load_mesh(a.mesh.as_deref(), for_loop)?;
+    if input.loop_refusal.is_none() && a.mesh.is_some() {
+        // The panel can switch to loop later: say then, in the file's terms, why not.
+        input.loop_refusal = loop_refusal(&input.shown, &input.mesh, &input.report, true);
+    }
+    let cfg = draw_config(&a.technique, &input.mesh)?;
+    attach_surface_inputs(&mut input, &a.technique.surface, true)?;
+    let has_display =
+        std::env::var_os("DISPLAY").is_some() || std::env::var_os("WAYLAND_DISPLAY").is_some();
+    let why_headless = if has_display {
+        let (mesh, viewed) = for_viewing(&input.mesh, &cfg);
+        let opts = meshrefine::app::ViewOptions {
+            cfg: viewed,
+            frames: a.frames,
+            screenshot: a.screenshot.clone(),
+            wireframe: a.wireframe,
+            animate: a.animate,
+            lod: a.lod,
+            heightmap: input.heightmap.clone(),
+            tags: input.tags.clone(),
+            loop_refusal: input.loop_refusal.clone(),
+        };
+        match meshrefine::app::run(desc.clone(), mesh, opts) {
+            Ok(messages) => return check_messages(&messages),
+            Err(e) => match e.downcast::<meshrefine::app::NoWindowSystem>() {
+                Ok(no_window) => no_window.to_string(),
+                Err(e) => return Err(e.context(format!("cannot show '{}'", input.shown))),
+            },
+        }
+    } else {
+        "no display found (DISPLAY and WAYLAND_DISPLAY are unset)".to_string()
+    };
+    with_context(desc, |ctx| {
+        let out = &a.headless_output;
+        render_png(ctx, input, &cfg, (1280, 720), a.wireframe, out)
+    })?;
+    let shown = std::fs::canonicalize(&a.headless_output).unwrap_or(a.headless_output.clone());
+    out!(
+        "{why_headless}: rendered the scene headlessly to {}",
+        shown.display()
+    );
+    Ok(())
+}
