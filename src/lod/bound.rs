@@ -189,8 +189,45 @@ pub struct Bounds {
     /// `d1`: 1 → 2, `d2`: 2 → 0), displacement included (its kinks excepted); for an edge, the
     /// curve's in `[0]`.
     pub second: [f32; 3],
+    /// The height map's kink terms for lattice segments of unit size (`chord` holds them at
+    /// `h = 1/N`: `c1 h + c2 h²`), zero for every other surface.
+    pub kink: Chord,
     /// The cone of the drawn triangles' normals (elements of undisplaced Bézier surfaces only).
     pub cone: Option<super::NormalCone>,
+}
+
+impl Bounds {
+    /// A bound of `|D²P[e, e]|` for a parameter vector `e = (du, dv)` of an element, from the
+    /// three directions' bounds by polarization: `e = α a + β b` for two lattice directions `a`,
+    /// `b` whose sum or difference is the third, so `|Q(e)| <= α² M_a + β² M_b + |αβ| ΣM`; the
+    /// least of the three choices.
+    pub fn second_along(&self, e: [f32; 2]) -> f32 {
+        let [m0, m1, m2] = self.second;
+        let s = m0 + m1 + m2;
+        let (x, y) = (e[0], e[1]);
+        let w = x + y;
+        // e = x d0 − y d2, e = (x + y) d0 + y d1, e = −x d1 − (x + y) d2.
+        let a = x * x * m0 + y * y * m2 + (x * y).abs() * s;
+        let b = w * w * m0 + y * y * m1 + (w * y).abs() * s;
+        let c = x * x * m1 + w * w * m2 + (x * w).abs() * s;
+        a.min(b).min(c)
+    }
+
+    /// The chord error of any triangle of an element's parameter domain, corners `(u, v)` (the
+    /// weights of corners 1 and 2): what the transition triangles between an element's inner
+    /// level and its edges' levels need. `9/40 · max` over its sides of [`Bounds::second_along`],
+    /// plus the kink terms at the size `h = max (|du| + |dv|)` of its sides (a side's texel
+    /// extent is at most `h` times the lattice directions' largest). Element bounds only.
+    pub fn triangle_error(&self, uv: [[f32; 2]; 3]) -> f32 {
+        let (mut q, mut h) = (0.0f32, 0.0f32);
+        for i in 0..3 {
+            let (a, b) = (uv[i], uv[(i + 1) % 3]);
+            let e = [b[0] - a[0], b[1] - a[1]];
+            q = q.max(self.second_along(e));
+            h = h.max(e[0].abs() + e[1].abs());
+        }
+        ELEMENT_FACTOR * q + (self.kink.c1 + self.kink.c2 * h) * h
+    }
 }
 
 /// What bounds need besides the records, built once per mesh and parameters.
@@ -320,6 +357,7 @@ impl<'a> Lod<'a> {
             },
             sphere: sphere.grown(grow),
             second,
+            kink,
             cone,
         }
     }

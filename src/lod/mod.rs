@@ -97,7 +97,15 @@
 //! away when every drawn triangle does: a drawn triangle's edge vectors are averages of `P_u`
 //! and `P_v`, which lie in the convex hulls of the net's scaled first differences, so its normal
 //! lies in the cone of their cross products; if that cone and the directions from the eye to the
-//! sphere are less than 90° apart everywhere, the element draws nothing visible.
+//! sphere are less than 90° apart everywhere, the element draws nothing visible. Cones exist
+//! for undisplaced `flat`, `phong` and `pn`/`stpn` elements; displaced and `loop` elements are
+//! never culled as back faces (frustum culling still applies, with their displaced spheres).
+//!
+//! # Transition triangles
+//! A driver that draws an element at its inner level with boundary vertices on its edges' own
+//! (coarser) samples draws triangles that are not lattice triangles. [`Bounds::triangle_error`]
+//! bounds any parameter triangle of the element from the same three directional bounds
+//! (polarization: each pair of lattice directions sums to the third).
 #![forbid(unsafe_code)]
 
 pub mod bound;

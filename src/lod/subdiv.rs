@@ -49,6 +49,7 @@ fn finish(lod: &Lod, m: [f32; 3], factor: f32, points: &[Vec3]) -> Bounds {
         chord: Chord { c1: 0.0, c2 },
         sphere: sphere.grown(grow),
         second: m,
+        kink: Chord::ZERO,
         cone: None,
     }
 }

@@ -321,6 +321,92 @@ fn displaced_bounds_hold() {
     }
 }
 
+/// Any triangle of the parameter domain (the transition triangles between an element's inner
+/// level and its edges'): its chord error is within [`Bounds::triangle_error`].
+#[test]
+fn triangle_errors_hold_for_any_triangle() {
+    let (spot, recs) = corner_records("spot_control_tri_vn.obj");
+    let (grid, _) = load_model("grid_uv_8x8.obj");
+    let grid_recs = build_records(RecordKind::Corners, &grid, Seams::Closed);
+    let map = Heightmap::generated();
+    let r = spot.bounding_radius();
+    let mut s = 99u64;
+    let mut rnd = move || {
+        s = s
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (s >> 33) as f32 / (1u64 << 31) as f32
+    };
+    let mut checked = 0;
+    for (surface, displace) in [
+        (Surface::Phong, Displace::None),
+        (Surface::Pn, Displace::None),
+        (Surface::Flat, Displace::Sine),
+        (Surface::Pn, Displace::Heightmap),
+    ] {
+        let on_grid = displace == Displace::Heightmap;
+        let list = if on_grid { &grid_recs } else { &recs };
+        for (ix, rec) in list.iter().enumerate().step_by(9) {
+            let uv = grid.triangles[ix.min(grid.triangles.len() - 1)]
+                .t
+                .map(|t| t.map(|i| grid.texcoords[i as usize].to_array()));
+            let case = Case {
+                surface,
+                displace,
+                params: if on_grid {
+                    SurfaceParams {
+                        amplitude: 0.1 * grid.bounding_radius(),
+                        bias: 0.5,
+                        ..Default::default()
+                    }
+                } else {
+                    SurfaceParams::for_radius(r)
+                },
+                inputs: Inputs {
+                    uv: uv.as_ref().filter(|_| on_grid),
+                    heightmap: Some(&map),
+                    lod: 0.5,
+                    ..Default::default()
+                },
+            };
+            let b = case.lod().element(rec);
+            for _ in 0..6 {
+                let size = 0.02 + 0.5 * rnd();
+                let c = [rnd(), rnd()];
+                let tri =
+                    [0; 3].map(|_| [c[0] + size * (rnd() - 0.5), c[1] + size * (rnd() - 0.5)]);
+                if tri
+                    .iter()
+                    .any(|p| p[0] < 0.0 || p[1] < 0.0 || p[0] + p[1] > 1.0)
+                {
+                    continue;
+                }
+                let bary = |p: [f32; 2]| [1.0 - p[0] - p[1], p[0], p[1]];
+                let pts = tri.map(|p| case.at(rec, bary(p)));
+                let mut truth = 0.0f32;
+                for k in 0..=R {
+                    for a in 0..=R - k {
+                        let l = [(R - a - k) as f32, a as f32, k as f32].map(|x| x / R as f32);
+                        let p =
+                            [0, 1].map(|d| tri[0][d] * l[0] + tri[1][d] * l[1] + tri[2][d] * l[2]);
+                        let lin = pts[0] * l[0] + pts[1] * l[1] + pts[2] * l[2];
+                        truth = truth.max((case.at(rec, bary(p)) - lin).length());
+                    }
+                }
+                let bound = b.triangle_error(tri);
+                assert!(
+                    truth <= bound + 64.0 * f32::EPSILON * r,
+                    "{} + {}: triangle {tri:?}: true {truth} above {bound}",
+                    surface.name(),
+                    displace.name()
+                );
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked > 100, "{checked}");
+}
+
 /// Loop: spot's M1 faces, at dyadic and other levels, with extraordinary vertices of valence 3
 /// to 10.
 #[test]
