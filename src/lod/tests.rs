@@ -192,7 +192,9 @@ fn every(v: &[ElementRecord], step: usize) -> Vec<ElementRecord> {
 #[test]
 fn local_surface_bounds_hold_and_are_useful() {
     let (spot, recs) = corner_records("spot_control_tri_vn.obj");
-    let (_, cyl) = corner_records("cylinder_hard_normals.obj");
+    let (cyl_mesh, cyl) = corner_records("cylinder_hard_normals.obj");
+    let (cyl_tags, _) = crate::surface::stpn::derive(&cyl_mesh);
+    assert!(cyl_tags.iter().filter(|t| t.crease()).count() > 10);
     let random = random_records(40, 7);
     let r = spot.bounding_radius();
     let (tags, _) = crate::surface::stpn::derive(&spot);
@@ -219,7 +221,23 @@ fn local_surface_bounds_hold_and_are_useful() {
         if surface != Surface::Flat {
             assert!(m <= 20.0, "{what} random: median bound / truth {m}");
         }
-        plain.check(&cyl, &[1, 3, 6], 2.0, what);
+        // Hard edges: flagged seams, and crease tags for stpn.
+        let hard = Case {
+            inputs: Inputs {
+                tags: Some(&cyl_tags),
+                ..Default::default()
+            },
+            ..plain
+        };
+        hard.check(&cyl, &[1, 3, 6], 2.0, what);
+        if surface != Surface::Flat {
+            let displaced = Case {
+                displace: Displace::Sine,
+                params: SurfaceParams::for_radius(cyl_mesh.bounding_radius()),
+                ..hard
+            };
+            displaced.check(&cyl, &[1, 3], 2.0, &format!("{what} + sine"));
+        }
     }
 }
 
@@ -480,6 +498,36 @@ fn shared_edges_get_identical_bits() {
         }
     }
     assert!(compared > 1000);
+    // Hard edges: seams and crease corners (whose sharp normal depends on the side).
+    let (cyl, cyl_recs) = corner_records("cylinder_hard_normals.obj");
+    let (cyl_tags, _) = crate::surface::stpn::derive(&cyl);
+    let inputs = Inputs {
+        tags: Some(&cyl_tags),
+        ..Default::default()
+    };
+    let mut sides: std::collections::HashMap<(u32, u32), Vec<(usize, usize)>> = Default::default();
+    for (t, tri) in cyl.triangles.iter().enumerate() {
+        for e in 0..3 {
+            let (a, b) = (tri.p[e], tri.p[(e + 1) % 3]);
+            sides.entry((a.min(b), a.max(b))).or_default().push((t, e));
+        }
+    }
+    for surface in [Surface::Phong, Surface::Pn, Surface::Stpn] {
+        for displace in [Displace::None, Displace::Sine] {
+            let lod = Lod::new(surface, displace, &params, &inputs);
+            for s in sides.values().filter(|s| s.len() == 2) {
+                let a = lod.edge(&cyl_recs[s[0].0], s[0].1);
+                let b = lod.edge(&cyl_recs[s[1].0], s[1].1);
+                assert_eq!(
+                    bits(&a),
+                    bits(&b),
+                    "cylinder {} + {}",
+                    surface.name(),
+                    displace.name()
+                );
+            }
+        }
+    }
     // Loop: M1's edges, through their owners.
     let (mesh, _) = load_model("spot_control_tri.obj");
     let data = LoopData::new(&mesh, Boundary::EdgeOnly, Lattice::new(3), |_| {}).unwrap();
@@ -683,101 +731,176 @@ fn frustum_and_back_face_culling_are_conservative() {
     }
 }
 
+/// The camera of the end-to-end check, and how its pixels are counted.
+struct Screen {
+    eye: Vec3,
+    vp: Mat4,
+    view: View,
+    frustum: Frustum,
+    axis: Vec3,
+    size: glam::Vec2,
+}
+
+impl Screen {
+    fn new(spot: &Mesh, px: f32) -> Self {
+        let (eye, vp, fov, aspect) = close_camera(spot);
+        let size = glam::Vec2::new(1920.0, 1080.0);
+        assert!((size.x / size.y - aspect).abs() < 1e-3);
+        let far = vp.inverse() * Vec4::new(0.0, 0.0, 1.0, 1.0);
+        Self {
+            eye,
+            vp,
+            view: View::new(eye, fov, size.y as u32, px, 64),
+            frustum: Frustum::from_view_proj(vp),
+            axis: ((far.truncate() / far.w) - eye).normalize(),
+            size,
+        }
+    }
+
+    fn pixel(&self, p: Vec3) -> glam::Vec2 {
+        let c = self.vp * Vec4::new(p.x, p.y, p.z, 1.0);
+        (glam::Vec2::new(c.x, c.y) / c.w + 1.0) * 0.5 * self.size
+    }
+
+    /// Asserts that surface point `s`, drawn at `lin`, is within the pixel error (when
+    /// visible); returns its metric pixels.
+    fn check(&self, s: Vec3, lin: Vec3, what: &dyn Fn() -> String) -> f32 {
+        if !clip_inside(self.vp, s) {
+            return 0.0;
+        }
+        let px = self.view.pixel_error;
+        let metric = self.view.pixels((s - lin).length(), s);
+        assert!(metric <= px * 1.0001, "{}: {metric} px (metric)", what());
+        let cos = (s - self.eye).normalize().dot(self.axis);
+        let screen = (self.pixel(s) - self.pixel(lin)).length();
+        assert!(
+            screen * cos * cos <= px * 1.02,
+            "{}: {screen} px on screen at cos {cos}",
+            what()
+        );
+        metric
+    }
+}
+
+/// Levels for every element in view, then dense samples of each element at its inner level and
+/// of each edge at its own level; returns (elements checked, elements capped, worst metric px).
+fn end_to_end(case: &Case, records: &[ElementRecord], screen: &Screen) -> (usize, usize, f32) {
+    let lod = case.lod();
+    let view = &screen.view;
+    let (mut drawn, mut capped, mut worst) = (0usize, 0usize, 0.0f32);
+    for rec in records {
+        let b = lod.element(rec);
+        if screen.frustum.outside(&b.sphere) {
+            continue;
+        }
+        let edges = [0, 1, 2].map(|e| lod.edge(rec, e));
+        let (edge_levels, inner) = view.levels(&b, &edges);
+        let n = integer_level(inner);
+        if n >= view.max_level && b.chord.error(n as f32) > view.tolerance(&b.sphere) {
+            // Capped: the bound needs more than the maximum level here.
+            capped += 1;
+            continue;
+        }
+        drawn += 1;
+        let what = || {
+            format!(
+                "{} + {} at level {n}",
+                case.surface.name(),
+                case.displace.name()
+            )
+        };
+        for t in lattice_triangles(n) {
+            let bb = t.map(|(i, j)| lattice_bary(n, i, j));
+            let p = bb.map(|x| case.at(rec, x));
+            for c in 0..=4u32 {
+                for a in 0..=4 - c {
+                    let l = [(4 - a - c) as f32, a as f32, c as f32].map(|x| x / 4.0);
+                    let lin = p[0] * l[0] + p[1] * l[1] + p[2] * l[2];
+                    worst = worst.max(screen.check(case.at(rec, mix(bb, l)), lin, &what));
+                }
+            }
+        }
+        for (e, &level) in edge_levels.iter().enumerate() {
+            let m = integer_level(level);
+            let on = |t: f32| {
+                let mut b = [0.0f32; 3];
+                b[e] = 1.0 - t;
+                b[(e + 1) % 3] = t;
+                b
+            };
+            let what = || format!("{} edge at level {m}", case.surface.name());
+            for k in 0..m {
+                let (p0, p1) = (
+                    case.at(rec, on(k as f32 / m as f32)),
+                    case.at(rec, on((k + 1) as f32 / m as f32)),
+                );
+                for s in 1..8 {
+                    let f = (k as f32 + s as f32 / 8.0) / m as f32;
+                    let lin = p0 + (p1 - p0) * (s as f32 / 8.0);
+                    worst = worst.max(screen.check(case.at(rec, on(f)), lin, &what));
+                }
+            }
+        }
+    }
+    (drawn, capped, worst)
+}
+
 /// The metric end to end: levels for a real mesh and camera, then every visible sample of every
-/// element drawn at its level is within the pixel error of the drawn mesh, in the metric's own
-/// pixels (`d·K/|p − eye|`) and on screen through the real projection (where a deviation at angle
-/// φ off the view axis shows up to `1/cos²φ` larger than the metric counts).
+/// element drawn at its inner level, and of every edge drawn at its own level, is within the
+/// pixel error of the drawn mesh, in the metric's own pixels (`d·K/|p − eye|`) and on screen
+/// through the real projection (where a deviation at angle φ off the view axis shows up to
+/// `1/cos²φ` larger than the metric counts). The worst sample must come within a small factor
+/// of the bound, so the check is not vacuous.
 #[test]
 fn pixel_error_holds_end_to_end() {
     let (spot, recs) = corner_records("spot_control_tri_vn.obj");
-    let (eye, vp, fov, aspect) = close_camera(&spot);
-    let (w, h) = (1920u32, 1080u32);
-    assert!((w as f32 / h as f32 - aspect).abs() < 1e-3);
-    let px = 1.0;
-    let view = View::new(eye, fov, h, px, 64);
-    let frustum = Frustum::from_view_proj(vp);
-    let forward = (vp.inverse() * Vec4::new(0.0, 0.0, 1.0, 1.0)).truncate();
-    let _ = forward;
-    let inv = vp.inverse();
-    let axis = {
-        let far = inv * Vec4::new(0.0, 0.0, 1.0, 1.0);
-        ((far.truncate() / far.w) - eye).normalize()
-    };
-    let pixel = |p: Vec3| {
-        let c = vp * Vec4::new(p.x, p.y, p.z, 1.0);
-        glam::Vec2::new(
-            (c.x / c.w + 1.0) * 0.5 * w as f32,
-            (c.y / c.w + 1.0) * 0.5 * h as f32,
-        )
-    };
+    let (tags, _) = crate::surface::stpn::derive(&spot);
+    let screen = Screen::new(&spot, 1.0);
+    let r = spot.bounding_radius();
+    let (plain, _) = load_model("spot_control_tri.obj");
+    assert_eq!(plain.positions, spot.positions);
+    let data = LoopData::new(&plain, Boundary::EdgeOnly, Lattice::default(), |_| {}).unwrap();
+    let frame = data.frame(&plain.positions);
     for (surface, displace) in [
         (Surface::Pn, Displace::None),
+        (Surface::Stpn, Displace::None),
+        (Surface::Phong, Displace::Noise),
         (Surface::Flat, Displace::Sine),
+        (Surface::Loop, Displace::None),
     ] {
         let case = Case {
             surface,
             displace,
             params: SurfaceParams {
-                amplitude: 0.01 * spot.bounding_radius(),
-                ..SurfaceParams::for_radius(spot.bounding_radius())
+                amplitude: 0.01 * r,
+                // Noise cells four times the size of the sine's waves.
+                frequency: if displace == Displace::Noise {
+                    6.0 / r
+                } else {
+                    24.0 / r
+                },
+                ..SurfaceParams::for_radius(r)
             },
-            inputs: Inputs::default(),
+            inputs: Inputs {
+                tags: Some(&tags),
+                subdiv: Some((&data, &frame)),
+                ..Default::default()
+            },
         };
-        let lod = case.lod();
-        let (mut worst_metric, mut worst_screen, mut drawn) = (0.0f32, 0.0f32, 0usize);
-        let mut capped = 0usize;
-        for rec in &recs {
-            let b = lod.element(rec);
-            if frustum.outside(&b.sphere) {
-                continue;
-            }
-            let edges = [0, 1, 2].map(|e| lod.edge(rec, e));
-            let (_, inner) = view.levels(&b, &edges);
-            let n = integer_level(inner);
-            if n >= view.max_level && b.chord.error(n as f32) > view.tolerance(&b.sphere) {
-                // Capped: the bound needs more than the maximum level here.
-                capped += 1;
-                continue;
-            }
-            drawn += 1;
-            for t in lattice_triangles(n) {
-                let bb = t.map(|(i, j)| lattice_bary(n, i, j));
-                let p = bb.map(|x| case.at(rec, x));
-                for c in 0..=4u32 {
-                    for a in 0..=4 - c {
-                        let l = [(4 - a - c) as f32, a as f32, c as f32].map(|x| x / 4.0);
-                        let s = case.at(rec, mix(bb, l));
-                        if !clip_inside(vp, s) {
-                            continue;
-                        }
-                        let lin = p[0] * l[0] + p[1] * l[1] + p[2] * l[2];
-                        let metric = view.pixels((s - lin).length(), s);
-                        assert!(metric <= px * 1.0001, "metric {metric} px at level {n}");
-                        let cos = (s - eye).normalize().dot(axis);
-                        let screen = (pixel(s) - pixel(lin)).length();
-                        assert!(
-                            screen * cos * cos <= px * 1.02,
-                            "{screen} px on screen at cos {cos}, level {n}"
-                        );
-                        worst_metric = worst_metric.max(metric);
-                        worst_screen = worst_screen.max(screen);
-                    }
-                }
-            }
-        }
-        assert!(drawn > 50, "only {drawn} elements in view");
-        assert!(capped * 20 <= drawn, "{capped} of {drawn} elements capped");
-        eprintln!(
-            "{} + {}: {drawn} elements checked, {capped} capped, worst {worst_metric} px (metric), {worst_screen} px (screen)",
-            surface.name(),
-            displace.name()
-        );
-        // The bound is not vacuous: the worst sample comes within a small factor of it.
+        let records = if surface == Surface::Loop {
+            every(&data.records, 3)
+        } else {
+            recs.clone()
+        };
+        let (drawn, capped, worst) = end_to_end(&case, &records, &screen);
+        let what = format!("{} + {}", surface.name(), displace.name());
+        eprintln!("{what}: {drawn} elements checked, {capped} capped, worst {worst} px");
+        assert!(drawn > 50, "{what}: only {drawn} elements in view");
         assert!(
-            worst_metric > px / 20.0,
-            "{}: worst {worst_metric} px",
-            displace.name()
+            capped * 20 <= drawn,
+            "{what}: {capped} of {drawn} elements capped"
         );
+        assert!(worst > 1.0 / 20.0, "{what}: worst {worst} px");
     }
 }
 
