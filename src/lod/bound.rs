@@ -125,9 +125,17 @@ impl Net {
         for &p in &pts {
             low = low.max(along(p));
         }
+        // The coarsest lattice always, the finer ones while the bound is below half the
+        // patch's largest |P| at its corners (the edge's own corners for an edge).
+        let m = self.degree;
+        let enough = 0.5
+            * Self::multi(m)
+                .filter(|w| Self::keep(w, edge) && w.contains(&m))
+                .map(|w| self.at(w).length())
+                .fold(0.0, f32::max);
         for g in RHO_GRIDS {
             low = low.max(self.sampled_min_length(edge, g));
-            if low > 0.0 {
+            if low >= enough {
                 break;
             }
         }
@@ -175,8 +183,8 @@ impl Net {
     }
 }
 
-/// Lattice segments per side on which [`Net::min_length`] samples (the finer one only when
-/// the coarser proves nothing).
+/// Lattice segments per side on which [`Net::min_length`] samples (the finer ones only while
+/// the bound is below half the largest `|P|` at the corners).
 pub const RHO_GRIDS: [u32; 3] = [8, 32, 128];
 
 /// Bounds of one element or edge.

@@ -1,7 +1,10 @@
 //! Level of detail with a guaranteed screen-space error: proven chord-error bounds per surface,
 //! the screen-space metric that turns them into refinement levels, per edge and per element, and
-//! the conservative bounds (spheres, normal cones) that culling uses. Plain math on the CPU; the
-//! GPU level pass mirrors these functions one for one (all in `f32`, with few branches).
+//! the conservative bounds (spheres, normal cones) that culling uses. Plain math on the CPU, all
+//! in `f32`. `glsl/include/lod.glsl` mirrors it function for function for the local surfaces with
+//! sine and noise displacement (glsl/lod/bounds.comp runs it per element; tests/lod_mirror.rs
+//! compares it with this module); where this module returns infinity (no finite bound) the
+//! mirror returns 3e38.
 //!
 //! # Levels
 //! A level is what a pattern's level is in this codebase (src/pattern): `N` segments per edge,
@@ -87,8 +90,9 @@
 //!
 //! The displacement direction's lower bound `ρ` ([`bound::Net::min_length`]) is the better of
 //! the Bernstein hull's distance from the origin and lattice samples of `|n|` less the change
-//! possible within a lattice cell, on 8, then 32, then 128 segments per side (only while the
-//! coarser proves nothing: PN's normal field can turn by more than 90° along an edge).
+//! possible within a lattice cell, on 8, then 32, then 128 segments per side (the finer ones
+//! only while the bound is below half the largest `|n|` at the corners: PN's normal field can
+//! turn by more than 90° along an edge).
 //! Scalar-tagged edges with crease corners take the worst of both sides' sharp normals, which
 //! only the element knows.
 //!
