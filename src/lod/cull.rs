@@ -1,7 +1,7 @@
 //! Culling helpers, conservative for curved and displaced patches: a bounding sphere against
 //! the view frustum, and a normal cone against the eye (back faces of closed surfaces).
 
-use super::bound::Net;
+use super::net::Net;
 use super::Sphere;
 use glam::{Mat4, Vec3, Vec4};
 

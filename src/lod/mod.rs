@@ -88,7 +88,7 @@
 //! blended seam normals, a direction field that may vanish, `sine` around its centre, `loop`
 //! with displacement) the level is the maximum and the pixel error is not guaranteed there.
 //!
-//! The displacement direction's lower bound `ρ` ([`bound::Net::min_length`]) is the better of
+//! The displacement direction's lower bound `ρ` ([`net::Net::min_length`]) is the better of
 //! the Bernstein hull's distance from the origin and lattice samples of `|n|` less the change
 //! possible within a lattice cell, on 8, then 32, then 128 segments per side (the finer ones
 //! only while the bound is below half the largest `|n|` at the corners: PN's normal field can
@@ -115,6 +115,7 @@
 pub mod bound;
 pub mod cull;
 pub mod displace;
+pub mod net;
 pub mod subdiv;
 
 pub use bound::{Bounds, Lod};
