@@ -2,8 +2,8 @@
 //! glsl/lod/bounds.comp) against src/lod on spot, for `flat`, `phong` and `pn` with no, sine and
 //! noise displacement: every element's and edge's chord bound and sphere. The two evaluate the
 //! same formulas in f32 with different rounding (GLSL's `length`, `normalize` and `sqrt` are not
-//! correctly rounded), so they agree to a relative 1e-3 on the bounds and 1e-5 of the mesh's
-//! radius on the spheres' centres.
+//! correctly rounded), so they agree to a relative 1e-3 on the bounds, 1e-5 of the mesh's radius
+//! on the spheres' centres and 1e-4 on the normal cones of undisplaced elements.
 
 mod common;
 
@@ -73,7 +73,7 @@ fn gpu_bounds_match_the_cpu() {
         .unwrap();
         let out = Buffer::new(
             ctx,
-            BufferDesc::new_readback(n as u64 * 8 * 16, storage),
+            BufferDesc::new_readback(n as u64 * 12 * 16, storage),
             "bounds",
         )
         .unwrap();
@@ -114,7 +114,7 @@ fn gpu_bounds_match_the_cpu() {
             octaves: 2,
             ..SurfaceParams::for_radius(r)
         };
-        let mut compared = 0;
+        let (mut compared, mut cones) = (0, 0);
         for surface in [Surface::Flat, Surface::Phong, Surface::Pn] {
             for displace in [Displace::None, Displace::Sine, Displace::Noise] {
                 let mut f = FrameUniforms::zeroed();
@@ -146,7 +146,8 @@ fn gpu_bounds_match_the_cpu() {
                         lod.edge(rec, 2),
                     ];
                     for (k, w) in want.iter().enumerate() {
-                        let (ch, sp) = (got[8 * i + 2 * k], got[8 * i + 2 * k + 1]);
+                        let at = 12 * i + 3 * k;
+                        let (ch, sp, cone) = (got[at], got[at + 1], got[at + 2]);
 
                         assert!(
                             close(ch[0], w.chord.c1, 1e-3) && close(ch[1], w.chord.c2, 1e-3),
@@ -162,11 +163,25 @@ fn gpu_bounds_match_the_cpu() {
                             "{what}: element {i} bound {k}: GPU sphere {sp:?} vs CPU {:?}",
                             w.sphere
                         );
+                        // The cone, where the CPU has one (or the GPU does, away from 90°).
+                        match w.cone {
+                            Some(cc) => assert!(
+                                (Vec3::new(cone[0], cone[1], cone[2]) - cc.axis).length() <= 1e-4
+                                    && (cone[3] - cc.cos).abs() <= 1e-4,
+                                "{what}: element {i}: GPU cone {cone:?} vs CPU {cc:?}"
+                            ),
+                            None => assert!(
+                                cone[3] <= 1e-3,
+                                "{what}: element {i} bound {k}: GPU cone {cone:?}, none on the CPU"
+                            ),
+                        }
+                        cones += w.cone.is_some() as usize;
                         compared += 1;
                     }
                 }
             }
         }
         assert_eq!(compared, 9 * 4 * n);
+        assert!(cones > n, "{cones} cones");
     });
 }

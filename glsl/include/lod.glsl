@@ -3,8 +3,7 @@
 // bounding spheres, frustum and normal-cone culling. Mirror, function for function, of src/lod
 // (mod.rs, bound.rs, displace.rs, cull.rs), where the proofs are; tests/lod_mirror.rs compares
 // the two. Not mirrored yet: `stpn`'s tags, the height map's texel statistics, `loop`'s lattice
-// (src/lod/bound.rs, src/lod/subdiv.rs) and the normal cone's construction (src/lod/cull.rs
-// `normal_cone`; its test, `lod_back_facing`, is here).
+// (src/lod/bound.rs, src/lod/subdiv.rs).
 #ifndef LOD_GLSL
 #define LOD_GLSL
 #include "corners.glsl"
@@ -406,6 +405,42 @@ vec3 lod_height(uint d, vec4 params, vec3 origin, vec4 s) {
     return vec3(0.0);
 }
 
+// The cone of the normals of a Bézier patch's drawn triangles (xyz axis, w cosine of the
+// half-angle; zero when not within a half-space), oriented as the stored corners wind (flip:
+// the net's corner order is an odd permutation of the stored one). Mirror: src/lod/cull.rs
+// `normal_cone`.
+vec3 lod_cone_product(LodNet net, int p, int q, bool flip) {
+    int m = net.degree;
+    ivec3 g = lod_multi(m - 1, p), h = lod_multi(m - 1, q);
+    vec3 u = lod_at(net, g + ivec3(0, 1, 0)) - lod_at(net, g + ivec3(1, 0, 0));
+    vec3 v = lod_at(net, h + ivec3(0, 0, 1)) - lod_at(net, h + ivec3(1, 0, 0));
+    return cross(u, v) * (flip ? -1.0 : 1.0);
+}
+
+vec4 lod_normal_cone(LodNet net, bool flip) {
+    int count = net.degree * (net.degree + 1) / 2;
+    vec3 sum = vec3(0.0);
+    for (int p = 0; p < count; ++p) {
+        for (int q = 0; q < count; ++q) {
+            vec3 c = lod_cone_product(net, p, q, flip);
+            sum += c != vec3(0.0) ? normalize(c) : vec3(0.0);
+        }
+    }
+    if (sum == vec3(0.0)) {
+        return vec4(0.0);
+    }
+    vec3 axis = normalize(sum);
+    float cs = 1.0;
+    for (int p = 0; p < count; ++p) {
+        for (int q = 0; q < count; ++q) {
+            vec3 c = lod_cone_product(net, p, q, flip);
+            cs = c != vec3(0.0) ? min(cs, dot(normalize(c), axis)) : cs;
+        }
+    }
+    cs -= 1e-5;
+    return cs > 0.0 ? vec4(axis, cs) : vec4(0.0);
+}
+
 // What an element (edge < 0) or canonical edge 0 (edge = 0) is bounded by.
 struct LodBounds {
     vec2 chord;  // (c1, c2)
@@ -416,7 +451,7 @@ struct LodBounds {
 
 // Bounds of a local surface (0 flat, 1 phong, 2 pn) with displacement d (0 none, 1 sine,
 // 2 noise) on canonical corners c. Mirror: src/lod/bound.rs `Lod::local` (without `stpn` and
-// the height map). The cone is not mirrored yet (w = 0).
+// the height map).
 LodBounds lod_local(uint surface, uint d, vec4 params, vec3 origin, Corners c, int edge) {
     bool exact = surface != 1u || edge >= 0 || !lod_phong_mixed(c);
     LodNet net = lod_surface_net(exact ? surface : 0u, params.x, c);
@@ -454,7 +489,9 @@ LodBounds lod_local(uint surface, uint d, vec4 params, vec3 origin, Corners c, i
     b.chord = vec2(0.0, worst < LOD_HUGE ? (edge >= 0 ? LOD_EDGE_FACTOR : LOD_ELEMENT_FACTOR) * worst : LOD_HUGE);
     b.sphere = vec4(sphere.xyz, sphere.w + grow);
     b.second = m;
-    b.cone = vec4(0.0);
+    // Canonical order c.o an odd permutation of the stored corners: the orientation flips.
+    bool odd = !((c.o[0] == 0 && c.o[1] == 1) || (c.o[0] == 1 && c.o[1] == 2) || (c.o[0] == 2 && c.o[1] == 0));
+    b.cone = (edge < 0 && exact && d == 0u) ? lod_normal_cone(net, odd) : vec4(0.0);
     return b;
 }
 
