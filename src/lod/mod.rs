@@ -1,10 +1,10 @@
 //! Level of detail with a guaranteed screen-space error: proven chord-error bounds per surface,
 //! the screen-space metric that turns them into refinement levels, per edge and per element, and
 //! the conservative bounds (spheres, normal cones) that culling uses. Plain math on the CPU, all
-//! in `f32`. `glsl/include/lod.glsl` mirrors it function for function for `flat`, `phong` and `pn`
-//! with sine and noise displacement (bounds, spheres, normal cones, levels, culling tests) (glsl/lod/bounds.comp runs it per element; tests/lod_mirror.rs
-//! compares it with this module); where this module returns infinity (no finite bound) the
-//! mirror returns 3e38.
+//! in `f32`. `glsl/include/lod.glsl` mirrors it function for function for `flat`, `phong` and
+//! `pn` with sine and noise displacement: bounds, spheres, normal cones, levels and culling
+//! tests (glsl/lod/bounds.comp runs it per element, tests/lod_mirror.rs compares the two). Where
+//! this module returns infinity (no finite bound) the mirror returns 3e38.
 //!
 //! # Levels
 //! A level is what a pattern's level is in this codebase (src/pattern): `N` segments per edge,
