@@ -12,6 +12,7 @@ pub mod bench;
 pub mod export;
 #[allow(unsafe_code)]
 pub mod gpu;
+pub mod lod;
 pub mod mesh;
 pub mod paths;
 pub mod pattern;

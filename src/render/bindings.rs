@@ -62,6 +62,11 @@ pub const LOOP_BINDING_RING_OFFSETS: u32 = 4;
 pub const LOOP_BINDING_RINGS: u32 = 5;
 pub const LOOP_BINDING_N1: u32 = 6;
 
+/// The level pass (compute, set 2): per element, its bounds and its three edges' bounds
+/// (glsl/lod/bounds.comp, src/lod).
+pub const SET_LOD: u32 = 2;
+pub const BINDING_LOD_BOUNDS: u32 = 0;
+
 /// Specialization constant ids.
 pub const SPEC_SURFACE: u32 = 0;
 pub const SPEC_SUBMIT: u32 = 1;
@@ -97,6 +102,8 @@ pub const GLSL_DEFINES: &[(&str, u32)] = &[
     ("BINDING_LOOP_CONTROL", BINDING_LOOP_CONTROL),
     ("BINDING_LOOP_TABLES", BINDING_LOOP_TABLES),
     ("BINDING_LOOP_ROWS", BINDING_LOOP_ROWS),
+    ("SET_LOD", SET_LOD),
+    ("BINDING_LOD_BOUNDS", BINDING_LOD_BOUNDS),
     ("SPEC_SURFACE", SPEC_SURFACE),
     ("SPEC_SUBMIT", SPEC_SUBMIT),
     ("SPEC_WIRE", SPEC_WIRE),

@@ -1,0 +1,441 @@
+//! Chord-error bounds of the local surfaces (`flat`, `phong`, `pn`, `stpn`) and of every
+//! displacement, from the element's record alone; the proofs are in the module notes of
+//! src/lod/mod.rs. Each surface is written as a triangular Bézier net ([`Net`]) in canonical
+//! corner order (src/surface/mod.rs), the order the surfaces evaluate in, so an edge's net is
+//! the very same on both sides of the edge.
+
+use super::displace::{height, MapLevel};
+pub use super::net::Net;
+use super::{Chord, Sphere, EDGE_FACTOR, EDGE_KINK_FACTOR, ELEMENT_FACTOR, KINK_FACTOR};
+use crate::surface::{
+    canonical, dot3, edge_of, pn, stpn, CornerRecord, Corners, Displace, ElementRecord, Inputs,
+    Surface, SurfaceParams,
+};
+use glam::{Vec2, Vec3};
+
+/// Bounds of one element or edge.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Bounds {
+    pub chord: Chord,
+    /// Contains every point of the patch (displaced).
+    pub sphere: Sphere,
+    /// `M_k >= sup |D²P[d_k, d_k]|` per lattice direction, in stored order (`d0`: corner 0 → 1,
+    /// `d1`: 1 → 2, `d2`: 2 → 0), displacement included (its kinks excepted); for an edge, the
+    /// curve's in `[0]`.
+    pub second: [f32; 3],
+    /// The height map's kink terms for lattice segments of unit size (`chord` holds them at
+    /// `h = 1/N`: `c1 h + c2 h²`), zero for every other surface.
+    pub kink: Chord,
+    /// The cone of the drawn triangles' normals (elements of undisplaced Bézier surfaces only).
+    pub cone: Option<super::NormalCone>,
+}
+
+impl Bounds {
+    /// A bound of `|D²P[e, e]|` for a parameter vector `e = (du, dv)` of an element, from the
+    /// three directions' bounds by polarization: `e = α a + β b` for two lattice directions `a`,
+    /// `b` whose sum or difference is the third, so `|Q(e)| <= α² M_a + β² M_b + |αβ| ΣM`; the
+    /// least of the three choices.
+    pub fn second_along(&self, e: [f32; 2]) -> f32 {
+        let [m0, m1, m2] = self.second;
+        let s = m0 + m1 + m2;
+        let (x, y) = (e[0], e[1]);
+        let w = x + y;
+        // e = x d0 − y d2, e = (x + y) d0 + y d1, e = −x d1 − (x + y) d2.
+        let a = x * x * m0 + y * y * m2 + (x * y).abs() * s;
+        let b = w * w * m0 + y * y * m1 + (w * y).abs() * s;
+        let c = x * x * m1 + w * w * m2 + (x * w).abs() * s;
+        a.min(b).min(c)
+    }
+
+    /// The chord error of any triangle of an element's parameter domain, corners `(u, v)` (the
+    /// weights of corners 1 and 2): what the transition triangles between an element's inner
+    /// level and its edges' levels need. `9/40 · max` over its sides of [`Bounds::second_along`],
+    /// plus the kink terms at the size `h = max (|du| + |dv|)` of its sides (a side's texel
+    /// extent is at most `h` times the lattice directions' largest). Element bounds only.
+    pub fn triangle_error(&self, uv: [[f32; 2]; 3]) -> f32 {
+        let (mut q, mut h) = (0.0f32, 0.0f32);
+        for i in 0..3 {
+            let (a, b) = (uv[i], uv[(i + 1) % 3]);
+            let e = [b[0] - a[0], b[1] - a[1]];
+            q = q.max(self.second_along(e));
+            h = h.max(e[0].abs() + e[1].abs());
+        }
+        ELEMENT_FACTOR * q + (self.kink.c1 + self.kink.c2 * h) * h
+    }
+}
+
+/// What bounds need besides the records, built once per mesh and parameters.
+pub struct Lod<'a> {
+    pub surface: Surface,
+    pub displace: Displace,
+    pub params: SurfaceParams,
+    pub inputs: Inputs<'a>,
+    /// The two pyramid levels the height map reads (the same level twice when it reads one).
+    pub map_levels: Option<[MapLevel; 2]>,
+}
+
+impl<'a> Lod<'a> {
+    pub fn new(
+        surface: Surface,
+        displace: Displace,
+        params: &SurfaceParams,
+        inputs: &Inputs<'a>,
+    ) -> Self {
+        let map_levels = match (displace, inputs.heightmap) {
+            (Displace::Heightmap, Some(map)) => {
+                // The levels Heightmap::sample reads.
+                let last = map.levels.len() - 1;
+                let l0 = (inputs.lod.max(0.0).floor() as usize).min(last);
+                let l1 = (l0 + 1).min(last);
+                Some([MapLevel::of(map, l0), MapLevel::of(map, l1)])
+            }
+            _ => None,
+        };
+        Self {
+            surface,
+            displace,
+            params: *params,
+            inputs: *inputs,
+            map_levels,
+        }
+    }
+
+    /// The bounds of element `rec`.
+    pub fn element(&self, rec: &ElementRecord) -> Bounds {
+        if self.surface == Surface::Loop {
+            return super::subdiv::element(self, rec);
+        }
+        let r = CornerRecord::decode(rec);
+        let c = canonical(&r, [1.0 / 3.0; 3]);
+        self.local(&r, &c, None)
+    }
+
+    /// The bounds of stored edge `e` (corners `e` and `e + 1`) of element `rec`: from the edge's
+    /// data alone, the same bits from either element that has it.
+    pub fn edge(&self, rec: &ElementRecord, e: usize) -> Bounds {
+        if self.surface == Surface::Loop {
+            return super::subdiv::edge(self, rec, e);
+        }
+        let r = CornerRecord::decode(rec);
+        let mut bary = [0.5f32; 3];
+        bary[(e + 2) % 3] = 0.0;
+        // The edge's corners first, by global index: canonical edge 0.
+        let c = canonical(&r, bary);
+        self.local(&r, &c, Some(0))
+    }
+
+    fn tags(&self, r: &CornerRecord, c: &Corners) -> [stpn::VertexTag; 3] {
+        self.inputs
+            .tags
+            .map_or([stpn::VertexTag::default(); 3], |t| {
+                stpn::corner_tags(t, &r.idx, c.order)
+            })
+    }
+
+    /// Bounds on canonical corners `c`, of the whole element or (`edge = Some(0)`) of canonical
+    /// edge 0.
+    fn local(&self, r: &CornerRecord, c: &Corners, edge: Option<usize>) -> Bounds {
+        let tags = self.tags(r, c);
+        let exact = surface_net(self.surface, self.params.alpha, c, &tags, edge.is_some());
+        let net = exact.unwrap_or_else(|| phong_fallback_net(c));
+        let dirs: Vec<usize> = match edge {
+            Some(k) => vec![k],
+            None => vec![0, 1, 2],
+        };
+        let mut m: Vec<f32> = dirs.iter().map(|&k| net.second(k, edge)).collect();
+        if exact.is_none() {
+            m.iter_mut().for_each(|x| *x = f32::INFINITY);
+        }
+        let mut sphere = Sphere::around(&net.hull(edge));
+        if exact.is_none() {
+            // |Phong − flat| <= α · max |p − P_i| <= α · the longest edge.
+            let longest = (0..3)
+                .map(|i| (c.p[(i + 1) % 3] - c.p[i]).length())
+                .fold(0.0, f32::max);
+            sphere = sphere.grown(self.params.alpha * longest);
+        }
+        let (mut kink, mut grow) = (Chord::ZERO, 0.0f32);
+        if self.displace != Displace::None {
+            let (extra, k, g) = self.displacement(c, &tags, &net, &sphere, edge);
+            for (mk, e) in m.iter_mut().zip(extra) {
+                *mk += e;
+            }
+            kink = k;
+            grow = g;
+        }
+        let worst = m.iter().fold(0.0f32, |a, &b| a.max(b));
+        let factor = if edge.is_some() {
+            EDGE_FACTOR
+        } else {
+            ELEMENT_FACTOR
+        };
+        let mut second = [0.0f32; 3];
+        match edge {
+            Some(_) => second[0] = m[0],
+            None => {
+                for k in 0..3 {
+                    second[edge_of(c.order[k], c.order[(k + 1) % 3])] = m[k];
+                }
+            }
+        }
+        let cone = match (edge, exact, self.displace) {
+            (None, Some(net), Displace::None) => {
+                super::cull::normal_cone(&net, odd_permutation(c.order))
+            }
+            _ => None,
+        };
+        Bounds {
+            chord: Chord {
+                c1: kink.c1,
+                c2: factor * worst + kink.c2,
+            },
+            sphere: sphere.grown(grow),
+            second,
+            kink,
+            cone,
+        }
+    }
+
+    /// What displacement adds to each direction's `M_k`, its kink terms, and how far it moves
+    /// points (the sphere's growth).
+    fn displacement(
+        &self,
+        c: &Corners,
+        tags: &[stpn::VertexTag; 3],
+        net: &Net,
+        sphere: &Sphere,
+        edge: Option<usize>,
+    ) -> (Vec<f32>, Chord, f32) {
+        let dirs: Vec<usize> = match edge {
+            Some(k) => vec![k],
+            None => vec![0, 1, 2],
+        };
+        let p = &self.params;
+        let a = p.amplitude.abs();
+        // The direction field's nets (several on a scalar-tagged edge with crease corners, whose
+        // sharp normal depends on the side).
+        let nets = direction_nets(self.surface, c, tags, edge.is_some());
+        let mut extra = vec![0.0f32; dirs.len()];
+        let mut kink = Chord::ZERO;
+        let max_h = if self.displace == Displace::Heightmap {
+            a * p.bias.abs().max((1.0 - p.bias).abs())
+        } else {
+            height(self.displace, p, sphere).max
+        };
+        // Height derivative bounds per direction: |h'| and the smooth part of |h''|.
+        let mut h1 = vec![0.0f32; dirs.len()];
+        let mut h2 = vec![0.0f32; dirs.len()];
+        if self.displace == Displace::Heightmap {
+            let uv = self
+                .inputs
+                .uv
+                .map(|t| c.order.map(|i| Vec2::from(t[i])))
+                .unwrap_or([Vec2::ZERO; 3]);
+            let Some(levels) = self.map_levels.filter(|_| self.inputs.uv.is_some()) else {
+                // No map or no coordinates: the displacement is the constant a·(0 − b)... but the
+                // evaluation reads h = 0 then: a constant offset along the normal.
+                return self.smooth_only(&dirs, &nets, edge, max_h);
+            };
+            for lv in levels {
+                let speed: Vec<Vec2> = dirs
+                    .iter()
+                    .map(|&k| ((uv[(k + 1) % 3] - uv[k]) * lv.size).abs())
+                    .collect();
+                let s = speed.iter().fold(Vec2::ZERO, |m, &v| m.max(v));
+                for (i, v) in speed.iter().enumerate() {
+                    h1[i] = h1[i].max(a * (lv.first.x * v.x + lv.first.y * v.y));
+                }
+                let f = if edge.is_some() {
+                    EDGE_KINK_FACTOR
+                } else {
+                    KINK_FACTOR
+                };
+                kink = kink.max(Chord {
+                    c1: f * a * (lv.second.x * s.x + lv.second.y * s.y),
+                    c2: f
+                        * a
+                        * (lv.second.x * s.x * s.x
+                            + lv.second.y * s.y * s.y
+                            + 2.0 * lv.mixed * s.x * s.y),
+                });
+            }
+        } else {
+            let hb = height(self.displace, p, sphere);
+            for (i, &k) in dirs.iter().enumerate() {
+                let (v, m) = (net.first(k, edge), net.second(k, edge));
+                h1[i] = hb.grad * v;
+                h2[i] = hb.hess * v * v + hb.grad * m;
+            }
+        }
+        for dn in &nets {
+            let rho = dn.min_length(edge);
+            for (i, &k) in dirs.iter().enumerate() {
+                let (n1, n2) = (dn.first(k, edge), dn.second(k, edge));
+                let e = if rho > 0.0 {
+                    h2[i]
+                        + 2.0 * h1[i] * n1 / rho
+                        + max_h * (2.0 * n2 / rho + 3.0 * n1 * n1 / (rho * rho))
+                } else {
+                    f32::INFINITY
+                };
+                extra[i] = extra[i].max(e);
+            }
+        }
+        (extra, kink, max_h)
+    }
+
+    /// A height that does not vary along the surface (a height map without coordinates):
+    /// only the moving direction's terms.
+    fn smooth_only(
+        &self,
+        dirs: &[usize],
+        nets: &[Net],
+        edge: Option<usize>,
+        max_h: f32,
+    ) -> (Vec<f32>, Chord, f32) {
+        let mut extra = vec![0.0f32; dirs.len()];
+        for dn in nets {
+            let rho = dn.min_length(edge);
+            for (i, &k) in dirs.iter().enumerate() {
+                let (n1, n2) = (dn.first(k, edge), dn.second(k, edge));
+                let e = if rho > 0.0 {
+                    max_h * (2.0 * n2 / rho + 3.0 * n1 * n1 / (rho * rho))
+                } else {
+                    f32::INFINITY
+                };
+                extra[i] = extra[i].max(e);
+            }
+        }
+        (extra, Chord::ZERO, max_h)
+    }
+}
+
+/// Whether canonical order `o` is an odd permutation of the stored corners (it flips the
+/// orientation of the parametrization).
+fn odd_permutation(o: [usize; 3]) -> bool {
+    !matches!(o, [0, 1, 2] | [1, 2, 0] | [2, 0, 1])
+}
+
+/// The normal Phong tessellation's corner `i` projects onto for the curve of edge `e`.
+fn phong_normal(c: &Corners, i: usize, e: usize) -> Vec3 {
+    if c.seam_phong[e] {
+        c.g[i]
+    } else {
+        c.n[i]
+    }
+}
+
+/// The Bézier net of a local surface on canonical corners `c`. `None` for a Phong element with
+/// a corner whose two edges pick different normals (not a polynomial), unless only the edges'
+/// curves are wanted (`edges_only`: each edge's curve is the quadratic of its own normals).
+pub fn surface_net(
+    surface: Surface,
+    alpha: f32,
+    c: &Corners,
+    tags: &[stpn::VertexTag; 3],
+    edges_only: bool,
+) -> Option<Net> {
+    let corner = |w: [usize; 3]| (0..3).find(|&i| w[i] == w.iter().sum::<usize>());
+    Some(match surface {
+        Surface::Flat | Surface::Loop => Net::from_fn(1, |w| c.p[corner(w).unwrap()]),
+        Surface::Phong => {
+            let mixed = (0..3).any(|i| {
+                let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+                phong_normal(c, i, edge_of(i, j)) != phong_normal(c, i, edge_of(i, k))
+            });
+            if mixed && !edges_only {
+                return None;
+            }
+            Net::from_fn(2, |w| match corner(w) {
+                Some(i) => c.p[i],
+                None => {
+                    let i = (0..3).find(|&i| w[i] == 1).unwrap();
+                    let j = (i + 1..3).find(|&j| w[j] == 1).unwrap();
+                    let e = edge_of(i, j);
+                    let (ai, aj) = (phong_normal(c, i, e), phong_normal(c, j, e));
+                    let k = ai * dot3(c.p[j] - c.p[i], ai) + aj * dot3(c.p[i] - c.p[j], aj);
+                    (c.p[i] + c.p[j]) * 0.5 - k * (0.5 * alpha)
+                }
+            })
+        }
+        Surface::Pn | Surface::Stpn => {
+            let b = if surface == Surface::Pn {
+                pn::control(c)
+            } else {
+                pn::control_with(c, &|i, j| stpn::edge_point(c, tags, i, j))
+            };
+            Net::from_fn(3, |w| match corner(w) {
+                Some(i) => c.p[i],
+                None => match (0..3).find(|&i| w[i] == 2) {
+                    Some(i) => b.e[i][(0..3).find(|&j| w[j] == 1).unwrap()],
+                    None => b.centre,
+                },
+            })
+        }
+    })
+}
+
+/// A net that contains a non-polynomial Phong element (for its sphere): the flat triangle.
+fn phong_fallback_net(c: &Corners) -> Net {
+    surface_net(
+        Surface::Flat,
+        0.0,
+        c,
+        &[stpn::VertexTag::default(); 3],
+        false,
+    )
+    .unwrap()
+}
+
+/// The unnormalized direction field displacement moves along (`SurfacePoint::direction`), as
+/// Bézier nets: linear for `flat` and `phong`, PN's quadratic for `pn` and `stpn`. On a
+/// scalar-tagged edge every side's choice of sharp normal at its crease corners.
+pub fn direction_nets(
+    surface: Surface,
+    c: &Corners,
+    tags: &[stpn::VertexTag; 3],
+    edge: bool,
+) -> Vec<Net> {
+    let cg = Corners { n: c.g, ..*c };
+    let quadratic = |n: [Vec3; 3]| {
+        let cn = Corners { n, ..cg };
+        Net::from_fn(2, |w| match (0..3).find(|&i| w[i] == 2) {
+            Some(i) => n[i],
+            None => {
+                let i = (0..3).find(|&i| w[i] == 1).unwrap();
+                let j = (i + 1..3).find(|&j| w[j] == 1).unwrap();
+                // pn::normal's terms: n01 w0w1, n12 w1w2, n20 w2w0.
+                let (a, b) = if (i, j) == (0, 2) { (2, 0) } else { (i, j) };
+                pn::normal_control(&cn, a, b) * 0.5
+            }
+        })
+    };
+    match surface {
+        Surface::Flat | Surface::Phong | Surface::Loop => {
+            vec![Net::from_fn(1, |w| {
+                cg.n[(0..3).find(|&i| w[i] == 1).unwrap()]
+            })]
+        }
+        Surface::Pn => vec![quadratic(cg.n)],
+        Surface::Stpn if !edge => vec![quadratic(stpn::shading_normals(&cg, tags))],
+        Surface::Stpn => {
+            let sides = |i: usize| -> Vec<Vec3> {
+                let t = &tags[i];
+                if !t.crease() {
+                    return vec![cg.n[i]];
+                }
+                [1.0f32, -1.0]
+                    .iter()
+                    .map(|s| (t.normal + t.direction * (s * t.sharpness)).normalize_or_zero())
+                    .collect()
+            };
+            let mut out = Vec::new();
+            for a in sides(0) {
+                for b in sides(1) {
+                    out.push(quadratic([a, b, cg.n[2]]));
+                }
+            }
+            out
+        }
+    }
+}

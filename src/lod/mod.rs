@@ -1,0 +1,280 @@
+//! Level of detail with a guaranteed screen-space error: proven chord-error bounds per surface,
+//! the screen-space metric that turns them into refinement levels, per edge and per element, and
+//! the conservative bounds (spheres, normal cones) that culling uses. Plain math on the CPU, all
+//! in `f32`. `glsl/include/lod.glsl` mirrors it function for function for `flat`, `phong` and
+//! `pn` with sine and noise displacement: bounds, spheres, normal cones, levels and culling
+//! tests (glsl/lod/bounds.comp runs it per element, tests/lod_mirror.rs compares the two). Where
+//! this module returns infinity (no finite bound) the mirror returns 3e38.
+//!
+//! # Levels
+//! A level is what a pattern's level is in this codebase (src/pattern): `N` segments per edge,
+//! the element's `(u, v)` domain cut into `N²` lattice triangles whose edges are parallel to the
+//! three directions `d0 = corner 0 → 1`, `d1 = corner 1 → 2`, `d2 = corner 2 → 0` (barycentric
+//! steps of `1/N`). A dyadic driver (samples at `k / 2^l`) uses `N = 2^l`: the bounds below
+//! decrease with `N`, so any `N' >= N` meets what `N` meets ([`dyadic`]).
+//!
+//! # The chord error
+//! The drawn mesh at level `N` is the piecewise-linear interpolation `I_N P` of the surface `P`
+//! at the lattice points. Every bound here has the form ([`Chord`])
+//! `|P(x) − I_N P(x)| <= c1 / N + c2 / N²` for every `x` of the element (world units), where `c1`
+//! is zero except for the height map, whose bilinear texels put kinks in the surface.
+//!
+//! *One dimension.* For `g: [0, 1] → R³` and its chord `L`,
+//! `g(t) − L(t) = −∫ G(t, τ) g''(τ) dτ` with `G >= 0`, `∫ G dτ = t(1 − t)/2` and `G <= t(1−t)`;
+//! so `|g − L| <= t(1 − t)/2 · sup|g''| <= sup|g''| / 8`, and `<= t(1−t) · TV(g')` when `g'` only has
+//! bounded variation (kinks). On an edge of `N` segments: `error <= M_e / (8 N²)`, `M_e` the
+//! supremum of the edge curve's second derivative per unit edge parameter.
+//!
+//! *A lattice triangle.* Let `M_k >= sup |D²P[d_k, d_k]|` over the element ([`Bounds::second`]).
+//! Take `x` in a lattice triangle `x0 x1 x2`, on the segment from `x0` to the point `q` of the
+//! opposite side: `x = (1 − t) x0 + t q`, `q = (1 − s) x1 + s x2`. Then
+//! `P(x) − I P(x) = [P(x) − (1 − t) P(x0) − t P(q)] + t [P(q) − I P(q)]`. The second bracket is
+//! the one-dimensional error on side `x1 x2`: `<= s(1 − s)/2 · M_12`. The first is the
+//! one-dimensional error along `v = q − x0 = (1 − s) d01 + s d02`, and for the quadratic form
+//! `Q = D²P(y)` at any `y`, `Q(v) = (1 − s) Q(d01) + s Q(d02) − s(1 − s) Q(d12)` (the variance
+//! identity), so `|Q(v)| <= (1 − s) M01 + s M02 + s(1 − s) M12`. With every `M <= M = max_k M_k / N²`,
+//! `error <= M · [t(1 − t)(1 + s(1 − s))/2 + t s(1 − s)/2] <= M · max_t (5/8 t(1 − t) + t/8) =
+//! 9/40 · M` (at `t = 3/5`). So an element at level `N` is within `c2 = 9/40 · max_k M_k` over `N²`
+//! ([`ELEMENT_FACTOR`]); for a kink measure the same steps give `25/64` times the total variation
+//! along a lattice segment ([`KINK_FACTOR`]).
+//!
+//! # Per surface (src/lod/bound.rs)
+//! - `flat`: a linear net: zero.
+//! - `phong`: a quadratic (Bézier net of degree 2, [`bound::surface_net`]):
+//!   `P = Σ w_i P_i − α Σ_{i<j} w_i w_j K_ij`, `K_ij = ((P_j − P_i)·a_i) a_i + ((P_i − P_j)·a_j) a_j`
+//!   (`a_i` the corner's tangent-plane normal), so `D²P[d_ij, d_ij] = 2α K_ij` exactly and the edge
+//!   error at `N` segments is exactly `α |K_ij| / (4 N²)`. A corner whose two edges pick different
+//!   normals (a flagged seam, src/surface/record.rs) blends them inside the triangle, which is
+//!   not a polynomial: such an element has no finite interior bound and gets the maximum level
+//!   (its edges keep their exact bounds).
+//! - `pn`, `stpn`: cubic Bézier triangles. Along direction `k` the second derivative is
+//!   `6 Σ_γ B¹_γ Δ²_k b_γ`, a convex combination, so `M_k = 6 max |Δ²_k b|` over the three second
+//!   differences of the ten-point net in that direction; an edge's curve (its four control points
+//!   `b0..b3`) has `M_e = 6 max(|b0 − 2b1 + b2|, |b1 − 2b2 + b3|)`, i.e. the edge error is
+//!   `3/4 · max(...) / N²` (the 2006 paper's bound, sign-free).
+//! - displacement `P' = P + h N`, `N = n/|n|` the unit direction field (a polynomial `n` of degree
+//!   1 or 2 with `|n| >= ρ > 0` on the patch, from its Bernstein coefficients' projection on their
+//!   mean): `|(hN)''| <= |h''| + 2|h'||N'| + |h||N''|`, with `|N'| <= |n'|/ρ` and
+//!   `|N''| <= 2|n''|/ρ + 3|n'|²/ρ²`. For a height `h = η(P)` of the point (`sine`, `noise`),
+//!   `|h''| <= H |P'|² + G |P''|` with `G`, `H` bounds of `η`'s gradient and Hessian over the
+//!   patch's sphere ([`displace::Height`]): `sine` `η = a sin(f r)` has `G = |a| f`,
+//!   `H = |a| max(f², f / r_min)` (`r_min` the sphere's distance from the displacement's origin:
+//!   the cone point of `|P|` at the origin has unbounded curvature, and a patch containing it
+//!   gets the maximum level); `noise` has `G = |a| f · octaves · 6.71` and
+//!   `H = |a| f² (2^octaves − 1) · 34.7` (octave `o` adds `a/2^o · noise(2^o f p)`), from the
+//!   noise's largest gradient and Hessian over every choice of corner gradients
+//!   ([`displace::noise_scan`]). The
+//!   height map's `h` is bilinear in texels (kinks at texel lines): its slope jumps by at most
+//!   the map's second difference per texel line crossed, which gives the `c1 / N` term.
+//! - `loop`: the drawn surface interpolates exact limit points on the tables' lattice
+//!   ([`crate::surface::subdivision`]); the bound uses that lattice's second differences
+//!   (src/lod/subdiv.rs).
+//!
+//! Edges: an edge's bound, sphere and level come from its own data only (its corners in
+//! canonical order, src/surface/mod.rs, with the third weight zero, exactly as the surfaces
+//! evaluate the edge), so the two elements that share it compute the same bits.
+//!
+//! # The screen-space metric
+//! `K = H / (2 tan(fov_y / 2))` ([`View`]): a world distance `d` at point `p` counts
+//! `d · K / |p − eye|` pixels (distance, not depth: turning the camera changes no level). For a
+//! patch inside the sphere `(c, r)` every point is at least `|c − eye| − r` from the eye, so
+//! level `N` meets a pixel error `PX` when `c1/N + c2/N² <= PX · (|c − eye| − r) / K`. The
+//! continuous level ([`Chord::level_for`]) is the real `N` where equality holds, clamped to
+//! `[1, max]`; its ceiling is the integer level. An eye inside the sphere gets the maximum level.
+//! The metric counts distance, not depth: on screen, a deviation at angle φ off the view axis
+//! shows up to `1/cos²φ` times the pixels the metric counts (the end-to-end test checks both).
+//! An edge's level uses the edge's own bound and sphere; an element's inner level is at least
+//! the largest of its edges' ([`View::levels`]). Where a bound is infinite (a Phong element with
+//! blended seam normals, a direction field that may vanish, `sine` around its centre, `loop`
+//! with displacement) the level is the maximum and the pixel error is not guaranteed there.
+//!
+//! The displacement direction's lower bound `ρ` ([`net::Net::min_length`]) is the better of
+//! the Bernstein hull's distance from the origin and lattice samples of `|n|` less the change
+//! possible within a lattice cell, on 8, then 32, then 128 segments per side (the finer ones
+//! only while the bound is below half the largest `|n|` at the corners: PN's normal field can
+//! turn by more than 90° along an edge).
+//! Scalar-tagged edges with crease corners take the worst of both sides' sharp normals, which
+//! only the element knows.
+//!
+//! # Culling (src/lod/cull.rs)
+//! A sphere wholly outside one of the view-projection's six planes is invisible. A patch faces
+//! away when every drawn triangle does: a drawn triangle's edge vectors are averages of `P_u`
+//! and `P_v`, which lie in the convex hulls of the net's scaled first differences, so its normal
+//! lies in the cone of their cross products; if that cone and the directions from the eye to the
+//! sphere are less than 90° apart everywhere, the element draws nothing visible. Cones exist
+//! for undisplaced `flat`, `phong` and `pn`/`stpn` elements; displaced and `loop` elements are
+//! never culled as back faces (frustum culling still applies, with their displaced spheres).
+//!
+//! # Transition triangles
+//! A driver that draws an element at its inner level with boundary vertices on its edges' own
+//! (coarser) samples draws triangles that are not lattice triangles. [`Bounds::triangle_error`]
+//! bounds any parameter triangle of the element from the same three directional bounds
+//! (polarization: each pair of lattice directions sums to the third).
+#![forbid(unsafe_code)]
+
+pub mod bound;
+pub mod cull;
+pub mod displace;
+pub mod net;
+pub mod subdiv;
+
+pub use bound::{Bounds, Lod};
+pub use cull::{Frustum, NormalCone};
+
+use glam::Vec3;
+
+/// `c2` of an element from its per-direction second-derivative bounds: `9/40 · max_k M_k`.
+pub const ELEMENT_FACTOR: f32 = 9.0 / 40.0;
+/// `c2` of an edge from its curve's second-derivative bound: `M_e / 8`.
+pub const EDGE_FACTOR: f32 = 1.0 / 8.0;
+/// The factor of a kink measure's total variation along one lattice segment, in a triangle.
+pub const KINK_FACTOR: f32 = 25.0 / 64.0;
+/// The same on an edge: `max t(1 − t) = 1/4`.
+pub const EDGE_KINK_FACTOR: f32 = 0.25;
+
+/// A chord-error bound: at level `N` (segments per edge) the surface is within
+/// `c1 / N + c2 / N²` world units of its piecewise-linear interpolation. Infinite coefficients
+/// mean no finite bound (the maximum level).
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct Chord {
+    pub c1: f32,
+    pub c2: f32,
+}
+
+impl Chord {
+    pub const ZERO: Chord = Chord { c1: 0.0, c2: 0.0 };
+
+    /// The bound at level `n` (segments per edge, `n >= 1`).
+    pub fn error(&self, n: f32) -> f32 {
+        let x = 1.0 / n;
+        (self.c1 + self.c2 * x) * x
+    }
+
+    /// The smallest real level `N >= 1` with `error(N) <= tol`, uncapped (infinite where no
+    /// finite level does): `N = (c1 + sqrt(c1² + 4 c2 tol)) / (2 tol)`, made a hair larger so
+    /// that rounding never lands below the exact root.
+    pub fn level_for(&self, tol: f32) -> f32 {
+        let root = (self.c1 + (self.c1 * self.c1 + 4.0 * self.c2 * tol).sqrt()) / (2.0 * tol);
+        // 0/0 (a zero bound and a zero tolerance) is no refinement needed.
+        let n = if root.is_nan() { 1.0 } else { root };
+        (n * (1.0 + 1.0 / 65536.0)).max(1.0)
+    }
+
+    /// The larger of two bounds, coefficient by coefficient.
+    pub fn max(self, o: Chord) -> Chord {
+        Chord {
+            c1: self.c1.max(o.c1),
+            c2: self.c2.max(o.c2),
+        }
+    }
+}
+
+/// A sphere that contains a patch (surface and displacement).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sphere {
+    pub centre: Vec3,
+    pub radius: f32,
+}
+
+impl Sphere {
+    /// A sphere around `points`: the centre of their bounding box, the largest distance from it
+    /// (with a few ulps of room for the rounding of the points' own evaluation). The result does
+    /// not depend on the points' order.
+    pub fn around(points: &[Vec3]) -> Sphere {
+        let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+        for &p in points {
+            lo = lo.min(p);
+            hi = hi.max(p);
+        }
+        let centre = (lo + hi) * 0.5;
+        let mut r = 0.0f32;
+        for &p in points {
+            r = r.max((p - centre).length());
+        }
+        let scale = centre.abs().max_element().max(r);
+        Sphere {
+            centre,
+            radius: r + scale * (8.0 * f32::EPSILON),
+        }
+    }
+
+    /// The same sphere grown by `d` (a displacement's largest height).
+    pub fn grown(self, d: f32) -> Sphere {
+        Sphere {
+            radius: self.radius + d,
+            ..self
+        }
+    }
+}
+
+/// The camera as the metric sees it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct View {
+    pub eye: Vec3,
+    /// `K = H / (2 tan(fov_y / 2))`: pixels per world unit at distance 1.
+    pub k: f32,
+    /// The largest allowed error, in pixels.
+    pub pixel_error: f32,
+    /// The largest level (segments per edge) any edge or element gets.
+    pub max_level: u32,
+}
+
+impl View {
+    /// `fov_y` in radians, `height` the image's height in pixels.
+    pub fn new(eye: Vec3, fov_y: f32, height: u32, pixel_error: f32, max_level: u32) -> Self {
+        Self {
+            eye,
+            k: height as f32 / (2.0 * (0.5 * fov_y).tan()),
+            pixel_error,
+            max_level: max_level.max(1),
+        }
+    }
+
+    /// How many pixels a world distance `d` at point `p` counts.
+    pub fn pixels(&self, d: f32, p: Vec3) -> f32 {
+        d * self.k / (p - self.eye).length()
+    }
+
+    /// The world distance allowed anywhere inside sphere `s`: `PX · dist(eye, s) / K`, zero when
+    /// the eye is inside.
+    pub fn tolerance(&self, s: &Sphere) -> f32 {
+        let dist = (s.centre - self.eye).length() - s.radius;
+        self.pixel_error * dist.max(0.0) / self.k
+    }
+
+    /// The continuous level of a patch with bound `chord` inside `s`, in `[1, max_level]`; its
+    /// ceiling ([`integer_level`]) is the smallest integer level that meets the pixel error
+    /// (or the maximum level).
+    pub fn level(&self, chord: &Chord, s: &Sphere) -> f32 {
+        let tol = self.tolerance(s);
+        let max = self.max_level as f32;
+        if tol > 0.0 {
+            chord.level_for(tol).min(max)
+        } else if chord.c1 == 0.0 && chord.c2 == 0.0 {
+            1.0
+        } else {
+            max
+        }
+    }
+
+    /// The levels of an element and its three edges (stored edge order): each edge's own, and the
+    /// element's inner level at least the largest of them.
+    pub fn levels(&self, element: &Bounds, edges: &[Bounds; 3]) -> ([f32; 3], f32) {
+        let e = edges.each_ref().map(|b| self.level(&b.chord, &b.sphere));
+        let inner = self.level(&element.chord, &element.sphere);
+        (e, inner.max(e[0]).max(e[1]).max(e[2]))
+    }
+}
+
+/// The integer level of a continuous one.
+pub fn integer_level(level: f32) -> u32 {
+    level.ceil() as u32
+}
+
+/// The dyadic level (a power of two, `2^l` segments) that meets what level `n` meets.
+pub fn dyadic(n: u32) -> u32 {
+    n.max(1).next_power_of_two()
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,182 @@
+//! Triangular Bézier nets: the form every local surface's bound is computed in
+//! (src/lod/bound.rs), with their directional differences, lower bounds of their length
+//! (displacement directions) and hulls (spheres, normal cones).
+
+use crate::surface::dot3;
+use glam::Vec3;
+
+/// A triangular Bézier net of degree `degree` (1 to 3): `P(w) = Σ b_ijk · m!/(i!j!k!) w0^i w1^j
+/// w2^k`, point `(i, j, k)` at [`Net::index`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Net {
+    pub degree: usize,
+    pub points: [Vec3; 10],
+}
+
+impl Net {
+    /// Where point `w = (i, j, k)`, `i + j + k = m`, is kept: rows of falling `i`.
+    pub fn index(m: usize, w: [usize; 3]) -> usize {
+        let r = m - w[0];
+        r * (r + 1) / 2 + w[2]
+    }
+
+    pub fn at(&self, w: [usize; 3]) -> Vec3 {
+        self.points[Self::index(self.degree, w)]
+    }
+
+    /// Every multi-index of degree `m`, in storage order.
+    pub fn multi(m: usize) -> impl Iterator<Item = [usize; 3]> {
+        (0..=m)
+            .rev()
+            .flat_map(move |i| (0..=m - i).map(move |k| [i, m - i - k, k]))
+    }
+
+    /// The net whose point `w` is `f(w)`.
+    pub fn from_fn(m: usize, f: impl Fn([usize; 3]) -> Vec3) -> Net {
+        let mut points = [Vec3::ZERO; 10];
+        for w in Self::multi(m) {
+            points[Self::index(m, w)] = f(w);
+        }
+        Net { degree: m, points }
+    }
+
+    /// Whether multi-index `w` is kept when restricting to the edge opposite corner `third`.
+    fn keep(w: &[usize; 3], edge: Option<usize>) -> bool {
+        edge.is_none_or(|k| w[(k + 2) % 3] == 0)
+    }
+
+    /// `sup |D²P[d_k, d_k]|` along direction `k` (corner `k` to corner `k + 1`):
+    /// `m(m − 1) · max |Δ²_k b|`; with `edge = Some(k)` only the edge's own differences, the
+    /// bound of the edge curve. The differences are written `(b_a + b_b) − 2 b_ab` so that the
+    /// edge's reversed net gives the same bits.
+    pub fn second(&self, k: usize, edge: Option<usize>) -> f32 {
+        let m = self.degree;
+        if m < 2 {
+            return 0.0;
+        }
+        let (a, b) = (k, (k + 1) % 3);
+        let mut best = 0.0f32;
+        for g in Self::multi(m - 2).filter(|g| Self::keep(g, edge)) {
+            let (mut aa, mut bb, mut ab) = (g, g, g);
+            aa[a] += 2;
+            bb[b] += 2;
+            ab[a] += 1;
+            ab[b] += 1;
+            let d = (self.at(aa) + self.at(bb)) - self.at(ab) * 2.0;
+            best = best.max(d.length());
+        }
+        (m * (m - 1)) as f32 * best
+    }
+
+    /// `sup |DP[d_k]|`: `m · max |Δ_k b|` (restricted to the edge with `edge = Some(k)`).
+    pub fn first(&self, k: usize, edge: Option<usize>) -> f32 {
+        let m = self.degree;
+        let (a, b) = (k, (k + 1) % 3);
+        let mut best = 0.0f32;
+        for g in Self::multi(m - 1).filter(|g| Self::keep(g, edge)) {
+            let (mut ga, mut gb) = (g, g);
+            ga[a] += 1;
+            gb[b] += 1;
+            best = best.max((self.at(gb) - self.at(ga)).length());
+        }
+        m as f32 * best
+    }
+
+    /// The points of the net (of edge `k`'s curve with `edge = Some(k)`).
+    pub fn hull(&self, edge: Option<usize>) -> Vec<Vec3> {
+        Self::multi(self.degree)
+            .filter(|w| Self::keep(w, edge))
+            .map(|w| self.at(w))
+            .collect()
+    }
+
+    /// The patch at barycentric `w`.
+    pub fn eval(&self, w: [f32; 3]) -> Vec3 {
+        let m = self.degree;
+        let fact = |k: usize| (1..=k).product::<usize>() as f32;
+        Self::multi(m).fold(Vec3::ZERO, |s, e| {
+            let c = fact(m) / (fact(e[0]) * fact(e[1]) * fact(e[2]));
+            s + self.at(e)
+                * (c * w[0].powi(e[0] as i32) * w[1].powi(e[1] as i32) * w[2].powi(e[2] as i32))
+        })
+    }
+
+    /// A lower bound of `|P|` over the patch (the edge's curve with `edge = Some(k)`), the
+    /// larger of two: the convex hull's distance from the origin along an axis (the best of the
+    /// points' mean direction and each point's own), and `|P|` on a lattice of [`RHO_GRIDS`]
+    /// segments per side less what `P` can change within a lattice cell
+    /// (`max_k sup|DP[d_k]|` over the lattice's segments). Zero when neither separates the patch from the origin.
+    pub fn min_length(&self, edge: Option<usize>) -> f32 {
+        let pts = self.hull(edge);
+        let mean = pts.iter().fold(Vec3::ZERO, |s, &p| s + p);
+        let along = |axis: Vec3| {
+            let axis = axis.normalize_or_zero();
+            pts.iter()
+                .map(|&p| dot3(p, axis))
+                .fold(f32::INFINITY, f32::min)
+        };
+        let mut low = along(mean);
+        for &p in &pts {
+            low = low.max(along(p));
+        }
+        // The coarsest lattice always, the finer ones while the bound is below half the
+        // patch's largest |P| at its corners (the edge's own corners for an edge).
+        let m = self.degree;
+        let enough = 0.5
+            * Self::multi(m)
+                .filter(|w| Self::keep(w, edge) && w.contains(&m))
+                .map(|w| self.at(w).length())
+                .fold(0.0, f32::max);
+        for g in RHO_GRIDS {
+            low = low.max(self.sampled_min_length(edge, g));
+            if low >= enough {
+                break;
+            }
+        }
+        // A relative margin for the rounding of the sums.
+        let big = pts.iter().map(|p| p.length()).fold(0.0, f32::max);
+        (low - 16.0 * f32::EPSILON * big).max(0.0)
+    }
+
+    /// `min |P|` on the lattice of `g` segments per side less what `P` changes within a cell.
+    fn sampled_min_length(&self, edge: Option<usize>, g: u32) -> f32 {
+        let at = |i: u32, j: u32| {
+            let w = [(g - i - j) as f32, i as f32, j as f32].map(|x| x / g as f32);
+            self.eval(w).length()
+        };
+        match edge {
+            Some(k) => {
+                let step = self.first(k, edge) / g as f32;
+                let on = |t: u32| {
+                    let mut w = [0.0f32; 3];
+                    w[k] = (g - t) as f32 / g as f32;
+                    w[(k + 1) % 3] = t as f32 / g as f32;
+                    self.eval(w).length()
+                };
+                (0..g)
+                    .map(|t| on(t).max(on(t + 1)) - step)
+                    .fold(f32::INFINITY, f32::min)
+            }
+            None => {
+                let step = (0..3).map(|k| self.first(k, None)).fold(0.0, f32::max) / g as f32;
+                let mut m = f32::INFINITY;
+                for j in 0..g {
+                    for i in 0..g - j {
+                        let mut best = at(i, j).max(at(i + 1, j)).max(at(i, j + 1));
+                        if i + j + 1 < g {
+                            let down = at(i + 1, j).max(at(i + 1, j + 1)).max(at(i, j + 1));
+                            m = m.min(down - step);
+                        }
+                        best -= step;
+                        m = m.min(best);
+                    }
+                }
+                m
+            }
+        }
+    }
+}
+
+/// Lattice segments per side on which [`Net::min_length`] samples (the finer ones only while
+/// the bound is below half the largest `|P|` at the corners).
+pub const RHO_GRIDS: [u32; 3] = [8, 32, 128];

@@ -1,0 +1,105 @@
+//! Bounds of the `loop` surface. What the drivers draw is the tables' surface
+//! (src/surface/subdivision.rs): exact limit points `Q` on the face's lattice of `S = 2^lmax`
+//! segments per edge, interpolated linearly between them. Its bounds come from that lattice:
+//! `D_k`, the largest second difference `|Q_{p−d_k} − 2 Q_p + Q_{p+d_k}|` along lattice direction
+//! `k`, is a second derivative of `D_k S²` per unit of the face's parameter, which enters the
+//! formulas of src/lod/mod.rs like a smooth surface's `M_k` (extraordinary vertices included:
+//! the lattice points are exact there too). On an edge and at dyadic levels `N <= S` this is a
+//! proof (the drawn edge samples are lattice points, and a sequence with second differences
+//! `<= D` is within `H² D / 8` of its chord over `H` steps); inside the face the unit tests
+//! check it against dense sampling. Every drawn point lies in the convex hull of the lattice
+//! points, whose sphere is the patch's. Displacement over `loop` has no bound here: such elements
+//! get the maximum level.
+
+use super::bound::{Bounds, Lod};
+use super::displace::height;
+use super::{Chord, Sphere, EDGE_FACTOR, ELEMENT_FACTOR};
+use crate::pattern::weight;
+use crate::surface::{subdivision, Displace, ElementRecord};
+use glam::Vec3;
+
+fn segments(lod: &Lod, rec: &ElementRecord) -> u32 {
+    let (data, _) = lod.inputs.subdiv.expect("loop bounds need Inputs::subdiv");
+    1 << (data.faces[rec.words[0] as usize][3] >> 3)
+}
+
+fn at(lod: &Lod, rec: &ElementRecord, bary: [f32; 3]) -> Vec3 {
+    let (data, frame) = lod.inputs.subdiv.expect("loop bounds need Inputs::subdiv");
+    subdivision::eval(data, frame, rec, bary).position
+}
+
+/// `(a + c) − 2b`: the same bits read in either direction.
+fn second(a: Vec3, b: Vec3, c: Vec3) -> f32 {
+    ((a + c) - b * 2.0).length()
+}
+
+fn finish(lod: &Lod, m: [f32; 3], factor: f32, points: &[Vec3]) -> Bounds {
+    let sphere = Sphere::around(points);
+    let worst = m.iter().fold(0.0f32, |a, &b| a.max(b));
+    let (c2, grow) = match lod.displace {
+        Displace::None => (factor * worst, 0.0),
+        Displace::Heightmap => {
+            let p = &lod.params;
+            let a = p.amplitude.abs() * p.bias.abs().max((1.0 - p.bias).abs());
+            (f32::INFINITY, a)
+        }
+        d => (f32::INFINITY, height(d, &lod.params, &sphere).max),
+    };
+    Bounds {
+        chord: Chord { c1: 0.0, c2 },
+        sphere: sphere.grown(grow),
+        second: m,
+        kink: Chord::ZERO,
+        cone: None,
+    }
+}
+
+pub fn element(lod: &Lod, rec: &ElementRecord) -> Bounds {
+    let s = segments(lod, rec);
+    let n = s as usize + 1;
+    // q[j][i]: lattice point (i, j), weight i/S on corner 1, j/S on corner 2.
+    let mut q = vec![vec![Vec3::ZERO; n]; n];
+    let mut points = Vec::with_capacity(n * (n + 1) / 2);
+    for j in 0..=s {
+        for i in 0..=s - j {
+            let p = at(lod, rec, [weight(s - i - j, s), weight(i, s), weight(j, s)]);
+            q[j as usize][i as usize] = p;
+            points.push(p);
+        }
+    }
+    let mut d = [0.0f32; 3];
+    let s = s as usize;
+    for j in 0..=s {
+        for i in 0..=s - j {
+            let c = q[j][i];
+            if i >= 1 && i + j < s {
+                d[0] = d[0].max(second(q[j][i - 1], c, q[j][i + 1]));
+            }
+            if i >= 1 && j >= 1 {
+                d[1] = d[1].max(second(q[j - 1][i + 1], c, q[j + 1][i - 1]));
+            }
+            if j >= 1 && i + j < s {
+                d[2] = d[2].max(second(q[j - 1][i], c, q[j + 1][i]));
+            }
+        }
+    }
+    let s2 = (s * s) as f32;
+    finish(lod, d.map(|x| x * s2), ELEMENT_FACTOR, &points)
+}
+
+pub fn edge(lod: &Lod, rec: &ElementRecord, e: usize) -> Bounds {
+    let s = segments(lod, rec);
+    let points: Vec<Vec3> = (0..=s)
+        .map(|t| {
+            let mut b = [0.0f32; 3];
+            b[e] = weight(s - t, s);
+            b[(e + 1) % 3] = weight(t, s);
+            at(lod, rec, b)
+        })
+        .collect();
+    let d = points
+        .windows(3)
+        .map(|w| second(w[0], w[1], w[2]))
+        .fold(0.0f32, f32::max);
+    finish(lod, [d * (s * s) as f32, 0.0, 0.0], EDGE_FACTOR, &points)
+}

@@ -1,0 +1,187 @@
+//! The GPU mirror of the level-of-detail bounds (glsl/include/lod.glsl, run by
+//! glsl/lod/bounds.comp) against src/lod on spot, for `flat`, `phong` and `pn` with no, sine and
+//! noise displacement: every element's and edge's chord bound and sphere. The two evaluate the
+//! same formulas in f32 with different rounding (GLSL's `length`, `normalize` and `sqrt` are not
+//! correctly rounded), so they agree to a relative 1e-3 on the bounds, 1e-5 of the mesh's radius
+//! on the spheres' centres and 1e-4 on the normal cones of undisplaced elements.
+
+mod common;
+
+use bytemuck::Zeroable;
+use common::{model, with_gpu};
+use glam::Vec3;
+use meshrefine::gpu::{
+    vk, Buffer, BufferDesc, DescriptorPool, DescriptorSetLayout, Pipeline, PipelineLayout,
+};
+use meshrefine::lod::{Bounds, Lod};
+use meshrefine::render::bindings::*;
+use meshrefine::render::FrameUniforms;
+use meshrefine::surface::{
+    build_records, Displace, Inputs, RecordKind, Seams, Surface, SurfaceParams,
+};
+
+/// Equal to a relative `rel`; the CPU's infinity (no finite bound) is the mirror's 3e38.
+fn close(gpu: f32, cpu: f32, rel: f32) -> bool {
+    if cpu.is_infinite() {
+        return gpu >= 3.0e38;
+    }
+    gpu == cpu || (gpu - cpu).abs() <= rel * gpu.abs().max(cpu.abs())
+}
+
+#[test]
+fn gpu_bounds_match_the_cpu() {
+    with_gpu(16, 16, |h| {
+        let mesh = model("spot_control_tri_vn.obj");
+        let recs = build_records(RecordKind::Corners, &mesh, Seams::Closed);
+        let n = recs.len();
+        let r = mesh.bounding_radius();
+        let ctx = &h.ctx;
+        let c = vk::ShaderStageFlags::COMPUTE;
+        use vk::DescriptorType as T;
+        let frame_layout =
+            DescriptorSetLayout::new(ctx, &[(BINDING_FRAME, T::UNIFORM_BUFFER, c)], "lod frame")
+                .unwrap();
+        let mesh_layout =
+            DescriptorSetLayout::new(ctx, &[(BINDING_TRIS, T::STORAGE_BUFFER, c)], "lod records")
+                .unwrap();
+        let out_layout = DescriptorSetLayout::new(
+            ctx,
+            &[(BINDING_LOD_BOUNDS, T::STORAGE_BUFFER, c)],
+            "lod bounds",
+        )
+        .unwrap();
+        let layout = PipelineLayout::new(
+            ctx,
+            &[&frame_layout, &mesh_layout, &out_layout],
+            128,
+            c,
+            "lod bounds",
+        )
+        .unwrap();
+        let pipeline =
+            Pipeline::new_compute(ctx, &layout, "lod/bounds.comp", "lod bounds").unwrap();
+        let storage = vk::BufferUsageFlags::STORAGE_BUFFER;
+        let records = Buffer::new_with_data(ctx, &h.pool, storage, &recs, "records").unwrap();
+        let mut frame = Buffer::new(
+            ctx,
+            BufferDesc::new_upload(
+                std::mem::size_of::<FrameUniforms>() as u64,
+                vk::BufferUsageFlags::UNIFORM_BUFFER,
+            ),
+            "frame",
+        )
+        .unwrap();
+        let out = Buffer::new(
+            ctx,
+            BufferDesc::new_readback(n as u64 * 12 * 16, storage),
+            "bounds",
+        )
+        .unwrap();
+        let pool = DescriptorPool::new(
+            ctx,
+            3,
+            &[(T::UNIFORM_BUFFER, 1), (T::STORAGE_BUFFER, 2)],
+            "lod",
+        )
+        .unwrap();
+        let sets = [
+            pool.allocate(&frame_layout, "lod frame").unwrap(),
+            pool.allocate(&mesh_layout, "lod records").unwrap(),
+            pool.allocate(&out_layout, "lod bounds").unwrap(),
+        ];
+        pool.write_buffer(
+            sets[0],
+            BINDING_FRAME,
+            T::UNIFORM_BUFFER,
+            frame.raw,
+            vk::WHOLE_SIZE,
+        );
+        pool.write_buffer(
+            sets[1],
+            BINDING_TRIS,
+            T::STORAGE_BUFFER,
+            records.raw,
+            vk::WHOLE_SIZE,
+        );
+        pool.write_buffer(
+            sets[2],
+            BINDING_LOD_BOUNDS,
+            T::STORAGE_BUFFER,
+            out.raw,
+            vk::WHOLE_SIZE,
+        );
+        let params = SurfaceParams {
+            octaves: 2,
+            ..SurfaceParams::for_radius(r)
+        };
+        let (mut compared, mut cones) = (0, 0);
+        for surface in [Surface::Flat, Surface::Phong, Surface::Pn] {
+            for displace in [Displace::None, Displace::Sine, Displace::Noise] {
+                let mut f = FrameUniforms::zeroed();
+                f.params = params.to_gpu();
+                f.origin = params.origin.extend(0.0).to_array();
+                frame.write_pod(0, &[f]);
+                let mut push = [0u32; 32];
+                push[28] = surface as u32;
+                push[29] = displace as u32;
+                h.pool
+                    .submit_and_wait(|cmd| {
+                        cmd.bind_compute_pipeline(pipeline.raw);
+                        for (i, &s) in sets.iter().enumerate() {
+                            cmd.bind_compute_descriptor_set(layout.raw, i as u32, s);
+                        }
+                        cmd.push_constants(layout.raw, c, 0, bytemuck::cast_slice(&push));
+                        cmd.dispatch((n as u32).div_ceil(64), 1, 1);
+                        cmd.barrier_to_host();
+                    })
+                    .unwrap();
+                let got: Vec<[f32; 4]> = out.read_pod();
+                let lod = Lod::new(surface, displace, &params, &Inputs::default());
+                let what = format!("{} + {}", surface.name(), displace.name());
+                for (i, rec) in recs.iter().enumerate() {
+                    let want: [Bounds; 4] = [
+                        lod.element(rec),
+                        lod.edge(rec, 0),
+                        lod.edge(rec, 1),
+                        lod.edge(rec, 2),
+                    ];
+                    for (k, w) in want.iter().enumerate() {
+                        let at = 12 * i + 3 * k;
+                        let (ch, sp, cone) = (got[at], got[at + 1], got[at + 2]);
+
+                        assert!(
+                            close(ch[0], w.chord.c1, 1e-3) && close(ch[1], w.chord.c2, 1e-3),
+                            "{what}: element {i} bound {k}: GPU ({}, {}) {sp:?} vs CPU {:?}",
+                            ch[0],
+                            ch[1],
+                            w
+                        );
+                        let centre = Vec3::new(sp[0], sp[1], sp[2]);
+                        assert!(
+                            (centre - w.sphere.centre).abs().max_element() <= 1e-5 * r
+                                && close(sp[3], w.sphere.radius, 1e-3),
+                            "{what}: element {i} bound {k}: GPU sphere {sp:?} vs CPU {:?}",
+                            w.sphere
+                        );
+                        // The cone, where the CPU has one (or the GPU does, away from 90°).
+                        match w.cone {
+                            Some(cc) => assert!(
+                                (Vec3::new(cone[0], cone[1], cone[2]) - cc.axis).length() <= 1e-4
+                                    && (cone[3] - cc.cos).abs() <= 1e-4,
+                                "{what}: element {i}: GPU cone {cone:?} vs CPU {cc:?}"
+                            ),
+                            None => assert!(
+                                cone[3] <= 1e-3,
+                                "{what}: element {i} bound {k}: GPU cone {cone:?}, none on the CPU"
+                            ),
+                        }
+                        cones += w.cone.is_some() as usize;
+                        compared += 1;
+                    }
+                }
+            }
+        }
+        assert_eq!(compared, 9 * 4 * n);
+        assert!(cones > n, "{cones} cones");
+    });
+}
