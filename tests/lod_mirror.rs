@@ -42,7 +42,7 @@ fn gpu_bounds_match_the_cpu() {
             DescriptorSetLayout::new(ctx, &[(BINDING_FRAME, T::UNIFORM_BUFFER, c)], "lod frame")
                 .unwrap();
         let mesh_layout =
-            DescriptorSetLayout::new(ctx, &[(BINDING_TRIS, T::STORAGE_BUFFER, c)], "lod records")
+            DescriptorSetLayout::new(ctx, &[(BINDING_ELEMENTS, T::STORAGE_BUFFER, c)], "lod records")
                 .unwrap();
         let out_layout = DescriptorSetLayout::new(
             ctx,
@@ -98,7 +98,7 @@ fn gpu_bounds_match_the_cpu() {
         );
         pool.write_buffer(
             sets[1],
-            BINDING_TRIS,
+            BINDING_ELEMENTS,
             T::STORAGE_BUFFER,
             records.raw,
             vk::WHOLE_SIZE,

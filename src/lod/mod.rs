@@ -67,7 +67,7 @@
 //!   height map's `h` is bilinear in texels (kinks at texel lines): its slope jumps by at most
 //!   the map's second difference per texel line crossed, which gives the `c1 / N` term.
 //! - `loop`: the drawn surface interpolates exact limit points on the tables' lattice
-//!   ([`crate::surface::subdivision`]); the bound uses that lattice's second differences
+//!   ([`crate::surface::loop_`]); the bound uses that lattice's second differences
 //!   (src/lod/subdiv.rs).
 //!
 //! Edges: an edge's bound, sphere and level come from its own data only (its corners in

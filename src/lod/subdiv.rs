@@ -1,5 +1,5 @@
 //! Bounds of the `loop` surface. What the drivers draw is the tables' surface
-//! (src/surface/subdivision.rs): exact limit points `Q` on the face's lattice of `S = 2^lmax`
+//! (src/surface/loop.rs): exact limit points `Q` on the face's lattice of `S = 2^lmax`
 //! segments per edge, interpolated linearly between them. Its bounds come from that lattice:
 //! `D_k`, the largest second difference `|Q_{p−d_k} − 2 Q_p + Q_{p+d_k}|` along lattice direction
 //! `k`, is a second derivative of `D_k S²` per unit of the face's parameter, which enters the
@@ -15,7 +15,7 @@ use super::bound::{Bounds, Lod};
 use super::displace::height;
 use super::{Chord, Sphere, EDGE_FACTOR, ELEMENT_FACTOR};
 use crate::pattern::weight;
-use crate::surface::{subdivision, Displace, ElementRecord};
+use crate::surface::{loop_, Displace, ElementRecord};
 use glam::Vec3;
 
 fn segments(lod: &Lod, rec: &ElementRecord) -> u32 {
@@ -25,7 +25,7 @@ fn segments(lod: &Lod, rec: &ElementRecord) -> u32 {
 
 fn at(lod: &Lod, rec: &ElementRecord, bary: [f32; 3]) -> Vec3 {
     let (data, frame) = lod.inputs.subdiv.expect("loop bounds need Inputs::subdiv");
-    subdivision::eval(data, frame, rec, bary).position
+    loop_::eval(data, frame, rec, bary).position
 }
 
 /// `(a + c) − 2b`: the same bits read in either direction.

@@ -7,7 +7,7 @@ use crate::mesh::Mesh;
 use crate::pattern::weight;
 use crate::subdiv::bft::Lattice;
 use crate::subdiv::Boundary;
-use crate::surface::subdivision::LoopData;
+use crate::surface::loop_::LoopData;
 use crate::surface::{
     build_records, eval_with, CornerRecord, Displace, ElementRecord, Heightmap, Inputs, RecordKind,
     Seams, Surface, SurfaceParams,
