@@ -3,7 +3,7 @@
 //! validated smoke run) and prints or writes the table.
 #![forbid(unsafe_code)]
 
-use super::{run, BenchOptions};
+use super::{run, BenchOptions, Report};
 use crate::mesh::Mesh;
 
 /// What a `cargo bench` target measures: its meshes and options, timed or as a smoke run.
@@ -25,8 +25,8 @@ impl Harness {
         Self { benching, quick }
     }
 
-    /// Runs `opts` on `meshes` and prints the table; a full timed run also writes
-    /// `docs/bench/<name>.{md,csv,json}`. The smoke run is a GPU test like the others: validation
+    /// Runs `opts` on `meshes` and prints the summary ([`Report::summary`]); a full timed run
+    /// also writes the full table to `docs/bench/<name>.{md,csv,json}`. The smoke run is a GPU test like the others: validation
     /// on, and any message or leak fails it; timed runs leave validation off (it slows command
     /// recording 7-10x). Device: the first Vulkan device (MESHREFINE_DEVICE picks one by name).
     pub fn run(&self, name: &str, meshes: &[Mesh], opts: &BenchOptions) {
@@ -34,10 +34,6 @@ impl Harness {
             device_name: std::env::var("MESHREFINE_DEVICE").ok(),
             validate: !self.benching,
             ..Default::default()
-        };
-        let fail = |e: &dyn std::fmt::Display| -> ! {
-            eprintln!("error: {e}");
-            std::process::exit(1)
         };
         let report = crate::gpu::with_context(&desc, |ctx| {
             run(ctx, meshes, opts).map_err(Box::<dyn std::error::Error>::from)
@@ -48,40 +44,54 @@ impl Harness {
             }
             fail(&e)
         });
-        println!("{}", report.markdown());
         if self.benching && !self.quick {
-            let prefix = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-                .join("docs/bench")
-                .join(name);
-            // The bench target (argv[0] is `target/<profile>/deps/<target>-<hash>`), which may
-            // write several tables.
-            let target = std::env::args()
-                .next()
-                .and_then(|a| {
-                    let stem = std::path::Path::new(&a).file_stem()?.to_str()?.to_owned();
-                    Some(stem.split('-').next().unwrap_or(&stem).to_owned())
-                })
-                .unwrap_or_else(|| name.to_owned());
-            let command = if target == name {
-                format!("cargo bench --bench {name}")
-            } else {
-                format!("cargo bench --bench {target}` (its part written as `{name}")
-            };
-            // A hand-written "## Runs compared" section (earlier runs beside this one) is kept.
-            let md = prefix.with_extension("md");
-            let kept = std::fs::read_to_string(&md).ok().and_then(|old| {
-                old.find("\n## Runs compared")
-                    .map(|at| old[at..].to_owned())
-            });
-            report
-                .write_files(&prefix, &command)
-                .unwrap_or_else(|e| fail(&e));
-            if let Some(section) = kept {
-                let mut s = std::fs::read_to_string(&md).unwrap_or_else(|e| fail(&e));
-                s.push_str(&section);
-                std::fs::write(&md, s).unwrap_or_else(|e| fail(&e));
-            }
-            println!("wrote {}.{{md,csv,json}}", prefix.display());
+            let prefix = write_docs(name, &report);
+            println!("{}", report.summary(Some(&prefix)));
+        } else {
+            print!("{}", report.summary_table());
+            println!("A full `cargo bench` run writes the full table to docs/bench/{name}.{{md,csv,json}}.");
         }
     }
+}
+
+fn fail(e: &dyn std::fmt::Display) -> ! {
+    eprintln!("error: {e}");
+    std::process::exit(1)
+}
+
+/// Writes `docs/bench/<name>.{md,csv,json}`, headed by the `cargo bench` command that made
+/// them, keeping a hand-written "## Runs compared" section of the old `.md`; returns the prefix.
+fn write_docs(name: &str, report: &Report) -> std::path::PathBuf {
+    let prefix = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("docs/bench")
+        .join(name);
+    // The bench target (argv[0] is `target/<profile>/deps/<target>-<hash>`), which may
+    // write several tables.
+    let target = std::env::args()
+        .next()
+        .and_then(|a| {
+            let stem = std::path::Path::new(&a).file_stem()?.to_str()?.to_owned();
+            Some(stem.split('-').next().unwrap_or(&stem).to_owned())
+        })
+        .unwrap_or_else(|| name.to_owned());
+    let command = if target == name {
+        format!("cargo bench --bench {name}")
+    } else {
+        format!("cargo bench --bench {target}` (its part written as `{name}")
+    };
+    // A hand-written "## Runs compared" section (earlier runs beside this one) is kept.
+    let md = prefix.with_extension("md");
+    let kept = std::fs::read_to_string(&md).ok().and_then(|old| {
+        old.find("\n## Runs compared")
+            .map(|at| old[at..].to_owned())
+    });
+    report
+        .write_files(&prefix, &command)
+        .unwrap_or_else(|e| fail(&e));
+    if let Some(section) = kept {
+        let mut s = std::fs::read_to_string(&md).unwrap_or_else(|e| fail(&e));
+        s.push_str(&section);
+        std::fs::write(&md, s).unwrap_or_else(|e| fail(&e));
+    }
+    prefix
 }

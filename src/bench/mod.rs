@@ -45,7 +45,7 @@ pub struct BenchOptions {
 }
 
 /// Median, min and max of a sample.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Stat {
     pub median: f64,
     pub min: f64,
