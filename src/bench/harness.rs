@@ -46,7 +46,7 @@ impl Harness {
         });
         if self.benching && !self.quick {
             let prefix = write_docs(name, &report);
-            println!("{}", report.summary(Some(&prefix)));
+            print!("{}", report.summary(Some(&prefix)));
         } else {
             print!("{}", report.summary_table());
             println!("A full `cargo bench` run writes the full table to docs/bench/{name}.{{md,csv,json}}.");

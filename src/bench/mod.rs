@@ -18,7 +18,7 @@ mod harness;
 mod report;
 
 pub use harness::Harness;
-pub use report::Report;
+pub use report::{Align, Cell, Column, Report, COLUMNS, SUMMARY_WIDTH};
 
 use crate::mesh::Mesh;
 use crate::pattern::PatternSet;
