@@ -334,6 +334,14 @@ fn bench_reports_every_variant_with_ratios() {
         .unwrap()
         .contains("\"rows\""));
     assert!(s.contains("llvmpipe") || s.contains("Device:"), "{s}");
+    // The terminal gets the summary, every line within 120 characters, and where the full
+    // table went (its path on a line of its own, whole).
+    let path = format!("{}.md", prefix.display());
+    assert!(s.lines().any(|l| l == path), "{s}");
+    let mut others = s.lines().filter(|l| *l != path);
+    assert!(others.all(|l| l.chars().count() <= 120), "{s}");
+    let (header, rows) = summary_table(&s);
+    let column = |name: &str| header.iter().position(|h| h == name).expect(name);
     for variant in [
         "static",
         "pattern/push",
@@ -341,19 +349,46 @@ fn bench_reports_every_variant_with_ratios() {
         "pattern/instanced",
         "tess",
     ] {
-        let rows = s
-            .lines()
-            .filter(|l| l.contains(&format!("| {variant} |")))
-            .count();
-        assert_eq!(rows, 2, "{variant}: one row per level in\n{s}");
+        let in_summary = rows.iter().filter(|r| r[column("variant")] == variant);
+        assert_eq!(
+            in_summary.count(),
+            2,
+            "{variant}: one row per level in\n{s}"
+        );
+        let in_table = md.lines().filter(|l| l.contains(&format!("| {variant} |")));
+        assert_eq!(in_table.count(), 2, "{variant}: one row per level in\n{md}");
     }
     // static is the reference of the ratios.
+    let mut statics = rows.iter().filter(|r| r[column("variant")] == "static");
+    assert!(statics.all(|r| r[column("vs static")] == "1.00"), "{s}");
     assert!(
-        s.lines()
+        md.lines()
             .filter(|l| l.contains("| static |"))
             .all(|l| l.contains("| 1.00 | 1.00 |")),
-        "{s}"
+        "{md}"
     );
+}
+
+/// The header and rows of `bench`'s summary table: the line above the rule of dashes, split
+/// at runs of two or more spaces, and the lines below it up to the first blank one.
+fn summary_table(s: &str) -> (Vec<String>, Vec<Vec<String>>) {
+    let lines: Vec<&str> = s.lines().collect();
+    let rule = lines
+        .iter()
+        .position(|l| l.starts_with("---") && l.chars().all(|c| c == '-' || c == ' '))
+        .unwrap_or_else(|| panic!("no summary table in\n{s}"));
+    let header = lines[rule - 1]
+        .split("  ")
+        .map(str::trim)
+        .filter(|h| !h.is_empty())
+        .map(str::to_owned)
+        .collect();
+    let rows = lines[rule + 1..]
+        .iter()
+        .take_while(|l| !l.is_empty())
+        .map(|l| l.split_whitespace().map(str::to_owned).collect())
+        .collect();
+    (header, rows)
 }
 
 // ---- Issue 7: what a hostile user found -------------------------------------------------------

@@ -64,7 +64,7 @@ pub fn run(a: &BenchArgs, desc: &ContextDesc) -> Result<()> {
             .write_files(prefix, &command)
             .with_context(|| format!("cannot write '{}.md'", prefix.display()))?;
     }
-    out!("{}", report.markdown());
+    out!("{}", report.summary(a.out.as_deref()));
     if let Some(prefix) = &a.out {
         out!("wrote {}.{{md,csv,json}}", prefix.display());
     }

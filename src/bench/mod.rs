@@ -1,0 +1,408 @@
+//! Benchmarks shared by `cargo bench` (benches/fig7.rs) and `meshrefine bench`: every surface x
+//! displacement x driver and submission mode on the same meshes and levels, in the same run, so the
+//! ratios against `static` (same surface, displacement, mesh and level) compare like with like. Frame time from GPU timestamps and wall clock (submit to fence), median
+//! and spread over timed frames after one warm-up frame (Mesa compiles shaders at the first draw);
+//! the timed frames go round the variants in turn (static, push, ubo, instanced, tess, static, ...),
+//! with several surfaces round every surface's variants together (each surface's `static` timed
+//! alone before them: its buffer of refined vertices is one surface's), so a drift of the machine
+//! touches every variant alike. Timings are measured, never asserted.
+//!
+//! Files: this one holds the options, the measured rows and [`run`], a short composition of
+//! named phases (set up a mesh, list the variants, warm each up, time round them, turn the
+//! samples into rows with their ratios); `report.rs` declares the table's columns once and
+//! derives the markdown, CSV and JSON tables and the terminal summary from that list;
+//! `harness.rs` is what the `cargo bench` targets call.
+#![forbid(unsafe_code)]
+
+mod harness;
+mod report;
+
+pub use harness::Harness;
+pub use report::{Align, Cell, Column, Report, COLUMNS, SUMMARY_WIDTH};
+
+use crate::mesh::Mesh;
+use crate::pattern::PatternSet;
+use crate::render::{Camera, DrawConfig, Driver, Headless, RenderError, Scene};
+use crate::surface::{Displace, Surface, SurfaceParams};
+use std::sync::Arc;
+
+#[derive(Clone, Debug)]
+pub struct BenchOptions {
+    pub levels: Vec<u32>,
+    /// Surface x displacement combinations measured (each against its own `static`).
+    pub surfaces: Vec<(Surface, Displace)>,
+    /// Parameters; `None`: [`SurfaceParams::for_radius`] of each mesh.
+    pub params: Option<SurfaceParams>,
+    pub frames: u32,
+    pub width: u32,
+    pub height: u32,
+    /// The driver variants measured (empty: every one; `static` is the reference of the ratios).
+    pub drivers: Vec<Driver>,
+    /// Keep taking rounds past `frames` until every variant has this much GPU time in total
+    /// (milliseconds; 0: exactly `frames`), so frames of a few milliseconds, whose timestamps
+    /// jitter most, get more samples. At most 20 × `frames` rounds.
+    pub min_total_ms: f64,
+}
+
+/// Median, min and max of a sample.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Stat {
+    pub median: f64,
+    pub min: f64,
+    pub max: f64,
+}
+
+impl Stat {
+    pub fn of(v: &[f64]) -> Self {
+        let mut s = v.to_vec();
+        s.sort_by(f64::total_cmp);
+        if s.is_empty() {
+            return Self::default();
+        }
+        let n = s.len();
+        let median = if n % 2 == 1 {
+            s[n / 2]
+        } else {
+            0.5 * (s[n / 2 - 1] + s[n / 2])
+        };
+        Self {
+            median,
+            min: s[0],
+            max: s[n - 1],
+        }
+    }
+}
+
+#[derive(Clone, Debug)]
+pub struct Row {
+    pub mesh: String,
+    pub coarse_triangles: u32,
+    /// What the surface refines: the coarse triangles, or M1's faces for `loop`.
+    pub elements: u32,
+    pub level: u32,
+    pub surface: Surface,
+    pub displace: Displace,
+    pub variant: String,
+    pub refined_triangles: u64,
+    pub gpu_ms: Option<Stat>,
+    pub wall_ms: Option<Stat>,
+    /// Vertices and indices of refined geometry stored on the GPU.
+    pub stored_vertices: u64,
+    pub stored_indices: u64,
+    pub geometry_bytes: u64,
+    /// Vertex-shader invocations of the last timed frame (pipeline statistics), where queried.
+    pub vertex_invocations: Option<u64>,
+    /// GPU and wall time relative to `static` at the same mesh and level (same run).
+    pub gpu_ratio: Option<f64>,
+    pub wall_ratio: Option<f64>,
+    /// Refined triangles per GPU millisecond relative to `flat` with the same variant, mesh,
+    /// level and displacement (same run; when flat was measured).
+    pub throughput_vs_flat: Option<f64>,
+    /// `loop`: GPU time of the M0 -> M1 and normals passes (timed alone, per frame), and the
+    /// basis function tables' bytes.
+    pub pre_pass_ms: Option<f64>,
+    pub table_bytes: Option<u64>,
+    pub note: String,
+}
+
+impl Row {
+    /// Median GPU time per refined triangle, in nanoseconds: the per-triangle cost.
+    pub fn ns_per_triangle(&self) -> Option<f64> {
+        self.gpu_ms
+            .map(|s| s.median * 1e6 / self.refined_triangles.max(1) as f64)
+    }
+}
+
+/// One variant's row and timed frames while the frames go round the variants.
+struct Run {
+    row: Row,
+    cfg: DrawConfig,
+    drawn: bool,
+    gpu: Vec<f64>,
+    wall: Vec<f64>,
+}
+
+/// Measure every variant on every mesh at every level.
+pub fn run(
+    ctx: Arc<crate::gpu::Context>,
+    meshes: &[Mesh],
+    opts: &BenchOptions,
+) -> Result<Report, RenderError> {
+    let device = ctx.info.describe();
+    let mut h = Headless::with_context(ctx.clone(), opts.width, opts.height)?;
+    let mut rows = Vec::new();
+    for mesh in meshes {
+        let mut m = MeshSetup::new(&mut h, mesh, opts)?;
+        for &level in &opts.levels {
+            // Every variant of every surface is warmed up, then the timed frames go round the
+            // variants of every surface in turn, so a slow drift of the machine (this one moves
+            // ±25 % from run to run) touches every variant alike and the ratios against `flat`
+            // compare like with like (`static`, with several surfaces, aside: `time_round`).
+            let mut runs = Vec::new();
+            for cfg in variants(&m.surfaces, level, m.params, &opts.drivers) {
+                runs.push(warm_up(&ctx, &mut h, &mut m, cfg)?);
+            }
+            time_round(&mut h, &mut m, &mut runs, opts)?;
+            rows.extend(into_rows(runs));
+            // Free the static buffers of this level before the next one.
+            m.scene.static_vbo = None;
+        }
+    }
+    Ok(Report {
+        device,
+        // What was timed: at least one frame, whatever was asked.
+        frames: opts.frames.max(1),
+        width: opts.width,
+        height: opts.height,
+        rows,
+    })
+}
+
+/// One mesh's scene, camera, parameters, surfaces in the order measured, and Loop's pre-pass
+/// cost.
+struct MeshSetup {
+    name: String,
+    scene: Scene,
+    camera: Camera,
+    coarse: u32,
+    params: SurfaceParams,
+    surfaces: Vec<(Surface, Displace)>,
+    pre_pass_ms: Option<f64>,
+}
+
+impl MeshSetup {
+    fn new(h: &mut Headless, mesh: &Mesh, opts: &BenchOptions) -> Result<Self, RenderError> {
+        let mut scene: Scene = Scene::with_patterns(
+            &h.ctx,
+            &h.pool,
+            &h.renderer,
+            mesh.clone(),
+            PatternSet::from_levels(&opts.levels),
+        )?;
+        let (c, r) = scene.bounding_sphere();
+        let camera = Camera::framing(c, r);
+        let coarse = scene.gpu.element_count;
+        let params = opts.params.unwrap_or_else(|| SurfaceParams::for_radius(r));
+        // Flat first (the reference of the throughput ratios), then as asked.
+        let mut surfaces = opts.surfaces.clone();
+        surfaces.sort_by_key(|&(s, _)| s != Surface::Flat);
+        // The loop passes' cost, timed alone (median of the timed frames).
+        let pre_pass_ms = if surfaces.iter().any(|&(s, _)| s == Surface::Loop) {
+            let mut cfg =
+                DrawConfig::new(Driver::default(), opts.levels.first().copied().unwrap_or(1));
+            cfg.surface = Surface::Loop;
+            cfg.params = params;
+            let mut times = Vec::new();
+            for _ in 0..=opts.frames.max(1) {
+                times.extend(h.time_pre_pass(&mut scene, &cfg)?);
+            }
+            Some(Stat::of(&times[1..]).median)
+        } else {
+            None
+        };
+        Ok(Self {
+            name: mesh.name.clone(),
+            scene,
+            camera,
+            coarse,
+            params,
+            surfaces,
+            pre_pass_ms,
+        })
+    }
+}
+
+/// The variants measured at one level, in the order they are timed: every driver variant
+/// asked for (all when `drivers` is empty) of every surface.
+fn variants(
+    surfaces: &[(Surface, Displace)],
+    level: u32,
+    params: SurfaceParams,
+    drivers: &[Driver],
+) -> Vec<DrawConfig> {
+    let mut list = Vec::new();
+    for &(surface, displace) in surfaces {
+        for driver in Driver::VARIANTS {
+            let mut cfg = DrawConfig::new(driver, level).with_surface(surface, displace);
+            cfg.params = params;
+            if !drivers.is_empty() && !drivers.contains(&driver) {
+                continue;
+            }
+            list.push(cfg);
+        }
+    }
+    list
+}
+
+/// Prepares one variant, fills in what its row knows before timing (counts, bytes) and draws
+/// its warm-up frame (shaders, static VBO); a level the device refuses is not drawn and its
+/// row says why.
+fn warm_up(
+    ctx: &crate::gpu::Context,
+    h: &mut Headless,
+    m: &mut MeshSetup,
+    cfg: DrawConfig,
+) -> Result<Run, RenderError> {
+    let (surface, displace, level) = (cfg.surface, cfg.displace, cfg.level);
+    let scene = &mut m.scene;
+    let refused = crate::render::driver::check_level(ctx, &cfg).err();
+    let drawn = refused.is_none();
+    let t = if drawn {
+        h.prepared_elements(scene, &cfg, crate::render::Capture::None)?
+    } else {
+        // Not drawn; loop's M1 is there once another driver drew it.
+        scene.elements(surface).element_count
+    };
+    let (stored_vertices, stored_indices) = cfg.driver.kind().stored(cfg.level, t as u64);
+    let geometry_bytes = scene.geometry_bytes(&cfg);
+    let loop_scene = scene.subdiv.as_ref().filter(|_| surface == Surface::Loop);
+    let mut row = Row {
+        mesh: m.name.clone(),
+        coarse_triangles: m.coarse,
+        elements: t,
+        level,
+        surface,
+        displace,
+        variant: cfg.label(),
+        refined_triangles: t as u64 * cfg.refined_per_element() as u64,
+        gpu_ms: None,
+        wall_ms: None,
+        stored_vertices,
+        stored_indices,
+        geometry_bytes,
+        vertex_invocations: None,
+        gpu_ratio: None,
+        wall_ratio: None,
+        throughput_vs_flat: None,
+        pre_pass_ms: loop_scene.and(m.pre_pass_ms),
+        table_bytes: loop_scene.map(|l| l.data.table_bytes()),
+        note: String::new(),
+    };
+    if drawn {
+        h.draw(scene, &cfg, &m.camera)?; // warm-up: shaders, static VBO
+    } else if let Some(e) = refused {
+        row.note = format!("not drawn: {e}");
+    }
+    Ok(Run {
+        row,
+        cfg,
+        drawn,
+        gpu: Vec::new(),
+        wall: Vec::new(),
+    })
+}
+
+/// Takes the timed frames round the drawn variants in turn until each has `frames` of them
+/// and `min_total_ms` of GPU time (at most 20 × `frames`).
+fn time_round(
+    h: &mut Headless,
+    m: &mut MeshSetup,
+    runs: &mut [Run],
+    opts: &BenchOptions,
+) -> Result<(), RenderError> {
+    let frames = opts.frames.max(1) as usize;
+    let several = m.surfaces.len() > 1;
+    let enough = |r: &Run| {
+        r.gpu.len() >= frames
+            && (r.gpu.iter().sum::<f64>() >= opts.min_total_ms || r.gpu.len() >= 20 * frames)
+    };
+    // `static` draws one buffer of refined vertices, rebuilt for another surface: with
+    // several surfaces, each surface's `static` is timed alone (after a frame that builds
+    // its buffer), then the other variants of every surface go round together.
+    let drawn: Vec<usize> = (0..runs.len()).filter(|&i| runs[i].drawn).collect();
+    let is_static = |i: &usize| runs[*i].cfg.driver.kind().refines_on_cpu();
+    let groups: Vec<Vec<usize>> = if several {
+        let (alone, together): (Vec<usize>, Vec<usize>) = drawn.iter().partition(|i| is_static(i));
+        alone
+            .into_iter()
+            .map(|i| vec![i])
+            .chain([together])
+            .collect()
+    } else {
+        vec![drawn]
+    };
+    for group in groups {
+        if several && group.len() == 1 {
+            h.draw(&mut m.scene, &runs[group[0]].cfg, &m.camera)?;
+        }
+        while !group.iter().all(|&i| enough(&runs[i])) {
+            for &i in &group {
+                let f = h.draw(&mut m.scene, &runs[i].cfg, &m.camera)?;
+                let r = &mut runs[i];
+                r.row.vertex_invocations = f.stats.map(|s| s.vertex_shader_invocations);
+                r.gpu.push(f.gpu_ms);
+                r.wall.push(f.wall_ms);
+            }
+        }
+    }
+    for r in runs.iter_mut().filter(|r| r.gpu.len() > frames) {
+        r.row.note = format!("{} timed frames", r.gpu.len());
+    }
+    Ok(())
+}
+
+/// Turns one level's timed variants into rows: medians and spreads, the ratios against the
+/// `static` of the same surface and displacement, and throughput against `flat` with the same
+/// variant and displacement (`flat`'s rows come first).
+fn into_rows(runs: Vec<Run>) -> Vec<Row> {
+    // Each variant's `static` of the same surface and displacement.
+    let references: Vec<Option<(f64, f64)>> = runs
+        .iter()
+        .map(|r| {
+            runs.iter()
+                .find(|s| {
+                    s.drawn
+                        && s.cfg.driver.kind().refines_on_cpu()
+                        && (s.cfg.surface, s.cfg.displace) == (r.cfg.surface, r.cfg.displace)
+                })
+                .map(|s| (Stat::of(&s.gpu).median, Stat::of(&s.wall).median))
+        })
+        .collect();
+    // Refined triangles per GPU ms of `flat` by variant and displacement.
+    let mut flat_rate: Vec<(String, Displace, f64)> = Vec::new();
+    let mut rows = Vec::with_capacity(runs.len());
+    for (
+        Run {
+            mut row,
+            cfg,
+            drawn,
+            gpu,
+            wall,
+        },
+        reference,
+    ) in runs.into_iter().zip(references)
+    {
+        let (surface, displace) = (cfg.surface, cfg.displace);
+        if !drawn {
+            rows.push(row);
+            continue;
+        }
+        let (g, w) = (Stat::of(&gpu), Stat::of(&wall));
+        if let Some((rg, rw)) = reference {
+            row.gpu_ratio = Some(g.median / rg);
+            row.wall_ratio = Some(w.median / rw);
+        }
+        let rate = row.refined_triangles as f64 / g.median.max(1e-9);
+        if surface == Surface::Flat {
+            flat_rate.push((row.variant.clone(), displace, rate));
+        }
+        row.throughput_vs_flat = flat_rate
+            .iter()
+            .find(|(v, d, _)| *v == row.variant && *d == displace)
+            .map(|&(_, _, f)| rate / f);
+        row.gpu_ms = Some(g);
+        row.wall_ms = Some(w);
+        log::info!(
+            "{} L{} {} + {} {}: gpu {:.2} ms wall {:.2} ms",
+            row.mesh,
+            row.level,
+            surface.name(),
+            displace.name(),
+            row.variant,
+            g.median,
+            w.median
+        );
+        rows.push(row);
+    }
+    rows
+}

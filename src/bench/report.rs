@@ -1,0 +1,852 @@
+//! The benchmark's table: a [`Report`] of measured rows and the one list of its columns,
+//! [`COLUMNS`], from which every form of the table is derived.
+//!
+//! Each column is declared once: its key (the CSV header and the JSON key), its markdown header
+//! and alignment, its short header in the terminal summary (or none), and a function giving the
+//! row's value as a [`Cell`] that knows how to write itself for each reader (CSV and JSON carry
+//! numbers at 4 decimals and leave missing values empty or `null`; markdown and the summary show
+//! what a reader scans, with `–` for a missing value). So the CSV, the JSON rows and the
+//! markdown table cannot disagree about which columns there are or their order: CSV and JSON
+//! have every column; markdown states the device above the table and shows each spread (min,
+//! max) in its median's cell; the summary keeps the few columns that matter and fits
+//! [`SUMMARY_WIDTH`] characters, the full table going to files.
+//!
+//! The CSV's column names and order are a contract: scripts/plot-fig8.py and
+//! scripts/table1-runs.py read them by name.
+#![forbid(unsafe_code)]
+
+use super::{Row, Stat};
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// What one benchmark run measured: the device, the frame size and count, and one row per
+/// variant.
+pub struct Report {
+    pub device: String,
+    pub frames: u32,
+    pub width: u32,
+    pub height: u32,
+    pub rows: Vec<Row>,
+}
+
+/// How a column's cells line up in markdown and in the summary.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Align {
+    Left,
+    Right,
+}
+
+/// One value of a row, written as each form of the table wants it.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Cell {
+    /// A name (mesh, surface, variant): CSV quotes it only where it must.
+    Name(String),
+    /// Free text (device, note): CSV always quotes it.
+    Prose(String),
+    Count(Option<u64>),
+    /// A real number; markdown and the summary show this many decimals.
+    Real(Option<f64>, usize),
+    /// A timing: CSV, JSON and the summary give its median, markdown `median (min–max)`.
+    Spread(Option<Stat>),
+}
+
+impl Cell {
+    fn csv(&self) -> String {
+        match self {
+            Cell::Name(s) if s.contains([',', '"', '\n', '\r']) => quoted(s),
+            Cell::Name(s) => s.clone(),
+            Cell::Prose(s) => quoted(s),
+            Cell::Count(v) => v.map(|v| v.to_string()).unwrap_or_default(),
+            Cell::Real(v, _) => v.map(|v| format!("{v:.4}")).unwrap_or_default(),
+            Cell::Spread(s) => s.map(|s| format!("{:.4}", s.median)).unwrap_or_default(),
+        }
+    }
+
+    fn json(&self) -> String {
+        let real = |v: Option<f64>| match v {
+            Some(v) if v.is_finite() => format!("{v:.4}"),
+            _ => "null".into(),
+        };
+        match self {
+            Cell::Name(s) | Cell::Prose(s) => json_string(s),
+            Cell::Count(v) => v.map(|v| v.to_string()).unwrap_or_else(|| "null".into()),
+            Cell::Real(v, _) => real(*v),
+            Cell::Spread(s) => real(s.map(|s| s.median)),
+        }
+    }
+
+    fn markdown(&self) -> String {
+        match self {
+            Cell::Spread(Some(s)) => format!("{:.2} ({:.2}–{:.2})", s.median, s.min, s.max),
+            Cell::Name(s) | Cell::Prose(s) => s.replace('|', "\\|"),
+            c => c.short(),
+        }
+    }
+
+    /// The summary's cell: the median alone for a timing.
+    fn short(&self) -> String {
+        match self {
+            Cell::Name(s) | Cell::Prose(s) => s.clone(),
+            Cell::Count(Some(v)) => v.to_string(),
+            Cell::Real(Some(v), digits) => format!("{v:.digits$}"),
+            Cell::Spread(Some(s)) => format!("{:.2}", s.median),
+            Cell::Count(None) | Cell::Real(None, _) | Cell::Spread(None) => "–".into(),
+        }
+    }
+}
+
+fn quoted(s: &str) -> String {
+    format!("\"{}\"", s.replace('"', "\"\""))
+}
+
+fn json_string(s: &str) -> String {
+    let mut out = String::from("\"");
+    for c in s.chars() {
+        match c {
+            '"' => out.push_str("\\\""),
+            '\\' => out.push_str("\\\\"),
+            '\n' => out.push_str("\\n"),
+            c if (c as u32) < 0x20 => {
+                let _ = write!(out, "\\u{:04x}", c as u32);
+            }
+            c => out.push(c),
+        }
+    }
+    out.push('"');
+    out
+}
+
+/// One column of the table, declared once for every form of it.
+pub struct Column {
+    /// The CSV header and the JSON key.
+    pub key: &'static str,
+    /// The markdown header; `None` where markdown shows the value elsewhere (the device above
+    /// the table, a spread in its median's cell).
+    pub markdown: Option<&'static str>,
+    /// The summary's header; `None`: left to the full table.
+    pub summary: Option<&'static str>,
+    pub align: Align,
+    /// A name the summary may shorten (with `…`) to fit.
+    pub shrinks: bool,
+    value: fn(&Report, &Row) -> Cell,
+}
+
+impl Column {
+    pub fn cell(&self, report: &Report, row: &Row) -> Cell {
+        (self.value)(report, row)
+    }
+}
+
+const fn col(
+    key: &'static str,
+    markdown: Option<&'static str>,
+    summary: Option<&'static str>,
+    align: Align,
+    value: fn(&Report, &Row) -> Cell,
+) -> Column {
+    Column {
+        key,
+        markdown,
+        summary,
+        align,
+        shrinks: false,
+        value,
+    }
+}
+
+use Align::{Left, Right};
+
+/// Every column of the table, in order.
+pub static COLUMNS: &[Column] = &[
+    col("device", None, None, Left, |p, _| {
+        Cell::Prose(p.device.clone())
+    }),
+    Column {
+        shrinks: true,
+        ..col("mesh", Some("mesh"), Some("mesh"), Left, |_, r| {
+            Cell::Name(r.mesh.clone())
+        })
+    },
+    col(
+        "coarse_triangles",
+        Some("coarse tris"),
+        None,
+        Right,
+        |_, r| Cell::Count(Some(r.coarse_triangles.into())),
+    ),
+    col("elements", Some("elements"), None, Right, |_, r| {
+        Cell::Count(Some(r.elements.into()))
+    }),
+    col("level", Some("level"), Some("level"), Right, |_, r| {
+        Cell::Count(Some(r.level.into()))
+    }),
+    col("surface", Some("surface"), Some("surface"), Left, |_, r| {
+        Cell::Name(r.surface.name().into())
+    }),
+    col(
+        "displace",
+        Some("displace"),
+        Some("displace"),
+        Left,
+        |_, r| Cell::Name(r.displace.name().into()),
+    ),
+    col("variant", Some("variant"), Some("variant"), Left, |_, r| {
+        Cell::Name(r.variant.clone())
+    }),
+    col(
+        "refined_triangles",
+        Some("refined tris"),
+        Some("refined tris"),
+        Right,
+        |_, r| Cell::Count(Some(r.refined_triangles)),
+    ),
+    col(
+        "gpu_ms_median",
+        Some("GPU ms"),
+        Some("GPU ms"),
+        Right,
+        |_, r| Cell::Spread(r.gpu_ms),
+    ),
+    col("gpu_ms_min", None, None, Right, |_, r| {
+        Cell::Real(r.gpu_ms.map(|s| s.min), 2)
+    }),
+    col("gpu_ms_max", None, None, Right, |_, r| {
+        Cell::Real(r.gpu_ms.map(|s| s.max), 2)
+    }),
+    col("wall_ms_median", Some("wall ms"), None, Right, |_, r| {
+        Cell::Spread(r.wall_ms)
+    }),
+    col("wall_ms_min", None, None, Right, |_, r| {
+        Cell::Real(r.wall_ms.map(|s| s.min), 2)
+    }),
+    col("wall_ms_max", None, None, Right, |_, r| {
+        Cell::Real(r.wall_ms.map(|s| s.max), 2)
+    }),
+    col(
+        "gpu_ns_per_refined_triangle",
+        Some("GPU ns / refined tri"),
+        Some("ns/tri"),
+        Right,
+        |_, r| Cell::Real(r.ns_per_triangle(), 2),
+    ),
+    col(
+        "gpu_ratio_vs_static",
+        Some("GPU / static"),
+        Some("vs static"),
+        Right,
+        |_, r| Cell::Real(r.gpu_ratio, 2),
+    ),
+    col(
+        "wall_ratio_vs_static",
+        Some("wall / static"),
+        None,
+        Right,
+        |_, r| Cell::Real(r.wall_ratio, 2),
+    ),
+    col(
+        "throughput_vs_flat",
+        Some("throughput / flat"),
+        Some("vs flat"),
+        Right,
+        |_, r| Cell::Real(r.throughput_vs_flat, 2),
+    ),
+    col("pre_pass_ms", Some("M0→M1 ms"), None, Right, |_, r| {
+        Cell::Real(r.pre_pass_ms, 3)
+    }),
+    col("table_bytes", Some("table bytes"), None, Right, |_, r| {
+        Cell::Count(r.table_bytes)
+    }),
+    col(
+        "stored_vertices",
+        Some("stored vertices"),
+        None,
+        Right,
+        |_, r| Cell::Count(Some(r.stored_vertices)),
+    ),
+    col(
+        "stored_indices",
+        Some("stored indices"),
+        None,
+        Right,
+        |_, r| Cell::Count(Some(r.stored_indices)),
+    ),
+    col(
+        "geometry_bytes",
+        Some("geometry bytes"),
+        Some("stored bytes"),
+        Right,
+        |_, r| Cell::Count(Some(r.geometry_bytes)),
+    ),
+    col(
+        "vertex_invocations",
+        Some("VS invocations"),
+        None,
+        Right,
+        |_, r| Cell::Count(r.vertex_invocations),
+    ),
+    col("note", Some("note"), None, Left, |_, r| {
+        Cell::Prose(r.note.clone())
+    }),
+];
+
+/// The widest line [`Report::summary`] prints.
+pub const SUMMARY_WIDTH: usize = 120;
+
+impl Report {
+    /// The full table in markdown, below a paragraph saying what was measured and how.
+    pub fn markdown(&self) -> String {
+        let mut s = String::new();
+        let _ = writeln!(
+            s,
+            "Device: {}. {}x{} offscreen, median (min–max) of {} timed frames (more where a note says so) after one warm-up frame, taken round the variants (of every surface together; with several surfaces each `static` alone first) in turn; ratios are against `static` at the same mesh and level, and throughput (refined triangles per GPU ms) against `flat` with the same variant, measured in the same run. Elements: the coarse triangles, or M1's faces for `loop`.\n",
+            self.device, self.width, self.height, self.frames
+        );
+        let columns: Vec<&Column> = COLUMNS.iter().filter(|c| c.markdown.is_some()).collect();
+        let line = |cells: Vec<String>| format!("| {} |", cells.join(" | "));
+        let _ = writeln!(
+            s,
+            "{}",
+            line(columns.iter().map(|c| c.markdown.unwrap().into()).collect())
+        );
+        let rule = columns.iter().map(|c| match c.align {
+            Left => "---|",
+            Right => "---:|",
+        });
+        let _ = writeln!(s, "|{}", rule.collect::<String>());
+        for r in &self.rows {
+            let cells = columns.iter().map(|c| c.cell(self, r).markdown());
+            let _ = writeln!(s, "{}", line(cells.collect()));
+        }
+        s
+    }
+
+    /// Write `prefix.md` (headed by the command that made it), `prefix.csv` and `prefix.json`.
+    /// The folder must exist: outputs never create folders (the command line checks the prefix up front, `meshrefine::paths`).
+    pub fn write_files(&self, prefix: &Path, command: &str) -> std::io::Result<()> {
+        std::fs::write(
+            with_extension(prefix, "md"),
+            format!("Command: `{command}`\n\n{}", self.markdown()),
+        )?;
+        std::fs::write(with_extension(prefix, "csv"), self.csv())?;
+        std::fs::write(with_extension(prefix, "json"), self.json())
+    }
+
+    /// Every column, one row per line, headed by the column keys.
+    pub fn csv(&self) -> String {
+        let keys: Vec<&str> = COLUMNS.iter().map(|c| c.key).collect();
+        let mut s = keys.join(",") + "\n";
+        for r in &self.rows {
+            let cells: Vec<String> = COLUMNS.iter().map(|c| c.cell(self, r).csv()).collect();
+            let _ = writeln!(s, "{}", cells.join(","));
+        }
+        s
+    }
+
+    /// The run's device, frame count and size, and every column of every row, one row per line.
+    pub fn json(&self) -> String {
+        let rows: Vec<String> = self
+            .rows
+            .iter()
+            .map(|r| {
+                let fields: Vec<String> = COLUMNS
+                    .iter()
+                    .map(|c| format!("\"{}\":{}", c.key, c.cell(self, r).json()))
+                    .collect();
+                format!("{{{}}}", fields.join(","))
+            })
+            .collect();
+        format!(
+            "{{\"device\":{},\"frames\":{},\"width\":{},\"height\":{},\"rows\":[\n{}\n]}}\n",
+            json_string(&self.device),
+            self.frames,
+            self.width,
+            self.height,
+            rows.join(",\n")
+        )
+    }
+
+    /// A short table for the terminal, every line at most [`SUMMARY_WIDTH`] characters (save a
+    /// path longer than that): the
+    /// columns with a summary header, those the same on every row said once above it, notes
+    /// below it, and where the full table is: `full_table` is the prefix it was written to
+    /// (`None`: say that `--out PREFIX` writes it).
+    pub fn summary(&self, full_table: Option<&Path>) -> String {
+        let mut s = self.summary_table();
+        const WHAT: &str = "The full table (every column: spreads, wall time, stored vertices and \
+                            indices, VS invocations)";
+        match full_table {
+            // The path on a line of its own, whole, however long.
+            Some(prefix) => {
+                wrap(
+                    &mut s,
+                    &format!("{WHAT}, with its .csv and .json beside it:"),
+                    "",
+                );
+                let _ = writeln!(s, "{}", with_extension(prefix, "md").display());
+            }
+            None => wrap(
+                &mut s,
+                &format!(
+                    "{WHAT}: `--out PREFIX` writes it to PREFIX.md, PREFIX.csv and PREFIX.json."
+                ),
+                "",
+            ),
+        }
+        s
+    }
+
+    /// [`Report::summary`] without the line saying where the full table is.
+    pub fn summary_table(&self) -> String {
+        let mut s = String::new();
+        wrap(
+            &mut s,
+            &format!(
+                "Device: {}. {}x{}, median GPU time of {} timed frames per variant (more where a \
+                 note says so); ratios against `static` of the same surface, throughput against \
+                 `flat` with the same variant, both from the same run.",
+                self.device, self.width, self.height, self.frames
+            ),
+            "",
+        );
+        let mut columns: Vec<(&Column, Vec<String>)> = COLUMNS
+            .iter()
+            .filter(|c| c.summary.is_some())
+            .map(|c| {
+                (
+                    c,
+                    self.rows.iter().map(|r| c.cell(self, r).short()).collect(),
+                )
+            })
+            .collect();
+        // Columns with one value on every row are said once, above the table.
+        if self.rows.len() > 1 {
+            let same: Vec<String> = columns
+                .iter()
+                .filter(|(_, cells)| cells.iter().all(|c| *c == cells[0]))
+                .map(|(c, cells)| format!("{} {}", c.summary.unwrap(), cells[0]))
+                .collect();
+            if !same.is_empty() {
+                wrap(&mut s, &format!("Every row: {}.", same.join(", ")), "");
+            }
+            columns.retain(|(_, cells)| cells.iter().any(|c| *c != cells[0]));
+        }
+        s.push('\n');
+        let widths = fit_widths(&columns);
+        let line = |cells: Vec<String>| {
+            let padded: Vec<String> = cells
+                .iter()
+                .zip(&columns)
+                .zip(&widths)
+                .map(|((cell, (c, _)), &w)| pad(&shorten(cell, w), w, c.align))
+                .collect();
+            padded.join("  ").trim_end().to_owned()
+        };
+        let headers = columns.iter().map(|(c, _)| c.summary.unwrap().to_owned());
+        let _ = writeln!(s, "{}", line(headers.collect()));
+        let rule: Vec<String> = widths.iter().map(|&w| "-".repeat(w)).collect();
+        let _ = writeln!(s, "{}", rule.join("  "));
+        for i in 0..self.rows.len() {
+            let _ = writeln!(
+                s,
+                "{}",
+                line(columns.iter().map(|(_, c)| c[i].clone()).collect())
+            );
+        }
+        let noted: Vec<&Row> = self.rows.iter().filter(|r| !r.note.is_empty()).collect();
+        if !noted.is_empty() {
+            s.push('\n');
+            for r in noted {
+                let what = format!(
+                    "- {} level {} {} + {} {}: {}",
+                    r.mesh,
+                    r.level,
+                    r.surface.name(),
+                    r.displace.name(),
+                    r.variant,
+                    r.note
+                );
+                wrap(&mut s, &what, "  ");
+            }
+        }
+        s.push('\n');
+        s
+    }
+}
+
+/// `prefix` with `.ext` added (the prefix may hold dots of its own).
+fn with_extension(prefix: &Path, ext: &str) -> std::path::PathBuf {
+    let mut p = prefix.as_os_str().to_owned();
+    p.push(".");
+    p.push(ext);
+    p.into()
+}
+
+fn width(s: &str) -> usize {
+    s.chars().count()
+}
+
+/// Each column's width in the summary: as wide as its widest cell or header, with the names
+/// that may shrink shortened, then the rightmost columns dropped, until a line fits.
+fn fit_widths(columns: &[(&Column, Vec<String>)]) -> Vec<usize> {
+    let mut widths: Vec<usize> = columns
+        .iter()
+        .map(|(c, cells)| {
+            cells
+                .iter()
+                .map(|s| width(s))
+                .chain([width(c.summary.unwrap())])
+                .max()
+                .unwrap_or(0)
+        })
+        .collect();
+    let total = |w: &[usize]| w.iter().sum::<usize>() + 2 * w.len().saturating_sub(1);
+    for (i, (c, _)) in columns.iter().enumerate() {
+        let over = total(&widths).saturating_sub(SUMMARY_WIDTH);
+        if c.shrinks && over > 0 {
+            let least = width(c.summary.unwrap()).max(4);
+            widths[i] = widths[i].saturating_sub(over).max(least);
+        }
+    }
+    // Past any real table: the rightmost columns are left to the full table.
+    while total(&widths) > SUMMARY_WIDTH && widths.len() > 1 {
+        widths.pop();
+    }
+    widths
+}
+
+fn shorten(s: &str, w: usize) -> String {
+    if width(s) <= w {
+        s.to_owned()
+    } else {
+        let mut t: String = s.chars().take(w.saturating_sub(1)).collect();
+        t.push('…');
+        t
+    }
+}
+
+fn pad(s: &str, w: usize, align: Align) -> String {
+    let fill = " ".repeat(w.saturating_sub(width(s)));
+    match align {
+        Left => format!("{s}{fill}"),
+        Right => format!("{fill}{s}"),
+    }
+}
+
+/// Appends `text` as lines of at most [`SUMMARY_WIDTH`] characters, broken at spaces; lines
+/// after the first start with `indent`.
+fn wrap(out: &mut String, text: &str, indent: &str) {
+    let mut line = String::new();
+    for word in text.split(' ') {
+        let fresh = line.is_empty() || line == indent;
+        // A word longer than a whole line is shortened where it stands.
+        let fits_alone = width(indent) + width(word) <= SUMMARY_WIDTH;
+        if !fresh && fits_alone && width(&line) + 1 + width(word) > SUMMARY_WIDTH {
+            let _ = writeln!(out, "{line}");
+            line = indent.to_owned();
+        } else if !fresh {
+            line.push(' ');
+        }
+        let room = SUMMARY_WIDTH - width(&line);
+        line.push_str(&shorten(word, room));
+    }
+    let _ = writeln!(out, "{line}");
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::surface::{Displace, Surface};
+
+    fn row(mesh: &str, level: u32, variant: &str, timed: bool) -> Row {
+        let stat = |m: f64| Stat {
+            median: m,
+            min: m * 0.9,
+            max: m * 1.3,
+        };
+        Row {
+            mesh: mesh.into(),
+            coarse_triangles: 372,
+            elements: 1488,
+            level,
+            surface: Surface::Loop,
+            displace: Displace::Sine,
+            variant: variant.into(),
+            refined_triangles: 1_523_712,
+            gpu_ms: timed.then(|| stat(12.345_678)),
+            wall_ms: timed.then(|| stat(13.5)),
+            stored_vertices: 6,
+            stored_indices: 12,
+            geometry_bytes: 41_784,
+            vertex_invocations: timed.then_some(2232),
+            gpu_ratio: timed.then_some(0.987_654_3),
+            wall_ratio: timed.then_some(1.012_345),
+            throughput_vs_flat: timed.then_some(1.5),
+            pre_pass_ms: Some(0.123_456),
+            table_bytes: None,
+            note: if timed {
+                String::new()
+            } else {
+                "not drawn: level 128 is over the device's limit, \"64\"".into()
+            },
+        }
+    }
+
+    fn report(rows: Vec<Row>) -> Report {
+        Report {
+            device: "llvmpipe (LLVM 15.0.6, 256 bits), \"quoted\"".into(),
+            frames: 5,
+            width: 1280,
+            height: 720,
+            rows,
+        }
+    }
+
+    /// The fields of one CSV line (RFC 4180 quoting).
+    fn csv_fields(line: &str) -> Vec<String> {
+        let (mut fields, mut field, mut quoted) = (Vec::new(), String::new(), false);
+        let mut chars = line.chars().peekable();
+        while let Some(c) = chars.next() {
+            match (c, quoted) {
+                ('"', true) if chars.peek() == Some(&'"') => {
+                    chars.next();
+                    field.push('"');
+                }
+                ('"', _) => quoted = !quoted,
+                (',', false) => fields.push(std::mem::take(&mut field)),
+                (c, _) => field.push(c),
+            }
+        }
+        fields.push(field);
+        fields
+    }
+
+    /// The keys and values of one flat JSON object (strings unescaped, others as written).
+    fn json_fields(object: &str) -> Vec<(String, String)> {
+        let body = object.trim().trim_start_matches('{').trim_end_matches('}');
+        let (mut out, mut token, mut key) = (Vec::new(), String::new(), None::<String>);
+        let mut chars = body.chars();
+        let mut in_string = false;
+        while let Some(c) = chars.next() {
+            match (c, in_string) {
+                ('\\', true) => match chars.next() {
+                    Some('n') => token.push('\n'),
+                    Some(e) => token.push(e),
+                    None => {}
+                },
+                ('"', _) => in_string = !in_string,
+                (':', false) if key.is_none() => key = Some(std::mem::take(&mut token)),
+                (',', false) => out.push((key.take().unwrap(), std::mem::take(&mut token))),
+                (c, _) => token.push(c),
+            }
+        }
+        out.push((key.take().unwrap(), token));
+        out
+    }
+
+    /// The JSON's rows, one a line, without the separating commas.
+    fn json_rows(json: &str) -> Vec<&str> {
+        let rows = json
+            .lines()
+            .filter(|l| l.starts_with('{') && !l.ends_with('['));
+        rows.map(|l| l.trim_end_matches(',')).collect()
+    }
+
+    /// A CSV or JSON number: `None` for an empty field or `null`.
+    fn number(s: &str) -> Option<f64> {
+        (!s.is_empty() && s != "null").then(|| s.parse().expect(s))
+    }
+
+    /// The value a column's cell stands for, as a number (names: none).
+    fn value(cell: &Cell) -> Option<f64> {
+        match *cell {
+            Cell::Count(v) => v.map(|v| v as f64),
+            Cell::Real(v, _) => v,
+            Cell::Spread(s) => s.map(|s| s.median),
+            Cell::Name(_) | Cell::Prose(_) => None,
+        }
+    }
+
+    #[test]
+    fn csv_and_markdown_headers_are_what_scripts_and_readers_know() {
+        let r = report(vec![row("spot", 2, "tess", true)]);
+        assert_eq!(
+            r.csv().lines().next().unwrap(),
+            "device,mesh,coarse_triangles,elements,level,surface,displace,variant,refined_triangles,gpu_ms_median,gpu_ms_min,gpu_ms_max,wall_ms_median,wall_ms_min,wall_ms_max,gpu_ns_per_refined_triangle,gpu_ratio_vs_static,wall_ratio_vs_static,throughput_vs_flat,pre_pass_ms,table_bytes,stored_vertices,stored_indices,geometry_bytes,vertex_invocations,note"
+        );
+        let md = r.markdown();
+        let mut lines = md.lines().skip(2);
+        assert_eq!(
+            lines.next().unwrap(),
+            "| mesh | coarse tris | elements | level | surface | displace | variant | refined tris | GPU ms | wall ms | GPU ns / refined tri | GPU / static | wall / static | throughput / flat | M0→M1 ms | table bytes | stored vertices | stored indices | geometry bytes | VS invocations | note |"
+        );
+        assert_eq!(
+            lines.next().unwrap(),
+            "|---|---:|---:|---:|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|"
+        );
+    }
+
+    #[test]
+    fn every_form_has_the_same_columns_in_the_same_order() {
+        let r = report(vec![
+            row("grid, \"big\"", 2, "pattern/push", true),
+            row("spot", 128, "tess", false),
+        ]);
+        let keys: Vec<&str> = COLUMNS.iter().map(|c| c.key).collect();
+        let csv = r.csv();
+        let csv_lines: Vec<&str> = csv.lines().collect();
+        assert_eq!(csv_fields(csv_lines[0]), keys);
+        assert_eq!(csv_lines.len(), 1 + r.rows.len());
+        for line in &csv_lines[1..] {
+            assert_eq!(csv_fields(line).len(), keys.len(), "{line}");
+        }
+        let json = r.json();
+        let json_rows = json_rows(&json);
+        assert_eq!(json_rows.len(), r.rows.len(), "{json}");
+        for object in json_rows {
+            let fields = json_fields(object.trim_end_matches(','));
+            let json_keys: Vec<&str> = fields.iter().map(|(k, _)| k.as_str()).collect();
+            assert_eq!(json_keys, keys);
+        }
+        // Markdown: the same list, less the device (above the table) and the spreads (in their
+        // medians' cells).
+        let headers: Vec<&str> = COLUMNS.iter().filter_map(|c| c.markdown).collect();
+        let folded: Vec<&str> = COLUMNS
+            .iter()
+            .filter(|c| c.markdown.is_none())
+            .map(|c| c.key)
+            .collect();
+        assert_eq!(
+            folded,
+            [
+                "device",
+                "gpu_ms_min",
+                "gpu_ms_max",
+                "wall_ms_min",
+                "wall_ms_max"
+            ]
+        );
+        let md = r.markdown();
+        let table: Vec<&str> = md.lines().filter(|l| l.starts_with('|')).collect();
+        let cells = |l: &str| -> Vec<String> {
+            let inner = l.strip_prefix("| ").unwrap().strip_suffix(" |").unwrap();
+            inner.split(" | ").map(str::to_owned).collect()
+        };
+        assert_eq!(cells(table[0]), headers);
+        assert_eq!(table.len(), 2 + r.rows.len());
+        for line in &table[2..] {
+            assert_eq!(cells(line).len(), headers.len(), "{line}");
+        }
+        assert!(table[2].contains("| 12.35 (11.11–16.05) |"), "{}", table[2]);
+    }
+
+    #[test]
+    fn csv_and_json_carry_each_rows_numbers_and_names() {
+        let r = report(vec![
+            row("grid, \"big\"", 2, "pattern/push", true),
+            row("spot", 128, "tess", false),
+        ]);
+        let csv = r.csv();
+        let json = r.json();
+        let json_rows = json_rows(&json);
+        for ((row, line), object) in r.rows.iter().zip(csv.lines().skip(1)).zip(json_rows) {
+            let from_csv = csv_fields(line);
+            let from_json = json_fields(object.trim_end_matches(','));
+            for ((c, field), (_, json_value)) in COLUMNS.iter().zip(&from_csv).zip(&from_json) {
+                let cell = c.cell(&r, row);
+                match &cell {
+                    Cell::Name(s) | Cell::Prose(s) => {
+                        assert_eq!(field, s, "{}", c.key);
+                        assert_eq!(json_value, s, "{}", c.key);
+                    }
+                    // Written at 4 decimals: within half a unit of the last.
+                    _ => {
+                        for written in [field, json_value] {
+                            match (number(written), value(&cell)) {
+                                (Some(a), Some(b)) => {
+                                    assert!((a - b).abs() <= 0.5e-4, "{}: {a} vs {b}", c.key)
+                                }
+                                (a, b) => assert_eq!(a, b, "{}", c.key),
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_summary_fits_the_terminal_and_says_where_the_full_table_is() {
+        let long = "a_mesh_with_a_very_long_name_".repeat(6);
+        let mut rows = Vec::new();
+        for (mesh, level) in [(long.as_str(), 2), ("spot", 1024)] {
+            for variant in ["static", "pattern/instanced", "tess"] {
+                rows.push(row(mesh, level, variant, variant != "tess"));
+            }
+        }
+        rows[1].surface = Surface::Flat;
+        rows[2].displace = Displace::Heightmap;
+        let mut r = report(rows);
+        r.device = "a device whose name goes on and on ".repeat(8);
+        for s in [
+            r.summary(None),
+            r.summary(Some(Path::new("/tmp/out/run.1"))),
+        ] {
+            for line in s.lines() {
+                assert!(
+                    width(line) <= SUMMARY_WIDTH,
+                    "{} chars: {line}",
+                    width(line)
+                );
+            }
+            // Every row, with its variant and a shortened mesh name.
+            assert!(
+                s.lines()
+                    .any(|l| l.starts_with("a_mesh_with") && l.contains('…')),
+                "{s}"
+            );
+            // Two rows each, and a line for each of tess's notes.
+            for (variant, lines) in [("static", 2), ("pattern/instanced", 2), ("tess", 4)] {
+                let tokens = [variant.to_owned(), format!("{variant}:")];
+                let n = s
+                    .lines()
+                    .filter(|l| !l.starts_with("mesh"))
+                    .filter(|l| l.split_whitespace().any(|t| tokens.iter().any(|v| v == t)))
+                    .count();
+                assert_eq!(n, lines, "{variant}:\n{s}");
+            }
+            assert!(s.contains("not drawn: level 128"), "{s}");
+        }
+        let without = r.summary(None).replace('\n', " ");
+        assert!(without.contains("`--out PREFIX` writes it"), "{without}");
+        assert!(r
+            .summary(Some(Path::new("/tmp/out/run.1")))
+            .replace('\n', " ")
+            .ends_with(".json beside it: /tmp/out/run.1.md "));
+    }
+
+    #[test]
+    fn the_summary_says_once_what_every_row_shares() {
+        let r = report(vec![
+            row("spot", 2, "static", true),
+            row("spot", 2, "tess", false),
+        ]);
+        let s = r.summary(None);
+        assert!(
+            s.contains(
+                "\nEvery row: mesh spot, level 2, surface loop, displace sine, refined tris \
+                 1523712, stored bytes 41784.\n"
+            ),
+            "{s}"
+        );
+        let header = s.lines().find(|l| l.starts_with("variant")).expect(&s);
+        let headers: Vec<&str> = header.split("  ").filter(|h| !h.is_empty()).collect();
+        assert_eq!(
+            headers,
+            ["variant", "GPU ms", "ns/tri", "vs static", "vs flat"],
+            "{s}"
+        );
+        let static_row = s.lines().find(|l| l.starts_with("static ")).expect(&s);
+        let cells: Vec<&str> = static_row.split_whitespace().collect();
+        assert_eq!(cells, ["static", "12.35", "8.10", "0.99", "1.50"], "{s}");
+    }
+}
