@@ -26,6 +26,10 @@ use crate::render::{Camera, DrawConfig, Driver, Headless, RenderError, Scene};
 use crate::surface::{Displace, Surface, SurfaceParams};
 use std::sync::Arc;
 
+/// The surface every other's throughput is compared with (`throughput vs flat`): the cheapest,
+/// linear interpolation.
+pub const THROUGHPUT_REFERENCE: Surface = Surface::Flat;
+
 #[derive(Clone, Debug)]
 pub struct BenchOptions {
     pub levels: Vec<u32>,
@@ -183,14 +187,16 @@ impl MeshSetup {
         let camera = Camera::framing(c, r);
         let coarse = scene.gpu.element_count;
         let params = opts.params.unwrap_or_else(|| SurfaceParams::for_radius(r));
-        // Flat first (the reference of the throughput ratios), then as asked.
+        // The reference surface first (the throughput ratios are against it), then as asked.
         let mut surfaces = opts.surfaces.clone();
-        surfaces.sort_by_key(|&(s, _)| s != Surface::Flat);
-        // The loop passes' cost, timed alone (median of the timed frames).
-        let pre_pass_ms = if surfaces.iter().any(|&(s, _)| s == Surface::Loop) {
+        surfaces.sort_by_key(|&(s, _)| s != THROUGHPUT_REFERENCE);
+        // The cost of the passes a surface runs before drawing (Loop's M0 -> M1), timed alone
+        // (median of the timed frames).
+        let with_pre_pass = surfaces.iter().find(|(s, _)| s.uses_loop_faces());
+        let pre_pass_ms = if let Some(&(surface, _)) = with_pre_pass {
             let mut cfg =
                 DrawConfig::new(Driver::default(), opts.levels.first().copied().unwrap_or(1));
-            cfg.surface = Surface::Loop;
+            cfg.surface = surface;
             cfg.params = params;
             let mut times = Vec::new();
             for _ in 0..=opts.frames.max(1) {
@@ -255,7 +261,7 @@ fn warm_up(
     };
     let (stored_vertices, stored_indices) = cfg.driver.kind().stored(cfg.level, t as u64);
     let geometry_bytes = scene.geometry_bytes(&cfg);
-    let loop_scene = scene.subdiv.as_ref().filter(|_| surface == Surface::Loop);
+    let loop_scene = scene.subdiv.as_ref().filter(|_| surface.uses_loop_faces());
     let mut row = Row {
         mesh: m.name.clone(),
         coarse_triangles: m.coarse,
@@ -383,7 +389,7 @@ fn into_rows(runs: Vec<Run>) -> Vec<Row> {
             row.wall_ratio = Some(w.median / rw);
         }
         let rate = row.refined_triangles as f64 / g.median.max(1e-9);
-        if surface == Surface::Flat {
+        if surface == THROUGHPUT_REFERENCE {
             flat_rate.push((row.variant.clone(), displace, rate));
         }
         row.throughput_vs_flat = flat_rate

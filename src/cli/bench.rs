@@ -8,7 +8,6 @@ use super::with_context;
 use anyhow::{bail, Context as _, Result};
 use meshrefine::gpu::ContextDesc;
 use meshrefine::render::{DrawConfig, Driver};
-use meshrefine::surface::Surface;
 use std::io::Write as _;
 
 /// Runs `meshrefine bench` with `a`.
@@ -19,8 +18,9 @@ pub fn run(a: &BenchArgs, desc: &ContextDesc) -> Result<()> {
             a.min_total_ms
         );
     }
-    let mut input = load_mesh(a.mesh.as_deref(), a.surfaces.contains(&Surface::Loop))?;
-    if a.surfaces.contains(&Surface::Stpn) {
+    let every_face = a.surfaces.iter().any(|s| s.facts().needs_every_face);
+    let mut input = load_mesh(a.mesh.as_deref(), every_face)?;
+    if a.surfaces.iter().any(|s| s.facts().tags) {
         // As render does: every surface is then timed on the same, split, mesh.
         split_three_creases(&mut input, None)?;
     }

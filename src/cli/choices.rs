@@ -38,31 +38,12 @@ where
 
 /// `--surface`, `--surfaces`.
 pub fn surface() -> impl TypedValueParser<Value = Surface> {
-    parser(&Surface::ALL, Surface::name, surface_help)
-}
-
-fn surface_help(s: Surface) -> &'static str {
-    match s {
-        Surface::Flat => "Linear interpolation of the coarse triangle's positions and normals",
-        Surface::Phong => "Phong tessellation (Boubekeur & Alexa 2008): the flat point pulled towards the corners' tangent planes by the shape factor --alpha",
-        Surface::Pn => "Curved PN triangles (Vlachos et al. 2001, as in Boubekeur & Schlick 2005, appendix A): cubic Bézier geometry, quadratic normal field evaluated per fragment",
-        Surface::Stpn => "Scalar-tagged PN triangles (Boubekeur, Reuter & Schlick 2005): PN with per-vertex tension, sharpness, bias and crease direction (--tags, or derived from the mesh's hard edges)",
-        Surface::Loop => "The limit surface of Loop subdivision (Holländer & Boubekeur 2010): elements are the faces of one Loop step M1, evaluated from basis function tables (src/surface/loop.rs)",
-    }
+    parser(&Surface::ALL, Surface::name, |s| s.facts().help)
 }
 
 /// `--displace`, `--displacements`.
 pub fn displace() -> impl TypedValueParser<Value = Displace> {
-    parser(&Displace::ALL, Displace::name, displace_help)
-}
-
-fn displace_help(d: Displace) -> &'static str {
-    match d {
-        Displace::None => "No displacement",
-        Displace::Sine => "a·sin(f·|P|) along the normal (the 2005 paper's Fig. 4)",
-        Displace::Noise => "a·Perlin noise(f·P) along the normal, --octaves octaves",
-        Displace::Heightmap => "a·(h − bias) along the normal, h from a grayscale PNG at the mesh's texture coordinates",
-    }
+    parser(&Displace::ALL, Displace::name, |d| d.facts().help)
 }
 
 /// `--driver`, `--drivers`: `pattern` parses as the pattern driver with its default submission

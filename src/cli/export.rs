@@ -8,7 +8,6 @@ use super::{require_extension, with_context};
 use anyhow::{bail, Context as _, Result};
 use meshrefine::gpu::{Context, ContextDesc};
 use meshrefine::render::{Camera, Capture, DrawConfig, Headless};
-use meshrefine::surface::Surface;
 use std::io::Write as _;
 use std::path::Path;
 use std::sync::Arc;
@@ -16,7 +15,7 @@ use std::sync::Arc;
 /// Runs `meshrefine export` with `a`.
 pub fn run(a: &ExportArgs, desc: &ContextDesc) -> Result<()> {
     require_extension(&a.output, "obj", "export writes Wavefront OBJ text only")?;
-    let for_loop = a.surface.surface == Surface::Loop;
+    let for_loop = a.surface.surface.facts().needs_every_face;
     let mut input = load_mesh(a.mesh.as_deref(), for_loop)?;
     // Loop's elements are M1's faces, four per triangle.
     let elements = input.mesh.triangles.len() as u64 * if for_loop { 4 } else { 1 };

@@ -11,7 +11,6 @@ use anyhow::{bail, Result};
 use meshrefine::mesh::{LoadReport, Mesh};
 use meshrefine::render::Driver;
 use meshrefine::surface::loop_::LoopData;
-use meshrefine::surface::Surface;
 use std::io::Write as _;
 use std::path::Path;
 
@@ -19,7 +18,7 @@ use std::path::Path;
 pub fn run(a: &InfoArgs) -> Result<()> {
     let path = a.mesh.as_path();
     let (mesh, report) = Mesh::load_obj(path)?;
-    let for_loop = a.surface == Some(Surface::Loop);
+    let for_loop = a.surface.is_some_and(|s| s.facts().needs_every_face);
     if let Some(why) = loop_refusal(&path.display().to_string(), &mesh, &report, for_loop) {
         if for_loop {
             bail!("{why}");

@@ -12,7 +12,6 @@ use crate::note;
 use anyhow::{bail, Result};
 use meshrefine::mesh::{LoadReport, Mesh, MeshError};
 use meshrefine::render::{DrawConfig, Driver, Headless};
-use meshrefine::surface::{Displace, Surface};
 use std::path::Path;
 
 /// A loaded mesh and what messages call it.
@@ -117,7 +116,7 @@ pub fn attach_surface_inputs(input: &mut Input, s: &SurfaceOpts, any: bool) -> R
     input.heightmap = s.heightmap(any).map_err(anyhow::Error::msg)?;
     let lines = &input.report.triangle_lines;
     input.tags = (s.tags(&input.mesh, &input.shown, lines, any)).map_err(anyhow::Error::msg)?;
-    if s.surface == meshrefine::surface::Surface::Stpn && s.tags.is_none() {
+    if s.surface.facts().tags && s.tags.is_none() {
         split_three_creases(input, s.crease_angle)?;
         let (_, corners) =
             meshrefine::surface::stpn::derive_with_angle(&input.mesh, s.crease_angle);
@@ -232,7 +231,7 @@ impl SurfaceOpts {
         any_surface: bool,
     ) -> Result<Option<Vec<meshrefine::surface::stpn::VertexTag>>, String> {
         use meshrefine::surface::stpn;
-        if self.surface != Surface::Stpn && !any_surface {
+        if !self.surface.facts().tags && !any_surface {
             return Ok(None);
         }
         // Appendix B's restriction, named by the face's line and what made the creases.
@@ -292,7 +291,7 @@ impl SurfaceOpts {
         let Some(path) = &self.heightmap else {
             return Ok(None);
         };
-        if self.displace != Displace::Heightmap && !any_displacement {
+        if !self.displace.facts().options.contains(&"heightmap") && !any_displacement {
             return Ok(None);
         }
         meshrefine::surface::Heightmap::load_png(path).map(Some)

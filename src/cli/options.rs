@@ -64,77 +64,63 @@ pub fn shown<T: Copy>(option: &str, values: &[T], name: impl Fn(T) -> &'static s
     format!("{option} {}", names.join(","))
 }
 
+/// Each option that some of `values` read (their facts' `options`, in order of first mention),
+/// with the names of those that read it.
+fn readers<T: Copy>(
+    values: &[T],
+    options: impl Fn(T) -> &'static [&'static str],
+    name: impl Fn(T) -> &'static str,
+) -> Vec<(&'static str, Vec<&'static str>)> {
+    let mut out: Vec<(&'static str, Vec<&'static str>)> = Vec::new();
+    for &v in values {
+        for &id in options(v) {
+            match out.iter_mut().find(|(o, _)| *o == id) {
+                Some((_, names)) => names.push(name(v)),
+                None => out.push((id, vec![name(v)])),
+            }
+        }
+    }
+    out
+}
+
+/// "phong", "phong or pn", "phong, pn or stpn".
+fn or_list(names: &[&str]) -> String {
+    match names {
+        [] => String::new(),
+        [one] => one.to_string(),
+        [rest @ .., last] => format!("{} or {last}", rest.join(", ")),
+    }
+}
+
 /// One warning line (without "warning: ") for every given option that nothing chosen reads.
+/// Which surface or displacement reads which option is what each declares
+/// ([`meshrefine::surface::SurfaceFacts::options`]).
 pub fn inapplicable(given: &Given, c: &Chosen) -> Vec<String> {
-    use Displace as D;
-    use Surface as S;
-    let surface = |list: &'static [Surface], what: &'static str| {
-        let applies = c.surfaces.iter().any(|s| list.contains(s));
-        (applies, what, c.surface_shown.clone())
-    };
-    let displace = |list: &'static [Displace], what: &'static str| {
-        let applies = c.displaces.iter().any(|d| list.contains(d));
-        (applies, what, c.displace_shown.clone())
-    };
-    let rules: Vec<(&str, &str, (bool, &str, String))> = vec![
-        ("alpha", "--alpha", surface(&[S::Phong], "--surface phong")),
-        (
-            "pn_seams",
-            "--pn-seams",
-            surface(&[S::Phong, S::Pn, S::Stpn], "--surface phong, pn or stpn"),
-        ),
-        ("tags", "--tags", surface(&[S::Stpn], "--surface stpn")),
-        (
-            "crease_angle",
-            "--crease-angle",
-            surface(&[S::Stpn], "--surface stpn"),
-        ),
-        (
-            "boundary",
-            "--boundary",
-            surface(&[S::Loop], "--surface loop"),
-        ),
-        (
-            "bft_level",
-            "--bft-level",
-            surface(&[S::Loop], "--surface loop"),
-        ),
-        (
-            "amplitude",
-            "--amplitude",
-            displace(
-                &[D::Sine, D::Noise, D::Heightmap],
-                "--displace sine, noise or heightmap",
-            ),
-        ),
-        (
-            "frequency",
-            "--frequency",
-            displace(&[D::Sine, D::Noise], "--displace sine or noise"),
-        ),
-        (
-            "octaves",
-            "--octaves",
-            displace(&[D::Noise], "--displace noise"),
-        ),
-        (
-            "bias",
-            "--bias",
-            displace(&[D::Heightmap], "--displace heightmap"),
-        ),
-        (
-            "heightmap",
-            "--heightmap",
-            displace(&[D::Heightmap], "--displace heightmap"),
-        ),
-    ];
-    let mut out: Vec<String> = rules
-        .into_iter()
-        .filter(|(id, _, (applies, _, _))| given.has(id) && !applies)
-        .map(|(_, option, (_, what, chosen))| {
-            format!("{option} applies only to {what}, not to {chosen}: it is ignored")
-        })
-        .collect();
+    let surface_options = readers(&Surface::ALL, |s| s.facts().options, Surface::name);
+    let displace_options = readers(&Displace::ALL, |d| d.facts().options, Displace::name);
+    let mut out = Vec::new();
+    for (id, names) in surface_options {
+        let applies = c.surfaces.iter().any(|s| s.facts().options.contains(&id));
+        if given.has(id) && !applies {
+            out.push(format!(
+                "--{} applies only to --surface {}, not to {}: it is ignored",
+                id.replace('_', "-"),
+                or_list(&names),
+                c.surface_shown
+            ));
+        }
+    }
+    for (id, names) in displace_options {
+        let applies = c.displaces.iter().any(|d| d.facts().options.contains(&id));
+        if given.has(id) && !applies {
+            out.push(format!(
+                "--{} applies only to --displace {}, not to {}: it is ignored",
+                id.replace('_', "-"),
+                or_list(&names),
+                c.displace_shown
+            ));
+        }
+    }
     if let Some((false, driver)) = &c.driver {
         if given.has("submit") {
             out.push(format!(
@@ -185,9 +171,14 @@ pub fn warnings(cli: &Cli, given: &Given) -> Vec<String> {
         Command::Info(a) => {
             let surfaces: Vec<Surface> = a.surface.into_iter().collect();
             let mut out = Vec::new();
-            if let Some(s) = a.surface.filter(|&s| s != Surface::Loop) {
+            if let Some(s) = a.surface.filter(|s| !s.uses_loop_faces()) {
+                let builders: Vec<&str> = (Surface::ALL.into_iter())
+                    .filter(|s| s.uses_loop_faces())
+                    .map(Surface::name)
+                    .collect();
                 out.push(format!(
-                    "info --surface reports only what --surface loop builds, not --surface {}: it is ignored",
+                    "info --surface reports only what --surface {} builds, not --surface {}: it is ignored",
+                    or_list(&builders),
                     s.name()
                 ));
             }

@@ -9,7 +9,6 @@ use super::{require_extension, with_context};
 use anyhow::{bail, Context as _, Result};
 use meshrefine::gpu::{Context, ContextDesc};
 use meshrefine::render::{covered_pixels, Camera, DrawConfig, Headless};
-use meshrefine::surface::Surface;
 use std::io::Write as _;
 use std::path::Path;
 use std::sync::Arc;
@@ -17,7 +16,7 @@ use std::sync::Arc;
 /// Runs `meshrefine render` with `a`.
 pub fn run(a: &RenderArgs, desc: &ContextDesc) -> Result<()> {
     require_extension(&a.output, "png", "render writes PNG images only")?;
-    let for_loop = a.technique.surface.surface == Surface::Loop;
+    let for_loop = a.technique.surface.surface.facts().needs_every_face;
     let mut input = load_mesh(a.mesh.as_deref(), for_loop)?;
     let cfg = draw_config(&a.technique, &input.mesh)?;
     attach_surface_inputs(&mut input, &a.technique.surface, false)?;

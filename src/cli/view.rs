@@ -9,7 +9,6 @@ use super::render::render_png;
 use super::{check_messages, require_extension, with_context};
 use anyhow::Result;
 use meshrefine::gpu::ContextDesc;
-use meshrefine::surface::Surface;
 use std::io::Write as _;
 
 /// Runs `meshrefine view` with `a`.
@@ -22,7 +21,7 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc) -> Result<()> {
         "png",
         "the headless view writes a PNG image",
     )?;
-    let for_loop = a.technique.surface.surface == Surface::Loop;
+    let for_loop = a.technique.surface.surface.facts().needs_every_face;
     let mut input = load_mesh(a.mesh.as_deref(), for_loop)?;
     if input.loop_refusal.is_none() && a.mesh.is_some() {
         // The panel can switch to loop later: say then, in the file's terms, why not.

@@ -50,24 +50,28 @@ impl Displace {
     pub fn facts(self) -> &'static DisplaceFacts {
         const NONE: DisplaceFacts = DisplaceFacts {
             name: "none",
+            help: "No displacement",
             options: &[],
             texture_coordinates: false,
             bindings: &[],
         };
         const SINE: DisplaceFacts = DisplaceFacts {
             name: "sine",
+            help: "a·sin(f·|P|) along the normal (the 2005 paper's Fig. 4)",
             options: &["amplitude", "frequency"],
             texture_coordinates: false,
             bindings: &[],
         };
         const NOISE: DisplaceFacts = DisplaceFacts {
             name: "noise",
+            help: "a·Perlin noise(f·P) along the normal, --octaves octaves",
             options: &["amplitude", "frequency", "octaves"],
             texture_coordinates: false,
             bindings: &["BINDING_NOISE"],
         };
         const HEIGHTMAP: DisplaceFacts = DisplaceFacts {
             name: "heightmap",
+            help: "a·(h − bias) along the normal, h from a grayscale PNG at the mesh's texture coordinates",
             options: &["amplitude", "bias", "heightmap"],
             texture_coordinates: true,
             bindings: &["BINDING_UVS", "BINDING_HEIGHTMAP"],

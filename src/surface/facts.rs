@@ -32,6 +32,8 @@ pub enum FragmentNormals {
 pub struct SurfaceFacts {
     /// The name on the command line, in the GLSL and of the module.
     pub name: &'static str,
+    /// One line for `--help`: what it is and where it comes from.
+    pub help: &'static str,
     pub elements: Elements,
     /// The command-line options (clap ids) that this surface reads and no other surface needs
     /// to (`alpha` for phong): an option read by none of the chosen surfaces is reported.
@@ -54,6 +56,8 @@ pub struct SurfaceFacts {
 #[derive(Clone, Copy, Debug)]
 pub struct DisplaceFacts {
     pub name: &'static str,
+    /// One line for `--help`.
+    pub help: &'static str,
     /// The command-line options (clap ids) it reads.
     pub options: &'static [&'static str],
     /// Whether it reads the elements' texture coordinates.

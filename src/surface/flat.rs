@@ -10,6 +10,7 @@ use glam::Vec3;
 /// What `flat` declares about itself (docs/architecture.md, "Surfaces as plug-ins").
 pub const FACTS: SurfaceFacts = SurfaceFacts {
     name: "flat",
+    help: "Linear interpolation of the coarse triangle's positions and normals",
     elements: Elements::CoarseTriangles,
     options: &[],
     texture_coordinates: true,

@@ -35,6 +35,7 @@ pub const FRAGMENT_NORMALS_FROM: u32 = 16;
 /// What `loop` declares about itself (docs/architecture.md, "Surfaces as plug-ins").
 pub const FACTS: SurfaceFacts = SurfaceFacts {
     name: "loop",
+    help: "The limit surface of Loop subdivision (Holländer & Boubekeur 2010): elements are the faces of one Loop step M1, evaluated from basis function tables (src/surface/loop.rs)",
     elements: Elements::LoopFaces,
     options: &["boundary", "bft_level"],
     texture_coordinates: false,

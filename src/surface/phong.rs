@@ -15,6 +15,7 @@ use glam::Vec3;
 /// What `phong` declares about itself (docs/architecture.md, "Surfaces as plug-ins").
 pub const FACTS: SurfaceFacts = SurfaceFacts {
     name: "phong",
+    help: "Phong tessellation (Boubekeur & Alexa 2008): the flat point pulled towards the corners' tangent planes by the shape factor --alpha",
     elements: Elements::CoarseTriangles,
     options: &["alpha", "pn_seams"],
     texture_coordinates: true,

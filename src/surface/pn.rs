@@ -28,6 +28,7 @@ use glam::Vec3;
 /// What `pn` declares about itself (docs/architecture.md, "Surfaces as plug-ins").
 pub const FACTS: SurfaceFacts = SurfaceFacts {
     name: "pn",
+    help: "Curved PN triangles (Vlachos et al. 2001, as in Boubekeur & Schlick 2005, appendix A): cubic Bézier geometry, quadratic normal field evaluated per fragment",
     elements: Elements::CoarseTriangles,
     options: &["pn_seams"],
     texture_coordinates: true,

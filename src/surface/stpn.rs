@@ -31,6 +31,7 @@ use glam::Vec3;
 /// What `stpn` declares about itself (docs/architecture.md, "Surfaces as plug-ins").
 pub const FACTS: SurfaceFacts = SurfaceFacts {
     name: "stpn",
+    help: "Scalar-tagged PN triangles (Boubekeur, Reuter & Schlick 2005): PN with per-vertex tension, sharpness, bias and crease direction (--tags, or derived from the mesh's hard edges)",
     elements: Elements::CoarseTriangles,
     options: &["pn_seams", "tags", "crease_angle"],
     texture_coordinates: true,
