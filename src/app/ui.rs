@@ -147,6 +147,7 @@ impl Ui {
     }
 }
 
+/// The panel: the device, the last frame's statistics, then the switches by section.
 fn panel(ctx: &egui::Context, c: &mut Controls, info: &PanelInfo) {
     egui::Window::new("meshrefine")
         .anchor(Align2::LEFT_TOP, [10.0, 10.0])
@@ -156,122 +157,147 @@ fn panel(ctx: &egui::Context, c: &mut Controls, info: &PanelInfo) {
         .show(ctx, |ui| {
             ui.add(egui::Label::new(info.device).wrap());
             ui.separator();
-            egui::Grid::new("stats").num_columns(2).show(ui, |ui| {
-                let d = &info.drawn;
-                let mut rows = vec![
-                    ("fps", format!("{:.0}", info.fps)),
-                    ("GPU frame", format!("{:.2} ms", info.gpu_ms)),
-                    ("drawn", format!("{} level {}", d.label(), d.level)),
-                    (
-                        "surface",
-                        format!("{} + {}", d.surface.name(), d.displace.name()),
-                    ),
-                    (
-                        if d.surface == Surface::Loop {
-                            "M1 faces"
-                        } else {
-                            "coarse triangles"
-                        },
-                        info.coarse.to_string(),
-                    ),
-                    ("refined triangles", info.refined.to_string()),
-                    (
-                        "GPU geometry",
-                        format!("{:.2} MB", info.geometry_bytes as f64 / 1e6),
-                    ),
-                    (
-                        "animated upload",
-                        format!("{:.1} KB / frame", info.upload_bytes as f64 / 1e3),
-                    ),
-                ];
-                if let Some(t) = info.table_bytes {
-                    rows.push(("BF tables", format!("{:.1} KB", t as f64 / 1e3)));
-                }
-                for (name, value) in rows {
-                    ui.label(name);
-                    ui.label(RichText::new(value).monospace());
-                    ui.end_row();
-                }
-            });
+            statistics(ui, info);
             ui.separator();
-            ui.horizontal(|ui| {
-                ui.label("driver");
-                for d in Driver::ALL {
-                    if ui
-                        .selectable_label(c.cfg.driver.same_kind(d), d.name())
-                        .clicked()
-                    {
-                        c.set_driver(d);
-                    }
-                }
-            });
-            ui.add_enabled_ui(c.cfg.driver.submit().is_some(), |ui| {
-                ui.horizontal(|ui| {
-                    ui.label("submit");
-                    for s in Submit::ALL {
-                        if ui.selectable_label(c.submit == s, s.name()).clicked() {
-                            c.set_submit(s);
-                        }
-                    }
-                });
-            });
-            ui.add_enabled_ui(!c.lod, |ui| {
-                ui.horizontal_wrapped(|ui| {
-                    ui.label("level");
-                    for &l in info.levels {
-                        ui.selectable_value(&mut c.cfg.level, l, l.to_string());
-                    }
-                });
-            });
-            ui.horizontal(|ui| {
-                ui.label("surface");
-                for s in Surface::ALL {
-                    ui.selectable_value(&mut c.cfg.surface, s, s.name());
-                }
-            });
-            ui.horizontal(|ui| {
-                ui.label("displace");
-                for d in Displace::ALL {
-                    let usable = d != Displace::Heightmap
-                        || (info.has_texcoords && c.cfg.surface != Surface::Loop);
-                    ui.add_enabled_ui(usable, |ui| {
-                        ui.selectable_value(&mut c.cfg.displace, d, d.name())
-                            .on_disabled_hover_text(
-                                "needs texture coordinates (vt; the loop surface has none)",
-                            );
-                    });
-                }
-            });
-            let p = &mut c.cfg.params;
-            ui.add_enabled(
-                c.cfg.surface == Surface::Phong,
-                egui::Slider::new(&mut p.alpha, 0.0..=1.0).text("alpha"),
-            );
-            ui.add_enabled_ui(c.cfg.displace != Displace::None, |ui| {
-                let a = c.initial.amplitude.abs().max(1e-6) * 4.0;
-                ui.add(egui::Slider::new(&mut p.amplitude, -a..=a).text("amplitude"));
-                let f = c.initial.frequency.max(1e-6) * 4.0;
-                ui.add(egui::Slider::new(&mut p.frequency, 0.0..=f).text("frequency"));
-                ui.add_enabled(
-                    c.cfg.displace == Displace::Heightmap,
-                    egui::Slider::new(&mut p.bias, 0.0..=1.0).text("bias"),
-                );
-                ui.add_enabled(
-                    c.cfg.displace == Displace::Noise,
-                    egui::Slider::new(&mut p.octaves, 1..=SurfaceParams::MAX_OCTAVES)
-                        .text("octaves"),
-                );
-            });
-            let mut normals = c.view == View::Normals;
-            if ui.checkbox(&mut normals, "normals view").changed() {
-                c.view = if normals { View::Normals } else { View::Shaded };
-            }
-            ui.checkbox(&mut c.lod, "LOD by distance");
-            ui.add_enabled(
-                info.wireframe_supported,
-                egui::Checkbox::new(&mut c.wireframe, "wireframe"),
-            );
-            ui.checkbox(&mut c.animate, "animate");
-            ui.weak("H hides this panel");
+            drawing(ui, c, info);
+            surface_choice(ui, c, info);
+            parameters(ui, c);
+            display(ui, c, info);
         });
+}
+
+/// The last frame's statistics, a name and a value a row.
+fn statistics(ui: &mut egui::Ui, info: &PanelInfo) {
+    egui::Grid::new("stats").num_columns(2).show(ui, |ui| {
+        let d = &info.drawn;
+        let mut rows = vec![
+            ("fps", format!("{:.0}", info.fps)),
+            ("GPU frame", format!("{:.2} ms", info.gpu_ms)),
+            ("drawn", format!("{} level {}", d.label(), d.level)),
+            (
+                "surface",
+                format!("{} + {}", d.surface.name(), d.displace.name()),
+            ),
+            (
+                if d.surface == Surface::Loop {
+                    "M1 faces"
+                } else {
+                    "coarse triangles"
+                },
+                info.coarse.to_string(),
+            ),
+            ("refined triangles", info.refined.to_string()),
+            (
+                "GPU geometry",
+                format!("{:.2} MB", info.geometry_bytes as f64 / 1e6),
+            ),
+            (
+                "animated upload",
+                format!("{:.1} KB / frame", info.upload_bytes as f64 / 1e3),
+            ),
+        ];
+        if let Some(t) = info.table_bytes {
+            rows.push(("BF tables", format!("{:.1} KB", t as f64 / 1e3)));
+        }
+        for (name, value) in rows {
+            ui.label(name);
+            ui.label(RichText::new(value).monospace());
+            ui.end_row();
+        }
+    });
+}
+
+/// How it is drawn: the driver, the pattern driver's submission, the level (unless LOD sets it).
+fn drawing(ui: &mut egui::Ui, c: &mut Controls, info: &PanelInfo) {
+    ui.horizontal(|ui| {
+        ui.label("driver");
+        for d in Driver::ALL {
+            if ui
+                .selectable_label(c.cfg.driver.same_kind(d), d.name())
+                .clicked()
+            {
+                c.set_driver(d);
+            }
+        }
+    });
+    ui.add_enabled_ui(c.cfg.driver.submit().is_some(), |ui| {
+        ui.horizontal(|ui| {
+            ui.label("submit");
+            for s in Submit::ALL {
+                if ui.selectable_label(c.submit == s, s.name()).clicked() {
+                    c.set_submit(s);
+                }
+            }
+        });
+    });
+    ui.add_enabled_ui(!c.lod, |ui| {
+        ui.horizontal_wrapped(|ui| {
+            ui.label("level");
+            for &l in info.levels {
+                ui.selectable_value(&mut c.cfg.level, l, l.to_string());
+            }
+        });
+    });
+}
+
+/// What is drawn: the surface and its displacement (the height map only where usable).
+fn surface_choice(ui: &mut egui::Ui, c: &mut Controls, info: &PanelInfo) {
+    ui.horizontal(|ui| {
+        ui.label("surface");
+        for s in Surface::ALL {
+            ui.selectable_value(&mut c.cfg.surface, s, s.name());
+        }
+    });
+    ui.horizontal(|ui| {
+        ui.label("displace");
+        for d in Displace::ALL {
+            let usable =
+                d != Displace::Heightmap || (info.has_texcoords && c.cfg.surface != Surface::Loop);
+            ui.add_enabled_ui(usable, |ui| {
+                ui.selectable_value(&mut c.cfg.displace, d, d.name())
+                    .on_disabled_hover_text(
+                        "needs texture coordinates (vt; the loop surface has none)",
+                    );
+            });
+        }
+    });
+}
+
+/// The surface's and the displacement's parameters, each enabled where it applies, the
+/// displacement's ranges scaled to the starting values.
+fn parameters(ui: &mut egui::Ui, c: &mut Controls) {
+    let p = &mut c.cfg.params;
+    ui.add_enabled(
+        c.cfg.surface == Surface::Phong,
+        egui::Slider::new(&mut p.alpha, 0.0..=1.0).text("alpha"),
+    );
+    ui.add_enabled_ui(c.cfg.displace != Displace::None, |ui| {
+        let a = c.initial.amplitude.abs().max(1e-6) * 4.0;
+        ui.add(egui::Slider::new(&mut p.amplitude, -a..=a).text("amplitude"));
+        let f = c.initial.frequency.max(1e-6) * 4.0;
+        ui.add(egui::Slider::new(&mut p.frequency, 0.0..=f).text("frequency"));
+        ui.add_enabled(
+            c.cfg.displace == Displace::Heightmap,
+            egui::Slider::new(&mut p.bias, 0.0..=1.0).text("bias"),
+        );
+        ui.add_enabled(
+            c.cfg.displace == Displace::Noise,
+            egui::Slider::new(&mut p.octaves, 1..=SurfaceParams::MAX_OCTAVES).text("octaves"),
+        );
+    });
+}
+
+/// How it is shown: normals view, LOD, wireframe (where supported), animation, the hint.
+fn display(ui: &mut egui::Ui, c: &mut Controls, info: &PanelInfo) {
+    let mut normals = c.view == View::Normals;
+    if ui.checkbox(&mut normals, "normals view").changed() {
+        c.view = if normals { View::Normals } else { View::Shaded };
+    }
+    ui.checkbox(&mut c.lod, "LOD by distance");
+    ui.add_enabled(
+        info.wireframe_supported,
+        egui::Checkbox::new(&mut c.wireframe, "wireframe"),
+    );
+    ui.checkbox(&mut c.animate, "animate");
+    ui.weak("H hides this panel");
 }

@@ -262,6 +262,8 @@ pub struct Pipeline {
 }
 
 impl Pipeline {
+    /// A graphics pipeline of `desc`: shader stages (specialized), vertex input, the fixed
+    /// states, then the create call.
     pub fn new_graphics(
         ctx: &Arc<Context>,
         layout: &PipelineLayout,
@@ -273,118 +275,13 @@ impl Pipeline {
             .iter()
             .map(|(_, n)| ShaderModule::new(ctx, n))
             .collect::<Result<Vec<_>, _>>()?;
-        let entries: Vec<vk::SpecializationMapEntry> = desc
-            .spec
-            .iter()
-            .enumerate()
-            .map(|(i, &(id, _))| {
-                vk::SpecializationMapEntry::default()
-                    .constant_id(id)
-                    .offset(4 * i as u32)
-                    .size(4)
-            })
-            .collect();
-        let data: Vec<u8> = desc
-            .spec
-            .iter()
-            .flat_map(|&(_, v)| v.to_ne_bytes())
-            .collect();
-        let spec = vk::SpecializationInfo::default()
-            .map_entries(&entries)
-            .data(&data);
-        let main: &CStr = c"main";
-        let stages: Vec<_> = desc
-            .stages
-            .iter()
-            .zip(&modules)
-            .map(|((stage, _), m)| {
-                vk::PipelineShaderStageCreateInfo::default()
-                    .stage(*stage)
-                    .module(m.raw)
-                    .name(main)
-                    .specialization_info(&spec)
-            })
-            .collect();
-        let bindings: Vec<_> = desc
-            .vertex_bindings
-            .iter()
-            .map(|&(binding, stride, instance)| {
-                vk::VertexInputBindingDescription::default()
-                    .binding(binding)
-                    .stride(stride)
-                    .input_rate(if instance {
-                        vk::VertexInputRate::INSTANCE
-                    } else {
-                        vk::VertexInputRate::VERTEX
-                    })
-            })
-            .collect();
-        let attributes: Vec<_> = desc
-            .vertex_attributes
-            .iter()
-            .map(|&(location, binding, format, offset)| {
-                vk::VertexInputAttributeDescription::default()
-                    .location(location)
-                    .binding(binding)
-                    .format(format)
-                    .offset(offset)
-            })
-            .collect();
-        let vertex_input = vk::PipelineVertexInputStateCreateInfo::default()
-            .vertex_binding_descriptions(&bindings)
-            .vertex_attribute_descriptions(&attributes);
-        let input_assembly = vk::PipelineInputAssemblyStateCreateInfo::default()
-            .topology(desc.topology)
-            .primitive_restart_enable(desc.primitive_restart);
-        let tessellation = vk::PipelineTessellationStateCreateInfo::default()
-            .patch_control_points(desc.patch_control_points);
-        let viewport = vk::PipelineViewportStateCreateInfo::default()
-            .viewport_count(1)
-            .scissor_count(1);
-        let raster = vk::PipelineRasterizationStateCreateInfo::default()
-            .polygon_mode(desc.polygon_mode)
-            .depth_bias_enable(desc.depth_bias.is_some())
-            .depth_bias_constant_factor(desc.depth_bias.map_or(0.0, |b| b.0))
-            .depth_bias_slope_factor(desc.depth_bias.map_or(0.0, |b| b.1))
-            .cull_mode(vk::CullModeFlags::NONE)
-            .front_face(vk::FrontFace::COUNTER_CLOCKWISE)
-            .line_width(1.0);
-        let multisample = vk::PipelineMultisampleStateCreateInfo::default()
-            .rasterization_samples(vk::SampleCountFlags::TYPE_1);
-        let depth = vk::PipelineDepthStencilStateCreateInfo::default()
-            .depth_test_enable(true)
-            .depth_write_enable(true)
-            .depth_compare_op(vk::CompareOp::LESS_OR_EQUAL);
-        let blend_attachments = [vk::PipelineColorBlendAttachmentState::default()
-            .color_write_mask(vk::ColorComponentFlags::RGBA)];
-        let blend =
-            vk::PipelineColorBlendStateCreateInfo::default().attachments(&blend_attachments);
-        let dynamic_states = [vk::DynamicState::VIEWPORT, vk::DynamicState::SCISSOR];
-        let dynamic = vk::PipelineDynamicStateCreateInfo::default().dynamic_states(&dynamic_states);
-        let color_formats = [desc.color_format];
-        let mut rendering = vk::PipelineRenderingCreateInfo::default()
-            .color_attachment_formats(&color_formats)
-            .depth_attachment_format(desc.depth_format);
-        let mut info = vk::GraphicsPipelineCreateInfo::default()
-            .stages(&stages)
-            .vertex_input_state(&vertex_input)
-            .input_assembly_state(&input_assembly)
-            .viewport_state(&viewport)
-            .rasterization_state(&raster)
-            .multisample_state(&multisample)
-            .depth_stencil_state(&depth)
-            .color_blend_state(&blend)
-            .dynamic_state(&dynamic)
-            .layout(layout.raw)
-            .push_next(&mut rendering);
-        if desc.patch_control_points > 0 {
-            info = info.tessellation_state(&tessellation);
-        }
-        // SAFETY: every pointer in the create info outlives the call.
-        let created = unsafe {
-            ctx.device
-                .create_graphics_pipelines(vk::PipelineCache::null(), &[info], None)
-        };
+        let spec = Specialization::new(&desc.spec);
+        let spec_info = spec.info();
+        let stages = shader_stages(desc, &modules, &spec_info);
+        let vertex = VertexInput::new(desc);
+        let vertex_input = vertex.state();
+        let fixed = FixedStates::new(desc);
+        let created = create_graphics(ctx, layout, desc, &stages, &vertex_input, &fixed);
         Self::adopt(ctx, created, "vkCreateGraphicsPipelines", name)
     }
 
@@ -402,6 +299,182 @@ impl Pipeline {
             ctx: ctx.clone(),
             raw,
         })
+    }
+}
+
+/// Specialization constants as Vulkan reads them: one 4-byte entry each, packed in order.
+struct Specialization {
+    entries: Vec<vk::SpecializationMapEntry>,
+    data: Vec<u8>,
+}
+
+impl Specialization {
+    fn new(spec: &SpecConstants) -> Self {
+        let entries = spec
+            .iter()
+            .enumerate()
+            .map(|(i, &(id, _))| {
+                vk::SpecializationMapEntry::default()
+                    .constant_id(id)
+                    .offset(4 * i as u32)
+                    .size(4)
+            })
+            .collect();
+        let data = spec.iter().flat_map(|&(_, v)| v.to_ne_bytes()).collect();
+        Self { entries, data }
+    }
+
+    fn info(&self) -> vk::SpecializationInfo<'_> {
+        vk::SpecializationInfo::default()
+            .map_entries(&self.entries)
+            .data(&self.data)
+    }
+}
+
+/// One stage per module, each running `main` with the same specialization.
+fn shader_stages<'a>(
+    desc: &GraphicsPipelineDesc,
+    modules: &[ShaderModule],
+    spec: &'a vk::SpecializationInfo<'a>,
+) -> Vec<vk::PipelineShaderStageCreateInfo<'a>> {
+    let main: &CStr = c"main";
+    desc.stages
+        .iter()
+        .zip(modules)
+        .map(|((stage, _), m)| {
+            vk::PipelineShaderStageCreateInfo::default()
+                .stage(*stage)
+                .module(m.raw)
+                .name(main)
+                .specialization_info(spec)
+        })
+        .collect()
+}
+
+/// The vertex bindings and attributes of a [`GraphicsPipelineDesc`].
+struct VertexInput {
+    bindings: Vec<vk::VertexInputBindingDescription>,
+    attributes: Vec<vk::VertexInputAttributeDescription>,
+}
+
+impl VertexInput {
+    fn new(desc: &GraphicsPipelineDesc) -> Self {
+        let bindings = desc
+            .vertex_bindings
+            .iter()
+            .map(|&(binding, stride, instance)| {
+                vk::VertexInputBindingDescription::default()
+                    .binding(binding)
+                    .stride(stride)
+                    .input_rate(if instance {
+                        vk::VertexInputRate::INSTANCE
+                    } else {
+                        vk::VertexInputRate::VERTEX
+                    })
+            })
+            .collect();
+        let attributes = desc
+            .vertex_attributes
+            .iter()
+            .map(|&(location, binding, format, offset)| {
+                vk::VertexInputAttributeDescription::default()
+                    .location(location)
+                    .binding(binding)
+                    .format(format)
+                    .offset(offset)
+            })
+            .collect();
+        Self {
+            bindings,
+            attributes,
+        }
+    }
+
+    fn state(&self) -> vk::PipelineVertexInputStateCreateInfo<'_> {
+        vk::PipelineVertexInputStateCreateInfo::default()
+            .vertex_binding_descriptions(&self.bindings)
+            .vertex_attribute_descriptions(&self.attributes)
+    }
+}
+
+/// The states that hold no pointers: assembly, tessellation, one dynamic viewport and scissor,
+/// rasterization (no culling), one sample, depth test and write.
+struct FixedStates {
+    input_assembly: vk::PipelineInputAssemblyStateCreateInfo<'static>,
+    tessellation: vk::PipelineTessellationStateCreateInfo<'static>,
+    viewport: vk::PipelineViewportStateCreateInfo<'static>,
+    raster: vk::PipelineRasterizationStateCreateInfo<'static>,
+    multisample: vk::PipelineMultisampleStateCreateInfo<'static>,
+    depth: vk::PipelineDepthStencilStateCreateInfo<'static>,
+}
+
+impl FixedStates {
+    fn new(desc: &GraphicsPipelineDesc) -> Self {
+        Self {
+            input_assembly: vk::PipelineInputAssemblyStateCreateInfo::default()
+                .topology(desc.topology)
+                .primitive_restart_enable(desc.primitive_restart),
+            tessellation: vk::PipelineTessellationStateCreateInfo::default()
+                .patch_control_points(desc.patch_control_points),
+            viewport: vk::PipelineViewportStateCreateInfo::default()
+                .viewport_count(1)
+                .scissor_count(1),
+            raster: vk::PipelineRasterizationStateCreateInfo::default()
+                .polygon_mode(desc.polygon_mode)
+                .depth_bias_enable(desc.depth_bias.is_some())
+                .depth_bias_constant_factor(desc.depth_bias.map_or(0.0, |b| b.0))
+                .depth_bias_slope_factor(desc.depth_bias.map_or(0.0, |b| b.1))
+                .cull_mode(vk::CullModeFlags::NONE)
+                .front_face(vk::FrontFace::COUNTER_CLOCKWISE)
+                .line_width(1.0),
+            multisample: vk::PipelineMultisampleStateCreateInfo::default()
+                .rasterization_samples(vk::SampleCountFlags::TYPE_1),
+            depth: vk::PipelineDepthStencilStateCreateInfo::default()
+                .depth_test_enable(true)
+                .depth_write_enable(true)
+                .depth_compare_op(vk::CompareOp::LESS_OR_EQUAL),
+        }
+    }
+}
+
+/// The create call: the phases' states with colour blending (write RGBA), dynamic viewport and
+/// scissor, and dynamic rendering's attachment formats.
+fn create_graphics(
+    ctx: &Context,
+    layout: &PipelineLayout,
+    desc: &GraphicsPipelineDesc,
+    stages: &[vk::PipelineShaderStageCreateInfo<'_>],
+    vertex_input: &vk::PipelineVertexInputStateCreateInfo<'_>,
+    fixed: &FixedStates,
+) -> Result<Vec<vk::Pipeline>, (Vec<vk::Pipeline>, vk::Result)> {
+    let blend_attachments = [vk::PipelineColorBlendAttachmentState::default()
+        .color_write_mask(vk::ColorComponentFlags::RGBA)];
+    let blend = vk::PipelineColorBlendStateCreateInfo::default().attachments(&blend_attachments);
+    let dynamic_states = [vk::DynamicState::VIEWPORT, vk::DynamicState::SCISSOR];
+    let dynamic = vk::PipelineDynamicStateCreateInfo::default().dynamic_states(&dynamic_states);
+    let color_formats = [desc.color_format];
+    let mut rendering = vk::PipelineRenderingCreateInfo::default()
+        .color_attachment_formats(&color_formats)
+        .depth_attachment_format(desc.depth_format);
+    let mut info = vk::GraphicsPipelineCreateInfo::default()
+        .stages(stages)
+        .vertex_input_state(vertex_input)
+        .input_assembly_state(&fixed.input_assembly)
+        .viewport_state(&fixed.viewport)
+        .rasterization_state(&fixed.raster)
+        .multisample_state(&fixed.multisample)
+        .depth_stencil_state(&fixed.depth)
+        .color_blend_state(&blend)
+        .dynamic_state(&dynamic)
+        .layout(layout.raw)
+        .push_next(&mut rendering);
+    if desc.patch_control_points > 0 {
+        info = info.tessellation_state(&fixed.tessellation);
+    }
+    // SAFETY: every pointer in the create info outlives the call.
+    unsafe {
+        ctx.device
+            .create_graphics_pipelines(vk::PipelineCache::null(), &[info], None)
     }
 }
 

@@ -12,6 +12,7 @@
 //!
 //! Only vertices used by at least one triangle are counted.
 
+use std::borrow::Cow;
 use std::collections::{BTreeMap, HashMap};
 
 use super::MeshStats;
@@ -31,18 +32,33 @@ struct EdgeUse {
 /// count), and self-loop edges of triangles that repeat an index are skipped. Never panics.
 pub fn mesh_stats(vertex_count: usize, tris: &[[u32; 3]]) -> MeshStats {
     let n = vertex_count;
-    let in_range: Vec<[u32; 3]>;
-    let tris = if tris.iter().flatten().all(|&i| (i as usize) < n) {
-        tris
+    let tris = in_range(n, tris);
+    let edges = edge_uses(&tris);
+    let mut stats = MeshStats {
+        triangles: tris.len(),
+        edges: edges.len(),
+        ..MeshStats::default()
+    };
+    let marks = count_edges(n, &edges, &mut stats);
+    let links = Links::new(n, &tris);
+    count_vertices(&links, &marks, &mut stats);
+    stats
+}
+
+/// The triangles whose indices are all below `n` (borrowed when that is all of them).
+fn in_range(n: usize, tris: &[[u32; 3]]) -> Cow<'_, [[u32; 3]]> {
+    if tris.iter().flatten().all(|&i| (i as usize) < n) {
+        Cow::Borrowed(tris)
     } else {
-        in_range = tris
-            .iter()
+        tris.iter()
             .copied()
             .filter(|t| t.iter().all(|&i| (i as usize) < n))
-            .collect();
-        &in_range
-    };
+            .collect()
+    }
+}
 
+/// How the triangles use each edge (self-loops skipped).
+fn edge_uses(tris: &[[u32; 3]]) -> HashMap<(u32, u32), EdgeUse> {
     let mut edges: HashMap<(u32, u32), EdgeUse> = HashMap::with_capacity(tris.len() * 3 / 2);
     for t in tris {
         for k in 0..3 {
@@ -55,15 +71,21 @@ pub fn mesh_stats(vertex_count: usize, tris: &[[u32; 3]]) -> MeshStats {
             e.forward += u32::from(a < b);
         }
     }
+    edges
+}
 
-    let mut stats = MeshStats {
-        triangles: tris.len(),
-        edges: edges.len(),
-        ..MeshStats::default()
-    };
+/// Which vertices lie on a boundary edge and which on a non-manifold edge.
+struct EdgeMarks {
+    on_boundary: Vec<bool>,
+    on_nonmanifold_edge: Vec<bool>,
+}
+
+/// Counts the boundary, inconsistently oriented and non-manifold edges into `stats`, and marks
+/// the vertices on them.
+fn count_edges(n: usize, edges: &HashMap<(u32, u32), EdgeUse>, stats: &mut MeshStats) -> EdgeMarks {
     let mut on_boundary = vec![false; n];
     let mut on_nonmanifold_edge = vec![false; n];
-    for (&(a, b), e) in &edges {
+    for (&(a, b), e) in edges {
         match e.count {
             1 => {
                 stats.boundary_edges += 1;
@@ -79,32 +101,55 @@ pub fn mesh_stats(vertex_count: usize, tris: &[[u32; 3]]) -> MeshStats {
             }
         }
     }
+    EdgeMarks {
+        on_boundary,
+        on_nonmanifold_edge,
+    }
+}
 
-    // The link of each vertex: for every incident triangle, the edge between the two other
-    // corners. Stored CSR-style (offsets into one flat array).
-    let mut offsets = vec![0usize; n + 1];
-    for t in tris {
-        for &i in t {
-            offsets[i as usize + 1] += 1;
+/// The link of each vertex: for every incident triangle, the edge between the two other
+/// corners. Stored CSR-style (offsets into one flat array).
+struct Links {
+    offsets: Vec<usize>,
+    links: Vec<(u32, u32)>,
+}
+
+impl Links {
+    fn new(n: usize, tris: &[[u32; 3]]) -> Self {
+        let mut offsets = vec![0usize; n + 1];
+        for t in tris {
+            for &i in t {
+                offsets[i as usize + 1] += 1;
+            }
         }
-    }
-    for i in 0..n {
-        offsets[i + 1] += offsets[i];
-    }
-    let mut fill = offsets.clone();
-    let mut links = vec![(0u32, 0u32); offsets[n]];
-    for t in tris {
-        for k in 0..3 {
-            let v = t[k] as usize;
-            links[fill[v]] = (t[(k + 1) % 3], t[(k + 2) % 3]);
-            fill[v] += 1;
+        for i in 0..n {
+            offsets[i + 1] += offsets[i];
         }
+        let mut fill = offsets.clone();
+        let mut links = vec![(0u32, 0u32); offsets[n]];
+        for t in tris {
+            for k in 0..3 {
+                let v = t[k] as usize;
+                links[fill[v]] = (t[(k + 1) % 3], t[(k + 2) % 3]);
+                fill[v] += 1;
+            }
+        }
+        Self { offsets, links }
     }
 
+    fn of(&self, v: usize) -> &[(u32, u32)] {
+        &self.links[self.offsets[v]..self.offsets[v + 1]]
+    }
+}
+
+/// Counts the used vertices, their valences (all, and interior), the boundary vertices and the
+/// non-manifold vertices into `stats`.
+fn count_vertices(links: &Links, marks: &EdgeMarks, stats: &mut MeshStats) {
+    let n = links.offsets.len() - 1;
     let mut neighbours = Vec::new();
     let mut parent = Vec::new();
     for v in 0..n {
-        let link = &links[offsets[v]..offsets[v + 1]];
+        let link = links.of(v);
         if link.is_empty() {
             continue;
         }
@@ -119,31 +164,32 @@ pub fn mesh_stats(vertex_count: usize, tris: &[[u32; 3]]) -> MeshStats {
         neighbours.dedup();
         let valence = u32::try_from(neighbours.len()).unwrap_or(u32::MAX);
         *stats.valence_histogram.entry(valence).or_default() += 1;
-        if on_boundary[v] {
+        if marks.on_boundary[v] {
             stats.boundary_vertices += 1;
         } else {
             *stats.interior_valence_histogram.entry(valence).or_default() += 1;
         }
-
-        // Union the two link ends of each incident triangle: the fan is one umbrella iff the
-        // link graph is connected.
-        parent.clear();
-        parent.extend(0..neighbours.len());
-        let slot = |w: u32| neighbours.binary_search(&w).ok();
-        for &(a, b) in link {
-            if let (Some(x), Some(y)) = (slot(a), slot(b)) {
-                let (rx, ry) = (find(&mut parent, x), find(&mut parent, y));
-                parent[rx] = ry;
-            }
-        }
-        let components = (0..parent.len())
-            .filter(|&i| find(&mut parent, i) == i)
-            .count();
-        if components > 1 || on_nonmanifold_edge[v] {
+        let components = link_components(link, &neighbours, &mut parent);
+        if components > 1 || marks.on_nonmanifold_edge[v] {
             stats.nonmanifold_vertices += 1;
         }
     }
-    stats
+}
+
+/// The connected components of a vertex's link graph over its sorted `neighbours` (`parent`
+/// is scratch space): the fan is one umbrella iff there is one.
+fn link_components(link: &[(u32, u32)], neighbours: &[u32], parent: &mut Vec<usize>) -> usize {
+    // Union the two link ends of each incident triangle.
+    parent.clear();
+    parent.extend(0..neighbours.len());
+    let slot = |w: u32| neighbours.binary_search(&w).ok();
+    for &(a, b) in link {
+        if let (Some(x), Some(y)) = (slot(a), slot(b)) {
+            let (rx, ry) = (find(parent, x), find(parent, y));
+            parent[rx] = ry;
+        }
+    }
+    (0..parent.len()).filter(|&i| find(parent, i) == i).count()
 }
 
 fn find(parent: &mut [usize], mut i: usize) -> usize {

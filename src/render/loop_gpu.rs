@@ -19,7 +19,7 @@ use crate::gpu::{
     Pipeline, PipelineLayout,
 };
 use crate::subdiv::bft::{throttled, Lattice};
-use crate::subdiv::{Boundary, LoopData, LoopFrame};
+use crate::subdiv::{Boundary, LoopData, LoopFrame, Stencil};
 use crate::surface::RecordKind;
 use glam::Vec3;
 use std::sync::Arc;
@@ -62,154 +62,56 @@ pub fn dispatch_grid(groups: u32, max: [u32; 2]) -> Option<[u32; 2]> {
 }
 
 impl LoopPass {
-    /// The passes and tables of `data`, with M0 at `m0`.
+    /// The passes and tables of `data`, with M0 at `m0`: the two compute pipelines, the
+    /// buffers (the step's inputs, the draws' tables, M0, M1), the descriptor set over them and
+    /// the dispatch grid.
     pub fn new(
         ctx: &Arc<Context>,
         pool: &CommandPool,
         data: &LoopData,
         m0: &[Vec3],
     ) -> Result<Self, RenderError> {
-        use vk::DescriptorType as T;
-        let c = vk::ShaderStageFlags::COMPUTE;
-        let bindings = [
-            LOOP_BINDING_OFFSETS,
-            LOOP_BINDING_ENTRIES,
-            LOOP_BINDING_M0,
-            LOOP_BINDING_M1,
-            LOOP_BINDING_RING_OFFSETS,
-            LOOP_BINDING_RINGS,
-            LOOP_BINDING_N1,
-        ];
-        let set_layout = DescriptorSetLayout::new(
+        let passes = Passes::new(ctx)?;
+        let step_inputs = StepInputs::upload(ctx, pool, data)?;
+        let draw = DrawTables::upload(ctx, pool, data)?;
+        let [m0_buf, m1, n1] = vertex_buffers(ctx, data)?;
+        let (dpool, set) = passes.descriptors(
             ctx,
-            &bindings.map(|b| (b, T::STORAGE_BUFFER, c)),
-            "loop passes set",
+            [
+                (LOOP_BINDING_OFFSETS, &step_inputs.offsets),
+                (LOOP_BINDING_ENTRIES, &step_inputs.entries),
+                (LOOP_BINDING_M0, &m0_buf),
+                (LOOP_BINDING_M1, &m1),
+                (LOOP_BINDING_RING_OFFSETS, &step_inputs.ring_offsets),
+                (LOOP_BINDING_RINGS, &step_inputs.rings),
+                (LOOP_BINDING_N1, &n1),
+            ],
         )?;
-        let pipeline_layout = PipelineLayout::new(ctx, &[&set_layout], 4, c, "loop passes")?;
-        let step = Pipeline::new_compute(
-            ctx,
-            &pipeline_layout,
-            "loop/loop_step.comp",
-            "loop step (M0 -> M1)",
-        )?;
-        let normals = Pipeline::new_compute(
-            ctx,
-            &pipeline_layout,
-            "loop/loop_normals.comp",
-            "loop normals (M1 one-rings)",
-        )?;
-        let stencils = &data.stencils;
-        let mut offsets = Vec::with_capacity(stencils.len() + 1);
-        let mut entries: Vec<[u32; 2]> = Vec::new();
-        offsets.push(0u32);
-        for s in stencils {
-            for (&p, &w) in s.parents.iter().zip(&s.weights) {
-                entries.push([p, (w as f32).to_bits()]);
-            }
-            offsets.push(entries.len() as u32);
-        }
-        if entries.is_empty() {
-            entries.push([0, 0]);
-        }
-        let storage =
-            vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::UNIFORM_TEXEL_BUFFER;
-        let upload =
-            |data: &[u32], name: &str| Buffer::new_with_data(ctx, pool, storage, data, name);
-        let offsets_buf = upload(&offsets, "loop entry offsets")?;
-        let entries_buf = Buffer::new_with_data(ctx, pool, storage, &entries, "loop entries")?;
-        let ring_offsets = upload(&data.ring_offsets, "M1 ring offsets")?;
-        let rings = upload(nonempty(&data.rings), "M1 rings")?;
-        let faces = Buffer::new_with_data(ctx, pool, storage, &data.faces, "loop face tables")?;
-        // Read as texels of four (at least one texel, as every buffer view needs).
-        let control = upload(
-            if data.control.is_empty() {
-                &[0; 4]
-            } else {
-                &data.control
-            },
-            "loop control points",
-        )?;
-        let packed = &data.tables.packed;
-        let tables = Buffer::new_with_data(
-            ctx,
-            pool,
-            storage,
-            if packed.pool.is_empty() {
-                &[0.0f32; 4][..]
-            } else {
-                &packed.pool
-            },
-            "basis function tables",
-        )?;
-        let table_rows = upload(nonempty(&packed.rows), "basis function table rows")?;
-        let m0_buf = Buffer::new(
-            ctx,
-            BufferDesc::new_upload(data.m0_count.max(1) as u64 * 16, storage),
-            "M0 positions",
-        )?;
-        let m1_bytes = stencils.len().max(1) as u64 * 16;
-        let m1 = Buffer::new(
-            ctx,
-            BufferDesc::new_readback(m1_bytes, storage),
-            "M1 positions",
-        )?;
-        let n1 = Buffer::new(
-            ctx,
-            BufferDesc::new_readback(m1_bytes, storage),
-            "M1 normals",
-        )?;
-        let dpool = DescriptorPool::new(
-            ctx,
-            1,
-            &[(T::STORAGE_BUFFER, bindings.len() as u32)],
-            "loop passes descriptors",
-        )?;
-        let set = dpool.allocate(&set_layout, "loop passes set")?;
-        for (binding, buffer) in [
-            (LOOP_BINDING_OFFSETS, &offsets_buf),
-            (LOOP_BINDING_ENTRIES, &entries_buf),
-            (LOOP_BINDING_M0, &m0_buf),
-            (LOOP_BINDING_M1, &m1),
-            (LOOP_BINDING_RING_OFFSETS, &ring_offsets),
-            (LOOP_BINDING_RINGS, &rings),
-            (LOOP_BINDING_N1, &n1),
-        ] {
-            dpool.write_buffer(set, binding, T::STORAGE_BUFFER, buffer.raw, vk::WHOLE_SIZE);
-        }
+        let m1_count = data.stencils.len() as u32;
+        let max = ctx.info.limits.max_compute_work_group_count;
+        let grid = m1_grid(m1_count, [max[0], max[1]])?;
         let mut pass = Self {
             m1,
             n1,
-            faces,
-            control,
-            tables,
-            table_rows,
+            faces: draw.faces,
+            control: draw.control,
+            tables: draw.tables,
+            table_rows: draw.table_rows,
             m0: m0_buf,
-            _offsets: offsets_buf,
-            _entries: entries_buf,
-            _ring_offsets: ring_offsets,
-            _rings: rings,
-            step,
-            normals,
-            pipeline_layout,
+            _offsets: step_inputs.offsets,
+            _entries: step_inputs.entries,
+            _ring_offsets: step_inputs.ring_offsets,
+            _rings: step_inputs.rings,
+            step: passes.step,
+            normals: passes.normals,
+            pipeline_layout: passes.pipeline_layout,
             _pool: dpool,
             set,
-            _set_layout: set_layout,
+            _set_layout: passes.set_layout,
             m0_count: data.m0_count as u32,
-            m1_count: stencils.len() as u32,
-            grid: [1, 1],
+            m1_count,
+            grid,
         };
-        let max = ctx.info.limits.max_compute_work_group_count;
-        pass.grid =
-            dispatch_grid(pass.m1_count.div_ceil(GROUP), [max[0], max[1]]).ok_or_else(|| {
-                RenderError::OverLimit {
-                    what: "the loop surface's M1 vertices".into(),
-                    needed: pass.m1_count as u64,
-                    unit: "vertices",
-                    limit: "maxComputeWorkGroupCount",
-                    max: max[0] as u64 * max[1] as u64 * GROUP as u64,
-                    remedy: "use a coarser mesh".into(),
-                }
-            })?;
         pass.upload_m0(m0);
         Ok(pass)
     }
@@ -288,6 +190,209 @@ fn nonempty(v: &[u32]) -> &[u32] {
     } else {
         v
     }
+}
+
+/// Buffers the passes read and write: storage buffers, also read as texel buffers.
+const STORAGE: vk::BufferUsageFlags = vk::BufferUsageFlags::from_raw(
+    vk::BufferUsageFlags::STORAGE_BUFFER.as_raw()
+        | vk::BufferUsageFlags::UNIFORM_TEXEL_BUFFER.as_raw(),
+);
+
+/// The bindings of the passes' one descriptor set.
+const PASS_BINDINGS: [u32; 7] = [
+    LOOP_BINDING_OFFSETS,
+    LOOP_BINDING_ENTRIES,
+    LOOP_BINDING_M0,
+    LOOP_BINDING_M1,
+    LOOP_BINDING_RING_OFFSETS,
+    LOOP_BINDING_RINGS,
+    LOOP_BINDING_N1,
+];
+
+/// The two compute passes (M0 -> M1, M1's normals) and the layout they share.
+struct Passes {
+    set_layout: DescriptorSetLayout,
+    pipeline_layout: PipelineLayout,
+    step: Pipeline,
+    normals: Pipeline,
+}
+
+impl Passes {
+    fn new(ctx: &Arc<Context>) -> Result<Self, RenderError> {
+        let c = vk::ShaderStageFlags::COMPUTE;
+        let set_layout = DescriptorSetLayout::new(
+            ctx,
+            &PASS_BINDINGS.map(|b| (b, vk::DescriptorType::STORAGE_BUFFER, c)),
+            "loop passes set",
+        )?;
+        let pipeline_layout = PipelineLayout::new(ctx, &[&set_layout], 4, c, "loop passes")?;
+        let step = Pipeline::new_compute(
+            ctx,
+            &pipeline_layout,
+            "loop/loop_step.comp",
+            "loop step (M0 -> M1)",
+        )?;
+        let normals = Pipeline::new_compute(
+            ctx,
+            &pipeline_layout,
+            "loop/loop_normals.comp",
+            "loop normals (M1 one-rings)",
+        )?;
+        Ok(Self {
+            set_layout,
+            pipeline_layout,
+            step,
+            normals,
+        })
+    }
+
+    /// A pool with the one set, each binding written with its whole buffer.
+    fn descriptors(
+        &self,
+        ctx: &Arc<Context>,
+        buffers: [(u32, &Buffer); PASS_BINDINGS.len()],
+    ) -> Result<(DescriptorPool, vk::DescriptorSet), RenderError> {
+        use vk::DescriptorType as T;
+        let dpool = DescriptorPool::new(
+            ctx,
+            1,
+            &[(T::STORAGE_BUFFER, PASS_BINDINGS.len() as u32)],
+            "loop passes descriptors",
+        )?;
+        let set = dpool.allocate(&self.set_layout, "loop passes set")?;
+        for (binding, buffer) in buffers {
+            dpool.write_buffer(set, binding, T::STORAGE_BUFFER, buffer.raw, vk::WHOLE_SIZE);
+        }
+        Ok((dpool, set))
+    }
+}
+
+/// The step's inputs: the computational entries (each M1 vertex's parents and weights, as
+/// offsets into `(parent, weight bits)` pairs) and M1's one-rings.
+struct StepInputs {
+    offsets: Buffer,
+    entries: Buffer,
+    ring_offsets: Buffer,
+    rings: Buffer,
+}
+
+impl StepInputs {
+    fn upload(
+        ctx: &Arc<Context>,
+        pool: &CommandPool,
+        data: &LoopData,
+    ) -> Result<Self, RenderError> {
+        let (offsets, entries) = entries_of(&data.stencils);
+        let upload =
+            |data: &[u32], name: &str| Buffer::new_with_data(ctx, pool, STORAGE, data, name);
+        Ok(Self {
+            offsets: upload(&offsets, "loop entry offsets")?,
+            entries: Buffer::new_with_data(ctx, pool, STORAGE, &entries, "loop entries")?,
+            ring_offsets: upload(&data.ring_offsets, "M1 ring offsets")?,
+            rings: upload(nonempty(&data.rings), "M1 rings")?,
+        })
+    }
+}
+
+/// The stencils as entries: offsets (one more than stencils) into `(parent, weight as f32
+/// bits)` pairs (at least one pair, as a storage buffer needs).
+fn entries_of(stencils: &[Stencil]) -> (Vec<u32>, Vec<[u32; 2]>) {
+    let mut offsets = Vec::with_capacity(stencils.len() + 1);
+    let mut entries: Vec<[u32; 2]> = Vec::new();
+    offsets.push(0u32);
+    for s in stencils {
+        for (&p, &w) in s.parents.iter().zip(&s.weights) {
+            entries.push([p, (w as f32).to_bits()]);
+        }
+        offsets.push(entries.len() as u32);
+    }
+    if entries.is_empty() {
+        entries.push([0, 0]);
+    }
+    (offsets, entries)
+}
+
+/// The draws' tables: per-face entries, control points, the packed tables' rows and their maps.
+struct DrawTables {
+    faces: Buffer,
+    control: Buffer,
+    tables: Buffer,
+    table_rows: Buffer,
+}
+
+impl DrawTables {
+    fn upload(
+        ctx: &Arc<Context>,
+        pool: &CommandPool,
+        data: &LoopData,
+    ) -> Result<Self, RenderError> {
+        let upload =
+            |data: &[u32], name: &str| Buffer::new_with_data(ctx, pool, STORAGE, data, name);
+        let faces = Buffer::new_with_data(ctx, pool, STORAGE, &data.faces, "loop face tables")?;
+        // Read as texels of four (at least one texel, as every buffer view needs).
+        let control = upload(
+            if data.control.is_empty() {
+                &[0; 4]
+            } else {
+                &data.control
+            },
+            "loop control points",
+        )?;
+        let packed = &data.tables.packed;
+        let tables = Buffer::new_with_data(
+            ctx,
+            pool,
+            STORAGE,
+            if packed.pool.is_empty() {
+                &[0.0f32; 4][..]
+            } else {
+                &packed.pool
+            },
+            "basis function tables",
+        )?;
+        let table_rows = upload(nonempty(&packed.rows), "basis function table rows")?;
+        Ok(Self {
+            faces,
+            control,
+            tables,
+            table_rows,
+        })
+    }
+}
+
+/// M0's positions (written by the host), M1's positions and normals (written by the passes,
+/// readable by the host): `vec4` each, at least one.
+fn vertex_buffers(ctx: &Arc<Context>, data: &LoopData) -> Result<[Buffer; 3], RenderError> {
+    let m0 = Buffer::new(
+        ctx,
+        BufferDesc::new_upload(data.m0_count.max(1) as u64 * 16, STORAGE),
+        "M0 positions",
+    )?;
+    let m1_bytes = data.stencils.len().max(1) as u64 * 16;
+    let m1 = Buffer::new(
+        ctx,
+        BufferDesc::new_readback(m1_bytes, STORAGE),
+        "M1 positions",
+    )?;
+    let n1 = Buffer::new(
+        ctx,
+        BufferDesc::new_readback(m1_bytes, STORAGE),
+        "M1 normals",
+    )?;
+    Ok([m0, m1, n1])
+}
+
+/// The dispatch grid over `m1_count` vertices in workgroups of [`GROUP`], within `max`
+/// (maxComputeWorkGroupCount's first two).
+fn m1_grid(m1_count: u32, max: [u32; 2]) -> Result<[u32; 2], RenderError> {
+    dispatch_grid(m1_count.div_ceil(GROUP), max).ok_or_else(|| RenderError::OverLimit {
+        what: "the loop surface's M1 vertices".into(),
+        needed: m1_count as u64,
+        unit: "vertices",
+        limit: "maxComputeWorkGroupCount",
+        max: max[0] as u64 * max[1] as u64 * GROUP as u64,
+        remedy: "use a coarser mesh".into(),
+    })
 }
 
 /// The `loop` surface of a scene: tables and records (CPU), its passes and M1 faces (GPU), and

@@ -156,53 +156,8 @@ fn derive_from_dihedrals(mesh: &Mesh, angle: f32) -> (Vec<VertexTag>, usize) {
         .iter()
         .enumerate()
         .map(|(v, faces)| {
-            // Union-find over the faces around v, joined across smooth edges at v.
-            let mut parent: Vec<usize> = (0..faces.len()).collect();
-            fn root(p: &mut [usize], mut i: usize) -> usize {
-                while p[i] != i {
-                    p[i] = p[p[i]];
-                    i = p[i];
-                }
-                i
-            }
-            // The edges at v, each once: those of the faces around it that contain v.
-            let mut edges: Vec<(u32, u32)> = faces
-                .iter()
-                .flat_map(|&f| {
-                    let t = &mesh.triangles[f];
-                    (0..3).map(move |k| (t.p[k], t.p[(k + 1) % 3]))
-                })
-                .filter(|&(a, b)| a as usize == v || b as usize == v)
-                .map(|(a, b)| (a.min(b), a.max(b)))
-                .collect();
-            edges.sort_unstable();
-            edges.dedup();
-            for e in edges {
-                let fs = &edge_faces[&e];
-                if fs.len() != 2 {
-                    continue;
-                }
-                if normals[fs[0]].angle_between(normals[fs[1]]) > angle {
-                    continue;
-                }
-                let (i, j) = (
-                    faces.iter().position(|&f| f == fs[0]),
-                    faces.iter().position(|&f| f == fs[1]),
-                );
-                if let (Some(i), Some(j)) = (i, j) {
-                    let (ri, rj) = (root(&mut parent, i), root(&mut parent, j));
-                    parent[ri] = rj;
-                }
-            }
-            let mut sums: Vec<(usize, Vec3)> = Vec::new();
-            for i in 0..faces.len() {
-                let r = root(&mut parent, i);
-                match sums.iter_mut().find(|(k, _)| *k == r) {
-                    Some((_, s)) => *s += normals[faces[i]],
-                    None => sums.push((r, normals[faces[i]])),
-                }
-            }
-            match sums.as_slice() {
+            let groups = smooth_groups(mesh, &edge_faces, &normals, angle, v, faces);
+            match groups.as_slice() {
                 [(_, a), (_, b)] => {
                     crease_tag(a.normalize_or_zero(), b.normalize_or_zero()).unwrap_or_default()
                 }
@@ -215,6 +170,65 @@ fn derive_from_dihedrals(mesh: &Mesh, angle: f32) -> (Vec<VertexTag>, usize) {
         })
         .collect();
     (tags, corners)
+}
+
+/// The faces around vertex `v` grouped across the smooth edges at `v` (two faces, dihedral
+/// angle at most `angle`): each group's root and the sum of its area-weighted face normals.
+fn smooth_groups(
+    mesh: &Mesh,
+    edge_faces: &std::collections::HashMap<(u32, u32), Vec<usize>>,
+    normals: &[Vec3],
+    angle: f32,
+    v: usize,
+    faces: &[usize],
+) -> Vec<(usize, Vec3)> {
+    // Union-find over the faces around v, joined across smooth edges at v.
+    let mut parent: Vec<usize> = (0..faces.len()).collect();
+    fn root(p: &mut [usize], mut i: usize) -> usize {
+        while p[i] != i {
+            p[i] = p[p[i]];
+            i = p[i];
+        }
+        i
+    }
+    // The edges at v, each once: those of the faces around it that contain v.
+    let mut edges: Vec<(u32, u32)> = faces
+        .iter()
+        .flat_map(|&f| {
+            let t = &mesh.triangles[f];
+            (0..3).map(move |k| (t.p[k], t.p[(k + 1) % 3]))
+        })
+        .filter(|&(a, b)| a as usize == v || b as usize == v)
+        .map(|(a, b)| (a.min(b), a.max(b)))
+        .collect();
+    edges.sort_unstable();
+    edges.dedup();
+    for e in edges {
+        let fs = &edge_faces[&e];
+        if fs.len() != 2 {
+            continue;
+        }
+        if normals[fs[0]].angle_between(normals[fs[1]]) > angle {
+            continue;
+        }
+        let (i, j) = (
+            faces.iter().position(|&f| f == fs[0]),
+            faces.iter().position(|&f| f == fs[1]),
+        );
+        if let (Some(i), Some(j)) = (i, j) {
+            let (ri, rj) = (root(&mut parent, i), root(&mut parent, j));
+            parent[ri] = rj;
+        }
+    }
+    let mut sums: Vec<(usize, Vec3)> = Vec::new();
+    for i in 0..faces.len() {
+        let r = root(&mut parent, i);
+        match sums.iter_mut().find(|(k, _)| *k == r) {
+            Some((_, s)) => *s += normals[faces[i]],
+            None => sums.push((r, normals[faces[i]])),
+        }
+    }
+    sums
 }
 
 fn derive_from_normals(mesh: &Mesh) -> (Vec<VertexTag>, usize) {
@@ -264,12 +278,7 @@ pub fn parse(
     mesh: &Mesh,
     base: &[VertexTag],
 ) -> Result<Vec<VertexTag>, String> {
-    let index: std::collections::HashMap<[u32; 3], usize> = mesh
-        .positions
-        .iter()
-        .enumerate()
-        .map(|(i, p)| ((*p + Vec3::ZERO).to_array().map(f32::to_bits), i))
-        .collect();
+    let index = position_index(mesh);
     let normals =
         crate::mesh::compute_area_weighted_normals(&mesh.positions, &mesh.position_indices());
     let mut tags = base.to_vec();
@@ -277,96 +286,135 @@ pub fn parse(
     let mut tagged_at: std::collections::HashMap<usize, usize> = std::collections::HashMap::new();
     for (i, line) in text.lines().enumerate() {
         let at = |msg: String| format!("tags file '{shown}' line {}: {msg}", i + 1);
-        // A `#` starts a comment, at the start of a line or after the numbers.
-        let line = line.split('#').next().unwrap_or("").trim();
-        if line.is_empty() {
+        let Some(v) = tag_numbers(line).map_err(at)? else {
             continue;
-        }
-        let words: Vec<&str> = line.split_whitespace().collect();
-        if words[0] != "t" {
-            return Err(at(format!(
-                "'{}' is not a tag line (expected `t X Y Z TENSION [SHARPNESS BIAS DX DY DZ]`)",
-                words[0]
-            )));
-        }
-        if words.len() != 5 && words.len() != 10 {
-            return Err(at(format!(
-                "{} numbers, expected 4 (X Y Z TENSION) or 9 (with SHARPNESS BIAS DX DY DZ)",
-                words.len() - 1
-            )));
-        }
-        let mut v = Vec::with_capacity(9);
-        for w in &words[1..] {
-            match w.parse::<f32>() {
-                Ok(x) if x.is_finite() => v.push(x),
-                _ => return Err(at(format!("'{w}' is not a finite number"))),
-            }
-        }
-        let p = Vec3::new(v[0], v[1], v[2]) + Vec3::ZERO;
-        let Some(&vi) = index.get(&p.to_array().map(f32::to_bits)) else {
-            return Err(at(format!(
-                "no vertex of the mesh is at ({}, {}, {})",
-                v[0], v[1], v[2]
-            )));
         };
-        if let Some(first) = tagged_at.insert(vi, i + 1) {
-            return Err(at(format!(
-                "the vertex at ({}, {}, {}) was already tagged at line {first}: one line per vertex (a vertex has at most one crease)",
-                v[0], v[1], v[2]
-            )));
-        }
-        if !(-1.0..=1.0).contains(&v[3]) {
-            return Err(at(format!("tension {} is not within [-1, 1]", v[3])));
-        }
-        let mut tag = VertexTag {
-            tension: v[3],
-            ..tags[vi]
-        };
-        if v.len() == 9 {
-            if !(0.0..=MAX_SHARPNESS).contains(&v[4]) {
-                return Err(at(format!(
-                    "sharpness {} is not within [0, {MAX_SHARPNESS:e}]",
-                    super::shown_number(v[4])
-                )));
-            }
-            if v[5].abs() > MAX_SHARPNESS {
-                return Err(at(format!(
-                    "bias {} is not within [-{MAX_SHARPNESS:e}, {MAX_SHARPNESS:e}]",
-                    super::shown_number(v[5])
-                )));
-            }
-            let given = Vec3::new(v[6], v[7], v[8]);
-            let n = if tags[vi].crease() {
-                tags[vi].normal
-            } else {
-                normals[vi]
-            };
-            // The crease direction lies in the tangent plane. Scaled to a largest component of
-            // 1 first, so a huge direction does not overflow.
-            let largest = given.abs().max_element();
-            if largest == 0.0 {
-                return Err(at(format!(
-                    "crease direction ({}, {}, {}) is zero: give a direction across the crease, or only X Y Z TENSION for a smooth vertex",
-                    v[6], v[7], v[8]
-                )));
-            }
-            let d = given / largest;
-            let across = d - n * d.dot(n);
-            if across.length() < MIN_ACROSS * d.length() {
-                return Err(at(format!(
-                    "crease direction ({}, {}, {}) is parallel to the vertex's normal ({}, {}, {}): it must point across the crease, in the tangent plane",
-                    v[6], v[7], v[8], n.x, n.y, n.z
-                )));
-            }
-            let d = across.normalize();
-            tag.sharpness = v[4];
-            tag.bias = v[5];
-            tag.direction = d;
-            tag.normal = n;
-        }
-        tags[vi] = tag;
+        let vi = tagged_vertex(&index, &v, &mut tagged_at, i + 1).map_err(at)?;
+        tags[vi] = tag_of(&v, tags[vi], normals[vi]).map_err(at)?;
     }
     Ok(tags)
+}
+
+/// Each position's vertex, keyed by its bits (`-0` as `0`).
+fn position_index(mesh: &Mesh) -> std::collections::HashMap<[u32; 3], usize> {
+    mesh.positions
+        .iter()
+        .enumerate()
+        .map(|(i, p)| ((*p + Vec3::ZERO).to_array().map(f32::to_bits), i))
+        .collect()
+}
+
+/// The numbers of a tag line (4 or 9), or `None` for a blank or comment line.
+fn tag_numbers(line: &str) -> Result<Option<Vec<f32>>, String> {
+    // A `#` starts a comment, at the start of a line or after the numbers.
+    let line = line.split('#').next().unwrap_or("").trim();
+    if line.is_empty() {
+        return Ok(None);
+    }
+    let words: Vec<&str> = line.split_whitespace().collect();
+    if words[0] != "t" {
+        return Err(format!(
+            "'{}' is not a tag line (expected `t X Y Z TENSION [SHARPNESS BIAS DX DY DZ]`)",
+            words[0]
+        ));
+    }
+    if words.len() != 5 && words.len() != 10 {
+        return Err(format!(
+            "{} numbers, expected 4 (X Y Z TENSION) or 9 (with SHARPNESS BIAS DX DY DZ)",
+            words.len() - 1
+        ));
+    }
+    let mut v = Vec::with_capacity(9);
+    for w in &words[1..] {
+        match w.parse::<f32>() {
+            Ok(x) if x.is_finite() => v.push(x),
+            _ => return Err(format!("'{w}' is not a finite number")),
+        }
+    }
+    Ok(Some(v))
+}
+
+/// The vertex at the line's position (`line`, counted from 1), which no earlier line tagged.
+fn tagged_vertex(
+    index: &std::collections::HashMap<[u32; 3], usize>,
+    v: &[f32],
+    tagged_at: &mut std::collections::HashMap<usize, usize>,
+    line: usize,
+) -> Result<usize, String> {
+    let p = Vec3::new(v[0], v[1], v[2]) + Vec3::ZERO;
+    let Some(&vi) = index.get(&p.to_array().map(f32::to_bits)) else {
+        return Err(format!(
+            "no vertex of the mesh is at ({}, {}, {})",
+            v[0], v[1], v[2]
+        ));
+    };
+    if let Some(first) = tagged_at.insert(vi, line) {
+        return Err(format!(
+            "the vertex at ({}, {}, {}) was already tagged at line {first}: one line per vertex (a vertex has at most one crease)",
+            v[0], v[1], v[2]
+        ));
+    }
+    Ok(vi)
+}
+
+/// The tag a line's numbers `v` give a vertex tagged `old` whose area-weighted normal is
+/// `area_normal`: its tension, and with nine numbers its crease.
+fn tag_of(v: &[f32], old: VertexTag, area_normal: Vec3) -> Result<VertexTag, String> {
+    if !(-1.0..=1.0).contains(&v[3]) {
+        return Err(format!("tension {} is not within [-1, 1]", v[3]));
+    }
+    let mut tag = VertexTag {
+        tension: v[3],
+        ..old
+    };
+    if v.len() == 9 {
+        if !(0.0..=MAX_SHARPNESS).contains(&v[4]) {
+            return Err(format!(
+                "sharpness {} is not within [0, {MAX_SHARPNESS:e}]",
+                super::shown_number(v[4])
+            ));
+        }
+        if v[5].abs() > MAX_SHARPNESS {
+            return Err(format!(
+                "bias {} is not within [-{MAX_SHARPNESS:e}, {MAX_SHARPNESS:e}]",
+                super::shown_number(v[5])
+            ));
+        }
+        let n = if old.crease() {
+            old.normal
+        } else {
+            area_normal
+        };
+        tag.sharpness = v[4];
+        tag.bias = v[5];
+        tag.direction = crease_direction([v[6], v[7], v[8]], n)?;
+        tag.normal = n;
+    }
+    Ok(tag)
+}
+
+/// The crease direction `given` at a vertex of normal `n`, put in the tangent plane and
+/// normalized; refused where it is zero or (nearly) parallel to `n`.
+fn crease_direction(given: [f32; 3], n: Vec3) -> Result<Vec3, String> {
+    let [x, y, z] = given;
+    let given = Vec3::from(given);
+    // The crease direction lies in the tangent plane. Scaled to a largest component of
+    // 1 first, so a huge direction does not overflow.
+    let largest = given.abs().max_element();
+    if largest == 0.0 {
+        return Err(format!(
+            "crease direction ({x}, {y}, {z}) is zero: give a direction across the crease, or only X Y Z TENSION for a smooth vertex"
+        ));
+    }
+    let d = given / largest;
+    let across = d - n * d.dot(n);
+    if across.length() < MIN_ACROSS * d.length() {
+        return Err(format!(
+            "crease direction ({x}, {y}, {z}) is parallel to the vertex's normal ({}, {}, {}): it must point across the crease, in the tangent plane",
+            n.x, n.y, n.z
+        ));
+    }
+    Ok(across.normalize())
 }
 
 /// Appendix B's restriction that tags must meet: at most two crease vertices per triangle.

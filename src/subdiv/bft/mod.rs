@@ -140,7 +140,11 @@ pub fn build(
     build_on(topo, boundary, lattice, progress, threads, cores)
 }
 
-/// [`build`] with faces classified on `threads` threads and tables built on up to `cores`.
+/// A configuration found in the faces: its representative face and orientation, and its key.
+type Rep = (usize, Orient, Vec<[u32; 3]>);
+
+/// [`build`] with faces classified on `threads` threads and tables built on up to `cores`:
+/// classify, number the configurations, build their tables, then share equal tables and pack.
 fn build_on(
     topo: &Topology,
     boundary: Boundary,
@@ -150,6 +154,21 @@ fn build_on(
     cores: usize,
 ) -> Result<Tables, TopologyError> {
     let nb = Neighbourhoods::new(topo);
+    let shares = classify_faces(topo, &nb, threads, &mut progress);
+    let (reps, faces) = number_configurations(shares, topo.faces.len());
+    let keys: Vec<Vec<[u32; 3]>> = reps.iter().map(|r| r.2.clone()).collect();
+    let built = build_tables(topo, &nb, &reps, boundary, lattice, cores, &mut progress)?;
+    Ok(share_and_pack(built, faces, keys, lattice))
+}
+
+/// Every face's configuration key, classified on `threads` threads in contiguous shares (one a
+/// thread, in face order), this thread taking the first share and reporting for all.
+fn classify_faces(
+    topo: &Topology,
+    nb: &Neighbourhoods,
+    threads: usize,
+    progress: &mut impl FnMut(Progress),
+) -> Vec<Classified> {
     let n = topo.faces.len();
     // Faces are classified independently: in contiguous shares, one a thread, merged in face
     // order, so configurations are numbered by first appearance whatever the thread count.
@@ -163,7 +182,7 @@ fn build_on(
         let others: Vec<_> = ranges[1..]
             .iter()
             .map(|r| {
-                let (nb, done) = (&nb, &done);
+                let done = &done;
                 s.spawn(move || classify(topo, nb, r.clone(), done, &mut || {}))
             })
             .collect();
@@ -176,7 +195,7 @@ fn build_on(
                 progress(Progress::Faces(d.min(n), n));
             }
         };
-        let first = classify(topo, &nb, ranges[0].clone(), &done, &mut report);
+        let first = classify(topo, nb, ranges[0].clone(), &done, &mut report);
         std::iter::once(first)
             .chain(
                 others
@@ -186,9 +205,15 @@ fn build_on(
             .collect()
     });
     progress(Progress::Faces(n, n));
+    shares
+}
+
+/// The shares merged in face order: configurations numbered by first appearance (each with
+/// its representative), and every face with its configuration's number.
+fn number_configurations(shares: Vec<Classified>, n: usize) -> (Vec<Rep>, Vec<FaceConfig>) {
     let mut ids: HashMap<Vec<[u32; 3]>, u32> = HashMap::new();
     // The representative face and orientation of each configuration.
-    let mut reps: Vec<(usize, Orient, Vec<[u32; 3]>)> = Vec::new();
+    let mut reps: Vec<Rep> = Vec::new();
     let mut faces = Vec::with_capacity(n);
     for share in shares {
         let global: Vec<u32> = share
@@ -213,8 +238,20 @@ fn build_on(
                 }),
         );
     }
+    (reps, faces)
+}
+
+/// The table of every configuration, in their order, built on up to `cores` threads.
+fn build_tables(
+    topo: &Topology,
+    nb: &Neighbourhoods,
+    reps: &[Rep],
+    boundary: Boundary,
+    lattice: Lattice,
+    cores: usize,
+    progress: &mut impl FnMut(Progress),
+) -> Result<Vec<Config>, TopologyError> {
     let total = reps.len();
-    let keys: Vec<Vec<[u32; 3]>> = reps.iter().map(|r| r.2.clone()).collect();
     // Tables too are independent: thread t builds configurations t, t + T, t + 2T, ...
     let builders = cores.min(total).max(1);
     let done = std::sync::atomic::AtomicUsize::new(0);
@@ -224,7 +261,7 @@ fn build_on(
         for (i, (f, orient, _)) in reps.iter().enumerate().skip(t).step_by(builders) {
             out.push((
                 i,
-                table(topo, &nb, &mut labels, *f, *orient, boundary, lattice),
+                table(topo, nb, &mut labels, *f, *orient, boundary, lattice),
             ));
             done.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
             tick();
@@ -255,6 +292,17 @@ fn build_on(
         .map(|b| b.1)
         .collect::<Result<Vec<Config>, TopologyError>>()?;
     progress(Progress::Tables(total, total));
+    Ok(built)
+}
+
+/// Equal tables shared, columns arranged and cut to those weighed, each face's control points
+/// put in its table's column order, and the tables packed.
+fn share_and_pack(
+    built: Vec<Config>,
+    mut faces: Vec<FaceConfig>,
+    keys: Vec<Vec<[u32; 3]>>,
+    lattice: Lattice,
+) -> Tables {
     let (mut configs, kept) = compact(built, lattice);
     // Columns in the order `arrange` gives them.
     let layouts: Vec<Vec<usize>> = configs.iter_mut().map(|c| arrange(c, lattice)).collect();
@@ -268,13 +316,13 @@ fn build_on(
         fc.config = *id;
     }
     let packed = pack(&configs.iter().collect::<Vec<_>>(), lattice);
-    Ok(Tables {
+    Tables {
         lattice,
         keys,
         configs,
         faces,
         packed,
-    })
+    }
 }
 
 /// Every configuration up to valence `max`, as the 2010 paper counts its tables: the union of

@@ -89,7 +89,8 @@ pub(super) fn compact(
     (configs, kept)
 }
 
-/// The table of face `f` in orientation `o`, from its two-ring configuration mesh.
+/// The table of face `f` in orientation `o`, from its two-ring configuration mesh: cut out,
+/// refined `lmax` times carrying the weights, limit masks at the lattice points.
 pub(super) fn table(
     topo: &Topology,
     nb: &Neighbourhoods,
@@ -101,6 +102,31 @@ pub(super) fn table(
 ) -> Result<Config, TopologyError> {
     label(topo, nb, f, o, labels);
     let control = labels.order.len();
+    let (local, count) = configuration_mesh(topo, nb, labels, f, control);
+    let mesh = refine_weights(local, count, control, o, boundary, lattice)?;
+    let (weights, outside) = limit_rows(&mesh, control, boundary, lattice);
+    let (valence, is_boundary) = corner_valence(topo, topo.faces[f], o);
+    Ok(Config {
+        control,
+        valence,
+        boundary: is_boundary,
+        weights,
+        outside,
+        symmetry: None,
+        pairs: 0,
+    })
+}
+
+/// The configuration mesh of face `f` (labelled, its `control` points first): the faces
+/// around the control points, in labels, with fans that the cut pinches split. Returns the
+/// faces and the vertex count.
+fn configuration_mesh(
+    topo: &Topology,
+    nb: &Neighbourhoods,
+    labels: &mut Labels,
+    f: usize,
+    control: usize,
+) -> (Vec<[u32; 3]>, usize) {
     // Faces within two rings: those around the control points (the face first).
     let t = topo.faces[f];
     let mut local: Vec<[u32; 3]> = vec![t];
@@ -120,6 +146,29 @@ pub(super) fn table(
     let mut local: Vec<[u32; 3]> = local.iter().map(|t| t.map(|v| labels.of(v))).collect();
     let mut count = labels.order.len();
     split_fans(&mut local, &mut count, |v| v >= control as u32);
+    (local, count)
+}
+
+/// A configuration mesh after `lmax` Loop steps: its topology, every vertex's weights (`dims`
+/// a vertex: one per control point, then the rest together), and the lattice coordinates of
+/// the faces that tile the face.
+struct Refined {
+    topo: Topology,
+    w: Vec<f64>,
+    dims: usize,
+    tracked: Vec<(usize, [[u32; 2]; 3])>,
+}
+
+/// `lmax` Loop steps on the configuration mesh `local` (over `count` vertices), applied to the
+/// weights and pruned to the face's surroundings after each.
+fn refine_weights(
+    local: Vec<[u32; 3]>,
+    mut count: usize,
+    control: usize,
+    o: Orient,
+    boundary: Boundary,
+    lattice: Lattice,
+) -> Result<Refined, TopologyError> {
     // Weights of every local vertex on the control points, level by level, and in one more
     // column its weight on all the other cut-out vertices together: every rule and limit mask
     // weighs with non-negative weights, so that sum is zero exactly when each of them is (the
@@ -166,10 +215,33 @@ pub(super) fn table(
             .collect();
         topo_l = Topology::new(&faces, count)?;
     }
+    Ok(Refined {
+        topo: topo_l,
+        w,
+        dims,
+        tracked,
+    })
+}
+
+/// The table's rows: the limit mask at each lattice point applied to the weights (`rows ×
+/// control`), and the largest weight on the other cut-out vertices.
+fn limit_rows(
+    mesh: &Refined,
+    control: usize,
+    boundary: Boundary,
+    lattice: Lattice,
+) -> (Vec<f64>, f64) {
+    let Refined {
+        topo: topo_l,
+        w,
+        dims,
+        tracked,
+    } = mesh;
+    let dims = *dims;
     // The lattice vertex at each row, then its limit mask.
     let rows = lattice.rows();
     let mut at_row = vec![u32::MAX; rows];
-    for &(face, coords) in &tracked {
+    for &(face, coords) in tracked {
         for k in 0..3 {
             at_row[lattice.row(coords[k][0], coords[k][1])] = topo_l.faces[face][k];
         }
@@ -178,7 +250,7 @@ pub(super) fn table(
     let mut outside: f64 = 0.0;
     for (r, &v) in at_row.iter().enumerate() {
         debug_assert_ne!(v, u32::MAX);
-        let mask = limit_stencil(&topo_l, v, boundary);
+        let mask = limit_stencil(topo_l, v, boundary);
         debug_assert!(
             mask.weights.iter().all(|&x| x >= 0.0),
             "negative limit weight"
@@ -195,7 +267,12 @@ pub(super) fn table(
         weights[r * control..(r + 1) * control].copy_from_slice(&full[..control]);
         outside = outside.max(full[control].abs());
     }
-    // Valence and boundary of the face's corners.
+    (weights, outside)
+}
+
+/// The valence [`Config::valence`] names, and whether any corner of face `t` (in orientation
+/// `o`) is on the boundary.
+fn corner_valence(topo: &Topology, t: [u32; 3], o: Orient) -> (usize, bool) {
     let corners = [0, 1, 2].map(|i| t[o.stored(i)]);
     let rings = corners.map(|c| topo.one_ring(c));
     let is_boundary = rings.iter().any(|r| r.1);
@@ -204,15 +281,7 @@ pub(super) fn table(
         .map(|(ring, b)| (ring.len(), *b))
         .find(|&(n, b)| n != if b { 4 } else { 6 })
         .map_or(rings[0].0.len(), |(n, _)| n);
-    Ok(Config {
-        control,
-        valence,
-        boundary: is_boundary,
-        weights,
-        outside,
-        symmetry: None,
-        pairs: 0,
-    })
+    (valence, is_boundary)
 }
 
 /// Rings of faces kept around the face after each step of a configuration mesh.
