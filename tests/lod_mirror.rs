@@ -41,9 +41,12 @@ fn gpu_bounds_match_the_cpu() {
         let frame_layout =
             DescriptorSetLayout::new(ctx, &[(BINDING_FRAME, T::UNIFORM_BUFFER, c)], "lod frame")
                 .unwrap();
-        let mesh_layout =
-            DescriptorSetLayout::new(ctx, &[(BINDING_ELEMENTS, T::STORAGE_BUFFER, c)], "lod records")
-                .unwrap();
+        let mesh_layout = DescriptorSetLayout::new(
+            ctx,
+            &[(BINDING_ELEMENTS, T::STORAGE_BUFFER, c)],
+            "lod records",
+        )
+        .unwrap();
         let out_layout = DescriptorSetLayout::new(
             ctx,
             &[(BINDING_LOD_BOUNDS, T::STORAGE_BUFFER, c)],

@@ -178,14 +178,7 @@ fn statistics(ui: &mut egui::Ui, info: &PanelInfo) {
                 "surface",
                 format!("{} + {}", d.surface.name(), d.displace.name()),
             ),
-            (
-                if d.surface == Surface::Loop {
-                    "M1 faces"
-                } else {
-                    "coarse triangles"
-                },
-                info.coarse.to_string(),
-            ),
+            (d.surface.facts().elements.label(), info.coarse.to_string()),
             ("refined triangles", info.refined.to_string()),
             (
                 "GPU geometry",
@@ -251,13 +244,10 @@ fn surface_choice(ui: &mut egui::Ui, c: &mut Controls, info: &PanelInfo) {
     ui.horizontal(|ui| {
         ui.label("displace");
         for d in Displace::ALL {
-            let usable =
-                d != Displace::Heightmap || (info.has_texcoords && c.cfg.surface != Surface::Loop);
-            ui.add_enabled_ui(usable, |ui| {
+            let why_not = c.cfg.surface.incompatibility(d, info.has_texcoords);
+            ui.add_enabled_ui(why_not.is_none(), |ui| {
                 ui.selectable_value(&mut c.cfg.displace, d, d.name())
-                    .on_disabled_hover_text(
-                        "needs texture coordinates (vt; the loop surface has none)",
-                    );
+                    .on_disabled_hover_text(why_not.unwrap_or_default());
             });
         }
     });
@@ -267,21 +257,25 @@ fn surface_choice(ui: &mut egui::Ui, c: &mut Controls, info: &PanelInfo) {
 /// displacement's ranges scaled to the starting values.
 fn parameters(ui: &mut egui::Ui, c: &mut Controls) {
     let p = &mut c.cfg.params;
+    let reads = |option: &str| {
+        c.cfg.surface.facts().options.contains(&option)
+            || c.cfg.displace.facts().options.contains(&option)
+    };
     ui.add_enabled(
-        c.cfg.surface == Surface::Phong,
+        reads("alpha"),
         egui::Slider::new(&mut p.alpha, 0.0..=1.0).text("alpha"),
     );
-    ui.add_enabled_ui(c.cfg.displace != Displace::None, |ui| {
+    ui.add_enabled_ui(reads("amplitude"), |ui| {
         let a = c.initial.amplitude.abs().max(1e-6) * 4.0;
         ui.add(egui::Slider::new(&mut p.amplitude, -a..=a).text("amplitude"));
         let f = c.initial.frequency.max(1e-6) * 4.0;
         ui.add(egui::Slider::new(&mut p.frequency, 0.0..=f).text("frequency"));
         ui.add_enabled(
-            c.cfg.displace == Displace::Heightmap,
+            reads("bias"),
             egui::Slider::new(&mut p.bias, 0.0..=1.0).text("bias"),
         );
         ui.add_enabled(
-            c.cfg.displace == Displace::Noise,
+            reads("octaves"),
             egui::Slider::new(&mut p.octaves, 1..=SurfaceParams::MAX_OCTAVES).text("octaves"),
         );
     });

@@ -15,6 +15,16 @@ pub enum Elements {
     LoopFaces,
 }
 
+impl Elements {
+    /// What they are called in the panel and reports.
+    pub fn label(self) -> &'static str {
+        match self {
+            Elements::CoarseTriangles => "coarse triangles",
+            Elements::LoopFaces => "M1 faces",
+        }
+    }
+}
+
 /// Where a surface's normal field is evaluated.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FragmentNormals {
