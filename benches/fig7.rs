@@ -29,6 +29,7 @@ fn main() {
         meshes.push(viewed);
     }
     let opts = BenchOptions {
+        build: Default::default(),
         levels,
         surfaces: vec![(Surface::Flat, Displace::None)],
         params: None,

@@ -26,6 +26,7 @@ fn main() {
     // Drawn centred and at unit size, as `meshrefine render` draws it.
     let mesh = meshrefine::mesh::default_mesh().for_viewing();
     let opts = BenchOptions {
+        build: Default::default(),
         levels,
         surfaces,
         params: None,

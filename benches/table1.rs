@@ -47,6 +47,7 @@ fn main() {
         (vec![4, 16, 32], 3)
     };
     let opts = BenchOptions {
+        build: Default::default(),
         levels,
         surfaces: surfaces.clone(),
         params: None,
@@ -59,6 +60,7 @@ fn main() {
     };
     h.run("table1", &meshes, &opts);
     let fig8 = BenchOptions {
+        build: Default::default(),
         levels: if h.quick {
             vec![1, 2]
         } else {

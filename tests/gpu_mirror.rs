@@ -29,7 +29,8 @@ use meshrefine::render::tess::{tess_vertex_count, tess_weights};
 use meshrefine::render::{Camera, DrawConfig, Driver, Headless, Scene, Submit};
 use meshrefine::subdiv::Boundary;
 use meshrefine::surface::{
-    eval_with, CornerRecord, Displace, ElementRecord, Surface, SurfaceParams, SMOOTH_CORNER,
+    eval_with, BuildOptions, CornerRecord, Displace, ElementRecord, Surface, SurfaceParams,
+    SMOOTH_CORNER,
 };
 
 use std::collections::{HashMap, HashSet};
@@ -161,18 +162,18 @@ fn setup(
     levels: &[u32],
     which: Which,
     chunk: Option<u32>,
-) -> (Scene, Camera, SurfaceParams, f32) {
+) -> (Scene, Camera, SurfaceParams, BuildOptions, f32) {
     let (scene, camera, r) = scene_chunked(h, model(file), levels, chunk);
     let (boundary, bft_level) = match which {
         Which::Loop(b, l) => (b, l),
         _ => (Boundary::EdgeOnly, 5),
     };
-    let params = SurfaceParams {
+    let build = BuildOptions {
         boundary,
         bft_level,
-        ..SurfaceParams::for_radius(r)
+        ..BuildOptions::default()
     };
-    (scene, camera, params, r)
+    (scene, camera, SurfaceParams::for_radius(r), build, r)
 }
 
 /// Every surface x displacement of `which` (the height map only on meshes with texture
@@ -209,7 +210,7 @@ fn check_pattern_chunked(
     chunk: Option<u32>,
 ) {
     let all = all.into();
-    let (mut scene, camera, params, r) = setup(h, file, levels, all, chunk);
+    let (mut scene, camera, params, build, r) = setup(h, file, levels, all, chunk);
     for &level in levels {
         let pattern = Pattern::uniform(level);
         let pv = pattern.bary.len();
@@ -218,6 +219,7 @@ fn check_pattern_chunked(
                 let mut cfg =
                     DrawConfig::new(Driver::Pattern(submit), level).with_surface(surface, displace);
                 cfg.params = params;
+                cfg.build = build;
                 let tol = position_tolerance(&cfg, r, seamed(&scene.data.records));
                 let ntol = normal_tolerance(&cfg);
                 let cap = h.capture(&mut scene, &cfg, &camera).unwrap();
@@ -276,11 +278,12 @@ fn check_tess_chunked(
     chunk: Option<u32>,
 ) {
     let all = all.into();
-    let (mut scene, camera, params, r) = setup(h, file, levels, all, chunk);
+    let (mut scene, camera, params, build, r) = setup(h, file, levels, all, chunk);
     for &level in levels {
         for (surface, displace) in combinations(all, scene.data.uvs.is_some()) {
             let mut cfg = DrawConfig::new(Driver::Tess, level).with_surface(surface, displace);
             cfg.params = params;
+            cfg.build = build;
             let tol = position_tolerance(&cfg, r, seamed(&scene.data.records));
             let ntol = normal_tolerance(&cfg);
             let cap = h.capture(&mut scene, &cfg, &camera).unwrap();

@@ -12,7 +12,7 @@ use meshrefine::pattern::{Pattern, PatternSet};
 use meshrefine::render::{Camera, DrawConfig, Driver, Scene, Submit};
 use meshrefine::subdiv::bft::children_in_lattice;
 use meshrefine::subdiv::{subdivide_to_limit, Boundary};
-use meshrefine::surface::{Displace, Surface, SurfaceParams};
+use meshrefine::surface::{BuildOptions, Displace, Surface, SurfaceParams};
 
 /// `mesh` uploaded with the patterns of `levels`, and a camera framing it; and its radius.
 fn scene(
@@ -73,10 +73,11 @@ fn dyadic_levels_are_the_limit_surface() {
                 let k = n.trailing_zeros();
                 let mut cfg = DrawConfig::new(Driver::Pattern(Submit::Instanced), n)
                     .with_surface(Surface::Loop, Displace::None);
-                cfg.params = SurfaceParams {
+                cfg.params = SurfaceParams::for_radius(r);
+                cfg.build = BuildOptions {
                     boundary,
                     bft_level,
-                    ..SurfaceParams::for_radius(r)
+                    ..BuildOptions::default()
                 };
                 let cap = h.capture(&mut scene, &cfg, &camera).unwrap();
                 let reference = subdivide_to_limit(&mesh, 1 + k, boundary).unwrap();

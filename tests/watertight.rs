@@ -92,7 +92,7 @@ fn static_positions_with(
     cfg: &DrawConfig,
     records: &[meshrefine::surface::ElementRecord],
     mesh: &Mesh,
-    subdiv: Option<(&LoopData, &LoopFrame)>,
+    loop_: Option<(&LoopData, &LoopFrame)>,
 ) -> usize {
     // The scalar tags a scene derives from the mesh's hard edges (stpn).
     let (tags, _) = meshrefine::surface::stpn::derive(mesh);
@@ -102,7 +102,7 @@ fn static_positions_with(
         map: &map,
         lod: 0.0,
         tags: &tags,
-        subdiv,
+        loop_,
     };
     let (v, _) = refine_on_cpu(cfg, records, &Pattern::uniform(cfg.level), Some(&inputs));
     let distinct: HashSet<[u32; 3]> = v.iter().map(|x| bits(&x[..3])).collect();
@@ -234,7 +234,7 @@ fn open_seams_crack_at_split_normals() {
         for surface in [Surface::Phong, Surface::Pn] {
             let n = 5;
             let mut cfg = config(Driver::Static, n, (surface, Displace::None), r);
-            cfg.params.seams = Seams::Open;
+            cfg.build.seams = Seams::Open;
             let crack_free = expected(&mesh, n as usize, ((n - 1) * (n - 2) / 2) as usize);
             let got = static_positions(&cfg, &records, &mesh);
             assert!(

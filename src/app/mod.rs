@@ -514,7 +514,7 @@ impl State {
             upload_bytes: self.scene.upload_bytes(&d),
             table_bytes: self
                 .scene
-                .subdiv
+                .loop_
                 .as_ref()
                 .filter(|_| d.surface.uses_loop_faces())
                 .map(|l| l.data.table_bytes()),

@@ -23,7 +23,7 @@ pub use report::{Align, Cell, Column, Report, COLUMNS, SUMMARY_WIDTH};
 use crate::mesh::Mesh;
 use crate::pattern::PatternSet;
 use crate::render::{Camera, DrawConfig, Driver, Headless, RenderError, Scene};
-use crate::surface::{Displace, Surface, SurfaceParams};
+use crate::surface::{BuildOptions, Displace, Surface, SurfaceParams};
 use std::sync::Arc;
 
 /// The surface every other's throughput is compared with (`throughput vs flat`): the cheapest,
@@ -37,6 +37,8 @@ pub struct BenchOptions {
     pub surfaces: Vec<(Surface, Displace)>,
     /// Parameters; `None`: [`SurfaceParams::for_radius`] of each mesh.
     pub params: Option<SurfaceParams>,
+    /// Options built into the mesh's data (seams, Loop's boundary rule and table level).
+    pub build: BuildOptions,
     pub frames: u32,
     pub width: u32,
     pub height: u32,
@@ -143,7 +145,7 @@ pub fn run(
             // ±25 % from run to run) touches every variant alike and the ratios against `flat`
             // compare like with like (`static`, with several surfaces, aside: `time_round`).
             let mut runs = Vec::new();
-            for cfg in variants(&m.surfaces, level, m.params, &opts.drivers) {
+            for cfg in variants(&m.surfaces, level, m.params, opts.build, &opts.drivers) {
                 runs.push(warm_up(&ctx, &mut h, &mut m, cfg)?);
             }
             time_round(&mut h, &mut m, &mut runs, opts)?;
@@ -198,6 +200,7 @@ impl MeshSetup {
                 DrawConfig::new(Driver::default(), opts.levels.first().copied().unwrap_or(1));
             cfg.surface = surface;
             cfg.params = params;
+            cfg.build = opts.build;
             let mut times = Vec::new();
             for _ in 0..=opts.frames.max(1) {
                 times.extend(h.time_pre_pass(&mut scene, &cfg)?);
@@ -224,6 +227,7 @@ fn variants(
     surfaces: &[(Surface, Displace)],
     level: u32,
     params: SurfaceParams,
+    build: BuildOptions,
     drivers: &[Driver],
 ) -> Vec<DrawConfig> {
     let mut list = Vec::new();
@@ -231,6 +235,7 @@ fn variants(
         for driver in Driver::VARIANTS {
             let mut cfg = DrawConfig::new(driver, level).with_surface(surface, displace);
             cfg.params = params;
+            cfg.build = build;
             if !drivers.is_empty() && !drivers.contains(&driver) {
                 continue;
             }
@@ -261,7 +266,7 @@ fn warm_up(
     };
     let (stored_vertices, stored_indices) = cfg.driver.kind().stored(cfg.level, t as u64);
     let geometry_bytes = scene.geometry_bytes(&cfg);
-    let loop_scene = scene.subdiv.as_ref().filter(|_| surface.uses_loop_faces());
+    let loop_scene = scene.loop_.as_ref().filter(|_| surface.uses_loop_faces());
     let mut row = Row {
         mesh: m.name.clone(),
         coarse_triangles: m.coarse,

@@ -7,7 +7,7 @@ use super::choices;
 use clap::{Args, Parser, Subcommand};
 use meshrefine::render::{Driver, Submit};
 use meshrefine::surface::loop_::Boundary;
-use meshrefine::surface::{Displace, Seams, Surface, SurfaceParams};
+use meshrefine::surface::{BuildOptions, Displace, Seams, Surface, SurfaceParams};
 use std::path::PathBuf;
 
 #[derive(Parser, Debug)]
@@ -85,13 +85,21 @@ impl ParamOpts {
             frequency: self.frequency.unwrap_or(d.frequency),
             octaves: self.octaves,
             origin: d.origin,
-            seams: self.pn_seams,
             bias: self.bias,
-            boundary: self.boundary,
-            bft_level: self.bft_level,
         };
         p.validate()?;
         Ok(p)
+    }
+
+    /// The options built into the mesh's data, checked.
+    pub fn build(&self) -> Result<BuildOptions, String> {
+        let b = BuildOptions {
+            seams: self.pn_seams,
+            boundary: self.boundary,
+            bft_level: self.bft_level,
+        };
+        b.validate()?;
+        Ok(b)
     }
 
     /// [`ParamOpts::params`] for `mesh`, with every displacement in `displaces` checked against

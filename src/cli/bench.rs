@@ -40,6 +40,7 @@ pub fn run(a: &BenchArgs, desc: &ContextDesc) -> Result<()> {
         levels: a.levels.clone(),
         surfaces,
         params: Some(params),
+        build: a.params.build().map_err(anyhow::Error::msg)?,
         frames: a.frames,
         width: a.width,
         height: a.height,

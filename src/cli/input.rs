@@ -199,6 +199,7 @@ pub fn draw_config(t: &Technique, mesh: &Mesh) -> Result<DrawConfig> {
             .params
             .params_for(mesh, &[t.surface.displace])
             .map_err(anyhow::Error::msg)?,
+        build: t.surface.params.build().map_err(anyhow::Error::msg)?,
         // `--driver pattern` parses as the pattern driver; `--submit` gives its mode.
         driver: match t.driver {
             Driver::Pattern(_) => Driver::Pattern(t.submit()),

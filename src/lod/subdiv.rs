@@ -19,12 +19,12 @@ use crate::surface::{loop_, Displace, ElementRecord};
 use glam::Vec3;
 
 fn segments(lod: &Lod, rec: &ElementRecord) -> u32 {
-    let (data, _) = lod.inputs.subdiv.expect("loop bounds need Inputs::subdiv");
+    let (data, _) = lod.inputs.loop_.expect("loop bounds need Inputs::loop_");
     1 << (data.faces[rec.words[0] as usize][3] >> 3)
 }
 
 fn at(lod: &Lod, rec: &ElementRecord, bary: [f32; 3]) -> Vec3 {
-    let (data, frame) = lod.inputs.subdiv.expect("loop bounds need Inputs::subdiv");
+    let (data, frame) = lod.inputs.loop_.expect("loop bounds need Inputs::loop_");
     loop_::eval(data, frame, rec, bary).position
 }
 

@@ -437,7 +437,7 @@ fn loop_bounds_hold() {
         displace: Displace::None,
         params: SurfaceParams::default(),
         inputs: Inputs {
-            subdiv: Some((&data, &frame)),
+            loop_: Some((&data, &frame)),
             ..Default::default()
         },
     };
@@ -533,7 +533,7 @@ fn shared_edges_get_identical_bits() {
     let data = LoopData::new(&mesh, Boundary::EdgeOnly, Lattice::new(3), |_| {}).unwrap();
     let frame = data.frame(&mesh.positions);
     let inputs = Inputs {
-        subdiv: Some((&data, &frame)),
+        loop_: Some((&data, &frame)),
         ..Default::default()
     };
     let lod = Lod::new(Surface::Loop, Displace::None, &params, &inputs);
@@ -883,7 +883,7 @@ fn pixel_error_holds_end_to_end() {
             },
             inputs: Inputs {
                 tags: Some(&tags),
-                subdiv: Some((&data, &frame)),
+                loop_: Some((&data, &frame)),
                 ..Default::default()
             },
         };

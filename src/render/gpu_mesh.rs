@@ -135,7 +135,7 @@ pub struct Extras<'a> {
     pub heightmap: &'a Heightmap,
     pub tags: &'a [VertexTag],
     /// The `loop` surface's M1 and tables (a placeholder is bound without).
-    pub subdiv: Option<&'a LoopPass>,
+    pub loop_: Option<&'a LoopPass>,
 }
 
 /// The part of an element range that lies in one chunk of records.
@@ -215,7 +215,7 @@ impl GpuMesh {
             &[0u32; 4],
             "placeholder",
         )?;
-        let views = loop_views(ctx, extras.subdiv, &placeholder)?;
+        let views = loop_views(ctx, extras.loop_, &placeholder)?;
         let sets = (0..chunks as u64)
             .map(|c| {
                 let set = pool.allocate(set_layout, &format!("mesh set {c}"))?;
@@ -364,10 +364,10 @@ fn storage<T: bytemuck::Pod>(
 /// maps), or of `placeholder` where the mesh is not drawn as `loop`.
 fn loop_views(
     ctx: &Arc<Context>,
-    subdiv: Option<&LoopPass>,
+    loop_: Option<&LoopPass>,
     placeholder: &Buffer,
 ) -> Result<Vec<BufferView>, GpuError> {
-    let loop_buffers = match subdiv {
+    let loop_buffers = match loop_ {
         Some(l) => [&l.m1, &l.n1, &l.faces, &l.control, &l.tables, &l.table_rows],
         None => [placeholder; 6],
     };

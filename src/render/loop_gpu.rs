@@ -485,7 +485,7 @@ impl LoopScene {
             Extras {
                 heightmap: &scene.heightmap,
                 tags: &scene.tags,
-                subdiv: Some(&pass),
+                loop_: Some(&pass),
             },
         )?;
         Ok(Self {

@@ -26,7 +26,7 @@ pub use headless::{clear_color_srgb8, covered_pixels, CaptureResult, FrameTiming
 pub use pipelines::{Renderer, GEOMETRY_STAGES, PUSH_STAGES};
 pub use scene::Scene;
 
-use crate::surface::{Displace, ElementRecord, Surface, SurfaceParams};
+use crate::surface::{BuildOptions, Displace, ElementRecord, Surface, SurfaceParams};
 use bytemuck::{Pod, Zeroable};
 
 /// Whether a frame also reads back what its geometry stages evaluated.
@@ -57,7 +57,10 @@ impl Capture {
 pub struct DrawConfig {
     pub surface: Surface,
     pub displace: Displace,
+    /// Per-frame parameters (the `Frame` block).
     pub params: SurfaceParams,
+    /// Options built into the mesh's data (records, Loop's tables).
+    pub build: BuildOptions,
     pub driver: Driver,
     pub level: u32,
 }
@@ -73,6 +76,7 @@ impl DrawConfig {
             surface: Surface::Flat,
             displace: Displace::None,
             params: SurfaceParams::default(),
+            build: BuildOptions::default(),
             driver,
             level,
         }

@@ -27,7 +27,7 @@ pub struct Scene {
     pub patterns: PatternSet,
     pub static_vbo: Option<super::static_vbo::StaticVbo>,
     /// The `loop` surface's M1 faces, built by the first `prepare` that draws it.
-    pub subdiv: Option<LoopScene>,
+    pub loop_: Option<LoopScene>,
     /// The coarse records on the GPU are older than `data` (an animated frame drawn with loop,
     /// which does not read them, uploads M0 only); the next other surface uploads them.
     records_stale: bool,
@@ -81,7 +81,7 @@ impl Scene {
             Extras {
                 heightmap: &heightmap,
                 tags: &tags,
-                subdiv: None,
+                loop_: None,
             },
         )?;
         Ok(Self {
@@ -92,7 +92,7 @@ impl Scene {
             max_chunk,
             patterns,
             static_vbo: None,
-            subdiv: None,
+            loop_: None,
             records_stale: false,
             warned_slow: false,
         })
@@ -119,20 +119,20 @@ impl Scene {
         }
         let loop_faces = cfg.surface.uses_loop_faces();
         if loop_faces
-            && self.subdiv.as_ref().is_none_or(|l| {
-                l.data.boundary != cfg.params.boundary
-                    || l.data.tables.lattice.lmax != cfg.params.bft_level
+            && self.loop_.as_ref().is_none_or(|l| {
+                l.data.boundary != cfg.build.boundary
+                    || l.data.tables.lattice.lmax != cfg.build.bft_level
             })
         {
-            self.subdiv = None;
+            self.loop_ = None;
             self.static_vbo = None;
-            let lattice = crate::surface::loop_::Lattice::new(cfg.params.bft_level);
-            self.subdiv = Some(LoopScene::new(
+            let lattice = crate::surface::loop_::Lattice::new(cfg.build.bft_level);
+            self.loop_ = Some(LoopScene::new(
                 ctx,
                 pool,
                 renderer,
                 self,
-                cfg.params.boundary,
+                cfg.build.boundary,
                 lattice,
             )?);
         }
@@ -149,9 +149,9 @@ impl Scene {
         if cfg.surface.facts().tags {
             crate::surface::stpn::check(&self.data.mesh, &self.tags).map_err(RenderError::Tags)?;
         }
-        if cfg.params.seams != self.data.seams && !loop_faces {
-            self.data.records = build_records(self.data.kind, &self.data.mesh, cfg.params.seams);
-            self.data.seams = cfg.params.seams;
+        if cfg.build.seams != self.data.seams && !loop_faces {
+            self.data.records = build_records(self.data.kind, &self.data.mesh, cfg.build.seams);
+            self.data.seams = cfg.build.seams;
             self.gpu.update_records(&self.data.records);
             self.static_vbo = None;
         }
@@ -205,13 +205,13 @@ impl Scene {
     /// by the next `prepare`. Only between frames.
     pub fn update_mesh(&mut self, mesh: Mesh, surface: Surface) {
         self.data = MeshData::new(mesh, self.data.kind, self.data.seams);
-        if let Some(l) = &mut self.subdiv {
+        if let Some(l) = &mut self.loop_ {
             // Loop: only M0's positions go up; the passes make M1 on the GPU (the mirror's M1
             // follows when it is read).
             l.pass.upload_m0(&self.data.mesh.positions);
             l.frame = std::cell::OnceCell::new();
         }
-        if surface.uses_loop_faces() && self.subdiv.is_some() {
+        if surface.uses_loop_faces() && self.loop_.is_some() {
             self.records_stale = true;
         } else {
             self.gpu.update_records(&self.data.records);
@@ -236,7 +236,7 @@ impl Scene {
     /// The elements `surface` draws: M1 faces for `loop` (once prepared), coarse triangles
     /// otherwise.
     pub fn elements(&self, surface: Surface) -> &GpuMesh {
-        match &self.subdiv {
+        match &self.loop_ {
             Some(l) if surface.uses_loop_faces() => &l.gpu,
             _ => &self.gpu,
         }
@@ -244,7 +244,7 @@ impl Scene {
 
     /// The records of [`Scene::elements`].
     pub fn records(&self, surface: Surface) -> &[ElementRecord] {
-        match &self.subdiv {
+        match &self.loop_ {
             Some(l) if surface.uses_loop_faces() => &l.data.records,
             _ => &self.data.records,
         }
@@ -260,7 +260,7 @@ impl Scene {
     /// The passes `cfg` runs before drawing (Loop's M0 -> M1 on the GPU drivers; `static`
     /// draws what the CPU evaluated).
     pub fn pre_pass(&self, cfg: &super::DrawConfig) -> Option<&LoopPass> {
-        match &self.subdiv {
+        match &self.loop_ {
             _ if cfg.driver.kind().refines_on_cpu() => None,
             Some(l) if cfg.surface.uses_loop_faces() => Some(&l.pass),
             _ => None,
@@ -308,7 +308,7 @@ impl Scene {
             Extras {
                 heightmap: &self.heightmap,
                 tags: &self.tags,
-                subdiv: None,
+                loop_: None,
             },
         )?;
         self.static_vbo = None;
@@ -327,7 +327,7 @@ impl Scene {
             map: &self.heightmap,
             lod: self.heightmap_lod(level),
             tags: &self.tags,
-            subdiv: self.subdiv.as_ref().map(|l| {
+            loop_: self.loop_.as_ref().map(|l| {
                 let frame = l
                     .frame
                     .get_or_init(|| l.data.frame(&self.data.mesh.positions));

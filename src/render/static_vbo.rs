@@ -24,7 +24,7 @@ pub struct MeshInputs<'a> {
     pub lod: f32,
     pub tags: &'a [VertexTag],
     /// The `loop` surface's tables and M1.
-    pub subdiv: Option<crate::surface::loop_::Inputs<'a>>,
+    pub loop_: Option<crate::surface::loop_::Inputs<'a>>,
 }
 
 impl<'a> MeshInputs<'a> {
@@ -36,7 +36,7 @@ impl<'a> MeshInputs<'a> {
             heightmap: Some(self.map),
             lod: self.lod,
             tags: Some(self.tags),
-            subdiv: self.subdiv,
+            loop_: self.loop_,
         }
     }
 }
@@ -286,6 +286,7 @@ impl DriverKind for StaticDriver {
                 || v.cfg.surface != cfg.surface
                 || v.cfg.displace != cfg.displace
                 || v.cfg.params != cfg.params
+                || v.cfg.build != cfg.build
         });
         if stale {
             scene.static_vbo = None;

@@ -140,15 +140,45 @@ pub struct SurfaceParams {
     /// moved and scaled, see [`SurfaceParams::in_drawn_frame`]): displacement is a function of
     /// the point in the mesh's coordinates.
     pub origin: Vec3,
-    /// Geometry at split normals (built into the element records, not sent per frame).
-    pub seams: Seams,
     /// The height map displacement's bias b: `P′ = P + a·(h − b)·N`.
     pub bias: f32,
+}
+
+/// Options built into a mesh's data (the element records, Loop's tables), not sent per frame:
+/// drawing with other options rebuilds that data ([`SurfaceParams`] holds the per-frame ones).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct BuildOptions {
+    /// Geometry at split normals (built into the local surfaces' element records).
+    pub seams: Seams,
     /// Loop subdivision's boundary rule (built into the `loop` surface's tables).
     pub boundary: loop_::Boundary,
     /// The `loop` surface's table level: 2^level segments per M1-face edge, the lattice whose
     /// points are exact (`--bft-level`, default 5).
     pub bft_level: u32,
+}
+
+impl Default for BuildOptions {
+    fn default() -> Self {
+        Self {
+            seams: Seams::Closed,
+            boundary: loop_::Boundary::EdgeOnly,
+            bft_level: loop_::DEFAULT_LMAX,
+        }
+    }
+}
+
+impl BuildOptions {
+    /// One sentence naming the first option out of its range.
+    pub fn validate(&self) -> Result<(), String> {
+        if !(1..=loop_::MAX_LMAX).contains(&self.bft_level) {
+            return Err(format!(
+                "--bft-level {} is not within [1, {}]",
+                self.bft_level,
+                loop_::MAX_LMAX
+            ));
+        }
+        Ok(())
+    }
 }
 
 /// `x` for messages: as typed for ordinary magnitudes, in exponent form for huge or tiny ones
@@ -177,10 +207,7 @@ impl Default for SurfaceParams {
             frequency: 24.0,
             octaves: 1,
             origin: Vec3::ZERO,
-            seams: Seams::Closed,
             bias: 0.0,
-            boundary: loop_::Boundary::EdgeOnly,
-            bft_level: loop_::DEFAULT_LMAX,
         }
     }
 }
@@ -223,13 +250,6 @@ impl SurfaceParams {
         }
         if !self.bias.is_finite() {
             return Err(format!("--bias {} is not a finite number", self.bias));
-        }
-        if !(1..=loop_::MAX_LMAX).contains(&self.bft_level) {
-            return Err(format!(
-                "--bft-level {} is not within [1, {}]",
-                self.bft_level,
-                loop_::MAX_LMAX
-            ));
         }
         if !(1..=Self::MAX_OCTAVES).contains(&self.octaves) {
             return Err(format!(
@@ -372,7 +392,7 @@ pub struct Inputs<'a> {
     /// The scalar tags of every vertex (`stpn`; neutral without).
     pub tags: Option<&'a [stpn::VertexTag]>,
     /// The `loop` surface's tables and M1 (required by it).
-    pub subdiv: Option<loop_::Inputs<'a>>,
+    pub loop_: Option<loop_::Inputs<'a>>,
 }
 
 /// Corner data of a coarse triangle in canonical order, with the sample's weights.
@@ -495,8 +515,8 @@ pub fn eval_surface(
 ) -> SurfacePoint {
     if surface == Surface::Loop {
         let (data, frame) = inputs
-            .subdiv
-            .expect("the loop surface is evaluated with its M1 and tables (Inputs::subdiv)");
+            .loop_
+            .expect("the loop surface is evaluated with its M1 and tables (Inputs::loop_)");
         return loop_::eval(data, frame, rec, bary);
     }
     let r = CornerRecord::decode(rec);
