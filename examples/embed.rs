@@ -12,7 +12,7 @@ use meshrefine::gpu::{with_context, ContextDesc};
 use meshrefine::mesh::Mesh;
 use meshrefine::render::{Camera, DrawConfig, Driver, Headless};
 use meshrefine::surface::{Displace, Surface};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 fn main() -> anyhow::Result<()> {
     let mut args = std::env::args().skip(1);
@@ -23,9 +23,13 @@ fn main() -> anyhow::Result<()> {
     let out_dir = args
         .next()
         .map_or_else(|| PathBuf::from("."), PathBuf::from);
+    run(&mesh_path, &out_dir)
+}
 
+/// Refine `mesh_path`, writing `embed.png` and `embed.obj` into `out_dir`.
+pub fn run(mesh_path: &Path, out_dir: &Path) -> anyhow::Result<()> {
     // Loading checks the file and says what is wrong with it in one sentence.
-    let (mesh, report) = Mesh::load_obj(&mesh_path)?;
+    let (mesh, report) = Mesh::load_obj(mesh_path)?;
     if !report.dropped_degenerate.is_empty() {
         eprintln!(
             "warning: {} degenerate or duplicate faces left out",

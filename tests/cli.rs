@@ -1869,3 +1869,118 @@ fn derived_three_crease_triangles_are_split_for_bench_too() {
         "{csv}"
     );
 }
+
+/// `(adaptive triangles, uniform triangles, uniform level, culled, elements in the histogram)`
+/// from `info --pixel-error`'s report.
+fn adaptive_report(stdout: &str) -> (u64, u64, u32, u64, u64) {
+    let line = |start: &str| {
+        stdout
+            .lines()
+            .find(|l| l.trim_start().starts_with(start))
+            .unwrap_or_else(|| panic!("no '{start}' line in:\n{stdout}"))
+            .to_string()
+    };
+    let words = |l: String| -> Vec<String> { l.split_whitespace().map(String::from).collect() };
+    let t = words(line("refined triangles:"));
+    let culled = words(line("culled"))[4].parse().unwrap();
+    let histogram: u64 = words(line("levels ("))[3..]
+        .iter()
+        .map(|pair| pair.split(':').nth(1).unwrap().parse::<u64>().unwrap())
+        .sum();
+    (
+        t[2].parse().unwrap(),
+        t[5].parse().unwrap(),
+        t[9].parse().unwrap(),
+        culled,
+        histogram,
+    )
+}
+
+#[test]
+fn info_reports_adaptive_levels_for_a_camera() {
+    let spot = model_path("spot_control_tri.obj");
+    let spot = p(&spot);
+    // The framing camera: every element in view, far fewer triangles than the uniform level
+    // that meets the same bound everywhere.
+    let (adaptive, uniform, level, culled, drawn) = adaptive_report(&ok(&[
+        "info",
+        spot,
+        "--pixel-error",
+        "1",
+        "--surface",
+        "pn",
+    ]));
+    assert_eq!((culled, drawn), (0, 372));
+    assert!(level > 1 && adaptive < uniform / 2, "{adaptive} {uniform}");
+    assert_eq!(uniform, 372 * level as u64 * level as u64);
+    // A close-up: finer levels near the eye, the rest outside the view culled.
+    let close = [
+        "info",
+        spot,
+        "--pixel-error",
+        "1",
+        "--surface",
+        "pn",
+        "--eye",
+        "0.3,0.2,0.6",
+        "--look-at",
+        "0,0.1,0.3",
+        "--width",
+        "1920",
+        "--height",
+        "1080",
+    ];
+    let (a2, _, l2, culled2, drawn2) = adaptive_report(&ok(&close));
+    assert!(l2 > level, "{l2} {level}");
+    assert!(culled2 > 0 && culled2 + drawn2 == 372, "{culled2} {drawn2}");
+    assert!(a2 > 0);
+    // Four times the pixel error, fewer triangles.
+    let (a4, ..) = adaptive_report(&ok(&[
+        "info",
+        spot,
+        "--pixel-error",
+        "4",
+        "--surface",
+        "pn",
+    ]));
+    assert!(a4 < adaptive, "{a4} {adaptive}");
+    // Loop's elements are M1's faces.
+    let loop_ = ok(&["info", spot, "--pixel-error", "1", "--surface", "loop"]);
+    assert!(loop_.contains("level:M1 faces"), "{loop_}");
+    assert_eq!(adaptive_report(&loop_).4, 4 * 372);
+    // Bad values: one sentence, status 1.
+    expect_error(&["info", spot, "--pixel-error", "0"], &["--pixel-error 0"]);
+    expect_error(
+        &["info", spot, "--pixel-error", "-1"],
+        &["--pixel-error -1"],
+    );
+    expect_error(
+        &["info", spot, "--pixel-error", "nan"],
+        &["--pixel-error NaN"],
+    );
+    expect_error(
+        &["info", spot, "--pixel-error", "1", "--level", "4"],
+        &["exclusive"],
+    );
+    expect_error(
+        &[
+            "info",
+            spot,
+            "--pixel-error",
+            "1",
+            "--eye",
+            "1,2,3",
+            "--look-at",
+            "1,2,3",
+        ],
+        &["--eye 1,2,3", "no view direction"],
+    );
+    expect_error(
+        &["info", spot, "--pixel-error", "1", "--fov", "180"],
+        &["--fov 180"],
+    );
+    // Camera options without --pixel-error are reported as ignored.
+    let out = meshrefine(&["info", spot, "--fov", "30"]);
+    assert!(out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--fov applies only with --pixel-error"));
+}

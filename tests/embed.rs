@@ -1,39 +1,24 @@
-//! The library example (examples/embed.rs) runs as documented: it renders a PNG that shows the
-//! mesh and exports the refined mesh, with the validation layer on (the example fails on any
-//! message or leak), and the export is what the pattern driver makes at level 8.
+//! The library example (examples/embed.rs, compiled here as a module so the test runs its very
+//! code) renders a PNG that shows the mesh and exports the refined mesh, with the validation
+//! layer on (it fails on any message or leak), and the export is what the pattern driver makes
+//! at level 8.
 
 mod common;
 
+#[allow(dead_code)] // its `main` is the command line's; the test calls `run`
+#[path = "../examples/embed.rs"]
+mod embed;
+
 use meshrefine::mesh::Mesh;
-use std::path::PathBuf;
-use std::process::Command;
 
 #[test]
 fn the_library_example_renders_and_exports() {
     let _guard = common::gpu_lock();
-    // target/<profile>/deps/embed-<hash> -> target/<profile>/examples/embed
-    let exe = std::env::current_exe().unwrap();
-    let example: PathBuf = exe
-        .parent()
-        .and_then(|deps| deps.parent())
-        .unwrap()
-        .join("examples/embed");
-    assert!(
-        example.exists(),
-        "{} is not built (cargo test builds examples)",
-        example.display()
-    );
     let out = common::output_dir().join("embed");
     std::fs::create_dir_all(&out).unwrap();
     let mesh = common::model_path("spot_control_tri.obj");
-    let run = Command::new(&example)
-        .arg(&mesh)
-        .arg(&out)
-        .output()
-        .unwrap();
-    let stderr = String::from_utf8_lossy(&run.stderr);
-    assert!(run.status.success(), "the example failed: {stderr}");
-    assert!(!stderr.contains("validation"), "{stderr}");
+    embed::run(&mesh, &out).unwrap_or_else(|e| panic!("the example failed: {e:#}"));
+    assert_eq!(meshrefine::gpu::live_objects(), 0);
 
     let image = png::Decoder::new(std::fs::File::open(out.join("embed.png")).unwrap());
     let mut reader = image.read_info().unwrap();

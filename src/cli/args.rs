@@ -277,6 +277,46 @@ pub struct InfoArgs {
     #[arg(long, default_value_t = meshrefine::surface::loop_::DEFAULT_LMAX,
           value_parser = clap::value_parser!(u32).range(1..=meshrefine::surface::loop_::MAX_LMAX as i64))]
     pub bft_level: u32,
+    /// Report the level adaptive refinement gives each element for this pixel error, seen by
+    /// the camera below: the level histogram and the triangles against the smallest uniform
+    /// level that meets the same bound (--surface, default pn; not with --level).
+    #[arg(long, allow_negative_numbers = true)]
+    pub pixel_error: Option<f32>,
+    #[command(flatten)]
+    pub camera: CameraOpts,
+    /// The largest level any element gets (with --pixel-error).
+    #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    pub max_level: u32,
+}
+
+/// A camera in the mesh's own coordinates (up is +Y); the default frames the mesh.
+#[derive(Args, Debug, Clone)]
+pub struct CameraOpts {
+    /// Camera position X,Y,Z (default: the framing camera's).
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub eye: Option<[f32; 3]>,
+    /// The point looked at X,Y,Z (default: the centre of the mesh's bounding box).
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub look_at: Option<[f32; 3]>,
+    /// Vertical field of view in degrees.
+    #[arg(long, default_value_t = 45.0)]
+    pub fov: f32,
+    /// The image's width in pixels.
+    #[arg(long, default_value_t = 1280, value_parser = clap::value_parser!(u32).range(1..=16384))]
+    pub width: u32,
+    /// The image's height in pixels (the metric counts pixels of this height).
+    #[arg(long, default_value_t = 720, value_parser = clap::value_parser!(u32).range(1..=16384))]
+    pub height: u32,
+}
+
+/// `X,Y,Z`: three finite numbers.
+fn parse_vec3(s: &str) -> Result<[f32; 3], String> {
+    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
+    let numbers: Vec<f32> = parts.iter().filter_map(|p| p.parse().ok()).collect();
+    match numbers[..] {
+        [x, y, z] if parts.len() == 3 && numbers.iter().all(|v| v.is_finite()) => Ok([x, y, z]),
+        _ => Err(format!("'{s}' is not three finite numbers X,Y,Z")),
+    }
 }
 
 #[derive(Args, Debug)]

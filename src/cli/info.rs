@@ -8,14 +8,16 @@ use super::input::degenerate_warning;
 use super::loop_check::loop_refusal;
 use crate::note;
 use anyhow::{bail, Result};
+use glam::Vec3;
 use meshrefine::mesh::{LoadReport, Mesh};
-use meshrefine::render::Driver;
+use meshrefine::render::{Camera, Driver};
 use meshrefine::surface::loop_::LoopData;
 use std::io::Write as _;
 use std::path::Path;
 
 /// Runs `meshrefine info` with `a`.
 pub fn run(a: &InfoArgs) -> Result<()> {
+    check_level_options(a)?;
     let path = a.mesh.as_path();
     let (mesh, report) = Mesh::load_obj(path)?;
     let for_loop = a.surface.is_some_and(|s| s.facts().needs_every_face);
@@ -34,6 +36,7 @@ pub fn run(a: &InfoArgs) -> Result<()> {
     if for_loop {
         print_loop(a, path, &mesh)?;
     }
+    print_levels(a, path, &mesh)?;
     Ok(())
 }
 
@@ -135,5 +138,110 @@ fn print_loop(a: &InfoArgs, path: &Path, mesh: &Mesh) -> Result<()> {
         lattice.rows()
     );
     out!("basis function tables: {} bytes", data.table_bytes());
+    Ok(())
+}
+
+/// `--pixel-error` and the camera: one sentence for the first bad value, before any work.
+fn check_level_options(a: &InfoArgs) -> Result<()> {
+    let Some(px) = a.pixel_error else {
+        return Ok(());
+    };
+    if !(px.is_finite() && px > 0.0) {
+        bail!("--pixel-error {px} is not a finite number > 0");
+    }
+    if a.level.is_some() {
+        bail!("--pixel-error and --level are exclusive: adaptive levels come from the pixel error, --level asks for one level everywhere");
+    }
+    let fov = a.camera.fov;
+    if !(fov.is_finite() && fov > 0.0 && fov < 180.0) {
+        bail!("--fov {fov} is not within (0, 180) degrees");
+    }
+    if let (Some(eye), Some(target)) = (a.camera.eye, a.camera.look_at) {
+        let (eye, target) = (Vec3::from(eye), Vec3::from(target));
+        if Camera::looking(eye, target, fov.to_radians(), 1.0).is_none() {
+            bail!("{}", no_direction(eye, target));
+        }
+    }
+    Ok(())
+}
+
+/// The sentence for a camera without a view direction.
+fn no_direction(eye: Vec3, target: Vec3) -> String {
+    format!(
+        "--eye {},{},{} and --look-at {},{},{} give no view direction (the same point, or straight up or down: up is +Y)",
+        eye.x, eye.y, eye.z, target.x, target.y, target.z
+    )
+}
+
+/// With `--pixel-error`: the level adaptive refinement gives each element for the camera, and
+/// the triangles against the smallest uniform level that meets the same bound.
+fn print_levels(a: &InfoArgs, path: &Path, mesh: &Mesh) -> Result<()> {
+    use meshrefine::lod::{Frustum, Lod, Sphere, View};
+    use meshrefine::surface::{build_records, stpn, BuildOptions, Inputs, Surface};
+    let Some(px) = a.pixel_error else {
+        return Ok(());
+    };
+    let c = &a.camera;
+    let bounds = Sphere::around(&mesh.positions);
+    let framing = Camera::framing(bounds.centre, bounds.radius);
+    let eye = c.eye.map_or(framing.eye(), Vec3::from);
+    let target = c.look_at.map_or(bounds.centre, Vec3::from);
+    let fov = c.fov.to_radians();
+    let camera = Camera::looking(eye, target, fov, bounds.radius)
+        .ok_or_else(|| anyhow::anyhow!("{}", no_direction(eye, target)))?;
+    let surface = a.surface.unwrap_or(Surface::Pn);
+    let build = BuildOptions {
+        boundary: a.boundary,
+        bft_level: a.bft_level,
+        ..BuildOptions::default()
+    };
+    let params = meshrefine::surface::SurfaceParams::for_radius(mesh.bounding_radius());
+    let view = View::new(eye, fov, c.height, px, a.max_level);
+    let frustum = Frustum::from_view_proj(camera.view_proj(c.width as f32 / c.height as f32));
+    let displace = meshrefine::surface::Displace::None;
+    let tags = surface.facts().tags.then(|| stpn::derive(mesh).0);
+    let report = if surface.uses_loop_faces() {
+        let lattice = meshrefine::surface::loop_::Lattice::new(build.bft_level);
+        let data = LoopData::new(mesh, build.boundary, lattice, |_| {})
+            .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+        let frame = data.frame(&mesh.positions);
+        let inputs = Inputs {
+            loop_: Some((&data, &frame)),
+            ..Inputs::default()
+        };
+        let lod = Lod::new(surface, displace, &params, &inputs);
+        meshrefine::lod::report(&lod, &data.records, &view, Some(&frustum))
+    } else {
+        let records = build_records(surface.record_kind(), mesh, build.seams);
+        let inputs = Inputs {
+            tags: tags.as_deref(),
+            ..Inputs::default()
+        };
+        let lod = Lod::new(surface, displace, &params, &inputs);
+        meshrefine::lod::report(&lod, &records, &view, Some(&frustum))
+    };
+    let [ex, ey, ez] = eye.to_array();
+    let [tx, ty, tz] = target.to_array();
+    out!(
+        "adaptive {} at {px} px: {}x{}, fov-y {}°, eye {ex} {ey} {ez}, look-at {tx} {ty} {tz}, max level {}",
+        surface.name(),
+        c.width,
+        c.height,
+        c.fov,
+        a.max_level
+    );
+    out!(
+        "  levels (level:{}): {}",
+        surface.facts().elements.label(),
+        report.histogram_line()
+    );
+    out!("  culled (outside the view): {}", report.culled);
+    out!(
+        "  refined triangles: {} adaptive against {} at uniform level {} ({:.2}x)",
+        report.adaptive_triangles,
+        report.uniform_triangles,
+        report.uniform_level,
+        report.adaptive_triangles as f64 / report.uniform_triangles.max(1) as f64
+    );
     Ok(())
 }

@@ -171,7 +171,16 @@ pub fn warnings(cli: &Cli, given: &Given) -> Vec<String> {
         Command::Info(a) => {
             let surfaces: Vec<Surface> = a.surface.into_iter().collect();
             let mut out = Vec::new();
-            if let Some(s) = a.surface.filter(|s| !s.uses_loop_faces()) {
+            let adaptive = a.pixel_error.is_some();
+            for id in ["eye", "look_at", "fov", "width", "height", "max_level"] {
+                if given.has(id) && !adaptive {
+                    out.push(format!(
+                        "--{} applies only with --pixel-error: it is ignored",
+                        id.replace('_', "-")
+                    ));
+                }
+            }
+            if let Some(s) = a.surface.filter(|s| !s.uses_loop_faces() && !adaptive) {
                 let builders: Vec<&str> = (Surface::ALL.into_iter())
                     .filter(|s| s.uses_loop_faces())
                     .map(Surface::name)

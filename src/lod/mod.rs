@@ -116,10 +116,12 @@ pub mod bound;
 pub mod cull;
 pub mod displace;
 pub mod net;
+pub mod report;
 pub mod subdiv;
 
 pub use bound::{Bounds, Lod};
 pub use cull::{Frustum, NormalCone};
+pub use report::{report, LevelReport};
 
 use glam::Vec3;
 

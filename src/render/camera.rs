@@ -42,6 +42,33 @@ impl Camera {
         }
     }
 
+    /// A camera at `eye` looking at `target` (up is +Y) with a vertical field of view of
+    /// `fov_y` radians; `radius` is the scene's bounding radius (it sets the depth range).
+    /// `None` when the eye is at the target or a value is not finite.
+    pub fn looking(eye: Vec3, target: Vec3, fov_y: f32, radius: f32) -> Option<Self> {
+        let offset = eye - target;
+        let distance = offset.length();
+        if !(eye.is_finite() && target.is_finite() && distance > 0.0 && distance.is_finite()) {
+            return None;
+        }
+        let dir = offset / distance;
+        if dir.y.abs() > 0.9999 {
+            return None; // straight up or down: +Y cannot be up
+        }
+        Some(Self {
+            target,
+            yaw: dir.x.atan2(dir.z),
+            pitch: dir.y.clamp(-1.0, 1.0).asin(),
+            distance,
+            fov_y,
+            radius: if radius > 0.0 && radius.is_finite() {
+                radius
+            } else {
+                1.0
+            },
+        })
+    }
+
     pub fn eye(&self) -> Vec3 {
         let dir = Vec3::new(
             self.pitch.cos() * self.yaw.sin(),
@@ -99,5 +126,30 @@ mod tests {
         let mut cam = Camera::framing(Vec3::ZERO, 1e-5);
         cam.zoom(1e-9);
         assert!(cam.distance > 0.0 && cam.depth_range().0 > 0.0);
+    }
+
+    #[test]
+    fn a_camera_looking_from_an_eye_has_that_eye() {
+        let target = Vec3::new(0.5, -1.0, 2.0);
+        for eye in [
+            Vec3::new(3.0, 1.0, -2.0),
+            Vec3::new(-0.1, 0.2, 0.3),
+            Vec3::new(0.0, 5.0, 1.0),
+        ] {
+            let cam = Camera::looking(eye, target, 0.8, 1.0).unwrap();
+            assert!(
+                (cam.eye() - eye).length() < 1e-5 * eye.length().max(1.0),
+                "{eye}"
+            );
+            // The target projects to the image's centre.
+            let p = cam.view_proj(1.5) * target.extend(1.0);
+            assert!(
+                (p.x / p.w).abs() < 1e-4 && (p.y / p.w).abs() < 1e-4,
+                "{eye}: {p}"
+            );
+        }
+        assert!(Camera::looking(target, target, 0.8, 1.0).is_none());
+        assert!(Camera::looking(target + Vec3::Y, target, 0.8, 1.0).is_none());
+        assert!(Camera::looking(Vec3::splat(f32::NAN), target, 0.8, 1.0).is_none());
     }
 }
