@@ -53,6 +53,24 @@ pub struct FrameTiming {
     pub stats: Option<PipelineStats>,
 }
 
+/// The largest buffer one capture pass may use, and the name of the limit that sets it: the
+/// binding's own range limit, maxMemoryAllocationSize (one buffer is one allocation), and the
+/// tests' smaller cap where given.
+fn pass_limit(
+    range: (u64, &'static str),
+    allocation: u64,
+    cap: Option<u64>,
+) -> (u64, &'static str) {
+    let mut limit = range;
+    if allocation < limit.0 {
+        limit = (allocation, "maxMemoryAllocationSize");
+    }
+    match cap {
+        Some(c) if c < limit.0 => (c, limit.1),
+        _ => limit,
+    }
+}
+
 /// The clear colour as the sRGB offscreen target stores it (8 bits per channel).
 pub fn clear_color_srgb8() -> [u8; 4] {
     let encode = |c: f32| {
@@ -274,10 +292,14 @@ impl Headless {
             ));
         };
         let vertex_bytes = std::mem::size_of::<CapturedVertex>() as u64;
-        let device_limit = self.ctx.info.limits.max_storage_buffer_range as u64;
-        let limit = self
-            .max_capture_bytes
-            .map_or(device_limit, |m| m.min(device_limit));
+        let (limit, limit_name) = pass_limit(
+            (
+                self.ctx.info.limits.max_storage_buffer_range as u64,
+                "maxStorageBufferRange",
+            ),
+            self.ctx.info.max_memory_allocation_size,
+            self.max_capture_bytes,
+        );
         let fits = |per: u64| per * vertex_bytes <= limit && per <= u32::MAX as u64;
         if !fits(per_element as u64) {
             let per_at = |l: u32| cfg.driver.capture_per_element(l).unwrap_or(0) as u64;
@@ -289,7 +311,7 @@ impl Headless {
                 what: format!("capturing the {per_element} evaluated vertices of one element"),
                 needed: per_element as u64 * vertex_bytes,
                 unit: "bytes",
-                limit: "maxStorageBufferRange",
+                limit: limit_name,
                 max: limit,
                 remedy,
             });
@@ -367,10 +389,14 @@ impl Headless {
         camera: &Camera,
     ) -> Result<Vec<[XfbVertex; 3]>, RenderError> {
         let per_element = tess_triangle_count(cfg.level) as u64 * 3 * XFB_VERTEX_BYTES;
-        let device_limit = self.ctx.info.max_transform_feedback_buffer_size;
-        let limit = self
-            .max_capture_bytes
-            .map_or(device_limit, |m| m.min(device_limit));
+        let (limit, limit_name) = pass_limit(
+            (
+                self.ctx.info.max_transform_feedback_buffer_size,
+                "maxTransformFeedbackBufferSize",
+            ),
+            self.ctx.info.max_memory_allocation_size,
+            self.max_capture_bytes,
+        );
         if self.ctx.info.transform_feedback && per_element > limit {
             return Err(RenderError::OverLimit {
                 what: format!(
@@ -379,7 +405,7 @@ impl Headless {
                 ),
                 needed: per_element,
                 unit: "bytes",
-                limit: "maxTransformFeedbackBufferSize",
+                limit: limit_name,
                 max: limit,
                 remedy: "use a lower level".into(),
             });
@@ -453,5 +479,23 @@ impl Headless {
                 "the static driver evaluates on the CPU: there is nothing to capture (use pattern or tess)",
             )),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A capture pass fits the binding's range and one allocation, whichever is smaller, and
+    /// names it.
+    #[test]
+    fn capture_passes_fit_the_smaller_limit() {
+        let range = (4u64 << 30, "maxTransformFeedbackBufferSize");
+        assert_eq!(
+            pass_limit(range, 2 << 30, None),
+            (2 << 30, "maxMemoryAllocationSize")
+        );
+        assert_eq!(pass_limit(range, 8 << 30, None), range);
+        assert_eq!(pass_limit(range, 2 << 30, Some(1000)).0, 1000);
     }
 }
