@@ -1984,3 +1984,32 @@ fn info_reports_adaptive_levels_for_a_camera() {
     assert!(out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("--fov applies only with --pixel-error"));
 }
+
+#[test]
+fn render_and_info_work_without_arguments() {
+    // `render` alone writes meshrefine.png of the default scene in the current folder; `info`
+    // alone describes the default mesh.
+    let dir = tmp("no-arguments");
+    std::fs::create_dir_all(&dir).unwrap();
+    let png = dir.join("meshrefine.png");
+    let _ = std::fs::remove_file(&png);
+    let out = {
+        let _guard = common::gpu_lock();
+        bin()
+            .arg("render")
+            .current_dir(&dir)
+            .env_remove("DISPLAY")
+            .env_remove("WAYLAND_DISPLAY")
+            .output()
+            .unwrap()
+    };
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(String::from_utf8_lossy(&out.stdout).contains("wrote meshrefine.png"));
+    let image = png::Decoder::new(std::fs::File::open(&png).unwrap());
+    let info = image.read_info().unwrap().info().clone();
+    assert_eq!((info.width, info.height), (1280, 720));
+    let s = ok(&["info"]);
+    assert!(s.contains("mesh: the default mesh (spot)"), "{s}");
+    assert!(s.contains("triangles: 372"), "{s}");
+}

@@ -202,7 +202,7 @@ pub struct RenderArgs {
     /// OBJ file (default: the embedded Spot control mesh).
     pub mesh: Option<PathBuf>,
     /// Output PNG.
-    #[arg(short, long, value_name = "FILE.png")]
+    #[arg(short, long, value_name = "FILE.png", default_value = "meshrefine.png")]
     pub output: PathBuf,
     #[arg(long, default_value_t = 1280)]
     pub width: u32,
@@ -261,8 +261,8 @@ impl ExportArgs {
 
 #[derive(Args, Debug)]
 pub struct InfoArgs {
-    /// OBJ file.
-    pub mesh: PathBuf,
+    /// OBJ file (default: the embedded Spot control mesh).
+    pub mesh: Option<PathBuf>,
     /// Also print the GPU geometry bytes each driver would hold at this level.
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub level: Option<u32>,

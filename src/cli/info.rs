@@ -13,20 +13,29 @@ use meshrefine::mesh::{LoadReport, Mesh};
 use meshrefine::render::{Camera, Driver};
 use meshrefine::surface::loop_::LoopData;
 use std::io::Write as _;
-use std::path::Path;
 
 /// Runs `meshrefine info` with `a`.
 pub fn run(a: &InfoArgs) -> Result<()> {
     check_level_options(a)?;
-    let path = a.mesh.as_path();
-    let (mesh, report) = Mesh::load_obj(path)?;
+    let (mesh, report, shown) = match &a.mesh {
+        Some(path) => {
+            let (mesh, report) = Mesh::load_obj(path)?;
+            (mesh, report, path.display().to_string())
+        }
+        None => (
+            meshrefine::mesh::default_mesh(),
+            LoadReport::default(),
+            "the default mesh (spot)".to_string(),
+        ),
+    };
+    let path: &str = &shown;
     let for_loop = a.surface.is_some_and(|s| s.facts().needs_every_face);
-    if let Some(why) = loop_refusal(&path.display().to_string(), &mesh, &report, for_loop) {
+    if let Some(why) = loop_refusal(path, &mesh, &report, for_loop) {
         if for_loop {
             bail!("{why}");
         }
     }
-    if let Some(w) = degenerate_warning(&path.display().to_string(), &report) {
+    if let Some(w) = degenerate_warning(path, &report) {
         note(format_args!("{w}"));
     }
     print_stats(path, &mesh, &report)?;
@@ -41,9 +50,9 @@ pub fn run(a: &InfoArgs) -> Result<()> {
 }
 
 /// The mesh's statistics and what loading did.
-fn print_stats(path: &Path, mesh: &Mesh, report: &LoadReport) -> Result<()> {
+fn print_stats(path: &str, mesh: &Mesh, report: &LoadReport) -> Result<()> {
     let s = mesh.stats();
-    out!("mesh: {}", path.display());
+    out!("mesh: {}", path);
     out!("vertices: {}", s.vertices);
     out!("triangles: {}", s.triangles);
     out!("boundary edges: {}", s.boundary_edges);
@@ -93,21 +102,16 @@ fn print_geometry(level: u32, triangles: u64) -> Result<()> {
 }
 
 /// `--surface loop`: M1, the valence configurations and the basis function tables built.
-fn print_loop(a: &InfoArgs, path: &Path, mesh: &Mesh) -> Result<()> {
+fn print_loop(a: &InfoArgs, path: &str, mesh: &Mesh) -> Result<()> {
     let lattice = meshrefine::surface::loop_::Lattice::new(a.bft_level);
-    let report = |p| note(format_args!("{}: {p}", path.display()));
+    let report = |p| note(format_args!("{}: {p}", path));
     let data = LoopData::new(
         mesh,
         a.boundary,
         lattice,
         meshrefine::surface::loop_::throttled(report),
     )
-    .map_err(|e| {
-        anyhow::anyhow!(
-            "'{}': the loop surface cannot subdivide it: {e}",
-            path.display()
-        )
-    })?;
+    .map_err(|e| anyhow::anyhow!("'{}': the loop surface cannot subdivide it: {e}", path))?;
     out!(
         "loop: M1 has {} vertices and {} faces ({} boundaries)",
         data.m1.vertex_count,
@@ -175,7 +179,7 @@ fn no_direction(eye: Vec3, target: Vec3) -> String {
 
 /// With `--pixel-error`: the level adaptive refinement gives each element for the camera, and
 /// the triangles against the smallest uniform level that meets the same bound.
-fn print_levels(a: &InfoArgs, path: &Path, mesh: &Mesh) -> Result<()> {
+fn print_levels(a: &InfoArgs, path: &str, mesh: &Mesh) -> Result<()> {
     use meshrefine::lod::{Frustum, Lod, Sphere, View};
     use meshrefine::surface::{build_records, stpn, BuildOptions, Inputs, Surface};
     let Some(px) = a.pixel_error else {
@@ -203,7 +207,7 @@ fn print_levels(a: &InfoArgs, path: &Path, mesh: &Mesh) -> Result<()> {
     let report = if surface.uses_loop_faces() {
         let lattice = meshrefine::surface::loop_::Lattice::new(build.bft_level);
         let data = LoopData::new(mesh, build.boundary, lattice, |_| {})
-            .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+            .map_err(|e| anyhow::anyhow!("{}: {e}", path))?;
         let frame = data.frame(&mesh.positions);
         let inputs = Inputs {
             loop_: Some((&data, &frame)),
