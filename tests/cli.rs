@@ -2013,3 +2013,19 @@ fn render_and_info_work_without_arguments() {
     assert!(s.contains("mesh: the default mesh (spot)"), "{s}");
     assert!(s.contains("triangles: 372"), "{s}");
 }
+
+#[test]
+fn devices_lists_lavapipe_with_its_features() {
+    let s = ok(&["devices"]);
+    let first = s.lines().next().unwrap_or_default();
+    assert!(first.ends_with("(default)"), "{s}");
+    assert!(
+        s.contains("maxTessellationGenerationLevel): up to 64"),
+        "{s}"
+    );
+    assert!(
+        s.contains("export through tess (transformFeedback): yes"),
+        "{s}"
+    );
+    assert!(s.lines().all(|l| l.chars().count() <= 120), "{s}");
+}

@@ -39,6 +39,9 @@ pub enum Command {
     Info(InfoArgs),
     /// Time every driver and submission mode on a mesh (ratios against `static`).
     Bench(BenchArgs),
+    /// List the Vulkan devices and the features meshrefine uses on each (the first is the
+    /// default; --device NAME picks another).
+    Devices,
 }
 
 /// The surfaces' and displacements' parameters.

@@ -26,6 +26,7 @@ use crate::note;
 use anyhow::{bail, Result};
 use args::Command;
 use meshrefine::gpu::{Context, ContextDesc, Messages, ShutdownError};
+use std::io::Write as _;
 use std::path::Path;
 use std::sync::Arc;
 
@@ -39,6 +40,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Export(a) => export::run(a, &desc),
         Command::Info(a) => info::run(a),
         Command::Bench(a) => bench::run(a, &desc),
+        Command::Devices => devices(&desc),
     }
 }
 
@@ -87,4 +89,50 @@ pub fn with_context<R>(desc: &ContextDesc, f: impl FnOnce(Arc<Context>) -> Resul
         Ok(s) => noted(s),
         Err(e) => e,
     })
+}
+
+/// `meshrefine devices`: every Vulkan 1.3 device, the default first, with the features
+/// meshrefine uses there (or why it cannot draw there).
+fn devices(desc: &meshrefine::gpu::ContextDesc) -> Result<()> {
+    let yes = |b: bool| if b { "yes" } else { "no" };
+    let list = meshrefine::gpu::list_devices(desc)?;
+    if list.is_empty() {
+        anyhow::bail!("no Vulkan 1.3 device with a graphics and compute queue was found");
+    }
+    for (k, device) in list.iter().enumerate() {
+        let default = if k == 0 { " (default)" } else { "" };
+        match device {
+            Ok(info) => {
+                out!("{}{default}", info.describe());
+                let l = &info.limits;
+                out!(
+                    "  tess driver levels (maxTessellationGenerationLevel): up to {}",
+                    l.max_tessellation_generation_level
+                );
+                out!(
+                    "  export and capture (vertexPipelineStoresAndAtomics): {}",
+                    yes(info.vertex_stores)
+                );
+                out!(
+                    "  export through tess (transformFeedback): {}",
+                    yes(info.transform_feedback)
+                );
+                out!(
+                    "  wireframe (fillModeNonSolid): {}",
+                    yes(info.fill_mode_non_solid)
+                );
+                out!(
+                    "  vertex statistics (pipelineStatisticsQuery): {}",
+                    yes(info.pipeline_statistics)
+                );
+                out!(
+                    "  records per chunk bound (maxStorageBufferRange): {} bytes; largest allocation: {} bytes",
+                    l.max_storage_buffer_range,
+                    info.max_memory_allocation_size
+                );
+            }
+            Err(e) => out!("unusable: {e}"),
+        }
+    }
+    Ok(())
 }

@@ -148,7 +148,7 @@ pub fn warnings(cli: &Cli, given: &Given) -> Vec<String> {
     let check = |c: &Chosen| inapplicable(given, c);
     match &cli.command {
         // The window's panel can switch to whatever an option applies to.
-        Command::View(_) => Vec::new(),
+        Command::View(_) | Command::Devices => Vec::new(),
         Command::Render(a) => {
             let d = a.technique.driver;
             let driver = (d.submit().is_some(), format!("--driver {}", d.name()));
@@ -224,7 +224,7 @@ pub fn check_outputs(cli: &Cli) -> Result<(), String> {
             Some(prefix) => check_output(prefix, "--out", Output::Prefix),
             None => Ok(()),
         },
-        Command::Info(_) => Ok(()),
+        Command::Info(_) | Command::Devices => Ok(()),
     }
 }
 

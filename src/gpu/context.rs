@@ -366,6 +366,27 @@ fn open_device(
     unsafe { instance.create_device(physical, &device_info, None) }.call("vkCreateDevice")
 }
 
+/// Every Vulkan 1.3 device with a graphics + compute queue, each with what meshrefine would use
+/// of it or why it cannot draw there, without opening any; the first one is what a context picks
+/// by default (or by `desc.device_name`).
+pub fn list_devices(desc: &ContextDesc) -> Result<Vec<Result<DeviceInfo, GpuError>>, GpuError> {
+    let messages = Arc::new(Messages::default());
+    let parts = InstanceParts::new(desc, &messages)?;
+    let listed = super::device::candidates(&parts.instance).map(|found| {
+        let picked = pick_device(&parts.instance, desc).ok().map(|p| p.0);
+        let mut list: Vec<_> = found
+            .into_iter()
+            .map(|(pd, _, info)| (Some(pd) != picked, pd, info))
+            .collect();
+        list.sort_by_key(|c| c.0);
+        list.into_iter()
+            .map(|(_, pd, info)| query_capabilities(&parts.instance, pd, info))
+            .collect()
+    });
+    parts.destroy();
+    listed
+}
+
 impl Context {
     /// Instance, then the device's capabilities, then the device opened with them.
     pub fn new(desc: &ContextDesc) -> Result<Arc<Self>, GpuError> {

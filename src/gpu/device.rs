@@ -55,10 +55,11 @@ fn cstr_field(chars: &[c_char]) -> String {
         .into_owned()
 }
 
-pub(crate) fn pick_device(
+/// Every Vulkan 1.3 device with a graphics + compute queue family, with the family and what is
+/// known of it before its features are queried.
+pub(crate) fn candidates(
     instance: &ash::Instance,
-    desc: &ContextDesc,
-) -> Result<(vk::PhysicalDevice, u32, DeviceInfo), GpuError> {
+) -> Result<Vec<(vk::PhysicalDevice, u32, DeviceInfo)>, GpuError> {
     // SAFETY: valid instance.
     let devices =
         unsafe { instance.enumerate_physical_devices() }.call("vkEnumeratePhysicalDevices")?;
@@ -100,6 +101,14 @@ pub(crate) fn pick_device(
         };
         candidates.push((pd, family as u32, info));
     }
+    Ok(candidates)
+}
+
+pub(crate) fn pick_device(
+    instance: &ash::Instance,
+    desc: &ContextDesc,
+) -> Result<(vk::PhysicalDevice, u32, DeviceInfo), GpuError> {
+    let mut candidates = candidates(instance)?;
     if let Some(wanted) = &desc.device_name {
         let w = wanted.to_lowercase();
         let available = candidates
