@@ -34,6 +34,19 @@ pub struct Scene {
     warned_slow: bool,
 }
 
+/// What a refined triangle costs a software device (lavapipe) at high levels, lowest and
+/// highest over the surfaces and drivers the benchmarks measure (docs/bench/table1.md), in
+/// nanoseconds: the range of [`software_frame_seconds`].
+pub const SOFTWARE_NS_PER_TRIANGLE: (f64, f64) = (100.0, 400.0);
+
+/// How long a frame of `refined` triangles takes on a software device, as a range in seconds;
+/// `None` when even the slower estimate is under a second.
+pub fn software_frame_seconds(refined: u64) -> Option<(f64, f64)> {
+    let (a, b) = SOFTWARE_NS_PER_TRIANGLE;
+    let (lo, hi) = (refined as f64 * a * 1e-9, refined as f64 * b * 1e-9);
+    (hi >= 1.0).then_some((lo, hi))
+}
+
 impl Scene {
     /// Upload `mesh` with patterns for LOD up to `max_level`.
     pub fn new(
@@ -185,12 +198,12 @@ impl Scene {
         renderer.prepare(cfg, capture, wire)?;
         let refined =
             self.elements(cfg.surface).element_count as u64 * cfg.refined_per_element() as u64;
-        if ctx.info.device_type == vk::PhysicalDeviceType::CPU
-            && refined > 50_000_000
-            && !self.warned_slow
-        {
+        let slow = software_frame_seconds(refined)
+            .filter(|_| ctx.info.device_type == vk::PhysicalDeviceType::CPU);
+        if let (Some((lo, hi)), false) = (slow, self.warned_slow) {
+            let (a, b) = SOFTWARE_NS_PER_TRIANGLE;
             log::warn!(
-                "{refined} refined triangles per frame on a software device ({}): expect seconds per frame",
+                "{refined} refined triangles per frame on a software device ({}): about {lo:.0} to {hi:.0} s a frame ({a:.0} to {b:.0} ns a triangle there); a lower --level draws faster",
                 ctx.info.name
             );
             self.warned_slow = true;
@@ -341,5 +354,18 @@ impl Scene {
         let (lo, hi) = self.data.mesh.bounds();
         let c = (lo + hi) * 0.5;
         (c, ((hi - lo) * 0.5).length().max(1e-6))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn software_frames_over_a_second_are_estimated() {
+        assert_eq!(software_frame_seconds(1_000_000), None);
+        // Spot's 372 triangles at level 1024: 390 M triangles, tens of seconds or more.
+        let (lo, hi) = software_frame_seconds(372 * 1024 * 1024).unwrap();
+        assert!(lo > 30.0 && hi < 200.0 && lo < hi, "{lo} {hi}");
     }
 }
