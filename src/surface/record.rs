@@ -160,10 +160,12 @@ pub enum RecordKind {
 }
 
 impl Surface {
+    /// The record layout of the surface's elements, from what it declares they are
+    /// ([`super::SurfaceFacts::elements`]).
     pub fn record_kind(self) -> RecordKind {
-        match self {
-            Surface::Flat | Surface::Phong | Surface::Pn | Surface::Stpn => RecordKind::Corners,
-            Surface::Loop => RecordKind::LoopFaces,
+        match self.facts().elements {
+            super::Elements::CoarseTriangles => RecordKind::Corners,
+            super::Elements::LoopFaces => RecordKind::LoopFaces,
         }
     }
 }
