@@ -46,6 +46,7 @@ pub enum Command {
 
 /// The surfaces' and displacements' parameters.
 #[derive(Args, Debug, Clone)]
+#[command(next_help_heading = "Surface parameters")]
 pub struct ParamOpts {
     /// Phong tessellation's shape factor, within [0, 1].
     #[arg(long, default_value_t = 0.75)]
@@ -126,6 +127,7 @@ impl ParamOpts {
 
 /// Surface and displacement.
 #[derive(Args, Debug, Clone)]
+#[command(next_help_heading = "Surface and displacement")]
 pub struct SurfaceOpts {
     /// Surface defined by each coarse triangle (default: curved PN triangles, smooth out of the
     /// box).
@@ -155,14 +157,14 @@ pub struct Technique {
     #[command(flatten)]
     pub surface: SurfaceOpts,
     /// How barycentric samples are produced on the GPU.
-    #[arg(long, value_parser = choices::driver(), default_value = "pattern")]
+    #[arg(long, value_parser = choices::driver(), default_value = "pattern", help_heading = "Driver and level")]
     pub driver: Driver,
     /// How the pattern driver hands each coarse triangle to the vertex shader [default:
     /// instanced]. Only for --driver pattern (`view` may switch to it).
-    #[arg(long, value_parser = choices::submit())]
+    #[arg(long, value_parser = choices::submit(), help_heading = "Driver and level")]
     pub submit: Option<Submit>,
     /// Refinement level N: N segments per coarse edge, N² triangles per coarse triangle.
-    #[arg(long, default_value_t = 16, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    #[arg(long, default_value_t = 16, value_parser = clap::value_parser!(u32).range(1..=1024), help_heading = "Driver and level")]
     pub level: u32,
 }
 
@@ -180,23 +182,28 @@ pub struct ViewArgs {
     #[command(flatten)]
     pub technique: Technique,
     /// Exit after N frames (at least 1).
-    #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..), help_heading = "Window")]
     pub frames: Option<u64>,
     /// Save the last frame to this PNG file.
-    #[arg(long, value_name = "FILE.png")]
+    #[arg(long, value_name = "FILE.png", help_heading = "Window")]
     pub screenshot: Option<PathBuf>,
     /// Start with the wireframe overlay on.
-    #[arg(long)]
+    #[arg(long, help_heading = "Window")]
     pub wireframe: bool,
     /// Start with the coarse-mesh animation on.
-    #[arg(long)]
+    #[arg(long, help_heading = "Window")]
     pub animate: bool,
     /// Start with level of detail on: the level is chosen by distance to the camera among the
     /// pattern set (powers of two up to --level).
-    #[arg(long)]
+    #[arg(long, help_heading = "Window")]
     pub lod: bool,
     /// Where the headless fallback writes its image when no display exists.
-    #[arg(long, value_name = "FILE.png", default_value = "meshrefine-view.png")]
+    #[arg(
+        long,
+        value_name = "FILE.png",
+        default_value = "meshrefine-view.png",
+        help_heading = "Window"
+    )]
     pub headless_output: PathBuf,
 }
 
@@ -205,14 +212,22 @@ pub struct RenderArgs {
     /// OBJ file (default: the embedded Spot control mesh).
     pub mesh: Option<PathBuf>,
     /// Output PNG.
-    #[arg(short, long, value_name = "FILE.png", default_value = "meshrefine.png")]
+    #[arg(
+        short,
+        long,
+        value_name = "FILE.png",
+        default_value = "meshrefine.png",
+        help_heading = "Output"
+    )]
     pub output: PathBuf,
-    #[arg(long, default_value_t = 1280)]
+    /// The image's width in pixels.
+    #[arg(long, default_value_t = 1280, help_heading = "Output")]
     pub width: u32,
-    #[arg(long, default_value_t = 720)]
+    /// The image's height in pixels.
+    #[arg(long, default_value_t = 720, help_heading = "Output")]
     pub height: u32,
     /// Draw the refined triangles' edges.
-    #[arg(long)]
+    #[arg(long, help_heading = "Output")]
     pub wireframe: bool,
     #[command(flatten)]
     pub technique: Technique,
@@ -223,19 +238,24 @@ pub struct ExportArgs {
     /// OBJ file (default: the embedded Spot control mesh).
     pub mesh: Option<PathBuf>,
     /// Output OBJ.
-    #[arg(short, long, value_name = "FILE.obj")]
+    #[arg(short, long, value_name = "FILE.obj", help_heading = "Output")]
     pub output: PathBuf,
     #[command(flatten)]
     pub surface: SurfaceOpts,
     /// Whose GPU evaluation to read back (static evaluates on the CPU: nothing to read back).
-    #[arg(long, value_enum, default_value = "pattern")]
+    #[arg(
+        long,
+        value_enum,
+        default_value = "pattern",
+        help_heading = "Driver and level"
+    )]
     pub driver: ExportDriver,
     /// How the pattern driver hands each coarse triangle to the vertex shader [default:
     /// instanced]. Only for --driver pattern.
-    #[arg(long, value_parser = choices::submit())]
+    #[arg(long, value_parser = choices::submit(), help_heading = "Driver and level")]
     pub submit: Option<Submit>,
     /// Refinement level N: N segments per coarse edge.
-    #[arg(long, default_value_t = 16, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    #[arg(long, default_value_t = 16, value_parser = clap::value_parser!(u32).range(1..=1024), help_heading = "Driver and level")]
     pub level: u32,
 }
 
@@ -294,6 +314,7 @@ pub struct InfoArgs {
 
 /// A camera in the mesh's own coordinates (up is +Y); the default frames the mesh.
 #[derive(Args, Debug, Clone)]
+#[command(next_help_heading = "Camera (with --pixel-error)")]
 pub struct CameraOpts {
     /// Camera position X,Y,Z (default: the framing camera's).
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
@@ -340,20 +361,27 @@ pub struct BenchArgs {
     pub params: ParamOpts,
     /// Levels to measure (comma separated).
     #[arg(long, value_delimiter = ',', default_value = "8,16,32,64",
-          value_parser = clap::value_parser!(u32).range(1..=1024))]
+          value_parser = clap::value_parser!(u32).range(1..=1024), help_heading = "Measurement")]
     pub levels: Vec<u32>,
     /// Also write the results to PREFIX.md (with this command line), PREFIX.csv and PREFIX.json.
-    #[arg(long, value_name = "PREFIX")]
+    #[arg(long, value_name = "PREFIX", help_heading = "Measurement")]
     pub out: Option<PathBuf>,
     /// Timed frames per variant (after one warm-up frame; at least 1).
-    #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..))]
+    #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..), help_heading = "Measurement")]
     pub frames: u32,
     /// Keep timing past --frames until every variant has this many GPU milliseconds in total
     /// (at most 20 x --frames frames): more samples for short frames, whose timestamps jitter.
-    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    #[arg(
+        long,
+        default_value_t = 0.0,
+        allow_negative_numbers = true,
+        help_heading = "Measurement"
+    )]
     pub min_total_ms: f64,
-    #[arg(long, default_value_t = 1280)]
+    /// The offscreen image's width in pixels.
+    #[arg(long, default_value_t = 1280, help_heading = "Measurement")]
     pub width: u32,
-    #[arg(long, default_value_t = 720)]
+    /// The offscreen image's height in pixels.
+    #[arg(long, default_value_t = 720, help_heading = "Measurement")]
     pub height: u32,
 }
