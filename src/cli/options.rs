@@ -96,29 +96,33 @@ fn or_list(names: &[&str]) -> String {
 /// Which surface or displacement reads which option is what each declares
 /// ([`meshrefine::surface::SurfaceFacts::options`]).
 pub fn inapplicable(given: &Given, c: &Chosen) -> Vec<String> {
-    let surface_options = readers(&Surface::ALL, |s| s.facts().options, Surface::name);
-    let displace_options = readers(&Displace::ALL, |d| d.facts().options, Displace::name);
+    let surfaces = readers(&Surface::ALL, |s| s.facts().options, Surface::name);
+    let displaces = readers(&Displace::ALL, |d| d.facts().options, Displace::name);
+    let read_by_surface = |id: &str| c.surfaces.iter().any(|s| s.facts().options.contains(&id));
+    let read_by_displace = |id: &str| c.displaces.iter().any(|d| d.facts().options.contains(&id));
     let mut out = Vec::new();
-    for (id, names) in surface_options {
-        let applies = c.surfaces.iter().any(|s| s.facts().options.contains(&id));
-        if given.has(id) && !applies {
-            out.push(format!(
-                "--{} applies only to --surface {}, not to {}: it is ignored",
-                id.replace('_', "-"),
-                or_list(&names),
-                c.surface_shown
-            ));
-        }
-    }
-    for (id, names) in displace_options {
-        let applies = c.displaces.iter().any(|d| d.facts().options.contains(&id));
-        if given.has(id) && !applies {
-            out.push(format!(
-                "--{} applies only to --displace {}, not to {}: it is ignored",
-                id.replace('_', "-"),
-                or_list(&names),
-                c.displace_shown
-            ));
+    for (readers, read, kind, chosen) in [
+        (
+            surfaces,
+            &read_by_surface as &dyn Fn(&str) -> bool,
+            "--surface",
+            &c.surface_shown,
+        ),
+        (
+            displaces,
+            &read_by_displace,
+            "--displace",
+            &c.displace_shown,
+        ),
+    ] {
+        for (id, names) in readers {
+            if given.has(id) && !read(id) {
+                out.push(format!(
+                    "--{} applies only to {kind} {}, not to {chosen}: it is ignored",
+                    id.replace('_', "-"),
+                    or_list(&names),
+                ));
+            }
         }
     }
     if let Some((false, driver)) = &c.driver {

@@ -1,0 +1,267 @@
+//! Each surface's and displacement's bound against dense sampling: undisplaced, halved,
+//! displaced, any parameter triangle, Loop.
+
+use super::*;
+
+/// Undisplaced local surfaces on spot, on a mesh with hard edges (flagged seams), and on random
+/// elements: never below the truth, and within 20x of it on typical elements.
+#[test]
+fn local_surface_bounds_hold_and_are_useful() {
+    let (spot, recs) = corner_records("spot_control_tri_vn.obj");
+    let (cyl_mesh, cyl) = corner_records("cylinder_hard_normals.obj");
+    let (cyl_tags, _) = crate::surface::stpn::derive(&cyl_mesh);
+    assert!(cyl_tags.iter().filter(|t| t.crease()).count() > 10);
+    let random = random_records(40, 7);
+    let r = spot.bounding_radius();
+    let (tags, _) = crate::surface::stpn::derive(&spot);
+    for surface in [Surface::Flat, Surface::Phong, Surface::Pn, Surface::Stpn] {
+        let case = Case {
+            surface,
+            displace: Displace::None,
+            params: SurfaceParams::default(),
+            inputs: Inputs {
+                tags: Some(&tags),
+                ..Default::default()
+            },
+        };
+        let what = surface.name();
+        let (_, m) = case.check(&every(&recs, 4), &[1, 2, 3, 5, 8], r, what);
+        if surface != Surface::Flat {
+            assert!(m <= 20.0, "{what} on spot: median bound / truth {m}");
+        }
+        let plain = Case {
+            inputs: Inputs::default(),
+            ..case
+        };
+        let (_, m) = plain.check(&random, &[1, 2, 4, 7], 2.0, what);
+        if surface != Surface::Flat {
+            assert!(m <= 20.0, "{what} random: median bound / truth {m}");
+        }
+        // Hard edges: flagged seams, and crease tags for stpn.
+        let hard = Case {
+            inputs: Inputs {
+                tags: Some(&cyl_tags),
+                ..Default::default()
+            },
+            ..plain
+        };
+        hard.check(&cyl, &[1, 3, 6], 2.0, what);
+        if surface != Surface::Flat {
+            let displaced = Case {
+                displace: Displace::Sine,
+                params: SurfaceParams::for_radius(cyl_mesh.bounding_radius()),
+                ..hard
+            };
+            displaced.check(&cyl, &[1, 3], 2.0, &format!("{what} + sine"));
+        }
+    }
+}
+
+/// A bound made 2x too small is caught: the check has the power to see an underestimate
+/// (the edges' bounds are the tightest: Phong's is exact). Not so for `noise`, whose bound is
+/// at least about 5x the truth on every element of spot.
+#[test]
+fn halved_bounds_are_caught() {
+    let (spot, recs) = corner_records("spot_control_tri_vn.obj");
+    for (surface, displace) in [
+        (Surface::Phong, Displace::None),
+        (Surface::Pn, Displace::None),
+        (Surface::Flat, Displace::Sine),
+    ] {
+        let case = Case {
+            surface,
+            displace,
+            params: SurfaceParams::for_radius(spot.bounding_radius()),
+            inputs: Inputs::default(),
+        };
+        let r = std::panic::catch_unwind(|| {
+            // Ratios of 2 are rare: the largest-curvature elements must show it.
+            case.check_with(&recs, &[1, 2, 4], spot.bounding_radius(), "halved", 0.5)
+        });
+        assert!(
+            r.is_err(),
+            "{} + {}: half the bound went unnoticed",
+            surface.name(),
+            displace.name()
+        );
+    }
+}
+
+/// Displacement over every local surface: sine and noise on spot, the height map on a textured
+/// grid (two pyramid levels blended). Usefulness: `sine` over `flat` and `phong` is within 20x
+/// of the truth on the median element. Where the bound multiplies extremes that an element
+/// rarely meets together, the median is looser and the tightest element shows that the bound
+/// is still approached: `noise` (its curvature bound is its largest anywhere, and a small patch
+/// sees a fraction of it: median about 100-300x, tightest about 15-25x) and `sine` over `pn`
+/// (PN's quadratic normal field has control normals far from its values, so the moving
+/// direction's derivative bounds are large: median about 50x, tightest about 7x).
+#[test]
+fn displaced_bounds_hold() {
+    let (spot, recs) = corner_records("spot_control_tri_vn.obj");
+    let r = spot.bounding_radius();
+    let sub = every(&recs, 6);
+    for surface in [Surface::Flat, Surface::Phong, Surface::Pn] {
+        for displace in [Displace::Sine, Displace::Noise] {
+            let case = Case {
+                surface,
+                displace,
+                params: SurfaceParams {
+                    octaves: 2,
+                    ..SurfaceParams::for_radius(r)
+                },
+                inputs: Inputs::default(),
+            };
+            let what = format!("{} + {}", surface.name(), displace.name());
+            let (min, median) = case.check(&sub, &[1, 2, 4, 6], r, &what);
+            if displace == Displace::Sine && surface != Surface::Pn {
+                assert!(median <= 20.0, "{what}: median bound / truth {median}");
+            } else {
+                assert!(min <= 30.0, "{what}: smallest bound / truth {min}");
+                assert!(median <= 300.0, "{what}: median bound / truth {median}");
+            }
+        }
+    }
+    let (grid, _) = load_model("grid_uv_8x8.obj");
+    let map = Heightmap::generated();
+    let recs = build_records(RecordKind::Corners, &grid, Seams::Closed);
+    for surface in [Surface::Flat, Surface::Pn] {
+        let mut worst = 0.0f32;
+        for (t, rec) in grid.triangles.iter().zip(&recs).step_by(5) {
+            let uv = t.t.unwrap().map(|i| grid.texcoords[i as usize].to_array());
+            let case = Case {
+                surface,
+                displace: Displace::Heightmap,
+                params: SurfaceParams {
+                    amplitude: 0.1 * grid.bounding_radius(),
+                    bias: 0.5,
+                    ..Default::default()
+                },
+                inputs: Inputs {
+                    uv: Some(&uv),
+                    heightmap: Some(&map),
+                    lod: 1.5,
+                    ..Default::default()
+                },
+            };
+            let (_, m) = case.check(
+                std::slice::from_ref(rec),
+                &[1, 2, 4, 9],
+                grid.bounding_radius(),
+                "heightmap",
+            );
+            worst = worst.max(m);
+        }
+        assert!(worst <= 20.0, "heightmap: median bound / truth {worst}");
+    }
+}
+
+/// Any triangle of the parameter domain (the transition triangles between an element's inner
+/// level and its edges'): its chord error is within [`Bounds::triangle_error`].
+#[test]
+fn triangle_errors_hold_for_any_triangle() {
+    let (spot, recs) = corner_records("spot_control_tri_vn.obj");
+    let (grid, _) = load_model("grid_uv_8x8.obj");
+    let grid_recs = build_records(RecordKind::Corners, &grid, Seams::Closed);
+    let map = Heightmap::generated();
+    let r = spot.bounding_radius();
+    let mut s = 99u64;
+    let mut rnd = move || {
+        s = s
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (s >> 33) as f32 / (1u64 << 31) as f32
+    };
+    let mut checked = 0;
+    for (surface, displace) in [
+        (Surface::Phong, Displace::None),
+        (Surface::Pn, Displace::None),
+        (Surface::Flat, Displace::Sine),
+        (Surface::Pn, Displace::Heightmap),
+    ] {
+        let on_grid = displace == Displace::Heightmap;
+        let list = if on_grid { &grid_recs } else { &recs };
+        for (ix, rec) in list.iter().enumerate().step_by(9) {
+            let uv = grid.triangles[ix.min(grid.triangles.len() - 1)]
+                .t
+                .map(|t| t.map(|i| grid.texcoords[i as usize].to_array()));
+            let case = Case {
+                surface,
+                displace,
+                params: if on_grid {
+                    SurfaceParams {
+                        amplitude: 0.1 * grid.bounding_radius(),
+                        bias: 0.5,
+                        ..Default::default()
+                    }
+                } else {
+                    SurfaceParams::for_radius(r)
+                },
+                inputs: Inputs {
+                    uv: uv.as_ref().filter(|_| on_grid),
+                    heightmap: Some(&map),
+                    lod: 0.5,
+                    ..Default::default()
+                },
+            };
+            let b = case.lod().element(rec);
+            for _ in 0..6 {
+                let size = 0.02 + 0.5 * rnd();
+                let c = [rnd(), rnd()];
+                let tri =
+                    [0; 3].map(|_| [c[0] + size * (rnd() - 0.5), c[1] + size * (rnd() - 0.5)]);
+                if tri
+                    .iter()
+                    .any(|p| p[0] < 0.0 || p[1] < 0.0 || p[0] + p[1] > 1.0)
+                {
+                    continue;
+                }
+                let bary = |p: [f32; 2]| [1.0 - p[0] - p[1], p[0], p[1]];
+                let pts = tri.map(|p| case.at(rec, bary(p)));
+                let mut truth = 0.0f32;
+                for k in 0..=R {
+                    for a in 0..=R - k {
+                        let l = [(R - a - k) as f32, a as f32, k as f32].map(|x| x / R as f32);
+                        let p =
+                            [0, 1].map(|d| tri[0][d] * l[0] + tri[1][d] * l[1] + tri[2][d] * l[2]);
+                        let lin = pts[0] * l[0] + pts[1] * l[1] + pts[2] * l[2];
+                        truth = truth.max((case.at(rec, bary(p)) - lin).length());
+                    }
+                }
+                let bound = b.triangle_error(tri);
+                assert!(
+                    truth <= bound + 64.0 * f32::EPSILON * r,
+                    "{} + {}: triangle {tri:?}: true {truth} above {bound}",
+                    surface.name(),
+                    displace.name()
+                );
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked > 100, "{checked}");
+}
+
+/// Loop: spot's M1 faces, at dyadic and other levels, with extraordinary vertices of valence 3
+/// to 10.
+#[test]
+fn loop_bounds_hold() {
+    let (mesh, _) = load_model("spot_control_tri.obj");
+    let data = LoopData::new(&mesh, Boundary::EdgeOnly, Lattice::default(), |_| {}).unwrap();
+    let frame = data.frame(&mesh.positions);
+    let case = Case {
+        surface: Surface::Loop,
+        displace: Displace::None,
+        params: SurfaceParams::default(),
+        inputs: Inputs {
+            loop_: Some((&data, &frame)),
+            ..Default::default()
+        },
+    };
+    let (_, m) = case.check(
+        &every(&data.records, 23),
+        &[1, 2, 3, 4, 8],
+        mesh.bounding_radius(),
+        "loop",
+    );
+    assert!(m <= 20.0, "loop: median bound / truth {m}");
+}

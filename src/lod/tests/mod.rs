@@ -1,0 +1,192 @@
+//! The bounds against the surfaces themselves: dense sampling of the real evaluation
+//! (`surface::eval_with`, what every driver mirrors) on real meshes and random elements.
+
+use super::*;
+use crate::mesh::test_support::load_model;
+use crate::mesh::Mesh;
+use crate::pattern::weight;
+use crate::subdiv::bft::Lattice;
+use crate::subdiv::Boundary;
+use crate::surface::loop_::LoopData;
+use crate::surface::{
+    build_records, eval_with, CornerRecord, Displace, ElementRecord, Heightmap, Inputs, RecordKind,
+    Seams, Surface, SurfaceParams,
+};
+use glam::{Mat4, Vec3, Vec4};
+
+/// Interior sample grid per lattice triangle (points `a/R, b/R, c/R`).
+const R: u32 = 6;
+/// Samples per segment along an edge.
+const RE: u32 = 16;
+
+fn lattice_bary(n: u32, i: u32, j: u32) -> [f32; 3] {
+    [weight(n - i - j, n), weight(i, n), weight(j, n)]
+}
+
+fn mix(b: [[f32; 3]; 3], l: [f32; 3]) -> [f32; 3] {
+    [0, 1, 2].map(|c| b[0][c] * l[0] + b[1][c] * l[1] + b[2][c] * l[2])
+}
+
+/// The lattice triangles of level `n` as lattice coordinates.
+fn lattice_triangles(n: u32) -> Vec<[(u32, u32); 3]> {
+    let mut out = Vec::new();
+    for j in 0..n {
+        for i in 0..n - j {
+            out.push([(i, j), (i + 1, j), (i, j + 1)]);
+            if i + j + 1 < n {
+                out.push([(i + 1, j), (i + 1, j + 1), (i, j + 1)]);
+            }
+        }
+    }
+    out
+}
+
+struct Case<'a> {
+    surface: Surface,
+    displace: Displace,
+    params: SurfaceParams,
+    inputs: Inputs<'a>,
+}
+
+impl Case<'_> {
+    fn at(&self, rec: &ElementRecord, b: [f32; 3]) -> Vec3 {
+        eval_with(
+            self.surface,
+            self.displace,
+            &self.params,
+            rec,
+            b,
+            &self.inputs,
+        )
+        .position
+    }
+
+    fn lod(&self) -> Lod<'_> {
+        Lod::new(self.surface, self.displace, &self.params, &self.inputs)
+    }
+
+    /// The true largest distance between the surface and its interpolation at level `n`, over
+    /// the element (dense samples of every lattice triangle) and along each stored edge.
+    fn true_error(&self, rec: &ElementRecord, n: u32) -> (f32, [f32; 3]) {
+        let mut inner = 0.0f32;
+        for t in lattice_triangles(n) {
+            let b = t.map(|(i, j)| lattice_bary(n, i, j));
+            let p = b.map(|b| self.at(rec, b));
+            for c in 0..=R {
+                for a in 0..=R - c {
+                    let l = [(R - a - c) as f32, a as f32, c as f32].map(|x| x / R as f32);
+                    let lin = p[0] * l[0] + p[1] * l[1] + p[2] * l[2];
+                    inner = inner.max((self.at(rec, mix(b, l)) - lin).length());
+                }
+            }
+        }
+        let mut edges = [0.0f32; 3];
+        for (e, out) in edges.iter_mut().enumerate() {
+            let on = |t: f32| {
+                let mut b = [0.0f32; 3];
+                b[e] = 1.0 - t;
+                b[(e + 1) % 3] = t;
+                b
+            };
+            for k in 0..n {
+                let (b0, b1) = (on(k as f32 / n as f32), on((k + 1) as f32 / n as f32));
+                let (p0, p1) = (self.at(rec, b0), self.at(rec, b1));
+                for s in 1..RE {
+                    let f = s as f32 / RE as f32;
+                    let b = [0, 1, 2].map(|c| b0[c] * (1.0 - f) + b1[c] * f);
+                    *out = out.max((self.at(rec, b) - (p0 * (1.0 - f) + p1 * f)).length());
+                }
+            }
+        }
+        (inner, edges)
+    }
+
+    /// Checks every bound of `records` at `levels` against sampling; returns the smallest and
+    /// the median ratio bound / truth over the elements whose true error is above rounding.
+    fn check(
+        &self,
+        records: &[ElementRecord],
+        levels: &[u32],
+        scale: f32,
+        what: &str,
+    ) -> (f32, f32) {
+        self.check_with(records, levels, scale, what, 1.0)
+    }
+
+    /// [`Case::check`] with every bound multiplied by `shrink` (below 1: a bound made too
+    /// small, which the check must catch).
+    fn check_with(
+        &self,
+        records: &[ElementRecord],
+        levels: &[u32],
+        scale: f32,
+        what: &str,
+        shrink: f32,
+    ) -> (f32, f32) {
+        let lod = self.lod();
+        let slack = 64.0 * f32::EPSILON * scale;
+        let mut ratios = Vec::new();
+        for (ix, rec) in records.iter().enumerate() {
+            let b = lod.element(rec);
+            let eb = [0, 1, 2].map(|e| lod.edge(rec, e));
+            for &n in levels {
+                let (inner, edges) = self.true_error(rec, n);
+                let bound = b.chord.error(n as f32) * shrink;
+                assert!(
+                    inner <= bound + slack,
+                    "{what}: element {ix} at level {n}: true chord error {inner} above the bound {bound}"
+                );
+                for e in 0..3 {
+                    let eb = eb[e].chord.error(n as f32) * shrink;
+                    assert!(
+                        edges[e] <= eb + slack,
+                        "{what}: element {ix} edge {e} at level {n}: true {} above the bound {eb}",
+                        edges[e]
+                    );
+                }
+                if inner > 1e3 * slack && bound.is_finite() {
+                    ratios.push(bound / inner);
+                }
+            }
+        }
+        ratios.sort_by(f32::total_cmp);
+        let min = ratios.first().copied().unwrap_or(1.0);
+        let median = ratios.get(ratios.len() / 2).copied().unwrap_or(1.0);
+        eprintln!("{what}: bound / truth smallest {min}, median {median}");
+        (min, median)
+    }
+}
+
+fn corner_records(file: &str) -> (Mesh, Vec<ElementRecord>) {
+    let (mesh, _) = load_model(file);
+    let recs = build_records(RecordKind::Corners, &mesh, Seams::Closed);
+    (mesh, recs)
+}
+
+/// Random triangles of size about 1 with normals up to ~45° off the face normal.
+fn random_records(count: usize, seed: u64) -> Vec<ElementRecord> {
+    let mut s = seed;
+    let mut rnd = move || {
+        s = s
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((s >> 33) as f32 / (1u64 << 31) as f32) * 2.0 - 1.0
+    };
+    (0..count)
+        .map(|i| {
+            let p = [0; 3].map(|_| Vec3::new(rnd(), rnd(), rnd()));
+            let f = (p[1] - p[0]).cross(p[2] - p[0]).normalize();
+            let n = [0; 3].map(|_| (f + Vec3::new(rnd(), rnd(), rnd()) * 0.55).normalize());
+            let i = i as u32 * 3;
+            CornerRecord::new(p, n, [i + 2, i, i + 1]).encode()
+        })
+        .collect()
+}
+
+fn every(v: &[ElementRecord], step: usize) -> Vec<ElementRecord> {
+    v.iter().step_by(step).copied().collect()
+}
+
+mod bounds;
+mod levels;
+mod view;

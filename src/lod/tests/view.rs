@@ -1,0 +1,297 @@
+//! Culling and the metric end to end, through a real camera.
+
+use super::*;
+
+/// A camera close to spot, looking past part of it.
+fn close_camera(spot: &Mesh) -> (Vec3, Mat4, f32, f32) {
+    let (lo, hi) = spot.bounds();
+    let centre = (lo + hi) * 0.5;
+    let r = spot.bounding_radius();
+    let eye = centre + Vec3::new(0.4, 0.25, 1.0).normalize() * (1.6 * r);
+    let target = centre + Vec3::new(0.7 * r, 0.2 * r, 0.0);
+    let fov = 50f32.to_radians();
+    let aspect = 16.0 / 9.0;
+    let mut proj = Mat4::perspective_rh(fov, aspect, 0.01 * r, 10.0 * r);
+    proj.y_axis.y = -proj.y_axis.y;
+    (
+        eye,
+        proj * Mat4::look_at_rh(eye, target, Vec3::Y),
+        fov,
+        aspect,
+    )
+}
+
+fn clip_inside(vp: Mat4, p: Vec3) -> bool {
+    let c = vp * Vec4::new(p.x, p.y, p.z, 1.0);
+    c.x.abs() <= c.w && c.y.abs() <= c.w && c.z >= 0.0 && c.z <= c.w
+}
+
+#[test]
+fn frustum_and_back_face_culling_are_conservative() {
+    let (spot, recs) = corner_records("spot_control_tri_vn.obj");
+    let (eye, vp, _, _) = close_camera(&spot);
+    let frustum = Frustum::from_view_proj(vp);
+    for surface in [Surface::Flat, Surface::Phong, Surface::Pn] {
+        let case = Case {
+            surface,
+            displace: Displace::None,
+            params: SurfaceParams::default(),
+            inputs: Inputs::default(),
+        };
+        let lod = case.lod();
+        let (mut outside, mut back) = (0, 0);
+        for rec in &recs {
+            let b = lod.element(rec);
+            let out = frustum.outside(&b.sphere);
+            let away = b.cone.is_some_and(|c| c.back_facing(&b.sphere, eye));
+            outside += out as usize;
+            back += away as usize;
+            if !(out || away) {
+                continue;
+            }
+            let n = 8;
+            for t in lattice_triangles(n) {
+                let p = t.map(|(i, j)| case.at(rec, lattice_bary(n, i, j)));
+                let normal = (p[1] - p[0]).cross(p[2] - p[0]);
+                for q in p {
+                    if out {
+                        assert!(
+                            !clip_inside(vp, q),
+                            "{}: a culled point is visible",
+                            surface.name()
+                        );
+                    }
+                    if away {
+                        assert!(
+                            (q - eye).dot(normal) > 0.0,
+                            "{}: culled a front face",
+                            surface.name()
+                        );
+                    }
+                }
+            }
+            if away {
+                for (i, j) in crate::pattern::Pattern::uniform(12).lattice() {
+                    let sp = eval_with(
+                        surface,
+                        Displace::None,
+                        &case.params,
+                        rec,
+                        lattice_bary(12, i, j),
+                        &case.inputs,
+                    );
+                    assert!((sp.position - eye).dot(sp.dpdu.cross(sp.dpdv)) > 0.0);
+                }
+            }
+        }
+        assert!(
+            outside > 10,
+            "{}: only {outside} elements outside",
+            surface.name()
+        );
+        assert!(
+            back > 10,
+            "{}: only {back} back-facing elements",
+            surface.name()
+        );
+    }
+}
+
+/// The camera of the end-to-end check, and how its pixels are counted.
+struct Screen {
+    eye: Vec3,
+    vp: Mat4,
+    view: View,
+    frustum: Frustum,
+    axis: Vec3,
+    size: glam::Vec2,
+}
+
+impl Screen {
+    fn new(spot: &Mesh, px: f32) -> Self {
+        let (eye, vp, fov, aspect) = close_camera(spot);
+        let size = glam::Vec2::new(1920.0, 1080.0);
+        assert!((size.x / size.y - aspect).abs() < 1e-3);
+        let far = vp.inverse() * Vec4::new(0.0, 0.0, 1.0, 1.0);
+        Self {
+            eye,
+            vp,
+            view: View::new(eye, fov, size.y as u32, px, 64),
+            frustum: Frustum::from_view_proj(vp),
+            axis: ((far.truncate() / far.w) - eye).normalize(),
+            size,
+        }
+    }
+
+    fn pixel(&self, p: Vec3) -> glam::Vec2 {
+        let c = self.vp * Vec4::new(p.x, p.y, p.z, 1.0);
+        (glam::Vec2::new(c.x, c.y) / c.w + 1.0) * 0.5 * self.size
+    }
+
+    /// Asserts that surface point `s`, drawn at `lin`, is within the pixel error (when
+    /// visible); returns its metric pixels.
+    fn check(&self, s: Vec3, lin: Vec3, what: &dyn Fn() -> String) -> f32 {
+        if !clip_inside(self.vp, s) {
+            return 0.0;
+        }
+        let px = self.view.pixel_error;
+        let metric = self.view.pixels((s - lin).length(), s);
+        assert!(metric <= px * 1.0001, "{}: {metric} px (metric)", what());
+        let cos = (s - self.eye).normalize().dot(self.axis);
+        let screen = (self.pixel(s) - self.pixel(lin)).length();
+        assert!(
+            screen * cos * cos <= px * 1.02,
+            "{}: {screen} px on screen at cos {cos}",
+            what()
+        );
+        metric
+    }
+}
+
+/// Levels for every element in view, then dense samples of each element at its inner level and
+/// of each edge at its own level; returns (elements checked, elements capped, worst metric px).
+fn end_to_end(case: &Case, records: &[ElementRecord], screen: &Screen) -> (usize, usize, f32) {
+    let lod = case.lod();
+    let view = &screen.view;
+    let (mut drawn, mut capped, mut worst) = (0usize, 0usize, 0.0f32);
+    for rec in records {
+        let b = lod.element(rec);
+        if screen.frustum.outside(&b.sphere) {
+            continue;
+        }
+        let edges = [0, 1, 2].map(|e| lod.edge(rec, e));
+        let (edge_levels, inner) = view.levels(&b, &edges);
+        let n = integer_level(inner);
+        if n >= view.max_level && b.chord.error(n as f32) > view.tolerance(&b.sphere) {
+            // Capped: the bound needs more than the maximum level here.
+            capped += 1;
+            continue;
+        }
+        drawn += 1;
+        let what = || {
+            format!(
+                "{} + {} at level {n}",
+                case.surface.name(),
+                case.displace.name()
+            )
+        };
+        for t in lattice_triangles(n) {
+            let bb = t.map(|(i, j)| lattice_bary(n, i, j));
+            let p = bb.map(|x| case.at(rec, x));
+            for c in 0..=4u32 {
+                for a in 0..=4 - c {
+                    let l = [(4 - a - c) as f32, a as f32, c as f32].map(|x| x / 4.0);
+                    let lin = p[0] * l[0] + p[1] * l[1] + p[2] * l[2];
+                    worst = worst.max(screen.check(case.at(rec, mix(bb, l)), lin, &what));
+                }
+            }
+        }
+        for (e, &level) in edge_levels.iter().enumerate() {
+            let m = integer_level(level);
+            let on = |t: f32| {
+                let mut b = [0.0f32; 3];
+                b[e] = 1.0 - t;
+                b[(e + 1) % 3] = t;
+                b
+            };
+            let what = || format!("{} edge at level {m}", case.surface.name());
+            for k in 0..m {
+                let (p0, p1) = (
+                    case.at(rec, on(k as f32 / m as f32)),
+                    case.at(rec, on((k + 1) as f32 / m as f32)),
+                );
+                for s in 1..8 {
+                    let f = (k as f32 + s as f32 / 8.0) / m as f32;
+                    let lin = p0 + (p1 - p0) * (s as f32 / 8.0);
+                    worst = worst.max(screen.check(case.at(rec, on(f)), lin, &what));
+                }
+            }
+        }
+    }
+    (drawn, capped, worst)
+}
+
+/// The metric end to end: levels for a real mesh and camera, then every visible sample of every
+/// element drawn at its inner level, and of every edge drawn at its own level, is within the
+/// pixel error of the drawn mesh, in the metric's own pixels (`d·K/|p − eye|`) and on screen
+/// through the real projection (where a deviation at angle φ off the view axis shows up to
+/// `1/cos²φ` larger than the metric counts). The worst sample must come within a small factor
+/// of the bound, so the check is not vacuous.
+#[test]
+fn pixel_error_holds_end_to_end() {
+    let (spot, recs) = corner_records("spot_control_tri_vn.obj");
+    let (tags, _) = crate::surface::stpn::derive(&spot);
+    let screen = Screen::new(&spot, 1.0);
+    let r = spot.bounding_radius();
+    let (plain, _) = load_model("spot_control_tri.obj");
+    assert_eq!(plain.positions, spot.positions);
+    let data = LoopData::new(&plain, Boundary::EdgeOnly, Lattice::default(), |_| {}).unwrap();
+    let frame = data.frame(&plain.positions);
+    for (surface, displace) in [
+        (Surface::Pn, Displace::None),
+        (Surface::Stpn, Displace::None),
+        (Surface::Phong, Displace::Noise),
+        (Surface::Flat, Displace::Sine),
+        (Surface::Loop, Displace::None),
+    ] {
+        let case = Case {
+            surface,
+            displace,
+            params: SurfaceParams {
+                amplitude: 0.01 * r,
+                // Noise cells four times the size of the sine's waves.
+                frequency: if displace == Displace::Noise {
+                    6.0 / r
+                } else {
+                    24.0 / r
+                },
+                ..SurfaceParams::for_radius(r)
+            },
+            inputs: Inputs {
+                tags: Some(&tags),
+                loop_: Some((&data, &frame)),
+                ..Default::default()
+            },
+        };
+        let records = if surface == Surface::Loop {
+            every(&data.records, 3)
+        } else {
+            recs.clone()
+        };
+        let (drawn, capped, worst) = end_to_end(&case, &records, &screen);
+        let what = format!("{} + {}", surface.name(), displace.name());
+        eprintln!("{what}: {drawn} elements checked, {capped} capped, worst {worst} px");
+        assert!(drawn > 50, "{what}: only {drawn} elements in view");
+        assert!(
+            capped * 20 <= drawn,
+            "{what}: {capped} of {drawn} elements capped"
+        );
+        assert!(worst > 1.0 / 20.0, "{what}: worst {worst} px");
+    }
+}
+
+/// The noise constants cover the scan of every corner-gradient choice, with at most 10% room.
+#[test]
+fn noise_constants_cover_the_scan() {
+    use super::displace::{noise_scan, NOISE_GRAD, NOISE_HESS, NOISE_MAX};
+    let (v, g, d, o) = noise_scan(64);
+    assert!(NOISE_MAX >= v && NOISE_MAX <= 1.1 * v, "value {v}");
+    let g = g * 3f32.sqrt();
+    assert!(NOISE_GRAD >= g && NOISE_GRAD <= 1.1 * g, "gradient {g}");
+    let h = d + 2.0 * o;
+    assert!(NOISE_HESS >= h && NOISE_HESS <= 1.1 * h, "hessian {h}");
+    // The scan finds what sampling the real noise finds (its largest gradient component is
+    // reached), so it is the noise's, not another function's.
+    let mut worst = 0.0f32;
+    for i in 0..20000 {
+        let p = Vec3::new(
+            i as f32 * 0.0137,
+            i as f32 * 0.0291 + 0.3,
+            i as f32 * 0.0077 + 0.6,
+        );
+        let (n, grad) = crate::surface::noise::noise_grad(p);
+        assert!(n.abs() <= v && grad.abs().max_element() <= g);
+        worst = worst.max(grad.abs().max_element());
+    }
+    assert!(worst > 0.5 * g / 3f32.sqrt(), "{worst}");
+}
