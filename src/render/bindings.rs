@@ -31,6 +31,12 @@ pub const BINDING_HEIGHTMAP: u32 = 3;
 /// Set 1, binding 4: every vertex's scalar tags (`stpn`), three `vec4` each.
 pub const BINDING_TAGS: u32 = 4;
 
+/// Set 1, binding 11: each element's levels for adaptive drawing (`vec4`: its stored edges'
+/// continuous levels, then its inner level; inner level 0 means culled: draw nothing), chunked
+/// like the records. Written by the level pass each frame (or uploaded,
+/// [`crate::lod::levels::ElementLevels`]); the drivers read it when they draw adaptively.
+pub const BINDING_LEVELS: u32 = 11;
+
 /// Set 1, bindings 5-10, texel buffers: the `loop` surface (src/render/loop_gpu.rs uploads them): M1's
 /// positions and normals (`vec4`, written by the Loop passes), each M1 face's table entry
 /// (`uvec4`: its table's rows, control points and column pairs, first control index,
@@ -86,6 +92,7 @@ pub const GLSL_DEFINES: &[(&str, u32)] = &[
     ("BINDING_UVS", BINDING_UVS),
     ("BINDING_HEIGHTMAP", BINDING_HEIGHTMAP),
     ("BINDING_TAGS", BINDING_TAGS),
+    ("BINDING_LEVELS", BINDING_LEVELS),
     ("SET_CAPTURE", SET_CAPTURE),
     ("BINDING_CAPTURE", BINDING_CAPTURE),
     ("BINDING_CAPTURE_COUNT", BINDING_CAPTURE_COUNT),

@@ -36,6 +36,10 @@ pub struct FrameWork<'a> {
     pub xfb: Option<&'a Buffer>,
     /// Draw the refined triangles' edges in a second pass (if the device supports it).
     pub wireframe: bool,
+    /// Draw each element at its own levels from the mesh's levels buffer
+    /// ([`GpuMesh::levels`], src/lod/levels.rs), `cfg.level` being the largest; otherwise every
+    /// element at `cfg.level`.
+    pub adaptive: bool,
     /// The elements to draw (all of them for an image; capture passes draw a part).
     pub elements: std::ops::Range<u32>,
     pub clear: [f32; 4],
@@ -56,6 +60,7 @@ impl<'a> FrameWork<'a> {
             capture: Capture::None,
             xfb: None,
             wireframe: false,
+            adaptive: false,
             elements: 0..mesh.element_count,
             clear: CLEAR_COLOR,
         }

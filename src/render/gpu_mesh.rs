@@ -9,6 +9,7 @@ use super::RenderError;
 use crate::gpu::{
     vk, Buffer, BufferDesc, BufferView, CommandPool, Context, DescriptorPool, GpuError,
 };
+use crate::lod::levels::ElementLevels;
 use crate::mesh::Mesh;
 use crate::pattern::{Pattern, PatternSet};
 use crate::surface::stpn::VertexTag;
@@ -108,6 +109,9 @@ pub struct GpuMesh {
     pub heightmap: Buffer,
     /// Every vertex's scalar tags (`stpn`).
     pub tags: Buffer,
+    /// Each element's levels ([`ElementLevels`], 16 bytes), read by the drivers when they draw
+    /// adaptively (`FrameWork::adaptive`); written by the level pass or [`GpuMesh::upload_levels`].
+    pub levels: Buffer,
     /// Shared by the scene's meshes (the loop surface's M1 draws the same patterns).
     pub patterns: Arc<Vec<GpuPattern>>,
     pub pool: DescriptorPool,
@@ -169,6 +173,9 @@ pub fn chunk_elements(max_range: u64, align: u64, sizes: &[u64]) -> u32 {
     n.clamp(1, u32::MAX as u64) as u32
 }
 
+/// Bytes of one element's levels on the GPU.
+const LEVELS_BYTES: u64 = std::mem::size_of::<ElementLevels>() as u64;
+
 /// Bytes of one element's texture coordinates on the GPU (three `vec2`, padded).
 const UV_BYTES: u64 = 32;
 
@@ -188,6 +195,11 @@ impl GpuMesh {
         let chunk = chunk_size(ctx, max_chunk);
         let chunks = n.div_ceil(chunk as u64).max(1) as u32;
         let records = upload_records(ctx, &data.records)?;
+        let levels = storage(
+            ctx,
+            &vec![ElementLevels::UNIFORM_1; n.max(1) as usize],
+            "element levels",
+        )?;
         let inputs = SurfaceInputs::upload(ctx, data, &extras)?;
         let patterns = match patterns {
             Patterns::Upload(set) => Arc::new(
@@ -202,7 +214,7 @@ impl GpuMesh {
             ctx,
             chunks,
             &[
-                (vk::DescriptorType::STORAGE_BUFFER, 4 * chunks),
+                (vk::DescriptorType::STORAGE_BUFFER, 5 * chunks),
                 (vk::DescriptorType::UNIFORM_TEXEL_BUFFER, 6 * chunks),
                 (vk::DescriptorType::UNIFORM_BUFFER_DYNAMIC, chunks),
             ],
@@ -222,6 +234,14 @@ impl GpuMesh {
                 let first = c * chunk as u64;
                 let count = (n - first.min(n)).min(chunk as u64).max(1);
                 write_mesh_set(&pool, set, &records, &inputs, &views, first, count);
+                pool.write_buffer_at(
+                    set,
+                    BINDING_LEVELS,
+                    vk::DescriptorType::STORAGE_BUFFER,
+                    levels.raw,
+                    first * LEVELS_BYTES,
+                    count * LEVELS_BYTES,
+                );
                 Ok(set)
             })
             .collect::<Result<Vec<_>, GpuError>>()?;
@@ -231,6 +251,7 @@ impl GpuMesh {
             uvs: inputs.uvs,
             heightmap: inputs.heightmap,
             tags: inputs.tags,
+            levels,
             patterns,
             pool,
             sets,
@@ -264,6 +285,13 @@ impl GpuMesh {
         self.patterns.iter().find(|p| p.level == level)
     }
 
+    /// Upload every element's levels (tests and CPU-chosen levels; the level pass writes the
+    /// same buffer on the GPU). The caller makes sure no pending work reads them.
+    pub fn upload_levels(&mut self, levels: &[ElementLevels]) {
+        assert_eq!(levels.len() as u32, self.element_count);
+        self.levels.write_pod(0, levels);
+    }
+
     /// Upload new coarse records (animation). The caller makes sure no pending work reads them.
     pub fn update_records(&mut self, records: &[ElementRecord]) {
         assert_eq!(records.len() as u32, self.element_count);
@@ -279,7 +307,7 @@ fn chunk_size(ctx: &Context, max_chunk: Option<u32>) -> u32 {
     let align = limits.min_storage_buffer_offset_alignment;
     let range = limits.max_storage_buffer_range as u64;
     let range = max_chunk.map_or(range, |c| range.min(c as u64 * rec_size));
-    chunk_elements(range, align, &[rec_size, UV_BYTES])
+    chunk_elements(range, align, &[rec_size, UV_BYTES, LEVELS_BYTES])
 }
 
 /// The records, padded to whole `ubo` windows (storage, uniform and vertex buffer alike).
