@@ -64,7 +64,8 @@ impl Drop for Xvfb {
     }
 }
 
-fn run_view(display: &str, extra: &[&str], shot: &std::path::Path) {
+/// Runs `view` for 24 frames with a screenshot; returns its stderr.
+fn run_view(display: &str, extra: &[&str], shot: &std::path::Path) -> String {
     let mut child = Command::new(env!("CARGO_BIN_EXE_meshrefine"))
         .args([
             "--validate",
@@ -96,6 +97,7 @@ fn run_view(display: &str, extra: &[&str], shot: &std::path::Path) {
     assert!(out.status.success(), "view {extra:?} failed: {stderr}");
     assert!(!stderr.contains("validation"), "view {extra:?}: {stderr}");
     assert!(String::from_utf8_lossy(&out.stdout).contains("saved"));
+    stderr.into_owned()
 }
 
 /// Pixels in the central third that differ from the top-left (background) pixel.
@@ -139,10 +141,20 @@ fn window_demo_presents_and_screenshots() {
             "loop-tess",
             vec!["--surface", "loop", "--driver", "tess", "--level", "4"],
         ),
+        // 372 x 1024² triangles a frame would take minutes on lavapipe: the demo lowers the
+        // level to keep frames under a second, and says so.
+        ("budget", vec!["--level", "1024"]),
     ] {
         let shot = dir.join(format!("{name}.png"));
         let _ = std::fs::remove_file(&shot);
-        run_view(&x.display, &extra, &shot);
+        let stderr = run_view(&x.display, &extra, &shot);
+        if name == "budget" {
+            assert!(
+                stderr.contains("level 1024 would take over a second a frame")
+                    && stderr.contains("drawing level 64"),
+                "{stderr}"
+            );
+        }
         let (n, total) = covered(&shot);
         assert!(
             n > total / 5,
@@ -300,6 +312,9 @@ fn keys_switch_driver_level_and_views() {
     wait_title("pattern/instanced level 8");
     for (key, want) in [
         ("3", "tess level 8"),
+        // Beyond the level the demo started at.
+        ("plus", "tess level 16"),
+        ("minus", "tess level 8"),
         ("minus", "tess level 4"),
         ("w", "level 4 wire"),
         ("u", "pattern/ubo level 4 wire"),

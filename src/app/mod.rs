@@ -18,7 +18,9 @@ use crate::gpu::{
 };
 use crate::mesh::Mesh;
 use crate::render::frame::{cmd_render, FrameWork, TargetView};
-use crate::render::{Camera, DrawConfig, FrameUniforms, Renderer, Scene, View};
+use crate::render::{
+    software_frame_seconds, Camera, DrawConfig, FrameUniforms, Renderer, Scene, View,
+};
 use crate::surface::Surface;
 use anyhow::{anyhow, Context as _, Result};
 use raw_window_handle::{HasDisplayHandle, HasWindowHandle};
@@ -56,6 +58,10 @@ pub struct ViewOptions {
     /// the loader dropped): switching to loop then warns with it and shows pn.
     pub loop_refusal: Option<String>,
 }
+
+/// The window offers every power-of-two level up to this one (and the level it starts at):
+/// `+` reaches it whatever the start level. A pattern of level 256 is 33,153 vertices.
+pub const WINDOW_LEVELS: u32 = 256;
 
 pub const KEY_HELP: &str = "keys: drag = orbit, wheel = zoom, 1/2/3 = static/pattern/tess, \
 P/U/I = push/ubo/instanced, S = next surface, D = next displacement, N = normals view, \
@@ -168,6 +174,9 @@ struct State {
     max_level: u32,
     /// The level last lowered to what the driver can draw (said once).
     level_note: Option<u32>,
+    /// Set while the frame draws a lower level than asked, to keep frames under a second on a
+    /// software device: what the panel says about it.
+    budget_note: Option<String>,
     start: Instant,
     frames: u64,
     recorded_once: bool,
@@ -211,8 +220,14 @@ impl App {
         let cmd = pool.allocate(1)?[0];
         let mesh = self.mesh.take().expect("created once");
         let cfg = self.opts.cfg;
-        let max_level = cfg.level;
-        let mut scene = Scene::new(&ctx, &pool, &renderer, mesh.clone(), max_level)?;
+        // Every power of two up to WINDOW_LEVELS (and the level asked for), whatever the start.
+        let max_level = cfg.level.max(WINDOW_LEVELS);
+        let mut levels: Vec<u32> = (0..=WINDOW_LEVELS.trailing_zeros())
+            .map(|s| 1 << s)
+            .collect();
+        levels.push(cfg.level);
+        let patterns = crate::pattern::PatternSet::from_levels(&levels);
+        let mut scene = Scene::with_patterns(&ctx, &pool, &renderer, mesh.clone(), patterns)?;
         if let Some(map) = self.opts.heightmap.clone() {
             scene.set_heightmap(&ctx, &pool, &renderer, map)?;
         }
@@ -255,6 +270,7 @@ impl App {
             drawn: cfg,
             max_level,
             level_note: None,
+            budget_note: None,
             start: Instant::now(),
             frames: 0,
             recorded_once: false,
@@ -372,6 +388,7 @@ impl State {
                 .unwrap_or(1);
         }
         let wire = self.controls.wireframe;
+        self.fit_frame_budget(&mut cfg, wire);
         let mut prepare = |cfg: &DrawConfig| {
             let none = crate::render::Capture::None;
             self.scene
@@ -398,6 +415,45 @@ impl State {
             other => other?,
         }
         Ok(cfg)
+    }
+
+    /// On a software device, lower `cfg.level` to the finest level whose frame the slower
+    /// estimate ([`software_frame_seconds`]) puts under a second (the wireframe
+    /// pass counted as a second draw), and say so in the panel: the window stays responsive
+    /// whatever level is asked for. Other devices draw what is asked.
+    fn fit_frame_budget(&mut self, cfg: &mut DrawConfig, wire: bool) {
+        self.budget_note = None;
+        if self.ctx.info.device_type != crate::gpu::vk::PhysicalDeviceType::CPU {
+            return;
+        }
+        let elements = self.scene.elements(cfg.surface).element_count as u64;
+        let passes = if wire { 2 } else { 1 };
+        let fits = |level: u32| {
+            let mut c = *cfg;
+            c.level = level;
+            let refined = elements * c.refined_per_element() as u64 * passes;
+            software_frame_seconds(refined).is_none()
+        };
+        if fits(cfg.level) {
+            return;
+        }
+        let asked = cfg.level;
+        cfg.level = self
+            .scene
+            .patterns
+            .levels()
+            .filter(|&l| l < asked && fits(l))
+            .last()
+            .unwrap_or(1);
+        let note = format!(
+            "level {asked} would take over a second a frame on this software device: drawing level {}",
+            cfg.level
+        );
+        if self.level_note != Some(asked) {
+            log::warn!("{note}");
+            self.level_note = Some(asked);
+        }
+        self.budget_note = Some(note);
     }
 
     /// Record the frame into `self.cmd`: the scene, the panel on top, and the screenshot copy.
@@ -519,6 +575,8 @@ impl State {
                 .filter(|_| d.surface.uses_loop_faces())
                 .map(|l| l.data.table_bytes()),
             has_texcoords: self.scene.data.uvs.is_some(),
+            animating: self.controls.animate,
+            note: self.budget_note.as_deref(),
         };
         self.ui.run(&self.window, &mut self.controls, &info)
     }

@@ -58,10 +58,14 @@ pub struct PanelInfo<'a> {
     pub geometry_bytes: u64,
     /// Bytes an animated frame uploads (level-independent but for static).
     pub upload_bytes: u64,
+    /// Whether the mesh is animated (the upload figure is shown only then).
+    pub animating: bool,
     /// The loop surface's basis function tables.
     pub table_bytes: Option<u64>,
     /// Whether the mesh has texture coordinates (the height map needs them).
     pub has_texcoords: bool,
+    /// Why the frame draws less than asked (a level lowered to keep frames interactive).
+    pub note: Option<&'a str>,
 }
 
 /// One frame of egui output, ready for [`crate::gpu::Overlay`].
@@ -184,11 +188,14 @@ fn statistics(ui: &mut egui::Ui, info: &PanelInfo) {
                 "GPU geometry",
                 format!("{:.2} MB", info.geometry_bytes as f64 / 1e6),
             ),
-            (
+        ];
+        // What an animated frame uploads, while it animates.
+        if info.animating {
+            rows.push((
                 "animated upload",
                 format!("{:.1} KB / frame", info.upload_bytes as f64 / 1e3),
-            ),
-        ];
+            ));
+        }
         if let Some(t) = info.table_bytes {
             rows.push(("BF tables", format!("{:.1} KB", t as f64 / 1e3)));
         }
@@ -198,6 +205,9 @@ fn statistics(ui: &mut egui::Ui, info: &PanelInfo) {
             ui.end_row();
         }
     });
+    if let Some(note) = info.note {
+        ui.label(RichText::new(note).color(egui::Color32::from_rgb(240, 190, 90)));
+    }
 }
 
 /// How it is drawn: the driver, the pattern driver's submission, the level (unless LOD sets it).

@@ -24,7 +24,7 @@ pub use error::RenderError;
 pub use gpu_mesh::{GpuMesh, GpuPattern, MeshData};
 pub use headless::{clear_color_srgb8, covered_pixels, CaptureResult, FrameTiming, Headless};
 pub use pipelines::{Renderer, GEOMETRY_STAGES, PUSH_STAGES};
-pub use scene::Scene;
+pub use scene::{software_frame_seconds, Scene};
 
 use crate::surface::{BuildOptions, Displace, ElementRecord, Surface, SurfaceParams};
 use bytemuck::{Pod, Zeroable};
