@@ -5,7 +5,7 @@
 //!   two valence-32 poles, a torus, an open wavy grid), levels 4, 16 and 32 (the paper's depths 2,
 //!   4 and 5): GPU time, throughput against flat, the M0 -> M1 passes' cost and the tables' bytes.
 //! - `fig8`: per-triangle cost against level on the default mesh (levels 1 to 32);
-//!   `python3 scripts/plot-fig8.py` draws docs/bench/fig8.svg from it.
+//!   `python3 scripts/plot.py cost` draws docs/bench/fig8.svg from it.
 //!
 //! Writes docs/bench/{table1,fig8}.{md,csv,json} (see `meshrefine::bench::Harness`);
 //! `MESHREFINE_BENCH_QUICK=1` (and `cargo test --benches`) runs a smaller, validated set.

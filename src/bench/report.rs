@@ -11,7 +11,7 @@
 //! max) in its median's cell; the summary keeps the few columns that matter and fits
 //! [`SUMMARY_WIDTH`] characters, the full table going to files.
 //!
-//! The CSV's column names and order are a contract: scripts/plot-fig8.py and
+//! The CSV's column names and order are a contract: scripts/plot.py and
 //! scripts/table1-runs.py read them by name.
 #![forbid(unsafe_code)]
 
