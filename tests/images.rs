@@ -214,3 +214,59 @@ fn wireframe_pass_draws_edges() {
         h.wireframe = false;
     });
 }
+
+/// Mean (r, g, b) of the pixels that differ from the background.
+fn mean_mesh_color(img: &Readback) -> [f64; 3] {
+    let bg = &img.rgba[..3];
+    let (mut sum, mut n) = ([0.0f64; 3], 0usize);
+    for px in img.rgba.chunks_exact(4) {
+        if px[..3] != *bg {
+            for c in 0..3 {
+                sum[c] += px[c] as f64;
+            }
+            n += 1;
+        }
+    }
+    assert!(n > 1000, "only {n} mesh pixels");
+    sum.map(|s| s / n as f64)
+}
+
+/// The levels view colours each element by the level it is drawn at: bluer at level 1, redder at
+/// level 64, on every driver (uniform levels here; adaptive frames read each element's own),
+/// while the shaded view keeps the surface colour.
+#[test]
+fn levels_view_colours_by_level() {
+    use meshrefine::render::View;
+    with_gpu(320, 240, |h| {
+        let mut scene = h.scene(default_mesh(), 64).unwrap();
+        let (c, r) = scene.bounding_sphere();
+        let camera = Camera::framing(c, r);
+        for driver in [
+            Driver::Static,
+            Driver::Pattern(Submit::Instanced),
+            Driver::Tess,
+        ] {
+            let mut at = |h: &mut meshrefine::render::Headless, level: u32, view: View| {
+                h.view = view;
+                let img = h
+                    .render(&mut scene, &DrawConfig::new(driver, level), &camera)
+                    .unwrap();
+                mean_mesh_color(&img)
+            };
+            let low = at(h, 1, View::Levels);
+            let high = at(h, 64, View::Levels);
+            let shaded = at(h, 1, View::Shaded);
+            let name = driver.name();
+            assert!(low[2] > 1.5 * low[0], "{name}: level 1 not blue: {low:?}");
+            assert!(
+                high[0] > 1.5 * high[2],
+                "{name}: level 64 not red: {high:?}"
+            );
+            assert!(
+                shaded[0] > shaded[2],
+                "{name}: the shaded view lost the surface colour: {shaded:?}"
+            );
+        }
+        h.view = View::Shaded;
+    });
+}

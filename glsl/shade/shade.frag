@@ -3,15 +3,26 @@
 // normal field of its own (pn: FRAGMENT_FIELD), the normal is evaluated at this fragment's
 // barycentric coordinates (the field, or with displacement the displaced normal), so highlights
 // do not depend on the refinement level; otherwise the interpolated vertex normal. The WIRE variant (a second
-// pass in polygon mode LINE) draws the refined triangles' edges; frame.view = VIEW_NORMALS shows normals.
+// pass in polygon mode LINE) draws the refined triangles' edges; frame.view = VIEW_NORMALS shows normals,
+// VIEW_LEVELS the lit surface coloured by the level its element is drawn at.
 #define FRAGMENT_STAGE
 #include "records.glsl"
 #include "surface.glsl"
 #include "varyings.glsl"
+#include "levels.glsl"
 
 layout(constant_id = SPEC_WIRE) const uint WIRE = 0;
 
 layout(location = 0) out vec4 out_color;
+
+// A colour per level, by its power of two: blue at 1, through cyan, green, yellow, to red at
+// 256 and beyond; levels between two powers of two fall between their colours.
+vec3 level_color(float level) {
+    const vec3 ramp[5] = vec3[5](vec3(0.20, 0.35, 0.95), vec3(0.15, 0.80, 0.85), vec3(0.30, 0.85, 0.30),
+                                 vec3(0.95, 0.85, 0.20), vec3(0.95, 0.25, 0.20));
+    float t = clamp(log2(max(level, 1.0)) / 2.0, 0.0, 3.999);
+    return mix(ramp[int(t)], ramp[int(t) + 1], fract(t));
+}
 
 void main() {
     if (WIRE != 0) {
@@ -39,6 +50,10 @@ void main() {
     vec3 h = normalize(l + v);
     float diffuse = max(dot(n, l), 0.0);
     float specular = pow(max(dot(n, h), 0.0), 48.0);
-    vec3 color = frame.base_color.rgb * (0.18 + 0.82 * diffuse) + vec3(0.22 * specular);
+    vec3 base = frame.base_color.rgb;
+    if (frame.view == VIEW_LEVELS) {
+        base = level_color(frame.level > 0.0 ? frame.level : element_levels[v_element].w);
+    }
+    vec3 color = base * (0.18 + 0.82 * diffuse) + vec3(0.22 * specular);
     out_color = vec4(color, 1.0);
 }

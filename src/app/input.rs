@@ -130,10 +130,7 @@ impl State {
                     }
                 }
                 "n" | "N" => {
-                    c.view = match c.view {
-                        View::Normals => View::Shaded,
-                        View::Shaded => View::Normals,
-                    }
+                    c.view = next(&View::ALL, c.view);
                 }
                 "p" | "P" => c.set_submit(Submit::Push),
                 "u" | "U" => c.set_submit(Submit::Ubo),

@@ -293,10 +293,14 @@ fn parameters(ui: &mut egui::Ui, c: &mut Controls) {
 
 /// How it is shown: normals view, LOD, wireframe (where supported), animation, the hint.
 fn display(ui: &mut egui::Ui, c: &mut Controls, info: &PanelInfo) {
-    let mut normals = c.view == View::Normals;
-    if ui.checkbox(&mut normals, "normals view").changed() {
-        c.view = if normals { View::Normals } else { View::Shaded };
-    }
+    ui.horizontal(|ui| {
+        ui.label("view [N]");
+        for v in View::ALL {
+            if ui.selectable_label(c.view == v, v.name()).clicked() {
+                c.view = v;
+            }
+        }
+    });
     ui.checkbox(&mut c.lod, "LOD by distance");
     ui.add_enabled(
         info.wireframe_supported,

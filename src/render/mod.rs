@@ -134,6 +134,20 @@ pub enum View {
     Shaded = 0,
     /// The normal field as colour.
     Normals = 1,
+    /// The lit surface coloured by each element's level (blue at 1 to red at 256).
+    Levels = 2,
+}
+
+impl View {
+    pub const ALL: [View; 3] = [View::Shaded, View::Normals, View::Levels];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            View::Shaded => "shaded",
+            View::Normals => "normals",
+            View::Levels => "levels",
+        }
+    }
 }
 
 /// `Frame` uniform block (glsl/include/records.glsl), std140.
@@ -157,7 +171,9 @@ pub struct FrameUniforms {
     pub heightmap_bias: f32,
     /// The height map pyramid level to read ([`Scene::heightmap_lod`]).
     pub heightmap_lod: f32,
-    pub _pad: f32,
+    /// The level every element is drawn at; 0 when each is drawn at its own
+    /// ([`FrameUniforms::adaptive`]).
+    pub level: f32,
 }
 
 const _: () = {
@@ -190,8 +206,13 @@ impl FrameUniforms {
             view: view as u32,
             heightmap_bias: params.bias,
             heightmap_lod: scene.heightmap_lod(cfg.level),
-            _pad: 0.0,
+            level: cfg.level as f32,
         }
+    }
+
+    /// The same frame with each element drawn at its own levels (the levels view reads them).
+    pub fn adaptive(self) -> Self {
+        Self { level: 0.0, ..self }
     }
 }
 
