@@ -2029,3 +2029,43 @@ fn devices_lists_lavapipe_with_its_features() {
     );
     assert!(s.lines().all(|l| l.chars().count() <= 120), "{s}");
 }
+
+/// A height map whose level 0 alone (5800² f32 texels, 134.6 MB) is more than a storage buffer
+/// may span (maxStorageBufferRange, 128 MiB on lavapipe) renders without a validation message:
+/// the texels live in a texel buffer, limited by maxTexelBufferElements, which the map's whole
+/// pyramid (44.9 M texels) is within.
+#[test]
+fn a_heightmap_beyond_a_storage_buffer_range_renders() {
+    let side = 5800u32;
+    let png = tmp("hm-big.png");
+    {
+        let row: Vec<u8> = (0..side).map(|x| (x * 255 / side) as u8).collect();
+        let data: Vec<u8> = (0..side).flat_map(|_| row.iter().copied()).collect();
+        let mut e = png::Encoder::new(std::fs::File::create(&png).unwrap(), side, side);
+        e.set_color(png::ColorType::Grayscale);
+        e.set_depth(png::BitDepth::Eight);
+        e.write_header().unwrap().write_image_data(&data).unwrap();
+    }
+    let out = tmp("hm-big-render.png");
+    let grid = model_path("grid_uv_8x8.obj");
+    let args = [
+        "render",
+        p(&grid),
+        "-o",
+        p(&out),
+        "--width",
+        "96",
+        "--height",
+        "64",
+        "--level",
+        "4",
+        "--displace",
+        "heightmap",
+        "--heightmap",
+        p(&png),
+    ];
+    let o = meshrefine(&args);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{stderr}");
+    assert!(!stderr.contains("validation"), "{stderr}");
+}

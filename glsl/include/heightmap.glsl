@@ -8,8 +8,14 @@
 layout(set = SET_MESH, binding = BINDING_HEIGHTMAP, std430) readonly buffer HeightmapData {
     uvec4 hm_header;       // x: level count
     uvec4 hm_level[16];    // offset (texels), width, height, 0
-    float hm_texels[];
 };
+// Every level's texels, level after level (a texel buffer: an 8192² pyramid is larger than a
+// storage-buffer range may be). texelFetch returns the stored f32 exactly.
+layout(set = SET_MESH, binding = BINDING_HEIGHTMAP_TEXELS) uniform samplerBuffer hm_texels;
+
+float hm_texel(uint i) {
+    return texelFetch(hm_texels, int(i)).r;
+}
 
 // Mirror: `Heightmap::bilinear`.
 float heightmap_bilinear(uint l, vec2 uv, out vec2 grad) {
@@ -23,8 +29,8 @@ float heightmap_bilinear(uint l, vec2 uv, out vec2 grad) {
     int iw = int(w), ih = int(h);
     uint ix0 = uint(((int(x0) % iw) + iw) % iw), iy0 = uint(((int(y0) % ih) + ih) % ih);
     uint ix1 = (ix0 + 1u) % w, iy1 = (iy0 + 1u) % h;
-    float t00 = hm_texels[base + iy0 * w + ix0], t10 = hm_texels[base + iy0 * w + ix1];
-    float t01 = hm_texels[base + iy1 * w + ix0], t11 = hm_texels[base + iy1 * w + ix1];
+    float t00 = hm_texel(base + iy0 * w + ix0), t10 = hm_texel(base + iy0 * w + ix1);
+    float t01 = hm_texel(base + iy1 * w + ix0), t11 = hm_texel(base + iy1 * w + ix1);
     precise float top = t00 + fx * (t10 - t00);
     precise float bottom = t01 + fx * (t11 - t01);
     precise float value = top + fy * (bottom - top);

@@ -26,8 +26,12 @@ pub const UBO_WINDOW: u32 = 144;
 /// Set 1, binding 2: each element's texture coordinates, three `vec2` padded to 32 bytes
 /// (`heightmap` displacement), chunked like the records.
 pub const BINDING_UVS: u32 = 2;
-/// Set 1, binding 3: the height map's mip pyramid (`Heightmap::to_gpu`).
+/// Set 1, binding 3: the height map's pyramid layout (`Heightmap::gpu_header`), storage buffer.
 pub const BINDING_HEIGHTMAP: u32 = 3;
+/// Set 1, binding 12: the height map's texels, every level (`Heightmap::gpu_texels`), an `R32`
+/// uniform texel buffer: maxTexelBufferElements texels (at least 65,536; 134 M on common
+/// devices), not the 128 MiB a storage-buffer range may span, so an 8192² map fits.
+pub const BINDING_HEIGHTMAP_TEXELS: u32 = 12;
 /// Set 1, binding 4: every vertex's scalar tags (`stpn`), three `vec4` each.
 pub const BINDING_TAGS: u32 = 4;
 
@@ -91,6 +95,7 @@ pub const GLSL_DEFINES: &[(&str, u32)] = &[
     ("UBO_WINDOW", UBO_WINDOW),
     ("BINDING_UVS", BINDING_UVS),
     ("BINDING_HEIGHTMAP", BINDING_HEIGHTMAP),
+    ("BINDING_HEIGHTMAP_TEXELS", BINDING_HEIGHTMAP_TEXELS),
     ("BINDING_TAGS", BINDING_TAGS),
     ("BINDING_LEVELS", BINDING_LEVELS),
     ("SET_CAPTURE", SET_CAPTURE),

@@ -120,9 +120,12 @@ pub struct GpuMesh {
     pub sets: Vec<vk::DescriptorSet>,
     /// Elements per chunk.
     pub chunk: u32,
-    /// The loop buffers' texel views (a [`LoopScene`] drops its `gpu` before its `pass`, which
-    /// owns the buffers; the placeholder's views before the placeholder, declared after).
+    /// The loop buffers' texel views, then the height map's (a [`LoopScene`] drops its `gpu`
+    /// before its `pass`, which owns the buffers; the placeholder's views before the
+    /// placeholder, declared after).
     _views: Vec<BufferView>,
+    /// The height map's texels, every level (a uniform texel buffer; after its view).
+    pub heightmap_texels: Buffer,
     /// Bound where a surface's buffers are absent (every binding must be valid).
     _placeholder: Buffer,
 }
@@ -194,6 +197,7 @@ impl GpuMesh {
         let n = data.records.len() as u64;
         let chunk = chunk_size(ctx, max_chunk);
         let chunks = n.div_ceil(chunk as u64).max(1) as u32;
+        check_heightmap(ctx, extras.heightmap)?;
         let records = upload_records(ctx, &data.records)?;
         let levels = storage(
             ctx,
@@ -215,7 +219,7 @@ impl GpuMesh {
             chunks,
             &[
                 (vk::DescriptorType::STORAGE_BUFFER, 5 * chunks),
-                (vk::DescriptorType::UNIFORM_TEXEL_BUFFER, 6 * chunks),
+                (vk::DescriptorType::UNIFORM_TEXEL_BUFFER, 7 * chunks),
                 (vk::DescriptorType::UNIFORM_BUFFER_DYNAMIC, chunks),
             ],
             "mesh descriptors",
@@ -227,7 +231,13 @@ impl GpuMesh {
             &[0u32; 4],
             "placeholder",
         )?;
-        let views = loop_views(ctx, extras.loop_, &placeholder)?;
+        let mut views = loop_views(ctx, extras.loop_, &placeholder)?;
+        views.push(BufferView::new(
+            ctx,
+            &inputs.heightmap_texels,
+            vk::Format::R32_SFLOAT,
+            "height map texels view",
+        )?);
         let sets = (0..chunks as u64)
             .map(|c| {
                 let set = pool.allocate(set_layout, &format!("mesh set {c}"))?;
@@ -250,6 +260,7 @@ impl GpuMesh {
             records,
             uvs: inputs.uvs,
             heightmap: inputs.heightmap,
+            heightmap_texels: inputs.heightmap_texels,
             tags: inputs.tags,
             levels,
             patterns,
@@ -337,6 +348,7 @@ struct SurfaceInputs {
     uv_count: u64,
     own_uvs: bool,
     heightmap: Buffer,
+    heightmap_texels: Buffer,
     tags: Buffer,
 }
 
@@ -364,7 +376,24 @@ impl SurfaceInputs {
             uvs: storage(ctx, &uv_words, "element texture coordinates")?,
             uv_count: uv_words.len() as u64,
             own_uvs: data.uvs.is_some(),
-            heightmap: storage(ctx, &extras.heightmap.to_gpu(), "height map pyramid")?,
+            heightmap: storage(
+                ctx,
+                &extras.heightmap.gpu_header(),
+                "height map pyramid layout",
+            )?,
+            heightmap_texels: {
+                let texels = extras.heightmap.gpu_texels();
+                let mut b = Buffer::new(
+                    ctx,
+                    BufferDesc::new_upload(
+                        std::mem::size_of_val(&texels[..]) as u64,
+                        vk::BufferUsageFlags::UNIFORM_TEXEL_BUFFER,
+                    ),
+                    "height map texels",
+                )?;
+                b.write_pod(0, &texels);
+                b
+            },
             tags: storage(ctx, &tag_words, "vertex scalar tags")?,
         })
     }
@@ -386,6 +415,28 @@ fn storage<T: bytemuck::Pod>(
     )?;
     b.write_pod(0, words);
     Ok(b)
+}
+
+/// Refuses a height map whose pyramid has more texels than a texel buffer may hold on this
+/// device (maxTexelBufferElements), before anything is uploaded.
+fn check_heightmap(ctx: &Context, map: &Heightmap) -> Result<(), RenderError> {
+    let needed = map.texel_count();
+    let max = ctx.info.limits.max_texel_buffer_elements as u64;
+    if needed > max {
+        let l = &map.levels[0];
+        return Err(RenderError::OverLimit {
+            what: format!(
+                "height map '{}' ({} x {} pixels, with its mip pyramid)",
+                map.source, l.w, l.h
+            ),
+            needed,
+            unit: "texels",
+            limit: "maxTexelBufferElements",
+            max,
+            remedy: "use a smaller height map".into(),
+        });
+    }
+    Ok(())
 }
 
 /// Texel views of the `loop` surface's buffers (M1, face entries, control points, tables, row
@@ -479,6 +530,7 @@ fn write_mesh_set(
         BINDING_LOOP_CONTROL,
         BINDING_LOOP_TABLES,
         BINDING_LOOP_ROWS,
+        BINDING_HEIGHTMAP_TEXELS,
     ]
     .into_iter()
     .zip(views)

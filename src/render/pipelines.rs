@@ -94,6 +94,11 @@ impl Renderer {
                 // texture coordinates and the height map (heightmap displacement)
                 (BINDING_UVS, T::STORAGE_BUFFER, ALL_STAGES),
                 (BINDING_HEIGHTMAP, T::STORAGE_BUFFER, ALL_STAGES),
+                (
+                    BINDING_HEIGHTMAP_TEXELS,
+                    T::UNIFORM_TEXEL_BUFFER,
+                    ALL_STAGES,
+                ),
                 // every vertex's scalar tags (stpn)
                 (BINDING_TAGS, T::STORAGE_BUFFER, ALL_STAGES),
                 // each element's levels (adaptive drawing)

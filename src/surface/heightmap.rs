@@ -173,10 +173,10 @@ impl Heightmap {
         lod.min((self.levels.len() - 1) as f32)
     }
 
-    /// The buffer the GPU samples (`Heightmap` block in heightmap.glsl): `uvec4` header (level
-    /// count), [`MAX_LEVELS`] `uvec4` (offset in texels, width, height, 0), then every level's
-    /// heights as `f32` bits.
-    pub fn to_gpu(&self) -> Vec<u32> {
+    /// The pyramid's layout as the GPU reads it (`HeightmapData` block in heightmap.glsl):
+    /// `uvec4` header (level count), [`MAX_LEVELS`] `uvec4` (offset in texels, width, height,
+    /// 0).
+    pub fn gpu_header(&self) -> Vec<u32> {
         let mut out = vec![0u32; 4 + 4 * MAX_LEVELS];
         out[0] = self.levels.len() as u32;
         let mut offset = 0u32;
@@ -186,10 +186,21 @@ impl Heightmap {
             out[6 + 4 * i] = l.h;
             offset += l.w * l.h;
         }
+        out
+    }
+
+    /// Every level's heights, level after level (the `hm_texels` texel buffer).
+    pub fn gpu_texels(&self) -> Vec<f32> {
+        let mut out = Vec::with_capacity(self.texel_count() as usize);
         for l in &self.levels {
-            out.extend(l.texels.iter().map(|t| t.to_bits()));
+            out.extend_from_slice(&l.texels);
         }
         out
+    }
+
+    /// Texels in the whole pyramid.
+    pub fn texel_count(&self) -> u64 {
+        self.levels.iter().map(|l| l.w as u64 * l.h as u64).sum()
     }
 
     /// Bilinear sample of level `l` at `uv` (repeating) and its derivative by `uv`.
