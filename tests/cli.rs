@@ -812,6 +812,16 @@ fn expect_success(args: &[&str]) {
     );
 }
 
+/// Writes an 8-bit grayscale PNG of `w` x `h` pixels into the tests' directory.
+fn gray_png(name: &str, w: u32, h: u32, pixels: &[u8]) -> PathBuf {
+    let path = tmp(name);
+    let mut e = png::Encoder::new(std::fs::File::create(&path).unwrap(), w, h);
+    e.set_color(png::ColorType::Grayscale);
+    e.set_depth(png::BitDepth::Eight);
+    e.write_header().unwrap().write_image_data(pixels).unwrap();
+    path
+}
+
 /// Runs `export` with `args` (after `export`), expects success, and reloads what it wrote.
 fn export_and_reload(obj: &Path, args: &[&str]) -> meshrefine::mesh::Mesh {
     let mut all = vec!["export", "-o", p(obj)];
@@ -924,17 +934,8 @@ fn text_that_is_not_obj_stops_at_its_first_line() {
 #[test]
 fn heightmap_displacement_and_its_errors() {
     let grid = model_path("grid_uv_8x8.obj");
-    let png = tmp("hm.png");
     // 4 x 2, 8-bit grayscale.
-    {
-        let mut e = png::Encoder::new(std::fs::File::create(&png).unwrap(), 4, 2);
-        e.set_color(png::ColorType::Grayscale);
-        e.set_depth(png::BitDepth::Eight);
-        e.write_header()
-            .unwrap()
-            .write_image_data(&[0, 64, 128, 255, 255, 128, 64, 0])
-            .unwrap();
-    }
+    let png = gray_png("hm.png", 4, 2, &[0, 64, 128, 255, 255, 128, 64, 0]);
     let out_png = tmp("hm-render.png");
     for extra in [vec![], vec!["--heightmap", p(&png), "--bias", "0.5"]] {
         let mut args = vec![
@@ -2037,15 +2038,9 @@ fn devices_lists_lavapipe_with_its_features() {
 #[test]
 fn a_heightmap_beyond_a_storage_buffer_range_renders() {
     let side = 5800u32;
-    let png = tmp("hm-big.png");
-    {
-        let row: Vec<u8> = (0..side).map(|x| (x * 255 / side) as u8).collect();
-        let data: Vec<u8> = (0..side).flat_map(|_| row.iter().copied()).collect();
-        let mut e = png::Encoder::new(std::fs::File::create(&png).unwrap(), side, side);
-        e.set_color(png::ColorType::Grayscale);
-        e.set_depth(png::BitDepth::Eight);
-        e.write_header().unwrap().write_image_data(&data).unwrap();
-    }
+    let row: Vec<u8> = (0..side).map(|x| (x * 255 / side) as u8).collect();
+    let data: Vec<u8> = (0..side).flat_map(|_| row.iter().copied()).collect();
+    let png = gray_png("hm-big.png", side, side, &data);
     let out = tmp("hm-big-render.png");
     let grid = model_path("grid_uv_8x8.obj");
     let args = [
