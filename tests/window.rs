@@ -290,6 +290,29 @@ fn switching_to_loop_on_a_mesh_it_refuses_shows_pn() {
 }
 
 #[test]
+fn switching_to_stpn_with_three_crease_corners_names_the_file() {
+    // Creases derived at 30° give some of Spot's triangles three crease corners, which stpn
+    // cannot take; started as pn, S to stpn names the file and the remedy, and shows pn.
+    let _guard = common::gpu_lock();
+    let x = Xvfb::start();
+    let spot = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/assets/models/spot_control_tri.obj"
+    );
+    let demo = Demo::start(&x, &[spot, "--surface", "pn", "--crease-angle", "30"]);
+    demo.xdotool(&["key", "s"]);
+    std::thread::sleep(Duration::from_secs(2));
+    let stderr = demo.quit();
+    assert!(
+        stderr.contains("spot_control_tri.obj'")
+            && stderr.contains("three crease vertices")
+            && stderr.contains("start the demo with --surface stpn")
+            && stderr.contains("showing pn instead"),
+        "{stderr}"
+    );
+}
+
+#[test]
 fn keys_switch_driver_level_and_views() {
     // Typed keys reach the demo and change what it draws; the title (the HUD) reports it.
     let _guard = common::gpu_lock();

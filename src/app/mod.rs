@@ -57,6 +57,8 @@ pub struct ViewOptions {
     /// Why the loop surface must not subdivide this mesh though it loaded (the file had faces
     /// the loader dropped): switching to loop then warns with it and shows pn.
     pub loop_refusal: Option<String>,
+    /// The mesh as the user named it, for messages.
+    pub source: String,
 }
 
 /// The window offers every power-of-two level up to this one (and the level it starts at):
@@ -407,7 +409,20 @@ impl State {
             // loading): say so and show the fallback surface.
             Err(e) if cfg.surface != Surface::FALLBACK => {
                 let fallback = Surface::FALLBACK;
-                log::warn!("{e}: showing {} instead", fallback.name());
+                // Derived tags with three crease corners in a triangle (a tags file was checked
+                // at loading): the command line splits such triangles when it starts with stpn
+                // (src/cli/input.rs).
+                let hint = match e.downcast_ref::<crate::render::RenderError>() {
+                    Some(crate::render::RenderError::Tags(_)) => {
+                        " (start the demo with --surface stpn, which splits such triangles)"
+                    }
+                    _ => "",
+                };
+                log::warn!(
+                    "'{}': {e}{hint}: showing {} instead",
+                    opts.source,
+                    fallback.name()
+                );
                 cfg.surface = fallback;
                 prepare(&cfg)?;
                 self.controls.cfg.surface = fallback;

@@ -43,6 +43,7 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc) -> Result<()> {
             heightmap: input.heightmap.clone(),
             tags: input.tags.clone(),
             loop_refusal: input.loop_refusal.clone(),
+            source: input.shown.clone(),
         };
         match meshrefine::app::run(desc.clone(), mesh, opts) {
             Ok(messages) => return check_messages(&messages),
