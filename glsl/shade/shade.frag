@@ -3,7 +3,7 @@
 // normal field of its own (pn: FRAGMENT_FIELD), the normal is evaluated at this fragment's
 // barycentric coordinates (the field, or with displacement the displaced normal), so highlights
 // do not depend on the refinement level; otherwise the interpolated vertex normal. The WIRE variant (a second
-// pass in polygon mode LINE) draws the refined triangles' edges; frame.view = VIEW_NORMALS shows normals,
+// pass in polygon mode LINE) draws the refined triangles' edges, darker than the surface; frame.view = VIEW_NORMALS shows normals,
 // VIEW_LEVELS the lit surface coloured by the level its element is drawn at.
 #define FRAGMENT_STAGE
 #include "records.glsl"
@@ -25,10 +25,6 @@ vec3 level_color(float level) {
 }
 
 void main() {
-    if (WIRE != 0) {
-        out_color = vec4(0.05, 0.06, 0.09, 1.0);
-        return;
-    }
     vec3 n;
     if (FRAGMENT_FIELD == 0) {
         n = normalize(v_normal);
@@ -39,7 +35,7 @@ void main() {
         n = evaluate(records[v_element], Sample(v_element, v_bary)).normal;
     }
     if (frame.view == VIEW_NORMALS) {
-        out_color = vec4(n * 0.5 + 0.5, 1.0);
+        out_color = vec4((n * 0.5 + 0.5) * (WIRE != 0 ? 0.6 : 1.0), 1.0);
         return;
     }
     vec3 v = normalize(frame.eye.xyz - v_position);
@@ -55,5 +51,7 @@ void main() {
         base = level_color(frame.level > 0.0 ? frame.level : element_levels[v_element].w);
     }
     vec3 color = base * (0.18 + 0.82 * diffuse) + vec3(0.22 * specular);
-    out_color = vec4(color, 1.0);
+    // The refined edges: the lit colour, darkened, so the lines fade into the shading instead
+    // of turning a fine mesh black (the cage overlay draws the coarse edges in a bright colour).
+    out_color = vec4(WIRE != 0 ? color * 0.6 : color, 1.0);
 }

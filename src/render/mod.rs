@@ -5,6 +5,7 @@
 #![forbid(unsafe_code)]
 
 pub mod bindings;
+pub mod cage;
 mod camera;
 pub mod driver;
 mod error;

@@ -55,6 +55,8 @@ pub struct Renderer {
     pub capture_layout: DescriptorSetLayout,
     pub layout: PipelineLayout,
     pipelines: HashMap<PipelineKey, Pipeline>,
+    /// The cage overlay's lines (src/render/cage.rs), made when first asked for.
+    cage: Option<Pipeline>,
     pub color_format: vk::Format,
     pub depth_format: vk::Format,
     frame_ubo: Buffer,
@@ -175,6 +177,7 @@ impl Renderer {
             capture_layout,
             layout,
             pipelines: HashMap::new(),
+            cage: None,
             color_format,
             depth_format,
             frame_ubo,
@@ -233,6 +236,24 @@ impl Renderer {
             }
         }
         Ok(())
+    }
+
+    /// Create (once) the cage overlay's pipeline.
+    pub fn prepare_cage(&mut self) -> Result<(), GpuError> {
+        if self.cage.is_none() {
+            self.cage = Some(super::cage::pipeline(
+                &self.ctx,
+                &self.layout,
+                self.color_format,
+                self.depth_format,
+            )?);
+        }
+        Ok(())
+    }
+
+    /// The cage overlay's pipeline; [`Renderer::prepare_cage`] must have been called.
+    pub fn cage_pipeline(&self) -> vk::Pipeline {
+        self.cage.as_ref().expect("cage pipeline prepared").raw
     }
 
     /// The pipeline for `cfg`; [`Renderer::prepare`] must have been called.
