@@ -80,12 +80,18 @@ fn element_corners(scene: &Scene, surface: Surface) -> Vec<[u32; 3]> {
 }
 
 fn scene_at(h: &Headless, mesh: Mesh, max: u32) -> (Scene, Camera, f32) {
-    let scene = Scene::with_patterns(
+    scene_chunked(h, mesh, max, None)
+}
+
+/// Records (and levels) bound in chunks of at most `chunk` elements.
+fn scene_chunked(h: &Headless, mesh: Mesh, max: u32, chunk: Option<u32>) -> (Scene, Camera, f32) {
+    let scene = Scene::with_chunks(
         &h.ctx,
         &h.pool,
         &h.renderer,
         mesh,
         PatternSet::from_levels(&[max]),
+        chunk,
     )
     .unwrap();
     let (c, r) = scene.bounding_sphere();
@@ -154,7 +160,18 @@ fn check(
     combos: &[(Surface, Displace)],
     cull: f32,
 ) -> usize {
-    let (mut scene, camera, r) = scene_at(h, model(file), max);
+    check_chunked(h, file, max, combos, cull, None)
+}
+
+fn check_chunked(
+    h: &mut Headless,
+    file: &str,
+    max: u32,
+    combos: &[(Surface, Displace)],
+    cull: f32,
+    chunk: Option<u32>,
+) -> usize {
+    let (mut scene, camera, r) = scene_chunked(h, model(file), max, chunk);
     let pv = vertex_count(max) as usize;
     let mut moved = 0;
     for (c, &combo) in combos.iter().enumerate() {
@@ -264,6 +281,22 @@ fn adaptive_pattern_matches_the_mirror() {
         // Spot, with some elements culled.
         let moved = check(h, "spot_control_tri.obj", 16, &all, 0.15);
         assert!(moved > 0, "no vertex was snapped");
+    });
+}
+
+/// Records and levels in chunks of 7 of icosahedron's 20 elements (one bin per chunk and level
+/// for `instanced`), captured in passes of 3 elements (the bins pass runs on each pass's range).
+#[test]
+fn adaptive_pattern_in_chunks_and_capture_passes() {
+    with_gpu(64, 64, |h| {
+        h.max_capture_bytes = Some(3 * vertex_count(8) as u64 * 64);
+        let combos = [
+            (Surface::Pn, Displace::None),
+            (Surface::Loop, Displace::None),
+        ];
+        let moved = check_chunked(h, "icosahedron_vn.obj", 8, &combos, 0.2, Some(7));
+        assert!(moved > 0, "no vertex was snapped");
+        h.max_capture_bytes = None;
     });
 }
 
