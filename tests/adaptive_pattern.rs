@@ -393,3 +393,51 @@ fn adaptive_pattern_needs_a_power_of_two() {
         );
     });
 }
+
+/// Images through the whole adaptive path (bins pass, indirect draws, wireframe pass): every
+/// element at the largest level draws the very image uniform drawing does (the same weights,
+/// the same triangles; pn's normal field per fragment), and every element culled draws nothing.
+#[test]
+fn adaptive_pattern_images() {
+    with_gpu(96, 96, |h| {
+        h.wireframe = true;
+        let (mut scene, camera, r) = scene_chunked(h, model("spot_control_tri.obj"), 8, Some(100));
+        for combo in [
+            (Surface::Pn, Displace::None),
+            (Surface::Loop, Displace::None),
+        ] {
+            for submit in Submit::ALL {
+                let cfg = config(submit, 8, combo, r);
+                h.prepared_elements(&mut scene, &cfg, Capture::None)
+                    .unwrap();
+                let n = scene.elements(cfg.surface).element_count as usize;
+                let set = |scene: &mut Scene, l: ElementLevels| match &mut scene.loop_ {
+                    Some(lp) if cfg.surface.uses_loop_faces() => lp.gpu.upload_levels(&vec![l; n]),
+                    _ => scene.gpu.upload_levels(&vec![l; n]),
+                };
+                let what = format!("{} {}", combo.0.name(), cfg.label());
+                let uniform = h.render(&mut scene, &cfg, &camera).unwrap();
+                assert!(
+                    meshrefine::render::covered_pixels(&uniform) > 1000,
+                    "{what}: nothing drawn"
+                );
+                set(&mut scene, ElementLevels::uniform(8.0));
+                h.adaptive = true;
+                let adaptive = h.render(&mut scene, &cfg, &camera).unwrap();
+                assert!(
+                    adaptive.rgba == uniform.rgba,
+                    "{what}: adaptive at level 8 everywhere differs from uniform level 8"
+                );
+                set(&mut scene, ElementLevels::CULLED);
+                let culled = h.render(&mut scene, &cfg, &camera).unwrap();
+                assert_eq!(
+                    meshrefine::render::covered_pixels(&culled),
+                    0,
+                    "{what}: culled elements drew"
+                );
+                h.adaptive = false;
+            }
+        }
+        h.wireframe = false;
+    });
+}

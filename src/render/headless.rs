@@ -243,6 +243,10 @@ impl Headless {
         }
         // The element count is the surface's (M1 faces for loop, known once prepared).
         let count = self.prepared_elements(scene, cfg, capture)?;
+        if self.adaptive && cfg.driver.submit().is_some() {
+            let mesh = scene.elements(cfg.surface);
+            super::pattern::check_adaptive_fits(&self.ctx, count, mesh.chunk, cfg.level)?;
+        }
         let elements = elements.start..elements.end.min(count);
         let uniforms = self.frame_uniforms(camera, cfg, scene);
         self.renderer.set_frame(&uniforms);

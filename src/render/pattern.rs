@@ -173,7 +173,8 @@ impl DriverKind for PatternDriver {
     }
 
     /// At a power of two, the adaptive draws' buffers and pass for the elements `cfg` draws
-    /// (kept while the level stays).
+    /// (kept while the level stays), where the device can hold them ([`check_adaptive_fits`]
+    /// says why not to an adaptive frame).
     fn prepare(
         &self,
         scene: &mut Scene,
@@ -188,6 +189,10 @@ impl DriverKind for PatternDriver {
             Some(l) if cfg.surface.uses_loop_faces() => &mut l.gpu,
             _ => &mut scene.gpu,
         };
+        if check_adaptive_fits(ctx, mesh.element_count, mesh.chunk, cfg.level).is_err() {
+            mesh.adaptive = None;
+            return Ok(());
+        }
         if mesh.adaptive.as_ref().is_none_or(|a| a.level != cfg.level) {
             mesh.adaptive = None;
             mesh.adaptive = Some(AdaptivePattern::new(ctx, pool, mesh, cfg.level)?);
@@ -255,6 +260,54 @@ pub fn check_adaptive(cfg: &DrawConfig) -> Result<(), RenderError> {
     Ok(())
 }
 
+/// Whether this device can hold the adaptive draws of `elements` elements in chunks of `chunk`
+/// at largest level `level` (a power of two): the bins pass binds its commands and lists whole,
+/// so each must fit maxStorageBufferRange and one allocation. Nothing else is asked of the
+/// device: the draws are core `vkCmdDrawIndexedIndirect` with a draw count of 1 and
+/// `firstInstance` 0 (neither multiDrawIndirect nor drawIndirectFirstInstance).
+pub fn check_adaptive_fits(
+    ctx: &Context,
+    elements: u32,
+    chunk: u32,
+    level: u32,
+) -> Result<(), RenderError> {
+    let limits = &ctx.info.limits;
+    let range = limits.max_storage_buffer_range as u64;
+    let (max, limit) = if ctx.info.max_memory_allocation_size < range {
+        (
+            ctx.info.max_memory_allocation_size,
+            "maxMemoryAllocationSize",
+        )
+    } else {
+        (range, "maxStorageBufferRange")
+    };
+    let (commands, lists) = adaptive_bytes(elements, chunk, level);
+    let needed = commands.max(lists);
+    if needed > max {
+        let levels = level.trailing_zeros() as u64 + 1;
+        let fits = max / (4 * levels).max(COMMAND_BYTES + 1);
+        return Err(RenderError::OverLimit {
+            what: format!(
+                "drawing {elements} elements adaptively up to level {level} (indirect commands and bins)"
+            ),
+            needed,
+            unit: "bytes",
+            limit,
+            max,
+            remedy: format!("draw at most about {fits} elements adaptively, or draw uniformly"),
+        });
+    }
+    Ok(())
+}
+
+/// Bytes of the adaptive draws' commands and bin lists.
+fn adaptive_bytes(elements: u32, chunk: u32, level: u32) -> (u64, u64) {
+    let n = elements.max(1) as u64;
+    let levels = level.trailing_zeros() as u64 + 1;
+    let bins = n.div_ceil(chunk.max(1) as u64) * levels;
+    ((n + bins) * COMMAND_BYTES, levels * n * 4)
+}
+
 /// Bytes of one `VkDrawIndexedIndirectCommand`.
 const COMMAND_BYTES: u64 = 20;
 
@@ -306,7 +359,6 @@ impl AdaptivePattern {
         use vk::BufferUsageFlags as U;
         let n = mesh.element_count.max(1);
         let chunks = n.div_ceil(mesh.chunk);
-        let levels = f.trailing_zeros() + 1;
         let hierarchy = Hierarchy::new(f);
         let indices = Buffer::new_with_data(
             ctx,
@@ -315,21 +367,15 @@ impl AdaptivePattern {
             &hierarchy.indices,
             &format!("hierarchical patterns up to {f}"),
         )?;
-        let bins = chunks as u64 * levels as u64;
+        let (command_bytes, list_bytes) = adaptive_bytes(n, mesh.chunk, f);
         let commands = Buffer::new(
             ctx,
-            BufferDesc::new_gpu_only(
-                (n as u64 + bins) * COMMAND_BYTES,
-                U::STORAGE_BUFFER | U::INDIRECT_BUFFER,
-            ),
+            BufferDesc::new_gpu_only(command_bytes, U::STORAGE_BUFFER | U::INDIRECT_BUFFER),
             "adaptive pattern commands",
         )?;
         let lists = Buffer::new(
             ctx,
-            BufferDesc::new_gpu_only(
-                levels as u64 * n as u64 * 4,
-                U::STORAGE_BUFFER | U::VERTEX_BUFFER,
-            ),
+            BufferDesc::new_gpu_only(list_bytes, U::STORAGE_BUFFER | U::VERTEX_BUFFER),
             "adaptive pattern bins",
         )?;
         let c = vk::ShaderStageFlags::COMPUTE;
