@@ -190,6 +190,19 @@ pub trait DriverKind: Sync {
         self.describe_pipeline(desc, fragment_field, capture)
     }
 
+    /// Whether `cfg`, prepared in `scene` ([`Scene::prepare`]), can be drawn adaptively on this
+    /// device: one sentence where not. A driver that draws adaptively checks what that needs
+    /// (the pattern driver: a power-of-two level, room for its indirect commands); the default
+    /// accepts (the frame is then drawn uniformly).
+    fn check_adaptive(
+        &self,
+        _ctx: &Context,
+        _scene: &Scene,
+        _cfg: &DrawConfig,
+    ) -> Result<(), RenderError> {
+        Ok(())
+    }
+
     /// Record what the frame's draws need computed on the GPU first (outside the rendering
     /// instance, after the pre-pass): the pattern driver's indirect commands of an adaptive
     /// frame. Nothing by default.

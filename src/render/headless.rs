@@ -238,14 +238,10 @@ impl Headless {
         xfb: Option<&Buffer>,
         elements: std::ops::Range<u32>,
     ) -> Result<FrameTiming, RenderError> {
-        if self.adaptive {
-            super::pattern::check_adaptive(cfg)?;
-        }
         // The element count is the surface's (M1 faces for loop, known once prepared).
         let count = self.prepared_elements(scene, cfg, capture)?;
-        if self.adaptive && cfg.driver.submit().is_some() {
-            let mesh = scene.elements(cfg.surface);
-            super::pattern::check_adaptive_fits(&self.ctx, count, mesh.chunk, cfg.level)?;
+        if self.adaptive {
+            cfg.driver.kind().check_adaptive(&self.ctx, scene, cfg)?;
         }
         let elements = elements.start..elements.end.min(count);
         let uniforms = self.frame_uniforms(camera, cfg, scene);

@@ -200,6 +200,19 @@ impl DriverKind for PatternDriver {
         Ok(())
     }
 
+    /// A power-of-two level ([`check_adaptive_level`]) and room for the commands and bins
+    /// ([`check_adaptive_fits`]).
+    fn check_adaptive(
+        &self,
+        ctx: &Context,
+        scene: &Scene,
+        cfg: &DrawConfig,
+    ) -> Result<(), RenderError> {
+        check_adaptive_level(cfg)?;
+        let mesh = scene.elements(cfg.surface);
+        check_adaptive_fits(ctx, mesh.element_count, mesh.chunk, cfg.level)
+    }
+
     /// An adaptive frame's bins pass.
     fn cmd_before_rendering(&self, cmd: &Cmd<'_>, _r: &Renderer, work: &FrameWork<'_>) {
         if work.adaptive {
@@ -236,8 +249,8 @@ impl DriverKind for PatternDriver {
     }
 }
 
-/// The adaptive draws `work` needs (built by `prepare`, the level checked by
-/// [`check_adaptive`]).
+/// The adaptive draws `work` needs (built by `prepare`, checked by
+/// [`DriverKind::check_adaptive`]).
 fn adaptive_of<'a>(work: &FrameWork<'a>) -> &'a AdaptivePattern {
     work.mesh
         .adaptive
@@ -248,7 +261,7 @@ fn adaptive_of<'a>(work: &FrameWork<'a>) -> &'a AdaptivePattern {
 
 /// Whether the pattern driver can draw `cfg` adaptively (`FrameWork::adaptive`): the
 /// hierarchical patterns need the largest level to be a power of two. One sentence otherwise.
-pub fn check_adaptive(cfg: &DrawConfig) -> Result<(), RenderError> {
+pub fn check_adaptive_level(cfg: &DrawConfig) -> Result<(), RenderError> {
     if cfg.driver.submit().is_some() && !cfg.level.is_power_of_two() {
         let lower = 1u32 << cfg.level.max(1).ilog2();
         return Err(RenderError::Incompatible(format!(
