@@ -160,7 +160,7 @@ fn check(
     combos: &[(Surface, Displace)],
     cull: f32,
 ) -> usize {
-    check_chunked(h, file, max, combos, cull, None)
+    check_chunked(h, file, max, combos, cull, None, None)
 }
 
 fn check_chunked(
@@ -170,13 +170,15 @@ fn check_chunked(
     combos: &[(Surface, Displace)],
     cull: f32,
     chunk: Option<u32>,
+    bft_level: Option<u32>,
 ) -> usize {
     let (mut scene, camera, r) = scene_chunked(h, model(file), max, chunk);
     let pv = vertex_count(max) as usize;
     let mut moved = 0;
     for (c, &combo) in combos.iter().enumerate() {
         for submit in Submit::ALL {
-            let cfg = config(submit, max, combo, r);
+            let mut cfg = config(submit, max, combo, r);
+            cfg.build.bft_level = bft_level.unwrap_or(cfg.build.bft_level);
             let levels = set_levels(h, &mut scene, &cfg, cull, 7 + c as u64);
             h.adaptive = true;
             let cap = h.capture(&mut scene, &cfg, &camera).unwrap();
@@ -268,6 +270,17 @@ fn adaptive_pattern_matches_the_mirror() {
             .collect();
         let moved = check(h, "icosahedron_vn.obj", 8, &all, 0.0);
         assert!(moved > 0, "no vertex was snapped");
+        // The height map (texture coordinates).
+        check(
+            h,
+            "grid_uv_8x8.obj",
+            8,
+            &[
+                (Surface::Pn, Displace::Heightmap),
+                (Surface::Flat, Displace::Heightmap),
+            ],
+            0.1,
+        );
         check(
             h,
             "cylinder_hard_normals.obj",
@@ -294,7 +307,7 @@ fn adaptive_pattern_in_chunks_and_capture_passes() {
             (Surface::Pn, Displace::None),
             (Surface::Loop, Displace::None),
         ];
-        let moved = check_chunked(h, "icosahedron_vn.obj", 8, &combos, 0.2, Some(7));
+        let moved = check_chunked(h, "icosahedron_vn.obj", 8, &combos, 0.2, Some(7), None);
         assert!(moved > 0, "no vertex was snapped");
         h.max_capture_bytes = None;
     });
@@ -322,61 +335,99 @@ fn adaptive_pattern_is_watertight() {
             "cylinder_hard_normals.obj",
             "spot_control_tri.obj",
         ] {
-            let max = 16;
-            let (mut scene, camera, r) = scene_at(h, model(file), max);
-            for (c, &combo) in COMBOS.iter().enumerate() {
-                let submit = Submit::ALL[c % 3];
-                let cfg = config(submit, max, combo, r);
-                let levels = set_levels(h, &mut scene, &cfg, 0.0, 100 + c as u64);
-                let tris = element_corners(&scene, cfg.surface);
-                // The crack-free count, and a check that levels differ across some edge.
-                let mut edges: HashMap<(u32, u32), u32> = HashMap::new();
-                let mut inner_vertices = 0;
-                let mut corners = HashSet::new();
-                let mut differs = false;
-                for (t, l) in tris.iter().zip(&levels) {
-                    let d = drawn_levels(l, max).unwrap();
-                    inner_vertices += ((d.inner - 1) * (d.inner.max(2) - 2) / 2) as usize;
-                    for k in 0..3 {
-                        let (a, b) = (t[k], t[(k + 1) % 3]);
-                        corners.insert(a);
-                        edges.insert((a.min(b), a.max(b)), d.edges[k]);
-                        differs |= d.edges[k] < d.inner;
-                    }
-                }
-                assert!(
-                    differs,
-                    "{file}: every edge drawn at its element's inner level"
-                );
-                let expected = corners.len()
-                    + edges.values().map(|&n| n as usize - 1).sum::<usize>()
-                    + inner_vertices;
-                h.adaptive = true;
-                let cap = h.capture(&mut scene, &cfg, &camera).unwrap();
-                h.adaptive = false;
-                let welded = weld_adaptive(&cap, max).unwrap();
-                let what = format!(
-                    "{file} {} + {} {}",
-                    combo.0.name(),
-                    combo.1.name(),
-                    cfg.label()
-                );
-                assert_eq!(welded.positions.len(), expected, "{what}: welded vertices");
-                let mut count: HashMap<(u32, u32), u32> = HashMap::new();
-                for t in &welded.triangles {
-                    for k in 0..3 {
-                        let (a, b) = (t[k].0, t[(k + 1) % 3].0);
-                        *count.entry((a.min(b), a.max(b))).or_default() += 1;
-                    }
-                }
-                let open = count.values().filter(|&&c| c != 2).count();
-                assert_eq!(
-                    open, 0,
-                    "{what}: {open} welded edges not shared by exactly two triangles (a crack)"
-                );
-            }
+            watertight(h, file, 16, COMBOS, None);
         }
     });
+}
+
+/// `loop` with basis function tables of level 2 (4 segments an edge) drawn up to level 16:
+/// samples finer than the tables interpolate between rows, snapped edge samples included; it
+/// still equals the mirror and stays watertight (an edge point is evaluated by its owner face).
+#[test]
+fn adaptive_loop_past_its_table_level() {
+    with_gpu(64, 64, |h| {
+        let combos = [
+            (Surface::Loop, Displace::None),
+            (Surface::Loop, Displace::Sine),
+        ];
+        let moved = check_chunked(h, "icosahedron_vn.obj", 16, &combos, 0.1, None, Some(2));
+        assert!(moved > 0, "no vertex was snapped");
+        watertight(h, "octahedron.obj", 16, &combos[..1], Some(2));
+    });
+}
+
+/// Welded at random levels, `file` (closed) is closed, consistently oriented and has the
+/// crack-free vertex count, for each of `combos`.
+fn watertight(
+    h: &mut Headless,
+    file: &str,
+    max: u32,
+    combos: &[(Surface, Displace)],
+    bft_level: Option<u32>,
+) {
+    let (mut scene, camera, r) = scene_at(h, model(file), max);
+    for (c, &combo) in combos.iter().enumerate() {
+        let submit = Submit::ALL[c % 3];
+        let mut cfg = config(submit, max, combo, r);
+        cfg.build.bft_level = bft_level.unwrap_or(cfg.build.bft_level);
+        let levels = set_levels(h, &mut scene, &cfg, 0.0, 100 + c as u64);
+        let tris = element_corners(&scene, cfg.surface);
+        // The crack-free count, and a check that levels differ across some edge.
+        let mut edges: HashMap<(u32, u32), u32> = HashMap::new();
+        let mut inner_vertices = 0;
+        let mut corners = HashSet::new();
+        let mut differs = false;
+        for (t, l) in tris.iter().zip(&levels) {
+            let d = drawn_levels(l, max).unwrap();
+            inner_vertices += ((d.inner - 1) * (d.inner.max(2) - 2) / 2) as usize;
+            for k in 0..3 {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                corners.insert(a);
+                edges.insert((a.min(b), a.max(b)), d.edges[k]);
+                differs |= d.edges[k] < d.inner;
+            }
+        }
+        assert!(
+            differs,
+            "{file}: every edge drawn at its element's inner level"
+        );
+        let expected =
+            corners.len() + edges.values().map(|&n| n as usize - 1).sum::<usize>() + inner_vertices;
+        h.adaptive = true;
+        let cap = h.capture(&mut scene, &cfg, &camera).unwrap();
+        h.adaptive = false;
+        let welded = weld_adaptive(&cap, max).unwrap();
+        let what = format!(
+            "{file} {} + {} {}",
+            combo.0.name(),
+            combo.1.name(),
+            cfg.label()
+        );
+        assert_eq!(welded.positions.len(), expected, "{what}: welded vertices");
+        let mut count: HashMap<(u32, u32), u32> = HashMap::new();
+        for t in &welded.triangles {
+            for k in 0..3 {
+                let (a, b) = (t[k].0, t[(k + 1) % 3].0);
+                *count.entry((a.min(b), a.max(b))).or_default() += 1;
+            }
+        }
+        let open = count.values().filter(|&&c| c != 2).count();
+        assert_eq!(
+            open, 0,
+            "{what}: {open} welded edges not shared by exactly two triangles (a crack)"
+        );
+        // Consistently oriented: no snapped triangle flipped.
+        let directed: HashSet<(u32, u32)> = welded
+            .triangles
+            .iter()
+            .flat_map(|t| (0..3).map(move |k| (t[k].0, t[(k + 1) % 3].0)))
+            .collect();
+        assert_eq!(
+            directed.len(),
+            3 * welded.triangles.len(),
+            "{what}: a flipped triangle"
+        );
+    }
 }
 
 /// A largest level that is not a power of two is refused with one sentence.
