@@ -28,6 +28,7 @@ mod bindings {
 /// The variants: (source below `glsl/`, name suffix, macro defined).
 const VARIANTS: &[(&str, &str, &str)] = &[
     ("pattern/pattern.vert", "capture", "CAPTURE"),
+    ("pattern/adaptive.vert", "capture", "CAPTURE"),
     ("static/static.vert", "elements", "ELEMENT_ATTRIBUTES"),
     ("tess/tess.tese", "capture", "CAPTURE"),
     ("tess/tess.tese", "xfb", "XFB"),

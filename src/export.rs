@@ -53,6 +53,55 @@ pub fn weld(capture: &CaptureResult, pattern: &Pattern) -> Result<RefinedMesh, S
     Ok(out)
 }
 
+/// Weld the vertices the pattern driver captured drawing adaptively at largest level
+/// `max_level` (slots of the finest pattern per element, each written vertex's `id.z` its
+/// element's inner level; a culled element wrote none): each element's inner-level triangles
+/// ([`crate::pattern::adaptive::Hierarchy`]), those whose corners snapping welded together
+/// (degenerate) dropped.
+pub fn weld_adaptive(capture: &CaptureResult, max_level: u32) -> Result<RefinedMesh, String> {
+    use crate::pattern::adaptive::Hierarchy;
+    let pv = capture.pattern_vertex_count as usize;
+    if pv != crate::pattern::vertex_count(max_level) as usize || !max_level.is_power_of_two() {
+        return Err(format!(
+            "capture holds {pv} vertices per element, not the finest pattern of level {max_level}"
+        ));
+    }
+    let mut w = Welder::default();
+    let mut triangles = Vec::new();
+    for (t, slots) in capture.vertices.chunks(pv).enumerate() {
+        let Some(inner) = slots.iter().find(|v| v.position[3] == 1.0).map(|v| v.id[2]) else {
+            continue; // culled
+        };
+        if !inner.is_power_of_two() || inner > max_level {
+            return Err(format!("element {t} was drawn at level {inner}"));
+        }
+        let index: Vec<Option<(u32, u32)>> = slots
+            .iter()
+            .map(|v| {
+                (v.position[3] == 1.0).then(|| {
+                    w.add(
+                        Vec3::from_slice(&v.position[..3]),
+                        Vec3::from_slice(&v.normal[..3]),
+                    )
+                })
+            })
+            .collect();
+        for tri in Hierarchy::level_indices(max_level, inner).chunks_exact(3) {
+            let mut c = [(0, 0); 3];
+            for (k, &i) in tri.iter().enumerate() {
+                c[k] = index[i as usize]
+                    .ok_or_else(|| format!("the GPU did not write vertex {i} of element {t}"))?;
+            }
+            if c[0].0 != c[1].0 && c[1].0 != c[2].0 && c[2].0 != c[0].0 {
+                triangles.push(c);
+            }
+        }
+    }
+    let mut out = w.out;
+    out.triangles = triangles;
+    Ok(out)
+}
+
 /// Weld the triangles transform feedback captured from the `tess` driver (corners in the order
 /// the tessellator emitted them).
 pub fn weld_triangles(triangles: &[[XfbVertex; 3]]) -> RefinedMesh {

@@ -161,6 +161,78 @@ impl<'a> Cmd<'a> {
         };
     }
 
+    /// Bind `buffer` from byte `offset` as vertex buffer `binding`.
+    pub fn bind_vertex_buffer_at(&self, binding: u32, buffer: &Buffer, offset: u64) {
+        // SAFETY: see `bind_graphics_pipeline`; the caller keeps `offset` within the buffer.
+        unsafe {
+            self.ctx
+                .device
+                .cmd_bind_vertex_buffers(self.raw, binding, &[buffer.raw], &[offset])
+        };
+    }
+
+    /// One indexed draw whose `VkDrawIndexedIndirectCommand` is at byte `offset` of `buffer`
+    /// (written on the GPU).
+    pub fn draw_indexed_indirect(&self, buffer: &Buffer, offset: u64) {
+        // SAFETY: see `bind_graphics_pipeline`; `buffer` has INDIRECT_BUFFER usage and holds a
+        // command at `offset` (a multiple of 4).
+        unsafe {
+            self.ctx
+                .device
+                .cmd_draw_indexed_indirect(self.raw, buffer.raw, offset, 1, 20)
+        };
+    }
+
+    /// Make a compute pass's storage writes visible to indirect draws: their commands, their
+    /// vertex input and their vertex stage.
+    pub fn barrier_compute_to_indirect(&self) {
+        let barrier = vk::MemoryBarrier::default()
+            .src_access_mask(vk::AccessFlags::SHADER_WRITE)
+            .dst_access_mask(
+                vk::AccessFlags::INDIRECT_COMMAND_READ
+                    | vk::AccessFlags::VERTEX_ATTRIBUTE_READ
+                    | vk::AccessFlags::SHADER_READ,
+            );
+        // SAFETY: see `bind_graphics_pipeline`; outside a rendering instance.
+        unsafe {
+            self.ctx.device.cmd_pipeline_barrier(
+                self.raw,
+                vk::PipelineStageFlags::COMPUTE_SHADER,
+                vk::PipelineStageFlags::DRAW_INDIRECT
+                    | vk::PipelineStageFlags::VERTEX_INPUT
+                    | vk::PipelineStageFlags::VERTEX_SHADER,
+                vk::DependencyFlags::empty(),
+                &[barrier],
+                &[],
+                &[],
+            )
+        };
+    }
+
+    /// Before a compute pass rewrites what earlier indirect draws read (their commands, vertex
+    /// input, vertex stage) and what an earlier dispatch wrote: wait for both, and make the
+    /// earlier compute writes visible to it.
+    pub fn barrier_to_compute(&self) {
+        let barrier = vk::MemoryBarrier::default()
+            .src_access_mask(vk::AccessFlags::SHADER_WRITE)
+            .dst_access_mask(vk::AccessFlags::SHADER_READ | vk::AccessFlags::SHADER_WRITE);
+        // SAFETY: see `bind_graphics_pipeline`; outside a rendering instance.
+        unsafe {
+            self.ctx.device.cmd_pipeline_barrier(
+                self.raw,
+                vk::PipelineStageFlags::DRAW_INDIRECT
+                    | vk::PipelineStageFlags::VERTEX_INPUT
+                    | vk::PipelineStageFlags::VERTEX_SHADER
+                    | vk::PipelineStageFlags::COMPUTE_SHADER,
+                vk::PipelineStageFlags::COMPUTE_SHADER,
+                vk::DependencyFlags::empty(),
+                &[barrier],
+                &[],
+                &[],
+            )
+        };
+    }
+
     pub fn bind_index_buffer_u32(&self, buffer: &Buffer) {
         // SAFETY: see `bind_graphics_pipeline`.
         unsafe {

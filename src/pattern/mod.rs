@@ -24,6 +24,8 @@
 //! At `N = 64` a pattern has 2,145 vertices, where the paper's square-grid pattern stored 65² = 4,225.
 #![forbid(unsafe_code)]
 
+pub mod adaptive;
+
 /// Number of vertices of a level-`n` pattern: `(n+1)(n+2)/2`.
 pub const fn vertex_count(n: u32) -> u32 {
     (n + 1) * (n + 2) / 2

@@ -179,6 +179,41 @@ pub trait DriverKind: Sync {
         capture: Capture,
     );
 
+    /// The pipeline of an adaptive frame (`FrameWork::adaptive`: each element at its own
+    /// levels); a driver that does not draw adaptively describes its uniform pipeline.
+    fn describe_adaptive_pipeline(
+        &self,
+        desc: &mut GraphicsPipelineDesc,
+        fragment_field: bool,
+        capture: Capture,
+    ) {
+        self.describe_pipeline(desc, fragment_field, capture)
+    }
+
+    /// Whether `cfg`, prepared in `scene` ([`Scene::prepare`]), can be drawn adaptively on this
+    /// device: one sentence where not. A driver that draws adaptively checks what that needs
+    /// (the pattern driver: a power-of-two level, room for its indirect commands); the default
+    /// accepts (the frame is then drawn uniformly).
+    fn check_adaptive(
+        &self,
+        _ctx: &Context,
+        _scene: &Scene,
+        _cfg: &DrawConfig,
+    ) -> Result<(), RenderError> {
+        Ok(())
+    }
+
+    /// Record what the frame's draws need computed on the GPU first (outside the rendering
+    /// instance, after the pre-pass): the pattern driver's indirect commands of an adaptive
+    /// frame. Nothing by default.
+    fn cmd_before_rendering(
+        &self,
+        _cmd: &crate::gpu::Cmd<'_>,
+        _r: &Renderer,
+        _work: &FrameWork<'_>,
+    ) {
+    }
+
     /// Build what drawing `cfg` needs besides the pipelines (after the scene's checks).
     fn prepare(
         &self,

@@ -97,6 +97,7 @@ pub fn cmd_render(
     if let Some(pass) = work.pre_pass {
         pass.cmd_apply(cmd);
     }
+    work.cfg.driver.kind().cmd_before_rendering(cmd, r, work);
     cmd.begin_rendering(
         target.color_view,
         target.depth_view,
@@ -107,7 +108,7 @@ pub fn cmd_render(
     if work.capture == Capture::Vertices {
         cmd.bind_descriptor_set(r.layout.raw, SET_CAPTURE, r.capture_set, &[]);
     }
-    cmd.bind_graphics_pipeline(r.pipeline(&work.cfg, work.capture, false));
+    cmd.bind_graphics_pipeline(r.pipeline(&work.cfg, work.capture, false, work.adaptive));
     if let Some(xfb) = work.xfb.filter(|_| work.capture == Capture::Triangles) {
         cmd.begin_transform_feedback(xfb);
         cmd_draw_driver(cmd, r, work);
@@ -116,7 +117,7 @@ pub fn cmd_render(
         cmd_draw_driver(cmd, r, work);
     }
     if work.wireframe && r.wireframe_supported() {
-        cmd.bind_graphics_pipeline(r.pipeline(&work.cfg, Capture::None, true));
+        cmd.bind_graphics_pipeline(r.pipeline(&work.cfg, Capture::None, true, work.adaptive));
         cmd_draw_driver(cmd, r, work);
     }
     if let Some(overlay) = overlay {

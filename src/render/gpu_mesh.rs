@@ -114,6 +114,8 @@ pub struct GpuMesh {
     pub levels: Buffer,
     /// Shared by the scene's meshes (the loop surface's M1 draws the same patterns).
     pub patterns: Arc<Vec<GpuPattern>>,
+    /// The pattern driver's adaptive draws of these elements (built by its `prepare`).
+    pub adaptive: Option<super::pattern::AdaptivePattern>,
     pub pool: DescriptorPool,
     /// One descriptor set per chunk of [`GpuMesh::chunk`] elements: a storage-buffer descriptor
     /// may span at most maxStorageBufferRange bytes, so a larger mesh is drawn chunk by chunk.
@@ -264,6 +266,7 @@ impl GpuMesh {
             tags: inputs.tags,
             levels,
             patterns,
+            adaptive: None,
             pool,
             sets,
             chunk,

@@ -27,6 +27,10 @@ pub struct Headless {
     pub target: OffscreenTarget,
     pub queries: QueryPools,
     pub wireframe: bool,
+    /// Draw each element at its own levels from its mesh's levels buffer
+    /// ([`super::GpuMesh::upload_levels`]), the configuration's level being the largest
+    /// (`FrameWork::adaptive`; the pattern driver at a power of two).
+    pub adaptive: bool,
     /// What the fragment stage shows.
     pub view: View,
     /// Largest capture buffer of one pass, in bytes (None: the device's limit; tests set a small
@@ -119,6 +123,7 @@ impl Headless {
             target,
             queries,
             wireframe: false,
+            adaptive: false,
             view: View::Shaded,
             max_capture_bytes: None,
         })
@@ -235,6 +240,9 @@ impl Headless {
     ) -> Result<FrameTiming, RenderError> {
         // The element count is the surface's (M1 faces for loop, known once prepared).
         let count = self.prepared_elements(scene, cfg, capture)?;
+        if self.adaptive {
+            cfg.driver.kind().check_adaptive(&self.ctx, scene, cfg)?;
+        }
         let elements = elements.start..elements.end.min(count);
         let uniforms = self.frame_uniforms(camera, cfg, scene);
         self.renderer.set_frame(&uniforms);
@@ -243,6 +251,7 @@ impl Headless {
             capture,
             xfb,
             wireframe: self.wireframe,
+            adaptive: self.adaptive,
             elements,
             ..FrameWork::new(scene, *cfg)
         };

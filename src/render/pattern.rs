@@ -11,12 +11,19 @@ use super::driver::DriverKind;
 use super::frame::FrameWork;
 use super::gpu_mesh::GpuPattern;
 use super::{
-    Capture, DrawWords, GpuMesh, PushBlock, Renderer, Submit, PUSH_DRAW_OFFSET, PUSH_STAGES,
+    Capture, DrawConfig, DrawWords, GpuMesh, PushBlock, RenderError, Renderer, Scene, Submit,
+    PUSH_DRAW_OFFSET, PUSH_STAGES,
 };
 use crate::gpu::shaders::names;
-use crate::gpu::{vk, Cmd, GraphicsPipelineDesc};
+use crate::gpu::{
+    vk, Buffer, BufferDesc, Cmd, CommandPool, Context, DescriptorPool, DescriptorSetLayout,
+    GraphicsPipelineDesc, Pipeline, PipelineLayout,
+};
+use crate::pattern::adaptive::Hierarchy;
 use crate::pattern::{index_count, vertex_count};
 use crate::surface::{ElementRecord, RECORD_BYTES};
+use bytemuck::{Pod, Zeroable};
+use std::sync::Arc;
 
 /// Record the draws of the elements `range` of `mesh` with `pattern` in submission mode
 /// `submit`, chunk by chunk ([`GpuMesh::chunks`]). `records` is the CPU copy of the element
@@ -144,7 +151,88 @@ impl DriverKind for PatternDriver {
         );
     }
 
+    /// The adaptive vertex stage: the finest pattern's `(w, u, v)` per vertex, the element of
+    /// each instance from its bin's list (`instanced`); records from the storage buffer.
+    fn describe_adaptive_pipeline(
+        &self,
+        desc: &mut GraphicsPipelineDesc,
+        _fragment_field: bool,
+        capture: Capture,
+    ) {
+        let vert = match capture {
+            Capture::Vertices => names::PATTERN_ADAPTIVE_VERT_CAPTURE,
+            Capture::None | Capture::Triangles => names::PATTERN_ADAPTIVE_VERT,
+        };
+        desc.stages = vec![(vk::ShaderStageFlags::VERTEX, vert.into())];
+        desc.topology = vk::PrimitiveTopology::TRIANGLE_LIST;
+        desc.vertex_bindings = vec![(0, 12, false), (2, 4, true)];
+        desc.vertex_attributes = vec![
+            (0, 0, vk::Format::R32G32B32_SFLOAT, 0),
+            (8, 2, vk::Format::R32_UINT, 0),
+        ];
+    }
+
+    /// At a power of two, the adaptive draws' buffers and pass for the elements `cfg` draws
+    /// (kept while the level stays), where the device can hold them ([`check_adaptive_fits`]
+    /// says why not to an adaptive frame).
+    fn prepare(
+        &self,
+        scene: &mut Scene,
+        ctx: &Arc<Context>,
+        pool: &CommandPool,
+        cfg: &DrawConfig,
+    ) -> Result<(), RenderError> {
+        if !cfg.level.is_power_of_two() {
+            return Ok(());
+        }
+        let mesh = match &mut scene.loop_ {
+            Some(l) if cfg.surface.uses_loop_faces() => &mut l.gpu,
+            _ => &mut scene.gpu,
+        };
+        if check_adaptive_fits(ctx, mesh.element_count, mesh.chunk, cfg.level).is_err() {
+            mesh.adaptive = None;
+            return Ok(());
+        }
+        if mesh.adaptive.as_ref().is_none_or(|a| a.level != cfg.level) {
+            mesh.adaptive = None;
+            mesh.adaptive = Some(AdaptivePattern::new(ctx, pool, mesh, cfg.level)?);
+        }
+        Ok(())
+    }
+
+    /// A power-of-two level ([`check_adaptive_level`]) and room for the commands and bins
+    /// ([`check_adaptive_fits`]).
+    fn check_adaptive(
+        &self,
+        ctx: &Context,
+        scene: &Scene,
+        cfg: &DrawConfig,
+    ) -> Result<(), RenderError> {
+        check_adaptive_level(cfg)?;
+        let mesh = scene.elements(cfg.surface);
+        check_adaptive_fits(ctx, mesh.element_count, mesh.chunk, cfg.level)
+    }
+
+    /// An adaptive frame's bins pass.
+    fn cmd_before_rendering(&self, cmd: &Cmd<'_>, _r: &Renderer, work: &FrameWork<'_>) {
+        if work.adaptive {
+            adaptive_of(work).cmd_bins(cmd, work.elements.clone());
+        }
+    }
+
     fn cmd_draw(&self, cmd: &Cmd<'_>, r: &Renderer, work: &FrameWork<'_>) {
+        if work.adaptive {
+            cmd_draw_adaptive(
+                cmd,
+                r,
+                work.mesh,
+                work.records,
+                adaptive_of(work),
+                work.cfg.driver.submit().unwrap_or_default(),
+                work.elements.clone(),
+            );
+            return;
+        }
         let p = work
             .mesh
             .pattern(work.cfg.level)
@@ -158,5 +246,309 @@ impl DriverKind for PatternDriver {
             work.cfg.driver.submit().unwrap_or_default(),
             work.elements.clone(),
         );
+    }
+}
+
+/// The adaptive draws `work` needs (built by `prepare`, checked by
+/// [`DriverKind::check_adaptive`]).
+fn adaptive_of<'a>(work: &FrameWork<'a>) -> &'a AdaptivePattern {
+    work.mesh
+        .adaptive
+        .as_ref()
+        .filter(|a| a.level == work.cfg.level)
+        .expect("an adaptive frame at a power of two, prepared")
+}
+
+/// Whether the pattern driver can draw `cfg` adaptively (`FrameWork::adaptive`): the
+/// hierarchical patterns need the largest level to be a power of two. One sentence otherwise.
+pub fn check_adaptive_level(cfg: &DrawConfig) -> Result<(), RenderError> {
+    if cfg.driver.submit().is_some() && !cfg.level.is_power_of_two() {
+        let lower = 1u32 << cfg.level.max(1).ilog2();
+        return Err(RenderError::Incompatible(format!(
+            "adaptive drawing with the pattern driver needs the largest level to be a power of two (its patterns are 1-to-4 splits), not {}: use --level {lower} or {}",
+            cfg.level,
+            lower * 2
+        )));
+    }
+    Ok(())
+}
+
+/// Whether this device can hold the adaptive draws of `elements` elements in chunks of `chunk`
+/// at largest level `level` (a power of two): the bins pass binds its commands and lists whole,
+/// so each must fit maxStorageBufferRange and one allocation. Nothing else is asked of the
+/// device: the draws are core `vkCmdDrawIndexedIndirect` with a draw count of 1 and
+/// `firstInstance` 0 (neither multiDrawIndirect nor drawIndirectFirstInstance).
+pub fn check_adaptive_fits(
+    ctx: &Context,
+    elements: u32,
+    chunk: u32,
+    level: u32,
+) -> Result<(), RenderError> {
+    let limits = &ctx.info.limits;
+    let range = limits.max_storage_buffer_range as u64;
+    let (max, limit) = if ctx.info.max_memory_allocation_size < range {
+        (
+            ctx.info.max_memory_allocation_size,
+            "maxMemoryAllocationSize",
+        )
+    } else {
+        (range, "maxStorageBufferRange")
+    };
+    let (commands, lists) = adaptive_bytes(elements, chunk, level);
+    let needed = commands.max(lists);
+    if needed > max {
+        let levels = level.trailing_zeros() as u64 + 1;
+        let fits = max / (4 * levels).max(COMMAND_BYTES + 1);
+        return Err(RenderError::OverLimit {
+            what: format!(
+                "drawing {elements} elements adaptively up to level {level} (indirect commands and bins)"
+            ),
+            needed,
+            unit: "bytes",
+            limit,
+            max,
+            remedy: format!("draw at most about {fits} elements adaptively, or draw uniformly"),
+        });
+    }
+    Ok(())
+}
+
+/// Bytes of the adaptive draws' commands and bin lists.
+fn adaptive_bytes(elements: u32, chunk: u32, level: u32) -> (u64, u64) {
+    let n = elements.max(1) as u64;
+    let levels = level.trailing_zeros() as u64 + 1;
+    let bins = n.div_ceil(chunk.max(1) as u64) * levels;
+    ((n + bins) * COMMAND_BYTES, levels * n * 4)
+}
+
+/// Bytes of one `VkDrawIndexedIndirectCommand`.
+const COMMAND_BYTES: u64 = 20;
+
+/// Elements (phase 1) or bins (phase 0) one dispatch of the bins pass covers.
+const BINS_PER_DISPATCH: u32 = 64 * 65_535;
+
+/// `Push` of glsl/pattern/bins.comp.
+#[repr(C)]
+#[derive(Clone, Copy, Pod, Zeroable)]
+struct BinsPush {
+    phase: u32,
+    first: u32,
+    end: u32,
+    f: u32,
+    n: u32,
+    chunk: u32,
+}
+
+/// What drawing one mesh's elements adaptively at largest level `f` needs besides the finest
+/// uniform pattern (whose vertices it draws): the hierarchical index ranges, the indirect
+/// commands and bins the pass glsl/pattern/bins.comp writes from the levels buffer each frame,
+/// and that pass. Built by [`PatternDriver`]'s `prepare` for a level that is a power of two.
+pub struct AdaptivePattern {
+    pub level: u32,
+    /// Every dyadic level's triangles, indexing the finest pattern's vertices.
+    pub indices: Buffer,
+    /// Per element one command (`push`, `ubo`), then per chunk and level one bin's command.
+    pub commands: Buffer,
+    /// Each bin's elements: level `l`, chunk `c` from entry `l n + c chunk`.
+    pub lists: Buffer,
+    elements: u32,
+    chunk: u32,
+    chunks: u32,
+    set: vk::DescriptorSet,
+    _pool: DescriptorPool,
+    pipeline: Pipeline,
+    layout: PipelineLayout,
+    _set_layout: DescriptorSetLayout,
+}
+
+impl AdaptivePattern {
+    /// For `mesh`'s elements at largest level `f` (a power of two).
+    pub fn new(
+        ctx: &Arc<Context>,
+        pool: &CommandPool,
+        mesh: &GpuMesh,
+        f: u32,
+    ) -> Result<Self, RenderError> {
+        use vk::BufferUsageFlags as U;
+        let n = mesh.element_count.max(1);
+        let chunks = n.div_ceil(mesh.chunk);
+        let hierarchy = Hierarchy::new(f);
+        let indices = Buffer::new_with_data(
+            ctx,
+            pool,
+            U::INDEX_BUFFER,
+            &hierarchy.indices,
+            &format!("hierarchical patterns up to {f}"),
+        )?;
+        let (command_bytes, list_bytes) = adaptive_bytes(n, mesh.chunk, f);
+        let commands = Buffer::new(
+            ctx,
+            BufferDesc::new_gpu_only(command_bytes, U::STORAGE_BUFFER | U::INDIRECT_BUFFER),
+            "adaptive pattern commands",
+        )?;
+        let lists = Buffer::new(
+            ctx,
+            BufferDesc::new_gpu_only(list_bytes, U::STORAGE_BUFFER | U::VERTEX_BUFFER),
+            "adaptive pattern bins",
+        )?;
+        let c = vk::ShaderStageFlags::COMPUTE;
+        let t = vk::DescriptorType::STORAGE_BUFFER;
+        let set_layout =
+            DescriptorSetLayout::new(ctx, &[(0, t, c), (1, t, c), (2, t, c)], "pattern bins set")?;
+        let layout = PipelineLayout::new(
+            ctx,
+            &[&set_layout],
+            std::mem::size_of::<BinsPush>() as u32,
+            c,
+            "pattern bins",
+        )?;
+        let pipeline =
+            Pipeline::new_compute(ctx, &layout, names::PATTERN_BINS_COMP, "pattern bins")?;
+        let dpool = DescriptorPool::new(ctx, 1, &[(t, 3)], "pattern bins descriptors")?;
+        let set = dpool.allocate(&set_layout, "pattern bins set")?;
+        for (b, buffer) in [(0, &mesh.levels), (1, &commands), (2, &lists)] {
+            dpool.write_buffer(set, b, t, buffer.raw, vk::WHOLE_SIZE);
+        }
+        Ok(Self {
+            level: f,
+            indices,
+            commands,
+            lists,
+            elements: n,
+            chunk: mesh.chunk,
+            chunks,
+            set,
+            _pool: dpool,
+            pipeline,
+            layout,
+            _set_layout: set_layout,
+        })
+    }
+
+    /// Levels in the hierarchy (`L + 1`).
+    fn levels(&self) -> u32 {
+        self.level.trailing_zeros() + 1
+    }
+
+    /// Record the bins pass for `elements`: the bins' commands, then each element's command and
+    /// bin; barriers before (earlier draws read the same buffers) and after (the draws read
+    /// them: indirect commands, vertex input, vertex stage).
+    pub fn cmd_bins(&self, cmd: &Cmd<'_>, elements: std::ops::Range<u32>) {
+        cmd.barrier_to_compute();
+        cmd.bind_compute_pipeline(self.pipeline.raw);
+        cmd.bind_compute_descriptor_set(self.layout.raw, 0, self.set);
+        let bins = self.chunks * self.levels();
+        for (phase, range) in [(0, 0..bins), (1, elements)] {
+            let mut first = range.start;
+            while first < range.end {
+                let end = range.end.min(first + BINS_PER_DISPATCH);
+                let push = BinsPush {
+                    phase,
+                    first,
+                    end,
+                    f: self.level,
+                    n: self.elements,
+                    chunk: self.chunk,
+                };
+                cmd.push_constants(
+                    self.layout.raw,
+                    vk::ShaderStageFlags::COMPUTE,
+                    0,
+                    bytemuck::bytes_of(&push),
+                );
+                cmd.dispatch((end - first).div_ceil(64), 1, 1);
+                first = end;
+            }
+            if phase == 0 {
+                cmd.barrier_to_compute();
+            }
+        }
+        cmd.barrier_compute_to_indirect();
+    }
+
+    /// Byte offset of element `e`'s command.
+    fn element_command(&self, e: u32) -> u64 {
+        e as u64 * COMMAND_BYTES
+    }
+
+    /// Byte offset of the bin of the chunk starting at element `base` and level `2^l`.
+    fn bin_command(&self, base: u32, l: u32) -> u64 {
+        let bin = (base / self.chunk) * self.levels() + l;
+        (self.elements as u64 + bin as u64) * COMMAND_BYTES
+    }
+
+    /// Byte offset of that bin's element list.
+    fn bin_list(&self, base: u32, l: u32) -> u64 {
+        (l as u64 * self.elements as u64 + base as u64) * 4
+    }
+}
+
+/// Record the adaptive draws of the elements `range` of `mesh` (the bins pass already
+/// recorded): the finest pattern's vertices, the hierarchy's index ranges, the commands the pass
+/// wrote. The same per-element loop as [`cmd_draw`] for `push` and `ubo`; one indirect draw per
+/// chunk and level for `instanced`.
+fn cmd_draw_adaptive(
+    cmd: &Cmd<'_>,
+    r: &Renderer,
+    mesh: &GpuMesh,
+    records: &[ElementRecord],
+    a: &AdaptivePattern,
+    submit: Submit,
+    range: std::ops::Range<u32>,
+) {
+    let finest = mesh
+        .pattern(a.level)
+        .expect("the finest pattern is in the set");
+    let draw = |base: u32, local: u32| -> DrawWords { [a.level, base, finest.vertex_count, local] };
+    let push_draw = |words: DrawWords| {
+        cmd.push_constants(
+            r.layout.raw,
+            PUSH_STAGES,
+            PUSH_DRAW_OFFSET,
+            bytemuck::cast_slice(&words),
+        )
+    };
+    cmd.bind_vertex_buffer(0, &finest.vertices);
+    // The element lists (`instanced` rebinds them per bin; the other modes ignore them).
+    cmd.bind_vertex_buffer(2, &a.lists);
+    cmd.bind_index_buffer_u32(&a.indices);
+    for c in mesh.chunks(range) {
+        let elements = c.first..c.first + c.count;
+        match submit {
+            Submit::Push => {
+                cmd.bind_descriptor_set(r.layout.raw, SET_MESH, c.set, &[0]);
+                for e in elements {
+                    let block = PushBlock {
+                        rec: records[e as usize],
+                        draw: draw(c.base, e - c.base),
+                    };
+                    cmd.push_constants(r.layout.raw, PUSH_STAGES, 0, bytemuck::bytes_of(&block));
+                    cmd.draw_indexed_indirect(&a.commands, a.element_command(e));
+                }
+            }
+            Submit::Ubo => {
+                let mut window = None;
+                for e in elements {
+                    let w = e / UBO_WINDOW;
+                    if window != Some(w) {
+                        let offset = (w as u64 * UBO_WINDOW as u64 * RECORD_BYTES as u64) as u32;
+                        cmd.bind_descriptor_set(r.layout.raw, SET_MESH, c.set, &[offset]);
+                        window = Some(w);
+                    }
+                    push_draw(draw(c.base, e - c.base));
+                    cmd.draw_indexed_indirect(&a.commands, a.element_command(e));
+                }
+            }
+            Submit::Instanced => {
+                cmd.bind_descriptor_set(r.layout.raw, SET_MESH, c.set, &[0]);
+                push_draw(draw(c.base, 0));
+                // The bins were filled from the drawn range only, so a bin holds exactly the
+                // elements of this chunk to draw at its level.
+                for l in 0..a.levels() {
+                    cmd.bind_vertex_buffer_at(2, &a.lists, a.bin_list(c.base, l));
+                    cmd.draw_indexed_indirect(&a.commands, a.bin_command(c.base, l));
+                }
+            }
+        }
     }
 }

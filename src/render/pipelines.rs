@@ -46,6 +46,8 @@ struct PipelineKey {
     capture: Capture,
     /// Wireframe pass: polygon mode LINE, the fragment stage's WIRE variant.
     wire: bool,
+    /// Each element at its own levels (`FrameWork::adaptive`).
+    adaptive: bool,
 }
 
 pub struct Renderer {
@@ -225,9 +227,17 @@ impl Renderer {
         capture: Capture,
         wire: bool,
     ) -> Result<(), GpuError> {
-        let mut keys = vec![key(cfg, capture, false)];
+        let mut keys = vec![key(cfg, capture, false, false)];
         if wire && self.wireframe_supported() {
-            keys.push(key(cfg, Capture::None, true));
+            keys.push(key(cfg, Capture::None, true, false));
+        }
+        // The adaptive variants where the driver draws adaptively at this level (created
+        // together: pipelines are compiled at their first draw).
+        if adaptive_drawn(cfg) {
+            keys.extend(keys.clone().into_iter().map(|k| PipelineKey {
+                adaptive: true,
+                ..k
+            }));
         }
         for k in keys {
             if !self.pipelines.contains_key(&k) {
@@ -256,9 +266,16 @@ impl Renderer {
         self.cage.as_ref().expect("cage pipeline prepared").raw
     }
 
-    /// The pipeline for `cfg`; [`Renderer::prepare`] must have been called.
-    pub fn pipeline(&self, cfg: &DrawConfig, capture: Capture, wire: bool) -> vk::Pipeline {
-        self.pipelines[&key(cfg, capture, wire)].raw
+    /// The pipeline for `cfg` (`adaptive`: its adaptive variant, where the driver draws
+    /// adaptively at this level); [`Renderer::prepare`] must have been called.
+    pub fn pipeline(
+        &self,
+        cfg: &DrawConfig,
+        capture: Capture,
+        wire: bool,
+        adaptive: bool,
+    ) -> vk::Pipeline {
+        self.pipelines[&key(cfg, capture, wire, adaptive && adaptive_drawn(cfg))].raw
     }
 
     fn create(&self, key: PipelineKey) -> Result<Pipeline, GpuError> {
@@ -286,16 +303,20 @@ impl Renderer {
             // Pull the lines towards the camera so they win the depth test against their fill.
             depth_bias: key.wire.then_some((-1.0, -1.0)),
         };
-        key.driver
-            .kind()
-            .describe_pipeline(&mut desc, key.fragment_field, key.capture);
+        let kind = key.driver.kind();
+        if key.adaptive {
+            kind.describe_adaptive_pipeline(&mut desc, key.fragment_field, key.capture);
+        } else {
+            kind.describe_pipeline(&mut desc, key.fragment_field, key.capture);
+        }
         desc.stages.push((
             vk::ShaderStageFlags::FRAGMENT,
             crate::gpu::shaders::names::SHADE_SHADE_FRAG.to_string(),
         ));
         let name = format!(
-            "{}{}{} ({} + {})",
+            "{}{}{}{} ({} + {})",
             DrawConfig::new(key.driver, 0).label(),
+            if key.adaptive { " adaptive" } else { "" },
             key.capture.shader_suffix(),
             if key.wire { " wireframe" } else { "" },
             key.surface.name(),
@@ -305,7 +326,13 @@ impl Renderer {
     }
 }
 
-fn key(cfg: &DrawConfig, capture: Capture, wire: bool) -> PipelineKey {
+/// Whether `cfg` is drawn adaptively when a frame asks: the pattern driver at a power of two
+/// (src/render/pattern.rs `check_adaptive`).
+fn adaptive_drawn(cfg: &DrawConfig) -> bool {
+    cfg.driver.submit().is_some() && cfg.level.is_power_of_two()
+}
+
+fn key(cfg: &DrawConfig, capture: Capture, wire: bool, adaptive: bool) -> PipelineKey {
     PipelineKey {
         // The driver carries the pattern driver's submission mode.
         driver: cfg.driver,
@@ -314,5 +341,6 @@ fn key(cfg: &DrawConfig, capture: Capture, wire: bool) -> PipelineKey {
         fragment_field: cfg.fragment_normal_field(),
         capture,
         wire,
+        adaptive,
     }
 }

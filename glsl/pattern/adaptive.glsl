@@ -1,0 +1,45 @@
+// The adaptive pattern driver's levels and snapping, shared by its vertex stage
+// (glsl/pattern/adaptive.vert) and its bins pass (glsl/pattern/bins.comp). Mirror:
+// src/pattern/adaptive.rs. Needs drawn_level (glsl/include/levels.glsl).
+#ifndef PATTERN_ADAPTIVE_GLSL
+#define PATTERN_ADAPTIVE_GLSL
+
+// The levels an element is drawn with at largest level f (a power of two): its three edges'
+// and its inner level, dyadic; the inner level at least every edge's, an edge's at least 1.
+// inner 0: culled. Mirror: adaptive::drawn_levels.
+uvec4 adaptive_levels(vec4 levels, uint f) {
+    uint inner = drawn_level(levels.w, true, f);
+    if (inner == 0u) {
+        return uvec4(0u);
+    }
+    uvec3 e = max(uvec3(drawn_level(levels.x, true, f), drawn_level(levels.y, true, f),
+                        drawn_level(levels.z, true, f)),
+                  uvec3(1u));
+    return uvec4(e, max(inner, max(e.x, max(e.y, e.z))));
+}
+
+// Parameter a (units of 1/f) along an edge drawn at level n, snapped onto the edge's samples
+// (multiples of f/n): the nearest, a tie to the smaller. Mirror: adaptive::snap_edge.
+uint snap_edge(uint a, uint n, uint f) {
+    uint r = f / n;
+    return (2u * a + r - 1u) / (2u * r) * r;
+}
+
+// Lattice point (i, j) of level f moved onto its edge's samples where it lies on a stored edge
+// (edge 0: j = 0, from corner 0; edge 1: i + j = f, from corner 1; edge 2: i = 0, from corner 2).
+// Mirror: adaptive::snap.
+uvec2 adaptive_snap(uvec2 ij, uvec4 n, uint f) {
+    if (ij.y == 0u) {
+        return uvec2(snap_edge(ij.x, n.x, f), 0u);
+    }
+    if (ij.x + ij.y == f) {
+        uint j = snap_edge(ij.y, n.y, f);
+        return uvec2(f - j, j);
+    }
+    if (ij.x == 0u) {
+        return uvec2(0u, f - snap_edge(f - ij.y, n.z, f));
+    }
+    return ij;
+}
+
+#endif

@@ -1,0 +1,231 @@
+//! Hierarchical dyadic patterns for adaptive drawing (Schwarz et al. 2006, §3: the vertices of
+//! every coarser 1-to-4 pattern are a subset of the finest one's, so one vertex buffer of the
+//! finest level `F = 2^L` and one index range per level `2^l`, `l = 0..=L`, indexing into it) and
+//! the CPU mirror of what the adaptive pattern driver draws for one element: its drawn levels,
+//! the weights of every vertex it draws (boundary vertices snapped onto their edge's level) and
+//! its triangles. docs/adaptivity.md, "How cracks are excluded", has the argument.
+//!
+//! Every weight here is `k / 2^l`, exactly representable: the finest buffer's `(w, u, v)` are
+//! the uniform pattern's, and a snapped weight is again a multiple of `1/F`.
+#![forbid(unsafe_code)]
+
+use super::{index_count, lattice_index, weight, Pattern};
+use crate::lod::levels::{drawn_level, ElementLevels};
+
+/// The levels one element is drawn with: its three stored edges' and its inner level, all
+/// powers of two at most the frame's largest level, each edge at most the inner level.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DrawnLevels {
+    pub edges: [u32; 3],
+    pub inner: u32,
+}
+
+/// The levels the adaptive pattern driver draws `levels` with at largest level `max` (a power
+/// of two); `None`: culled. Mirror of `adaptive_levels` in glsl/pattern/adaptive.glsl. The inner
+/// level is raised to the largest edge level (a level pass promises it; raising it keeps a
+/// wrong one from opening a crack) and an edge level is at least 1.
+pub fn drawn_levels(levels: &ElementLevels, max: u32) -> Option<DrawnLevels> {
+    let inner = drawn_level(levels.inner, true, max);
+    if inner == 0 {
+        return None;
+    }
+    let edges = levels.edges.map(|e| drawn_level(e, true, max).max(1));
+    let inner = edges.iter().copied().fold(inner, u32::max);
+    Some(DrawnLevels { edges, inner })
+}
+
+/// Parameter `a` (in units of `1/f`) along an edge drawn at level `n` snapped onto that edge's
+/// samples, multiples of `f/n`: the nearest one, a tie going to the smaller. Mirror of
+/// `snap_edge` in glsl/pattern/adaptive.glsl.
+pub fn snap_edge(a: u32, n: u32, f: u32) -> u32 {
+    let r = f / n;
+    (2 * a + r - 1) / (2 * r) * r
+}
+
+/// Lattice point `(i, j)` of the finest level `f` moved onto its edge's samples where it lies on
+/// a stored edge (edge 0: `j = 0`, measured from corner 0; edge 1: `i + j = f`, from corner 1;
+/// edge 2: `i = 0`, from corner 2); interior points stay. Mirror of `adaptive_snap`.
+pub fn snap(i: u32, j: u32, levels: &DrawnLevels, f: u32) -> (u32, u32) {
+    if j == 0 {
+        (snap_edge(i, levels.edges[0], f), 0)
+    } else if i + j == f {
+        let j = snap_edge(j, levels.edges[1], f);
+        (f - j, j)
+    } else if i == 0 {
+        (0, f - snap_edge(f - j, levels.edges[2], f))
+    } else {
+        (i, j)
+    }
+}
+
+/// The finest lattice's weights `(w, u, v)` of `(i, j)`.
+pub fn bary(i: u32, j: u32, f: u32) -> [f32; 3] {
+    [weight(f - i - j, f), weight(i, f), weight(j, f)]
+}
+
+/// The hierarchy of dyadic patterns up to level `f = 2^L`: level `2^l`'s triangles (the uniform
+/// pattern's, in its order) with indices into the finest pattern's vertices, level after level.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Hierarchy {
+    pub level: u32,
+    pub indices: Vec<u32>,
+}
+
+impl Hierarchy {
+    /// The hierarchy up to `f`, a power of two.
+    pub fn new(f: u32) -> Self {
+        assert!(
+            f.is_power_of_two(),
+            "hierarchical patterns need a power of two"
+        );
+        let mut indices = Vec::with_capacity(Self::first_index(f.trailing_zeros() + 1) as usize);
+        for l in 0..=f.trailing_zeros() {
+            indices.extend(Self::level_indices(f, 1 << l));
+        }
+        Self { level: f, indices }
+    }
+
+    /// Level `n`'s triangle list with indices into the finest level `f`'s vertices.
+    pub fn level_indices(f: u32, n: u32) -> Vec<u32> {
+        let s = f / n;
+        let p = Pattern::uniform(n);
+        let lattice: Vec<(u32, u32)> = p.lattice().collect();
+        p.indices
+            .iter()
+            .map(|&k| {
+                let (i, j) = lattice[k as usize];
+                lattice_index(f, i * s, j * s)
+            })
+            .collect()
+    }
+
+    /// First index of level `2^l`'s range: `3 (4^0 + ... + 4^(l-1)) = 4^l - 1`.
+    pub const fn first_index(l: u32) -> u32 {
+        (1u32 << (2 * l)) - 1
+    }
+
+    /// The index range of level `n` (a power of two up to the hierarchy's).
+    pub fn range(n: u32) -> std::ops::Range<u32> {
+        let first = Self::first_index(n.trailing_zeros());
+        first..first + index_count(n)
+    }
+}
+
+/// What the adaptive pattern driver draws for one element at largest level `f`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AdaptiveElement {
+    pub levels: DrawnLevels,
+    /// The finest pattern's vertices the element's inner level draws, and each one's weights
+    /// after snapping (`bary[k]` belongs to `vertices[k]`).
+    pub vertices: Vec<u32>,
+    pub bary: Vec<[f32; 3]>,
+    /// The triangles, indices into the finest pattern (the draw's order). Where snapping
+    /// welds two corners of a triangle it is degenerate (zero area): an exporter drops it.
+    pub triangles: Vec<[u32; 3]>,
+}
+
+/// The CPU mirror of one element drawn adaptively with `levels` at largest level `f` (a power
+/// of two); `None`: culled, nothing drawn.
+pub fn adaptive_element(levels: &ElementLevels, f: u32) -> Option<AdaptiveElement> {
+    let d = drawn_levels(levels, f)?;
+    let s = f / d.inner;
+    let mut vertices = Vec::new();
+    let mut out = Vec::new();
+    for j in 0..=d.inner {
+        for i in 0..=(d.inner - j) {
+            let (fi, fj) = (i * s, j * s);
+            vertices.push(lattice_index(f, fi, fj));
+            let (si, sj) = snap(fi, fj, &d, f);
+            out.push(bary(si, sj, f));
+        }
+    }
+    let triangles = Hierarchy::level_indices(f, d.inner)
+        .chunks_exact(3)
+        .map(|t| [t[0], t[1], t[2]])
+        .collect();
+    Some(AdaptiveElement {
+        levels: d,
+        vertices,
+        bary: out,
+        triangles,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn hierarchy_levels_are_the_uniform_patterns() {
+        let f = 16;
+        let h = Hierarchy::new(f);
+        let fine = Pattern::uniform(f);
+        for l in 0..=4 {
+            let n = 1 << l;
+            let r = Hierarchy::range(n);
+            let coarse = Pattern::uniform(n);
+            let got: Vec<[f32; 3]> = h.indices[r.start as usize..r.end as usize]
+                .iter()
+                .map(|&k| fine.bary[k as usize])
+                .collect();
+            let want: Vec<[f32; 3]> = coarse
+                .indices
+                .iter()
+                .map(|&k| coarse.bary[k as usize])
+                .collect();
+            assert_eq!(got, want, "level {n}");
+        }
+        assert_eq!(h.indices.len() as u32, Hierarchy::first_index(5));
+    }
+
+    #[test]
+    fn snapping_lands_on_the_edge_samples_from_either_side() {
+        for f in [1u32, 2, 8, 64] {
+            for n in (0..=f.trailing_zeros()).map(|l| 1 << l) {
+                for inner in (0..=f.trailing_zeros())
+                    .map(|l| 1u32 << l)
+                    .filter(|&m| m >= n)
+                {
+                    let step = f / inner;
+                    // Both directions give every sample k f/n, and only those.
+                    let fwd: std::collections::BTreeSet<u32> =
+                        (0..=inner).map(|a| snap_edge(a * step, n, f)).collect();
+                    let back: std::collections::BTreeSet<u32> = (0..=inner)
+                        .map(|a| f - snap_edge(f - a * step, n, f))
+                        .collect();
+                    let want: std::collections::BTreeSet<u32> =
+                        (0..=n).map(|k| k * (f / n)).collect();
+                    assert_eq!(fwd, want);
+                    assert_eq!(back, want);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn uniform_levels_draw_the_uniform_pattern() {
+        let f = 32;
+        for n in [1u32, 4, 32] {
+            let e = adaptive_element(&ElementLevels::uniform(n as f32), f).unwrap();
+            let p = Pattern::uniform(n);
+            assert_eq!(e.bary, p.bary, "level {n}");
+            assert_eq!(e.triangles.len() as u32, n * n);
+        }
+        assert!(adaptive_element(&ElementLevels::CULLED, f).is_none());
+    }
+
+    #[test]
+    fn levels_are_dyadic_and_the_inner_covers_the_edges() {
+        let l = ElementLevels {
+            edges: [3.0, 0.0, 20.0],
+            inner: 5.0,
+        };
+        assert_eq!(
+            drawn_levels(&l, 16),
+            Some(DrawnLevels {
+                edges: [4, 1, 16],
+                inner: 16
+            })
+        );
+    }
+}
