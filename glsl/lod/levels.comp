@@ -14,8 +14,8 @@ const uint CULL_BACK_FACES = 2u;
 const uint DYADIC = 4u;
 
 struct LodEdge {
-    vec4 chords;  // (c1, c2) of the edge curve, then of the first element's transition need
-    vec4 chord_b; // (c1, c2) of the second element's transition need
+    vec4 curve;    // (c1, c2) of the edge curve
+    vec4 needs[2]; // (c1, c2) of each element's transition need: [0] dyadic, [1] integer
     vec4 sphere;
     vec4 sphere_a;
     vec4 sphere_b;
@@ -72,9 +72,10 @@ float level(vec2 c, vec4 s) {
 
 // Mirror: `edge_level`.
 float edge_level(LodEdge e) {
-    float own = level(e.chords.xy, e.sphere);
-    float a = level(e.chords.zw, e.sphere_a);
-    float b = level(e.chord_b.xy, e.sphere_b);
+    vec4 needs = e.needs[(view.flags & DYADIC) != 0u ? 0 : 1];
+    float own = level(e.curve.xy, e.sphere);
+    float a = level(needs.xy, e.sphere_a);
+    float b = level(needs.zw, e.sphere_b);
     return max(max(own, a), b);
 }
 
