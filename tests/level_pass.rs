@@ -17,12 +17,14 @@ mod common;
 
 use common::{model, with_gpu};
 use glam::{Mat4, Vec3};
+use meshrefine::gpu::vk;
 use meshrefine::lod::frame::{
     corner_indices, frame_levels, lod_records, LodRecord, LodView, CULL_BACK_FACES,
 };
 use meshrefine::lod::levels::{drawn_level, ElementLevels};
 use meshrefine::lod::{Frustum, Lod, View};
-use meshrefine::render::{Capture, DrawConfig, Driver, LevelPass, Scene};
+use meshrefine::render::frame::{cmd_render, FrameWork, TargetView};
+use meshrefine::render::{Capture, DrawConfig, Driver, LevelPass, Scene, Submit};
 use meshrefine::surface::{stpn, Displace, Inputs, Surface, SurfaceParams};
 use std::collections::HashMap;
 
@@ -237,6 +239,77 @@ fn gpu_levels_match_the_cpu() {
              {shared} shared edges, {raised} raised"
         );
         assert!(compared > 20_000 && culled > 6000 && raised > 5000 && shared > 40_000);
+        drop(pass);
+    });
+}
+
+/// A frame that carries the level pass (`FrameWork::level_pass`) runs it before drawing, into
+/// the drawn mesh's levels, with its barriers inside a real frame (the validation layer
+/// watches): the levels it leaves are the mirror's.
+#[test]
+fn a_frame_runs_the_level_pass_before_drawing() {
+    with_gpu(64, 36, |h| {
+        let mut scene = Scene::new(
+            &h.ctx,
+            &h.pool,
+            &h.renderer,
+            model("spot_control_tri.obj"),
+            4,
+        )
+        .unwrap();
+        let cfg = DrawConfig {
+            surface: Surface::Pn,
+            ..DrawConfig::new(Driver::Pattern(Submit::Instanced), 4)
+        };
+        scene
+            .prepare(&h.ctx, &h.pool, &mut h.renderer, &cfg, Capture::None, false)
+            .unwrap();
+        let (c, r) = scene.bounding_sphere();
+        let inputs = Inputs::default();
+        let lod = Lod::new(cfg.surface, cfg.displace, &cfg.params, &inputs);
+        let mut pass = LevelPass::new(&h.ctx).unwrap();
+        pass.update_bounds(&scene.gpu, &lod, &scene.data.records, None)
+            .unwrap();
+        let (_, eye, vp) = cameras(c, r)[1];
+        let frustum = Frustum::from_view_proj(vp);
+        let view = LodView::new(
+            &View::new(eye, 0.8, 36, 0.5, 64),
+            Some(&frustum),
+            true,
+            true,
+            0,
+        );
+        let target = TargetView {
+            color: h.target.color.raw,
+            color_view: h.target.color.view,
+            depth: h.target.depth.raw,
+            depth_view: h.target.depth.view,
+            extent: h.target.extent(),
+            final_layout: vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+        };
+        let work = FrameWork {
+            level_pass: Some((&pass, view)),
+            ..FrameWork::new(&scene, cfg)
+        };
+        h.pool
+            .submit_and_wait(|cmd| {
+                cmd_render(cmd, &h.renderer, &target, &work, None, None);
+                cmd.barrier_to_host();
+            })
+            .unwrap();
+        let gpu: Vec<ElementLevels> = scene.gpu.levels.read_pod();
+        let cpu = frame_levels(&view, &lod_records(&lod, &scene.data.records, None));
+        let (mut culled, mut refined) = (0, 0);
+        for (i, (g, k)) in gpu.iter().zip(&cpu).enumerate() {
+            assert_eq!(g.culled(), k.culled(), "element {i}");
+            assert!(close(g.inner, k.inner, 1e-4), "element {i}: {g:?} {k:?}");
+            culled += k.culled() as usize;
+            refined += (k.inner > 1.0) as usize;
+        }
+        assert!(
+            culled > 10 && refined > 10,
+            "{culled} culled, {refined} refined"
+        );
         drop(pass);
     });
 }

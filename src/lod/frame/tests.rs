@@ -229,3 +229,39 @@ fn inner_levels_cover_own_bound_and_transitions() {
     );
     eprintln!("{checked} transitions, {raised} inner levels raised");
 }
+
+/// The height map's bounds read each element's own texture coordinates.
+#[test]
+fn height_map_bounds_read_each_element_s_coordinates() {
+    let (mesh, _) = load_model("grid_uv_8x8.obj");
+    let data = crate::render::MeshData::new(mesh, RecordKind::Corners, Seams::Closed);
+    let uvs = data
+        .uvs
+        .as_deref()
+        .expect("the grid has texture coordinates");
+    let map = crate::surface::Heightmap::generated();
+    let params = SurfaceParams::for_radius(data.mesh.bounding_radius());
+    let inputs = Inputs {
+        heightmap: Some(&map),
+        ..Default::default()
+    };
+    let lod = Lod::new(Surface::Pn, Displace::Heightmap, &params, &inputs);
+    let lr = lod_records(&lod, &data.records, Some(uvs));
+    let mut differ = 0;
+    for (i, rec) in data.records.iter().enumerate() {
+        let own = Lod::new(
+            Surface::Pn,
+            Displace::Heightmap,
+            &params,
+            &Inputs {
+                uv: Some(&uvs[i]),
+                ..inputs
+            },
+        )
+        .element(rec);
+        assert_eq!(lr[i].chord[..2], chord2(own.chord), "element {i}");
+        assert!(own.chord.c1 > 0.0, "element {i}: no kink term");
+        differ += (lr[i].chord != lr[0].chord) as usize;
+    }
+    assert!(differ > 0);
+}
