@@ -68,8 +68,8 @@ pub const LOOP_BINDING_RING_OFFSETS: u32 = 4;
 pub const LOOP_BINDING_RINGS: u32 = 5;
 pub const LOOP_BINDING_N1: u32 = 6;
 
-/// The level pass (compute, set 2): per element, its bounds and its three edges' bounds
-/// (glsl/lod/bounds.comp, src/lod).
+/// The GLSL twin of the bounds (compute, set 2): per element, its bounds and its three edges'
+/// bounds (glsl/lod/bounds.comp, src/lod).
 pub const SET_LOD: u32 = 2;
 pub const BINDING_LOD_BOUNDS: u32 = 0;
 
