@@ -6,9 +6,8 @@
 // transition triangles is in its module notes); tests/level_pass.rs compares the two.
 layout(local_size_x = 64) in;
 
-// "No finite bound" (src/lod/frame.rs HUGE, glsl/include/lod.glsl LOD_HUGE).
-const float HUGE = 3.0e38;
-const float ELEMENT_FACTOR = 9.0 / 40.0;
+#include "lod_metric.glsl"
+
 const uint CULL_FRUSTUM = 1u;
 const uint CULL_BACK_FACES = 2u;
 const uint DYADIC = 4u;
@@ -48,26 +47,17 @@ layout(push_constant) uniform View {
     uint count;
 } view;
 
-// Mirror: `tolerance`.
+// The metric as src/lod/frame.rs reads it from the view. Mirror: `tolerance`, `level`.
+LodView metric() {
+    return LodView(view.eye_k.xyz, view.eye_k.w, view.pixel_error, float(view.max_level));
+}
+
 float tolerance(vec4 s) {
-    float dist = length(s.xyz - view.eye_k.xyz) - s.w;
-    return view.pixel_error * max(dist, 0.0) / view.eye_k.w;
+    return lod_tolerance(metric(), s);
 }
 
-// Mirror: `Chord::level_for`.
-float level_for(vec2 c, float tol) {
-    float root = (c.x + sqrt(c.x * c.x + 4.0 * c.y * tol)) / (2.0 * tol);
-    return max(root * (1.0 + 1.0 / 65536.0), 1.0);
-}
-
-// Mirror: `level`.
 float level(vec2 c, vec4 s) {
-    float tol = tolerance(s);
-    float mx = float(view.max_level);
-    if (tol > 0.0 && max(c.x, c.y) < HUGE) {
-        return min(level_for(c, tol), mx);
-    }
-    return (c.x == 0.0 && c.y == 0.0) ? 1.0 : mx;
+    return lod_level(metric(), c, s);
 }
 
 // Mirror: `edge_level`.
@@ -97,9 +87,9 @@ float strip_level(LodRecord r, int e, float a, float tol) {
     float k1 = r.chord.z, k2 = r.chord.w;
     float sum = m.x + m.y + m.z;
     float mb = max(m[(e + 1) % 3], m[(e + 2) % 3]);
-    float p = ELEMENT_FACTOR * mb + k2;
-    float q = ELEMENT_FACTOR * a * sum + k1 + 2.0 * k2 * a;
-    float c = (ELEMENT_FACTOR * a * m[e] + k1 + k2 * a) * a;
+    float p = LOD_ELEMENT_FACTOR * mb + k2;
+    float q = LOD_ELEMENT_FACTOR * a * sum + k1 + 2.0 * k2 * a;
+    float c = (LOD_ELEMENT_FACTOR * a * m[e] + k1 + k2 * a) * a;
     float mx = float(view.max_level);
     if (c >= tol) {
         return mx;
@@ -113,33 +103,17 @@ float strip_level(LodRecord r, int e, float a, float tol) {
     return clamp((1.0 + 1.0 / 65536.0) / beta, 1.0, mx);
 }
 
-// Mirror: `outside`.
+// Mirror: `outside` (`lod_outside`).
 bool outside(vec4 s) {
-    bool o = false;
-    for (int i = 0; i < 6; ++i) {
-        o = o || dot(view.planes[i].xyz, s.xyz) + view.planes[i].w < -s.w;
-    }
-    return o;
-}
-
-// Mirror: `back_facing`.
-bool back_facing(vec4 cone, vec4 s) {
-    vec3 v = s.xyz - view.eye_k.xyz;
-    float d = length(v);
-    if (cone.w <= 0.0 || d <= s.w) {
-        return false;
-    }
-    float beta = acos(clamp(dot(v, cone.xyz) / d, -1.0, 1.0));
-    float gamma = asin(s.w / d);
-    float theta = acos(clamp(cone.w, -1.0, 1.0));
-    return beta + gamma + theta < 1.5707963 - 1e-4;
+    vec4 planes[6] = view.planes;
+    return lod_outside(planes, s);
 }
 
 // Mirror: `raise_for_transitions`.
 float raise_for_transitions(LodRecord r, vec3 edges, float inner) {
     bool dyadic = (view.flags & DYADIC) != 0u;
     uint mx = view.max_level;
-    if (r.chord.y >= HUGE || r.chord.x >= HUGE) {
+    if (r.chord.y >= LOD_HUGE || r.chord.x >= LOD_HUGE) {
         return inner;
     }
     float tol = tolerance(r.sphere);
@@ -174,7 +148,8 @@ void main() {
     LodRecord r = lod_records[i];
     vec3 edges = vec3(edge_level(r.edges[0]), edge_level(r.edges[1]), edge_level(r.edges[2]));
     bool culled = ((view.flags & CULL_FRUSTUM) != 0u && outside(r.sphere))
-        || ((view.flags & CULL_BACK_FACES) != 0u && back_facing(r.cone, r.sphere));
+        || ((view.flags & CULL_BACK_FACES) != 0u
+            && lod_back_facing(r.cone, r.sphere, view.eye_k.xyz));
     float inner = 0.0;
     if (!culled) {
         float own = level(r.chord.xy, r.sphere);
