@@ -116,6 +116,47 @@ impl<'a> Cmd<'a> {
         };
     }
 
+    /// Before a compute pass rewrites what every drawing stage and indirect draws may read (the
+    /// level pass's per-element levels): wait for the earlier draws' reads (write after read).
+    pub fn barrier_draws_to_levels(&self) {
+        // SAFETY: see `bind_graphics_pipeline`; outside a rendering instance.
+        unsafe {
+            self.ctx.device.cmd_pipeline_barrier(
+                self.raw,
+                LEVEL_READERS,
+                vk::PipelineStageFlags::COMPUTE_SHADER,
+                vk::DependencyFlags::empty(),
+                &[],
+                &[],
+                &[],
+            )
+        };
+    }
+
+    /// After the level pass: its storage writes visible to every drawing stage (the control
+    /// stage sets outer levels from them), to indirect-command reads and to later compute.
+    pub fn barrier_levels_to_draws(&self) {
+        let barrier = vk::MemoryBarrier::default()
+            .src_access_mask(vk::AccessFlags::SHADER_WRITE)
+            .dst_access_mask(
+                vk::AccessFlags::SHADER_READ
+                    | vk::AccessFlags::INDIRECT_COMMAND_READ
+                    | vk::AccessFlags::VERTEX_ATTRIBUTE_READ,
+            );
+        // SAFETY: see `bind_graphics_pipeline`; outside a rendering instance.
+        unsafe {
+            self.ctx.device.cmd_pipeline_barrier(
+                self.raw,
+                vk::PipelineStageFlags::COMPUTE_SHADER,
+                LEVEL_READERS,
+                vk::DependencyFlags::empty(),
+                &[barrier],
+                &[],
+                &[],
+            )
+        };
+    }
+
     /// Wait for earlier draws' reads before a compute pass overwrites what they read (a
     /// write-after-read hazard: an execution dependency suffices).
     pub fn barrier_draw_to_compute(&self) {
@@ -475,3 +516,15 @@ impl<'a> Cmd<'a> {
         };
     }
 }
+
+/// The stages that may read per-element levels: indirect draws, every geometry stage, the
+/// fragment stage and compute.
+const LEVEL_READERS: vk::PipelineStageFlags = vk::PipelineStageFlags::from_raw(
+    vk::PipelineStageFlags::DRAW_INDIRECT.as_raw()
+        | vk::PipelineStageFlags::VERTEX_INPUT.as_raw()
+        | vk::PipelineStageFlags::VERTEX_SHADER.as_raw()
+        | vk::PipelineStageFlags::TESSELLATION_CONTROL_SHADER.as_raw()
+        | vk::PipelineStageFlags::TESSELLATION_EVALUATION_SHADER.as_raw()
+        | vk::PipelineStageFlags::FRAGMENT_SHADER.as_raw()
+        | vk::PipelineStageFlags::COMPUTE_SHADER.as_raw(),
+);

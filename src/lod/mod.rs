@@ -115,6 +115,7 @@
 pub mod bound;
 pub mod cull;
 pub mod displace;
+pub mod frame;
 pub mod levels;
 pub mod net;
 pub mod report;

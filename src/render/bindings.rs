@@ -72,10 +72,15 @@ pub const LOOP_BINDING_RING_OFFSETS: u32 = 4;
 pub const LOOP_BINDING_RINGS: u32 = 5;
 pub const LOOP_BINDING_N1: u32 = 6;
 
-/// The level pass (compute, set 2): per element, its bounds and its three edges' bounds
-/// (glsl/lod/bounds.comp, src/lod).
+/// The GLSL twin of the bounds (compute, set 2): per element, its bounds and its three edges'
+/// bounds (glsl/lod/bounds.comp, src/lod).
 pub const SET_LOD: u32 = 2;
 pub const BINDING_LOD_BOUNDS: u32 = 0;
+
+/// The per-frame level pass (glsl/lod/levels.comp, its own set 0): each element's bounds
+/// (`LodRecord[]`, src/lod/frame.rs) in, the mesh's whole levels buffer out.
+pub const LEVEL_BINDING_RECORDS: u32 = 0;
+pub const LEVEL_BINDING_LEVELS: u32 = 1;
 
 /// Specialization constant ids.
 pub const SPEC_SURFACE: u32 = 0;
@@ -116,6 +121,8 @@ pub const GLSL_DEFINES: &[(&str, u32)] = &[
     ("BINDING_LOOP_ROWS", BINDING_LOOP_ROWS),
     ("SET_LOD", SET_LOD),
     ("BINDING_LOD_BOUNDS", BINDING_LOD_BOUNDS),
+    ("LEVEL_BINDING_RECORDS", LEVEL_BINDING_RECORDS),
+    ("LEVEL_BINDING_LEVELS", LEVEL_BINDING_LEVELS),
     ("SPEC_SURFACE", SPEC_SURFACE),
     ("SPEC_SUBMIT", SPEC_SUBMIT),
     ("SPEC_WIRE", SPEC_WIRE),

@@ -30,6 +30,9 @@ pub struct FrameWork<'a> {
     pub static_vbo: Option<&'a StaticVbo>,
     /// Passes to run before drawing (the `loop` surface's M0 -> M1), inside the timed range.
     pub pre_pass: Option<&'a super::loop_gpu::LoopPass>,
+    /// The level pass and its camera, run after `pre_pass` to write the mesh's levels for an
+    /// adaptive frame (src/render/level_pass.rs); `None` keeps the levels as they are.
+    pub level_pass: Option<(&'a super::LevelPass, crate::lod::frame::LodView)>,
     pub cfg: DrawConfig,
     pub capture: Capture,
     /// Transform-feedback output (with `Capture::Triangles`).
@@ -56,6 +59,7 @@ impl<'a> FrameWork<'a> {
             records: scene.records(cfg.surface),
             static_vbo: scene.static_vbo.as_ref(),
             pre_pass: scene.pre_pass(&cfg),
+            level_pass: None,
             cfg,
             capture: Capture::None,
             xfb: None,
@@ -96,6 +100,11 @@ pub fn cmd_render(
     }
     if let Some(pass) = work.pre_pass {
         pass.cmd_apply(cmd);
+    }
+    // The levels first (the level pass), then what the driver builds from them (the pattern
+    // driver's bins).
+    if let Some((pass, view)) = &work.level_pass {
+        pass.cmd_record(cmd, work.mesh, view);
     }
     work.cfg.driver.kind().cmd_before_rendering(cmd, r, work);
     cmd.begin_rendering(

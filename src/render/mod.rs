@@ -12,6 +12,7 @@ mod error;
 pub mod frame;
 mod gpu_mesh;
 mod headless;
+pub mod level_pass;
 pub mod loop_gpu;
 pub mod pattern;
 mod pipelines;
@@ -24,6 +25,7 @@ pub use driver::{Driver, DriverKind, Submit};
 pub use error::RenderError;
 pub use gpu_mesh::{GpuMesh, GpuPattern, MeshData};
 pub use headless::{clear_color_srgb8, covered_pixels, CaptureResult, FrameTiming, Headless};
+pub use level_pass::LevelPass;
 pub use pipelines::{Renderer, GEOMETRY_STAGES, PUSH_STAGES};
 pub use scene::{software_frame_seconds, Scene};
 

@@ -1,0 +1,95 @@
+// The screen-space metric and the culling tests of src/lod (mod.rs, cull.rs), function for
+// function, without any binding: included by lod.glsl (the bounds' twin) and by the level pass
+// (glsl/lod/levels.comp).
+#ifndef LOD_METRIC_GLSL
+#define LOD_METRIC_GLSL
+
+const float LOD_ELEMENT_FACTOR = 9.0 / 40.0;
+
+// "No finite bound": src/lod uses infinity; shader compilers may assume there are no
+// infinities, so the mirror uses the largest float it keeps finite instead.
+const float LOD_HUGE = 3.0e38;
+
+// ---- The metric (src/lod/mod.rs) ----
+
+// A chord bound (c1, c2): within c1/N + c2/N^2 at N segments per edge. Mirror: `Chord::error`.
+float lod_chord_error(vec2 chord, float n) {
+    float x = 1.0 / n;
+    return (chord.x + chord.y * x) * x;
+}
+
+// The smallest real N >= 1 with error(N) <= tol, uncapped. Mirror: `Chord::level_for`.
+float lod_level_for(vec2 chord, float tol) {
+    if (chord.x == 0.0 && chord.y == 0.0) {
+        return 1.0;
+    }
+    float root = (chord.x + sqrt(chord.x * chord.x + 4.0 * chord.y * tol)) / (2.0 * tol);
+    return max(root * (1.0 + 1.0 / 65536.0), 1.0);
+}
+
+// The camera as the metric sees it. Mirror: `View`.
+struct LodView {
+    vec3 eye;
+    float k;           // H / (2 tan(fov_y / 2))
+    float pixel_error; // pixels
+    float max_level;   // segments per edge
+};
+
+// World distance allowed inside sphere s (xyz centre, w radius). Mirror: `View::tolerance`.
+float lod_tolerance(LodView v, vec4 s) {
+    float dist = length(s.xyz - v.eye) - s.w;
+    return v.pixel_error * max(dist, 0.0) / v.k;
+}
+
+// The continuous level in [1, max_level]; its ceiling is the integer level. Mirror: `View::level`.
+float lod_level(LodView v, vec2 chord, vec4 s) {
+    float tol = lod_tolerance(v, s);
+    if (tol > 0.0 && max(chord.x, chord.y) < LOD_HUGE) {
+        return min(lod_level_for(chord, tol), v.max_level);
+    }
+    return (chord.x == 0.0 && chord.y == 0.0) ? 1.0 : v.max_level;
+}
+
+// ---- Culling (src/lod/cull.rs) ----
+
+// The six planes of a view-projection (Vulkan clip space). Mirror: `Frustum::from_view_proj`.
+void lod_frustum(mat4 m, out vec4 planes[6]) {
+    vec4 r0 = vec4(m[0][0], m[1][0], m[2][0], m[3][0]);
+    vec4 r1 = vec4(m[0][1], m[1][1], m[2][1], m[3][1]);
+    vec4 r2 = vec4(m[0][2], m[1][2], m[2][2], m[3][2]);
+    vec4 r3 = vec4(m[0][3], m[1][3], m[2][3], m[3][3]);
+    planes[0] = r3 + r0;
+    planes[1] = r3 - r0;
+    planes[2] = r3 + r1;
+    planes[3] = r3 - r1;
+    planes[4] = r2;
+    planes[5] = r3 - r2;
+    for (int i = 0; i < 6; ++i) {
+        planes[i] /= length(planes[i].xyz);
+    }
+}
+
+// Whether sphere s lies wholly outside one plane. Mirror: `Frustum::outside`.
+bool lod_outside(vec4 planes[6], vec4 s) {
+    bool out_ = false;
+    for (int i = 0; i < 6; ++i) {
+        out_ = out_ || dot(planes[i].xyz, s.xyz) + planes[i].w < -s.w;
+    }
+    return out_;
+}
+
+// Whether every triangle drawn inside sphere s with a normal in cone (xyz axis, w cosine of
+// the half-angle; w <= 0: no cone) faces away from eye. Mirror: `NormalCone::back_facing`.
+bool lod_back_facing(vec4 cone, vec4 s, vec3 eye) {
+    vec3 v = s.xyz - eye;
+    float d = length(v);
+    if (cone.w <= 0.0 || d <= s.w) {
+        return false;
+    }
+    float beta = acos(clamp(dot(v, cone.xyz) / d, -1.0, 1.0));
+    float gamma = asin(s.w / d);
+    float theta = acos(clamp(cone.w, -1.0, 1.0));
+    return beta + gamma + theta < 1.5707963 - 1e-4;
+}
+
+#endif

@@ -1,0 +1,160 @@
+#version 460
+// The level pass: each element's levels for this frame (its stored edges' continuous levels and
+// its inner level; inner 0: culled) from its bounds, computed once (LodRecord), and the camera
+// (push constants). One invocation per element, over the whole levels buffer.
+// Mirror, operation for operation: src/lod/frame.rs `element_levels` (the proof of the
+// transition triangles is in its module notes); tests/level_pass.rs compares the two.
+layout(local_size_x = 64) in;
+
+#include "lod_metric.glsl"
+
+const uint CULL_FRUSTUM = 1u;
+const uint CULL_BACK_FACES = 2u;
+const uint DYADIC = 4u;
+
+struct LodEdge {
+    vec4 curve;    // (c1, c2) of the edge curve
+    vec4 needs[2]; // (c1, c2) of each element's transition need: [0] dyadic, [1] integer
+    vec4 sphere;
+    vec4 sphere_a;
+    vec4 sphere_b;
+};
+
+struct LodRecord {
+    vec4 sphere;
+    vec4 cone;   // axis, cosine of the half-angle (0: none)
+    vec4 chord;  // (c1, c2), then the kink terms (k1, k2)
+    vec4 second; // M_k per stored direction
+    LodEdge edges[3];
+};
+
+layout(set = 0, binding = LEVEL_BINDING_RECORDS, std430) readonly buffer Records {
+    LodRecord lod_records[];
+};
+
+// The mesh's levels buffer, whole (src/lod/levels.rs ElementLevels).
+layout(set = 0, binding = LEVEL_BINDING_LEVELS, std430) writeonly buffer Levels {
+    vec4 element_levels[];
+};
+
+// src/lod/frame.rs LodView.
+layout(push_constant) uniform View {
+    vec4 planes[6];
+    vec4 eye_k;
+    float pixel_error;
+    uint max_level;
+    uint flags;
+    uint count;
+} view;
+
+// The metric as src/lod/frame.rs reads it from the view. Mirror: `tolerance`, `level`.
+LodView metric() {
+    return LodView(view.eye_k.xyz, view.eye_k.w, view.pixel_error, float(view.max_level));
+}
+
+float tolerance(vec4 s) {
+    return lod_tolerance(metric(), s);
+}
+
+float level(vec2 c, vec4 s) {
+    return lod_level(metric(), c, s);
+}
+
+// Mirror: `edge_level`.
+float edge_level(LodEdge e) {
+    vec4 needs = e.needs[(view.flags & DYADIC) != 0u ? 0 : 1];
+    float own = level(e.curve.xy, e.sphere);
+    float a = level(needs.xy, e.sphere_a);
+    float b = level(needs.zw, e.sphere_b);
+    return max(max(own, a), b);
+}
+
+// Mirror: src/lod/levels.rs `drawn_level` (glsl/include/levels.glsl).
+uint drawn(float level, bool dyadic, uint max_level) {
+    if (level <= 0.0) {
+        return 0u;
+    }
+    uint n = level >= float(max_level) ? max_level : clamp(uint(ceil(level)), 1u, max_level);
+    if (dyadic && n > 1u) {
+        n = 1u << (findMSB(n - 1u) + 1);
+    }
+    return min(n, max_level);
+}
+
+// Mirror: `strip_level`.
+float strip_level(LodRecord r, int e, float a, float tol) {
+    vec3 m = r.second.xyz;
+    float k1 = r.chord.z, k2 = r.chord.w;
+    float sum = m.x + m.y + m.z;
+    float mb = max(m[(e + 1) % 3], m[(e + 2) % 3]);
+    float p = LOD_ELEMENT_FACTOR * mb + k2;
+    float q = LOD_ELEMENT_FACTOR * a * sum + k1 + 2.0 * k2 * a;
+    float c = (LOD_ELEMENT_FACTOR * a * m[e] + k1 + k2 * a) * a;
+    float mx = float(view.max_level);
+    if (c >= tol) {
+        return mx;
+    }
+    float d = tol - c;
+    float den = q + sqrt(q * q + 4.0 * p * d);
+    if (den <= 0.0) {
+        return 1.0;
+    }
+    float beta = 2.0 * d / den;
+    return clamp((1.0 + 1.0 / 65536.0) / beta, 1.0, mx);
+}
+
+// Mirror: `outside` (`lod_outside`).
+bool outside(vec4 s) {
+    vec4 planes[6] = view.planes;
+    return lod_outside(planes, s);
+}
+
+// Mirror: `raise_for_transitions`.
+float raise_for_transitions(LodRecord r, vec3 edges, float inner) {
+    bool dyadic = (view.flags & DYADIC) != 0u;
+    uint mx = view.max_level;
+    if (r.chord.y >= LOD_HUGE || r.chord.x >= LOD_HUGE) {
+        return inner;
+    }
+    float tol = tolerance(r.sphere);
+    uvec3 ne = uvec3(drawn(edges.x, dyadic, mx), drawn(edges.y, dyadic, mx),
+                     drawn(edges.z, dyadic, mx));
+    uint n = drawn(inner, dyadic, mx);
+    bool raised = false;
+    for (int it = 0; it < 4; ++it) {
+        if (n >= mx) {
+            break;
+        }
+        float need = 0.0;
+        for (int e = 0; e < 3; ++e) {
+            if (ne[e] < n) {
+                need = max(need, strip_level(r, e, 1.0 / float(ne[e]), tol));
+            }
+        }
+        if (need <= float(n)) {
+            break;
+        }
+        n = drawn(need, dyadic, mx);
+        raised = true;
+    }
+    return raised ? float(n) : inner;
+}
+
+void main() {
+    uint i = gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * gl_NumWorkGroups.x * 64u;
+    if (i >= view.count) {
+        return;
+    }
+    LodRecord r = lod_records[i];
+    vec3 edges = vec3(edge_level(r.edges[0]), edge_level(r.edges[1]), edge_level(r.edges[2]));
+    bool culled = ((view.flags & CULL_FRUSTUM) != 0u && outside(r.sphere))
+        || ((view.flags & CULL_BACK_FACES) != 0u
+            && lod_back_facing(r.cone, r.sphere, view.eye_k.xyz));
+    float inner = 0.0;
+    if (!culled) {
+        float own = level(r.chord.xy, r.sphere);
+        inner = max(max(own, edges.x), max(edges.y, edges.z));
+        inner = raise_for_transitions(r, edges, inner);
+    }
+    element_levels[i] = vec4(edges, inner);
+}

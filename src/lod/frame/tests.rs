@@ -1,0 +1,267 @@
+//! The per-frame levels against the bounds they come from: shared edges, monotony, caps,
+//! culling. The pixel error they promise is checked end to end in src/lod/tests/view.rs.
+
+use super::*;
+use crate::lod::levels::drawn_level;
+use crate::mesh::test_support::load_model;
+use crate::subdiv::bft::Lattice;
+use crate::subdiv::Boundary;
+use crate::surface::loop_::LoopData;
+use crate::surface::{build_records, Displace, Inputs, RecordKind, Seams, SurfaceParams};
+use glam::Mat4;
+
+fn spot() -> (crate::mesh::Mesh, Vec<ElementRecord>) {
+    let (mesh, _) = load_model("spot_control_tri.obj");
+    let recs = build_records(RecordKind::Corners, &mesh, Seams::Closed);
+    (mesh, recs)
+}
+
+fn view_at(eye: Vec3, max: u32) -> View {
+    View::new(eye, 0.8, 720, 1.0, max)
+}
+
+/// Every edge two elements share holds the same bits in both slots, so both compute the same
+/// level: for the local surfaces with displacement and for loop's M1 faces.
+#[test]
+fn shared_edges_hold_identical_bits() {
+    let (mesh, recs) = spot();
+    let r = mesh.bounding_radius();
+    let data = LoopData::new(&mesh, Boundary::EdgeOnly, Lattice::default(), |_| {}).unwrap();
+    let frame = data.frame(&mesh.positions);
+    let params = SurfaceParams::for_radius(r);
+    for (surface, displace) in [
+        (Surface::Pn, Displace::Sine),
+        (Surface::Phong, Displace::None),
+        (Surface::Loop, Displace::None),
+    ] {
+        let inputs = Inputs {
+            loop_: Some((&data, &frame)),
+            ..Default::default()
+        };
+        let lod = Lod::new(surface, displace, &params, &inputs);
+        let records = if surface == Surface::Loop {
+            &data.records
+        } else {
+            &recs
+        };
+        let lr = lod_records(&lod, records, None);
+        let mut seen: HashMap<(u32, u32), LodEdge> = HashMap::new();
+        let mut shared = 0;
+        let view = LodView::new(
+            &view_at(Vec3::new(0.0, 0.3, 3.0 * r), 64),
+            None,
+            false,
+            true,
+            lr.len() as u32,
+        );
+        let levels = frame_levels(&view, &lr);
+        let mut level_of: HashMap<(u32, u32), u32> = HashMap::new();
+        for (i, rec) in records.iter().enumerate() {
+            for e in 0..3 {
+                let key = edge_key(&lod, rec, e);
+                let slot = lr[i].edges[e];
+                let bits = levels[i].edges[e].to_bits();
+                if let Some(old) = seen.insert(key, slot) {
+                    assert_eq!(bytemuck::bytes_of(&old), bytemuck::bytes_of(&slot));
+                    assert_eq!(level_of[&key], bits);
+                    shared += 1;
+                }
+                level_of.insert(key, bits);
+            }
+        }
+        assert_eq!(shared * 2, 3 * records.len(), "{}", surface.name());
+    }
+}
+
+/// Farther away no edge needs more, every level is within [1, max] and drawn levels respect
+/// the cap; the inner level is at least every edge's; a far camera draws no more triangles.
+#[test]
+fn levels_fall_with_distance_and_respect_the_cap() {
+    let (mesh, recs) = spot();
+    let r = mesh.bounding_radius();
+    let params = SurfaceParams::for_radius(r);
+    let inputs = Inputs::default();
+    let lod = Lod::new(Surface::Pn, Displace::Noise, &params, &inputs);
+    let lr = lod_records(&lod, &recs, None);
+    let (lo, hi) = mesh.bounds();
+    let centre = (lo + hi) * 0.5;
+    for dyadic in [false, true] {
+        let at = |d: f32, max: u32| {
+            let v = view_at(centre + Vec3::new(0.3, 0.2, 1.0).normalize() * d, max);
+            frame_levels(&LodView::new(&v, None, false, dyadic, 0), &lr)
+        };
+        let mut last: Option<Vec<ElementLevels>> = None;
+        for d in [1.5 * r, 3.0 * r, 6.0 * r, 12.0 * r] {
+            let now = at(d, 64);
+            for l in &now {
+                assert!(l.inner >= 1.0 && l.inner <= 64.0);
+                for e in l.edges {
+                    assert!((1.0..=64.0).contains(&e));
+                    assert!(l.inner >= e);
+                }
+            }
+            if let Some(prev) = &last {
+                for (p, n) in prev.iter().zip(&now) {
+                    for e in 0..3 {
+                        assert!(n.edges[e] <= p.edges[e]);
+                    }
+                }
+                let tris = |v: &[ElementLevels]| LevelStats::new(v, dyadic, 64).triangles;
+                assert!(tris(&now) <= tris(prev), "at {d}");
+            }
+            last = Some(now);
+        }
+        // A cap of 4: nothing drawn finer, and the close camera hits it.
+        let capped = at(1.5 * r, 4);
+        let stats = LevelStats::new(&capped, dyadic, 4);
+        assert!(stats.histogram.keys().all(|&n| n <= 4));
+        assert!(stats.histogram.get(&4).copied().unwrap_or(0) > 10);
+        assert_eq!(
+            stats.histogram.values().sum::<u64>() + stats.culled,
+            recs.len() as u64
+        );
+    }
+}
+
+/// Frustum culling drops the elements whose sphere is outside (those, and only those, of
+/// `Frustum::outside`); back-face culling the elements whose cone faces away
+/// (`NormalCone::back_facing`); culled elements have inner level 0.
+#[test]
+fn culling_follows_the_spheres_and_cones() {
+    let (mesh, recs) = spot();
+    let r = mesh.bounding_radius();
+    let params = SurfaceParams::for_radius(r);
+    let inputs = Inputs::default();
+    let lod = Lod::new(Surface::Pn, Displace::None, &params, &inputs);
+    let lr = lod_records(&lod, &recs, None);
+    let (lo, hi) = mesh.bounds();
+    let centre = (lo + hi) * 0.5;
+    let eye = centre + Vec3::new(0.4, 0.25, 1.0).normalize() * (1.6 * r);
+    let target = centre + Vec3::new(0.7 * r, 0.2 * r, 0.0);
+    let mut proj = Mat4::perspective_rh(0.9, 16.0 / 9.0, 0.01 * r, 10.0 * r);
+    proj.y_axis.y = -proj.y_axis.y;
+    let frustum = Frustum::from_view_proj(proj * Mat4::look_at_rh(eye, target, Vec3::Y));
+    let view = view_at(eye, 64);
+    let count = lr.len() as u32;
+    let none = frame_levels(&LodView::new(&view, None, false, true, count), &lr);
+    assert!(none.iter().all(|l| !l.culled()));
+    let f = frame_levels(
+        &LodView::new(&view, Some(&frustum), false, true, count),
+        &lr,
+    );
+    let fb = frame_levels(&LodView::new(&view, Some(&frustum), true, true, count), &lr);
+    let (mut out, mut back) = (0, 0);
+    for (i, rec) in recs.iter().enumerate() {
+        let b = lod.element(rec);
+        let o = frustum.outside(&b.sphere);
+        let away = b.cone.is_some_and(|c| c.back_facing(&b.sphere, eye));
+        assert_eq!(f[i].culled(), o, "element {i}");
+        assert_eq!(fb[i].culled(), o || away, "element {i}");
+        if !o {
+            assert_eq!(f[i], none[i]);
+        }
+        out += o as usize;
+        back += (away && !o) as usize;
+    }
+    assert!(out > 10 && back > 10, "{out} outside, {back} back-facing");
+}
+
+/// The levels are at least `View::levels`' (equal on the edges without their share of the
+/// transition triangles), and every coarser edge's transition triangles fit at the drawn inner
+/// level: with the edges' share, and with the raise alone where the corners fit.
+#[test]
+fn inner_levels_cover_own_bound_and_transitions() {
+    let (mesh, recs) = spot();
+    let r = mesh.bounding_radius();
+    let params = SurfaceParams::for_radius(r);
+    let inputs = Inputs::default();
+    let lod = Lod::new(Surface::Pn, Displace::Sine, &params, &inputs);
+    let full = lod_records(&lod, &recs, None);
+    // Without the edges' share (step 1), the raise (step 2) alone covers the strips.
+    let mut bare = full.clone();
+    for b in &mut bare {
+        for e in &mut b.edges {
+            e.needs = [[0.0; 4]; 2];
+        }
+    }
+    let view = view_at(Vec3::new(0.2, 0.3, 2.0 * r), 1 << 12);
+    let (mut raised, mut checked) = (0, 0);
+    for (dyadic, lr) in [(false, &full), (true, &full), (false, &bare), (true, &bare)] {
+        let step1 = std::ptr::eq(lr, &full);
+        let lv = LodView::new(&view, None, false, dyadic, 0);
+        for (rec, (l, x)) in recs.iter().zip(frame_levels(&lv, lr).iter().zip(lr)) {
+            let b = lod.element(rec);
+            let edges = [0, 1, 2].map(|e| lod.edge(rec, e));
+            let (own_edges, own_inner) = view.levels(&b, &edges);
+            for (mine, own) in l.edges.iter().zip(own_edges) {
+                assert!(*mine >= own);
+                if !step1 {
+                    assert_eq!(*mine, own);
+                }
+            }
+            assert!(l.inner >= own_inner);
+            let n = drawn_level(l.inner, dyadic, lv.max_level);
+            if l.inner == n as f32 && l.inner > l.edges.iter().fold(own_inner, |a, &e| a.max(e)) {
+                raised += 1;
+            }
+            // Every coarser edge's transition triangles fit at the drawn inner level.
+            let tol = view.tolerance(&b.sphere);
+            for e in 0..3 {
+                let ne = drawn_level(l.edges[e], dyadic, lv.max_level);
+                if ne < n {
+                    let (a, beta) = (1.0 / ne as f32, 1.0 / n as f32);
+                    let m = x.second;
+                    let sum = m[0] + m[1] + m[2];
+                    let mb = m[(e + 1) % 3].max(m[(e + 2) % 3]);
+                    let s = a * a * m[e] + a * beta * sum + beta * beta * mb;
+                    let corner = 1.25 * a * a * m[0].max(m[1]).max(m[2]);
+                    if step1 || ELEMENT_FACTOR * corner <= tol {
+                        assert!(ELEMENT_FACTOR * s <= tol * 1.0001, "{s} vs {tol}");
+                        checked += 1;
+                    }
+                }
+            }
+        }
+    }
+    assert!(
+        checked > 50 && raised > 50,
+        "{checked} transitions, {raised} raised"
+    );
+    eprintln!("{checked} transitions, {raised} inner levels raised");
+}
+
+/// The height map's bounds read each element's own texture coordinates.
+#[test]
+fn height_map_bounds_read_each_element_s_coordinates() {
+    let (mesh, _) = load_model("grid_uv_8x8.obj");
+    let data = crate::render::MeshData::new(mesh, RecordKind::Corners, Seams::Closed);
+    let uvs = data
+        .uvs
+        .as_deref()
+        .expect("the grid has texture coordinates");
+    let map = crate::surface::Heightmap::generated();
+    let params = SurfaceParams::for_radius(data.mesh.bounding_radius());
+    let inputs = Inputs {
+        heightmap: Some(&map),
+        ..Default::default()
+    };
+    let lod = Lod::new(Surface::Pn, Displace::Heightmap, &params, &inputs);
+    let lr = lod_records(&lod, &data.records, Some(uvs));
+    let mut differ = 0;
+    for (i, rec) in data.records.iter().enumerate() {
+        let own = Lod::new(
+            Surface::Pn,
+            Displace::Heightmap,
+            &params,
+            &Inputs {
+                uv: Some(&uvs[i]),
+                ..inputs
+            },
+        )
+        .element(rec);
+        assert_eq!(lr[i].chord[..2], chord2(own.chord), "element {i}");
+        assert!(own.chord.c1 > 0.0, "element {i}: no kink term");
+        differ += (lr[i].chord != lr[0].chord) as usize;
+    }
+    assert!(differ > 0);
+}
