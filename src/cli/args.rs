@@ -7,7 +7,7 @@ use super::choices;
 use clap::{Args, Parser, Subcommand};
 use meshrefine::render::{Driver, Submit};
 use meshrefine::surface::loop_::Boundary;
-use meshrefine::surface::{BuildOptions, Displace, Seams, Surface, SurfaceParams};
+use meshrefine::surface::{BuildOptions, Displace, NormalField, Seams, Surface, SurfaceParams};
 use std::path::PathBuf;
 
 #[derive(Parser, Debug)]
@@ -64,6 +64,10 @@ pub struct ParamOpts {
     /// crack-free, `open` is the papers' behaviour (cracks).
     #[arg(long, value_parser = choices::seams(), default_value = "closed")]
     pub pn_seams: Seams,
+    /// The normal field of pn and stpn (what shading and displacement use; docs/surfaces.md
+    /// compares them).
+    #[arg(long, value_parser = choices::normal_field(), default_value = "paper")]
+    pub normal_field: NormalField,
     /// Height map displacement: P' = P + a·(h − bias)·N, h in [0, 1].
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     pub bias: f32,
@@ -90,6 +94,7 @@ impl ParamOpts {
             octaves: self.octaves,
             origin: d.origin,
             bias: self.bias,
+            normal_field: self.normal_field,
         };
         p.validate()?;
         Ok(p)

@@ -1,7 +1,7 @@
 //! Layouts and pipelines shared by all drivers, the per-frame uniform buffer (set 0) and the
 //! capture output binding (set 2). Pipelines are created on first use, keyed by
-//! (driver, submission, surface, displacement, capture, wireframe); surface and displacement are
-//! specialization constants of the same SPIR-V modules.
+//! (driver, submission, surface, displacement, normal field, capture, wireframe); surface,
+//! displacement and normal field are specialization constants of the same SPIR-V modules.
 
 use super::bindings::*;
 use super::{Capture, DrawConfig, Driver, FrameUniforms};
@@ -9,7 +9,7 @@ use crate::gpu::{
     vk, Buffer, BufferDesc, Context, DescriptorPool, DescriptorSetLayout, GpuError,
     GraphicsPipelineDesc, Pipeline, PipelineLayout,
 };
-use crate::surface::{Displace, Surface};
+use crate::surface::{Displace, NormalField, Surface};
 use std::collections::HashMap;
 use std::sync::Arc;
 
@@ -42,6 +42,8 @@ struct PipelineKey {
     driver: Driver,
     surface: Surface,
     displace: Displace,
+    /// `pn`'s and `stpn`'s normal field (`Paper` for the surfaces that have none of their own).
+    normal_field: NormalField,
     fragment_field: bool,
     capture: Capture,
     /// Wireframe pass: polygon mode LINE, the fragment stage's WIRE variant.
@@ -244,6 +246,7 @@ impl Renderer {
                 (SPEC_WIRE, key.wire as u32),
                 (SPEC_DISPLACE, key.displace as u32),
                 (SPEC_FRAGMENT_FIELD, key.fragment_field as u32),
+                (SPEC_NORMAL_FIELD, key.normal_field as u32),
             ],
             vertex_bindings: vec![],
             vertex_attributes: vec![],
@@ -285,6 +288,11 @@ fn key(cfg: &DrawConfig, capture: Capture, wire: bool) -> PipelineKey {
         driver: cfg.driver,
         surface: cfg.surface,
         displace: cfg.displace,
+        normal_field: if cfg.surface.facts().options.contains(&"normal_field") {
+            cfg.params.normal_field
+        } else {
+            NormalField::Paper
+        },
         fragment_field: cfg.fragment_normal_field(),
         capture,
         wire,

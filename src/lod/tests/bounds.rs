@@ -155,6 +155,53 @@ fn displaced_bounds_hold() {
     }
 }
 
+/// The displacement direction is `pn`'s and `stpn`'s normal field: the bounds hold with every
+/// choice of it (`paper` is what the tests above use), over spot and over a mesh with hard
+/// edges (flagged seams, and crease tags whose sharp normals `stpn` interpolates).
+#[test]
+fn displaced_bounds_hold_for_every_normal_field() {
+    let (spot, recs) = corner_records("spot_control_tri_vn.obj");
+    let (cyl_mesh, cyl) = corner_records("cylinder_hard_normals.obj");
+    let (cyl_tags, _) = crate::surface::stpn::derive(&cyl_mesh);
+    let r = spot.bounding_radius();
+    for field in [NormalField::Vlachos, NormalField::Linear] {
+        for surface in [Surface::Pn, Surface::Stpn] {
+            for displace in [Displace::Sine, Displace::Noise] {
+                let what = format!(
+                    "{} ({}) + {}",
+                    surface.name(),
+                    field.name(),
+                    displace.name()
+                );
+                let case = Case {
+                    surface,
+                    displace,
+                    params: SurfaceParams {
+                        normal_field: field,
+                        ..SurfaceParams::for_radius(r)
+                    },
+                    inputs: Inputs::default(),
+                };
+                let (min, median) = case.check(&every(&recs, 6), &[1, 2, 4, 6], r, &what);
+                assert!(min <= 30.0, "{what}: smallest bound / truth {min}");
+                assert!(median <= 300.0, "{what}: median bound / truth {median}");
+                let hard = Case {
+                    params: SurfaceParams {
+                        normal_field: field,
+                        ..SurfaceParams::for_radius(cyl_mesh.bounding_radius())
+                    },
+                    inputs: Inputs {
+                        tags: Some(&cyl_tags),
+                        ..Default::default()
+                    },
+                    ..case
+                };
+                hard.check(&cyl, &[1, 3], 2.0, &format!("{what} on the cylinder"));
+            }
+        }
+    }
+}
+
 /// Any triangle of the parameter domain (the transition triangles between an element's inner
 /// level and its edges'): its chord error is within [`Bounds::triangle_error`].
 #[test]
