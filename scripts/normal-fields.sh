@@ -9,7 +9,7 @@ m=./target/debug/meshrefine
 out=docs/images
 mkdir -p "$out"
 for f in paper vlachos linear; do
-  $m render assets/models/spot_tri.obj -o "$out/spot-dense-$f.png" --width 427 --height 320 --level 2 --surface pn --normal-field $f
+  $m render assets/models/spot_tri.obj -o "$out/spot-dense-$f.png" --width 640 --height 480 --level 2 --surface pn --normal-field $f
   $m render assets/models/spot_control_tri.obj -o "$out/spot-cage-$f.png" --width 427 --height 320 --level 8 --surface pn --normal-field $f
   $m render assets/models/cylinder_hard_normals.obj -o "$out/cylinder-$f.png" --width 427 --height 320 --level 8 --surface pn --normal-field $f
 done

@@ -66,7 +66,7 @@ pub struct ParamOpts {
     pub pn_seams: Seams,
     /// The normal field of pn and stpn (what shading and displacement use; docs/surfaces.md
     /// compares them).
-    #[arg(long, value_parser = choices::normal_field(), default_value = "paper")]
+    #[arg(long, value_parser = choices::normal_field(), default_value = NormalField::default().name())]
     pub normal_field: NormalField,
     /// Height map displacement: P' = P + a·(h − bias)·N, h in [0, 1].
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]

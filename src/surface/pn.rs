@@ -92,9 +92,10 @@ pub fn control_with(c: &Corners, edge: &dyn Fn(usize, usize) -> Vec3) -> Control
 #[repr(u32)]
 pub enum NormalField {
     /// The 2005 paper's quadratic field (the fully reflected normal at edge midpoints).
-    #[default]
     Paper = 0,
-    /// Vlachos et al. 2001's quadratic field (normalized mid-edge control normals).
+    /// Vlachos et al. 2001's quadratic field (normalized mid-edge control normals): the
+    /// default, smooth on dense meshes with computed normals (docs/surfaces.md).
+    #[default]
     Vlachos = 1,
     /// The linearly interpolated corner normals.
     Linear = 2,
