@@ -16,9 +16,9 @@
 mod common;
 
 use common::{output_dir, with_gpu};
-use meshrefine::gpu::Readback;
+use meshrefine::gpu::{sample_count, vk, Readback};
 use meshrefine::mesh::default_mesh;
-use meshrefine::render::{Camera, DrawConfig, Driver, Submit};
+use meshrefine::render::{Camera, DrawConfig, Driver, Headless, Submit, View};
 use meshrefine::surface::{Displace, NormalField, Surface};
 
 struct Diff {
@@ -236,6 +236,102 @@ fn loop_normals_per_fragment_shade_as_per_vertex() {
             &instanced,
             &per_vertex,
             (w * h_px / 500) as usize,
+        );
+    });
+}
+
+/// Silhouette pixels of `image`: not the background, with a background pixel beside them.
+/// Returns how many of them show an intermediate colour, one that no interior pixel has (within
+/// 1/255): a blend of the mesh and the background.
+fn intermediate_silhouette_pixels(image: &Readback, background: [u8; 4]) -> (usize, usize) {
+    let (w, h) = (image.width as i64, image.height as i64);
+    let px = |x: i64, y: i64| -> [u8; 4] {
+        if x < 0 || y < 0 || x >= w || y >= h {
+            return background;
+        }
+        let i = 4 * (y * w + x) as usize;
+        image.rgba[i..i + 4].try_into().unwrap()
+    };
+    let near = |a: [u8; 4], b: [u8; 4]| (0..3).all(|c| a[c].abs_diff(b[c]) <= 1);
+    let neighbours = |x: i64, y: i64| [(x - 1, y), (x + 1, y), (x, y - 1), (x, y + 1)];
+    // Interior colours: pixels whose eight neighbours all have their colour.
+    let mut interior: Vec<[u8; 4]> = Vec::new();
+    for y in 0..h {
+        for x in 0..w {
+            let c = px(x, y);
+            let inside = (-1..=1).all(|dy| (-1..=1).all(|dx| px(x + dx, y + dy) == c));
+            if !near(c, background) && inside && !interior.iter().any(|&i| near(i, c)) {
+                interior.push(c);
+            }
+        }
+    }
+    let (mut silhouette, mut blended) = (0, 0);
+    for y in 0..h {
+        for x in 0..w {
+            let c = px(x, y);
+            if near(c, background)
+                || !neighbours(x, y)
+                    .iter()
+                    .any(|&(a, b)| near(px(a, b), background))
+            {
+                continue;
+            }
+            silhouette += 1;
+            if !interior.iter().any(|&i| near(i, c)) {
+                blended += 1;
+            }
+        }
+    }
+    (silhouette, blended)
+}
+
+/// Multisampling smooths silhouettes: a cube with face normals, shown as its normals (one
+/// colour per face), has no colour but its faces' and the background's on its silhouette with
+/// one sample per pixel, and blends of the two on most of it with the default sample count
+/// (4 on lavapipe), resolved into the image read back. The wireframe pass draws into the
+/// multisampled target too.
+#[test]
+fn msaa_blends_silhouettes() {
+    let (w, h_px) = (160u32, 120u32);
+    with_gpu(w, h_px, |h| {
+        let samples = sample_count(&h.ctx, None).unwrap();
+        assert_ne!(
+            samples,
+            vk::SampleCountFlags::TYPE_1,
+            "no multisampling on this device"
+        );
+        let mut msaa = Headless::multisampled(h.ctx.clone(), w, h_px, samples).unwrap();
+        let mesh = common::model("cube_face_normals.obj");
+        let cfg = DrawConfig::new(Driver::Pattern(Submit::Instanced), 1);
+        let background = meshrefine::render::clear_color_srgb8();
+        let mut images = Vec::new();
+        for target in [&mut *h, &mut msaa] {
+            target.view = View::Normals;
+            let mut scene = target.scene(mesh.clone(), 1).unwrap();
+            let (c, r) = scene.bounding_sphere();
+            let camera = Camera::framing(c, r);
+            images.push(target.render(&mut scene, &cfg, &camera).unwrap());
+            target.wireframe = true;
+            let wire = target.render(&mut scene, &cfg, &camera).unwrap();
+            target.wireframe = false;
+            target.view = View::Shaded;
+            assert!(
+                diff(&images[images.len() - 1], &wire).over_one > 100,
+                "wireframe"
+            );
+        }
+        let (one, many) = (
+            intermediate_silhouette_pixels(&images[0], background),
+            intermediate_silhouette_pixels(&images[1], background),
+        );
+        eprintln!("silhouette pixels, intermediate: 1x {one:?}, {samples:?} {many:?}");
+        assert!(one.0 > 100, "1x: only {} silhouette pixels", one.0);
+        assert_eq!(one.1, 0, "1x: intermediate colours on the silhouette");
+        assert!(
+            many.1 * 2 > many.0,
+            "{samples:?}: only {} of {} silhouette pixels are blended",
+            many.1,
+            many.0
         );
     });
 }

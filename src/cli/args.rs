@@ -202,6 +202,10 @@ pub struct ViewArgs {
     /// pattern set (powers of two up to --level).
     #[arg(long, help_heading = "Window")]
     pub lod: bool,
+    /// Multisampled anti-aliasing: samples per pixel, 1 (none), 2, 4 or 8 (default: 4 where
+    /// the device supports it for colour and depth attachments, else the most it supports).
+    #[arg(long, value_parser = msaa_counts(), help_heading = "Window")]
+    pub msaa: Option<u32>,
     /// Where the headless fallback writes its image when no display exists.
     #[arg(
         long,
@@ -234,6 +238,10 @@ pub struct RenderArgs {
     /// Draw the refined triangles' edges.
     #[arg(long, help_heading = "Output")]
     pub wireframe: bool,
+    /// Multisampled anti-aliasing: samples per pixel, 1 (none), 2, 4 or 8 (default: 4 where
+    /// the device supports it for colour and depth attachments, else the most it supports).
+    #[arg(long, value_parser = msaa_counts(), help_heading = "Output")]
+    pub msaa: Option<u32>,
     #[command(flatten)]
     pub technique: Technique,
 }
@@ -389,4 +397,11 @@ pub struct BenchArgs {
     /// The offscreen image's height in pixels.
     #[arg(long, default_value_t = 720, help_heading = "Measurement")]
     pub height: u32,
+}
+
+/// `--msaa`: 1, 2, 4 or 8.
+fn msaa_counts() -> impl clap::builder::TypedValueParser<Value = u32> {
+    use clap::builder::TypedValueParser as _;
+    clap::builder::PossibleValuesParser::new(["1", "2", "4", "8"])
+        .map(|s| s.parse::<u32>().expect("a possible value"))
 }

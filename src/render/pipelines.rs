@@ -59,6 +59,8 @@ pub struct Renderer {
     pipelines: HashMap<PipelineKey, Pipeline>,
     pub color_format: vk::Format,
     pub depth_format: vk::Format,
+    /// Samples per pixel of the targets drawn into (`--msaa`).
+    pub samples: vk::SampleCountFlags,
     frame_ubo: Buffer,
     /// Kept alive for the frame set's binding.
     _noise_ubo: Buffer,
@@ -72,6 +74,21 @@ impl Renderer {
         ctx: &Arc<Context>,
         color_format: vk::Format,
         depth_format: vk::Format,
+    ) -> Result<Self, GpuError> {
+        Self::multisampled(
+            ctx,
+            color_format,
+            depth_format,
+            vk::SampleCountFlags::TYPE_1,
+        )
+    }
+
+    /// Pipelines for targets with `samples` per pixel (checked by `gpu::sample_count`).
+    pub fn multisampled(
+        ctx: &Arc<Context>,
+        color_format: vk::Format,
+        depth_format: vk::Format,
+        samples: vk::SampleCountFlags,
     ) -> Result<Self, GpuError> {
         use vk::DescriptorType as T;
         let frame_layout = DescriptorSetLayout::new(
@@ -174,6 +191,7 @@ impl Renderer {
             pipelines: HashMap::new(),
             color_format,
             depth_format,
+            samples,
             frame_ubo,
             _noise_ubo: noise_ubo,
             pool,
@@ -262,6 +280,7 @@ impl Renderer {
             },
             // Pull the lines towards the camera so they win the depth test against their fill.
             depth_bias: key.wire.then_some((-1.0, -1.0)),
+            samples: self.samples,
         };
         key.driver
             .kind()
