@@ -451,8 +451,8 @@ struct LodBounds {
 };
 
 // Bounds of a local surface (0 flat, 1 phong, 2 pn; pn with normal field `field`) with
-// displacement d (0 none, 1 sine, 2 noise) on canonical corners c. Mirror: src/lod/bound.rs `Lod::local` (without `stpn` and
-// the height map).
+// displacement d (0 none, 1 sine, 2 noise) on canonical corners c. Mirror: src/lod/bound.rs
+// `Lod::local` (without `stpn` and the height map).
 LodBounds lod_local(uint surface, uint field, uint d, vec4 params, vec3 origin, Corners c, int edge) {
     bool exact = surface != 1u || edge >= 0 || !lod_phong_mixed(c);
     LodNet net = lod_surface_net(exact ? surface : 0u, params.x, c);

@@ -298,7 +298,7 @@ pub fn sample_count(
     let supported = limits.framebuffer_color_sample_counts & limits.framebuffer_depth_sample_counts;
     let flag = |n: u32| vk::SampleCountFlags::from_raw(n);
     match requested {
-        None => Ok([4, 2, 1]
+        None => Ok([4, 8, 2, 1]
             .into_iter()
             .map(flag)
             .find(|&f| supported.contains(f))
