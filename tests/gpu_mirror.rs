@@ -29,8 +29,8 @@ use meshrefine::render::tess::{tess_vertex_count, tess_weights};
 use meshrefine::render::{Camera, DrawConfig, Driver, Headless, Scene, Submit};
 use meshrefine::subdiv::Boundary;
 use meshrefine::surface::{
-    eval_with, BuildOptions, CornerRecord, Displace, ElementRecord, Surface, SurfaceParams,
-    SMOOTH_CORNER,
+    eval_with, BuildOptions, CornerRecord, Displace, ElementRecord, NormalField, Surface,
+    SurfaceParams, SMOOTH_CORNER,
 };
 
 use std::collections::{HashMap, HashSet};
@@ -142,6 +142,8 @@ enum Which {
     All,
     /// The loop surface with a boundary rule and a table level.
     Loop(Boundary, u32),
+    /// `pn` and `stpn` with a normal field, without and with displacement (which moves along it).
+    Field(NormalField),
 }
 
 impl From<bool> for Which {
@@ -173,7 +175,15 @@ fn setup(
         bft_level,
         ..BuildOptions::default()
     };
-    (scene, camera, SurfaceParams::for_radius(r), build, r)
+    let normal_field = match which {
+        Which::Field(f) => f,
+        _ => NormalField::default(),
+    };
+    let params = SurfaceParams {
+        normal_field,
+        ..SurfaceParams::for_radius(r)
+    };
+    (scene, camera, params, build, r)
 }
 
 /// Every surface x displacement of `which` (the height map only on meshes with texture
@@ -187,6 +197,14 @@ fn combinations(which: Which, uvs: bool) -> Vec<(Surface, Displace)> {
                 (Surface::Loop, Displace::Sine),
                 (Surface::Loop, Displace::Noise),
             ]
+        }
+        Which::Field(_) => {
+            return [Surface::Pn, Surface::Stpn]
+                .iter()
+                .flat_map(|&s| {
+                    [Displace::None, Displace::Sine, Displace::Noise].map(move |d| (s, d))
+                })
+                .collect()
         }
         Which::All => {}
     }
@@ -232,8 +250,9 @@ fn check_pattern_chunked(
                         assert_eq!(lattice_index(level, i, j) as usize, k);
                         let got = &cap.vertices[t * pv + k];
                         let what = format!(
-                            "{file} {} + {} {} L{level}: triangle {t} vertex ({i},{j})",
+                            "{file} {} ({}) + {} {} L{level}: triangle {t} vertex ({i},{j})",
                             surface.name(),
+                            params.normal_field.name(),
                             displace.name(),
                             cfg.label()
                         );
@@ -291,8 +310,9 @@ fn check_tess_chunked(
             let mut coords: HashMap<u32, HashSet<[u32; 3]>> = HashMap::new();
             let mut worst = 0.0f32;
             let what = format!(
-                "{file} {} + {} tess L{level}",
+                "{file} {} ({}) + {} tess L{level}",
                 surface.name(),
+                params.normal_field.name(),
                 displace.name()
             );
             for v in &cap.vertices {
@@ -377,6 +397,23 @@ fn every_surface_and_displacement_on_tess() {
     with_gpu(64, 64, |h| {
         check_tess("icosahedron_vn.obj", h, &[5], true);
         check_tess("grid_uv_8x8.obj", h, &[3], true);
+    });
+}
+
+/// `pn`'s and `stpn`'s normal fields (the NORMAL_FIELD specialization constant), without and
+/// with displacement along them, on both GPU drivers and every submission mode: smooth normals
+/// (icosahedron), split normals with closed seams and crease tags (the cylinder), a control cage.
+/// With `Displace::None` the captured normal is the field itself.
+#[test]
+fn every_normal_field_on_pattern_and_tess() {
+    with_gpu(64, 64, |h| {
+        for field in NormalField::ALL {
+            let f = Which::Field(field);
+            check_pattern("icosahedron_vn.obj", h, &[5], f);
+            check_pattern("cylinder_hard_normals.obj", h, &[4], f);
+            check_tess("icosahedron_vn.obj", h, &[4], f);
+            check_tess("spot_control_tri.obj", h, &[3], f);
+        }
     });
 }
 

@@ -16,10 +16,10 @@
 mod common;
 
 use common::{output_dir, with_gpu};
-use meshrefine::gpu::Readback;
+use meshrefine::gpu::{sample_count, vk, Readback};
 use meshrefine::mesh::default_mesh;
-use meshrefine::render::{Camera, DrawConfig, Driver, Submit};
-use meshrefine::surface::{Displace, Surface};
+use meshrefine::render::{Camera, DrawConfig, Driver, Headless, Submit, View};
+use meshrefine::surface::{Displace, NormalField, Surface};
 
 struct Diff {
     over_one: usize,
@@ -144,6 +144,56 @@ fn drivers_render_the_same_image() {
     });
 }
 
+/// `pn`'s normal field is evaluated per fragment with the chosen field (the NORMAL_FIELD
+/// specialization constant reaches the fragment stage of every driver): for each field,
+/// `static` equals `pattern` and `tess` is within the tolerance above, and on the default mesh
+/// (a control cage, where the fields differ most) each pair of fields shades visibly apart.
+/// The per-vertex values of each field are compared with the CPU mirror in tests/gpu_mirror.rs.
+#[test]
+fn every_normal_field_renders_alike_on_every_driver() {
+    let (w, h_px) = (320u32, 240u32);
+    with_gpu(w, h_px, |h| {
+        let level = 8;
+        let mut scene = h.scene(default_mesh(), level).unwrap();
+        let (c, r) = scene.bounding_sphere();
+        let camera = Camera::framing(c, r);
+        let mut images = Vec::new();
+        for field in NormalField::ALL {
+            let mut render = |driver| {
+                let mut cfg =
+                    DrawConfig::new(driver, level).with_surface(Surface::Pn, Displace::None);
+                cfg.params.normal_field = field;
+                h.render(&mut scene, &cfg, &camera).unwrap()
+            };
+            let instanced = render(Driver::Pattern(Submit::Instanced));
+            let stat = render(Driver::Static);
+            let tess = render(Driver::Tess);
+            let name = format!("pn-{}", field.name());
+            check(&format!("{name}-static-vs-pattern"), &instanced, &stat, 0);
+            check(
+                &format!("{name}-tess-vs-pattern"),
+                &instanced,
+                &tess,
+                (w * h_px / 200) as usize,
+            );
+            images.push((field, instanced));
+        }
+        for (i, (a, ia)) in images.iter().enumerate() {
+            for (b, ib) in &images[i + 1..] {
+                let d = diff(ia, ib);
+                assert!(
+                    d.over_one > 1000 && d.max > 16,
+                    "{} and {} shade alike: {} pixels differ, by at most {}",
+                    a.name(),
+                    b.name(),
+                    d.over_one,
+                    d.max
+                );
+            }
+        }
+    });
+}
+
 /// From `LOOP_FRAGMENT_NORMALS` up, loop's subdivision-shading normal is summed per fragment
 /// instead of per vertex (pattern and tess, no displacement): every submission mode gives the
 /// same image, tess nearly, and it shades like the per-vertex normals one level below (the
@@ -186,6 +236,102 @@ fn loop_normals_per_fragment_shade_as_per_vertex() {
             &instanced,
             &per_vertex,
             (w * h_px / 500) as usize,
+        );
+    });
+}
+
+/// Silhouette pixels of `image`: not the background, with a background pixel beside them.
+/// Returns how many of them show an intermediate colour, one that no interior pixel has (within
+/// 1/255): a blend of the mesh and the background.
+fn intermediate_silhouette_pixels(image: &Readback, background: [u8; 4]) -> (usize, usize) {
+    let (w, h) = (image.width as i64, image.height as i64);
+    let px = |x: i64, y: i64| -> [u8; 4] {
+        if x < 0 || y < 0 || x >= w || y >= h {
+            return background;
+        }
+        let i = 4 * (y * w + x) as usize;
+        image.rgba[i..i + 4].try_into().unwrap()
+    };
+    let near = |a: [u8; 4], b: [u8; 4]| (0..3).all(|c| a[c].abs_diff(b[c]) <= 1);
+    let neighbours = |x: i64, y: i64| [(x - 1, y), (x + 1, y), (x, y - 1), (x, y + 1)];
+    // Interior colours: pixels whose eight neighbours all have their colour.
+    let mut interior: Vec<[u8; 4]> = Vec::new();
+    for y in 0..h {
+        for x in 0..w {
+            let c = px(x, y);
+            let inside = (-1..=1).all(|dy| (-1..=1).all(|dx| px(x + dx, y + dy) == c));
+            if !near(c, background) && inside && !interior.iter().any(|&i| near(i, c)) {
+                interior.push(c);
+            }
+        }
+    }
+    let (mut silhouette, mut blended) = (0, 0);
+    for y in 0..h {
+        for x in 0..w {
+            let c = px(x, y);
+            if near(c, background)
+                || !neighbours(x, y)
+                    .iter()
+                    .any(|&(a, b)| near(px(a, b), background))
+            {
+                continue;
+            }
+            silhouette += 1;
+            if !interior.iter().any(|&i| near(i, c)) {
+                blended += 1;
+            }
+        }
+    }
+    (silhouette, blended)
+}
+
+/// Multisampling smooths silhouettes: a cube with face normals, shown as its normals (one
+/// colour per face), has no colour but its faces' and the background's on its silhouette with
+/// one sample per pixel, and blends of the two on most of it with the default sample count
+/// (4 on lavapipe), resolved into the image read back. The wireframe pass draws into the
+/// multisampled target too.
+#[test]
+fn msaa_blends_silhouettes() {
+    let (w, h_px) = (160u32, 120u32);
+    with_gpu(w, h_px, |h| {
+        let samples = sample_count(&h.ctx, None).unwrap();
+        assert_ne!(
+            samples,
+            vk::SampleCountFlags::TYPE_1,
+            "no multisampling on this device"
+        );
+        let mut msaa = Headless::multisampled(h.ctx.clone(), w, h_px, samples).unwrap();
+        let mesh = common::model("cube_face_normals.obj");
+        let cfg = DrawConfig::new(Driver::Pattern(Submit::Instanced), 1);
+        let background = meshrefine::render::clear_color_srgb8();
+        let mut images = Vec::new();
+        for target in [&mut *h, &mut msaa] {
+            target.view = View::Normals;
+            let mut scene = target.scene(mesh.clone(), 1).unwrap();
+            let (c, r) = scene.bounding_sphere();
+            let camera = Camera::framing(c, r);
+            images.push(target.render(&mut scene, &cfg, &camera).unwrap());
+            target.wireframe = true;
+            let wire = target.render(&mut scene, &cfg, &camera).unwrap();
+            target.wireframe = false;
+            target.view = View::Shaded;
+            assert!(
+                diff(&images[images.len() - 1], &wire).over_one > 100,
+                "wireframe"
+            );
+        }
+        let (one, many) = (
+            intermediate_silhouette_pixels(&images[0], background),
+            intermediate_silhouette_pixels(&images[1], background),
+        );
+        eprintln!("silhouette pixels, intermediate: 1x {one:?}, {samples:?} {many:?}");
+        assert!(one.0 > 100, "1x: only {} silhouette pixels", one.0);
+        assert_eq!(one.1, 0, "1x: intermediate colours on the silhouette");
+        assert!(
+            many.1 * 2 > many.0,
+            "{samples:?}: only {} of {} silhouette pixels are blended",
+            many.1,
+            many.0
         );
     });
 }

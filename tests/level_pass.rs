@@ -286,6 +286,7 @@ fn a_frame_runs_the_level_pass_before_drawing() {
             depth_view: h.target.depth.view,
             extent: h.target.extent(),
             final_layout: vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+            resolve: None,
         };
         let work = FrameWork {
             level_pass: Some((&pass, view)),

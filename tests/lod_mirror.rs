@@ -1,6 +1,6 @@
 //! The GPU mirror of the level-of-detail bounds (glsl/include/lod.glsl, run by
-//! glsl/lod/bounds.comp) against src/lod on spot, for `flat`, `phong` and `pn` with no, sine and
-//! noise displacement: every element's and edge's chord bound and sphere. The two evaluate the
+//! glsl/lod/bounds.comp) against src/lod on spot, for `flat`, `phong` and `pn` (with each normal
+//! field) with no, sine and noise displacement: every element's and edge's chord bound and sphere. The two evaluate the
 //! same formulas in f32 with different rounding (GLSL's `length`, `normalize` and `sqrt` are not
 //! correctly rounded), so they agree to a relative 1e-3 on the bounds, 1e-5 of the mesh's radius
 //! on the spheres' centres and 1e-4 on the normal cones of undisplaced elements.
@@ -17,7 +17,7 @@ use meshrefine::lod::{Bounds, Lod};
 use meshrefine::render::bindings::*;
 use meshrefine::render::FrameUniforms;
 use meshrefine::surface::{
-    build_records, Displace, Inputs, RecordKind, Seams, Surface, SurfaceParams,
+    build_records, Displace, Inputs, NormalField, RecordKind, Seams, Surface, SurfaceParams,
 };
 
 /// Equal to a relative `rel`; the CPU's infinity (no finite bound) is the mirror's 3e38.
@@ -118,7 +118,16 @@ fn gpu_bounds_match_the_cpu() {
             ..SurfaceParams::for_radius(r)
         };
         let (mut compared, mut cones) = (0, 0);
-        for surface in [Surface::Flat, Surface::Phong, Surface::Pn] {
+        // pn with each normal field (the direction displacement moves along).
+        let cases = [Surface::Flat, Surface::Phong]
+            .map(|s| (s, NormalField::default()))
+            .into_iter()
+            .chain(NormalField::ALL.map(|f| (Surface::Pn, f)));
+        for (surface, field) in cases {
+            let params = SurfaceParams {
+                normal_field: field,
+                ..params
+            };
             for displace in [Displace::None, Displace::Sine, Displace::Noise] {
                 let mut f = FrameUniforms::zeroed();
                 f.params = params.to_gpu();
@@ -127,6 +136,7 @@ fn gpu_bounds_match_the_cpu() {
                 let mut push = [0u32; 32];
                 push[28] = surface as u32;
                 push[29] = displace as u32;
+                push[30] = field as u32;
                 h.pool
                     .submit_and_wait(|cmd| {
                         cmd.bind_compute_pipeline(pipeline.raw);
@@ -140,7 +150,12 @@ fn gpu_bounds_match_the_cpu() {
                     .unwrap();
                 let got: Vec<[f32; 4]> = out.read_pod();
                 let lod = Lod::new(surface, displace, &params, &Inputs::default());
-                let what = format!("{} + {}", surface.name(), displace.name());
+                let what = format!(
+                    "{} ({}) + {}",
+                    surface.name(),
+                    field.name(),
+                    displace.name()
+                );
                 for (i, rec) in recs.iter().enumerate() {
                     let want: [Bounds; 4] = [
                         lod.element(rec),
@@ -184,7 +199,7 @@ fn gpu_bounds_match_the_cpu() {
                 }
             }
         }
-        assert_eq!(compared, 9 * 4 * n);
+        assert_eq!(compared, 15 * 4 * n);
         assert!(cones > n, "{cones} cones");
     });
 }

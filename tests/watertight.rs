@@ -20,7 +20,7 @@ use meshrefine::render::static_vbo::{refine_on_cpu, MeshInputs};
 use meshrefine::render::tess::{tess_triangle_count, tess_vertex_count};
 use meshrefine::render::{Camera, DrawConfig, Driver, Headless, Scene, Submit};
 use meshrefine::subdiv::{LoopData, LoopFrame};
-use meshrefine::surface::{Displace, RecordKind, Seams, Surface, SurfaceParams};
+use meshrefine::surface::{Displace, NormalField, RecordKind, Seams, Surface, SurfaceParams};
 
 /// Surface x displacement combinations checked on every driver.
 const SURFACES: &[(Surface, Displace)] = &[
@@ -216,6 +216,75 @@ fn pattern_and_tess_are_watertight() {
                     &welded.triangles,
                     &format!("{file} {name} tess triangles level {n}"),
                 );
+            }
+        }
+    });
+}
+
+/// Displacement moves along `pn`'s and `stpn`'s normal field: every field keeps every driver
+/// watertight (the field on a shared edge depends on the edge's corners alone, in canonical
+/// order, like the geometry), on smooth and on split normals. `stpn` is displaced only on
+/// meshes without creases: at a crease vertex each side moves along its own sharp normal, so
+/// displaced creases open whatever the field (docs/surfaces.md, "Limits").
+#[test]
+fn every_normal_field_is_watertight_under_displacement() {
+    with_gpu(64, 64, |h| {
+        for file in [
+            "icosahedron.obj",
+            "spot_control_tri.obj",
+            "cylinder_hard_normals.obj",
+        ] {
+            let mesh = model(file);
+            let records =
+                meshrefine::surface::build_records(RecordKind::Corners, &mesh, Seams::Closed);
+            let n = 4u32;
+            let (mut scene, camera) = scene_at(h, &mesh, &[n]);
+            let r = mesh.bounding_radius();
+            let creases = meshrefine::surface::stpn::derive(&mesh)
+                .0
+                .iter()
+                .any(|t| t.crease());
+            let mut combos = vec![(Surface::Pn, Displace::Noise)];
+            if !creases {
+                combos.push((Surface::Stpn, Displace::Sine));
+            }
+            for field in NormalField::ALL {
+                for &combo in &combos {
+                    let name = format!(
+                        "{file} {} ({}) + {}",
+                        combo.0.name(),
+                        field.name(),
+                        combo.1.name()
+                    );
+                    let with_field = |driver| {
+                        let mut cfg = config(driver, n, combo, r);
+                        cfg.params.normal_field = field;
+                        cfg
+                    };
+                    let inner = ((n - 1) * (n - 2) / 2) as usize;
+                    let want = expected(&mesh, n as usize, inner);
+                    let cfg = with_field(Driver::Static);
+                    assert_eq!(
+                        static_positions(&cfg, &records, &mesh),
+                        want,
+                        "{name} static"
+                    );
+                    for submit in Submit::ALL {
+                        let cfg = with_field(Driver::Pattern(submit));
+                        let cap = h.capture(&mut scene, &cfg, &camera).unwrap();
+                        let welded = weld(&cap, &Pattern::uniform(n)).unwrap();
+                        let what = format!("{name} {}", cfg.label());
+                        assert_eq!(welded.positions.len(), want, "{what}");
+                        assert_closed(&welded.triangles, &what);
+                    }
+                    let cfg = with_field(Driver::Tess);
+                    let inner = (tess_vertex_count(n) - 3 * n) as usize;
+                    assert_eq!(
+                        tess_positions(h, &mut scene, &cfg, &camera),
+                        expected(&mesh, n as usize, inner),
+                        "{name} tess"
+                    );
+                }
             }
         }
     });

@@ -129,7 +129,9 @@ fn window_demo_presents_and_screenshots() {
     let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("window");
     std::fs::create_dir_all(&dir).unwrap();
     for (name, extra) in [
+        // Multisampled by default (the panel then draws over the resolved image); one sample too.
         ("pattern", vec!["--wireframe", "--animate"]),
+        ("pattern-1x", vec!["--wireframe", "--msaa", "1"]),
         ("tess", vec!["--driver", "tess", "--level", "8"]),
         ("static", vec!["--driver", "static", "--level", "4"]),
         // Loop, animated: the M0 -> M1 passes run every frame before the draws.

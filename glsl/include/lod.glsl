@@ -276,15 +276,16 @@ LodNet lod_surface_net(uint surface, float alpha, Corners c) {
     return net;
 }
 
-// The unnormalized direction field displacement moves along, on the geometry normals.
-LodNet lod_direction_net(uint surface, Corners c) {
+// The unnormalized direction field displacement moves along, on the geometry normals: pn's
+// normal field `field` (NORMAL_FIELD_*), linear for the other surfaces.
+LodNet lod_direction_net(uint surface, uint field, Corners c) {
     Corners cg = c;
     cg.n = c.g;
     LodNet net;
     for (int q = 0; q < 10; ++q) {
         net.b[q] = vec3(0.0);
     }
-    if (surface != 2u) {
+    if (surface != 2u || field == NORMAL_FIELD_LINEAR) {
         net.degree = 1;
         net.b[0] = cg.n[0];
         net.b[1] = cg.n[1];
@@ -294,9 +295,9 @@ LodNet lod_direction_net(uint surface, Corners c) {
         net.b[lod_index(2, ivec3(2, 0, 0))] = cg.n[0];
         net.b[lod_index(2, ivec3(0, 2, 0))] = cg.n[1];
         net.b[lod_index(2, ivec3(0, 0, 2))] = cg.n[2];
-        net.b[lod_index(2, ivec3(1, 1, 0))] = pn_normal_control(cg, 0, 1) * 0.5;
-        net.b[lod_index(2, ivec3(0, 1, 1))] = pn_normal_control(cg, 1, 2) * 0.5;
-        net.b[lod_index(2, ivec3(1, 0, 1))] = pn_normal_control(cg, 2, 0) * 0.5;
+        net.b[lod_index(2, ivec3(1, 1, 0))] = pn_field_control(field, cg, 0, 1) * 0.5;
+        net.b[lod_index(2, ivec3(0, 1, 1))] = pn_field_control(field, cg, 1, 2) * 0.5;
+        net.b[lod_index(2, ivec3(1, 0, 1))] = pn_field_control(field, cg, 2, 0) * 0.5;
     }
     return net;
 }
@@ -363,10 +364,10 @@ struct LodBounds {
     vec4 cone;   // axis, cosine of the half-angle (w <= 0: none)
 };
 
-// Bounds of a local surface (0 flat, 1 phong, 2 pn) with displacement d (0 none, 1 sine,
-// 2 noise) on canonical corners c. Mirror: src/lod/bound.rs `Lod::local` (without `stpn` and
-// the height map).
-LodBounds lod_local(uint surface, uint d, vec4 params, vec3 origin, Corners c, int edge) {
+// Bounds of a local surface (0 flat, 1 phong, 2 pn; pn with normal field `field`) with
+// displacement d (0 none, 1 sine, 2 noise) on canonical corners c. Mirror: src/lod/bound.rs
+// `Lod::local` (without `stpn` and the height map).
+LodBounds lod_local(uint surface, uint field, uint d, vec4 params, vec3 origin, Corners c, int edge) {
     bool exact = surface != 1u || edge >= 0 || !lod_phong_mixed(c);
     LodNet net = lod_surface_net(exact ? surface : 0u, params.x, c);
     vec4 sphere = lod_sphere(net, edge);
@@ -384,7 +385,7 @@ LodBounds lod_local(uint surface, uint d, vec4 params, vec3 origin, Corners c, i
     }
     if (d == 1u || d == 2u) {
         vec3 h = lod_height(d, params, origin, sphere);
-        LodNet dn = lod_direction_net(surface, c);
+        LodNet dn = lod_direction_net(surface, field, c);
         float rho = lod_min_length(dn, edge);
         for (int k = 0; k < 3; ++k) {
             if (edge >= 0 && k != edge) {
@@ -410,16 +411,16 @@ LodBounds lod_local(uint surface, uint d, vec4 params, vec3 origin, Corners c, i
 }
 
 // Element bounds of a corner record. Mirror: `Lod::element`.
-LodBounds lod_element(uint surface, uint d, vec4 params, vec3 origin, CornerRecord r) {
-    return lod_local(surface, d, params, origin, canonical(r, vec3(1.0 / 3.0)), -1);
+LodBounds lod_element(uint surface, uint field, uint d, vec4 params, vec3 origin, CornerRecord r) {
+    return lod_local(surface, field, d, params, origin, canonical(r, vec3(1.0 / 3.0)), -1);
 }
 
 // Bounds of stored edge e (corners e, e + 1): the same bits from both elements that have it.
 // Mirror: `Lod::edge`.
-LodBounds lod_edge(uint surface, uint d, vec4 params, vec3 origin, CornerRecord r, int e) {
+LodBounds lod_edge(uint surface, uint field, uint d, vec4 params, vec3 origin, CornerRecord r, int e) {
     vec3 bary = vec3(0.5);
     bary[(e + 2) % 3] = 0.0;
-    return lod_local(surface, d, params, origin, canonical(r, bary), 0);
+    return lod_local(surface, field, d, params, origin, canonical(r, bary), 0);
 }
 
 #endif

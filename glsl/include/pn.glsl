@@ -1,9 +1,16 @@
 // `pn` surface: curved PN triangles as the 2005 paper's appendix A writes them; the derivation,
-// the normal field and how it differs from Vlachos et al. are in src/surface/pn.rs (the mirror,
-// same operation order).
+// the normal fields (paper, Vlachos et al.'s, linear) and how they differ are in
+// src/surface/pn.rs (the mirror, same operation order).
 #ifndef PN_GLSL
 #define PN_GLSL
 #include "corners.glsl"
+#include "flat.glsl"
+
+// The normal field of pn and stpn. Values: src/surface/pn.rs `NormalField`.
+const uint NORMAL_FIELD_PAPER = 0u;
+const uint NORMAL_FIELD_VLACHOS = 1u;
+const uint NORMAL_FIELD_LINEAR = 2u;
+layout(constant_id = SPEC_NORMAL_FIELD) const uint NORMAL_FIELD = NORMAL_FIELD_PAPER;
 
 const float PN_THIRD = 1.0 / 3.0;
 const float PN_SIXTH = 1.0 / 6.0;
@@ -22,7 +29,7 @@ vec3 pn_edge(Corners c, int i, int j) {
     return pn_edge_point(c.p[i], c.p[j], n);
 }
 
-// The quadratic normal field's edge control point n_ij = N_i + N_j - t_ij (P_j - P_i).
+// The paper's quadratic normal field's edge control point n_ij = N_i + N_j - t_ij (P_j - P_i).
 vec3 pn_normal_control(Corners c, int i, int j) {
     vec3 d = c.p[j] - c.p[i];
     float len2 = dot3(d, d);
@@ -31,13 +38,39 @@ vec3 pn_normal_control(Corners c, int i, int j) {
     return s - d * t;
 }
 
-vec3 pn_normal(Corners c) {
+// Vlachos et al.'s edge control point h_ij / |h_ij|, h_ij = N_i + N_j - v_ij (P_j - P_i).
+// Mirror: src/surface/pn.rs `vlachos_control`.
+vec3 pn_vlachos_control(Corners c, int i, int j) {
+    vec3 d = c.p[j] - c.p[i];
+    float len2 = dot3(d, d);
+    vec3 s = c.n[i] + c.n[j];
+    float v = len2 > 0.0 ? 2.0 * dot3(d, s) / len2 : 0.0;
+    vec3 h = s - d * v;
+    float l2 = dot3(h, h);
+    return l2 > 0.0 ? h / sqrt(l2) : vec3(0.0);
+}
+
+// The edge control point of quadratic field `field`. Mirror: `field_control`.
+vec3 pn_field_control(uint field, Corners c, int i, int j) {
+    return field == NORMAL_FIELD_VLACHOS ? pn_vlachos_control(c, i, j) : pn_normal_control(c, i, j);
+}
+
+// Normal field `field` at c.w, normalized. Mirror: src/surface/pn.rs `normal`.
+vec3 pn_normal_field(uint field, Corners c) {
+    if (field == NORMAL_FIELD_LINEAR) {
+        return flat_normal(c);
+    }
     vec3 w = c.w;
     vec3 n = c.n[0] * (w[0] * w[0]) + c.n[1] * (w[1] * w[1]) + c.n[2] * (w[2] * w[2])
-           + pn_normal_control(c, 0, 1) * (w[0] * w[1])
-           + pn_normal_control(c, 1, 2) * (w[1] * w[2])
-           + pn_normal_control(c, 2, 0) * (w[2] * w[0]);
+           + pn_field_control(field, c, 0, 1) * (w[0] * w[1])
+           + pn_field_control(field, c, 1, 2) * (w[1] * w[2])
+           + pn_field_control(field, c, 2, 0) * (w[2] * w[0]);
     return normalize(n);
+}
+
+// The chosen normal field (the NORMAL_FIELD specialization constant).
+vec3 pn_normal(Corners c) {
+    return pn_normal_field(NORMAL_FIELD, c);
 }
 
 // The cubic patch from its six edge points (e_ij: the one of edge ij next to corner i), the

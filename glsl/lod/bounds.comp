@@ -3,8 +3,9 @@
 // an adaptive level pass. Each element writes four bounds (itself, then its stored edges 0, 1,
 // 2), three vec4 each: (c1, c2, 0, 0) of its chord bound, its sphere (centre, radius) and its
 // normal cone (axis, cosine of the half-angle; zero for none and for edges). The
-// surface and displacement are pc.draw.x and pc.draw.y (0 flat, 1 phong, 2 pn; 0 none, 1 sine,
-// 2 noise), the parameters frame.params and frame.origin.
+// surface, displacement and pn's normal field are pc.draw.x, pc.draw.y and pc.draw.z (0 flat,
+// 1 phong, 2 pn; 0 none, 1 sine, 2 noise; NORMAL_FIELD_*), the parameters frame.params and
+// frame.origin.
 // Mirror: src/lod/bound.rs `Lod::element`, `Lod::edge` (glsl/include/lod.glsl); tests/lod_mirror.rs
 // compares the two.
 layout(local_size_x = 64) in;
@@ -28,9 +29,9 @@ void main() {
     }
     CornerRecord r = corner_record(records[i]);
     vec3 origin = frame.origin.xyz;
-    uint surface = pc.draw.x, displace = pc.draw.y;
-    put(4u * i, lod_element(surface, displace, frame.params, origin, r));
+    uint surface = pc.draw.x, displace = pc.draw.y, field = pc.draw.z;
+    put(4u * i, lod_element(surface, field, displace, frame.params, origin, r));
     for (int e = 0; e < 3; ++e) {
-        put(4u * i + 1u + uint(e), lod_edge(surface, displace, frame.params, origin, r, e));
+        put(4u * i + 1u + uint(e), lod_edge(surface, field, displace, frame.params, origin, r, e));
     }
 }

@@ -12,6 +12,7 @@
 mod input;
 mod ui;
 
+use crate::gpu::sample_count;
 use crate::gpu::{
     surface_extensions, vk, Buffer, BufferDesc, Cmd, CommandPool, Context, ContextDesc, Fence,
     Messages, Overlay, QueryPools, Semaphore, Swapchain, SwapchainFrame, DEPTH_FORMAT,
@@ -59,6 +60,8 @@ pub struct ViewOptions {
     pub loop_refusal: Option<String>,
     /// The mesh as the user named it, for messages.
     pub source: String,
+    /// Samples per pixel (`--msaa`; `None`: 4 where supported, else the most the device has).
+    pub msaa: Option<u32>,
 }
 
 /// The window offers every power-of-two level up to this one (and the level it starts at):
@@ -214,9 +217,12 @@ impl App {
         desc.surface_extensions = surface_extensions(display)?;
         let ctx = Context::new(&desc)?;
         let size = window.inner_size();
-        let swapchain = Swapchain::new(&ctx, display, handle, (size.width, size.height))?;
-        let renderer = Renderer::new(&ctx, swapchain.format, DEPTH_FORMAT)?;
-        let overlay = Overlay::new(&ctx, swapchain.format, DEPTH_FORMAT)?;
+        let samples = sample_count(&ctx, self.opts.msaa)?;
+        let swapchain = Swapchain::new(&ctx, display, handle, (size.width, size.height), samples)?;
+        let renderer = Renderer::multisampled(&ctx, swapchain.format, DEPTH_FORMAT, samples)?;
+        // With multisampling the panel is drawn over the resolved image, without depth.
+        let overlay_depth = (samples == vk::SampleCountFlags::TYPE_1).then_some(DEPTH_FORMAT);
+        let overlay = Overlay::new(&ctx, swapchain.format, overlay_depth)?;
         let ui = Ui::new(&window, ctx.info.limits.max_image_dimension2_d as usize);
         let pool = CommandPool::new(&ctx, "window commands")?;
         let cmd = pool.allocate(1)?[0];
@@ -495,9 +501,14 @@ impl State {
             FrameUniforms::new(&self.camera, aspect, cfg, &self.scene, self.controls.view);
         self.renderer.set_frame(&uniforms);
         let depth = self.swapchain.depth.as_ref().expect("depth image exists");
+        let (color, color_view, resolve) = match &self.swapchain.msaa {
+            Some(msaa) => (msaa.raw, msaa.view, Some((image.image, image.view))),
+            None => (image.image, image.view, None),
+        };
         let target = TargetView {
-            color: image.image,
-            color_view: image.view,
+            color,
+            color_view,
+            resolve,
             depth: depth.raw,
             depth_view: depth.view,
             extent,

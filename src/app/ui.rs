@@ -5,7 +5,7 @@
 //! it, egui takes pointer events and the camera ignores them.
 
 use crate::render::{DrawConfig, Driver, Submit, View};
-use crate::surface::{Displace, Surface, SurfaceParams};
+use crate::surface::{Displace, NormalField, Surface, SurfaceParams};
 use egui::{Align2, ClippedPrimitive, RichText, TexturesDelta};
 use winit::event::WindowEvent;
 use winit::window::Window;
@@ -275,6 +275,14 @@ fn parameters(ui: &mut egui::Ui, c: &mut Controls) {
         reads("alpha"),
         egui::Slider::new(&mut p.alpha, 0.0..=1.0).text("alpha"),
     );
+    ui.add_enabled_ui(reads("normal_field"), |ui| {
+        ui.horizontal(|ui| {
+            ui.label("normal field");
+            for f in NormalField::ALL {
+                ui.selectable_value(&mut p.normal_field, f, f.name());
+            }
+        });
+    });
     ui.add_enabled_ui(reads("amplitude"), |ui| {
         let a = c.initial.amplitude.abs().max(1e-6) * 4.0;
         ui.add(egui::Slider::new(&mut p.amplitude, -a..=a).text("amplitude"));

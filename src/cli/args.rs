@@ -7,7 +7,7 @@ use super::choices;
 use clap::{Args, Parser, Subcommand};
 use meshrefine::render::{Driver, Submit};
 use meshrefine::surface::loop_::Boundary;
-use meshrefine::surface::{BuildOptions, Displace, Seams, Surface, SurfaceParams};
+use meshrefine::surface::{BuildOptions, Displace, NormalField, Seams, Surface, SurfaceParams};
 use std::path::PathBuf;
 
 #[derive(Parser, Debug)]
@@ -64,6 +64,10 @@ pub struct ParamOpts {
     /// crack-free, `open` is the papers' behaviour (cracks).
     #[arg(long, value_parser = choices::seams(), default_value = "closed")]
     pub pn_seams: Seams,
+    /// The normal field of pn and stpn (what shading and displacement use; docs/surfaces.md
+    /// compares them).
+    #[arg(long, value_parser = choices::normal_field(), default_value = NormalField::default().name())]
+    pub normal_field: NormalField,
     /// Height map displacement: P' = P + a·(h − bias)·N, h in [0, 1].
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     pub bias: f32,
@@ -90,6 +94,7 @@ impl ParamOpts {
             octaves: self.octaves,
             origin: d.origin,
             bias: self.bias,
+            normal_field: self.normal_field,
         };
         p.validate()?;
         Ok(p)
@@ -197,6 +202,10 @@ pub struct ViewArgs {
     /// pattern set (powers of two up to --level).
     #[arg(long, help_heading = "Window")]
     pub lod: bool,
+    /// Multisampled anti-aliasing: samples per pixel, 1 (none), 2, 4 or 8 (default: 4 where
+    /// the device supports it for colour and depth attachments, else the most it supports).
+    #[arg(long, value_parser = msaa_counts(), help_heading = "Window")]
+    pub msaa: Option<u32>,
     /// Where the headless fallback writes its image when no display exists.
     #[arg(
         long,
@@ -229,6 +238,10 @@ pub struct RenderArgs {
     /// Draw the refined triangles' edges.
     #[arg(long, help_heading = "Output")]
     pub wireframe: bool,
+    /// Multisampled anti-aliasing: samples per pixel, 1 (none), 2, 4 or 8 (default: 4 where
+    /// the device supports it for colour and depth attachments, else the most it supports).
+    #[arg(long, value_parser = msaa_counts(), help_heading = "Output")]
+    pub msaa: Option<u32>,
     #[command(flatten)]
     pub technique: Technique,
 }
@@ -384,4 +397,11 @@ pub struct BenchArgs {
     /// The offscreen image's height in pixels.
     #[arg(long, default_value_t = 720, help_heading = "Measurement")]
     pub height: u32,
+}
+
+/// `--msaa`: 1, 2, 4 or 8.
+fn msaa_counts() -> impl clap::builder::TypedValueParser<Value = u32> {
+    use clap::builder::TypedValueParser as _;
+    clap::builder::PossibleValuesParser::new(["1", "2", "4", "8"])
+        .map(|s| s.parse::<u32>().expect("a possible value"))
 }

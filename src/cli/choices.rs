@@ -13,7 +13,7 @@
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use meshrefine::render::{Driver, Submit};
 use meshrefine::surface::loop_::Boundary;
-use meshrefine::surface::{Displace, Seams, Surface};
+use meshrefine::surface::{Displace, NormalField, Seams, Surface};
 
 /// A value parser that accepts `name(v)` for every `v` of `values` (listed in `--help` in that
 /// order, each with `help(v)`) and yields `v`.
@@ -88,6 +88,19 @@ fn seams_help(s: Seams) -> &'static str {
     }
 }
 
+/// `--normal-field`.
+pub fn normal_field() -> impl TypedValueParser<Value = NormalField> {
+    parser(&NormalField::ALL, NormalField::name, normal_field_help)
+}
+
+fn normal_field_help(f: NormalField) -> &'static str {
+    match f {
+        NormalField::Paper => "Quadratic, as Boubekeur & Schlick 2005 write it: the fully reflected normal at edge midpoints",
+        NormalField::Vlachos => "Quadratic, as Vlachos et al. 2001 write it: normalized reflected mid-edge control normals, a milder turn",
+        NormalField::Linear => "The corner normals interpolated linearly (Phong shading)",
+    }
+}
+
 /// `--boundary`.
 pub fn boundary() -> impl TypedValueParser<Value = Boundary> {
     parser(
@@ -150,6 +163,14 @@ mod tests {
             assert_eq!(parse(&boundary(), name).unwrap(), b);
             assert_eq!(boundary_name(b), name);
         }
+        for (name, f) in [
+            ("paper", NormalField::Paper),
+            ("vlachos", NormalField::Vlachos),
+            ("linear", NormalField::Linear),
+        ] {
+            assert_eq!(parse(&normal_field(), name).unwrap(), f);
+        }
+        assert!(parse(&normal_field(), "quadratic").is_err());
         assert!(parse(&surface(), "Flat").is_err());
         assert!(parse(&driver(), "instanced").is_err());
         assert!(parse(&boundary(), "edge").is_err());

@@ -255,6 +255,7 @@ mod tests {
         let all = [
             "alpha",
             "pn_seams",
+            "normal_field",
             "tags",
             "crease_angle",
             "boundary",
@@ -273,7 +274,11 @@ mod tests {
             "--alpha applies only to --surface phong, not to --surfaces flat: it is ignored"
         );
         assert_eq!(
-            w[11],
+            w[2],
+            "--normal-field applies only to --surface pn or stpn, not to --surfaces flat: it is ignored"
+        );
+        assert_eq!(
+            w[12],
             "--submit applies only to --driver pattern, not to --driver tess: it is ignored"
         );
         // Each surface or displacement silences exactly its own options.
@@ -285,6 +290,7 @@ mod tests {
         assert_eq!(
             named,
             [
+                "--normal-field",
                 "--tags",
                 "--crease-angle",
                 "--boundary",

@@ -7,7 +7,7 @@ use super::input::{
 };
 use super::{require_extension, with_context};
 use anyhow::{bail, Context as _, Result};
-use meshrefine::gpu::{Context, ContextDesc};
+use meshrefine::gpu::{sample_count, Context, ContextDesc};
 use meshrefine::render::{covered_pixels, Camera, DrawConfig, Headless};
 use std::io::Write as _;
 use std::path::Path;
@@ -22,14 +22,15 @@ pub fn run(a: &RenderArgs, desc: &ContextDesc) -> Result<()> {
     attach_surface_inputs(&mut input, &a.technique.surface, false)?;
     let size = (a.width, a.height);
     with_context(desc, |ctx| {
-        render_png(ctx, input, &cfg, size, a.wireframe, &a.output)
+        render_png(ctx, input, &cfg, size, a.wireframe, a.msaa, &a.output)
     })?;
     out!("wrote {}", a.output.display());
     Ok(())
 }
 
-/// Renders `input` (centred and at unit size, see [`Mesh::for_viewing`]) to a PNG. A blank
-/// image is still written, then reported as an error: it shows nothing.
+/// Renders `input` (centred and at unit size, see [`Mesh::for_viewing`]) to a PNG, with `msaa`
+/// samples per pixel (`None`: the default, `gpu::sample_count`). A blank image is still
+/// written, then reported as an error: it shows nothing.
 ///
 /// [`Mesh::for_viewing`]: meshrefine::mesh::Mesh::for_viewing
 pub fn render_png(
@@ -38,11 +39,13 @@ pub fn render_png(
     cfg: &DrawConfig,
     (width, height): (u32, u32),
     wireframe: bool,
+    msaa: Option<u32>,
     out: &Path,
 ) -> Result<()> {
     let triangles = input.mesh.triangles.len();
+    let samples = sample_count(&ctx, msaa)?;
     let image = {
-        let mut h = Headless::with_context(ctx, width, height)?;
+        let mut h = Headless::multisampled(ctx, width, height, samples)?;
         h.wireframe = wireframe;
         let (mesh, viewed) = for_viewing(&input.mesh, cfg);
         let mut scene = h.scene(mesh, cfg.level)?;

@@ -44,6 +44,7 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc) -> Result<()> {
             tags: input.tags.clone(),
             loop_refusal: input.loop_refusal.clone(),
             source: input.shown.clone(),
+            msaa: a.msaa,
         };
         match meshrefine::app::run(desc.clone(), mesh, opts) {
             Ok(messages) => return check_messages(&messages),
@@ -57,7 +58,7 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc) -> Result<()> {
     };
     with_context(desc, |ctx| {
         let out = &a.headless_output;
-        render_png(ctx, input, &cfg, (1280, 720), a.wireframe, out)
+        render_png(ctx, input, &cfg, (1280, 720), a.wireframe, a.msaa, out)
     })?;
     let shown = std::fs::canonicalize(&a.headless_output).unwrap_or(a.headless_output.clone());
     out!(

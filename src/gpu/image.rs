@@ -13,6 +13,8 @@ pub struct ImageDesc {
     pub format: vk::Format,
     pub usage: vk::ImageUsageFlags,
     pub aspect: vk::ImageAspectFlags,
+    /// Samples per pixel (multisampled attachments are resolved, never read back).
+    pub samples: vk::SampleCountFlags,
 }
 
 impl ImageDesc {
@@ -22,6 +24,20 @@ impl ImageDesc {
             format,
             usage: vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::TRANSFER_SRC,
             aspect: vk::ImageAspectFlags::COLOR,
+            samples: vk::SampleCountFlags::TYPE_1,
+        }
+    }
+    /// A multisampled colour attachment, resolved into a single-sampled image at the end of
+    /// the rendering instance.
+    pub fn new_msaa_color(
+        extent: vk::Extent2D,
+        format: vk::Format,
+        samples: vk::SampleCountFlags,
+    ) -> Self {
+        Self {
+            usage: vk::ImageUsageFlags::COLOR_ATTACHMENT,
+            samples,
+            ..Self::new_color(extent, format)
         }
     }
     pub fn new_depth(extent: vk::Extent2D) -> Self {
@@ -30,7 +46,12 @@ impl ImageDesc {
             format: DEPTH_FORMAT,
             usage: vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT,
             aspect: vk::ImageAspectFlags::DEPTH,
+            samples: vk::SampleCountFlags::TYPE_1,
         }
+    }
+    /// The same with `samples` per pixel.
+    pub fn with_samples(self, samples: vk::SampleCountFlags) -> Self {
+        Self { samples, ..self }
     }
 }
 
@@ -57,7 +78,7 @@ impl Image {
             })
             .mip_levels(1)
             .array_layers(1)
-            .samples(vk::SampleCountFlags::TYPE_1)
+            .samples(desc.samples)
             .tiling(vk::ImageTiling::OPTIMAL)
             .usage(desc.usage)
             .initial_layout(vk::ImageLayout::UNDEFINED);
@@ -177,9 +198,12 @@ impl Readback {
     }
 }
 
-/// Offscreen colour + depth images for headless rendering, with a readback buffer.
+/// Offscreen colour + depth images for headless rendering, with a readback buffer. With
+/// multisampling, `msaa` is the multisampled colour attachment (and `depth` is multisampled
+/// too), resolved into `color` at the end of the frame; `color` is what is read back.
 pub struct OffscreenTarget {
     pub color: Image,
+    pub msaa: Option<Image>,
     pub depth: Image,
     readback: Buffer,
 }
@@ -189,6 +213,16 @@ pub const OFFSCREEN_FORMAT: vk::Format = vk::Format::R8G8B8A8_SRGB;
 
 impl OffscreenTarget {
     pub fn new(ctx: &Arc<Context>, width: u32, height: u32) -> Result<Self, GpuError> {
+        Self::multisampled(ctx, width, height, vk::SampleCountFlags::TYPE_1)
+    }
+
+    /// The target with `samples` per pixel (checked by [`sample_count`]).
+    pub fn multisampled(
+        ctx: &Arc<Context>,
+        width: u32,
+        height: u32,
+        samples: vk::SampleCountFlags,
+    ) -> Result<Self, GpuError> {
         let max = ctx.info.limits.max_image_dimension2_d;
         if width == 0 || height == 0 || width > max || height > max {
             return Err(GpuError::Other(format!(
@@ -201,7 +235,20 @@ impl OffscreenTarget {
             ImageDesc::new_color(extent, OFFSCREEN_FORMAT),
             "offscreen colour",
         )?;
-        let depth = Image::new(ctx, ImageDesc::new_depth(extent), "offscreen depth")?;
+        let msaa = if samples == vk::SampleCountFlags::TYPE_1 {
+            None
+        } else {
+            Some(Image::new(
+                ctx,
+                ImageDesc::new_msaa_color(extent, OFFSCREEN_FORMAT, samples),
+                "offscreen multisampled colour",
+            )?)
+        };
+        let depth = Image::new(
+            ctx,
+            ImageDesc::new_depth(extent).with_samples(samples),
+            "offscreen depth",
+        )?;
         let readback = Buffer::new(
             ctx,
             BufferDesc::new_readback(
@@ -212,6 +259,7 @@ impl OffscreenTarget {
         )?;
         Ok(Self {
             color,
+            msaa,
             depth,
             readback,
         })
@@ -233,5 +281,43 @@ impl OffscreenTarget {
             height: extent.height,
             rgba: self.readback.mapped().to_vec(),
         })
+    }
+}
+
+/// The sample counts `--msaa` accepts.
+pub const MSAA_COUNTS: [u32; 4] = [1, 2, 4, 8];
+
+/// The sample count for `requested` samples per pixel (`None`: 4 where the device supports it
+/// for both colour and depth attachments, else the largest it supports), or one sentence
+/// saying why the device cannot.
+pub fn sample_count(
+    ctx: &Context,
+    requested: Option<u32>,
+) -> Result<vk::SampleCountFlags, GpuError> {
+    let limits = &ctx.info.limits;
+    let supported = limits.framebuffer_color_sample_counts & limits.framebuffer_depth_sample_counts;
+    let flag = |n: u32| vk::SampleCountFlags::from_raw(n);
+    match requested {
+        None => Ok([4, 8, 2, 1]
+            .into_iter()
+            .map(flag)
+            .find(|&f| supported.contains(f))
+            .unwrap_or(vk::SampleCountFlags::TYPE_1)),
+        Some(n) if !MSAA_COUNTS.contains(&n) => Err(GpuError::Other(format!(
+            "--msaa {n} is not one of 1, 2, 4, 8"
+        ))),
+        Some(n) if supported.contains(flag(n)) => Ok(flag(n)),
+        Some(n) => {
+            let offered: Vec<String> = MSAA_COUNTS
+                .iter()
+                .filter(|&&c| supported.contains(flag(c)))
+                .map(|c| c.to_string())
+                .collect();
+            Err(GpuError::Other(format!(
+                "--msaa {n} is not supported by {} for colour and depth attachments (it offers {})",
+                ctx.info.name,
+                offered.join(", ")
+            )))
+        }
     }
 }

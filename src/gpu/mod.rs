@@ -27,7 +27,10 @@ pub use checked::{check_shutdown, with_context, ShutdownError};
 pub use commands::{CommandPool, Fence, Semaphore};
 pub use context::{list_devices, Context, ContextDesc, GpuError, Messages};
 pub use device::DeviceInfo;
-pub use image::{Image, ImageDesc, OffscreenTarget, Readback, DEPTH_FORMAT, OFFSCREEN_FORMAT};
+pub use image::{
+    sample_count, Image, ImageDesc, OffscreenTarget, Readback, DEPTH_FORMAT, MSAA_COUNTS,
+    OFFSCREEN_FORMAT,
+};
 pub use overlay::Overlay;
 pub use pipeline::{
     DescriptorPool, DescriptorSetLayout, GraphicsPipelineDesc, Pipeline, PipelineLayout,

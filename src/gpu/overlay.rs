@@ -30,11 +30,12 @@ pub struct Overlay {
 }
 
 impl Overlay {
-    /// An overlay drawing into `color_format` with a `depth_format` attachment bound.
+    /// An overlay drawing into `color_format` with a `depth_format` attachment bound (`None`:
+    /// drawn in a rendering instance of its own, without depth, over a resolved image).
     pub fn new(
         ctx: &Arc<Context>,
         color_format: vk::Format,
-        depth_format: vk::Format,
+        depth_format: Option<vk::Format>,
     ) -> Result<Self, GpuError> {
         let srgb = matches!(
             color_format,
@@ -45,7 +46,7 @@ impl Overlay {
             ctx.device.clone(),
             DynamicRendering {
                 color_attachment_format: color_format,
-                depth_attachment_format: Some(depth_format),
+                depth_attachment_format: depth_format,
             },
             Options {
                 in_flight_frames: 1,

@@ -254,6 +254,8 @@ pub struct GraphicsPipelineDesc {
     pub polygon_mode: vk::PolygonMode,
     /// (constant factor, slope factor)
     pub depth_bias: Option<(f32, f32)>,
+    /// Samples per pixel of the attachments drawn into.
+    pub samples: vk::SampleCountFlags,
 }
 
 pub struct Pipeline {
@@ -398,7 +400,7 @@ impl VertexInput {
 }
 
 /// The states that hold no pointers: assembly, tessellation, one dynamic viewport and scissor,
-/// rasterization (no culling), one sample, depth test and write.
+/// rasterization (no culling), the attachments' samples, depth test and write.
 struct FixedStates {
     input_assembly: vk::PipelineInputAssemblyStateCreateInfo<'static>,
     tessellation: vk::PipelineTessellationStateCreateInfo<'static>,
@@ -428,7 +430,7 @@ impl FixedStates {
                 .front_face(vk::FrontFace::COUNTER_CLOCKWISE)
                 .line_width(1.0),
             multisample: vk::PipelineMultisampleStateCreateInfo::default()
-                .rasterization_samples(vk::SampleCountFlags::TYPE_1),
+                .rasterization_samples(desc.samples),
             depth: vk::PipelineDepthStencilStateCreateInfo::default()
                 .depth_test_enable(true)
                 .depth_write_enable(true)

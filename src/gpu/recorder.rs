@@ -322,14 +322,36 @@ impl<'a> Cmd<'a> {
         extent: vk::Extent2D,
         clear: [f32; 4],
     ) {
-        let color = [vk::RenderingAttachmentInfo::default()
+        self.begin_rendering_resolved(color_view, None, depth_view, extent, clear);
+    }
+
+    /// [`Cmd::begin_rendering`] into a multisampled colour attachment averaged into `resolve`
+    /// (single-sampled, in COLOR_ATTACHMENT_OPTIMAL) when the instance ends; the multisampled
+    /// samples themselves are not kept.
+    pub fn begin_rendering_resolved(
+        &self,
+        color_view: vk::ImageView,
+        resolve: Option<vk::ImageView>,
+        depth_view: vk::ImageView,
+        extent: vk::Extent2D,
+        clear: [f32; 4],
+    ) {
+        let mut attachment = vk::RenderingAttachmentInfo::default()
             .image_view(color_view)
             .image_layout(vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL)
             .load_op(vk::AttachmentLoadOp::CLEAR)
             .store_op(vk::AttachmentStoreOp::STORE)
             .clear_value(vk::ClearValue {
                 color: vk::ClearColorValue { float32: clear },
-            })];
+            });
+        if let Some(resolve) = resolve {
+            attachment = attachment
+                .store_op(vk::AttachmentStoreOp::DONT_CARE)
+                .resolve_mode(vk::ResolveModeFlags::AVERAGE)
+                .resolve_image_view(resolve)
+                .resolve_image_layout(vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL);
+        }
+        let color = [attachment];
         let depth = vk::RenderingAttachmentInfo::default()
             .image_view(depth_view)
             .image_layout(vk::ImageLayout::DEPTH_ATTACHMENT_OPTIMAL)
@@ -364,6 +386,26 @@ impl<'a> Cmd<'a> {
             self.ctx.device.cmd_set_viewport(self.raw, 0, &[viewport]);
             self.ctx.device.cmd_set_scissor(self.raw, 0, &[area]);
         }
+    }
+
+    /// Begin dynamic rendering into one colour attachment, kept as it is (loaded), without
+    /// depth: what is drawn over a resolved image (the window's overlay panel).
+    pub fn begin_rendering_over(&self, color_view: vk::ImageView, extent: vk::Extent2D) {
+        let color = [vk::RenderingAttachmentInfo::default()
+            .image_view(color_view)
+            .image_layout(vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL)
+            .load_op(vk::AttachmentLoadOp::LOAD)
+            .store_op(vk::AttachmentStoreOp::STORE)];
+        let area = vk::Rect2D {
+            offset: vk::Offset2D::default(),
+            extent,
+        };
+        let info = vk::RenderingInfo::default()
+            .render_area(area)
+            .layer_count(1)
+            .color_attachments(&color);
+        // SAFETY: see `bind_graphics_pipeline`; the attachment is in the layout named above.
+        unsafe { self.ctx.device.cmd_begin_rendering(self.raw, &info) };
     }
 
     pub fn end_rendering(&self) {

@@ -30,6 +30,10 @@ pub struct Swapchain {
     pub images: Vec<vk::Image>,
     pub views: Vec<vk::ImageView>,
     pub depth: Option<Image>,
+    /// The multisampled colour attachment resolved into the acquired image (`samples` > 1).
+    pub msaa: Option<Image>,
+    /// Samples per pixel of `msaa` and `depth`.
+    pub samples: vk::SampleCountFlags,
     pub format: vk::Format,
     pub extent: vk::Extent2D,
 }
@@ -49,6 +53,7 @@ impl Swapchain {
         display: RawDisplayHandle,
         window: RawWindowHandle,
         size: (u32, u32),
+        samples: vk::SampleCountFlags,
     ) -> Result<Self, GpuError> {
         // SAFETY: handles come from a live winit window that outlives the swapchain (the app
         // drops the swapchain before the window).
@@ -80,6 +85,8 @@ impl Swapchain {
             images: Vec::new(),
             views: Vec::new(),
             depth: None,
+            msaa: None,
+            samples,
             format: vk::Format::UNDEFINED,
             extent: vk::Extent2D::default(),
         };
@@ -164,9 +171,16 @@ impl Swapchain {
         }
         self.depth = Some(Image::new(
             &ctx,
-            ImageDesc::new_depth(extent),
+            ImageDesc::new_depth(extent).with_samples(self.samples),
             "swapchain depth",
         )?);
+        if self.samples != vk::SampleCountFlags::TYPE_1 {
+            self.msaa = Some(Image::new(
+                &ctx,
+                ImageDesc::new_msaa_color(extent, format.format, self.samples),
+                "swapchain multisampled colour",
+            )?);
+        }
         self.format = format.format;
         self.extent = extent;
         log::debug!(
@@ -186,6 +200,7 @@ impl Swapchain {
         }
         self.images.clear();
         self.depth = None;
+        self.msaa = None;
     }
 
     /// Acquire the next image. `Ok(None)` means the swapchain is out of date: recreate it.

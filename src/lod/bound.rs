@@ -9,7 +9,7 @@ pub use super::net::Net;
 use super::{Chord, Sphere, EDGE_FACTOR, EDGE_KINK_FACTOR, ELEMENT_FACTOR, KINK_FACTOR};
 use crate::surface::{
     canonical, dot3, edge_of, pn, stpn, CornerRecord, Corners, Displace, ElementRecord, Inputs,
-    Surface, SurfaceParams,
+    NormalField, Surface, SurfaceParams,
 };
 use glam::{Vec2, Vec3};
 
@@ -214,7 +214,13 @@ impl<'a> Lod<'a> {
         let a = p.amplitude.abs();
         // The direction field's nets (several on a scalar-tagged edge with crease corners, whose
         // sharp normal depends on the side).
-        let nets = direction_nets(self.surface, c, tags, edge.is_some());
+        let nets = direction_nets(
+            self.surface,
+            self.params.normal_field,
+            c,
+            tags,
+            edge.is_some(),
+        );
         let mut extra = vec![0.0f32; dirs.len()];
         let mut kink = Chord::ZERO;
         let max_h = if self.displace == Displace::Heightmap {
@@ -388,16 +394,22 @@ fn phong_fallback_net(c: &Corners) -> Net {
 }
 
 /// The unnormalized direction field displacement moves along (`SurfacePoint::direction`), as
-/// Bézier nets: linear for `flat` and `phong`, PN's quadratic for `pn` and `stpn`. On a
-/// scalar-tagged edge every side's choice of sharp normal at its crease corners.
+/// Bézier nets: linear for `flat` and `phong`, `pn`'s and `stpn`'s normal field `field`
+/// (quadratic for `paper` and `vlachos`, linear for `linear`). On a scalar-tagged edge every
+/// side's choice of sharp normal at its crease corners.
 pub fn direction_nets(
     surface: Surface,
+    field: NormalField,
     c: &Corners,
     tags: &[stpn::VertexTag; 3],
     edge: bool,
 ) -> Vec<Net> {
     let cg = Corners { n: c.g, ..*c };
+    let linear = |n: [Vec3; 3]| Net::from_fn(1, |w| n[(0..3).find(|&i| w[i] == 1).unwrap()]);
     let quadratic = |n: [Vec3; 3]| {
+        if field == NormalField::Linear {
+            return linear(n);
+        }
         let cn = Corners { n, ..cg };
         Net::from_fn(2, |w| match (0..3).find(|&i| w[i] == 2) {
             Some(i) => n[i],
@@ -406,16 +418,12 @@ pub fn direction_nets(
                 let j = (i + 1..3).find(|&j| w[j] == 1).unwrap();
                 // pn::normal's terms: n01 w0w1, n12 w1w2, n20 w2w0.
                 let (a, b) = if (i, j) == (0, 2) { (2, 0) } else { (i, j) };
-                pn::normal_control(&cn, a, b) * 0.5
+                pn::field_control(&cn, a, b, field) * 0.5
             }
         })
     };
     match surface {
-        Surface::Flat | Surface::Phong | Surface::Loop => {
-            vec![Net::from_fn(1, |w| {
-                cg.n[(0..3).find(|&i| w[i] == 1).unwrap()]
-            })]
-        }
+        Surface::Flat | Surface::Phong | Surface::Loop => vec![linear(cg.n)],
         Surface::Pn => vec![quadratic(cg.n)],
         Surface::Stpn if !edge => vec![quadratic(stpn::shading_normals(&cg, tags))],
         Surface::Stpn => {

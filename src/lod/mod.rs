@@ -54,7 +54,8 @@
 //!   `3/4 · max(...) / N²` (the 2006 paper's bound, sign-free).
 //! - displacement `P' = P + h N`, `N = n/|n|` the unit direction field (a polynomial `n` of degree
 //!   1 or 2 with `|n| >= ρ > 0` on the patch, from its Bernstein coefficients' projection on their
-//!   mean): `|(hN)''| <= |h''| + 2|h'||N'| + |h||N''|`, with `|N'| <= |n'|/ρ` and
+//!   mean; for `pn` and `stpn` the chosen normal field, `--normal-field`: quadratic for `paper`
+//!   and `vlachos`, whose control normals differ, linear for `linear`): `|(hN)''| <= |h''| + 2|h'||N'| + |h||N''|`, with `|N'| <= |n'|/ρ` and
 //!   `|N''| <= 2|n''|/ρ + 3|n'|²/ρ²`. For a height `h = η(P)` of the point (`sine`, `noise`),
 //!   `|h''| <= H |P'|² + G |P''|` with `G`, `H` bounds of `η`'s gradient and Hessian over the
 //!   patch's sphere ([`displace::Height`]): `sine` `η = a sin(f r)` has `G = |a| f`,

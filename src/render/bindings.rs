@@ -88,6 +88,8 @@ pub const SPEC_SUBMIT: u32 = 1;
 pub const SPEC_WIRE: u32 = 2;
 pub const SPEC_DISPLACE: u32 = 3;
 pub const SPEC_FRAGMENT_FIELD: u32 = 4;
+/// `pn`'s and `stpn`'s normal field (`crate::surface::NormalField`).
+pub const SPEC_NORMAL_FIELD: u32 = 5;
 
 /// Everything above, as GLSL macro definitions.
 pub const GLSL_DEFINES: &[(&str, u32)] = &[
@@ -128,4 +130,5 @@ pub const GLSL_DEFINES: &[(&str, u32)] = &[
     ("SPEC_WIRE", SPEC_WIRE),
     ("SPEC_DISPLACE", SPEC_DISPLACE),
     ("SPEC_FRAGMENT_FIELD", SPEC_FRAGMENT_FIELD),
+    ("SPEC_NORMAL_FIELD", SPEC_NORMAL_FIELD),
 ];

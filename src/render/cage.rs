@@ -82,6 +82,7 @@ pub fn pipeline(
     layout: &PipelineLayout,
     color_format: vk::Format,
     depth_format: vk::Format,
+    samples: vk::SampleCountFlags,
 ) -> Result<Pipeline, GpuError> {
     let desc = GraphicsPipelineDesc {
         stages: vec![
@@ -98,6 +99,7 @@ pub fn pipeline(
         depth_format,
         polygon_mode: vk::PolygonMode::FILL,
         depth_bias: Some((-2.0, -2.0)),
+        samples,
     };
     Pipeline::new_graphics(ctx, layout, &desc, "cage lines")
 }

@@ -11,15 +11,18 @@ use crate::surface::ElementRecord;
 /// Background colour (linear; the targets are sRGB).
 pub const CLEAR_COLOR: [f32; 4] = [0.012, 0.014, 0.02, 1.0];
 
-/// Where a frame is drawn.
+/// Where a frame is drawn. With multisampling, `color` is the multisampled attachment and
+/// `resolve` the single-sampled image it is averaged into (what is read back or presented).
 #[derive(Clone, Copy, Debug)]
 pub struct TargetView {
     pub color: vk::Image,
     pub color_view: vk::ImageView,
+    pub resolve: Option<(vk::Image, vk::ImageView)>,
     pub depth: vk::Image,
     pub depth_view: vk::ImageView,
     pub extent: vk::Extent2D,
-    /// Layout the colour image is left in (TRANSFER_SRC_OPTIMAL or PRESENT_SRC_KHR).
+    /// Layout the colour image (the resolve image, with multisampling) is left in
+    /// (TRANSFER_SRC_OPTIMAL or PRESENT_SRC_KHR).
     pub final_layout: vk::ImageLayout,
 }
 
@@ -73,7 +76,8 @@ impl<'a> FrameWork<'a> {
 
 /// Record the frame. Pipelines must be prepared and levels checked (`Scene::prepare`).
 /// `overlay` records on top of the mesh, right before the rendering instance ends (inside the
-/// timed range); it may leave its own pipeline and dynamic state bound.
+/// timed range), or with multisampling in a second, single-sampled instance on the resolved
+/// image without depth; it may leave its own pipeline and dynamic state bound.
 pub fn cmd_render(
     cmd: &Cmd<'_>,
     r: &Renderer,
@@ -95,6 +99,14 @@ pub fn cmd_render(
         L::UNDEFINED,
         L::DEPTH_ATTACHMENT_OPTIMAL,
     );
+    if let Some((resolve, _)) = target.resolve {
+        cmd.transition(
+            resolve,
+            vk::ImageAspectFlags::COLOR,
+            L::UNDEFINED,
+            L::COLOR_ATTACHMENT_OPTIMAL,
+        );
+    }
     if let Some((q, slot)) = queries {
         q.cmd_begin(cmd, slot);
     }
@@ -107,8 +119,9 @@ pub fn cmd_render(
         pass.cmd_record(cmd, work.mesh, view);
     }
     work.cfg.driver.kind().cmd_before_rendering(cmd, r, work);
-    cmd.begin_rendering(
+    cmd.begin_rendering_resolved(
         target.color_view,
+        target.resolve.map(|(_, view)| view),
         target.depth_view,
         target.extent,
         work.clear,
@@ -129,10 +142,19 @@ pub fn cmd_render(
         cmd.bind_graphics_pipeline(r.pipeline(&work.cfg, Capture::None, true, work.adaptive));
         cmd_draw_driver(cmd, r, work);
     }
-    if let Some(overlay) = overlay {
-        overlay(cmd);
+    match (overlay, target.resolve) {
+        (Some(overlay), None) => {
+            overlay(cmd);
+            cmd.end_rendering();
+        }
+        (Some(overlay), Some((_, view))) => {
+            cmd.end_rendering();
+            cmd.begin_rendering_over(view, target.extent);
+            overlay(cmd);
+            cmd.end_rendering();
+        }
+        (None, _) => cmd.end_rendering(),
     }
-    cmd.end_rendering();
     if let Some((q, slot)) = queries {
         q.cmd_end(cmd, slot);
     }
@@ -140,7 +162,7 @@ pub fn cmd_render(
         cmd.barrier_to_host();
     }
     cmd.transition(
-        target.color,
+        target.resolve.map_or(target.color, |(image, _)| image),
         vk::ImageAspectFlags::COLOR,
         L::COLOR_ATTACHMENT_OPTIMAL,
         target.final_layout,

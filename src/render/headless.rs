@@ -112,9 +112,20 @@ impl Headless {
     }
 
     pub fn with_context(ctx: Arc<Context>, width: u32, height: u32) -> Result<Self, GpuError> {
+        Self::multisampled(ctx, width, height, vk::SampleCountFlags::TYPE_1)
+    }
+
+    /// Rendering with `samples` per pixel (`gpu::sample_count` checks a request), resolved into
+    /// the image that is read back.
+    pub fn multisampled(
+        ctx: Arc<Context>,
+        width: u32,
+        height: u32,
+        samples: vk::SampleCountFlags,
+    ) -> Result<Self, GpuError> {
         let pool = CommandPool::new(&ctx, "headless commands")?;
-        let renderer = Renderer::new(&ctx, OFFSCREEN_FORMAT, DEPTH_FORMAT)?;
-        let target = OffscreenTarget::new(&ctx, width, height)?;
+        let renderer = Renderer::multisampled(&ctx, OFFSCREEN_FORMAT, DEPTH_FORMAT, samples)?;
+        let target = OffscreenTarget::multisampled(&ctx, width, height, samples)?;
         let queries = QueryPools::new(&ctx, 1)?;
         Ok(Self {
             ctx,
@@ -155,9 +166,15 @@ impl Headless {
     }
 
     fn view(&self) -> TargetView {
+        let t = &self.target;
+        let (color, resolve) = match &t.msaa {
+            Some(msaa) => (msaa, Some((t.color.raw, t.color.view))),
+            None => (&t.color, None),
+        };
         TargetView {
-            color: self.target.color.raw,
-            color_view: self.target.color.view,
+            color: color.raw,
+            color_view: color.view,
+            resolve,
             depth: self.target.depth.raw,
             depth_view: self.target.depth.view,
             extent: self.target.extent(),

@@ -1,7 +1,7 @@
 //! Layouts and pipelines shared by all drivers, the per-frame uniform buffer (set 0) and the
 //! capture output binding (set 2). Pipelines are created on first use, keyed by
-//! (driver, submission, surface, displacement, capture, wireframe); surface and displacement are
-//! specialization constants of the same SPIR-V modules.
+//! (driver, submission, surface, displacement, normal field, capture, wireframe); surface,
+//! displacement and normal field are specialization constants of the same SPIR-V modules.
 
 use super::bindings::*;
 use super::{Capture, DrawConfig, Driver, FrameUniforms};
@@ -9,7 +9,7 @@ use crate::gpu::{
     vk, Buffer, BufferDesc, Context, DescriptorPool, DescriptorSetLayout, GpuError,
     GraphicsPipelineDesc, Pipeline, PipelineLayout,
 };
-use crate::surface::{Displace, Surface};
+use crate::surface::{Displace, NormalField, Surface};
 use std::collections::HashMap;
 use std::sync::Arc;
 
@@ -42,6 +42,8 @@ struct PipelineKey {
     driver: Driver,
     surface: Surface,
     displace: Displace,
+    /// `pn`'s and `stpn`'s normal field (`Paper` for the surfaces that have none of their own).
+    normal_field: NormalField,
     fragment_field: bool,
     capture: Capture,
     /// Wireframe pass: polygon mode LINE, the fragment stage's WIRE variant.
@@ -61,6 +63,8 @@ pub struct Renderer {
     cage: Option<Pipeline>,
     pub color_format: vk::Format,
     pub depth_format: vk::Format,
+    /// Samples per pixel of the targets drawn into (`--msaa`).
+    pub samples: vk::SampleCountFlags,
     frame_ubo: Buffer,
     /// Kept alive for the frame set's binding.
     _noise_ubo: Buffer,
@@ -74,6 +78,21 @@ impl Renderer {
         ctx: &Arc<Context>,
         color_format: vk::Format,
         depth_format: vk::Format,
+    ) -> Result<Self, GpuError> {
+        Self::multisampled(
+            ctx,
+            color_format,
+            depth_format,
+            vk::SampleCountFlags::TYPE_1,
+        )
+    }
+
+    /// Pipelines for targets with `samples` per pixel (checked by `gpu::sample_count`).
+    pub fn multisampled(
+        ctx: &Arc<Context>,
+        color_format: vk::Format,
+        depth_format: vk::Format,
+        samples: vk::SampleCountFlags,
     ) -> Result<Self, GpuError> {
         use vk::DescriptorType as T;
         let frame_layout = DescriptorSetLayout::new(
@@ -182,6 +201,7 @@ impl Renderer {
             cage: None,
             color_format,
             depth_format,
+            samples,
             frame_ubo,
             _noise_ubo: noise_ubo,
             pool,
@@ -256,6 +276,7 @@ impl Renderer {
                 &self.layout,
                 self.color_format,
                 self.depth_format,
+                self.samples,
             )?);
         }
         Ok(())
@@ -287,6 +308,7 @@ impl Renderer {
                 (SPEC_WIRE, key.wire as u32),
                 (SPEC_DISPLACE, key.displace as u32),
                 (SPEC_FRAGMENT_FIELD, key.fragment_field as u32),
+                (SPEC_NORMAL_FIELD, key.normal_field as u32),
             ],
             vertex_bindings: vec![],
             vertex_attributes: vec![],
@@ -302,6 +324,7 @@ impl Renderer {
             },
             // Pull the lines towards the camera so they win the depth test against their fill.
             depth_bias: key.wire.then_some((-1.0, -1.0)),
+            samples: self.samples,
         };
         let kind = key.driver.kind();
         if key.adaptive {
@@ -338,6 +361,11 @@ fn key(cfg: &DrawConfig, capture: Capture, wire: bool, adaptive: bool) -> Pipeli
         driver: cfg.driver,
         surface: cfg.surface,
         displace: cfg.displace,
+        normal_field: if cfg.surface.facts().options.contains(&"normal_field") {
+            cfg.params.normal_field
+        } else {
+            NormalField::Paper
+        },
         fragment_field: cfg.fragment_normal_field(),
         capture,
         wire,

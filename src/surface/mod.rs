@@ -31,6 +31,7 @@ pub mod stpn;
 pub use displace::Displace;
 pub use facts::{DisplaceFacts, Elements, FragmentNormals, SurfaceFacts};
 pub use heightmap::Heightmap;
+pub use pn::NormalField;
 pub use record::{
     build_records, corner_records, oct_decode, oct_encode, split_positions, CornerRecord,
     ElementRecord, RecordKind, RECORD_BYTES, SMOOTH_CORNER,
@@ -142,6 +143,9 @@ pub struct SurfaceParams {
     pub origin: Vec3,
     /// The height map displacement's bias b: `P′ = P + a·(h − b)·N`.
     pub bias: f32,
+    /// The normal field of `pn` and `stpn` (the `NORMAL_FIELD` specialization constant on the
+    /// GPU, not a `Frame` value).
+    pub normal_field: NormalField,
 }
 
 /// Options built into a mesh's data (the element records, Loop's tables), not sent per frame:
@@ -208,6 +212,7 @@ impl Default for SurfaceParams {
             octaves: 1,
             origin: Vec3::ZERO,
             bias: 0.0,
+            normal_field: NormalField::default(),
         }
     }
 }
@@ -475,15 +480,23 @@ fn stored_edge(i: usize, j: usize) -> usize {
 }
 
 /// The surface's normal field on already ordered corners (unit); `tags` are the corners' scalar
-/// tags (used by `stpn`).
-pub fn normal_field(surface: Surface, c: &Corners, tags: &[stpn::VertexTag; 3]) -> Vec3 {
+/// tags (used by `stpn`), `field` the normal field `pn` and `stpn` use.
+pub fn normal_field(
+    surface: Surface,
+    field: NormalField,
+    c: &Corners,
+    tags: &[stpn::VertexTag; 3],
+) -> Vec3 {
     match surface {
         Surface::Flat | Surface::Phong => flat::normal(c),
-        Surface::Pn => pn::normal(c),
-        Surface::Stpn => pn::normal(&Corners {
-            n: stpn::shading_normals(c, tags),
-            ..*c
-        }),
+        Surface::Pn => pn::normal(c, field),
+        Surface::Stpn => pn::normal(
+            &Corners {
+                n: stpn::shading_normals(c, tags),
+                ..*c
+            },
+            field,
+        ),
         Surface::Loop => unreachable!("loop is not a local surface"),
     }
 }
@@ -498,8 +511,8 @@ pub fn eval_corners(
     match surface {
         Surface::Flat => flat::eval(c),
         Surface::Phong => phong::eval(c, params.alpha),
-        Surface::Pn => pn::eval(c),
-        Surface::Stpn => stpn::eval(c, tags),
+        Surface::Pn => pn::eval(c, params.normal_field),
+        Surface::Stpn => stpn::eval(c, tags, params.normal_field),
         Surface::Loop => unreachable!("loop is not a local surface"),
     }
 }
@@ -538,7 +551,12 @@ pub fn eval_surface(
     let direction = if c.g == c.n {
         l.normal
     } else {
-        normal_field(surface, &Corners { n: c.g, ..c }, &tags)
+        normal_field(
+            surface,
+            params.normal_field,
+            &Corners { n: c.g, ..c },
+            &tags,
+        )
     };
     // Texture coordinates in canonical order, so both sides of a shared edge (with the same
     // coordinates at its ends) read the same point of the map.

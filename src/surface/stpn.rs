@@ -33,7 +33,7 @@ pub const FACTS: SurfaceFacts = SurfaceFacts {
     name: "stpn",
     help: "Scalar-tagged PN triangles (Boubekeur, Reuter & Schlick 2005): PN with per-vertex tension, sharpness, bias and crease direction (--tags, or derived from the mesh's hard edges)",
     elements: Elements::CoarseTriangles,
-    options: &["pn_seams", "tags", "crease_angle"],
+    options: &["pn_seams", "normal_field", "tags", "crease_angle"],
     texture_coordinates: true,
     needs_every_face: false,
     tags: true,
@@ -482,12 +482,12 @@ pub fn shading_normals(c: &Corners, t: &[VertexTag; 3]) -> [Vec3; 3] {
     })
 }
 
-pub fn eval(c: &Corners, t: &[VertexTag; 3]) -> Local {
+pub fn eval(c: &Corners, t: &[VertexTag; 3], field: super::NormalField) -> Local {
     let shaded = Corners {
         n: shading_normals(c, t),
         ..*c
     };
-    super::pn::eval_with_edges(&shaded, &|i, j| edge_point(c, t, i, j))
+    super::pn::eval_with_edges(&shaded, &|i, j| edge_point(c, t, i, j), field)
 }
 
 #[cfg(test)]

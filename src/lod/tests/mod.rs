@@ -9,8 +9,8 @@ use crate::subdiv::bft::Lattice;
 use crate::subdiv::Boundary;
 use crate::surface::loop_::LoopData;
 use crate::surface::{
-    build_records, eval_with, CornerRecord, Displace, ElementRecord, Heightmap, Inputs, RecordKind,
-    Seams, Surface, SurfaceParams,
+    build_records, eval_with, CornerRecord, Displace, ElementRecord, Heightmap, Inputs,
+    NormalField, RecordKind, Seams, Surface, SurfaceParams,
 };
 use glam::{Mat4, Vec3, Vec4};
 
