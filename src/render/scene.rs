@@ -255,6 +255,14 @@ impl Scene {
         }
     }
 
+    /// [`Scene::elements`], to upload their levels ([`GpuMesh::upload_levels`]).
+    pub fn elements_mut(&mut self, surface: Surface) -> &mut GpuMesh {
+        match &mut self.loop_ {
+            Some(l) if surface.uses_loop_faces() => &mut l.gpu,
+            _ => &mut self.gpu,
+        }
+    }
+
     /// The records of [`Scene::elements`].
     pub fn records(&self, surface: Surface) -> &[ElementRecord] {
         match &self.loop_ {
