@@ -7,7 +7,7 @@ use super::input::{attach_surface_inputs, draw_config, for_viewing, load_mesh};
 use super::loop_check::loop_refusal;
 use super::render::render_png;
 use super::{check_messages, require_extension, with_context};
-use anyhow::Result;
+use anyhow::{bail, Result};
 use meshrefine::gpu::ContextDesc;
 use std::io::Write as _;
 
@@ -32,6 +32,9 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc) -> Result<()> {
     let has_display =
         std::env::var_os("DISPLAY").is_some() || std::env::var_os("WAYLAND_DISPLAY").is_some();
     let why_headless = if has_display {
+        if a.adaptive.pixel_error.is_some() {
+            bail!("the window does not draw adaptively yet: --pixel-error applies to the image view renders where no display exists (or use render --pixel-error)");
+        }
         let (mesh, viewed) = for_viewing(&input.mesh, &cfg);
         let opts = meshrefine::app::ViewOptions {
             cfg: viewed,
@@ -54,10 +57,14 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc) -> Result<()> {
     } else {
         "no display found (DISPLAY and WAYLAND_DISPLAY are unset)".to_string()
     };
-    with_context(desc, |ctx| {
+    let adaptive = a.adaptive.enabled(true);
+    let line = with_context(desc, |ctx| {
         let out = &a.headless_output;
-        render_png(ctx, input, &cfg, (1280, 720), a.wireframe, out)
+        render_png(ctx, input, &cfg, (1280, 720), a.wireframe, out, adaptive)
     })?;
+    if let Some(line) = line {
+        out!("{line}");
+    }
     let shown = std::fs::canonicalize(&a.headless_output).unwrap_or(a.headless_output.clone());
     out!(
         "{why_headless}: rendered the scene headlessly to {}",
