@@ -129,6 +129,11 @@ fn window_demo_presents_and_screenshots() {
     for (name, extra) in [
         ("pattern", vec!["--wireframe", "--animate"]),
         ("tess", vec!["--driver", "tess", "--level", "8"]),
+        // Adaptive, animated: the levels chosen again every frame.
+        (
+            "tess-adaptive",
+            vec!["--driver", "tess", "--pixel-error", "2", "--animate"],
+        ),
         ("static", vec!["--driver", "static", "--level", "4"]),
         // Loop, animated: the M0 -> M1 passes run every frame before the draws.
         (

@@ -55,6 +55,20 @@ pub struct ViewOptions {
     /// Why the loop surface must not subdivide this mesh though it loaded (the file had faces
     /// the loader dropped): switching to loop then warns with it and shows pn.
     pub loop_refusal: Option<String>,
+    /// Draw adaptively (the tess driver), levels chosen on the CPU every frame for the camera.
+    pub adaptive: Option<AdaptiveView>,
+}
+
+/// Adaptive drawing in the window: each element at the levels its bound needs for the current
+/// camera and window size (`Scene::set_levels`), `cfg.level` the largest.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AdaptiveView {
+    pub pixel_error: f32,
+    pub cull: bool,
+    /// The first camera (drawn coordinates); None: the one that frames the mesh.
+    pub camera: Option<Camera>,
+    /// The largest level; None: the largest the tess driver draws on the device.
+    pub max_level: Option<u32>,
 }
 
 pub const KEY_HELP: &str = "keys: drag = orbit, wheel = zoom, 1/2/3 = static/pattern/tess, \
@@ -168,6 +182,10 @@ struct State {
     max_level: u32,
     /// The level last lowered to what the driver can draw (said once).
     level_note: Option<u32>,
+    /// Adaptive drawing was asked for with another driver than tess (said once).
+    adaptive_note: bool,
+    /// The levels the last frame drew with, when it drew adaptively.
+    levels: Option<crate::lod::LevelReport>,
     start: Instant,
     frames: u64,
     recorded_once: bool,
@@ -210,7 +228,13 @@ impl App {
         let pool = CommandPool::new(&ctx, "window commands")?;
         let cmd = pool.allocate(1)?[0];
         let mesh = self.mesh.take().expect("created once");
-        let cfg = self.opts.cfg;
+        let mut cfg = self.opts.cfg;
+        if let Some(a) = &self.opts.adaptive {
+            let limit = crate::render::Driver::Tess.kind().level_limit(&ctx);
+            cfg.level = a
+                .max_level
+                .unwrap_or_else(|| limit.map_or(64, |(max, _)| max.min(1024)));
+        }
         let max_level = cfg.level;
         let mut scene = Scene::new(&ctx, &pool, &renderer, mesh.clone(), max_level)?;
         if let Some(map) = self.opts.heightmap.clone() {
@@ -242,12 +266,17 @@ impl App {
             ctx,
             window,
             ui,
-            camera: Camera::framing(c, r),
+            camera: (self.opts.adaptive)
+                .and_then(|a| a.camera)
+                .unwrap_or_else(|| Camera::framing(c, r)),
+            adaptive_note: false,
+            levels: None,
             controls: Controls {
                 cfg,
                 wireframe: self.opts.wireframe,
                 animate: self.opts.animate,
-                lod: self.opts.lod,
+                // Adaptive drawing chooses levels per element instead.
+                lod: self.opts.lod && self.opts.adaptive.is_none(),
                 view: View::Shaded,
                 initial: cfg.params,
                 submit: cfg.driver.submit().unwrap_or_default(),
@@ -289,7 +318,8 @@ impl State {
         };
         let last = self.quit || opts.frames.is_some_and(|n| self.frames + 1 >= n);
         let screenshot = last && opts.screenshot.is_some();
-        self.record(&cfg, &image, &ui_frame, screenshot)?;
+        let adaptive = self.set_levels(opts, &cfg);
+        self.record(&cfg, &image, &ui_frame, screenshot, adaptive)?;
         self.fence.reset()?;
         let rendered = &self.rendered[image.index as usize];
         self.pool
@@ -400,13 +430,56 @@ impl State {
         Ok(cfg)
     }
 
-    /// Record the frame into `self.cmd`: the scene, the panel on top, and the screenshot copy.
+    /// With adaptive drawing on the tess driver: this frame's levels for the camera and window
+    /// (the previous frame is done with them). Whether the frame draws adaptively.
+    fn set_levels(&mut self, opts: &ViewOptions, cfg: &DrawConfig) -> bool {
+        self.levels = None;
+        let Some(a) = &opts.adaptive else {
+            return false;
+        };
+        if cfg.driver != crate::render::Driver::Tess {
+            if !self.adaptive_note {
+                log::warn!(
+                    "adaptive drawing is for the tess driver: the {} driver draws every element at level {}",
+                    cfg.driver.name(),
+                    cfg.level
+                );
+                self.adaptive_note = true;
+            }
+            return false;
+        }
+        let extent = self.swapchain.extent;
+        let view = crate::render::LevelView {
+            camera: self.camera,
+            width: extent.width,
+            height: extent.height,
+            pixel_error: a.pixel_error,
+            cull: a.cull,
+        };
+        self.levels = Some(self.scene.set_levels(cfg, &view));
+        true
+    }
+
+    /// The triangles `cfg` draws from `coarse` elements: at its level, or adaptively each drawn
+    /// element at its inner level.
+    fn refined(&self, cfg: &DrawConfig, coarse: u64) -> u64 {
+        match &self.levels {
+            Some(r) => (r.histogram.iter())
+                .map(|(&n, &count)| count * cfg.driver.refined_per_element(n) as u64)
+                .sum(),
+            None => coarse * cfg.refined_per_element() as u64,
+        }
+    }
+
+    /// Record the frame into `self.cmd`: the scene (adaptively when `adaptive`), the panel on
+    /// top, and the screenshot copy.
     fn record(
         &mut self,
         cfg: &DrawConfig,
         image: &SwapchainFrame,
         ui_frame: &ui::UiFrame,
         screenshot: bool,
+        adaptive: bool,
     ) -> Result<()> {
         let extent = self.swapchain.extent;
         if screenshot {
@@ -438,6 +511,7 @@ impl State {
         };
         let work = FrameWork {
             wireframe: self.controls.wireframe,
+            adaptive,
             ..FrameWork::new(&self.scene, *cfg)
         };
         let screenshot_buffer = self.screenshot_buffer.as_ref().filter(|_| screenshot);
@@ -509,7 +583,7 @@ impl State {
             gpu_ms: self.gpu_ms,
             drawn: d,
             coarse,
-            refined: coarse * d.refined_per_element() as u64,
+            refined: self.refined(&d, coarse),
             geometry_bytes: self.scene.geometry_bytes(&d),
             upload_bytes: self.scene.upload_bytes(&d),
             table_bytes: self
@@ -535,16 +609,17 @@ impl State {
         let bytes = self.scene.geometry_bytes(cfg);
         let c = &self.controls;
         self.window.set_title(&format!(
-            "meshrefine | {} level {}{}{}{} | {:.0} fps | GPU {:.2} ms | {} -> {} triangles | {:.2} MB geometry | max level {}",
+            "meshrefine | {} level {}{}{}{}{} | {:.0} fps | GPU {:.2} ms | {} -> {} triangles | {:.2} MB geometry | max level {}",
             cfg.label(),
             cfg.level,
             if c.lod { " (LOD)" } else { "" },
+            if self.levels.is_some() { " (adaptive)" } else { "" },
             if c.wireframe { " wire" } else { "" },
             if c.animate { " animated" } else { "" },
             self.fps,
             self.gpu_ms,
             coarse,
-            coarse * cfg.refined_per_element() as u64,
+            self.refined(cfg, coarse),
             bytes as f64 / 1e6,
             self.max_level,
         ));

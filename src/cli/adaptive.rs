@@ -159,9 +159,10 @@ impl Adaptive<'_> {
             .ok_or_else(|| anyhow::anyhow!("{}", no_direction(frame.mesh(eye), frame.mesh(target))))
     }
 
-    /// The camera for the benchmark of `mesh` (already in the drawn frame, mapped from the
-    /// mesh's by `frame`): None for the framing camera the benchmark uses anyway.
-    pub fn bench_camera(&self, mesh: &Mesh, frame: &Frame) -> Result<Option<Camera>> {
+    /// The camera asked for, for `mesh` as drawn (already in the drawn frame, mapped from the
+    /// mesh's own by `frame`): None for the framing camera the benchmark and the window start
+    /// with anyway.
+    pub fn given_camera(&self, mesh: &Mesh, frame: &Frame) -> Result<Option<Camera>> {
         let v = &self.opts.viewpoint;
         if v.eye.is_none() && v.look_at.is_none() && v.fov == 45.0 {
             return Ok(None);

@@ -64,7 +64,7 @@ pub fn run(a: &BenchArgs, desc: &ContextDesc) -> Result<()> {
             opts.levels = vec![a.max_level(&ctx, Driver::Tess)];
             let scene_frame = Frame { centre, scale };
             opts.adaptive = Some(meshrefine::bench::BenchAdaptive {
-                camera: a.bench_camera(&mesh, &scene_frame)?,
+                camera: a.given_camera(&mesh, &scene_frame)?,
                 pixel_error: a.pixel_error,
                 cull: a.cull,
             });

@@ -2,12 +2,13 @@
 //! headlessly to a PNG (which says why).
 #![forbid(unsafe_code)]
 
+use super::adaptive::Frame;
 use super::args::ViewArgs;
 use super::input::{attach_surface_inputs, draw_config, for_viewing, load_mesh};
 use super::loop_check::loop_refusal;
 use super::render::render_png;
 use super::{check_messages, require_extension, with_context};
-use anyhow::{bail, Result};
+use anyhow::Result;
 use meshrefine::gpu::ContextDesc;
 use std::io::Write as _;
 
@@ -32,10 +33,8 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc) -> Result<()> {
     let has_display =
         std::env::var_os("DISPLAY").is_some() || std::env::var_os("WAYLAND_DISPLAY").is_some();
     let why_headless = if has_display {
-        if a.adaptive.pixel_error.is_some() {
-            bail!("the window does not draw adaptively yet: --pixel-error applies to the image view renders where no display exists (or use render --pixel-error)");
-        }
         let (mesh, viewed) = for_viewing(&input.mesh, &cfg);
+        let (centre, scale) = input.mesh.viewing_transform();
         let opts = meshrefine::app::ViewOptions {
             cfg: viewed,
             frames: a.frames,
@@ -46,6 +45,15 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc) -> Result<()> {
             heightmap: input.heightmap.clone(),
             tags: input.tags.clone(),
             loop_refusal: input.loop_refusal.clone(),
+            adaptive: match a.adaptive.enabled(true) {
+                Some(ad) => Some(meshrefine::app::AdaptiveView {
+                    pixel_error: ad.pixel_error,
+                    cull: ad.cull,
+                    camera: ad.given_camera(&mesh, &Frame { centre, scale })?,
+                    max_level: ad.opts.max_level,
+                }),
+                None => None,
+            },
         };
         match meshrefine::app::run(desc.clone(), mesh, opts) {
             Ok(messages) => return check_messages(&messages),
