@@ -2058,6 +2058,21 @@ fn adaptive_options_refuse_bad_values() {
         &["bench", "--pixel-error", "1"],
         &["tess driver", "--drivers tess"],
     );
+    // Past what the device's tessellator draws (lavapipe: 64), named.
+    expect_error(
+        &[
+            "render",
+            "-o",
+            p(&png),
+            "--driver",
+            "tess",
+            "--pixel-error",
+            "1",
+            "--max-level",
+            "100",
+        ],
+        &["--max-level 100", "maxTessellationGenerationLevel"],
+    );
     assert!(!png.exists() && !obj.exists() && !view_png.exists());
     // The camera and culling options without --pixel-error are reported as ignored.
     let out = meshrefine(&[

@@ -243,6 +243,9 @@ impl App {
         if let Some(tags) = self.opts.tags.clone() {
             scene.set_tags(&ctx, &pool, &renderer, tags)?;
         }
+        if self.opts.adaptive.is_some() {
+            scene.skip_slow_warning();
+        }
         let (c, r) = scene.bounding_sphere();
         let mut rendered = Vec::new();
         per_image(&mut rendered, swapchain.images.len(), |i| {

@@ -117,21 +117,26 @@ impl Frame {
 }
 
 impl Adaptive<'_> {
-    /// The largest level any element gets: `--max-level`, else the largest `driver` draws on
-    /// the device (a power of two for a dyadic driver), at most 1024.
-    pub fn max_level(&self, ctx: &Context, driver: Driver) -> u32 {
+    /// The largest level any element gets: `--max-level` (refused past what `driver` draws on
+    /// the device), else the largest `driver` draws there (a power of two for a dyadic driver),
+    /// at most 1024.
+    pub fn max_level(&self, ctx: &Context, driver: Driver) -> Result<u32> {
+        let limit = driver.kind().level_limit(ctx);
         if let Some(l) = self.opts.max_level {
-            return l;
+            if let Some((max, name)) = limit.filter(|&(max, _)| l > max) {
+                bail!(
+                    "--max-level {l} is beyond this device's {name} ({max}): the {} driver cannot draw it",
+                    driver.name()
+                );
+            }
+            return Ok(l);
         }
-        let limit = driver
-            .kind()
-            .level_limit(ctx)
-            .map_or(1024, |(max, _)| max.min(1024));
-        if matches!(driver, Driver::Pattern(_)) {
+        let limit = limit.map_or(1024, |(max, _)| max.min(1024));
+        Ok(if matches!(driver, Driver::Pattern(_)) {
             1 << limit.ilog2()
         } else {
             limit
-        }
+        })
     }
 
     /// The camera in the drawn frame: the framing camera of `scene` (what the uniform drawing
@@ -186,6 +191,7 @@ impl Adaptive<'_> {
         (width, height): (u32, u32),
         frame: &Frame,
     ) -> Result<(Camera, LevelReport)> {
+        scene.skip_slow_warning();
         h.prepared_elements(scene, cfg, capture)?;
         let camera = self.camera(scene, frame)?;
         let report = scene.set_levels(

@@ -61,7 +61,7 @@ pub fn run(a: &BenchArgs, desc: &ContextDesc) -> Result<()> {
         let mut opts = opts;
         if let Some(a) = &adaptive {
             // One row per variant at the largest level, seen by the camera asked for.
-            opts.levels = vec![a.max_level(&ctx, Driver::Tess)];
+            opts.levels = vec![a.max_level(&ctx, Driver::Tess)?];
             let scene_frame = Frame { centre, scale };
             opts.adaptive = Some(meshrefine::bench::BenchAdaptive {
                 camera: a.given_camera(&mesh, &scene_frame)?,

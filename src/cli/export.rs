@@ -34,7 +34,7 @@ pub fn run(a: &ExportArgs, desc: &ContextDesc) -> Result<()> {
     let size = (a.width, a.height);
     let counts = with_context(desc, |ctx| {
         if let Some(a) = &adaptive {
-            cfg.level = a.max_level(&ctx, cfg.driver);
+            cfg.level = a.max_level(&ctx, cfg.driver)?;
             check_size(cfg.level)?;
         }
         let shown = input.shown.clone();

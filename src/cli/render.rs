@@ -62,7 +62,7 @@ pub fn render_png(
     let image = (|| -> Result<_> {
         let mut cfg = *cfg;
         if let Some(a) = &adaptive {
-            cfg.level = a.max_level(&ctx, cfg.driver);
+            cfg.level = a.max_level(&ctx, cfg.driver)?;
         }
         let mut h = Headless::with_context(ctx, width, height)?;
         h.wireframe = wireframe;

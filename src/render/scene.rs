@@ -263,6 +263,12 @@ impl Scene {
         }
     }
 
+    /// Skip the slow-frame warning of the next [`Scene::prepare`]s: drawn adaptively, the
+    /// elements are not all at the configuration's (largest) level it would count them at.
+    pub fn skip_slow_warning(&mut self) {
+        self.warned_slow = true;
+    }
+
     /// The records of [`Scene::elements`].
     pub fn records(&self, surface: Surface) -> &[ElementRecord] {
         match &self.loop_ {
