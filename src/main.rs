@@ -57,7 +57,7 @@ fn main() -> ExitCode {
     for w in cli::warnings(&cli, &given) {
         note(format_args!("warning: {w}"));
     }
-    match cli::run(cli) {
+    match cli::run(cli, &given) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             let closed_pipe = e.chain().any(|c| {

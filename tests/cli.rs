@@ -1986,6 +1986,307 @@ fn info_reports_adaptive_levels_for_a_camera() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("--fov applies only with --pixel-error"));
 }
 
+/// `--pixel-error` and its camera on render, export, view and bench: every bad value is one
+/// sentence and status 1, before anything is drawn; the pattern driver (and bench's default of
+/// every driver) is refused naming the tess driver.
+#[test]
+fn adaptive_options_refuse_bad_values() {
+    let png = tmp("adaptive-bad.png");
+    let obj = tmp("adaptive-bad.obj");
+    let view_png = tmp("adaptive-bad-view.png");
+    for f in [&png, &obj, &view_png] {
+        let _ = std::fs::remove_file(f);
+    }
+    let commands: [Vec<&str>; 4] = [
+        vec!["render", "-o", p(&png), "--driver", "tess"],
+        vec!["export", "-o", p(&obj), "--driver", "tess"],
+        vec![
+            "view",
+            "--headless-output",
+            p(&view_png),
+            "--driver",
+            "tess",
+        ],
+        vec!["bench", "--drivers", "tess"],
+    ];
+    for base in &commands {
+        let with = |extra: &[&'static str]| -> Vec<String> {
+            base.iter().chain(extra).map(|s| s.to_string()).collect()
+        };
+        let expect_error = |args: &[String], needles: &[&str]| {
+            let args: Vec<&str> = args.iter().map(String::as_str).collect();
+            expect_error(&args, needles)
+        };
+        expect_error(&with(&["--pixel-error", "0"]), &["--pixel-error 0"]);
+        expect_error(&with(&["--pixel-error", "-1"]), &["--pixel-error -1"]);
+        expect_error(&with(&["--pixel-error", "nan"]), &["--pixel-error NaN"]);
+        expect_error(&with(&["--pixel-error", "1", "--fov", "0"]), &["--fov 0"]);
+        expect_error(
+            &with(&["--pixel-error", "1", "--fov", "180"]),
+            &["--fov 180"],
+        );
+        expect_error(
+            &with(&["--pixel-error", "1", "--eye", "1,2,3", "--look-at", "1,2,3"]),
+            &["--eye 1,2,3", "no view direction"],
+        );
+        let level = if base[0] == "bench" {
+            "--levels"
+        } else {
+            "--level"
+        };
+        expect_error(
+            &with(&["--pixel-error", "1", level, "4"]),
+            &["--pixel-error and", "exclusive"],
+        );
+    }
+    expect_error(
+        &["render", "-o", p(&png), "--pixel-error", "1"],
+        &["tess driver", "--driver pattern"],
+    );
+    expect_error(
+        &[
+            "export",
+            "-o",
+            p(&obj),
+            "--pixel-error",
+            "1",
+            "--driver",
+            "pattern",
+        ],
+        &["tess driver", "--driver pattern"],
+    );
+    expect_error(
+        &["bench", "--pixel-error", "1"],
+        &["tess driver", "--drivers tess"],
+    );
+    // Past what the device's tessellator draws (lavapipe: 64), named.
+    expect_error(
+        &[
+            "render",
+            "-o",
+            p(&png),
+            "--driver",
+            "tess",
+            "--pixel-error",
+            "1",
+            "--max-level",
+            "100",
+        ],
+        &["--max-level 100", "maxTessellationGenerationLevel"],
+    );
+    assert!(!png.exists() && !obj.exists() && !view_png.exists());
+    // The camera and culling options without --pixel-error are reported as ignored.
+    let out = meshrefine(&[
+        "render",
+        "-o",
+        p(&png),
+        "--fov",
+        "30",
+        "--cull",
+        "off",
+        "--level",
+        "2",
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("--fov applies only with --pixel-error"),
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains("--cull applies only with --pixel-error"),
+        "{stderr}"
+    );
+}
+
+/// The two header lines of an adaptive export: the camera's numbers and `L:n` pairs.
+fn adaptive_header(text: &str) -> (Vec<f32>, Vec<(u32, u64)>) {
+    let camera = text
+        .lines()
+        .find(|l| l.starts_with("# camera "))
+        .unwrap_or_else(|| panic!("no camera line"));
+    let words: Vec<&str> = camera.split_whitespace().collect();
+    let names = [
+        "#",
+        "camera",
+        "eye",
+        "",
+        "",
+        "",
+        "target",
+        "",
+        "",
+        "",
+        "up",
+        "",
+        "",
+        "",
+        "fov-y",
+        "",
+        "size",
+        "",
+        "",
+        "pixel-error",
+        "",
+    ];
+    assert_eq!(words.len(), names.len(), "{camera}");
+    let mut numbers = Vec::new();
+    for (w, n) in words.iter().zip(names) {
+        if n.is_empty() {
+            numbers.push(
+                w.parse::<f32>()
+                    .unwrap_or_else(|_| panic!("{w} in {camera}")),
+            );
+        } else {
+            assert_eq!(*w, n, "{camera}");
+        }
+    }
+    let levels = text
+        .lines()
+        .find(|l| l.starts_with("# levels "))
+        .unwrap_or_else(|| panic!("no levels line"));
+    let pairs = levels["# levels ".len()..]
+        .split_whitespace()
+        .map(|pair| {
+            let (l, n) = pair.split_once(':').unwrap();
+            (l.parse().unwrap(), n.parse().unwrap())
+        })
+        .collect();
+    (numbers, pairs)
+}
+
+/// `export --pixel-error` writes what the tess driver drew adaptively for the camera: the
+/// header says which camera and how many elements at each level; without culling (export's
+/// default) every element is drawn and the welded mesh is closed, with fewer triangles than the
+/// largest level everywhere; a close-up with culling draws fewer elements; render, view and
+/// bench draw adaptively too.
+#[test]
+fn pixel_error_draws_adaptively_end_to_end() {
+    let spot = model_path("spot_control_tri.obj");
+    let spot = p(&spot);
+    let obj = tmp("adaptive.obj");
+    let out = ok(&[
+        "export",
+        spot,
+        "-o",
+        p(&obj),
+        "--driver",
+        "tess",
+        "--pixel-error",
+        "2",
+    ]);
+    assert!(out.contains("wrote"), "{out}");
+    let text = std::fs::read_to_string(&obj).unwrap();
+    let (camera, levels) = adaptive_header(&text);
+    // up, fov, size, pixel error.
+    assert_eq!(&camera[6..], &[0.0, 1.0, 0.0, 45.0, 1280.0, 720.0, 2.0]);
+    assert_eq!(levels.iter().map(|l| l.1).sum::<u64>(), 372, "{levels:?}");
+    assert!(levels.len() > 2 && levels.iter().all(|&(l, _)| (1..=64).contains(&l)));
+    let (mesh, _) = meshrefine::mesh::Mesh::load_obj(&obj).unwrap();
+    assert_eq!(mesh.stats().boundary_edges, 0, "adaptive export has cracks");
+    let top = levels.last().unwrap().0;
+    assert!(
+        mesh.triangles.len() < 372 * meshrefine::render::tess::tess_triangle_count(top) as usize
+    );
+    // Wound like the coarse triangles (outward on a sphere), transition triangles too.
+    let sphere = model_path("uvsphere12.obj");
+    ok(&[
+        "export",
+        p(&sphere),
+        "-o",
+        p(&obj),
+        "--driver",
+        "tess",
+        "--pixel-error",
+        "0.5",
+    ]);
+    let (ball, _) = meshrefine::mesh::Mesh::load_obj(&obj).unwrap();
+    assert_eq!(ball.stats().boundary_edges, 0);
+    assert_faces_agree_with_normals(&ball);
+    // A close-up with culling: the camera is echoed in the mesh's coordinates; fewer elements.
+    let close = ok(&[
+        "export",
+        spot,
+        "-o",
+        p(&obj),
+        "--driver",
+        "tess",
+        "--pixel-error",
+        "1",
+        "--eye",
+        "0.3,0.2,0.6",
+        "--look-at",
+        "0,0.1,0.3",
+        "--fov",
+        "50",
+        "--cull",
+        "on",
+        "--max-level",
+        "20",
+    ]);
+    assert!(close.contains("wrote"), "{close}");
+    let text = std::fs::read_to_string(&obj).unwrap();
+    let (camera, levels) = adaptive_header(&text);
+    for (got, want) in camera[..6].iter().zip([0.3, 0.2, 0.6, 0.0, 0.1, 0.3]) {
+        assert!((got - want).abs() < 1e-5, "{camera:?}");
+    }
+    assert_eq!(camera[9], 50.0);
+    let drawn: u64 = levels.iter().map(|l| l.1).sum();
+    assert!(drawn > 0 && drawn < 372, "{levels:?}");
+    assert!(levels.iter().all(|&(l, _)| l <= 20), "{levels:?}");
+    let (mesh, _) = meshrefine::mesh::Mesh::load_obj(&obj).unwrap();
+    assert!(mesh.stats().boundary_edges > 0);
+    // render, the headless view and bench.
+    let png = tmp("adaptive.png");
+    let out = ok(&[
+        "render",
+        spot,
+        "-o",
+        p(&png),
+        "--driver",
+        "tess",
+        "--pixel-error",
+        "2",
+        "--width",
+        "320",
+        "--height",
+        "180",
+    ]);
+    assert!(
+        out.contains("adaptive at 2 px, max level 64: levels (level:elements) "),
+        "{out}"
+    );
+    let view_png = tmp("adaptive-view.png");
+    let out = ok(&[
+        "view",
+        spot,
+        "--headless-output",
+        p(&view_png),
+        "--driver",
+        "tess",
+        "--pixel-error",
+        "3",
+    ]);
+    assert!(out.contains("adaptive at 3 px"), "{out}");
+    let out = ok(&[
+        "bench",
+        spot,
+        "--drivers",
+        "tess",
+        "--surfaces",
+        "pn",
+        "--pixel-error",
+        "4",
+        "--frames",
+        "1",
+        "--width",
+        "160",
+        "--height",
+        "90",
+    ]);
+    assert!(out.contains("adaptive at 4 px: levels "), "{out}");
+}
+
 #[test]
 fn render_and_info_work_without_arguments() {
     // `render` alone writes meshrefine.png of the default scene in the current folder; `info`

@@ -12,12 +12,16 @@
 
 mod common;
 
+use common::random_levels::{element_corners, random_levels};
 use common::{model, with_gpu};
 use meshrefine::export::{weld, weld_triangles};
+use meshrefine::lod::levels::ElementLevels;
 use meshrefine::mesh::Mesh;
 use meshrefine::pattern::{Pattern, PatternSet};
 use meshrefine::render::static_vbo::{refine_on_cpu, MeshInputs};
-use meshrefine::render::tess::{tess_triangle_count, tess_vertex_count};
+use meshrefine::render::tess::{
+    outer_levels, tess_triangle_count, tess_triangle_count_levels, tess_vertex_count,
+};
 use meshrefine::render::{Camera, DrawConfig, Driver, Headless, Scene, Submit};
 use meshrefine::subdiv::{LoopData, LoopFrame};
 use meshrefine::surface::{Displace, NormalField, RecordKind, Seams, Surface, SurfaceParams};
@@ -287,6 +291,128 @@ fn every_normal_field_is_watertight_under_displacement() {
                 }
             }
         }
+    });
+}
+
+/// Distinct vertices of a crack-free adaptive tessellation: every corner once, each unique edge
+/// its own level's inner samples, each element the inner rings of its inner level.
+fn expected_adaptive(corners: &[[u32; 3]], levels: &[ElementLevels], max: u32) -> usize {
+    let mut vertices = HashSet::new();
+    let mut edge_samples = HashMap::new();
+    let mut inside = 0;
+    for (c, l) in corners.iter().zip(levels) {
+        let (outer, inner) = outer_levels(l, max).unwrap();
+        inside += (tess_vertex_count(inner) - 3 * inner) as usize;
+        for i in 0..3 {
+            vertices.insert(c[i]);
+            // gl_TessLevelOuter[i]: stored edge i + 1, corners i + 1 and i + 2.
+            let (a, b) = (c[(i + 1) % 3], c[(i + 2) % 3]);
+            edge_samples.insert((a.min(b), a.max(b)), outer[i] as usize - 1);
+        }
+    }
+    vertices.len() + edge_samples.values().sum::<usize>() + inside
+}
+
+/// The tess driver drawing adaptively at random levels (one per unique edge, shared; inner levels
+/// at least their edges'): the evaluated vertices (capture) and the tessellator's triangles
+/// (transform feedback, what export writes) weld on exact bits into exactly the vertex count of a
+/// crack-free tessellation, and the triangles into a closed mesh, for every closed mesh and
+/// surface, loop too. Levels equal everywhere draw exactly the uniform triangles.
+#[test]
+fn tess_adaptive_is_watertight() {
+    with_gpu(64, 64, |h| {
+        let loop_files = ["icosahedron.obj", "spot_control_tri.obj"];
+        for (f, file) in CLOSED.iter().enumerate() {
+            let mesh = model(file);
+            let max = 9;
+            let (mut scene, camera) = scene_at(h, &mesh, &[max]);
+            let r = mesh.bounding_radius();
+            let mut combos = SURFACES.to_vec();
+            if loop_files.contains(file) {
+                combos.push((Surface::Loop, Displace::None));
+            }
+            for (c, &combo) in combos.iter().enumerate() {
+                let cfg = config(Driver::Tess, max, combo, r);
+                let what = format!(
+                    "{file} {} + {} tess adaptive",
+                    combo.0.name(),
+                    combo.1.name()
+                );
+                h.prepared_elements(&mut scene, &cfg, meshrefine::render::Capture::None)
+                    .unwrap();
+                let corners = element_corners(&scene, combo.0);
+                let seed = 31 * f as u32 + c as u32 + 1;
+                let levels = random_levels(&corners, max, 0.0, seed);
+                scene.elements_mut(combo.0).upload_levels(&levels);
+                h.adaptive = true;
+                let want = expected_adaptive(&corners, &levels, max);
+                assert_eq!(tess_positions(h, &mut scene, &cfg, &camera), want, "{what}");
+                let tris = h.capture_triangles(&mut scene, &cfg, &camera).unwrap();
+                let count: u32 = levels
+                    .iter()
+                    .map(|l| {
+                        let (outer, inner) = outer_levels(l, max).unwrap();
+                        tess_triangle_count_levels(outer, inner)
+                    })
+                    .sum();
+                assert_eq!(tris.len(), count as usize, "{what}: triangles");
+                let welded = weld_triangles(&tris);
+                assert_eq!(welded.positions.len(), want, "{what}: triangles welded");
+                assert_closed(&welded.triangles, &format!("{what} triangles"));
+                h.adaptive = false;
+            }
+            // Every element at level 4 adaptively: exactly the uniform level-4 triangles.
+            if f < 3 {
+                let cfg = config(Driver::Tess, 4, (Surface::Pn, Displace::None), r);
+                let (mut scene, camera) = scene_at(h, &mesh, &[4]);
+                let uniform = h.capture_triangles(&mut scene, &cfg, &camera).unwrap();
+                let n = scene.gpu.element_count as usize;
+                scene
+                    .gpu
+                    .upload_levels(&vec![ElementLevels::uniform(4.0); n]);
+                h.adaptive = true;
+                let adaptive = h.capture_triangles(&mut scene, &cfg, &camera).unwrap();
+                h.adaptive = false;
+                assert!(
+                    adaptive == uniform,
+                    "{file}: adaptive at level 4 everywhere differs from uniform level 4"
+                );
+            }
+        }
+    });
+}
+
+/// Culled elements (inner level 0) draw nothing: with every element culled the image is the
+/// background and no triangle is written; with one drawn, exactly its triangles are.
+#[test]
+fn tess_culled_elements_draw_nothing() {
+    with_gpu(64, 64, |h| {
+        let mesh = model("spot_control_tri.obj");
+        let r = mesh.bounding_radius();
+        let (mut scene, camera) = scene_at(h, &mesh, &[6]);
+        let cfg = config(Driver::Tess, 6, (Surface::Pn, Displace::None), r);
+        let n = scene.gpu.element_count as usize;
+        let mut levels = vec![ElementLevels::CULLED; n];
+        scene.gpu.upload_levels(&levels);
+        h.adaptive = true;
+        let image = h.render(&mut scene, &cfg, &camera).unwrap();
+        assert_eq!(meshrefine::render::covered_pixels(&image), 0);
+        assert!(h
+            .capture_triangles(&mut scene, &cfg, &camera)
+            .unwrap()
+            .is_empty());
+        assert!(h
+            .capture(&mut scene, &cfg, &camera)
+            .unwrap()
+            .vertices
+            .is_empty());
+        levels[5] = ElementLevels::uniform(3.0);
+        scene.gpu.upload_levels(&levels);
+        let tris = h.capture_triangles(&mut scene, &cfg, &camera).unwrap();
+        assert_eq!(tris.len(), tess_triangle_count(3) as usize);
+        let cap = h.capture(&mut scene, &cfg, &camera).unwrap();
+        assert!(cap.vertices.iter().all(|v| v.id[0] == 5));
+        h.adaptive = false;
     });
 }
 

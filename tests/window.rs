@@ -133,6 +133,11 @@ fn window_demo_presents_and_screenshots() {
         ("pattern", vec!["--wireframe", "--animate"]),
         ("pattern-1x", vec!["--wireframe", "--msaa", "1"]),
         ("tess", vec!["--driver", "tess", "--level", "8"]),
+        // Adaptive, animated: the levels chosen again every frame.
+        (
+            "tess-adaptive",
+            vec!["--driver", "tess", "--pixel-error", "2", "--animate"],
+        ),
         ("static", vec!["--driver", "static", "--level", "4"]),
         // Loop, animated: the M0 -> M1 passes run every frame before the draws.
         (

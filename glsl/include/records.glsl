@@ -45,7 +45,7 @@ layout(set = SET_MESH, binding = BINDING_UVS, std430) readonly buffer ElementUvs
 layout(push_constant, std430) uniform Push {
     ElementRecord rec; // `push` submission: the element of this draw
     uvec4 draw;        // x: level N; y: the bound chunk's first element (records[0]);
-                       // z: pattern (tessellator) vertex count; w: the element of this draw
+                       // z: pattern vertex count (tess: 1 when drawing adaptively); w: the element of this draw
                        // (`push`, `ubo`) or its first element (`instanced`, `tess`), in the chunk
 } pc;
 #endif

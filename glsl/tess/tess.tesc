@@ -1,16 +1,38 @@
 #version 460
-// `tess` driver, control stage: uniform level N on every edge and inside, so the tessellator
-// produces the same lattice as a level-N refinement pattern.
+// `tess` driver, control stage. Uniform (pc.draw.z == 0): level N = pc.draw.x on every edge and
+// inside, so the tessellator produces the same lattice as a level-N refinement pattern.
+// Adaptive (pc.draw.z == 1): the element's own levels (levels.glsl), rounded by `drawn_level`
+// and capped at N, the largest level of the draw. gl_TessLevelOuter[i] is the patch edge where
+// gl_TessCoord[i] == 0, i.e. between patch vertices i + 1 and i + 2: stored edge (i + 1) mod 3
+// (stored edge k joins corners k and k + 1). An inner level of 0 (culled) discards the patch.
 #include "records.glsl"
+#include "levels.glsl"
 
 layout(vertices = 3) out;
 
 void main() {
     if (gl_InvocationID == 0) {
-        float level = float(pc.draw.x);
-        gl_TessLevelOuter[0] = level;
-        gl_TessLevelOuter[1] = level;
-        gl_TessLevelOuter[2] = level;
-        gl_TessLevelInner[0] = level;
+        if (pc.draw.z != 0u) {
+            uint max_level = pc.draw.x;
+            vec4 l = element_levels[pc.draw.w + uint(gl_PrimitiveID)];
+            uint inner = drawn_level(l.w, false, max_level);
+            if (inner == 0u) {
+                gl_TessLevelOuter[0] = 0.0;
+                gl_TessLevelOuter[1] = 0.0;
+                gl_TessLevelOuter[2] = 0.0;
+                gl_TessLevelInner[0] = 0.0;
+            } else {
+                gl_TessLevelOuter[0] = float(drawn_level(l.y, false, max_level));
+                gl_TessLevelOuter[1] = float(drawn_level(l.z, false, max_level));
+                gl_TessLevelOuter[2] = float(drawn_level(l.x, false, max_level));
+                gl_TessLevelInner[0] = float(inner);
+            }
+        } else {
+            float level = float(pc.draw.x);
+            gl_TessLevelOuter[0] = level;
+            gl_TessLevelOuter[1] = level;
+            gl_TessLevelOuter[2] = level;
+            gl_TessLevelInner[0] = level;
+        }
     }
 }

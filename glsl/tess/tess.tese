@@ -1,6 +1,7 @@
 #version 460
 // `tess` driver, evaluation stage: evaluates the surface at gl_TessCoord. Outer-edge samples are
-// snapped to the level-N lattice (`tess_weights`), so a shared coarse edge is evaluated from the
+// snapped to their edge's lattice (`tess_weights_levels`: the draw's level N, or adaptively each
+// edge's own level as the control stage set it), so a shared coarse edge is evaluated from the
 // same weights by both triangles (watertight). Interior samples are the tessellator's own; with
 // equal spacing its rings hold N, N-2, N-4, ... segments, so it makes more triangles than a level-N
 // pattern (src/render/tess.rs `triangle_count`).
@@ -23,7 +24,14 @@ void main() {
     uint local = pc.draw.w + uint(gl_PrimitiveID);
     uint element = pc.draw.y + local;
     // gl_TessCoord (x, y, z) weighs patch vertices (0, 1, 2), i.e. (w, u, v).
-    vec3 bary = tess_weights(gl_TessCoord, n);
+    vec3 bary;
+    if (pc.draw.z != 0u) {
+        // Adaptive: the levels the control stage set (integers, at most N).
+        uvec3 outer = uvec3(gl_TessLevelOuter[0], gl_TessLevelOuter[1], gl_TessLevelOuter[2]);
+        bary = tess_weights_levels(gl_TessCoord, outer, uint(gl_TessLevelInner[0]));
+    } else {
+        bary = tess_weights(gl_TessCoord, n);
+    }
     SurfacePoint sp = evaluate(records[local], Sample(local, bary));
     v_position = sp.position;
     v_normal = sp.normal;

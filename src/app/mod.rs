@@ -62,6 +62,20 @@ pub struct ViewOptions {
     pub source: String,
     /// Samples per pixel (`--msaa`; `None`: 4 where supported, else the most the device has).
     pub msaa: Option<u32>,
+    /// Draw adaptively (the tess driver), levels chosen on the CPU every frame for the camera.
+    pub adaptive: Option<AdaptiveView>,
+}
+
+/// Adaptive drawing in the window: each element at the levels its bound needs for the current
+/// camera and window size (`Scene::set_levels`), `cfg.level` the largest.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AdaptiveView {
+    pub pixel_error: f32,
+    pub cull: bool,
+    /// The first camera (drawn coordinates); None: the one that frames the mesh.
+    pub camera: Option<Camera>,
+    /// The largest level; None: the largest the tess driver draws on the device.
+    pub max_level: Option<u32>,
 }
 
 /// The window offers every power-of-two level up to this one (and the level it starts at):
@@ -182,6 +196,10 @@ struct State {
     /// Set while the frame draws a lower level than asked, to keep frames under a second on a
     /// software device: what the panel says about it.
     budget_note: Option<String>,
+    /// Adaptive drawing was asked for with another driver than tess (said once).
+    adaptive_note: bool,
+    /// The levels the last frame drew with, when it drew adaptively.
+    levels: Option<crate::lod::LevelReport>,
     start: Instant,
     frames: u64,
     recorded_once: bool,
@@ -227,7 +245,13 @@ impl App {
         let pool = CommandPool::new(&ctx, "window commands")?;
         let cmd = pool.allocate(1)?[0];
         let mesh = self.mesh.take().expect("created once");
-        let cfg = self.opts.cfg;
+        let mut cfg = self.opts.cfg;
+        if let Some(a) = &self.opts.adaptive {
+            let limit = crate::render::Driver::Tess.kind().level_limit(&ctx);
+            cfg.level = a
+                .max_level
+                .unwrap_or_else(|| limit.map_or(64, |(max, _)| max.min(1024)));
+        }
         // Every power of two up to WINDOW_LEVELS (and the level asked for), whatever the start.
         let max_level = cfg.level.max(WINDOW_LEVELS);
         let mut levels: Vec<u32> = (0..=WINDOW_LEVELS.trailing_zeros())
@@ -241,6 +265,9 @@ impl App {
         }
         if let Some(tags) = self.opts.tags.clone() {
             scene.set_tags(&ctx, &pool, &renderer, tags)?;
+        }
+        if self.opts.adaptive.is_some() {
+            scene.skip_slow_warning();
         }
         let (c, r) = scene.bounding_sphere();
         let mut rendered = Vec::new();
@@ -265,12 +292,17 @@ impl App {
             ctx,
             window,
             ui,
-            camera: Camera::framing(c, r),
+            camera: (self.opts.adaptive)
+                .and_then(|a| a.camera)
+                .unwrap_or_else(|| Camera::framing(c, r)),
+            adaptive_note: false,
+            levels: None,
             controls: Controls {
                 cfg,
                 wireframe: self.opts.wireframe,
                 animate: self.opts.animate,
-                lod: self.opts.lod,
+                // Adaptive drawing chooses levels per element instead.
+                lod: self.opts.lod && self.opts.adaptive.is_none(),
                 view: View::Shaded,
                 initial: cfg.params,
                 submit: cfg.driver.submit().unwrap_or_default(),
@@ -313,7 +345,8 @@ impl State {
         };
         let last = self.quit || opts.frames.is_some_and(|n| self.frames + 1 >= n);
         let screenshot = last && opts.screenshot.is_some();
-        self.record(&cfg, &image, &ui_frame, screenshot)?;
+        let adaptive = self.set_levels(opts, &cfg);
+        self.record(&cfg, &image, &ui_frame, screenshot, adaptive)?;
         self.fence.reset()?;
         let rendered = &self.rendered[image.index as usize];
         self.pool
@@ -477,13 +510,56 @@ impl State {
         self.budget_note = Some(note);
     }
 
-    /// Record the frame into `self.cmd`: the scene, the panel on top, and the screenshot copy.
+    /// With adaptive drawing on the tess driver: this frame's levels for the camera and window
+    /// (the previous frame is done with them). Whether the frame draws adaptively.
+    fn set_levels(&mut self, opts: &ViewOptions, cfg: &DrawConfig) -> bool {
+        self.levels = None;
+        let Some(a) = &opts.adaptive else {
+            return false;
+        };
+        if cfg.driver != crate::render::Driver::Tess {
+            if !self.adaptive_note {
+                log::warn!(
+                    "adaptive drawing is for the tess driver: the {} driver draws every element at level {}",
+                    cfg.driver.name(),
+                    cfg.level
+                );
+                self.adaptive_note = true;
+            }
+            return false;
+        }
+        let extent = self.swapchain.extent;
+        let view = crate::render::LevelView {
+            camera: self.camera,
+            width: extent.width,
+            height: extent.height,
+            pixel_error: a.pixel_error,
+            cull: a.cull,
+        };
+        self.levels = Some(self.scene.set_levels(cfg, &view));
+        true
+    }
+
+    /// The triangles `cfg` draws from `coarse` elements: at its level, or adaptively each drawn
+    /// element at its inner level.
+    fn refined(&self, cfg: &DrawConfig, coarse: u64) -> u64 {
+        match &self.levels {
+            Some(r) => (r.histogram.iter())
+                .map(|(&n, &count)| count * cfg.driver.refined_per_element(n) as u64)
+                .sum(),
+            None => coarse * cfg.refined_per_element() as u64,
+        }
+    }
+
+    /// Record the frame into `self.cmd`: the scene (adaptively when `adaptive`), the panel on
+    /// top, and the screenshot copy.
     fn record(
         &mut self,
         cfg: &DrawConfig,
         image: &SwapchainFrame,
         ui_frame: &ui::UiFrame,
         screenshot: bool,
+        adaptive: bool,
     ) -> Result<()> {
         let extent = self.swapchain.extent;
         if screenshot {
@@ -520,6 +596,7 @@ impl State {
         };
         let work = FrameWork {
             wireframe: self.controls.wireframe,
+            adaptive,
             ..FrameWork::new(&self.scene, *cfg)
         };
         let screenshot_buffer = self.screenshot_buffer.as_ref().filter(|_| screenshot);
@@ -591,7 +668,7 @@ impl State {
             gpu_ms: self.gpu_ms,
             drawn: d,
             coarse,
-            refined: coarse * d.refined_per_element() as u64,
+            refined: self.refined(&d, coarse),
             geometry_bytes: self.scene.geometry_bytes(&d),
             upload_bytes: self.scene.upload_bytes(&d),
             table_bytes: self
@@ -619,16 +696,17 @@ impl State {
         let bytes = self.scene.geometry_bytes(cfg);
         let c = &self.controls;
         self.window.set_title(&format!(
-            "meshrefine | {} level {}{}{}{} | {:.0} fps | GPU {:.2} ms | {} -> {} triangles | {:.2} MB geometry | max level {}",
+            "meshrefine | {} level {}{}{}{}{} | {:.0} fps | GPU {:.2} ms | {} -> {} triangles | {:.2} MB geometry | max level {}",
             cfg.label(),
             cfg.level,
             if c.lod { " (LOD)" } else { "" },
+            if self.levels.is_some() { " (adaptive)" } else { "" },
             if c.wireframe { " wire" } else { "" },
             if c.animate { " animated" } else { "" },
             self.fps,
             self.gpu_ms,
             coarse,
-            coarse * cfg.refined_per_element() as u64,
+            self.refined(cfg, coarse),
             bytes as f64 / 1e6,
             self.max_level,
         ));

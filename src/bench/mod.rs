@@ -48,6 +48,19 @@ pub struct BenchOptions {
     /// (milliseconds; 0: exactly `frames`), so frames of a few milliseconds, whose timestamps
     /// jitter most, get more samples. At most 20 × `frames` rounds.
     pub min_total_ms: f64,
+    /// Draw adaptively ([`Scene::set_levels`]): each element at the levels this view asks for,
+    /// the row's level being the largest; `None`: every element at the row's level.
+    pub adaptive: Option<BenchAdaptive>,
+}
+
+/// The view adaptive rows are drawn for.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BenchAdaptive {
+    /// In the drawn coordinates; `None`: the camera that frames the mesh (the one uniform rows
+    /// are drawn with).
+    pub camera: Option<Camera>,
+    pub pixel_error: f32,
+    pub cull: bool,
 }
 
 /// Median, min and max of a sample.
@@ -146,7 +159,7 @@ pub fn run(
             // compare like with like (`static`, with several surfaces, aside: `time_round`).
             let mut runs = Vec::new();
             for cfg in variants(&m.surfaces, level, m.params, opts.build, &opts.drivers) {
-                runs.push(warm_up(&ctx, &mut h, &mut m, cfg)?);
+                runs.push(warm_up(&ctx, &mut h, &mut m, cfg, opts)?);
             }
             time_round(&mut h, &mut m, &mut runs, opts)?;
             rows.extend(into_rows(runs));
@@ -186,7 +199,10 @@ impl MeshSetup {
             PatternSet::from_levels(&opts.levels),
         )?;
         let (c, r) = scene.bounding_sphere();
-        let camera = Camera::framing(c, r);
+        let camera = match opts.adaptive.and_then(|a| a.camera) {
+            Some(camera) => camera,
+            None => Camera::framing(c, r),
+        };
         let coarse = scene.gpu.element_count;
         let params = opts.params.unwrap_or_else(|| SurfaceParams::for_radius(r));
         // The reference surface first (the throughput ratios are against it), then as asked.
@@ -253,6 +269,7 @@ fn warm_up(
     h: &mut Headless,
     m: &mut MeshSetup,
     cfg: DrawConfig,
+    opts: &BenchOptions,
 ) -> Result<Run, RenderError> {
     let (surface, displace, level) = (cfg.surface, cfg.displace, cfg.level);
     let scene = &mut m.scene;
@@ -289,6 +306,30 @@ fn warm_up(
         table_bytes: loop_scene.map(|l| l.data.table_bytes()),
         note: String::new(),
     };
+    if let Some(a) = opts.adaptive.filter(|_| drawn) {
+        // The levels stay in the mesh's buffer for the timed frames; an adaptive row counts
+        // its elements' triangles at their inner levels.
+        let report = scene.set_levels(
+            &cfg,
+            &crate::render::LevelView {
+                camera: m.camera,
+                width: opts.width,
+                height: opts.height,
+                pixel_error: a.pixel_error,
+                cull: a.cull,
+            },
+        );
+        row.refined_triangles = (report.histogram.iter())
+            .map(|(&n, &count)| count * cfg.driver.refined_per_element(n) as u64)
+            .sum();
+        row.note = format!(
+            "adaptive at {} px: levels {}; culled {}",
+            a.pixel_error,
+            report.histogram_line(),
+            report.culled
+        );
+    }
+    h.adaptive = opts.adaptive.is_some();
     if drawn {
         h.draw(scene, &cfg, &m.camera)?; // warm-up: shaders, static VBO
     } else if let Some(e) = refused {

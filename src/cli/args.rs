@@ -214,6 +214,8 @@ pub struct ViewArgs {
         help_heading = "Window"
     )]
     pub headless_output: PathBuf,
+    #[command(flatten)]
+    pub adaptive: AdaptiveOpts,
 }
 
 #[derive(Args, Debug)]
@@ -244,6 +246,8 @@ pub struct RenderArgs {
     pub msaa: Option<u32>,
     #[command(flatten)]
     pub technique: Technique,
+    #[command(flatten)]
+    pub adaptive: AdaptiveOpts,
 }
 
 #[derive(Args, Debug)]
@@ -270,6 +274,14 @@ pub struct ExportArgs {
     /// Refinement level N: N segments per coarse edge.
     #[arg(long, default_value_t = 16, value_parser = clap::value_parser!(u32).range(1..=1024), help_heading = "Driver and level")]
     pub level: u32,
+    #[command(flatten)]
+    pub adaptive: AdaptiveOpts,
+    /// The image's width in pixels the levels are chosen for (with --pixel-error).
+    #[arg(long, default_value_t = 1280, value_parser = clap::value_parser!(u32).range(1..=16384), help_heading = "Adaptive drawing")]
+    pub width: u32,
+    /// The image's height in pixels the levels are chosen for (with --pixel-error).
+    #[arg(long, default_value_t = 720, value_parser = clap::value_parser!(u32).range(1..=16384), help_heading = "Adaptive drawing")]
+    pub height: u32,
 }
 
 /// The drivers whose evaluated geometry can be read back.
@@ -329,6 +341,20 @@ pub struct InfoArgs {
 #[derive(Args, Debug, Clone)]
 #[command(next_help_heading = "Camera (with --pixel-error)")]
 pub struct CameraOpts {
+    #[command(flatten)]
+    pub viewpoint: ViewpointOpts,
+    /// The image's width in pixels.
+    #[arg(long, default_value_t = 1280, value_parser = clap::value_parser!(u32).range(1..=16384))]
+    pub width: u32,
+    /// The image's height in pixels (the metric counts pixels of this height).
+    #[arg(long, default_value_t = 720, value_parser = clap::value_parser!(u32).range(1..=16384))]
+    pub height: u32,
+}
+
+/// Where the camera is and where it looks, in the mesh's own coordinates (up is +Y); the
+/// default is the camera that frames the mesh.
+#[derive(Args, Debug, Clone)]
+pub struct ViewpointOpts {
     /// Camera position X,Y,Z (default: the framing camera's).
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
     pub eye: Option<[f32; 3]>,
@@ -338,12 +364,26 @@ pub struct CameraOpts {
     /// Vertical field of view in degrees.
     #[arg(long, default_value_t = 45.0)]
     pub fov: f32,
-    /// The image's width in pixels.
-    #[arg(long, default_value_t = 1280, value_parser = clap::value_parser!(u32).range(1..=16384))]
-    pub width: u32,
-    /// The image's height in pixels (the metric counts pixels of this height).
-    #[arg(long, default_value_t = 720, value_parser = clap::value_parser!(u32).range(1..=16384))]
-    pub height: u32,
+}
+
+/// Adaptive drawing: each element at the level a pixel error asks for, seen by a camera.
+#[derive(Args, Debug, Clone)]
+#[command(next_help_heading = "Adaptive drawing")]
+pub struct AdaptiveOpts {
+    /// Draw adaptively: each element at the level that keeps the surface within this many
+    /// pixels of the drawn mesh, seen by the camera below (--driver tess; not with --level).
+    #[arg(long, allow_negative_numbers = true)]
+    pub pixel_error: Option<f32>,
+    /// The largest level any element gets (with --pixel-error; default: the largest the driver
+    /// draws on the device).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    pub max_level: Option<u32>,
+    /// Draw nothing of the elements outside the view or facing away (with --pixel-error;
+    /// default: on, off for export).
+    #[arg(long, value_parser = choices::on_off())]
+    pub cull: Option<bool>,
+    #[command(flatten)]
+    pub viewpoint: ViewpointOpts,
 }
 
 /// `X,Y,Z`: three finite numbers.
@@ -397,6 +437,8 @@ pub struct BenchArgs {
     /// The offscreen image's height in pixels.
     #[arg(long, default_value_t = 720, help_heading = "Measurement")]
     pub height: u32,
+    #[command(flatten)]
+    pub adaptive: AdaptiveOpts,
 }
 
 /// `--msaa`: 1, 2, 4 or 8.

@@ -2,6 +2,7 @@
 //! and optionally written as markdown, CSV and JSON.
 #![forbid(unsafe_code)]
 
+use super::adaptive::Frame;
 use super::args::BenchArgs;
 use super::input::{for_viewing, load_mesh, split_three_creases};
 use super::with_context;
@@ -50,11 +51,24 @@ pub fn run(a: &BenchArgs, desc: &ContextDesc) -> Result<()> {
             .filter(|v| a.drivers.iter().any(|d| d.same_kind(*v)))
             .collect(),
         min_total_ms: a.min_total_ms,
+        adaptive: None,
     };
+    let adaptive = a.adaptive.enabled(true);
     // Drawn centred and at unit size, like `render`: the timings do not change.
     let mut mesh = mesh;
     mesh.name = input.mesh.name.clone();
     let report = with_context(desc, |ctx| {
+        let mut opts = opts;
+        if let Some(a) = &adaptive {
+            // One row per variant at the largest level, seen by the camera asked for.
+            opts.levels = vec![a.max_level(&ctx, Driver::Tess)?];
+            let scene_frame = Frame { centre, scale };
+            opts.adaptive = Some(meshrefine::bench::BenchAdaptive {
+                camera: a.given_camera(&mesh, &scene_frame)?,
+                pixel_error: a.pixel_error,
+                cull: a.cull,
+            });
+        }
         meshrefine::bench::run(ctx, &[mesh], &opts)
             .with_context(|| format!("cannot benchmark '{}'", input.shown))
     })?;

@@ -52,6 +52,21 @@ pub fn driver() -> impl TypedValueParser<Value = Driver> {
     parser(&Driver::ALL, Driver::name, Driver::help)
 }
 
+/// `--cull`: `on` or `off`.
+pub fn on_off() -> impl TypedValueParser<Value = bool> {
+    parser(
+        &[true, false],
+        |b| if b { "on" } else { "off" },
+        |b| {
+            if b {
+                "cull"
+            } else {
+                "draw every element"
+            }
+        },
+    )
+}
+
 /// `--submit`.
 pub fn submit() -> impl TypedValueParser<Value = Submit> {
     parser(&Submit::ALL, Submit::name, submit_help)

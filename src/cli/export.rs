@@ -2,6 +2,7 @@
 //! and welded into OBJ.
 #![forbid(unsafe_code)]
 
+use super::adaptive::{Adaptive, Frame};
 use super::args::ExportArgs;
 use super::input::{apply_surface_inputs, attach_surface_inputs, draw_config, load_mesh, Input};
 use super::{require_extension, with_context};
@@ -19,28 +20,57 @@ pub fn run(a: &ExportArgs, desc: &ContextDesc) -> Result<()> {
     let mut input = load_mesh(a.mesh.as_deref(), for_loop)?;
     // Loop's elements are M1's faces, four per triangle.
     let elements = input.mesh.triangles.len() as u64 * if for_loop { 4 } else { 1 };
-    meshrefine::export::check_size(elements, a.level)
-        .map_err(|e| anyhow::anyhow!("cannot export '{}': {e}", input.shown))?;
-    let cfg = draw_config(&a.technique(), &input.mesh)?;
+    let adaptive = a.adaptive.enabled(false);
+    let shown = input.shown.clone();
+    let check_size = move |level| {
+        meshrefine::export::check_size(elements, level)
+            .map_err(|e| anyhow::anyhow!("cannot export '{shown}': {e}"))
+    };
+    if adaptive.is_none() {
+        check_size(a.level)?;
+    }
+    let mut cfg = draw_config(&a.technique(), &input.mesh)?;
     attach_surface_inputs(&mut input, &a.surface, false)?;
+    let size = (a.width, a.height);
     let counts = with_context(desc, |ctx| {
+        if let Some(a) = &adaptive {
+            cfg.level = a.max_level(&ctx, cfg.driver)?;
+            check_size(cfg.level)?;
+        }
         let shown = input.shown.clone();
-        export(ctx, input, &cfg, &a.output).with_context(|| format!("cannot export '{shown}'"))
+        export(ctx, input, &cfg, &a.output, adaptive, size)
+            .with_context(|| format!("cannot export '{shown}'"))
     })?;
     out!("{counts}");
     out!("wrote {}", a.output.display());
     Ok(())
 }
 
-/// Captures what the GPU evaluated and writes it as OBJ; returns the counts line.
-fn export(ctx: Arc<Context>, input: Input, cfg: &DrawConfig, output: &Path) -> Result<String> {
+/// Captures what the GPU evaluated (adaptively, for an image of `size`, when `adaptive` says
+/// so) and writes it as OBJ; returns the counts line.
+fn export(
+    ctx: Arc<Context>,
+    input: Input,
+    cfg: &DrawConfig,
+    output: &Path,
+    adaptive: Option<Adaptive>,
+    size: (u32, u32),
+) -> Result<String> {
     let device = ctx.info.describe();
     let mut h = Headless::with_context(ctx, 64, 64)?;
     let name = input.mesh.name.clone();
     let mut scene = h.scene(input.mesh.clone(), cfg.level)?;
     apply_surface_inputs(&h, &mut scene, &input)?;
     let (c, r) = scene.bounding_sphere();
-    let camera = Camera::framing(c, r);
+    let mut camera = Camera::framing(c, r);
+    let mut drawn = None;
+    if let Some(a) = &adaptive {
+        // Drawn as it is: the mesh's own coordinates.
+        let capture = cfg.driver.kind().export_capture().unwrap_or(Capture::None);
+        let (cam, report) = a.set_up(&mut h, &mut scene, cfg, capture, size, &Frame::IDENTITY)?;
+        camera = cam;
+        drawn = Some(a.header(&cam, &Frame::IDENTITY, size, &report));
+    }
     let refined = if cfg.driver.kind().export_capture() == Some(Capture::Triangles) {
         let triangles = h.capture_triangles(&mut scene, cfg, &camera)?;
         meshrefine::export::weld_triangles(&triangles)
@@ -52,12 +82,17 @@ fn export(ctx: Arc<Context>, input: Input, cfg: &DrawConfig, output: &Path) -> R
         let pattern = &scene.patterns.patterns[pattern];
         meshrefine::export::weld(&cap, pattern).map_err(anyhow::Error::msg)?
     };
-    let header = vec![
+    let mut header = vec![
         format!(
-            "meshrefine export of '{name}': surface {}, displacement {}, driver {}, level {}",
+            "meshrefine export of '{name}': surface {}, displacement {}, driver {}, {} {}",
             cfg.surface.name(),
             cfg.displace.name(),
             cfg.label(),
+            if drawn.is_some() {
+                "max level"
+            } else {
+                "level"
+            },
             cfg.level
         ),
         format!("evaluated on {device}"),
@@ -68,6 +103,7 @@ fn export(ctx: Arc<Context>, input: Input, cfg: &DrawConfig, output: &Path) -> R
             refined.triangles.len()
         ),
     ];
+    header.extend(drawn.into_iter().flatten());
     std::fs::write(output, meshrefine::export::to_obj(&refined, &header))
         .with_context(|| format!("cannot write '{}'", output.display()))?;
     Ok(header[2].clone())

@@ -2,6 +2,7 @@
 //! GPU; with `--surface loop`, what Loop subdivision builds for it.
 #![forbid(unsafe_code)]
 
+use super::adaptive::{check_view, no_direction};
 use super::args::InfoArgs;
 use super::choices::boundary_name;
 use super::input::degenerate_warning;
@@ -147,34 +148,10 @@ fn print_loop(a: &InfoArgs, path: &str, mesh: &Mesh) -> Result<()> {
 
 /// `--pixel-error` and the camera: one sentence for the first bad value, before any work.
 fn check_level_options(a: &InfoArgs) -> Result<()> {
-    let Some(px) = a.pixel_error else {
-        return Ok(());
-    };
-    if !(px.is_finite() && px > 0.0) {
-        bail!("--pixel-error {px} is not a finite number > 0");
+    match a.pixel_error {
+        Some(px) => check_view(px, &a.camera.viewpoint, a.level.is_some()),
+        None => Ok(()),
     }
-    if a.level.is_some() {
-        bail!("--pixel-error and --level are exclusive: adaptive levels come from the pixel error, --level asks for one level everywhere");
-    }
-    let fov = a.camera.fov;
-    if !(fov.is_finite() && fov > 0.0 && fov < 180.0) {
-        bail!("--fov {fov} is not within (0, 180) degrees");
-    }
-    if let (Some(eye), Some(target)) = (a.camera.eye, a.camera.look_at) {
-        let (eye, target) = (Vec3::from(eye), Vec3::from(target));
-        if Camera::looking(eye, target, fov.to_radians(), 1.0).is_none() {
-            bail!("{}", no_direction(eye, target));
-        }
-    }
-    Ok(())
-}
-
-/// The sentence for a camera without a view direction.
-fn no_direction(eye: Vec3, target: Vec3) -> String {
-    format!(
-        "--eye {},{},{} and --look-at {},{},{} give no view direction (the same point, or straight up or down: up is +Y)",
-        eye.x, eye.y, eye.z, target.x, target.y, target.z
-    )
 }
 
 /// With `--pixel-error`: the level adaptive refinement gives each element for the camera, and
@@ -188,9 +165,10 @@ fn print_levels(a: &InfoArgs, path: &str, mesh: &Mesh) -> Result<()> {
     let c = &a.camera;
     let bounds = Sphere::around(&mesh.positions);
     let framing = Camera::framing(bounds.centre, bounds.radius);
-    let eye = c.eye.map_or(framing.eye(), Vec3::from);
-    let target = c.look_at.map_or(bounds.centre, Vec3::from);
-    let fov = c.fov.to_radians();
+    let v = &c.viewpoint;
+    let eye = v.eye.map_or(framing.eye(), Vec3::from);
+    let target = v.look_at.map_or(bounds.centre, Vec3::from);
+    let fov = v.fov.to_radians();
     let camera = Camera::looking(eye, target, fov, bounds.radius)
         .ok_or_else(|| anyhow::anyhow!("{}", no_direction(eye, target)))?;
     let surface = a.surface.unwrap_or(Surface::Pn);
@@ -231,7 +209,7 @@ fn print_levels(a: &InfoArgs, path: &str, mesh: &Mesh) -> Result<()> {
         surface.name(),
         c.width,
         c.height,
-        c.fov,
+        v.fov,
         a.max_level
     );
     out!(

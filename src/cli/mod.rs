@@ -8,6 +8,7 @@
 //! every failure is one sentence for `main` to print.
 #![forbid(unsafe_code)]
 
+mod adaptive;
 mod args;
 mod bench;
 mod choices;
@@ -30,10 +31,11 @@ use std::io::Write as _;
 use std::path::Path;
 use std::sync::Arc;
 
-/// Runs `cli`'s command.
-pub fn run(cli: Cli) -> Result<()> {
+/// Runs `cli`'s command (`given`: the options given on the command line).
+pub fn run(cli: Cli, given: &options::Given) -> Result<()> {
     let desc = context_desc(&cli);
     options::check_outputs(&cli).map_err(anyhow::Error::msg)?;
+    adaptive::check(&cli, given)?;
     match &cli.command {
         Command::Render(a) => render::run(a, &desc),
         Command::View(a) => view::run(a, &desc),

@@ -135,6 +135,22 @@ pub fn inapplicable(given: &Given, c: &Chosen) -> Vec<String> {
     out
 }
 
+/// The options of adaptive drawing besides `--pixel-error` (render, export, view, bench).
+const ADAPTIVE: &[&str] = &["max_level", "cull", "eye", "look_at", "fov"];
+
+/// One warning line for each of `ids` given without `--pixel-error` (`adaptive` false).
+fn adaptive_only(given: &Given, adaptive: bool, ids: &[&str]) -> Vec<String> {
+    (ids.iter())
+        .filter(|id| given.has(id) && !adaptive)
+        .map(|id| {
+            format!(
+                "--{} applies only with --pixel-error: it is ignored",
+                id.replace('_', "-")
+            )
+        })
+        .collect()
+}
+
 /// The warnings (without "warning: ") for the options `cli`'s command ignores.
 pub fn warnings(cli: &Cli, given: &Given) -> Vec<String> {
     use super::args::{Command, ExportDriver};
@@ -156,34 +172,49 @@ pub fn warnings(cli: &Cli, given: &Given) -> Vec<String> {
         Command::Render(a) => {
             let d = a.technique.driver;
             let driver = (d.submit().is_some(), format!("--driver {}", d.name()));
-            one(&a.technique.surface, driver, &check)
+            let mut out = one(&a.technique.surface, driver, &check);
+            out.extend(adaptive_only(
+                given,
+                a.adaptive.pixel_error.is_some(),
+                ADAPTIVE,
+            ));
+            out
         }
         Command::Export(a) => {
             let driver = match a.driver {
                 ExportDriver::Pattern => (true, "--driver pattern".to_string()),
                 ExportDriver::Tess => (false, "--driver tess".to_string()),
             };
-            one(&a.surface, driver, &check)
+            let mut out = one(&a.surface, driver, &check);
+            let adaptive = a.adaptive.pixel_error.is_some();
+            out.extend(adaptive_only(given, adaptive, ADAPTIVE));
+            out.extend(adaptive_only(given, adaptive, &["width", "height"]));
+            out
         }
-        Command::Bench(a) => check(&Chosen {
-            surfaces: &a.surfaces,
-            surface_shown: shown("--surfaces", &a.surfaces, Surface::name),
-            displaces: &a.displacements,
-            displace_shown: shown("--displacements", &a.displacements, Displace::name),
-            driver: None,
-        }),
+        Command::Bench(a) => {
+            let mut out = check(&Chosen {
+                surfaces: &a.surfaces,
+                surface_shown: shown("--surfaces", &a.surfaces, Surface::name),
+                displaces: &a.displacements,
+                displace_shown: shown("--displacements", &a.displacements, Displace::name),
+                driver: None,
+            });
+            out.extend(adaptive_only(
+                given,
+                a.adaptive.pixel_error.is_some(),
+                ADAPTIVE,
+            ));
+            out
+        }
         Command::Info(a) => {
             let surfaces: Vec<Surface> = a.surface.into_iter().collect();
             let mut out = Vec::new();
             let adaptive = a.pixel_error.is_some();
-            for id in ["eye", "look_at", "fov", "width", "height", "max_level"] {
-                if given.has(id) && !adaptive {
-                    out.push(format!(
-                        "--{} applies only with --pixel-error: it is ignored",
-                        id.replace('_', "-")
-                    ));
-                }
-            }
+            out.extend(adaptive_only(
+                given,
+                adaptive,
+                &["eye", "look_at", "fov", "width", "height", "max_level"],
+            ));
             if let Some(s) = a.surface.filter(|s| !s.uses_loop_faces() && !adaptive) {
                 let builders: Vec<&str> = (Surface::ALL.into_iter())
                     .filter(|s| s.uses_loop_faces())

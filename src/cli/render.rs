@@ -1,6 +1,7 @@
 //! `meshrefine render`: one frame of a mesh, drawn headlessly, to a PNG.
 #![forbid(unsafe_code)]
 
+use super::adaptive::{Adaptive, Frame};
 use super::args::RenderArgs;
 use super::input::{
     apply_surface_inputs, attach_surface_inputs, draw_config, for_viewing, load_mesh, Input,
@@ -8,7 +9,7 @@ use super::input::{
 use super::{require_extension, with_context};
 use anyhow::{bail, Context as _, Result};
 use meshrefine::gpu::{sample_count, Context, ContextDesc};
-use meshrefine::render::{covered_pixels, Camera, DrawConfig, Headless};
+use meshrefine::render::{covered_pixels, Camera, Capture, DrawConfig, Headless};
 use std::io::Write as _;
 use std::path::Path;
 use std::sync::Arc;
@@ -21,15 +22,39 @@ pub fn run(a: &RenderArgs, desc: &ContextDesc) -> Result<()> {
     let cfg = draw_config(&a.technique, &input.mesh)?;
     attach_surface_inputs(&mut input, &a.technique.surface, false)?;
     let size = (a.width, a.height);
-    with_context(desc, |ctx| {
-        render_png(ctx, input, &cfg, size, a.wireframe, a.msaa, &a.output)
+    let adaptive = a.adaptive.enabled(true);
+    let report = with_context(desc, |ctx| {
+        render_png(
+            ctx,
+            input,
+            &cfg,
+            size,
+            a.wireframe,
+            a.msaa,
+            &a.output,
+            adaptive,
+        )
     })?;
+    if let Some(line) = report {
+        out!("{line}");
+    }
     out!("wrote {}", a.output.display());
     Ok(())
 }
 
+/// The line that says what adaptive drawing chose.
+fn levels_line(a: &Adaptive, max: u32, report: &meshrefine::lod::LevelReport) -> String {
+    format!(
+        "adaptive at {} px, max level {max}: levels (level:elements) {}; culled {}",
+        a.pixel_error,
+        report.histogram_line(),
+        report.culled
+    )
+}
+
 /// Renders `input` (centred and at unit size, see [`Mesh::for_viewing`]) to a PNG, with `msaa`
-/// samples per pixel (`None`: the default, `gpu::sample_count`). A blank image is still
+/// samples per pixel (`None`: the default, `gpu::sample_count`), adaptively when `adaptive`
+/// says so (then returns the line saying what it chose). A blank image is still
 /// written, then reported as an error: it shows nothing.
 ///
 /// [`Mesh::for_viewing`]: meshrefine::mesh::Mesh::for_viewing
@@ -41,18 +66,34 @@ pub fn render_png(
     wireframe: bool,
     msaa: Option<u32>,
     out: &Path,
-) -> Result<()> {
+    adaptive: Option<Adaptive>,
+) -> Result<Option<String>> {
     let triangles = input.mesh.triangles.len();
     let samples = sample_count(&ctx, msaa)?;
-    let image = {
+    let mut line = None;
+    let image = (|| -> Result<_> {
+        let mut cfg = *cfg;
+        if let Some(a) = &adaptive {
+            cfg.level = a.max_level(&ctx, cfg.driver)?;
+        }
         let mut h = Headless::multisampled(ctx, width, height, samples)?;
         h.wireframe = wireframe;
-        let (mesh, viewed) = for_viewing(&input.mesh, cfg);
+        let (mesh, viewed) = for_viewing(&input.mesh, &cfg);
         let mut scene = h.scene(mesh, cfg.level)?;
         apply_surface_inputs(&h, &mut scene, &input)?;
         let (c, r) = scene.bounding_sphere();
-        h.render(&mut scene, &viewed, &Camera::framing(c, r))
-    }
+        let mut camera = Camera::framing(c, r);
+        if let Some(a) = &adaptive {
+            let (centre, scale) = input.mesh.viewing_transform();
+            let frame = Frame { centre, scale };
+            let size = (width, height);
+            let (cam, report) =
+                a.set_up(&mut h, &mut scene, &viewed, Capture::None, size, &frame)?;
+            camera = cam;
+            line = Some(levels_line(a, cfg.level, &report));
+        }
+        Ok(h.render(&mut scene, &viewed, &camera)?)
+    })()
     .with_context(|| format!("cannot render '{}'", input.shown))?;
     image
         .save_png(out)
@@ -78,5 +119,5 @@ pub fn render_png(
             input.shown
         );
     }
-    Ok(())
+    Ok(line)
 }

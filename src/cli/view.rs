@@ -2,6 +2,7 @@
 //! headlessly to a PNG (which says why).
 #![forbid(unsafe_code)]
 
+use super::adaptive::Frame;
 use super::args::ViewArgs;
 use super::input::{attach_surface_inputs, draw_config, for_viewing, load_mesh};
 use super::loop_check::loop_refusal;
@@ -33,6 +34,7 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc) -> Result<()> {
         std::env::var_os("DISPLAY").is_some() || std::env::var_os("WAYLAND_DISPLAY").is_some();
     let why_headless = if has_display {
         let (mesh, viewed) = for_viewing(&input.mesh, &cfg);
+        let (centre, scale) = input.mesh.viewing_transform();
         let opts = meshrefine::app::ViewOptions {
             cfg: viewed,
             frames: a.frames,
@@ -45,6 +47,15 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc) -> Result<()> {
             loop_refusal: input.loop_refusal.clone(),
             source: input.shown.clone(),
             msaa: a.msaa,
+            adaptive: match a.adaptive.enabled(true) {
+                Some(ad) => Some(meshrefine::app::AdaptiveView {
+                    pixel_error: ad.pixel_error,
+                    cull: ad.cull,
+                    camera: ad.given_camera(&mesh, &Frame { centre, scale })?,
+                    max_level: ad.opts.max_level,
+                }),
+                None => None,
+            },
         };
         match meshrefine::app::run(desc.clone(), mesh, opts) {
             Ok(messages) => return check_messages(&messages),
@@ -56,10 +67,23 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc) -> Result<()> {
     } else {
         "no display found (DISPLAY and WAYLAND_DISPLAY are unset)".to_string()
     };
-    with_context(desc, |ctx| {
+    let adaptive = a.adaptive.enabled(true);
+    let line = with_context(desc, |ctx| {
         let out = &a.headless_output;
-        render_png(ctx, input, &cfg, (1280, 720), a.wireframe, a.msaa, out)
+        render_png(
+            ctx,
+            input,
+            &cfg,
+            (1280, 720),
+            a.wireframe,
+            a.msaa,
+            out,
+            adaptive,
+        )
     })?;
+    if let Some(line) = line {
+        out!("{line}");
+    }
     let shown = std::fs::canonicalize(&a.headless_output).unwrap_or(a.headless_output.clone());
     out!(
         "{why_headless}: rendered the scene headlessly to {}",

@@ -450,7 +450,8 @@ impl<'a> Cmd<'a> {
             .src_access_mask(
                 vk::AccessFlags::SHADER_WRITE
                     | vk::AccessFlags::TRANSFER_WRITE
-                    | vk::AccessFlags::TRANSFORM_FEEDBACK_WRITE_EXT,
+                    | vk::AccessFlags::TRANSFORM_FEEDBACK_WRITE_EXT
+                    | vk::AccessFlags::TRANSFORM_FEEDBACK_COUNTER_WRITE_EXT,
             )
             .dst_access_mask(vk::AccessFlags::HOST_READ);
         // SAFETY: see `bind_graphics_pipeline`; outside a rendering instance.
@@ -541,11 +542,32 @@ impl<'a> Cmd<'a> {
         }
     }
 
-    pub fn end_transform_feedback(&self) {
+    /// End transform feedback begun by `begin_transform_feedback`; with `counter`, the device
+    /// writes the bytes it wrote to buffer 0 (a `u32`) at the counter's offset 0 (the buffer was
+    /// created with TRANSFORM_FEEDBACK_COUNTER_BUFFER usage; `barrier_to_host` makes it visible).
+    pub fn end_transform_feedback(&self, counter: Option<&Buffer>) {
         let fp = self.xfb();
-        // SAFETY: matches `begin_transform_feedback` in this rendering instance.
+        let buffers = counter.map(|c| [c.raw]);
+        let offsets = [0u64];
+        // SAFETY: matches `begin_transform_feedback` in this rendering instance; with a counter,
+        // one buffer handle and one offset, both arrays alive for the call.
         unsafe {
-            (fp.cmd_end_transform_feedback_ext)(self.raw, 0, 0, std::ptr::null(), std::ptr::null())
+            match &buffers {
+                Some(b) => (fp.cmd_end_transform_feedback_ext)(
+                    self.raw,
+                    0,
+                    1,
+                    b.as_ptr(),
+                    offsets.as_ptr(),
+                ),
+                None => (fp.cmd_end_transform_feedback_ext)(
+                    self.raw,
+                    0,
+                    0,
+                    std::ptr::null(),
+                    std::ptr::null(),
+                ),
+            }
         };
     }
 

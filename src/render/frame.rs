@@ -40,6 +40,8 @@ pub struct FrameWork<'a> {
     pub capture: Capture,
     /// Transform-feedback output (with `Capture::Triangles`).
     pub xfb: Option<&'a Buffer>,
+    /// Receives the bytes transform feedback wrote (a `u32`), with `xfb`.
+    pub xfb_counter: Option<&'a Buffer>,
     /// Draw the refined triangles' edges in a second pass (if the device supports it).
     pub wireframe: bool,
     /// Draw each element at its own levels from the mesh's levels buffer
@@ -66,6 +68,7 @@ impl<'a> FrameWork<'a> {
             cfg,
             capture: Capture::None,
             xfb: None,
+            xfb_counter: None,
             wireframe: false,
             adaptive: false,
             elements: 0..mesh.element_count,
@@ -134,7 +137,7 @@ pub fn cmd_render(
     if let Some(xfb) = work.xfb.filter(|_| work.capture == Capture::Triangles) {
         cmd.begin_transform_feedback(xfb);
         cmd_draw_driver(cmd, r, work);
-        cmd.end_transform_feedback();
+        cmd.end_transform_feedback(work.xfb_counter);
     } else {
         cmd_draw_driver(cmd, r, work);
     }

@@ -252,7 +252,7 @@ impl Headless {
         cfg: &DrawConfig,
         camera: &Camera,
         capture: Capture,
-        xfb: Option<&Buffer>,
+        xfb: Option<(&Buffer, &Buffer)>,
         elements: std::ops::Range<u32>,
     ) -> Result<FrameTiming, RenderError> {
         // The element count is the surface's (M1 faces for loop, known once prepared).
@@ -266,7 +266,8 @@ impl Headless {
         let view = self.view();
         let work = FrameWork {
             capture,
-            xfb,
+            xfb: xfb.map(|x| x.0),
+            xfb_counter: xfb.map(|x| x.1),
             wireframe: self.wireframe,
             adaptive: self.adaptive,
             elements,
@@ -407,7 +408,8 @@ impl Headless {
 
     /// Draw `cfg` (tess) with its transform-feedback variant and read back the triangles the
     /// tessellator made, as evaluated: `(position, normal)` per corner, in primitive order. In
-    /// passes of as many elements as one transform-feedback buffer holds.
+    /// passes of as many elements as one transform-feedback buffer holds at `cfg.level` (the
+    /// largest level when drawing adaptively); each pass reads back what the device says it wrote.
     pub fn capture_triangles(
         &mut self,
         scene: &mut Scene,
@@ -446,6 +448,14 @@ impl Headless {
             ),
             "transform feedback output",
         )?;
+        let mut counter = Buffer::new(
+            &self.ctx,
+            BufferDesc::new_upload(
+                4,
+                vk::BufferUsageFlags::TRANSFORM_FEEDBACK_COUNTER_BUFFER_EXT,
+            ),
+            "transform feedback counter",
+        )?;
         let wire = std::mem::replace(&mut self.wireframe, false);
         let mut out = Vec::new();
         let mut first = 0;
@@ -455,18 +465,26 @@ impl Headless {
             }
             let count = per_pass.min(n - first);
             let elements = first..first + count;
+            counter.write_pod(0, &[0u32]);
             if let Err(e) = self.draw_inner(
                 scene,
                 cfg,
                 camera,
                 Capture::Triangles,
-                Some(&buffer),
+                Some((&buffer, &counter)),
                 elements,
             ) {
                 break Err(e);
             }
             let flat: Vec<XfbVertex> = buffer.read_pod();
-            let triangles = count as usize * tess_triangle_count(cfg.level) as usize;
+            let written = counter.read_pod::<u32>()[0] as u64;
+            if written > buffer.size() {
+                break Err(RenderError::CaptureOverflow {
+                    written: written / XFB_VERTEX_BYTES,
+                    capacity: buffer.size() / XFB_VERTEX_BYTES,
+                });
+            }
+            let triangles = (written / (3 * XFB_VERTEX_BYTES)) as usize;
             out.extend(
                 flat[..3 * triangles]
                     .chunks_exact(3)

@@ -7,6 +7,7 @@
 pub mod bindings;
 pub mod cage;
 mod camera;
+mod cpu_levels;
 pub mod driver;
 mod error;
 pub mod frame;
@@ -21,6 +22,7 @@ pub mod static_vbo;
 pub mod tess;
 
 pub use camera::Camera;
+pub use cpu_levels::LevelView;
 pub use driver::{Driver, DriverKind, Submit};
 pub use error::RenderError;
 pub use gpu_mesh::{GpuMesh, GpuPattern, MeshData};

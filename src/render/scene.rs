@@ -255,6 +255,20 @@ impl Scene {
         }
     }
 
+    /// [`Scene::elements`], to upload their levels ([`GpuMesh::upload_levels`]).
+    pub fn elements_mut(&mut self, surface: Surface) -> &mut GpuMesh {
+        match &mut self.loop_ {
+            Some(l) if surface.uses_loop_faces() => &mut l.gpu,
+            _ => &mut self.gpu,
+        }
+    }
+
+    /// Skip the slow-frame warning of the next [`Scene::prepare`]s: drawn adaptively, the
+    /// elements are not all at the configuration's (largest) level it would count them at.
+    pub fn skip_slow_warning(&mut self) {
+        self.warned_slow = true;
+    }
+
     /// The records of [`Scene::elements`].
     pub fn records(&self, surface: Surface) -> &[ElementRecord] {
         match &self.loop_ {

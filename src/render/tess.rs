@@ -1,5 +1,6 @@
 //! `tess` driver: Vulkan tessellation shaders. Each coarse triangle is a 3-vertex patch; the
-//! control stage sets every level to N, the evaluation stage evaluates the surface.
+//! control stage sets every level to N (adaptively: each outer level from its edge's level, the
+//! inner level from the element's, [`outer_levels`]), the evaluation stage evaluates the surface.
 //!
 //! lavapipe workaround (docs/platform.md): a tessellated draw whose evaluation stage emits more than
 //! 65,536 vertices renders garbage there, so on lavapipe the patches are split into draws of at
@@ -16,6 +17,7 @@ use super::frame::FrameWork;
 use super::{Capture, GpuMesh, Renderer, PUSH_DRAW_OFFSET, PUSH_STAGES};
 use crate::gpu::shaders::names;
 use crate::gpu::{vk, Cmd, Context, GraphicsPipelineDesc};
+use crate::lod::levels::{drawn_level, ElementLevels};
 use crate::surface::RECORD_BYTES;
 
 /// Largest evaluated-vertex count of one tessellated draw that lavapipe renders correctly.
@@ -104,17 +106,26 @@ impl DriverKind for TessDriver {
     }
 
     fn cmd_draw(&self, cmd: &Cmd<'_>, r: &Renderer, work: &FrameWork<'_>) {
-        cmd_draw(cmd, r, work.mesh, work.cfg.level, work.elements.clone());
+        cmd_draw(
+            cmd,
+            r,
+            work.mesh,
+            work.cfg.level,
+            work.adaptive,
+            work.elements.clone(),
+        );
     }
 }
 
 /// Record the tessellated draws of the elements `range` of `mesh` at `level`, chunk by chunk
-/// ([`GpuMesh::chunks`]).
+/// ([`GpuMesh::chunks`]); `adaptive`: each element at its own levels ([`GpuMesh::levels`]), at
+/// most `level` (the draws are split for `level`, the most an element can make).
 pub fn cmd_draw(
     cmd: &Cmd<'_>,
     r: &Renderer,
     mesh: &GpuMesh,
     level: u32,
+    adaptive: bool,
     range: std::ops::Range<u32>,
 ) {
     let per_draw = patches_per_draw(cmd.context(), level, mesh.element_count);
@@ -123,9 +134,9 @@ pub fn cmd_draw(
         let mut first = c.first;
         while first < c.first + c.count {
             let count = per_draw.min(c.first + c.count - first);
-            // x level, y the chunk's first element, z tessellator vertices, w this draw's first
-            // element within the chunk (gl_PrimitiveID counts from there).
-            let draw = [level, c.base, tess_vertex_count(level), first - c.base];
+            // x level (adaptive: the largest), y the chunk's first element, z 1 when adaptive,
+            // w this draw's first element within the chunk (gl_PrimitiveID counts from there).
+            let draw = [level, c.base, adaptive as u32, first - c.base];
             cmd.push_constants(
                 r.layout.raw,
                 PUSH_STAGES,
@@ -138,16 +149,27 @@ pub fn cmd_draw(
     }
 }
 
-/// Weights of a tessellator sample `tc = gl_TessCoord` at integer level `n` (tess driver).
-/// Outer-edge samples are snapped to the level-`n` lattice (`k/n`, `(n-k)/n`, exact zero), as
-/// the pattern's weights are; interior samples are used as given.
+/// Weights of a tessellator sample `tc = gl_TessCoord` at integer level `n` (tess driver, uniform
+/// drawing): [`tess_weights_levels`] with every level `n`.
 /// Mirror of `tess_weights()` in `glsl/tess/tess_weights.glsl`.
 pub fn tess_weights(tc: [f32; 3], n: u32) -> [f32; 3] {
-    let fnn = n as f32;
-    let half_step = 0.5 / fnn;
-    if tc.iter().all(|&c| c >= half_step) {
+    tess_weights_levels(tc, [n; 3], n)
+}
+
+/// Weights of a tessellator sample `tc = gl_TessCoord` with integer level `outer[i]` on the patch
+/// edge where `tc[i] == 0` (`gl_TessLevelOuter[i]`, see [`outer_levels`]) and inner level `inner`
+/// (at least every outer level). Outer-edge samples are snapped to their own edge's lattice (`k/n`,
+/// `(n-k)/n` with `n` the edge's level, exact zero), as the pattern's weights are, so the two
+/// elements sharing an edge get the same weights; interior samples (every coordinate at least
+/// `1/inner`) are used as given.
+/// Mirror of `tess_weights_levels()` in `glsl/tess/tess_weights.glsl`.
+pub fn tess_weights_levels(tc: [f32; 3], outer: [u32; 3], inner: u32) -> [f32; 3] {
+    let half_step = 0.5 / inner as f32;
+    // The edge the sample lies on (a corner: the first of its two).
+    let Some(edge) = tc.iter().position(|&c| c < half_step) else {
         return tc;
-    }
+    };
+    let fnn = outer[edge] as f32;
     let mut k = tc.map(|c| {
         if c < half_step {
             0.0
@@ -163,6 +185,34 @@ pub fn tess_weights(tc: [f32; 3], n: u32) -> [f32; 3] {
         k[0] = fnn - k[1];
     }
     k.map(|x| x / fnn)
+}
+
+/// The tessellation levels the control stage sets for an element drawn adaptively with levels
+/// `levels` and largest level `max`: `(outer, inner)` with `outer[i]` the level of the patch edge
+/// where `gl_TessCoord[i] == 0`, between patch vertices `i + 1` and `i + 2`, which is stored edge
+/// `(i + 1) mod 3`; `None` for a culled element (its patch is discarded).
+/// Mirror of `glsl/tess/tess.tesc`.
+pub fn outer_levels(levels: &ElementLevels, max: u32) -> Option<([u32; 3], u32)> {
+    let inner = drawn_level(levels.inner, false, max);
+    if inner == 0 {
+        return None;
+    }
+    let e = levels.edges.map(|l| drawn_level(l, false, max));
+    Some(([e[1], e[2], e[0]], inner))
+}
+
+/// Distinct vertices the tessellator makes for one triangle patch with outer levels `outer` and
+/// inner level `inner >= 2` or every level 1 (integer, equal spacing): the inner rings of a
+/// uniform level-`inner` patch and an outer ring of `outer[0] + outer[1] + outer[2]` vertices.
+pub const fn tess_vertex_count_levels(outer: [u32; 3], inner: u32) -> u32 {
+    tess_vertex_count(inner) - 3 * inner + outer[0] + outer[1] + outer[2]
+}
+
+/// Triangles the tessellator makes for one patch with outer levels `outer` and inner level `inner`
+/// (as [`tess_vertex_count_levels`]): a triangulated disk of `V` vertices with `B` on its boundary
+/// has `2V - B - 2` triangles (Euler).
+pub const fn tess_triangle_count_levels(outer: [u32; 3], inner: u32) -> u32 {
+    2 * tess_vertex_count_levels(outer, inner) - (outer[0] + outer[1] + outer[2]) - 2
 }
 
 /// Distinct vertices the tessellator makes for one triangle patch with every level `n` (integer,
@@ -211,6 +261,114 @@ mod tests {
         // Interior samples are untouched.
         let inner = [0.2, 0.3, 0.5];
         assert_eq!(tess_weights(inner, n), inner);
+    }
+
+    /// The snapping as it was before per-edge levels, operation for operation.
+    fn uniform_reference(tc: [f32; 3], n: u32) -> [f32; 3] {
+        let fnn = n as f32;
+        let half_step = 0.5 / fnn;
+        if tc.iter().all(|&c| c >= half_step) {
+            return tc;
+        }
+        let mut k = tc.map(|c| {
+            if c < half_step {
+                0.0
+            } else {
+                (c * fnn).round()
+            }
+        });
+        if k[0] == 0.0 {
+            k[1] = fnn - k[2];
+        } else if k[1] == 0.0 {
+            k[2] = fnn - k[0];
+        } else {
+            k[0] = fnn - k[1];
+        }
+        k.map(|x| x / fnn)
+    }
+
+    /// With every level equal, the per-edge snapping gives the uniform weights bit for bit, on
+    /// the lattice, off it, on edges, at corners and inside.
+    #[test]
+    fn equal_levels_snap_as_uniform() {
+        let mut seed = 0x2545_f491_u32;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 17;
+            seed ^= seed << 5;
+            (seed >> 8) as f32 / (1 << 24) as f32
+        };
+        for n in [1u32, 2, 3, 7, 16, 64] {
+            for _ in 0..2000 {
+                let (a, b) = (next(), next());
+                let mut tc = [a, (1.0 - a) * b, 0.0];
+                tc[2] = 1.0 - tc[0] - tc[1];
+                // Put some on an edge.
+                let zero = (next() * 4.0) as usize;
+                if zero < 3 {
+                    tc[zero] = 0.0;
+                }
+                let got = tess_weights_levels(tc, [n; 3], n);
+                assert_eq!(
+                    got.map(f32::to_bits),
+                    uniform_reference(tc, n).map(f32::to_bits)
+                );
+                assert_eq!(got, tess_weights(tc, n));
+            }
+        }
+    }
+
+    /// An edge sample snaps to its own edge's lattice: here edge `tc[2] == 0` at level 3 inside a
+    /// level-8 patch, and the corners stay exact.
+    #[test]
+    fn edge_samples_snap_to_their_edge_level() {
+        let (outer, inner) = ([5, 2, 3], 8);
+        assert_eq!(
+            tess_weights_levels([0.666_666_6, 0.333_333_4, 0.0], outer, inner),
+            [2.0 / 3.0, 1.0 / 3.0, 0.0]
+        );
+        assert_eq!(
+            tess_weights_levels([0.0, 0.400_000_2, 0.599_999_8], outer, inner),
+            [0.0, 2.0 / 5.0, 3.0 / 5.0]
+        );
+        for c in [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]] {
+            assert_eq!(tess_weights_levels(c, outer, inner), c);
+        }
+        // The first inner ring (coordinates from 1/8) is left alone.
+        let ring = [0.75, 0.125, 0.125];
+        assert_eq!(tess_weights_levels(ring, outer, inner), ring);
+    }
+
+    /// Outer level `i` is stored edge `i + 1`; culled elements have none; levels are rounded up
+    /// and capped.
+    #[test]
+    fn outer_levels_follow_the_stored_edges() {
+        let l = ElementLevels {
+            edges: [1.5, 3.0, 4.2],
+            inner: 6.5,
+        };
+        assert_eq!(outer_levels(&l, 64), Some(([3, 5, 2], 7)));
+        assert_eq!(outer_levels(&l, 4), Some(([3, 4, 2], 4)));
+        let culled = ElementLevels {
+            edges: [3.0; 3],
+            inner: 0.0,
+        };
+        assert_eq!(outer_levels(&culled, 64), None);
+    }
+
+    #[test]
+    fn tessellator_counts_with_levels() {
+        for n in 1..40u32 {
+            assert_eq!(tess_vertex_count_levels([n; 3], n), tess_vertex_count(n));
+            assert_eq!(
+                tess_triangle_count_levels([n; 3], n),
+                tess_triangle_count(n)
+            );
+        }
+        // Inner level 4 (19 vertices, 7 inside the outer ring) with edges of 1, 2, 3 segments: an
+        // outer ring of 6.
+        assert_eq!(tess_vertex_count_levels([1, 2, 3], 4), 7 + 6);
+        assert_eq!(tess_triangle_count_levels([1, 2, 3], 4), 2 * 13 - 6 - 2);
     }
 
     #[test]

@@ -3,6 +3,8 @@
 //! validation warning or error, leaked Vulkan object or leaked allocation fails the test.
 #![allow(dead_code)]
 
+pub mod random_levels;
+
 use meshrefine::gpu::{check_shutdown, live_objects, ContextDesc, ShutdownError};
 use meshrefine::mesh::Mesh;
 use meshrefine::render::Headless;

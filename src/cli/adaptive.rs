@@ -1,0 +1,230 @@
+//! Adaptive drawing from the command line (`--pixel-error`, `--max-level`, `--cull`, `--eye`,
+//! `--look-at`, `--fov` on render, export, view and bench; `info` shares the checks and the
+//! camera): the checks of the values, the camera in the drawn frame, and the levels chosen on
+//! the CPU for it ([`Scene::set_levels`]).
+#![forbid(unsafe_code)]
+
+use super::args::{AdaptiveOpts, Cli, Command, ViewpointOpts};
+use super::options::Given;
+use anyhow::{bail, Result};
+use glam::{DVec3, Vec3};
+use meshrefine::gpu::Context;
+use meshrefine::lod::LevelReport;
+use meshrefine::mesh::Mesh;
+use meshrefine::render::{Camera, Capture, DrawConfig, Driver, Headless, LevelView, Scene};
+
+/// One sentence for the first bad value of a pixel error and its camera, before any work.
+/// `level_given`: `--level` was given too.
+pub fn check_view(px: f32, v: &ViewpointOpts, level_given: bool) -> Result<()> {
+    if !(px.is_finite() && px > 0.0) {
+        bail!("--pixel-error {px} is not a finite number > 0");
+    }
+    if level_given {
+        bail!("--pixel-error and --level are exclusive: adaptive levels come from the pixel error, --level asks for one level everywhere");
+    }
+    let fov = v.fov;
+    if !(fov.is_finite() && fov > 0.0 && fov < 180.0) {
+        bail!("--fov {fov} is not within (0, 180) degrees");
+    }
+    if let (Some(eye), Some(target)) = (v.eye, v.look_at) {
+        let (eye, target) = (Vec3::from(eye), Vec3::from(target));
+        if Camera::looking(eye, target, fov.to_radians(), 1.0).is_none() {
+            bail!("{}", no_direction(eye, target));
+        }
+    }
+    Ok(())
+}
+
+/// The sentence for a camera without a view direction.
+pub fn no_direction(eye: Vec3, target: Vec3) -> String {
+    format!(
+        "--eye {},{},{} and --look-at {},{},{} give no view direction (the same point, or straight up or down: up is +Y)",
+        eye.x, eye.y, eye.z, target.x, target.y, target.z
+    )
+}
+
+/// The adaptive options of `cli`'s command, checked: the pixel error and camera, `--level`
+/// (`--levels` for bench) not given with it, and a driver that draws adaptively.
+pub fn check(cli: &Cli, given: &Given) -> Result<()> {
+    let (opts, level, drivers): (&AdaptiveOpts, &str, Vec<Driver>) = match &cli.command {
+        Command::Render(a) => (&a.adaptive, "level", vec![a.technique.driver]),
+        Command::View(a) => (&a.adaptive, "level", vec![a.technique.driver]),
+        Command::Export(a) => (&a.adaptive, "level", vec![a.technique().driver]),
+        Command::Bench(a) => (&a.adaptive, "levels", a.drivers.clone()),
+        Command::Info(_) | Command::Devices => return Ok(()),
+    };
+    let Some(px) = opts.pixel_error else {
+        return Ok(());
+    };
+    if level == "levels" && given.has("levels") {
+        bail!("--pixel-error and --levels are exclusive: adaptive levels come from the pixel error, --levels asks for one level everywhere");
+    }
+    check_view(px, &opts.viewpoint, level == "level" && given.has("level"))?;
+    if drivers.is_empty() || drivers.iter().any(|&d| d != Driver::Tess) {
+        let chosen: Vec<&str> = drivers.iter().map(|d| d.name()).collect();
+        let chosen = if chosen.is_empty() {
+            "every driver".to_string()
+        } else {
+            format!("--driver {}", chosen.join(","))
+        };
+        bail!("--pixel-error draws adaptively with the tess driver only, not with {chosen}: add --driver{} tess",
+            if level == "levels" { "s" } else { "" });
+    }
+    Ok(())
+}
+
+/// Adaptive drawing as asked on the command line, checked ([`check`]).
+#[derive(Clone, Copy, Debug)]
+pub struct Adaptive<'a> {
+    pub opts: &'a AdaptiveOpts,
+    pub pixel_error: f32,
+    pub cull: bool,
+}
+
+impl AdaptiveOpts {
+    /// Adaptive drawing when `--pixel-error` was given, culling as `--cull` says or else
+    /// `cull_default`.
+    pub fn enabled(&self, cull_default: bool) -> Option<Adaptive<'_>> {
+        self.pixel_error.map(|px| Adaptive {
+            opts: self,
+            pixel_error: px,
+            cull: self.cull.unwrap_or(cull_default),
+        })
+    }
+}
+
+/// The map from the mesh's coordinates to the drawn ones (`p ↦ (p − centre) · scale`), as
+/// `Mesh::for_viewing` moves a mesh; the identity for a mesh drawn as it is.
+#[derive(Clone, Copy, Debug)]
+pub struct Frame {
+    pub centre: DVec3,
+    pub scale: f64,
+}
+
+impl Frame {
+    pub const IDENTITY: Frame = Frame {
+        centre: DVec3::ZERO,
+        scale: 1.0,
+    };
+
+    pub fn drawn(&self, p: Vec3) -> Vec3 {
+        ((p.as_dvec3() - self.centre) * self.scale).as_vec3()
+    }
+
+    pub fn mesh(&self, p: Vec3) -> Vec3 {
+        (p.as_dvec3() / self.scale + self.centre).as_vec3()
+    }
+}
+
+impl Adaptive<'_> {
+    /// The largest level any element gets: `--max-level` (refused past what `driver` draws on
+    /// the device), else the largest `driver` draws there (a power of two for a dyadic driver),
+    /// at most 1024.
+    pub fn max_level(&self, ctx: &Context, driver: Driver) -> Result<u32> {
+        let limit = driver.kind().level_limit(ctx);
+        if let Some(l) = self.opts.max_level {
+            if let Some((max, name)) = limit.filter(|&(max, _)| l > max) {
+                bail!(
+                    "--max-level {l} is beyond this device's {name} ({max}): the {} driver cannot draw it",
+                    driver.name()
+                );
+            }
+            return Ok(l);
+        }
+        let limit = limit.map_or(1024, |(max, _)| max.min(1024));
+        Ok(if matches!(driver, Driver::Pattern(_)) {
+            1 << limit.ilog2()
+        } else {
+            limit
+        })
+    }
+
+    /// The camera in the drawn frame: the framing camera of `scene` (what the uniform drawing
+    /// shows), moved to `--eye`, `--look-at` and `--fov` where given (mesh coordinates,
+    /// mapped by `frame`).
+    pub fn camera(&self, scene: &Scene, frame: &Frame) -> Result<Camera> {
+        let (c, r) = scene.bounding_sphere();
+        self.viewpoint_camera(Camera::framing(c, r), frame)
+    }
+
+    /// `framing` (drawn frame) moved to the viewpoint asked for.
+    fn viewpoint_camera(&self, framing: Camera, frame: &Frame) -> Result<Camera> {
+        let (c, r) = (framing.target, framing.radius);
+        let v = &self.opts.viewpoint;
+        if v.eye.is_none() && v.look_at.is_none() && v.fov == 45.0 {
+            return Ok(framing);
+        }
+        let eye = v.eye.map_or(framing.eye(), |e| frame.drawn(Vec3::from(e)));
+        let target = v
+            .look_at
+            .map_or(framing.target, |t| frame.drawn(Vec3::from(t)));
+        // The depth range holds the whole mesh around the target.
+        let radius = r + (target - c).length();
+        Camera::looking(eye, target, v.fov.to_radians(), radius)
+            .ok_or_else(|| anyhow::anyhow!("{}", no_direction(frame.mesh(eye), frame.mesh(target))))
+    }
+
+    /// The camera asked for, for `mesh` as drawn (already in the drawn frame, mapped from the
+    /// mesh's own by `frame`): None for the framing camera the benchmark and the window start
+    /// with anyway.
+    pub fn given_camera(&self, mesh: &Mesh, frame: &Frame) -> Result<Option<Camera>> {
+        let v = &self.opts.viewpoint;
+        if v.eye.is_none() && v.look_at.is_none() && v.fov == 45.0 {
+            return Ok(None);
+        }
+        let (lo, hi) = mesh.bounds();
+        let c = (lo + hi) * 0.5;
+        let r = ((hi - lo) * 0.5).length().max(1e-6);
+        self.viewpoint_camera(Camera::framing(c, r), frame)
+            .map(Some)
+    }
+
+    /// Prepare `scene` for `cfg` (whose level is the largest), choose every element's levels
+    /// for the camera and an image of `size`, and make `h` draw adaptively. Returns the camera
+    /// (drawn frame) and what was chosen.
+    pub fn set_up(
+        &self,
+        h: &mut Headless,
+        scene: &mut Scene,
+        cfg: &DrawConfig,
+        capture: Capture,
+        (width, height): (u32, u32),
+        frame: &Frame,
+    ) -> Result<(Camera, LevelReport)> {
+        scene.skip_slow_warning();
+        h.prepared_elements(scene, cfg, capture)?;
+        let camera = self.camera(scene, frame)?;
+        let report = scene.set_levels(
+            cfg,
+            &LevelView {
+                camera,
+                width,
+                height,
+                pixel_error: self.pixel_error,
+                cull: self.cull,
+            },
+        );
+        h.adaptive = true;
+        Ok((camera, report))
+    }
+
+    /// The two lines that say what was drawn (export's header): the camera in mesh
+    /// coordinates, the image size and pixel error, and the elements drawn at each level.
+    pub fn header(
+        &self,
+        camera: &Camera,
+        frame: &Frame,
+        (width, height): (u32, u32),
+        report: &LevelReport,
+    ) -> [String; 2] {
+        let [ex, ey, ez] = frame.mesh(camera.eye()).to_array();
+        let [tx, ty, tz] = frame.mesh(camera.target).to_array();
+        [
+            format!(
+                "camera eye {ex} {ey} {ez} target {tx} {ty} {tz} up 0 1 0 fov-y {} size {width} {height} pixel-error {}",
+                self.opts.viewpoint.fov, self.pixel_error
+            ),
+            format!("levels {}", report.histogram_line()),
+        ]
+    }
+}

@@ -1,0 +1,82 @@
+//! The levels the command line draws with (`Scene::set_levels`, chosen on the CPU): the same
+//! inner levels `lod::report` gives for the camera, the same bits for an edge from both of its
+//! elements in the buffer the drivers read, and culling that only zeroes inner levels.
+
+mod common;
+
+use common::random_levels::element_corners;
+use common::{model, with_gpu};
+use meshrefine::lod::levels::ElementLevels;
+use meshrefine::lod::{report, Lod, View};
+use meshrefine::render::{Camera, Capture, DrawConfig, Driver, LevelView};
+use meshrefine::surface::{Displace, Surface, SurfaceParams};
+use std::collections::HashMap;
+
+#[test]
+fn cpu_levels_match_the_report_and_share_edges() {
+    with_gpu(64, 64, |h| {
+        for surface in [Surface::Pn, Surface::Phong, Surface::Loop] {
+            let max = 16;
+            let mut scene = h.scene(model("spot_control_tri.obj"), max).unwrap();
+            let (c, r) = scene.bounding_sphere();
+            let mut cfg = DrawConfig::new(Driver::Tess, max).with_surface(surface, Displace::None);
+            cfg.params = SurfaceParams::for_radius(r);
+            h.prepared_elements(&mut scene, &cfg, Capture::None)
+                .unwrap();
+            let framing = Camera::framing(c, r);
+            let close = Camera::looking(
+                c + glam::Vec3::new(0.2, 0.1, 0.5) * r,
+                c,
+                45f32.to_radians(),
+                r,
+            )
+            .unwrap();
+            for camera in [framing, close] {
+                let view = LevelView {
+                    camera,
+                    width: 1280,
+                    height: 720,
+                    pixel_error: 1.0,
+                    cull: false,
+                };
+                let what = format!("{} at {:?}", surface.name(), camera.eye());
+                let got = scene.set_levels(&cfg, &view);
+                let inputs = scene.inputs(max);
+                let lod = Lod::new(surface, Displace::None, &cfg.params, &inputs.element(0));
+                let metric = View::new(camera.eye(), camera.fov_y, 720, 1.0, max);
+                let want = report(&lod, scene.records(surface), &metric, None);
+                assert_eq!(got.histogram, want.histogram, "{what}");
+                assert_eq!(got.culled, 0, "{what}");
+                // The buffer the drivers read: each edge the same bits from both sides.
+                let levels: Vec<ElementLevels> = scene.elements(surface).levels.read_pod();
+                let corners = element_corners(&scene, surface);
+                let mut edges: HashMap<(u32, u32), u32> = HashMap::new();
+                for (c, l) in corners.iter().zip(&levels) {
+                    assert!(l.inner >= l.edges.iter().fold(1.0f32, |m, &e| m.max(e)));
+                    for k in 0..3 {
+                        let (a, b) = (c[k], c[(k + 1) % 3]);
+                        let bits = *edges
+                            .entry((a.min(b), a.max(b)))
+                            .or_insert(l.edges[k].to_bits());
+                        assert_eq!(bits, l.edges[k].to_bits(), "{what}: edge {a}-{b}");
+                    }
+                }
+                // Culling zeroes inner levels only, and counts them.
+                let culled = scene.set_levels(&cfg, &LevelView { cull: true, ..view });
+                let after: Vec<ElementLevels> = scene.elements(surface).levels.read_pod();
+                let zero = after.iter().filter(|l| l.culled()).count() as u64;
+                assert_eq!(zero, culled.culled, "{what}");
+                for (a, b) in levels.iter().zip(&after) {
+                    assert_eq!(a.edges, b.edges);
+                    assert!(b.inner == a.inner || b.inner == 0.0);
+                }
+                let drawn: u64 = culled.histogram.values().sum();
+                assert_eq!(drawn + culled.culled, levels.len() as u64, "{what}");
+                if camera == close || surface != Surface::Loop {
+                    // Outside the close-up's frustum, or facing away from the framing camera.
+                    assert!(culled.culled > 0, "{what}: nothing culled");
+                }
+            }
+        }
+    });
+}
