@@ -21,20 +21,13 @@ pub fn run(a: &RenderArgs, desc: &ContextDesc) -> Result<()> {
     let mut input = load_mesh(a.mesh.as_deref(), for_loop)?;
     let cfg = draw_config(&a.technique, &input.mesh)?;
     attach_surface_inputs(&mut input, &a.technique.surface, false)?;
-    let size = (a.width, a.height);
-    let adaptive = a.adaptive.enabled(true);
-    let report = with_context(desc, |ctx| {
-        render_png(
-            ctx,
-            input,
-            &cfg,
-            size,
-            a.wireframe,
-            a.msaa,
-            &a.output,
-            adaptive,
-        )
-    })?;
+    let image = ImageOptions {
+        size: (a.width, a.height),
+        wireframe: a.wireframe,
+        msaa: a.msaa,
+        adaptive: a.adaptive.enabled(true),
+    };
+    let report = with_context(desc, |ctx| render_png(ctx, input, &cfg, &image, &a.output))?;
     if let Some(line) = report {
         out!("{line}");
     }
@@ -52,9 +45,19 @@ fn levels_line(a: &Adaptive, max: u32, report: &meshrefine::lod::LevelReport) ->
     )
 }
 
-/// Renders `input` (centred and at unit size, see [`Mesh::for_viewing`]) to a PNG, with `msaa`
-/// samples per pixel (`None`: the default, `gpu::sample_count`), adaptively when `adaptive`
-/// says so (then returns the line saying what it chose). A blank image is still
+/// How `render` and the headless `view` draw their image.
+pub struct ImageOptions<'a> {
+    /// Width and height in pixels.
+    pub size: (u32, u32),
+    pub wireframe: bool,
+    /// Samples per pixel (`None`: the default, `gpu::sample_count`).
+    pub msaa: Option<u32>,
+    /// Draw adaptively for the camera (`--pixel-error`).
+    pub adaptive: Option<Adaptive<'a>>,
+}
+
+/// Renders `input` (centred and at unit size, see [`Mesh::for_viewing`]) to a PNG as `image`
+/// says, adaptively when it says so (then returns the line saying what it chose). A blank image is still
 /// written, then reported as an error: it shows nothing.
 ///
 /// [`Mesh::for_viewing`]: meshrefine::mesh::Mesh::for_viewing
@@ -62,12 +65,11 @@ pub fn render_png(
     ctx: Arc<Context>,
     input: Input,
     cfg: &DrawConfig,
-    (width, height): (u32, u32),
-    wireframe: bool,
-    msaa: Option<u32>,
+    image: &ImageOptions<'_>,
     out: &Path,
-    adaptive: Option<Adaptive>,
 ) -> Result<Option<String>> {
+    let (width, height) = image.size;
+    let (wireframe, msaa, adaptive) = (image.wireframe, image.msaa, image.adaptive);
     let triangles = input.mesh.triangles.len();
     let samples = sample_count(&ctx, msaa)?;
     let mut line = None;

@@ -67,19 +67,14 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc) -> Result<()> {
     } else {
         "no display found (DISPLAY and WAYLAND_DISPLAY are unset)".to_string()
     };
-    let adaptive = a.adaptive.enabled(true);
+    let image = super::render::ImageOptions {
+        size: (1280, 720),
+        wireframe: a.wireframe,
+        msaa: a.msaa,
+        adaptive: a.adaptive.enabled(true),
+    };
     let line = with_context(desc, |ctx| {
-        let out = &a.headless_output;
-        render_png(
-            ctx,
-            input,
-            &cfg,
-            (1280, 720),
-            a.wireframe,
-            a.msaa,
-            out,
-            adaptive,
-        )
+        render_png(ctx, input, &cfg, &image, &a.headless_output)
     })?;
     if let Some(line) = line {
         out!("{line}");
