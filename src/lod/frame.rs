@@ -46,7 +46,7 @@
 //! 2. The element checks, on the drawn levels ([`LodView::dyadic`] says how the driver
 //!    rounds), that `9/40 S_e + k_1 (a_e + β) + k_2 (a_e + β)² <= τ` for every edge drawn
 //!    coarser than its inside, and raises its inner level where not: a quadratic
-//!    `p β² + q β + r <= τ` solved for `β` ([`strip_level`]); raising it can make another edge
+//!    `p β² + q β + r <= τ` solved for `β` (`strip_level`); raising it can make another edge
 //!    coarser than it, so this repeats (at most three times). After step 1 this is a safety
 //!    net (rounding at the thresholds); by itself, with step 1's share dropped, it would still
 //!    keep the guarantee wherever the corners fit (the tests run it so, GPU against CPU).
