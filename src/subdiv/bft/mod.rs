@@ -57,6 +57,15 @@ use packing::arrange;
 use std::collections::HashMap;
 use table::{compact, table};
 
+/// How far round a vertex's ring a face's own weights reach, in places (edges) from the face:
+/// the limit over the face's sub-faces sees the ring at most `lmax` + 2 places away (one a step,
+/// one for the limit mask, one for the sub-face), other than through the vertex's own rule,
+/// which weighs the sum of its whole ring inside and its two ends on a boundary. Beyond it an
+/// inside ring's vertices share one column of the table, and a boundary fan's faces share one
+/// table (`far_ring` in table.rs, `truncated` in classification.rs). A wide margin over
+/// [`MAX_LMAX`] + 2: rings of up to 2 · 20 + 2 vertices are taken whole.
+pub const RING_REACH: usize = 20;
+
 /// The configuration of one face: which table, how its corners map to the table's, and its
 /// control points (M1 vertex indices, one per column of the table).
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -79,6 +88,9 @@ pub struct Tables {
     pub faces: Vec<FaceConfig>,
     /// The tables as stored on the GPU.
     pub packed: Packed,
+    /// The weights the build computed: every vertex's non-zero weights, summed over every
+    /// table's refinement steps (its work and, step by step, its memory; linear in the valence).
+    pub work: u64,
 }
 
 impl Tables {
@@ -157,8 +169,10 @@ fn build_on(
     let shares = classify_faces(topo, &nb, threads, &mut progress);
     let (reps, faces) = number_configurations(shares, topo.faces.len());
     let keys: Vec<Vec<[u32; 3]>> = reps.iter().map(|r| r.2.clone()).collect();
-    let built = build_tables(topo, &nb, &reps, boundary, lattice, cores, &mut progress)?;
-    Ok(share_and_pack(built, faces, keys, lattice))
+    let (built, work) = build_tables(topo, &nb, &reps, boundary, lattice, cores, &mut progress)?;
+    let mut tables = share_and_pack(built, faces, keys, lattice);
+    tables.work = work;
+    Ok(tables)
 }
 
 /// Every face's configuration key, classified on `threads` threads in contiguous shares (one a
@@ -241,7 +255,11 @@ fn number_configurations(shares: Vec<Classified>, n: usize) -> (Vec<Rep>, Vec<Fa
     (reps, faces)
 }
 
-/// The table of every configuration, in their order, built on up to `cores` threads.
+/// A table and the weights its build computed.
+type Built = (Config, u64);
+
+/// The table of every configuration, in their order, built on up to `cores` threads, and the
+/// weights their builds computed.
 fn build_tables(
     topo: &Topology,
     nb: &Neighbourhoods,
@@ -250,7 +268,7 @@ fn build_tables(
     lattice: Lattice,
     cores: usize,
     progress: &mut impl FnMut(Progress),
-) -> Result<Vec<Config>, TopologyError> {
+) -> Result<(Vec<Config>, u64), TopologyError> {
     let total = reps.len();
     // Tables too are independent: thread t builds configurations t, t + T, t + 2T, ...
     let builders = cores.min(total).max(1);
@@ -269,7 +287,7 @@ fn build_tables(
         out
     };
     progress(Progress::Tables(0, total));
-    let mut built: Vec<(usize, Result<Config, TopologyError>)> = std::thread::scope(|s| {
+    let mut built: Vec<(usize, Result<Built, TopologyError>)> = std::thread::scope(|s| {
         let others: Vec<_> = (1..builders)
             .map(|t| {
                 let build_share = &build_share;
@@ -290,9 +308,10 @@ fn build_tables(
     let built = built
         .into_iter()
         .map(|b| b.1)
-        .collect::<Result<Vec<Config>, TopologyError>>()?;
+        .collect::<Result<Vec<Built>, TopologyError>>()?;
     progress(Progress::Tables(total, total));
-    Ok(built)
+    let work = built.iter().map(|b| b.1).sum();
+    Ok((built.into_iter().map(|b| b.0).collect(), work))
 }
 
 /// Equal tables shared, columns arranged and cut to those weighed, each face's control points
@@ -322,6 +341,7 @@ fn share_and_pack(
         configs,
         faces,
         packed,
+        work: 0,
     }
 }
 
@@ -403,57 +423,86 @@ mod tests {
             ("fan24_open.obj", &[Boundary::EdgeAndCorner][..], 2),
         ] {
             let (mesh, _) = load_model(file);
-            let lattice = Lattice::new(lmax);
             for &boundary in boundaries {
-                let topo0 = Topology::of_mesh(&mesh).unwrap();
-                let p0: Vec<DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();
-                let m1 = loop_step(&topo0, &p0, boundary);
-                let t1 = Topology::new(&m1.faces, m1.positions.len()).unwrap();
-                let tables = build(&t1, boundary, lattice, |_| {}).unwrap();
-                for c in &tables.configs {
-                    assert_eq!(c.outside, 0.0, "{file}: weight outside the control points");
-                    for r in 0..lattice.rows() {
-                        let s: f64 = c.weights[r * c.control..(r + 1) * c.control].iter().sum();
-                        assert!((s - 1.0).abs() < 1e-12, "{file}: row {r} sums to {s}");
-                    }
-                }
-                // The reference: lmax more steps, then limits; the lattice vertices of each M1
-                // face are found by the same face numbering (4f + child).
-                let reference = subdivide_to_limit(&mesh, 1 + lmax, boundary).unwrap();
-                let diag = {
-                    let (lo, hi) = mesh.bounds();
-                    (hi - lo).length() as f64
-                };
-                let mut worst: f64 = 0.0;
-                for (f, fc) in tables.faces.iter().enumerate() {
-                    let c = &tables.configs[fc.config as usize];
-                    let eval = |i: u32, j: u32| -> DVec3 {
-                        let r = lattice.row(i, j);
-                        (0..c.control)
-                            .map(|k| {
-                                m1.positions[fc.control[k] as usize] * c.weights[r * c.control + k]
-                            })
-                            .sum()
-                    };
-                    // Canonical corners of the face, by the sub-face walk from face f.
-                    let mut tracked: Vec<(usize, [[u32; 2]; 3])> =
-                        vec![(f, lattice_corners(fc.orient, lattice))];
-                    for _ in 0..lmax {
-                        tracked = children_in_lattice(&tracked);
-                    }
-                    for (face, coords) in tracked {
-                        for (&v, c) in reference.faces[face].iter().zip(coords) {
-                            let d = (eval(c[0], c[1]) - reference.positions[v as usize]).length();
-                            worst = worst.max(d / diag);
-                        }
-                    }
-                }
-                assert!(
-                    worst < 1e-12,
-                    "{file} {boundary:?} lmax {lmax}: {worst:e} of the diagonal"
-                );
+                assert_limit_surface(file, &mesh, boundary, Lattice::new(lmax));
             }
         }
+    }
+
+    /// Past [`RING_REACH`]: a valence-48 pole's far ring shares a column, and a fan of 50 faces
+    /// truncates its middle faces' labels; the tables are still the limit surface.
+    #[test]
+    fn high_valence_tables_give_the_limit_surface() {
+        use crate::mesh::generate::{half_disc_fan_mesh, sphere_mesh};
+        let lattice = Lattice::new(3);
+        assert_limit_surface("sphere48", &sphere_mesh(48, 3), Boundary::EdgeOnly, lattice);
+        let fan = half_disc_fan_mesh(50);
+        for boundary in [Boundary::EdgeOnly, Boundary::EdgeAndCorner] {
+            let tables = assert_limit_surface("fan50", &fan, boundary, lattice);
+            // The fan's middle faces (places 21 to 28 of its 51) share one configuration.
+            assert!(
+                tables.keys.len() < 40,
+                "{} configurations",
+                tables.keys.len()
+            );
+        }
+    }
+
+    /// The tables of `mesh` evaluated at the lattice are the limit positions of M^(1 + lmax),
+    /// face by face; the weight outside the control points is zero and each row sums to one.
+    fn assert_limit_surface(
+        file: &str,
+        mesh: &crate::mesh::Mesh,
+        boundary: Boundary,
+        lattice: Lattice,
+    ) -> Tables {
+        let lmax = lattice.lmax;
+        let topo0 = Topology::of_mesh(mesh).unwrap();
+        let p0: Vec<DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();
+        let m1 = loop_step(&topo0, &p0, boundary);
+        let t1 = Topology::new(&m1.faces, m1.positions.len()).unwrap();
+        let tables = build(&t1, boundary, lattice, |_| {}).unwrap();
+        for c in &tables.configs {
+            assert_eq!(c.outside, 0.0, "{file}: weight outside the control points");
+            for r in 0..lattice.rows() {
+                let s: f64 = c.weights[r * c.control..(r + 1) * c.control].iter().sum();
+                assert!((s - 1.0).abs() < 1e-12, "{file}: row {r} sums to {s}");
+            }
+        }
+        // The reference: lmax more steps, then limits; the lattice vertices of each M1
+        // face are found by the same face numbering (4f + child).
+        let reference = subdivide_to_limit(mesh, 1 + lmax, boundary).unwrap();
+        let diag = {
+            let (lo, hi) = mesh.bounds();
+            (hi - lo).length() as f64
+        };
+        let mut worst: f64 = 0.0;
+        for (f, fc) in tables.faces.iter().enumerate() {
+            let c = &tables.configs[fc.config as usize];
+            let eval = |i: u32, j: u32| -> DVec3 {
+                let r = lattice.row(i, j);
+                (0..c.control)
+                    .map(|k| m1.positions[fc.control[k] as usize] * c.weights[r * c.control + k])
+                    .sum()
+            };
+            // Canonical corners of the face, by the sub-face walk from face f.
+            let mut tracked: Vec<(usize, [[u32; 2]; 3])> =
+                vec![(f, lattice_corners(fc.orient, lattice))];
+            for _ in 0..lmax {
+                tracked = children_in_lattice(&tracked);
+            }
+            for (face, coords) in tracked {
+                for (&v, c) in reference.faces[face].iter().zip(coords) {
+                    let d = (eval(c[0], c[1]) - reference.positions[v as usize]).length();
+                    worst = worst.max(d / diag);
+                }
+            }
+        }
+        assert!(
+            worst < 1e-12,
+            "{file} {boundary:?} lmax {lmax}: {worst:e} of the diagonal"
+        );
+        tables
     }
 
     /// M1 of a model (`EdgeOnly` boundaries).
