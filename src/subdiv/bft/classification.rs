@@ -179,7 +179,13 @@ fn key_of(
     labels: &mut Labels,
 ) -> Vec<[u32; 3]> {
     label(topo, nb, f, o, labels);
-    let mut faces: Vec<u32> = labels.order[..3]
+    // An inside corner 0's fan is faces (0, 1, 2), (0, 2, 3), ..., (0, n, 1) in labels, whatever
+    // the face: where that ring is long, one entry (its length) stands for it, so a face around
+    // a vertex of valence n is keyed in the time of labelling it, not of sorting n faces.
+    let (ring, on_boundary) = &nb.rings[labels.order[0] as usize];
+    let long = !on_boundary && ring.len() > 2 * RING_REACH + 2;
+    let corners = if long { 1..3 } else { 0..3 };
+    let mut faces: Vec<u32> = labels.order[corners]
         .iter()
         .flat_map(|&c| nb.faces[c as usize].iter().copied())
         .collect();
@@ -195,6 +201,9 @@ fn key_of(
     key.retain(|t| !t.contains(&u32::MAX));
     if key.len() < whole {
         key.push([u32::MAX; 3]);
+    }
+    if long {
+        key.push([u32::MAX, u32::MAX, ring.len() as u32]);
     }
     key.sort_unstable();
     key

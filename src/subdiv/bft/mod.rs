@@ -66,6 +66,39 @@ use table::{compact, table};
 /// [`MAX_LMAX`] + 2: rings of up to 2 · 20 + 2 vertices are taken whole.
 pub const RING_REACH: usize = 20;
 
+/// The most control points the faces of M1 may list together ([`control_estimate`]): 2^25, 128
+/// MiB as the drawing stages read them. A face around an inside vertex of valence n lists all
+/// n of its ring (its limit near the vertex weighs them all), so the lists grow with the square
+/// of the valence: two poles of valence 4,000 list 2^25; the build holds them about twice.
+pub const CONTROL_LIMIT: u64 = 1 << 25;
+
+/// About how many control points the faces of `topo` (M1) will list, known before anything is
+/// built: each face lists its corners' one-rings, a wide boundary fan's middle faces only as
+/// far as [`RING_REACH`] (an overestimate by the rings' overlaps, at most a few a face).
+/// Returns the estimate and the vertex whose faces list the most with their count.
+pub fn control_estimate(topo: &Topology) -> (u64, Option<(u32, u64)>) {
+    let reach = RING_REACH as u64;
+    let mut total = 0;
+    let mut most: Option<(u32, u64)> = None;
+    for v in 0..topo.vertex_count as u32 {
+        let (ring, on_boundary) = topo.one_ring(v);
+        let n = ring.len() as u64;
+        let listed = if !on_boundary {
+            n * (n + 1)
+        } else if n <= 2 * reach + 2 {
+            n.saturating_sub(1) * (n + 1)
+        } else {
+            // Faces within reach of an end list the whole fan, the others 2 · reach + 4.
+            (2 * reach + 2) * (n + 1) + (n - 1 - (2 * reach + 2)) * (2 * reach + 4)
+        };
+        total += listed;
+        if most.is_none_or(|(_, m)| listed > m) {
+            most = Some((v, listed));
+        }
+    }
+    (total, most)
+}
+
 /// The configuration of one face: which table, how its corners map to the table's, and its
 /// control points (M1 vertex indices, one per column of the table).
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -135,6 +168,25 @@ pub fn throttled(mut report: impl FnMut(Progress)) -> impl FnMut(Progress) {
             report(p);
         }
     }
+}
+
+/// [`throttled`] reports on one line of standard error that each report rewrites
+/// (`"{what}: 1234 of 24000 M1 faces classified"`), ended when every table is built: nothing
+/// for a build under a second.
+pub fn progress_line(what: impl std::fmt::Display) -> impl FnMut(Progress) {
+    use std::io::Write;
+    let mut width = 0usize;
+    throttled(move |p| {
+        let line = format!("{what}: {p}");
+        let end = if matches!(p, Progress::Tables(d, t) if d == t) {
+            "\n"
+        } else {
+            ""
+        };
+        let pad = width.saturating_sub(line.len());
+        width = line.len();
+        let _ = write!(std::io::stderr().lock(), "\r{line}{:pad$}{end}", "");
+    })
 }
 
 /// Find every face's configuration in `topo` (M1) and build the tables of those it has.
