@@ -557,6 +557,39 @@ mod tests {
         tables
     }
 
+    /// Building the tables computes weights in proportion to the valence, not its square: a
+    /// bicone's two poles of valence 200 and 400 (a far ring in one column) and a boundary fan
+    /// of 200 and 400 faces (its middle faces one configuration). The weights computed are the
+    /// build's work and, step by step, its memory.
+    #[test]
+    fn building_is_linear_in_the_valence() {
+        use crate::mesh::generate::{half_disc_fan_mesh, sphere_mesh};
+        let build_of = |mesh: crate::mesh::Mesh| {
+            let t1 = crate::subdiv::m1_topology(&mesh).unwrap();
+            build(&t1, Boundary::EdgeOnly, Lattice::default(), |_| {}).unwrap()
+        };
+        // Weights per unit of valence, at most: a pole's configuration mesh keeps its ring
+        // about three rings deep through five steps, with up to 2 · RING_REACH + 3 weights a
+        // vertex; the fan builds 29 tables, each over the whole fan with a few weights a vertex.
+        for (name, n, per) in [("bicone", 200, 4_000), ("fan", 200, 25_000)] {
+            let mesh = |n| match name {
+                "bicone" => sphere_mesh(n, 2),
+                _ => half_disc_fan_mesh(n),
+            };
+            let (small, large) = (build_of(mesh(n)), build_of(mesh(2 * n)));
+            assert!(
+                large.work * 100 < small.work * 205,
+                "{name}: {} weights at {n}, {} at {}",
+                small.work,
+                large.work,
+                2 * n
+            );
+            // As many tables either way: the configurations do not grow with the valence.
+            assert_eq!(small.configs.len(), large.configs.len(), "{name}");
+            assert!(small.work < per * n as u64, "{name}: {}", small.work);
+        }
+    }
+
     /// M1 of a model (`EdgeOnly` boundaries).
     fn m1_of(file: &str) -> Topology {
         let (mesh, _) = load_model(file);
