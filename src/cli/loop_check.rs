@@ -79,6 +79,7 @@ pub fn topology_refusal(mesh: &Mesh, report: &LoadReport) -> Option<String> {
                 TopologyError::NonManifoldEdge { .. } => "an edge is shared by more than two faces",
                 TopologyError::OrientationConflict { .. } => "the faces are not consistently oriented",
                 TopologyError::NonManifoldVertex { .. } => "a vertex joins separate fans of faces",
+                TopologyError::TooManyControlPoints { .. } => "its faces list too many control points",
             }
         )),
         Ok(m1) => size_refusal(&m1, report),
@@ -143,6 +144,8 @@ fn m0_message(mesh: &Mesh, report: &LoadReport, e: &TopologyError) -> String {
                 v(b)
             )
         }
+        // Only M1 is checked for its size (`size_refusal`).
+        TopologyError::TooManyControlPoints { .. } => e.to_string(),
         TopologyError::NonManifoldVertex { vertex, fans } => format!(
             "{}{} is non-manifold: its faces form {fans} separate fans, not one disk or half-disk, which Loop subdivision needs",
             v(vertex),

@@ -98,6 +98,7 @@ impl LoopData {
         let topo0 = Topology::of_mesh(mesh)?;
         let stencils = stencils(&topo0, boundary);
         let m1 = Topology::new(&refined_faces(&topo0), stencils.len())?;
+        bft::check_size(&m1)?;
         let mut tables = bft::build(&m1, boundary, lattice, progress)?;
         let mut faces = Vec::with_capacity(m1.faces.len());
         let listed = tables.faces.iter().map(|fc| padded(fc.control.len())).sum();

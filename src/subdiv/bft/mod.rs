@@ -99,6 +99,21 @@ pub fn control_estimate(topo: &Topology) -> (u64, Option<(u32, u64)>) {
     (total, most)
 }
 
+/// [`TopologyError::TooManyControlPoints`] where the faces of `topo` (M1) would list more than
+/// [`CONTROL_LIMIT`] control points ([`control_estimate`]).
+pub fn check_size(topo: &Topology) -> Result<(), TopologyError> {
+    let (listed, most) = control_estimate(topo);
+    match most {
+        Some((vertex, _)) if listed > CONTROL_LIMIT => Err(TopologyError::TooManyControlPoints {
+            listed,
+            vertex,
+            valence: topo.one_ring(vertex).0.len(),
+            limit: CONTROL_LIMIT,
+        }),
+        _ => Ok(()),
+    }
+}
+
 /// The configuration of one face: which table, how its corners map to the table's, and its
 /// control points (M1 vertex indices, one per column of the table).
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -588,6 +603,32 @@ mod tests {
             assert_eq!(small.configs.len(), large.configs.len(), "{name}");
             assert!(small.work < per * n as u64, "{name}: {}", small.work);
         }
+    }
+
+    /// Two poles of valence 20,000 would list 8 · 10^8 control points: refused before anything
+    /// is built, naming the limit; two of valence 3,000 are not.
+    #[test]
+    fn an_absurd_valence_is_refused_before_building() {
+        use crate::mesh::generate::sphere_mesh;
+        let m1 = |n| crate::subdiv::m1_topology(&sphere_mesh(n, 2)).unwrap();
+        let e = check_size(&m1(20_000)).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                TopologyError::TooManyControlPoints {
+                    valence: 20_000,
+                    limit: CONTROL_LIMIT,
+                    ..
+                }
+            ),
+            "{e}"
+        );
+        assert!(
+            e.to_string()
+                .contains("past the limit of 33554432 control points"),
+            "{e}"
+        );
+        check_size(&m1(3_000)).unwrap();
     }
 
     /// M1 of a model (`EdgeOnly` boundaries).
