@@ -36,6 +36,14 @@
 //! (`frame`). Stored so, every configuration up to valence 18 takes 0.77 MiB at level 5;
 //! as whole tables, 1.91 MiB.
 //!
+//! At high valence the build stays linear in the valence ([`RING_REACH`]): weights are sparse
+//! (each summed in the dense sum's order: the same bits), an inside vertex's ring beyond the
+//! face's reach shares one column (it enters only through the vertex's own rule, the ring's
+//! sum), and a wide boundary fan's middle faces are labelled only as far as they reach, one
+//! configuration known before building. The faces' control lists grow with the square of an
+//! inside vertex's valence (each face around it lists its whole ring); [`check_size`] refuses
+//! a mesh past [`CONTROL_LIMIT`] before anything is built.
+//!
 //! One idea a file: `lattice.rs` (the lattice, a face's orientation in it), `classification.rs`
 //! (which configuration each face has), `table.rs` (one configuration's table, and sharing equal
 //! ones), `packing.rs` (rows stored once, as the drawing stages read them); this file builds them
