@@ -75,9 +75,9 @@ impl Labels {
 
 /// Canonical labelling of face `f` in orientation `o` into `labels` (cleared first): the corners,
 /// then each corner's one-ring (counter-clockwise, or clockwise for the mirror image, from the
-/// next canonical corner, or from the boundary). A boundary fan whose face is more than
-/// [`RING_REACH`] places from both of its ends is labelled only that far each way from the face,
-/// then its two ends ([`truncated`]).
+/// next canonical corner, or from the boundary). A boundary fan longer than twice
+/// [`RING_REACH`] and two is labelled only that far each way from the face, then its two ends
+/// ([`truncated`]).
 pub(super) fn label(
     topo: &Topology,
     nb: &Neighbourhoods,
@@ -115,25 +115,28 @@ pub(super) fn label(
     }
 }
 
-/// Where a boundary fan's face is more than [`RING_REACH`] places from both of the fan's ends,
-/// the places of the fan's ring (walked by `at` from the boundary, `n` of them) within that
-/// reach of the face's other corners. A boundary vertex's rule and limit mask weigh only its two
-/// ends, so the face's weights reach no further round the fan than that, and the ends through
-/// the vertex's own rule: the faces of a wide fan's middle have equal tables, known before
-/// building them, and their labels and keys say so ([`label`], [`key_of`]).
+/// Where a boundary fan is longer than 2 · [`RING_REACH`] + 2, the places of its ring (walked
+/// by `at` from the boundary, `n` of them) within that reach of the face's other corners. A
+/// boundary vertex's rule and limit mask weigh only its two ends, so the face's weights reach no
+/// further round the fan than that, and the ends through the vertex's own rule: faces whose
+/// fans agree that far have equal tables (all of a wide fan's middle faces, and the faces at
+/// the same place from an end whatever the fan's length), known before building them, and
+/// their labels and keys say so ([`label`], [`key_of`]).
 fn truncated(
     at: &impl Fn(usize) -> u32,
     n: usize,
     on_boundary: bool,
     corners: &[u32; 3],
 ) -> Option<(usize, usize)> {
-    if !on_boundary {
+    if !on_boundary || n <= 2 * RING_REACH + 2 {
         return None;
     }
     let places: Vec<usize> = (0..n).filter(|&i| corners.contains(&at(i))).collect();
     let (first, last) = (*places.first()?, *places.last()?);
-    let (lo, hi) = (first.checked_sub(RING_REACH)?, last + RING_REACH);
-    (lo >= 1 && hi + 2 <= n).then_some((lo, hi))
+    Some((
+        first.saturating_sub(RING_REACH),
+        (last + RING_REACH).min(n - 1),
+    ))
 }
 
 /// How well orientation `o` of face `f` frames it, smaller first: canonical corner 0 is its

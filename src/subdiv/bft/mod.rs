@@ -81,8 +81,8 @@ pub const RING_REACH: usize = 20;
 pub const CONTROL_LIMIT: u64 = 1 << 25;
 
 /// About how many control points the faces of `topo` (M1) will list, known before anything is
-/// built: each face lists its corners' one-rings, a wide boundary fan's middle faces only as
-/// far as [`RING_REACH`] (an overestimate by the rings' overlaps, at most a few a face).
+/// built: each face lists its corners' one-rings, a wide boundary fan only as far as
+/// [`RING_REACH`] (an overestimate by the rings' overlaps, at most a few a face).
 /// Returns the estimate and the vertex whose faces list the most with their count.
 pub fn control_estimate(topo: &Topology) -> (u64, Option<(u32, u64)>) {
     let reach = RING_REACH as u64;
@@ -96,8 +96,8 @@ pub fn control_estimate(topo: &Topology) -> (u64, Option<(u32, u64)>) {
         } else if n <= 2 * reach + 2 {
             n.saturating_sub(1) * (n + 1)
         } else {
-            // Faces within reach of an end list the whole fan, the others 2 · reach + 4.
-            (2 * reach + 2) * (n + 1) + (n - 1 - (2 * reach + 2)) * (2 * reach + 4)
+            // Each face lists its fan only as far as it reaches, and the two ends.
+            (n - 1) * (2 * reach + 4)
         };
         total += listed;
         if most.is_none_or(|(_, m)| listed > m) {
