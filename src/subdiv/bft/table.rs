@@ -106,7 +106,7 @@ pub(super) fn table(
 
 /// [`table`], with the ring vertices more than `reach` places from the face sharing a column.
 #[allow(clippy::too_many_arguments)]
-pub(super) fn table_reaching(
+fn table_reaching(
     topo: &Topology,
     nb: &Neighbourhoods,
     labels: &mut Labels,
