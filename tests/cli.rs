@@ -1077,6 +1077,35 @@ fn stpn_tags_render_and_their_errors() {
     }
 }
 
+/// A vertex of absurd valence under `--surface loop` is refused before anything is built: one
+/// sentence naming the file, the vertex and the limit, exit 1 (a bicone of 40,000 triangles
+/// whose poles have valence 20,000: about 8 · 10^8 control points).
+#[test]
+fn an_absurd_valence_is_refused_naming_the_limit() {
+    let n = 20_000u32;
+    let mut text = String::from("v 0 0 1\nv 0 0 -1\n");
+    for i in 0..n {
+        let a = std::f64::consts::TAU * i as f64 / n as f64;
+        text += &format!("v {} {} 0\n", a.cos(), a.sin());
+    }
+    for i in 0..n {
+        let (a, b) = (3 + i, 3 + (i + 1) % n);
+        text += &format!("f 1 {a} {b}\nf 2 {b} {a}\n");
+    }
+    let path = write("loop_absurd.obj", text.as_bytes());
+    let out = tmp("loop_absurd_out.obj");
+    let want = [
+        "loop_absurd.obj",
+        "vertex 1 has 20000 neighbours",
+        "past the limit of 33554432 control points (128 MiB)",
+    ];
+    expect_error(&["info", p(&path), "--surface", "loop"], &want);
+    expect_error(
+        &["export", p(&path), "-o", p(&out), "--surface", "loop"],
+        &want,
+    );
+}
+
 /// `--surface loop` from the command line: `info` reports M1, the configurations and the
 /// tables' bytes; render works on every driver with both boundary rules; an export of a closed
 /// mesh reloads closed (welded on exact bits) with M1's counts; a mesh Loop cannot subdivide,

@@ -105,12 +105,11 @@ fn print_geometry(level: u32, triangles: u64) -> Result<()> {
 /// `--surface loop`: M1, the valence configurations and the basis function tables built.
 fn print_loop(a: &InfoArgs, path: &str, mesh: &Mesh) -> Result<()> {
     let lattice = meshrefine::surface::loop_::Lattice::new(a.bft_level);
-    let report = |p| note(format_args!("{}: {p}", path));
     let data = LoopData::new(
         mesh,
         a.boundary,
         lattice,
-        meshrefine::surface::loop_::throttled(report),
+        meshrefine::surface::loop_::progress_line(path),
     )
     .map_err(|e| anyhow::anyhow!("'{}': the loop surface cannot subdivide it: {e}", path))?;
     out!(
@@ -130,7 +129,7 @@ fn print_loop(a: &InfoArgs, path: &str, mesh: &Mesh) -> Result<()> {
         data.tables.configs.len(),
         configs.join(" ")
     );
-    let control = || data.tables.faces.iter().map(|f| f.control.len());
+    let control = || data.faces.iter().map(|f| f[1] & 0xffff);
     out!(
         "control points per face: {} to {}",
         control().min().unwrap_or(0),

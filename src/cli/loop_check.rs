@@ -9,6 +9,7 @@
 #![forbid(unsafe_code)]
 
 use meshrefine::mesh::{LoadReport, Mesh};
+use meshrefine::subdiv::bft::{control_estimate, CONTROL_LIMIT};
 use meshrefine::subdiv::{Topology, TopologyError};
 
 /// Loop subdivides the file's topology, which a dropped face would change (a hole where it
@@ -70,17 +71,45 @@ pub fn topology_refusal(mesh: &Mesh, report: &LoadReport) -> Option<String> {
     // duplicate faces are gone); said without M1's indices, which mean nothing to the user.
     let m1 = meshrefine::subdiv::m1_topology(mesh);
     drop(m0);
-    m1.err().map(|e| {
-        format!(
+    match m1 {
+        Err(e) => Some(format!(
             "after one Loop step its topology breaks ({}), which Loop subdivision cannot continue from",
             match e {
                 TopologyError::RepeatedVertex { .. } => "a face repeats a vertex",
                 TopologyError::NonManifoldEdge { .. } => "an edge is shared by more than two faces",
                 TopologyError::OrientationConflict { .. } => "the faces are not consistently oriented",
                 TopologyError::NonManifoldVertex { .. } => "a vertex joins separate fans of faces",
+                TopologyError::TooManyControlPoints { .. } => "its faces list too many control points",
             }
+        )),
+        Ok(m1) => size_refusal(&m1, report),
+    }
+}
+
+/// Why the basis function tables of M1 (`m1`) would be too large to build, estimated before
+/// building them ([`control_estimate`]): the faces' control lists past [`CONTROL_LIMIT`].
+fn size_refusal(m1: &Topology, report: &LoadReport) -> Option<String> {
+    let (total, most) = control_estimate(m1);
+    if total <= CONTROL_LIMIT {
+        return None;
+    }
+    const MIB: u64 = 1 << 20;
+    // M1's vertex points keep M0's numbers (the file's vertices); an edge point's valence is
+    // at most 6 inside, so the vertex listed most is one of the file's.
+    let vertex = most.map_or(String::new(), |(v, _)| {
+        let (ring, on_boundary) = m1.one_ring(v);
+        format!(
+            " ({} has {} neighbours{}, and each face around it lists them all)",
+            report.vertex(v),
+            ring.len(),
+            if on_boundary { " on the boundary" } else { "" }
         )
-    })
+    });
+    Some(format!(
+        "its faces after one Loop step would list about {total} control points{vertex}, {} MiB, past the limit of {CONTROL_LIMIT} control points ({} MiB) that the loop surface's basis function tables take (the lists grow with the square of a vertex's valence)",
+        (4 * total).div_ceil(MIB),
+        4 * CONTROL_LIMIT / MIB
+    ))
 }
 
 fn m0_message(mesh: &Mesh, report: &LoadReport, e: &TopologyError) -> String {
@@ -115,6 +144,8 @@ fn m0_message(mesh: &Mesh, report: &LoadReport, e: &TopologyError) -> String {
                 v(b)
             )
         }
+        // Only M1 is checked for its size (`size_refusal`).
+        TopologyError::TooManyControlPoints { .. } => e.to_string(),
         TopologyError::NonManifoldVertex { vertex, fans } => format!(
             "{}{} is non-manifold: its faces form {fans} separate fans, not one disk or half-disk, which Loop subdivision needs",
             v(vertex),
@@ -171,5 +202,38 @@ mod tests {
             "{e}"
         );
         assert_eq!(refusal("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"), None);
+    }
+
+    /// A bicone of 2n triangles: two poles of valence n (the file's vertices 1 and 2).
+    fn bicone(n: u32) -> String {
+        let mut obj = String::from("v 0 0 1\nv 0 0 -1\n");
+        for i in 0..n {
+            let a = std::f64::consts::TAU * i as f64 / n as f64;
+            obj += &format!("v {} {} 0\n", a.cos(), a.sin());
+        }
+        for i in 0..n {
+            let (a, b) = (3 + i, 3 + (i + 1) % n);
+            obj += &format!("f 1 {a} {b}\nf 2 {b} {a}\n");
+        }
+        obj
+    }
+
+    /// An absurd valence is refused before anything is built, naming the limit and the vertex;
+    /// a high one within the limit is not.
+    #[test]
+    fn an_absurd_valence_is_refused_naming_the_limit() {
+        let e = refusal(&bicone(20_000)).unwrap();
+        assert!(
+            e.starts_with(
+                "its faces after one Loop step would list about 802960000 control points"
+            ),
+            "{e}"
+        );
+        assert!(e.contains("vertex 1 has 20000 neighbours"), "{e}");
+        assert!(
+            e.contains("past the limit of 33554432 control points (128 MiB)"),
+            "{e}"
+        );
+        assert_eq!(refusal(&bicone(3000)), None);
     }
 }

@@ -18,7 +18,7 @@ use crate::gpu::{
     vk, Buffer, BufferDesc, Cmd, CommandPool, Context, DescriptorPool, DescriptorSetLayout,
     Pipeline, PipelineLayout,
 };
-use crate::subdiv::bft::{throttled, Lattice};
+use crate::subdiv::bft::{progress_line, Lattice};
 use crate::subdiv::{Boundary, LoopData, LoopFrame, Stencil};
 use crate::surface::RecordKind;
 use glam::Vec3;
@@ -459,12 +459,7 @@ impl LoopScene {
         lattice: Lattice,
     ) -> Result<Self, RenderError> {
         let mesh = &scene.data.mesh;
-        let data = LoopData::new(
-            mesh,
-            boundary,
-            lattice,
-            throttled(|p| log::info!("loop surface: {p}")),
-        )?;
+        let data = LoopData::new(mesh, boundary, lattice, progress_line("loop surface"))?;
         loop_limits(&data, &ctx.info.limits)?;
         let pass = LoopPass::new(ctx, pool, &data, &mesh.positions)?;
         let elements = MeshData {

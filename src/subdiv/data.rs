@@ -25,6 +25,8 @@ pub struct LoopData {
     /// M1 from M0: one computational entry per M1 vertex.
     pub stencils: Vec<Stencil>,
     pub m1: Topology,
+    /// The tables; their faces' control points are in `control`, and each
+    /// [`bft::FaceConfig::control`] here is left empty.
     pub tables: Tables,
     /// Per M1 face: (its table's first entry in `table_rows`, control points K | the table's
     /// column pairs ([`bft::Config::pairs`]) << 16, first control index, orientation
@@ -96,10 +98,12 @@ impl LoopData {
         let topo0 = Topology::of_mesh(mesh)?;
         let stencils = stencils(&topo0, boundary);
         let m1 = Topology::new(&refined_faces(&topo0), stencils.len())?;
-        let tables = bft::build(&m1, boundary, lattice, progress)?;
+        bft::check_size(&m1)?;
+        let mut tables = bft::build(&m1, boundary, lattice, progress)?;
         let mut faces = Vec::with_capacity(m1.faces.len());
-        let mut control = Vec::new();
-        for fc in &tables.faces {
+        let listed = tables.faces.iter().map(|fc| padded(fc.control.len())).sum();
+        let mut control = Vec::with_capacity(listed);
+        for fc in &mut tables.faces {
             let c = &tables.configs[fc.config as usize];
             debug_assert!(c.control < 1 << 16);
             faces.push([
@@ -111,6 +115,8 @@ impl LoopData {
             control.extend(&fc.control);
             let k4 = padded(fc.control.len());
             control.extend(std::iter::repeat_n(fc.control[0], k4 - fc.control.len()));
+            // Kept once, here (a face around a vertex of valence n lists n + 1 or more).
+            fc.control = Vec::new();
         }
         let mut ring_offsets = Vec::with_capacity(m1.vertex_count + 1);
         let mut rings = Vec::new();

@@ -20,6 +20,14 @@ pub enum TopologyError {
     OrientationConflict { a: u32, b: u32 },
     #[error("vertex {vertex} is non-manifold: its faces form {fans} separate fans, not one disk or half-disk")]
     NonManifoldVertex { vertex: u32, fans: usize },
+    /// Past [`crate::subdiv::bft::CONTROL_LIMIT`], estimated before anything is built.
+    #[error("its faces after one Loop step would list about {listed} control points (vertex {vertex} has {valence} neighbours, and each face around it lists them all), past the limit of {limit} control points that the basis function tables take")]
+    TooManyControlPoints {
+        listed: u64,
+        vertex: u32,
+        valence: usize,
+        limit: u64,
+    },
 }
 
 /// A triangle mesh's half-edge topology. Half-edge `3f + k` runs from corner k of face f to

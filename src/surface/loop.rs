@@ -25,7 +25,7 @@ use glam::Vec3;
 /// What the rest of the crate names of Loop subdivision (`crate::subdiv`), through this surface:
 /// its boundary rule and table levels (build options), the per-mesh data and M1 the mirror
 /// reads, the error of a mesh Loop cannot subdivide, and the tables' progress reports.
-pub use crate::subdiv::bft::{throttled, Lattice, Progress, DEFAULT_LMAX, MAX_LMAX};
+pub use crate::subdiv::bft::{progress_line, throttled, Lattice, Progress, DEFAULT_LMAX, MAX_LMAX};
 pub use crate::subdiv::{Boundary, LoopData, LoopFrame, TopologyError};
 
 /// The level from which the normal field is summed per fragment instead of per vertex: 153

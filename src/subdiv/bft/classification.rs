@@ -5,7 +5,7 @@
 //! independently, so [`super::build`] shares them among threads.
 #![forbid(unsafe_code)]
 
-use super::Orient;
+use super::{Orient, RING_REACH};
 use crate::subdiv::Topology;
 use std::collections::HashMap;
 
@@ -75,7 +75,9 @@ impl Labels {
 
 /// Canonical labelling of face `f` in orientation `o` into `labels` (cleared first): the corners,
 /// then each corner's one-ring (counter-clockwise, or clockwise for the mirror image, from the
-/// next canonical corner).
+/// next canonical corner, or from the boundary). A boundary fan longer than twice
+/// [`RING_REACH`] and two is labelled only that far each way from the face, then its two ends
+/// ([`truncated`]).
 pub(super) fn label(
     topo: &Topology,
     nb: &Neighbourhoods,
@@ -96,6 +98,12 @@ pub(super) fn label(
         // next corner, a neighbour since the face is (c_k, c_k+1, ...).
         let at = |i: usize| if o.mirror { ring[n - 1 - i] } else { ring[i] };
         let next = corners[(k + 1) % 3];
+        if let Some((lo, hi)) = truncated(&at, n, *on_boundary, &corners) {
+            for i in (lo..=hi).chain([0, n - 1]) {
+                labels.add(at(i));
+            }
+            continue;
+        }
         let start = if *on_boundary {
             0
         } else {
@@ -105,6 +113,30 @@ pub(super) fn label(
             labels.add(at((start + i) % n));
         }
     }
+}
+
+/// Where a boundary fan is longer than 2 · [`RING_REACH`] + 2, the places of its ring (walked
+/// by `at` from the boundary, `n` of them) within that reach of the face's other corners. A
+/// boundary vertex's rule and limit mask weigh only its two ends, so the face's weights reach no
+/// further round the fan than that, and the ends through the vertex's own rule: faces whose
+/// fans agree that far have equal tables (all of a wide fan's middle faces, and the faces at
+/// the same place from an end whatever the fan's length), known before building them, and
+/// their labels and keys say so ([`label`], [`key_of`]).
+fn truncated(
+    at: &impl Fn(usize) -> u32,
+    n: usize,
+    on_boundary: bool,
+    corners: &[u32; 3],
+) -> Option<(usize, usize)> {
+    if !on_boundary || n <= 2 * RING_REACH + 2 {
+        return None;
+    }
+    let places: Vec<usize> = (0..n).filter(|&i| corners.contains(&at(i))).collect();
+    let (first, last) = (*places.first()?, *places.last()?);
+    Some((
+        first.saturating_sub(RING_REACH),
+        (last + RING_REACH).min(n - 1),
+    ))
 }
 
 /// How well orientation `o` of face `f` frames it, smaller first: canonical corner 0 is its
@@ -150,16 +182,32 @@ fn key_of(
     labels: &mut Labels,
 ) -> Vec<[u32; 3]> {
     label(topo, nb, f, o, labels);
-    let mut faces: Vec<u32> = labels.order[..3]
+    // An inside corner 0's fan is faces (0, 1, 2), (0, 2, 3), ..., (0, n, 1) in labels, whatever
+    // the face: where that ring is long, one entry (its length) stands for it, so a face around
+    // a vertex of valence n is keyed in the time of labelling it, not of sorting n faces.
+    let (ring, on_boundary) = &nb.rings[labels.order[0] as usize];
+    let long = !on_boundary && ring.len() > 2 * RING_REACH + 2;
+    let corners = if long { 1..3 } else { 0..3 };
+    let mut faces: Vec<u32> = labels.order[corners]
         .iter()
         .flat_map(|&c| nb.faces[c as usize].iter().copied())
         .collect();
     faces.sort_unstable();
     faces.dedup();
+    // Faces beyond a truncated fan's labels are left out (their labels would say nothing but
+    // how wide the fan is), and a marker says the fan was truncated.
     let mut key: Vec<[u32; 3]> = faces
         .iter()
         .map(|&g| labelled(&topo.faces[g as usize], labels, o.mirror))
         .collect();
+    let whole = key.len();
+    key.retain(|t| !t.contains(&u32::MAX));
+    if key.len() < whole {
+        key.push([u32::MAX; 3]);
+    }
+    if long {
+        key.push([u32::MAX, u32::MAX, ring.len() as u32]);
+    }
     key.sort_unstable();
     key
 }
@@ -197,9 +245,14 @@ pub(super) fn classify(
         // The smallest (frame, key) over the three rotations and the mirror image: a
         // configuration and its mirror share one table, and faces alike near their
         // extraordinary vertex are in the same frame ([`frame`]).
+        // Only the orientations that frame the face best can have the smallest (frame, key):
+        // the others' keys (as long as the largest valence at the face) are not computed.
+        let frames: Vec<(Orient, (u8, usize))> =
+            Orient::all().map(|o| (o, frame(topo, nb, f, o))).collect();
+        let first = frames.iter().map(|x| x.1).min().expect("six orientations");
         let mut best: Option<(Framed, Orient, Vec<u32>)> = None;
-        for o in Orient::all() {
-            let framed = (frame(topo, nb, f, o), key_of(topo, nb, f, o, &mut labels));
+        for (o, _) in frames.into_iter().filter(|x| x.1 == first) {
+            let framed = (first, key_of(topo, nb, f, o, &mut labels));
             if best.as_ref().is_none_or(|b| framed < b.0) {
                 best = Some((framed, o, labels.order.clone()));
             }

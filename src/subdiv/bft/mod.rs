@@ -36,6 +36,14 @@
 //! (`frame`). Stored so, every configuration up to valence 18 takes 0.77 MiB at level 5;
 //! as whole tables, 1.91 MiB.
 //!
+//! At high valence the build stays linear in the valence ([`RING_REACH`]): weights are sparse
+//! (each summed in the dense sum's order: the same bits), an inside vertex's ring beyond the
+//! face's reach shares one column (it enters only through the vertex's own rule, the ring's
+//! sum), and a wide boundary fan's middle faces are labelled only as far as they reach, one
+//! configuration known before building. The faces' control lists grow with the square of an
+//! inside vertex's valence (each face around it lists its whole ring); [`check_size`] refuses
+//! a mesh past [`CONTROL_LIMIT`] before anything is built.
+//!
 //! One idea a file: `lattice.rs` (the lattice, a face's orientation in it), `classification.rs`
 //! (which configuration each face has), `table.rs` (one configuration's table, and sharing equal
 //! ones), `packing.rs` (rows stored once, as the drawing stages read them); this file builds them
@@ -56,6 +64,63 @@ use classification::{classify, Classified, Labels, Neighbourhoods};
 use packing::arrange;
 use std::collections::HashMap;
 use table::{compact, table};
+
+/// How far round a vertex's ring a face's own weights reach, in places (edges) from the face:
+/// the limit over the face's sub-faces sees the ring at most `lmax` + 2 places away (one a step,
+/// one for the limit mask, one for the sub-face), other than through the vertex's own rule,
+/// which weighs the sum of its whole ring inside and its two ends on a boundary. Beyond it an
+/// inside ring's vertices share one column of the table, and a boundary fan's faces share one
+/// table (`far_ring` in table.rs, `truncated` in classification.rs). A wide margin over
+/// [`MAX_LMAX`] + 2: rings of up to 2 · 20 + 2 vertices are taken whole.
+pub const RING_REACH: usize = 20;
+
+/// The most control points the faces of M1 may list together ([`control_estimate`]): 2^25, 128
+/// MiB as the drawing stages read them. A face around an inside vertex of valence n lists all
+/// n of its ring (its limit near the vertex weighs them all), so the lists grow with the square
+/// of the valence: two poles of valence 4,000 list 2^25; the build holds them about twice.
+pub const CONTROL_LIMIT: u64 = 1 << 25;
+
+/// About how many control points the faces of `topo` (M1) will list, known before anything is
+/// built: each face lists its corners' one-rings, a wide boundary fan only as far as
+/// [`RING_REACH`] (an overestimate by the rings' overlaps, at most a few a face).
+/// Returns the estimate and the vertex whose faces list the most with their count.
+pub fn control_estimate(topo: &Topology) -> (u64, Option<(u32, u64)>) {
+    let reach = RING_REACH as u64;
+    let mut total = 0;
+    let mut most: Option<(u32, u64)> = None;
+    for v in 0..topo.vertex_count as u32 {
+        let (ring, on_boundary) = topo.one_ring(v);
+        let n = ring.len() as u64;
+        let listed = if !on_boundary {
+            n * (n + 1)
+        } else if n <= 2 * reach + 2 {
+            n.saturating_sub(1) * (n + 1)
+        } else {
+            // Each face lists its fan only as far as it reaches, and the two ends.
+            (n - 1) * (2 * reach + 4)
+        };
+        total += listed;
+        if most.is_none_or(|(_, m)| listed > m) {
+            most = Some((v, listed));
+        }
+    }
+    (total, most)
+}
+
+/// [`TopologyError::TooManyControlPoints`] where the faces of `topo` (M1) would list more than
+/// [`CONTROL_LIMIT`] control points ([`control_estimate`]).
+pub fn check_size(topo: &Topology) -> Result<(), TopologyError> {
+    let (listed, most) = control_estimate(topo);
+    match most {
+        Some((vertex, _)) if listed > CONTROL_LIMIT => Err(TopologyError::TooManyControlPoints {
+            listed,
+            vertex,
+            valence: topo.one_ring(vertex).0.len(),
+            limit: CONTROL_LIMIT,
+        }),
+        _ => Ok(()),
+    }
+}
 
 /// The configuration of one face: which table, how its corners map to the table's, and its
 /// control points (M1 vertex indices, one per column of the table).
@@ -79,6 +144,9 @@ pub struct Tables {
     pub faces: Vec<FaceConfig>,
     /// The tables as stored on the GPU.
     pub packed: Packed,
+    /// The weights the build computed: every vertex's non-zero weights, summed over every
+    /// table's refinement steps (its work and, step by step, its memory; linear in the valence).
+    pub work: u64,
 }
 
 impl Tables {
@@ -125,6 +193,25 @@ pub fn throttled(mut report: impl FnMut(Progress)) -> impl FnMut(Progress) {
     }
 }
 
+/// [`throttled`] reports on one line of standard error that each report rewrites
+/// (`"{what}: 1234 of 24000 M1 faces classified"`), ended when every table is built: nothing
+/// for a build under a second.
+pub fn progress_line(what: impl std::fmt::Display) -> impl FnMut(Progress) {
+    use std::io::Write;
+    let mut width = 0usize;
+    throttled(move |p| {
+        let line = format!("{what}: {p}");
+        let end = if matches!(p, Progress::Tables(d, t) if d == t) {
+            "\n"
+        } else {
+            ""
+        };
+        let pad = width.saturating_sub(line.len());
+        width = line.len();
+        let _ = write!(std::io::stderr().lock(), "\r{line}{:pad$}{end}", "");
+    })
+}
+
 /// Find every face's configuration in `topo` (M1) and build the tables of those it has.
 /// `progress` hears how far it is as the work goes (faces classified, tables built), always on
 /// the calling thread, while the work is shared among the cores.
@@ -157,8 +244,10 @@ fn build_on(
     let shares = classify_faces(topo, &nb, threads, &mut progress);
     let (reps, faces) = number_configurations(shares, topo.faces.len());
     let keys: Vec<Vec<[u32; 3]>> = reps.iter().map(|r| r.2.clone()).collect();
-    let built = build_tables(topo, &nb, &reps, boundary, lattice, cores, &mut progress)?;
-    Ok(share_and_pack(built, faces, keys, lattice))
+    let (built, work) = build_tables(topo, &nb, &reps, boundary, lattice, cores, &mut progress)?;
+    let mut tables = share_and_pack(built, faces, keys, lattice);
+    tables.work = work;
+    Ok(tables)
 }
 
 /// Every face's configuration key, classified on `threads` threads in contiguous shares (one a
@@ -241,7 +330,11 @@ fn number_configurations(shares: Vec<Classified>, n: usize) -> (Vec<Rep>, Vec<Fa
     (reps, faces)
 }
 
-/// The table of every configuration, in their order, built on up to `cores` threads.
+/// A table and the weights its build computed.
+type Built = (Config, u64);
+
+/// The table of every configuration, in their order, built on up to `cores` threads, and the
+/// weights their builds computed.
 fn build_tables(
     topo: &Topology,
     nb: &Neighbourhoods,
@@ -250,7 +343,7 @@ fn build_tables(
     lattice: Lattice,
     cores: usize,
     progress: &mut impl FnMut(Progress),
-) -> Result<Vec<Config>, TopologyError> {
+) -> Result<(Vec<Config>, u64), TopologyError> {
     let total = reps.len();
     // Tables too are independent: thread t builds configurations t, t + T, t + 2T, ...
     let builders = cores.min(total).max(1);
@@ -269,7 +362,7 @@ fn build_tables(
         out
     };
     progress(Progress::Tables(0, total));
-    let mut built: Vec<(usize, Result<Config, TopologyError>)> = std::thread::scope(|s| {
+    let mut built: Vec<(usize, Result<Built, TopologyError>)> = std::thread::scope(|s| {
         let others: Vec<_> = (1..builders)
             .map(|t| {
                 let build_share = &build_share;
@@ -290,9 +383,10 @@ fn build_tables(
     let built = built
         .into_iter()
         .map(|b| b.1)
-        .collect::<Result<Vec<Config>, TopologyError>>()?;
+        .collect::<Result<Vec<Built>, TopologyError>>()?;
     progress(Progress::Tables(total, total));
-    Ok(built)
+    let work = built.iter().map(|b| b.1).sum();
+    Ok((built.into_iter().map(|b| b.0).collect(), work))
 }
 
 /// Equal tables shared, columns arranged and cut to those weighed, each face's control points
@@ -322,6 +416,7 @@ fn share_and_pack(
         configs,
         faces,
         packed,
+        work: 0,
     }
 }
 
@@ -403,57 +498,145 @@ mod tests {
             ("fan24_open.obj", &[Boundary::EdgeAndCorner][..], 2),
         ] {
             let (mesh, _) = load_model(file);
-            let lattice = Lattice::new(lmax);
             for &boundary in boundaries {
-                let topo0 = Topology::of_mesh(&mesh).unwrap();
-                let p0: Vec<DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();
-                let m1 = loop_step(&topo0, &p0, boundary);
-                let t1 = Topology::new(&m1.faces, m1.positions.len()).unwrap();
-                let tables = build(&t1, boundary, lattice, |_| {}).unwrap();
-                for c in &tables.configs {
-                    assert_eq!(c.outside, 0.0, "{file}: weight outside the control points");
-                    for r in 0..lattice.rows() {
-                        let s: f64 = c.weights[r * c.control..(r + 1) * c.control].iter().sum();
-                        assert!((s - 1.0).abs() < 1e-12, "{file}: row {r} sums to {s}");
-                    }
-                }
-                // The reference: lmax more steps, then limits; the lattice vertices of each M1
-                // face are found by the same face numbering (4f + child).
-                let reference = subdivide_to_limit(&mesh, 1 + lmax, boundary).unwrap();
-                let diag = {
-                    let (lo, hi) = mesh.bounds();
-                    (hi - lo).length() as f64
-                };
-                let mut worst: f64 = 0.0;
-                for (f, fc) in tables.faces.iter().enumerate() {
-                    let c = &tables.configs[fc.config as usize];
-                    let eval = |i: u32, j: u32| -> DVec3 {
-                        let r = lattice.row(i, j);
-                        (0..c.control)
-                            .map(|k| {
-                                m1.positions[fc.control[k] as usize] * c.weights[r * c.control + k]
-                            })
-                            .sum()
-                    };
-                    // Canonical corners of the face, by the sub-face walk from face f.
-                    let mut tracked: Vec<(usize, [[u32; 2]; 3])> =
-                        vec![(f, lattice_corners(fc.orient, lattice))];
-                    for _ in 0..lmax {
-                        tracked = children_in_lattice(&tracked);
-                    }
-                    for (face, coords) in tracked {
-                        for (&v, c) in reference.faces[face].iter().zip(coords) {
-                            let d = (eval(c[0], c[1]) - reference.positions[v as usize]).length();
-                            worst = worst.max(d / diag);
-                        }
-                    }
-                }
-                assert!(
-                    worst < 1e-12,
-                    "{file} {boundary:?} lmax {lmax}: {worst:e} of the diagonal"
-                );
+                assert_limit_surface(file, &mesh, boundary, Lattice::new(lmax));
             }
         }
+    }
+
+    /// Past [`RING_REACH`]: a valence-48 pole's far ring shares a column, and a fan of 50 faces
+    /// truncates its middle faces' labels; the tables are still the limit surface.
+    #[test]
+    fn high_valence_tables_give_the_limit_surface() {
+        use crate::mesh::generate::{half_disc_fan_mesh, sphere_mesh};
+        let lattice = Lattice::new(3);
+        assert_limit_surface("sphere48", &sphere_mesh(48, 3), Boundary::EdgeOnly, lattice);
+        let fan = half_disc_fan_mesh(50);
+        for boundary in [Boundary::EdgeOnly, Boundary::EdgeAndCorner] {
+            let tables = assert_limit_surface("fan50", &fan, boundary, lattice);
+            // The fan's middle faces (places 21 to 28 of its 51) share one configuration.
+            assert!(
+                tables.keys.len() < 40,
+                "{} configurations",
+                tables.keys.len()
+            );
+        }
+    }
+
+    /// The tables of `mesh` evaluated at the lattice are the limit positions of M^(1 + lmax),
+    /// face by face; the weight outside the control points is zero and each row sums to one.
+    fn assert_limit_surface(
+        file: &str,
+        mesh: &crate::mesh::Mesh,
+        boundary: Boundary,
+        lattice: Lattice,
+    ) -> Tables {
+        let lmax = lattice.lmax;
+        let topo0 = Topology::of_mesh(mesh).unwrap();
+        let p0: Vec<DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();
+        let m1 = loop_step(&topo0, &p0, boundary);
+        let t1 = Topology::new(&m1.faces, m1.positions.len()).unwrap();
+        let tables = build(&t1, boundary, lattice, |_| {}).unwrap();
+        for c in &tables.configs {
+            assert_eq!(c.outside, 0.0, "{file}: weight outside the control points");
+            for r in 0..lattice.rows() {
+                let s: f64 = c.weights[r * c.control..(r + 1) * c.control].iter().sum();
+                assert!((s - 1.0).abs() < 1e-12, "{file}: row {r} sums to {s}");
+            }
+        }
+        // The reference: lmax more steps, then limits; the lattice vertices of each M1
+        // face are found by the same face numbering (4f + child).
+        let reference = subdivide_to_limit(mesh, 1 + lmax, boundary).unwrap();
+        let diag = {
+            let (lo, hi) = mesh.bounds();
+            (hi - lo).length() as f64
+        };
+        let mut worst: f64 = 0.0;
+        for (f, fc) in tables.faces.iter().enumerate() {
+            let c = &tables.configs[fc.config as usize];
+            let eval = |i: u32, j: u32| -> DVec3 {
+                let r = lattice.row(i, j);
+                (0..c.control)
+                    .map(|k| m1.positions[fc.control[k] as usize] * c.weights[r * c.control + k])
+                    .sum()
+            };
+            // Canonical corners of the face, by the sub-face walk from face f.
+            let mut tracked: Vec<(usize, [[u32; 2]; 3])> =
+                vec![(f, lattice_corners(fc.orient, lattice))];
+            for _ in 0..lmax {
+                tracked = children_in_lattice(&tracked);
+            }
+            for (face, coords) in tracked {
+                for (&v, c) in reference.faces[face].iter().zip(coords) {
+                    let d = (eval(c[0], c[1]) - reference.positions[v as usize]).length();
+                    worst = worst.max(d / diag);
+                }
+            }
+        }
+        assert!(
+            worst < 1e-12,
+            "{file} {boundary:?} lmax {lmax}: {worst:e} of the diagonal"
+        );
+        tables
+    }
+
+    /// Building the tables computes weights in proportion to the valence, not its square: a
+    /// bicone's two poles of valence 200 and 400 (a far ring in one column) and a boundary fan
+    /// of 200 and 400 faces (its middle faces one configuration). The weights computed are the
+    /// build's work and, step by step, its memory.
+    #[test]
+    fn building_is_linear_in_the_valence() {
+        use crate::mesh::generate::{half_disc_fan_mesh, sphere_mesh};
+        let build_of = |mesh: crate::mesh::Mesh| {
+            let t1 = crate::subdiv::m1_topology(&mesh).unwrap();
+            build(&t1, Boundary::EdgeOnly, Lattice::default(), |_| {}).unwrap()
+        };
+        // Weights per unit of valence, at most: a pole's configuration mesh keeps its ring
+        // about three rings deep through five steps, with up to 2 · RING_REACH + 3 weights a
+        // vertex; the fan builds 29 tables, each over the whole fan with a few weights a vertex.
+        for (name, n, per) in [("bicone", 200, 4_000), ("fan", 200, 25_000)] {
+            let mesh = |n| match name {
+                "bicone" => sphere_mesh(n, 2),
+                _ => half_disc_fan_mesh(n),
+            };
+            let (small, large) = (build_of(mesh(n)), build_of(mesh(2 * n)));
+            assert!(
+                large.work * 100 < small.work * 205,
+                "{name}: {} weights at {n}, {} at {}",
+                small.work,
+                large.work,
+                2 * n
+            );
+            // As many tables either way: the configurations do not grow with the valence.
+            assert_eq!(small.configs.len(), large.configs.len(), "{name}");
+            assert!(small.work < per * n as u64, "{name}: {}", small.work);
+        }
+    }
+
+    /// Two poles of valence 20,000 would list 8 · 10^8 control points: refused before anything
+    /// is built, naming the limit; two of valence 3,000 are not.
+    #[test]
+    fn an_absurd_valence_is_refused_before_building() {
+        use crate::mesh::generate::sphere_mesh;
+        let m1 = |n| crate::subdiv::m1_topology(&sphere_mesh(n, 2)).unwrap();
+        let e = check_size(&m1(20_000)).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                TopologyError::TooManyControlPoints {
+                    valence: 20_000,
+                    limit: CONTROL_LIMIT,
+                    ..
+                }
+            ),
+            "{e}"
+        );
+        assert!(
+            e.to_string()
+                .contains("past the limit of 33554432 control points"),
+            "{e}"
+        );
+        check_size(&m1(3_000)).unwrap();
     }
 
     /// M1 of a model (`EdgeOnly` boundaries).

@@ -5,7 +5,7 @@
 #![forbid(unsafe_code)]
 
 use super::classification::{label, Labels, Neighbourhoods};
-use super::{children_in_lattice, lattice_corners, Lattice, Orient};
+use super::{children_in_lattice, lattice_corners, Lattice, Orient, RING_REACH};
 use crate::subdiv::{limit_stencil, refined_faces, stencils, Boundary, Topology, TopologyError};
 use std::collections::HashMap;
 
@@ -90,7 +90,8 @@ pub(super) fn compact(
 }
 
 /// The table of face `f` in orientation `o`, from its two-ring configuration mesh: cut out,
-/// refined `lmax` times carrying the weights, limit masks at the lattice points.
+/// refined `lmax` times carrying the weights, limit masks at the lattice points. Returns the
+/// table and the weights its refinement computed (the build's work, linear in the valence).
 pub(super) fn table(
     topo: &Topology,
     nb: &Neighbourhoods,
@@ -99,22 +100,139 @@ pub(super) fn table(
     o: Orient,
     boundary: Boundary,
     lattice: Lattice,
-) -> Result<Config, TopologyError> {
+) -> Result<(Config, u64), TopologyError> {
+    table_reaching(topo, nb, labels, f, o, boundary, lattice, RING_REACH)
+}
+
+/// [`table`], with the ring vertices more than `reach` places from the face sharing a column.
+#[allow(clippy::too_many_arguments)]
+fn table_reaching(
+    topo: &Topology,
+    nb: &Neighbourhoods,
+    labels: &mut Labels,
+    f: usize,
+    o: Orient,
+    boundary: Boundary,
+    lattice: Lattice,
+    reach: usize,
+) -> Result<(Config, u64), TopologyError> {
     label(topo, nb, f, o, labels);
     let control = labels.order.len();
     let (local, count) = configuration_mesh(topo, nb, labels, f, control);
-    let mesh = refine_weights(local, count, control, o, boundary, lattice)?;
-    let (weights, outside) = limit_rows(&mesh, control, boundary, lattice);
+    let far = far_ring(topo, nb, f, o, labels, control, &local, count, reach);
+    // Columns: the control points not far, one for the far ring together, one for the other
+    // cut-out vertices together.
+    let mut column = vec![0u32; control];
+    let mut near = 0;
+    for (l, c) in column.iter_mut().enumerate() {
+        if !far[l] {
+            *c = near;
+            near += 1;
+        }
+    }
+    let (far_column, outside_column) = (near, near + 1);
+    let far_count = control - near as usize;
+    for (l, c) in column.iter_mut().enumerate() {
+        if far[l] {
+            *c = far_column;
+        }
+    }
+    let dims = near as usize + 2;
+    let (mesh, work) = refine_weights(
+        local,
+        count,
+        dims,
+        |v| column.get(v).copied().unwrap_or(outside_column),
+        o,
+        boundary,
+        lattice,
+    )?;
+    let dense = limit_rows(&mesh, dims, boundary, lattice);
+    // Each far vertex weighs the same (see `far_ring`): the far column's weight over their count.
+    let (far, column) = (&far, &column);
+    let weights = (0..lattice.rows())
+        .flat_map(|r| {
+            let row = &dense[r * dims..(r + 1) * dims];
+            column.iter().enumerate().map(move |(l, &c)| {
+                if far[l] {
+                    row[c as usize] / far_count as f64
+                } else {
+                    row[c as usize]
+                }
+            })
+        })
+        .collect();
+    let outside = (0..lattice.rows())
+        .map(|r| dense[r * dims + outside_column as usize].abs())
+        .fold(0.0, f64::max);
     let (valence, is_boundary) = corner_valence(topo, topo.faces[f], o);
-    Ok(Config {
-        control,
-        valence,
-        boundary: is_boundary,
-        weights,
-        outside,
-        symmetry: None,
-        pairs: 0,
-    })
+    Ok((
+        Config {
+            control,
+            valence,
+            boundary: is_boundary,
+            weights,
+            outside,
+            symmetry: None,
+            pairs: 0,
+        },
+        work,
+    ))
+}
+
+/// Which of the control points of face `f` in orientation `o` (labels 0 .. `control`) are far
+/// round its corner 0's ring, where that corner is inside: more than `reach` edges of its
+/// configuration mesh (`local`, over `count` vertices) from the face's other corners by paths
+/// that avoid corner 0. Every rule treats the ring's vertices alike (the vertex rule and limit
+/// mask weigh their sum, a spoke's edge point its two neighbours on the ring), and a far vertex
+/// reaches the face only through corner 0's rules, so the far vertices' weights are equal in
+/// every row: they can share one column, which makes a table's work linear in the valence.
+#[allow(clippy::too_many_arguments)]
+fn far_ring(
+    topo: &Topology,
+    nb: &Neighbourhoods,
+    f: usize,
+    o: Orient,
+    labels: &Labels,
+    control: usize,
+    local: &[[u32; 3]],
+    count: usize,
+    reach: usize,
+) -> Vec<bool> {
+    let mut far = vec![false; control];
+    let c0 = topo.faces[f][o.stored(0)];
+    let (ring, on_boundary) = &nb.rings[c0 as usize];
+    if *on_boundary || ring.len() <= 2 * reach + 2 {
+        return far;
+    }
+    // Breadth first from corners 1 and 2 (labels 1 and 2), never through corner 0 (label 0).
+    let mut adjacent: Vec<Vec<u32>> = vec![Vec::new(); count];
+    for t in local {
+        for k in 0..3 {
+            adjacent[t[k] as usize].push(t[(k + 1) % 3]);
+            adjacent[t[(k + 1) % 3] as usize].push(t[k]);
+        }
+    }
+    let mut near = vec![false; count];
+    let mut frontier: Vec<u32> = vec![1, 2];
+    near[1] = true;
+    near[2] = true;
+    for _ in 0..reach {
+        let mut next = Vec::new();
+        for &v in &frontier {
+            for &u in &adjacent[v as usize] {
+                if u != 0 && !std::mem::replace(&mut near[u as usize], true) {
+                    next.push(u);
+                }
+            }
+        }
+        frontier = next;
+    }
+    for &v in ring {
+        let l = labels.of(v) as usize;
+        far[l] = !near[l];
+    }
+    far
 }
 
 /// The configuration mesh of face `f` (labelled, its `control` points first): the faces
@@ -149,53 +267,125 @@ fn configuration_mesh(
     (local, count)
 }
 
-/// A configuration mesh after `lmax` Loop steps: its topology, every vertex's weights (`dims`
-/// a vertex: one per control point, then the rest together), and the lattice coordinates of
-/// the faces that tile the face.
+/// A configuration mesh after `lmax` Loop steps: its topology, every vertex's weights (sparse:
+/// the columns it weighs), and the lattice coordinates of the faces that tile the face.
 struct Refined {
     topo: Topology,
-    w: Vec<f64>,
-    dims: usize,
+    w: Sparse,
     tracked: Vec<(usize, [[u32; 2]; 3])>,
 }
 
+/// Every vertex's weights, sparse: vertex v weighs `col[start[v]..start[v + 1]]` (ascending)
+/// with `val[..]`. A column a vertex does not list it weighs exactly zero.
+#[derive(Default)]
+struct Sparse {
+    start: Vec<usize>,
+    col: Vec<u32>,
+    val: Vec<f64>,
+}
+
+impl Sparse {
+    fn row(&self, v: usize) -> (&[u32], &[f64]) {
+        let (a, b) = (self.start[v], self.start[v + 1]);
+        (&self.col[a..b], &self.val[a..b])
+    }
+
+    /// `rows` of `self`, in that order.
+    fn gather(&self, rows: impl Iterator<Item = usize>) -> Sparse {
+        let mut out = Sparse {
+            start: vec![0],
+            ..Sparse::default()
+        };
+        for v in rows {
+            let (c, x) = self.row(v);
+            out.col.extend_from_slice(c);
+            out.val.extend_from_slice(x);
+            out.start.push(out.col.len());
+        }
+        out
+    }
+}
+
+/// Sums of weighted sparse rows over `dims` columns, each column's terms added in the parents'
+/// order: a column a parent does not list adds its exact zero, which changes no non-negative
+/// sum, so every weight has the same bits as the dense sum over all columns.
+struct Accumulator {
+    acc: Vec<f64>,
+    seen: Vec<bool>,
+    touched: Vec<u32>,
+}
+
+impl Accumulator {
+    fn new(dims: usize) -> Self {
+        Self {
+            acc: vec![0.0; dims],
+            seen: vec![false; dims],
+            touched: Vec::new(),
+        }
+    }
+
+    /// `Σ weights[i] · w[parents[i]]`, appended to `out` as its next row.
+    fn push(&mut self, parents: &[u32], weights: &[f64], w: &Sparse, out: &mut Sparse) {
+        for (&p, &wt) in parents.iter().zip(weights) {
+            let (cols, xs) = w.row(p as usize);
+            for (&c, &x) in cols.iter().zip(xs) {
+                let c = c as usize;
+                if !self.seen[c] {
+                    self.seen[c] = true;
+                    self.touched.push(c as u32);
+                    self.acc[c] = 0.0;
+                }
+                self.acc[c] += wt * x;
+            }
+        }
+        self.touched.sort_unstable();
+        for &c in &self.touched {
+            out.col.push(c);
+            out.val.push(self.acc[c as usize]);
+            self.seen[c as usize] = false;
+        }
+        self.touched.clear();
+        out.start.push(out.col.len());
+    }
+}
+
 /// `lmax` Loop steps on the configuration mesh `local` (over `count` vertices), applied to the
-/// weights and pruned to the face's surroundings after each.
+/// weights and pruned to the face's surroundings after each. Vertex v starts with weight one on
+/// column `column(v)`. Returns the refined mesh and the weights computed (for [`Config::work`]).
 fn refine_weights(
     local: Vec<[u32; 3]>,
     mut count: usize,
-    control: usize,
+    dims: usize,
+    column: impl Fn(usize) -> u32,
     o: Orient,
     boundary: Boundary,
     lattice: Lattice,
-) -> Result<Refined, TopologyError> {
-    // Weights of every local vertex on the control points, level by level, and in one more
-    // column its weight on all the other cut-out vertices together: every rule and limit mask
-    // weighs with non-negative weights, so that sum is zero exactly when each of them is (the
-    // columns are independent: the control points' weights are the same bits as with a column
-    // for each cut-out vertex, at a fraction of the work).
-    let dims = control + 1;
-    let mut w: Vec<f64> = vec![0.0; count * dims];
-    for v in 0..count {
-        w[v * dims + v.min(control)] = 1.0;
-    }
+) -> Result<(Refined, u64), TopologyError> {
+    // Every rule and limit mask weighs with non-negative weights, so a column shared by several
+    // vertices (the other cut-out vertices together, or a far ring's vertices) is zero exactly
+    // when each of theirs is, and the other columns are the same bits as with a column each.
+    let mut w = Sparse {
+        start: (0..=count).collect(),
+        col: (0..count).map(&column).collect(),
+        val: vec![1.0; count],
+    };
+    let mut acc = Accumulator::new(dims);
+    let mut work = 0u64;
     let mut topo_l = Topology::new(&local, count)?;
     // Lattice coordinates (in units of 1/S) of the tracked faces' corners; the face's stored
     // corner k is canonical corner `o.canonical(k)`.
     let mut tracked: Vec<(usize, [[u32; 2]; 3])> = vec![(0, lattice_corners(o, lattice))];
     for _ in 0..lattice.lmax {
         let st = stencils(&topo_l, boundary);
-        let mut next = vec![0.0; st.len() * dims];
-        for (i, sv) in st.iter().enumerate() {
+        let mut next = Sparse {
+            start: vec![0],
+            ..Sparse::default()
+        };
+        for sv in &st {
             debug_assert!(sv.weights.iter().all(|&x| x >= 0.0), "negative rule weight");
-            let out = &mut next[i * dims..(i + 1) * dims];
-            for (&p, &wt) in sv.parents.iter().zip(&sv.weights) {
-                let src = &w[p as usize * dims..(p as usize + 1) * dims];
-                for (o, &x) in out.iter_mut().zip(src) {
-                    *o += wt * x;
-                }
-            }
+            acc.push(&sv.parents, &sv.weights, &w, &mut next);
         }
+        work += next.col.len() as u64;
         tracked = children_in_lattice(&tracked);
         // Only what is within PRUNE_RINGS rings of the face goes on (a valence-300 vertex
         // would otherwise make a million-face configuration mesh at the last level); the new
@@ -204,40 +394,32 @@ fn refine_weights(
             prune(&refined_faces(&topo_l), st.len(), &mut tracked, PRUNE_RINGS);
         count = old_of.len();
         let origin = split_fans(&mut faces, &mut count, |v| rim[v as usize]);
-        w = old_of
-            .iter()
-            .chain(origin.iter().map(|&o| &old_of[o as usize]))
-            .flat_map(|&old| {
-                next[old as usize * dims..(old as usize + 1) * dims]
-                    .iter()
-                    .copied()
-            })
-            .collect();
+        w = next.gather(
+            old_of
+                .iter()
+                .chain(origin.iter().map(|&o| &old_of[o as usize]))
+                .map(|&old| old as usize),
+        );
         topo_l = Topology::new(&faces, count)?;
     }
-    Ok(Refined {
-        topo: topo_l,
-        w,
-        dims,
-        tracked,
-    })
+    Ok((
+        Refined {
+            topo: topo_l,
+            w,
+            tracked,
+        },
+        work,
+    ))
 }
 
-/// The table's rows: the limit mask at each lattice point applied to the weights (`rows ×
-/// control`), and the largest weight on the other cut-out vertices.
-fn limit_rows(
-    mesh: &Refined,
-    control: usize,
-    boundary: Boundary,
-    lattice: Lattice,
-) -> (Vec<f64>, f64) {
+/// The table's rows over the `dims` columns: the limit mask at each lattice point applied to
+/// the weights (`rows × dims`, dense).
+fn limit_rows(mesh: &Refined, dims: usize, boundary: Boundary, lattice: Lattice) -> Vec<f64> {
     let Refined {
         topo: topo_l,
         w,
-        dims,
         tracked,
     } = mesh;
-    let dims = *dims;
     // The lattice vertex at each row, then its limit mask.
     let rows = lattice.rows();
     let mut at_row = vec![u32::MAX; rows];
@@ -246,8 +428,8 @@ fn limit_rows(
             at_row[lattice.row(coords[k][0], coords[k][1])] = topo_l.faces[face][k];
         }
     }
-    let mut weights = vec![0.0; rows * control];
-    let mut outside: f64 = 0.0;
+    let mut acc = Accumulator::new(dims);
+    let mut weights = vec![0.0; rows * dims];
     for (r, &v) in at_row.iter().enumerate() {
         debug_assert_ne!(v, u32::MAX);
         let mask = limit_stencil(topo_l, v, boundary);
@@ -255,19 +437,17 @@ fn limit_rows(
             mask.weights.iter().all(|&x| x >= 0.0),
             "negative limit weight"
         );
-        let mut full = vec![0.0; dims];
-        for (&p, &wt) in mask.parents.iter().zip(&mask.weights) {
-            for (o, &x) in full
-                .iter_mut()
-                .zip(&w[p as usize * dims..(p as usize + 1) * dims])
-            {
-                *o += wt * x;
-            }
+        let mut full = Sparse {
+            start: vec![0],
+            ..Sparse::default()
+        };
+        acc.push(&mask.parents, &mask.weights, w, &mut full);
+        let (cols, xs) = full.row(0);
+        for (&c, &x) in cols.iter().zip(xs) {
+            weights[r * dims + c as usize] = x;
         }
-        weights[r * control..(r + 1) * control].copy_from_slice(&full[..control]);
-        outside = outside.max(full[control].abs());
     }
-    (weights, outside)
+    weights
 }
 
 /// The valence [`Config::valence`] names, and whether any corner of face `t` (in orientation
@@ -414,4 +594,63 @@ fn split_fans(
         }
     }
     origin
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::generate::sphere_mesh;
+
+    /// A valence-60 pole's far ring sharing one column gives the table of a column each: the
+    /// far vertices' weights are equal, and every weight agrees to 1e-15.
+    #[test]
+    fn a_far_ring_in_one_column_is_the_ring_column_by_column() {
+        let mesh = sphere_mesh(60, 3);
+        let t1 = crate::subdiv::m1_topology(&mesh).unwrap();
+        let nb = Neighbourhoods::new(&t1);
+        let mut labels = Labels::new(t1.vertex_count);
+        // A face at the pole (M0's vertex 0, a vertex point of M1), the pole as corner 0.
+        let (f, o) = (0..t1.faces.len())
+            .flat_map(|f| Orient::all().map(move |o| (f, o)))
+            .find(|&(f, o)| t1.faces[f][o.stored(0)] == 0)
+            .unwrap();
+        let lattice = Lattice::new(3);
+        let build = |labels: &mut Labels, reach| {
+            let b = Boundary::EdgeOnly;
+            table_reaching(&t1, &nb, labels, f, o, b, lattice, reach).unwrap()
+        };
+        let (shared, shared_work) = build(&mut labels, RING_REACH);
+        let (whole, whole_work) = build(&mut labels, usize::MAX / 4);
+        assert_eq!(shared.control, whole.control);
+        assert!(shared_work < whole_work, "{shared_work} of {whole_work}");
+        label(&t1, &nb, f, o, &mut labels);
+        let (local, count) = configuration_mesh(&t1, &nb, &mut labels, f, whole.control);
+        let far = far_ring(
+            &t1,
+            &nb,
+            f,
+            o,
+            &labels,
+            whole.control,
+            &local,
+            count,
+            RING_REACH,
+        );
+        assert!(far.iter().filter(|&&x| x).count() > 10);
+        let k = whole.control;
+        for r in 0..lattice.rows() {
+            let far_weights: Vec<f64> = (0..k)
+                .filter(|&j| far[j])
+                .map(|j| whole.weights[r * k + j])
+                .collect();
+            for j in 0..k {
+                let (a, b) = (shared.weights[r * k + j], whole.weights[r * k + j]);
+                assert!((a - b).abs() <= 1e-15, "row {r} column {j}: {a} for {b}");
+            }
+            let (lo, hi) = far_weights
+                .iter()
+                .fold((f64::MAX, 0.0f64), |(l, h), &w| (l.min(w), h.max(w)));
+            assert!(hi - lo <= 1e-15, "row {r}: far weights from {lo} to {hi}");
+        }
+    }
 }
