@@ -416,3 +416,47 @@ fn levels_view_colours_by_level() {
         h.view = View::Shaded;
     });
 }
+
+/// The cage overlay draws the coarse mesh's edges in its light cyan over the surface, for every
+/// driver (Loop's limit surface too, whose cage is its control mesh), alone or with the refined
+/// wireframe.
+#[test]
+fn cage_overlay_draws_the_coarse_edges() {
+    with_gpu(320, 240, |h| {
+        let mut scene = h.scene(default_mesh(), 4).unwrap();
+        let (c, r) = scene.bounding_sphere();
+        let camera = Camera::framing(c, r);
+        let cyan = |img: &Readback| {
+            img.rgba
+                .chunks_exact(4)
+                // Bluer and greener than red by a margin: neither the surface (red first) nor
+                // the dark background is.
+                .filter(|p| p[2] as i32 > p[0] as i32 + 40 && p[1] as i32 > p[0] as i32 + 30)
+                .count()
+        };
+        for (driver, surface) in [
+            (Driver::Static, Surface::Flat),
+            (Driver::Pattern(Submit::Instanced), Surface::Pn),
+            (Driver::Tess, Surface::Loop),
+        ] {
+            let cfg = DrawConfig::new(driver, 4).with_surface(surface, Displace::None);
+            h.cage = false;
+            let plain = h.render(&mut scene, &cfg, &camera).unwrap();
+            h.cage = true;
+            let caged = h.render(&mut scene, &cfg, &camera).unwrap();
+            h.wireframe = true;
+            let both = h.render(&mut scene, &cfg, &camera).unwrap();
+            h.wireframe = false;
+            let name = cfg.label();
+            assert_eq!(cyan(&plain), 0, "{name}: cyan without the cage");
+            // Curved surfaces hide part of their cage (pn bulges out of it); flat shows all.
+            assert!(cyan(&caged) > 400, "{name}: {} cage pixels", cyan(&caged));
+            assert!(cyan(&both) > 400, "{name}: {} cage pixels", cyan(&both));
+            assert!(
+                diff(&caged, &both).over_one > 1000,
+                "{name}: no refined edges"
+            );
+        }
+        h.cage = false;
+    });
+}

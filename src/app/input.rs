@@ -138,6 +138,7 @@ impl State {
                 "+" | "=" => c.cfg.level = levels[(pos + 1).min(levels.len() - 1)],
                 "-" | "_" => c.cfg.level = levels[pos.saturating_sub(1)],
                 "w" | "W" => c.wireframe = !c.wireframe,
+                "k" | "K" => c.cage = !c.cage,
                 "a" | "A" => c.animate = !c.animate,
                 "l" | "L" => c.lod = !c.lod,
                 "h" | "H" => self.ui.visible = !self.ui.visible,

@@ -48,6 +48,8 @@ pub struct ViewOptions {
     /// Save the last frame here.
     pub screenshot: Option<PathBuf>,
     pub wireframe: bool,
+    /// Start with the cage overlay (the coarse mesh's edges) on.
+    pub cage: bool,
     pub animate: bool,
     /// Start with LOD by distance on.
     pub lod: bool,
@@ -84,7 +86,7 @@ pub const WINDOW_LEVELS: u32 = 256;
 
 pub const KEY_HELP: &str = "keys: drag = orbit, wheel = zoom, 1/2/3 = static/pattern/tess, \
 P/U/I = push/ubo/instanced, S = next surface, D = next displacement, N = normals view, \
-+/- = level, L = LOD by distance, W = wireframe, A = animate, H = panel, Esc = quit";
++/- = level, L = LOD by distance, W = wireframe, K = cage, A = animate, H = panel, Esc = quit";
 
 /// The value after `v` in `all`, wrapping around.
 fn next<T: Copy + PartialEq>(all: &[T], v: T) -> T {
@@ -300,6 +302,7 @@ impl App {
             controls: Controls {
                 cfg,
                 wireframe: self.opts.wireframe,
+                cage: self.opts.cage,
                 animate: self.opts.animate,
                 // Adaptive drawing chooses levels per element instead.
                 lod: self.opts.lod && self.opts.adaptive.is_none(),
@@ -468,6 +471,9 @@ impl State {
             }
             other => other?,
         }
+        if self.controls.cage {
+            self.scene.prepare_cage(&self.ctx, &mut self.renderer)?;
+        }
         Ok(cfg)
     }
 
@@ -597,6 +603,7 @@ impl State {
         let work = FrameWork {
             wireframe: self.controls.wireframe,
             adaptive,
+            cage: self.scene.cage.as_ref().filter(|_| self.controls.cage),
             ..FrameWork::new(&self.scene, *cfg)
         };
         let screenshot_buffer = self.screenshot_buffer.as_ref().filter(|_| screenshot);
@@ -696,12 +703,13 @@ impl State {
         let bytes = self.scene.geometry_bytes(cfg);
         let c = &self.controls;
         self.window.set_title(&format!(
-            "meshrefine | {} level {}{}{}{}{} | {:.0} fps | GPU {:.2} ms | {} -> {} triangles | {:.2} MB geometry | max level {}",
+            "meshrefine | {} level {}{}{}{}{}{} | {:.0} fps | GPU {:.2} ms | {} -> {} triangles | {:.2} MB geometry | max level {}",
             cfg.label(),
             cfg.level,
             if c.lod { " (LOD)" } else { "" },
             if self.levels.is_some() { " (adaptive)" } else { "" },
             if c.wireframe { " wire" } else { "" },
+            if c.cage { " cage" } else { "" },
             if c.animate { " animated" } else { "" },
             self.fps,
             self.gpu_ms,

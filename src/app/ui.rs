@@ -15,6 +15,8 @@ use winit::window::Window;
 pub struct Controls {
     pub cfg: DrawConfig,
     pub wireframe: bool,
+    /// The cage overlay: the coarse mesh's edges.
+    pub cage: bool,
     pub animate: bool,
     /// Level of detail by camera distance (sets `cfg.level` every frame).
     pub lod: bool,
@@ -312,8 +314,9 @@ fn display(ui: &mut egui::Ui, c: &mut Controls, info: &PanelInfo) {
     ui.checkbox(&mut c.lod, "LOD by distance");
     ui.add_enabled(
         info.wireframe_supported,
-        egui::Checkbox::new(&mut c.wireframe, "wireframe"),
+        egui::Checkbox::new(&mut c.wireframe, "wireframe [W]"),
     );
+    ui.checkbox(&mut c.cage, "cage [K]");
     ui.checkbox(&mut c.animate, "animate");
     ui.weak("H hides this panel");
 }

@@ -192,9 +192,11 @@ pub struct ViewArgs {
     /// Save the last frame to this PNG file.
     #[arg(long, value_name = "FILE.png", help_heading = "Window")]
     pub screenshot: Option<PathBuf>,
-    /// Start with the wireframe overlay on.
-    #[arg(long, help_heading = "Window")]
-    pub wireframe: bool,
+    /// Start with a wireframe on: the refined edges (the default when no value is given), the
+    /// cage (the coarse mesh's edges) or both.
+    #[arg(long, value_name = "WHAT", num_args = 0..=1, default_missing_value = "refined",
+          value_parser = super::choices::wireframe(), help_heading = "Window")]
+    pub wireframe: Option<meshrefine::render::cage::Wireframe>,
     /// Start with the coarse-mesh animation on.
     #[arg(long, help_heading = "Window")]
     pub animate: bool,
@@ -237,9 +239,11 @@ pub struct RenderArgs {
     /// The image's height in pixels.
     #[arg(long, default_value_t = 720, help_heading = "Output")]
     pub height: u32,
-    /// Draw the refined triangles' edges.
-    #[arg(long, help_heading = "Output")]
-    pub wireframe: bool,
+    /// Draw a wireframe: the refined edges (the default when no value is given), the cage (the
+    /// coarse mesh's edges) or both.
+    #[arg(long, value_name = "WHAT", num_args = 0..=1, default_missing_value = "refined",
+          value_parser = super::choices::wireframe(), help_heading = "Output")]
+    pub wireframe: Option<meshrefine::render::cage::Wireframe>,
     /// Multisampled anti-aliasing: samples per pixel, 1 (none), 2, 4 or 8 (default: 4 where
     /// the device supports it for colour and depth attachments, else the most it supports).
     #[arg(long, value_parser = msaa_counts(), help_heading = "Output")]

@@ -11,6 +11,7 @@
 #![forbid(unsafe_code)]
 
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
+use meshrefine::render::cage::Wireframe;
 use meshrefine::render::{Driver, Submit};
 use meshrefine::surface::loop_::Boundary;
 use meshrefine::surface::{Displace, NormalField, Seams, Surface};
@@ -190,4 +191,13 @@ mod tests {
         assert!(parse(&driver(), "instanced").is_err());
         assert!(parse(&boundary(), "edge").is_err());
     }
+}
+
+/// `--wireframe`.
+pub fn wireframe() -> impl TypedValueParser<Value = Wireframe> {
+    parser(&Wireframe::ALL, Wireframe::name, |w| match w {
+        Wireframe::Refined => "the refined triangles' edges, darker than the surface",
+        Wireframe::Cage => "the coarse mesh's edges (Loop's control mesh) in a bright colour",
+        Wireframe::Both => "both",
+    })
 }

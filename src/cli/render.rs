@@ -9,6 +9,7 @@ use super::input::{
 use super::{require_extension, with_context};
 use anyhow::{bail, Context as _, Result};
 use meshrefine::gpu::{sample_count, Context, ContextDesc};
+use meshrefine::render::cage::Wireframe;
 use meshrefine::render::{covered_pixels, Camera, Capture, DrawConfig, Headless};
 use std::io::Write as _;
 use std::path::Path;
@@ -49,7 +50,8 @@ fn levels_line(a: &Adaptive, max: u32, report: &meshrefine::lod::LevelReport) ->
 pub struct ImageOptions<'a> {
     /// Width and height in pixels.
     pub size: (u32, u32),
-    pub wireframe: bool,
+    /// The wireframe drawn over the surface, if any.
+    pub wireframe: Option<Wireframe>,
     /// Samples per pixel (`None`: the default, `gpu::sample_count`).
     pub msaa: Option<u32>,
     /// Draw adaptively for the camera (`--pixel-error`).
@@ -79,7 +81,8 @@ pub fn render_png(
             cfg.level = a.max_level(&ctx, cfg.driver)?;
         }
         let mut h = Headless::multisampled(ctx, width, height, samples)?;
-        h.wireframe = wireframe;
+        h.wireframe = wireframe.is_some_and(Wireframe::refined);
+        h.cage = wireframe.is_some_and(Wireframe::cage);
         let (mesh, viewed) = for_viewing(&input.mesh, &cfg);
         let mut scene = h.scene(mesh, cfg.level)?;
         apply_surface_inputs(&h, &mut scene, &input)?;

@@ -254,6 +254,8 @@ pub struct GraphicsPipelineDesc {
     pub polygon_mode: vk::PolygonMode,
     /// (constant factor, slope factor)
     pub depth_bias: Option<(f32, f32)>,
+    /// Whether fragments write depth (overlays such as wireframes only test it).
+    pub depth_write: bool,
     /// Samples per pixel of the attachments drawn into.
     pub samples: vk::SampleCountFlags,
 }
@@ -433,7 +435,7 @@ impl FixedStates {
                 .rasterization_samples(desc.samples),
             depth: vk::PipelineDepthStencilStateCreateInfo::default()
                 .depth_test_enable(true)
-                .depth_write_enable(true)
+                .depth_write_enable(desc.depth_write)
                 .depth_compare_op(vk::CompareOp::LESS_OR_EQUAL),
         }
     }

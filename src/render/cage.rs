@@ -11,6 +11,40 @@ use crate::gpu::{
 use crate::mesh::Mesh;
 use std::sync::Arc;
 
+/// Which edges a wireframe shows (`--wireframe refined|cage|both`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum Wireframe {
+    /// The refined triangles' edges, darker than the surface.
+    #[default]
+    Refined,
+    /// The coarse mesh's edges (Loop's control mesh) in a bright colour.
+    Cage,
+    /// Both.
+    Both,
+}
+
+impl Wireframe {
+    pub const ALL: [Wireframe; 3] = [Wireframe::Refined, Wireframe::Cage, Wireframe::Both];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Wireframe::Refined => "refined",
+            Wireframe::Cage => "cage",
+            Wireframe::Both => "both",
+        }
+    }
+
+    /// Whether the refined triangles' edges are drawn.
+    pub fn refined(self) -> bool {
+        self != Wireframe::Cage
+    }
+
+    /// Whether the cage is drawn.
+    pub fn cage(self) -> bool {
+        self != Wireframe::Refined
+    }
+}
+
 /// The coarse mesh's unique edges as line vertices, on the GPU.
 pub struct Cage {
     /// Two positions (`vec3`) per edge.
@@ -75,8 +109,8 @@ fn line_vertices(edges: &[[u32; 2]], positions: &[glam::Vec3]) -> Vec<[f32; 3]> 
         .collect()
 }
 
-/// The cage's pipeline: lines, depth-tested and pulled towards the camera so they win against
-/// the surface where they lie on it.
+/// The cage's pipeline: lines, depth-tested, pulled towards the camera by the vertex stage so
+/// they win against the surface where they lie on it.
 pub fn pipeline(
     ctx: &Arc<Context>,
     layout: &PipelineLayout,
@@ -98,7 +132,8 @@ pub fn pipeline(
         color_format,
         depth_format,
         polygon_mode: vk::PolygonMode::FILL,
-        depth_bias: Some((-2.0, -2.0)),
+        depth_bias: None,
+        depth_write: false,
         samples,
     };
     Pipeline::new_graphics(ctx, layout, &desc, "cage lines")

@@ -48,6 +48,8 @@ pub struct FrameWork<'a> {
     /// ([`GpuMesh::levels`], src/lod/levels.rs), `cfg.level` being the largest; otherwise every
     /// element at `cfg.level`.
     pub adaptive: bool,
+    /// Draw the coarse mesh's edges over the surface (the cage overlay, src/render/cage.rs).
+    pub cage: Option<&'a super::cage::Cage>,
     /// The elements to draw (all of them for an image; capture passes draw a part).
     pub elements: std::ops::Range<u32>,
     pub clear: [f32; 4],
@@ -71,6 +73,7 @@ impl<'a> FrameWork<'a> {
             xfb_counter: None,
             wireframe: false,
             adaptive: false,
+            cage: None,
             elements: 0..mesh.element_count,
             clear: CLEAR_COLOR,
         }
@@ -144,6 +147,9 @@ pub fn cmd_render(
     if work.wireframe && r.wireframe_supported() {
         cmd.bind_graphics_pipeline(r.pipeline(&work.cfg, Capture::None, true, work.adaptive));
         cmd_draw_driver(cmd, r, work);
+    }
+    if let Some(cage) = work.cage {
+        cage.cmd_draw(cmd, r);
     }
     match (overlay, target.resolve) {
         (Some(overlay), None) => {

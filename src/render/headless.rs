@@ -27,6 +27,8 @@ pub struct Headless {
     pub target: OffscreenTarget,
     pub queries: QueryPools,
     pub wireframe: bool,
+    /// Draw the cage overlay (the coarse mesh's edges) over the surface.
+    pub cage: bool,
     /// Draw each element at its own levels from its mesh's levels buffer
     /// ([`super::GpuMesh::upload_levels`]), the configuration's level being the largest
     /// (`FrameWork::adaptive`; the pattern driver at a power of two).
@@ -134,6 +136,7 @@ impl Headless {
             target,
             queries,
             wireframe: false,
+            cage: false,
             adaptive: false,
             view: View::Shaded,
             max_capture_bytes: None,
@@ -257,6 +260,10 @@ impl Headless {
     ) -> Result<FrameTiming, RenderError> {
         // The element count is the surface's (M1 faces for loop, known once prepared).
         let count = self.prepared_elements(scene, cfg, capture)?;
+        let cage = self.cage && capture == Capture::None;
+        if cage {
+            scene.prepare_cage(&self.ctx, &mut self.renderer)?;
+        }
         if self.adaptive {
             cfg.driver.kind().check_adaptive(&self.ctx, scene, cfg)?;
         }
@@ -270,6 +277,7 @@ impl Headless {
             xfb_counter: xfb.map(|x| x.1),
             wireframe: self.wireframe,
             adaptive: self.adaptive,
+            cage: scene.cage.as_ref().filter(|_| cage),
             elements,
             ..FrameWork::new(scene, *cfg)
         };

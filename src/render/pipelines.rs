@@ -324,6 +324,9 @@ impl Renderer {
             },
             // Pull the lines towards the camera so they win the depth test against their fill.
             depth_bias: key.wire.then_some((-1.0, -1.0)),
+            // The wireframe lines test depth against their surface but do not write it, so the
+            // cage overlay drawn after them is tested against the surface alone.
+            depth_write: !key.wire,
             samples: self.samples,
         };
         let kind = key.driver.kind();

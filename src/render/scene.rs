@@ -28,6 +28,8 @@ pub struct Scene {
     pub static_vbo: Option<super::static_vbo::StaticVbo>,
     /// The `loop` surface's M1 faces, built by the first `prepare` that draws it.
     pub loop_: Option<LoopScene>,
+    /// The coarse mesh's edges for the cage overlay, made when first drawn ([`Scene::cage`]).
+    pub cage: Option<super::cage::Cage>,
     /// The coarse records on the GPU are older than `data` (an animated frame drawn with loop,
     /// which does not read them, uploads M0 only); the next other surface uploads them.
     records_stale: bool,
@@ -106,6 +108,7 @@ impl Scene {
             patterns,
             static_vbo: None,
             loop_: None,
+            cage: None,
             records_stale: false,
             warned_slow: false,
         })
@@ -231,6 +234,23 @@ impl Scene {
             self.records_stale = false;
         }
         self.static_vbo = None;
+        if let Some(c) = &mut self.cage {
+            c.update(&self.data.mesh.positions);
+        }
+    }
+
+    /// The cage overlay's lines (the coarse mesh's edges; Loop's control mesh), uploaded the
+    /// first time they are asked for, and its pipeline prepared. Only between frames.
+    pub fn prepare_cage(
+        &mut self,
+        ctx: &Arc<Context>,
+        renderer: &mut super::Renderer,
+    ) -> Result<(), RenderError> {
+        renderer.prepare_cage()?;
+        if self.cage.is_none() {
+            self.cage = Some(super::cage::Cage::new(ctx, &self.data.mesh)?);
+        }
+        Ok(())
     }
 
     /// Bytes an animated frame uploads when drawing `cfg`: the refined vertices (static), the
