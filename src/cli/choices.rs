@@ -141,6 +141,15 @@ fn boundary_help(b: Boundary) -> &'static str {
     }
 }
 
+/// `--wireframe`.
+pub fn wireframe() -> impl TypedValueParser<Value = Wireframe> {
+    parser(&Wireframe::ALL, Wireframe::name, |w| match w {
+        Wireframe::Refined => "the refined triangles' edges, darker than the surface",
+        Wireframe::Cage => "the coarse mesh's edges (Loop's control mesh) in a bright colour",
+        Wireframe::Both => "both",
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -191,13 +200,4 @@ mod tests {
         assert!(parse(&driver(), "instanced").is_err());
         assert!(parse(&boundary(), "edge").is_err());
     }
-}
-
-/// `--wireframe`.
-pub fn wireframe() -> impl TypedValueParser<Value = Wireframe> {
-    parser(&Wireframe::ALL, Wireframe::name, |w| match w {
-        Wireframe::Refined => "the refined triangles' edges, darker than the surface",
-        Wireframe::Cage => "the coarse mesh's edges (Loop's control mesh) in a bright colour",
-        Wireframe::Both => "both",
-    })
 }
