@@ -74,7 +74,7 @@ impl Displace {
             help: "a·(h − bias) along the normal, h from a grayscale PNG at the mesh's texture coordinates",
             options: &["amplitude", "bias", "heightmap"],
             texture_coordinates: true,
-            bindings: &["BINDING_UVS", "BINDING_HEIGHTMAP"],
+            bindings: &["BINDING_UVS", "BINDING_HEIGHTMAP", "BINDING_HEIGHTMAP_TEXELS"],
         };
         match self {
             Displace::None => &NONE,
