@@ -270,6 +270,7 @@ impl Headless {
             xfb_counter: xfb.map(|x| x.1),
             wireframe: self.wireframe,
             adaptive: self.adaptive,
+            level_pass: scene.level_pass(cfg).filter(|_| self.adaptive),
             elements,
             ..FrameWork::new(scene, *cfg)
         };
