@@ -1945,6 +1945,46 @@ fn info_reports_adaptive_levels_for_a_camera() {
         "pn",
     ]));
     assert!(a4 < adaptive, "{a4} {adaptive}");
+    // The pattern driver (the default) draws powers of two; tess any integer; both the levels
+    // the level pass writes (transition triangles included).
+    let pattern = ok(&["info", spot, "--pixel-error", "1", "--surface", "pn"]);
+    assert!(pattern.contains("driver pattern"), "{pattern}");
+    let tess = ok(&[
+        "info",
+        spot,
+        "--pixel-error",
+        "1",
+        "--surface",
+        "pn",
+        "--driver",
+        "tess",
+        "--max-level",
+        "48",
+    ]);
+    assert!(tess.contains("max level 48, driver tess"), "{tess}");
+    let levels_of = |out: &str| -> Vec<u32> {
+        let l = out.lines().find(|l| l.contains("levels (")).unwrap();
+        (l.split_whitespace().skip(3))
+            .map(|pair| pair.split(':').next().unwrap().parse().unwrap())
+            .collect()
+    };
+    assert!(
+        levels_of(&pattern).iter().all(|l| l.is_power_of_two()),
+        "{pattern}"
+    );
+    assert!(
+        levels_of(&tess).iter().any(|l| !l.is_power_of_two()),
+        "{tess}"
+    );
+    assert_eq!(adaptive_report(&tess).4, 372);
+    expect_error(
+        &["info", spot, "--pixel-error", "1", "--max-level", "48"],
+        &["--max-level 48", "power of two"],
+    );
+    expect_error(
+        &["info", spot, "--pixel-error", "1", "--driver", "static"],
+        &["--driver static", "on the CPU"],
+    );
     // Loop's elements are M1's faces.
     let loop_ = ok(&["info", spot, "--pixel-error", "1", "--surface", "loop"]);
     assert!(loop_.contains("level:M1 faces"), "{loop_}");
