@@ -95,14 +95,19 @@ impl Scene {
         level_report(&levels, dyadic, max)
     }
 
-    /// The level pass and the camera of the last [`Scene::set_levels`] for `cfg`'s surface,
-    /// for `FrameWork::level_pass` of every adaptive frame drawn with `cfg`.
+    /// The level pass and the camera of the last [`Scene::set_levels`], for
+    /// `FrameWork::level_pass` of every adaptive frame drawn with `cfg`: `None` unless that call
+    /// was for `cfg`'s elements, largest level and rounding (or the device could not hold the
+    /// pass: the levels were uploaded).
     pub fn level_pass(&self, cfg: &DrawConfig) -> Option<(&LevelPass, LodView)> {
         let l = self.levels.as_ref()?;
         let key = l.key?;
         let (surface, view) = l.view?;
-        (surface == cfg.surface && key.levels == self.elements(cfg.surface).levels.raw)
-            .then_some((l.pass.as_ref()?, view))
+        let same = surface == cfg.surface
+            && key.levels == self.elements(cfg.surface).levels.raw
+            && view.max_level == cfg.level.max(1)
+            && view.dyadic() == matches!(cfg.driver, Driver::Pattern(_));
+        same.then_some((l.pass.as_ref()?, view))
     }
 
     /// The levels the last adaptive frame drawn with `cfg` left in the mesh's levels buffer (the
