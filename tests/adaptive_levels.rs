@@ -1,19 +1,21 @@
-//! The levels the command line draws with (`Scene::set_levels`, chosen on the CPU): the same
-//! inner levels `lod::report` gives for the camera, the same bits for an edge from both of its
-//! elements in the buffer the drivers read, and culling that only zeroes inner levels.
+//! The levels the command line draws with (`Scene::set_levels`, written by the level pass on
+//! the GPU in every adaptive frame): what `set_levels` reports is what the GPU wrote (the
+//! pass's mirror), the same bits for an edge from both of its elements in the buffer the
+//! drivers read, and culling that only zeroes inner levels.
 
 mod common;
 
 use common::random_levels::element_corners;
 use common::{model, with_gpu};
+use meshrefine::lod::frame::{frame_levels, lod_records, LodView};
 use meshrefine::lod::levels::ElementLevels;
-use meshrefine::lod::{report, Lod, View};
+use meshrefine::lod::{Lod, View};
 use meshrefine::render::{Camera, Capture, DrawConfig, Driver, LevelView};
 use meshrefine::surface::{Displace, Surface, SurfaceParams};
 use std::collections::HashMap;
 
 #[test]
-fn cpu_levels_match_the_report_and_share_edges() {
+fn gpu_levels_match_the_mirror_and_share_edges() {
     with_gpu(64, 64, |h| {
         for surface in [Surface::Pn, Surface::Phong, Surface::Loop] {
             let max = 16;
@@ -41,14 +43,27 @@ fn cpu_levels_match_the_report_and_share_edges() {
                 };
                 let what = format!("{} at {:?}", surface.name(), camera.eye());
                 let got = scene.set_levels(&cfg, &view);
+                assert!(scene.level_pass(&cfg).is_some(), "{what}: no level pass");
+                h.adaptive = true;
+                h.draw(&mut scene, &cfg, &camera).unwrap();
+                let (gpu, drawn) = scene.drawn_levels(&cfg);
+                // The mirror, from bounds made here.
                 let inputs = scene.inputs(max);
                 let lod = Lod::new(surface, Displace::None, &cfg.params, &inputs.element(0));
                 let metric = View::new(camera.eye(), camera.fov_y, 720, 1.0, max);
-                let want = report(&lod, scene.records(surface), &metric, None);
-                assert_eq!(got.histogram, want.histogram, "{what}");
+                let bounds = lod_records(&lod, scene.records(surface), None);
+                let lod_view = LodView::new(&metric, None, false, false, bounds.len() as u32);
+                let mirror = frame_levels(&lod_view, &bounds);
+                for (i, (g, m)) in gpu.iter().zip(&mirror).enumerate() {
+                    assert!(
+                        (g.inner - m.inner).abs() <= 1e-4 * m.inner.max(1.0),
+                        "{what}: element {i}: {g:?} {m:?}"
+                    );
+                }
+                assert_eq!(got.histogram, drawn.histogram, "{what}");
                 assert_eq!(got.culled, 0, "{what}");
                 // The buffer the drivers read: each edge the same bits from both sides.
-                let levels: Vec<ElementLevels> = scene.elements(surface).levels.read_pod();
+                let levels: Vec<ElementLevels> = gpu;
                 let corners = element_corners(&scene, surface);
                 let mut edges: HashMap<(u32, u32), u32> = HashMap::new();
                 for (c, l) in corners.iter().zip(&levels) {
@@ -63,12 +78,14 @@ fn cpu_levels_match_the_report_and_share_edges() {
                 }
                 // Culling zeroes inner levels only, and counts them.
                 let culled = scene.set_levels(&cfg, &LevelView { cull: true, ..view });
-                let after: Vec<ElementLevels> = scene.elements(surface).levels.read_pod();
+                h.draw(&mut scene, &cfg, &camera).unwrap();
+                let (after, drawn) = scene.drawn_levels(&cfg);
+                assert_eq!(culled.histogram, drawn.histogram, "{what}");
                 let zero = after.iter().filter(|l| l.culled()).count() as u64;
                 assert_eq!(zero, culled.culled, "{what}");
                 for (a, b) in levels.iter().zip(&after) {
                     assert_eq!(a.edges, b.edges);
-                    assert!(b.inner == a.inner || b.inner == 0.0);
+                    assert!(b.inner == a.inner || b.inner == 0.0, "{what}: {a:?} {b:?}");
                 }
                 let drawn: u64 = culled.histogram.values().sum();
                 assert_eq!(drawn + culled.culled, levels.len() as u64, "{what}");

@@ -1974,6 +1974,46 @@ fn info_reports_adaptive_levels_for_a_camera() {
         "pn",
     ]));
     assert!(a4 < adaptive, "{a4} {adaptive}");
+    // The pattern driver (the default) draws powers of two; tess any integer; both the levels
+    // the level pass writes (transition triangles included).
+    let pattern = ok(&["info", spot, "--pixel-error", "1", "--surface", "pn"]);
+    assert!(pattern.contains("driver pattern"), "{pattern}");
+    let tess = ok(&[
+        "info",
+        spot,
+        "--pixel-error",
+        "1",
+        "--surface",
+        "pn",
+        "--driver",
+        "tess",
+        "--max-level",
+        "48",
+    ]);
+    assert!(tess.contains("max level 48, driver tess"), "{tess}");
+    let levels_of = |out: &str| -> Vec<u32> {
+        let l = out.lines().find(|l| l.contains("levels (")).unwrap();
+        (l.split_whitespace().skip(3))
+            .map(|pair| pair.split(':').next().unwrap().parse().unwrap())
+            .collect()
+    };
+    assert!(
+        levels_of(&pattern).iter().all(|l| l.is_power_of_two()),
+        "{pattern}"
+    );
+    assert!(
+        levels_of(&tess).iter().any(|l| !l.is_power_of_two()),
+        "{tess}"
+    );
+    assert_eq!(adaptive_report(&tess).4, 372);
+    expect_error(
+        &["info", spot, "--pixel-error", "1", "--max-level", "48"],
+        &["--max-level 48", "power of two"],
+    );
+    expect_error(
+        &["info", spot, "--pixel-error", "1", "--driver", "static"],
+        &["--driver static", "on the CPU"],
+    );
     // Loop's elements are M1's faces.
     let loop_ = ok(&["info", spot, "--pixel-error", "1", "--surface", "loop"]);
     assert!(loop_.contains("level:M1 faces"), "{loop_}");
@@ -2016,8 +2056,8 @@ fn info_reports_adaptive_levels_for_a_camera() {
 }
 
 /// `--pixel-error` and its camera on render, export, view and bench: every bad value is one
-/// sentence and status 1, before anything is drawn; the pattern driver (and bench's default of
-/// every driver) is refused naming the tess driver.
+/// sentence and status 1, before anything is drawn; the static driver (which refines on the
+/// CPU) is refused, and a pattern driver's largest level that is not a power of two.
 #[test]
 fn adaptive_options_refuse_bad_values() {
     let png = tmp("adaptive-bad.png");
@@ -2069,24 +2109,33 @@ fn adaptive_options_refuse_bad_values() {
         );
     }
     expect_error(
-        &["render", "-o", p(&png), "--pixel-error", "1"],
-        &["tess driver", "--driver pattern"],
-    );
-    expect_error(
         &[
-            "export",
+            "render",
             "-o",
-            p(&obj),
+            p(&png),
             "--pixel-error",
             "1",
             "--driver",
-            "pattern",
+            "static",
         ],
-        &["tess driver", "--driver pattern"],
+        &["pattern and tess drivers", "--driver static", "on the CPU"],
     );
     expect_error(
-        &["bench", "--pixel-error", "1"],
-        &["tess driver", "--drivers tess"],
+        &["bench", "--pixel-error", "1", "--drivers", "tess,static"],
+        &["pattern and tess drivers", "--drivers static"],
+    );
+    // The pattern driver's patterns split 1 to 4: its largest level is a power of two.
+    expect_error(
+        &[
+            "render",
+            "-o",
+            p(&png),
+            "--pixel-error",
+            "1",
+            "--max-level",
+            "48",
+        ],
+        &["--max-level 48", "power of two", "use 32 or 64"],
     );
     // Past what the device's tessellator draws (lavapipe: 64), named.
     expect_error(
@@ -2314,6 +2363,79 @@ fn pixel_error_draws_adaptively_end_to_end() {
         "90",
     ]);
     assert!(out.contains("adaptive at 4 px: levels "), "{out}");
+}
+
+/// The pattern driver (the default) draws adaptively from the command line too: `export
+/// --pixel-error` captures its hierarchical patterns and welds them closed on a closed mesh
+/// (no culling by default), every element at a power of two up to 64, the header's levels
+/// those the GPU's level pass wrote; render says what it drew; bench without `--drivers`
+/// measures the pattern driver's submissions and tess.
+#[test]
+fn pixel_error_draws_adaptively_with_the_pattern_driver() {
+    let spot = model_path("spot_control_tri.obj");
+    let spot = p(&spot);
+    let obj = tmp("adaptive-pattern.obj");
+    let out = ok(&["export", spot, "-o", p(&obj), "--pixel-error", "2"]);
+    assert!(out.contains("wrote"), "{out}");
+    let text = std::fs::read_to_string(&obj).unwrap();
+    assert!(text.contains("driver pattern"), "{text:.400}");
+    assert!(text.contains("max level 64"), "{text:.400}");
+    let (camera, levels) = adaptive_header(&text);
+    assert_eq!(&camera[6..], &[0.0, 1.0, 0.0, 45.0, 1280.0, 720.0, 2.0]);
+    assert_eq!(levels.iter().map(|l| l.1).sum::<u64>(), 372, "{levels:?}");
+    assert!(
+        levels.len() > 1
+            && (levels.iter()).all(|&(l, _)| l.is_power_of_two() && (1..=64).contains(&l)),
+        "{levels:?}"
+    );
+    let (mesh, _) = meshrefine::mesh::Mesh::load_obj(&obj).unwrap();
+    assert_eq!(mesh.stats().boundary_edges, 0, "adaptive export has cracks");
+    let top = levels.last().unwrap().0 as usize;
+    assert!(
+        mesh.triangles.len() < 372 * top * top,
+        "{}",
+        mesh.triangles.len()
+    );
+    // Wound like the coarse triangles on a sphere, closed.
+    let sphere = model_path("uvsphere12.obj");
+    ok(&["export", p(&sphere), "-o", p(&obj), "--pixel-error", "0.5"]);
+    let (ball, _) = meshrefine::mesh::Mesh::load_obj(&obj).unwrap();
+    assert_eq!(ball.stats().boundary_edges, 0);
+    assert_faces_agree_with_normals(&ball);
+    let png = tmp("adaptive-pattern.png");
+    let out = ok(&[
+        "render",
+        spot,
+        "-o",
+        p(&png),
+        "--pixel-error",
+        "2",
+        "--width",
+        "320",
+        "--height",
+        "180",
+    ]);
+    assert!(
+        out.contains("adaptive at 2 px, max level 64: levels (level:elements) "),
+        "{out}"
+    );
+    let out = ok(&[
+        "bench",
+        spot,
+        "--surfaces",
+        "pn",
+        "--pixel-error",
+        "4",
+        "--frames",
+        "1",
+        "--width",
+        "160",
+        "--height",
+        "90",
+    ]);
+    assert!(out.contains("adaptive at 4 px: levels "), "{out}");
+    assert!(out.contains("tess") && out.contains("pattern"), "{out}");
+    assert!(!out.lines().any(|l| l.starts_with("static")), "{out}");
 }
 
 #[test]

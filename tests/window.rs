@@ -133,11 +133,13 @@ fn window_demo_presents_and_screenshots() {
         ("pattern", vec!["--wireframe", "--animate"]),
         ("pattern-1x", vec!["--wireframe", "--msaa", "1"]),
         ("tess", vec!["--driver", "tess", "--level", "8"]),
-        // Adaptive, animated: the levels chosen again every frame.
+        // Adaptive, animated: the level pass writes the levels every frame (bounds again for
+        // every animated mesh), both drivers.
         (
             "tess-adaptive",
             vec!["--driver", "tess", "--pixel-error", "2", "--animate"],
         ),
+        ("pattern-adaptive", vec!["--pixel-error", "2", "--animate"]),
         ("static", vec!["--driver", "static", "--level", "4"]),
         // Loop, animated: the M0 -> M1 passes run every frame before the draws.
         (
@@ -155,6 +157,12 @@ fn window_demo_presents_and_screenshots() {
         let shot = dir.join(format!("{name}.png"));
         let _ = std::fs::remove_file(&shot);
         let stderr = run_view(&x.display, &extra, &shot);
+        if name.ends_with("-adaptive") {
+            assert!(
+                !stderr.contains("instead of adaptively"),
+                "{name}: {stderr}"
+            );
+        }
         if name == "budget" {
             assert!(
                 stderr.contains("level 1024 would take over a second a frame")

@@ -64,7 +64,8 @@ pub struct ViewOptions {
     pub source: String,
     /// Samples per pixel (`--msaa`; `None`: 4 where supported, else the most the device has).
     pub msaa: Option<u32>,
-    /// Draw adaptively (the tess driver), levels chosen on the CPU every frame for the camera.
+    /// Draw adaptively (the pattern and tess drivers), levels written by the level pass every
+    /// frame for the camera.
     pub adaptive: Option<AdaptiveView>,
 }
 
@@ -516,17 +517,23 @@ impl State {
         self.budget_note = Some(note);
     }
 
-    /// With adaptive drawing on the tess driver: this frame's levels for the camera and window
-    /// (the previous frame is done with them). Whether the frame draws adaptively.
+    /// With adaptive drawing on the pattern or tess driver: this frame's camera for the level
+    /// pass (the previous frame is done with its levels). Whether the frame draws adaptively.
     fn set_levels(&mut self, opts: &ViewOptions, cfg: &DrawConfig) -> bool {
         self.levels = None;
         let Some(a) = &opts.adaptive else {
             return false;
         };
-        if cfg.driver != crate::render::Driver::Tess {
+        let kind = cfg.driver.kind();
+        let refused = if kind.refines_on_cpu() {
+            Some("it refines on the CPU".to_string())
+        } else {
+            (kind.check_adaptive(&self.ctx, &self.scene, cfg).err()).map(|e| e.to_string())
+        };
+        if let Some(why) = refused {
             if !self.adaptive_note {
                 log::warn!(
-                    "adaptive drawing is for the tess driver: the {} driver draws every element at level {}",
+                    "the {} driver draws every element at level {} instead of adaptively: {why}",
                     cfg.driver.name(),
                     cfg.level
                 );
@@ -604,6 +611,7 @@ impl State {
             wireframe: self.controls.wireframe,
             adaptive,
             cage: self.scene.cage.as_ref().filter(|_| self.controls.cage),
+            level_pass: self.scene.level_pass(cfg).filter(|_| adaptive),
             ..FrameWork::new(&self.scene, *cfg)
         };
         let screenshot_buffer = self.screenshot_buffer.as_ref().filter(|_| screenshot);

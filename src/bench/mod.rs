@@ -307,8 +307,8 @@ fn warm_up(
         note: String::new(),
     };
     if let Some(a) = opts.adaptive.filter(|_| drawn) {
-        // The levels stay in the mesh's buffer for the timed frames; an adaptive row counts
-        // its elements' triangles at their inner levels.
+        // Every timed frame runs the level pass for this camera before its draws; an adaptive
+        // row counts its elements' triangles at their inner levels (the pass's mirror).
         let report = scene.set_levels(
             &cfg,
             &crate::render::LevelView {

@@ -1,7 +1,7 @@
 //! Adaptive drawing from the command line (`--pixel-error`, `--max-level`, `--cull`, `--eye`,
 //! `--look-at`, `--fov` on render, export, view and bench; `info` shares the checks and the
-//! camera): the checks of the values, the camera in the drawn frame, and the levels chosen on
-//! the CPU for it ([`Scene::set_levels`]).
+//! camera): the checks of the values, the camera in the drawn frame, and the levels for it
+//! ([`Scene::set_levels`], written by the level pass on the GPU in every frame).
 #![forbid(unsafe_code)]
 
 use super::args::{AdaptiveOpts, Cli, Command, ViewpointOpts};
@@ -60,18 +60,19 @@ pub fn check(cli: &Cli, given: &Given) -> Result<()> {
         bail!("--pixel-error and --levels are exclusive: adaptive levels come from the pixel error, --levels asks for one level everywhere");
     }
     check_view(px, &opts.viewpoint, level == "level" && given.has("level"))?;
-    if drivers.is_empty() || drivers.iter().any(|&d| d != Driver::Tess) {
-        let chosen: Vec<&str> = drivers.iter().map(|d| d.name()).collect();
-        let chosen = if chosen.is_empty() {
-            "every driver".to_string()
-        } else {
-            format!("--driver {}", chosen.join(","))
-        };
-        bail!("--pixel-error draws adaptively with the tess driver only, not with {chosen}: add --driver{} tess",
-            if level == "levels" { "s" } else { "" });
+    if let Some(d) = drivers.iter().find(|d| d.kind().refines_on_cpu()) {
+        bail!(
+            "--pixel-error draws adaptively with the pattern and tess drivers, not with --driver{} {}: it refines every element on the CPU at one level",
+            if level == "levels" { "s" } else { "" },
+            d.name()
+        );
     }
     Ok(())
 }
+
+/// The pattern driver's largest adaptive level without `--max-level`: its hierarchical
+/// patterns up to 64 (docs/adaptivity.md) are a few megabytes; finer needs `--max-level`.
+pub const PATTERN_MAX_LEVEL: u32 = 64;
 
 /// Adaptive drawing as asked on the command line, checked ([`check`]).
 #[derive(Clone, Copy, Debug)]
@@ -118,10 +119,11 @@ impl Frame {
 
 impl Adaptive<'_> {
     /// The largest level any element gets: `--max-level` (refused past what `driver` draws on
-    /// the device), else the largest `driver` draws there (a power of two for a dyadic driver),
-    /// at most 1024.
+    /// the device, and for the pattern driver when not a power of two), else the largest
+    /// `driver` draws there, at most 1024; for the pattern driver [`PATTERN_MAX_LEVEL`].
     pub fn max_level(&self, ctx: &Context, driver: Driver) -> Result<u32> {
         let limit = driver.kind().level_limit(ctx);
+        let pattern = matches!(driver, Driver::Pattern(_));
         if let Some(l) = self.opts.max_level {
             if let Some((max, name)) = limit.filter(|&(max, _)| l > max) {
                 bail!(
@@ -129,11 +131,18 @@ impl Adaptive<'_> {
                     driver.name()
                 );
             }
+            if pattern && !l.is_power_of_two() {
+                let lower = 1u32 << l.ilog2();
+                bail!(
+                    "--max-level {l} is not a power of two: the pattern driver's adaptive patterns are 1-to-4 splits; use {lower} or {}",
+                    lower * 2
+                );
+            }
             return Ok(l);
         }
         let limit = limit.map_or(1024, |(max, _)| max.min(1024));
-        Ok(if matches!(driver, Driver::Pattern(_)) {
-            1 << limit.ilog2()
+        Ok(if pattern {
+            PATTERN_MAX_LEVEL.min(1 << limit.ilog2())
         } else {
             limit
         })

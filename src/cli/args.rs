@@ -339,6 +339,10 @@ pub struct InfoArgs {
     /// The largest level any element gets (with --pixel-error).
     #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub max_level: u32,
+    /// The driver whose rounding of the levels is reported (with --pixel-error): pattern draws
+    /// powers of two, tess any integer.
+    #[arg(long, value_parser = choices::driver(), default_value = "pattern")]
+    pub driver: Driver,
 }
 
 /// A camera in the mesh's own coordinates (up is +Y); the default frames the mesh.

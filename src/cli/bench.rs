@@ -46,9 +46,14 @@ pub fn run(a: &BenchArgs, desc: &ContextDesc) -> Result<()> {
         width: a.width,
         height: a.height,
         // `pattern` stands for its three submission modes.
+        // Adaptively, the drivers that draw so (static refines on the CPU at one level).
         drivers: Driver::VARIANTS
             .into_iter()
-            .filter(|v| a.drivers.iter().any(|d| d.same_kind(*v)))
+            .filter(|v| {
+                let all = a.drivers.is_empty() && a.adaptive.pixel_error.is_some();
+                all || a.drivers.iter().any(|d| d.same_kind(*v))
+            })
+            .filter(|v| a.adaptive.pixel_error.is_none() || !v.kind().refines_on_cpu())
             .collect(),
         min_total_ms: a.min_total_ms,
         adaptive: None,
@@ -61,7 +66,11 @@ pub fn run(a: &BenchArgs, desc: &ContextDesc) -> Result<()> {
         let mut opts = opts;
         if let Some(a) = &adaptive {
             // One row per variant at the largest level, seen by the camera asked for.
-            opts.levels = vec![a.max_level(&ctx, Driver::Tess)?];
+            // (A power of two when the pattern driver is measured: its largest level.)
+            let driver = (opts.drivers.iter())
+                .find(|d| matches!(d, Driver::Pattern(_)))
+                .map_or(Driver::Tess, |&d| d);
+            opts.levels = vec![a.max_level(&ctx, driver)?];
             let scene_frame = Frame { centre, scale };
             opts.adaptive = Some(meshrefine::bench::BenchAdaptive {
                 camera: a.given_camera(&mesh, &scene_frame)?,

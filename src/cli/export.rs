@@ -67,21 +67,30 @@ fn export(
     if let Some(a) = &adaptive {
         // Drawn as it is: the mesh's own coordinates.
         let capture = cfg.driver.kind().export_capture().unwrap_or(Capture::None);
-        let (cam, report) = a.set_up(&mut h, &mut scene, cfg, capture, size, &Frame::IDENTITY)?;
+        let (cam, _) = a.set_up(&mut h, &mut scene, cfg, capture, size, &Frame::IDENTITY)?;
         camera = cam;
-        drawn = Some(a.header(&cam, &Frame::IDENTITY, size, &report));
+        drawn = Some((a, cam));
     }
     let refined = if cfg.driver.kind().export_capture() == Some(Capture::Triangles) {
         let triangles = h.capture_triangles(&mut scene, cfg, &camera)?;
         meshrefine::export::weld_triangles(&triangles)
     } else {
         let cap = h.capture(&mut scene, cfg, &camera)?;
-        let Some(pattern) = scene.patterns.find(cfg.level) else {
-            bail!("no pattern of level {} was made", cfg.level);
-        };
-        let pattern = &scene.patterns.patterns[pattern];
-        meshrefine::export::weld(&cap, pattern).map_err(anyhow::Error::msg)?
+        if drawn.is_some() {
+            meshrefine::export::weld_adaptive(&cap, cfg.level).map_err(anyhow::Error::msg)?
+        } else {
+            let Some(pattern) = scene.patterns.find(cfg.level) else {
+                bail!("no pattern of level {} was made", cfg.level);
+            };
+            let pattern = &scene.patterns.patterns[pattern];
+            meshrefine::export::weld(&cap, pattern).map_err(anyhow::Error::msg)?
+        }
     };
+    // The levels the GPU's level pass wrote for the capture, as the driver drew them.
+    let drawn = drawn.map(|(a, cam)| {
+        let (_, report) = scene.drawn_levels(cfg);
+        a.header(&cam, &Frame::IDENTITY, size, &report)
+    });
     let mut header = vec![
         format!(
             "meshrefine export of '{name}': surface {}, displacement {}, driver {}, {} {}",

@@ -147,15 +147,29 @@ fn print_loop(a: &InfoArgs, path: &str, mesh: &Mesh) -> Result<()> {
 
 /// `--pixel-error` and the camera: one sentence for the first bad value, before any work.
 fn check_level_options(a: &InfoArgs) -> Result<()> {
-    match a.pixel_error {
-        Some(px) => check_view(px, &a.camera.viewpoint, a.level.is_some()),
-        None => Ok(()),
+    let Some(px) = a.pixel_error else {
+        return Ok(());
+    };
+    check_view(px, &a.camera.viewpoint, a.level.is_some())?;
+    if a.driver.kind().refines_on_cpu() {
+        anyhow::bail!("--pixel-error draws adaptively with the pattern and tess drivers, not with --driver {}: it refines every element on the CPU at one level", a.driver.name());
     }
+    let l = a.max_level;
+    if matches!(a.driver, Driver::Pattern(_)) && !l.is_power_of_two() {
+        let lower = 1u32 << l.ilog2();
+        anyhow::bail!(
+            "--max-level {l} is not a power of two: the pattern driver's adaptive patterns are 1-to-4 splits; use {lower} or {}",
+            lower * 2
+        );
+    }
+    Ok(())
 }
 
-/// With `--pixel-error`: the level adaptive refinement gives each element for the camera, and
+/// With `--pixel-error`: the level each element is drawn at for the camera by `--driver` (the
+/// level pass's levels, transition triangles included, rounded as the driver rounds them), and
 /// the triangles against the smallest uniform level that meets the same bound.
 fn print_levels(a: &InfoArgs, path: &str, mesh: &Mesh) -> Result<()> {
+    use meshrefine::lod::frame::{frame_levels, lod_records, LevelStats, LodView};
     use meshrefine::lod::{Frustum, Lod, Sphere, View};
     use meshrefine::surface::{build_records, stpn, BuildOptions, Inputs, Surface};
     let Some(px) = a.pixel_error else {
@@ -181,7 +195,13 @@ fn print_levels(a: &InfoArgs, path: &str, mesh: &Mesh) -> Result<()> {
     let frustum = Frustum::from_view_proj(camera.view_proj(c.width as f32 / c.height as f32));
     let displace = meshrefine::surface::Displace::None;
     let tags = surface.facts().tags.then(|| stpn::derive(mesh).0);
-    let report = if surface.uses_loop_faces() {
+    let dyadic = matches!(a.driver, Driver::Pattern(_));
+    let levels = |lod: &Lod, records: &[meshrefine::surface::ElementRecord]| {
+        let bounds = lod_records(lod, records, None);
+        let lod_view = LodView::new(&view, Some(&frustum), false, dyadic, bounds.len() as u32);
+        LevelStats::new(&frame_levels(&lod_view, &bounds), dyadic, a.max_level)
+    };
+    let stats = if surface.uses_loop_faces() {
         let lattice = meshrefine::surface::loop_::Lattice::new(build.bft_level);
         let data = LoopData::new(mesh, build.boundary, lattice, |_| {})
             .map_err(|e| anyhow::anyhow!("{}: {e}", path))?;
@@ -191,7 +211,7 @@ fn print_levels(a: &InfoArgs, path: &str, mesh: &Mesh) -> Result<()> {
             ..Inputs::default()
         };
         let lod = Lod::new(surface, displace, &params, &inputs);
-        meshrefine::lod::report(&lod, &data.records, &view, Some(&frustum))
+        levels(&lod, &data.records)
     } else {
         let records = build_records(surface.record_kind(), mesh, build.seams);
         let inputs = Inputs {
@@ -199,17 +219,27 @@ fn print_levels(a: &InfoArgs, path: &str, mesh: &Mesh) -> Result<()> {
             ..Inputs::default()
         };
         let lod = Lod::new(surface, displace, &params, &inputs);
-        meshrefine::lod::report(&lod, &records, &view, Some(&frustum))
+        levels(&lod, &records)
+    };
+    let elements = stats.histogram.values().sum::<u64>() + stats.culled;
+    let uniform_level = stats.histogram.keys().max().copied().unwrap_or(1);
+    let report = meshrefine::lod::LevelReport {
+        uniform_level,
+        uniform_triangles: elements * uniform_level as u64 * uniform_level as u64,
+        adaptive_triangles: stats.triangles,
+        histogram: stats.histogram,
+        culled: stats.culled,
     };
     let [ex, ey, ez] = eye.to_array();
     let [tx, ty, tz] = target.to_array();
     out!(
-        "adaptive {} at {px} px: {}x{}, fov-y {}°, eye {ex} {ey} {ez}, look-at {tx} {ty} {tz}, max level {}",
+        "adaptive {} at {px} px: {}x{}, fov-y {}°, eye {ex} {ey} {ez}, look-at {tx} {ty} {tz}, max level {}, driver {}",
         surface.name(),
         c.width,
         c.height,
         v.fov,
-        a.max_level
+        a.max_level,
+        a.driver.name()
     );
     out!(
         "  levels (level:{}): {}",

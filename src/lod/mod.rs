@@ -124,7 +124,7 @@ pub mod subdiv;
 
 pub use bound::{Bounds, Lod};
 pub use cull::{Frustum, NormalCone};
-pub use report::{report, LevelReport};
+pub use report::LevelReport;
 
 use glam::Vec3;
 

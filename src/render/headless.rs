@@ -278,6 +278,7 @@ impl Headless {
             wireframe: self.wireframe,
             adaptive: self.adaptive,
             cage: scene.cage.as_ref().filter(|_| cage),
+            level_pass: scene.level_pass(cfg).filter(|_| self.adaptive),
             elements,
             ..FrameWork::new(scene, *cfg)
         };

@@ -7,7 +7,6 @@
 pub mod bindings;
 pub mod cage;
 mod camera;
-mod cpu_levels;
 pub mod driver;
 mod error;
 pub mod frame;
@@ -18,11 +17,11 @@ pub mod loop_gpu;
 pub mod pattern;
 mod pipelines;
 mod scene;
+mod scene_levels;
 pub mod static_vbo;
 pub mod tess;
 
 pub use camera::Camera;
-pub use cpu_levels::LevelView;
 pub use driver::{Driver, DriverKind, Submit};
 pub use error::RenderError;
 pub use gpu_mesh::{GpuMesh, GpuPattern, MeshData};
@@ -30,6 +29,7 @@ pub use headless::{clear_color_srgb8, covered_pixels, CaptureResult, FrameTiming
 pub use level_pass::LevelPass;
 pub use pipelines::{Renderer, GEOMETRY_STAGES, PUSH_STAGES};
 pub use scene::{software_frame_seconds, Scene};
+pub use scene_levels::LevelView;
 
 use crate::surface::{BuildOptions, Displace, ElementRecord, Surface, SurfaceParams};
 use bytemuck::{Pod, Zeroable};

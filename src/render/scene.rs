@@ -34,6 +34,12 @@ pub struct Scene {
     /// which does not read them, uploads M0 only); the next other surface uploads them.
     records_stale: bool,
     warned_slow: bool,
+    /// Counts changes of the coarse data the level pass's bounds are made from
+    /// ([`Scene::update_mesh`], the height map, the tags).
+    pub(super) generation: u64,
+    /// The level pass and the bounds it holds (src/render/scene_levels.rs).
+    pub(super) levels: Option<super::scene_levels::SceneLevels>,
+    pub(super) ctx: Arc<Context>,
 }
 
 /// What a refined triangle costs a software device (lavapipe) at high levels, lowest and
@@ -111,6 +117,9 @@ impl Scene {
             cage: None,
             records_stale: false,
             warned_slow: false,
+            generation: 0,
+            levels: None,
+            ctx: ctx.clone(),
         })
     }
 
@@ -221,6 +230,7 @@ impl Scene {
     /// by the next `prepare`. Only between frames.
     pub fn update_mesh(&mut self, mesh: Mesh, surface: Surface) {
         self.data = MeshData::new(mesh, self.data.kind, self.data.seams);
+        self.generation += 1;
         if let Some(l) = &mut self.loop_ {
             // Loop: only M0's positions go up; the passes make M1 on the GPU (the mirror's M1
             // follows when it is read).
@@ -358,6 +368,7 @@ impl Scene {
                 loop_: None,
             },
         )?;
+        self.generation += 1;
         self.static_vbo = None;
         Ok(())
     }
