@@ -244,6 +244,14 @@ pub struct RenderArgs {
     #[arg(long, value_name = "WHAT", num_args = 0..=1, default_missing_value = "refined",
           value_parser = super::choices::wireframe(), help_heading = "Output")]
     pub wireframe: Option<meshrefine::render::cage::Wireframe>,
+    /// What the image shows.
+    #[arg(long, default_value = "shaded", value_parser = super::choices::view(),
+          help_heading = "Output")]
+    pub view: meshrefine::render::View,
+    /// What the image is drawn on.
+    #[arg(long, default_value = "dark", value_parser = super::choices::background(),
+          help_heading = "Output")]
+    pub background: meshrefine::render::Background,
     /// Multisampled anti-aliasing: samples per pixel, 1 (none), 2, 4 or 8 (default: 4 where
     /// the device supports it for colour and depth attachments, else the most it supports).
     #[arg(long, value_parser = msaa_counts(), help_heading = "Output")]

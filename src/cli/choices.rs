@@ -12,7 +12,7 @@
 
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use meshrefine::render::cage::Wireframe;
-use meshrefine::render::{Driver, Submit};
+use meshrefine::render::{Background, Driver, Submit, View};
 use meshrefine::surface::loop_::Boundary;
 use meshrefine::surface::{Displace, NormalField, Seams, Surface};
 
@@ -147,6 +147,23 @@ pub fn wireframe() -> impl TypedValueParser<Value = Wireframe> {
         Wireframe::Refined => "the refined triangles' edges, darker than the surface",
         Wireframe::Cage => "the coarse mesh's edges (Loop's control mesh) in a bright colour",
         Wireframe::Both => "both",
+    })
+}
+
+/// `--view`.
+pub fn view() -> impl TypedValueParser<Value = View> {
+    parser(&View::ALL, View::name, |v| match v {
+        View::Shaded => "the lit surface",
+        View::Normals => "the normal field as colours",
+        View::Levels => "the lit surface coloured by each element's level (blue at 1 to red at 256)",
+    })
+}
+
+/// `--background`.
+pub fn background() -> impl TypedValueParser<Value = Background> {
+    parser(&Background::ALL, Background::name, |b| match b {
+        Background::Dark => "near black",
+        Background::Light => "pale grey (cracks show as dark spots)",
     })
 }
 

@@ -10,7 +10,9 @@ use super::{require_extension, with_context};
 use anyhow::{bail, Context as _, Result};
 use meshrefine::gpu::{sample_count, Context, ContextDesc};
 use meshrefine::render::cage::Wireframe;
-use meshrefine::render::{covered_pixels, Camera, Capture, DrawConfig, Headless};
+use meshrefine::render::{
+    covered_pixels_on, Background, Camera, Capture, DrawConfig, Headless, View,
+};
 use std::io::Write as _;
 use std::path::Path;
 use std::sync::Arc;
@@ -25,6 +27,8 @@ pub fn run(a: &RenderArgs, desc: &ContextDesc) -> Result<()> {
     let image = ImageOptions {
         size: (a.width, a.height),
         wireframe: a.wireframe,
+        view: a.view,
+        background: a.background,
         msaa: a.msaa,
         adaptive: a.adaptive.enabled(true),
     };
@@ -52,6 +56,9 @@ pub struct ImageOptions<'a> {
     pub size: (u32, u32),
     /// The wireframe drawn over the surface, if any.
     pub wireframe: Option<Wireframe>,
+    /// What the image shows, on what.
+    pub view: View,
+    pub background: Background,
     /// Samples per pixel (`None`: the default, `gpu::sample_count`).
     pub msaa: Option<u32>,
     /// Draw adaptively for the camera (`--pixel-error`).
@@ -67,11 +74,11 @@ pub fn render_png(
     ctx: Arc<Context>,
     input: Input,
     cfg: &DrawConfig,
-    image: &ImageOptions<'_>,
+    opts: &ImageOptions<'_>,
     out: &Path,
 ) -> Result<Option<String>> {
-    let (width, height) = image.size;
-    let (wireframe, msaa, adaptive) = (image.wireframe, image.msaa, image.adaptive);
+    let (width, height) = opts.size;
+    let (wireframe, msaa, adaptive) = (opts.wireframe, opts.msaa, opts.adaptive);
     let triangles = input.mesh.triangles.len();
     let samples = sample_count(&ctx, msaa)?;
     let mut line = None;
@@ -83,6 +90,8 @@ pub fn render_png(
         let mut h = Headless::multisampled(ctx, width, height, samples)?;
         h.wireframe = wireframe.is_some_and(Wireframe::refined);
         h.cage = wireframe.is_some_and(Wireframe::cage);
+        h.view = opts.view;
+        h.background = opts.background;
         let (mesh, viewed) = for_viewing(&input.mesh, &cfg);
         let mut scene = h.scene(mesh, cfg.level)?;
         apply_surface_inputs(&h, &mut scene, &input)?;
@@ -103,7 +112,7 @@ pub fn render_png(
     image
         .save_png(out)
         .with_context(|| format!("cannot write '{}'", out.display()))?;
-    if covered_pixels(&image) == 0 {
+    if covered_pixels_on(&image, opts.background) == 0 {
         // The camera frames the undisplaced mesh: a displacement larger than the mesh moves
         // the surface out of the picture, whatever the triangles' size.
         let radius = input.mesh.bounding_radius() as f64;

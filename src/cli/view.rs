@@ -71,6 +71,8 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc) -> Result<()> {
     let image = super::render::ImageOptions {
         size: (1280, 720),
         wireframe: a.wireframe,
+        view: meshrefine::render::View::Shaded,
+        background: meshrefine::render::Background::Dark,
         msaa: a.msaa,
         adaptive: a.adaptive.enabled(true),
     };

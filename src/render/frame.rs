@@ -11,6 +11,38 @@ use crate::surface::ElementRecord;
 /// Background colour (linear; the targets are sRGB).
 pub const CLEAR_COLOR: [f32; 4] = [0.012, 0.014, 0.02, 1.0];
 
+/// The light background (linear): a pale grey on which dark cracks and silhouettes show.
+pub const LIGHT_CLEAR_COLOR: [f32; 4] = [0.62, 0.65, 0.70, 1.0];
+
+/// The background an image is drawn on (`--background dark|light`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum Background {
+    /// Near black, the default.
+    #[default]
+    Dark,
+    /// Pale grey: cracks (background showing through the surface) are dark spots on it.
+    Light,
+}
+
+impl Background {
+    pub const ALL: [Background; 2] = [Background::Dark, Background::Light];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Background::Dark => "dark",
+            Background::Light => "light",
+        }
+    }
+
+    /// Its linear colour, the targets' clear value.
+    pub fn color(self) -> [f32; 4] {
+        match self {
+            Background::Dark => CLEAR_COLOR,
+            Background::Light => LIGHT_CLEAR_COLOR,
+        }
+    }
+}
+
 /// Where a frame is drawn. With multisampling, `color` is the multisampled attachment and
 /// `resolve` the single-sampled image it is averaged into (what is read back or presented).
 #[derive(Clone, Copy, Debug)]

@@ -1,7 +1,7 @@
 //! Headless rendering into an offscreen target: images, capture of evaluated vertices, timings.
 //! Every call records, submits and waits, so nothing is ever in flight when it returns.
 
-use super::frame::{cmd_render, FrameWork, TargetView, CLEAR_COLOR};
+use super::frame::{cmd_render, Background, FrameWork, TargetView};
 use super::tess::tess_triangle_count;
 use super::{
     Capture, CapturedVertex, DrawConfig, Driver, FrameUniforms, RenderError, Renderer, Scene, View,
@@ -29,6 +29,8 @@ pub struct Headless {
     pub wireframe: bool,
     /// Draw the cage overlay (the coarse mesh's edges) over the surface.
     pub cage: bool,
+    /// What the image is drawn on.
+    pub background: Background,
     /// Draw each element at its own levels from its mesh's levels buffer
     /// ([`super::GpuMesh::upload_levels`]), the configuration's level being the largest
     /// (`FrameWork::adaptive`; the pattern driver at a power of two).
@@ -79,6 +81,11 @@ fn pass_limit(
 
 /// The clear colour as the sRGB offscreen target stores it (8 bits per channel).
 pub fn clear_color_srgb8() -> [u8; 4] {
+    background_srgb8(Background::Dark)
+}
+
+/// `background`'s colour as the sRGB target stores it.
+pub fn background_srgb8(background: Background) -> [u8; 4] {
     let encode = |c: f32| {
         let s = if c <= 0.003_130_8 {
             12.92 * c
@@ -87,7 +94,7 @@ pub fn clear_color_srgb8() -> [u8; 4] {
         };
         (s.clamp(0.0, 1.0) * 255.0).round() as u8
     };
-    let [r, g, b, a] = CLEAR_COLOR;
+    let [r, g, b, a] = background.color();
     [
         encode(r),
         encode(g),
@@ -99,7 +106,12 @@ pub fn clear_color_srgb8() -> [u8; 4] {
 /// Pixels of a headless image that differ from the clear colour (by more than the rounding of
 /// the sRGB conversion): 0 means nothing was drawn.
 pub fn covered_pixels(image: &Readback) -> usize {
-    let clear = clear_color_srgb8();
+    covered_pixels_on(image, Background::Dark)
+}
+
+/// Pixels of `image` that differ from `background` by more than 1/255 in some channel.
+pub fn covered_pixels_on(image: &Readback, background: Background) -> usize {
+    let clear = background_srgb8(background);
     image
         .rgba
         .chunks_exact(4)
@@ -137,6 +149,7 @@ impl Headless {
             queries,
             wireframe: false,
             cage: false,
+            background: Background::Dark,
             adaptive: false,
             view: View::Shaded,
             max_capture_bytes: None,
@@ -278,6 +291,7 @@ impl Headless {
             wireframe: self.wireframe,
             adaptive: self.adaptive,
             cage: scene.cage.as_ref().filter(|_| cage),
+            clear: self.background.color(),
             level_pass: scene.level_pass(cfg).filter(|_| self.adaptive),
             elements,
             ..FrameWork::new(scene, *cfg)

@@ -25,7 +25,11 @@ pub use camera::Camera;
 pub use driver::{Driver, DriverKind, Submit};
 pub use error::RenderError;
 pub use gpu_mesh::{GpuMesh, GpuPattern, MeshData};
-pub use headless::{clear_color_srgb8, covered_pixels, CaptureResult, FrameTiming, Headless};
+pub use frame::Background;
+pub use headless::{
+    background_srgb8, clear_color_srgb8, covered_pixels, covered_pixels_on, CaptureResult,
+    FrameTiming, Headless,
+};
 pub use level_pass::LevelPass;
 pub use pipelines::{Renderer, GEOMETRY_STAGES, PUSH_STAGES};
 pub use scene::{software_frame_seconds, Scene};
