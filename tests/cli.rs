@@ -2055,6 +2055,100 @@ fn info_reports_adaptive_levels_for_a_camera() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("--fov applies only with --pixel-error"));
 }
 
+/// The fields of one CSV line (RFC 4180 quoting).
+fn csv_fields(line: &str) -> Vec<String> {
+    let (mut fields, mut field, mut quoted) = (Vec::new(), String::new(), false);
+    let mut chars = line.chars().peekable();
+    while let Some(c) = chars.next() {
+        match (c, quoted) {
+            ('"', true) if chars.peek() == Some(&'"') => {
+                chars.next();
+                field.push('"');
+            }
+            ('"', _) => quoted = !quoted,
+            (',', false) => fields.push(std::mem::take(&mut field)),
+            (c, _) => field.push(c),
+        }
+    }
+    fields.push(field);
+    fields
+}
+
+/// `bench --pixel-error` with `--levels`: per driver an adaptive row (each element at its own
+/// levels; its triangles the histogram's at the inner levels, culled elements excluded), then uniform rows at the
+/// levels asked for, at the smallest level meeting the same bound (the largest level drawn) and
+/// at the next power of two; the level pass's CPU time on the adaptive row only. Validation on.
+#[test]
+fn bench_with_pixel_error_times_adaptive_and_uniform_rows() {
+    let prefix = tmp("bench-adaptive");
+    let spot = model_path("spot_control_tri.obj").display().to_string();
+    let p = prefix.display().to_string();
+    #[rustfmt::skip]
+    ok(&[
+        "--validate", "bench", &spot, "--surfaces", "pn", "--drivers", "tess", "--pixel-error", "1",
+        "--max-level", "12", "--levels", "2", "--frames", "1", "--width", "320", "--height", "200",
+        "--out", &p,
+    ]);
+    let csv = std::fs::read_to_string(prefix.with_extension("csv")).unwrap();
+    let mut lines = csv.lines();
+    let keys = csv_fields(lines.next().unwrap());
+    let rows: Vec<Vec<String>> = lines.map(csv_fields).collect();
+    let get = |r: &Vec<String>, key: &str| r[keys.iter().position(|k| k == key).unwrap()].clone();
+    let number = |r: &Vec<String>, key: &str| -> u64 { get(r, key).parse().unwrap() };
+    let from: Vec<String> = rows.iter().map(|r| get(r, "level_from")).collect();
+    assert_eq!(from[0], "view", "{csv}");
+    let adaptive = &rows[0];
+    assert_eq!(get(adaptive, "adaptive"), "true");
+    assert_eq!(number(adaptive, "level"), 12);
+    assert_eq!(get(adaptive, "level_pass_on"), "cpu");
+    assert!(get(adaptive, "level_pass_ms").parse::<f64>().unwrap() >= 0.0);
+    // Triangles: each visible element's at its inner level (tess: N² a triangle).
+    let histogram: Vec<(u64, u64)> = get(adaptive, "level_histogram")
+        .split(' ')
+        .map(|p| {
+            let (l, n) = p.split_once(':').unwrap();
+            (l.parse().unwrap(), n.parse().unwrap())
+        })
+        .collect();
+    let visible: u64 = histogram.iter().map(|(_, n)| n).sum();
+    assert_eq!(
+        visible + number(adaptive, "culled_elements"),
+        number(adaptive, "elements")
+    );
+    let per = |l: u64| meshrefine::render::tess::tess_triangle_count(l as u32) as u64;
+    let tris: u64 = histogram.iter().map(|&(l, n)| per(l) * n).sum();
+    assert_eq!(number(adaptive, "refined_triangles"), tris);
+    assert!(histogram.len() > 1, "levels differ between elements: {csv}");
+    let bound = histogram.iter().map(|(l, _)| *l).max().unwrap();
+    // One row per level, naming every reason it is timed.
+    let mut expected: Vec<(u64, String)> = Vec::new();
+    for (level, from) in [
+        (2, "levels"),
+        (bound, "bound"),
+        (bound.next_power_of_two(), "pow2"),
+    ] {
+        match expected.iter_mut().find(|e| e.0 == level) {
+            Some(e) => e.1 = format!("{}+{from}", e.1),
+            None => expected.push((level, from.into())),
+        }
+    }
+    let uniform: Vec<(u64, String)> = rows[1..]
+        .iter()
+        .map(|r| (number(r, "level"), get(r, "level_from")))
+        .collect();
+    assert_eq!(uniform, expected, "{csv}");
+    for r in &rows[1..] {
+        assert_eq!(get(r, "adaptive"), "false");
+        let l = number(r, "level");
+        assert_eq!(
+            number(r, "refined_triangles"),
+            number(r, "elements") * per(l)
+        );
+        assert_eq!(get(r, "level_pass_ms"), "");
+        assert!(get(r, "gpu_ms_median").parse::<f64>().is_ok(), "{csv}");
+    }
+}
+
 /// `--pixel-error` and its camera on render, export, view and bench: every bad value is one
 /// sentence and status 1, before anything is drawn; the static driver (which refines on the
 /// CPU) is refused, and a pattern driver's largest level that is not a power of two.
@@ -2098,15 +2192,13 @@ fn adaptive_options_refuse_bad_values() {
             &with(&["--pixel-error", "1", "--eye", "1,2,3", "--look-at", "1,2,3"]),
             &["--eye 1,2,3", "no view direction"],
         );
-        let level = if base[0] == "bench" {
-            "--levels"
-        } else {
-            "--level"
-        };
-        expect_error(
-            &with(&["--pixel-error", "1", level, "4"]),
-            &["--pixel-error and", "exclusive"],
-        );
+        // bench times --levels uniformly beside the adaptive rows (`bench_with_pixel_error_...`).
+        if base[0] != "bench" {
+            expect_error(
+                &with(&["--pixel-error", "1", "--level", "4"]),
+                &["--pixel-error and", "exclusive"],
+            );
+        }
     }
     expect_error(
         &[

@@ -30,13 +30,27 @@ impl Harness {
     /// on, and any message or leak fails it; timed runs leave validation off (it slows command
     /// recording 7-10x). Device: the first Vulkan device (MESHREFINE_DEVICE picks one by name).
     pub fn run(&self, name: &str, meshes: &[Mesh], opts: &BenchOptions) {
+        self.run_all(name, &[(meshes.to_vec(), opts.clone())]);
+    }
+
+    /// [`Harness::run`] for several sets of meshes and options in one table (one context, the
+    /// rows in order; the first options' frame size and count head it).
+    pub fn run_all(&self, name: &str, jobs: &[(Vec<Mesh>, BenchOptions)]) {
         let desc = crate::gpu::ContextDesc {
             device_name: std::env::var("MESHREFINE_DEVICE").ok(),
             validate: !self.benching,
             ..Default::default()
         };
         let report = crate::gpu::with_context(&desc, |ctx| {
-            run(ctx, meshes, opts).map_err(Box::<dyn std::error::Error>::from)
+            let mut all: Option<Report> = None;
+            for (meshes, opts) in jobs {
+                let report = run(ctx.clone(), meshes, opts)?;
+                match &mut all {
+                    Some(all) => all.rows.extend(report.rows),
+                    None => all = Some(report),
+                }
+            }
+            all.ok_or_else(|| Box::<dyn std::error::Error>::from("nothing to measure"))
         })
         .unwrap_or_else(|e| {
             if let Some(crate::gpu::ShutdownError::Validation(list)) = e.downcast_ref() {

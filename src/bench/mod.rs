@@ -14,6 +14,7 @@
 //! `harness.rs` is what the `cargo bench` targets call.
 #![forbid(unsafe_code)]
 
+mod adaptive;
 mod harness;
 mod report;
 
@@ -48,19 +49,52 @@ pub struct BenchOptions {
     /// (milliseconds; 0: exactly `frames`), so frames of a few milliseconds, whose timestamps
     /// jitter most, get more samples. At most 20 × `frames` rounds.
     pub min_total_ms: f64,
-    /// Draw adaptively ([`Scene::set_levels`]): each element at the levels this view asks for,
-    /// the row's level being the largest; `None`: every element at the row's level.
+    /// Draw adaptively ([`Scene::set_levels`]): each variant once with each element at the
+    /// levels the view asks for, and, in the same run, uniformly at `levels` and (with
+    /// [`BenchAdaptive::bound_levels`]) at the smallest uniform level meeting the same bound
+    /// and the smallest power of two at or above it; `None`: every element at each of `levels`.
     pub adaptive: Option<BenchAdaptive>,
 }
 
-/// The view adaptive rows are drawn for.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// The views adaptive rows are drawn for, and what they are compared with.
+#[derive(Clone, Debug, PartialEq)]
 pub struct BenchAdaptive {
-    /// In the drawn coordinates; `None`: the camera that frames the mesh (the one uniform rows
-    /// are drawn with).
-    pub camera: Option<Camera>,
+    /// The scene's name in the table (`close-up`, `grazing`, ...; may be empty).
+    pub scene: String,
+    /// In the drawn coordinates; one: a still view; several: a path whose frames are averaged
+    /// (each row's times and counts are the means over the cameras); none: the camera that
+    /// frames the mesh.
+    pub cameras: Vec<Camera>,
     pub pixel_error: f32,
     pub cull: bool,
+    /// The largest level an element may get (a power of two for the pattern driver).
+    pub max_level: u32,
+    /// Also time the smallest uniform level meeting the bound on every camera
+    /// ([`crate::lod::LevelReport::uniform_level`], as the driver rounds) and the smallest power
+    /// of two at or above it.
+    pub bound_levels: bool,
+}
+
+/// What a row of an adaptive benchmark adds (its columns are empty on other rows).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct AdaptiveCells {
+    pub scene: String,
+    pub pixel_error: f32,
+    /// Each element drawn at its own levels (the row's level the largest allowed), or every
+    /// element at the row's level.
+    pub adaptive: bool,
+    /// Where the row's levels come from: `view` (adaptive), and for a uniform row one or more
+    /// of `levels` (asked for), `bound` (the smallest uniform level meeting the pixel error on
+    /// every camera), `pow2` (the smallest power of two at or above it), joined by `+`.
+    pub level_from: String,
+    /// Milliseconds choosing the levels of one frame (median per camera, mean over cameras),
+    /// and where they were chosen (`cpu`: `Scene::set_levels`' wall time, upload included).
+    pub level_pass_ms: Option<f64>,
+    pub level_pass_on: Option<&'static str>,
+    /// Elements culled (mean over cameras, rounded).
+    pub culled_elements: Option<u64>,
+    /// Visible elements per drawn inner level, `L:n` ascending (summed over the cameras).
+    pub histogram: String,
 }
 
 /// Median, min and max of a sample.
@@ -121,6 +155,8 @@ pub struct Row {
     /// basis function tables' bytes.
     pub pre_pass_ms: Option<f64>,
     pub table_bytes: Option<u64>,
+    /// Adaptive benchmarks only ([`BenchOptions::adaptive`]).
+    pub adaptive: Option<AdaptiveCells>,
     pub note: String,
 }
 
@@ -151,6 +187,10 @@ pub fn run(
     let mut h = Headless::with_context(ctx.clone(), opts.width, opts.height)?;
     let mut rows = Vec::new();
     for mesh in meshes {
+        if let Some(a) = &opts.adaptive {
+            rows.extend(adaptive::run(&ctx, &mut h, mesh, opts, a)?);
+            continue;
+        }
         let mut m = MeshSetup::new(&mut h, mesh, opts)?;
         for &level in &opts.levels {
             // Every variant of every surface is warmed up, then the timed frames go round the
@@ -159,7 +199,7 @@ pub fn run(
             // compare like with like (`static`, with several surfaces, aside: `time_round`).
             let mut runs = Vec::new();
             for cfg in variants(&m.surfaces, level, m.params, opts.build, &opts.drivers) {
-                runs.push(warm_up(&ctx, &mut h, &mut m, cfg, opts)?);
+                runs.push(warm_up(&ctx, &mut h, &mut m, cfg)?);
             }
             time_round(&mut h, &mut m, &mut runs, opts)?;
             rows.extend(into_rows(runs));
@@ -199,8 +239,8 @@ impl MeshSetup {
             PatternSet::from_levels(&opts.levels),
         )?;
         let (c, r) = scene.bounding_sphere();
-        let camera = match opts.adaptive.and_then(|a| a.camera) {
-            Some(camera) => camera,
+        let camera = match opts.adaptive.as_ref().and_then(|a| a.cameras.first()) {
+            Some(&camera) => camera,
             None => Camera::framing(c, r),
         };
         let coarse = scene.gpu.element_count;
@@ -269,22 +309,45 @@ fn warm_up(
     h: &mut Headless,
     m: &mut MeshSetup,
     cfg: DrawConfig,
-    opts: &BenchOptions,
 ) -> Result<Run, RenderError> {
+    let (mut row, refused) = new_row(ctx, h, m, &cfg)?;
+    let drawn = refused.is_none();
+    h.adaptive = false;
+    if drawn {
+        h.draw(&mut m.scene, &cfg, &m.camera)?; // warm-up: shaders, static VBO
+    } else if let Some(e) = refused {
+        row.note = format!("not drawn: {e}");
+    }
+    Ok(Run {
+        row,
+        cfg,
+        drawn,
+        gpu: Vec::new(),
+        wall: Vec::new(),
+    })
+}
+
+/// A variant's row with what is known before timing (counts, bytes; the scene prepared for
+/// `cfg`), and why the device refuses its level, if it does (then nothing was prepared).
+fn new_row(
+    ctx: &crate::gpu::Context,
+    h: &mut Headless,
+    m: &mut MeshSetup,
+    cfg: &DrawConfig,
+) -> Result<(Row, Option<RenderError>), RenderError> {
     let (surface, displace, level) = (cfg.surface, cfg.displace, cfg.level);
     let scene = &mut m.scene;
-    let refused = crate::render::driver::check_level(ctx, &cfg).err();
-    let drawn = refused.is_none();
-    let t = if drawn {
-        h.prepared_elements(scene, &cfg, crate::render::Capture::None)?
+    let refused = crate::render::driver::check_level(ctx, cfg).err();
+    let t = if refused.is_none() {
+        h.prepared_elements(scene, cfg, crate::render::Capture::None)?
     } else {
         // Not drawn; loop's M1 is there once another driver drew it.
         scene.elements(surface).element_count
     };
     let (stored_vertices, stored_indices) = cfg.driver.kind().stored(cfg.level, t as u64);
-    let geometry_bytes = scene.geometry_bytes(&cfg);
+    let geometry_bytes = scene.geometry_bytes(cfg);
     let loop_scene = scene.loop_.as_ref().filter(|_| surface.uses_loop_faces());
-    let mut row = Row {
+    let row = Row {
         mesh: m.name.clone(),
         coarse_triangles: m.coarse,
         elements: t,
@@ -304,44 +367,10 @@ fn warm_up(
         throughput_vs_flat: None,
         pre_pass_ms: loop_scene.and(m.pre_pass_ms),
         table_bytes: loop_scene.map(|l| l.data.table_bytes()),
+        adaptive: None,
         note: String::new(),
     };
-    if let Some(a) = opts.adaptive.filter(|_| drawn) {
-        // Every timed frame runs the level pass for this camera before its draws; an adaptive
-        // row counts its elements' triangles at their inner levels (the pass's mirror).
-        let report = scene.set_levels(
-            &cfg,
-            &crate::render::LevelView {
-                camera: m.camera,
-                width: opts.width,
-                height: opts.height,
-                pixel_error: a.pixel_error,
-                cull: a.cull,
-            },
-        );
-        row.refined_triangles = (report.histogram.iter())
-            .map(|(&n, &count)| count * cfg.driver.refined_per_element(n) as u64)
-            .sum();
-        row.note = format!(
-            "adaptive at {} px: levels {}; culled {}",
-            a.pixel_error,
-            report.histogram_line(),
-            report.culled
-        );
-    }
-    h.adaptive = opts.adaptive.is_some();
-    if drawn {
-        h.draw(scene, &cfg, &m.camera)?; // warm-up: shaders, static VBO
-    } else if let Some(e) = refused {
-        row.note = format!("not drawn: {e}");
-    }
-    Ok(Run {
-        row,
-        cfg,
-        drawn,
-        gpu: Vec::new(),
-        wall: Vec::new(),
-    })
+    Ok((row, refused))
 }
 
 /// Takes the timed frames round the drawn variants in turn until each has `frames` of them

@@ -284,10 +284,71 @@ pub static COLUMNS: &[Column] = &[
         Right,
         |_, r| Cell::Count(r.vertex_invocations),
     ),
+    // Adaptive benchmarks' columns (`BenchOptions::adaptive`), empty on other rows.
+    col("scene", Some("scene"), Some("scene"), Left, |_, r| {
+        Cell::Name(adaptive(r).map_or(String::new(), |a| a.scene.clone()))
+    }),
+    col("adaptive", Some("adaptive"), None, Left, |_, r| {
+        Cell::Name(adaptive(r).map_or(String::new(), |a| a.adaptive.to_string()))
+    }),
+    col(
+        "pixel_error",
+        Some("pixel error"),
+        Some("px"),
+        Right,
+        |_, r| Cell::Real(adaptive(r).map(|a| a.pixel_error.into()), 2),
+    ),
+    col(
+        "level_from",
+        Some("levels from"),
+        Some("levels from"),
+        Left,
+        |_, r| Cell::Name(adaptive(r).map_or(String::new(), |a| a.level_from.clone())),
+    ),
+    col(
+        "level_pass_ms",
+        Some("level pass ms"),
+        Some("LOD ms"),
+        Right,
+        |_, r| Cell::Real(adaptive(r).and_then(|a| a.level_pass_ms), 3),
+    ),
+    col(
+        "level_pass_on",
+        Some("level pass on"),
+        None,
+        Left,
+        |_, r| {
+            Cell::Name(
+                adaptive(r)
+                    .and_then(|a| a.level_pass_on)
+                    .unwrap_or("")
+                    .into(),
+            )
+        },
+    ),
+    col(
+        "culled_elements",
+        Some("culled elements"),
+        None,
+        Right,
+        |_, r| Cell::Count(adaptive(r).and_then(|a| a.culled_elements)),
+    ),
+    col(
+        "level_histogram",
+        Some("levels (L:elements)"),
+        None,
+        Left,
+        |_, r| Cell::Name(adaptive(r).map_or(String::new(), |a| a.histogram.clone())),
+    ),
     col("note", Some("note"), None, Left, |_, r| {
         Cell::Prose(r.note.clone())
     }),
 ];
+
+/// A row's adaptive cells, if it has them.
+fn adaptive(r: &Row) -> Option<&super::AdaptiveCells> {
+    r.adaptive.as_ref()
+}
 
 /// The widest line [`Report::summary`] prints.
 pub const SUMMARY_WIDTH: usize = 120;
@@ -418,6 +479,8 @@ impl Report {
                 )
             })
             .collect();
+        // Columns no row has a value in (an adaptive benchmark's, on other rows) are left out.
+        columns.retain(|(_, cells)| cells.iter().any(|c| !c.is_empty() && c != "–"));
         // Columns with one value on every row are said once, above the table.
         if self.rows.len() > 1 {
             let same: Vec<String> = columns
@@ -583,6 +646,7 @@ mod tests {
             throughput_vs_flat: timed.then_some(1.5),
             pre_pass_ms: Some(0.123_456),
             table_bytes: None,
+            adaptive: None,
             note: if timed {
                 String::new()
             } else {
@@ -671,17 +735,17 @@ mod tests {
         let r = report(vec![row("spot", 2, "tess", true)]);
         assert_eq!(
             r.csv().lines().next().unwrap(),
-            "device,mesh,coarse_triangles,elements,level,surface,displace,variant,refined_triangles,gpu_ms_median,gpu_ms_min,gpu_ms_max,wall_ms_median,wall_ms_min,wall_ms_max,gpu_ns_per_refined_triangle,gpu_ratio_vs_static,wall_ratio_vs_static,throughput_vs_flat,pre_pass_ms,table_bytes,stored_vertices,stored_indices,geometry_bytes,vertex_invocations,note"
+            "device,mesh,coarse_triangles,elements,level,surface,displace,variant,refined_triangles,gpu_ms_median,gpu_ms_min,gpu_ms_max,wall_ms_median,wall_ms_min,wall_ms_max,gpu_ns_per_refined_triangle,gpu_ratio_vs_static,wall_ratio_vs_static,throughput_vs_flat,pre_pass_ms,table_bytes,stored_vertices,stored_indices,geometry_bytes,vertex_invocations,scene,adaptive,pixel_error,level_from,level_pass_ms,level_pass_on,culled_elements,level_histogram,note"
         );
         let md = r.markdown();
         let mut lines = md.lines().skip(2);
         assert_eq!(
             lines.next().unwrap(),
-            "| mesh | coarse tris | elements | level | surface | displace | variant | refined tris | GPU ms | wall ms | GPU ns / refined tri | GPU / static | wall / static | throughput / flat | M0→M1 ms | table bytes | stored vertices | stored indices | geometry bytes | VS invocations | note |"
+            "| mesh | coarse tris | elements | level | surface | displace | variant | refined tris | GPU ms | wall ms | GPU ns / refined tri | GPU / static | wall / static | throughput / flat | M0→M1 ms | table bytes | stored vertices | stored indices | geometry bytes | VS invocations | scene | adaptive | pixel error | levels from | level pass ms | level pass on | culled elements | levels (L:elements) | note |"
         );
         assert_eq!(
             lines.next().unwrap(),
-            "|---|---:|---:|---:|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|"
+            "|---|---:|---:|---:|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---:|---|---:|---|---:|---|---|"
         );
     }
 

@@ -44,7 +44,7 @@ pub fn no_direction(eye: Vec3, target: Vec3) -> String {
 }
 
 /// The adaptive options of `cli`'s command, checked: the pixel error and camera, `--level`
-/// (`--levels` for bench) not given with it, and a driver that draws adaptively.
+/// (render, export, view) not given with it, and a driver that draws adaptively.
 pub fn check(cli: &Cli, given: &Given) -> Result<()> {
     let (opts, level, drivers): (&AdaptiveOpts, &str, Vec<Driver>) = match &cli.command {
         Command::Render(a) => (&a.adaptive, "level", vec![a.technique.driver]),
@@ -56,9 +56,6 @@ pub fn check(cli: &Cli, given: &Given) -> Result<()> {
     let Some(px) = opts.pixel_error else {
         return Ok(());
     };
-    if level == "levels" && given.has("levels") {
-        bail!("--pixel-error and --levels are exclusive: adaptive levels come from the pixel error, --levels asks for one level everywhere");
-    }
     check_view(px, &opts.viewpoint, level == "level" && given.has("level"))?;
     if let Some(d) = drivers.iter().find(|d| d.kind().refines_on_cpu()) {
         bail!(

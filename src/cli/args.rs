@@ -455,6 +455,11 @@ pub struct BenchArgs {
     pub height: u32,
     #[command(flatten)]
     pub adaptive: AdaptiveOpts,
+    /// With --pixel-error: leave out the uniform rows at the smallest level meeting the same
+    /// bound and at the smallest power of two at or above it (the levels given by --levels are
+    /// still timed).
+    #[arg(long, help_heading = "Adaptive drawing")]
+    pub no_bound_levels: bool,
 }
 
 /// `--msaa`: 1, 2, 4 or 8.

@@ -11,8 +11,9 @@ use meshrefine::gpu::ContextDesc;
 use meshrefine::render::{DrawConfig, Driver};
 use std::io::Write as _;
 
-/// Runs `meshrefine bench` with `a`.
-pub fn run(a: &BenchArgs, desc: &ContextDesc) -> Result<()> {
+/// Runs `meshrefine bench` with `a` (`levels_given`: `--levels` was on the command line; with
+/// `--pixel-error` only those uniform levels are timed beside the adaptive rows).
+pub fn run(a: &BenchArgs, desc: &ContextDesc, levels_given: bool) -> Result<()> {
     if !(a.min_total_ms.is_finite() && a.min_total_ms >= 0.0) {
         bail!(
             "--min-total-ms {} is not a finite number >= 0",
@@ -64,18 +65,24 @@ pub fn run(a: &BenchArgs, desc: &ContextDesc) -> Result<()> {
     mesh.name = input.mesh.name.clone();
     let report = with_context(desc, |ctx| {
         let mut opts = opts;
-        if let Some(a) = &adaptive {
-            // One row per variant at the largest level, seen by the camera asked for.
-            // (A power of two when the pattern driver is measured: its largest level.)
+        if let Some(ad) = &adaptive {
+            // Each variant adaptive up to the largest level (a power of two when the pattern
+            // driver is measured: its largest level), seen by the camera asked for, and uniform
+            // at the levels it is compared with.
+            if !levels_given {
+                opts.levels.clear();
+            }
             let driver = (opts.drivers.iter())
                 .find(|d| matches!(d, Driver::Pattern(_)))
                 .map_or(Driver::Tess, |&d| d);
-            opts.levels = vec![a.max_level(&ctx, driver)?];
             let scene_frame = Frame { centre, scale };
             opts.adaptive = Some(meshrefine::bench::BenchAdaptive {
-                camera: a.given_camera(&mesh, &scene_frame)?,
-                pixel_error: a.pixel_error,
-                cull: a.cull,
+                scene: String::new(),
+                cameras: ad.given_camera(&mesh, &scene_frame)?.into_iter().collect(),
+                pixel_error: ad.pixel_error,
+                cull: ad.cull,
+                max_level: ad.max_level(&ctx, driver)?,
+                bound_levels: !a.no_bound_levels,
             });
         }
         meshrefine::bench::run(ctx, &[mesh], &opts)

@@ -41,7 +41,7 @@ pub fn run(cli: Cli, given: &options::Given) -> Result<()> {
         Command::View(a) => view::run(a, &desc),
         Command::Export(a) => export::run(a, &desc),
         Command::Info(a) => info::run(a),
-        Command::Bench(a) => bench::run(a, &desc),
+        Command::Bench(a) => bench::run(a, &desc, given.has("levels")),
         Command::Devices => devices(&desc),
     }
 }

@@ -1,0 +1,289 @@
+//! Adaptive rows ([`BenchOptions::adaptive`]): each variant drawn with every element at the
+//! levels its view asks for, against the same variant drawn uniformly, in the same run. For each
+//! camera the frames go round the adaptive and uniform configurations in turn (one warm-up frame
+//! each first); the adaptive frame chooses its levels before it is drawn (timed apart: the
+//! level pass's cost), the uniform ones draw every element at their level (no culling). With
+//! several cameras (a path) a row's figures are the means over the cameras of each camera's
+//! medians. Timings are measured, never asserted.
+#![forbid(unsafe_code)]
+
+use super::{new_row, variants, AdaptiveCells, BenchAdaptive, BenchOptions, MeshSetup, Row, Stat};
+use crate::lod::LevelReport;
+use crate::mesh::Mesh;
+use crate::pattern::PatternSet;
+use crate::render::{Camera, DrawConfig, Headless, LevelView, RenderError};
+use std::collections::BTreeMap;
+use std::time::Instant;
+
+/// One configuration timed on every camera.
+struct Timed {
+    row: Row,
+    cfg: DrawConfig,
+    adaptive: bool,
+    drawn: bool,
+    /// Per camera: the timed frames' GPU and wall milliseconds, and (adaptive) the
+    /// milliseconds choosing the levels before each.
+    gpu: Vec<Vec<f64>>,
+    wall: Vec<Vec<f64>>,
+    choose: Vec<Vec<f64>>,
+    /// Adaptive: what each camera's levels were.
+    reports: Vec<LevelReport>,
+}
+
+/// Every variant of `opts` on `mesh`, adaptive at `a`'s views and uniform at the levels it is
+/// compared with.
+pub(super) fn run(
+    ctx: &crate::gpu::Context,
+    h: &mut Headless,
+    mesh: &Mesh,
+    opts: &BenchOptions,
+    a: &BenchAdaptive,
+) -> Result<Vec<Row>, RenderError> {
+    // Every level a uniform row may draw has its pattern uploaded (the scene checks it whatever
+    // the driver): the levels asked for, the powers of two up to the largest level's, and every
+    // level up to 128 (the tessellator's bounds are integers).
+    let mut levels = opts.levels.clone();
+    levels.extend(PatternSet::up_to(a.max_level.next_power_of_two()).levels());
+    levels.extend(1..=a.max_level.min(128));
+    let setup = BenchOptions {
+        levels,
+        ..opts.clone()
+    };
+    let mut m = MeshSetup::new(h, mesh, &setup)?;
+    let cameras = if a.cameras.is_empty() {
+        vec![m.camera]
+    } else {
+        a.cameras.clone()
+    };
+    let mut rows = Vec::new();
+    for cfg in variants(
+        &m.surfaces,
+        a.max_level,
+        m.params,
+        opts.build,
+        &opts.drivers,
+    ) {
+        rows.extend(variant(ctx, h, &mut m, cfg, &cameras, opts, a)?);
+        m.scene.static_vbo = None;
+    }
+    h.adaptive = false;
+    Ok(rows)
+}
+
+/// One variant: its adaptive row, then its uniform rows.
+fn variant(
+    ctx: &crate::gpu::Context,
+    h: &mut Headless,
+    m: &mut MeshSetup,
+    cfg: DrawConfig,
+    cameras: &[Camera],
+    opts: &BenchOptions,
+    a: &BenchAdaptive,
+) -> Result<Vec<Row>, RenderError> {
+    let view = |camera: Camera| LevelView {
+        camera,
+        width: opts.width,
+        height: opts.height,
+        pixel_error: a.pixel_error,
+        cull: a.cull,
+    };
+    let mut first = timed(ctx, h, m, cfg, true, "view".into(), a)?;
+    if first.drawn {
+        if let Err(e) = cfg.driver.kind().check_adaptive(ctx, &m.scene, &cfg) {
+            first.row.note = format!("not drawn: {e}");
+            first.drawn = false;
+        }
+    }
+    if !first.drawn {
+        return Ok(vec![first.row]);
+    }
+    // The smallest uniform level meeting the bound on every camera, as the driver rounds.
+    let bound = (cameras.iter())
+        .map(|&c| m.scene.set_levels(&cfg, &view(c)).uniform_level)
+        .max()
+        .unwrap_or(1);
+    let mut uniform: Vec<(u32, Vec<&str>)> = Vec::new();
+    let mut add = |level: u32, from: &'static str| match uniform.iter_mut().find(|u| u.0 == level) {
+        Some(u) => u.1.push(from),
+        None => uniform.push((level, vec![from])),
+    };
+    for &l in &opts.levels {
+        add(l, "levels");
+    }
+    if a.bound_levels {
+        add(bound, "bound");
+        add(bound.next_power_of_two(), "pow2");
+    }
+    let mut list = vec![first];
+    for (level, from) in uniform {
+        let cfg = DrawConfig { level, ..cfg };
+        list.push(timed(ctx, h, m, cfg, false, from.join("+"), a)?);
+    }
+    let frames = opts.frames.max(1) as usize;
+    let enough = |t: &Timed| {
+        let gpu = t.gpu.last().map_or(&[][..], |g| &g[..]);
+        !t.drawn
+            || (gpu.len() >= frames
+                && (gpu.iter().sum::<f64>() >= opts.min_total_ms || gpu.len() >= 20 * frames))
+    };
+    for &camera in cameras {
+        for t in &mut list {
+            t.gpu.push(Vec::new());
+            t.wall.push(Vec::new());
+            t.choose.push(Vec::new());
+        }
+        // Round 0 is every configuration's warm-up frame at this camera.
+        let mut round = 0;
+        while round == 0 || !list.iter().all(enough) {
+            for t in list.iter_mut().filter(|t| t.drawn) {
+                let chose = if t.adaptive {
+                    let start = Instant::now();
+                    let report = m.scene.set_levels(&t.cfg, &view(camera));
+                    let ms = start.elapsed().as_secs_f64() * 1e3;
+                    if round == 0 {
+                        t.reports.push(report);
+                    }
+                    Some(ms)
+                } else {
+                    None
+                };
+                h.adaptive = t.adaptive;
+                let f = h.draw(&mut m.scene, &t.cfg, &camera)?;
+                if round > 0 {
+                    t.row.vertex_invocations = f.stats.map(|s| s.vertex_shader_invocations);
+                    t.gpu.last_mut().unwrap().push(f.gpu_ms);
+                    t.wall.last_mut().unwrap().push(f.wall_ms);
+                    t.choose.last_mut().unwrap().extend(chose);
+                }
+            }
+            round += 1;
+        }
+    }
+    h.adaptive = false;
+    Ok(into_rows(list, cameras.len()))
+}
+
+/// A configuration's row before timing; the device's refusal of its level in its note.
+fn timed(
+    ctx: &crate::gpu::Context,
+    h: &mut Headless,
+    m: &mut MeshSetup,
+    cfg: DrawConfig,
+    adaptive: bool,
+    level_from: String,
+    a: &BenchAdaptive,
+) -> Result<Timed, RenderError> {
+    let (mut row, refused) = new_row(ctx, h, m, &cfg)?;
+    if let Some(e) = &refused {
+        row.note = format!("not drawn: {e}");
+    }
+    row.adaptive = Some(AdaptiveCells {
+        scene: a.scene.clone(),
+        pixel_error: a.pixel_error,
+        adaptive,
+        level_from,
+        ..AdaptiveCells::default()
+    });
+    Ok(Timed {
+        row,
+        cfg,
+        adaptive,
+        drawn: refused.is_none(),
+        gpu: Vec::new(),
+        wall: Vec::new(),
+        choose: Vec::new(),
+        reports: Vec::new(),
+    })
+}
+
+/// The mean over cameras of each camera's median, the least minimum and the greatest maximum.
+fn over_cameras(samples: &[Vec<f64>]) -> Option<Stat> {
+    let stats: Vec<Stat> = (samples.iter())
+        .filter(|s| !s.is_empty())
+        .map(|s| Stat::of(s))
+        .collect();
+    (!stats.is_empty()).then(|| Stat {
+        median: stats.iter().map(|s| s.median).sum::<f64>() / stats.len() as f64,
+        min: stats.iter().map(|s| s.min).fold(f64::INFINITY, f64::min),
+        max: stats
+            .iter()
+            .map(|s| s.max)
+            .fold(f64::NEG_INFINITY, f64::max),
+    })
+}
+
+/// The timed configurations' rows; the adaptive row's note compares it with the uniform rows
+/// at the bound and its power of two.
+fn into_rows(list: Vec<Timed>, cameras: usize) -> Vec<Row> {
+    let mut rows: Vec<Row> = Vec::with_capacity(list.len());
+    for t in list {
+        let mut row = t.row;
+        if !t.drawn {
+            rows.push(row);
+            continue;
+        }
+        row.gpu_ms = over_cameras(&t.gpu);
+        row.wall_ms = over_cameras(&t.wall);
+        let cells = row
+            .adaptive
+            .as_mut()
+            .expect("adaptive rows carry their cells");
+        if t.adaptive {
+            let n = t.reports.len().max(1) as u64;
+            let per = |r: &LevelReport| -> u64 {
+                (r.histogram.iter())
+                    .map(|(&l, &count)| count * t.cfg.driver.refined_per_element(l) as u64)
+                    .sum()
+            };
+            row.refined_triangles = (t.reports.iter().map(per).sum::<u64>() + n / 2) / n;
+            let mut histogram: BTreeMap<u32, u64> = BTreeMap::new();
+            for r in &t.reports {
+                for (&l, &count) in &r.histogram {
+                    *histogram.entry(l).or_default() += count;
+                }
+            }
+            cells.histogram = LevelReport {
+                histogram,
+                ..LevelReport::default()
+            }
+            .histogram_line();
+            let culled: u64 = t.reports.iter().map(|r| r.culled).sum();
+            cells.culled_elements = Some((culled + n / 2) / n);
+            cells.level_pass_ms = over_cameras(&t.choose).map(|s| s.median);
+            cells.level_pass_on = Some("cpu");
+        }
+        log::info!(
+            "{} {} {} L{} ({}): {} triangles, gpu {:.2} ms",
+            row.mesh,
+            cells.scene,
+            row.variant,
+            row.level,
+            cells.level_from,
+            row.refined_triangles,
+            row.gpu_ms.map_or(0.0, |s| s.median),
+        );
+        rows.push(row);
+    }
+    // The adaptive row (first) against the uniform rows it is measured against.
+    let (first, rest) = rows
+        .split_first_mut()
+        .expect("a variant has its adaptive row");
+    if let Some(gpu) = first.gpu_ms {
+        let mut notes = Vec::new();
+        if cameras > 1 {
+            notes.push(format!("means over {cameras} cameras"));
+        }
+        for u in rest.iter() {
+            let Some(uniform) = u.gpu_ms else { continue };
+            let from = u.adaptive.as_ref().map_or("", |c| c.level_from.as_str());
+            let time = gpu.median / uniform.median;
+            let tris = first.refined_triangles as f64 / u.refined_triangles.max(1) as f64;
+            notes.push(format!(
+                "{tris:.2}x the triangles, {time:.2}x the GPU time of uniform {} ({from})",
+                u.level
+            ));
+        }
+        first.note = notes.join("; ");
+    }
+    rows
+}
