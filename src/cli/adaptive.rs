@@ -60,7 +60,10 @@ pub fn check(cli: &Cli, given: &Given) -> Result<()> {
         bail!("--pixel-error and --levels are exclusive: adaptive levels come from the pixel error, --levels asks for one level everywhere");
     }
     check_view(px, &opts.viewpoint, level == "level" && given.has("level"))?;
-    if drivers.is_empty() || drivers.iter().any(|&d| d != Driver::Tess) {
+    // `view` draws the pattern driver adaptively too (the window says why where it cannot).
+    let view = matches!(cli.command, Command::View(_));
+    let adaptive = |d: Driver| d == Driver::Tess || (view && d.submit().is_some());
+    if drivers.is_empty() || !drivers.iter().all(|&d| adaptive(d)) {
         let chosen: Vec<&str> = drivers.iter().map(|d| d.name()).collect();
         let chosen = if chosen.is_empty() {
             "every driver".to_string()
