@@ -1,5 +1,7 @@
-//! The window demo (winit 0.30 + ash-window): orbit camera, live switching of driver, submission
-//! mode, level, LOD, wireframe and a CPU animation of the coarse mesh. Two HUDs: the window title
+//! The window demo (winit 0.30 + ash-window): orbit camera, adaptive mode (each element at the
+//! level its bound needs; pixel error, largest level, culling, frozen levels) or uniform mode,
+//! live switching of driver, submission mode, level, LOD, wireframe and a CPU animation of the
+//! coarse mesh (docs/window.md). Two HUDs: the window title
 //! (fps, GPU frame time from timestamp queries, coarse and refined triangle counts, GPU geometry
 //! bytes) and an egui overlay panel (`ui`, key `H`) that shows the same and has the switches;
 //! the terminal gets the key help.
@@ -219,6 +221,14 @@ struct State {
     adaptive_level: Option<u32>,
     /// The camera and window size frozen levels are chosen for.
     frozen: Option<(Camera, vk::Extent2D)>,
+    /// The slowest GPU time per refined triangle measured on a slow adaptive frame (over a
+    /// quarter second) of this driver, surface and displacement, in nanoseconds.
+    adaptive_rate: Option<(DrawConfig, f64)>,
+    /// What the last frame drew (configuration, wireframe, adaptively), and whether the frame
+    /// before drew the same: only then were its pipelines compiled before it (lavapipe compiles
+    /// at the first draw, inside the frame's GPU time).
+    last_drawn: Option<(DrawConfig, bool, bool)>,
+    warm: bool,
     start: Instant,
     frames: u64,
     recorded_once: bool,
@@ -318,6 +328,9 @@ impl App {
             level_ms: 0.0,
             adaptive_level: None,
             frozen: None,
+            adaptive_rate: None,
+            last_drawn: None,
+            warm: false,
             controls: Controls {
                 cfg,
                 wireframe: self.opts.wireframe,
@@ -364,6 +377,9 @@ impl State {
         self.overlay.update_textures(&ui_frame.textures)?;
         self.advance_scene();
         let (cfg, adaptive) = self.prepare_frame(opts)?;
+        let drawn = Some((cfg, self.controls.wireframe, adaptive));
+        self.warm = self.last_drawn == drawn;
+        self.last_drawn = drawn;
         let Some(image) = self.swapchain.acquire(self.acquired.raw)? else {
             self.resize = true;
             return Ok(true);
@@ -397,6 +413,7 @@ impl State {
         self.fence.wait()?;
         if self.recorded_once {
             self.gpu_ms = self.queries.gpu_ms(0)?;
+            self.measure_adaptive_rate();
         }
         if self.resize {
             self.ctx.wait_idle()?;
@@ -650,20 +667,51 @@ impl State {
             .unwrap_or(1)
     }
 
+    /// After a slow adaptive frame (over a quarter second, so that the triangles dominate its
+    /// time) drawn as the one before it (no pipeline compiled in it): its GPU time per refined triangle, kept if slower than the last one measured for
+    /// the same driver, surface and displacement.
+    fn measure_adaptive_rate(&mut self) {
+        let d = self.drawn;
+        if self.levels.is_none() || !self.warm || self.gpu_ms < 250.0 {
+            return;
+        }
+        let coarse = self.scene.elements(d.surface).element_count as u64;
+        let passes = if self.controls.wireframe { 2 } else { 1 };
+        let triangles = self.refined(&d, coarse) * passes;
+        if triangles == 0 {
+            return;
+        }
+        let ns = self.gpu_ms * 1e6 / triangles as f64;
+        let same =
+            |c: &DrawConfig| (c.driver, c.surface, c.displace) == (d.driver, d.surface, d.displace);
+        match &mut self.adaptive_rate {
+            Some((c, rate)) if same(c) => *rate = rate.max(ns),
+            other => *other = Some((d, ns)),
+        }
+    }
+
     /// On a software device, the largest level at most `cfg.level` whose adaptive frame (the
     /// elements of `report`, each at its inner level capped there; the wireframe pass counted
-    /// as a second draw) the slower estimate puts under a second, said in the panel; `cfg.level`
-    /// elsewhere.
+    /// as a second draw) the slower estimate (or the slower rate measured on this
+    /// configuration's slow frames, adaptive frames being slower a triangle on lavapipe than
+    /// the uniform ones the estimate comes from) puts under a second, said in the panel;
+    /// `cfg.level` elsewhere.
     fn fit_adaptive_budget(&mut self, cfg: &DrawConfig, report: &crate::lod::LevelReport) -> u32 {
         if self.ctx.info.device_type != vk::PhysicalDeviceType::CPU {
             return cfg.level;
         }
         let passes = if self.controls.wireframe { 2 } else { 1 };
+        let measured = (self.adaptive_rate)
+            .filter(|(c, _)| {
+                (c.driver, c.surface, c.displace) == (cfg.driver, cfg.surface, cfg.displace)
+            })
+            .map_or(0.0, |(_, ns)| ns);
         let fits = |cap: u32| {
             let refined: u64 = (report.histogram.iter())
                 .map(|(&n, &count)| count * cfg.driver.refined_per_element(n.min(cap)) as u64)
                 .sum();
             software_frame_seconds(refined * passes).is_none()
+                && (refined * passes) as f64 * measured * 1e-9 < 1.0
         };
         let asked = cfg.level;
         if fits(asked) {
