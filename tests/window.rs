@@ -389,3 +389,95 @@ fn a_window_destroyed_by_another_client_ends_the_demo_with_a_sentence() {
     assert!(!stderr.contains("validation"), "{stderr}");
     assert_eq!(stderr.trim().lines().count(), 1, "{stderr}");
 }
+
+/// The title's refined triangle count (`... -> N triangles`).
+fn title_triangles(title: &str) -> u64 {
+    let after = title
+        .split(" -> ")
+        .nth(1)
+        .unwrap_or_else(|| panic!("{title}"));
+    let n = after.split(' ').next().unwrap();
+    n.parse().unwrap_or_else(|_| panic!("{title}"))
+}
+
+#[test]
+fn the_demo_starts_adaptive_and_keys_change_its_controls() {
+    // Without --level the demo draws adaptively (pattern driver, 1 px, culling on); M, [ ], C, F
+    // and + - change the mode, pixel error, culling, frozen levels and largest level, and the
+    // title reports each. Frozen levels stay when the camera zooms in; unfrozen, they follow.
+    let _guard = common::gpu_lock();
+    let x = Xvfb::start();
+    let shot = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("window/adaptive-keys.png");
+    std::fs::create_dir_all(shot.parent().unwrap()).unwrap();
+    let _ = std::fs::remove_file(&shot);
+    let demo = Demo::start(&x, &["--screenshot", shot.to_str().unwrap()]);
+    let wait_title = |want: &str, unwanted: &str| {
+        let t0 = Instant::now();
+        loop {
+            let title = demo.xdotool(&["getwindowname", &demo.window]);
+            if title.contains(want) && (unwanted.is_empty() || !title.contains(unwanted)) {
+                return title;
+            }
+            assert!(
+                t0.elapsed() < Duration::from_secs(60),
+                "title never showed {want:?} without {unwanted:?}: {title}"
+            );
+            std::thread::sleep(Duration::from_millis(100));
+        }
+    };
+    let first = wait_title("pattern/instanced adaptive 1 px max level 64 cull on", "");
+    assert!(
+        first.contains("uniform level") && first.contains("| levels ") && first.contains("culled"),
+        "{first}"
+    );
+    for (key, want, unwanted) in [
+        ("bracketright", "adaptive 2 px", ""),
+        ("bracketleft", "adaptive 1 px", ""),
+        ("bracketleft", "adaptive 0.5 px", ""),
+        ("c", "0.5 px max level 64 cull off", ""),
+        ("c", "cull on", ""),
+        ("minus", "max level 32", ""),
+        ("3", "tess adaptive 0.5 px max level 32", ""),
+        ("m", "tess level 16", "adaptive"),
+        ("m", "tess adaptive", ""),
+    ] {
+        demo.xdotool(&["key", key]);
+        wait_title(want, unwanted);
+    }
+    // Frozen: zooming in changes nothing the levels chose; unfrozen, more triangles.
+    demo.xdotool(&["key", "f"]);
+    let frozen = wait_title("cull on frozen", "");
+    demo.xdotool(&["mousemove", "--window", &demo.window, "900", "400"]);
+    for _ in 0..6 {
+        demo.xdotool(&["click", "4"]);
+    }
+    std::thread::sleep(Duration::from_secs(2));
+    let zoomed = wait_title("frozen", "");
+    assert_eq!(
+        title_triangles(&zoomed),
+        title_triangles(&frozen),
+        "frozen levels changed with the camera: {frozen} / {zoomed}"
+    );
+    demo.xdotool(&["key", "f"]);
+    let t0 = Instant::now();
+    loop {
+        let title = wait_title("tess adaptive", "frozen");
+        if title_triangles(&title) > title_triangles(&frozen) {
+            break;
+        }
+        assert!(
+            t0.elapsed() < Duration::from_secs(60),
+            "unfrozen levels did not follow the zoom: {frozen} / {title}"
+        );
+        std::thread::sleep(Duration::from_millis(100));
+    }
+    // The levels view of the adaptive frame still shows the mesh.
+    demo.xdotool(&["key", "n"]);
+    demo.xdotool(&["key", "n"]);
+    demo.quit();
+    let (n, total) = covered(&shot);
+    assert!(
+        n > total / 5,
+        "only {n} of {total} centre pixels show the mesh"
+    );
+}

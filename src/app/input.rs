@@ -1,5 +1,6 @@
 //! The window's events: winit's callbacks, the mouse's orbit and zoom, and the keys.
 
+use super::ui::PIXEL_ERRORS;
 use super::{next, App, State, ViewOptions};
 use crate::render::{Driver, Submit, View};
 use crate::surface::{Displace, Surface};
@@ -108,7 +109,7 @@ impl State {
         let levels: Vec<u32> = self.scene.patterns.levels().collect();
         let uvs = self.scene.data.uvs.is_some();
         let c = &mut self.controls;
-        let pos = levels.iter().position(|&l| l == c.cfg.level).unwrap_or(0);
+        let pos = levels.iter().position(|&l| l == c.level()).unwrap_or(0);
         match key {
             Key::Named(NamedKey::Escape) => return false,
             Key::Character(ch) => match ch.as_str() {
@@ -135,8 +136,13 @@ impl State {
                 "p" | "P" => c.set_submit(Submit::Push),
                 "u" | "U" => c.set_submit(Submit::Ubo),
                 "i" | "I" => c.set_submit(Submit::Instanced),
-                "+" | "=" => c.cfg.level = levels[(pos + 1).min(levels.len() - 1)],
-                "-" | "_" => c.cfg.level = levels[pos.saturating_sub(1)],
+                "+" | "=" => c.set_level(levels[(pos + 1).min(levels.len() - 1)]),
+                "-" | "_" => c.set_level(levels[pos.saturating_sub(1)]),
+                "m" | "M" => c.adaptive = !c.adaptive,
+                "c" | "C" => c.cull = !c.cull,
+                "f" | "F" => c.freeze = !c.freeze,
+                "[" => c.pixel_error = (c.pixel_error * 0.5).max(*PIXEL_ERRORS.start()),
+                "]" => c.pixel_error = (c.pixel_error * 2.0).min(*PIXEL_ERRORS.end()),
                 "w" | "W" => c.wireframe = !c.wireframe,
                 "k" | "K" => c.cage = !c.cage,
                 "a" | "A" => c.animate = !c.animate,

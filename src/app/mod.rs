@@ -1,5 +1,7 @@
-//! The window demo (winit 0.30 + ash-window): orbit camera, live switching of driver, submission
-//! mode, level, LOD, wireframe and a CPU animation of the coarse mesh. Two HUDs: the window title
+//! The window demo (winit 0.30 + ash-window): orbit camera, adaptive mode (each element at the
+//! level its bound needs; pixel error, largest level, culling, frozen levels) or uniform mode,
+//! live switching of driver, submission mode, level, LOD, wireframe and a CPU animation of the
+//! coarse mesh (docs/window.md). Two HUDs: the window title
 //! (fps, GPU frame time from timestamp queries, coarse and refined triangle counts, GPU geometry
 //! bytes) and an egui overlay panel (`ui`, key `H`) that shows the same and has the switches;
 //! the terminal gets the key help.
@@ -64,22 +66,31 @@ pub struct ViewOptions {
     pub source: String,
     /// Samples per pixel (`--msaa`; `None`: 4 where supported, else the most the device has).
     pub msaa: Option<u32>,
-    /// Draw adaptively (the pattern and tess drivers), levels written by the level pass every
-    /// frame for the camera.
-    pub adaptive: Option<AdaptiveView>,
+    /// Adaptive mode's starting settings, and whether the demo starts in it.
+    pub adaptive: AdaptiveView,
 }
 
-/// Adaptive drawing in the window: each element at the levels its bound needs for the current
-/// camera and window size (`Scene::set_levels`), `cfg.level` the largest.
+/// Adaptive mode in the window: each element at the levels its bound needs for the current
+/// camera and window size (`Scene::set_levels`), the largest level as `cfg.level`
+/// (docs/window.md, "Adaptive mode").
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AdaptiveView {
+    /// Start in adaptive mode (else uniform: every element at `cfg.level`).
+    pub on: bool,
     pub pixel_error: f32,
     pub cull: bool,
     /// The first camera (drawn coordinates); None: the one that frames the mesh.
     pub camera: Option<Camera>,
-    /// The largest level; None: the largest the tess driver draws on the device.
+    /// The largest level; None: [`DEFAULT_MAX_LEVEL`], or less where the tess driver cannot
+    /// draw it.
     pub max_level: Option<u32>,
 }
+
+/// The pixel error adaptive mode starts with when none is given.
+pub const DEFAULT_PIXEL_ERROR: f32 = 1.0;
+
+/// The largest level adaptive mode starts with when none is given.
+pub const DEFAULT_MAX_LEVEL: u32 = 64;
 
 /// The window offers every power-of-two level up to this one (and the level it starts at):
 /// `+` reaches it whatever the start level. A pattern of level 256 is 33,153 vertices.
@@ -87,7 +98,9 @@ pub const WINDOW_LEVELS: u32 = 256;
 
 pub const KEY_HELP: &str = "keys: drag = orbit, wheel = zoom, 1/2/3 = static/pattern/tess, \
 P/U/I = push/ubo/instanced, S = next surface, D = next displacement, N = normals view, \
-+/- = level, L = LOD by distance, W = wireframe, K = cage, A = animate, H = panel, Esc = quit";
++/- = level (max level when adaptive), M = adaptive/uniform, [/] = pixel error halve/double, \
+C = culling, F = freeze levels, L = LOD by distance, W = wireframe, K = cage, A = animate, \
+H = panel, Esc = quit";
 
 /// The value after `v` in `all`, wrapping around.
 fn next<T: Copy + PartialEq>(all: &[T], v: T) -> T {
@@ -199,10 +212,25 @@ struct State {
     /// Set while the frame draws a lower level than asked, to keep frames under a second on a
     /// software device: what the panel says about it.
     budget_note: Option<String>,
-    /// Adaptive drawing was asked for with another driver than tess (said once).
-    adaptive_note: bool,
+    /// Why adaptive mode draws this frame uniformly (the static driver, or a configuration the
+    /// driver cannot draw adaptively): what the panel says about it.
+    mode_note: Option<String>,
     /// The levels the last frame drew with, when it drew adaptively.
     levels: Option<crate::lod::LevelReport>,
+    /// CPU time of choosing the last adaptive frame's levels, in milliseconds.
+    level_ms: f64,
+    /// The largest level the last adaptive frame drew (the frame budget may lower it).
+    adaptive_level: Option<u32>,
+    /// The camera and window size frozen levels are chosen for.
+    frozen: Option<(Camera, vk::Extent2D)>,
+    /// The slowest GPU time per refined triangle measured on a slow adaptive frame (over a
+    /// quarter second) of this driver, surface and displacement, in nanoseconds.
+    adaptive_rate: Option<(DrawConfig, f64)>,
+    /// What the last frame drew (configuration, wireframe, adaptively), and whether the frame
+    /// before drew the same: only then were its pipelines compiled before it (lavapipe compiles
+    /// at the first draw, inside the frame's GPU time).
+    last_drawn: Option<(DrawConfig, bool, bool)>,
+    warm: bool,
     start: Instant,
     frames: u64,
     recorded_once: bool,
@@ -248,19 +276,20 @@ impl App {
         let pool = CommandPool::new(&ctx, "window commands")?;
         let cmd = pool.allocate(1)?[0];
         let mesh = self.mesh.take().expect("created once");
-        let mut cfg = self.opts.cfg;
-        if let Some(a) = &self.opts.adaptive {
+        let cfg = self.opts.cfg;
+        let a = self.opts.adaptive;
+        let adaptive_max = a.max_level.unwrap_or_else(|| {
             let limit = crate::render::Driver::Tess.kind().level_limit(&ctx);
-            cfg.level = a
-                .max_level
-                .unwrap_or_else(|| limit.map_or(64, |(max, _)| max.min(1024)));
-        }
-        // Every power of two up to WINDOW_LEVELS (and the level asked for), whatever the start.
-        let max_level = cfg.level.max(WINDOW_LEVELS);
+            let max = limit.map_or(DEFAULT_MAX_LEVEL, |(max, _)| max.min(DEFAULT_MAX_LEVEL));
+            1 << max.max(1).ilog2()
+        });
+        // Every power of two up to WINDOW_LEVELS (and the levels asked for), whatever the start.
+        let max_level = cfg.level.max(adaptive_max).max(WINDOW_LEVELS);
         let mut levels: Vec<u32> = (0..=WINDOW_LEVELS.trailing_zeros())
             .map(|s| 1 << s)
             .collect();
         levels.push(cfg.level);
+        levels.push(adaptive_max);
         let patterns = crate::pattern::PatternSet::from_levels(&levels);
         let mut scene = Scene::with_patterns(&ctx, &pool, &renderer, mesh.clone(), patterns)?;
         if let Some(map) = self.opts.heightmap.clone() {
@@ -269,9 +298,9 @@ impl App {
         if let Some(tags) = self.opts.tags.clone() {
             scene.set_tags(&ctx, &pool, &renderer, tags)?;
         }
-        if self.opts.adaptive.is_some() {
-            scene.skip_slow_warning();
-        }
+        // The window keeps frames under a second itself (`fit_frame_budget`, `choose_levels`)
+        // and says so in the panel.
+        scene.skip_slow_warning();
         let (c, r) = scene.bounding_sphere();
         let mut rendered = Vec::new();
         per_image(&mut rendered, swapchain.images.len(), |i| {
@@ -295,21 +324,29 @@ impl App {
             ctx,
             window,
             ui,
-            camera: (self.opts.adaptive)
-                .and_then(|a| a.camera)
-                .unwrap_or_else(|| Camera::framing(c, r)),
-            adaptive_note: false,
+            camera: a.camera.unwrap_or_else(|| Camera::framing(c, r)),
+            mode_note: None,
             levels: None,
+            level_ms: 0.0,
+            adaptive_level: None,
+            frozen: None,
+            adaptive_rate: None,
+            last_drawn: None,
+            warm: false,
             controls: Controls {
                 cfg,
                 wireframe: self.opts.wireframe,
                 cage: self.opts.cage,
                 animate: self.opts.animate,
-                // Adaptive drawing chooses levels per element instead.
-                lod: self.opts.lod && self.opts.adaptive.is_none(),
+                lod: self.opts.lod,
                 view: View::Shaded,
                 initial: cfg.params,
                 submit: cfg.driver.submit().unwrap_or_default(),
+                adaptive: a.on,
+                pixel_error: a.pixel_error,
+                max_level: adaptive_max,
+                cull: a.cull,
+                freeze: false,
             },
             drawn: cfg,
             max_level,
@@ -342,14 +379,16 @@ impl State {
         let ui_frame = self.run_ui();
         self.overlay.update_textures(&ui_frame.textures)?;
         self.advance_scene();
-        let cfg = self.prepare_config(opts)?;
+        let (cfg, adaptive) = self.prepare_frame(opts)?;
+        let drawn = Some((cfg, self.controls.wireframe, adaptive));
+        self.warm = self.last_drawn == drawn;
+        self.last_drawn = drawn;
         let Some(image) = self.swapchain.acquire(self.acquired.raw)? else {
             self.resize = true;
             return Ok(true);
         };
         let last = self.quit || opts.frames.is_some_and(|n| self.frames + 1 >= n);
         let screenshot = last && opts.screenshot.is_some();
-        let adaptive = self.set_levels(opts, &cfg);
         self.record(&cfg, &image, &ui_frame, screenshot, adaptive)?;
         self.fence.reset()?;
         let rendered = &self.rendered[image.index as usize];
@@ -377,6 +416,7 @@ impl State {
         self.fence.wait()?;
         if self.recorded_once {
             self.gpu_ms = self.queries.gpu_ms(0)?;
+            self.measure_adaptive_rate();
         }
         if self.resize {
             self.ctx.wait_idle()?;
@@ -402,7 +442,7 @@ impl State {
                 self.controls.cfg.surface,
             );
         }
-        if self.controls.lod {
+        if self.controls.lod && !self.controls.adaptive {
             let (_, r) = self.scene.bounding_sphere();
             self.controls.cfg.level = self
                 .scene
@@ -411,10 +451,68 @@ impl State {
         }
     }
 
-    /// The configuration this frame draws, prepared: the level lowered to what the driver can
-    /// draw, and `pn` shown where Loop refuses the mesh.
-    fn prepare_config(&mut self, opts: &ViewOptions) -> Result<DrawConfig> {
+    /// The configuration this frame draws, prepared, and whether it draws adaptively (then
+    /// with its levels chosen and uploaded): adaptive mode draws adaptively with the pattern
+    /// and tess drivers where the driver can (`DriverKind::check_adaptive`), and otherwise
+    /// uniformly, saying why in the panel.
+    fn prepare_frame(&mut self, opts: &ViewOptions) -> Result<(DrawConfig, bool)> {
+        self.mode_note = None;
+        self.levels = None;
+        if !self.controls.freeze {
+            self.frozen = None;
+        } else if self.frozen.is_none() {
+            self.frozen = Some((self.camera, self.swapchain.extent));
+        }
+        if self.controls.adaptive {
+            let driver = self.controls.cfg.driver;
+            if driver == crate::render::Driver::Static {
+                self.mode_note = Some(
+                    "the static driver draws every element at one level (uniformly): 2 or 3 draws adaptively"
+                        .to_string(),
+                );
+            } else {
+                // Start from the largest level the last frame drew (the budget may have lowered
+                // it): the pattern driver's adaptive draws are rebuilt only when it changes.
+                let max = self.adaptive_max(driver);
+                let guess = self.adaptive_level.map_or(max, |l| l.min(max));
+                let cfg = self.prepare_config(opts, Some(guess))?;
+                let cfg = self.choose_levels(opts, cfg, max)?;
+                let kind = cfg.driver.kind();
+                match kind.check_adaptive(&self.ctx, &self.scene, &cfg) {
+                    Ok(()) => return Ok((cfg, true)),
+                    Err(e) => {
+                        self.levels = None;
+                        self.mode_note = Some(format!("{e}: drawing uniformly"));
+                    }
+                }
+            }
+        }
+        self.adaptive_level = None;
+        Ok((self.prepare_config(opts, None)?, false))
+    }
+
+    /// The largest level adaptive mode asks of `driver`: the panel's, a power of two for the
+    /// pattern driver (its hierarchical patterns split 1 to 4).
+    fn adaptive_max(&self, driver: crate::render::Driver) -> u32 {
+        let max = self.controls.max_level.max(1);
+        match driver {
+            crate::render::Driver::Pattern(_) => 1 << max.ilog2(),
+            _ => max,
+        }
+    }
+
+    /// The configuration this frame draws, prepared: at `adaptive_level` (adaptive mode's
+    /// largest level) or the uniform level lowered to keep the frame under a second, lowered
+    /// to what the driver can draw, and `pn` shown where Loop refuses the mesh.
+    fn prepare_config(
+        &mut self,
+        opts: &ViewOptions,
+        adaptive_level: Option<u32>,
+    ) -> Result<DrawConfig> {
         let mut cfg = self.controls.cfg;
+        if let Some(l) = adaptive_level {
+            cfg.level = l;
+        }
         if let Err(e @ crate::render::RenderError::DriverLevel { max, .. }) =
             crate::render::driver::check_level(&self.ctx, &cfg)
         {
@@ -433,7 +531,9 @@ impl State {
                 .unwrap_or(1);
         }
         let wire = self.controls.wireframe;
-        self.fit_frame_budget(&mut cfg, wire);
+        if adaptive_level.is_none() {
+            self.fit_frame_budget(&mut cfg, wire);
+        }
         let mut prepare = |cfg: &DrawConfig| {
             let none = crate::render::Capture::None;
             self.scene
@@ -517,40 +617,127 @@ impl State {
         self.budget_note = Some(note);
     }
 
-    /// With adaptive drawing on the pattern or tess driver: this frame's camera for the level
-    /// pass (the previous frame is done with its levels). Whether the frame draws adaptively.
-    fn set_levels(&mut self, opts: &ViewOptions, cfg: &DrawConfig) -> bool {
-        self.levels = None;
-        let Some(a) = &opts.adaptive else {
-            return false;
-        };
-        let kind = cfg.driver.kind();
-        let refused = if kind.refines_on_cpu() {
-            Some("it refines on the CPU".to_string())
-        } else {
-            (kind.check_adaptive(&self.ctx, &self.scene, cfg).err()).map(|e| e.to_string())
-        };
-        if let Some(why) = refused {
-            if !self.adaptive_note {
-                log::warn!(
-                    "the {} driver draws every element at level {} instead of adaptively: {why}",
-                    cfg.driver.name(),
-                    cfg.level
-                );
-                self.adaptive_note = true;
-            }
-            return false;
-        }
-        let extent = self.swapchain.extent;
+    /// This frame's levels for `cfg` (prepared; the previous frame is done with the levels) up to
+    /// `max`, seen by the camera and window (or the frozen ones), uploaded; on a software device
+    /// the largest level lowered until the slower estimate of the adaptive triangles is under a
+    /// second, said in the panel. Returns `cfg` at the largest level drawn, prepared.
+    fn choose_levels(
+        &mut self,
+        opts: &ViewOptions,
+        mut cfg: DrawConfig,
+        max: u32,
+    ) -> Result<DrawConfig> {
+        let (camera, extent) = self.frozen.unwrap_or((self.camera, self.swapchain.extent));
         let view = crate::render::LevelView {
-            camera: self.camera,
+            camera,
             width: extent.width,
             height: extent.height,
-            pixel_error: a.pixel_error,
-            cull: a.cull,
+            pixel_error: self.controls.pixel_error,
+            cull: self.controls.cull,
         };
-        self.levels = Some(self.scene.set_levels(cfg, &view));
-        true
+        let prepared = cfg.level;
+        // What the bound asks for up to `max` (or the driver's limit), then the budget's cap.
+        cfg.level = max.min(self.driver_max(&cfg));
+        let t0 = Instant::now();
+        let mut report = self.scene.set_levels(&cfg, &view);
+        let level = self.fit_adaptive_budget(&cfg, &report);
+        let mut seconds = t0.elapsed().as_secs_f64();
+        if level != cfg.level {
+            cfg.level = level;
+            let t0 = Instant::now();
+            report = self.scene.set_levels(&cfg, &view);
+            seconds += t0.elapsed().as_secs_f64();
+        }
+        if cfg.level != prepared {
+            cfg = self.prepare_config(opts, Some(cfg.level))?;
+            if cfg.level != level {
+                // Lowered again to what the driver draws: the levels must not exceed it.
+                report = self.scene.set_levels(&cfg, &view);
+            }
+        }
+        self.level_ms = seconds * 1e3;
+        self.levels = Some(report);
+        self.adaptive_level = Some(cfg.level);
+        Ok(cfg)
+    }
+
+    /// The largest level the driver of `cfg` draws on this device among the window's levels.
+    fn driver_max(&self, cfg: &DrawConfig) -> u32 {
+        let limit = cfg.driver.kind().level_limit(&self.ctx).map(|(max, _)| max);
+        (self.scene.patterns.levels())
+            .filter(|&l| limit.is_none_or(|max| l <= max))
+            .filter(|&l| {
+                !matches!(cfg.driver, crate::render::Driver::Pattern(_)) || l.is_power_of_two()
+            })
+            .last()
+            .unwrap_or(1)
+    }
+
+    /// After a slow adaptive frame (over a quarter second, so that the triangles dominate its
+    /// time) drawn as the one before it (no pipeline compiled in it): its GPU time per refined triangle, kept if slower than the last one measured for
+    /// the same driver, surface and displacement.
+    fn measure_adaptive_rate(&mut self) {
+        let d = self.drawn;
+        if self.levels.is_none() || !self.warm || self.gpu_ms < 250.0 {
+            return;
+        }
+        let coarse = self.scene.elements(d.surface).element_count as u64;
+        let passes = if self.controls.wireframe { 2 } else { 1 };
+        let triangles = self.refined(&d, coarse) * passes;
+        if triangles == 0 {
+            return;
+        }
+        let ns = self.gpu_ms * 1e6 / triangles as f64;
+        let same =
+            |c: &DrawConfig| (c.driver, c.surface, c.displace) == (d.driver, d.surface, d.displace);
+        match &mut self.adaptive_rate {
+            Some((c, rate)) if same(c) => *rate = rate.max(ns),
+            other => *other = Some((d, ns)),
+        }
+    }
+
+    /// On a software device, the largest level at most `cfg.level` whose adaptive frame (the
+    /// elements of `report`, each at its inner level capped there; the wireframe pass counted
+    /// as a second draw) the slower estimate (or the slower rate measured on this
+    /// configuration's slow frames, adaptive frames being slower a triangle on lavapipe than
+    /// the uniform ones the estimate comes from) puts under a second, said in the panel;
+    /// `cfg.level` elsewhere.
+    fn fit_adaptive_budget(&mut self, cfg: &DrawConfig, report: &crate::lod::LevelReport) -> u32 {
+        if self.ctx.info.device_type != vk::PhysicalDeviceType::CPU {
+            return cfg.level;
+        }
+        let passes = if self.controls.wireframe { 2 } else { 1 };
+        let measured = (self.adaptive_rate)
+            .filter(|(c, _)| {
+                (c.driver, c.surface, c.displace) == (cfg.driver, cfg.surface, cfg.displace)
+            })
+            .map_or(0.0, |(_, ns)| ns);
+        let fits = |cap: u32| {
+            let refined: u64 = (report.histogram.iter())
+                .map(|(&n, &count)| count * cfg.driver.refined_per_element(n.min(cap)) as u64)
+                .sum();
+            software_frame_seconds(refined * passes).is_none()
+                && (refined * passes) as f64 * measured * 1e-9 < 1.0
+        };
+        let asked = cfg.level;
+        if fits(asked) {
+            return asked;
+        }
+        let dyadic = matches!(cfg.driver, crate::render::Driver::Pattern(_));
+        let level = (self.scene.patterns.levels())
+            .filter(|&l| l < asked && (!dyadic || l.is_power_of_two()) && fits(l))
+            .last()
+            .unwrap_or(1);
+        let note = format!(
+            "max level {asked} would take over a second a frame on this software device at {} px: drawing up to level {level}",
+            self.controls.pixel_error
+        );
+        if self.level_note != Some(asked) {
+            log::warn!("{note}");
+            self.level_note = Some(asked);
+        }
+        self.budget_note = Some(note);
+        level
     }
 
     /// The triangles `cfg` draws from `coarse` elements: at its level, or adaptively each drawn
@@ -588,6 +775,12 @@ impl State {
         let aspect = extent.width as f32 / extent.height as f32;
         let uniforms =
             FrameUniforms::new(&self.camera, aspect, cfg, &self.scene, self.controls.view);
+        // The levels view shows each element's own level when it has one.
+        let uniforms = if adaptive {
+            uniforms.adaptive()
+        } else {
+            uniforms
+        };
         self.renderer.set_frame(&uniforms);
         let depth = self.swapchain.depth.as_ref().expect("depth image exists");
         let (color, color_view, resolve) = match &self.swapchain.msaa {
@@ -695,6 +888,11 @@ impl State {
             has_texcoords: self.scene.data.uvs.is_some(),
             animating: self.controls.animate,
             note: self.budget_note.as_deref(),
+            mode_note: self.mode_note.as_deref(),
+            adaptive_rows: self
+                .adaptive_summary(&d, coarse)
+                .map(|a| a.rows())
+                .unwrap_or_default(),
         };
         self.ui.run(&self.window, &mut self.controls, &info)
     }
@@ -710,15 +908,31 @@ impl State {
         let coarse = self.scene.elements(cfg.surface).element_count as u64;
         let bytes = self.scene.geometry_bytes(cfg);
         let c = &self.controls;
-        self.window.set_title(&format!(
-            "meshrefine | {} level {}{}{}{}{}{} | {:.0} fps | GPU {:.2} ms | {} -> {} triangles | {:.2} MB geometry | max level {}",
-            cfg.label(),
-            cfg.level,
-            if c.lod { " (LOD)" } else { "" },
-            if self.levels.is_some() { " (adaptive)" } else { "" },
+        let flags = format!(
+            "{}{}{}",
             if c.wireframe { " wire" } else { "" },
             if c.cage { " cage" } else { "" },
             if c.animate { " animated" } else { "" },
+        );
+        if let Some(a) = self.adaptive_summary(cfg, coarse) {
+            self.window.set_title(&format!(
+                "meshrefine | {} {}{flags} | {:.0} fps | GPU {:.2} ms | {coarse} -> {} | {:.2} MB geometry",
+                cfg.label(),
+                a.mode(),
+                self.fps,
+                self.gpu_ms,
+                a.counts(),
+                bytes as f64 / 1e6,
+            ));
+            return;
+        }
+        self.window.set_title(&format!(
+            "meshrefine | {} level {}{}{}{flags} | {:.0} fps | GPU {:.2} ms | {} -> {} triangles | {:.2} MB geometry | max level {}",
+            cfg.label(),
+            cfg.level,
+            if c.lod && !c.adaptive { " (LOD)" } else { "" },
+            // Adaptive mode that could not draw adaptively (the panel says why).
+            if c.adaptive { " (uniform: adaptive mode off here)" } else { "" },
             self.fps,
             self.gpu_ms,
             coarse,
@@ -726,6 +940,131 @@ impl State {
             bytes as f64 / 1e6,
             self.max_level,
         ));
+    }
+}
+
+impl State {
+    /// What the last adaptive frame (drawing `cfg` of `coarse` elements) chose; None when it
+    /// drew uniformly.
+    fn adaptive_summary(&self, cfg: &DrawConfig, coarse: u64) -> Option<AdaptiveSummary> {
+        let r = self.levels.as_ref()?;
+        Some(AdaptiveSummary {
+            pixel_error: self.controls.pixel_error,
+            max_level: cfg.level,
+            cull: self.controls.cull,
+            frozen: self.frozen.is_some(),
+            triangles: self.refined(cfg, coarse),
+            uniform_level: r.uniform_level,
+            uniform_triangles: coarse * cfg.driver.refined_per_element(r.uniform_level) as u64,
+            histogram: compact_histogram(&r.histogram),
+            culled: r.culled,
+            level_ms: self.level_ms,
+        })
+    }
+}
+
+/// What an adaptive frame chose, for the panel and the title.
+struct AdaptiveSummary {
+    pixel_error: f32,
+    max_level: u32,
+    cull: bool,
+    frozen: bool,
+    /// Triangles drawn, each element at its inner level.
+    triangles: u64,
+    /// The smallest uniform level that meets the same bound (`LevelReport::uniform_level`),
+    /// and the triangles every element makes there.
+    uniform_level: u32,
+    uniform_triangles: u64,
+    histogram: String,
+    culled: u64,
+    /// CPU time of choosing the levels (`Scene::set_levels`).
+    level_ms: f64,
+}
+
+impl AdaptiveSummary {
+    /// `adaptive 1 px max level 64 cull on frozen`.
+    fn mode(&self) -> String {
+        format!(
+            "adaptive {} px max level {} cull {}{}",
+            self.pixel_error,
+            self.max_level,
+            if self.cull { "on" } else { "off" },
+            if self.frozen { " frozen" } else { "" },
+        )
+    }
+
+    /// How many fewer triangles than the uniform level (`4.2x`; `-` when nothing is drawn).
+    fn ratio(&self) -> String {
+        if self.triangles == 0 {
+            return "-".to_string();
+        }
+        format!(
+            "{:.1}x",
+            self.uniform_triangles as f64 / self.triangles as f64
+        )
+    }
+
+    /// The title's counts: triangles against the uniform level, levels, culling, cost.
+    fn counts(&self) -> String {
+        format!(
+            "{} triangles, uniform level {} {} ({} fewer) | levels {} | culled {} | levels chosen on the CPU in {:.1} ms",
+            self.triangles,
+            self.uniform_level,
+            self.uniform_triangles,
+            self.ratio(),
+            self.histogram,
+            self.culled,
+            self.level_ms,
+        )
+    }
+
+    /// The panel's rows.
+    fn rows(&self) -> Vec<(&'static str, String)> {
+        let mut rows = vec![
+            (
+                "uniform level",
+                format!(
+                    "{}: {} triangles, {}",
+                    self.uniform_level,
+                    self.uniform_triangles,
+                    self.ratio()
+                ),
+            ),
+            ("levels (level:n)", self.histogram.clone()),
+            ("culled", self.culled.to_string()),
+            ("choosing levels", format!("{:.2} ms (CPU)", self.level_ms)),
+        ];
+        if self.frozen {
+            rows.push((
+                "levels",
+                "frozen: the camera moves, they do not".to_string(),
+            ));
+        }
+        rows
+    }
+}
+
+/// Elements per level in power-of-two ranges, ascending (`1:20 2:31 3-4:120 8:40`): the
+/// dyadic levels one by one, the tessellator's integer levels compactly.
+fn compact_histogram(histogram: &std::collections::BTreeMap<u32, u64>) -> String {
+    // Per range's top: elements, and whether any level in it is not the top.
+    let mut bins: std::collections::BTreeMap<u32, (u64, bool)> = Default::default();
+    for (&n, &count) in histogram {
+        let top = n.max(1).next_power_of_two();
+        let bin = bins.entry(top).or_default();
+        bin.0 += count;
+        bin.1 |= n != top;
+    }
+    let pairs: Vec<String> = (bins.iter())
+        .map(|(&top, &(count, range))| match range {
+            false => format!("{top}:{count}"),
+            true => format!("{}-{top}:{count}", top / 2 + 1),
+        })
+        .collect();
+    if pairs.is_empty() {
+        "none".to_string()
+    } else {
+        pairs.join(" ")
     }
 }
 
@@ -762,5 +1101,17 @@ mod tests {
         assert_eq!(v, [0, 1, 2]);
         assert_eq!(next(&Surface::ALL, Surface::Stpn), Surface::Loop);
         assert_eq!(next(&Surface::ALL, Surface::Loop), Surface::Flat);
+    }
+
+    /// Dyadic levels are shown one by one, integer levels in power-of-two ranges.
+    #[test]
+    fn histograms_are_compact() {
+        let h = |pairs: &[(u32, u64)]| compact_histogram(&pairs.iter().copied().collect());
+        assert_eq!(h(&[(1, 3), (2, 5), (4, 7), (8, 1)]), "1:3 2:5 4:7 8:1");
+        assert_eq!(
+            h(&[(3, 1), (4, 2), (5, 4), (11, 1), (64, 2)]),
+            "3-4:3 5-8:4 9-16:1 64:2"
+        );
+        assert_eq!(h(&[]), "none");
     }
 }

@@ -26,13 +26,45 @@ pub struct Controls {
     pub initial: SurfaceParams,
     /// The pattern driver's submission mode, remembered while another driver is drawn.
     pub submit: Submit,
+    /// Adaptive mode: each element at the levels its bound needs (pattern and tess); `cfg.level`
+    /// is then the uniform mode's level only.
+    pub adaptive: bool,
+    /// The largest error allowed on screen in adaptive mode, in pixels.
+    pub pixel_error: f32,
+    /// The largest level in adaptive mode.
+    pub max_level: u32,
+    /// Adaptive mode culls elements outside the view or facing away.
+    pub cull: bool,
+    /// Adaptive levels stay those chosen for the camera of the moment this was set.
+    pub freeze: bool,
 }
+
+/// The pixel error's range in the window (the slider and the `[` `]` keys).
+pub const PIXEL_ERRORS: std::ops::RangeInclusive<f32> = 0.25..=16.0;
 
 impl Controls {
     /// The pattern driver with submission `s`.
     pub fn set_submit(&mut self, s: Submit) {
         self.submit = s;
         self.cfg.driver = Driver::Pattern(s);
+    }
+
+    /// The level `+` and `-` step: the largest level in adaptive mode, else the level.
+    pub fn level(&self) -> u32 {
+        if self.adaptive {
+            self.max_level
+        } else {
+            self.cfg.level
+        }
+    }
+
+    /// Set [`Controls::level`].
+    pub fn set_level(&mut self, l: u32) {
+        if self.adaptive {
+            self.max_level = l;
+        } else {
+            self.cfg.level = l;
+        }
     }
 
     /// Switch to the kind of driver `d` (the pattern driver with the remembered submission).
@@ -68,6 +100,11 @@ pub struct PanelInfo<'a> {
     pub has_texcoords: bool,
     /// Why the frame draws less than asked (a level lowered to keep frames interactive).
     pub note: Option<&'a str>,
+    /// Why adaptive mode drew the last frame uniformly (the static driver, or a configuration
+    /// the driver cannot draw adaptively).
+    pub mode_note: Option<&'a str>,
+    /// What the last adaptive frame chose, as name and value rows.
+    pub adaptive_rows: Vec<(&'static str, String)>,
 }
 
 /// One frame of egui output, ready for [`crate::gpu::Overlay`].
@@ -179,7 +216,13 @@ fn statistics(ui: &mut egui::Ui, info: &PanelInfo) {
         let mut rows = vec![
             ("fps", format!("{:.0}", info.fps)),
             ("GPU frame", format!("{:.2} ms", info.gpu_ms)),
-            ("drawn", format!("{} level {}", d.label(), d.level)),
+            (
+                "drawn",
+                match info.adaptive_rows.is_empty() {
+                    true => format!("{} level {}", d.label(), d.level),
+                    false => format!("{} adaptive, max level {}", d.label(), d.level),
+                },
+            ),
             (
                 "surface",
                 format!("{} + {}", d.surface.name(), d.displace.name()),
@@ -201,13 +244,14 @@ fn statistics(ui: &mut egui::Ui, info: &PanelInfo) {
         if let Some(t) = info.table_bytes {
             rows.push(("BF tables", format!("{:.1} KB", t as f64 / 1e3)));
         }
+        rows.extend(info.adaptive_rows.iter().cloned());
         for (name, value) in rows {
             ui.label(name);
             ui.label(RichText::new(value).monospace());
             ui.end_row();
         }
     });
-    if let Some(note) = info.note {
+    for note in [info.mode_note, info.note].into_iter().flatten() {
         ui.label(RichText::new(note).color(egui::Color32::from_rgb(240, 190, 90)));
     }
 }
@@ -235,13 +279,43 @@ fn drawing(ui: &mut egui::Ui, c: &mut Controls, info: &PanelInfo) {
             }
         });
     });
+    ui.horizontal(|ui| {
+        ui.label("mode [M]");
+        ui.selectable_value(&mut c.adaptive, true, "adaptive");
+        ui.selectable_value(&mut c.adaptive, false, "uniform");
+    });
+    if c.adaptive {
+        adaptive(ui, c, info);
+        return;
+    }
     ui.add_enabled_ui(!c.lod, |ui| {
         ui.horizontal_wrapped(|ui| {
-            ui.label("level");
+            ui.label("level [+ -]");
             for &l in info.levels {
                 ui.selectable_value(&mut c.cfg.level, l, l.to_string());
             }
         });
+    });
+}
+
+/// Adaptive mode's controls: the pixel error (log scale), the largest level, culling, frozen
+/// levels.
+fn adaptive(ui: &mut egui::Ui, c: &mut Controls, info: &PanelInfo) {
+    ui.add(
+        egui::Slider::new(&mut c.pixel_error, PIXEL_ERRORS)
+            .logarithmic(true)
+            .suffix(" px")
+            .text("pixel error [ ]"),
+    );
+    ui.horizontal_wrapped(|ui| {
+        ui.label("max level [+ -]");
+        for &l in info.levels {
+            ui.selectable_value(&mut c.max_level, l, l.to_string());
+        }
+    });
+    ui.horizontal(|ui| {
+        ui.checkbox(&mut c.cull, "cull [C]");
+        ui.checkbox(&mut c.freeze, "freeze levels [F]");
     });
 }
 
@@ -306,17 +380,25 @@ fn display(ui: &mut egui::Ui, c: &mut Controls, info: &PanelInfo) {
     ui.horizontal(|ui| {
         ui.label("view [N]");
         for v in View::ALL {
-            if ui.selectable_label(c.view == v, v.name()).clicked() {
+            let name = match v {
+                View::Levels => "colour by level",
+                v => v.name(),
+            };
+            if ui.selectable_label(c.view == v, name).clicked() {
                 c.view = v;
             }
         }
     });
-    ui.checkbox(&mut c.lod, "LOD by distance");
+    // LOD by distance picks the uniform mode's level.
+    ui.add_enabled(
+        !c.adaptive,
+        egui::Checkbox::new(&mut c.lod, "LOD by distance [L]"),
+    );
     ui.add_enabled(
         info.wireframe_supported,
         egui::Checkbox::new(&mut c.wireframe, "wireframe [W]"),
     );
     ui.checkbox(&mut c.cage, "cage [K]");
-    ui.checkbox(&mut c.animate, "animate");
+    ui.checkbox(&mut c.animate, "animate [A]");
     ui.weak("H hides this panel");
 }

@@ -387,11 +387,12 @@ pub struct ViewpointOpts {
 #[command(next_help_heading = "Adaptive drawing")]
 pub struct AdaptiveOpts {
     /// Draw adaptively: each element at the level that keeps the surface within this many
-    /// pixels of the drawn mesh, seen by the camera below (--driver tess; not with --level).
+    /// pixels of the drawn mesh, seen by the camera below (--driver tess, for view pattern too;
+    /// not with --level; view: its window starts adaptive at 1 px unless --level or --lod).
     #[arg(long, allow_negative_numbers = true)]
     pub pixel_error: Option<f32>,
     /// The largest level any element gets (with --pixel-error; default: the largest the driver
-    /// draws on the device).
+    /// draws on the device; the window: 64 or the tessellator's limit if lower).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub max_level: Option<u32>,
     /// Draw nothing of the elements outside the view or facing away (with --pixel-error;

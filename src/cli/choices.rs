@@ -155,7 +155,9 @@ pub fn view() -> impl TypedValueParser<Value = View> {
     parser(&View::ALL, View::name, |v| match v {
         View::Shaded => "the lit surface",
         View::Normals => "the normal field as colours",
-        View::Levels => "the lit surface coloured by each element's level (blue at 1 to red at 256)",
+        View::Levels => {
+            "the lit surface coloured by each element's level (blue at 1 to red at 256)"
+        }
     })
 }
 

@@ -38,7 +38,7 @@ pub fn run(cli: Cli, given: &options::Given) -> Result<()> {
     adaptive::check(&cli, given)?;
     match &cli.command {
         Command::Render(a) => render::run(a, &desc),
-        Command::View(a) => view::run(a, &desc),
+        Command::View(a) => view::run(a, &desc, given),
         Command::Export(a) => export::run(a, &desc),
         Command::Info(a) => info::run(a),
         Command::Bench(a) => bench::run(a, &desc, given.has("levels")),

@@ -6,14 +6,15 @@ use super::adaptive::Frame;
 use super::args::ViewArgs;
 use super::input::{attach_surface_inputs, draw_config, for_viewing, load_mesh};
 use super::loop_check::loop_refusal;
+use super::options::Given;
 use super::render::render_png;
 use super::{check_messages, require_extension, with_context};
 use anyhow::Result;
 use meshrefine::gpu::ContextDesc;
 use std::io::Write as _;
 
-/// Runs `meshrefine view` with `a`.
-pub fn run(a: &ViewArgs, desc: &ContextDesc) -> Result<()> {
+/// Runs `meshrefine view` with `a` (`given`: the options given on the command line).
+pub fn run(a: &ViewArgs, desc: &ContextDesc, given: &Given) -> Result<()> {
     if let Some(shot) = &a.screenshot {
         require_extension(shot, "png", "screenshots are PNG images")?;
     }
@@ -48,14 +49,21 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc) -> Result<()> {
             loop_refusal: input.loop_refusal.clone(),
             source: input.shown.clone(),
             msaa: a.msaa,
-            adaptive: match a.adaptive.enabled(true) {
-                Some(ad) => Some(meshrefine::app::AdaptiveView {
+            adaptive: {
+                // Adaptive mode by default; `--level` or `--lod` start uniform.
+                let ad = super::adaptive::Adaptive {
+                    opts: &a.adaptive,
+                    pixel_error: (a.adaptive.pixel_error)
+                        .unwrap_or(meshrefine::app::DEFAULT_PIXEL_ERROR),
+                    cull: a.adaptive.cull.unwrap_or(true),
+                };
+                meshrefine::app::AdaptiveView {
+                    on: !(given.has("level") || a.lod),
                     pixel_error: ad.pixel_error,
                     cull: ad.cull,
                     camera: ad.given_camera(&mesh, &Frame { centre, scale })?,
                     max_level: ad.opts.max_level,
-                }),
-                None => None,
+                }
             },
         };
         match meshrefine::app::run(desc.clone(), mesh, opts) {

@@ -24,8 +24,8 @@ pub mod tess;
 pub use camera::Camera;
 pub use driver::{Driver, DriverKind, Submit};
 pub use error::RenderError;
-pub use gpu_mesh::{GpuMesh, GpuPattern, MeshData};
 pub use frame::Background;
+pub use gpu_mesh::{GpuMesh, GpuPattern, MeshData};
 pub use headless::{
     background_srgb8, clear_color_srgb8, covered_pixels, covered_pixels_on, CaptureResult,
     FrameTiming, Headless,
