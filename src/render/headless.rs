@@ -252,6 +252,27 @@ impl Headless {
         Ok(Some(self.queries.gpu_ms(0)?))
     }
 
+    /// GPU milliseconds of the level pass alone (its submission, timestamps around it) as the
+    /// last [`Scene::set_levels`] for `cfg` set it up; None when no pass is set up for `cfg`
+    /// (the levels were uploaded from the CPU instead).
+    pub fn time_level_pass(
+        &mut self,
+        scene: &Scene,
+        cfg: &DrawConfig,
+    ) -> Result<Option<f64>, RenderError> {
+        let Some((pass, view)) = scene.level_pass(cfg) else {
+            return Ok(None);
+        };
+        let mesh = scene.elements(cfg.surface);
+        let queries = &self.queries;
+        self.pool.submit_and_wait(|cmd| {
+            queries.cmd_begin(cmd, 0);
+            pass.cmd_record(cmd, mesh, &view);
+            queries.cmd_end(cmd, 0);
+        })?;
+        Ok(Some(self.queries.gpu_ms(0)?))
+    }
+
     /// Draw one frame, wait, and return its timing and statistics.
     pub fn draw(
         &mut self,
