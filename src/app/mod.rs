@@ -64,6 +64,9 @@ pub struct ViewOptions {
     pub loop_refusal: Option<String>,
     /// The mesh as the user named it, for messages.
     pub source: String,
+    /// On a software device, lower what a frame draws to keep it under a second
+    /// (`--no-frame-budget` turns it off: frames then draw what is asked, however slow).
+    pub frame_budget: bool,
     /// Samples per pixel (`--msaa`; `None`: 4 where supported, else the most the device has).
     pub msaa: Option<u32>,
     /// Adaptive mode's starting settings, and whether the demo starts in it.
@@ -212,6 +215,8 @@ struct State {
     /// Set while the frame draws a lower level than asked, to keep frames under a second on a
     /// software device: what the panel says about it.
     budget_note: Option<String>,
+    /// Whether the frame budget applies ([`ViewOptions::frame_budget`]).
+    frame_budget: bool,
     /// Why adaptive mode draws this frame uniformly (the static driver, or a configuration the
     /// driver cannot draw adaptively): what the panel says about it.
     mode_note: Option<String>,
@@ -352,6 +357,7 @@ impl App {
             max_level,
             level_note: None,
             budget_note: None,
+            frame_budget: self.opts.frame_budget,
             start: Instant::now(),
             frames: 0,
             recorded_once: false,
@@ -584,7 +590,9 @@ impl State {
     /// whatever level is asked for. Other devices draw what is asked.
     fn fit_frame_budget(&mut self, cfg: &mut DrawConfig, wire: bool) {
         self.budget_note = None;
-        if self.ctx.info.device_type != crate::gpu::vk::PhysicalDeviceType::CPU {
+        if self.ctx.info.device_type != crate::gpu::vk::PhysicalDeviceType::CPU
+            || !self.frame_budget
+        {
             return;
         }
         let elements = self.scene.elements(cfg.surface).element_count as u64;
@@ -703,7 +711,7 @@ impl State {
     /// the uniform ones the estimate comes from) puts under a second, said in the panel;
     /// `cfg.level` elsewhere.
     fn fit_adaptive_budget(&mut self, cfg: &DrawConfig, report: &crate::lod::LevelReport) -> u32 {
-        if self.ctx.info.device_type != vk::PhysicalDeviceType::CPU {
+        if self.ctx.info.device_type != vk::PhysicalDeviceType::CPU || !self.frame_budget {
             return cfg.level;
         }
         let passes = if self.controls.wireframe { 2 } else { 1 };

@@ -200,6 +200,10 @@ pub struct ViewArgs {
     /// Start with the coarse-mesh animation on.
     #[arg(long, help_heading = "Window")]
     pub animate: bool,
+    /// On a software device, draw what is asked even when a frame takes over a second (by
+    /// default the window lowers the level to keep frames under a second, and says so).
+    #[arg(long, help_heading = "Window")]
+    pub no_frame_budget: bool,
     /// Start with level of detail on: the level is chosen by distance to the camera among the
     /// pattern set (powers of two up to --level).
     #[arg(long, help_heading = "Window")]

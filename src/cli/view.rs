@@ -48,6 +48,7 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc, given: &Given) -> Result<()> {
             tags: input.tags.clone(),
             loop_refusal: input.loop_refusal.clone(),
             source: input.shown.clone(),
+            frame_budget: !a.no_frame_budget,
             msaa: a.msaa,
             adaptive: {
                 // Adaptive mode by default; `--level` or `--lod` start uniform.
