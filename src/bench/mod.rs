@@ -61,6 +61,8 @@ pub struct BenchAdaptive {
     pub camera: Option<Camera>,
     pub pixel_error: f32,
     pub cull: bool,
+    /// Glide the vertices a level adds (`DrawConfig::geomorph`).
+    pub geomorph: bool,
 }
 
 /// Median, min and max of a sample.
@@ -268,9 +270,10 @@ fn warm_up(
     ctx: &crate::gpu::Context,
     h: &mut Headless,
     m: &mut MeshSetup,
-    cfg: DrawConfig,
+    mut cfg: DrawConfig,
     opts: &BenchOptions,
 ) -> Result<Run, RenderError> {
+    cfg.geomorph = opts.adaptive.is_some_and(|a| a.geomorph);
     let (surface, displace, level) = (cfg.surface, cfg.displace, cfg.level);
     let scene = &mut m.scene;
     let refused = crate::render::driver::check_level(ctx, &cfg).err();

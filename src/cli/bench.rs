@@ -67,6 +67,7 @@ pub fn run(a: &BenchArgs, desc: &ContextDesc) -> Result<()> {
                 camera: a.given_camera(&mesh, &scene_frame)?,
                 pixel_error: a.pixel_error,
                 cull: a.cull,
+                geomorph: a.geomorph,
             });
         }
         meshrefine::bench::run(ctx, &[mesh], &opts)

@@ -28,7 +28,8 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc) -> Result<()> {
         // The panel can switch to loop later: say then, in the file's terms, why not.
         input.loop_refusal = loop_refusal(&input.shown, &input.mesh, &input.report, true);
     }
-    let cfg = draw_config(&a.technique, &input.mesh)?;
+    let mut cfg = draw_config(&a.technique, &input.mesh)?;
+    cfg.geomorph = a.adaptive.enabled(true).is_some_and(|ad| ad.geomorph);
     attach_surface_inputs(&mut input, &a.technique.surface, true)?;
     let has_display =
         std::env::var_os("DISPLAY").is_some() || std::env::var_os("WAYLAND_DISPLAY").is_some();
