@@ -88,6 +88,7 @@ fn main() {
                     cull: true,
                     max_level,
                     bound_levels: true,
+                    geomorph: true,
                 }),
             };
             jobs.push((vec![mesh.clone()], opts));

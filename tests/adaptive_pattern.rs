@@ -19,7 +19,7 @@ use common::{model, with_gpu};
 use meshrefine::export::weld_adaptive;
 use meshrefine::lod::levels::ElementLevels;
 use meshrefine::mesh::Mesh;
-use meshrefine::pattern::adaptive::{adaptive_element, drawn_levels};
+use meshrefine::pattern::adaptive::{adaptive_element, drawn_levels, geomorph_position};
 use meshrefine::pattern::{vertex_count, PatternSet};
 use meshrefine::render::{Camera, Capture, DrawConfig, Driver, Headless, Scene, Submit};
 use meshrefine::subdiv::FaceRecord;
@@ -335,7 +335,7 @@ fn adaptive_pattern_is_watertight() {
             "cylinder_hard_normals.obj",
             "spot_control_tri.obj",
         ] {
-            watertight(h, file, 16, COMBOS, None);
+            watertight(h, file, 16, COMBOS, None, false);
         }
     });
 }
@@ -352,7 +352,7 @@ fn adaptive_loop_past_its_table_level() {
         ];
         let moved = check_chunked(h, "icosahedron_vn.obj", 16, &combos, 0.1, None, Some(2));
         assert!(moved > 0, "no vertex was snapped");
-        watertight(h, "octahedron.obj", 16, &combos[..1], Some(2));
+        watertight(h, "octahedron.obj", 16, &combos[..1], Some(2), false);
     });
 }
 
@@ -364,11 +364,13 @@ fn watertight(
     max: u32,
     combos: &[(Surface, Displace)],
     bft_level: Option<u32>,
+    geomorph: bool,
 ) {
     let (mut scene, camera, r) = scene_at(h, model(file), max);
     for (c, &combo) in combos.iter().enumerate() {
         let submit = Submit::ALL[c % 3];
         let mut cfg = config(submit, max, combo, r);
+        cfg.geomorph = geomorph;
         cfg.build.bft_level = bft_level.unwrap_or(cfg.build.bft_level);
         let levels = set_levels(h, &mut scene, &cfg, 0.0, 100 + c as u64);
         let tris = element_corners(&scene, cfg.surface);
@@ -428,6 +430,67 @@ fn watertight(
             "{what}: a flipped triangle"
         );
     }
+}
+
+/// Geomorphing (`DrawConfig::geomorph`) at random continuous levels: every captured position
+/// equals the mirror's (`geomorph_position`: the vertices the finest drawn levels add, between
+/// their parents' drawn midpoint and the surface), within the pattern driver's tolerance plus
+/// 4 ulp of the radius for the blend; some vertices really morph; and the welded result stays
+/// closed with the crack-free vertex count (edge vertices morph with their edge's level, on
+/// the same bits from both sides).
+#[test]
+fn adaptive_geomorph_matches_the_mirror_and_is_watertight() {
+    const COMBOS: &[(Surface, Displace)] = &[
+        (Surface::Pn, Displace::None),
+        (Surface::Phong, Displace::Sine),
+        (Surface::Loop, Displace::None),
+    ];
+    with_gpu(64, 64, |h| {
+        let max = 16;
+        let (mut scene, camera, r) = scene_at(h, model("icosahedron_vn.obj"), max);
+        let pv = vertex_count(max) as usize;
+        for (c, &combo) in COMBOS.iter().enumerate() {
+            let mut cfg = config(Submit::ALL[c % 3], max, combo, r);
+            cfg.geomorph = true;
+            let levels = set_levels(h, &mut scene, &cfg, 0.1, 300 + c as u64);
+            h.adaptive = true;
+            let cap = h.capture(&mut scene, &cfg, &camera).unwrap();
+            h.adaptive = false;
+            let records = scene.records(cfg.surface);
+            let tol = tolerance(&cfg, r, records) + 4.0 * f32::EPSILON * r;
+            let inputs = scene.inputs(max);
+            let what = format!("{} + {} {}", combo.0.name(), combo.1.name(), cfg.label());
+            let (mut morphing, mut worst) = (0usize, 0.0f32);
+            for (t, rec) in records.iter().enumerate() {
+                let Some(e) = adaptive_element(&levels[t], max) else {
+                    continue;
+                };
+                let element = inputs.element(t);
+                let eval = |b: [f32; 3]| {
+                    eval_with(cfg.surface, cfg.displace, &cfg.params, rec, b, &element).position
+                };
+                for ((&k, &pt), &bary) in e.vertices.iter().zip(&e.points).zip(&e.bary) {
+                    let v = &cap.vertices[t * pv + k as usize];
+                    let want = geomorph_position(&levels[t], &e.levels, max, pt, &eval);
+                    morphing += (want != eval(bary)) as usize;
+                    for a in 0..3 {
+                        let d = (v.position[a] - want[a]).abs();
+                        worst = worst.max(d);
+                        assert!(
+                            d <= tol,
+                            "{what}: element {t} vertex {k}: {:?} vs mirror {want} (tolerance {tol:e})",
+                            &v.position[..3]
+                        );
+                    }
+                }
+            }
+            eprintln!("{what}: {morphing} morphing vertices, worst difference {worst:e}");
+            assert!(morphing > 50, "{what}: only {morphing} vertices morph");
+        }
+        for file in ["icosahedron.obj", "torus_16x8.obj"] {
+            watertight(h, file, 16, COMBOS, None, true);
+        }
+    });
 }
 
 /// A largest level that is not a power of two is refused with one sentence.

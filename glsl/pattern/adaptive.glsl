@@ -42,4 +42,61 @@ uvec2 adaptive_snap(uvec2 ij, uvec4 n, uint f) {
     return ij;
 }
 
+// Geomorphing (docs/adaptivity.md, "Geomorphing"). The morph factor of a vertex that drawn
+// level n adds to level n / 2, for continuous level lambda. Mirror: adaptive::morph_factor.
+float morph_factor(float lambda, uint n) {
+    if (n <= 1u) {
+        return 1.0;
+    }
+    float x = float(n) / lambda;
+    return clamp((4.0 - x * x) / 3.0, 0.0, 1.0);
+}
+
+// Between the parents' midpoint (m = 0) and the true position p (m = 1, exactly p); precise, so
+// that every element computes an edge vertex with the same operations. Mirror: adaptive::morph.
+vec3 morph(vec3 pa, vec3 pb, vec3 p, float m) {
+    if (m >= 1.0) {
+        return p;
+    }
+    precise vec3 mid = (pa + pb) * 0.5;
+    precise vec3 r = mid + (p - mid) * m;
+    return r;
+}
+
+// Whether lattice point ij is new at the level of step s. Mirror: adaptive::is_new.
+bool morph_is_new(uvec2 ij, uint s) {
+    return ((ij.x / s) & 1u) != 0u || ((ij.y / s) & 1u) != 0u;
+}
+
+// The two points of the level of step 2s whose midpoint is ij. Mirror: adaptive::parents.
+void morph_parents(uvec2 ij, uint s, out uvec2 a, out uvec2 b) {
+    bool oi = ((ij.x / s) & 1u) != 0u;
+    bool oj = ((ij.y / s) & 1u) != 0u;
+    if (oi && !oj) {
+        a = uvec2(ij.x - s, ij.y);
+        b = uvec2(ij.x + s, ij.y);
+    } else if (oj && !oi) {
+        a = uvec2(ij.x, ij.y - s);
+        b = uvec2(ij.x, ij.y + s);
+    } else {
+        a = uvec2(ij.x - s, ij.y + s);
+        b = uvec2(ij.x + s, ij.y - s);
+    }
+}
+
+// The stored edge lattice point ij lies on, as adaptive_snap classifies it; -1 inside.
+// Mirror: adaptive::edge_of.
+int morph_edge(uvec2 ij, uint f) {
+    if (ij.y == 0u) {
+        return 0;
+    }
+    if (ij.x + ij.y == f) {
+        return 1;
+    }
+    if (ij.x == 0u) {
+        return 2;
+    }
+    return -1;
+}
+
 #endif

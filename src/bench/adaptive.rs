@@ -90,7 +90,12 @@ fn variant(
         pixel_error: a.pixel_error,
         cull: a.cull,
     };
-    let mut first = timed(ctx, h, m, cfg, true, "view".into(), a)?;
+    // The adaptive frame glides its vertices as asked; uniform frames have nothing to glide.
+    let adaptive_cfg = DrawConfig {
+        geomorph: a.geomorph,
+        ..cfg
+    };
+    let mut first = timed(ctx, h, m, adaptive_cfg, true, "view".into(), a)?;
     if first.drawn {
         if let Err(e) = cfg.driver.kind().check_adaptive(ctx, &m.scene, &cfg) {
             first.row.note = format!("not drawn: {e}");

@@ -73,6 +73,8 @@ pub struct BenchAdaptive {
     /// ([`crate::lod::LevelReport::uniform_level`], as the driver rounds) and the smallest power
     /// of two at or above it.
     pub bound_levels: bool,
+    /// Glide the vertices a level adds (`DrawConfig::geomorph`).
+    pub geomorph: bool,
 }
 
 /// What a row of an adaptive benchmark adds (its columns are empty on other rows).

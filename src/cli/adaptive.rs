@@ -1,4 +1,4 @@
-//! Adaptive drawing from the command line (`--pixel-error`, `--max-level`, `--cull`, `--eye`,
+//! Adaptive drawing from the command line (`--pixel-error`, `--max-level`, `--cull`, `--geomorph`, `--eye`,
 //! `--look-at`, `--fov` on render, export, view and bench; `info` shares the checks and the
 //! camera): the checks of the values, the camera in the drawn frame, and the levels for it
 //! ([`Scene::set_levels`], written by the level pass on the GPU in every frame).
@@ -77,6 +77,8 @@ pub struct Adaptive<'a> {
     pub opts: &'a AdaptiveOpts,
     pub pixel_error: f32,
     pub cull: bool,
+    /// `--geomorph` (default on): `DrawConfig::geomorph`.
+    pub geomorph: bool,
 }
 
 impl AdaptiveOpts {
@@ -87,6 +89,7 @@ impl AdaptiveOpts {
             opts: self,
             pixel_error: px,
             cull: self.cull.unwrap_or(cull_default),
+            geomorph: self.geomorph.unwrap_or(true),
         })
     }
 }

@@ -403,6 +403,11 @@ pub struct AdaptiveOpts {
     /// default: on, off for export).
     #[arg(long, value_parser = choices::on_off())]
     pub cull: Option<bool>,
+    /// Glide the vertices a finer level adds from their coarser neighbours' midpoint to the
+    /// surface as the level grows, so nothing pops when levels change (with --pixel-error;
+    /// default: on).
+    #[arg(long, value_parser = choices::on_off())]
+    pub geomorph: Option<bool>,
     #[command(flatten)]
     pub viewpoint: ViewpointOpts,
 }

@@ -83,6 +83,7 @@ pub fn run(a: &BenchArgs, desc: &ContextDesc, levels_given: bool) -> Result<()> 
                 cull: ad.cull,
                 max_level: ad.max_level(&ctx, driver)?,
                 bound_levels: !a.no_bound_levels,
+                geomorph: ad.geomorph,
             });
         }
         meshrefine::bench::run(ctx, &[mesh], &opts)

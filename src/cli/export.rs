@@ -35,6 +35,7 @@ pub fn run(a: &ExportArgs, desc: &ContextDesc) -> Result<()> {
     let counts = with_context(desc, |ctx| {
         if let Some(a) = &adaptive {
             cfg.level = a.max_level(&ctx, cfg.driver)?;
+            cfg.geomorph = a.geomorph;
             check_size(cfg.level)?;
         }
         let shown = input.shown.clone();

@@ -206,6 +206,8 @@ pub fn draw_config(t: &Technique, mesh: &Mesh) -> Result<DrawConfig> {
             d => d,
         },
         level: t.level,
+        // Set with the adaptive options (src/cli/adaptive.rs).
+        geomorph: false,
     })
 }
 

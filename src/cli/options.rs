@@ -136,7 +136,7 @@ pub fn inapplicable(given: &Given, c: &Chosen) -> Vec<String> {
 }
 
 /// The options of adaptive drawing besides `--pixel-error` (render, export, view, bench).
-const ADAPTIVE: &[&str] = &["max_level", "cull", "eye", "look_at", "fov"];
+const ADAPTIVE: &[&str] = &["max_level", "cull", "geomorph", "eye", "look_at", "fov"];
 
 /// One warning line for each of `ids` given without `--pixel-error` (`adaptive` false).
 fn adaptive_only(given: &Given, adaptive: bool, ids: &[&str]) -> Vec<String> {

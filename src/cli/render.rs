@@ -86,6 +86,7 @@ pub fn render_png(
         let mut cfg = *cfg;
         if let Some(a) = &adaptive {
             cfg.level = a.max_level(&ctx, cfg.driver)?;
+            cfg.geomorph = a.geomorph;
         }
         let mut h = Headless::multisampled(ctx, width, height, samples)?;
         h.wireframe = wireframe.is_some_and(Wireframe::refined);

@@ -29,7 +29,9 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc, given: &Given) -> Result<()> {
         // The panel can switch to loop later: say then, in the file's terms, why not.
         input.loop_refusal = loop_refusal(&input.shown, &input.mesh, &input.report, true);
     }
-    let cfg = draw_config(&a.technique, &input.mesh)?;
+    let mut cfg = draw_config(&a.technique, &input.mesh)?;
+    // The window is adaptive by default: it glides vertices unless --geomorph off.
+    cfg.geomorph = a.adaptive.geomorph.unwrap_or(true);
     attach_surface_inputs(&mut input, &a.technique.surface, true)?;
     let has_display =
         std::env::var_os("DISPLAY").is_some() || std::env::var_os("WAYLAND_DISPLAY").is_some();
@@ -57,6 +59,7 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc, given: &Given) -> Result<()> {
                     pixel_error: (a.adaptive.pixel_error)
                         .unwrap_or(meshrefine::app::DEFAULT_PIXEL_ERROR),
                     cull: a.adaptive.cull.unwrap_or(true),
+                    geomorph: a.adaptive.geomorph.unwrap_or(true),
                 };
                 meshrefine::app::AdaptiveView {
                     on: !(given.has("level") || a.lod),

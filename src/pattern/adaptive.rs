@@ -11,6 +11,7 @@
 
 use super::{index_count, lattice_index, weight, Pattern};
 use crate::lod::levels::{drawn_level, ElementLevels};
+use glam::Vec3;
 
 /// The levels one element is drawn with: its three stored edges' and its inner level, all
 /// powers of two at most the frame's largest level, each edge at most the inner level.
@@ -119,6 +120,9 @@ pub struct AdaptiveElement {
     /// after snapping (`bary[k]` belongs to `vertices[k]`).
     pub vertices: Vec<u32>,
     pub bary: Vec<[f32; 3]>,
+    /// Each vertex's finest-lattice point `(i, j)` before snapping (what
+    /// [`geomorph_position`] takes).
+    pub points: Vec<(u32, u32)>,
     /// The triangles, indices into the finest pattern (the draw's order). Where snapping
     /// welds two corners of a triangle it is degenerate (zero area): an exporter drops it.
     pub triangles: Vec<[u32; 3]>,
@@ -131,10 +135,12 @@ pub fn adaptive_element(levels: &ElementLevels, f: u32) -> Option<AdaptiveElemen
     let s = f / d.inner;
     let mut vertices = Vec::new();
     let mut out = Vec::new();
+    let mut points = Vec::new();
     for j in 0..=d.inner {
         for i in 0..=(d.inner - j) {
             let (fi, fj) = (i * s, j * s);
             vertices.push(lattice_index(f, fi, fj));
+            points.push((fi, fj));
             let (si, sj) = snap(fi, fj, &d, f);
             out.push(bary(si, sj, f));
         }
@@ -147,8 +153,115 @@ pub fn adaptive_element(levels: &ElementLevels, f: u32) -> Option<AdaptiveElemen
         levels: d,
         vertices,
         bary: out,
+        points,
         triangles,
     })
+}
+
+/// Geomorphing (docs/adaptivity.md, "Geomorphing"): the morph factor of a vertex that drawn
+/// level `n` (a power of two) adds to level `n / 2`, for continuous level `lambda`:
+/// `clamp((4 − (n/λ)²) / 3, 0, 1)`, 0 where `λ` just passed `n / 2`, 1 at `λ = n`. Level 1 adds
+/// nothing (1). Mirror of `morph_factor` in glsl/pattern/adaptive.glsl.
+pub fn morph_factor(lambda: f32, n: u32) -> f32 {
+    if n <= 1 {
+        return 1.0;
+    }
+    let x = n as f32 / lambda;
+    ((4.0 - x * x) / 3.0).clamp(0.0, 1.0)
+}
+
+/// A morphing vertex between its parents' midpoint (`m = 0`) and its true position `p`
+/// (`m = 1`, exactly `p`). The parents' sum is commutative, so the two elements sharing an edge,
+/// which may name an edge vertex's parents in either order, compute the same bits. Mirror of
+/// `morph` (GLSL, `precise`).
+pub fn morph(pa: Vec3, pb: Vec3, p: Vec3, m: f32) -> Vec3 {
+    if m >= 1.0 {
+        return p;
+    }
+    let mid = (pa + pb) * 0.5;
+    mid + (p - mid) * m
+}
+
+/// Whether finest-lattice point `(i, j)` is new at the level of lattice step `s` (not a point
+/// of the level with step `2s`).
+pub fn is_new(i: u32, j: u32, s: u32) -> bool {
+    (i / s) % 2 == 1 || (j / s) % 2 == 1
+}
+
+/// The two points of the level with step `2s` whose midpoint is `(i, j)` (new at step `s`): along
+/// `u` (`i / s` odd), along `v` (`j / s` odd) or along the third lattice direction (both odd),
+/// the edge of the coarser lattice triangle that the 1-to-4 split halves.
+pub fn parents(i: u32, j: u32, s: u32) -> [(u32, u32); 2] {
+    match ((i / s) % 2 == 1, (j / s) % 2 == 1) {
+        (true, false) => [(i - s, j), (i + s, j)],
+        (false, true) => [(i, j - s), (i, j + s)],
+        _ => [(i - s, j + s), (i + s, j - s)],
+    }
+}
+
+/// The stored edge finest-lattice point `(i, j)` lies on, as [`snap`] classifies it (a corner
+/// counts as on the first edge tested); `None` inside.
+pub fn edge_of(i: u32, j: u32, f: u32) -> Option<usize> {
+    if j == 0 {
+        Some(0)
+    } else if i + j == f {
+        Some(1)
+    } else if i == 0 {
+        Some(2)
+    } else {
+        None
+    }
+}
+
+/// Where the geomorphing driver draws finest-lattice point `(i, j)` (before snapping) of an
+/// element with continuous `levels`, drawn at `d`, largest level `f`; `eval` is the surface at
+/// weights. A boundary point is its snapped sample, morphing with its edge's level when that
+/// sample is new at the edge's drawn level; an interior point new at the inner level morphs
+/// between its parents' drawn positions (a boundary parent snapped and morphing with its edge)
+/// with the inner level (the largest of the element's levels, as [`drawn_levels`] raises it).
+/// Mirror of `geomorph_position` in glsl/pattern/adaptive.vert.
+pub fn geomorph_position(
+    levels: &ElementLevels,
+    d: &DrawnLevels,
+    f: u32,
+    (i, j): (u32, u32),
+    eval: &dyn Fn([f32; 3]) -> Vec3,
+) -> Vec3 {
+    let point = |(i, j): (u32, u32)| eval(bary(i, j, f));
+    // A boundary point drawn: snapped onto its edge, morphing with the edge's level.
+    let edge_drawn = |(i, j): (u32, u32), k: usize| {
+        let (si, sj) = snap(i, j, d, f);
+        let p = point((si, sj));
+        let s = f / d.edges[k];
+        if !is_new(si, sj, s) {
+            return p;
+        }
+        let m = morph_factor(levels.edges[k], d.edges[k]);
+        if m >= 1.0 {
+            return p;
+        }
+        let [a, b] = parents(si, sj, s);
+        morph(point(a), point(b), p, m)
+    };
+    if let Some(k) = edge_of(i, j, f) {
+        return edge_drawn((i, j), k);
+    }
+    let p = point((i, j));
+    let s = f / d.inner;
+    if !is_new(i, j, s) {
+        return p;
+    }
+    let lambda = levels.edges.iter().copied().fold(levels.inner, f32::max);
+    let m = morph_factor(lambda, d.inner);
+    if m >= 1.0 {
+        return p;
+    }
+    let drawn = |q: (u32, u32)| match edge_of(q.0, q.1, f) {
+        Some(k) => edge_drawn(q, k),
+        None => point(q),
+    };
+    let [a, b] = parents(i, j, s);
+    morph(drawn(a), drawn(b), p, m)
 }
 
 #[cfg(test)]
@@ -215,6 +328,69 @@ mod tests {
     }
 
     #[test]
+    fn morph_factor_glides_from_the_coarser_level() {
+        assert_eq!(morph_factor(4.0, 4), 1.0);
+        assert_eq!(morph_factor(2.0, 4), 0.0);
+        assert_eq!(morph_factor(5.0, 1), 1.0);
+        // Increasing in λ between the two levels, and the c2 bound's blend meets the tolerance
+        // exactly: (1 − m)·4/n² + m/n² = 1/λ².
+        let mut last = 0.0;
+        for k in 1..=64 {
+            let lambda = 8.0 + k as f32 / 8.0;
+            let m = morph_factor(lambda, 16);
+            assert!(m > last, "λ {lambda}");
+            let blend = (1.0 - m) * 4.0 / 256.0 + m / 256.0;
+            assert!((blend - 1.0 / (lambda * lambda)).abs() < 1e-6, "λ {lambda}");
+            last = m;
+        }
+    }
+
+    #[test]
+    fn parents_halve_a_coarser_lattice_edge() {
+        let f = 16;
+        for s in [1u32, 2, 4] {
+            for j in 0..=f {
+                for i in 0..=(f - j) {
+                    if i % s != 0 || j % s != 0 || !is_new(i, j, s) {
+                        continue;
+                    }
+                    let [a, b] = parents(i, j, s);
+                    assert_eq!((a.0 + b.0, a.1 + b.1), (2 * i, 2 * j));
+                    for q in [a, b] {
+                        assert!(q.0 + q.1 <= f && !is_new(q.0, q.1, s), "{q:?}");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn geomorph_at_whole_levels_draws_the_true_points() {
+        // λ at a power of two: nothing morphs; just above half of it: new points at midpoints.
+        let f = 8;
+        let eval = |b: [f32; 3]| Vec3::new(b[1], b[2], b[1] * b[1] + b[2] * b[2]);
+        let l = ElementLevels::uniform(4.0);
+        let d = drawn_levels(&l, f).unwrap();
+        let e = adaptive_element(&l, f).unwrap();
+        for (&pt, b) in e.points.iter().zip(&e.bary) {
+            assert_eq!(geomorph_position(&l, &d, f, pt, &eval), eval(*b));
+        }
+        let l = ElementLevels::uniform(2.0 + 1e-6);
+        let d = drawn_levels(&l, f).unwrap();
+        let e = adaptive_element(&l, f).unwrap();
+        for (&(i, j), b) in e.points.iter().zip(&e.bary) {
+            let got = geomorph_position(&l, &d, f, (i, j), &eval);
+            if is_new(i, j, 2) {
+                let [a, c] = parents(i, j, 2);
+                let mid = (eval(bary(a.0, a.1, f)) + eval(bary(c.0, c.1, f))) * 0.5;
+                assert!((got - mid).length() < 1e-5, "{i} {j}");
+            } else {
+                assert_eq!(got, eval(*b));
+            }
+        }
+    }
+
+    #[test]
     fn levels_are_dyadic_and_the_inner_covers_the_edges() {
         let l = ElementLevels {
             edges: [3.0, 0.0, 20.0],
@@ -229,3 +405,7 @@ mod tests {
         );
     }
 }
+
+#[cfg(test)]
+#[path = "geomorph_tests.rs"]
+mod geomorph_tests;

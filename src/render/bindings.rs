@@ -90,6 +90,8 @@ pub const SPEC_DISPLACE: u32 = 3;
 pub const SPEC_FRAGMENT_FIELD: u32 = 4;
 /// `pn`'s and `stpn`'s normal field (`crate::surface::NormalField`).
 pub const SPEC_NORMAL_FIELD: u32 = 5;
+/// Geomorphing in the adaptive pattern driver (`DrawConfig::geomorph`).
+pub const SPEC_GEOMORPH: u32 = 6;
 
 /// Everything above, as GLSL macro definitions.
 pub const GLSL_DEFINES: &[(&str, u32)] = &[
@@ -131,4 +133,5 @@ pub const GLSL_DEFINES: &[(&str, u32)] = &[
     ("SPEC_DISPLACE", SPEC_DISPLACE),
     ("SPEC_FRAGMENT_FIELD", SPEC_FRAGMENT_FIELD),
     ("SPEC_NORMAL_FIELD", SPEC_NORMAL_FIELD),
+    ("SPEC_GEOMORPH", SPEC_GEOMORPH),
 ];

@@ -72,6 +72,9 @@ pub struct DrawConfig {
     pub build: BuildOptions,
     pub driver: Driver,
     pub level: u32,
+    /// Adaptive drawing glides the vertices a level adds (the pattern driver; docs/adaptivity.md,
+    /// "Geomorphing"); uniform drawing ignores it.
+    pub geomorph: bool,
 }
 
 /// The level from which `loop` evaluates its normals per fragment
@@ -88,6 +91,7 @@ impl DrawConfig {
             build: BuildOptions::default(),
             driver,
             level,
+            geomorph: false,
         }
     }
 

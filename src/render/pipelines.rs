@@ -50,6 +50,8 @@ struct PipelineKey {
     wire: bool,
     /// Each element at its own levels (`FrameWork::adaptive`).
     adaptive: bool,
+    /// Adaptive and geomorphing (`DrawConfig::geomorph`).
+    geomorph: bool,
 }
 
 pub struct Renderer {
@@ -256,6 +258,7 @@ impl Renderer {
         if adaptive_drawn(cfg) {
             keys.extend(keys.clone().into_iter().map(|k| PipelineKey {
                 adaptive: true,
+                geomorph: cfg.geomorph,
                 ..k
             }));
         }
@@ -309,6 +312,7 @@ impl Renderer {
                 (SPEC_DISPLACE, key.displace as u32),
                 (SPEC_FRAGMENT_FIELD, key.fragment_field as u32),
                 (SPEC_NORMAL_FIELD, key.normal_field as u32),
+                (SPEC_GEOMORPH, key.geomorph as u32),
             ],
             vertex_bindings: vec![],
             vertex_attributes: vec![],
@@ -342,7 +346,13 @@ impl Renderer {
         let name = format!(
             "{}{}{}{} ({} + {})",
             DrawConfig::new(key.driver, 0).label(),
-            if key.adaptive { " adaptive" } else { "" },
+            if key.geomorph {
+                " adaptive geomorph"
+            } else if key.adaptive {
+                " adaptive"
+            } else {
+                ""
+            },
             key.capture.shader_suffix(),
             if key.wire { " wireframe" } else { "" },
             key.surface.name(),
@@ -373,5 +383,6 @@ fn key(cfg: &DrawConfig, capture: Capture, wire: bool, adaptive: bool) -> Pipeli
         capture,
         wire,
         adaptive,
+        geomorph: adaptive && cfg.geomorph,
     }
 }
