@@ -392,17 +392,34 @@ fn levels_view_colours_by_level() {
             Driver::Pattern(Submit::Instanced),
             Driver::Tess,
         ] {
-            let mut at = |h: &mut meshrefine::render::Headless, level: u32, view: View| {
+            let at = |h: &mut meshrefine::render::Headless,
+                      scene: &mut meshrefine::render::Scene,
+                      level: u32,
+                      view: View| {
                 h.view = view;
                 let img = h
-                    .render(&mut scene, &DrawConfig::new(driver, level), &camera)
+                    .render(scene, &DrawConfig::new(driver, level), &camera)
                     .unwrap();
                 mean_mesh_color(&img)
             };
-            let low = at(h, 1, View::Levels);
-            let high = at(h, 64, View::Levels);
-            let shaded = at(h, 1, View::Shaded);
+            let low = at(h, &mut scene, 1, View::Levels);
+            let high = at(h, &mut scene, 64, View::Levels);
+            let shaded = at(h, &mut scene, 1, View::Shaded);
             let name = driver.name();
+            if driver != Driver::Static {
+                // Drawn adaptively, each element shows its own level: all at 1 here, though
+                // the draw's largest level is 64.
+                let n = scene.elements(Surface::Flat).element_count as usize;
+                let ones = vec![meshrefine::lod::levels::ElementLevels::uniform(1.0); n];
+                scene.elements_mut(Surface::Flat).upload_levels(&ones);
+                h.adaptive = true;
+                let own = at(h, &mut scene, 64, View::Levels);
+                h.adaptive = false;
+                assert!(
+                    own[2] > 1.5 * own[0],
+                    "{name}: adaptive level 1 not blue: {own:?}"
+                );
+            }
             assert!(low[2] > 1.5 * low[0], "{name}: level 1 not blue: {low:?}");
             assert!(
                 high[0] > 1.5 * high[2],

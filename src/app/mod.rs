@@ -1015,7 +1015,7 @@ impl AdaptiveSummary {
     /// The title's counts: triangles against the uniform level, levels, culling, cost.
     fn counts(&self) -> String {
         format!(
-            "{} triangles, uniform level {} {} ({} fewer) | levels {} | culled {} | levels chosen on the CPU in {:.1} ms",
+            "{} triangles, uniform level {} {} ({} fewer) | levels {} | culled {} | levels on the GPU, CPU mirror {:.1} ms",
             self.triangles,
             self.uniform_level,
             self.uniform_triangles,

@@ -172,13 +172,19 @@ impl Headless {
 
     fn frame_uniforms(&self, camera: &Camera, cfg: &DrawConfig, scene: &Scene) -> FrameUniforms {
         let e = self.target.extent();
-        FrameUniforms::new(
+        let u = FrameUniforms::new(
             camera,
             e.width as f32 / e.height as f32,
             cfg,
             scene,
             self.view,
-        )
+        );
+        // Adaptive frames: each element's own level (the levels view reads it).
+        if self.adaptive {
+            u.adaptive()
+        } else {
+            u
+        }
     }
 
     fn view(&self) -> TargetView {
