@@ -2652,3 +2652,54 @@ fn msaa_counts_render_or_are_refused_in_one_sentence() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("possible values: 1, 2, 4, 8"));
 }
+
+/// Reads the RGBA pixels of a PNG meshrefine wrote.
+fn rgba_of(png_path: &Path) -> Vec<u8> {
+    let decoder = png::Decoder::new(std::fs::File::open(png_path).unwrap());
+    let mut reader = decoder.read_info().unwrap();
+    let mut rgba = vec![0; reader.output_buffer_size()];
+    let info = reader.next_frame(&mut rgba).unwrap();
+    rgba.truncate(info.buffer_size());
+    rgba
+}
+
+/// `render --background light` draws on the pale grey (its corner pixel is the light clear
+/// colour, the dark default's is the dark one); `--view levels` and `--view normals` colour
+/// the mesh differently from the shaded default; `--wireframe cage` adds the cyan cage.
+#[test]
+fn render_views_backgrounds_and_the_cage() {
+    let small = [
+        "--width", "96", "--height", "64", "--level", "4", "--msaa", "1",
+    ];
+    let render = |name: &str, extra: &[&str]| {
+        let out = tmp(name);
+        let mut args = vec!["--validate", "render", "-o", p(&out)];
+        args.extend(small);
+        args.extend(extra);
+        ok(&args);
+        rgba_of(&out)
+    };
+    let dark = render("bg-dark.png", &[]);
+    let light = render("bg-light.png", &["--background", "light"]);
+    let srgb = |b| meshrefine::render::background_srgb8(b);
+    use meshrefine::render::Background;
+    assert_eq!(dark[..4], srgb(Background::Dark));
+    assert_eq!(light[..4], srgb(Background::Light));
+    for (view, name) in [
+        ("levels", "view-levels.png"),
+        ("normals", "view-normals.png"),
+    ] {
+        let img = render(name, &["--view", view]);
+        assert_ne!(img, dark, "--view {view} drew the shaded image");
+    }
+    let cyan = |img: &[u8]| {
+        (img.chunks_exact(4))
+            .filter(|p| p[2] as i32 > p[0] as i32 + 40 && p[1] as i32 > p[0] as i32 + 30)
+            .count()
+    };
+    let caged = render("cage.png", &["--wireframe", "cage"]);
+    assert_eq!(cyan(&dark), 0);
+    assert!(cyan(&caged) > 50, "{} cage pixels", cyan(&caged));
+    let out = meshrefine(&["render", "--background", "pink"]);
+    assert_eq!(out.status.code(), Some(2));
+}
