@@ -109,6 +109,14 @@ impl DrawConfig {
         }
     }
 
+    /// Whether adaptive frames glide their vertices: [`DrawConfig::geomorph`], except for the
+    /// surfaces whose elements are Loop's M1 faces, whose evaluation with the morph (three
+    /// table sums a vertex) takes lavapipe's shader compiler minutes; they draw the levels
+    /// without gliding.
+    pub fn glides(&self) -> bool {
+        self.geomorph && !self.surface.uses_loop_faces()
+    }
+
     /// Triangles the GPU makes per element.
     pub fn refined_per_element(&self) -> u32 {
         self.driver.refined_per_element(self.level)

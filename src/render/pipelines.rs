@@ -258,7 +258,7 @@ impl Renderer {
         if adaptive_drawn(cfg) {
             keys.extend(keys.clone().into_iter().map(|k| PipelineKey {
                 adaptive: true,
-                geomorph: cfg.geomorph,
+                geomorph: cfg.glides(),
                 ..k
             }));
         }
@@ -383,6 +383,6 @@ fn key(cfg: &DrawConfig, capture: Capture, wire: bool, adaptive: bool) -> Pipeli
         capture,
         wire,
         adaptive,
-        geomorph: adaptive && cfg.geomorph,
+        geomorph: adaptive && cfg.glides(),
     }
 }
