@@ -1467,8 +1467,8 @@ fn options_that_do_not_apply_warn_and_are_ignored() {
 }
 
 /// Displacement whose result would not be finite is refused before anything is drawn, naming
-/// the option; a displacement that moves the surface out of the frame is what a blank image
-/// blames.
+/// the option; the default camera frames a displaced surface however far it moves (a blank
+/// image then comes only from a camera given on the command line, and says so).
 #[test]
 fn displacement_that_cannot_be_finite_is_refused_up_front() {
     let ico = model_path("icosahedron.obj");
@@ -1506,29 +1506,43 @@ fn displacement_that_cannot_be_finite_is_refused_up_front() {
     }
     let grid = model_path("grid_uv_8x8.obj");
     let png = tmp("displaced-away.png");
+    let displaced = [
+        "render",
+        p(&grid),
+        "-o",
+        p(&png),
+        "--width",
+        "32",
+        "--height",
+        "32",
+        "--displace",
+        "heightmap",
+        "--amplitude",
+        "0.5",
+        "--bias",
+        "1e4",
+    ];
+    let mut uniform = displaced.to_vec();
+    uniform.extend(["--level", "1"]);
+    let out = ok(&uniform);
+    assert!(out.contains("wrote"), "{out}");
+    // Looking away from the grid: nothing drawn, the image is blank and the camera blamed.
+    let mut away = displaced.to_vec();
+    away.extend([
+        "--pixel-error",
+        "1",
+        "--max-level",
+        "4",
+        "--eye",
+        "10,0,0",
+        "--look-at",
+        "20,0,0",
+    ]);
     expect_error(
-        &[
-            "render",
-            p(&grid),
-            "-o",
-            p(&png),
-            "--width",
-            "32",
-            "--height",
-            "32",
-            "--level",
-            "1",
-            "--displace",
-            "heightmap",
-            "--amplitude",
-            "0.5",
-            "--bias",
-            "1e4",
-        ],
+        &away,
         &[
             "is blank",
-            "the displacement (--amplitude 0.5 with --bias 10000) moves the surface up to",
-            "out of the frame",
+            "the camera given by --eye, --look-at and --fov sees none of them",
         ],
     );
 }

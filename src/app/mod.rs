@@ -306,7 +306,8 @@ impl App {
         // The window keeps frames under a second itself (`fit_frame_budget`, `choose_levels`)
         // and says so in the panel.
         scene.skip_slow_warning();
-        let (c, r) = scene.bounding_sphere();
+        let extent = swapchain.extent;
+        let framing = scene.framing_camera(&cfg, extent.width as f32 / extent.height as f32);
         let mut rendered = Vec::new();
         per_image(&mut rendered, swapchain.images.len(), |i| {
             Semaphore::new(&ctx, &format!("rendered {i}"))
@@ -329,7 +330,7 @@ impl App {
             ctx,
             window,
             ui,
-            camera: a.camera.unwrap_or_else(|| Camera::framing(c, r)),
+            camera: a.camera.unwrap_or(framing),
             mode_note: None,
             levels: None,
             level_ms: 0.0,

@@ -148,12 +148,17 @@ impl Adaptive<'_> {
         })
     }
 
-    /// The camera in the drawn frame: the framing camera of `scene` (what the uniform drawing
-    /// shows), moved to `--eye`, `--look-at` and `--fov` where given (mesh coordinates,
-    /// mapped by `frame`).
-    pub fn camera(&self, scene: &Scene, frame: &Frame) -> Result<Camera> {
-        let (c, r) = scene.bounding_sphere();
-        self.viewpoint_camera(Camera::framing(c, r), frame)
+    /// The camera in the drawn frame: the framing camera of `scene` drawn with `cfg` in an
+    /// image of `aspect` (what the uniform drawing shows, [`Scene::framing_camera`]), moved to
+    /// `--eye`, `--look-at` and `--fov` where given (mesh coordinates, mapped by `frame`).
+    pub fn camera(
+        &self,
+        scene: &Scene,
+        cfg: &DrawConfig,
+        aspect: f32,
+        frame: &Frame,
+    ) -> Result<Camera> {
+        self.viewpoint_camera(scene.framing_camera(cfg, aspect), frame)
     }
 
     /// `framing` (drawn frame) moved to the viewpoint asked for.
@@ -202,7 +207,7 @@ impl Adaptive<'_> {
     ) -> Result<(Camera, LevelReport)> {
         scene.skip_slow_warning();
         h.prepared_elements(scene, cfg, capture)?;
-        let camera = self.camera(scene, frame)?;
+        let camera = self.camera(scene, cfg, width as f32 / height as f32, frame)?;
         let report = scene.set_levels(
             cfg,
             &LevelView {

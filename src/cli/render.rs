@@ -10,9 +10,7 @@ use super::{require_extension, with_context};
 use anyhow::{bail, Context as _, Result};
 use meshrefine::gpu::{sample_count, Context, ContextDesc};
 use meshrefine::render::cage::Wireframe;
-use meshrefine::render::{
-    covered_pixels_on, Background, Camera, Capture, DrawConfig, Headless, View,
-};
+use meshrefine::render::{covered_pixels_on, Background, Capture, DrawConfig, Headless, View};
 use std::io::Write as _;
 use std::path::Path;
 use std::sync::Arc;
@@ -96,8 +94,8 @@ pub fn render_png(
         let (mesh, viewed) = for_viewing(&input.mesh, &cfg);
         let mut scene = h.scene(mesh, cfg.level)?;
         apply_surface_inputs(&h, &mut scene, &input)?;
-        let (c, r) = scene.bounding_sphere();
-        let mut camera = Camera::framing(c, r);
+        h.prepared_elements(&mut scene, &viewed, Capture::None)?;
+        let mut camera = scene.framing_camera(&viewed, width as f32 / height as f32);
         if let Some(a) = &adaptive {
             let (centre, scale) = input.mesh.viewing_transform();
             let frame = Frame { centre, scale };
@@ -114,16 +112,15 @@ pub fn render_png(
         .save_png(out)
         .with_context(|| format!("cannot write '{}'", out.display()))?;
     if covered_pixels_on(&image, opts.background) == 0 {
-        // The camera frames the undisplaced mesh: a displacement larger than the mesh moves
-        // the surface out of the picture, whatever the triangles' size.
-        let radius = input.mesh.bounding_radius() as f64;
-        let reach = cfg.params.reach(cfg.displace);
-        let why = if reach > radius {
-            format!(
-                "the displacement ({}) moves the surface up to {:.3e} times the mesh's bounding radius, out of the frame, which shows the undisplaced mesh",
-                cfg.params.reach_options(cfg.displace),
-                reach / radius
-            )
+        // The default camera frames the surface as drawn, displacement included: only a camera
+        // given on the command line can look past it.
+        let given = adaptive.is_some_and(|a| {
+            let v = &a.opts.viewpoint;
+            v.eye.is_some() || v.look_at.is_some() || v.fov != 45.0
+        });
+        let why = if given {
+            "the camera given by --eye, --look-at and --fov sees none of them, or each is much smaller than a pixel there"
+                .to_string()
         } else {
             "each is much smaller than a pixel when the whole mesh is framed, or seen edge-on"
                 .to_string()

@@ -21,6 +21,14 @@ pub struct Camera {
 /// for the demo's animation (which moves vertices by up to 3% of the radius).
 const DEPTH_MARGIN: f32 = 1.1;
 
+/// The direction the framing cameras look from: yaw and pitch (radians).
+const FRAMING_YAW: f32 = 2.2;
+const FRAMING_PITCH: f32 = 0.35;
+
+/// The fraction of the image's half-width and half-height [`Camera::fit`] keeps free at the
+/// tighter border.
+pub const FIT_MARGIN: f32 = 0.08;
+
 impl Camera {
     /// A camera that frames a sphere of `radius` around `center`. For meshes far from the
     /// origin, or much smaller or larger than 1, draw
@@ -34,12 +42,70 @@ impl Camera {
         };
         Self {
             target: center,
-            yaw: 2.2,
-            pitch: 0.35,
+            yaw: FRAMING_YAW,
+            pitch: FRAMING_PITCH,
             distance: radius / (fov_y * 0.5).sin() * 0.9,
             fov_y,
             radius,
         }
+    }
+
+    /// The camera looking from the framing direction (as [`Camera::framing`]) with a vertical
+    /// field of view of 45 degrees that shows every point of `points` in an image of `aspect`
+    /// (width / height) and comes as close as it can: the projected points fill the image up to
+    /// a margin of [`FIT_MARGIN`] at its tighter pair of borders, and are centred between the
+    /// other pair. The depth range holds them all. With no finite point, it frames the unit
+    /// sphere; with points all in one place, a tiny sphere there.
+    pub fn fit(points: &[Vec3], aspect: f32) -> Self {
+        let points: Vec<Vec3> = points.iter().copied().filter(|p| p.is_finite()).collect();
+        let mut cam = Self::framing(Vec3::ZERO, 1.0);
+        let Some(&first) = points.first() else {
+            return cam;
+        };
+        let aspect = if aspect > 0.0 && aspect.is_finite() {
+            aspect
+        } else {
+            1.0
+        };
+        // The camera's frame: forward (from the eye to the target), right and up.
+        let forward = (cam.target - cam.eye()).normalize();
+        let right = forward.cross(Vec3::Y).normalize();
+        let up = right.cross(forward);
+        let ty = (cam.fov_y * 0.5).tan() * (1.0 - FIT_MARGIN);
+        let tx = (cam.fov_y * 0.5).tan() * aspect * (1.0 - FIT_MARGIN);
+        // With the eye at (ex, ey, ez) in this frame, a point (x, y, z) is inside the narrowed
+        // frustum when |x - ex| <= tx (z - ez) and |y - ey| <= ty (z - ez). For each axis the
+        // farthest forward eye is where the two planes touch the extreme points: with
+        // a = min(z - x / tx) and b = min(z + x / tx), ex = tx (b - a) / 2 and ez = (a + b) / 2.
+        let (mut a, mut b, mut c, mut d) = (f32::MAX, f32::MAX, f32::MAX, f32::MAX);
+        let (mut zmin, mut zmax) = (f32::MAX, f32::MIN);
+        for p in &points {
+            let (x, y, z) = (p.dot(right), p.dot(up), p.dot(forward));
+            a = a.min(z - x / tx);
+            b = b.min(z + x / tx);
+            c = c.min(z - y / ty);
+            d = d.min(z + y / ty);
+            zmin = zmin.min(z);
+            zmax = zmax.max(z);
+        }
+        let (ex, ey) = (tx * (b - a) * 0.5, ty * (d - c) * 0.5);
+        let ez = ((a + b) * 0.5).min((c + d) * 0.5);
+        let eye = right * ex + up * ey + forward * ez;
+        // The target: on the view axis, at the middle of the points' depths.
+        let distance = (zmin + zmax) * 0.5 - ez;
+        let target = eye + forward * distance;
+        let radius = points
+            .iter()
+            .map(|p| (*p - target).length())
+            .fold(0.0f32, f32::max);
+        let scale = first.abs().max_element().max(1e-30);
+        if !(distance > scale * 1e-6 && radius.is_finite() && distance.is_finite()) {
+            return Self::framing(first, (scale * 1e-6).max(1e-6));
+        }
+        cam.target = target;
+        cam.distance = distance;
+        cam.radius = radius.max(distance * 1e-3);
+        cam
     }
 
     /// A camera at `eye` looking at `target` (up is +Y) with a vertical field of view of
@@ -151,5 +217,47 @@ mod tests {
         assert!(Camera::looking(target, target, 0.8, 1.0).is_none());
         assert!(Camera::looking(target + Vec3::Y, target, 0.8, 1.0).is_none());
         assert!(Camera::looking(Vec3::splat(f32::NAN), target, 0.8, 1.0).is_none());
+    }
+
+    #[test]
+    fn a_fitted_camera_shows_every_point_and_touches_the_margin() {
+        // A lopsided cloud far from the origin, in wide, square and tall images.
+        let points: Vec<Vec3> = (0..200)
+            .map(|i| {
+                let t = i as f32 * 0.37;
+                Vec3::new(
+                    5.0 + 2.0 * t.sin(),
+                    -3.0 + 0.3 * (t * 1.7).cos(),
+                    0.5 * (t * 0.3).sin(),
+                )
+            })
+            .collect();
+        for aspect in [16.0 / 9.0, 1.0, 0.5] {
+            let cam = Camera::fit(&points, aspect);
+            let m = cam.view_proj(aspect);
+            let mut extent = 0.0f32;
+            for p in &points {
+                let c = m * p.extend(1.0);
+                let (x, y, z) = (c.x / c.w, c.y / c.w, c.z / c.w);
+                assert!(
+                    c.w > 0.0 && (0.0..=1.0).contains(&z),
+                    "{aspect}: {p} at depth {z}"
+                );
+                assert!(
+                    x.abs() <= 1.0 - FIT_MARGIN + 1e-4 && y.abs() <= 1.0 - FIT_MARGIN + 1e-4,
+                    "{aspect}: {p} at {x} {y}"
+                );
+                extent = extent.max(x.abs()).max(y.abs());
+            }
+            assert!(
+                extent > 1.0 - FIT_MARGIN - 1e-3,
+                "{aspect}: fills only {extent}"
+            );
+            assert_eq!((cam.yaw, cam.pitch), (FRAMING_YAW, FRAMING_PITCH));
+        }
+        // No point, or one: a camera still.
+        assert_eq!(Camera::fit(&[], 1.0), Camera::framing(Vec3::ZERO, 1.0));
+        let one = Camera::fit(&[Vec3::ONE], 1.0);
+        assert!(one.distance > 0.0 && one.target == Vec3::ONE);
     }
 }

@@ -10,6 +10,7 @@ mod camera;
 pub mod driver;
 mod error;
 pub mod frame;
+mod framing;
 mod gpu_mesh;
 mod headless;
 pub mod level_pass;
