@@ -1,12 +1,17 @@
 //! `meshrefine export`: the refined mesh as the GPU evaluated it. The vertices come from the
 //! capture variant of the chosen driver's real drawing pipeline; here they are welded (equal
 //! position bits become one vertex: shared coarse edges weld because refinement is watertight)
-//! and connected with the pattern's triangles.
+//! and connected with the pattern's triangles. Texture coordinates, where the mesh has them,
+//! are computed on the CPU per captured vertex from its element and sample (`texcoords.rs`).
 #![forbid(unsafe_code)]
 
+mod texcoords;
+
+pub use texcoords::element_texcoord;
+
 use crate::pattern::Pattern;
-use crate::render::{CaptureResult, XfbVertex};
-use glam::Vec3;
+use crate::render::{CaptureResult, CapturedVertex, XfbVertex};
+use glam::{Vec2, Vec3};
 use std::collections::HashMap;
 use std::fmt::Write as _;
 
@@ -17,10 +22,29 @@ pub struct RefinedMesh {
     pub normals: Vec<Vec3>,
     /// Per corner: (position index, normal index).
     pub triangles: Vec<[(u32, u32); 3]>,
+    /// Texture coordinates (OBJ's `vt`), bit-equal ones merged; empty when the export has none.
+    pub texcoords: Vec<Vec2>,
+    /// Per corner of each triangle, its index into `texcoords` (empty when there are none).
+    pub texcoord_triangles: Vec<[u32; 3]>,
 }
+
+/// The texture coordinates of a captured vertex (from its element and sample), for
+/// [`weld_with`] and [`weld_adaptive_with`].
+pub type TexcoordOf<'a> = &'a dyn Fn(&CapturedVertex) -> Vec2;
 
 /// Weld captured vertices. Fails if the capture misses a vertex (its `w` was never set to 1).
 pub fn weld(capture: &CaptureResult, pattern: &Pattern) -> Result<RefinedMesh, String> {
+    weld_with(capture, pattern, None)
+}
+
+/// [`weld`], with each vertex's texture coordinates from `uv` where given. Positions weld on
+/// their bits alone, as without: a position with two texture coordinates (a seam of the
+/// mesh's texture coordinates) stays one `v` with two `vt`.
+pub fn weld_with(
+    capture: &CaptureResult,
+    pattern: &Pattern,
+    uv: Option<TexcoordOf<'_>>,
+) -> Result<RefinedMesh, String> {
     let pv = capture.pattern_vertex_count as usize;
     if pattern.bary.len() != pv {
         return Err(format!(
@@ -30,6 +54,7 @@ pub fn weld(capture: &CaptureResult, pattern: &Pattern) -> Result<RefinedMesh, S
     }
     let mut w = Welder::default();
     let mut remap = Vec::with_capacity(capture.vertices.len());
+    let mut uv_remap = Vec::new();
     for (k, v) in capture.vertices.iter().enumerate() {
         if v.position[3] != 1.0 {
             return Err(format!(
@@ -42,12 +67,19 @@ pub fn weld(capture: &CaptureResult, pattern: &Pattern) -> Result<RefinedMesh, S
             Vec3::from_slice(&v.position[..3]),
             Vec3::from_slice(&v.normal[..3]),
         ));
+        if let Some(uv) = uv {
+            uv_remap.push(w.add_texcoord(uv(v)));
+        }
     }
     let mut out = w.out;
     let local = pattern.triangles();
     for t in 0..capture.vertices.len() / pv {
         for tri in &local {
             out.triangles.push(tri.map(|i| remap[t * pv + i as usize]));
+            if uv.is_some() {
+                out.texcoord_triangles
+                    .push(tri.map(|i| uv_remap[t * pv + i as usize]));
+            }
         }
     }
     Ok(out)
@@ -59,6 +91,16 @@ pub fn weld(capture: &CaptureResult, pattern: &Pattern) -> Result<RefinedMesh, S
 /// ([`crate::pattern::adaptive::Hierarchy`]), those whose corners snapping welded together
 /// (degenerate) dropped.
 pub fn weld_adaptive(capture: &CaptureResult, max_level: u32) -> Result<RefinedMesh, String> {
+    weld_adaptive_with(capture, max_level, None)
+}
+
+/// [`weld_adaptive`], with each vertex's texture coordinates from `uv` where given (as
+/// [`weld_with`]).
+pub fn weld_adaptive_with(
+    capture: &CaptureResult,
+    max_level: u32,
+    uv: Option<TexcoordOf<'_>>,
+) -> Result<RefinedMesh, String> {
     use crate::pattern::adaptive::Hierarchy;
     let pv = capture.pattern_vertex_count as usize;
     if pv != crate::pattern::vertex_count(max_level) as usize || !max_level.is_power_of_two() {
@@ -68,6 +110,7 @@ pub fn weld_adaptive(capture: &CaptureResult, max_level: u32) -> Result<RefinedM
     }
     let mut w = Welder::default();
     let mut triangles = Vec::new();
+    let mut texcoord_triangles = Vec::new();
     for (t, slots) in capture.vertices.chunks(pv).enumerate() {
         let Some(inner) = slots.iter().find(|v| v.position[3] == 1.0).map(|v| v.id[2]) else {
             continue; // culled
@@ -75,30 +118,37 @@ pub fn weld_adaptive(capture: &CaptureResult, max_level: u32) -> Result<RefinedM
         if !inner.is_power_of_two() || inner > max_level {
             return Err(format!("element {t} was drawn at level {inner}"));
         }
-        let index: Vec<Option<(u32, u32)>> = slots
+        let index: Vec<Option<(u32, u32, u32)>> = slots
             .iter()
             .map(|v| {
                 (v.position[3] == 1.0).then(|| {
-                    w.add(
+                    let (p, n) = w.add(
                         Vec3::from_slice(&v.position[..3]),
                         Vec3::from_slice(&v.normal[..3]),
-                    )
+                    );
+                    (p, n, uv.map_or(0, |uv| w.add_texcoord(uv(v))))
                 })
             })
             .collect();
         for tri in Hierarchy::level_indices(max_level, inner).chunks_exact(3) {
             let mut c = [(0, 0); 3];
+            let mut ct = [0; 3];
             for (k, &i) in tri.iter().enumerate() {
-                c[k] = index[i as usize]
+                let (p, n, t) = index[i as usize]
                     .ok_or_else(|| format!("the GPU did not write vertex {i} of element {t}"))?;
+                (c[k], ct[k]) = ((p, n), t);
             }
             if c[0].0 != c[1].0 && c[1].0 != c[2].0 && c[2].0 != c[0].0 {
                 triangles.push(c);
+                if uv.is_some() {
+                    texcoord_triangles.push(ct);
+                }
             }
         }
     }
     let mut out = w.out;
     out.triangles = triangles;
+    out.texcoord_triangles = texcoord_triangles;
     Ok(out)
 }
 
@@ -118,6 +168,7 @@ struct Welder {
     out: RefinedMesh,
     pos_index: HashMap<[u32; 3], u32>,
     nrm_index: HashMap<[u32; 3], u32>,
+    uv_index: HashMap<[u32; 2], u32>,
 }
 
 impl Welder {
@@ -135,9 +186,20 @@ impl Welder {
         });
         (pi, ni)
     }
+
+    /// Index of texture coordinates `t`, merging bit-equal ones (+0 == -0).
+    fn add_texcoord(&mut self, t: Vec2) -> u32 {
+        let bits = t.to_array().map(|x| if x == 0.0 { 0 } else { x.to_bits() });
+        let out = &mut self.out;
+        *self.uv_index.entry(bits).or_insert_with(|| {
+            out.texcoords.push(t);
+            out.texcoords.len() as u32 - 1
+        })
+    }
 }
 
-/// Wavefront OBJ text (`v`, `vn`, `f v//vn`), with `header` lines as comments.
+/// Wavefront OBJ text (`v`, `vn`, `f v//vn`; with texture coordinates `vt` and `f v/vt/vn`),
+/// with `header` lines as comments.
 pub fn to_obj(mesh: &RefinedMesh, header: &[String]) -> String {
     let mut s = String::with_capacity(mesh.positions.len() * 40 + mesh.triangles.len() * 30);
     for h in header {
@@ -146,8 +208,29 @@ pub fn to_obj(mesh: &RefinedMesh, header: &[String]) -> String {
     for p in &mesh.positions {
         let _ = writeln!(s, "v {} {} {}", p.x, p.y, p.z);
     }
+    for t in &mesh.texcoords {
+        let _ = writeln!(s, "vt {} {}", t.x, t.y);
+    }
     for n in &mesh.normals {
         let _ = writeln!(s, "vn {} {} {}", n.x, n.y, n.z);
+    }
+    if mesh.texcoord_triangles.len() == mesh.triangles.len() && !mesh.texcoords.is_empty() {
+        for (t, uv) in mesh.triangles.iter().zip(&mesh.texcoord_triangles) {
+            let _ = writeln!(
+                s,
+                "f {}/{}/{} {}/{}/{} {}/{}/{}",
+                t[0].0 + 1,
+                uv[0] + 1,
+                t[0].1 + 1,
+                t[1].0 + 1,
+                uv[1] + 1,
+                t[1].1 + 1,
+                t[2].0 + 1,
+                uv[2] + 1,
+                t[2].1 + 1
+            );
+        }
+        return s;
     }
     for t in &mesh.triangles {
         let _ = writeln!(
@@ -207,6 +290,25 @@ pub fn check_size(elements: u64, level: u32) -> Result<u64, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn obj_text_has_vt_only_with_texture_coordinates() {
+        let mut mesh = RefinedMesh {
+            positions: vec![Vec3::ZERO, Vec3::X, Vec3::Y],
+            normals: vec![Vec3::Z],
+            triangles: vec![[(0, 0), (1, 0), (2, 0)]],
+            ..RefinedMesh::default()
+        };
+        let head = ["a".to_string()];
+        let plain = "# a\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\n";
+        assert_eq!(to_obj(&mesh, &head), plain);
+        mesh.texcoords = vec![Vec2::ZERO, Vec2::new(0.5, 1.0)];
+        mesh.texcoord_triangles = vec![[0, 1, 1]];
+        assert_eq!(
+            to_obj(&mesh, &head),
+            "# a\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 0.5 1\nvn 0 0 1\nf 1/1/1 2/2/1 3/2/1\n"
+        );
+    }
 
     #[test]
     fn exports_are_refused_past_the_limit_with_the_level_that_fits() {

@@ -7,8 +7,9 @@ use super::args::ExportArgs;
 use super::input::{apply_surface_inputs, attach_surface_inputs, draw_config, load_mesh, Input};
 use super::{require_extension, with_context};
 use anyhow::{bail, Context as _, Result};
+use meshrefine::export::{element_texcoord, TexcoordOf};
 use meshrefine::gpu::{Context, ContextDesc};
-use meshrefine::render::{Camera, Capture, DrawConfig, Headless};
+use meshrefine::render::{Camera, Capture, CapturedVertex, DrawConfig, Headless};
 use std::io::Write as _;
 use std::path::Path;
 use std::sync::Arc;
@@ -77,16 +78,47 @@ fn export(
         meshrefine::export::weld_triangles(&triangles)
     } else {
         let cap = h.capture(&mut scene, cfg, &camera)?;
+        // Texture coordinates per captured vertex, from its element and sample (the local
+        // surfaces' elements are the coarse triangles, whose corners carry them).
+        let uvs = scene
+            .data
+            .uvs
+            .as_deref()
+            .filter(|_| !cfg.surface.uses_loop_faces());
+        let records = scene.records(cfg.surface);
+        let texcoord = |v: &CapturedVertex| {
+            let e = v.id[0] as usize;
+            let bary = [v.coord[0], v.coord[1], v.coord[2]];
+            let corners = uvs.map_or(&[[0.0; 2]; 3], |u| &u[e]);
+            element_texcoord(cfg.surface, &cfg.params, &records[e], bary, corners)
+        };
+        let uv = uvs.map(|_| &texcoord as TexcoordOf<'_>);
         if drawn.is_some() {
-            meshrefine::export::weld_adaptive(&cap, cfg.level).map_err(anyhow::Error::msg)?
+            meshrefine::export::weld_adaptive_with(&cap, cfg.level, uv)
+                .map_err(anyhow::Error::msg)?
         } else {
             let Some(pattern) = scene.patterns.find(cfg.level) else {
                 bail!("no pattern of level {} was made", cfg.level);
             };
             let pattern = &scene.patterns.patterns[pattern];
-            meshrefine::export::weld(&cap, pattern).map_err(anyhow::Error::msg)?
+            meshrefine::export::weld_with(&cap, pattern, uv).map_err(anyhow::Error::msg)?
         }
     };
+    if scene.data.uvs.is_some() && refined.texcoords.is_empty() {
+        crate::note(format_args!(
+            "warning: '{name}' has texture coordinates, but {} writes none (vt): {}",
+            if cfg.surface.uses_loop_faces() {
+                "--surface loop"
+            } else {
+                "--driver tess"
+            },
+            if cfg.surface.uses_loop_faces() {
+                "its elements are Loop's M1 faces, which carry none"
+            } else {
+                "the tessellator's triangles are read back without their samples; --driver pattern writes them"
+            }
+        ));
+    }
     // The levels the GPU's level pass wrote for the capture, as the driver drew them.
     let drawn = drawn.map(|(a, cam)| {
         let (_, report) = scene.drawn_levels(cfg);
@@ -107,10 +139,15 @@ fn export(
         ),
         format!("evaluated on {device}"),
         format!(
-            "{} vertices, {} normals, {} triangles",
+            "{} vertices, {} normals, {} triangles{}",
             refined.positions.len(),
             refined.normals.len(),
-            refined.triangles.len()
+            refined.triangles.len(),
+            if refined.texcoords.is_empty() {
+                String::new()
+            } else {
+                format!(", {} texture coordinates", refined.texcoords.len())
+            }
         ),
     ];
     header.extend(drawn.into_iter().flatten());
