@@ -191,6 +191,10 @@ impl Readback {
         let mut enc = png::Encoder::new(file, self.width, self.height);
         enc.set_color(png::ColorType::Rgba);
         enc.set_depth(png::BitDepth::Eight);
+        // Rendered images are mostly flat background and smooth gradients: adaptive filtering
+        // and the best compression keep them small (the gallery is made of them).
+        enc.set_compression(png::Compression::Best);
+        enc.set_adaptive_filter(png::AdaptiveFilterType::Adaptive);
         let mut w = enc.write_header().map_err(std::io::Error::other)?;
         w.write_image_data(&self.rgba)
             .map_err(std::io::Error::other)?;
