@@ -105,12 +105,35 @@ pub fn weld_adaptive(capture: &CaptureResult, max_level: u32) -> Result<RefinedM
 /// Weld the triangles transform feedback captured from the `tess` driver (corners in the order
 /// the tessellator emitted them).
 pub fn weld_triangles(triangles: &[[XfbVertex; 3]]) -> RefinedMesh {
-    let mut w = Welder::default();
-    for t in triangles {
-        let tri = t.map(|v| w.add(Vec3::from(v.position), Vec3::from(v.normal)));
-        w.out.triangles.push(tri);
+    let mut w = TriangleWelder::default();
+    w.add(triangles);
+    w.finish()
+}
+
+/// [`weld_triangles`] a piece at a time (a capture pass after another): the same mesh as
+/// welding every piece at once, in the same order, without holding the captured triangles.
+#[derive(Default)]
+pub struct TriangleWelder(Welder);
+
+impl TriangleWelder {
+    /// Weld the next `triangles`.
+    pub fn add(&mut self, triangles: &[[XfbVertex; 3]]) {
+        let w = &mut self.0;
+        w.out.triangles.reserve(triangles.len());
+        for t in triangles {
+            let tri = t.map(|v| w.add(Vec3::from(v.position), Vec3::from(v.normal)));
+            w.out.triangles.push(tri);
+        }
     }
-    w.out
+
+    /// Triangles welded so far.
+    pub fn triangles(&self) -> usize {
+        self.0.out.triangles.len()
+    }
+
+    pub fn finish(self) -> RefinedMesh {
+        self.0.out
+    }
 }
 
 #[derive(Default)]
@@ -139,19 +162,49 @@ impl Welder {
 
 /// Wavefront OBJ text (`v`, `vn`, `f v//vn`), with `header` lines as comments.
 pub fn to_obj(mesh: &RefinedMesh, header: &[String]) -> String {
-    let mut s = String::with_capacity(mesh.positions.len() * 40 + mesh.triangles.len() * 30);
+    let mut s = Vec::with_capacity(mesh.positions.len() * 40 + mesh.triangles.len() * 30);
+    write_obj(mesh, header, &mut s, |_| {}).expect("writing to memory does not fail");
+    String::from_utf8(s).expect("OBJ text is UTF-8")
+}
+
+/// Lines [`write_obj`] writes between two reports of its progress.
+pub const WRITE_PROGRESS_LINES: usize = 1 << 18;
+
+/// [`to_obj`]'s text written to `out` as it is made (nothing is held but what `out` buffers);
+/// `progress` hears the lines written so far, of `v`, `vn` and `f` lines in all, every
+/// [`WRITE_PROGRESS_LINES`] lines and at the end.
+pub fn write_obj(
+    mesh: &RefinedMesh,
+    header: &[String],
+    out: &mut impl std::io::Write,
+    mut progress: impl FnMut((usize, usize)),
+) -> std::io::Result<()> {
+    let total = mesh.positions.len() + mesh.normals.len() + mesh.triangles.len();
+    let mut done = 0;
+    let mut line = String::with_capacity(80);
+    let mut emit = |out: &mut dyn std::io::Write, line: &mut String| {
+        out.write_all(line.as_bytes())?;
+        line.clear();
+        done += 1;
+        if done % WRITE_PROGRESS_LINES == 0 {
+            progress((done, total));
+        }
+        std::io::Result::Ok(())
+    };
     for h in header {
-        let _ = writeln!(s, "# {h}");
+        writeln!(out, "# {h}")?;
     }
     for p in &mesh.positions {
-        let _ = writeln!(s, "v {} {} {}", p.x, p.y, p.z);
+        let _ = writeln!(line, "v {} {} {}", p.x, p.y, p.z);
+        emit(out, &mut line)?;
     }
     for n in &mesh.normals {
-        let _ = writeln!(s, "vn {} {} {}", n.x, n.y, n.z);
+        let _ = writeln!(line, "vn {} {} {}", n.x, n.y, n.z);
+        emit(out, &mut line)?;
     }
     for t in &mesh.triangles {
         let _ = writeln!(
-            s,
+            line,
             "f {}//{} {}//{} {}//{}",
             t[0].0 + 1,
             t[0].1 + 1,
@@ -160,8 +213,10 @@ pub fn to_obj(mesh: &RefinedMesh, header: &[String]) -> String {
             t[2].0 + 1,
             t[2].1 + 1
         );
+        emit(out, &mut line)?;
     }
-    s
+    progress((total, total));
+    Ok(())
 }
 
 /// Most refined triangles one export writes. The export holds the captured vertices, the
