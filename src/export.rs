@@ -139,8 +139,40 @@ impl TriangleWelder {
 #[derive(Default)]
 struct Welder {
     out: RefinedMesh,
-    pos_index: HashMap<[u32; 3], u32>,
-    nrm_index: HashMap<[u32; 3], u32>,
+    pos_index: HashMap<[u32; 3], u32, BitsHash>,
+    nrm_index: HashMap<[u32; 3], u32, BitsHash>,
+}
+
+/// The welder's hash of a vector's bits: a multiply-rotate per 32-bit word and a 64-bit
+/// finalizer (MurmurHash3's `fmix64`) so every bit reaches the bucket index. Several times
+/// cheaper than the default SipHash, which resists chosen keys the welder does not face; the
+/// indices the welder hands out follow insertion order, so the hash never changes the output.
+type BitsHash = std::hash::BuildHasherDefault<BitsHasher>;
+
+#[derive(Default)]
+struct BitsHasher(u64);
+
+impl std::hash::Hasher for BitsHasher {
+    fn write(&mut self, bytes: &[u8]) {
+        for word in bytes.chunks(4) {
+            let mut w = [0u8; 4];
+            w[..word.len()].copy_from_slice(word);
+            self.write_u32(u32::from_le_bytes(w));
+        }
+    }
+
+    fn write_u32(&mut self, i: u32) {
+        self.0 = (self.0.rotate_left(5) ^ i as u64).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
+
+    fn finish(&self) -> u64 {
+        let mut h = self.0;
+        h ^= h >> 33;
+        h = h.wrapping_mul(0xff51_afd7_ed55_8ccd);
+        h ^= h >> 33;
+        h = h.wrapping_mul(0xc4ce_b9fe_1a85_ec53);
+        h ^ (h >> 33)
+    }
 }
 
 impl Welder {

@@ -5,7 +5,7 @@
 use super::adaptive::{Adaptive, Frame};
 use super::args::ExportArgs;
 use super::input::{apply_surface_inputs, attach_surface_inputs, draw_config, load_mesh, Input};
-use super::progress::{count, plural, ProgressLine};
+use super::progress::{count, count_of, plural, ProgressLine};
 use super::{require_extension, with_context};
 use anyhow::{bail, Context as _, Result};
 use meshrefine::gpu::{Context, ContextDesc};
@@ -146,9 +146,8 @@ fn export(
     let passes = passes.load(Ordering::Relaxed);
     let written = write_obj(output, &refined, &header, |(done, total)| {
         let text = format!(
-            "export: writing, {} of {} lines",
-            count(done as u64),
-            count(total as u64)
+            "export: writing, {} lines",
+            count_of(done as u64, total as u64)
         );
         lock(&progress).report(1, done as f64 / total.max(1) as f64, &text);
     });

@@ -141,3 +141,12 @@ pub fn count(n: u64) -> String {
         n.to_string()
     }
 }
+
+/// `done of total`, both as [`count`] writes `total` (`0.3 of 4.5 M`, `20 of 20`).
+pub fn count_of(done: u64, total: u64) -> String {
+    if total >= 1_000_000 {
+        format!("{:.1} of {:.1} M", done as f64 / 1e6, total as f64 / 1e6)
+    } else {
+        format!("{done} of {total}")
+    }
+}
