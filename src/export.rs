@@ -251,14 +251,15 @@ pub fn write_obj(
     Ok(())
 }
 
-/// Most refined triangles one export writes. The export holds the captured vertices, the
-/// welded mesh and the OBJ text in memory at once: about [`MEMORY_PER_TRIANGLE`] bytes per
-/// refined triangle at its peak (measured: 0.93 GB for 6.0 million), and the file takes about
-/// [`FILE_PER_TRIANGLE`] bytes per triangle; at this limit that is about 2.7 GB of memory and a
-/// 1.5 GB file.
+/// Most refined triangles one export writes. The export holds the welded mesh and the captured
+/// vertices (`tess`: one capture pass; the OBJ text is written as it is made): at most about
+/// [`MEMORY_PER_TRIANGLE`] bytes per refined triangle at its peak (measured, docs/bench/export.md:
+/// 0.84 GB for 6.0 million with `pattern`, 0.88 GB for 9.0 million with `tess`), and the file
+/// takes about [`FILE_PER_TRIANGLE`] bytes per triangle; at this limit that is at most about
+/// 2.7 GB of memory and a 1.5 GB file.
 pub const MAX_EXPORT_TRIANGLES: u64 = 1 << 24;
 
-/// Peak memory of an export per refined triangle, in bytes (an estimate, rounded up).
+/// Peak memory of an export per refined triangle, in bytes (an upper estimate, rounded up).
 pub const MEMORY_PER_TRIANGLE: u64 = 160;
 
 /// OBJ text per refined triangle, in bytes (an estimate: a `v`, a `vn` and an `f` line per two
