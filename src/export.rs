@@ -296,6 +296,43 @@ pub fn check_size(elements: u64, level: u32) -> Result<u64, String> {
 mod tests {
     use super::*;
 
+    /// Welding in pieces gives the mesh welding at once does, and the streamed writer the text
+    /// `to_obj` makes, its progress ending at every line written.
+    #[test]
+    fn welding_in_pieces_and_streaming_change_nothing() {
+        let v = |x: f32, y: f32, n: f32| XfbVertex {
+            position: [x, y, 0.0],
+            _pad0: 0.0,
+            normal: [0.0, n, 1.0],
+            _pad1: 0.0,
+        };
+        // A strip of triangles sharing corners, with -0.0 and 0.0 (welded as one).
+        let tris: Vec<[XfbVertex; 3]> = (0..50)
+            .map(|i| {
+                let x = i as f32 * 0.25;
+                [v(x, 0.0, -0.0), v(x + 0.25, 0.0, 0.0), v(x, 1.0, 0.5)]
+            })
+            .collect();
+        let whole = weld_triangles(&tris);
+        assert_eq!(whole.positions.len(), 51 + 50);
+        assert_eq!(whole.normals.len(), 2);
+        let mut pieces = TriangleWelder::default();
+        for chunk in tris.chunks(7) {
+            pieces.add(chunk);
+        }
+        assert_eq!(pieces.triangles(), 50);
+        let pieces = pieces.finish();
+        assert_eq!(pieces.triangles, whole.triangles);
+        assert_eq!(pieces.positions, whole.positions);
+        assert_eq!(pieces.normals, whole.normals);
+        let header = ["a mesh".to_string()];
+        let mut out = Vec::new();
+        let mut heard = Vec::new();
+        write_obj(&whole, &header, &mut out, |p| heard.push(p)).unwrap();
+        assert_eq!(String::from_utf8(out).unwrap(), to_obj(&whole, &header));
+        assert_eq!(heard, [(153, 153)]);
+    }
+
     #[test]
     fn exports_are_refused_past_the_limit_with_the_level_that_fits() {
         // 16 elements at level 1024 are exactly 2^24 triangles; one more element is too many.
