@@ -155,20 +155,75 @@ pub fn weld_adaptive_with(
 /// Weld the triangles transform feedback captured from the `tess` driver (corners in the order
 /// the tessellator emitted them).
 pub fn weld_triangles(triangles: &[[XfbVertex; 3]]) -> RefinedMesh {
-    let mut w = Welder::default();
-    for t in triangles {
-        let tri = t.map(|v| w.add(Vec3::from(v.position), Vec3::from(v.normal)));
-        w.out.triangles.push(tri);
+    let mut w = TriangleWelder::default();
+    w.add(triangles);
+    w.finish()
+}
+
+/// [`weld_triangles`] a piece at a time (a capture pass after another): the same mesh as
+/// welding every piece at once, in the same order, without holding the captured triangles.
+#[derive(Default)]
+pub struct TriangleWelder(Welder);
+
+impl TriangleWelder {
+    /// Weld the next `triangles`.
+    pub fn add(&mut self, triangles: &[[XfbVertex; 3]]) {
+        let w = &mut self.0;
+        w.out.triangles.reserve(triangles.len());
+        for t in triangles {
+            let tri = t.map(|v| w.add(Vec3::from(v.position), Vec3::from(v.normal)));
+            w.out.triangles.push(tri);
+        }
     }
-    w.out
+
+    /// Triangles welded so far.
+    pub fn triangles(&self) -> usize {
+        self.0.out.triangles.len()
+    }
+
+    pub fn finish(self) -> RefinedMesh {
+        self.0.out
+    }
 }
 
 #[derive(Default)]
 struct Welder {
     out: RefinedMesh,
-    pos_index: HashMap<[u32; 3], u32>,
-    nrm_index: HashMap<[u32; 3], u32>,
-    uv_index: HashMap<[u32; 2], u32>,
+    pos_index: HashMap<[u32; 3], u32, BitsHash>,
+    nrm_index: HashMap<[u32; 3], u32, BitsHash>,
+    uv_index: HashMap<[u32; 2], u32, BitsHash>,
+}
+
+/// The welder's hash of a vector's bits: a multiply-rotate per 32-bit word and a 64-bit
+/// finalizer (MurmurHash3's `fmix64`) so every bit reaches the bucket index. Several times
+/// cheaper than the default SipHash, which resists chosen keys the welder does not face; the
+/// indices the welder hands out follow insertion order, so the hash never changes the output.
+type BitsHash = std::hash::BuildHasherDefault<BitsHasher>;
+
+#[derive(Default)]
+struct BitsHasher(u64);
+
+impl std::hash::Hasher for BitsHasher {
+    fn write(&mut self, bytes: &[u8]) {
+        for word in bytes.chunks(4) {
+            let mut w = [0u8; 4];
+            w[..word.len()].copy_from_slice(word);
+            self.write_u32(u32::from_le_bytes(w));
+        }
+    }
+
+    fn write_u32(&mut self, i: u32) {
+        self.0 = (self.0.rotate_left(5) ^ i as u64).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
+
+    fn finish(&self) -> u64 {
+        let mut h = self.0;
+        h ^= h >> 33;
+        h = h.wrapping_mul(0xff51_afd7_ed55_8ccd);
+        h ^= h >> 33;
+        h = h.wrapping_mul(0xc4ce_b9fe_1a85_ec53);
+        h ^ (h >> 33)
+    }
 }
 
 impl Welder {
@@ -201,23 +256,55 @@ impl Welder {
 /// Wavefront OBJ text (`v`, `vn`, `f v//vn`; with texture coordinates `vt` and `f v/vt/vn`),
 /// with `header` lines as comments.
 pub fn to_obj(mesh: &RefinedMesh, header: &[String]) -> String {
-    let mut s = String::with_capacity(mesh.positions.len() * 40 + mesh.triangles.len() * 30);
+    let mut s = Vec::with_capacity(mesh.positions.len() * 40 + mesh.triangles.len() * 30);
+    write_obj(mesh, header, &mut s, |_| {}).expect("writing to memory does not fail");
+    String::from_utf8(s).expect("OBJ text is UTF-8")
+}
+
+/// Lines [`write_obj`] writes between two reports of its progress.
+pub const WRITE_PROGRESS_LINES: usize = 1 << 18;
+
+/// [`to_obj`]'s text written to `out` as it is made (nothing is held but what `out` buffers);
+/// `progress` hears the lines written so far, of `v`, `vt`, `vn` and `f` lines in all, every
+/// [`WRITE_PROGRESS_LINES`] lines and at the end.
+pub fn write_obj(
+    mesh: &RefinedMesh,
+    header: &[String],
+    out: &mut impl std::io::Write,
+    mut progress: impl FnMut((usize, usize)),
+) -> std::io::Result<()> {
+    let total =
+        mesh.positions.len() + mesh.texcoords.len() + mesh.normals.len() + mesh.triangles.len();
+    let mut done = 0;
+    let mut line = String::with_capacity(80);
+    let mut emit = |out: &mut dyn std::io::Write, line: &mut String| {
+        out.write_all(line.as_bytes())?;
+        line.clear();
+        done += 1;
+        if done % WRITE_PROGRESS_LINES == 0 {
+            progress((done, total));
+        }
+        std::io::Result::Ok(())
+    };
     for h in header {
-        let _ = writeln!(s, "# {h}");
+        writeln!(out, "# {h}")?;
     }
     for p in &mesh.positions {
-        let _ = writeln!(s, "v {} {} {}", p.x, p.y, p.z);
+        let _ = writeln!(line, "v {} {} {}", p.x, p.y, p.z);
+        emit(out, &mut line)?;
     }
     for t in &mesh.texcoords {
-        let _ = writeln!(s, "vt {} {}", t.x, t.y);
+        let _ = writeln!(line, "vt {} {}", t.x, t.y);
+        emit(out, &mut line)?;
     }
     for n in &mesh.normals {
-        let _ = writeln!(s, "vn {} {} {}", n.x, n.y, n.z);
+        let _ = writeln!(line, "vn {} {} {}", n.x, n.y, n.z);
+        emit(out, &mut line)?;
     }
     if mesh.texcoord_triangles.len() == mesh.triangles.len() && !mesh.texcoords.is_empty() {
         for (t, uv) in mesh.triangles.iter().zip(&mesh.texcoord_triangles) {
             let _ = writeln!(
-                s,
+                line,
                 "f {}/{}/{} {}/{}/{} {}/{}/{}",
                 t[0].0 + 1,
                 uv[0] + 1,
@@ -229,12 +316,14 @@ pub fn to_obj(mesh: &RefinedMesh, header: &[String]) -> String {
                 uv[2] + 1,
                 t[2].1 + 1
             );
+            emit(out, &mut line)?;
         }
-        return s;
+        progress((total, total));
+        return Ok(());
     }
     for t in &mesh.triangles {
         let _ = writeln!(
-            s,
+            line,
             "f {}//{} {}//{} {}//{}",
             t[0].0 + 1,
             t[0].1 + 1,
@@ -243,18 +332,21 @@ pub fn to_obj(mesh: &RefinedMesh, header: &[String]) -> String {
             t[2].0 + 1,
             t[2].1 + 1
         );
+        emit(out, &mut line)?;
     }
-    s
+    progress((total, total));
+    Ok(())
 }
 
-/// Most refined triangles one export writes. The export holds the captured vertices, the
-/// welded mesh and the OBJ text in memory at once: about [`MEMORY_PER_TRIANGLE`] bytes per
-/// refined triangle at its peak (measured: 0.93 GB for 6.0 million), and the file takes about
-/// [`FILE_PER_TRIANGLE`] bytes per triangle; at this limit that is about 2.7 GB of memory and a
-/// 1.5 GB file.
+/// Most refined triangles one export writes. The export holds the welded mesh and the captured
+/// vertices (`tess`: one capture pass; the OBJ text is written as it is made): at most about
+/// [`MEMORY_PER_TRIANGLE`] bytes per refined triangle at its peak (measured, docs/bench/export.md:
+/// 0.84 GB for 6.0 million with `pattern`, 0.88 GB for 9.0 million with `tess`), and the file
+/// takes about [`FILE_PER_TRIANGLE`] bytes per triangle; at this limit that is at most about
+/// 2.7 GB of memory and a 1.5 GB file.
 pub const MAX_EXPORT_TRIANGLES: u64 = 1 << 24;
 
-/// Peak memory of an export per refined triangle, in bytes (an estimate, rounded up).
+/// Peak memory of an export per refined triangle, in bytes (an upper estimate, rounded up).
 pub const MEMORY_PER_TRIANGLE: u64 = 160;
 
 /// OBJ text per refined triangle, in bytes (an estimate: a `v`, a `vn` and an `f` line per two
@@ -290,6 +382,43 @@ pub fn check_size(elements: u64, level: u32) -> Result<u64, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Welding in pieces gives the mesh welding at once does, and the streamed writer the text
+    /// `to_obj` makes, its progress ending at every line written.
+    #[test]
+    fn welding_in_pieces_and_streaming_change_nothing() {
+        let v = |x: f32, y: f32, n: f32| XfbVertex {
+            position: [x, y, 0.0],
+            _pad0: 0.0,
+            normal: [0.0, n, 1.0],
+            _pad1: 0.0,
+        };
+        // A strip of triangles sharing corners, with -0.0 and 0.0 (welded as one).
+        let tris: Vec<[XfbVertex; 3]> = (0..50)
+            .map(|i| {
+                let x = i as f32 * 0.25;
+                [v(x, 0.0, -0.0), v(x + 0.25, 0.0, 0.0), v(x, 1.0, 0.5)]
+            })
+            .collect();
+        let whole = weld_triangles(&tris);
+        assert_eq!(whole.positions.len(), 51 + 50);
+        assert_eq!(whole.normals.len(), 2);
+        let mut pieces = TriangleWelder::default();
+        for chunk in tris.chunks(7) {
+            pieces.add(chunk);
+        }
+        assert_eq!(pieces.triangles(), 50);
+        let pieces = pieces.finish();
+        assert_eq!(pieces.triangles, whole.triangles);
+        assert_eq!(pieces.positions, whole.positions);
+        assert_eq!(pieces.normals, whole.normals);
+        let header = ["a mesh".to_string()];
+        let mut out = Vec::new();
+        let mut heard = Vec::new();
+        write_obj(&whole, &header, &mut out, |p| heard.push(p)).unwrap();
+        assert_eq!(String::from_utf8(out).unwrap(), to_obj(&whole, &header));
+        assert_eq!(heard, [(153, 153)]);
+    }
 
     #[test]
     fn obj_text_has_vt_only_with_texture_coordinates() {

@@ -2717,3 +2717,99 @@ fn render_views_backgrounds_and_the_cage() {
     let out = meshrefine(&["render", "--background", "pink"]);
     assert_eq!(out.status.code(), Some(2));
 }
+
+/// `meshrefine` with `args` and the environment variables `env`.
+fn meshrefine_env(args: &[&str], env: &[(&str, &str)]) -> Output {
+    let _guard = common::gpu_lock();
+    bin()
+        .args(args)
+        .envs(env.iter().copied())
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .expect("run meshrefine")
+}
+
+/// A long export reports how far it is on standard error, a few plain lines when that is not a
+/// terminal: each pass captured, the writing, the end (forced here from the start with
+/// MESHREFINE_PROGRESS_AFTER=0). An export made in many small passes (MESHREFINE_MAX_CAPTURE_BYTES)
+/// writes the same file as one made in one pass, which, being small, says nothing there. Bad
+/// values of either variable are one sentence naming it.
+#[test]
+fn exports_report_progress_and_passes_keep_the_file() {
+    let ico = model_path("icosahedron.obj");
+    // Three of icosahedron's 20 elements a pass at level 6: 54 tess triangles of 3 vertices of
+    // 32 bytes each, or 28 pattern vertices of 64 bytes each.
+    for (driver, bytes, triangles) in [
+        ("tess", 3 * 54 * 96, 20 * 54),
+        ("pattern", 3 * 28 * 64, 20 * 36),
+    ] {
+        let one = tmp(&format!("progress_one_{driver}.obj"));
+        let many = tmp(&format!("progress_many_{driver}.obj"));
+        let run = |o: &Path, env: &[(&str, &str)]| {
+            let a = [
+                "export",
+                p(&ico),
+                "-o",
+                p(o),
+                "--level",
+                "6",
+                "--driver",
+                driver,
+            ];
+            let out = meshrefine_env(&a, env);
+            let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+            assert!(out.status.success(), "{a:?}: {stderr}");
+            stderr
+        };
+        let quiet = run(&one, &[]);
+        assert!(!quiet.contains("export:"), "{quiet}");
+        let bytes = bytes.to_string();
+        let env = [
+            ("MESHREFINE_PROGRESS_AFTER", "0"),
+            ("MESHREFINE_MAX_CAPTURE_BYTES", bytes.as_str()),
+        ];
+        let loud = run(&many, &env);
+        let lines: Vec<&str> = loud.lines().filter(|l| l.starts_with("export:")).collect();
+        assert_eq!(
+            lines.first(),
+            Some(&"export: 1/7 passes (3 of 20 elements)"),
+            "{loud}"
+        );
+        assert!(
+            lines.contains(&"export: 7/7 passes (20 of 20 elements)"),
+            "{loud}"
+        );
+        assert!(
+            lines.iter().any(|l| l.starts_with("export: writing, ")),
+            "{loud}"
+        );
+        let last = format!("export: 7 passes, {triangles} triangles, written");
+        assert_eq!(lines.last(), Some(&last.as_str()), "{loud}");
+        assert!(lines.len() <= 8, "more than a few lines: {loud}");
+        assert!(!loud.contains('\r'), "{loud}");
+        assert!(
+            std::fs::read(&one).unwrap() == std::fs::read(&many).unwrap(),
+            "{driver}: passes change the file"
+        );
+    }
+    for (var, value, says) in [
+        (
+            "MESHREFINE_PROGRESS_AFTER",
+            "soon",
+            "MESHREFINE_PROGRESS_AFTER must be a number of seconds, not 'soon'",
+        ),
+        (
+            "MESHREFINE_MAX_CAPTURE_BYTES",
+            "0",
+            "MESHREFINE_MAX_CAPTURE_BYTES must be a positive number of bytes, not '0'",
+        ),
+    ] {
+        let o = tmp("progress_bad.obj");
+        let out = meshrefine_env(&["export", p(&ico), "-o", p(&o)], &[(var, value)]);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{stderr}");
+        assert_eq!(stderr.lines().count(), 1, "{stderr}");
+        assert!(stderr.contains(says), "{stderr}");
+    }
+}

@@ -556,3 +556,68 @@ fn loop_is_watertight_on_every_driver() {
         }
     });
 }
+
+/// An export made in many small capture passes (the tess driver's welded pass by pass) is the
+/// same file, byte for byte, as one made in a single pass, on both GPU drivers and several
+/// surfaces; the tess driver's streamed weld equals welding the whole capture; each pass is
+/// reported once, in order, with the elements it brings the capture to.
+#[test]
+fn exports_in_many_passes_write_the_same_bytes() {
+    use meshrefine::export::to_obj;
+    use meshrefine::pattern::vertex_count;
+    use std::sync::{Arc, Mutex};
+    with_gpu(64, 64, |h| {
+        let mesh = model("icosahedron.obj");
+        let n = mesh.triangles.len() as u32;
+        let (mut scene, camera) = scene_at(h, &mesh, &[7, 8]);
+        let r = scene.bounding_sphere().1;
+        // Bytes of three elements' capture: tess triangles by transform feedback (32 bytes a
+        // vertex), pattern vertices (64 bytes each).
+        let three = [
+            (Driver::Tess, 7, 3 * tess_triangle_count(7) as u64 * 3 * 32),
+            (
+                Driver::Pattern(Submit::Instanced),
+                8,
+                3 * vertex_count(8) as u64 * 64,
+            ),
+        ];
+        let surfaces = [
+            (Surface::Flat, Displace::None),
+            (Surface::Pn, Displace::None),
+            (Surface::Phong, Displace::Sine),
+        ];
+        for (driver, level, bytes) in three {
+            for surface in surfaces {
+                let cfg = config(driver, level, surface, r);
+                h.max_capture_bytes = None;
+                let one = to_obj(&h.refined_mesh(&mut scene, &cfg, &camera).unwrap(), &[]);
+                assert!(one.lines().filter(|l| l.starts_with("f ")).count() > n as usize);
+                if driver == Driver::Tess {
+                    let whole = h.capture_triangles(&mut scene, &cfg, &camera).unwrap();
+                    assert!(
+                        to_obj(&weld_triangles(&whole), &[]) == one,
+                        "{}",
+                        cfg.label()
+                    );
+                }
+                let seen = Arc::new(Mutex::new(Vec::new()));
+                let log = seen.clone();
+                h.capture_progress = Some(Box::new(move |p| log.lock().unwrap().push(p)));
+                h.max_capture_bytes = Some(bytes);
+                let many = h.refined_mesh(&mut scene, &cfg, &camera);
+                h.capture_progress = None;
+                h.max_capture_bytes = None;
+                let many = to_obj(&many.unwrap(), &[]);
+                assert!(many == one, "{}: passes change the file", cfg.label());
+                let seen = seen.lock().unwrap();
+                let passes = n.div_ceil(3);
+                assert_eq!(seen.len(), passes as usize, "{}", cfg.label());
+                for (k, p) in seen.iter().enumerate() {
+                    let done = k as u32 + 1;
+                    assert_eq!((p.done, p.passes, p.elements), (done, passes, n));
+                    assert_eq!(p.elements_done, (3 * done).min(n));
+                }
+            }
+        }
+    });
+}

@@ -5,6 +5,7 @@
 use super::adaptive::{Adaptive, Frame};
 use super::args::ExportArgs;
 use super::input::{apply_surface_inputs, attach_surface_inputs, draw_config, load_mesh, Input};
+use super::progress::{count, count_of, plural, ProgressLine};
 use super::{require_extension, with_context};
 use anyhow::{bail, Context as _, Result};
 use meshrefine::export::{element_texcoord, TexcoordOf};
@@ -12,11 +13,14 @@ use meshrefine::gpu::{Context, ContextDesc};
 use meshrefine::render::{Camera, Capture, CapturedVertex, DrawConfig, Headless};
 use std::io::Write as _;
 use std::path::Path;
-use std::sync::Arc;
+use std::sync::atomic::{AtomicU32, Ordering};
+use std::sync::{Arc, Mutex};
 
 /// Runs `meshrefine export` with `a`.
 pub fn run(a: &ExportArgs, desc: &ContextDesc) -> Result<()> {
     require_extension(&a.output, "obj", "export writes Wavefront OBJ text only")?;
+    let mut progress = ProgressLine::new().map_err(anyhow::Error::msg)?;
+    let max_capture_bytes = capture_bytes_env()?;
     let for_loop = a.surface.surface.facts().needs_every_face;
     let mut input = load_mesh(a.mesh.as_deref(), for_loop)?;
     // Loop's elements are M1's faces, four per triangle.
@@ -28,7 +32,7 @@ pub fn run(a: &ExportArgs, desc: &ContextDesc) -> Result<()> {
             .map_err(|e| anyhow::anyhow!("cannot export '{shown}': {e}"))
     };
     if adaptive.is_none() {
-        check_size(a.level)?;
+        progress.set_size(check_size(a.level)?);
     }
     let mut cfg = draw_config(&a.technique(), &input.mesh)?;
     attach_surface_inputs(&mut input, &a.surface, false)?;
@@ -37,10 +41,11 @@ pub fn run(a: &ExportArgs, desc: &ContextDesc) -> Result<()> {
         if let Some(a) = &adaptive {
             cfg.level = a.max_level(&ctx, cfg.driver)?;
             cfg.geomorph = a.geomorph;
-            check_size(cfg.level)?;
+            progress.set_size(check_size(cfg.level)?);
         }
         let shown = input.shown.clone();
-        export(ctx, input, &cfg, &a.output, adaptive, size)
+        let knobs = (progress, max_capture_bytes);
+        export(ctx, input, &cfg, &a.output, adaptive, size, knobs)
             .with_context(|| format!("cannot export '{shown}'"))
     })?;
     out!("{counts}");
@@ -49,7 +54,8 @@ pub fn run(a: &ExportArgs, desc: &ContextDesc) -> Result<()> {
 }
 
 /// Captures what the GPU evaluated (adaptively, for an image of `size`, when `adaptive` says
-/// so) and writes it as OBJ; returns the counts line.
+/// so) and writes it as OBJ, reporting on `progress` and capturing in passes of at most
+/// `max_capture_bytes` where given; returns the counts line.
 fn export(
     ctx: Arc<Context>,
     input: Input,
@@ -57,6 +63,7 @@ fn export(
     output: &Path,
     adaptive: Option<Adaptive>,
     size: (u32, u32),
+    (progress, max_capture_bytes): (ProgressLine, Option<u64>),
 ) -> Result<String> {
     let device = ctx.info.describe();
     let mut h = Headless::with_context(ctx, 64, 64)?;
@@ -73,9 +80,30 @@ fn export(
         camera = cam;
         drawn = Some((a, cam));
     }
+    // Long exports say how far they are on standard error (passes captured, lines written).
+    let progress = Arc::new(Mutex::new(progress));
+    h.max_capture_bytes = max_capture_bytes;
+    let passes = Arc::new(AtomicU32::new(0));
+    h.capture_progress = Some(Box::new({
+        let (progress, passes) = (progress.clone(), passes.clone());
+        move |p| {
+            passes.store(p.done, Ordering::Relaxed);
+            let text = format!(
+                "export: {}/{} ({} of {} elements)",
+                p.done,
+                plural(p.passes as u64, "pass"),
+                p.elements_done,
+                p.elements
+            );
+            let fraction = p.done as f64 / p.passes as f64;
+            lock(&progress).report(0, fraction, &text);
+        }
+    }));
     let refined = if cfg.driver.kind().export_capture() == Some(Capture::Triangles) {
-        let triangles = h.capture_triangles(&mut scene, cfg, &camera)?;
-        meshrefine::export::weld_triangles(&triangles)
+        // Welded pass by pass: the captured triangles are never held whole.
+        let mut welder = meshrefine::export::TriangleWelder::default();
+        h.capture_triangles_each(&mut scene, cfg, &camera, |t| welder.add(t))?;
+        welder.finish()
     } else {
         let cap = h.capture(&mut scene, cfg, &camera)?;
         // Texture coordinates per captured vertex, from its element and sample (the local
@@ -151,7 +179,51 @@ fn export(
         ),
     ];
     header.extend(drawn.into_iter().flatten());
-    std::fs::write(output, meshrefine::export::to_obj(&refined, &header))
-        .with_context(|| format!("cannot write '{}'", output.display()))?;
+    h.capture_progress = None;
+    let passes = passes.load(Ordering::Relaxed);
+    let written = write_obj(output, &refined, &header, |(done, total)| {
+        let text = format!(
+            "export: writing, {} lines",
+            count_of(done as u64, total as u64)
+        );
+        lock(&progress).report(1, done as f64 / total.max(1) as f64, &text);
+    });
+    written.with_context(|| format!("cannot write '{}'", output.display()))?;
+    lock(&progress).finish(&format!(
+        "export: {}, {} triangles, written",
+        plural(passes as u64, "pass"),
+        count(refined.triangles.len() as u64)
+    ));
     Ok(header[2].clone())
+}
+
+/// Write `refined` with `header` to `output` as OBJ, streamed through a buffer.
+fn write_obj(
+    output: &Path,
+    refined: &meshrefine::export::RefinedMesh,
+    header: &[String],
+    progress: impl FnMut((usize, usize)),
+) -> std::io::Result<()> {
+    let mut file = std::io::BufWriter::with_capacity(1 << 20, std::fs::File::create(output)?);
+    meshrefine::export::write_obj(refined, header, &mut file, progress)?;
+    file.flush()
+}
+
+/// The environment variable that caps a capture pass's buffer, in bytes (a test's knob: a
+/// small cap makes an export in many passes, which writes the same file as one).
+const MAX_CAPTURE_BYTES_ENV: &str = "MESHREFINE_MAX_CAPTURE_BYTES";
+
+fn capture_bytes_env() -> Result<Option<u64>> {
+    let Ok(s) = std::env::var(MAX_CAPTURE_BYTES_ENV) else {
+        return Ok(None);
+    };
+    match s.trim().parse::<u64>() {
+        Ok(n) if n > 0 => Ok(Some(n)),
+        _ => bail!("{MAX_CAPTURE_BYTES_ENV} must be a positive number of bytes, not '{s}'"),
+    }
+}
+
+/// The progress line, even if a report panicked while holding it.
+fn lock(p: &Mutex<ProgressLine>) -> std::sync::MutexGuard<'_, ProgressLine> {
+    p.lock().unwrap_or_else(|e| e.into_inner())
 }

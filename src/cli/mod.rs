@@ -17,6 +17,7 @@ mod info;
 mod input;
 mod loop_check;
 mod options;
+mod progress;
 mod render;
 mod view;
 

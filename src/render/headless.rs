@@ -2,10 +2,9 @@
 //! Every call records, submits and waits, so nothing is ever in flight when it returns.
 
 use super::frame::{cmd_render, Background, FrameWork, TargetView};
-use super::tess::tess_triangle_count;
+use super::xfb_capture::CapturePass;
 use super::{
     Capture, CapturedVertex, DrawConfig, Driver, FrameUniforms, RenderError, Renderer, Scene, View,
-    XfbVertex,
 };
 use crate::gpu::{
     vk, Buffer, BufferDesc, CommandPool, Context, ContextDesc, GpuError, OffscreenTarget,
@@ -13,9 +12,6 @@ use crate::gpu::{
 };
 use crate::mesh::Mesh;
 use crate::pattern::vertex_count;
-
-/// Bytes of one transform-feedback vertex.
-const XFB_VERTEX_BYTES: u64 = std::mem::size_of::<XfbVertex>() as u64;
 use crate::render::Camera;
 use std::sync::Arc;
 use std::time::Instant;
@@ -40,6 +36,8 @@ pub struct Headless {
     /// Largest capture buffer of one pass, in bytes (None: the device's limit; tests set a small
     /// one to exercise captures made in several passes).
     pub max_capture_bytes: Option<u64>,
+    /// Hears each capture pass as it ends (a progress report for long captures).
+    pub capture_progress: Option<Box<dyn FnMut(CapturePass) + Send>>,
 }
 
 /// Vertices the capture variant of a driver's pipeline wrote.
@@ -64,7 +62,7 @@ pub struct FrameTiming {
 /// The largest buffer one capture pass may use, and the name of the limit that sets it: the
 /// binding's own range limit, maxMemoryAllocationSize (one buffer is one allocation), and the
 /// tests' smaller cap where given.
-fn pass_limit(
+pub(super) fn pass_limit(
     range: (u64, &'static str),
     allocation: u64,
     cap: Option<u64>,
@@ -153,6 +151,7 @@ impl Headless {
             adaptive: false,
             view: View::Shaded,
             max_capture_bytes: None,
+            capture_progress: None,
         })
     }
 
@@ -289,7 +288,7 @@ impl Headless {
         self.draw_inner(scene, cfg, camera, Capture::None, None, 0..u32::MAX)
     }
 
-    fn draw_inner(
+    pub(super) fn draw_inner(
         &mut self,
         scene: &mut Scene,
         cfg: &DrawConfig,
@@ -446,6 +445,7 @@ impl Headless {
             }
             out.extend(pass);
             first += count;
+            self.report_pass(first, n, per_pass);
         };
         self.wireframe = wire;
         result?;
@@ -454,97 +454,6 @@ impl Headless {
             pattern_vertex_count: pv,
             stats,
         })
-    }
-
-    /// Draw `cfg` (tess) with its transform-feedback variant and read back the triangles the
-    /// tessellator made, as evaluated: `(position, normal)` per corner, in primitive order. In
-    /// passes of as many elements as one transform-feedback buffer holds at `cfg.level` (the
-    /// largest level when drawing adaptively); each pass reads back what the device says it wrote.
-    pub fn capture_triangles(
-        &mut self,
-        scene: &mut Scene,
-        cfg: &DrawConfig,
-        camera: &Camera,
-    ) -> Result<Vec<[XfbVertex; 3]>, RenderError> {
-        let per_element = tess_triangle_count(cfg.level) as u64 * 3 * XFB_VERTEX_BYTES;
-        let (limit, limit_name) = pass_limit(
-            (
-                self.ctx.info.max_transform_feedback_buffer_size,
-                "maxTransformFeedbackBufferSize",
-            ),
-            self.ctx.info.max_memory_allocation_size,
-            self.max_capture_bytes,
-        );
-        if self.ctx.info.transform_feedback && per_element > limit {
-            return Err(RenderError::OverLimit {
-                what: format!(
-                    "reading back the {} tessellated triangles of one element",
-                    tess_triangle_count(cfg.level)
-                ),
-                needed: per_element,
-                unit: "bytes",
-                limit: limit_name,
-                max: limit,
-                remedy: "use a lower level".into(),
-            });
-        }
-        let n = self.prepared_elements(scene, cfg, Capture::Triangles)?;
-        let per_pass = (limit / per_element).clamp(1, n.max(1) as u64) as u32;
-        let buffer = Buffer::new(
-            &self.ctx,
-            BufferDesc::new_readback(
-                per_pass as u64 * per_element,
-                vk::BufferUsageFlags::TRANSFORM_FEEDBACK_BUFFER_EXT,
-            ),
-            "transform feedback output",
-        )?;
-        let mut counter = Buffer::new(
-            &self.ctx,
-            BufferDesc::new_upload(
-                4,
-                vk::BufferUsageFlags::TRANSFORM_FEEDBACK_COUNTER_BUFFER_EXT,
-            ),
-            "transform feedback counter",
-        )?;
-        let wire = std::mem::replace(&mut self.wireframe, false);
-        let mut out = Vec::new();
-        let mut first = 0;
-        let result = loop {
-            if first >= n {
-                break Ok(());
-            }
-            let count = per_pass.min(n - first);
-            let elements = first..first + count;
-            counter.write_pod(0, &[0u32]);
-            if let Err(e) = self.draw_inner(
-                scene,
-                cfg,
-                camera,
-                Capture::Triangles,
-                Some((&buffer, &counter)),
-                elements,
-            ) {
-                break Err(e);
-            }
-            let flat: Vec<XfbVertex> = buffer.read_pod();
-            let written = counter.read_pod::<u32>()[0] as u64;
-            if written > buffer.size() {
-                break Err(RenderError::CaptureOverflow {
-                    written: written / XFB_VERTEX_BYTES,
-                    capacity: buffer.size() / XFB_VERTEX_BYTES,
-                });
-            }
-            let triangles = (written / (3 * XFB_VERTEX_BYTES)) as usize;
-            out.extend(
-                flat[..3 * triangles]
-                    .chunks_exact(3)
-                    .map(|c| [c[0], c[1], c[2]]),
-            );
-            first += count;
-        };
-        self.wireframe = wire;
-        result?;
-        Ok(out)
     }
 
     /// The refined mesh `cfg`'s driver draws, read back from its real drawing pipeline and
@@ -557,9 +466,11 @@ impl Headless {
         camera: &Camera,
     ) -> Result<crate::export::RefinedMesh, RenderError> {
         match cfg.driver.kind().export_capture() {
-            Some(Capture::Triangles) => Ok(crate::export::weld_triangles(
-                &self.capture_triangles(scene, cfg, camera)?,
-            )),
+            Some(Capture::Triangles) => {
+                let mut welder = crate::export::TriangleWelder::default();
+                self.capture_triangles_each(scene, cfg, camera, |t| welder.add(t))?;
+                Ok(welder.finish())
+            }
             Some(_) => {
                 let cap = self.capture(scene, cfg, camera)?;
                 let pattern = scene

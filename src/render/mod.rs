@@ -21,6 +21,7 @@ mod scene;
 mod scene_levels;
 pub mod static_vbo;
 pub mod tess;
+mod xfb_capture;
 
 pub use camera::Camera;
 pub use driver::{Driver, DriverKind, Submit};
@@ -35,6 +36,7 @@ pub use level_pass::LevelPass;
 pub use pipelines::{Renderer, GEOMETRY_STAGES, PUSH_STAGES};
 pub use scene::{software_frame_seconds, Scene};
 pub use scene_levels::LevelView;
+pub use xfb_capture::{CapturePass, LAVAPIPE_MAX_CAPTURE_PASS_BYTES};
 
 use crate::surface::{BuildOptions, Displace, ElementRecord, Surface, SurfaceParams};
 use bytemuck::{Pod, Zeroable};

@@ -26,11 +26,23 @@ pub const LAVAPIPE_MAX_TESS_VERTICES_PER_DRAW: u32 = 65_535;
 /// Most triangle patches of one tessellated draw whose gl_PrimitiveID lavapipe numbers right.
 pub const LAVAPIPE_MAX_PATCHES_PER_DRAW: u32 = 4_095 / 3;
 
-/// Patches per draw on this device for `level`.
-pub fn patches_per_draw(ctx: &Context, level: u32, triangles: u32) -> u32 {
+/// Evaluated vertices of one tessellated draw on lavapipe while transform feedback captures it.
+/// Mesa's draw module then sends the draw through its primitive pipeline, which, each time its
+/// small vertex buffer fills (every few dozen vertices), resets a header in every vertex the
+/// draw evaluated: a cost that grows with the square of the draw's size. Draws of this size keep
+/// that reset cheap next to the evaluation itself, and few enough that the cost of each draw
+/// stays small.
+pub const LAVAPIPE_CAPTURE_VERTICES_PER_DRAW: u32 = 4_096;
+
+/// Patches per draw on this device for `level`; `capture`: drawn for transform feedback.
+pub fn patches_per_draw(ctx: &Context, level: u32, triangles: u32, capture: bool) -> u32 {
     if ctx.info.is_lavapipe() {
-        (LAVAPIPE_MAX_TESS_VERTICES_PER_DRAW / tess_vertex_count(level))
-            .clamp(1, LAVAPIPE_MAX_PATCHES_PER_DRAW)
+        let budget = if capture {
+            LAVAPIPE_CAPTURE_VERTICES_PER_DRAW
+        } else {
+            LAVAPIPE_MAX_TESS_VERTICES_PER_DRAW
+        };
+        (budget / tess_vertex_count(level)).clamp(1, LAVAPIPE_MAX_PATCHES_PER_DRAW)
     } else {
         triangles.max(1)
     }
@@ -113,13 +125,15 @@ impl DriverKind for TessDriver {
             work.cfg.level,
             work.adaptive,
             work.elements.clone(),
+            work.capture == Capture::Triangles,
         );
     }
 }
 
 /// Record the tessellated draws of the elements `range` of `mesh` at `level`, chunk by chunk
 /// ([`GpuMesh::chunks`]); `adaptive`: each element at its own levels ([`GpuMesh::levels`]), at
-/// most `level` (the draws are split for `level`, the most an element can make).
+/// most `level` (the draws are split for `level`, the most an element can make); `capture`:
+/// drawn for transform feedback ([`patches_per_draw`]).
 pub fn cmd_draw(
     cmd: &Cmd<'_>,
     r: &Renderer,
@@ -127,8 +141,9 @@ pub fn cmd_draw(
     level: u32,
     adaptive: bool,
     range: std::ops::Range<u32>,
+    capture: bool,
 ) {
-    let per_draw = patches_per_draw(cmd.context(), level, mesh.element_count);
+    let per_draw = patches_per_draw(cmd.context(), level, mesh.element_count, capture);
     for c in mesh.chunks(range) {
         cmd.bind_descriptor_set(r.layout.raw, SET_MESH, c.set, &[0]);
         let mut first = c.first;
