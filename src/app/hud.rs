@@ -3,7 +3,7 @@
 #![forbid(unsafe_code)]
 
 use super::ui::{self, PanelInfo};
-use super::State;
+use super::{camera, State};
 use crate::render::DrawConfig;
 use std::time::Instant;
 
@@ -25,6 +25,7 @@ impl State {
         let device = self.ctx.info.describe();
         let d = self.drawn;
         let coarse = self.scene.elements(d.surface).element_count as u64;
+        let camera = camera::camera_args(&self.camera, self.viewing);
         let info = PanelInfo {
             device: &device,
             levels: &levels,
@@ -50,6 +51,8 @@ impl State {
                 .adaptive_summary(&d, coarse)
                 .map(|a| a.rows())
                 .unwrap_or_default(),
+            camera: &camera,
+            screenshot_note: self.screenshot_note.as_deref(),
         };
         self.ui.run(&self.window, &mut self.controls, &info)
     }
@@ -71,9 +74,10 @@ impl State {
             if c.cage { " cage" } else { "" },
             if c.animate { " animated" } else { "" },
         );
+        let camera = camera::camera_args(&self.camera, self.viewing);
         if let Some(a) = self.adaptive_summary(cfg, coarse) {
             self.window.set_title(&format!(
-                "meshrefine | {} {}{flags} | {:.0} fps | GPU {:.2} ms | {coarse} -> {} | {:.2} MB geometry",
+                "meshrefine | {} {}{flags} | {:.0} fps | GPU {:.2} ms | {coarse} -> {} | {:.2} MB geometry | {camera}",
                 cfg.label(),
                 a.mode(),
                 self.fps,
@@ -84,7 +88,7 @@ impl State {
             return;
         }
         self.window.set_title(&format!(
-            "meshrefine | {} level {}{}{}{flags} | {:.0} fps | GPU {:.2} ms | {} -> {} triangles | {:.2} MB geometry | max level {}",
+            "meshrefine | {} level {}{}{}{flags} | {:.0} fps | GPU {:.2} ms | {} -> {} triangles | {:.2} MB geometry | max level {} | {camera}",
             cfg.label(),
             cfg.level,
             if c.lod && !c.adaptive { " (LOD)" } else { "" },

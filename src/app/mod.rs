@@ -11,8 +11,11 @@
 //! changed or destroyed.
 #![forbid(unsafe_code)]
 
+mod actions;
 mod adaptive;
 mod budget;
+mod camera;
+mod draw;
 mod hud;
 mod input;
 mod ui;
@@ -21,12 +24,11 @@ pub use adaptive::{AdaptiveView, DEFAULT_MAX_LEVEL, DEFAULT_PIXEL_ERROR};
 
 use crate::gpu::sample_count;
 use crate::gpu::{
-    surface_extensions, vk, Buffer, BufferDesc, Cmd, CommandPool, Context, ContextDesc, Fence,
-    Messages, Overlay, QueryPools, Semaphore, Swapchain, SwapchainFrame, DEPTH_FORMAT,
+    surface_extensions, vk, Buffer, CommandPool, Context, ContextDesc, Fence, Messages, Overlay,
+    QueryPools, Semaphore, Swapchain, DEPTH_FORMAT,
 };
 use crate::mesh::Mesh;
-use crate::render::frame::{cmd_render, FrameWork, TargetView};
-use crate::render::{Camera, DrawConfig, FrameUniforms, Renderer, Scene, View};
+use crate::render::{Background, Camera, DrawConfig, Renderer, Scene, View};
 use crate::surface::Surface;
 use anyhow::{anyhow, Context as _, Result};
 use raw_window_handle::{HasDisplayHandle, HasWindowHandle};
@@ -34,7 +36,7 @@ use std::io::Write as _;
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
-use ui::{Controls, Ui};
+use ui::{Asked, Controls, Ui};
 use winit::event_loop::{ActiveEventLoop, EventLoop};
 use winit::window::Window;
 
@@ -74,17 +76,30 @@ pub struct ViewOptions {
     pub msaa: Option<u32>,
     /// Adaptive mode's starting settings, and whether the demo starts in it.
     pub adaptive: AdaptiveView,
+    /// The window's inner size at the start, in logical pixels (`--width`, `--height`), and
+    /// the size leaving fullscreen returns to when the demo started fullscreen.
+    pub size: (u32, u32),
+    /// Start borderless fullscreen (`--fullscreen`; `F11` toggles).
+    pub fullscreen: bool,
+    /// What the mesh is drawn on at the start (`--background`; `B` toggles).
+    pub background: Background,
+    /// Where the screenshot key writes `meshrefine-<n>.png` (None: the current directory).
+    pub screenshot_dir: Option<PathBuf>,
+    /// The transform of the drawn mesh from the file's coordinates (drawn = (mesh − centre) ·
+    /// scale, `Mesh::viewing_transform`): the camera is reported in the file's coordinates.
+    pub viewing: (glam::DVec3, f64),
 }
 
 /// The window offers every power-of-two level up to this one (and the level it starts at):
 /// `+` reaches it whatever the start level. A pattern of level 256 is 33,153 vertices.
 pub const WINDOW_LEVELS: u32 = 256;
 
-pub const KEY_HELP: &str = "keys: drag = orbit, wheel = zoom, 1/2/3 = static/pattern/tess, \
-P/U/I = push/ubo/instanced, S = next surface, D = next displacement, N = normals view, \
+pub const KEY_HELP: &str = "keys: left drag = orbit, right or middle drag = pan, wheel = zoom, \
+R = reset camera, Z or Home = fit view, 1/2/3 = static/pattern/tess, \
+P/U/I = push/ubo/instanced, S = next surface, D = next displacement, N = next view, \
 +/- = level (max level when adaptive), M = adaptive/uniform, [/] = pixel error halve/double, \
 C = culling, F = freeze levels, L = LOD by distance, W = wireframe, K = cage, A = animate, \
-H = panel, Esc = quit";
+B = background, F11 = fullscreen, F12 = screenshot, H = panel, Esc = quit";
 
 /// The value after `v` in `all`, wrapping around.
 fn next<T: Copy + PartialEq>(all: &[T], v: T) -> T {
@@ -187,7 +202,17 @@ struct State {
     window: Arc<Window>,
     ui: Ui,
     camera: Camera,
+    /// The camera the demo started with (`R` returns to it).
+    start_camera: Camera,
+    /// [`ViewOptions::viewing`]: the camera is reported in the file's coordinates.
+    viewing: (glam::DVec3, f64),
     controls: Controls,
+    /// Whether the window was last made fullscreen (`controls.fullscreen` asks), and the
+    /// windowed size to return to.
+    fullscreen: bool,
+    windowed_size: winit::dpi::Size,
+    /// Where the last screenshot key's frame went, or why it could not be saved.
+    screenshot_note: Option<String>,
     /// What the last frame drew (LOD and the tessellator's limit applied).
     drawn: DrawConfig,
     max_level: u32,
@@ -224,6 +249,8 @@ struct State {
     /// Quit was asked for: the next frame is the last (and saves the screenshot).
     quit: bool,
     drag: Option<(f64, f64)>,
+    /// A right or middle drag pans from this position.
+    pan_drag: Option<(f64, f64)>,
     cursor: (f64, f64),
     fps_window: (Instant, u64),
     fps: f64,
@@ -232,9 +259,11 @@ struct State {
 
 impl App {
     fn create(&mut self, event_loop: &ActiveEventLoop) -> Result<State> {
+        let (w, h) = self.opts.size;
+        let windowed_size = winit::dpi::LogicalSize::new(w as f64, h as f64).into();
         let attrs = Window::default_attributes()
             .with_title("meshrefine")
-            .with_inner_size(winit::dpi::LogicalSize::new(1280.0, 720.0));
+            .with_inner_size(windowed_size);
         let window = Arc::new(
             event_loop
                 .create_window(attrs)
@@ -287,14 +316,14 @@ impl App {
         // The window keeps frames under a second itself (`fit_frame_budget`, `choose_levels`)
         // and says so in the panel.
         scene.skip_slow_warning();
-        let (c, r) = scene.bounding_sphere();
+        let start_camera = a.camera.unwrap_or_else(|| camera::start_framing(&scene));
         let mut rendered = Vec::new();
         per_image(&mut rendered, swapchain.images.len(), |i| {
             Semaphore::new(&ctx, &format!("rendered {i}"))
         })?;
         // Informational only: a closed or full stdout must not stop (or panic) the demo.
         let _ = writeln!(std::io::stdout().lock(), "{KEY_HELP}");
-        Ok(State {
+        let mut state = State {
             base_mesh: mesh,
             scene,
             queries: QueryPools::new(&ctx, 1)?,
@@ -310,7 +339,12 @@ impl App {
             ctx,
             window,
             ui,
-            camera: a.camera.unwrap_or_else(|| Camera::framing(c, r)),
+            camera: start_camera,
+            start_camera,
+            viewing: self.opts.viewing,
+            fullscreen: false,
+            windowed_size,
+            screenshot_note: None,
             mode_note: None,
             levels: None,
             level_ms: 0.0,
@@ -333,6 +367,9 @@ impl App {
                 max_level: adaptive_max,
                 cull: a.cull,
                 freeze: false,
+                background: self.opts.background,
+                fullscreen: self.opts.fullscreen,
+                asked: Asked::default(),
             },
             drawn: cfg,
             max_level,
@@ -345,11 +382,14 @@ impl App {
             resize: false,
             quit: false,
             drag: None,
+            pan_drag: None,
             cursor: (0.0, 0.0),
             fps_window: (Instant::now(), 0),
             fps: 0.0,
             gpu_ms: 0.0,
-        })
+        };
+        state.apply_window_mode();
+        Ok(state)
     }
 }
 
@@ -365,6 +405,8 @@ impl State {
         // are uploaded now that the last frame is done with them.
         let ui_frame = self.run_ui();
         self.overlay.update_textures(&ui_frame.textures)?;
+        let asked = std::mem::take(&mut self.controls.asked);
+        self.apply_asked(&asked);
         self.advance_scene();
         let (cfg, adaptive) = self.prepare_frame(opts)?;
         let drawn = Some((cfg, self.controls.wireframe, adaptive));
@@ -375,7 +417,15 @@ impl State {
             return Ok(true);
         };
         let last = self.quit || opts.frames.is_some_and(|n| self.frames + 1 >= n);
-        let screenshot = last && opts.screenshot.is_some();
+        // `--screenshot` saves the last frame, the screenshot key this one (on the last frame
+        // with `--screenshot` too, it is saved once, to `--screenshot`).
+        let shot = match (last, &opts.screenshot) {
+            (true, Some(path)) => Some((path.clone(), false)),
+            _ => asked
+                .screenshot
+                .then(|| (draw::next_screenshot(opts.screenshot_dir.as_deref()), true)),
+        };
+        let screenshot = shot.is_some();
         self.record(&cfg, &image, &ui_frame, screenshot, adaptive)?;
         self.fence.reset()?;
         let rendered = &self.rendered[image.index as usize];
@@ -389,11 +439,9 @@ impl State {
         }
         self.frames += 1;
         self.update_title(&cfg);
-        if screenshot {
+        if let Some((path, key)) = shot {
             self.fence.wait()?;
-            let path = opts.screenshot.as_ref().unwrap();
-            self.save_screenshot(path)?;
-            let _ = writeln!(std::io::stdout().lock(), "saved {}", path.display());
+            self.saved_screenshot(&path, key)?;
         }
         Ok(!last)
     }
@@ -514,117 +562,6 @@ impl State {
         }
         Ok(cfg)
     }
-
-    /// Record the frame into `self.cmd`: the scene (adaptively when `adaptive`), the panel on
-    /// top, and the screenshot copy.
-    fn record(
-        &mut self,
-        cfg: &DrawConfig,
-        image: &SwapchainFrame,
-        ui_frame: &ui::UiFrame,
-        screenshot: bool,
-        adaptive: bool,
-    ) -> Result<()> {
-        let extent = self.swapchain.extent;
-        if screenshot {
-            self.screenshot_buffer = Some(Buffer::new(
-                &self.ctx,
-                BufferDesc::new_readback(
-                    extent.width as u64 * extent.height as u64 * 4,
-                    vk::BufferUsageFlags::empty(),
-                ),
-                "screenshot",
-            )?);
-        }
-        let aspect = extent.width as f32 / extent.height as f32;
-        let uniforms =
-            FrameUniforms::new(&self.camera, aspect, cfg, &self.scene, self.controls.view);
-        // The levels view shows each element's own level when it has one.
-        let uniforms = if adaptive {
-            uniforms.adaptive()
-        } else {
-            uniforms
-        };
-        self.renderer.set_frame(&uniforms);
-        let depth = self.swapchain.depth.as_ref().expect("depth image exists");
-        let (color, color_view, resolve) = match &self.swapchain.msaa {
-            Some(msaa) => (msaa.raw, msaa.view, Some((image.image, image.view))),
-            None => (image.image, image.view, None),
-        };
-        let target = TargetView {
-            color,
-            color_view,
-            resolve,
-            depth: depth.raw,
-            depth_view: depth.view,
-            extent,
-            final_layout: if screenshot {
-                vk::ImageLayout::TRANSFER_SRC_OPTIMAL
-            } else {
-                vk::ImageLayout::PRESENT_SRC_KHR
-            },
-        };
-        let work = FrameWork {
-            wireframe: self.controls.wireframe,
-            adaptive,
-            cage: self.scene.cage.as_ref().filter(|_| self.controls.cage),
-            level_pass: self.scene.level_pass(cfg).filter(|_| adaptive),
-            ..FrameWork::new(&self.scene, *cfg)
-        };
-        let screenshot_buffer = self.screenshot_buffer.as_ref().filter(|_| screenshot);
-        let overlay = &mut self.overlay;
-        let mut overlay_recorded = Ok(());
-        let mut cmd_overlay = |cmd: &Cmd<'_>| {
-            overlay_recorded =
-                overlay.cmd_draw(cmd, extent, ui_frame.pixels_per_point, &ui_frame.primitives);
-        };
-        self.pool.record(self.cmd, |cmd| {
-            cmd_render(
-                cmd,
-                &self.renderer,
-                &target,
-                &work,
-                Some((&self.queries, 0)),
-                Some(&mut cmd_overlay),
-            );
-            if let Some(buf) = screenshot_buffer {
-                cmd.copy_image_to_buffer(image.image, extent, buf);
-                cmd.barrier_to_host();
-                cmd.transition(
-                    image.image,
-                    vk::ImageAspectFlags::COLOR,
-                    vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
-                    vk::ImageLayout::PRESENT_SRC_KHR,
-                );
-            }
-        })?;
-        overlay_recorded?;
-        Ok(())
-    }
-
-    fn save_screenshot(&mut self, path: &std::path::Path) -> Result<()> {
-        let buf = self.screenshot_buffer.take().expect("screenshot buffer");
-        let e = self.swapchain.extent;
-        let mut rgba = buf.mapped()[..(e.width * e.height * 4) as usize].to_vec();
-        if matches!(
-            self.swapchain.format,
-            vk::Format::B8G8R8A8_SRGB | vk::Format::B8G8R8A8_UNORM
-        ) {
-            for px in rgba.chunks_exact_mut(4) {
-                px.swap(0, 2);
-            }
-        }
-        for px in rgba.chunks_exact_mut(4) {
-            px[3] = 255;
-        }
-        crate::gpu::Readback {
-            width: e.width,
-            height: e.height,
-            rgba,
-        }
-        .save_png(path)
-        .with_context(|| format!("cannot write '{}'", path.display()))
-    }
 }
 
 impl Drop for State {
@@ -660,5 +597,29 @@ mod tests {
         assert_eq!(v, [0, 1, 2]);
         assert_eq!(next(&Surface::ALL, Surface::Stpn), Surface::Loop);
         assert_eq!(next(&Surface::ALL, Surface::Loop), Surface::Flat);
+    }
+
+    /// The keys the terminal's help names are the keys of docs/window.md's table (but for the
+    /// table's aliases `=` and `_` of `+` and `-`).
+    #[test]
+    fn key_help_and_the_docs_keys_table_agree() {
+        let mouse = ["left", "right", "middle", "drag", "wheel", "or"];
+        let help: std::collections::BTreeSet<&str> = (KEY_HELP.trim_start_matches("keys: "))
+            .split(", ")
+            .flat_map(|entry| entry.split(" = ").next().unwrap().split(['/', ' ']))
+            .filter(|k| !k.is_empty() && !mouse.contains(k))
+            .collect();
+        let doc = include_str!("../../docs/window.md");
+        let table = doc.split("## Keys and mouse").nth(1).unwrap();
+        let table = table.split("\n## ").next().unwrap();
+        let documented: std::collections::BTreeSet<&str> = (table.lines())
+            .filter(|l| l.starts_with("| ") && !l.starts_with("| input"))
+            .flat_map(|l| l.split(" | ").next().unwrap().split('`').skip(1).step_by(2))
+            .filter(|k| !["=", "_"].contains(k))
+            .collect();
+        assert_eq!(help, documented);
+        for key in ["R", "Z", "Home", "B", "F11", "F12", "Esc", "[", "+"] {
+            assert!(help.contains(key), "{key}");
+        }
     }
 }

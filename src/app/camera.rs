@@ -1,0 +1,149 @@
+//! The camera's controls beyond orbit and zoom: pan (right or middle drag moves the orbit target
+//! in the view plane), reset to the start framing (`R`), fit to the mesh (`Z`, `Home`), and the
+//! camera as the title and the panel report it, in the mesh file's coordinates
+//! (docs/window.md, "Keys and mouse").
+#![forbid(unsafe_code)]
+
+use crate::render::{Camera, Scene};
+use glam::{DVec3, Vec3};
+
+/// The sphere (drawn coordinates) that fit-to-view frames and that pan keeps inside the depth
+/// range: today the coarse mesh's bounding sphere. The one place that asks, so a framing on the
+/// refined surface's bounds replaces this call only.
+pub(super) fn view_bounds(scene: &Scene) -> (Vec3, f32) {
+    scene.bounding_sphere()
+}
+
+/// The camera the demo starts with when none is given: [`Camera::framing`] of [`view_bounds`].
+pub(super) fn start_framing(scene: &Scene) -> Camera {
+    let (c, r) = view_bounds(scene);
+    Camera::framing(c, r)
+}
+
+/// `camera` turned on nothing: the same direction and field of view, its target the centre of
+/// `bounds` and its distance the one at which [`Camera::framing`] frames the sphere, farther
+/// where the window is narrower than it is high (the horizontal field of view is then the
+/// smaller). From the start framing's direction in a landscape window, this is that framing.
+pub(super) fn fit(camera: &Camera, (centre, radius): (Vec3, f32), aspect: f32) -> Camera {
+    let framed = Camera::framing(centre, radius);
+    let vertical = camera.fov_y * 0.5;
+    let horizontal = (vertical.tan() * aspect.max(1e-6)).atan();
+    let half = vertical.min(horizontal);
+    let reference = framed.fov_y * 0.5;
+    let distance = if half == reference {
+        framed.distance
+    } else {
+        framed.distance * reference.sin() / half.sin()
+    };
+    Camera {
+        target: framed.target,
+        radius: framed.radius,
+        distance,
+        ..*camera
+    }
+}
+
+/// Move `camera`'s target in the view plane by a drag of `(dx, dy)` pixels in a window `height`
+/// pixels high, so that what lies at the target's depth follows the pointer. The depth range
+/// (the camera's radius around its target) grows to keep the sphere `bounds` inside it.
+pub(super) fn pan(camera: &mut Camera, (dx, dy): (f32, f32), height: f32, bounds: (Vec3, f32)) {
+    let forward = (camera.target - camera.eye()).normalize();
+    // The pitch stays within ±1.5 rad: forward is never parallel to +Y.
+    let right = forward.cross(Vec3::Y).normalize();
+    let up = right.cross(forward);
+    let per_pixel = 2.0 * camera.distance * (camera.fov_y * 0.5).tan() / height.max(1.0);
+    camera.target += (up * dy - right * dx) * per_pixel;
+    let (centre, radius) = bounds;
+    camera.radius = radius + (camera.target - centre).length();
+}
+
+/// `camera`'s eye and target in the mesh file's coordinates (drawn = (mesh − centre) · scale,
+/// [`crate::mesh::Mesh::viewing_transform`]), as `render` takes them:
+/// `--eye 1.2,0.4,2.1 --look-at 0,0.1,0`, with three decimals for a mesh of radius 1 (more
+/// for smaller meshes, fewer for larger ones).
+pub(super) fn camera_args(camera: &Camera, (centre, scale): (DVec3, f64)) -> String {
+    let decimals = (3.0 + scale.log10().floor()).clamp(0.0, 12.0) as usize;
+    let point = |p: Vec3| {
+        let m = p.as_dvec3() / scale + centre;
+        format!(
+            "{:.*},{:.*},{:.*}",
+            decimals, m.x, decimals, m.y, decimals, m.z
+        )
+    };
+    format!(
+        "--eye {} --look-at {}",
+        point(camera.eye()),
+        point(camera.target)
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn project(camera: &Camera, p: Vec3, aspect: f32) -> glam::Vec2 {
+        let c = camera.view_proj(aspect) * p.extend(1.0);
+        glam::Vec2::new(c.x / c.w, c.y / c.w)
+    }
+
+    /// Fit from the start framing's direction is that framing; from another direction it
+    /// keeps the direction, targets the centre, and in a tall window moves back so the sphere
+    /// fits across.
+    #[test]
+    fn fit_frames_the_sphere_keeping_the_direction() {
+        let (c, r) = (Vec3::new(0.5, -0.2, 0.1), 2.0);
+        let start = Camera::framing(c, r);
+        let mut moved = start;
+        moved.target += Vec3::new(1.0, 2.0, 3.0);
+        moved.distance *= 3.0;
+        assert_eq!(
+            format!("{:?}", fit(&moved, (c, r), 16.0 / 9.0)),
+            format!("{start:?}")
+        );
+        moved.orbit(0.7, -0.3);
+        let f = fit(&moved, (c, r), 16.0 / 9.0);
+        assert_eq!((f.yaw, f.pitch, f.target), (moved.yaw, moved.pitch, c));
+        assert_eq!(f.distance, start.distance);
+        let tall = fit(&moved, (c, r), 0.5);
+        assert!(tall.distance > f.distance * 1.5, "{}", tall.distance);
+        // Across the tall window as along the landscape one: 0.9 of the radius to each side
+        // (the framing's margin: a mesh is smaller than its bounding sphere) is in the image.
+        let right = (tall.eye() - c).cross(Vec3::Y).normalize();
+        let edge = project(&tall, c + right * r * 0.9, 0.5);
+        assert!(edge.x.abs() <= 1.0 && edge.x.abs() > 0.95, "{edge}");
+    }
+
+    /// A pan of (dx, dy) pixels moves the target's image by exactly that, and the depth range
+    /// still holds the sphere.
+    #[test]
+    fn pan_moves_the_target_with_the_pointer() {
+        let (c, r) = (Vec3::ZERO, 1.0);
+        let mut cam = Camera::framing(c, r);
+        cam.orbit(0.4, 0.2);
+        let before = cam;
+        let (w, h) = (800.0, 600.0);
+        let point = before.target;
+        pan(&mut cam, (40.0, -30.0), h, (c, r));
+        // The point that was at the centre is now 40 px right and 30 px up of it.
+        let ndc = project(&cam, point, w / h);
+        let px = glam::Vec2::new(ndc.x * w * 0.5, ndc.y * h * 0.5);
+        assert!((px - glam::Vec2::new(40.0, -30.0)).length() < 0.05, "{px}");
+        assert_eq!(
+            (cam.yaw, cam.pitch, cam.distance),
+            (before.yaw, before.pitch, before.distance)
+        );
+        let (near, far) = cam.depth_range();
+        let d = (cam.eye() - c).length();
+        assert!(near < d - r && far > d + r, "{near} {far} {d}");
+    }
+
+    #[test]
+    fn the_camera_is_reported_in_the_files_coordinates() {
+        let cam = Camera::looking(Vec3::new(0.0, 0.0, 2.0), Vec3::ZERO, 0.8, 1.0).unwrap();
+        let unit = camera_args(&cam, (DVec3::ZERO, 1.0));
+        assert_eq!(unit, "--eye 0.000,0.000,2.000 --look-at 0.000,0.000,0.000");
+        // A mesh of radius 100 around (10, 0, 0): drawn 1 is 100 in the file.
+        let big = camera_args(&cam, (DVec3::new(10.0, 0.0, 0.0), 0.01));
+        assert_eq!(big, "--eye 10.0,0.0,200.0 --look-at 10.0,0.0,0.0");
+    }
+}
