@@ -145,5 +145,25 @@ mod tests {
         // A mesh of radius 100 around (10, 0, 0): drawn 1 is 100 in the file.
         let big = camera_args(&cam, (DVec3::new(10.0, 0.0, 0.0), 0.01));
         assert_eq!(big, "--eye 10.0,0.0,200.0 --look-at 10.0,0.0,0.0");
+        // Read back as `render` reads them (`Camera::looking` in the drawn frame), they give
+        // the camera again, to the decimals shown.
+        let viewing = (DVec3::new(3.0, -1.0, 2.0), 0.5);
+        let mut orbited = Camera::framing(Vec3::new(0.1, 0.2, 0.0), 1.0);
+        orbited.orbit(0.9, -0.4);
+        pan(&mut orbited, (25.0, 10.0), 600.0, (Vec3::ZERO, 1.0));
+        let args = camera_args(&orbited, viewing);
+        let numbers: Vec<Vec3> = (args.split(' '))
+            .skip(1)
+            .step_by(2)
+            .map(|v| {
+                let c: Vec<f64> = v.split(',').map(|x| x.parse().unwrap()).collect();
+                ((DVec3::new(c[0], c[1], c[2]) - viewing.0) * viewing.1).as_vec3()
+            })
+            .collect();
+        let back = Camera::looking(numbers[0], numbers[1], orbited.fov_y, 1.0).unwrap();
+        assert!((back.eye() - orbited.eye()).length() < 1e-2, "{args}");
+        assert!((back.target - orbited.target).length() < 1e-2, "{args}");
+        assert!((back.yaw - orbited.yaw).abs() < 1e-2, "{args}");
+        assert!((back.pitch - orbited.pitch).abs() < 1e-2, "{args}");
     }
 }

@@ -414,6 +414,8 @@ impl State {
         self.last_drawn = drawn;
         let Some(image) = self.swapchain.acquire(self.acquired.raw)? else {
             self.resize = true;
+            // The screenshot key's frame is the next one drawn.
+            self.controls.asked.screenshot |= asked.screenshot;
             return Ok(true);
         };
         let last = self.quit || opts.frames.is_some_and(|n| self.frames + 1 >= n);

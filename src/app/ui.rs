@@ -434,7 +434,7 @@ fn display(ui: &mut egui::Ui, c: &mut Controls, info: &PanelInfo) {
         c.asked.fit_view |= ui.button("fit view [Z]").clicked();
         c.asked.screenshot |= ui.button("screenshot [F12]").clicked();
     });
-    ui.add(egui::Label::new(RichText::new(info.camera).monospace().small()).wrap());
+    ui.add(egui::Label::new(RichText::new(info.camera).monospace()).wrap());
     if let Some(note) = info.screenshot_note {
         ui.add(egui::Label::new(note).wrap());
     }
