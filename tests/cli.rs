@@ -280,11 +280,12 @@ fn render_export_and_headless_view_work() {
     let s = ok(&["view", "--headless-output", p(&view_png), "--level", "3"]);
     assert!(s.contains("no display") && s.contains("view.png"), "{s}");
     assert!(view_png.exists());
-    // A display that cannot be reached: the same fallback, saying so.
+    // A display that cannot be reached: the same fallback, saying so, at the window's size.
     std::fs::remove_file(&view_png).unwrap();
     let _guard = common::gpu_lock();
     let o = bin()
         .args(["view", "--headless-output", p(&view_png), "--level", "3"])
+        .args(["--width", "320", "--height", "200"])
         .env("DISPLAY", ":97531")
         .env_remove("WAYLAND_DISPLAY")
         .output()
@@ -295,6 +296,9 @@ fn render_export_and_headless_view_work() {
         s.contains("cannot connect to the display ':97531'") && view_png.exists(),
         "{s}"
     );
+    let png = png::Decoder::new(std::fs::File::open(&view_png).unwrap());
+    let info = png.read_info().unwrap().info().clone();
+    assert_eq!((info.width, info.height), (320, 200));
 }
 
 #[test]
@@ -732,6 +736,23 @@ fn texture_coordinates_are_validated() {
 }
 
 #[test]
+fn view_help_lists_the_window_keys() {
+    let out = meshrefine(&["view", "--help"]);
+    assert!(out.status.success());
+    let words = |s: &str| s.split_whitespace().collect::<Vec<_>>().join(" ");
+    let help = words(&String::from_utf8_lossy(&out.stdout));
+    assert!(help.contains(&words(meshrefine::app::KEY_HELP)), "{help}");
+    for option in [
+        "--width",
+        "--fullscreen",
+        "--background",
+        "--screenshot-dir",
+    ] {
+        assert!(help.contains(option), "{option}: {help}");
+    }
+}
+
+#[test]
 fn meaningless_requests_are_refused() {
     let cube = model_path("cube_tri.obj");
     let jpg = tmp("x.jpg");
@@ -746,6 +767,10 @@ fn meaningless_requests_are_refused() {
         &["v.jpeg", ".png"],
     );
     expect_error(&["view", "--screenshot", "s.bmp"], &["s.bmp", ".png"]);
+    expect_error(
+        &["view", "--screenshot-dir", "no/such/dir"],
+        &["--screenshot-dir 'no/such/dir'", "not a directory"],
+    );
     // Zero frames: clap refuses the value (usage error, status 2).
     for args in [
         vec!["bench", "--frames", "0"],

@@ -178,13 +178,6 @@ fn window_demo_presents_and_screenshots() {
     }
 }
 
-/// PNG size of a file.
-fn png_size(path: &std::path::Path) -> (u32, u32) {
-    let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(path).unwrap()));
-    let info = decoder.read_info().unwrap().info().clone();
-    (info.width, info.height)
-}
-
 fn xdotool(display: &str, args: &[&str]) -> String {
     let out = Command::new("xdotool")
         .args(args)
@@ -253,27 +246,130 @@ impl<'a> Demo<'a> {
     }
 }
 
+/// A PNG's RGBA pixels and size; None while it is missing or not completely written.
+fn decoded(shot: &std::path::Path) -> Option<(Vec<u8>, (u32, u32))> {
+    let file = std::fs::File::open(shot).ok()?;
+    let mut reader = png::Decoder::new(std::io::BufReader::new(file))
+        .read_info()
+        .ok()?;
+    let mut buf = vec![0; reader.output_buffer_size()];
+    let info = reader.next_frame(&mut buf).ok()?;
+    Some((buf, (info.width, info.height)))
+}
+
+/// The pixel at `(x, y)` of a PNG (RGB) and its size.
+fn pixel(shot: &std::path::Path, x: u32, y: u32) -> ([u8; 3], (u32, u32)) {
+    let (buf, (w, h)) = decoded(shot).unwrap_or_else(|| panic!("{shot:?} is not a PNG"));
+    let i = ((y * w + x) * 4) as usize;
+    ([buf[i], buf[i + 1], buf[i + 2]], (w, h))
+}
+
+/// Whether `px` is `background`'s colour (within 2/255 a channel).
+fn is_background(px: [u8; 3], background: meshrefine::render::Background) -> bool {
+    let want = meshrefine::render::background_srgb8(background);
+    (0..3).all(|c| px[c].abs_diff(want[c]) <= 2)
+}
+
 #[test]
 fn window_resizes_and_quits_with_escape() {
-    // The swapchain is rebuilt when the window is resized, and Esc ends the demo after one last
-    // frame that `--screenshot` saves: its size is the new window size.
+    // `--width`/`--height` size the window and `--fullscreen` fills the screen (Xvfb's
+    // 1280x1024, without a window manager); F11 returns to the window's size, and the swapchain
+    // follows each resize. F12 saves the frame as meshrefine-<n>.png in `--screenshot-dir`, on
+    // `--background light` (one it cannot write is said, and the demo goes on); B toggles the
+    // background. Esc ends the demo after one last frame
+    // that `--screenshot` saves: its size is the window's size then.
+    use meshrefine::render::Background;
     let _guard = common::gpu_lock();
     let x = Xvfb::start();
-    let shot = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("window/resized.png");
-    std::fs::create_dir_all(shot.parent().unwrap()).unwrap();
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("window/shots");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let shot = dir.parent().unwrap().join("resized.png");
     let _ = std::fs::remove_file(&shot);
     let demo = Demo::start(
         &x,
-        &["--level", "4", "--screenshot", shot.to_str().unwrap()],
+        &[
+            "--level",
+            "4",
+            "--width",
+            "800",
+            "--height",
+            "500",
+            "--fullscreen",
+            "--background",
+            "light",
+            "--screenshot-dir",
+            dir.to_str().unwrap(),
+            "--screenshot",
+            shot.to_str().unwrap(),
+        ],
     );
+    let wait_size = |want: (u32, u32)| {
+        let t0 = Instant::now();
+        loop {
+            let geometry = demo.xdotool(&["getwindowgeometry", "--shell", &demo.window]);
+            let value = |key: &str| {
+                (geometry.lines())
+                    .find_map(|l| l.strip_prefix(key))
+                    .and_then(|v| v.parse::<u32>().ok())
+            };
+            if (value("WIDTH="), value("HEIGHT=")) == (Some(want.0), Some(want.1)) {
+                return;
+            }
+            assert!(
+                t0.elapsed() < Duration::from_secs(60),
+                "the window never became {want:?}: {geometry}"
+            );
+            std::thread::sleep(Duration::from_millis(100));
+        }
+    };
+    wait_size((1280, 1024));
+    // The swapchain is recreated at the next frame; the key's frame is drawn after it.
+    std::thread::sleep(Duration::from_secs(1));
+    demo.xdotool(&["key", "F12"]);
+    let first = dir.join("meshrefine-1.png");
+    let t0 = Instant::now();
+    // Decoded whole once written (the demo writes it after the frame's fence).
+    while decoded(&first).is_none() {
+        assert!(
+            t0.elapsed() < Duration::from_secs(60),
+            "F12 wrote no {first:?}"
+        );
+        std::thread::sleep(Duration::from_millis(200));
+    }
+    let (corner, size) = pixel(&first, 1279, 1023);
+    assert_eq!(
+        size,
+        (1280, 1024),
+        "the fullscreen frame is the screen's size"
+    );
+    assert!(is_background(corner, Background::Light), "{corner:?}");
+    let (n, total) = covered(&first);
+    assert!(
+        n > total / 5,
+        "F12's frame shows {n} of {total} mesh pixels"
+    );
+    // A screenshot the key cannot write is said, and the demo goes on.
+    std::fs::remove_dir_all(&dir).unwrap();
+    demo.xdotool(&["key", "F12"]);
+    demo.xdotool(&["key", "b"]);
+    demo.xdotool(&["key", "F11"]);
+    wait_size((800, 500));
     demo.xdotool(&["windowsize", &demo.window, "640", "400"]);
     std::thread::sleep(Duration::from_millis(500));
-    demo.quit();
+    let stderr = demo.quit();
+    assert!(
+        stderr.contains("cannot write") && stderr.contains("meshrefine-1.png"),
+        "{stderr}"
+    );
+    assert!(!dir.exists());
+    let (corner, size) = pixel(&shot, 639, 399);
     assert_eq!(
-        png_size(&shot),
+        size,
         (640, 400),
         "the last frame was not drawn at the new size"
     );
+    assert!(is_background(corner, Background::Dark), "B: {corner:?}");
 }
 
 #[test]
@@ -362,6 +458,55 @@ fn keys_switch_driver_level_and_views() {
         }
     };
     wait_title("pattern/instanced level 8");
+    // The camera, reported last in the title as `--eye X,Y,Z --look-at X,Y,Z`: a right drag
+    // pans (the look-at moves), R returns to the start, the wheel zooms and a middle drag pans,
+    // Z frames the mesh again (from the start's direction: the start framing), and after an
+    // orbit and a pan Home frames it from the new direction (the start's look-at, another eye).
+    let camera = |title: &str| {
+        let c = title.rsplit(" | ").next().unwrap().to_string();
+        let look_at = c.split(" --look-at ").nth(1).unwrap_or("").to_string();
+        (c, look_at)
+    };
+    let wait_camera = |what: &str, ok: &dyn Fn(&(String, String)) -> bool| {
+        let t0 = Instant::now();
+        loop {
+            let title = demo.xdotool(&["getwindowname", &demo.window]);
+            let c = camera(&title);
+            if ok(&c) {
+                return c;
+            }
+            assert!(
+                t0.elapsed() < Duration::from_secs(60),
+                "{what}: the camera never changed so: {title}"
+            );
+            std::thread::sleep(Duration::from_millis(100));
+        }
+    };
+    let start = wait_camera("start", &|(c, _)| c.starts_with("--eye "));
+    let drag = |button: &str, to: &str| {
+        demo.xdotool(&["mousemove", "--window", &demo.window, "900", "400"]);
+        demo.xdotool(&["mousedown", button]);
+        demo.xdotool(&["mousemove", "--window", &demo.window, to, "440"]);
+        demo.xdotool(&["mouseup", button]);
+    };
+    drag("3", "960");
+    wait_camera("right drag", &|(c, l)| *c != start.0 && *l != start.1);
+    demo.xdotool(&["key", "r"]);
+    wait_camera("R", &|c| *c == start);
+    for _ in 0..3 {
+        demo.xdotool(&["click", "5"]);
+    }
+    wait_camera("wheel", &|(c, l)| *c != start.0 && *l == start.1);
+    drag("2", "850");
+    wait_camera("middle drag", &|(_, l)| *l != start.1);
+    demo.xdotool(&["key", "z"]);
+    wait_camera("Z", &|c| *c == start);
+    drag("1", "1000");
+    wait_camera("orbit", &|(c, _)| *c != start.0);
+    drag("3", "960");
+    wait_camera("pan after the orbit", &|(_, l)| *l != start.1);
+    demo.xdotool(&["key", "Home"]);
+    wait_camera("Home", &|(c, l)| *c != start.0 && *l == start.1);
     for (key, want) in [
         ("3", "tess level 8"),
         // Beyond the level the demo started at.

@@ -1,8 +1,8 @@
 //! The window's events: winit's callbacks, the mouse's orbit and zoom, and the keys.
 
 use super::ui::PIXEL_ERRORS;
-use super::{next, App, State, ViewOptions};
-use crate::render::{Driver, Submit, View};
+use super::{camera, next, App, State, ViewOptions};
+use crate::render::{Background, Driver, Submit, View};
 use crate::surface::{Displace, Surface};
 use winit::application::ApplicationHandler;
 use winit::event::{ElementState, MouseButton, MouseScrollDelta, WindowEvent};
@@ -46,6 +46,13 @@ impl ApplicationHandler for App {
             } => {
                 s.drag = (state == ElementState::Pressed && !egui_took).then_some(s.cursor);
             }
+            WindowEvent::MouseInput {
+                state,
+                button: MouseButton::Right | MouseButton::Middle,
+                ..
+            } => {
+                s.pan_drag = (state == ElementState::Pressed && !egui_took).then_some(s.cursor);
+            }
             WindowEvent::CursorMoved { position, .. } => {
                 s.cursor = (position.x, position.y);
                 if let Some((x, y)) = s.drag {
@@ -54,6 +61,13 @@ impl ApplicationHandler for App {
                         ((position.y - y) * 0.01) as f32,
                     );
                     s.drag = Some(s.cursor);
+                }
+                if let Some((x, y)) = s.pan_drag {
+                    let height = s.window.inner_size().height as f32;
+                    let bounds = camera::view_bounds(&s.scene);
+                    let d = ((position.x - x) as f32, (position.y - y) as f32);
+                    camera::pan(&mut s.camera, d, height, bounds);
+                    s.pan_drag = Some(s.cursor);
                 }
             }
             WindowEvent::MouseWheel { delta, .. } if !egui_took => {
@@ -112,6 +126,9 @@ impl State {
         let pos = levels.iter().position(|&l| l == c.level()).unwrap_or(0);
         match key {
             Key::Named(NamedKey::Escape) => return false,
+            Key::Named(NamedKey::Home) => c.asked.fit_view = true,
+            Key::Named(NamedKey::F11) => c.fullscreen = !c.fullscreen,
+            Key::Named(NamedKey::F12) => c.asked.screenshot = true,
             Key::Character(ch) => match ch.as_str() {
                 "1" | "2" | "3" => c.set_driver(Driver::ALL[(ch.as_bytes()[0] - b'1') as usize]),
                 "s" | "S" => {
@@ -148,6 +165,9 @@ impl State {
                 "a" | "A" => c.animate = !c.animate,
                 "l" | "L" => c.lod = !c.lod,
                 "h" | "H" => self.ui.visible = !self.ui.visible,
+                "r" | "R" => c.asked.reset_camera = true,
+                "z" | "Z" => c.asked.fit_view = true,
+                "b" | "B" => c.background = next(&Background::ALL, c.background),
                 _ => {}
             },
             _ => {}

@@ -4,7 +4,7 @@
 //! shortcuts change the same [`Controls`]. While the pointer is over the panel, or dragging in
 //! it, egui takes pointer events and the camera ignores them.
 
-use crate::render::{DrawConfig, Driver, Submit, View};
+use crate::render::{Background, DrawConfig, Driver, Submit, View};
 use crate::surface::{Displace, NormalField, Surface, SurfaceParams};
 use egui::{Align2, ClippedPrimitive, RichText, TexturesDelta};
 use winit::event::WindowEvent;
@@ -37,6 +37,23 @@ pub struct Controls {
     pub cull: bool,
     /// Adaptive levels stay those chosen for the camera of the moment this was set.
     pub freeze: bool,
+    /// What the mesh is drawn on.
+    pub background: Background,
+    /// Borderless fullscreen.
+    pub fullscreen: bool,
+    /// What a key or a button asked for once, done at the next frame.
+    pub asked: Asked,
+}
+
+/// One-shot requests of the keys and the panel's buttons, taken by the next frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Asked {
+    /// Save the next frame as `meshrefine-<n>.png`.
+    pub screenshot: bool,
+    /// Back to the camera the demo started with.
+    pub reset_camera: bool,
+    /// Frame the mesh from the current direction.
+    pub fit_view: bool,
 }
 
 /// The pixel error's range in the window (the slider and the `[` `]` keys).
@@ -105,6 +122,10 @@ pub struct PanelInfo<'a> {
     pub mode_note: Option<&'a str>,
     /// What the last adaptive frame chose, as name and value rows.
     pub adaptive_rows: Vec<(&'static str, String)>,
+    /// The camera as `render` takes it (`--eye X,Y,Z --look-at X,Y,Z`, the file's coordinates).
+    pub camera: &'a str,
+    /// Where the last screenshot key's frame went (or why it could not).
+    pub screenshot_note: Option<&'a str>,
 }
 
 /// One frame of egui output, ready for [`crate::gpu::Overlay`].
@@ -259,7 +280,7 @@ fn statistics(ui: &mut egui::Ui, info: &PanelInfo) {
 /// How it is drawn: the driver, the pattern driver's submission, the level (unless LOD sets it).
 fn drawing(ui: &mut egui::Ui, c: &mut Controls, info: &PanelInfo) {
     ui.horizontal(|ui| {
-        ui.label("driver");
+        ui.label("driver [1 2 3]");
         for d in Driver::ALL {
             if ui
                 .selectable_label(c.cfg.driver.same_kind(d), d.name())
@@ -271,7 +292,7 @@ fn drawing(ui: &mut egui::Ui, c: &mut Controls, info: &PanelInfo) {
     });
     ui.add_enabled_ui(c.cfg.driver.submit().is_some(), |ui| {
         ui.horizontal(|ui| {
-            ui.label("submit");
+            ui.label("submit [P U I]");
             for s in Submit::ALL {
                 if ui.selectable_label(c.submit == s, s.name()).clicked() {
                     c.set_submit(s);
@@ -322,13 +343,13 @@ fn adaptive(ui: &mut egui::Ui, c: &mut Controls, info: &PanelInfo) {
 /// What is drawn: the surface and its displacement (the height map only where usable).
 fn surface_choice(ui: &mut egui::Ui, c: &mut Controls, info: &PanelInfo) {
     ui.horizontal(|ui| {
-        ui.label("surface");
+        ui.label("surface [S]");
         for s in Surface::ALL {
             ui.selectable_value(&mut c.cfg.surface, s, s.name());
         }
     });
     ui.horizontal(|ui| {
-        ui.label("displace");
+        ui.label("displace [D]");
         for d in Displace::ALL {
             let why_not = c.cfg.surface.incompatibility(d, info.has_texcoords);
             ui.add_enabled_ui(why_not.is_none(), |ui| {
@@ -375,7 +396,8 @@ fn parameters(ui: &mut egui::Ui, c: &mut Controls) {
     });
 }
 
-/// How it is shown: normals view, LOD, wireframe (where supported), animation, the hint.
+/// How it is shown: normals view, LOD, wireframe (where supported), cage, animation, the
+/// background, the window and the camera, the hint.
 fn display(ui: &mut egui::Ui, c: &mut Controls, info: &PanelInfo) {
     ui.horizontal(|ui| {
         ui.label("view [N]");
@@ -400,5 +422,21 @@ fn display(ui: &mut egui::Ui, c: &mut Controls, info: &PanelInfo) {
     );
     ui.checkbox(&mut c.cage, "cage [K]");
     ui.checkbox(&mut c.animate, "animate [A]");
-    ui.weak("H hides this panel");
+    ui.horizontal(|ui| {
+        ui.label("background [B]");
+        for b in Background::ALL {
+            ui.selectable_value(&mut c.background, b, b.name());
+        }
+    });
+    ui.checkbox(&mut c.fullscreen, "fullscreen [F11]");
+    ui.horizontal_wrapped(|ui| {
+        c.asked.reset_camera |= ui.button("reset camera [R]").clicked();
+        c.asked.fit_view |= ui.button("fit view [Z]").clicked();
+        c.asked.screenshot |= ui.button("screenshot [F12]").clicked();
+    });
+    ui.add(egui::Label::new(RichText::new(info.camera).monospace()).wrap());
+    if let Some(note) = info.screenshot_note {
+        ui.add(egui::Label::new(note).wrap());
+    }
+    ui.weak("drag: orbit, right or middle drag: pan, wheel: zoom; H hides this panel");
 }

@@ -30,6 +30,7 @@ pub struct Cli {
 #[derive(Subcommand, Debug)]
 pub enum Command {
     /// Open the window demo (headless render to a PNG when no display exists).
+    #[command(after_help = meshrefine::app::KEY_HELP)]
     View(ViewArgs),
     /// Render a mesh headlessly to a PNG.
     Render(RenderArgs),
@@ -220,6 +221,24 @@ pub struct ViewArgs {
         help_heading = "Window"
     )]
     pub headless_output: PathBuf,
+    /// The window's width (and the headless fallback image's), in pixels at scale factor 1.
+    #[arg(long, default_value_t = 1280, value_parser = clap::value_parser!(u32).range(1..=16384), help_heading = "Window")]
+    pub width: u32,
+    /// The window's height (and the headless fallback image's), in pixels at scale factor 1.
+    #[arg(long, default_value_t = 720, value_parser = clap::value_parser!(u32).range(1..=16384), help_heading = "Window")]
+    pub height: u32,
+    /// Start borderless fullscreen on the window's monitor (F11 toggles; leaving it returns
+    /// to --width x --height).
+    #[arg(long, help_heading = "Window")]
+    pub fullscreen: bool,
+    /// What the mesh is drawn on (B toggles).
+    #[arg(long, default_value = "dark", value_parser = super::choices::background(),
+          help_heading = "Window")]
+    pub background: meshrefine::render::Background,
+    /// Where the screenshot key (F12) writes meshrefine-<n>.png, an existing directory
+    /// (default: the current directory).
+    #[arg(long, value_name = "DIR", help_heading = "Window")]
+    pub screenshot_dir: Option<PathBuf>,
     #[command(flatten)]
     pub adaptive: AdaptiveOpts,
 }

@@ -23,6 +23,14 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc, given: &Given) -> Result<()> {
         "png",
         "the headless view writes a PNG image",
     )?;
+    if let Some(dir) = &a.screenshot_dir {
+        if !dir.is_dir() {
+            anyhow::bail!(
+                "--screenshot-dir '{}' is not a directory (the screenshot key writes meshrefine-<n>.png there)",
+                dir.display()
+            );
+        }
+    }
     let for_loop = a.technique.surface.surface.facts().needs_every_face;
     let mut input = load_mesh(a.mesh.as_deref(), for_loop)?;
     if input.loop_refusal.is_none() && a.mesh.is_some() {
@@ -52,6 +60,11 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc, given: &Given) -> Result<()> {
             source: input.shown.clone(),
             frame_budget: !a.no_frame_budget,
             msaa: a.msaa,
+            size: (a.width, a.height),
+            fullscreen: a.fullscreen,
+            background: a.background,
+            screenshot_dir: a.screenshot_dir.clone(),
+            viewing: (centre, scale),
             adaptive: {
                 // Adaptive mode by default; `--level` or `--lod` start uniform.
                 let ad = super::adaptive::Adaptive {
@@ -81,10 +94,10 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc, given: &Given) -> Result<()> {
         "no display found (DISPLAY and WAYLAND_DISPLAY are unset)".to_string()
     };
     let image = super::render::ImageOptions {
-        size: (1280, 720),
+        size: (a.width, a.height),
         wireframe: a.wireframe,
         view: meshrefine::render::View::Shaded,
-        background: meshrefine::render::Background::Dark,
+        background: a.background,
         msaa: a.msaa,
         adaptive: a.adaptive.enabled(true),
     };

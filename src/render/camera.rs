@@ -57,8 +57,15 @@ impl Camera {
     /// other pair. The depth range holds them all. With no finite point, it frames the unit
     /// sphere; with points all in one place, a tiny sphere there.
     pub fn fit(points: &[Vec3], aspect: f32) -> Self {
+        Self::framing(Vec3::ZERO, 1.0).fit_from(points, aspect)
+    }
+
+    /// This camera moved so that, looking in the same direction with the same field of view, it
+    /// shows every point of `points` as [`Camera::fit`] does from the framing direction (the
+    /// window's fit-to-view). With no finite point, it is unchanged.
+    pub fn fit_from(&self, points: &[Vec3], aspect: f32) -> Self {
+        let mut cam = *self;
         let points: Vec<Vec3> = points.iter().copied().filter(|p| p.is_finite()).collect();
-        let mut cam = Self::framing(Vec3::ZERO, 1.0);
         let Some(&first) = points.first() else {
             return cam;
         };
@@ -67,8 +74,15 @@ impl Camera {
         } else {
             1.0
         };
-        // The camera's frame: forward (from the eye to the target), right and up.
-        let forward = (cam.target - cam.eye()).normalize();
+        // The camera's frame: forward (from the eye to the target), right and up, from the
+        // direction alone (as seen from the framing camera's place, so that the result does not
+        // depend on where this camera stands).
+        let aim = Self {
+            target: Vec3::ZERO,
+            distance: Self::framing(Vec3::ZERO, 1.0).distance,
+            ..cam
+        };
+        let forward = (aim.target - aim.eye()).normalize();
         let right = forward.cross(Vec3::Y).normalize();
         let up = right.cross(forward);
         let ty = (cam.fov_y * 0.5).tan() * (1.0 - FIT_MARGIN);

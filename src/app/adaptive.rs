@@ -1,0 +1,163 @@
+//! Adaptive mode in the window: each element at the levels its bound needs for the current
+//! camera and window size (`Scene::set_levels`), up to the largest level, or the frozen levels;
+//! where the driver cannot draw adaptively, the frame is drawn uniformly and the panel says why
+//! (docs/window.md, "Adaptive mode").
+#![forbid(unsafe_code)]
+
+use super::{Camera, State, ViewOptions};
+use crate::render::DrawConfig;
+use anyhow::Result;
+use std::time::Instant;
+
+/// Adaptive mode in the window: each element at the levels its bound needs for the current
+/// camera and window size (`Scene::set_levels`), the largest level as `cfg.level`
+/// (docs/window.md, "Adaptive mode").
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AdaptiveView {
+    /// Start in adaptive mode (else uniform: every element at `cfg.level`).
+    pub on: bool,
+    pub pixel_error: f32,
+    pub cull: bool,
+    /// The first camera (drawn coordinates); None: the one that frames the mesh.
+    pub camera: Option<Camera>,
+    /// The largest level; None: [`DEFAULT_MAX_LEVEL`], or less where the tess driver cannot
+    /// draw it.
+    pub max_level: Option<u32>,
+}
+
+/// The pixel error adaptive mode starts with when none is given.
+pub const DEFAULT_PIXEL_ERROR: f32 = 1.0;
+
+/// The largest level adaptive mode starts with when none is given.
+pub const DEFAULT_MAX_LEVEL: u32 = 64;
+
+impl State {
+    /// The configuration this frame draws, prepared, and whether it draws adaptively (then
+    /// with its levels chosen and uploaded): adaptive mode draws adaptively with the pattern
+    /// and tess drivers where the driver can (`DriverKind::check_adaptive`), and otherwise
+    /// uniformly, saying why in the panel.
+    pub(super) fn prepare_frame(&mut self, opts: &ViewOptions) -> Result<(DrawConfig, bool)> {
+        self.mode_note = None;
+        self.levels = None;
+        if !self.controls.freeze {
+            self.frozen = None;
+        } else if self.frozen.is_none() {
+            self.frozen = Some((self.camera, self.swapchain.extent));
+        }
+        if self.controls.adaptive {
+            let driver = self.controls.cfg.driver;
+            if driver == crate::render::Driver::Static {
+                self.mode_note = Some(
+                    "the static driver draws every element at one level (uniformly): 2 or 3 draws adaptively"
+                        .to_string(),
+                );
+            } else {
+                // Start from the largest level the last frame drew (the budget may have lowered
+                // it): the pattern driver's adaptive draws are rebuilt only when it changes.
+                let max = self.adaptive_max(driver);
+                let guess = self.adaptive_level.map_or(max, |l| l.min(max));
+                let cfg = self.prepare_config(opts, Some(guess))?;
+                let cfg = self.choose_levels(opts, cfg, max)?;
+                let kind = cfg.driver.kind();
+                match kind.check_adaptive(&self.ctx, &self.scene, &cfg) {
+                    Ok(()) => return Ok((cfg, true)),
+                    Err(e) => {
+                        self.levels = None;
+                        self.mode_note = Some(format!("{e}: drawing uniformly"));
+                    }
+                }
+            }
+        }
+        self.adaptive_level = None;
+        Ok((self.prepare_config(opts, None)?, false))
+    }
+
+    /// The largest level adaptive mode asks of `driver`: the panel's, a power of two for the
+    /// pattern driver (its hierarchical patterns split 1 to 4).
+    pub(super) fn adaptive_max(&self, driver: crate::render::Driver) -> u32 {
+        let max = self.controls.max_level.max(1);
+        match driver {
+            crate::render::Driver::Pattern(_) => 1 << max.ilog2(),
+            _ => max,
+        }
+    }
+
+    /// This frame's levels for `cfg` (prepared; the previous frame is done with the levels) up to
+    /// `max`, seen by the camera and window (or the frozen ones), uploaded; on a software device
+    /// the largest level lowered until the slower estimate of the adaptive triangles is under a
+    /// second, said in the panel. Returns `cfg` at the largest level drawn, prepared.
+    pub(super) fn choose_levels(
+        &mut self,
+        opts: &ViewOptions,
+        mut cfg: DrawConfig,
+        max: u32,
+    ) -> Result<DrawConfig> {
+        let (camera, extent) = self.frozen.unwrap_or((self.camera, self.swapchain.extent));
+        let view = crate::render::LevelView {
+            camera,
+            width: extent.width,
+            height: extent.height,
+            pixel_error: self.controls.pixel_error,
+            cull: self.controls.cull,
+        };
+        let prepared = cfg.level;
+        // What the bound asks for up to `max` (or the driver's limit), then the budget's cap.
+        cfg.level = max.min(self.driver_max(&cfg));
+        let t0 = Instant::now();
+        let mut report = self.scene.set_levels(&cfg, &view);
+        let level = self.fit_adaptive_budget(&cfg, &report);
+        let mut seconds = t0.elapsed().as_secs_f64();
+        if level != cfg.level {
+            cfg.level = level;
+            let t0 = Instant::now();
+            report = self.scene.set_levels(&cfg, &view);
+            seconds += t0.elapsed().as_secs_f64();
+        }
+        if cfg.level != prepared {
+            cfg = self.prepare_config(opts, Some(cfg.level))?;
+            if cfg.level != level {
+                // Lowered again to what the driver draws: the levels must not exceed it.
+                report = self.scene.set_levels(&cfg, &view);
+            }
+        }
+        self.level_ms = seconds * 1e3;
+        self.levels = Some(report);
+        self.adaptive_level = Some(cfg.level);
+        Ok(cfg)
+    }
+
+    /// The largest level the driver of `cfg` draws on this device among the window's levels.
+    pub(super) fn driver_max(&self, cfg: &DrawConfig) -> u32 {
+        let limit = cfg.driver.kind().level_limit(&self.ctx).map(|(max, _)| max);
+        (self.scene.patterns.levels())
+            .filter(|&l| limit.is_none_or(|max| l <= max))
+            .filter(|&l| {
+                !matches!(cfg.driver, crate::render::Driver::Pattern(_)) || l.is_power_of_two()
+            })
+            .last()
+            .unwrap_or(1)
+    }
+
+    /// After a slow adaptive frame (over a quarter second, so that the triangles dominate its
+    /// time) drawn as the one before it (no pipeline compiled in it): its GPU time per refined triangle, kept if slower than the last one measured for
+    /// the same driver, surface and displacement.
+    pub(super) fn measure_adaptive_rate(&mut self) {
+        let d = self.drawn;
+        if self.levels.is_none() || !self.warm || self.gpu_ms < 250.0 {
+            return;
+        }
+        let coarse = self.scene.elements(d.surface).element_count as u64;
+        let passes = if self.controls.wireframe { 2 } else { 1 };
+        let triangles = self.refined(&d, coarse) * passes;
+        if triangles == 0 {
+            return;
+        }
+        let ns = self.gpu_ms * 1e6 / triangles as f64;
+        let same =
+            |c: &DrawConfig| (c.driver, c.surface, c.displace) == (d.driver, d.surface, d.displace);
+        match &mut self.adaptive_rate {
+            Some((c, rate)) if same(c) => *rate = rate.max(ns),
+            other => *other = Some((d, ns)),
+        }
+    }
+}

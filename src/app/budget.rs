@@ -1,0 +1,100 @@
+//! The frame budget: on a software device the window never starts a frame its slower estimate
+//! puts over a second; it draws the finest level (uniform mode) or the largest level (adaptive
+//! mode) that fits, and the panel and the log say so (docs/window.md, "Frames stay interactive
+//! on a software device").
+#![forbid(unsafe_code)]
+
+use super::State;
+use crate::gpu::vk;
+use crate::render::{software_frame_seconds, DrawConfig};
+
+impl State {
+    /// On a software device, lower `cfg.level` to the finest level whose frame the slower
+    /// estimate ([`software_frame_seconds`]) puts under a second (the wireframe
+    /// pass counted as a second draw), and say so in the panel: the window stays responsive
+    /// whatever level is asked for. Other devices draw what is asked.
+    pub(super) fn fit_frame_budget(&mut self, cfg: &mut DrawConfig, wire: bool) {
+        self.budget_note = None;
+        if self.ctx.info.device_type != crate::gpu::vk::PhysicalDeviceType::CPU
+            || !self.frame_budget
+        {
+            return;
+        }
+        let elements = self.scene.elements(cfg.surface).element_count as u64;
+        let passes = if wire { 2 } else { 1 };
+        let fits = |level: u32| {
+            let mut c = *cfg;
+            c.level = level;
+            let refined = elements * c.refined_per_element() as u64 * passes;
+            software_frame_seconds(refined).is_none()
+        };
+        if fits(cfg.level) {
+            return;
+        }
+        let asked = cfg.level;
+        cfg.level = self
+            .scene
+            .patterns
+            .levels()
+            .filter(|&l| l < asked && fits(l))
+            .last()
+            .unwrap_or(1);
+        let note = format!(
+            "level {asked} would take over a second a frame on this software device: drawing level {}",
+            cfg.level
+        );
+        if self.level_note != Some(asked) {
+            log::warn!("{note}");
+            self.level_note = Some(asked);
+        }
+        self.budget_note = Some(note);
+    }
+
+    /// On a software device, the largest level at most `cfg.level` whose adaptive frame (the
+    /// elements of `report`, each at its inner level capped there; the wireframe pass counted
+    /// as a second draw) the slower estimate (or the slower rate measured on this
+    /// configuration's slow frames, adaptive frames being slower a triangle on lavapipe than
+    /// the uniform ones the estimate comes from) puts under a second, said in the panel;
+    /// `cfg.level` elsewhere.
+    pub(super) fn fit_adaptive_budget(
+        &mut self,
+        cfg: &DrawConfig,
+        report: &crate::lod::LevelReport,
+    ) -> u32 {
+        if self.ctx.info.device_type != vk::PhysicalDeviceType::CPU || !self.frame_budget {
+            return cfg.level;
+        }
+        let passes = if self.controls.wireframe { 2 } else { 1 };
+        let measured = (self.adaptive_rate)
+            .filter(|(c, _)| {
+                (c.driver, c.surface, c.displace) == (cfg.driver, cfg.surface, cfg.displace)
+            })
+            .map_or(0.0, |(_, ns)| ns);
+        let fits = |cap: u32| {
+            let refined: u64 = (report.histogram.iter())
+                .map(|(&n, &count)| count * cfg.driver.refined_per_element(n.min(cap)) as u64)
+                .sum();
+            software_frame_seconds(refined * passes).is_none()
+                && (refined * passes) as f64 * measured * 1e-9 < 1.0
+        };
+        let asked = cfg.level;
+        if fits(asked) {
+            return asked;
+        }
+        let dyadic = matches!(cfg.driver, crate::render::Driver::Pattern(_));
+        let level = (self.scene.patterns.levels())
+            .filter(|&l| l < asked && (!dyadic || l.is_power_of_two()) && fits(l))
+            .last()
+            .unwrap_or(1);
+        let note = format!(
+            "max level {asked} would take over a second a frame on this software device at {} px: drawing up to level {level}",
+            self.controls.pixel_error
+        );
+        if self.level_note != Some(asked) {
+            log::warn!("{note}");
+            self.level_note = Some(asked);
+        }
+        self.budget_note = Some(note);
+        level
+    }
+}

@@ -1,0 +1,245 @@
+//! The two HUDs: the overlay panel's statistics and the window title, with the same figures
+//! (docs/window.md, "The overlay panel").
+#![forbid(unsafe_code)]
+
+use super::ui::{self, PanelInfo};
+use super::{camera, State};
+use crate::render::DrawConfig;
+use std::time::Instant;
+
+impl State {
+    /// The triangles `cfg` draws from `coarse` elements: at its level, or adaptively each drawn
+    /// element at its inner level.
+    pub(super) fn refined(&self, cfg: &DrawConfig, coarse: u64) -> u64 {
+        match &self.levels {
+            Some(r) => (r.histogram.iter())
+                .map(|(&n, &count)| count * cfg.driver.refined_per_element(n) as u64)
+                .sum(),
+            None => coarse * cfg.refined_per_element() as u64,
+        }
+    }
+
+    /// Lay out the overlay panel for this frame, with the last frame's statistics.
+    pub(super) fn run_ui(&mut self) -> ui::UiFrame {
+        let levels: Vec<u32> = self.scene.patterns.levels().collect();
+        let device = self.ctx.info.describe();
+        let d = self.drawn;
+        let coarse = self.scene.elements(d.surface).element_count as u64;
+        let camera = camera::camera_args(&self.camera, self.viewing);
+        let info = PanelInfo {
+            device: &device,
+            levels: &levels,
+            wireframe_supported: self.renderer.wireframe_supported(),
+            fps: self.fps,
+            gpu_ms: self.gpu_ms,
+            drawn: d,
+            coarse,
+            refined: self.refined(&d, coarse),
+            geometry_bytes: self.scene.geometry_bytes(&d),
+            upload_bytes: self.scene.upload_bytes(&d),
+            table_bytes: self
+                .scene
+                .loop_
+                .as_ref()
+                .filter(|_| d.surface.uses_loop_faces())
+                .map(|l| l.data.table_bytes()),
+            has_texcoords: self.scene.data.uvs.is_some(),
+            animating: self.controls.animate,
+            note: self.budget_note.as_deref(),
+            mode_note: self.mode_note.as_deref(),
+            adaptive_rows: self
+                .adaptive_summary(&d, coarse)
+                .map(|a| a.rows())
+                .unwrap_or_default(),
+            camera: &camera,
+            screenshot_note: self.screenshot_note.as_deref(),
+        };
+        self.ui.run(&self.window, &mut self.controls, &info)
+    }
+
+    pub(super) fn update_title(&mut self, cfg: &DrawConfig) {
+        let (t0, n0) = self.fps_window;
+        let dt = t0.elapsed().as_secs_f64();
+        if dt < 0.5 {
+            return;
+        }
+        self.fps = (self.frames - n0) as f64 / dt;
+        self.fps_window = (Instant::now(), self.frames);
+        let coarse = self.scene.elements(cfg.surface).element_count as u64;
+        let bytes = self.scene.geometry_bytes(cfg);
+        let c = &self.controls;
+        let flags = format!(
+            "{}{}{}",
+            if c.wireframe { " wire" } else { "" },
+            if c.cage { " cage" } else { "" },
+            if c.animate { " animated" } else { "" },
+        );
+        let camera = camera::camera_args(&self.camera, self.viewing);
+        if let Some(a) = self.adaptive_summary(cfg, coarse) {
+            self.window.set_title(&format!(
+                "meshrefine | {} {}{flags} | {:.0} fps | GPU {:.2} ms | {coarse} -> {} | {:.2} MB geometry | {camera}",
+                cfg.label(),
+                a.mode(),
+                self.fps,
+                self.gpu_ms,
+                a.counts(),
+                bytes as f64 / 1e6,
+            ));
+            return;
+        }
+        self.window.set_title(&format!(
+            "meshrefine | {} level {}{}{}{flags} | {:.0} fps | GPU {:.2} ms | {} -> {} triangles | {:.2} MB geometry | max level {} | {camera}",
+            cfg.label(),
+            cfg.level,
+            if c.lod && !c.adaptive { " (LOD)" } else { "" },
+            // Adaptive mode that could not draw adaptively (the panel says why).
+            if c.adaptive { " (uniform: adaptive mode off here)" } else { "" },
+            self.fps,
+            self.gpu_ms,
+            coarse,
+            self.refined(cfg, coarse),
+            bytes as f64 / 1e6,
+            self.max_level,
+        ));
+    }
+
+    /// What the last adaptive frame (drawing `cfg` of `coarse` elements) chose; None when it
+    /// drew uniformly.
+    fn adaptive_summary(&self, cfg: &DrawConfig, coarse: u64) -> Option<AdaptiveSummary> {
+        let r = self.levels.as_ref()?;
+        Some(AdaptiveSummary {
+            pixel_error: self.controls.pixel_error,
+            max_level: cfg.level,
+            cull: self.controls.cull,
+            frozen: self.frozen.is_some(),
+            triangles: self.refined(cfg, coarse),
+            uniform_level: r.uniform_level,
+            uniform_triangles: coarse * cfg.driver.refined_per_element(r.uniform_level) as u64,
+            histogram: compact_histogram(&r.histogram),
+            culled: r.culled,
+            level_ms: self.level_ms,
+        })
+    }
+}
+
+/// What an adaptive frame chose, for the panel and the title.
+struct AdaptiveSummary {
+    pixel_error: f32,
+    max_level: u32,
+    cull: bool,
+    frozen: bool,
+    /// Triangles drawn, each element at its inner level.
+    triangles: u64,
+    /// The smallest uniform level that meets the same bound (`LevelReport::uniform_level`),
+    /// and the triangles every element makes there.
+    uniform_level: u32,
+    uniform_triangles: u64,
+    histogram: String,
+    culled: u64,
+    /// CPU time of choosing the levels (`Scene::set_levels`).
+    level_ms: f64,
+}
+
+impl AdaptiveSummary {
+    /// `adaptive 1 px max level 64 cull on frozen`.
+    fn mode(&self) -> String {
+        format!(
+            "adaptive {} px max level {} cull {}{}",
+            self.pixel_error,
+            self.max_level,
+            if self.cull { "on" } else { "off" },
+            if self.frozen { " frozen" } else { "" },
+        )
+    }
+
+    /// How many fewer triangles than the uniform level (`4.2x`; `-` when nothing is drawn).
+    fn ratio(&self) -> String {
+        if self.triangles == 0 {
+            return "-".to_string();
+        }
+        format!(
+            "{:.1}x",
+            self.uniform_triangles as f64 / self.triangles as f64
+        )
+    }
+
+    /// The title's counts: triangles against the uniform level, levels, culling, cost.
+    fn counts(&self) -> String {
+        format!(
+            "{} triangles, uniform level {} {} ({} fewer) | levels {} | culled {} | levels on the GPU, CPU mirror {:.1} ms",
+            self.triangles,
+            self.uniform_level,
+            self.uniform_triangles,
+            self.ratio(),
+            self.histogram,
+            self.culled,
+            self.level_ms,
+        )
+    }
+
+    /// The panel's rows.
+    fn rows(&self) -> Vec<(&'static str, String)> {
+        let mut rows = vec![
+            (
+                "uniform level",
+                format!(
+                    "{}: {} triangles, {}",
+                    self.uniform_level,
+                    self.uniform_triangles,
+                    self.ratio()
+                ),
+            ),
+            ("levels (level:n)", self.histogram.clone()),
+            ("culled", self.culled.to_string()),
+            ("choosing levels", format!("{:.2} ms (CPU)", self.level_ms)),
+        ];
+        if self.frozen {
+            rows.push((
+                "levels",
+                "frozen: the camera moves, they do not".to_string(),
+            ));
+        }
+        rows
+    }
+}
+
+/// Elements per level in power-of-two ranges, ascending (`1:20 2:31 3-4:120 8:40`): the
+/// dyadic levels one by one, the tessellator's integer levels compactly.
+fn compact_histogram(histogram: &std::collections::BTreeMap<u32, u64>) -> String {
+    // Per range's top: elements, and whether any level in it is not the top.
+    let mut bins: std::collections::BTreeMap<u32, (u64, bool)> = Default::default();
+    for (&n, &count) in histogram {
+        let top = n.max(1).next_power_of_two();
+        let bin = bins.entry(top).or_default();
+        bin.0 += count;
+        bin.1 |= n != top;
+    }
+    let pairs: Vec<String> = (bins.iter())
+        .map(|(&top, &(count, range))| match range {
+            false => format!("{top}:{count}"),
+            true => format!("{}-{top}:{count}", top / 2 + 1),
+        })
+        .collect();
+    if pairs.is_empty() {
+        "none".to_string()
+    } else {
+        pairs.join(" ")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Dyadic levels are shown one by one, integer levels in power-of-two ranges.
+    #[test]
+    fn histograms_are_compact() {
+        let h = |pairs: &[(u32, u64)]| compact_histogram(&pairs.iter().copied().collect());
+        assert_eq!(h(&[(1, 3), (2, 5), (4, 7), (8, 1)]), "1:3 2:5 4:7 8:1");
+        assert_eq!(
+            h(&[(3, 1), (4, 2), (5, 4), (11, 1), (64, 2)]),
+            "3-4:3 5-8:4 9-16:1 64:2"
+        );
+        assert_eq!(h(&[]), "none");
+    }
+}
