@@ -2550,7 +2550,13 @@ fn render_and_info_work_without_arguments() {
     };
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{stderr}");
-    assert!(String::from_utf8_lossy(&out.stdout).contains("wrote meshrefine.png"));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("wrote meshrefine.png"));
+    // Without --level it draws adaptively at 1 px, and says which levels it drew.
+    assert!(
+        stdout.contains("adaptive at 1 px, max level 64: levels (level:elements) "),
+        "{stdout}"
+    );
     let image = png::Decoder::new(std::fs::File::open(&png).unwrap());
     let info = image.read_info().unwrap().info().clone();
     assert_eq!((info.width, info.height), (1280, 720));
