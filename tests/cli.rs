@@ -2200,22 +2200,8 @@ fn adaptive_options_refuse_bad_values() {
             );
         }
     }
-    expect_error(
-        &[
-            "render",
-            "-o",
-            p(&png),
-            "--pixel-error",
-            "1",
-            "--driver",
-            "static",
-        ],
-        &["pattern and tess drivers", "--driver static", "on the CPU"],
-    );
-    expect_error(
-        &["bench", "--pixel-error", "1", "--drivers", "tess,static"],
-        &["pattern and tess drivers", "--drivers static"],
-    );
+    // The static driver draws adaptively too, refining on the CPU (tests/cli_default_levels.rs
+    // runs it, and bench's static adaptive rows).
     // The pattern driver's patterns split 1 to 4: its largest level is a power of two.
     expect_error(
         &[

@@ -43,38 +43,25 @@ pub fn no_direction(eye: Vec3, target: Vec3) -> String {
     )
 }
 
-/// The adaptive options of `cli`'s command, checked: the pixel error and camera, `--level`
-/// (render, export, view) not given with it, and a driver that draws adaptively.
+/// The adaptive options of `cli`'s command, checked: the pixel error and camera, and `--level`
+/// (render, export, view) not given with it.
 pub fn check(cli: &Cli, given: &Given) -> Result<()> {
     // render and view draw adaptively by default: their camera options are checked then too.
-    let (opts, level, drivers, by_default): (&AdaptiveOpts, &str, Vec<Driver>, bool) =
-        match &cli.command {
-            Command::Render(a) => {
-                let d = vec![a.technique.driver];
-                (&a.adaptive, "level", d, !given.has("level"))
-            }
-            Command::View(a) => {
-                let d = vec![a.technique.driver];
-                (&a.adaptive, "level", d, !(given.has("level") || a.lod))
-            }
-            Command::Export(a) => (&a.adaptive, "level", vec![a.technique().driver], false),
-            Command::Bench(a) => (&a.adaptive, "levels", a.drivers.clone(), false),
-            Command::Info(_) | Command::Devices => return Ok(()),
-        };
+    let (opts, level, by_default): (&AdaptiveOpts, &str, bool) = match &cli.command {
+        Command::Render(a) => (&a.adaptive, "level", !given.has("level")),
+        Command::View(a) => (&a.adaptive, "level", !(given.has("level") || a.lod)),
+        Command::Export(a) => (&a.adaptive, "level", false),
+        Command::Bench(a) => (&a.adaptive, "levels", false),
+        Command::Info(_) | Command::Devices => return Ok(()),
+    };
     let Some(px) = opts.pixel_error else {
         if by_default {
             check_view(DEFAULT_PIXEL_ERROR, &opts.viewpoint, false)?;
         }
         return Ok(());
     };
+    // Every driver draws adaptively (static: refined on the CPU when the levels change).
     check_view(px, &opts.viewpoint, level == "level" && given.has("level"))?;
-    if let Some(d) = drivers.iter().find(|d| d.kind().refines_on_cpu()) {
-        bail!(
-            "--pixel-error draws adaptively with the pattern and tess drivers, not with --driver{} {}: it refines every element on the CPU at one level",
-            if level == "levels" { "s" } else { "" },
-            d.name()
-        );
-    }
     Ok(())
 }
 
@@ -164,11 +151,12 @@ impl Frame {
 
 impl Adaptive<'_> {
     /// The largest level any element gets: `--max-level` (refused past what `driver` draws on
-    /// the device, and for the pattern driver when not a power of two), else the largest
-    /// `driver` draws there, at most 1024; for the pattern driver [`PATTERN_MAX_LEVEL`].
+    /// the device, and for the pattern and static drivers when not a power of two), else the
+    /// largest `driver` draws there, at most 1024; for the pattern and static drivers
+    /// [`PATTERN_MAX_LEVEL`].
     pub fn max_level(&self, ctx: &Context, driver: Driver) -> Result<u32> {
         let limit = driver.kind().level_limit(ctx);
-        let pattern = matches!(driver, Driver::Pattern(_));
+        let pattern = !matches!(driver, Driver::Tess);
         if let Some(l) = self.opts.max_level {
             if let Some((max, name)) = limit.filter(|&(max, _)| l > max) {
                 bail!(
@@ -179,7 +167,8 @@ impl Adaptive<'_> {
             if pattern && !l.is_power_of_two() {
                 let lower = 1u32 << l.ilog2();
                 bail!(
-                    "--max-level {l} is not a power of two: the pattern driver's adaptive patterns are 1-to-4 splits; use {lower} or {}",
+                    "--max-level {l} is not a power of two: the {} driver's adaptive patterns are 1-to-4 splits; use {lower} or {}",
+                    driver.name(),
                     lower * 2
                 );
             }
@@ -246,6 +235,7 @@ impl Adaptive<'_> {
         frame: &Frame,
     ) -> Result<(Camera, LevelReport)> {
         scene.skip_slow_warning();
+        h.adaptive = true;
         h.prepared_elements(scene, cfg, capture)?;
         let camera = self.camera(scene, frame)?;
         let report = scene.set_levels(

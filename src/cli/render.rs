@@ -52,11 +52,9 @@ fn levels_line(a: &Adaptive, max: u32, report: &meshrefine::lod::LevelReport) ->
     )
 }
 
-/// Why `cfg` cannot be drawn adaptively in `scene` (prepared here), if it cannot
-/// (`DriverKind::check_adaptive`).
+/// Why `cfg`, its levels chosen, cannot be drawn adaptively in `scene` (prepared here), if it
+/// cannot (`DriverKind::check_adaptive`).
 fn cannot_adapt(h: &mut Headless, scene: &mut Scene, cfg: &DrawConfig) -> Result<Option<String>> {
-    // Drawn adaptively, the elements are not all at the largest level prepare counts them at.
-    scene.skip_slow_warning();
     h.prepared_elements(scene, cfg, Capture::None)?;
     let refusal = cfg.driver.kind().check_adaptive(&h.ctx, scene, cfg).err();
     Ok(refusal.map(|e| e.to_string()))
@@ -97,18 +95,13 @@ pub fn render_png(
     out: &Path,
 ) -> Result<Option<String>> {
     let (width, height) = opts.size;
-    let (wireframe, msaa, mut adaptive) = (opts.wireframe, opts.msaa, opts.adaptive);
+    let (wireframe, msaa, adaptive) = (opts.wireframe, opts.msaa, opts.adaptive);
     let triangles = input.mesh.triangles.len();
     let samples = sample_count(&ctx, msaa)?;
     let mut line = None;
     let image = (|| -> Result<_> {
         let mut cfg = *cfg;
         let uniform_level = cfg.level;
-        if adaptive.is_some_and(|a| a.by_default) && cfg.driver.kind().refines_on_cpu() {
-            let why = "the static driver refines every element on the CPU at one level";
-            uniform_instead(uniform_level, why);
-            adaptive = None;
-        }
         if let Some(a) = &adaptive {
             cfg.level = a.max_level(&ctx, cfg.driver)?;
             cfg.geomorph = a.geomorph;
@@ -123,15 +116,6 @@ pub fn render_png(
         apply_surface_inputs(&h, &mut scene, &input)?;
         let (c, r) = scene.bounding_sphere();
         let mut camera = Camera::framing(c, r);
-        if let Some(why) = (adaptive.filter(|a| a.by_default))
-            .map(|_| cannot_adapt(&mut h, &mut scene, &viewed))
-            .transpose()?
-            .flatten()
-        {
-            uniform_instead(uniform_level, &why);
-            adaptive = None;
-            viewed.level = uniform_level;
-        }
         if let Some(a) = &adaptive {
             let (centre, scale) = input.mesh.viewing_transform();
             let frame = Frame { centre, scale };
@@ -140,6 +124,17 @@ pub fn render_png(
                 a.set_up(&mut h, &mut scene, &viewed, Capture::None, size, &frame)?;
             camera = cam;
             line = Some(levels_line(a, cfg.level, &report));
+        }
+        if let Some(why) = (adaptive.filter(|a| a.by_default))
+            .map(|_| cannot_adapt(&mut h, &mut scene, &viewed))
+            .transpose()?
+            .flatten()
+        {
+            uniform_instead(uniform_level, &why);
+            h.adaptive = false;
+            line = None;
+            camera = Camera::framing(c, r);
+            viewed.level = uniform_level;
         }
         Ok(h.render(&mut scene, &viewed, &camera)?)
     })()

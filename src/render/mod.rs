@@ -18,6 +18,7 @@ pub mod pattern;
 mod pipelines;
 mod scene;
 mod scene_levels;
+pub mod static_adaptive;
 pub mod static_vbo;
 pub mod tess;
 
