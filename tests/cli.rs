@@ -2150,8 +2150,8 @@ fn bench_with_pixel_error_times_adaptive_and_uniform_rows() {
 }
 
 /// `--pixel-error` and its camera on render, export, view and bench: every bad value is one
-/// sentence and status 1, before anything is drawn; the static driver (which refines on the
-/// CPU) is refused, and a pattern driver's largest level that is not a power of two.
+/// sentence and status 1, before anything is drawn, and a pattern driver's largest level that
+/// is not a power of two.
 #[test]
 fn adaptive_options_refuse_bad_values() {
     let png = tmp("adaptive-bad.png");
