@@ -4,8 +4,9 @@
 //! - `grazing`: the 16x16 terrain seen from low over its edge, looking across it;
 //! - `flythrough`: three cameras on a path toward Spot's head, each row the mean over them.
 //!
-//! For pixel errors 0.5, 1, 2 and 4 and the drivers pattern/instanced and tess: each element at
-//! its own levels (up to 32), and every element at the smallest uniform level meeting the same
+//! For pixel errors 0.5, 1, 2 and 4 and the drivers pattern/instanced, tess and static (refining
+//! on the CPU and uploading every frame, as for a moving camera): each element at its own
+//! levels (up to 32), and every element at the smallest uniform level meeting the same
 //! bound and at the smallest power of two at or above it. Writes docs/bench/adaptive.{md,csv,json}
 //! (see `meshrefine::bench::Harness`); `MESHREFINE_BENCH_QUICK=1` runs a smaller set.
 
@@ -79,7 +80,11 @@ fn main() {
                 frames,
                 width,
                 height,
-                drivers: vec![Driver::Pattern(Submit::Instanced), Driver::Tess],
+                drivers: vec![
+                    Driver::Pattern(Submit::Instanced),
+                    Driver::Tess,
+                    Driver::Static,
+                ],
                 min_total_ms: 0.0,
                 adaptive: Some(BenchAdaptive {
                     scene: scene.into(),

@@ -2189,8 +2189,8 @@ fn bench_with_pixel_error_times_adaptive_and_uniform_rows() {
 }
 
 /// `--pixel-error` and its camera on render, export, view and bench: every bad value is one
-/// sentence and status 1, before anything is drawn; the static driver (which refines on the
-/// CPU) is refused, and a pattern driver's largest level that is not a power of two.
+/// sentence and status 1, before anything is drawn, and a pattern driver's largest level that
+/// is not a power of two.
 #[test]
 fn adaptive_options_refuse_bad_values() {
     let png = tmp("adaptive-bad.png");
@@ -2239,22 +2239,8 @@ fn adaptive_options_refuse_bad_values() {
             );
         }
     }
-    expect_error(
-        &[
-            "render",
-            "-o",
-            p(&png),
-            "--pixel-error",
-            "1",
-            "--driver",
-            "static",
-        ],
-        &["pattern and tess drivers", "--driver static", "on the CPU"],
-    );
-    expect_error(
-        &["bench", "--pixel-error", "1", "--drivers", "tess,static"],
-        &["pattern and tess drivers", "--drivers static"],
-    );
+    // The static driver draws adaptively too, refining on the CPU (tests/cli_default_levels.rs
+    // runs it, and bench's static adaptive rows).
     // The pattern driver's patterns split 1 to 4: its largest level is a power of two.
     expect_error(
         &[
@@ -2589,7 +2575,13 @@ fn render_and_info_work_without_arguments() {
     };
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{stderr}");
-    assert!(String::from_utf8_lossy(&out.stdout).contains("wrote meshrefine.png"));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("wrote meshrefine.png"));
+    // Without --level it draws adaptively at 1 px, and says which levels it drew.
+    assert!(
+        stdout.contains("adaptive at 1 px, max level 64: levels (level:elements) "),
+        "{stdout}"
+    );
     let image = png::Decoder::new(std::fs::File::open(&png).unwrap());
     let info = image.read_info().unwrap().info().clone();
     assert_eq!((info.width, info.height), (1280, 720));

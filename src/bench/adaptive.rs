@@ -27,8 +27,13 @@ struct Timed {
     gpu: Vec<Vec<f64>>,
     wall: Vec<Vec<f64>>,
     choose: Vec<Vec<f64>>,
-    /// Where the levels were made: "gpu" (the level pass) or "cpu" (uploaded).
+    /// Where the levels were made: "gpu" (the level pass) or "cpu" (uploaded, or the static
+    /// driver's, which needs no level pass).
     pass_on: &'static str,
+    /// The static driver drawn adaptively: per camera, each timed frame's milliseconds
+    /// refining and uploading, and bytes uploaded.
+    refine: Vec<Vec<f64>>,
+    upload: Vec<Vec<f64>>,
     /// Adaptive: what each camera's levels were.
     reports: Vec<LevelReport>,
 }
@@ -139,6 +144,8 @@ fn variant(
             t.gpu.push(Vec::new());
             t.wall.push(Vec::new());
             t.choose.push(Vec::new());
+            t.refine.push(Vec::new());
+            t.upload.push(Vec::new());
         }
         // Round 0 is every configuration's warm-up frame at this camera.
         let mut round = 0;
@@ -167,7 +174,22 @@ fn variant(
                     None
                 };
                 h.adaptive = t.adaptive;
+                let refines = t.adaptive && t.cfg.driver.kind().refines_on_cpu();
+                if refines {
+                    // As for a moving camera, whose levels change every frame: refined and
+                    // uploaded again (src/render/static_adaptive.rs).
+                    m.scene.static_vbo = None;
+                }
                 let f = h.draw(&mut m.scene, &t.cfg, &camera)?;
+                let vbo = m.scene.static_vbo.as_ref().filter(|_| refines && round > 0);
+                if let Some((v, a)) = vbo.and_then(|v| Some((v, v.adaptive.as_ref()?))) {
+                    t.refine.last_mut().unwrap().push(a.cpu_ms);
+                    t.upload.last_mut().unwrap().push(a.upload_bytes as f64);
+                    // What it stores is what it refined (the last camera's).
+                    t.row.stored_vertices = v.vertex_count as u64;
+                    t.row.stored_indices = v.index_count as u64;
+                    t.row.geometry_bytes = a.upload_bytes;
+                }
                 if round > 0 {
                     t.row.vertex_invocations = f.stats.map(|s| s.vertex_shader_invocations);
                     t.gpu.last_mut().unwrap().push(f.gpu_ms);
@@ -192,7 +214,10 @@ fn timed(
     level_from: String,
     a: &BenchAdaptive,
 ) -> Result<Timed, RenderError> {
+    // Prepared for the frames it times (the static driver refines nothing before levels).
+    h.adaptive = adaptive;
     let (mut row, refused) = new_row(ctx, h, m, &cfg)?;
+    h.adaptive = false;
     if let Some(e) = &refused {
         row.note = format!("not drawn: {e}");
     }
@@ -212,6 +237,8 @@ fn timed(
         wall: Vec::new(),
         choose: Vec::new(),
         pass_on: "gpu",
+        refine: Vec::new(),
+        upload: Vec::new(),
         reports: Vec::new(),
     })
 }
@@ -271,6 +298,8 @@ fn into_rows(list: Vec<Timed>, cameras: usize) -> Vec<Row> {
             cells.culled_elements = Some((culled + n / 2) / n);
             cells.level_pass_ms = over_cameras(&t.choose).map(|s| s.median);
             cells.level_pass_on = Some(t.pass_on);
+            cells.cpu_ms = over_cameras(&t.refine).map(|s| s.median);
+            cells.upload_bytes = over_cameras(&t.upload).map(|s| s.median.round() as u64);
         }
         log::info!(
             "{} {} {} L{} ({}): {} triangles, gpu {:.2} ms",

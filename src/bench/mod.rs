@@ -95,6 +95,11 @@ pub struct AdaptiveCells {
     pub level_pass_on: Option<&'static str>,
     /// Elements culled (mean over cameras, rounded).
     pub culled_elements: Option<u64>,
+    /// The static driver's adaptive rows: milliseconds refining on the CPU and uploading, and
+    /// the bytes uploaded, per frame whose levels changed (every timed frame, as for a moving
+    /// camera; median per camera, mean over cameras).
+    pub cpu_ms: Option<f64>,
+    pub upload_bytes: Option<u64>,
     /// Visible elements per drawn inner level, `L:n` ascending (summed over the cameras).
     pub histogram: String,
 }

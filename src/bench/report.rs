@@ -333,6 +333,16 @@ pub static COLUMNS: &[Column] = &[
         Right,
         |_, r| Cell::Count(adaptive(r).and_then(|a| a.culled_elements)),
     ),
+    col("cpu_ms", Some("CPU ms"), Some("CPU ms"), Right, |_, r| {
+        Cell::Real(adaptive(r).and_then(|a| a.cpu_ms), 3)
+    }),
+    col(
+        "upload_bytes",
+        Some("upload bytes"),
+        Some("upload bytes"),
+        Right,
+        |_, r| Cell::Count(adaptive(r).and_then(|a| a.upload_bytes)),
+    ),
     col(
         "level_histogram",
         Some("levels (L:elements)"),
@@ -735,17 +745,17 @@ mod tests {
         let r = report(vec![row("spot", 2, "tess", true)]);
         assert_eq!(
             r.csv().lines().next().unwrap(),
-            "device,mesh,coarse_triangles,elements,level,surface,displace,variant,refined_triangles,gpu_ms_median,gpu_ms_min,gpu_ms_max,wall_ms_median,wall_ms_min,wall_ms_max,gpu_ns_per_refined_triangle,gpu_ratio_vs_static,wall_ratio_vs_static,throughput_vs_flat,pre_pass_ms,table_bytes,stored_vertices,stored_indices,geometry_bytes,vertex_invocations,scene,adaptive,pixel_error,level_from,level_pass_ms,level_pass_on,culled_elements,level_histogram,note"
+            "device,mesh,coarse_triangles,elements,level,surface,displace,variant,refined_triangles,gpu_ms_median,gpu_ms_min,gpu_ms_max,wall_ms_median,wall_ms_min,wall_ms_max,gpu_ns_per_refined_triangle,gpu_ratio_vs_static,wall_ratio_vs_static,throughput_vs_flat,pre_pass_ms,table_bytes,stored_vertices,stored_indices,geometry_bytes,vertex_invocations,scene,adaptive,pixel_error,level_from,level_pass_ms,level_pass_on,culled_elements,cpu_ms,upload_bytes,level_histogram,note"
         );
         let md = r.markdown();
         let mut lines = md.lines().skip(2);
         assert_eq!(
             lines.next().unwrap(),
-            "| mesh | coarse tris | elements | level | surface | displace | variant | refined tris | GPU ms | wall ms | GPU ns / refined tri | GPU / static | wall / static | throughput / flat | M0→M1 ms | table bytes | stored vertices | stored indices | geometry bytes | VS invocations | scene | adaptive | pixel error | levels from | level pass ms | level pass on | culled elements | levels (L:elements) | note |"
+            "| mesh | coarse tris | elements | level | surface | displace | variant | refined tris | GPU ms | wall ms | GPU ns / refined tri | GPU / static | wall / static | throughput / flat | M0→M1 ms | table bytes | stored vertices | stored indices | geometry bytes | VS invocations | scene | adaptive | pixel error | levels from | level pass ms | level pass on | culled elements | CPU ms | upload bytes | levels (L:elements) | note |"
         );
         assert_eq!(
             lines.next().unwrap(),
-            "|---|---:|---:|---:|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---:|---|---:|---|---:|---|---|"
+            "|---|---:|---:|---:|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---:|---|---:|---|---:|---:|---:|---|---|"
         );
     }
 

@@ -43,33 +43,37 @@ pub fn no_direction(eye: Vec3, target: Vec3) -> String {
     )
 }
 
-/// The adaptive options of `cli`'s command, checked: the pixel error and camera, `--level`
-/// (render, export, view) not given with it, and a driver that draws adaptively.
+/// The adaptive options of `cli`'s command, checked: the pixel error and camera, and `--level`
+/// (render, export, view) not given with it.
 pub fn check(cli: &Cli, given: &Given) -> Result<()> {
-    let (opts, level, drivers): (&AdaptiveOpts, &str, Vec<Driver>) = match &cli.command {
-        Command::Render(a) => (&a.adaptive, "level", vec![a.technique.driver]),
-        Command::View(a) => (&a.adaptive, "level", vec![a.technique.driver]),
-        Command::Export(a) => (&a.adaptive, "level", vec![a.technique().driver]),
-        Command::Bench(a) => (&a.adaptive, "levels", a.drivers.clone()),
+    // render and view draw adaptively by default: their camera options are checked then too.
+    let (opts, level, by_default): (&AdaptiveOpts, &str, bool) = match &cli.command {
+        Command::Render(a) => (&a.adaptive, "level", !given.has("level")),
+        Command::View(a) => (&a.adaptive, "level", !(given.has("level") || a.lod)),
+        Command::Export(a) => (&a.adaptive, "level", false),
+        Command::Bench(a) => (&a.adaptive, "levels", false),
         Command::Info(_) | Command::Devices => return Ok(()),
     };
     let Some(px) = opts.pixel_error else {
+        if by_default {
+            check_view(DEFAULT_PIXEL_ERROR, &opts.viewpoint, false)?;
+        }
         return Ok(());
     };
+    // Every driver draws adaptively (static: refined on the CPU when the levels change).
     check_view(px, &opts.viewpoint, level == "level" && given.has("level"))?;
-    if let Some(d) = drivers.iter().find(|d| d.kind().refines_on_cpu()) {
-        bail!(
-            "--pixel-error draws adaptively with the pattern and tess drivers, not with --driver{} {}: it refines every element on the CPU at one level",
-            if level == "levels" { "s" } else { "" },
-            d.name()
-        );
-    }
     Ok(())
 }
 
 /// The pattern driver's largest adaptive level without `--max-level`: its hierarchical
 /// patterns up to 64 (docs/adaptivity.md) are a few megabytes; finer needs `--max-level`.
 pub const PATTERN_MAX_LEVEL: u32 = 64;
+
+/// The pixel error `render` and `view` draw at when neither `--pixel-error` nor `--level` is
+/// given (the window's too): the bounds are two to four times the true chord error on most
+/// surfaces (docs/adaptivity.md), so 1 px draws within about half a pixel, which looks right,
+/// at half the triangles of 0.5 px.
+pub const DEFAULT_PIXEL_ERROR: f32 = meshrefine::app::DEFAULT_PIXEL_ERROR;
 
 /// Adaptive drawing as asked on the command line, checked ([`check`]).
 #[derive(Clone, Copy, Debug)]
@@ -79,6 +83,9 @@ pub struct Adaptive<'a> {
     pub cull: bool,
     /// `--geomorph` (default on): `DrawConfig::geomorph`.
     pub geomorph: bool,
+    /// Neither `--pixel-error` nor `--level` was given: where adaptive drawing cannot apply,
+    /// the command draws at the uniform default level with a note instead of an error.
+    pub by_default: bool,
 }
 
 impl AdaptiveOpts {
@@ -90,8 +97,33 @@ impl AdaptiveOpts {
             pixel_error: px,
             cull: self.cull.unwrap_or(cull_default),
             geomorph: self.geomorph.unwrap_or(true),
+            by_default: false,
         })
     }
+
+    /// `render` and the headless `view`: adaptive at `--pixel-error`, else at
+    /// [`DEFAULT_PIXEL_ERROR`] unless `uniform` (`--level` given: one level everywhere). By
+    /// default it culls only a `closed` mesh: uniform drawing shows both sides of a surface,
+    /// and culling the elements facing away would open an open mesh's back side.
+    pub fn or_default(&self, uniform: bool, closed: bool) -> Option<Adaptive<'_>> {
+        match self.enabled(true) {
+            None if !uniform => Some(Adaptive {
+                opts: self,
+                pixel_error: DEFAULT_PIXEL_ERROR,
+                cull: self.cull.unwrap_or(closed),
+                geomorph: self.geomorph.unwrap_or(true),
+                by_default: true,
+            }),
+            a => a,
+        }
+    }
+}
+
+/// Whether `mesh` is closed and consistently oriented: no element facing away from the eye
+/// can then be seen from outside (default adaptive drawing culls it).
+pub fn closed(mesh: &Mesh) -> bool {
+    let s = mesh.stats();
+    s.boundary_edges == 0 && s.nonmanifold_edges == 0 && s.inconsistently_oriented_edges == 0
 }
 
 /// The map from the mesh's coordinates to the drawn ones (`p ↦ (p − centre) · scale`), as
@@ -119,11 +151,12 @@ impl Frame {
 
 impl Adaptive<'_> {
     /// The largest level any element gets: `--max-level` (refused past what `driver` draws on
-    /// the device, and for the pattern driver when not a power of two), else the largest
-    /// `driver` draws there, at most 1024; for the pattern driver [`PATTERN_MAX_LEVEL`].
+    /// the device, and for the pattern and static drivers when not a power of two), else the
+    /// largest `driver` draws there, at most 1024; for the pattern and static drivers
+    /// [`PATTERN_MAX_LEVEL`].
     pub fn max_level(&self, ctx: &Context, driver: Driver) -> Result<u32> {
         let limit = driver.kind().level_limit(ctx);
-        let pattern = matches!(driver, Driver::Pattern(_));
+        let pattern = !matches!(driver, Driver::Tess);
         if let Some(l) = self.opts.max_level {
             if let Some((max, name)) = limit.filter(|&(max, _)| l > max) {
                 bail!(
@@ -134,7 +167,8 @@ impl Adaptive<'_> {
             if pattern && !l.is_power_of_two() {
                 let lower = 1u32 << l.ilog2();
                 bail!(
-                    "--max-level {l} is not a power of two: the pattern driver's adaptive patterns are 1-to-4 splits; use {lower} or {}",
+                    "--max-level {l} is not a power of two: the {} driver's adaptive patterns are 1-to-4 splits; use {lower} or {}",
+                    driver.name(),
                     lower * 2
                 );
             }
@@ -206,6 +240,7 @@ impl Adaptive<'_> {
         frame: &Frame,
     ) -> Result<(Camera, LevelReport)> {
         scene.skip_slow_warning();
+        h.adaptive = true;
         h.prepared_elements(scene, cfg, capture)?;
         let camera = self.camera(scene, cfg, width as f32 / height as f32, frame)?;
         let report = scene.set_levels(

@@ -169,7 +169,8 @@ pub struct Technique {
     /// instanced]. Only for --driver pattern (`view` may switch to it).
     #[arg(long, value_parser = choices::submit(), help_heading = "Driver and level")]
     pub submit: Option<Submit>,
-    /// Refinement level N: N segments per coarse edge, N² triangles per coarse triangle.
+    /// Refinement level N: N segments per coarse edge, N² triangles per coarse triangle, every
+    /// element at it (render and view: given, it replaces adaptive drawing at 1 px).
     #[arg(long, default_value_t = 16, value_parser = clap::value_parser!(u32).range(1..=1024), help_heading = "Driver and level")]
     pub level: u32,
 }
@@ -411,7 +412,7 @@ pub struct ViewpointOpts {
 pub struct AdaptiveOpts {
     /// Draw adaptively: each element at the level that keeps the surface within this many
     /// pixels of the drawn mesh, seen by the camera below (--driver tess, for view pattern too;
-    /// not with --level; view: its window starts adaptive at 1 px unless --level or --lod).
+    /// not with --level; render and view: 1 by default unless --level, or for view --lod).
     #[arg(long, allow_negative_numbers = true)]
     pub pixel_error: Option<f32>,
     /// The largest level any element gets (with --pixel-error; default: the largest the driver

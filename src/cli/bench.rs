@@ -46,15 +46,14 @@ pub fn run(a: &BenchArgs, desc: &ContextDesc, levels_given: bool) -> Result<()> 
         frames: a.frames,
         width: a.width,
         height: a.height,
-        // `pattern` stands for its three submission modes.
-        // Adaptively, the drivers that draw so (static refines on the CPU at one level).
+        // `pattern` stands for its three submission modes; adaptively every driver (static
+        // refines on the CPU when the levels change).
         drivers: Driver::VARIANTS
             .into_iter()
             .filter(|v| {
                 let all = a.drivers.is_empty() && a.adaptive.pixel_error.is_some();
                 all || a.drivers.iter().any(|d| d.same_kind(*v))
             })
-            .filter(|v| a.adaptive.pixel_error.is_none() || !v.kind().refines_on_cpu())
             .collect(),
         min_total_ms: a.min_total_ms,
         adaptive: None,
@@ -66,14 +65,14 @@ pub fn run(a: &BenchArgs, desc: &ContextDesc, levels_given: bool) -> Result<()> 
     let report = with_context(desc, |ctx| {
         let mut opts = opts;
         if let Some(ad) = &adaptive {
-            // Each variant adaptive up to the largest level (a power of two when the pattern
-            // driver is measured: its largest level), seen by the camera asked for, and uniform
+            // Each variant adaptive up to the largest level (a power of two when the pattern or
+            // static driver is measured: its largest level), seen by the camera asked for, and uniform
             // at the levels it is compared with.
             if !levels_given {
                 opts.levels.clear();
             }
             let driver = (opts.drivers.iter())
-                .find(|d| matches!(d, Driver::Pattern(_)))
+                .find(|d| !matches!(d, Driver::Tess))
                 .map_or(Driver::Tess, |&d| d);
             let scene_frame = Frame { centre, scale };
             opts.adaptive = Some(meshrefine::bench::BenchAdaptive {

@@ -38,7 +38,7 @@ pub fn run(cli: Cli, given: &options::Given) -> Result<()> {
     options::check_outputs(&cli).map_err(anyhow::Error::msg)?;
     adaptive::check(&cli, given)?;
     match &cli.command {
-        Command::Render(a) => render::run(a, &desc),
+        Command::Render(a) => render::run(a, &desc, given.has("level")),
         Command::View(a) => view::run(a, &desc, given),
         Command::Export(a) => export::run(a, &desc),
         Command::Info(a) => info::run(a),

@@ -173,11 +173,9 @@ pub fn warnings(cli: &Cli, given: &Given) -> Vec<String> {
             let d = a.technique.driver;
             let driver = (d.submit().is_some(), format!("--driver {}", d.name()));
             let mut out = one(&a.technique.surface, driver, &check);
-            out.extend(adaptive_only(
-                given,
-                a.adaptive.pixel_error.is_some(),
-                ADAPTIVE,
-            ));
+            // Adaptive by default: only --level draws uniformly.
+            let adaptive = a.adaptive.pixel_error.is_some() || !given.has("level");
+            out.extend(adaptive_only(given, adaptive, ADAPTIVE));
             out
         }
         Command::Export(a) => {

@@ -1,22 +1,26 @@
 //! `meshrefine render`: one frame of a mesh, drawn headlessly, to a PNG.
 #![forbid(unsafe_code)]
 
-use super::adaptive::{Adaptive, Frame};
+use super::adaptive::{closed, Adaptive, Frame};
 use super::args::RenderArgs;
 use super::input::{
     apply_surface_inputs, attach_surface_inputs, draw_config, for_viewing, load_mesh, Input,
 };
 use super::{require_extension, with_context};
+use crate::note;
 use anyhow::{bail, Context as _, Result};
 use meshrefine::gpu::{sample_count, Context, ContextDesc};
 use meshrefine::render::cage::Wireframe;
-use meshrefine::render::{covered_pixels_on, Background, Capture, DrawConfig, Headless, View};
+use meshrefine::render::{
+    covered_pixels_on, Background, Capture, DrawConfig, Headless, Scene, View,
+};
 use std::io::Write as _;
 use std::path::Path;
 use std::sync::Arc;
 
-/// Runs `meshrefine render` with `a`.
-pub fn run(a: &RenderArgs, desc: &ContextDesc) -> Result<()> {
+/// Runs `meshrefine render` with `a` (`level_given`: `--level` was given, so it draws
+/// uniformly; otherwise adaptively, at `--pixel-error` or 1 px).
+pub fn run(a: &RenderArgs, desc: &ContextDesc, level_given: bool) -> Result<()> {
     require_extension(&a.output, "png", "render writes PNG images only")?;
     let for_loop = a.technique.surface.surface.facts().needs_every_face;
     let mut input = load_mesh(a.mesh.as_deref(), for_loop)?;
@@ -28,7 +32,7 @@ pub fn run(a: &RenderArgs, desc: &ContextDesc) -> Result<()> {
         view: a.view,
         background: a.background,
         msaa: a.msaa,
-        adaptive: a.adaptive.enabled(true),
+        adaptive: (a.adaptive).or_default(level_given, closed(&input.mesh)),
     };
     let report = with_context(desc, |ctx| render_png(ctx, input, &cfg, &image, &a.output))?;
     if let Some(line) = report {
@@ -48,6 +52,21 @@ fn levels_line(a: &Adaptive, max: u32, report: &meshrefine::lod::LevelReport) ->
     )
 }
 
+/// Why `cfg`, its levels chosen, cannot be drawn adaptively in `scene` (prepared here), if it
+/// cannot (`DriverKind::check_adaptive`).
+fn cannot_adapt(h: &mut Headless, scene: &mut Scene, cfg: &DrawConfig) -> Result<Option<String>> {
+    h.prepared_elements(scene, cfg, Capture::None)?;
+    let refusal = cfg.driver.kind().check_adaptive(&h.ctx, scene, cfg).err();
+    Ok(refusal.map(|e| e.to_string()))
+}
+
+/// The note that an image drawn adaptively by default is drawn at `level` instead, and why.
+fn uniform_instead(level: u32, why: &str) {
+    note(format_args!(
+        "note: drawing uniformly at level {level} (the default --level): {why}"
+    ));
+}
+
 /// How `render` and the headless `view` draw their image.
 pub struct ImageOptions<'a> {
     /// Width and height in pixels.
@@ -59,7 +78,7 @@ pub struct ImageOptions<'a> {
     pub background: Background,
     /// Samples per pixel (`None`: the default, `gpu::sample_count`).
     pub msaa: Option<u32>,
-    /// Draw adaptively for the camera (`--pixel-error`).
+    /// Draw adaptively for the camera (`--pixel-error`, or by default).
     pub adaptive: Option<Adaptive<'a>>,
 }
 
@@ -82,6 +101,7 @@ pub fn render_png(
     let mut line = None;
     let image = (|| -> Result<_> {
         let mut cfg = *cfg;
+        let uniform_level = cfg.level;
         if let Some(a) = &adaptive {
             cfg.level = a.max_level(&ctx, cfg.driver)?;
             cfg.geomorph = a.geomorph;
@@ -91,9 +111,12 @@ pub fn render_png(
         h.cage = wireframe.is_some_and(Wireframe::cage);
         h.view = opts.view;
         h.background = opts.background;
-        let (mesh, viewed) = for_viewing(&input.mesh, &cfg);
+        let (mesh, mut viewed) = for_viewing(&input.mesh, &cfg);
         let mut scene = h.scene(mesh, cfg.level)?;
         apply_surface_inputs(&h, &mut scene, &input)?;
+        // Prepared (for adaptive frames when drawing adaptively: `static` refines nothing yet)
+        // so that the framing sees the surface drawn: Loop's limit surface from its M1 faces.
+        h.adaptive = adaptive.is_some();
         h.prepared_elements(&mut scene, &viewed, Capture::None)?;
         let mut camera = scene.framing_camera(&viewed, width as f32 / height as f32);
         if let Some(a) = &adaptive {
@@ -104,6 +127,17 @@ pub fn render_png(
                 a.set_up(&mut h, &mut scene, &viewed, Capture::None, size, &frame)?;
             camera = cam;
             line = Some(levels_line(a, cfg.level, &report));
+        }
+        if let Some(why) = (adaptive.filter(|a| a.by_default))
+            .map(|_| cannot_adapt(&mut h, &mut scene, &viewed))
+            .transpose()?
+            .flatten()
+        {
+            uniform_instead(uniform_level, &why);
+            h.adaptive = false;
+            line = None;
+            viewed.level = uniform_level;
+            camera = scene.framing_camera(&viewed, width as f32 / height as f32);
         }
         Ok(h.render(&mut scene, &viewed, &camera)?)
     })()

@@ -2,7 +2,7 @@
 //! headlessly to a PNG (which says why).
 #![forbid(unsafe_code)]
 
-use super::adaptive::Frame;
+use super::adaptive::{closed, Frame};
 use super::args::ViewArgs;
 use super::input::{attach_surface_inputs, draw_config, for_viewing, load_mesh};
 use super::loop_check::loop_refusal;
@@ -73,6 +73,7 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc, given: &Given) -> Result<()> {
                         .unwrap_or(meshrefine::app::DEFAULT_PIXEL_ERROR),
                     cull: a.adaptive.cull.unwrap_or(true),
                     geomorph: a.adaptive.geomorph.unwrap_or(true),
+                    by_default: a.adaptive.pixel_error.is_none(),
                 };
                 meshrefine::app::AdaptiveView {
                     on: !(given.has("level") || a.lod),
@@ -99,7 +100,8 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc, given: &Given) -> Result<()> {
         view: meshrefine::render::View::Shaded,
         background: a.background,
         msaa: a.msaa,
-        adaptive: a.adaptive.enabled(true),
+        // Adaptive by default as the window is; `--level` or `--lod` draw uniformly.
+        adaptive: (a.adaptive).or_default(given.has("level") || a.lod, closed(&input.mesh)),
     };
     let line = with_context(desc, |ctx| {
         render_png(ctx, input, &cfg, &image, &a.headless_output)

@@ -178,8 +178,9 @@ impl Headless {
             scene,
             self.view,
         );
-        // Adaptive frames: each element's own level (the levels view reads it).
-        if self.adaptive {
+        // Adaptive frames: each element's own level (the levels view reads it; the static
+        // driver's vertices carry no element without the per-fragment normal field).
+        if self.adaptive && !cfg.driver.kind().refines_on_cpu() {
             u.adaptive()
         } else {
             u
@@ -210,6 +211,7 @@ impl Headless {
         cfg: &DrawConfig,
         capture: Capture,
     ) -> Result<u32, RenderError> {
+        scene.adaptive_frames = self.adaptive;
         scene.prepare(
             &self.ctx,
             &self.pool,

@@ -19,6 +19,7 @@ pub mod pattern;
 mod pipelines;
 mod scene;
 mod scene_levels;
+pub mod static_adaptive;
 pub mod static_vbo;
 pub mod tess;
 mod xfb_capture;

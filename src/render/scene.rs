@@ -26,6 +26,12 @@ pub struct Scene {
     pub(super) max_chunk: Option<u32>,
     pub patterns: PatternSet,
     pub static_vbo: Option<super::static_vbo::StaticVbo>,
+    /// The next [`Scene::prepare`]s are for adaptive frames (`Headless::adaptive`): the static
+    /// driver then refines at the levels of the last [`Scene::set_levels`]
+    /// (src/render/static_adaptive.rs).
+    pub adaptive_frames: bool,
+    /// Those levels, for the static driver.
+    pub(super) static_levels: Option<super::static_adaptive::StaticLevels>,
     /// The `loop` surface's M1 faces, built by the first `prepare` that draws it.
     pub loop_: Option<LoopScene>,
     /// The coarse mesh's edges for the cage overlay, made when first drawn ([`Scene::cage`]).
@@ -113,6 +119,8 @@ impl Scene {
             max_chunk,
             patterns,
             static_vbo: None,
+            adaptive_frames: false,
+            static_levels: None,
             loop_: None,
             cage: None,
             records_stale: false,

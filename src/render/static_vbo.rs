@@ -84,6 +84,9 @@ pub struct StaticVbo {
     /// What was refined (surface, displacement, parameters, level).
     pub cfg: DrawConfig,
     pub level: u32,
+    /// Refined adaptively (src/render/static_adaptive.rs): each element's index range and
+    /// levels, and what refining cost; `None`: every element at `level`.
+    pub adaptive: Option<super::static_adaptive::AdaptiveIndex>,
     pub vertices: Buffer,
     /// Each vertex's element and sample ([`ElementVertex`]), when the normal field is evaluated
     /// per fragment.
@@ -91,8 +94,8 @@ pub struct StaticVbo {
     pub indices: Buffer,
     pub index_count: u32,
     pub vertex_count: u32,
-    pattern_vertex_count: u32,
-    pattern_index_count: u32,
+    pub(super) pattern_vertex_count: u32,
+    pub(super) pattern_index_count: u32,
 }
 
 impl StaticVbo {
@@ -159,6 +162,7 @@ impl StaticVbo {
         Ok(Self {
             cfg: *cfg,
             level: pattern.level,
+            adaptive: None,
             vertices,
             elements,
             pattern_index_count: pattern.indices.len() as u32,
@@ -185,6 +189,10 @@ pub fn cmd_draw(
         cmd.bind_vertex_buffer(1, e);
     }
     cmd.bind_index_buffer_u32(&vbo.indices);
+    if let Some(a) = &vbo.adaptive {
+        super::static_adaptive::cmd_draw(cmd, r, mesh, vbo.level, a, range);
+        return;
+    }
     for c in mesh.chunks(range) {
         cmd.bind_descriptor_set(r.layout.raw, SET_MESH, c.set, &[0]);
         let draw = [vbo.level, c.base, vbo.pattern_vertex_count, 0];
@@ -273,7 +281,9 @@ impl DriverKind for StaticDriver {
         }
     }
 
-    /// Refine the mesh on the CPU unless the buffer already holds `cfg`'s surface at its level.
+    /// Refine the mesh on the CPU unless the buffer already holds `cfg`'s surface at its level;
+    /// for adaptive frames, at the levels of the last `Scene::set_levels`, again when they
+    /// change (src/render/static_adaptive.rs).
     fn prepare(
         &self,
         scene: &mut Scene,
@@ -281,8 +291,12 @@ impl DriverKind for StaticDriver {
         pool: &CommandPool,
         cfg: &DrawConfig,
     ) -> Result<(), RenderError> {
+        if scene.adaptive_frames {
+            return super::static_adaptive::prepare(scene, ctx, pool, cfg);
+        }
         let stale = scene.static_vbo.as_ref().is_none_or(|v| {
-            v.level != cfg.level
+            v.adaptive.is_some()
+                || v.level != cfg.level
                 || v.cfg.surface != cfg.surface
                 || v.cfg.displace != cfg.displace
                 || v.cfg.params != cfg.params
@@ -303,10 +317,23 @@ impl DriverKind for StaticDriver {
         Ok(())
     }
 
+    /// A power of two the largest level (the pattern driver's construction).
+    fn check_adaptive(
+        &self,
+        _ctx: &Context,
+        _scene: &Scene,
+        cfg: &DrawConfig,
+    ) -> Result<(), RenderError> {
+        super::static_adaptive::check(cfg)
+    }
+
     fn cmd_draw(&self, cmd: &Cmd<'_>, r: &Renderer, work: &FrameWork<'_>) {
-        let vbo = work
-            .static_vbo
-            .expect("static driver needs its vertex buffer");
+        let Some(vbo) = work.static_vbo else {
+            // An adaptive frame before any levels were chosen draws nothing, as the pattern
+            // driver's with an empty levels buffer.
+            assert!(work.adaptive, "static driver needs its vertex buffer");
+            return;
+        };
         cmd_draw(cmd, r, work.mesh, vbo, work.elements.clone());
     }
 }

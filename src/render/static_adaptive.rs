@@ -1,0 +1,358 @@
+//! The `static` driver drawn adaptively: the CPU baseline of adaptive refinement, what a user
+//! would do without refinement on the GPU. When the levels change (`Scene::set_levels`, from the
+//! level pass's CPU mirror `lod::frame::frame_levels`), every element is refined on the CPU at
+//! its drawn levels with the pattern driver's crack-free construction (`pattern::adaptive`: its
+//! inner level's lattice, boundary vertices snapped onto their edge's dyadic level, the same
+//! triangles), evaluated with the surfaces' mirrors and uploaded as one vertex and index buffer;
+//! the draws then read each element's index range. Triangles that snapping made degenerate are
+//! not stored. Vertices do not glide (`DrawConfig::geomorph` is the pattern driver's): gliding
+//! would re-upload every frame. docs/adaptivity.md, "The static baseline".
+
+use super::bindings::SET_MESH;
+use super::static_vbo::{ElementVertex, MeshInputs, StaticVbo, StaticVertex};
+use super::{DrawConfig, GpuMesh, RenderError, Renderer, Scene, PUSH_DRAW_OFFSET, PUSH_STAGES};
+use crate::gpu::{vk, Buffer, Cmd, CommandPool, Context};
+use crate::lod::levels::ElementLevels;
+use crate::pattern::adaptive::{bary, drawn_levels, snap, DrawnLevels};
+use crate::pattern::Pattern;
+use crate::surface::{eval_with, ElementRecord, Inputs};
+use std::sync::Arc;
+use std::time::Instant;
+
+/// A mesh refined adaptively on the CPU.
+#[derive(Clone, Debug, Default)]
+pub struct AdaptiveRefined {
+    pub vertices: Vec<StaticVertex>,
+    /// Each vertex's sample (`(w, u, v)` bits, element), when asked for.
+    pub samples: Vec<ElementVertex>,
+    /// Triangles, indices into `vertices`.
+    pub indices: Vec<u32>,
+    /// Element `t`'s triangles are `indices[first[t] .. first[t + 1]]` (`first` has one entry
+    /// more than there are elements).
+    pub first: Vec<u32>,
+    /// Each element's drawn levels (`None`: culled, nothing drawn).
+    pub drawn: Vec<Option<DrawnLevels>>,
+}
+
+/// The drawn levels of `levels` at largest level `max` (a power of two), as the pattern driver
+/// draws them.
+pub fn drawn(levels: &[ElementLevels], max: u32) -> Vec<Option<DrawnLevels>> {
+    levels.iter().map(|l| drawn_levels(l, max)).collect()
+}
+
+/// Every element of `records` refined on the CPU at its drawn levels `drawn` (from [`drawn`]) at
+/// largest level `cfg.level` (a power of two), with `cfg`'s surface, displacement and
+/// parameters: element `t`'s vertices are the pattern driver's adaptive vertices
+/// (`pattern::adaptive::adaptive_element`, snapped weights included) in the inner level's
+/// pattern order, its triangles that pattern's, less those snapping made degenerate.
+/// `samples`: also each vertex's sample, for the per-fragment normal field.
+pub fn refine_adaptive(
+    cfg: &DrawConfig,
+    records: &[ElementRecord],
+    drawn: Vec<Option<DrawnLevels>>,
+    inputs: Option<&MeshInputs>,
+    samples: bool,
+) -> AdaptiveRefined {
+    let f = cfg.level;
+    assert!(f.is_power_of_two(), "adaptive levels are dyadic");
+    let mut out = AdaptiveRefined {
+        first: Vec::with_capacity(records.len() + 1),
+        ..AdaptiveRefined::default()
+    };
+    // The uniform patterns by level (a power of two up to f).
+    let mut patterns: Vec<Option<Pattern>> = vec![None; f.trailing_zeros() as usize + 1];
+    let mut points = Vec::new();
+    for (t, rec) in records.iter().enumerate() {
+        out.first.push(out.indices.len() as u32);
+        let Some(d) = drawn[t] else { continue };
+        let inputs = inputs.map_or_else(Inputs::default, |h| h.element(t));
+        let pattern = patterns[d.inner.trailing_zeros() as usize]
+            .get_or_insert_with(|| Pattern::uniform(d.inner));
+        let s = f / d.inner;
+        let base = out.vertices.len() as u32;
+        points.clear();
+        for (i, j) in pattern.lattice() {
+            let p = snap(i * s, j * s, &d, f);
+            let b = bary(p.0, p.1, f);
+            let sp = eval_with(cfg.surface, cfg.displace, &cfg.params, rec, b, &inputs);
+            out.vertices.push([
+                sp.position.x,
+                sp.position.y,
+                sp.position.z,
+                sp.normal.x,
+                sp.normal.y,
+                sp.normal.z,
+            ]);
+            if samples {
+                out.samples
+                    .push([b[0].to_bits(), b[1].to_bits(), b[2].to_bits(), t as u32]);
+            }
+            points.push(p);
+        }
+        for tri in pattern.indices.chunks_exact(3) {
+            let [a, b, c] = [tri[0], tri[1], tri[2]].map(|k| points[k as usize]);
+            if a != b && b != c && c != a {
+                out.indices.extend(tri.iter().map(|&k| base + k));
+            }
+        }
+    }
+    out.first.push(out.indices.len() as u32);
+    out.drawn = drawn;
+    out
+}
+
+/// What an adaptive static buffer draws and what making it cost.
+#[derive(Clone, Debug)]
+pub struct AdaptiveIndex {
+    /// Element `t` draws indices `first[t] .. first[t + 1]`.
+    pub first: Vec<u32>,
+    pub drawn: Vec<Option<DrawnLevels>>,
+    /// Milliseconds refining on the CPU and uploading (wall time).
+    pub cpu_ms: f64,
+    /// Bytes uploaded: vertices, samples and indices.
+    pub upload_bytes: u64,
+}
+
+/// The levels `Scene::set_levels` chose for a static configuration, and for what.
+#[derive(Clone, Debug)]
+pub(super) struct StaticLevels {
+    cfg: DrawConfig,
+    generation: u64,
+    levels: Vec<ElementLevels>,
+}
+
+impl StaticLevels {
+    pub(super) fn new(cfg: &DrawConfig, generation: u64, levels: Vec<ElementLevels>) -> Self {
+        Self {
+            cfg: key(cfg),
+            generation,
+            levels,
+        }
+    }
+}
+
+/// What refined vertices depend on: the configuration less its driver and gliding.
+fn key(cfg: &DrawConfig) -> DrawConfig {
+    DrawConfig {
+        geomorph: false,
+        ..*cfg
+    }
+}
+
+/// The levels chosen for `cfg` in `scene`, if any.
+fn levels_for<'a>(scene: &'a Scene, cfg: &DrawConfig) -> Option<&'a [ElementLevels]> {
+    (scene.static_levels.as_ref())
+        .filter(|l| l.cfg == key(cfg) && l.generation == scene.generation)
+        .map(|l| &l.levels[..])
+}
+
+impl Scene {
+    /// The levels the last [`Scene::set_levels`] chose for the static configuration `cfg`
+    /// (the level pass's CPU mirror), which its adaptive frames draw; `None` before.
+    pub fn static_levels(&self, cfg: &DrawConfig) -> Option<&[ElementLevels]> {
+        levels_for(self, cfg)
+    }
+}
+
+/// For an adaptive frame of `cfg`: refine and upload where the drawn levels changed (nothing
+/// before levels are chosen).
+pub(super) fn prepare(
+    scene: &mut Scene,
+    ctx: &Arc<Context>,
+    pool: &CommandPool,
+    cfg: &DrawConfig,
+) -> Result<(), RenderError> {
+    if !cfg.level.is_power_of_two() {
+        scene.static_vbo = None;
+        return Ok(());
+    }
+    let Some(levels) = levels_for(scene, cfg) else {
+        scene.static_vbo = None;
+        return Ok(());
+    };
+    let want = drawn(levels, cfg.level);
+    let current = scene
+        .static_vbo
+        .as_ref()
+        .is_some_and(|v| v.cfg == *cfg && v.adaptive.as_ref().is_some_and(|a| a.drawn == want));
+    if current {
+        return Ok(());
+    }
+    scene.static_vbo = None;
+    let start = Instant::now();
+    let refined = refine_adaptive(
+        cfg,
+        scene.records(cfg.surface),
+        want,
+        Some(&scene.inputs(cfg.level)),
+        cfg.fragment_normal_field(),
+    );
+    scene.static_vbo = Some(upload(ctx, pool, cfg, refined, start)?);
+    Ok(())
+}
+
+/// One buffer per array (a one-entry placeholder where nothing is drawn: Vulkan has no empty
+/// buffer).
+fn upload(
+    ctx: &Arc<Context>,
+    pool: &CommandPool,
+    cfg: &DrawConfig,
+    mut r: AdaptiveRefined,
+    start: Instant,
+) -> Result<StaticVbo, RenderError> {
+    let bytes = |v: usize, size: usize| (v * size) as u64;
+    let upload_bytes = bytes(r.vertices.len(), std::mem::size_of::<StaticVertex>())
+        + bytes(r.samples.len(), std::mem::size_of::<ElementVertex>())
+        + bytes(r.indices.len(), 4);
+    let max = ctx.info.max_memory_allocation_size;
+    if upload_bytes > max {
+        return Err(RenderError::OverLimit {
+            what: format!(
+                "the static driver's adaptively refined mesh (largest level {})",
+                cfg.level
+            ),
+            needed: upload_bytes,
+            unit: "bytes",
+            limit: "maxMemoryAllocationSize",
+            max,
+            remedy: "use a larger pixel error, a lower --max-level or the pattern driver".into(),
+        });
+    }
+    let (vertex_count, index_count) = (r.vertices.len() as u32, r.indices.len() as u32);
+    if r.vertices.is_empty() {
+        r.vertices.push([0.0; 6]);
+        r.indices.push(0);
+        if cfg.fragment_normal_field() {
+            r.samples.push([0; 4]);
+        }
+    }
+    let usage = vk::BufferUsageFlags::VERTEX_BUFFER;
+    let vertices = Buffer::new_with_data(ctx, pool, usage, &r.vertices, "static vertices")?;
+    let elements = if cfg.fragment_normal_field() {
+        let name = "static vertex samples";
+        Some(Buffer::new_with_data(ctx, pool, usage, &r.samples, name)?)
+    } else {
+        None
+    };
+    let usage = vk::BufferUsageFlags::INDEX_BUFFER;
+    let indices = Buffer::new_with_data(ctx, pool, usage, &r.indices, "static triangles")?;
+    Ok(StaticVbo {
+        cfg: *cfg,
+        level: cfg.level,
+        adaptive: Some(AdaptiveIndex {
+            first: r.first,
+            drawn: r.drawn,
+            cpu_ms: start.elapsed().as_secs_f64() * 1e3,
+            upload_bytes,
+        }),
+        vertices,
+        elements,
+        indices,
+        index_count,
+        vertex_count,
+        pattern_vertex_count: 0,
+        pattern_index_count: 0,
+    })
+}
+
+/// Whether `cfg` can be drawn adaptively: a power-of-two largest level (its elements are drawn
+/// once `Scene::set_levels` chose their levels; before, nothing).
+pub(super) fn check(cfg: &DrawConfig) -> Result<(), RenderError> {
+    if !cfg.level.is_power_of_two() {
+        let lower = 1u32 << cfg.level.max(1).ilog2();
+        return Err(RenderError::Incompatible(format!(
+            "adaptive drawing with the static driver refines with the pattern driver's 1-to-4 splits: the largest level must be a power of two, not {}: use {lower} or {}",
+            cfg.level,
+            lower * 2
+        )));
+    }
+    Ok(())
+}
+
+/// The draws of the elements `range`: one indexed draw per chunk of records over its elements'
+/// index ranges.
+pub(super) fn cmd_draw(
+    cmd: &Cmd<'_>,
+    r: &Renderer,
+    mesh: &GpuMesh,
+    level: u32,
+    a: &AdaptiveIndex,
+    range: std::ops::Range<u32>,
+) {
+    for c in mesh.chunks(range) {
+        let (start, end) = (
+            a.first[c.first as usize],
+            a.first[(c.first + c.count) as usize],
+        );
+        if start == end {
+            continue;
+        }
+        cmd.bind_descriptor_set(r.layout.raw, SET_MESH, c.set, &[0]);
+        let draw = [level, c.base, 0, 0];
+        cmd.push_constants(
+            r.layout.raw,
+            PUSH_STAGES,
+            PUSH_DRAW_OFFSET,
+            bytemuck::cast_slice(&draw),
+        );
+        cmd.draw_indexed(end - start, 1, start, 0, 0);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::pattern::adaptive::adaptive_element;
+    use crate::render::Driver;
+    use crate::surface::{Displace, Surface};
+
+    /// One element at mixed levels: the vertices are the adaptive mirror's weights, evaluated,
+    /// in its order, and the degenerate triangles are gone.
+    #[test]
+    fn vertices_are_the_adaptive_mirrors() {
+        let mesh = crate::mesh::default_mesh();
+        let records = crate::surface::build_records(
+            crate::surface::RecordKind::Corners,
+            &mesh,
+            crate::surface::Seams::default(),
+        );
+        let cfg = DrawConfig::new(Driver::Static, 8).with_surface(Surface::Pn, Displace::None);
+        let levels = ElementLevels {
+            edges: [1.0, 3.0, 8.0],
+            inner: 8.0,
+        };
+        let all = vec![levels; 2];
+        let mut culled = all.clone();
+        culled[1] = ElementLevels::CULLED;
+        let r = refine_adaptive(&cfg, &records[..2], drawn(&culled, 8), None, true);
+        let e = adaptive_element(&levels, 8).unwrap();
+        assert_eq!(r.vertices.len(), e.bary.len());
+        assert_eq!(
+            r.first,
+            vec![0, r.indices.len() as u32, r.indices.len() as u32]
+        );
+        for (k, b) in e.bary.iter().enumerate() {
+            let p = eval_with(
+                cfg.surface,
+                cfg.displace,
+                &cfg.params,
+                &records[0],
+                *b,
+                &Inputs::default(),
+            );
+            assert_eq!(r.vertices[k][..3], p.position.to_array());
+            assert_eq!(r.samples[k][..3], b.map(f32::to_bits));
+        }
+        // Edge 0 at level 1 merges 7 of its 9 boundary vertices into the corners: the
+        // triangles between them and the first row become degenerate.
+        let all_tris = Pattern::uniform(8).indices.len();
+        assert!(
+            r.indices.len() < all_tris,
+            "{} of {all_tris}",
+            r.indices.len()
+        );
+        let both = refine_adaptive(&cfg, &records[..2], drawn(&all, 8), None, false);
+        assert_eq!(both.indices.len(), 2 * r.indices.len());
+        assert!(both.samples.is_empty());
+    }
+}

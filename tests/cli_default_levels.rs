@@ -1,0 +1,170 @@
+//! `render` and the headless `view` draw adaptively by default (1 px, the driver's largest
+//! level), with every driver (static: refined on the CPU); `--level` draws uniformly. Run as a
+//! user would, with the validation layer on.
+
+mod common;
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+/// The binary, validated, without a display.
+fn meshrefine(args: &[&str]) -> Output {
+    let _guard = common::gpu_lock();
+    Command::new(env!("CARGO_BIN_EXE_meshrefine"))
+        .env("MESHREFINE_VALIDATE", "1")
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .args(args)
+        .output()
+        .expect("run meshrefine")
+}
+
+fn tmp(name: &str) -> String {
+    let d = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli-default-levels");
+    std::fs::create_dir_all(&d).unwrap();
+    d.join(name).to_str().unwrap().to_string()
+}
+
+/// Runs `args`, expects success without a validation message; returns (stdout, stderr).
+fn ok(args: &[&str]) -> (String, String) {
+    let out = meshrefine(args);
+    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert!(out.status.success(), "{args:?} failed: {stderr}");
+    assert!(!stderr.contains("validation"), "{args:?}: {stderr}");
+    (String::from_utf8_lossy(&out.stdout).into_owned(), stderr)
+}
+
+const ADAPTIVE_LINE: &str = "adaptive at 1 px, max level 64: levels (level:elements) ";
+
+#[test]
+fn render_and_headless_view_are_adaptive_unless_level_is_given() {
+    let small = ["--width", "96", "--height", "64"];
+    let png = tmp("default.png");
+    let mut args = vec!["render", "-o", &png];
+    args.extend(small);
+    let (stdout, stderr) = ok(&args);
+    assert!(stdout.contains(ADAPTIVE_LINE), "{stdout}");
+    assert!(!stderr.contains("note:"), "{stderr}");
+    // The tessellator's levels are integers up to its limit (lavapipe: 64).
+    let mut tess = args.clone();
+    tess.extend(["--driver", "tess"]);
+    let (stdout, _) = ok(&tess);
+    assert!(stdout.contains(ADAPTIVE_LINE), "{stdout}");
+    // --level asks for one level everywhere, and the camera options are then ignored.
+    let mut uniform = args.clone();
+    uniform.extend(["--level", "4", "--fov", "30"]);
+    let (stdout, stderr) = ok(&uniform);
+    assert!(!stdout.contains("adaptive at"), "{stdout}");
+    assert!(
+        stderr.contains("--fov applies only with --pixel-error"),
+        "{stderr}"
+    );
+    // The camera options apply by default, so they are checked then too.
+    let mut bad = args.clone();
+    bad.extend(["--fov", "0"]);
+    let out = meshrefine(&bad);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("error: --fov 0"), "{stderr}");
+
+    // The headless view as the window: adaptive unless --level or --lod.
+    let view_png = tmp("view.png");
+    let (stdout, _) = ok(&["view", "--headless-output", &view_png]);
+    assert!(stdout.contains(ADAPTIVE_LINE), "{stdout}");
+    assert!(stdout.contains("rendered the scene headlessly"), "{stdout}");
+    for uniform in ["--level", "--lod"] {
+        let mut args = vec!["view", "--headless-output", &view_png, uniform];
+        if uniform == "--level" {
+            args.push("4");
+        }
+        let (stdout, _) = ok(&args);
+        assert!(!stdout.contains("adaptive at"), "{args:?}: {stdout}");
+    }
+}
+
+/// The static driver draws adaptively too, by default and with `--pixel-error`, refining on the
+/// CPU; `bench` measures its CPU time and uploaded bytes on its adaptive row.
+#[test]
+fn the_static_driver_draws_adaptively_on_the_cpu() {
+    let png = tmp("static.png");
+    let small = ["--width", "96", "--height", "64", "--driver", "static"];
+    let mut args = vec!["render", "-o", &png];
+    args.extend(small);
+    let (stdout, stderr) = ok(&args);
+    assert!(stdout.contains(ADAPTIVE_LINE), "{stdout}");
+    assert!(!stderr.contains("note:"), "{stderr}");
+    args.extend([
+        "--pixel-error",
+        "2",
+        "--eye",
+        "0.3,0.2,0.6",
+        "--look-at",
+        "0,0.1,0.3",
+    ]);
+    let (stdout, _) = ok(&args);
+    assert!(
+        stdout.contains("adaptive at 2 px, max level 64"),
+        "{stdout}"
+    );
+    // Its largest level is a power of two, as the pattern driver's.
+    args.extend(["--max-level", "12"]);
+    let out = meshrefine(&args);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("--max-level 12 is not a power of two: the static driver"),
+        "{stderr}"
+    );
+
+    let prefix = tmp("bench-static");
+    #[rustfmt::skip]
+    ok(&[
+        "bench", "--surfaces", "pn", "--drivers", "static", "--pixel-error", "1",
+        "--max-level", "16", "--levels", "2", "--no-bound-levels", "--frames", "1",
+        "--width", "96", "--height", "64", "--out", &prefix,
+    ]);
+    let csv = std::fs::read_to_string(format!("{prefix}.csv")).unwrap();
+    let mut lines = csv.lines();
+    let keys = csv_fields(lines.next().unwrap());
+    let rows: Vec<Vec<String>> = lines.map(csv_fields).collect();
+    let get = |r: &Vec<String>, key: &str| r[keys.iter().position(|k| k == key).unwrap()].clone();
+    assert_eq!(rows.len(), 2, "{csv}");
+    let (adaptive, uniform) = (&rows[0], &rows[1]);
+    assert_eq!(get(adaptive, "adaptive"), "true", "{csv}");
+    assert_eq!(get(adaptive, "variant"), "static");
+    assert_eq!(get(adaptive, "level_pass_on"), "cpu");
+    assert!(
+        get(adaptive, "cpu_ms").parse::<f64>().unwrap() > 0.0,
+        "{csv}"
+    );
+    let bytes: u64 = get(adaptive, "upload_bytes").parse().unwrap();
+    // Every stored vertex and index was uploaded: position and normal (24 bytes) and, since
+    // pn's normal field is evaluated per fragment, the vertex's sample (16 bytes); 4 an index.
+    let stored = |k| get(adaptive, k).parse::<u64>().unwrap();
+    assert_eq!(
+        bytes,
+        stored("stored_vertices") * 40 + stored("stored_indices") * 4
+    );
+    assert_eq!(get(uniform, "adaptive"), "false");
+    assert_eq!(get(uniform, "cpu_ms"), "");
+    assert_eq!(get(uniform, "upload_bytes"), "");
+}
+
+/// The fields of one CSV line (RFC 4180 quoting).
+fn csv_fields(line: &str) -> Vec<String> {
+    let (mut fields, mut field, mut quoted) = (Vec::new(), String::new(), false);
+    let mut chars = line.chars().peekable();
+    while let Some(c) = chars.next() {
+        match (c, quoted) {
+            ('"', true) if chars.peek() == Some(&'"') => {
+                chars.next();
+                field.push('"');
+            }
+            ('"', _) => quoted = !quoted,
+            (',', false) => fields.push(std::mem::take(&mut field)),
+            (c, _) => field.push(c),
+        }
+    }
+    fields.push(field);
+    fields
+}
