@@ -20,7 +20,7 @@ use glam::{Vec3, Vec4};
 use meshrefine::lod::levels::ElementLevels;
 use meshrefine::lod::View;
 use meshrefine::pattern::adaptive::{self, Hierarchy};
-use meshrefine::render::tess::{outer_levels, tess_weights_levels};
+use meshrefine::render::tess::{morph, outer_levels, tess_weights_levels};
 use meshrefine::render::{Camera, Capture, DrawConfig, Driver, Headless, LevelView, Scene, Submit};
 use meshrefine::surface::{eval_with, Displace, Surface, SurfaceParams};
 use std::collections::HashMap;
@@ -72,12 +72,18 @@ fn drawn_triangles(
         let mut at: HashMap<[u32; 3], Vec<(usize, [f32; 3])>> = HashMap::new();
         for v in cap.vertices.iter().filter(|v| v.position[3] == 1.0) {
             let t = v.id[0] as usize;
-            let (outer, inner) = outer_levels(&levels[t], MAX).expect("a drawn element");
             let tc = [v.coord[0], v.coord[1], v.coord[2]];
             let key = [0, 1, 2].map(|k| v.position[k].to_bits());
-            at.entry(key)
-                .or_default()
-                .push((t, tess_weights_levels(tc, outer, inner)));
+            // A geomorphing vertex stands for its blended parameter (`morph::geomorph_weights`).
+            let b = if cfg.glides() {
+                let (outer, inner) = morph::morph_levels(&levels[t], MAX).expect("drawn");
+                let w = tess_weights_levels(tc, outer, inner);
+                morph::geomorph_weights(tc, w, outer, inner, &levels[t])
+            } else {
+                let (outer, inner) = outer_levels(&levels[t], MAX).expect("a drawn element");
+                tess_weights_levels(tc, outer, inner)
+            };
+            at.entry(key).or_default().push((t, b));
         }
         let tris = h.capture_triangles(scene, cfg, camera).unwrap();
         assert!(!tris.is_empty());
@@ -344,9 +350,10 @@ fn geomorphing_meshes_meet_the_pixel_error() {
     with_gpu(64, 36, |h| {
         let mut scene = h.scene(model("spot_control_tri.obj"), MAX).unwrap();
         let (_, r) = scene.bounding_sphere();
-        let driver = Driver::Pattern(Submit::Instanced);
-        let mut cfg = DrawConfig::new(driver, MAX).with_surface(Surface::Pn, Displace::None);
-        cfg.params = SurfaceParams::for_radius(r);
-        check_geomorph(h, &mut scene, &cfg);
+        for driver in [Driver::Pattern(Submit::Instanced), Driver::Tess] {
+            let mut cfg = DrawConfig::new(driver, MAX).with_surface(Surface::Pn, Displace::None);
+            cfg.params = SurfaceParams::for_radius(r);
+            check_geomorph(h, &mut scene, &cfg);
+        }
     });
 }

@@ -7,7 +7,7 @@
 //! CPU mirror (`lod::frame::frame_levels`), for the printed line, export's header and the
 //! window's panel.
 
-use super::{Camera, DrawConfig, Driver, LevelPass, RenderError, Scene};
+use super::{Camera, DrawConfig, LevelPass, RenderError, Scene};
 use crate::gpu::vk;
 use crate::lod::frame::{frame_levels, lod_records, LevelStats, LodRecord, LodView};
 use crate::lod::levels::ElementLevels;
@@ -64,7 +64,7 @@ impl Scene {
     /// instead (the same levels; [`Scene::level_pass`] is then `None`) and a warning says so.
     pub fn set_levels(&mut self, cfg: &DrawConfig, view: &LevelView) -> LevelReport {
         let max = cfg.level;
-        let dyadic = matches!(cfg.driver, Driver::Pattern(_));
+        let dyadic = cfg.dyadic_levels();
         let eye = view.camera.eye();
         let metric = View::new(eye, view.camera.fov_y, view.height, view.pixel_error, max);
         let aspect = view.width as f32 / view.height.max(1) as f32;
@@ -106,7 +106,7 @@ impl Scene {
         let same = surface == cfg.surface
             && key.levels == self.elements(cfg.surface).levels.raw
             && view.max_level == cfg.level.max(1)
-            && view.dyadic() == matches!(cfg.driver, Driver::Pattern(_));
+            && view.dyadic() == cfg.dyadic_levels();
         same.then_some((l.pass.as_ref()?, view))
     }
 
@@ -114,7 +114,7 @@ impl Scene {
     /// GPU's, read back: only once the frame is done), tallied as the driver draws them.
     pub fn drawn_levels(&self, cfg: &DrawConfig) -> (Vec<ElementLevels>, LevelReport) {
         let levels: Vec<ElementLevels> = self.elements(cfg.surface).levels.read_pod();
-        let dyadic = matches!(cfg.driver, Driver::Pattern(_));
+        let dyadic = cfg.dyadic_levels();
         let count = self.elements(cfg.surface).element_count as usize;
         let levels = levels[..count].to_vec();
         let report = level_report(&levels, dyadic, cfg.level);
