@@ -110,14 +110,18 @@ impl DrawConfig {
     }
 
     /// Whether adaptive frames glide their vertices: [`DrawConfig::geomorph`], except for the
-    /// surfaces whose elements are Loop's M1 faces, whose evaluation with the morph (three
-    /// table sums a vertex) takes lavapipe's shader compiler minutes, and for the tess driver
-    /// under a largest level that is not a power of two (its morph needs dyadic levels); they
-    /// draw the levels without gliding.
+    /// pattern driver on the surfaces whose elements are Loop's M1 faces, whose vertex stage
+    /// with the morph (eleven surface evaluations inlined, each a table sum for loop) takes
+    /// lavapipe's shader compiler minutes (the tess driver's evaluation stage has five and
+    /// compiles in about a second more than without), and for the tess driver under a largest
+    /// level that
+    /// is not a power of two (its morph needs dyadic levels); they draw the levels without
+    /// gliding.
     pub fn glides(&self) -> bool {
-        self.geomorph
-            && !self.surface.uses_loop_faces()
-            && (self.driver != Driver::Tess || self.level.is_power_of_two())
+        match self.driver {
+            Driver::Tess => self.geomorph && self.level.is_power_of_two(),
+            _ => self.geomorph && !self.surface.uses_loop_faces(),
+        }
     }
 
     /// Whether adaptive levels are rounded to powers of two: the pattern driver's
