@@ -71,8 +71,9 @@ bool tess_inner_parents(vec3 tc, uvec3 outer, uint n, out vec3 qa, out int a_edg
             d = ivec3(-2);
             d[corner] += 6;
         } else if (j % 2 == 0) {
+            // A parallelogram's centre: the diagonal toward the nearer ring corner.
             d = ivec3(-2);
-            d[ea] += 6;
+            d[2 * j < int(n) - 2 * r ? ea : eb] += 6;
         } else {
             d = ivec3(-1);
             d[c] += 3;

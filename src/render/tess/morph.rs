@@ -18,8 +18,10 @@
 //!   at `n` is either on an even ring at an odd position (parents: its two ring neighbours) or
 //!   on an odd ring, where it is the midpoint of a side or the centre of a parallelogram between
 //!   level `n/2`'s rings `(r − 1)/2` and `(r + 1)/2` (parents: a vertex of each, found in
-//!   integers: `K ± (6 e_a − 2)` toward ring corner `a`, at a corner or an even position,
-//!   `K ± (3 e_c − 1)` away from the side opposite corner `c` at an odd position). It morphs with
+//!   integers: `K ± (6 e_a − 2)` toward ring corner `a` at a corner, and at an even position
+//!   toward the nearer of the side's corners `a` and `b`, the diagonal the tessellator draws
+//!   (it mirrors its diagonals about the middle of each side); `K ± (3 e_c − 1)` away from the
+//!   side opposite corner `c` at an odd position). It morphs with
 //!   the element's largest continuous level. A parent on the outer ring (ring 1's vertices) is
 //!   taken where the edge draws it: snapped onto the edge's samples and morphing with the edge.
 //!   At level 2 the centre's parents are corner 0 and the midpoint of the opposite edge (level
@@ -150,7 +152,9 @@ pub fn classify(
         } else if let Some(q) = corner {
             unit(q, 6, -2)
         } else if j % 2 == 0 {
-            unit(ea, 6, -2)
+            // A parallelogram's centre: the diagonal the tessellator draws runs toward the
+            // nearer ring corner (it mirrors its diagonals about the middle of each side).
+            unit(if 2 * j < n as i32 - 2 * r { ea } else { eb }, 6, -2)
         } else {
             unit(c, 3, -1)
         };
