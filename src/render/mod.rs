@@ -110,18 +110,10 @@ impl DrawConfig {
     }
 
     /// Whether adaptive frames glide their vertices: [`DrawConfig::geomorph`], except for the
-    /// pattern driver on the surfaces whose elements are Loop's M1 faces, whose vertex stage
-    /// with the morph (eleven surface evaluations inlined, each a table sum for loop) takes
-    /// lavapipe's shader compiler minutes (the tess driver's evaluation stage has five and
-    /// compiles in about a second more than without), and for the tess driver under a largest
-    /// level that
-    /// is not a power of two (its morph needs dyadic levels); they draw the levels without
-    /// gliding.
+    /// tess driver under a largest level that is not a power of two (its morph needs dyadic
+    /// levels), which then draws its integer levels without gliding.
     pub fn glides(&self) -> bool {
-        match self.driver {
-            Driver::Tess => self.geomorph && self.level.is_power_of_two(),
-            _ => self.geomorph && !self.surface.uses_loop_faces(),
-        }
+        self.geomorph && (self.driver != Driver::Tess || self.level.is_power_of_two())
     }
 
     /// Whether adaptive levels are rounded to powers of two: the pattern driver's
