@@ -17,9 +17,10 @@ mod common;
 
 use common::{model, with_gpu};
 use glam::{Vec3, Vec4};
+use meshrefine::lod::levels::ElementLevels;
 use meshrefine::lod::View;
-use meshrefine::pattern::adaptive::Hierarchy;
-use meshrefine::render::tess::{outer_levels, tess_weights_levels};
+use meshrefine::pattern::adaptive::{self, Hierarchy};
+use meshrefine::render::tess::{morph, outer_levels, tess_weights_levels};
 use meshrefine::render::{Camera, Capture, DrawConfig, Driver, Headless, LevelView, Scene, Submit};
 use meshrefine::surface::{eval_with, Displace, Surface, SurfaceParams};
 use std::collections::HashMap;
@@ -29,18 +30,25 @@ const SIZE: (u32, u32) = (1920, 1080);
 
 /// A camera close to Spot, looking past part of it (src/lod/tests/view.rs `close_camera`).
 fn close_camera(scene: &Scene) -> Camera {
+    camera_at(scene, 1.6)
+}
+
+/// The close camera's direction at `dist` bounding radii from the centre.
+fn camera_at(scene: &Scene, dist: f32) -> Camera {
     let (c, r) = scene.bounding_sphere();
-    let eye = c + Vec3::new(0.4, 0.25, 1.0).normalize() * (1.6 * r);
+    let eye = c + Vec3::new(0.4, 0.25, 1.0).normalize() * (dist * r);
     let target = c + Vec3::new(0.7 * r, 0.2 * r, 0.0);
     Camera::looking(eye, target, 50f32.to_radians(), r).unwrap()
 }
 
 /// What the check found: elements checked, elements skipped as capped, the worst sample's
-/// metric pixels.
+/// metric pixels, and the checked elements drawn mid-morph (an edge's or the inner level's
+/// morph factor in `[0.05, 0.95]`; counted whether or not the draw geomorphs).
 struct Found {
     checked: usize,
     capped: usize,
     worst: f32,
+    morphing: usize,
 }
 
 /// A drawn triangle: its element, its corners' barycentric coordinates and captured positions.
@@ -64,12 +72,18 @@ fn drawn_triangles(
         let mut at: HashMap<[u32; 3], Vec<(usize, [f32; 3])>> = HashMap::new();
         for v in cap.vertices.iter().filter(|v| v.position[3] == 1.0) {
             let t = v.id[0] as usize;
-            let (outer, inner) = outer_levels(&levels[t], MAX).expect("a drawn element");
             let tc = [v.coord[0], v.coord[1], v.coord[2]];
             let key = [0, 1, 2].map(|k| v.position[k].to_bits());
-            at.entry(key)
-                .or_default()
-                .push((t, tess_weights_levels(tc, outer, inner)));
+            // A geomorphing vertex stands for its blended parameter (`morph::geomorph_weights`).
+            let b = if cfg.glides() {
+                let (outer, inner) = morph::morph_levels(&levels[t], MAX).expect("drawn");
+                let w = tess_weights_levels(tc, outer, inner);
+                morph::geomorph_weights(tc, w, outer, inner, &levels[t])
+            } else {
+                let (outer, inner) = outer_levels(&levels[t], MAX).expect("a drawn element");
+                tess_weights_levels(tc, outer, inner)
+            };
+            at.entry(key).or_default().push((t, b));
         }
         let tris = h.capture_triangles(scene, cfg, camera).unwrap();
         assert!(!tris.is_empty());
@@ -92,6 +106,14 @@ fn drawn_triangles(
         return out;
     }
     let pv = meshrefine::pattern::vertex_count(MAX) as usize;
+    // A geomorphing vertex stands for its blended parameter (`adaptive::geomorph_weights`).
+    let mut lattice = vec![(0, 0); pv];
+    for j in 0..=MAX {
+        for i in 0..=MAX - j {
+            lattice[meshrefine::pattern::lattice_index(MAX, i, j) as usize] = (i, j);
+        }
+    }
+    let (levels, _) = scene.drawn_levels(cfg);
     for (t, slots) in cap.vertices.chunks(pv).enumerate() {
         let Some(inner) = slots.iter().find(|v| v.position[3] == 1.0).map(|v| v.id[2]) else {
             continue; // culled
@@ -102,9 +124,15 @@ fn drawn_triangles(
                 v.iter().all(|v| v.position[3] == 1.0),
                 "element {t}: corner not written"
             );
+            let d = adaptive::drawn_levels(&levels[t], MAX).expect("a drawn element");
             out.push((
                 t,
-                v.map(|v| [v.coord[0], v.coord[1], v.coord[2]]),
+                v.map(|v| match cfg.glides() {
+                    true => {
+                        adaptive::geomorph_weights(&levels[t], &d, MAX, lattice[v.id[1] as usize])
+                    }
+                    false => [v.coord[0], v.coord[1], v.coord[2]],
+                }),
                 v.map(|v| Vec3::from_slice(&v.position[..3])),
             ));
         }
@@ -120,8 +148,21 @@ fn draw_and_measure(
     chosen_px: f32,
     checked_px: f32,
 ) -> Found {
-    h.prepared_elements(scene, cfg, Capture::Vertices).unwrap();
     let camera = close_camera(scene);
+    draw_and_measure_at(h, scene, cfg, &camera, chosen_px, checked_px)
+}
+
+/// [`draw_and_measure`] from `camera`.
+fn draw_and_measure_at(
+    h: &mut Headless,
+    scene: &mut Scene,
+    cfg: &DrawConfig,
+    camera: &Camera,
+    chosen_px: f32,
+    checked_px: f32,
+) -> Found {
+    h.prepared_elements(scene, cfg, Capture::Vertices).unwrap();
+    let camera = *camera;
     let (width, height) = SIZE;
     scene.set_levels(
         cfg,
@@ -151,6 +192,7 @@ fn draw_and_measure(
         checked: 0,
         capped: 0,
         worst: 0.0,
+        morphing: 0,
     };
     let mut seen = vec![false; records.len()];
     for (t, b, p) in drawn {
@@ -159,7 +201,10 @@ fn draw_and_measure(
             found.capped += !std::mem::replace(&mut seen[t], true) as usize;
             continue;
         }
-        found.checked += !std::mem::replace(&mut seen[t], true) as usize;
+        if !std::mem::replace(&mut seen[t], true) {
+            found.checked += 1;
+            found.morphing += mid_morph(&l, cfg) as usize;
+        }
         if p[0] == p[1] || p[1] == p[2] || p[2] == p[0] {
             continue; // welded by snapping: not drawn
         }
@@ -190,6 +235,57 @@ fn draw_and_measure(
         }
     }
     found
+}
+
+/// Whether an element is drawn mid-morph: one of its edges' or its inner level's morph factor
+/// (dyadic levels, `pattern::adaptive`) is in `[0.05, 0.95]`.
+fn mid_morph(l: &ElementLevels, cfg: &DrawConfig) -> bool {
+    let Some(d) = adaptive::drawn_levels(l, cfg.level) else {
+        return false;
+    };
+    let lambda = l.edges.iter().copied().fold(l.inner, f32::max);
+    let mid = |m: f32| (0.05..=0.95).contains(&m);
+    mid(adaptive::morph_factor(lambda, d.inner))
+        || (0..3).any(|k| mid(adaptive::morph_factor(l.edges[k], d.edges[k])))
+}
+
+/// Geomorphing on, from cameras at several distances (levels continuous, most elements
+/// between two powers of two): the meshes drawn mid-morph meet the pixel error; levels for
+/// 8 px do not meet 1 px.
+fn check_geomorph(h: &mut Headless, scene: &mut Scene, cfg: &DrawConfig) {
+    let tol = 1.0 + 1e-3;
+    let mut cfg = *cfg;
+    cfg.geomorph = true;
+    assert!(cfg.glides());
+    let (mut morphing, mut worst) = (0, 0.0f32);
+    for dist in [1.6, 1.75, 1.9, 2.1] {
+        let camera = camera_at(scene, dist);
+        let f = draw_and_measure_at(h, scene, &cfg, &camera, 1.0, 1.0);
+        eprintln!(
+            "{} geomorphing at {dist} radii, 1 px: {} elements checked ({} mid-morph), {} capped, worst {} px",
+            cfg.label(),
+            f.checked,
+            f.morphing,
+            f.capped,
+            f.worst
+        );
+        assert!(f.checked > 50, "only {} elements checked", f.checked);
+        assert!(f.worst <= tol, "geomorphing: worst {} px", f.worst);
+        morphing += f.morphing;
+        worst = worst.max(f.worst);
+    }
+    assert!(morphing > 400, "only {morphing} elements mid-morph");
+    assert!(worst > 0.05, "worst {worst} px");
+    let coarser = draw_and_measure(h, scene, &cfg, 8.0, 1.0);
+    eprintln!(
+        "{} geomorphing: levels for 8 px, checked at 1 px: worst {} px",
+        cfg.label(),
+        coarser.worst
+    );
+    assert!(
+        coarser.worst > 1.0,
+        "levels for 8 px met 1 px while geomorphing: the check sees nothing"
+    );
 }
 
 /// Levels for 1 px and the check at 1 px; finer levels pass, coarser ones fail.
@@ -243,6 +339,21 @@ fn drawn_adaptive_meshes_meet_the_pixel_error() {
             let mut cfg = DrawConfig::new(driver, MAX).with_surface(Surface::Pn, Displace::None);
             cfg.params = SurfaceParams::for_radius(r);
             check_driver(h, &mut scene, &cfg);
+        }
+    });
+}
+
+/// The bound while geomorphing (docs/adaptivity.md, "Geomorphing"): what the real pipelines
+/// draw with vertices mid-morph meets the pixel error.
+#[test]
+fn geomorphing_meshes_meet_the_pixel_error() {
+    with_gpu(64, 36, |h| {
+        let mut scene = h.scene(model("spot_control_tri.obj"), MAX).unwrap();
+        let (_, r) = scene.bounding_sphere();
+        for driver in [Driver::Pattern(Submit::Instanced), Driver::Tess] {
+            let mut cfg = DrawConfig::new(driver, MAX).with_surface(Surface::Pn, Displace::None);
+            cfg.params = SurfaceParams::for_radius(r);
+            check_geomorph(h, &mut scene, &cfg);
         }
     });
 }

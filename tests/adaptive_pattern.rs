@@ -440,10 +440,10 @@ fn watertight(
 /// the same bits from both sides).
 #[test]
 fn adaptive_geomorph_matches_the_mirror_and_is_watertight() {
-    // Loop's M1 faces do not glide (`DrawConfig::glides`).
     const COMBOS: &[(Surface, Displace)] = &[
         (Surface::Pn, Displace::None),
         (Surface::Phong, Displace::Sine),
+        (Surface::Loop, Displace::None),
     ];
     with_gpu(64, 64, |h| {
         let max = 16;

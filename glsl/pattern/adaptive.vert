@@ -32,51 +32,84 @@ vec3 point_at(ElementRecord rec, uint local, uvec2 ij, uint f) {
     return evaluate(rec, Sample(local, lattice_weights(ij, f))).position;
 }
 
-// A boundary point drawn: its snapped sample ij (on stored edge k, true position p), morphing
-// with the edge's continuous level when the edge's drawn level adds it.
-vec3 edge_drawn(ElementRecord rec, uint local, uvec2 ij, vec3 p, uint ne, float lambda, uint f) {
-    uint s = f / ne;
-    if (!morph_is_new(ij, s)) {
-        return p;
-    }
-    float m = morph_factor(lambda, ne);
-    if (m >= 1.0) {
-        return p;
-    }
-    uvec2 a, b;
-    morph_parents(ij, s, a, b);
-    return morph(point_at(rec, local, a, f), point_at(rec, local, b, f), p, m);
-}
-
-// A parent's drawn position: snapped and morphing with its edge on the boundary, else true.
-vec3 parent_drawn(ElementRecord rec, uint local, uvec2 q, uvec4 n, vec4 lv, uint f) {
+// Where a lattice point q is drawn (the geomorph plan, without evaluating): its snapped sample
+// qs (q itself inside) and, when that sample lies on stored edge k and the edge's drawn level
+// adds it with a factor m below 1, its two parents on the edge (returns true).
+bool edge_plan(uvec2 q, uvec4 n, vec4 lv, uint f, out uvec2 qs, out uvec2 a, out uvec2 b, out float m) {
+    qs = q;
+    a = q;
+    b = q;
+    m = 1.0;
     int k = morph_edge(q, f);
     if (k < 0) {
-        return point_at(rec, local, q, f);
+        return false;
     }
-    uvec2 qs = adaptive_snap(q, n, f);
-    return edge_drawn(rec, local, qs, point_at(rec, local, qs, f), n[k], lv[k], f);
+    qs = adaptive_snap(q, n, f);
+    uint s = f / n[k];
+    if (!morph_is_new(qs, s)) {
+        return false;
+    }
+    m = morph_factor(lv[k], n[k]);
+    if (m >= 1.0) {
+        return false;
+    }
+    morph_parents(qs, s, a, b);
+    return true;
 }
 
 // Where the geomorphing driver draws finest-lattice point raw (before snapping; ij after, true
-// position p). Mirror: adaptive::geomorph_position.
+// position p). A boundary point is its snapped sample, morphing with its edge's level when that
+// level adds it; an inside point new at the inner level morphs between its parents' drawn
+// positions (a boundary parent snapped and morphing with its edge). The surface is evaluated at
+// one call site in a loop whose trip count depends on the vertex, so that a costly surface
+// (loop's table sums) is compiled once rather than inlined up to six times.
+// Mirror: adaptive::geomorph_position.
 vec3 geomorph_position(ElementRecord rec, uint local, uvec2 raw, uvec2 ij, vec3 p, uvec4 n, vec4 lv,
                        uint f) {
-    int k = morph_edge(raw, f);
-    if (k >= 0) {
-        return edge_drawn(rec, local, ij, p, n[k], lv[k], f);
+    bool edge = morph_edge(raw, f) >= 0;
+    float mi = 1.0;
+    uvec2 q0 = raw, q1 = raw;
+    if (!edge) {
+        uint s = f / n.w;
+        if (!morph_is_new(raw, s)) {
+            return p;
+        }
+        mi = morph_factor(max(lv.w, max(lv.x, max(lv.y, lv.z))), n.w);
+        if (mi >= 1.0) {
+            return p;
+        }
+        morph_parents(raw, s, q0, q1);
     }
-    uint s = f / n.w;
-    if (!morph_is_new(raw, s)) {
+    uvec2 s0, a0, b0, s1, a1, b1;
+    float m0, m1;
+    bool e0 = edge_plan(q0, n, lv, f, s0, a0, b0, m0);
+    bool e1 = !edge && edge_plan(q1, n, lv, f, s1, a1, b1, m1);
+    if (edge && !e0) {
         return p;
     }
-    float m = morph_factor(max(lv.w, max(lv.x, max(lv.y, lv.z))), n.w);
-    if (m >= 1.0) {
-        return p;
+    // Evaluations: 0 point 0, 1 and 2 its edge parents, 3 point 1, 4 and 5 its edge parents.
+    vec3 r0 = p, r1 = p, r2 = p, r3 = p, r4 = p, r5 = p;
+    uint jobs = edge ? 3u : 6u;
+    for (uint i = edge ? 1u : 0u; i < jobs; i++) {
+        bool need = i == 0u || i == 3u || (i < 3u ? e0 : e1);
+        if (!need) {
+            continue;
+        }
+        uvec2 w = i == 0u ? s0 : (i == 1u ? a0 : (i == 2u ? b0 : (i == 3u ? s1 : (i == 4u ? a1 : b1))));
+        vec3 r = point_at(rec, local, w, f);
+        if (i == 0u) r0 = r;
+        else if (i == 1u) r1 = r;
+        else if (i == 2u) r2 = r;
+        else if (i == 3u) r3 = r;
+        else if (i == 4u) r4 = r;
+        else r5 = r;
     }
-    uvec2 a, b;
-    morph_parents(raw, s, a, b);
-    return morph(parent_drawn(rec, local, a, n, lv, f), parent_drawn(rec, local, b, n, lv, f), p, m);
+    if (edge) {
+        return morph(r1, r2, p, m0);
+    }
+    vec3 pa = e0 ? morph(r1, r2, r0, m0) : r0;
+    vec3 pb = e1 ? morph(r4, r5, r3, m1) : r3;
+    return morph(pa, pb, p, mi);
 }
 
 void main() {

@@ -5,10 +5,15 @@
 // and capped at N, the largest level of the draw. gl_TessLevelOuter[i] is the patch edge where
 // gl_TessCoord[i] == 0, i.e. between patch vertices i + 1 and i + 2: stored edge (i + 1) mod 3
 // (stored edge k joins corners k and k + 1). An inner level of 0 (culled) discards the patch.
+// Geomorphing (GEOMORPH, docs/adaptivity.md): the pattern driver's dyadic levels at the largest
+// power of two at most N (mirror: src/render/tess/morph.rs `morph_levels`).
 #include "records.glsl"
 #include "levels.glsl"
+#include "../pattern/adaptive.glsl"
 
 layout(vertices = 3) out;
+
+layout(constant_id = SPEC_GEOMORPH) const uint GEOMORPH = 0;
 
 void main() {
     if (gl_InvocationID == 0) {
@@ -16,15 +21,22 @@ void main() {
             uint max_level = pc.draw.x;
             vec4 l = element_levels[pc.draw.w + uint(gl_PrimitiveID)];
             uint inner = drawn_level(l.w, false, max_level);
+            uvec3 outer = uvec3(drawn_level(l.y, false, max_level), drawn_level(l.z, false, max_level),
+                                drawn_level(l.x, false, max_level));
+            if (GEOMORPH != 0u) {
+                uvec4 d = adaptive_levels(l, 1u << findMSB(max(max_level, 1u)));
+                inner = d.w;
+                outer = d.yzx;
+            }
             if (inner == 0u) {
                 gl_TessLevelOuter[0] = 0.0;
                 gl_TessLevelOuter[1] = 0.0;
                 gl_TessLevelOuter[2] = 0.0;
                 gl_TessLevelInner[0] = 0.0;
             } else {
-                gl_TessLevelOuter[0] = float(drawn_level(l.y, false, max_level));
-                gl_TessLevelOuter[1] = float(drawn_level(l.z, false, max_level));
-                gl_TessLevelOuter[2] = float(drawn_level(l.x, false, max_level));
+                gl_TessLevelOuter[0] = float(outer.x);
+                gl_TessLevelOuter[1] = float(outer.y);
+                gl_TessLevelOuter[2] = float(outer.z);
                 gl_TessLevelInner[0] = float(inner);
             }
         } else {

@@ -13,6 +13,11 @@
 #include "surface.glsl"
 #include "varyings.glsl"
 #include "tess_weights.glsl"
+#include "levels.glsl"
+#include "tess_morph.glsl"
+
+// Geomorphing (docs/adaptivity.md): 1 glides the vertices the finest drawn levels add.
+layout(constant_id = SPEC_GEOMORPH) const uint GEOMORPH = 0;
 
 // `cw`: Vulkan's tessellation domain origin is upper-left, which flips the sense of the winding
 // qualifier against OpenGL's; `cw` here emits triangles wound like the coarse triangle
@@ -33,6 +38,12 @@ void main() {
         bary = tess_weights(gl_TessCoord, n);
     }
     SurfacePoint sp = evaluate(records[local], Sample(local, bary));
+    if (GEOMORPH != 0u && pc.draw.z != 0u) {
+        // The normal stays the true point's (docs/adaptivity.md, "Geomorphing").
+        uvec3 outer = uvec3(gl_TessLevelOuter[0], gl_TessLevelOuter[1], gl_TessLevelOuter[2]);
+        sp.position = tess_geomorph_position(records[local], local, gl_TessCoord, bary, sp.position, outer,
+                                             uint(gl_TessLevelInner[0]), element_levels[local]);
+    }
     v_position = sp.position;
     v_normal = sp.normal;
     v_element = local;

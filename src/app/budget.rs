@@ -81,7 +81,7 @@ impl State {
         if fits(asked) {
             return asked;
         }
-        let dyadic = matches!(cfg.driver, crate::render::Driver::Pattern(_));
+        let dyadic = cfg.dyadic_levels();
         let level = (self.scene.patterns.levels())
             .filter(|&l| l < asked && (!dyadic || l.is_power_of_two()) && fits(l))
             .last()

@@ -372,7 +372,7 @@ pub struct InfoArgs {
     #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub max_level: u32,
     /// The driver whose rounding of the levels is reported (with --pixel-error): pattern draws
-    /// powers of two, tess any integer.
+    /// powers of two, tess any integer (geomorphing, tess draws pattern's powers of two).
     #[arg(long, value_parser = choices::driver(), default_value = "pattern")]
     pub driver: Driver,
 }

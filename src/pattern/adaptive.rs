@@ -264,6 +264,55 @@ pub fn geomorph_position(
     morph(drawn(a), drawn(b), p, m)
 }
 
+/// The parameter a geomorphing vertex stands for: its weights blended as
+/// [`geomorph_position`] blends its position (from its parents' drawn parameters at `m = 0` to
+/// its own snapped sample at `m = 1`). The drawn mesh is linear in these parameters, so the
+/// triangles over them tile the element, and a check of the drawn mesh against the surface
+/// at matching parameters sees no tangential slide (docs/adaptivity.md, "Geomorphing").
+pub fn geomorph_weights(
+    levels: &ElementLevels,
+    d: &DrawnLevels,
+    f: u32,
+    (i, j): (u32, u32),
+) -> [f32; 3] {
+    let at = |(i, j): (u32, u32)| [(f - i - j) as f64, i as f64, j as f64];
+    let blend = |a: [f64; 3], b: [f64; 3], p: [f64; 3], m: f32| {
+        let m = m as f64;
+        std::array::from_fn(|k| {
+            let mid = (a[k] + b[k]) * 0.5;
+            mid + (p[k] - mid) * m
+        })
+    };
+    let edge_drawn = |(i, j): (u32, u32), k: usize| -> [f64; 3] {
+        let (si, sj) = snap(i, j, d, f);
+        let s = f / d.edges[k];
+        let m = morph_factor(levels.edges[k], d.edges[k]);
+        if !is_new(si, sj, s) || m >= 1.0 {
+            return at((si, sj));
+        }
+        let [a, b] = parents(si, sj, s);
+        blend(at(a), at(b), at((si, sj)), m)
+    };
+    let w = if let Some(k) = edge_of(i, j, f) {
+        edge_drawn((i, j), k)
+    } else {
+        let s = f / d.inner;
+        let lambda = levels.edges.iter().copied().fold(levels.inner, f32::max);
+        let m = morph_factor(lambda, d.inner);
+        if !is_new(i, j, s) || m >= 1.0 {
+            at((i, j))
+        } else {
+            let drawn = |q: (u32, u32)| match edge_of(q.0, q.1, f) {
+                Some(k) => edge_drawn(q, k),
+                None => at(q),
+            };
+            let [a, b] = parents(i, j, s);
+            blend(drawn(a), drawn(b), at((i, j)), m)
+        }
+    };
+    w.map(|x| (x / f as f64) as f32)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -374,6 +423,7 @@ mod tests {
         let e = adaptive_element(&l, f).unwrap();
         for (&pt, b) in e.points.iter().zip(&e.bary) {
             assert_eq!(geomorph_position(&l, &d, f, pt, &eval), eval(*b));
+            assert_eq!(geomorph_weights(&l, &d, f, pt), *b);
         }
         let l = ElementLevels::uniform(2.0 + 1e-6);
         let d = drawn_levels(&l, f).unwrap();
@@ -384,6 +434,11 @@ mod tests {
                 let [a, c] = parents(i, j, 2);
                 let mid = (eval(bary(a.0, a.1, f)) + eval(bary(c.0, c.1, f))) * 0.5;
                 assert!((got - mid).length() < 1e-5, "{i} {j}");
+                let w = geomorph_weights(&l, &d, f, (i, j));
+                let (ba, bc) = (bary(a.0, a.1, f), bary(c.0, c.1, f));
+                for k in 0..3 {
+                    assert!((w[k] - (ba[k] + bc[k]) * 0.5).abs() < 1e-5, "{i} {j}");
+                }
             } else {
                 assert_eq!(got, eval(*b));
             }

@@ -76,8 +76,8 @@ pub struct DrawConfig {
     pub build: BuildOptions,
     pub driver: Driver,
     pub level: u32,
-    /// Adaptive drawing glides the vertices a level adds (the pattern driver; docs/adaptivity.md,
-    /// "Geomorphing"); uniform drawing ignores it.
+    /// Adaptive drawing glides the vertices a level adds (docs/adaptivity.md, "Geomorphing";
+    /// [`DrawConfig::glides`]); uniform drawing ignores it.
     pub geomorph: bool,
 }
 
@@ -114,11 +114,17 @@ impl DrawConfig {
     }
 
     /// Whether adaptive frames glide their vertices: [`DrawConfig::geomorph`], except for the
-    /// surfaces whose elements are Loop's M1 faces, whose evaluation with the morph (three
-    /// table sums a vertex) takes lavapipe's shader compiler minutes; they draw the levels
-    /// without gliding.
+    /// tess driver under a largest level that is not a power of two (its morph needs dyadic
+    /// levels), which then draws its integer levels without gliding.
     pub fn glides(&self) -> bool {
-        self.geomorph && !self.surface.uses_loop_faces()
+        self.geomorph && (self.driver != Driver::Tess || self.level.is_power_of_two())
+    }
+
+    /// Whether adaptive levels are rounded to powers of two: the pattern driver's
+    /// hierarchical patterns, the static driver (which refines with their construction), and
+    /// the tess driver while it glides.
+    pub fn dyadic_levels(&self) -> bool {
+        self.driver != Driver::Tess || self.glides()
     }
 
     /// Triangles the GPU makes per element.

@@ -383,6 +383,7 @@ fn key(cfg: &DrawConfig, capture: Capture, wire: bool, adaptive: bool) -> Pipeli
         capture,
         wire,
         adaptive,
-        geomorph: adaptive && cfg.glides(),
+        // The tess driver's adaptive draws share its pipeline (a push constant says adaptive).
+        geomorph: (adaptive || cfg.driver == Driver::Tess) && cfg.glides(),
     }
 }

@@ -8,7 +8,7 @@
 //! window's panel.
 
 use super::static_adaptive::StaticLevels;
-use super::{Camera, DrawConfig, Driver, LevelPass, RenderError, Scene};
+use super::{Camera, DrawConfig, LevelPass, RenderError, Scene};
 use crate::gpu::vk;
 use crate::lod::frame::{frame_levels, lod_records, LevelStats, LodRecord, LodView};
 use crate::lod::levels::ElementLevels;
@@ -65,7 +65,7 @@ impl Scene {
     /// instead (the same levels; [`Scene::level_pass`] is then `None`) and a warning says so.
     pub fn set_levels(&mut self, cfg: &DrawConfig, view: &LevelView) -> LevelReport {
         let max = cfg.level;
-        let dyadic = dyadic(cfg.driver);
+        let dyadic = cfg.dyadic_levels();
         let eye = view.camera.eye();
         let metric = View::new(eye, view.camera.fov_y, view.height, view.pixel_error, max);
         let aspect = view.width as f32 / view.height.max(1) as f32;
@@ -117,7 +117,7 @@ impl Scene {
         let same = surface == cfg.surface
             && key.levels == self.elements(cfg.surface).levels.raw
             && view.max_level == cfg.level.max(1)
-            && view.dyadic() == dyadic(cfg.driver)
+            && view.dyadic() == cfg.dyadic_levels()
             && !cfg.driver.kind().refines_on_cpu();
         same.then_some((l.pass.as_ref()?, view))
     }
@@ -126,7 +126,7 @@ impl Scene {
     /// GPU's, read back: only once the frame is done), tallied as the driver draws them.
     pub fn drawn_levels(&self, cfg: &DrawConfig) -> (Vec<ElementLevels>, LevelReport) {
         let levels: Vec<ElementLevels> = self.elements(cfg.surface).levels.read_pod();
-        let dyadic = dyadic(cfg.driver);
+        let dyadic = cfg.dyadic_levels();
         let count = self.elements(cfg.surface).element_count as usize;
         let levels = levels[..count].to_vec();
         let report = level_report(&levels, dyadic, cfg.level);
@@ -177,12 +177,6 @@ impl Scene {
         self.levels = Some(l);
         uploaded
     }
-}
-
-/// Whether `driver` draws levels rounded to powers of two: the pattern driver and the static
-/// one, which refines with the pattern driver's construction (the tessellator: integers).
-fn dyadic(driver: Driver) -> bool {
-    !matches!(driver, Driver::Tess)
 }
 
 /// What `levels` draw on a driver that rounds as `dyadic` says, up to `max`.

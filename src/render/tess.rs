@@ -20,6 +20,8 @@ use crate::gpu::{vk, Cmd, Context, GraphicsPipelineDesc};
 use crate::lod::levels::{drawn_level, ElementLevels};
 use crate::surface::RECORD_BYTES;
 
+pub mod morph;
+
 /// Largest evaluated-vertex count of one tessellated draw that lavapipe renders correctly.
 pub const LAVAPIPE_MAX_TESS_VERTICES_PER_DRAW: u32 = 65_535;
 
