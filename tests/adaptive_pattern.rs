@@ -23,9 +23,7 @@ use meshrefine::pattern::adaptive::{adaptive_element, drawn_levels, geomorph_pos
 use meshrefine::pattern::{vertex_count, PatternSet};
 use meshrefine::render::{Camera, Capture, DrawConfig, Driver, Headless, Scene, Submit};
 use meshrefine::subdiv::FaceRecord;
-use meshrefine::surface::{
-    eval_with, CornerRecord, Displace, ElementRecord, Surface, SurfaceParams, SMOOTH_CORNER,
-};
+use meshrefine::surface::{eval_with, Displace, Surface, SurfaceParams};
 use std::collections::{HashMap, HashSet};
 
 /// xorshift64*: reproducible random numbers without a dependency.
@@ -123,34 +121,6 @@ fn set_levels(
     levels
 }
 
-/// The pattern driver's position tolerance (tests/gpu_mirror.rs `position_tolerance`).
-fn tolerance(cfg: &DrawConfig, r: f32, records: &[ElementRecord]) -> f32 {
-    let eps = f32::EPSILON * r;
-    let seamed = records
-        .iter()
-        .any(|x| (0..3).any(|i| CornerRecord::decode(x).p[i][3] != SMOOTH_CORNER));
-    let base = if cfg.surface == Surface::Loop {
-        64.0 * eps
-    } else {
-        0.0
-    };
-    let uses_normals =
-        !matches!(cfg.surface, Surface::Flat | Surface::Loop) || cfg.displace != Displace::None;
-    let seams = if seamed && uses_normals && cfg.surface != Surface::Loop {
-        4.0 * eps
-    } else {
-        0.0
-    };
-    let a = cfg.params.amplitude.abs();
-    base + seams
-        + match cfg.displace {
-            Displace::None => 0.0,
-            Displace::Sine => 2e-3 * a + 8.0 * eps,
-            Displace::Noise => 1e-5 * a + 8.0 * eps,
-            Displace::Heightmap => 1e-4 * a + 8.0 * eps,
-        }
-}
-
 /// Capture `cfg` adaptively with random levels and compare every slot with the mirror; returns
 /// how many boundary vertices snapping moved.
 fn check(
@@ -184,7 +154,7 @@ fn check_chunked(
             let cap = h.capture(&mut scene, &cfg, &camera).unwrap();
             h.adaptive = false;
             let records = scene.records(cfg.surface);
-            let tol = tolerance(&cfg, r, records);
+            let tol = common::pattern_tolerance(&cfg, r, records);
             let ntol = if cfg.displace == Displace::None {
                 1e-5
             } else {
@@ -457,7 +427,7 @@ fn adaptive_geomorph_matches_the_mirror_and_is_watertight() {
             let cap = h.capture(&mut scene, &cfg, &camera).unwrap();
             h.adaptive = false;
             let records = scene.records(cfg.surface);
-            let tol = tolerance(&cfg, r, records) + 4.0 * f32::EPSILON * r;
+            let tol = common::pattern_tolerance(&cfg, r, records) + 4.0 * f32::EPSILON * r;
             let inputs = scene.inputs(max);
             let what = format!("{} + {} {}", combo.0.name(), combo.1.name(), cfg.label());
             let (mut morphing, mut worst) = (0usize, 0.0f32);

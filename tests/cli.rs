@@ -2094,25 +2094,6 @@ fn info_reports_adaptive_levels_for_a_camera() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("--fov applies only with --pixel-error"));
 }
 
-/// The fields of one CSV line (RFC 4180 quoting).
-fn csv_fields(line: &str) -> Vec<String> {
-    let (mut fields, mut field, mut quoted) = (Vec::new(), String::new(), false);
-    let mut chars = line.chars().peekable();
-    while let Some(c) = chars.next() {
-        match (c, quoted) {
-            ('"', true) if chars.peek() == Some(&'"') => {
-                chars.next();
-                field.push('"');
-            }
-            ('"', _) => quoted = !quoted,
-            (',', false) => fields.push(std::mem::take(&mut field)),
-            (c, _) => field.push(c),
-        }
-    }
-    fields.push(field);
-    fields
-}
-
 /// `bench --pixel-error` with `--levels`: per driver an adaptive row (each element at its own
 /// levels; its triangles the histogram's at the inner levels, culled elements excluded), then uniform rows at the
 /// levels asked for, at the smallest level meeting the same bound (the largest level drawn) and
@@ -2130,8 +2111,8 @@ fn bench_with_pixel_error_times_adaptive_and_uniform_rows() {
     ]);
     let csv = std::fs::read_to_string(prefix.with_extension("csv")).unwrap();
     let mut lines = csv.lines();
-    let keys = csv_fields(lines.next().unwrap());
-    let rows: Vec<Vec<String>> = lines.map(csv_fields).collect();
+    let keys = common::csv_fields(lines.next().unwrap());
+    let rows: Vec<Vec<String>> = lines.map(common::csv_fields).collect();
     let get = |r: &Vec<String>, key: &str| r[keys.iter().position(|k| k == key).unwrap()].clone();
     let number = |r: &Vec<String>, key: &str| -> u64 { get(r, key).parse().unwrap() };
     let from: Vec<String> = rows.iter().map(|r| get(r, "level_from")).collect();

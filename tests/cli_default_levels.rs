@@ -125,8 +125,8 @@ fn the_static_driver_draws_adaptively_on_the_cpu() {
     ]);
     let csv = std::fs::read_to_string(format!("{prefix}.csv")).unwrap();
     let mut lines = csv.lines();
-    let keys = csv_fields(lines.next().unwrap());
-    let rows: Vec<Vec<String>> = lines.map(csv_fields).collect();
+    let keys = common::csv_fields(lines.next().unwrap());
+    let rows: Vec<Vec<String>> = lines.map(common::csv_fields).collect();
     let get = |r: &Vec<String>, key: &str| r[keys.iter().position(|k| k == key).unwrap()].clone();
     assert_eq!(rows.len(), 2, "{csv}");
     let (adaptive, uniform) = (&rows[0], &rows[1]);
@@ -148,23 +148,4 @@ fn the_static_driver_draws_adaptively_on_the_cpu() {
     assert_eq!(get(uniform, "adaptive"), "false");
     assert_eq!(get(uniform, "cpu_ms"), "");
     assert_eq!(get(uniform, "upload_bytes"), "");
-}
-
-/// The fields of one CSV line (RFC 4180 quoting).
-fn csv_fields(line: &str) -> Vec<String> {
-    let (mut fields, mut field, mut quoted) = (Vec::new(), String::new(), false);
-    let mut chars = line.chars().peekable();
-    while let Some(c) = chars.next() {
-        match (c, quoted) {
-            ('"', true) if chars.peek() == Some(&'"') => {
-                chars.next();
-                field.push('"');
-            }
-            ('"', _) => quoted = !quoted,
-            (',', false) => fields.push(std::mem::take(&mut field)),
-            (c, _) => field.push(c),
-        }
-    }
-    fields.push(field);
-    fields
 }

@@ -17,39 +17,8 @@ use meshrefine::pattern::adaptive::adaptive_element;
 use meshrefine::pattern::{vertex_count, PatternSet};
 use meshrefine::render::static_adaptive::{drawn, refine_adaptive};
 use meshrefine::render::{Camera, Capture, DrawConfig, Driver, Headless, LevelView, Scene, Submit};
-use meshrefine::surface::{
-    build_records, CornerRecord, Displace, ElementRecord, RecordKind, Seams, Surface,
-    SurfaceParams, SMOOTH_CORNER,
-};
+use meshrefine::surface::{build_records, Displace, RecordKind, Seams, Surface, SurfaceParams};
 use std::collections::HashMap;
-
-/// The pattern driver's position tolerance (tests/adaptive_pattern.rs `tolerance`).
-fn tolerance(cfg: &DrawConfig, r: f32, records: &[ElementRecord]) -> f32 {
-    let eps = f32::EPSILON * r;
-    let seamed = records
-        .iter()
-        .any(|x| (0..3).any(|i| CornerRecord::decode(x).p[i][3] != SMOOTH_CORNER));
-    let base = if cfg.surface == Surface::Loop {
-        64.0 * eps
-    } else {
-        0.0
-    };
-    let uses_normals =
-        !matches!(cfg.surface, Surface::Flat | Surface::Loop) || cfg.displace != Displace::None;
-    let seams = if seamed && uses_normals && cfg.surface != Surface::Loop {
-        4.0 * eps
-    } else {
-        0.0
-    };
-    let a = cfg.params.amplitude.abs();
-    base + seams
-        + match cfg.displace {
-            Displace::None => 0.0,
-            Displace::Sine => 2e-3 * a + 8.0 * eps,
-            Displace::Noise => 1e-5 * a + 8.0 * eps,
-            Displace::Heightmap => 1e-4 * a + 8.0 * eps,
-        }
-}
 
 /// Draw `st` (static) adaptively for `view` (validated), then capture the pattern driver at
 /// the levels the static frame drew and compare every drawn vertex. Returns the elements drawn.
@@ -76,7 +45,7 @@ fn compare(h: &mut Headless, scene: &mut Scene, st: DrawConfig, view: &LevelView
     scene.elements_mut(pc.surface).upload_levels(&levels);
     let cap = h.capture(scene, &pc, &view.camera).unwrap();
     h.adaptive = false;
-    let tol = tolerance(&st, r, &records);
+    let tol = common::pattern_tolerance(&st, r, &records);
     let ntol = if st.displace == Displace::None {
         1e-5
     } else {

@@ -7,7 +7,8 @@ pub mod random_levels;
 
 use meshrefine::gpu::{check_shutdown, live_objects, ContextDesc, ShutdownError};
 use meshrefine::mesh::Mesh;
-use meshrefine::render::Headless;
+use meshrefine::render::{DrawConfig, Headless};
+use meshrefine::surface::{CornerRecord, Displace, ElementRecord, Surface, SMOOTH_CORNER};
 use std::path::PathBuf;
 use std::sync::{Mutex, MutexGuard};
 
@@ -58,4 +59,52 @@ pub fn with_gpu<R>(width: u32, height: u32, f: impl FnOnce(&mut Headless) -> R) 
         }
         Err(e) => panic!("{e}"),
     }
+}
+
+/// The pattern driver's position tolerance against the mirror (tests/gpu_mirror.rs
+/// `position_tolerance`, per element record).
+pub fn pattern_tolerance(cfg: &DrawConfig, r: f32, records: &[ElementRecord]) -> f32 {
+    let eps = f32::EPSILON * r;
+    let seamed = records
+        .iter()
+        .any(|x| (0..3).any(|i| CornerRecord::decode(x).p[i][3] != SMOOTH_CORNER));
+    let base = if cfg.surface == Surface::Loop {
+        64.0 * eps
+    } else {
+        0.0
+    };
+    let uses_normals =
+        !matches!(cfg.surface, Surface::Flat | Surface::Loop) || cfg.displace != Displace::None;
+    let seams = if seamed && uses_normals && cfg.surface != Surface::Loop {
+        4.0 * eps
+    } else {
+        0.0
+    };
+    let a = cfg.params.amplitude.abs();
+    base + seams
+        + match cfg.displace {
+            Displace::None => 0.0,
+            Displace::Sine => 2e-3 * a + 8.0 * eps,
+            Displace::Noise => 1e-5 * a + 8.0 * eps,
+            Displace::Heightmap => 1e-4 * a + 8.0 * eps,
+        }
+}
+
+/// The fields of one CSV line (RFC 4180 quoting).
+pub fn csv_fields(line: &str) -> Vec<String> {
+    let (mut fields, mut field, mut quoted) = (Vec::new(), String::new(), false);
+    let mut chars = line.chars().peekable();
+    while let Some(c) = chars.next() {
+        match (c, quoted) {
+            ('"', true) if chars.peek() == Some(&'"') => {
+                chars.next();
+                field.push('"');
+            }
+            ('"', _) => quoted = !quoted,
+            (',', false) => fields.push(std::mem::take(&mut field)),
+            (c, _) => field.push(c),
+        }
+    }
+    fields.push(field);
+    fields
 }
