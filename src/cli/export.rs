@@ -8,6 +8,7 @@ use super::input::{apply_surface_inputs, attach_surface_inputs, draw_config, loa
 use super::progress::{count, count_of, plural, ProgressLine};
 use super::{require_extension, with_context};
 use anyhow::{bail, Context as _, Result};
+use glam::Vec2;
 use meshrefine::export::{element_texcoord, TexcoordOf, TriangleWelder};
 use meshrefine::gpu::{Context, ContextDesc};
 use meshrefine::render::{Camera, Capture, CapturedVertex, DrawConfig, Headless, XfbVertex};
@@ -100,26 +101,23 @@ fn export(
         }
     }));
     // Texture coordinates of a vertex from its element and sample (the local surfaces'
-    // elements are the coarse triangles, whose corners carry them; Loop's M1 faces carry none).
-    let uvs = scene
-        .data
-        .uvs
-        .clone()
-        .filter(|_| !cfg.surface.uses_loop_faces());
-    let records = uvs.as_ref().map(|_| scene.records(cfg.surface).to_vec());
-    // Called only where both are present.
-    let texcoord_at = |e: u32, bary: [f32; 3]| {
-        let (uvs, records) = (uvs.as_deref(), records.as_deref());
-        let (corners, rec) = (
-            &uvs.unwrap_or_default()[e as usize],
-            records.unwrap_or_default(),
-        );
-        element_texcoord(cfg.surface, &cfg.params, &rec[e as usize], bary, corners)
+    // elements are the coarse triangles, whose corners carry them; Loop's M1 faces carry none),
+    // from copies of the corners' coordinates and the records: the tess capture welds each pass
+    // while it holds the scene.
+    let with_uv = (scene.data.uvs.as_ref())
+        .filter(|_| !cfg.surface.uses_loop_faces())
+        .map(|uvs| (uvs.clone(), scene.records(cfg.surface).to_vec()));
+    let texcoord_at = |e: u32, bary: [f32; 3]| match &with_uv {
+        Some((uvs, records)) => {
+            let (e, corners) = (e as usize, &uvs[e as usize]);
+            element_texcoord(cfg.surface, &cfg.params, &records[e], bary, corners)
+        }
+        None => Vec2::ZERO, // never asked: no texture coordinates are written
     };
     let refined = if cfg.driver.kind().export_capture() == Some(Capture::Triangles) {
         // Welded pass by pass: the captured triangles are never held whole.
         let texcoord = |v: &XfbVertex| texcoord_at(v.element, v.bary);
-        let mut welder = if uvs.is_some() {
+        let mut welder = if with_uv.is_some() {
             TriangleWelder::with_texcoords(&texcoord)
         } else {
             TriangleWelder::default()
@@ -130,7 +128,7 @@ fn export(
         let cap = h.capture(&mut scene, cfg, &camera)?;
         let texcoord =
             |v: &CapturedVertex| texcoord_at(v.id[0], [v.coord[0], v.coord[1], v.coord[2]]);
-        let uv = uvs.as_ref().map(|_| &texcoord as TexcoordOf<'_>);
+        let uv = with_uv.as_ref().map(|_| &texcoord as TexcoordOf<'_>);
         if drawn.is_some() {
             meshrefine::export::weld_adaptive_with(&cap, cfg.level, uv)
                 .map_err(anyhow::Error::msg)?
