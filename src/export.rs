@@ -160,29 +160,50 @@ pub fn weld_triangles(triangles: &[[XfbVertex; 3]]) -> RefinedMesh {
     w.finish()
 }
 
+/// The texture coordinates of a vertex transform feedback captured (from its element and
+/// sample), for [`TriangleWelder::with_texcoords`].
+pub type XfbTexcoordOf<'a> = &'a dyn Fn(&XfbVertex) -> Vec2;
+
 /// [`weld_triangles`] a piece at a time (a capture pass after another): the same mesh as
 /// welding every piece at once, in the same order, without holding the captured triangles.
 #[derive(Default)]
-pub struct TriangleWelder(Welder);
+pub struct TriangleWelder<'a> {
+    w: Welder,
+    uv: Option<XfbTexcoordOf<'a>>,
+}
 
-impl TriangleWelder {
+impl<'a> TriangleWelder<'a> {
+    /// A welder that also gives each corner its texture coordinates from `uv`, merged on their
+    /// bits as [`weld_with`] merges them: positions still weld on their bits alone, so a
+    /// position with two texture coordinates (a seam) stays one `v` with two `vt`.
+    pub fn with_texcoords(uv: XfbTexcoordOf<'a>) -> Self {
+        Self {
+            w: Welder::default(),
+            uv: Some(uv),
+        }
+    }
+
     /// Weld the next `triangles`.
     pub fn add(&mut self, triangles: &[[XfbVertex; 3]]) {
-        let w = &mut self.0;
+        let w = &mut self.w;
         w.out.triangles.reserve(triangles.len());
         for t in triangles {
             let tri = t.map(|v| w.add(Vec3::from(v.position), Vec3::from(v.normal)));
             w.out.triangles.push(tri);
+            if let Some(uv) = self.uv {
+                let tri = t.map(|v| w.add_texcoord(uv(&v)));
+                w.out.texcoord_triangles.push(tri);
+            }
         }
     }
 
     /// Triangles welded so far.
     pub fn triangles(&self) -> usize {
-        self.0.out.triangles.len()
+        self.w.out.triangles.len()
     }
 
     pub fn finish(self) -> RefinedMesh {
-        self.0.out
+        self.w.out
     }
 }
 
@@ -382,6 +403,31 @@ pub fn check_size(elements: u64, level: u32) -> Result<u64, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use bytemuck::Zeroable;
+
+    /// Transform feedback's triangles with texture coordinates: positions weld on their bits
+    /// alone, texture coordinates on theirs, so a corner shared by two triangles whose
+    /// coordinates differ (a seam) is one `v` with two `vt`.
+    #[test]
+    fn triangle_texcoords_merge_on_their_bits_and_keep_seams() {
+        let v = |x: f32, element: u32| XfbVertex {
+            position: [x, 0.0, 0.0],
+            element,
+            normal: [0.0, 0.0, 1.0],
+            bary: [x, 0.0, 0.0],
+        };
+        // Element 1's coordinates are shifted by one: the corner at x = 1 is on a seam.
+        let uv = |v: &XfbVertex| Vec2::new(v.bary[0] + v.element as f32, 0.0);
+        let mut w = TriangleWelder::with_texcoords(&uv);
+        w.add(&[[v(0.0, 0), v(1.0, 0), v(0.5, 0)]]);
+        w.add(&[[v(1.0, 1), v(2.0, 0), v(0.5, 0)]]);
+        let mesh = w.finish();
+        assert_eq!(mesh.positions.len(), 4);
+        assert_eq!(mesh.triangles[1][0].0, mesh.triangles[0][1].0);
+        let texcoords: Vec<f32> = mesh.texcoords.iter().map(|t| t.x).collect();
+        assert_eq!(texcoords, [0.0, 1.0, 0.5, 2.0]);
+        assert_eq!(mesh.texcoord_triangles, [[0, 1, 2], [3, 3, 2]]);
+    }
 
     /// Welding in pieces gives the mesh welding at once does, and the streamed writer the text
     /// `to_obj` makes, its progress ending at every line written.
@@ -389,9 +435,8 @@ mod tests {
     fn welding_in_pieces_and_streaming_change_nothing() {
         let v = |x: f32, y: f32, n: f32| XfbVertex {
             position: [x, y, 0.0],
-            _pad0: 0.0,
             normal: [0.0, n, 1.0],
-            _pad1: 0.0,
+            ..XfbVertex::zeroed()
         };
         // A strip of triangles sharing corners, with -0.0 and 0.0 (welded as one).
         let tris: Vec<[XfbVertex; 3]> = (0..50)

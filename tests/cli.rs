@@ -2736,10 +2736,11 @@ fn meshrefine_env(args: &[&str], env: &[(&str, &str)]) -> Output {
 #[test]
 fn exports_report_progress_and_passes_keep_the_file() {
     let ico = model_path("icosahedron.obj");
-    // Three of icosahedron's 20 elements a pass at level 6: 54 tess triangles of 3 vertices of
-    // 32 bytes each, or 28 pattern vertices of 64 bytes each.
+    // Three of icosahedron's 20 elements a pass at level 6: 54 tess triangles of 3 vertices
+    // (an `XfbVertex` each), or 28 pattern vertices of 64 bytes each.
+    let xfb_vertex = std::mem::size_of::<meshrefine::render::XfbVertex>();
     for (driver, bytes, triangles) in [
-        ("tess", 3 * 54 * 96, 20 * 54),
+        ("tess", 3 * 54 * 3 * xfb_vertex, 20 * 54),
         ("pattern", 3 * 28 * 64, 20 * 36),
     ] {
         let one = tmp(&format!("progress_one_{driver}.obj"));

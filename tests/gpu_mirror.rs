@@ -588,6 +588,76 @@ fn chunked_records_and_capture_passes_match_the_mirror() {
     });
 }
 
+/// The tess driver's transform feedback (what `export` reads) carries each vertex's element,
+/// among all the scene's, and the sample the surface was evaluated at: with records bound in
+/// chunks of 7 of icosahedron's 20 elements and capture passes of 3 elements, every captured
+/// vertex is the mirror's point at its element and sample, the three corners of a triangle
+/// share their element, elements come in order with every tessellated triangle, and the samples
+/// are exactly the capture variant's, snapped (`tess_weights`).
+#[test]
+fn tess_transform_feedback_carries_element_and_sample() {
+    use meshrefine::render::tess::tess_triangle_count;
+    use meshrefine::render::XfbVertex;
+    with_gpu(64, 64, |h| {
+        let level = 4;
+        let (mut scene, camera, r) =
+            scene_chunked(h, model("icosahedron_vn.obj"), &[level], Some(7));
+        assert_eq!(scene.gpu.sets.len(), 3);
+        let cfg = DrawConfig::new(Driver::Tess, level).with_surface(Surface::Pn, Displace::None);
+        let per_element = tess_triangle_count(level) as usize;
+        h.max_capture_bytes = Some((3 * per_element * 3 * std::mem::size_of::<XfbVertex>()) as u64);
+        let tris = h.capture_triangles(&mut scene, &cfg, &camera).unwrap();
+        h.max_capture_bytes = None;
+        let n = scene.records(cfg.surface).len();
+        assert_eq!(tris.len(), n * per_element);
+        let hm = scene.inputs(level);
+        let tol = position_tolerance(&cfg, r, seamed(&scene.data.records));
+        let ntol = normal_tolerance(&cfg);
+        let mut xfb: HashSet<(u32, [u32; 3])> = HashSet::new();
+        for (k, tri) in tris.iter().enumerate() {
+            let e = (k / per_element) as u32;
+            for v in tri {
+                assert_eq!(v.element, e, "triangle {k}");
+                let want = eval_with(
+                    cfg.surface,
+                    cfg.displace,
+                    &cfg.params,
+                    &scene.records(cfg.surface)[e as usize],
+                    v.bary,
+                    &hm.element(e as usize),
+                );
+                let got = meshrefine::render::CapturedVertex {
+                    position: [v.position[0], v.position[1], v.position[2], 1.0],
+                    normal: [v.normal[0], v.normal[1], v.normal[2], 0.0],
+                    coord: [v.bary[0], v.bary[1], v.bary[2], 0.0],
+                    id: [e, u32::MAX, 0, 0],
+                };
+                compare(
+                    &got,
+                    &want,
+                    tol,
+                    ntol,
+                    &format!("element {e} at {:?}", v.bary),
+                );
+                xfb.insert((e, v.bary.map(f32::to_bits)));
+            }
+        }
+        let cap = h.capture(&mut scene, &cfg, &camera).unwrap();
+        let captured: HashSet<(u32, [u32; 3])> = cap
+            .vertices
+            .iter()
+            .map(|v| {
+                let tc = [v.coord[0], v.coord[1], v.coord[2]];
+                (v.id[0], tess_weights(tc, level).map(f32::to_bits))
+            })
+            .collect();
+        assert!(
+            xfb == captured,
+            "transform feedback's samples are not the capture's"
+        );
+    });
+}
+
 #[test]
 fn record_fields_reach_every_submission_path() {
     // Sentinels: the corners of a pattern evaluate to exactly the record's positions and

@@ -571,10 +571,15 @@ fn exports_in_many_passes_write_the_same_bytes() {
         let n = mesh.triangles.len() as u32;
         let (mut scene, camera) = scene_at(h, &mesh, &[7, 8]);
         let r = scene.bounding_sphere().1;
-        // Bytes of three elements' capture: tess triangles by transform feedback (32 bytes a
-        // vertex), pattern vertices (64 bytes each).
+        // Bytes of three elements' capture: tess triangles by transform feedback (an
+        // `XfbVertex` a vertex), pattern vertices (64 bytes each).
+        let xfb_vertex = std::mem::size_of::<meshrefine::render::XfbVertex>() as u64;
         let three = [
-            (Driver::Tess, 7, 3 * tess_triangle_count(7) as u64 * 3 * 32),
+            (
+                Driver::Tess,
+                7,
+                3 * tess_triangle_count(7) as u64 * 3 * xfb_vertex,
+            ),
             (
                 Driver::Pattern(Submit::Instanced),
                 8,

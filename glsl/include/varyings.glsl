@@ -9,14 +9,20 @@
 #define VARYING out
 #endif
 #ifdef XFB
-// Transform-feedback variant: each output vertex is captured as (position, pad, normal, pad).
-layout(xfb_buffer = 0, xfb_stride = 32) out;
+// Transform-feedback variant: each output vertex is captured as (position, element, normal,
+// sample), `XfbVertex` in src/render/mod.rs; the element and sample give an export its texture
+// coordinates.
+layout(xfb_buffer = 0, xfb_stride = 40) out;
 layout(location = 0, xfb_buffer = 0, xfb_offset = 0) VARYING vec3 v_position;
 layout(location = 1, xfb_buffer = 0, xfb_offset = 16) VARYING vec3 v_normal;
+layout(location = 2) flat VARYING uint v_element;
+layout(location = 3, xfb_buffer = 0, xfb_offset = 28) VARYING vec3 v_bary;
+// The element among all elements (v_element counts within the bound chunk).
+layout(location = 4, xfb_buffer = 0, xfb_offset = 12) flat VARYING uint v_xfb_element;
 #else
 layout(location = 0) VARYING vec3 v_position;  // world position
 layout(location = 1) VARYING vec3 v_normal;    // world normal (unnormalized after interpolation)
-#endif
 layout(location = 2) flat VARYING uint v_element; // the element sampled, within the bound chunk
 layout(location = 3) VARYING vec3 v_bary;         // the sample's (w, u, v) in that element
+#endif
 #endif

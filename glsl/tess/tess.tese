@@ -8,7 +8,8 @@
 // gl_PrimitiveID restarts in every draw; pc.draw.w is this draw's first element within the bound
 // chunk of records, pc.draw.y the chunk's first element.
 // Variants: CAPTURE (every evaluated vertex to a storage buffer, for the tests) and XFB
-// (transform feedback of the tessellator's triangles, for export).
+// (transform feedback of the tessellator's triangles, each vertex with its element and sample,
+// for export).
 #include "records.glsl"
 #include "surface.glsl"
 #include "varyings.glsl"
@@ -49,6 +50,9 @@ void main() {
     v_element = local;
     v_bary = bary;
     gl_Position = frame.view_proj * vec4(sp.position, 1.0);
+#ifdef XFB
+    v_xfb_element = element;
+#endif
 #ifdef CAPTURE
     uint slot = atomicAdd(capture_count, 1u);
     if (slot < capture_capacity) {

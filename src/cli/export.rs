@@ -8,9 +8,10 @@ use super::input::{apply_surface_inputs, attach_surface_inputs, draw_config, loa
 use super::progress::{count, count_of, plural, ProgressLine};
 use super::{require_extension, with_context};
 use anyhow::{bail, Context as _, Result};
-use meshrefine::export::{element_texcoord, TexcoordOf};
+use glam::Vec2;
+use meshrefine::export::{element_texcoord, TexcoordOf, TriangleWelder};
 use meshrefine::gpu::{Context, ContextDesc};
-use meshrefine::render::{Camera, Capture, CapturedVertex, DrawConfig, Headless};
+use meshrefine::render::{Camera, Capture, CapturedVertex, DrawConfig, Headless, XfbVertex};
 use std::io::Write as _;
 use std::path::Path;
 use std::sync::atomic::{AtomicU32, Ordering};
@@ -99,28 +100,35 @@ fn export(
             lock(&progress).report(0, fraction, &text);
         }
     }));
+    // Texture coordinates of a vertex from its element and sample (the local surfaces'
+    // elements are the coarse triangles, whose corners carry them; Loop's M1 faces carry none),
+    // from copies of the corners' coordinates and the records: the tess capture welds each pass
+    // while it holds the scene.
+    let with_uv = (scene.data.uvs.as_ref())
+        .filter(|_| !cfg.surface.uses_loop_faces())
+        .map(|uvs| (uvs.clone(), scene.records(cfg.surface).to_vec()));
+    let texcoord_at = |e: u32, bary: [f32; 3]| match &with_uv {
+        Some((uvs, records)) => {
+            let (e, corners) = (e as usize, &uvs[e as usize]);
+            element_texcoord(cfg.surface, &cfg.params, &records[e], bary, corners)
+        }
+        None => Vec2::ZERO, // never asked: no texture coordinates are written
+    };
     let refined = if cfg.driver.kind().export_capture() == Some(Capture::Triangles) {
         // Welded pass by pass: the captured triangles are never held whole.
-        let mut welder = meshrefine::export::TriangleWelder::default();
+        let texcoord = |v: &XfbVertex| texcoord_at(v.element, v.bary);
+        let mut welder = if with_uv.is_some() {
+            TriangleWelder::with_texcoords(&texcoord)
+        } else {
+            TriangleWelder::default()
+        };
         h.capture_triangles_each(&mut scene, cfg, &camera, |t| welder.add(t))?;
         welder.finish()
     } else {
         let cap = h.capture(&mut scene, cfg, &camera)?;
-        // Texture coordinates per captured vertex, from its element and sample (the local
-        // surfaces' elements are the coarse triangles, whose corners carry them).
-        let uvs = scene
-            .data
-            .uvs
-            .as_deref()
-            .filter(|_| !cfg.surface.uses_loop_faces());
-        let records = scene.records(cfg.surface);
-        let texcoord = |v: &CapturedVertex| {
-            let e = v.id[0] as usize;
-            let bary = [v.coord[0], v.coord[1], v.coord[2]];
-            let corners = uvs.map_or(&[[0.0; 2]; 3], |u| &u[e]);
-            element_texcoord(cfg.surface, &cfg.params, &records[e], bary, corners)
-        };
-        let uv = uvs.map(|_| &texcoord as TexcoordOf<'_>);
+        let texcoord =
+            |v: &CapturedVertex| texcoord_at(v.id[0], [v.coord[0], v.coord[1], v.coord[2]]);
+        let uv = with_uv.as_ref().map(|_| &texcoord as TexcoordOf<'_>);
         if drawn.is_some() {
             meshrefine::export::weld_adaptive_with(&cap, cfg.level, uv)
                 .map_err(anyhow::Error::msg)?
@@ -132,19 +140,9 @@ fn export(
             meshrefine::export::weld_with(&cap, pattern, uv).map_err(anyhow::Error::msg)?
         }
     };
-    if scene.data.uvs.is_some() && refined.texcoords.is_empty() {
+    if scene.data.uvs.is_some() && cfg.surface.uses_loop_faces() {
         crate::note(format_args!(
-            "warning: '{name}' has texture coordinates, but {} writes none (vt): {}",
-            if cfg.surface.uses_loop_faces() {
-                "--surface loop"
-            } else {
-                "--driver tess"
-            },
-            if cfg.surface.uses_loop_faces() {
-                "its elements are Loop's M1 faces, which carry none"
-            } else {
-                "the tessellator's triangles are read back without their samples; --driver pattern writes them"
-            }
+            "warning: '{name}' has texture coordinates, but --surface loop writes none (vt): its elements are Loop's M1 faces, which carry none"
         ));
     }
     // The levels the GPU's level pass wrote for the capture, as the driver drew them.

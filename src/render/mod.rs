@@ -273,12 +273,19 @@ pub const PUSH_DRAW_OFFSET: u32 = 112;
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct XfbVertex {
     pub position: [f32; 3],
-    pub _pad0: f32,
+    /// The element sampled, among all the scene's elements (as `CapturedVertex::id` x).
+    pub element: u32,
     pub normal: [f32; 3],
-    pub _pad1: f32,
+    /// The sample's `(w, u, v)` the surface was evaluated at (outer-edge samples snapped).
+    pub bary: [f32; 3],
 }
 
-const _: () = assert!(std::mem::size_of::<XfbVertex>() == 32);
+const _: () = {
+    assert!(std::mem::size_of::<XfbVertex>() == 40);
+    assert!(std::mem::offset_of!(XfbVertex, element) == 12);
+    assert!(std::mem::offset_of!(XfbVertex, normal) == 16);
+    assert!(std::mem::offset_of!(XfbVertex, bary) == 28);
+};
 
 /// `CapturedVertex` (glsl/include/records.glsl), std430.
 #[repr(C)]
