@@ -2045,6 +2045,16 @@ fn info_reports_adaptive_levels_for_a_camera() {
         "{tess}"
     );
     assert_eq!(adaptive_report(&tess).4, 372);
+    // Geomorphing (the default) under a power-of-two largest level, tess draws the pattern's
+    // powers of two, as render does; without it, its integers.
+    let tess_args = ["info", spot, "--pixel-error", "1", "--driver", "tess"];
+    let gliding = ok(&tess_args);
+    assert_eq!(levels_of(&gliding), levels_of(&pattern), "{gliding}");
+    let integers = ok(&[&tess_args[..], &["--geomorph", "off"]].concat());
+    assert!(
+        levels_of(&integers).iter().any(|l| !l.is_power_of_two()),
+        "{integers}"
+    );
     expect_error(
         &["info", spot, "--pixel-error", "1", "--max-level", "48"],
         &["--max-level 48", "power of two"],

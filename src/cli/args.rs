@@ -375,6 +375,10 @@ pub struct InfoArgs {
     /// powers of two, tess any integer (geomorphing, tess draws pattern's powers of two).
     #[arg(long, value_parser = choices::driver(), default_value = "pattern")]
     pub driver: Driver,
+    /// Whether the reported drawing geomorphs (with --pixel-error; default: on, as render's):
+    /// tess then draws powers of two under a --max-level that is one, integers otherwise.
+    #[arg(long, value_parser = choices::on_off())]
+    pub geomorph: Option<bool>,
 }
 
 /// A camera in the mesh's own coordinates (up is +Y); the default frames the mesh.

@@ -195,7 +195,12 @@ fn print_levels(a: &InfoArgs, path: &str, mesh: &Mesh) -> Result<()> {
     let frustum = Frustum::from_view_proj(camera.view_proj(c.width as f32 / c.height as f32));
     let displace = meshrefine::surface::Displace::None;
     let tags = surface.facts().tags.then(|| stpn::derive(mesh).0);
-    let dyadic = matches!(a.driver, Driver::Pattern(_));
+    // Rounded as the driver draws them: powers of two for pattern, and for tess while it glides.
+    let dyadic = meshrefine::render::DrawConfig {
+        geomorph: a.geomorph.unwrap_or(true),
+        ..meshrefine::render::DrawConfig::new(a.driver, a.max_level)
+    }
+    .dyadic_levels();
     let levels = |lod: &Lod, records: &[meshrefine::surface::ElementRecord]| {
         let bounds = lod_records(lod, records, None);
         let lod_view = LodView::new(&view, Some(&frustum), false, dyadic, bounds.len() as u32);

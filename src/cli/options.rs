@@ -211,7 +211,15 @@ pub fn warnings(cli: &Cli, given: &Given) -> Vec<String> {
             out.extend(adaptive_only(
                 given,
                 adaptive,
-                &["eye", "look_at", "fov", "width", "height", "max_level"],
+                &[
+                    "eye",
+                    "look_at",
+                    "fov",
+                    "width",
+                    "height",
+                    "max_level",
+                    "geomorph",
+                ],
             ));
             if let Some(s) = a.surface.filter(|s| !s.uses_loop_faces() && !adaptive) {
                 let builders: Vec<&str> = (Surface::ALL.into_iter())
