@@ -603,6 +603,8 @@ fn the_demo_starts_adaptive_and_keys_change_its_controls() {
         ("c", "0.5 px max level 64 cull off", ""),
         ("c", "cull on", ""),
         ("minus", "max level 32", ""),
+        // The static driver refines adaptively on the CPU (the CPU baseline).
+        ("1", "static adaptive 0.5 px max level 32", ""),
         ("3", "tess adaptive 0.5 px max level 32", ""),
         ("m", "tess level 16", "adaptive"),
         ("m", "tess adaptive", ""),

@@ -33,9 +33,9 @@ pub const DEFAULT_MAX_LEVEL: u32 = 64;
 
 impl State {
     /// The configuration this frame draws, prepared, and whether it draws adaptively (then
-    /// with its levels chosen and uploaded): adaptive mode draws adaptively with the pattern
-    /// and tess drivers where the driver can (`DriverKind::check_adaptive`), and otherwise
-    /// uniformly, saying why in the panel.
+    /// with its levels chosen and uploaded, or for the static driver refined on the CPU at
+    /// them): adaptive mode draws adaptively where the driver can
+    /// (`DriverKind::check_adaptive`), and otherwise uniformly, saying why in the panel.
     pub(super) fn prepare_frame(&mut self, opts: &ViewOptions) -> Result<(DrawConfig, bool)> {
         self.mode_note = None;
         self.levels = None;
@@ -46,39 +46,49 @@ impl State {
         }
         if self.controls.adaptive {
             let driver = self.controls.cfg.driver;
-            if driver == crate::render::Driver::Static {
-                self.mode_note = Some(
-                    "the static driver draws every element at one level (uniformly): 2 or 3 draws adaptively"
-                        .to_string(),
-                );
-            } else {
-                // Start from the largest level the last frame drew (the budget may have lowered
-                // it): the pattern driver's adaptive draws are rebuilt only when it changes.
-                let max = self.adaptive_max(driver);
-                let guess = self.adaptive_level.map_or(max, |l| l.min(max));
-                let cfg = self.prepare_config(opts, Some(guess))?;
-                let cfg = self.choose_levels(opts, cfg, max)?;
-                let kind = cfg.driver.kind();
-                match kind.check_adaptive(&self.ctx, &self.scene, &cfg) {
-                    Ok(()) => return Ok((cfg, true)),
-                    Err(e) => {
-                        self.levels = None;
-                        self.mode_note = Some(format!("{e}: drawing uniformly"));
-                    }
+            // The static driver refines on the CPU at the levels chosen (the CPU baseline).
+            let on_cpu = driver.kind().refines_on_cpu();
+            self.scene.adaptive_frames = on_cpu;
+            // Start from the largest level the last frame drew (the budget may have lowered
+            // it): the pattern driver's adaptive draws are rebuilt only when it changes.
+            let max = self.adaptive_max(driver);
+            let guess = self.adaptive_level.map_or(max, |l| l.min(max));
+            let cfg = self.prepare_config(opts, Some(guess))?;
+            let cfg = self.choose_levels(opts, cfg, max)?;
+            if on_cpu {
+                // Refined and uploaded again where the levels changed.
+                let (none, wire) = (crate::render::Capture::None, self.controls.wireframe);
+                (self.scene).prepare(
+                    &self.ctx,
+                    &self.pool,
+                    &mut self.renderer,
+                    &cfg,
+                    none,
+                    wire,
+                )?;
+            }
+            let kind = cfg.driver.kind();
+            match kind.check_adaptive(&self.ctx, &self.scene, &cfg) {
+                Ok(()) => return Ok((cfg, true)),
+                Err(e) => {
+                    self.levels = None;
+                    self.mode_note = Some(format!("{e}: drawing uniformly"));
                 }
             }
         }
+        self.scene.adaptive_frames = false;
         self.adaptive_level = None;
         Ok((self.prepare_config(opts, None)?, false))
     }
 
     /// The largest level adaptive mode asks of `driver`: the panel's, a power of two for the
-    /// pattern driver (its hierarchical patterns split 1 to 4).
+    /// pattern driver (its hierarchical patterns split 1 to 4) and the static one (which
+    /// refines with their construction).
     pub(super) fn adaptive_max(&self, driver: crate::render::Driver) -> u32 {
         let max = self.controls.max_level.max(1);
         match driver {
-            crate::render::Driver::Pattern(_) => 1 << max.ilog2(),
-            _ => max,
+            crate::render::Driver::Tess => max,
+            _ => 1 << max.ilog2(),
         }
     }
 
@@ -131,9 +141,7 @@ impl State {
         let limit = cfg.driver.kind().level_limit(&self.ctx).map(|(max, _)| max);
         (self.scene.patterns.levels())
             .filter(|&l| limit.is_none_or(|max| l <= max))
-            .filter(|&l| {
-                !matches!(cfg.driver, crate::render::Driver::Pattern(_)) || l.is_power_of_two()
-            })
+            .filter(|&l| cfg.driver == crate::render::Driver::Tess || l.is_power_of_two())
             .last()
             .unwrap_or(1)
     }

@@ -223,8 +223,8 @@ struct State {
     budget_note: Option<String>,
     /// Whether the frame budget applies ([`ViewOptions::frame_budget`]).
     frame_budget: bool,
-    /// Why adaptive mode draws this frame uniformly (the static driver, or a configuration the
-    /// driver cannot draw adaptively): what the panel says about it.
+    /// Why adaptive mode draws this frame uniformly (a configuration the driver cannot draw
+    /// adaptively): what the panel says about it.
     mode_note: Option<String>,
     /// The levels the last frame drew with, when it drew adaptively.
     levels: Option<crate::lod::LevelReport>,

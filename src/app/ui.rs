@@ -117,8 +117,8 @@ pub struct PanelInfo<'a> {
     pub has_texcoords: bool,
     /// Why the frame draws less than asked (a level lowered to keep frames interactive).
     pub note: Option<&'a str>,
-    /// Why adaptive mode drew the last frame uniformly (the static driver, or a configuration
-    /// the driver cannot draw adaptively).
+    /// Why adaptive mode drew the last frame uniformly (a configuration the driver cannot
+    /// draw adaptively).
     pub mode_note: Option<&'a str>,
     /// What the last adaptive frame chose, as name and value rows.
     pub adaptive_rows: Vec<(&'static str, String)>,
