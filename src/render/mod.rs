@@ -24,7 +24,7 @@ pub mod static_vbo;
 pub mod tess;
 mod xfb_capture;
 
-pub use camera::Camera;
+pub use camera::{Camera, FIT_MARGIN};
 pub use driver::{Driver, DriverKind, Submit};
 pub use error::RenderError;
 pub use frame::Background;
