@@ -15,6 +15,7 @@
 #![forbid(unsafe_code)]
 
 mod adaptive;
+mod columns;
 mod harness;
 mod report;
 

@@ -1,17 +1,19 @@
-//! Chord-error bounds of the local surfaces (`flat`, `phong`, `pn`, `stpn`) and of every
-//! displacement, from the element's record alone; the proofs are in the module notes of
-//! src/lod/mod.rs. Each surface is written as a triangular Bézier net ([`Net`]) in canonical
-//! corner order (src/surface/mod.rs), the order the surfaces evaluate in, so an edge's net is
-//! the very same on both sides of the edge.
+//! Chord-error bounds of an element and its edges from the element's record alone, for every
+//! surface and displacement: each declares its own part (src/surface/bounds.rs) and this module
+//! combines them; the proofs are in the module notes of src/lod/mod.rs and beside each surface.
+//! A local surface is written as a triangular Bézier net ([`Net`]) in canonical corner order
+//! (src/surface/mod.rs), the order the surfaces evaluate in, so an edge's net is the very same
+//! on both sides of the edge.
 
-use super::displace::{height, MapLevel};
 pub use super::net::Net;
 use super::{Chord, Sphere, EDGE_FACTOR, EDGE_KINK_FACTOR, ELEMENT_FACTOR, KINK_FACTOR};
+use crate::surface::bounds::{DisplaceBound, Patch, SurfaceBound};
+use crate::surface::heightmap::MapLevel;
 use crate::surface::{
-    canonical, dot3, edge_of, pn, stpn, CornerRecord, Corners, Displace, ElementRecord, Inputs,
-    NormalField, Surface, SurfaceParams,
+    canonical, edge_of, stpn, CornerRecord, Corners, Displace, ElementRecord, Inputs, Surface,
+    SurfaceParams,
 };
-use glam::{Vec2, Vec3};
+use glam::Vec2;
 
 /// Bounds of one element or edge.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -81,14 +83,8 @@ impl<'a> Lod<'a> {
         params: &SurfaceParams,
         inputs: &Inputs<'a>,
     ) -> Self {
-        let map_levels = match (displace, inputs.heightmap) {
-            (Displace::Heightmap, Some(map)) => {
-                // The levels Heightmap::sample reads.
-                let last = map.levels.len() - 1;
-                let l0 = (inputs.lod.max(0.0).floor() as usize).min(last);
-                let l1 = (l0 + 1).min(last);
-                Some([MapLevel::of(map, l0), MapLevel::of(map, l1)])
-            }
+        let map_levels = match (displace.facts().bound, inputs.heightmap) {
+            (DisplaceBound::Texture(t), Some(map)) => Some((t.levels)(map, inputs.lod)),
             _ => None,
         };
         Self {
@@ -102,8 +98,8 @@ impl<'a> Lod<'a> {
 
     /// The bounds of element `rec`.
     pub fn element(&self, rec: &ElementRecord) -> Bounds {
-        if self.surface == Surface::Loop {
-            return super::subdiv::element(self, rec);
+        if let SurfaceBound::Own { element, .. } = self.surface.facts().bound {
+            return element(self, rec);
         }
         let r = CornerRecord::decode(rec);
         let c = canonical(&r, [1.0 / 3.0; 3]);
@@ -113,8 +109,8 @@ impl<'a> Lod<'a> {
     /// The bounds of stored edge `e` (corners `e` and `e + 1`) of element `rec`: from the edge's
     /// data alone, the same bits from either element that has it.
     pub fn edge(&self, rec: &ElementRecord, e: usize) -> Bounds {
-        if self.surface == Surface::Loop {
-            return super::subdiv::edge(self, rec, e);
+        if let SurfaceBound::Own { edge, .. } = self.surface.facts().bound {
+            return edge(self, rec, e);
         }
         let r = CornerRecord::decode(rec);
         let mut bary = [0.5f32; 3];
@@ -136,8 +132,14 @@ impl<'a> Lod<'a> {
     /// edge 0.
     fn local(&self, r: &CornerRecord, c: &Corners, edge: Option<usize>) -> Bounds {
         let tags = self.tags(r, c);
-        let exact = surface_net(self.surface, self.params.alpha, c, &tags, edge.is_some());
-        let net = exact.unwrap_or_else(|| phong_fallback_net(c));
+        let SurfaceBound::Nets { geometry, .. } = self.surface.facts().bound else {
+            unreachable!("surfaces with bounds of their own return before");
+        };
+        let (exact, near) = match geometry(&self.params, c, &tags, edge.is_some()) {
+            Patch::Exact(net) => (Some(net), None),
+            Patch::Near(net, d) => (None, Some((net, d))),
+        };
+        let net = exact.unwrap_or_else(|| near.unwrap().0);
         let dirs: Vec<usize> = match edge {
             Some(k) => vec![k],
             None => vec![0, 1, 2],
@@ -147,15 +149,12 @@ impl<'a> Lod<'a> {
             m.iter_mut().for_each(|x| *x = f32::INFINITY);
         }
         let mut sphere = Sphere::around(&net.hull(edge));
-        if exact.is_none() {
-            // |Phong − flat| <= α · max |p − P_i| <= α · the longest edge.
-            let longest = (0..3)
-                .map(|i| (c.p[(i + 1) % 3] - c.p[i]).length())
-                .fold(0.0, f32::max);
-            sphere = sphere.grown(self.params.alpha * longest);
+        if let Some((_, d)) = near {
+            sphere = sphere.grown(d);
         }
+        let displaced = !matches!(self.displace.facts().bound, DisplaceBound::Zero);
         let (mut kink, mut grow) = (Chord::ZERO, 0.0f32);
-        if self.displace != Displace::None {
+        if displaced {
             let (extra, k, g) = self.displacement(c, &tags, &net, &sphere, edge);
             for (mk, e) in m.iter_mut().zip(extra) {
                 *mk += e;
@@ -178,10 +177,8 @@ impl<'a> Lod<'a> {
                 }
             }
         }
-        let cone = match (edge, exact, self.displace) {
-            (None, Some(net), Displace::None) => {
-                super::cull::normal_cone(&net, odd_permutation(c.order))
-            }
+        let cone = match (edge, exact, displaced) {
+            (None, Some(net), false) => super::cull::normal_cone(&net, odd_permutation(c.order)),
             _ => None,
         };
         Bounds {
@@ -211,67 +208,47 @@ impl<'a> Lod<'a> {
             None => vec![0, 1, 2],
         };
         let p = &self.params;
-        let a = p.amplitude.abs();
         // The direction field's nets (several on a scalar-tagged edge with crease corners, whose
         // sharp normal depends on the side).
-        let nets = direction_nets(
-            self.surface,
-            self.params.normal_field,
-            c,
-            tags,
-            edge.is_some(),
-        );
+        let SurfaceBound::Nets { direction, .. } = self.surface.facts().bound else {
+            unreachable!("surfaces with bounds of their own return before");
+        };
+        let nets = direction(p, c, tags, edge.is_some());
         let mut extra = vec![0.0f32; dirs.len()];
         let mut kink = Chord::ZERO;
-        let max_h = if self.displace == Displace::Heightmap {
-            a * p.bias.abs().max((1.0 - p.bias).abs())
-        } else {
-            height(self.displace, p, sphere).max
-        };
+        let bound = self.displace.facts().bound;
+        let max_h = bound.max_height(p, sphere);
         // Height derivative bounds per direction: |h'| and the smooth part of |h''|.
         let mut h1 = vec![0.0f32; dirs.len()];
         let mut h2 = vec![0.0f32; dirs.len()];
-        if self.displace == Displace::Heightmap {
-            let uv = self
-                .inputs
-                .uv
-                .map(|t| c.order.map(|i| Vec2::from(t[i])))
-                .unwrap_or([Vec2::ZERO; 3]);
-            let Some(levels) = self.map_levels.filter(|_| self.inputs.uv.is_some()) else {
-                // No map or no coordinates: the displacement is the constant a·(0 − b)... but the
-                // evaluation reads h = 0 then: a constant offset along the normal.
-                return self.smooth_only(&dirs, &nets, edge, max_h);
-            };
-            for lv in levels {
-                let speed: Vec<Vec2> = dirs
-                    .iter()
-                    .map(|&k| ((uv[(k + 1) % 3] - uv[k]) * lv.size).abs())
-                    .collect();
-                let s = speed.iter().fold(Vec2::ZERO, |m, &v| m.max(v));
-                for (i, v) in speed.iter().enumerate() {
-                    h1[i] = h1[i].max(a * (lv.first.x * v.x + lv.first.y * v.y));
-                }
+        match bound {
+            DisplaceBound::Texture(t) => {
+                let uv = self
+                    .inputs
+                    .uv
+                    .map(|x| c.order.map(|i| Vec2::from(x[i])))
+                    .unwrap_or([Vec2::ZERO; 3]);
+                let Some(levels) = self.map_levels.filter(|_| self.inputs.uv.is_some()) else {
+                    // No map or no coordinates: the displacement is the constant a·(0 − b)... but
+                    // the evaluation reads h = 0 then: a constant offset along the normal.
+                    return self.smooth_only(&dirs, &nets, edge, max_h);
+                };
                 let f = if edge.is_some() {
                     EDGE_KINK_FACTOR
                 } else {
                     KINK_FACTOR
                 };
-                kink = kink.max(Chord {
-                    c1: f * a * (lv.second.x * s.x + lv.second.y * s.y),
-                    c2: f
-                        * a
-                        * (lv.second.x * s.x * s.x
-                            + lv.second.y * s.y * s.y
-                            + 2.0 * lv.mixed * s.x * s.y),
-                });
+                (h1, kink) = (t.slopes)(p, &levels, uv, &dirs, f);
             }
-        } else {
-            let hb = height(self.displace, p, sphere);
-            for (i, &k) in dirs.iter().enumerate() {
-                let (v, m) = (net.first(k, edge), net.second(k, edge));
-                h1[i] = hb.grad * v;
-                h2[i] = hb.hess * v * v + hb.grad * m;
+            DisplaceBound::OfPoint(height) => {
+                let hb = height(p, sphere);
+                for (i, &k) in dirs.iter().enumerate() {
+                    let (v, m) = (net.first(k, edge), net.second(k, edge));
+                    h1[i] = hb.grad * v;
+                    h2[i] = hb.hess * v * v + hb.grad * m;
+                }
             }
+            DisplaceBound::Zero => {}
         }
         for dn in &nets {
             let rho = dn.min_length(edge);
@@ -320,130 +297,4 @@ impl<'a> Lod<'a> {
 /// orientation of the parametrization).
 fn odd_permutation(o: [usize; 3]) -> bool {
     !matches!(o, [0, 1, 2] | [1, 2, 0] | [2, 0, 1])
-}
-
-/// The normal Phong tessellation's corner `i` projects onto for the curve of edge `e`.
-fn phong_normal(c: &Corners, i: usize, e: usize) -> Vec3 {
-    if c.seam_phong[e] {
-        c.g[i]
-    } else {
-        c.n[i]
-    }
-}
-
-/// The Bézier net of a local surface on canonical corners `c`. `None` for a Phong element with
-/// a corner whose two edges pick different normals (not a polynomial), unless only the edges'
-/// curves are wanted (`edges_only`: each edge's curve is the quadratic of its own normals).
-pub fn surface_net(
-    surface: Surface,
-    alpha: f32,
-    c: &Corners,
-    tags: &[stpn::VertexTag; 3],
-    edges_only: bool,
-) -> Option<Net> {
-    let corner = |w: [usize; 3]| (0..3).find(|&i| w[i] == w.iter().sum::<usize>());
-    Some(match surface {
-        Surface::Flat | Surface::Loop => Net::from_fn(1, |w| c.p[corner(w).unwrap()]),
-        Surface::Phong => {
-            let mixed = (0..3).any(|i| {
-                let (j, k) = ((i + 1) % 3, (i + 2) % 3);
-                phong_normal(c, i, edge_of(i, j)) != phong_normal(c, i, edge_of(i, k))
-            });
-            if mixed && !edges_only {
-                return None;
-            }
-            Net::from_fn(2, |w| match corner(w) {
-                Some(i) => c.p[i],
-                None => {
-                    let i = (0..3).find(|&i| w[i] == 1).unwrap();
-                    let j = (i + 1..3).find(|&j| w[j] == 1).unwrap();
-                    let e = edge_of(i, j);
-                    let (ai, aj) = (phong_normal(c, i, e), phong_normal(c, j, e));
-                    let k = ai * dot3(c.p[j] - c.p[i], ai) + aj * dot3(c.p[i] - c.p[j], aj);
-                    (c.p[i] + c.p[j]) * 0.5 - k * (0.5 * alpha)
-                }
-            })
-        }
-        Surface::Pn | Surface::Stpn => {
-            let b = if surface == Surface::Pn {
-                pn::control(c)
-            } else {
-                pn::control_with(c, &|i, j| stpn::edge_point(c, tags, i, j))
-            };
-            Net::from_fn(3, |w| match corner(w) {
-                Some(i) => c.p[i],
-                None => match (0..3).find(|&i| w[i] == 2) {
-                    Some(i) => b.e[i][(0..3).find(|&j| w[j] == 1).unwrap()],
-                    None => b.centre,
-                },
-            })
-        }
-    })
-}
-
-/// A net that contains a non-polynomial Phong element (for its sphere): the flat triangle.
-fn phong_fallback_net(c: &Corners) -> Net {
-    surface_net(
-        Surface::Flat,
-        0.0,
-        c,
-        &[stpn::VertexTag::default(); 3],
-        false,
-    )
-    .unwrap()
-}
-
-/// The unnormalized direction field displacement moves along (`SurfacePoint::direction`), as
-/// Bézier nets: linear for `flat` and `phong`, `pn`'s and `stpn`'s normal field `field`
-/// (quadratic for `paper` and `vlachos`, linear for `linear`). On a scalar-tagged edge every
-/// side's choice of sharp normal at its crease corners.
-pub fn direction_nets(
-    surface: Surface,
-    field: NormalField,
-    c: &Corners,
-    tags: &[stpn::VertexTag; 3],
-    edge: bool,
-) -> Vec<Net> {
-    let cg = Corners { n: c.g, ..*c };
-    let linear = |n: [Vec3; 3]| Net::from_fn(1, |w| n[(0..3).find(|&i| w[i] == 1).unwrap()]);
-    let quadratic = |n: [Vec3; 3]| {
-        if field == NormalField::Linear {
-            return linear(n);
-        }
-        let cn = Corners { n, ..cg };
-        Net::from_fn(2, |w| match (0..3).find(|&i| w[i] == 2) {
-            Some(i) => n[i],
-            None => {
-                let i = (0..3).find(|&i| w[i] == 1).unwrap();
-                let j = (i + 1..3).find(|&j| w[j] == 1).unwrap();
-                // pn::normal's terms: n01 w0w1, n12 w1w2, n20 w2w0.
-                let (a, b) = if (i, j) == (0, 2) { (2, 0) } else { (i, j) };
-                pn::field_control(&cn, a, b, field) * 0.5
-            }
-        })
-    };
-    match surface {
-        Surface::Flat | Surface::Phong | Surface::Loop => vec![linear(cg.n)],
-        Surface::Pn => vec![quadratic(cg.n)],
-        Surface::Stpn if !edge => vec![quadratic(stpn::shading_normals(&cg, tags))],
-        Surface::Stpn => {
-            let sides = |i: usize| -> Vec<Vec3> {
-                let t = &tags[i];
-                if !t.crease() {
-                    return vec![cg.n[i]];
-                }
-                [1.0f32, -1.0]
-                    .iter()
-                    .map(|s| (t.normal + t.direction * (s * t.sharpness)).normalize_or_zero())
-                    .collect()
-            };
-            let mut out = Vec::new();
-            for a in sides(0) {
-                for b in sides(1) {
-                    out.push(quadratic([a, b, cg.n[2]]));
-                }
-            }
-            out
-        }
-    }
 }

@@ -58,7 +58,7 @@
 use super::bound::Lod;
 use super::levels::{drawn_level, ElementLevels};
 use super::{Bounds, Chord, Frustum, Sphere, View, ELEMENT_FACTOR};
-use crate::surface::{CornerRecord, ElementRecord, Surface};
+use crate::surface::{CornerRecord, ElementRecord};
 use bytemuck::{Pod, Zeroable};
 use glam::{Vec3, Vec4};
 use std::collections::{BTreeMap, HashMap};
@@ -222,7 +222,7 @@ pub fn strip_need(b: &Bounds, e: usize, dyadic: bool) -> Chord {
 /// An element's corners' global vertex indices (M1's for `loop`): what orders an edge
 /// canonically (from the lower index to the higher).
 pub fn corner_indices(lod: &Lod, rec: &ElementRecord) -> [u32; 3] {
-    if lod.surface == Surface::Loop {
+    if lod.surface.uses_loop_faces() {
         let (data, _) = lod.inputs.loop_.expect("loop bounds need Inputs::loop_");
         data.m1.faces[rec.words[0] as usize]
     } else {

@@ -38,38 +38,30 @@
 //! ([`ELEMENT_FACTOR`]); for a kink measure the same steps give `25/64` times the total variation
 //! along a lattice segment ([`KINK_FACTOR`]).
 //!
-//! # Per surface (src/lod/bound.rs)
-//! - `flat`: a linear net: zero.
-//! - `phong`: a quadratic (Bézier net of degree 2, [`bound::surface_net`]):
-//!   `P = Σ w_i P_i − α Σ_{i<j} w_i w_j K_ij`, `K_ij = ((P_j − P_i)·a_i) a_i + ((P_i − P_j)·a_j) a_j`
-//!   (`a_i` the corner's tangent-plane normal), so `D²P[d_ij, d_ij] = 2α K_ij` exactly and the edge
-//!   error at `N` segments is exactly `α |K_ij| / (4 N²)`. A corner whose two edges pick different
-//!   normals (a flagged seam, src/surface/record.rs) blends them inside the triangle, which is
-//!   not a polynomial: such an element has no finite interior bound and gets the maximum level
-//!   (its edges keep their exact bounds).
-//! - `pn`, `stpn`: cubic Bézier triangles. Along direction `k` the second derivative is
-//!   `6 Σ_γ B¹_γ Δ²_k b_γ`, a convex combination, so `M_k = 6 max |Δ²_k b|` over the three second
-//!   differences of the ten-point net in that direction; an edge's curve (its four control points
-//!   `b0..b3`) has `M_e = 6 max(|b0 − 2b1 + b2|, |b1 − 2b2 + b3|)`, i.e. the edge error is
-//!   `3/4 · max(...) / N²` (the 2006 paper's bound, sign-free).
+//! # Per surface and displacement
+//! Each surface and displacement declares how its chord error is bounded
+//! (`FACTS.bound`, src/surface/bounds.rs), with the proof beside its code; src/lod/bound.rs
+//! combines them without naming any:
+//! - `flat` (src/surface/flat.rs, `net`): a linear net: zero.
+//! - `phong` (src/surface/phong.rs, `net`): a quadratic, `D²P[d_ij, d_ij] = 2α K_ij` exactly; a
+//!   corner whose two edges pick different normals (a flagged seam) is not a polynomial: no
+//!   finite interior bound, the maximum level (its edges keep their exact bounds).
+//! - `pn`, `stpn` (src/surface/pn.rs and stpn.rs, `net`): cubic Bézier triangles, the second
+//!   differences of the ten-point net (the 2006 paper's edge bound, sign-free).
+//! - `loop` (src/surface/loop_bound.rs): second differences of the exact limit points on the
+//!   tables' lattice ([`crate::surface::loop_`]).
 //! - displacement `P' = P + h N`, `N = n/|n|` the unit direction field (a polynomial `n` of degree
 //!   1 or 2 with `|n| >= ρ > 0` on the patch, from its Bernstein coefficients' projection on their
-//!   mean; for `pn` and `stpn` the chosen normal field, `--normal-field`: quadratic for `paper`
-//!   and `vlachos`, whose control normals differ, linear for `linear`): `|(hN)''| <= |h''| + 2|h'||N'| + |h||N''|`, with `|N'| <= |n'|/ρ` and
-//!   `|N''| <= 2|n''|/ρ + 3|n'|²/ρ²`. For a height `h = η(P)` of the point (`sine`, `noise`),
+//!   mean; each surface's `direction` nets: for `pn` and `stpn` the chosen normal field,
+//!   `--normal-field`: quadratic for `paper` and `vlachos`, whose control normals differ, linear
+//!   for `linear`): `|(hN)''| <= |h''| + 2|h'||N'| + |h||N''|`, with `|N'| <= |n'|/ρ` and
+//!   `|N''| <= 2|n''|/ρ + 3|n'|²/ρ²` (src/lod/bound.rs). For a height `h = η(P)` of the point
+//!   (`sine`: src/surface/displace.rs; `noise`: src/surface/noise.rs),
 //!   `|h''| <= H |P'|² + G |P''|` with `G`, `H` bounds of `η`'s gradient and Hessian over the
-//!   patch's sphere ([`displace::Height`]): `sine` `η = a sin(f r)` has `G = |a| f`,
-//!   `H = |a| max(f², f / r_min)` (`r_min` the sphere's distance from the displacement's origin:
-//!   the cone point of `|P|` at the origin has unbounded curvature, and a patch containing it
-//!   gets the maximum level); `noise` has `G = |a| f · octaves · 6.71` and
-//!   `H = |a| f² (2^octaves − 1) · 34.7` (octave `o` adds `a/2^o · noise(2^o f p)`), from the
-//!   noise's largest gradient and Hessian over every choice of corner gradients
-//!   ([`displace::noise_scan`]). The
-//!   height map's `h` is bilinear in texels (kinks at texel lines): its slope jumps by at most
-//!   the map's second difference per texel line crossed, which gives the `c1 / N` term.
-//! - `loop`: the drawn surface interpolates exact limit points on the tables' lattice
-//!   ([`crate::surface::loop_`]); the bound uses that lattice's second differences
-//!   (src/lod/subdiv.rs).
+//!   patch's sphere ([`crate::surface::bounds::Height`]). The height map's `h`
+//!   (src/surface/heightmap.rs, `BOUND`) is bilinear in texels (kinks at texel lines): its slope
+//!   jumps by at most the map's second difference per texel line crossed, which gives the
+//!   `c1 / N` term.
 //!
 //! Edges: an edge's bound, sphere and level come from its own data only (its corners in
 //! canonical order, src/surface/mod.rs, with the third weight zero, exactly as the surfaces
@@ -115,15 +107,14 @@
 
 pub mod bound;
 pub mod cull;
-pub mod displace;
 pub mod frame;
 pub mod levels;
 pub mod net;
 pub mod report;
-pub mod subdiv;
 
 pub use bound::{Bounds, Lod};
 pub use cull::{Frustum, NormalCone};
+pub use net::Net;
 pub use report::LevelReport;
 
 use glam::Vec3;

@@ -19,7 +19,9 @@
 //!
 //! Watertight: `P′` depends on P and the direction only, which are bit-identical on shared edges.
 
-use super::{dot3, noise, DisplaceFacts, Inputs, SurfaceParams, SurfacePoint};
+use super::bounds::{DisplaceBound, Height};
+use super::{dot3, heightmap, noise, DisplaceFacts, Inputs, SurfaceParams, SurfacePoint};
+use crate::lod::Sphere;
 use glam::Vec3;
 
 /// The displacement applied after the surface. The discriminant is the `DISPLACE`
@@ -54,6 +56,7 @@ impl Displace {
             options: &[],
             texture_coordinates: false,
             bindings: &[],
+            bound: DisplaceBound::Zero,
         };
         const SINE: DisplaceFacts = DisplaceFacts {
             name: "sine",
@@ -61,6 +64,7 @@ impl Displace {
             options: &["amplitude", "frequency"],
             texture_coordinates: false,
             bindings: &[],
+            bound: DisplaceBound::OfPoint(sine_bound),
         };
         const NOISE: DisplaceFacts = DisplaceFacts {
             name: "noise",
@@ -68,6 +72,7 @@ impl Displace {
             options: &["amplitude", "frequency", "octaves"],
             texture_coordinates: false,
             bindings: &["BINDING_NOISE"],
+            bound: DisplaceBound::OfPoint(noise::bound),
         };
         const HEIGHTMAP: DisplaceFacts = DisplaceFacts {
             name: "heightmap",
@@ -75,6 +80,7 @@ impl Displace {
             options: &["amplitude", "bias", "heightmap"],
             texture_coordinates: true,
             bindings: &["BINDING_UVS", "BINDING_HEIGHTMAP", "BINDING_HEIGHTMAP_TEXELS"],
+            bound: DisplaceBound::Texture(heightmap::BOUND),
         };
         match self {
             Displace::None => &NONE,
@@ -116,6 +122,27 @@ pub fn height(d: Displace, params: &SurfaceParams, p: Vec3) -> (f32, Vec3) {
             }
             (a * h, grad * a)
         }
+    }
+}
+
+/// The sine displacement's height bound over sphere `s`: `η = a sin(f r)` has `|η| <= |a|`,
+/// `|∇η| <= |a| f`, and its Hessian's radial curvature `−a f² sin(f r)` and tangential
+/// `a f cos(f r) / r` give `|a| max(f², f / r_min)`, `r_min` the sphere's distance from the
+/// displacement's origin (the cone point of `|P|` at the origin has unbounded curvature: a patch
+/// containing it gets no finite bound).
+fn sine_bound(params: &SurfaceParams, s: &Sphere) -> Height {
+    let (a, f) = (params.amplitude.abs(), params.frequency);
+    // η = a sin(f r): radial curvature −a f² sin(f r), tangential a f cos(f r) / r.
+    let r_min = (s.centre - params.origin).length() - s.radius;
+    let tangential = if r_min > 0.0 {
+        f / r_min
+    } else {
+        f32::INFINITY
+    };
+    Height {
+        max: a,
+        grad: a * f,
+        hess: a * (f * f).max(tangential),
     }
 }
 

@@ -1,5 +1,6 @@
 //! What each surface and displacement declares about itself: its elements, the options it
-//! reads, what inputs it needs, where its normal field is evaluated. Each surface's module
+//! reads, what inputs it needs, where its normal field is evaluated, how its chord error is
+//! bounded (src/surface/bounds.rs). Each surface's module
 //! holds its own `FACTS` (`flat.rs`, `phong.rs`, `pn.rs`, `stpn.rs`, `loop.rs`), each
 //! displacement's is in `displace.rs`; [`super::Surface::facts`] and
 //! [`super::Displace::facts`] are the one place that matches on them. The scene, the window,
@@ -60,6 +61,8 @@ pub struct SurfaceFacts {
     /// The per-mesh bindings (set 1, `src/render/bindings.rs`) its GLSL include declares
     /// beyond the element records, which the mesh's descriptor sets must hold.
     pub bindings: &'static [&'static str],
+    /// How its chord error is bounded (src/lod's adaptive levels).
+    pub bound: super::bounds::SurfaceBound,
 }
 
 /// What a displacement declares about itself.
@@ -74,6 +77,8 @@ pub struct DisplaceFacts {
     pub texture_coordinates: bool,
     /// The bindings its GLSL reads (besides the frame's uniforms).
     pub bindings: &'static [&'static str],
+    /// How its height is bounded (src/lod's adaptive levels).
+    pub bound: super::bounds::DisplaceBound,
 }
 
 /// Why `surface` cannot be drawn with `displace` on a mesh that has (or lacks) texture

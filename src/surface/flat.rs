@@ -3,8 +3,11 @@
 //! Mirror of `glsl/include/flat.glsl`. Evaluated in the same operation order as the GLSL, which
 //! marks it `precise` (no fused multiply-add), so CPU and GPU positions agree to the bit.
 
+use super::bounds::{Patch, SurfaceBound};
 use super::facts::{Elements, FragmentNormals, SurfaceFacts};
-use super::{Corners, Local};
+use super::stpn::VertexTag;
+use super::{Corners, Local, SurfaceParams};
+use crate::lod::Net;
 use glam::Vec3;
 
 /// What `flat` declares about itself (docs/architecture.md, "Surfaces as plug-ins").
@@ -18,6 +21,10 @@ pub const FACTS: SurfaceFacts = SurfaceFacts {
     tags: false,
     fragment_normals: FragmentNormals::Never,
     bindings: &[],
+    bound: SurfaceBound::Nets {
+        geometry: net,
+        direction,
+    },
 };
 
 /// The flat point `Σ w_i P_i`.
@@ -38,4 +45,20 @@ pub fn eval(c: &Corners) -> Local {
         normal: normal(c),
         grad: c.p,
     }
+}
+
+/// The linear net with corners `p` (canonical order).
+pub fn linear_net(p: [Vec3; 3]) -> Net {
+    Net::from_fn(1, |w| p[(0..3).find(|&i| w[i] == 1).unwrap()])
+}
+
+/// Chord-error bound: `flat` is its own linear net, whose second derivatives are zero.
+pub fn net(_: &SurfaceParams, c: &Corners, _: &[VertexTag; 3], _: bool) -> Patch {
+    Patch::Exact(linear_net(c.p))
+}
+
+/// The direction field displacement moves along: the linear interpolation of the geometry
+/// normals.
+pub fn direction(_: &SurfaceParams, c: &Corners, _: &[VertexTag; 3], _: bool) -> Vec<Net> {
+    vec![linear_net(c.g)]
 }

@@ -22,6 +22,9 @@ use crate::subdiv::bft::Orient;
 use crate::subdiv::{padded, FaceRecord};
 use glam::Vec3;
 
+#[path = "loop_bound.rs"]
+pub mod bound;
+
 /// What the rest of the crate names of Loop subdivision (`crate::subdiv`), through this surface:
 /// its boundary rule and table levels (build options), the per-mesh data and M1 the mirror
 /// reads, the error of a mesh Loop cannot subdivide, and the tables' progress reports.
@@ -50,6 +53,10 @@ pub const FACTS: SurfaceFacts = SurfaceFacts {
         "BINDING_LOOP_TABLES",
         "BINDING_LOOP_ROWS",
     ],
+    bound: crate::surface::bounds::SurfaceBound::Own {
+        element: bound::element,
+        edge: bound::edge,
+    },
 };
 
 /// What the mirror reads besides the record: the mesh's tables and M1.

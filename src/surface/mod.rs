@@ -16,6 +16,7 @@
 //! surface, and so are normals where the corners share them.
 #![forbid(unsafe_code)]
 
+pub mod bounds;
 pub mod displace;
 pub mod facts;
 pub mod flat;
@@ -23,6 +24,7 @@ pub mod heightmap;
 #[path = "loop.rs"]
 pub mod loop_;
 pub mod noise;
+mod params;
 pub mod phong;
 pub mod pn;
 mod record;
@@ -31,6 +33,7 @@ pub mod stpn;
 pub use displace::Displace;
 pub use facts::{DisplaceFacts, Elements, FragmentNormals, SurfaceFacts};
 pub use heightmap::Heightmap;
+pub use params::{shown_number, SurfaceParams, MAX_FREQUENCY_RADII, MAX_REACH_RADII};
 pub use pn::NormalField;
 pub use record::{
     build_records, corner_records, oct_decode, oct_encode, split_positions, CornerRecord,
@@ -126,28 +129,6 @@ pub enum Seams {
     Open,
 }
 
-/// Parameters of the surfaces and displacements (the `Frame` block's `params` on the GPU).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SurfaceParams {
-    /// Phong tessellation's shape factor α in [0, 1] (0: flat, 1: full projection).
-    pub alpha: f32,
-    /// Displacement amplitude a, in the mesh's units.
-    pub amplitude: f32,
-    /// Displacement frequency f, in radians (sine) or noise cells (noise) per mesh unit.
-    pub frequency: f32,
-    /// Octaves of the noise displacement (each doubles the frequency and halves the amplitude).
-    pub octaves: u32,
-    /// Where the mesh's own origin is in the coordinates drawn (zero unless the mesh is drawn
-    /// moved and scaled, see [`SurfaceParams::in_drawn_frame`]): displacement is a function of
-    /// the point in the mesh's coordinates.
-    pub origin: Vec3,
-    /// The height map displacement's bias b: `P′ = P + a·(h − b)·N`.
-    pub bias: f32,
-    /// The normal field of `pn` and `stpn` (the `NORMAL_FIELD` specialization constant on the
-    /// GPU, not a `Frame` value).
-    pub normal_field: NormalField,
-}
-
 /// Options built into a mesh's data (the element records, Loop's tables), not sent per frame:
 /// drawing with other options rebuilds that data ([`SurfaceParams`] holds the per-frame ones).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -182,187 +163,6 @@ impl BuildOptions {
             ));
         }
         Ok(())
-    }
-}
-
-/// `x` for messages: as typed for ordinary magnitudes, in exponent form for huge or tiny ones
-/// (`3.4e38`, not 39 digits).
-pub fn shown_number(x: f32) -> String {
-    let a = x.abs();
-    if a != 0.0 && a.is_finite() && !(1e-4..1e7).contains(&a) {
-        format!("{x:e}")
-    } else {
-        format!("{x}")
-    }
-}
-
-/// Largest displacement reach accepted, in bounding radii of the mesh
-/// ([`SurfaceParams::check_displacement`]).
-pub const MAX_REACH_RADII: f64 = 1e6;
-
-/// Largest displacement frequency accepted, in radians per bounding radius of the mesh.
-pub const MAX_FREQUENCY_RADII: f64 = 1e6;
-
-impl Default for SurfaceParams {
-    fn default() -> Self {
-        Self {
-            alpha: 0.75,
-            amplitude: 0.03,
-            frequency: 24.0,
-            octaves: 1,
-            origin: Vec3::ZERO,
-            bias: 0.0,
-            normal_field: NormalField::default(),
-        }
-    }
-}
-
-impl SurfaceParams {
-    /// Most octaves accepted (beyond this the added detail is below f32 resolution).
-    pub const MAX_OCTAVES: u32 = 8;
-
-    /// Defaults scaled to a mesh of bounding radius `radius`: amplitude 3% of it, frequency
-    /// 24 radians (sine) per radius.
-    pub fn for_radius(radius: f32) -> Self {
-        let r = if radius.is_finite() && radius > 0.0 {
-            radius
-        } else {
-            1.0
-        };
-        Self {
-            amplitude: 0.03 * r,
-            frequency: 24.0 / r,
-            ..Self::default()
-        }
-    }
-
-    /// One sentence naming the first parameter out of its range.
-    pub fn validate(&self) -> Result<(), String> {
-        if !(self.alpha.is_finite() && (0.0..=1.0).contains(&self.alpha)) {
-            return Err(format!("--alpha {} is not within [0, 1]", self.alpha));
-        }
-        if !self.amplitude.is_finite() {
-            return Err(format!(
-                "--amplitude {} is not a finite number",
-                self.amplitude
-            ));
-        }
-        if !(self.frequency.is_finite() && self.frequency >= 0.0) {
-            return Err(format!(
-                "--frequency {} is not a finite number >= 0",
-                self.frequency
-            ));
-        }
-        if !self.bias.is_finite() {
-            return Err(format!("--bias {} is not a finite number", self.bias));
-        }
-        if !(1..=Self::MAX_OCTAVES).contains(&self.octaves) {
-            return Err(format!(
-                "--octaves {} is not within [1, {}]",
-                self.octaves,
-                Self::MAX_OCTAVES
-            ));
-        }
-        Ok(())
-    }
-
-    /// How far displacement `d` can move a point, in the mesh's units: |a| times the largest
-    /// |height| (1 for sine, 2 for noise's octaves, 1 + |bias| for a height map).
-    pub fn reach(&self, d: Displace) -> f64 {
-        let h = match d {
-            Displace::None => 0.0,
-            Displace::Sine => 1.0,
-            Displace::Noise => 2.0,
-            Displace::Heightmap => 1.0 + (self.bias as f64).abs(),
-        };
-        (self.amplitude as f64).abs() * h
-    }
-
-    /// The options that set [`SurfaceParams::reach`], for messages: "--amplitude 2" or
-    /// "--amplitude 2 with --bias 0.5".
-    pub fn reach_options(&self, d: Displace) -> String {
-        if d == Displace::Heightmap && self.bias != 0.0 {
-            format!(
-                "--amplitude {} with --bias {}",
-                shown_number(self.amplitude),
-                shown_number(self.bias)
-            )
-        } else {
-            format!("--amplitude {}", shown_number(self.amplitude))
-        }
-    }
-
-    /// Refuses a displacement whose result would not be finite or meaningful on a mesh of
-    /// bounding radius `radius` whose points are at most `extent` from the origin, before
-    /// anything is drawn: the reach at most [`MAX_REACH_RADII`] radii, the highest frequency
-    /// (the last octave's) at most [`MAX_FREQUENCY_RADII`] radians per radius, and the
-    /// displaced points within `f32`. Within these limits positions, tangents and normals stay
-    /// finite (the normal's perturbation is at most about a·f, whose square is far from
-    /// overflowing).
-    pub fn check_displacement(&self, d: Displace, radius: f32, extent: f32) -> Result<(), String> {
-        if d == Displace::None {
-            return Ok(());
-        }
-        let r = if radius.is_finite() && radius > 0.0 {
-            radius as f64
-        } else {
-            1.0
-        };
-        let reach = self.reach(d);
-        let by = self.reach_options(d);
-        if reach > MAX_REACH_RADII * r {
-            return Err(format!(
-                "{by} moves the surface up to {:.3e} times the mesh's bounding radius ({r:.3e}); at most {MAX_REACH_RADII:e} times is accepted (beyond that positions and normals are not finite)",
-                reach / r
-            ));
-        }
-        if extent as f64 + reach > f32::MAX as f64 / 4.0 {
-            return Err(format!(
-                "{by} moves the surface beyond the range of f32 coordinates (the mesh reaches {extent:e} from the origin)"
-            ));
-        }
-        if matches!(d, Displace::Sine | Displace::Noise) {
-            let octaves = if d == Displace::Noise {
-                self.octaves.max(1)
-            } else {
-                1
-            };
-            let top = self.frequency as f64 * r * 2f64.powi(octaves as i32 - 1);
-            if top > MAX_FREQUENCY_RADII {
-                let with = if octaves > 1 {
-                    format!(" (with --octaves {octaves}, the last octave's)")
-                } else {
-                    String::new()
-                };
-                return Err(format!(
-                    "--frequency {} is {top:.3e} radians per bounding radius of the mesh{with}; at most {MAX_FREQUENCY_RADII:e} is accepted (beyond that the displacement is noise at any level and its normals are not finite)",
-                    shown_number(self.frequency)
-                ));
-            }
-        }
-        Ok(())
-    }
-
-    /// The same displacement for a mesh drawn as `(P − centre) · scale` (what
-    /// `Mesh::for_viewing` draws): amplitude in drawn units, frequency per drawn unit, and the
-    /// mesh's origin where it lands.
-    pub fn in_drawn_frame(&self, centre: glam::DVec3, scale: f64) -> Self {
-        Self {
-            amplitude: (self.amplitude as f64 * scale) as f32,
-            frequency: (self.frequency as f64 / scale) as f32,
-            origin: (-centre * scale).as_vec3() + self.origin,
-            ..*self
-        }
-    }
-
-    /// As the `Frame` block's `params` vector: (alpha, amplitude, frequency, octaves).
-    pub fn to_gpu(&self) -> [f32; 4] {
-        [
-            self.alpha,
-            self.amplitude,
-            self.frequency,
-            self.octaves as f32,
-        ]
     }
 }
 

@@ -8,8 +8,11 @@
 //! the point depends on the edge's two corners only: Phong tessellation is watertight wherever
 //! the corners share geometry normals (everywhere with closed seams, src/surface/record.rs).
 
+use super::bounds::{Patch, SurfaceBound};
 use super::facts::{Elements, FragmentNormals, SurfaceFacts};
-use super::{dot3, edge_of, flat, Corners, Local};
+use super::stpn::VertexTag;
+use super::{dot3, edge_of, flat, Corners, Local, SurfaceParams};
+use crate::lod::Net;
 use glam::Vec3;
 
 /// What `phong` declares about itself (docs/architecture.md, "Surfaces as plug-ins").
@@ -23,6 +26,10 @@ pub const FACTS: SurfaceFacts = SurfaceFacts {
     tags: false,
     fragment_normals: FragmentNormals::Never,
     bindings: &[],
+    bound: SurfaceBound::Nets {
+        geometry: net,
+        direction: flat::direction,
+    },
 };
 
 /// Projection of `q` onto the plane through `p` with unit normal `n`.
@@ -66,4 +73,47 @@ pub fn eval(c: &Corners, alpha: f32) -> Local {
         normal: flat::normal(c),
         grad,
     }
+}
+
+/// The normal Phong tessellation's corner `i` projects onto for the curve of edge `e`.
+fn edge_normal(c: &Corners, i: usize, e: usize) -> Vec3 {
+    if c.seam_phong[e] {
+        c.g[i]
+    } else {
+        c.n[i]
+    }
+}
+
+/// Chord-error bound: Phong tessellation is a quadratic, the Bézier net of degree 2
+/// `P = Σ w_i P_i − α Σ_{i<j} w_i w_j K_ij`, `K_ij = ((P_j − P_i)·a_i) a_i + ((P_i − P_j)·a_j) a_j`
+/// (`a_i` the corner's tangent-plane normal), so `D²P[d_ij, d_ij] = 2α K_ij` exactly and the edge
+/// error at `N` segments is exactly `α |K_ij| / (4 N²)`. A corner whose two edges pick different
+/// normals (a flagged seam, src/surface/record.rs) blends them inside the triangle, which is not
+/// a polynomial: such an element has no finite interior bound (the flat triangle's net, with
+/// `|Phong − flat| <= α · max |p − P_i| <= α ·` the longest edge), unless only the edges' curves
+/// are wanted (`edges_only`: each edge's curve is the quadratic of its own normals).
+pub fn net(params: &SurfaceParams, c: &Corners, _: &[VertexTag; 3], edges_only: bool) -> Patch {
+    let alpha = params.alpha;
+    let corner = |w: [usize; 3]| (0..3).find(|&i| w[i] == w.iter().sum::<usize>());
+    let mixed = (0..3).any(|i| {
+        let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+        edge_normal(c, i, edge_of(i, j)) != edge_normal(c, i, edge_of(i, k))
+    });
+    if mixed && !edges_only {
+        let longest = (0..3)
+            .map(|i| (c.p[(i + 1) % 3] - c.p[i]).length())
+            .fold(0.0, f32::max);
+        return Patch::Near(flat::linear_net(c.p), alpha * longest);
+    }
+    Patch::Exact(Net::from_fn(2, |w| match corner(w) {
+        Some(i) => c.p[i],
+        None => {
+            let i = (0..3).find(|&i| w[i] == 1).unwrap();
+            let j = (i + 1..3).find(|&j| w[j] == 1).unwrap();
+            let e = edge_of(i, j);
+            let (ai, aj) = (edge_normal(c, i, e), edge_normal(c, j, e));
+            let k = ai * dot3(c.p[j] - c.p[i], ai) + aj * dot3(c.p[i] - c.p[j], aj);
+            (c.p[i] + c.p[j]) * 0.5 - k * (0.5 * alpha)
+        }
+    }))
 }

@@ -27,8 +27,11 @@
 //! uses the corners' geometry normals `g` (equal to `n` except at split normals with closed
 //! seams, see src/surface/record.rs); the normal field uses the shading normals `n`.
 
+use super::bounds::{Patch, SurfaceBound};
 use super::facts::{Elements, FragmentNormals, SurfaceFacts};
-use super::{dot3, Corners, Local};
+use super::stpn::VertexTag;
+use super::{dot3, Corners, Local, SurfaceParams};
+use crate::lod::Net;
 use glam::Vec3;
 
 /// What `pn` declares about itself (docs/architecture.md, "Surfaces as plug-ins").
@@ -42,6 +45,10 @@ pub const FACTS: SurfaceFacts = SurfaceFacts {
     tags: false,
     fragment_normals: FragmentNormals::Always,
     bindings: &[],
+    bound: SurfaceBound::Nets {
+        geometry: net,
+        direction,
+    },
 };
 
 /// Control points in canonical corner order.
@@ -227,6 +234,54 @@ pub fn eval_with_edges(
         normal: normal(c, field),
         grad,
     }
+}
+
+/// The cubic Bézier net of control points `b` on corners `c`.
+pub fn bezier_net(c: &Corners, b: &Control) -> Net {
+    let corner = |w: [usize; 3]| (0..3).find(|&i| w[i] == w.iter().sum::<usize>());
+    Net::from_fn(3, |w| match corner(w) {
+        Some(i) => c.p[i],
+        None => match (0..3).find(|&i| w[i] == 2) {
+            Some(i) => b.e[i][(0..3).find(|&j| w[j] == 1).unwrap()],
+            None => b.centre,
+        },
+    })
+}
+
+/// Chord-error bound: a cubic Bézier triangle. Along direction `k` the second derivative is
+/// `6 Σ_γ B¹_γ Δ²_k b_γ`, a convex combination, so `M_k = 6 max |Δ²_k b|` over the three second
+/// differences of the ten-point net in that direction; an edge's curve (its four control points
+/// `b0..b3`) has `M_e = 6 max(|b0 − 2b1 + b2|, |b1 − 2b2 + b3|)`, i.e. the edge error is
+/// `3/4 · max(...) / N²` (the 2006 paper's bound, sign-free). `stpn` uses the same net
+/// ([`super::stpn::net`]).
+pub fn net(_: &SurfaceParams, c: &Corners, _: &[VertexTag; 3], _: bool) -> Patch {
+    Patch::Exact(bezier_net(c, &control(c)))
+}
+
+/// The normal field `field` (unnormalized) with corner normals `n` on corners `c`, as a net:
+/// quadratic for `paper` and `vlachos` (control normals `n_ij / 2`), linear for `linear`.
+pub fn field_net(field: NormalField, c: &Corners, n: [Vec3; 3]) -> Net {
+    if field == NormalField::Linear {
+        return super::flat::linear_net(n);
+    }
+    let cn = Corners { n, ..*c };
+    Net::from_fn(2, |w| match (0..3).find(|&i| w[i] == 2) {
+        Some(i) => n[i],
+        None => {
+            let i = (0..3).find(|&i| w[i] == 1).unwrap();
+            let j = (i + 1..3).find(|&j| w[j] == 1).unwrap();
+            // normal()'s terms: n01 w0w1, n12 w1w2, n20 w2w0.
+            let (a, b) = if (i, j) == (0, 2) { (2, 0) } else { (i, j) };
+            field_control(&cn, a, b, field) * 0.5
+        }
+    })
+}
+
+/// The direction field displacement moves along: the normal field `--normal-field` of the
+/// geometry normals.
+pub fn direction(p: &SurfaceParams, c: &Corners, _: &[VertexTag; 3], _: bool) -> Vec<Net> {
+    let cg = Corners { n: c.g, ..*c };
+    vec![field_net(p.normal_field, &cg, cg.n)]
 }
 
 #[cfg(test)]

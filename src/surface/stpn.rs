@@ -23,8 +23,10 @@
 //! vertex with N = (N_a + N_b)/|…|, D = (N_a − N_b)/|…| and σ = tan(θ/2), θ the angle between them,
 //! so that N′± are N_a and N_b again.
 
+use super::bounds::{Patch, SurfaceBound};
 use super::facts::{Elements, FragmentNormals, SurfaceFacts};
-use super::{dot3, Corners, Local};
+use super::{dot3, Corners, Local, SurfaceParams};
+use crate::lod::Net;
 use crate::mesh::Mesh;
 use glam::Vec3;
 
@@ -39,6 +41,10 @@ pub const FACTS: SurfaceFacts = SurfaceFacts {
     tags: true,
     fragment_normals: FragmentNormals::Always,
     bindings: &["BINDING_TAGS"],
+    bound: SurfaceBound::Nets {
+        geometry: net,
+        direction,
+    },
 };
 
 /// One vertex's tags.
@@ -488,6 +494,40 @@ pub fn eval(c: &Corners, t: &[VertexTag; 3], field: super::NormalField) -> Local
         ..*c
     };
     super::pn::eval_with_edges(&shaded, &|i, j| edge_point(c, t, i, j), field)
+}
+
+/// Chord-error bound: the cubic Bézier net of `pn` ([`super::pn::net`]) with the tagged edge
+/// points.
+pub fn net(_: &SurfaceParams, c: &Corners, tags: &[VertexTag; 3], _: bool) -> Patch {
+    let b = super::pn::control_with(c, &|i, j| edge_point(c, tags, i, j));
+    Patch::Exact(super::pn::bezier_net(c, &b))
+}
+
+/// The direction field displacement moves along: `pn`'s of the shading normals; on an edge with
+/// crease corners every side's choice of sharp normal (the side is the element's to know).
+pub fn direction(p: &SurfaceParams, c: &Corners, tags: &[VertexTag; 3], edge: bool) -> Vec<Net> {
+    let cg = Corners { n: c.g, ..*c };
+    let field = p.normal_field;
+    if !edge {
+        return vec![super::pn::field_net(field, &cg, shading_normals(&cg, tags))];
+    }
+    let sides = |i: usize| -> Vec<Vec3> {
+        let t = &tags[i];
+        if !t.crease() {
+            return vec![cg.n[i]];
+        }
+        [1.0f32, -1.0]
+            .iter()
+            .map(|s| (t.normal + t.direction * (s * t.sharpness)).normalize_or_zero())
+            .collect()
+    };
+    let mut out = Vec::new();
+    for a in sides(0) {
+        for b in sides(1) {
+            out.push(super::pn::field_net(field, &cg, [a, b, cg.n[2]]));
+        }
+    }
+    out
 }
 
 #[cfg(test)]

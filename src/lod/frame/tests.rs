@@ -7,7 +7,7 @@ use crate::mesh::test_support::load_model;
 use crate::subdiv::bft::Lattice;
 use crate::subdiv::Boundary;
 use crate::surface::loop_::LoopData;
-use crate::surface::{build_records, Displace, Inputs, RecordKind, Seams, SurfaceParams};
+use crate::surface::{build_records, Displace, Inputs, RecordKind, Seams, Surface, SurfaceParams};
 use glam::Mat4;
 
 fn spot() -> (crate::mesh::Mesh, Vec<ElementRecord>) {

@@ -341,7 +341,7 @@ fn pixel_error_holds_end_to_end() {
 /// The noise constants cover the scan of every corner-gradient choice, with at most 10% room.
 #[test]
 fn noise_constants_cover_the_scan() {
-    use super::displace::{noise_scan, NOISE_GRAD, NOISE_HESS, NOISE_MAX};
+    use crate::surface::noise::{noise_scan, NOISE_GRAD, NOISE_HESS, NOISE_MAX};
     let (v, g, d, o) = noise_scan(64);
     assert!(NOISE_MAX >= v && NOISE_MAX <= 1.1 * v, "value {v}");
     let g = g * 3f32.sqrt();

@@ -1,4 +1,4 @@
-//! Bounds of the `loop` surface. What the drivers draw is the tables' surface
+//! Chord-error bounds of the `loop` surface (its `FACTS.bound`, src/surface/bounds.rs). What the drivers draw is the tables' surface
 //! (src/surface/loop.rs): exact limit points `Q` on the face's lattice of `S = 2^lmax`
 //! segments per edge, interpolated linearly between them. Its bounds come from that lattice:
 //! `D_k`, the largest second difference `|Q_{p−d_k} − 2 Q_p + Q_{p+d_k}|` along lattice direction
@@ -11,11 +11,10 @@
 //! points, whose sphere is the patch's. Displacement over `loop` has no bound here: such elements
 //! get the maximum level.
 
-use super::bound::{Bounds, Lod};
-use super::displace::height;
-use super::{Chord, Sphere, EDGE_FACTOR, ELEMENT_FACTOR};
+use crate::lod::{Bounds, Chord, Lod, Sphere, EDGE_FACTOR, ELEMENT_FACTOR};
 use crate::pattern::weight;
-use crate::surface::{loop_, Displace, ElementRecord};
+use crate::surface::bounds::DisplaceBound;
+use crate::surface::{loop_, ElementRecord};
 use glam::Vec3;
 
 fn segments(lod: &Lod, rec: &ElementRecord) -> u32 {
@@ -36,14 +35,9 @@ fn second(a: Vec3, b: Vec3, c: Vec3) -> f32 {
 fn finish(lod: &Lod, m: [f32; 3], factor: f32, points: &[Vec3]) -> Bounds {
     let sphere = Sphere::around(points);
     let worst = m.iter().fold(0.0f32, |a, &b| a.max(b));
-    let (c2, grow) = match lod.displace {
-        Displace::None => (factor * worst, 0.0),
-        Displace::Heightmap => {
-            let p = &lod.params;
-            let a = p.amplitude.abs() * p.bias.abs().max((1.0 - p.bias).abs());
-            (f32::INFINITY, a)
-        }
-        d => (f32::INFINITY, height(d, &lod.params, &sphere).max),
+    let (c2, grow) = match lod.displace.facts().bound {
+        DisplaceBound::Zero => (factor * worst, 0.0),
+        d => (f32::INFINITY, d.max_height(&lod.params, &sphere)),
     };
     Bounds {
         chord: Chord { c1: 0.0, c2 },
