@@ -332,13 +332,18 @@ fn check_driver(h: &mut Headless, scene: &mut Scene, cfg: &DrawConfig) {
 
 #[test]
 fn drawn_adaptive_meshes_meet_the_pixel_error() {
+    on_spot_pn_per_driver(check_driver);
+}
+
+/// `check` run on Spot's control mesh as `pn` through the pattern driver and tess.
+fn on_spot_pn_per_driver(check: fn(&mut Headless, &mut Scene, &DrawConfig)) {
     with_gpu(64, 36, |h| {
         let mut scene = h.scene(model("spot_control_tri.obj"), MAX).unwrap();
         let (_, r) = scene.bounding_sphere();
         for driver in [Driver::Pattern(Submit::Instanced), Driver::Tess] {
             let mut cfg = DrawConfig::new(driver, MAX).with_surface(Surface::Pn, Displace::None);
             cfg.params = SurfaceParams::for_radius(r);
-            check_driver(h, &mut scene, &cfg);
+            check(h, &mut scene, &cfg);
         }
     });
 }
@@ -347,13 +352,5 @@ fn drawn_adaptive_meshes_meet_the_pixel_error() {
 /// draw with vertices mid-morph meets the pixel error.
 #[test]
 fn geomorphing_meshes_meet_the_pixel_error() {
-    with_gpu(64, 36, |h| {
-        let mut scene = h.scene(model("spot_control_tri.obj"), MAX).unwrap();
-        let (_, r) = scene.bounding_sphere();
-        for driver in [Driver::Pattern(Submit::Instanced), Driver::Tess] {
-            let mut cfg = DrawConfig::new(driver, MAX).with_surface(Surface::Pn, Displace::None);
-            cfg.params = SurfaceParams::for_radius(r);
-            check_geomorph(h, &mut scene, &cfg);
-        }
-    });
+    on_spot_pn_per_driver(check_geomorph);
 }

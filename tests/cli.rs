@@ -2454,30 +2454,23 @@ fn pixel_error_draws_adaptively_end_to_end() {
         "3",
     ]);
     assert!(out.contains("adaptive at 3 px"), "{out}");
-    let out = ok(&[
-        "bench",
-        spot,
-        "--drivers",
-        "tess",
-        "--surfaces",
-        "pn",
-        "--pixel-error",
-        "4",
-        "--frames",
-        "1",
-        "--width",
-        "160",
-        "--height",
-        "90",
-    ]);
+    let out = ok(&small_adaptive_bench(spot, &["--drivers", "tess"]));
     assert!(out.contains("levels from") && out.contains("view"), "{out}");
+}
+
+/// `bench` of Spot's `pn` at 4 px, one frame of 160x90, with `extra` options.
+fn small_adaptive_bench<'a>(spot: &'a str, extra: &[&'a str]) -> Vec<&'a str> {
+    let mut args = vec!["bench", spot, "--surfaces", "pn", "--pixel-error", "4"];
+    args.extend(["--frames", "1", "--width", "160", "--height", "90"]);
+    args.extend(extra);
+    args
 }
 
 /// The pattern driver (the default) draws adaptively from the command line too: `export
 /// --pixel-error` captures its hierarchical patterns and welds them closed on a closed mesh
 /// (no culling by default), every element at a power of two up to 64, the header's levels
 /// those the GPU's level pass wrote; render says what it drew; bench without `--drivers`
-/// measures the pattern driver's submissions and tess.
+/// measures the pattern driver's submissions, tess and static.
 #[test]
 fn pixel_error_draws_adaptively_with_the_pattern_driver() {
     let spot = model_path("spot_control_tri.obj");
@@ -2527,23 +2520,22 @@ fn pixel_error_draws_adaptively_with_the_pattern_driver() {
         out.contains("adaptive at 2 px, max level 64: levels (level:elements) "),
         "{out}"
     );
-    let out = ok(&[
-        "bench",
-        spot,
-        "--surfaces",
-        "pn",
-        "--pixel-error",
-        "4",
-        "--frames",
-        "1",
-        "--width",
-        "160",
-        "--height",
-        "90",
-    ]);
+    let out = ok(&small_adaptive_bench(spot, &[]));
     assert!(out.contains("levels from") && out.contains("view"), "{out}");
-    assert!(out.contains("tess") && out.contains("pattern"), "{out}");
-    assert!(!out.lines().any(|l| l.starts_with("static")), "{out}");
+    // Without --drivers: every driver, the CPU baseline included (summary rows name the
+    // variant second, after the level).
+    for variant in [
+        "static",
+        "pattern/push",
+        "pattern/ubo",
+        "pattern/instanced",
+        "tess",
+    ] {
+        assert!(
+            (out.lines()).any(|l| l.split_whitespace().nth(1) == Some(variant)),
+            "no {variant} row: {out}"
+        );
+    }
 }
 
 #[test]
