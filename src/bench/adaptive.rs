@@ -115,20 +115,8 @@ fn variant(
         .map(|&c| m.scene.set_levels(&cfg, &view(c)).uniform_level)
         .max()
         .unwrap_or(1);
-    let mut uniform: Vec<(u32, Vec<&str>)> = Vec::new();
-    let mut add = |level: u32, from: &'static str| match uniform.iter_mut().find(|u| u.0 == level) {
-        Some(u) => u.1.push(from),
-        None => uniform.push((level, vec![from])),
-    };
-    for &l in &opts.levels {
-        add(l, "levels");
-    }
-    if a.bound_levels {
-        add(bound, "bound");
-        add(bound.next_power_of_two(), "pow2");
-    }
     let mut list = vec![first];
-    for (level, from) in uniform {
+    for (level, from) in uniform_levels(opts, a, bound) {
         let cfg = DrawConfig { level, ..cfg };
         list.push(timed(ctx, h, m, cfg, false, from.join("+"), a)?);
     }
@@ -151,57 +139,93 @@ fn variant(
         let mut round = 0;
         while round == 0 || !list.iter().all(enough) {
             for t in list.iter_mut().filter(|t| t.drawn) {
-                let chose = if t.adaptive {
-                    let start = Instant::now();
-                    let report = m.scene.set_levels(&t.cfg, &view(camera));
-                    let cpu_ms = start.elapsed().as_secs_f64() * 1e3;
-                    if round == 0 {
-                        t.reports.push(report);
-                    }
-                    // The level pass on the GPU, timed alone (each frame runs it again before
-                    // its draws); the CPU's time where the levels were uploaded instead.
-                    match h.time_level_pass(&m.scene, &t.cfg)? {
-                        Some(gpu_ms) => {
-                            t.pass_on = "gpu";
-                            Some(gpu_ms)
-                        }
-                        None => {
-                            t.pass_on = "cpu";
-                            Some(cpu_ms)
-                        }
-                    }
-                } else {
-                    None
-                };
-                h.adaptive = t.adaptive;
-                let refines = t.adaptive && t.cfg.driver.kind().refines_on_cpu();
-                if refines {
-                    // As for a moving camera, whose levels change every frame: refined and
-                    // uploaded again (src/render/static_adaptive.rs).
-                    m.scene.static_vbo = None;
-                }
-                let f = h.draw(&mut m.scene, &t.cfg, &camera)?;
-                let vbo = m.scene.static_vbo.as_ref().filter(|_| refines && round > 0);
-                if let Some((v, a)) = vbo.and_then(|v| Some((v, v.adaptive.as_ref()?))) {
-                    t.refine.last_mut().unwrap().push(a.cpu_ms);
-                    t.upload.last_mut().unwrap().push(a.upload_bytes as f64);
-                    // What it stores is what it refined (the last camera's).
-                    t.row.stored_vertices = v.vertex_count as u64;
-                    t.row.stored_indices = v.index_count as u64;
-                    t.row.geometry_bytes = a.upload_bytes;
-                }
-                if round > 0 {
-                    t.row.vertex_invocations = f.stats.map(|s| s.vertex_shader_invocations);
-                    t.gpu.last_mut().unwrap().push(f.gpu_ms);
-                    t.wall.last_mut().unwrap().push(f.wall_ms);
-                    t.choose.last_mut().unwrap().extend(chose);
-                }
+                frame(h, m, t, &camera, &view(camera), round)?;
             }
             round += 1;
         }
     }
     h.adaptive = false;
     Ok(into_rows(list, cameras.len()))
+}
+
+/// The uniform levels timed beside the adaptive frame, each with what asked for it: the
+/// `--levels` given, and the bound's level and its power of two.
+fn uniform_levels(
+    opts: &BenchOptions,
+    a: &BenchAdaptive,
+    bound: u32,
+) -> Vec<(u32, Vec<&'static str>)> {
+    let mut uniform: Vec<(u32, Vec<&str>)> = Vec::new();
+    let mut add = |level: u32, from: &'static str| match uniform.iter_mut().find(|u| u.0 == level) {
+        Some(u) => u.1.push(from),
+        None => uniform.push((level, vec![from])),
+    };
+    for &l in &opts.levels {
+        add(l, "levels");
+    }
+    if a.bound_levels {
+        add(bound, "bound");
+        add(bound.next_power_of_two(), "pow2");
+    }
+    uniform
+}
+
+/// One frame of configuration `t` at `camera` (round 0: its warm-up, not recorded): the levels
+/// chosen for an adaptive one (the level pass timed alone), then the frame drawn and timed.
+fn frame(
+    h: &mut Headless,
+    m: &mut MeshSetup,
+    t: &mut Timed,
+    camera: &Camera,
+    view: &LevelView,
+    round: u32,
+) -> Result<(), RenderError> {
+    let chose = if t.adaptive {
+        let start = Instant::now();
+        let report = m.scene.set_levels(&t.cfg, view);
+        let cpu_ms = start.elapsed().as_secs_f64() * 1e3;
+        if round == 0 {
+            t.reports.push(report);
+        }
+        // The level pass on the GPU, timed alone (each frame runs it again before
+        // its draws); the CPU's time where the levels were uploaded instead.
+        match h.time_level_pass(&m.scene, &t.cfg)? {
+            Some(gpu_ms) => {
+                t.pass_on = "gpu";
+                Some(gpu_ms)
+            }
+            None => {
+                t.pass_on = "cpu";
+                Some(cpu_ms)
+            }
+        }
+    } else {
+        None
+    };
+    h.adaptive = t.adaptive;
+    let refines = t.adaptive && t.cfg.driver.kind().refines_on_cpu();
+    if refines {
+        // As for a moving camera, whose levels change every frame: refined and
+        // uploaded again (src/render/static_adaptive.rs).
+        m.scene.static_vbo = None;
+    }
+    let f = h.draw(&mut m.scene, &t.cfg, camera)?;
+    let vbo = m.scene.static_vbo.as_ref().filter(|_| refines && round > 0);
+    if let Some((v, a)) = vbo.and_then(|v| Some((v, v.adaptive.as_ref()?))) {
+        t.refine.last_mut().unwrap().push(a.cpu_ms);
+        t.upload.last_mut().unwrap().push(a.upload_bytes as f64);
+        // What it stores is what it refined (the last camera's).
+        t.row.stored_vertices = v.vertex_count as u64;
+        t.row.stored_indices = v.index_count as u64;
+        t.row.geometry_bytes = a.upload_bytes;
+    }
+    if round > 0 {
+        t.row.vertex_invocations = f.stats.map(|s| s.vertex_shader_invocations);
+        t.gpu.last_mut().unwrap().push(f.gpu_ms);
+        t.wall.last_mut().unwrap().push(f.wall_ms);
+        t.choose.last_mut().unwrap().extend(chose);
+    }
+    Ok(())
 }
 
 /// A configuration's row before timing; the device's refusal of its level in its note.

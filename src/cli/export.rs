@@ -9,9 +9,9 @@ use super::progress::{count, count_of, plural, ProgressLine};
 use super::{require_extension, with_context};
 use anyhow::{bail, Context as _, Result};
 use glam::Vec2;
-use meshrefine::export::{element_texcoord, TexcoordOf, TriangleWelder};
+use meshrefine::export::{element_texcoord, RefinedMesh, TexcoordOf, TriangleWelder};
 use meshrefine::gpu::{Context, ContextDesc};
-use meshrefine::render::{Camera, Capture, CapturedVertex, DrawConfig, Headless, XfbVertex};
+use meshrefine::render::{Camera, Capture, CapturedVertex, DrawConfig, Headless, Scene, XfbVertex};
 use std::io::Write as _;
 use std::path::Path;
 use std::sync::atomic::{AtomicU32, Ordering};
@@ -71,19 +71,62 @@ fn export(
     let name = input.mesh.name.clone();
     let mut scene = h.scene(input.mesh.clone(), cfg.level)?;
     apply_surface_inputs(&h, &mut scene, &input)?;
-    let (c, r) = scene.bounding_sphere();
-    let mut camera = Camera::framing(c, r);
-    let mut drawn = None;
-    if let Some(a) = &adaptive {
-        // Drawn as it is: the mesh's own coordinates.
-        let capture = cfg.driver.kind().export_capture().unwrap_or(Capture::None);
-        let (cam, _) = a.set_up(&mut h, &mut scene, cfg, capture, size, &Frame::IDENTITY)?;
-        camera = cam;
-        drawn = Some((a, cam));
-    }
+    let (camera, adaptive_camera) = camera(&mut h, &mut scene, cfg, adaptive.as_ref(), size)?;
     // Long exports say how far they are on standard error (passes captured, lines written).
     let progress = Arc::new(Mutex::new(progress));
     h.max_capture_bytes = max_capture_bytes;
+    let passes = report_capture_passes(&mut h, &progress);
+    let refined = capture(&mut h, &mut scene, cfg, &camera, adaptive_camera.is_some())?;
+    if scene.data.uvs.is_some() && cfg.surface.uses_loop_faces() {
+        crate::note(format_args!(
+            "warning: '{name}' has texture coordinates, but --surface loop writes none (vt): its elements are Loop's M1 faces, which carry none"
+        ));
+    }
+    // The levels the GPU's level pass wrote for the capture, as the driver drew them.
+    let levels = adaptive.as_ref().zip(adaptive_camera).map(|(a, cam)| {
+        let (_, report) = scene.drawn_levels(cfg);
+        a.header(&cam, &Frame::IDENTITY, size, &report)
+    });
+    let header = header(&name, cfg, &device, &refined, levels);
+    h.capture_progress = None;
+    let passes = passes.load(Ordering::Relaxed);
+    let written = write_obj(output, &refined, &header, |(done, total)| {
+        let text = format!(
+            "export: writing, {} lines",
+            count_of(done as u64, total as u64)
+        );
+        lock(&progress).report(1, done as f64 / total.max(1) as f64, &text);
+    });
+    written.with_context(|| format!("cannot write '{}'", output.display()))?;
+    lock(&progress).finish(&format!(
+        "export: {}, {} triangles, written",
+        plural(passes as u64, "pass"),
+        count(refined.triangles.len() as u64)
+    ));
+    Ok(header[2].clone())
+}
+
+/// The camera of the export: the framing camera, or the adaptive one (also returned apart) once
+/// its levels are set up for the capture.
+fn camera(
+    h: &mut Headless,
+    scene: &mut Scene,
+    cfg: &DrawConfig,
+    adaptive: Option<&Adaptive>,
+    size: (u32, u32),
+) -> Result<(Camera, Option<Camera>)> {
+    let (c, r) = scene.bounding_sphere();
+    let Some(a) = adaptive else {
+        return Ok((Camera::framing(c, r), None));
+    };
+    // Drawn as it is: the mesh's own coordinates.
+    let capture = cfg.driver.kind().export_capture().unwrap_or(Capture::None);
+    let (cam, _) = a.set_up(h, scene, cfg, capture, size, &Frame::IDENTITY)?;
+    Ok((cam, Some(cam)))
+}
+
+/// Reports each captured pass on `progress`; the count of passes done so far.
+fn report_capture_passes(h: &mut Headless, progress: &Arc<Mutex<ProgressLine>>) -> Arc<AtomicU32> {
     let passes = Arc::new(AtomicU32::new(0));
     h.capture_progress = Some(Box::new({
         let (progress, passes) = (progress.clone(), passes.clone());
@@ -100,6 +143,17 @@ fn export(
             lock(&progress).report(0, fraction, &text);
         }
     }));
+    passes
+}
+
+/// What the GPU drew, captured and welded (with texture coordinates where the mesh has them).
+fn capture(
+    h: &mut Headless,
+    scene: &mut Scene,
+    cfg: &DrawConfig,
+    camera: &Camera,
+    adaptive: bool,
+) -> Result<RefinedMesh> {
     // Texture coordinates of a vertex from its element and sample (the local surfaces'
     // elements are the coarse triangles, whose corners carry them; Loop's M1 faces carry none),
     // from copies of the corners' coordinates and the records: the tess capture welds each pass
@@ -114,7 +168,7 @@ fn export(
         }
         None => Vec2::ZERO, // never asked: no texture coordinates are written
     };
-    let refined = if cfg.driver.kind().export_capture() == Some(Capture::Triangles) {
+    if cfg.driver.kind().export_capture() == Some(Capture::Triangles) {
         // Welded pass by pass: the captured triangles are never held whole.
         let texcoord = |v: &XfbVertex| texcoord_at(v.element, v.bary);
         let mut welder = if with_uv.is_some() {
@@ -122,41 +176,39 @@ fn export(
         } else {
             TriangleWelder::default()
         };
-        h.capture_triangles_each(&mut scene, cfg, &camera, |t| welder.add(t))?;
-        welder.finish()
-    } else {
-        let cap = h.capture(&mut scene, cfg, &camera)?;
-        let texcoord =
-            |v: &CapturedVertex| texcoord_at(v.id[0], [v.coord[0], v.coord[1], v.coord[2]]);
-        let uv = with_uv.as_ref().map(|_| &texcoord as TexcoordOf<'_>);
-        if drawn.is_some() {
-            meshrefine::export::weld_adaptive_with(&cap, cfg.level, uv)
-                .map_err(anyhow::Error::msg)?
-        } else {
-            let Some(pattern) = scene.patterns.find(cfg.level) else {
-                bail!("no pattern of level {} was made", cfg.level);
-            };
-            let pattern = &scene.patterns.patterns[pattern];
-            meshrefine::export::weld_with(&cap, pattern, uv).map_err(anyhow::Error::msg)?
-        }
-    };
-    if scene.data.uvs.is_some() && cfg.surface.uses_loop_faces() {
-        crate::note(format_args!(
-            "warning: '{name}' has texture coordinates, but --surface loop writes none (vt): its elements are Loop's M1 faces, which carry none"
-        ));
+        h.capture_triangles_each(scene, cfg, camera, |t| welder.add(t))?;
+        return Ok(welder.finish());
     }
-    // The levels the GPU's level pass wrote for the capture, as the driver drew them.
-    let drawn = drawn.map(|(a, cam)| {
-        let (_, report) = scene.drawn_levels(cfg);
-        a.header(&cam, &Frame::IDENTITY, size, &report)
-    });
+    let cap = h.capture(scene, cfg, camera)?;
+    let texcoord = |v: &CapturedVertex| texcoord_at(v.id[0], [v.coord[0], v.coord[1], v.coord[2]]);
+    let uv = with_uv.as_ref().map(|_| &texcoord as TexcoordOf<'_>);
+    if adaptive {
+        return meshrefine::export::weld_adaptive_with(&cap, cfg.level, uv)
+            .map_err(anyhow::Error::msg);
+    }
+    let Some(pattern) = scene.patterns.find(cfg.level) else {
+        bail!("no pattern of level {} was made", cfg.level);
+    };
+    let pattern = &scene.patterns.patterns[pattern];
+    meshrefine::export::weld_with(&cap, pattern, uv).map_err(anyhow::Error::msg)
+}
+
+/// The OBJ's comment lines: what was refined, how, on which device, the counts (the third
+/// line, which `export` also prints) and the adaptive camera and levels.
+fn header(
+    name: &str,
+    cfg: &DrawConfig,
+    device: &str,
+    refined: &RefinedMesh,
+    levels: Option<[String; 2]>,
+) -> Vec<String> {
     let mut header = vec![
         format!(
             "meshrefine export of '{name}': surface {}, displacement {}, driver {}, {} {}",
             cfg.surface.name(),
             cfg.displace.name(),
             cfg.label(),
-            if drawn.is_some() {
+            if levels.is_some() {
                 "max level"
             } else {
                 "level"
@@ -176,23 +228,8 @@ fn export(
             }
         ),
     ];
-    header.extend(drawn.into_iter().flatten());
-    h.capture_progress = None;
-    let passes = passes.load(Ordering::Relaxed);
-    let written = write_obj(output, &refined, &header, |(done, total)| {
-        let text = format!(
-            "export: writing, {} lines",
-            count_of(done as u64, total as u64)
-        );
-        lock(&progress).report(1, done as f64 / total.max(1) as f64, &text);
-    });
-    written.with_context(|| format!("cannot write '{}'", output.display()))?;
-    lock(&progress).finish(&format!(
-        "export: {}, {} triangles, written",
-        plural(passes as u64, "pass"),
-        count(refined.triangles.len() as u64)
-    ));
-    Ok(header[2].clone())
+    header.extend(levels.into_iter().flatten());
+    header
 }
 
 /// Write `refined` with `header` to `output` as OBJ, streamed through a buffer.
