@@ -151,12 +151,12 @@ impl Frame {
 
 impl Adaptive<'_> {
     /// The largest level any element gets: `--max-level` (refused past what `driver` draws on
-    /// the device, and for the pattern and static drivers when not a power of two), else the
-    /// largest `driver` draws there, at most 1024; for the pattern and static drivers
-    /// [`PATTERN_MAX_LEVEL`].
+    /// the device, and when not a power of two for a driver whose levels are, the pattern and
+    /// static drivers), else the largest `driver` draws there, at most 1024; for the pattern
+    /// and static drivers [`PATTERN_MAX_LEVEL`].
     pub fn max_level(&self, ctx: &Context, driver: Driver) -> Result<u32> {
         let limit = driver.kind().level_limit(ctx);
-        let pattern = !matches!(driver, Driver::Tess);
+        let pattern = !driver.kind().integer_levels();
         if let Some(l) = self.opts.max_level {
             if let Some((max, name)) = limit.filter(|&(max, _)| l > max) {
                 bail!(

@@ -383,7 +383,8 @@ fn key(cfg: &DrawConfig, capture: Capture, wire: bool, adaptive: bool) -> Pipeli
         capture,
         wire,
         adaptive,
-        // The tess driver's adaptive draws share its pipeline (a push constant says adaptive).
-        geomorph: (adaptive || cfg.driver == Driver::Tess) && cfg.glides(),
+        // A driver that geomorphs in its evaluation stage (tess) draws adaptively with the
+        // pipeline of its uniform frames (a push constant says adaptive).
+        geomorph: (adaptive || cfg.driver.kind().geomorphs_in_evaluation()) && cfg.glides(),
     }
 }
