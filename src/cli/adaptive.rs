@@ -158,11 +158,10 @@ impl Adaptive<'_> {
         let limit = driver.kind().level_limit(ctx);
         let pattern = !driver.kind().integer_levels();
         if let Some(l) = self.opts.max_level {
-            if let Some((max, name)) = limit.filter(|&(max, _)| l > max) {
-                bail!(
-                    "--max-level {l} is beyond this device's {name} ({max}): the {} driver cannot draw it",
-                    driver.name()
-                );
+            // The one level policy's sentence (`driver::check_level`), naming the option.
+            let cfg = DrawConfig::new(driver, l);
+            if let Err(e) = meshrefine::render::driver::check_level(ctx, &cfg) {
+                bail!("--max-level {l}: {e}");
             }
             if pattern && !l.is_power_of_two() {
                 let lower = 1u32 << l.ilog2();
