@@ -194,6 +194,13 @@ pub trait DriverKind: Sync {
         capture: Capture,
     );
 
+    /// Whether an adaptive frame at largest level `level` is drawn with a pipeline of its own
+    /// ([`DriverKind::describe_adaptive_pipeline`]: the pattern driver's hierarchical patterns,
+    /// at a power of two) rather than the uniform one.
+    fn adaptive_pipeline(&self, _level: u32) -> bool {
+        false
+    }
+
     /// The pipeline of an adaptive frame (`FrameWork::adaptive`: each element at its own
     /// levels); a driver that does not draw adaptively describes its uniform pipeline.
     fn describe_adaptive_pipeline(
@@ -278,14 +285,17 @@ mod tests {
     fn drivers_answer_their_capabilities() {
         for d in Driver::VARIANTS {
             let k = d.kind();
-            let (cpu, integer, evaluation) = match d {
-                Driver::Static => (true, false, false),
-                Driver::Pattern(_) => (false, false, false),
-                Driver::Tess => (false, true, true),
+            let (cpu, integer, evaluation, own_pipeline) = match d {
+                Driver::Static => (true, false, false, false),
+                Driver::Pattern(_) => (false, false, false, true),
+                Driver::Tess => (false, true, true, false),
             };
             assert_eq!(k.refines_on_cpu(), cpu, "{}", d.name());
             assert_eq!(k.integer_levels(), integer, "{}", d.name());
             assert_eq!(k.geomorphs_in_evaluation(), evaluation, "{}", d.name());
+            assert_eq!(k.adaptive_pipeline(16), own_pipeline, "{}", d.name());
+            // Not at a level its hierarchical patterns cannot make.
+            assert!(!k.adaptive_pipeline(12), "{}", d.name());
         }
     }
 
