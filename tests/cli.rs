@@ -151,7 +151,12 @@ fn device_limits_and_options_are_checked() {
             "--height",
             "64",
         ],
-        &["65", "maxTessellationGenerationLevel"],
+        &[
+            "65",
+            "maxTessellationGenerationLevel",
+            // The one level policy's sentence (`driver::check_level`), as for --max-level.
+            "level 65 is beyond this device's maxTessellationGenerationLevel (64): the tess driver cannot draw it (use --driver pattern)",
+        ],
     );
     expect_error(
         &[
@@ -2258,7 +2263,12 @@ fn adaptive_options_refuse_bad_values() {
             "--max-level",
             "100",
         ],
-        &["--max-level 100", "maxTessellationGenerationLevel"],
+        &[
+            "--max-level 100",
+            "maxTessellationGenerationLevel",
+            // The same sentence as a uniform level past the limit (`driver::check_level`).
+            "--max-level 100: level 100 is beyond this device's maxTessellationGenerationLevel (64): the tess driver cannot draw it (use --driver pattern)",
+        ],
     );
     assert!(!png.exists() && !obj.exists() && !view_png.exists());
     // The camera and culling options without --pixel-error are reported as ignored.

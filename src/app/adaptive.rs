@@ -20,8 +20,8 @@ pub struct AdaptiveView {
     pub cull: bool,
     /// The first camera (drawn coordinates); None: the one that frames the mesh.
     pub camera: Option<Camera>,
-    /// The largest level; None: [`DEFAULT_MAX_LEVEL`], or less where the tess driver cannot
-    /// draw it.
+    /// The largest level; None: [`DEFAULT_MAX_LEVEL`], or less where a driver cannot draw it
+    /// on this device.
     pub max_level: Option<u32>,
 }
 
@@ -81,14 +81,16 @@ impl State {
         Ok((self.prepare_config(opts, None)?, false))
     }
 
-    /// The largest level adaptive mode asks of `driver`: the panel's, a power of two for the
-    /// pattern driver (its hierarchical patterns split 1 to 4) and the static one (which
-    /// refines with their construction).
+    /// The largest level adaptive mode asks of `driver`: the panel's, a power of two unless
+    /// its levels are integers ([`DriverKind::integer_levels`](crate::render::DriverKind):
+    /// the pattern driver's hierarchical patterns split 1 to 4, the static one refines with
+    /// their construction).
     pub(super) fn adaptive_max(&self, driver: crate::render::Driver) -> u32 {
         let max = self.controls.max_level.max(1);
-        match driver {
-            crate::render::Driver::Tess => max,
-            _ => 1 << max.ilog2(),
+        if driver.kind().integer_levels() {
+            max
+        } else {
+            1 << max.ilog2()
         }
     }
 
@@ -141,7 +143,7 @@ impl State {
         let limit = cfg.driver.kind().level_limit(&self.ctx).map(|(max, _)| max);
         (self.scene.patterns.levels())
             .filter(|&l| limit.is_none_or(|max| l <= max))
-            .filter(|&l| cfg.driver == crate::render::Driver::Tess || l.is_power_of_two())
+            .filter(|&l| cfg.driver.kind().integer_levels() || l.is_power_of_two())
             .last()
             .unwrap_or(1)
     }

@@ -294,8 +294,8 @@ impl App {
         let cfg = self.opts.cfg;
         let a = self.opts.adaptive;
         let adaptive_max = a.max_level.unwrap_or_else(|| {
-            let limit = crate::render::Driver::Tess.kind().level_limit(&ctx);
-            let max = limit.map_or(DEFAULT_MAX_LEVEL, |(max, _)| max.min(DEFAULT_MAX_LEVEL));
+            let limit = crate::render::driver::shared_level_limit(&ctx);
+            let max = limit.map_or(DEFAULT_MAX_LEVEL, |max| max.min(DEFAULT_MAX_LEVEL));
             1 << max.max(1).ilog2()
         });
         // Every power of two up to WINDOW_LEVELS (and the levels asked for), whatever the start.

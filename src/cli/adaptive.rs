@@ -151,18 +151,17 @@ impl Frame {
 
 impl Adaptive<'_> {
     /// The largest level any element gets: `--max-level` (refused past what `driver` draws on
-    /// the device, and for the pattern and static drivers when not a power of two), else the
-    /// largest `driver` draws there, at most 1024; for the pattern and static drivers
-    /// [`PATTERN_MAX_LEVEL`].
+    /// the device, and when not a power of two for a driver whose levels are, the pattern and
+    /// static drivers), else the largest `driver` draws there, at most 1024; for the pattern
+    /// and static drivers [`PATTERN_MAX_LEVEL`].
     pub fn max_level(&self, ctx: &Context, driver: Driver) -> Result<u32> {
         let limit = driver.kind().level_limit(ctx);
-        let pattern = !matches!(driver, Driver::Tess);
+        let pattern = !driver.kind().integer_levels();
         if let Some(l) = self.opts.max_level {
-            if let Some((max, name)) = limit.filter(|&(max, _)| l > max) {
-                bail!(
-                    "--max-level {l} is beyond this device's {name} ({max}): the {} driver cannot draw it",
-                    driver.name()
-                );
+            // The one level policy's sentence (`driver::check_level`), naming the option.
+            let cfg = DrawConfig::new(driver, l);
+            if let Err(e) = meshrefine::render::driver::check_level(ctx, &cfg) {
+                bail!("--max-level {l}: {e}");
             }
             if pattern && !l.is_power_of_two() {
                 let lower = 1u32 << l.ilog2();

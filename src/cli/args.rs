@@ -329,14 +329,21 @@ pub enum ExportDriver {
     Tess,
 }
 
+impl ExportDriver {
+    /// The driver it names (the command line's one mapping onto [`Driver`]).
+    pub fn driver(self) -> Driver {
+        match self {
+            ExportDriver::Pattern => Driver::Pattern(Submit::Instanced),
+            ExportDriver::Tess => Driver::Tess,
+        }
+    }
+}
+
 impl ExportArgs {
     pub fn technique(&self) -> Technique {
         Technique {
             surface: self.surface.clone(),
-            driver: match self.driver {
-                ExportDriver::Pattern => Driver::Pattern(Submit::Instanced),
-                ExportDriver::Tess => Driver::Tess,
-            },
+            driver: self.driver.driver(),
             submit: self.submit,
             level: self.level,
         }

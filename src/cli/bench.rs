@@ -71,9 +71,11 @@ pub fn run(a: &BenchArgs, desc: &ContextDesc, levels_given: bool) -> Result<()> 
             if !levels_given {
                 opts.levels.clear();
             }
-            let driver = (opts.drivers.iter())
-                .find(|d| !matches!(d, Driver::Tess))
-                .map_or(Driver::Tess, |&d| d);
+            // The first driver measured whose levels are powers of two, else the first (never
+            // none: adaptively every driver is measured unless some are named).
+            let driver = (opts.drivers.iter().copied())
+                .min_by_key(|d| d.kind().integer_levels())
+                .unwrap_or_default();
             let scene_frame = Frame { centre, scale };
             opts.adaptive = Some(meshrefine::bench::BenchAdaptive {
                 scene: String::new(),

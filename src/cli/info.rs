@@ -155,10 +155,11 @@ fn check_level_options(a: &InfoArgs) -> Result<()> {
         anyhow::bail!("--pixel-error draws adaptively with the pattern and tess drivers, not with --driver {}: it refines every element on the CPU at one level", a.driver.name());
     }
     let l = a.max_level;
-    if matches!(a.driver, Driver::Pattern(_)) && !l.is_power_of_two() {
+    if !a.driver.kind().integer_levels() && !l.is_power_of_two() {
         let lower = 1u32 << l.ilog2();
         anyhow::bail!(
-            "--max-level {l} is not a power of two: the pattern driver's adaptive patterns are 1-to-4 splits; use {lower} or {}",
+            "--max-level {l} is not a power of two: the {} driver's adaptive patterns are 1-to-4 splits; use {lower} or {}",
+            a.driver.name(),
             lower * 2
         );
     }

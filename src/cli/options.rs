@@ -153,7 +153,7 @@ fn adaptive_only(given: &Given, adaptive: bool, ids: &[&str]) -> Vec<String> {
 
 /// The warnings (without "warning: ") for the options `cli`'s command ignores.
 pub fn warnings(cli: &Cli, given: &Given) -> Vec<String> {
-    use super::args::{Command, ExportDriver};
+    use super::args::Command;
     let one = |s: &super::args::SurfaceOpts,
                driver: (bool, String),
                f: &dyn Fn(&Chosen) -> Vec<String>| {
@@ -179,10 +179,8 @@ pub fn warnings(cli: &Cli, given: &Given) -> Vec<String> {
             out
         }
         Command::Export(a) => {
-            let driver = match a.driver {
-                ExportDriver::Pattern => (true, "--driver pattern".to_string()),
-                ExportDriver::Tess => (false, "--driver tess".to_string()),
-            };
+            let d = a.driver.driver();
+            let driver = (d.submit().is_some(), format!("--driver {}", d.name()));
             let mut out = one(&a.surface, driver, &check);
             let adaptive = a.adaptive.pixel_error.is_some();
             out.extend(adaptive_only(given, adaptive, ADAPTIVE));

@@ -165,9 +165,24 @@ pub trait DriverKind: Sync {
     fn export_capture(&self) -> Option<Capture>;
 
     /// The finest level this device lets the driver draw and the limit's name, where the
-    /// device limits it.
+    /// device limits it (a hardware level limit; [`check_level`] is the policy).
     fn level_limit(&self, _ctx: &Context) -> Option<(u32, &'static str)> {
         None
+    }
+
+    /// Whether its adaptive levels are any integers (the tessellator's) rather than powers of
+    /// two (the pattern driver's hierarchical patterns split 1 to 4; the static driver refines
+    /// with their construction): its largest adaptive level need not be a power of two, and
+    /// it rounds its levels to powers of two only while it glides ([`DrawConfig::glides`]).
+    fn integer_levels(&self) -> bool {
+        false
+    }
+
+    /// Whether it geomorphs in its evaluation stage within the one pipeline that draws its
+    /// uniform and its adaptive frames (a push constant says which): then that pipeline is
+    /// built gliding whenever the configuration glides, not only its adaptive variant.
+    fn geomorphs_in_evaluation(&self) -> bool {
+        false
     }
 
     /// Fill in the pipeline's geometry stages (the variant that `capture` needs), vertex input
@@ -178,6 +193,13 @@ pub trait DriverKind: Sync {
         fragment_field: bool,
         capture: Capture,
     );
+
+    /// Whether an adaptive frame at largest level `level` is drawn with a pipeline of its own
+    /// ([`DriverKind::describe_adaptive_pipeline`]: the pattern driver's hierarchical patterns,
+    /// at a power of two) rather than the uniform one.
+    fn adaptive_pipeline(&self, _level: u32) -> bool {
+        false
+    }
 
     /// The pipeline of an adaptive frame (`FrameWork::adaptive`: each element at its own
     /// levels); a driver that does not draw adaptively describes its uniform pipeline.
@@ -242,5 +264,64 @@ pub fn check_level(ctx: &Context, cfg: &DrawConfig) -> Result<(), RenderError> {
             max,
         }),
         _ => Ok(()),
+    }
+}
+
+/// The finest level every driver draws on this device, where the device limits one (the
+/// window's largest adaptive level when none is given: the panel switches drivers).
+pub fn shared_level_limit(ctx: &Context) -> Option<u32> {
+    (Driver::ALL.iter())
+        .filter_map(|d| d.kind().level_limit(ctx))
+        .map(|(max, _)| max)
+        .min()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The capability table of docs/architecture.md ("Drivers"), asked of each driver's file.
+    #[test]
+    fn drivers_answer_their_capabilities() {
+        for d in Driver::VARIANTS {
+            let k = d.kind();
+            let (cpu, integer, evaluation, own_pipeline) = match d {
+                Driver::Static => (true, false, false, false),
+                Driver::Pattern(_) => (false, false, false, true),
+                Driver::Tess => (false, true, true, false),
+            };
+            assert_eq!(k.refines_on_cpu(), cpu, "{}", d.name());
+            assert_eq!(k.integer_levels(), integer, "{}", d.name());
+            assert_eq!(k.geomorphs_in_evaluation(), evaluation, "{}", d.name());
+            assert_eq!(k.adaptive_pipeline(16), own_pipeline, "{}", d.name());
+            // Not at a level its hierarchical patterns cannot make.
+            assert!(!k.adaptive_pipeline(12), "{}", d.name());
+        }
+    }
+
+    /// Gliding and dyadic levels as docs/adaptivity.md ("Geomorphing") says: for the drivers
+    /// whose levels are powers of two, `glides` is `geomorph` (the static driver's CPU
+    /// refinement then draws without gliding); the tess driver glides (and rounds to powers of
+    /// two) only under a largest level that is one, and draws integer levels otherwise.
+    #[test]
+    fn gliding_follows_the_levels() {
+        // (driver, level, geomorph) -> (glides, dyadic levels)
+        let cases = [
+            (Driver::Tess, 16, true, (true, true)),
+            (Driver::Tess, 12, true, (false, false)),
+            (Driver::Tess, 16, false, (false, false)),
+            (Driver::Pattern(Submit::Push), 16, true, (true, true)),
+            (Driver::Pattern(Submit::Instanced), 16, false, (false, true)),
+            (Driver::Static, 16, true, (true, true)),
+            (Driver::Static, 16, false, (false, true)),
+        ];
+        for (d, level, geomorph, want) in cases {
+            let cfg = DrawConfig {
+                geomorph,
+                ..DrawConfig::new(d, level)
+            };
+            let got = (cfg.glides(), cfg.dyadic_levels());
+            assert_eq!(got, want, "{} at {level}, geomorph {geomorph}", d.name());
+        }
     }
 }

@@ -113,18 +113,19 @@ impl DrawConfig {
         }
     }
 
-    /// Whether adaptive frames glide their vertices: [`DrawConfig::geomorph`], except for the
-    /// tess driver under a largest level that is not a power of two (its morph needs dyadic
-    /// levels), which then draws its integer levels without gliding.
+    /// Whether adaptive frames glide their vertices: [`DrawConfig::geomorph`], except for a
+    /// driver with integer levels (the tess driver, [`DriverKind::integer_levels`]) under a
+    /// largest level that is not a power of two (its morph needs dyadic levels), which then
+    /// draws its integer levels without gliding.
     pub fn glides(&self) -> bool {
-        self.geomorph && (self.driver != Driver::Tess || self.level.is_power_of_two())
+        self.geomorph && (!self.driver.kind().integer_levels() || self.level.is_power_of_two())
     }
 
     /// Whether adaptive levels are rounded to powers of two: the pattern driver's
     /// hierarchical patterns, the static driver (which refines with their construction), and
     /// the tess driver while it glides.
     pub fn dyadic_levels(&self) -> bool {
-        self.driver != Driver::Tess || self.glides()
+        !self.driver.kind().integer_levels() || self.glides()
     }
 
     /// Triangles the GPU makes per element.

@@ -130,6 +130,11 @@ impl DriverKind for PatternDriver {
         Some(Capture::Vertices)
     }
 
+    /// Its hierarchical patterns need a power of two ([`check_adaptive_level`]).
+    fn adaptive_pipeline(&self, level: u32) -> bool {
+        level.is_power_of_two()
+    }
+
     fn describe_pipeline(
         &self,
         desc: &mut GraphicsPipelineDesc,

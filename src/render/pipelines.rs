@@ -362,10 +362,10 @@ impl Renderer {
     }
 }
 
-/// Whether `cfg` is drawn adaptively when a frame asks: the pattern driver at a power of two
-/// (src/render/pattern.rs `check_adaptive`).
+/// Whether `cfg`'s adaptive frames have a pipeline of their own
+/// ([`DriverKind::adaptive_pipeline`](super::DriverKind::adaptive_pipeline)).
 fn adaptive_drawn(cfg: &DrawConfig) -> bool {
-    cfg.driver.submit().is_some() && cfg.level.is_power_of_two()
+    cfg.driver.kind().adaptive_pipeline(cfg.level)
 }
 
 fn key(cfg: &DrawConfig, capture: Capture, wire: bool, adaptive: bool) -> PipelineKey {
@@ -383,7 +383,8 @@ fn key(cfg: &DrawConfig, capture: Capture, wire: bool, adaptive: bool) -> Pipeli
         capture,
         wire,
         adaptive,
-        // The tess driver's adaptive draws share its pipeline (a push constant says adaptive).
-        geomorph: (adaptive || cfg.driver == Driver::Tess) && cfg.glides(),
+        // A driver that geomorphs in its evaluation stage (tess) draws adaptively with the
+        // pipeline of its uniform frames (a push constant says adaptive).
+        geomorph: (adaptive || cfg.driver.kind().geomorphs_in_evaluation()) && cfg.glides(),
     }
 }

@@ -96,6 +96,17 @@ impl DriverKind for TessDriver {
         ))
     }
 
+    /// The tessellator takes any integer level per edge and inside.
+    fn integer_levels(&self) -> bool {
+        true
+    }
+
+    /// Its evaluation stage glides (`glsl/tess/tess_morph.glsl`, mirror [`morph`]) in the
+    /// pipeline that draws uniform frames too.
+    fn geomorphs_in_evaluation(&self) -> bool {
+        true
+    }
+
     fn describe_pipeline(
         &self,
         desc: &mut GraphicsPipelineDesc,
