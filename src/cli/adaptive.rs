@@ -149,6 +149,20 @@ impl Frame {
     }
 }
 
+/// `--max-level l` for a driver whose adaptive levels are powers of two (the pattern and static
+/// drivers, 1-to-4 splits) must be one.
+pub fn check_max_level_rounding(l: u32, driver: Driver) -> Result<()> {
+    if !driver.kind().integer_levels() && !l.is_power_of_two() {
+        let lower = 1u32 << l.ilog2();
+        bail!(
+            "--max-level {l} is not a power of two: the {} driver's adaptive patterns are 1-to-4 splits; use {lower} or {}",
+            driver.name(),
+            lower * 2
+        );
+    }
+    Ok(())
+}
+
 impl Adaptive<'_> {
     /// The largest level any element gets: `--max-level` (refused past what `driver` draws on
     /// the device, and when not a power of two for a driver whose levels are, the pattern and
@@ -163,14 +177,7 @@ impl Adaptive<'_> {
             if let Err(e) = meshrefine::render::driver::check_level(ctx, &cfg) {
                 bail!("--max-level {l}: {e}");
             }
-            if pattern && !l.is_power_of_two() {
-                let lower = 1u32 << l.ilog2();
-                bail!(
-                    "--max-level {l} is not a power of two: the {} driver's adaptive patterns are 1-to-4 splits; use {lower} or {}",
-                    driver.name(),
-                    lower * 2
-                );
-            }
+            check_max_level_rounding(l, driver)?;
             return Ok(l);
         }
         let limit = limit.map_or(1024, |(max, _)| max.min(1024));

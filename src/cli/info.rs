@@ -154,16 +154,7 @@ fn check_level_options(a: &InfoArgs) -> Result<()> {
     if a.driver.kind().refines_on_cpu() {
         anyhow::bail!("--pixel-error draws adaptively with the pattern and tess drivers, not with --driver {}: it refines every element on the CPU at one level", a.driver.name());
     }
-    let l = a.max_level;
-    if !a.driver.kind().integer_levels() && !l.is_power_of_two() {
-        let lower = 1u32 << l.ilog2();
-        anyhow::bail!(
-            "--max-level {l} is not a power of two: the {} driver's adaptive patterns are 1-to-4 splits; use {lower} or {}",
-            a.driver.name(),
-            lower * 2
-        );
-    }
-    Ok(())
+    super::adaptive::check_max_level_rounding(a.max_level, a.driver)
 }
 
 /// With `--pixel-error`: the level each element is drawn at for the camera by `--driver` (the
