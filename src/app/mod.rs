@@ -300,22 +300,7 @@ impl App {
         });
         // Every power of two up to WINDOW_LEVELS (and the levels asked for), whatever the start.
         let max_level = cfg.level.max(adaptive_max).max(WINDOW_LEVELS);
-        let mut levels: Vec<u32> = (0..=WINDOW_LEVELS.trailing_zeros())
-            .map(|s| 1 << s)
-            .collect();
-        levels.push(cfg.level);
-        levels.push(adaptive_max);
-        let patterns = crate::pattern::PatternSet::from_levels(&levels);
-        let mut scene = Scene::with_patterns(&ctx, &pool, &renderer, mesh.clone(), patterns)?;
-        if let Some(map) = self.opts.heightmap.clone() {
-            scene.set_heightmap(&ctx, &pool, &renderer, map)?;
-        }
-        if let Some(tags) = self.opts.tags.clone() {
-            scene.set_tags(&ctx, &pool, &renderer, tags)?;
-        }
-        // The window keeps frames under a second itself (`fit_frame_budget`, `choose_levels`)
-        // and says so in the panel.
-        scene.skip_slow_warning();
+        let scene = self.scene(&ctx, &pool, &renderer, &mesh, [cfg.level, adaptive_max])?;
         let extent = swapchain.extent;
         let start_camera = a.camera.unwrap_or_else(|| {
             scene.framing_camera(&cfg, extent.width as f32 / extent.height as f32)
@@ -393,6 +378,34 @@ impl App {
         };
         state.apply_window_mode();
         Ok(state)
+    }
+
+    /// The window's scene: every power of two up to [`WINDOW_LEVELS`] and the `asked` levels
+    /// as patterns, with the mesh's height map and tags.
+    fn scene(
+        &self,
+        ctx: &Arc<Context>,
+        pool: &CommandPool,
+        renderer: &Renderer,
+        mesh: &Mesh,
+        asked: [u32; 2],
+    ) -> Result<Scene> {
+        let mut levels: Vec<u32> = (0..=WINDOW_LEVELS.trailing_zeros())
+            .map(|s| 1 << s)
+            .collect();
+        levels.extend(asked);
+        let patterns = crate::pattern::PatternSet::from_levels(&levels);
+        let mut scene = Scene::with_patterns(ctx, pool, renderer, mesh.clone(), patterns)?;
+        if let Some(map) = self.opts.heightmap.clone() {
+            scene.set_heightmap(ctx, pool, renderer, map)?;
+        }
+        if let Some(tags) = self.opts.tags.clone() {
+            scene.set_tags(ctx, pool, renderer, tags)?;
+        }
+        // The window keeps frames under a second itself (`fit_frame_budget`, `choose_levels`)
+        // and says so in the panel.
+        scene.skip_slow_warning();
+        Ok(scene)
     }
 }
 
