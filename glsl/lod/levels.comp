@@ -25,6 +25,7 @@ struct LodRecord {
     vec4 cone;   // axis, cosine of the half-angle (0: none)
     vec4 chord;  // (c1, c2), then the kink terms (k1, k2)
     vec4 second; // M_k per stored direction
+    vec4 mixed;  // B_k per stored pair of directions (k, k + 1)
     LodEdge edges[3];
 };
 
@@ -81,14 +82,19 @@ uint drawn(float level, bool dyadic, uint max_level) {
     return min(n, max_level);
 }
 
+// Mirror: `twist`.
+float twist(vec3 mixed, int e) {
+    return 2.0 * max(mixed[e], mixed[(e + 2) % 3]);
+}
+
 // Mirror: `strip_level`.
 float strip_level(LodRecord r, int e, float a, float tol) {
     vec3 m = r.second.xyz;
     float k1 = r.chord.z, k2 = r.chord.w;
-    float sum = m.x + m.y + m.z;
+    float t = twist(r.mixed.xyz, e);
     float mb = max(m[(e + 1) % 3], m[(e + 2) % 3]);
     float p = LOD_ELEMENT_FACTOR * mb + k2;
-    float q = LOD_ELEMENT_FACTOR * a * sum + k1 + 2.0 * k2 * a;
+    float q = LOD_ELEMENT_FACTOR * a * t + k1 + 2.0 * k2 * a;
     float c = (LOD_ELEMENT_FACTOR * a * m[e] + k1 + k2 * a) * a;
     float mx = float(view.max_level);
     if (c >= tol) {

@@ -25,6 +25,12 @@ pub struct Bounds {
     /// `d1`: 1 → 2, `d2`: 2 → 0), displacement included (its kinks excepted); for an edge, the
     /// curve's in `[0]`.
     pub second: [f32; 3],
+    /// `B_k >= sup |D²P[d_k, d_{k+1}]|`, the mixed second derivative of stored directions `k`
+    /// and `k + 1`, displacement included (its kinks excepted): the surface's own bound where it
+    /// has one, never above `Σ/2` (`Σ = M_0 + M_1 + M_2`, polarization: `2 D²P[d_k, d_{k+1}] =
+    /// D²P[d_{k+2}, d_{k+2}] − D²P[d_k, d_k] − D²P[d_{k+1}, d_{k+1}]`, as `d_k + d_{k+1} =
+    /// −d_{k+2}`). Not used for an edge.
+    pub mixed: [f32; 3],
     /// The height map's kink terms for lattice segments of unit size (`chord` holds them at
     /// `h = 1/N`: `c1 h + c2 h²`), zero for every other surface.
     pub kink: Chord,
@@ -34,18 +40,18 @@ pub struct Bounds {
 
 impl Bounds {
     /// A bound of `|D²P[e, e]|` for a parameter vector `e = (du, dv)` of an element, from the
-    /// three directions' bounds by polarization: `e = α a + β b` for two lattice directions `a`,
-    /// `b` whose sum or difference is the third, so `|Q(e)| <= α² M_a + β² M_b + |αβ| ΣM`; the
-    /// least of the three choices.
+    /// three directions' bounds and the mixed ones: `e = α a + β b` for two lattice directions
+    /// `a`, `b` whose sum or difference is the third, so `|Q(e)| <= α² M_a + β² M_b + 2|αβ|
+    /// B_ab` ([`Bounds::mixed`], at most `ΣM/2`); the least of the three choices.
     pub fn second_along(&self, e: [f32; 2]) -> f32 {
         let [m0, m1, m2] = self.second;
-        let s = m0 + m1 + m2;
+        let [b0, b1, b2] = self.mixed;
         let (x, y) = (e[0], e[1]);
         let w = x + y;
-        // e = x d0 − y d2, e = (x + y) d0 + y d1, e = −x d1 − (x + y) d2.
-        let a = x * x * m0 + y * y * m2 + (x * y).abs() * s;
-        let b = w * w * m0 + y * y * m1 + (w * y).abs() * s;
-        let c = x * x * m1 + w * w * m2 + (x * w).abs() * s;
+        // e = x d0 − y d2 (B_2), e = (x + y) d0 + y d1 (B_0), e = −x d1 − (x + y) d2 (B_1).
+        let a = x * x * m0 + y * y * m2 + 2.0 * (x * y).abs() * b2;
+        let b = w * w * m0 + y * y * m1 + 2.0 * (w * y).abs() * b0;
+        let c = x * x * m1 + w * w * m2 + 2.0 * (x * w).abs() * b1;
         a.min(b).min(c)
     }
 
@@ -145,8 +151,14 @@ impl<'a> Lod<'a> {
             None => vec![0, 1, 2],
         };
         let mut m: Vec<f32> = dirs.iter().map(|&k| net.second(k, edge)).collect();
+        // Canonical pairs (k, k + 1): the net's mixed differences (elements only).
+        let mut mixed: Vec<f32> = match edge {
+            Some(_) => vec![],
+            None => dirs.iter().map(|&k| net.mixed(k)).collect(),
+        };
         if exact.is_none() {
             m.iter_mut().for_each(|x| *x = f32::INFINITY);
+            mixed.iter_mut().for_each(|x| *x = f32::INFINITY);
         }
         let mut sphere = Sphere::around(&net.hull(edge));
         if let Some((_, d)) = near {
@@ -156,6 +168,10 @@ impl<'a> Lod<'a> {
         let (mut kink, mut grow) = (Chord::ZERO, 0.0f32);
         if displaced {
             let (extra, k, g) = self.displacement(c, &tags, &net, &sphere, edge);
+            // The displacement's own mixed term by polarization of its directional ones:
+            // `|D²(hN)[d_k, d_{k+1}]| <= (E_0 + E_1 + E_2)/2` (a sum of the two bilinear forms).
+            let half: f32 = 0.5 * extra.iter().sum::<f32>();
+            mixed.iter_mut().for_each(|b| *b += half);
             for (mk, e) in m.iter_mut().zip(extra) {
                 *mk += e;
             }
@@ -169,11 +185,22 @@ impl<'a> Lod<'a> {
             ELEMENT_FACTOR
         };
         let mut second = [0.0f32; 3];
+        let mut stored_mixed = [0.0f32; 3];
         match edge {
             Some(_) => second[0] = m[0],
             None => {
+                let dir = |k: usize| edge_of(c.order[k % 3], c.order[(k + 1) % 3]);
                 for k in 0..3 {
-                    second[edge_of(c.order[k], c.order[(k + 1) % 3])] = m[k];
+                    second[dir(k)] = m[k];
+                }
+                // Canonical directions k, k + 1 are stored directions `dir(k)`, `dir(k + 1)`
+                // up to sign (which `|D²P[·, ·]|` ignores): the stored pair starting at
+                // whichever of the two the other follows.
+                let half = 0.5 * (m[0] + m[1] + m[2]);
+                for (k, &b) in mixed.iter().enumerate() {
+                    let (x, y) = (dir(k), dir(k + 1));
+                    let j = if y == (x + 1) % 3 { x } else { y };
+                    stored_mixed[j] = b.min(half);
                 }
             }
         }
@@ -188,6 +215,7 @@ impl<'a> Lod<'a> {
             },
             sphere: sphere.grown(grow),
             second,
+            mixed: stored_mixed,
             kink,
             cone,
         }

@@ -18,24 +18,40 @@
 //! on the edges' own samples: a vertex on edge `e` at lattice parameter `k/n` moves to a sample
 //! of the edge's level `n_e <= n` (`a_e = 1/n_e`) less than `a_e` away (floor in the edge's
 //! canonical direction; dyadic or not). When `n_e = n` nothing moves. Otherwise the drawn
-//! triangles touching the edge are of three kinds, whose sides, in the element's lattice
-//! directions `d_k` (src/lod/mod.rs) and with `M_k`, `Σ = M_0 + M_1 + M_2` its second-derivative
-//! bounds ([`super::Bounds::second`]), satisfy (polarization, [`super::Bounds::second_along`]):
+//! triangles touching the edge are of three kinds. Their sides are bounded, in the element's
+//! lattice directions `d_k` (src/lod/mod.rs), from its second-derivative bounds `M_k >= sup
+//! |D²P[d_k, d_k]|` ([`super::Bounds::second`]) and its mixed ones `B_k >= sup |D²P[d_k,
+//! d_{k+1}]|` ([`super::Bounds::mixed`]), by expanding the quadratic form `Q = D²P(y)` at any
+//! point: `|Q(x u + z v)| <= x² |Q(u)| + z² |Q(v)| + 2|xz| |Q(u, v)|`
+//! ([`super::Bounds::second_along`]). `B_k` is each surface's own bound of the mixed term where
+//! it has one (a Bézier net's mixed second differences, src/lod/net.rs `Net::mixed`), and never
+//! more than polarization's `Σ/2`, `Σ = M_0 + M_1 + M_2` (as `d_k + d_{k+1} = −d_{k+2}`,
+//! `2 Q(d_k, d_{k+1}) = Q(d_{k+2}) − Q(d_k) − Q(d_{k+1})`), which is all a surface without one
+//! (`loop`) gets. Note `Q(d_e, d_{e+2}) = Q(d_{e+2}, d_e)`, bounded by `B_{e+2}`.
 //! - bases on the edge: `0` or `a_e d_e`: `|Q| <= a_e² M_e`;
 //! - sides from a moved vertex to the next row: `α d_e + β d_{e+1}` with `−a_e < α < a_e + β`
-//!   (floor) or `−a_e < α <= β` (ceiling); decomposed on `(d_e, d_{e+1})` when `|α| <= a_e` and on
-//!   `(d_e, d_{e+2})` (`α − β`, `|α − β| <= a_e`) otherwise:
-//!   `|Q| <= S_e = a_e² M_e + a_e β Σ + β² max(M_{e+1}, M_{e+2})`, texel extent `<= a_e + β`;
+//!   (floor) or `−a_e < α <= β` (ceiling); expanded on `(d_e, d_{e+1})` when `|α| <= a_e`
+//!   (cross term `2|α|β B_e`) and on `(d_e, d_{e+2})` otherwise (`(α − β) d_e − β d_{e+2}`,
+//!   `|α − β| <= a_e`, cross term `2|α − β|β B_{e+2}`): with the twist `T_e = 2 max(B_e,
+//!   B_{e+2})`, `|Q| <= S_e = a_e² M_e + a_e β T_e + β² max(M_{e+1}, M_{e+2})`, texel extent
+//!   `<= a_e + β`;
 //! - at a corner between edges `e` and `f`, sides `y d_e + z d_f` with `0 <= y <= a_e`,
 //!   `0 <= z <= a_f` (and sides of the second kind): with `m = min(y, z)`, `r = |y − z|`,
-//!   `y d_e + z d_f = −m d_g + r d_j`, so `|Q| <= m² M_g + r² M_j + m r Σ`, and with `m + r <= A =
-//!   max(a_e, a_f)`, `|Q| <= A² M_c`, `M_c = max(M_x, M_x/2 + Σ/4)`, `M_x = max_k M_k`.
+//!   `y d_e + z d_f = −m d_g + r d_j` (`g` the third direction, `j` one of `e`, `f`), so
+//!   `|Q| <= m² M_g + r² M_j + 2 m r B_x`, `B_x = max_k B_k`, and with `m + r <= A = max(a_e,
+//!   a_f)`: `M_x (m + r)² + m r (2 B_x − 2 M_x)`, largest at `m r = 0` or `m = r = A/2`, so
+//!   `|Q| <= A² M_c`, `M_c = max(M_x, M_x/2 + B_x/2)`, `M_x = max_k M_k`.
+//!
+//! With `B_k = Σ/2` these are the bounds written with `Σ` alone; a surface's own mixed bound
+//! makes them smaller wherever its twist across the edge is smaller than polarization allows
+//! (on a nearly spherical patch of an equilateral element, `|Q(d_e, d_{e+1})|` is about a third
+//! of `Σ/2`).
 //!
 //! Every drawn triangle's error is then at most `9/40` of its sides' largest `|Q|` plus the kink
 //! terms at its sides' extent (the lattice triangle's proof, src/lod/mod.rs, holds for any
 //! triangle). Two steps make every one of them meet the element's tolerance `τ`:
 //! 1. The edge's level includes, for each of its elements, the level at which the chord
-//!    `((1 + λ) k_1, 9/40 · max(M_c, M_e + λ Σ + λ² max(M_{e+1}, M_{e+2})) + (1 + λ)² k_2)`
+//!    `((1 + λ) k_1, 9/40 · max(M_c, M_e + λ T_e + λ² max(M_{e+1}, M_{e+2})) + (1 + λ)² k_2)`
 //!    (`k` the kink terms) meets that element's tolerance ([`strip_need`]). So `a_e² · 9/40 M_c`
 //!    and the kink terms at `A` fit in `τ`: the corners are covered whatever `n`, and so is
 //!    `S_e` whenever `β <= λ a_e`. A dyadic driver takes `λ = 1/2` (a coarser edge is at most
@@ -82,7 +98,7 @@ pub struct LodEdge {
     pub sphere_b: [f32; 4],
 }
 
-/// What the level pass reads of one element (std430, 352 bytes): its own bounds and its three
+/// What the level pass reads of one element (std430, 368 bytes): its own bounds and its three
 /// stored edges'.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
@@ -95,11 +111,13 @@ pub struct LodRecord {
     pub chord: [f32; 4],
     /// `M_k` per stored direction (`w` unused).
     pub second: [f32; 4],
+    /// `B_k` per stored pair of directions `(k, k + 1)` ([`super::Bounds::mixed`]; `w` unused).
+    pub mixed: [f32; 4],
     pub edges: [LodEdge; 3],
 }
 
 const _: () = assert!(std::mem::size_of::<LodEdge>() == 96);
-const _: () = assert!(std::mem::size_of::<LodRecord>() == 352);
+const _: () = assert!(std::mem::size_of::<LodRecord>() == 368);
 
 /// Cull flags of [`LodView::flags`].
 pub const CULL_FRUSTUM: u32 = 1;
@@ -196,27 +214,34 @@ fn enclosing(a: Sphere, b: Sphere) -> Sphere {
 /// triangles along stored edge `e` (module notes, step 1), for a driver that rounds as
 /// `dyadic` says; zero where the element has no finite bound (nothing is promised there).
 pub fn strip_need(b: &Bounds, e: usize, dyadic: bool) -> Chord {
-    let m = b.second;
-    let finite = m.iter().all(|x| x.is_finite())
+    let (m, mixed) = (b.second, b.mixed);
+    let finite = m.iter().chain(&mixed).all(|x| x.is_finite())
         && b.kink.c1.is_finite()
         && b.kink.c2.is_finite()
         && b.chord.c2.is_finite();
     if !finite {
         return Chord::ZERO;
     }
-    let sum = m[0] + m[1] + m[2];
+    let twist = twist(&mixed, e);
     let mx = m[0].max(m[1]).max(m[2]);
-    let mc = mx.max(0.5 * mx + 0.25 * sum);
+    let bx = mixed[0].max(mixed[1]).max(mixed[2]);
+    let mc = mx.max(0.5 * mx + 0.5 * bx);
     let mb = m[(e + 1) % 3].max(m[(e + 2) % 3]);
     // The transition sides' bound at β = λ a: λ = 1/2 (a dyadic driver's coarser edge is at
     // most half the inner level), λ = 1 (an integer driver's may be just below it).
     let lambda = if dyadic { 0.5 } else { 1.0 };
-    let ms = m[e] + lambda * sum + lambda * lambda * mb;
+    let ms = m[e] + lambda * twist + lambda * lambda * mb;
     let h = 1.0 + lambda;
     Chord {
         c1: h * b.kink.c1,
         c2: ELEMENT_FACTOR * mc.max(ms) + h * h * b.kink.c2,
     }
+}
+
+/// `T_e = 2 max(B_e, B_{e+2})`: what bounds the cross term of a transition side along stored
+/// edge `e` (module notes), per unit `a_e β`. Mirror: `twist` in glsl/lod/levels.comp.
+fn twist(mixed: &[f32], e: usize) -> f32 {
+    2.0 * mixed[e].max(mixed[(e + 2) % 3])
 }
 
 /// An element's corners' global vertex indices (M1's for `loop`): what orders an edge
@@ -288,6 +313,7 @@ pub fn lod_records(
                 cone,
                 chord: [c1, c2, k1, k2],
                 second: [b.second[0], b.second[1], b.second[2], 0.0].map(clamp_huge),
+                mixed: [b.mixed[0], b.mixed[1], b.mixed[2], 0.0].map(clamp_huge),
                 edges: [LodEdge::zeroed(); 3],
             }
         })
@@ -362,10 +388,10 @@ fn edge_level(v: &LodView, e: &LodEdge) -> f32 {
 fn strip_level(v: &LodView, r: &LodRecord, e: usize, a: f32, tol: f32) -> f32 {
     let m = r.second;
     let (k1, k2) = (r.chord[2], r.chord[3]);
-    let sum = m[0] + m[1] + m[2];
+    let t = twist(&r.mixed, e);
     let mb = m[(e + 1) % 3].max(m[(e + 2) % 3]);
     let p = ELEMENT_FACTOR * mb + k2;
-    let q = ELEMENT_FACTOR * a * sum + k1 + 2.0 * k2 * a;
+    let q = ELEMENT_FACTOR * a * t + k1 + 2.0 * k2 * a;
     let c = (ELEMENT_FACTOR * a * m[e] + k1 + k2 * a) * a;
     let max = v.max_level as f32;
     if c >= tol {

@@ -68,6 +68,37 @@ impl Net {
         (m * (m - 1)) as f32 * best
     }
 
+    /// `sup |D²P[d_k, d_{k+1}]|` over the patch, the mixed second derivative of directions `k`
+    /// and `k + 1` (corner `k` to `k + 1`, corner `k + 1` to `k + 2`):
+    /// `m(m − 1) · max |Δ_k Δ_{k+1} b|` over the mixed second differences of the net.
+    ///
+    /// Proof: `D_{d_a} P = m Σ_{|γ| = m−1} B^{m−1}_γ Δ_a b_γ` with `Δ_a b_γ = b_{γ+e_{a+1}} −
+    /// b_{γ+e_a}` (the degree-elevation identity of the Bernstein basis), and applying it
+    /// again, `D²P[d_a, d_b] = m(m − 1) Σ_{|γ| = m−2} B^{m−2}_γ Δ_a Δ_b b_γ`: a convex
+    /// combination (the Bernstein polynomials are nonnegative and sum to one on the triangle),
+    /// so within the largest of its terms. Exact for a quadratic (one term), zero for a linear
+    /// net.
+    pub fn mixed(&self, k: usize) -> f32 {
+        let m = self.degree;
+        if m < 2 {
+            return 0.0;
+        }
+        let (a, b, c) = (k, (k + 1) % 3, (k + 2) % 3);
+        let mut best = 0.0f32;
+        for g in Self::multi(m - 2) {
+            // Δ_k Δ_{k+1} b_γ = b_{γ+e_b+e_c} − b_{γ+e_b+e_b} − b_{γ+e_a+e_c} + b_{γ+e_a+e_b}.
+            let at = |x: usize, y: usize| {
+                let mut w = g;
+                w[x] += 1;
+                w[y] += 1;
+                self.at(w)
+            };
+            let d = (at(b, c) + at(a, b)) - (at(b, b) + at(a, c));
+            best = best.max(d.length());
+        }
+        (m * (m - 1)) as f32 * best
+    }
+
     /// `sup |DP[d_k]|`: `m · max |Δ_k b|` (restricted to the edge with `edge = Some(k)`).
     pub fn first(&self, k: usize, edge: Option<usize>) -> f32 {
         let m = self.degree;

@@ -43,6 +43,8 @@ fn finish(lod: &Lod, m: [f32; 3], factor: f32, points: &[Vec3]) -> Bounds {
         chord: Chord { c1: 0.0, c2 },
         sphere: sphere.grown(grow),
         second: m,
+        // No mixed bound of its own: polarization's `Σ/2` (src/lod/bound.rs, `Bounds::mixed`).
+        mixed: [0.5 * (m[0] + m[1] + m[2]); 3],
         kink: Chord::ZERO,
         cone: None,
     }

@@ -210,10 +210,11 @@ fn inner_levels_cover_own_bound_and_transitions() {
                 let ne = drawn_level(l.edges[e], dyadic, lv.max_level);
                 if ne < n {
                     let (a, beta) = (1.0 / ne as f32, 1.0 / n as f32);
-                    let m = x.second;
-                    let sum = m[0] + m[1] + m[2];
+                    let (m, bm) = (x.second, x.mixed);
+                    let twist = 2.0 * bm[e].max(bm[(e + 2) % 3]);
                     let mb = m[(e + 1) % 3].max(m[(e + 2) % 3]);
-                    let s = a * a * m[e] + a * beta * sum + beta * beta * mb;
+                    let s = a * a * m[e] + a * beta * twist + beta * beta * mb;
+                    // The corners fit: `M_c <= 1.25 max_k M_k` whatever `B_k` (`2 B_k <= Σ`).
                     let corner = 1.25 * a * a * m[0].max(m[1]).max(m[2]);
                     if step1 || ELEMENT_FACTOR * corner <= tol {
                         assert!(ELEMENT_FACTOR * s <= tol * 1.0001, "{s} vs {tol}");

@@ -329,3 +329,96 @@ fn loop_bounds_hold() {
     );
     assert!(m <= 20.0, "loop: median bound / truth {m}");
 }
+
+/// The largest `|D²P[d_k, d_{k+1}]|` sampled on lattice parallelograms of `g` segments per side:
+/// `|P(x) − P(x + a) − P(x + b) + P(x + a + b)| / h²` for the steps `a = h d_k`, `b = h d_{k+1}`
+/// (`h = 1/g`, stored directions). This is `h⁻²` times the integral of `D²P[a, b]` over the
+/// parallelogram, never above its supremum there, and it is the value at the parallelogram's
+/// centre exactly where `D²P` is affine (a cubic), so it reaches the corners' values within one
+/// step. Returns per pair and the largest `|P|` (for the rounding slack).
+fn sampled_mixed(case: &Case, rec: &ElementRecord, g: i32) -> ([f32; 3], f32) {
+    let at = |i: i32, j: i32| {
+        case.at(
+            rec,
+            [(g - i - j) as f32, i as f32, j as f32].map(|x| x / g as f32),
+        )
+    };
+    let mut p = std::collections::HashMap::new();
+    let mut big = 0.0f32;
+    for j in 0..=g {
+        for i in 0..=g - j {
+            let x = at(i, j);
+            big = big.max(x.length());
+            p.insert((i, j), x);
+        }
+    }
+    // Stored directions as lattice steps in (i, j) = (weight of corner 1, of corner 2).
+    let d = [(1, 0), (-1, 1), (0, -1)];
+    let mut out = [0.0f32; 3];
+    for (k, o) in out.iter_mut().enumerate() {
+        let (a, b) = (d[k], d[(k + 1) % 3]);
+        for (&(i, j), &x) in &p {
+            let q = |s: i32, t: i32| p.get(&(i + s * a.0 + t * b.0, j + s * a.1 + t * b.1));
+            if let (Some(xa), Some(xb), Some(xab)) = (q(1, 0), q(0, 1), q(1, 1)) {
+                let v = ((x + *xab) - (*xa + *xb)).length() * (g * g) as f32;
+                *o = o.max(v);
+            }
+        }
+    }
+    (out, big)
+}
+
+/// The mixed second-derivative bounds ([`Bounds::mixed`]) against sampling of the real
+/// evaluation, per stored pair of directions: never below it on Spot's elements and random ones,
+/// undisplaced and displaced, never above polarization's `Σ/2`; and Phong's, whose second
+/// derivatives are constant, equal to the sampling (so an underestimate of a thousandth would
+/// fail), which also pins the stored order of the pairs.
+#[test]
+fn mixed_bounds_hold_and_phong_s_are_exact() {
+    let (spot, recs) = corner_records("spot_control_tri_vn.obj");
+    let random = random_records(24, 11);
+    let r = spot.bounding_radius();
+    let mut ratios: Vec<(String, f32)> = Vec::new();
+    for (surface, displace) in [
+        (Surface::Flat, Displace::None),
+        (Surface::Phong, Displace::None),
+        (Surface::Pn, Displace::None),
+        (Surface::Stpn, Displace::None),
+        (Surface::Phong, Displace::Sine),
+        (Surface::Pn, Displace::Sine),
+    ] {
+        let what = format!("{} + {}", surface.name(), displace.name());
+        for (list, scale, g) in [(every(&recs, 3), r, 24), (random.clone(), 2.0, 16)] {
+            let case = Case {
+                surface,
+                displace,
+                params: SurfaceParams::for_radius(scale),
+                inputs: Inputs::default(),
+            };
+            let lod = case.lod();
+            let mut tight = f32::INFINITY;
+            for (ix, rec) in list.iter().enumerate() {
+                let b = lod.element(rec);
+                let (truth, big) = sampled_mixed(&case, rec, g);
+                let slack = 16.0 * f32::EPSILON * big * (g * g) as f32;
+                let half = 0.5 * b.second.iter().sum::<f32>();
+                for (k, (&t, &bk)) in truth.iter().zip(&b.mixed).enumerate() {
+                    assert!(
+                        t <= bk + slack,
+                        "{what}: element {ix} pair {k}: sampled {t} above the bound {bk}"
+                    );
+                    assert!(bk <= half, "{what}: {bk} above Σ/2 {half}");
+                    if surface == Surface::Phong && displace == Displace::None {
+                        let exact = (t - bk).abs() <= 1e-3 * bk + slack;
+                        assert!(exact, "phong: element {ix} pair {k}: {t} vs {bk}");
+                    }
+                    if t > 20.0 * slack {
+                        tight = tight.min(bk / t);
+                    }
+                }
+            }
+            ratios.push((what.clone(), tight));
+        }
+    }
+    eprintln!("mixed bound / sampled, tightest element: {ratios:?}");
+}
