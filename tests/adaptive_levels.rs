@@ -43,6 +43,8 @@ fn gpu_levels_match_the_mirror_and_share_edges() {
                 };
                 let what = format!("{} at {:?}", surface.name(), camera.eye());
                 let got = scene.set_levels(&cfg, &view);
+                // Drawn on the GPU: the mirror runs when the tally is read (below), not before.
+                assert!(!got.is_tallied(), "{what}: the mirror ran unread");
                 assert!(scene.level_pass(&cfg).is_some(), "{what}: no level pass");
                 h.adaptive = true;
                 h.draw(&mut scene, &cfg, &camera).unwrap();

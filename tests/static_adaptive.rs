@@ -126,7 +126,8 @@ fn static_adaptive_equals_the_pattern_drivers_capture() {
     });
 }
 
-/// The buffer is refined and uploaded again only when the drawn levels change.
+/// The buffer is refined and uploaded again only when the drawn levels change; choosing the
+/// levels tallies them at once and makes no level pass.
 #[test]
 fn static_adaptive_uploads_when_the_levels_change() {
     with_gpu(160, 90, |h| {
@@ -147,7 +148,15 @@ fn static_adaptive_uploads_when_the_levels_change() {
         };
         h.adaptive = true;
         let buffer = |scene: &Scene| scene.static_vbo.as_ref().map(|v| v.vertices.raw);
-        scene.set_levels(&st, &view(far, 4.0));
+        // It refines at the mirror's levels, tallied at once; no level pass is made (its
+        // bounds are not uploaded).
+        let objects = meshrefine::gpu::live_objects();
+        assert!(scene.set_levels(&st, &view(far, 4.0)).is_tallied());
+        assert_eq!(
+            meshrefine::gpu::live_objects(),
+            objects,
+            "a level pass made"
+        );
         h.render(&mut scene, &st, &far).unwrap();
         let first = buffer(&scene).expect("refined");
         let cost = scene.static_vbo.as_ref().unwrap().adaptive.clone().unwrap();

@@ -4,49 +4,19 @@
 
 mod common;
 
-use common::random_levels::{element_corners, random_levels};
+use common::random_levels::{crack_free_vertices, element_corners, open_edges, random_levels};
 use common::{model, with_gpu};
 use glam::{DVec2, Mat4, Vec2, Vec3, Vec4};
 use meshrefine::export::weld_triangles;
 use meshrefine::lod::levels::ElementLevels;
 use meshrefine::pattern::PatternSet;
 use meshrefine::render::tess::morph::{geomorph_position, geomorph_weights, morph_levels};
-use meshrefine::render::tess::{outer_levels, tess_vertex_count, tess_weights_levels};
+use meshrefine::render::tess::{outer_levels, tess_weights_levels};
 use meshrefine::render::{Camera, Capture, DrawConfig, Driver, Headless, LevelView, Scene};
 use meshrefine::surface::{eval_with, Displace, Surface, SurfaceParams};
 use std::collections::{HashMap, HashSet};
 
 const MAX: u32 = 16;
-
-/// Distinct vertices of a crack-free geomorphing tessellation: every corner once, each unique
-/// edge its own dyadic level's inner samples, each element the inner rings of its inner level.
-fn expected_vertices(corners: &[[u32; 3]], levels: &[ElementLevels]) -> usize {
-    let mut vertices = HashSet::new();
-    let mut edge_samples = HashMap::new();
-    let mut inside = 0;
-    for (c, l) in corners.iter().zip(levels) {
-        let (outer, inner) = morph_levels(l, MAX).unwrap();
-        inside += (tess_vertex_count(inner) - 3 * inner) as usize;
-        for i in 0..3 {
-            vertices.insert(c[i]);
-            let (a, b) = (c[(i + 1) % 3], c[(i + 2) % 3]);
-            edge_samples.insert((a.min(b), a.max(b)), outer[i] as usize - 1);
-        }
-    }
-    vertices.len() + edge_samples.values().sum::<usize>() + inside
-}
-
-/// Welded edges shared by other than two triangles.
-fn open_edges(triangles: &[[(u32, u32); 3]]) -> usize {
-    let mut count: HashMap<(u32, u32), u32> = HashMap::new();
-    for t in triangles {
-        for k in 0..3 {
-            let (a, b) = (t[k].0, t[(k + 1) % 3].0);
-            *count.entry((a.min(b), a.max(b))).or_default() += 1;
-        }
-    }
-    count.values().filter(|&&c| c != 2).count()
-}
 
 /// Random consistent continuous levels (one per unique edge, inner at least its edges'): every
 /// captured vertex equals the mirror's `geomorph_position` (the GPU's evaluation tolerance plus
@@ -146,7 +116,7 @@ fn tess_geomorph_matches_the_mirror_and_is_watertight() {
             let welded = weld_triangles(&tris);
             assert_eq!(
                 welded.positions.len(),
-                expected_vertices(&corners, &levels),
+                crack_free_vertices(&corners, &levels, |l| morph_levels(l, MAX)),
                 "{what}: welded vertices"
             );
             assert_eq!(open_edges(&welded.triangles), 0, "{what}: cracks");

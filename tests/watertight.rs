@@ -12,7 +12,7 @@
 
 mod common;
 
-use common::random_levels::{element_corners, random_levels};
+use common::random_levels::{crack_free_vertices, element_corners, open_edges, random_levels};
 use common::{model, with_gpu};
 use meshrefine::export::{weld, weld_triangles};
 use meshrefine::lod::levels::ElementLevels;
@@ -41,7 +41,7 @@ fn config(driver: Driver, n: u32, (s, d): (Surface, Displace), r: f32) -> DrawCo
     cfg.params = SurfaceParams::for_radius(r);
     cfg
 }
-use std::collections::{HashMap, HashSet};
+use std::collections::HashSet;
 
 const CLOSED: &[&str] = &[
     "tetrahedron.obj",
@@ -135,14 +135,7 @@ fn bits(p: &[f32]) -> [u32; 3] {
 }
 
 fn assert_closed(triangles: &[[(u32, u32); 3]], what: &str) {
-    let mut count: HashMap<(u32, u32), u32> = HashMap::new();
-    for t in triangles {
-        for k in 0..3 {
-            let (a, b) = (t[k].0, t[(k + 1) % 3].0);
-            *count.entry((a.min(b), a.max(b))).or_default() += 1;
-        }
-    }
-    let open = count.values().filter(|&&c| c != 2).count();
+    let open = open_edges(triangles);
     assert_eq!(
         open, 0,
         "{what}: {open} welded edges are not shared by exactly two triangles (a crack)"
@@ -294,25 +287,6 @@ fn every_normal_field_is_watertight_under_displacement() {
     });
 }
 
-/// Distinct vertices of a crack-free adaptive tessellation: every corner once, each unique edge
-/// its own level's inner samples, each element the inner rings of its inner level.
-fn expected_adaptive(corners: &[[u32; 3]], levels: &[ElementLevels], max: u32) -> usize {
-    let mut vertices = HashSet::new();
-    let mut edge_samples = HashMap::new();
-    let mut inside = 0;
-    for (c, l) in corners.iter().zip(levels) {
-        let (outer, inner) = outer_levels(l, max).unwrap();
-        inside += (tess_vertex_count(inner) - 3 * inner) as usize;
-        for i in 0..3 {
-            vertices.insert(c[i]);
-            // gl_TessLevelOuter[i]: stored edge i + 1, corners i + 1 and i + 2.
-            let (a, b) = (c[(i + 1) % 3], c[(i + 2) % 3]);
-            edge_samples.insert((a.min(b), a.max(b)), outer[i] as usize - 1);
-        }
-    }
-    vertices.len() + edge_samples.values().sum::<usize>() + inside
-}
-
 /// The tess driver drawing adaptively at random levels (one per unique edge, shared; inner levels
 /// at least their edges'): the evaluated vertices (capture) and the tessellator's triangles
 /// (transform feedback, what export writes) weld on exact bits into exactly the vertex count of a
@@ -345,7 +319,7 @@ fn tess_adaptive_is_watertight() {
                 let levels = random_levels(&corners, max, 0.0, seed);
                 scene.elements_mut(combo.0).upload_levels(&levels);
                 h.adaptive = true;
-                let want = expected_adaptive(&corners, &levels, max);
+                let want = crack_free_vertices(&corners, &levels, |l| outer_levels(l, max));
                 assert_eq!(tess_positions(h, &mut scene, &cfg, &camera), want, "{what}");
                 let tris = h.capture_triangles(&mut scene, &cfg, &camera).unwrap();
                 let count: u32 = levels

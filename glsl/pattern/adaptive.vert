@@ -62,8 +62,9 @@ bool edge_plan(uvec2 q, uvec4 n, vec4 lv, uint f, out uvec2 qs, out uvec2 a, out
 // level adds it; an inside point new at the inner level morphs between its parents' drawn
 // positions (a boundary parent snapped and morphing with its edge). The surface is evaluated at
 // one call site in a loop whose trip count depends on the vertex, so that a costly surface
-// (loop's table sums) is compiled once rather than inlined up to six times.
-// Mirror: adaptive::geomorph_position.
+// (loop's table sums) is compiled once rather than inlined up to six times; the loop runs over
+// the evaluations the vertex needs only (a SIMD batch of vertices runs the most any of them
+// needs: usually 2, not 6; docs/bench/geomorph-cost.md). Mirror: adaptive::geomorph_position.
 vec3 geomorph_position(ElementRecord rec, uint local, uvec2 raw, uvec2 ij, vec3 p, uvec4 n, vec4 lv,
                        uint f) {
     bool edge = morph_edge(raw, f) >= 0;
@@ -87,14 +88,13 @@ vec3 geomorph_position(ElementRecord rec, uint local, uvec2 raw, uvec2 ij, vec3 
     if (edge && !e0) {
         return p;
     }
-    // Evaluations: 0 point 0, 1 and 2 its edge parents, 3 point 1, 4 and 5 its edge parents.
+    // Evaluations: 0 point 0, 1 and 2 its edge parents, 3 point 1, 4 and 5 its edge parents;
+    // the j-th needed one is i: an edge point needs 1 and 2, an inside point 0 and 3, with 1 and
+    // 2 when e0, 4 and 5 when e1.
     vec3 r0 = p, r1 = p, r2 = p, r3 = p, r4 = p, r5 = p;
-    uint jobs = edge ? 3u : 6u;
-    for (uint i = edge ? 1u : 0u; i < jobs; i++) {
-        bool need = i == 0u || i == 3u || (i < 3u ? e0 : e1);
-        if (!need) {
-            continue;
-        }
+    uint jobs = edge ? 2u : (e0 ? 3u : 1u) + (e1 ? 3u : 1u);
+    for (uint j = 0u; j < jobs; j++) {
+        uint i = edge ? j + 1u : ((e0 || j == 0u) ? j : j + 2u);
         uvec2 w = i == 0u ? s0 : (i == 1u ? a0 : (i == 2u ? b0 : (i == 3u ? s1 : (i == 4u ? a1 : b1))));
         vec3 r = point_at(rec, local, w, f);
         if (i == 0u) r0 = r;

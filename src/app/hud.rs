@@ -26,6 +26,8 @@ impl State {
         let d = self.drawn;
         let coarse = self.scene.elements(d.surface).element_count as u64;
         let camera = camera::camera_args(&self.camera, self.viewing);
+        // A hidden panel reads no levels (they are tallied when first read).
+        let shown = self.ui.visible;
         let info = PanelInfo {
             device: &device,
             levels: &levels,
@@ -34,7 +36,7 @@ impl State {
             gpu_ms: self.gpu_ms,
             drawn: d,
             coarse,
-            refined: self.refined(&d, coarse),
+            refined: if shown { self.refined(&d, coarse) } else { 0 },
             geometry_bytes: self.scene.geometry_bytes(&d),
             upload_bytes: self.scene.upload_bytes(&d),
             table_bytes: self
@@ -47,8 +49,7 @@ impl State {
             animating: self.controls.animate,
             note: self.budget_note.as_deref(),
             mode_note: self.mode_note.as_deref(),
-            adaptive_rows: self
-                .adaptive_summary(&d, coarse)
+            adaptive_rows: (shown.then(|| self.adaptive_summary(&d, coarse)).flatten())
                 .map(|a| a.rows())
                 .unwrap_or_default(),
             camera: &camera,

@@ -227,7 +227,7 @@ struct State {
     /// adaptively): what the panel says about it.
     mode_note: Option<String>,
     /// The levels the last frame drew with, when it drew adaptively.
-    levels: Option<crate::lod::LevelReport>,
+    levels: Option<crate::render::ChosenLevels>,
     /// CPU time of choosing the last adaptive frame's levels, in milliseconds.
     level_ms: f64,
     /// The largest level the last adaptive frame drew (the frame budget may lower it).

@@ -185,7 +185,7 @@ fn frame(
         let report = m.scene.set_levels(&t.cfg, view);
         let cpu_ms = start.elapsed().as_secs_f64() * 1e3;
         if round == 0 {
-            t.reports.push(report);
+            t.reports.push(report.into_report());
         }
         // The level pass on the GPU, timed alone (each frame runs it again before
         // its draws); the CPU's time where the levels were uploaded instead.

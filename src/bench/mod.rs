@@ -20,7 +20,7 @@ mod harness;
 mod report;
 
 pub use harness::Harness;
-pub use report::{Align, Cell, Column, Report, COLUMNS, SUMMARY_WIDTH};
+pub use report::{csv_fields, Align, Cell, Column, Report, COLUMNS, SUMMARY_WIDTH};
 
 use crate::mesh::Mesh;
 use crate::pattern::PatternSet;

@@ -260,7 +260,7 @@ impl Adaptive<'_> {
             },
         );
         h.adaptive = true;
-        Ok((camera, report))
+        Ok((camera, report.into_report()))
     }
 
     /// The two lines that say what was drawn (export's header): the camera in mesh

@@ -267,15 +267,28 @@ fn adaptive_of<'a>(work: &FrameWork<'a>) -> &'a AdaptivePattern {
 /// Whether the pattern driver can draw `cfg` adaptively (`FrameWork::adaptive`): the
 /// hierarchical patterns need the largest level to be a power of two. One sentence otherwise.
 pub fn check_adaptive_level(cfg: &DrawConfig) -> Result<(), RenderError> {
-    if cfg.driver.submit().is_some() && !cfg.level.is_power_of_two() {
-        let lower = 1u32 << cfg.level.max(1).ilog2();
-        return Err(RenderError::Incompatible(format!(
-            "adaptive drawing with the pattern driver needs the largest level to be a power of two (its patterns are 1-to-4 splits), not {}: use --level {lower} or {}",
-            cfg.level,
-            lower * 2
-        )));
+    if cfg.driver.submit().is_none() {
+        return Ok(());
     }
-    Ok(())
+    check_dyadic(
+        cfg.level,
+        "the pattern driver needs the largest level to be a power of two (its patterns are 1-to-4 splits)",
+        "--level ",
+    )
+}
+
+/// The one sentence refusing adaptive drawing at largest `level` unless it is a power of two
+/// (the hierarchical patterns' 1-to-4 splits): `driver` says which driver and why, `option` is
+/// written before the two powers of two around `level` it suggests.
+pub(super) fn check_dyadic(level: u32, driver: &str, option: &str) -> Result<(), RenderError> {
+    if level.is_power_of_two() {
+        return Ok(());
+    }
+    let lower = 1u32 << level.max(1).ilog2();
+    Err(RenderError::Incompatible(format!(
+        "adaptive drawing with {driver}, not {level}: use {option}{lower} or {}",
+        lower * 2
+    )))
 }
 
 /// Whether this device can hold the adaptive draws of `elements` elements in chunks of `chunk`

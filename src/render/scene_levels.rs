@@ -5,7 +5,9 @@
 //! `FrameWork::level_pass` has the GPU write every element's levels right before its draws
 //! (docs/adaptivity.md, "Levels per frame"). What the levels draw is tallied with the pass's
 //! CPU mirror (`lod::frame::frame_levels`), for the printed line, export's header and the
-//! window's panel.
+//! window's panel, when one of them reads it ([`ChosenLevels`]): a frame drawn on the GPU runs
+//! no mirror. The static driver refines from the mirror's levels, so it runs it at once, and
+//! its bounds stay on the CPU (no level pass).
 
 use super::static_adaptive::StaticLevels;
 use super::{Camera, DrawConfig, LevelPass, RenderError, Scene};
@@ -14,6 +16,8 @@ use crate::lod::frame::{frame_levels, lod_records, LevelStats, LodRecord, LodVie
 use crate::lod::levels::ElementLevels;
 use crate::lod::{Frustum, LevelReport, Lod, View};
 use crate::surface::{Displace, Surface, SurfaceParams};
+use std::cell::OnceCell;
+use std::sync::Arc;
 
 /// The view adaptive levels are chosen for, in the scene's (drawn) coordinates.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -48,9 +52,61 @@ struct BoundsKey {
 pub(super) struct SceneLevels {
     /// None where the device could not make it.
     pass: Option<LevelPass>,
+    /// What the pass's bounds on the GPU were made from (None: nothing uploaded).
     key: Option<BoundsKey>,
-    records: Vec<LodRecord>,
+    /// What `records` were made from.
+    records_key: Option<BoundsKey>,
+    records: Arc<[LodRecord]>,
     view: Option<(Surface, LodView)>,
+}
+
+/// What the levels of one [`Scene::set_levels`] draw: the [`LevelReport`] (it dereferences to
+/// it), tallied from the level pass's CPU mirror the first time it is read. The mirror's inputs
+/// are kept (a camera and shared bounds), so reading it later gives what `set_levels` chose.
+pub struct ChosenLevels {
+    mirror: Option<(LodView, Arc<[LodRecord]>)>,
+    dyadic: bool,
+    max: u32,
+    report: OnceCell<LevelReport>,
+}
+
+impl ChosenLevels {
+    /// Levels already on the CPU (the static driver's, or uploaded instead of the pass).
+    fn tallied(levels: &[ElementLevels], dyadic: bool, max: u32) -> Self {
+        Self {
+            mirror: None,
+            dyadic,
+            max,
+            report: OnceCell::from(level_report(levels, dyadic, max)),
+        }
+    }
+
+    /// The report, the mirror run on the first call.
+    pub fn report(&self) -> &LevelReport {
+        self.report.get_or_init(|| {
+            let (view, records) = self.mirror.as_ref().expect("a mirror or a tally");
+            level_report(&frame_levels(view, records), self.dyadic, self.max)
+        })
+    }
+
+    /// Whether the tally is made (read, or the levels were on the CPU already).
+    pub fn is_tallied(&self) -> bool {
+        self.report.get().is_some()
+    }
+
+    /// The report, owned.
+    pub fn into_report(self) -> LevelReport {
+        self.report();
+        self.report.into_inner().expect("tallied")
+    }
+}
+
+impl std::ops::Deref for ChosenLevels {
+    type Target = LevelReport;
+
+    fn deref(&self) -> &LevelReport {
+        self.report()
+    }
 }
 
 impl Scene {
@@ -59,11 +115,13 @@ impl Scene {
     /// level pass's bounds are brought up to date and its camera kept for the frames that
     /// carry [`Scene::level_pass`], which write the levels on the GPU. Prepare the scene for
     /// `cfg` first (the loop surface's elements exist from then). Returns what the levels draw,
-    /// from the pass's CPU mirror, inner levels counted as the driver draws them.
+    /// from the pass's CPU mirror (run when first read), inner levels counted as the driver
+    /// draws them.
     ///
     /// Where the device cannot hold the pass's buffers, the mirror's levels are uploaded
     /// instead (the same levels; [`Scene::level_pass`] is then `None`) and a warning says so.
-    pub fn set_levels(&mut self, cfg: &DrawConfig, view: &LevelView) -> LevelReport {
+    /// The static driver refines at the mirror's levels: its bounds are not uploaded.
+    pub fn set_levels(&mut self, cfg: &DrawConfig, view: &LevelView) -> ChosenLevels {
         let max = cfg.level;
         let dyadic = cfg.dyadic_levels();
         let eye = view.camera.eye();
@@ -78,32 +136,37 @@ impl Scene {
             dyadic,
             count,
         );
-        let on_gpu = self.update_bounds(cfg);
-        let levels = frame_levels(&lod_view, &self.levels.as_ref().expect("bounds").records);
-        if cfg.driver.kind().refines_on_cpu() {
+        let on_cpu = cfg.driver.kind().refines_on_cpu();
+        let on_gpu = self.update_bounds(cfg, !on_cpu);
+        let l = self.levels.as_mut().expect("bounds");
+        let records = l.records.clone();
+        if on_cpu {
             // The static driver refines at the mirror's levels on the CPU: no level pass.
-            let report = level_report(&levels, dyadic, max);
+            l.view = None;
+            let levels = frame_levels(&lod_view, &records);
+            let chosen = ChosenLevels::tallied(&levels, dyadic, max);
             let g = self.generation;
             self.static_levels = Some(StaticLevels::new(cfg, g, levels));
-            if let Some(l) = &mut self.levels {
-                l.view = None;
-            }
-            return report;
+            return chosen;
         }
         match on_gpu {
             Ok(()) => {
-                let l = self.levels.as_mut().expect("bounds");
                 l.view = Some((cfg.surface, lod_view));
+                ChosenLevels {
+                    mirror: Some((lod_view, records)),
+                    dyadic,
+                    max,
+                    report: OnceCell::new(),
+                }
             }
             Err(e) => {
                 log::warn!("{e}: adaptive levels are chosen on the CPU instead");
-                if let Some(l) = &mut self.levels {
-                    l.view = None;
-                }
+                l.view = None;
+                let levels = frame_levels(&lod_view, &records);
                 self.elements_mut(cfg.surface).upload_levels(&levels);
+                ChosenLevels::tallied(&levels, dyadic, max)
             }
         }
-        level_report(&levels, dyadic, max)
     }
 
     /// The level pass and the camera of the last [`Scene::set_levels`], for
@@ -133,9 +196,10 @@ impl Scene {
         (levels, report)
     }
 
-    /// The level pass's bounds for `cfg`, computed and uploaded when what they are made of
-    /// changed. The bounds are kept on the CPU even when the upload fails (the mirror uses them).
-    fn update_bounds(&mut self, cfg: &DrawConfig) -> Result<(), RenderError> {
+    /// The level pass's bounds for `cfg`, computed when what they are made of changed, and
+    /// uploaded then when `upload`. The bounds are kept on the CPU even when the upload fails
+    /// (the mirror uses them).
+    fn update_bounds(&mut self, cfg: &DrawConfig, upload: bool) -> Result<(), RenderError> {
         let mesh = self.elements(cfg.surface);
         let key = BoundsKey {
             surface: cfg.surface,
@@ -145,24 +209,33 @@ impl Scene {
             generation: self.generation,
             levels: mesh.levels.raw,
         };
-        if self.levels.as_ref().is_some_and(|l| l.key == Some(key)) {
+        let have = |l: &SceneLevels| l.records_key == Some(key) && (!upload || l.key == Some(key));
+        if self.levels.as_ref().is_some_and(have) {
             return Ok(());
         }
         let mut l = self.levels.take().unwrap_or(SceneLevels {
             pass: None,
             key: None,
-            records: Vec::new(),
+            records_key: None,
+            records: Arc::new([]),
             view: None,
         });
-        let records = {
-            let inputs = self.inputs(cfg.level);
-            let lod = Lod::new(cfg.surface, cfg.displace, &cfg.params, &inputs.element(0));
-            // Loop's elements are M1 faces: no texture coordinates of their own.
-            let uvs = inputs.uvs.filter(|_| !cfg.surface.uses_loop_faces());
-            lod_records(&lod, self.records(cfg.surface), uvs)
-        };
-        l.key = None;
-        l.records = records;
+        if l.records_key != Some(key) {
+            let records = {
+                let inputs = self.inputs(cfg.level);
+                let lod = Lod::new(cfg.surface, cfg.displace, &cfg.params, &inputs.element(0));
+                // Loop's elements are M1 faces: no texture coordinates of their own.
+                let uvs = inputs.uvs.filter(|_| !cfg.surface.uses_loop_faces());
+                lod_records(&lod, self.records(cfg.surface), uvs)
+            };
+            l.key = None;
+            l.records = records.into();
+            l.records_key = Some(key);
+        }
+        if !upload {
+            self.levels = Some(l);
+            return Ok(());
+        }
         let uploaded = match &mut l.pass {
             Some(pass) => pass.upload(self.elements(cfg.surface), &l.records),
             None => LevelPass::new(&self.ctx).and_then(|mut pass| {

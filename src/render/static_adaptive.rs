@@ -204,20 +204,17 @@ fn upload(
     let upload_bytes = bytes(r.vertices.len(), std::mem::size_of::<StaticVertex>())
         + bytes(r.samples.len(), std::mem::size_of::<ElementVertex>())
         + bytes(r.indices.len(), 4);
-    let max = ctx.info.max_memory_allocation_size;
-    if upload_bytes > max {
-        return Err(RenderError::OverLimit {
-            what: format!(
+    super::static_vbo::check_allocation(
+        ctx,
+        upload_bytes,
+        || {
+            format!(
                 "the static driver's adaptively refined mesh (largest level {})",
                 cfg.level
-            ),
-            needed: upload_bytes,
-            unit: "bytes",
-            limit: "maxMemoryAllocationSize",
-            max,
-            remedy: "use a larger pixel error, a lower --max-level or the pattern driver".into(),
-        });
-    }
+            )
+        },
+        "use a larger pixel error, a lower --max-level or the pattern driver",
+    )?;
     let (vertex_count, index_count) = (r.vertices.len() as u32, r.indices.len() as u32);
     if r.vertices.is_empty() {
         r.vertices.push([0.0; 6]);
@@ -258,15 +255,11 @@ fn upload(
 /// Whether `cfg` can be drawn adaptively: a power-of-two largest level (its elements are drawn
 /// once `Scene::set_levels` chose their levels; before, nothing).
 pub(super) fn check(cfg: &DrawConfig) -> Result<(), RenderError> {
-    if !cfg.level.is_power_of_two() {
-        let lower = 1u32 << cfg.level.max(1).ilog2();
-        return Err(RenderError::Incompatible(format!(
-            "adaptive drawing with the static driver refines with the pattern driver's 1-to-4 splits: the largest level must be a power of two, not {}: use {lower} or {}",
-            cfg.level,
-            lower * 2
-        )));
-    }
-    Ok(())
+    super::pattern::check_dyadic(
+        cfg.level,
+        "the static driver refines with the pattern driver's 1-to-4 splits: the largest level must be a power of two",
+        "",
+    )
 }
 
 /// The draws of the elements `range`: one indexed draw per chunk of records over its elements'

@@ -98,6 +98,28 @@ pub struct StaticVbo {
     pub(super) pattern_index_count: u32,
 }
 
+/// Refuse a static buffer of `bytes` beyond maxMemoryAllocationSize (one buffer is one
+/// allocation), before the CPU refines it: `what` names it, `remedy` says what to do instead.
+pub(super) fn check_allocation(
+    ctx: &Context,
+    bytes: u64,
+    what: impl FnOnce() -> String,
+    remedy: &str,
+) -> Result<(), RenderError> {
+    let max = ctx.info.max_memory_allocation_size;
+    if bytes > max {
+        return Err(RenderError::OverLimit {
+            what: what(),
+            needed: bytes,
+            unit: "bytes",
+            limit: "maxMemoryAllocationSize",
+            max,
+            remedy: remedy.into(),
+        });
+    }
+    Ok(())
+}
+
 impl StaticVbo {
     pub fn new(
         ctx: &Arc<Context>,
@@ -111,20 +133,17 @@ impl StaticVbo {
         let bytes = records.len() as u64
             * pattern.bary.len() as u64
             * std::mem::size_of::<StaticVertex>() as u64;
-        let max = ctx.info.max_memory_allocation_size;
-        if bytes > max {
-            return Err(RenderError::OverLimit {
-                what: format!(
+        check_allocation(
+            ctx,
+            bytes,
+            || {
+                format!(
                     "the static driver's refined mesh at level {}",
                     pattern.level
-                ),
-                needed: bytes,
-                unit: "bytes",
-                limit: "maxMemoryAllocationSize",
-                max,
-                remedy: "use a lower level or the pattern driver".into(),
-            });
-        }
+                )
+            },
+            "use a lower level or the pattern driver",
+        )?;
         let (v, i) = refine_on_cpu(cfg, records, pattern, inputs);
         let vertices = Buffer::new_with_data(
             ctx,

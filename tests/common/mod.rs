@@ -90,21 +90,6 @@ pub fn pattern_tolerance(cfg: &DrawConfig, r: f32, records: &[ElementRecord]) ->
         }
 }
 
-/// The fields of one CSV line (RFC 4180 quoting).
-pub fn csv_fields(line: &str) -> Vec<String> {
-    let (mut fields, mut field, mut quoted) = (Vec::new(), String::new(), false);
-    let mut chars = line.chars().peekable();
-    while let Some(c) = chars.next() {
-        match (c, quoted) {
-            ('"', true) if chars.peek() == Some(&'"') => {
-                chars.next();
-                field.push('"');
-            }
-            ('"', _) => quoted = !quoted,
-            (',', false) => fields.push(std::mem::take(&mut field)),
-            (c, _) => field.push(c),
-        }
-    }
-    fields.push(field);
-    fields
-}
+/// The fields of one line of bench's CSV (not every test reads one).
+#[allow(unused_imports)]
+pub use meshrefine::bench::csv_fields;

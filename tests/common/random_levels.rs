@@ -48,3 +48,41 @@ pub fn random_levels(corners: &[[u32; 3]], max: u32, culled: f32, seed: u32) -> 
         })
         .collect()
 }
+
+/// Distinct vertices of a crack-free tessellation of `corners` at `levels`, each element's
+/// outer and inner tessellation levels given by `tess` (`tess::outer_levels`, or
+/// `tess::morph::morph_levels` when geomorphing): every corner once, each unique edge its own
+/// level's inner samples, each element the inner rings of its inner level.
+pub fn crack_free_vertices(
+    corners: &[[u32; 3]],
+    levels: &[ElementLevels],
+    tess: impl Fn(&ElementLevels) -> Option<([u32; 3], u32)>,
+) -> usize {
+    let mut vertices = std::collections::HashSet::new();
+    let mut edge_samples = HashMap::new();
+    let mut inside = 0;
+    for (c, l) in corners.iter().zip(levels) {
+        let (outer, inner) = tess(l).unwrap();
+        inside += (meshrefine::render::tess::tess_vertex_count(inner) - 3 * inner) as usize;
+        for i in 0..3 {
+            vertices.insert(c[i]);
+            // gl_TessLevelOuter[i]: stored edge i + 1, corners i + 1 and i + 2.
+            let (a, b) = (c[(i + 1) % 3], c[(i + 2) % 3]);
+            edge_samples.insert((a.min(b), a.max(b)), outer[i] as usize - 1);
+        }
+    }
+    vertices.len() + edge_samples.values().sum::<usize>() + inside
+}
+
+/// Welded edges (vertex ids `.0` of each corner) shared by other than two triangles: 0 for a
+/// closed mesh.
+pub fn open_edges(triangles: &[[(u32, u32); 3]]) -> usize {
+    let mut count: HashMap<(u32, u32), u32> = HashMap::new();
+    for t in triangles {
+        for k in 0..3 {
+            let (a, b) = (t[k].0, t[(k + 1) % 3].0);
+            *count.entry((a.min(b), a.max(b))).or_default() += 1;
+        }
+    }
+    count.values().filter(|&&c| c != 2).count()
+}
