@@ -59,6 +59,12 @@ pub fn net(_: &SurfaceParams, c: &Corners, _: &[VertexTag; 3], _: bool) -> Patch
 
 /// The direction field displacement moves along: the linear interpolation of the geometry
 /// normals.
-pub fn direction(_: &SurfaceParams, c: &Corners, _: &[VertexTag; 3], _: bool) -> Vec<Net> {
+pub fn direction(
+    _: &SurfaceParams,
+    _: super::NormalField,
+    c: &Corners,
+    _: &[VertexTag; 3],
+    _: bool,
+) -> Vec<Net> {
     vec![linear_net(c.g)]
 }

@@ -279,9 +279,15 @@ pub fn field_net(field: NormalField, c: &Corners, n: [Vec3; 3]) -> Net {
 
 /// The direction field displacement moves along: the normal field `--normal-field` of the
 /// geometry normals.
-pub fn direction(p: &SurfaceParams, c: &Corners, _: &[VertexTag; 3], _: bool) -> Vec<Net> {
+pub fn direction(
+    _: &SurfaceParams,
+    field: NormalField,
+    c: &Corners,
+    _: &[VertexTag; 3],
+    _: bool,
+) -> Vec<Net> {
     let cg = Corners { n: c.g, ..*c };
-    vec![field_net(p.normal_field, &cg, cg.n)]
+    vec![field_net(field, &cg, cg.n)]
 }
 
 #[cfg(test)]
