@@ -152,26 +152,14 @@ impl Scene {
                 levels: levels.join(", "),
             });
         }
-        let loop_faces = cfg.surface.uses_loop_faces();
-        if loop_faces
-            && self.loop_.as_ref().is_none_or(|l| {
-                l.data.boundary != cfg.build.boundary
-                    || l.data.tables.lattice.lmax != cfg.build.bft_level
-            })
-        {
-            self.loop_ = None;
-            self.static_vbo = None;
-            let lattice = crate::surface::loop_::Lattice::new(cfg.build.bft_level);
-            self.loop_ = Some(LoopScene::new(
-                ctx,
-                pool,
-                renderer,
-                self,
-                cfg.build.boundary,
-                lattice,
-            )?);
+        // The surface's own pre-pass makes its elements (the coarse triangles' records
+        // otherwise).
+        let pre_pass = cfg.surface.pre_pass();
+        if let Some(pass) = pre_pass {
+            self.prepare_pre_pass(ctx, pool, renderer, pass, &cfg.build)?;
         }
-        if !loop_faces && self.records_stale {
+        let coarse = pre_pass.is_none();
+        if coarse && self.records_stale {
             self.gpu.update_records(&self.data.records);
             self.records_stale = false;
         }
@@ -184,7 +172,7 @@ impl Scene {
         if cfg.surface.facts().tags {
             crate::surface::stpn::check(&self.data.mesh, &self.tags).map_err(RenderError::Tags)?;
         }
-        if cfg.build.seams != self.data.seams && !loop_faces {
+        if cfg.build.seams != self.data.seams && coarse {
             self.data.records = build_records(self.data.kind, &self.data.mesh, cfg.build.seams);
             self.data.seams = cfg.build.seams;
             self.gpu.update_records(&self.data.records);

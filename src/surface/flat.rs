@@ -15,6 +15,7 @@ pub const FACTS: SurfaceFacts = SurfaceFacts {
     name: "flat",
     help: "Linear interpolation of the coarse triangle's positions and normals",
     elements: Elements::CoarseTriangles,
+    pre_pass: None,
     options: &[],
     texture_coordinates: true,
     needs_every_face: false,

@@ -32,7 +32,7 @@ mod record;
 pub mod stpn;
 
 pub use displace::Displace;
-pub use facts::{DisplaceFacts, Elements, FragmentNormals, SurfaceFacts};
+pub use facts::{DisplaceFacts, Elements, FragmentNormals, PrePass, SurfaceFacts};
 pub use heightmap::Heightmap;
 pub use inputs::{DisplaceInputs, Mirror, Sources, SurfaceInputs};
 pub use params::{shown_number, SurfaceParams, MAX_FREQUENCY_RADII, MAX_REACH_RADII};
@@ -106,6 +106,11 @@ impl Surface {
             FragmentNormals::Always => true,
             FragmentNormals::FromLevel(from) => displace == Displace::None && gpu && level >= from,
         }
+    }
+
+    /// The pass that makes the surface's elements before drawing, if any.
+    pub fn pre_pass(self) -> Option<PrePass> {
+        self.facts().pre_pass
     }
 
     /// Whether the surface's elements are Loop's M1 faces (made by a pre-pass every frame).

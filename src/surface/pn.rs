@@ -39,6 +39,7 @@ pub const FACTS: SurfaceFacts = SurfaceFacts {
     name: "pn",
     help: "Curved PN triangles (Vlachos et al. 2001, as in Boubekeur & Schlick 2005, appendix A): cubic Bézier geometry, quadratic normal field evaluated per fragment",
     elements: Elements::CoarseTriangles,
+    pre_pass: None,
     options: &["pn_seams", "normal_field"],
     texture_coordinates: true,
     needs_every_face: false,

@@ -35,6 +35,7 @@ pub const FACTS: SurfaceFacts = SurfaceFacts {
     name: "stpn",
     help: "Scalar-tagged PN triangles (Boubekeur, Reuter & Schlick 2005): PN with per-vertex tension, sharpness, bias and crease direction (--tags, or derived from the mesh's hard edges)",
     elements: Elements::CoarseTriangles,
+    pre_pass: None,
     options: &["pn_seams", "normal_field", "tags", "crease_angle"],
     texture_coordinates: true,
     needs_every_face: false,
