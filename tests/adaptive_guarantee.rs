@@ -3,7 +3,7 @@
 //! pattern and tess drivers' real pipelines, read back (the capture variant; for tess also
 //! transform feedback, for the triangles); every drawn triangle (transition triangles and
 //! snapped boundary vertices included) is sampled at interior and edge points, and the true
-//! surface there (the CPU mirror, `eval_with`) must be within the pixel error of the triangle's
+//! surface there (the CPU mirror, `Mirror::eval`) must be within the pixel error of the triangle's
 //! linear interpolation of the captured corners, counted in the metric's pixels
 //! (`d·K/|p − eye|`) wherever the sample is inside the view.
 //!
@@ -22,7 +22,7 @@ use meshrefine::lod::View;
 use meshrefine::pattern::adaptive::{self, Hierarchy};
 use meshrefine::render::tess::{morph, outer_levels, tess_weights_levels};
 use meshrefine::render::{Camera, Capture, DrawConfig, Driver, Headless, LevelView, Scene, Submit};
-use meshrefine::surface::{eval_with, Displace, Surface, SurfaceParams};
+use meshrefine::surface::{Displace, Surface, SurfaceParams};
 use std::collections::HashMap;
 
 const MAX: u32 = 64;
@@ -187,7 +187,7 @@ fn draw_and_measure_at(
         c.x.abs() <= c.w && c.y.abs() <= c.w && c.z >= 0.0 && c.z <= c.w
     };
     let records = scene.records(cfg.surface);
-    let inputs = scene.inputs(MAX);
+    let mirror = scene.mirror(cfg, MAX).unwrap();
     let mut found = Found {
         checked: 0,
         capped: 0,
@@ -216,16 +216,7 @@ fn draw_and_measure_at(
                 let w = [(4 - a - c) as f32, a as f32, c as f32].map(|x| x / 4.0);
                 let bary: [f32; 3] =
                     std::array::from_fn(|k| b[0][k] * w[0] + b[1][k] * w[1] + b[2][k] * w[2]);
-                let el = inputs.element(t);
-                let s = eval_with(
-                    cfg.surface,
-                    cfg.displace,
-                    &cfg.params,
-                    &records[t],
-                    bary,
-                    &el,
-                )
-                .position;
+                let s = mirror.eval(&cfg.params, t, &records[t], bary).position;
                 if !inside(s) {
                     continue;
                 }

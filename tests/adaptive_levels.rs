@@ -50,10 +50,9 @@ fn gpu_levels_match_the_mirror_and_share_edges() {
                 h.draw(&mut scene, &cfg, &camera).unwrap();
                 let (gpu, drawn) = scene.drawn_levels(&cfg);
                 // The mirror, from bounds made here.
-                let inputs = scene.inputs(max);
-                let lod = Lod::new(surface, Displace::None, &cfg.params, &inputs.element(0));
+                let lod = Lod::new(&scene.mirror(&cfg, max).unwrap(), &cfg.params);
                 let metric = View::new(camera.eye(), camera.fov_y, 720, 1.0, max);
-                let bounds = lod_records(&lod, scene.records(surface), None);
+                let bounds = lod_records(&lod, scene.records(surface));
                 let lod_view = LodView::new(&metric, None, false, false, bounds.len() as u32);
                 let mirror = frame_levels(&lod_view, &bounds);
                 for (i, (g, m)) in gpu.iter().zip(&mirror).enumerate() {

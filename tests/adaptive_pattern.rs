@@ -23,7 +23,7 @@ use meshrefine::pattern::adaptive::{adaptive_element, drawn_levels, geomorph_pos
 use meshrefine::pattern::{vertex_count, PatternSet};
 use meshrefine::render::{Camera, Capture, DrawConfig, Driver, Headless, Scene, Submit};
 use meshrefine::subdiv::FaceRecord;
-use meshrefine::surface::{eval_with, Displace, Surface, SurfaceParams};
+use meshrefine::surface::{Displace, Surface, SurfaceParams};
 use std::collections::{HashMap, HashSet};
 
 /// xorshift64*: reproducible random numbers without a dependency.
@@ -160,7 +160,7 @@ fn check_chunked(
             } else {
                 2e-3
             };
-            let inputs = scene.inputs(max);
+            let mirror = scene.mirror(&cfg, max).unwrap();
             assert_eq!(cap.vertices.len(), records.len() * pv);
             let what = format!(
                 "{file} {} + {} {}",
@@ -193,14 +193,7 @@ fn check_chunked(
                     assert_eq!(&v.coord[..3], &bary[..], "{at}: weights");
                     let plain = meshrefine::pattern::Pattern::uniform(max).bary[k as usize];
                     moved += (plain != bary) as usize;
-                    let want = eval_with(
-                        cfg.surface,
-                        cfg.displace,
-                        &cfg.params,
-                        rec,
-                        bary,
-                        &inputs.element(t),
-                    );
+                    let want = mirror.eval(&cfg.params, t, rec, bary);
                     for a in 0..3 {
                         let d = (v.position[a] - want.position[a]).abs();
                         assert!(
@@ -428,17 +421,14 @@ fn adaptive_geomorph_matches_the_mirror_and_is_watertight() {
             h.adaptive = false;
             let records = scene.records(cfg.surface);
             let tol = common::pattern_tolerance(&cfg, r, records) + 4.0 * f32::EPSILON * r;
-            let inputs = scene.inputs(max);
+            let mirror = scene.mirror(&cfg, max).unwrap();
             let what = format!("{} + {} {}", combo.0.name(), combo.1.name(), cfg.label());
             let (mut morphing, mut worst) = (0usize, 0.0f32);
             for (t, rec) in records.iter().enumerate() {
                 let Some(e) = adaptive_element(&levels[t], max) else {
                     continue;
                 };
-                let element = inputs.element(t);
-                let eval = |b: [f32; 3]| {
-                    eval_with(cfg.surface, cfg.displace, &cfg.params, rec, b, &element).position
-                };
+                let eval = |b: [f32; 3]| mirror.eval(&cfg.params, t, rec, b).position;
                 for ((&k, &pt), &bary) in e.vertices.iter().zip(&e.points).zip(&e.bary) {
                     let v = &cap.vertices[t * pv + k as usize];
                     let want = geomorph_position(&levels[t], &e.levels, max, pt, &eval);

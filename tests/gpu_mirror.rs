@@ -33,8 +33,8 @@ use meshrefine::render::tess::{
 use meshrefine::render::{Camera, DrawConfig, Driver, Headless, Scene, Submit};
 use meshrefine::subdiv::Boundary;
 use meshrefine::surface::{
-    eval_with, BuildOptions, CornerRecord, Displace, ElementRecord, NormalField, Surface,
-    SurfaceParams, SMOOTH_CORNER,
+    BuildOptions, CornerRecord, Displace, ElementRecord, NormalField, Surface, SurfaceParams,
+    SMOOTH_CORNER,
 };
 
 use std::collections::{HashMap, HashSet};
@@ -183,10 +183,11 @@ fn setup(
         Which::Field(f) => f,
         _ => NormalField::default(),
     };
-    let params = SurfaceParams {
+    let build = BuildOptions {
         normal_field,
-        ..SurfaceParams::for_radius(r)
+        ..build
     };
+    let params = SurfaceParams::for_radius(r);
     (scene, camera, params, build, r)
 }
 
@@ -245,7 +246,7 @@ fn check_pattern_chunked(
                 let tol = position_tolerance(&cfg, r, seamed(&scene.data.records));
                 let ntol = normal_tolerance(&cfg);
                 let cap = h.capture(&mut scene, &cfg, &camera).unwrap();
-                let hm = scene.inputs(level);
+                let hm = scene.mirror(&cfg, level).unwrap();
                 let records = scene.records(surface);
                 assert_eq!(cap.vertices.len(), records.len() * pv);
                 let mut worst = 0.0f32;
@@ -256,7 +257,7 @@ fn check_pattern_chunked(
                         let what = format!(
                             "{file} {} ({}) + {} {} L{level}: triangle {t} vertex ({i},{j})",
                             surface.name(),
-                            params.normal_field.name(),
+                            build.normal_field.name(),
                             displace.name(),
                             cfg.label()
                         );
@@ -266,14 +267,7 @@ fn check_pattern_chunked(
                             [t as u32, k as u32, 0, 0],
                             "{what}: wrong capture slot"
                         );
-                        let want = eval_with(
-                            surface,
-                            displace,
-                            &params,
-                            rec,
-                            pattern.bary[k],
-                            &hm.element(t),
-                        );
+                        let want = hm.eval(&params, t, rec, pattern.bary[k]);
                         worst = worst.max(compare(got, &want, tol, ntol, &what));
                     }
                 }
@@ -310,13 +304,13 @@ fn check_tess_chunked(
             let tol = position_tolerance(&cfg, r, seamed(&scene.data.records));
             let ntol = normal_tolerance(&cfg);
             let cap = h.capture(&mut scene, &cfg, &camera).unwrap();
-            let hm = scene.inputs(level);
+            let hm = scene.mirror(&cfg, level).unwrap();
             let mut coords: HashMap<u32, HashSet<[u32; 3]>> = HashMap::new();
             let mut worst = 0.0f32;
             let what = format!(
                 "{file} {} ({}) + {} tess L{level}",
                 surface.name(),
-                params.normal_field.name(),
+                build.normal_field.name(),
                 displace.name()
             );
             for v in &cap.vertices {
@@ -328,13 +322,11 @@ fn check_tess_chunked(
                     .entry(v.id[0])
                     .or_default()
                     .insert(tc.map(f32::to_bits));
-                let want = eval_with(
-                    surface,
-                    displace,
+                let want = hm.eval(
                     &params,
+                    t,
                     &scene.records(surface)[t],
                     tess_weights(tc, level),
-                    &hm.element(t),
                 );
                 let at = format!("{what}: triangle {t} at {tc:?}");
                 worst = worst.max(compare(v, &want, tol, ntol, &at));
@@ -381,7 +373,7 @@ fn check_tess_adaptive(file: &str, h: &mut Headless, max: u32, all: impl Into<Wh
         let tol = position_tolerance(&cfg, r, seamed(&scene.data.records));
         let ntol = normal_tolerance(&cfg);
         let cap = h.capture(&mut scene, &cfg, &camera).unwrap();
-        let hm = scene.inputs(max);
+        let hm = scene.mirror(&cfg, max).unwrap();
         let what = format!(
             "{file} {} + {} tess adaptive up to {max}",
             surface.name(),
@@ -400,13 +392,11 @@ fn check_tess_adaptive(file: &str, h: &mut Headless, max: u32, all: impl Into<Wh
                 .entry(v.id[0])
                 .or_default()
                 .insert(tc.map(f32::to_bits));
-            let want = eval_with(
-                surface,
-                displace,
+            let want = hm.eval(
                 &params,
+                t,
                 &scene.records(surface)[t],
                 tess_weights_levels(tc, outer, inner),
-                &hm.element(t),
             );
             let at = format!("{what}: triangle {t} at {tc:?}");
             worst = worst.max(compare(v, &want, tol, ntol, &at));
@@ -610,7 +600,7 @@ fn tess_transform_feedback_carries_element_and_sample() {
         h.max_capture_bytes = None;
         let n = scene.records(cfg.surface).len();
         assert_eq!(tris.len(), n * per_element);
-        let hm = scene.inputs(level);
+        let hm = scene.mirror(&cfg, level).unwrap();
         let tol = position_tolerance(&cfg, r, seamed(&scene.data.records));
         let ntol = normal_tolerance(&cfg);
         let mut xfb: HashSet<(u32, [u32; 3])> = HashSet::new();
@@ -618,13 +608,11 @@ fn tess_transform_feedback_carries_element_and_sample() {
             let e = (k / per_element) as u32;
             for v in tri {
                 assert_eq!(v.element, e, "triangle {k}");
-                let want = eval_with(
-                    cfg.surface,
-                    cfg.displace,
+                let want = hm.eval(
                     &cfg.params,
+                    e as usize,
                     &scene.records(cfg.surface)[e as usize],
                     v.bary,
-                    &hm.element(e as usize),
                 );
                 let got = meshrefine::render::CapturedVertex {
                     position: [v.position[0], v.position[1], v.position[2], 1.0],

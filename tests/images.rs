@@ -162,7 +162,7 @@ fn every_normal_field_renders_alike_on_every_driver() {
             let mut render = |driver| {
                 let mut cfg =
                     DrawConfig::new(driver, level).with_surface(Surface::Pn, Displace::None);
-                cfg.params.normal_field = field;
+                cfg.build.normal_field = field;
                 h.render(&mut scene, &cfg, &camera).unwrap()
             };
             let instanced = render(Driver::Pattern(Submit::Instanced));

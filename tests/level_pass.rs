@@ -25,7 +25,7 @@ use meshrefine::lod::levels::{drawn_level, ElementLevels};
 use meshrefine::lod::{Frustum, Lod, View};
 use meshrefine::render::frame::{cmd_render, FrameWork, TargetView};
 use meshrefine::render::{Capture, DrawConfig, Driver, LevelPass, Scene, Submit};
-use meshrefine::surface::{stpn, Displace, Inputs, Surface, SurfaceParams};
+use meshrefine::surface::{stpn, BuildOptions, Displace, Mirror, Sources, Surface, SurfaceParams};
 use std::collections::HashMap;
 
 fn close(a: f32, b: f32, rel: f32) -> bool {
@@ -114,16 +114,17 @@ fn gpu_levels_match_the_cpu() {
                 frequency: 12.0 / r,
                 ..SurfaceParams::for_radius(r)
             };
-            let mesh_inputs = scene.inputs(4);
-            let inputs = Inputs {
+            let sources = Sources {
                 tags: Some(&tags),
-                loop_: mesh_inputs.loop_,
-                ..Inputs::default()
+                loop_: scene.sources(4).loop_,
+                ..Sources::default()
             };
-            let lod = Lod::new(surface, displace, &params, &inputs);
+            let mirror =
+                Mirror::new(surface, displace, &BuildOptions::default(), &sources).unwrap();
+            let lod = Lod::new(&mirror, &params);
             let records = scene.records(surface);
             let gpu_mesh = scene.elements(surface);
-            let full = lod_records(&lod, records, None);
+            let full = lod_records(&lod, records);
             // The same without the edges' transition needs: the inner levels' raise does it all.
             let mut bare = full.clone();
             for b in &mut bare {
@@ -265,10 +266,11 @@ fn a_frame_runs_the_level_pass_before_drawing() {
             .prepare(&h.ctx, &h.pool, &mut h.renderer, &cfg, Capture::None, false)
             .unwrap();
         let (c, r) = scene.bounding_sphere();
-        let inputs = Inputs::default();
-        let lod = Lod::new(cfg.surface, cfg.displace, &cfg.params, &inputs);
+        let mirror =
+            Mirror::new(cfg.surface, cfg.displace, &cfg.build, &Sources::default()).unwrap();
+        let lod = Lod::new(&mirror, &cfg.params);
         let mut pass = LevelPass::new(&h.ctx).unwrap();
-        pass.update_bounds(&scene.gpu, &lod, &scene.data.records, None)
+        pass.update_bounds(&scene.gpu, &lod, &scene.data.records)
             .unwrap();
         let (_, eye, vp) = cameras(c, r)[1];
         let frustum = Frustum::from_view_proj(vp);
@@ -299,7 +301,7 @@ fn a_frame_runs_the_level_pass_before_drawing() {
             })
             .unwrap();
         let gpu: Vec<ElementLevels> = scene.gpu.levels.read_pod();
-        let cpu = frame_levels(&view, &lod_records(&lod, &scene.data.records, None));
+        let cpu = frame_levels(&view, &lod_records(&lod, &scene.data.records));
         let (mut culled, mut refined) = (0, 0);
         for (i, (g, k)) in gpu.iter().zip(&cpu).enumerate() {
             assert_eq!(g.culled(), k.culled(), "element {i}");

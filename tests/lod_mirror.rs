@@ -17,7 +17,8 @@ use meshrefine::lod::{Bounds, Lod};
 use meshrefine::render::bindings::*;
 use meshrefine::render::FrameUniforms;
 use meshrefine::surface::{
-    build_records, Displace, Inputs, NormalField, RecordKind, Seams, Surface, SurfaceParams,
+    build_records, BuildOptions, Displace, Mirror, NormalField, RecordKind, Seams, Sources,
+    Surface, SurfaceParams,
 };
 
 /// Equal to a relative `rel`; the CPU's infinity (no finite bound) is the mirror's 3e38.
@@ -124,10 +125,6 @@ fn gpu_bounds_match_the_cpu() {
             .into_iter()
             .chain(NormalField::ALL.map(|f| (Surface::Pn, f)));
         for (surface, field) in cases {
-            let params = SurfaceParams {
-                normal_field: field,
-                ..params
-            };
             for displace in [Displace::None, Displace::Sine, Displace::Noise] {
                 let mut f = FrameUniforms::zeroed();
                 f.params = params.to_gpu();
@@ -149,7 +146,12 @@ fn gpu_bounds_match_the_cpu() {
                     })
                     .unwrap();
                 let got: Vec<[f32; 4]> = out.read_pod();
-                let lod = Lod::new(surface, displace, &params, &Inputs::default());
+                let build = BuildOptions {
+                    normal_field: field,
+                    ..BuildOptions::default()
+                };
+                let mirror = Mirror::new(surface, displace, &build, &Sources::default()).unwrap();
+                let lod = Lod::new(&mirror, &params);
                 let what = format!(
                     "{} ({}) + {}",
                     surface.name(),

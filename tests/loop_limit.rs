@@ -126,7 +126,6 @@ fn dyadic_levels_are_the_limit_surface() {
 /// mirror on the moved mesh (the GPU's M0 -> M1 and normals passes ran again).
 #[test]
 fn animated_loop_uploads_m0_only() {
-    use meshrefine::surface::eval_with;
     with_gpu(64, 64, |h| {
         let base = model("spot_control_tri.obj");
         let levels = [4u32, 16];
@@ -144,19 +143,12 @@ fn animated_loop_uploads_m0_only() {
             let moved = base.animated(frame as f32 * 0.7, 0.05 * r);
             scene.update_mesh(moved, Surface::Loop);
             let cap = h.capture(&mut scene, &cfg(4), &camera).unwrap();
-            let inputs = scene.inputs(4);
+            let mirror = scene.mirror(&cfg(4), 4).unwrap();
             let pattern = Pattern::uniform(4);
             let pv = pattern.bary.len();
             for (t, rec) in scene.records(Surface::Loop).iter().enumerate() {
                 for (k, &b) in pattern.bary.iter().enumerate() {
-                    let want = eval_with(
-                        Surface::Loop,
-                        Displace::None,
-                        &cfg(4).params,
-                        rec,
-                        b,
-                        &inputs.element(t),
-                    );
+                    let want = mirror.eval(&cfg(4).params, t, rec, b);
                     let got = &cap.vertices[t * pv + k].position;
                     let d = (glam::Vec3::new(got[0], got[1], got[2]) - want.position).length();
                     assert!(

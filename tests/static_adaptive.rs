@@ -17,7 +17,9 @@ use meshrefine::pattern::adaptive::adaptive_element;
 use meshrefine::pattern::{vertex_count, PatternSet};
 use meshrefine::render::static_adaptive::{drawn, refine_adaptive};
 use meshrefine::render::{Camera, Capture, DrawConfig, Driver, Headless, LevelView, Scene, Submit};
-use meshrefine::surface::{build_records, Displace, RecordKind, Seams, Surface, SurfaceParams};
+use meshrefine::surface::{
+    build_records, Displace, Mirror, RecordKind, Seams, Sources, Surface, SurfaceParams,
+};
 use std::collections::HashMap;
 
 /// Draw `st` (static) adaptively for `view` (validated), then capture the pattern driver at
@@ -30,8 +32,8 @@ fn compare(h: &mut Headless, scene: &mut Scene, st: DrawConfig, view: &LevelView
     h.render(scene, &st, &view.camera).unwrap();
     let levels = scene.static_levels(&st).expect("levels chosen").to_vec();
     let records = scene.records(st.surface).to_vec();
-    let inputs = scene.inputs(max);
-    let refined = refine_adaptive(&st, &records, drawn(&levels, max), Some(&inputs), false);
+    let mirror = scene.mirror(&st, max).unwrap();
+    let refined = refine_adaptive(&st, &records, drawn(&levels, max), &mirror, false);
     let vbo = scene.static_vbo.as_ref().expect("the static buffer");
     assert!(vbo.adaptive.is_some(), "the static buffer is not adaptive");
     assert_eq!(vbo.vertex_count as usize, refined.vertices.len());
@@ -209,7 +211,8 @@ fn static_adaptive_is_watertight() {
             .filter(|l| l.edges.iter().any(|&e| e < l.inner))
             .count();
         assert!(snapped > 100, "{snapped} elements with a coarser edge");
-        let refined = refine_adaptive(&cfg, &records, d, None, false);
+        let mirror = Mirror::new(cfg.surface, cfg.displace, &cfg.build, &Sources::default());
+        let refined = refine_adaptive(&cfg, &records, d, &mirror.unwrap(), false);
         let mut ids: HashMap<[u32; 3], u32> = HashMap::new();
         let weld: Vec<u32> = (refined.vertices.iter())
             .map(|v| {

@@ -13,7 +13,7 @@ use meshrefine::pattern::PatternSet;
 use meshrefine::render::tess::morph::{geomorph_position, geomorph_weights, morph_levels};
 use meshrefine::render::tess::{outer_levels, tess_weights_levels};
 use meshrefine::render::{Camera, Capture, DrawConfig, Driver, Headless, LevelView, Scene};
-use meshrefine::surface::{eval_with, Displace, Surface, SurfaceParams};
+use meshrefine::surface::{Displace, Surface, SurfaceParams};
 use std::collections::{HashMap, HashSet};
 
 const MAX: u32 = 16;
@@ -67,7 +67,7 @@ fn tess_geomorph_matches_the_mirror_and_is_watertight() {
             h.adaptive = true;
             let cap = h.capture(&mut scene, &cfg, &camera).unwrap();
             let records = scene.records(surface);
-            let inputs = scene.inputs(MAX);
+            let mirror = scene.mirror(&cfg, MAX).unwrap();
             let eps = f32::EPSILON * r;
             // Loop: sums of table-weighted M1 points (M1 made by the GPU's Loop pass).
             let base = if surface == Surface::Loop { 64.0 } else { 16.0 };
@@ -93,10 +93,7 @@ fn tess_geomorph_matches_the_mirror_and_is_watertight() {
                     }
                 }
                 let w = tess_weights_levels(tc, outer, inner);
-                let element = inputs.element(t);
-                let eval = |b: [f32; 3]| {
-                    eval_with(surface, displace, &cfg.params, &records[t], b, &element).position
-                };
+                let eval = |b: [f32; 3]| mirror.eval(&cfg.params, t, &records[t], b).position;
                 let p = eval(w);
                 let want = geomorph_position(tc, w, p, outer, inner, &levels[t], &eval);
                 morphing += (want != p) as usize;
@@ -247,7 +244,7 @@ fn tess_sweep(h: &mut Headless, scene: &mut Scene, geomorph: bool) -> (f32, usiz
         let vp = camera.view_proj(size.x / size.y);
         let now = draw_frame(h, scene, &cfg, &camera);
         if let Some((before, pvp)) = &prev {
-            let inputs = scene.inputs(64);
+            let mirror = scene.mirror(&cfg, 64).unwrap();
             changes += (now.levels.iter().zip(&before.levels))
                 .filter(|(a, b)| a != b)
                 .count();
@@ -256,9 +253,7 @@ fn tess_sweep(h: &mut Headless, scene: &mut Scene, geomorph: bool) -> (f32, usiz
                     continue;
                 };
                 let b = [1.0 - q.x - q.y, q.x, q.y].map(|x| x as f32);
-                let el = inputs.element(t);
-                let p =
-                    eval_with(cfg.surface, cfg.displace, &cfg.params, &records[t], b, &el).position;
+                let p = mirror.eval(&cfg.params, t, &records[t], b).position;
                 let (Some(s0), Some(s1), Some(p0), Some(p1)) =
                     (pixel(pvp, x0), pixel(&vp, x1), pixel(pvp, p), pixel(&vp, p))
                 else {

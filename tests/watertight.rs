@@ -18,7 +18,7 @@ use meshrefine::export::{weld, weld_triangles};
 use meshrefine::lod::levels::ElementLevels;
 use meshrefine::mesh::Mesh;
 use meshrefine::pattern::{Pattern, PatternSet};
-use meshrefine::render::static_vbo::{refine_on_cpu, MeshInputs};
+use meshrefine::render::static_vbo::refine_on_cpu;
 use meshrefine::render::tess::{
     outer_levels, tess_triangle_count, tess_triangle_count_levels, tess_vertex_count,
 };
@@ -101,14 +101,15 @@ fn static_positions_with(
     // The scalar tags a scene derives from the mesh's hard edges (stpn).
     let (tags, _) = meshrefine::surface::stpn::derive(mesh);
     let map = meshrefine::surface::Heightmap::generated();
-    let inputs = MeshInputs {
-        uvs: None,
-        map: &map,
-        lod: 0.0,
-        tags: &tags,
+    let sources = meshrefine::surface::Sources {
+        heightmap: Some(&map),
+        tags: Some(&tags),
         loop_,
+        ..Default::default()
     };
-    let (v, _) = refine_on_cpu(cfg, records, &Pattern::uniform(cfg.level), Some(&inputs));
+    let mirror =
+        meshrefine::surface::Mirror::new(cfg.surface, cfg.displace, &cfg.build, &sources).unwrap();
+    let (v, _) = refine_on_cpu(cfg, records, &Pattern::uniform(cfg.level), &mirror);
     let distinct: HashSet<[u32; 3]> = v.iter().map(|x| bits(&x[..3])).collect();
     distinct.len()
 }
@@ -255,7 +256,7 @@ fn every_normal_field_is_watertight_under_displacement() {
                     );
                     let with_field = |driver| {
                         let mut cfg = config(driver, n, combo, r);
-                        cfg.params.normal_field = field;
+                        cfg.build.normal_field = field;
                         cfg
                     };
                     let inner = ((n - 1) * (n - 2) / 2) as usize;
@@ -436,7 +437,7 @@ fn heightmap_on_continuous_coordinates_is_watertight() {
                 &cfg,
                 &scene.data.records,
                 &Pattern::uniform(n),
-                Some(&scene.inputs(n)),
+                &scene.mirror(&cfg, n).unwrap(),
             );
             let distinct: HashSet<[u32; 3]> = v.iter().map(|x| bits(&x[..3])).collect();
             assert_eq!(distinct.len(), want, "{file} static level {n}");

@@ -376,7 +376,7 @@ fn parameters(ui: &mut egui::Ui, c: &mut Controls) {
         ui.horizontal(|ui| {
             ui.label("normal field");
             for f in NormalField::ALL {
-                ui.selectable_value(&mut p.normal_field, f, f.name());
+                ui.selectable_value(&mut c.cfg.build.normal_field, f, f.name());
             }
         });
     });

@@ -95,7 +95,6 @@ impl ParamOpts {
             octaves: self.octaves,
             origin: d.origin,
             bias: self.bias,
-            normal_field: self.normal_field,
         };
         p.validate()?;
         Ok(p)
@@ -107,6 +106,7 @@ impl ParamOpts {
             seams: self.pn_seams,
             boundary: self.boundary,
             bft_level: self.bft_level,
+            normal_field: self.normal_field,
         };
         b.validate()?;
         Ok(b)

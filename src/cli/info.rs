@@ -163,7 +163,7 @@ fn check_level_options(a: &InfoArgs) -> Result<()> {
 fn print_levels(a: &InfoArgs, path: &str, mesh: &Mesh) -> Result<()> {
     use meshrefine::lod::frame::{frame_levels, lod_records, LevelStats, LodView};
     use meshrefine::lod::{Frustum, Lod, Sphere, View};
-    use meshrefine::surface::{build_records, stpn, BuildOptions, Inputs, Surface};
+    use meshrefine::surface::{build_records, stpn, BuildOptions, Mirror, Sources, Surface};
     let Some(px) = a.pixel_error else {
         return Ok(());
     };
@@ -194,7 +194,7 @@ fn print_levels(a: &InfoArgs, path: &str, mesh: &Mesh) -> Result<()> {
     }
     .dyadic_levels();
     let levels = |lod: &Lod, records: &[meshrefine::surface::ElementRecord]| {
-        let bounds = lod_records(lod, records, None);
+        let bounds = lod_records(lod, records);
         let lod_view = LodView::new(&view, Some(&frustum), false, dyadic, bounds.len() as u32);
         LevelStats::new(&frame_levels(&lod_view, &bounds), dyadic, a.max_level)
     };
@@ -203,20 +203,22 @@ fn print_levels(a: &InfoArgs, path: &str, mesh: &Mesh) -> Result<()> {
         let data = LoopData::new(mesh, build.boundary, lattice, |_| {})
             .map_err(|e| anyhow::anyhow!("{}: {e}", path))?;
         let frame = data.frame(&mesh.positions);
-        let inputs = Inputs {
+        let sources = Sources {
             loop_: Some((&data, &frame)),
-            ..Inputs::default()
+            ..Sources::default()
         };
-        let lod = Lod::new(surface, displace, &params, &inputs);
-        levels(&lod, &data.records)
+        let mirror =
+            Mirror::new(surface, displace, &build, &sources).map_err(anyhow::Error::msg)?;
+        levels(&Lod::new(&mirror, &params), &data.records)
     } else {
         let records = build_records(surface.record_kind(), mesh, build.seams);
-        let inputs = Inputs {
+        let sources = Sources {
             tags: tags.as_deref(),
-            ..Inputs::default()
+            ..Sources::default()
         };
-        let lod = Lod::new(surface, displace, &params, &inputs);
-        levels(&lod, &records)
+        let mirror =
+            Mirror::new(surface, displace, &build, &sources).map_err(anyhow::Error::msg)?;
+        levels(&Lod::new(&mirror, &params), &records)
     };
     let elements = stats.histogram.values().sum::<u64>() + stats.culled;
     let uniform_level = stats.histogram.keys().max().copied().unwrap_or(1);

@@ -5,7 +5,7 @@
 //! that both sides of a shared edge with the same coordinates at its ends give the same bits
 //! (docs/architecture.md, "The seam").
 
-use crate::surface::{eval_surface, ElementRecord, Inputs, Surface, SurfaceParams};
+use crate::surface::{eval_local, ElementRecord, NormalField, Surface, SurfaceParams};
 use glam::Vec2;
 
 /// Texture coordinates at barycentric `bary` of element `rec` of a local surface whose corners
@@ -17,9 +17,7 @@ pub fn element_texcoord(
     bary: [f32; 3],
     corners: &[[f32; 2]; 3],
 ) -> Vec2 {
-    let inputs = Inputs {
-        uv: Some(corners),
-        ..Inputs::default()
-    };
-    eval_surface(surface, params, rec, bary, &inputs).uv
+    // The coordinates depend on the corner order alone, not on the normal field or tags.
+    let field = NormalField::default();
+    eval_local(surface, params, field, None, rec, bary, Some(corners)).uv
 }

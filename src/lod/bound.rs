@@ -10,8 +10,8 @@ use super::{Chord, Sphere, EDGE_FACTOR, EDGE_KINK_FACTOR, ELEMENT_FACTOR, KINK_F
 use crate::surface::bounds::{DisplaceBound, Patch, SurfaceBound};
 use crate::surface::heightmap::MapLevel;
 use crate::surface::{
-    canonical, edge_of, stpn, CornerRecord, Corners, Displace, ElementRecord, Inputs, Surface,
-    SurfaceParams,
+    canonical, edge_of, stpn, CornerRecord, Corners, Displace, DisplaceInputs, ElementRecord,
+    Mirror, Surface, SurfaceInputs, SurfaceParams,
 };
 use glam::Vec2;
 
@@ -73,32 +73,60 @@ impl Bounds {
 }
 
 /// What bounds need besides the records, built once per mesh and parameters.
+#[derive(Clone, Copy)]
 pub struct Lod<'a> {
     pub surface: Surface,
     pub displace: Displace,
     pub params: SurfaceParams,
-    pub inputs: Inputs<'a>,
+    /// The surface and displacement with their inputs (what the bounds bound).
+    pub mirror: Mirror<'a>,
+    /// The texture coordinates of the element bounded (the height map reads them; set per
+    /// element by `lod::frame::lod_records`, the first element's to begin with).
+    pub uv: Option<&'a [[f32; 2]; 3]>,
     /// The two pyramid levels the height map reads (the same level twice when it reads one).
     pub map_levels: Option<[MapLevel; 2]>,
 }
 
 impl<'a> Lod<'a> {
-    pub fn new(
-        surface: Surface,
-        displace: Displace,
-        params: &SurfaceParams,
-        inputs: &Inputs<'a>,
-    ) -> Self {
-        let map_levels = match (displace.facts().bound, inputs.heightmap) {
-            (DisplaceBound::Texture(t), Some(map)) => Some((t.levels)(map, inputs.lod)),
+    pub fn new(mirror: &Mirror<'a>, params: &SurfaceParams) -> Self {
+        let displace = mirror.displace();
+        let map_levels = match (displace.facts().bound, mirror.displace) {
+            (DisplaceBound::Texture(t), DisplaceInputs::Heightmap(h)) => {
+                Some((t.levels)(h.map, h.lod))
+            }
             _ => None,
         };
         Self {
-            surface,
+            surface: mirror.surface(),
             displace,
             params: *params,
-            inputs: *inputs,
+            mirror: *mirror,
+            uv: mirror.uv(0),
             map_levels,
+        }
+    }
+
+    /// [`Lod::new`] of `surface` with `displace`, their inputs from `sources` and the default
+    /// build options (the unit tests' shorthand).
+    #[cfg(test)]
+    pub(crate) fn of(
+        surface: Surface,
+        displace: Displace,
+        params: &SurfaceParams,
+        sources: &crate::surface::Sources<'a>,
+    ) -> Self {
+        let build = crate::surface::BuildOptions::default();
+        Self::new(
+            &Mirror::new(surface, displace, &build, sources).unwrap(),
+            params,
+        )
+    }
+
+    /// This `Lod` for element `t` (its texture coordinates).
+    pub fn for_element(&self, t: usize) -> Self {
+        Self {
+            uv: self.mirror.uv(t).or(self.uv),
+            ..*self
         }
     }
 
@@ -127,11 +155,13 @@ impl<'a> Lod<'a> {
     }
 
     fn tags(&self, r: &CornerRecord, c: &Corners) -> [stpn::VertexTag; 3] {
-        self.inputs
-            .tags
-            .map_or([stpn::VertexTag::default(); 3], |t| {
-                stpn::corner_tags(t, &r.idx, c.order)
-            })
+        let tags = match self.mirror.surface {
+            SurfaceInputs::Stpn(i) => i.tags,
+            _ => None,
+        };
+        tags.map_or([stpn::VertexTag::default(); 3], |t| {
+            stpn::corner_tags(t, &r.idx, c.order)
+        })
     }
 
     /// Bounds on canonical corners `c`, of the whole element or (`edge = Some(0)`) of canonical
@@ -241,7 +271,7 @@ impl<'a> Lod<'a> {
         let SurfaceBound::Nets { direction, .. } = self.surface.facts().bound else {
             unreachable!("surfaces with bounds of their own return before");
         };
-        let nets = direction(p, c, tags, edge.is_some());
+        let nets = direction(p, self.mirror.normal_field(), c, tags, edge.is_some());
         let mut extra = vec![0.0f32; dirs.len()];
         let mut kink = Chord::ZERO;
         let bound = self.displace.facts().bound;
@@ -252,11 +282,10 @@ impl<'a> Lod<'a> {
         match bound {
             DisplaceBound::Texture(t) => {
                 let uv = self
-                    .inputs
                     .uv
                     .map(|x| c.order.map(|i| Vec2::from(x[i])))
                     .unwrap_or([Vec2::ZERO; 3]);
-                let Some(levels) = self.map_levels.filter(|_| self.inputs.uv.is_some()) else {
+                let Some(levels) = self.map_levels.filter(|_| self.uv.is_some()) else {
                     // No map or no coordinates: the displacement is the constant a·(0 − b)... but
                     // the evaluation reads h = 0 then: a constant offset along the normal.
                     return self.smooth_only(&dirs, &nets, edge, max_h);

@@ -74,7 +74,7 @@
 use super::bound::Lod;
 use super::levels::{drawn_level, ElementLevels};
 use super::{Bounds, Chord, Frustum, Sphere, View, ELEMENT_FACTOR};
-use crate::surface::{CornerRecord, ElementRecord};
+use crate::surface::ElementRecord;
 use bytemuck::{Pod, Zeroable};
 use glam::{Vec3, Vec4};
 use std::collections::{BTreeMap, HashMap};
@@ -247,13 +247,7 @@ fn twist(mixed: &[f32], e: usize) -> f32 {
 /// An element's corners' global vertex indices (M1's for `loop`): what orders an edge
 /// canonically (from the lower index to the higher).
 pub fn corner_indices(lod: &Lod, rec: &ElementRecord) -> [u32; 3] {
-    if lod.surface.uses_loop_faces() {
-        let (data, _) = lod.inputs.loop_.expect("loop bounds need Inputs::loop_");
-        data.m1.faces[rec.words[0] as usize]
-    } else {
-        let r = CornerRecord::decode(rec);
-        [r.idx[0], r.idx[1], r.idx[2]]
-    }
+    lod.mirror.corner_indices(rec)
 }
 
 /// The key of an element's stored edge `e`: its corners' global vertex indices, ascending.
@@ -263,31 +257,14 @@ fn edge_key(lod: &Lod, rec: &ElementRecord, e: usize) -> (u32, u32) {
     (a.min(b), a.max(b))
 }
 
-/// `lod` with element `i`'s texture coordinates (the height map reads them per element).
-fn with_uv<'a>(lod: &Lod<'a>, uvs: Option<&'a [[[f32; 2]; 3]]>, i: usize) -> Lod<'a> {
-    let mut inputs = lod.inputs;
-    if let Some(uvs) = uvs {
-        inputs.uv = Some(&uvs[i]);
-    }
-    Lod {
-        inputs,
-        map_levels: lod.map_levels,
-        ..*lod
-    }
-}
-
 /// Every element's [`LodRecord`]: its bounds, and its edges' (each unique edge bounded once,
-/// the same bits in every slot that holds it). `uvs`: each element's texture coordinates (the
-/// `heightmap` displacement's; `lod.inputs.uv` is ignored where given).
-pub fn lod_records(
-    lod: &Lod,
-    records: &[ElementRecord],
-    uvs: Option<&[[[f32; 2]; 3]]>,
-) -> Vec<LodRecord> {
+/// the same bits in every slot that holds it), each element with its own texture coordinates
+/// (the `heightmap` displacement's, [`Lod::for_element`]).
+pub fn lod_records(lod: &Lod, records: &[ElementRecord]) -> Vec<LodRecord> {
     let elements: Vec<Bounds> = records
         .iter()
         .enumerate()
-        .map(|(i, r)| with_uv(lod, uvs, i).element(r))
+        .map(|(i, r)| lod.for_element(i).element(r))
         .collect();
     // The slots of each unique edge, in element order.
     let mut slots: HashMap<(u32, u32), Vec<(usize, usize)>> = HashMap::new();
@@ -321,7 +298,7 @@ pub fn lod_records(
     for key in order {
         let list = &slots[&key];
         let (i0, e0) = list[0];
-        let edge = with_uv(lod, uvs, i0).edge(&records[i0], e0);
+        let edge = lod.for_element(i0).edge(&records[i0], e0);
         // Each element's needs (dyadic, integer) and sphere.
         let need = |&(i, e): &(usize, usize)| {
             let b = &elements[i];

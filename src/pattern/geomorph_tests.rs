@@ -7,7 +7,8 @@ use crate::lod::frame::{frame_levels, lod_records, LodView};
 use crate::lod::{Lod, View};
 use crate::mesh::test_support::load_model;
 use crate::surface::{
-    build_records, eval_with, Displace, Inputs, RecordKind, Seams, Surface, SurfaceParams,
+    build_records, BuildOptions, Displace, Mirror, RecordKind, Seams, Sources, Surface,
+    SurfaceParams,
 };
 use glam::{DVec2, Mat4, Vec2, Vec4};
 
@@ -110,9 +111,15 @@ fn sweep(geomorph: bool) -> (f32, usize, usize) {
     let (lo, hi) = spot.bounds();
     let centre = (lo + hi) * 0.5;
     let params = SurfaceParams::for_radius(r);
-    let inputs = Inputs::default();
-    let lod = Lod::new(Surface::Pn, Displace::None, &params, &inputs);
-    let lr = lod_records(&lod, &recs, None);
+    let pn = Mirror::new(
+        Surface::Pn,
+        Displace::None,
+        &BuildOptions::default(),
+        &Sources::default(),
+    )
+    .unwrap();
+    let lod = Lod::new(&pn, &params);
+    let lr = lod_records(&lod, &recs);
     let (fov, size) = (45f32.to_radians(), Vec2::new(1280.0, 720.0));
     let dir = Vec3::new(0.6, 0.35, 1.0).normalize();
     let mut prev: Option<(Vec<Option<Drawn>>, Camera, Vec<ElementLevels>)> = None;
@@ -130,11 +137,9 @@ fn sweep(geomorph: bool) -> (f32, usize, usize) {
             &LodView::new(&view, None, false, true, recs.len() as u32),
             &lr,
         );
-        let now: Vec<Option<Drawn>> = (levels.iter().zip(&recs))
-            .map(|(l, rec)| {
-                let eval = |b: [f32; 3]| {
-                    eval_with(Surface::Pn, Displace::None, &params, rec, b, &inputs).position
-                };
+        let now: Vec<Option<Drawn>> = (levels.iter().zip(&recs).enumerate())
+            .map(|(t, (l, rec))| {
+                let eval = |b: [f32; 3]| pn.eval(&params, t, rec, b).position;
                 drawn(l, &eval, geomorph)
             })
             .collect();
@@ -148,8 +153,7 @@ fn sweep(geomorph: bool) -> (f32, usize, usize) {
                     let x0 = d0.at(q);
                     let w = q / F as f64;
                     let b = [1.0 - w.x - w.y, w.x, w.y].map(|x| x as f32);
-                    let p = eval_with(Surface::Pn, Displace::None, &params, &recs[t], b, &inputs)
-                        .position;
+                    let p = pn.eval(&params, t, &recs[t], b).position;
                     let (Some(s0), Some(s1), Some(q0), Some(q1)) =
                         (pc.pixel(x0), cam.pixel(x1), pc.pixel(p), cam.pixel(p))
                     else {

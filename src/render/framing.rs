@@ -2,7 +2,6 @@
 //! to the viewport ([`Scene::framing_camera`], [`Camera::fit`]).
 
 use super::{Camera, DrawConfig, Scene};
-use crate::surface::eval_with;
 use glam::Vec3;
 
 /// About how many surface points [`Scene::framing_points`] evaluates at most (each element
@@ -31,16 +30,17 @@ impl Scene {
             .rev()
             .find(|n| (n + 1) * (n + 2) / 2 <= per_element)
             .unwrap_or(1);
-        let inputs = self.inputs(cfg.level);
+        let Ok(mirror) = self.mirror(cfg, cfg.level) else {
+            // What cannot be drawn (prepare says why) is framed by its coarse vertices.
+            return self.data.mesh.positions.clone();
+        };
         let mut points = Vec::with_capacity(records.len() * (n + 1) * (n + 2) / 2);
         for (t, rec) in records.iter().enumerate() {
-            let inp = inputs.element(t);
             for i in 0..=n {
                 for j in 0..=n - i {
                     let (u, v) = (i as f32 / n as f32, j as f32 / n as f32);
                     let b = [(n - i - j) as f32 / n as f32, u, v];
-                    let p =
-                        eval_with(cfg.surface, cfg.displace, &cfg.params, rec, b, &inp).position;
+                    let p = mirror.eval(&cfg.params, t, rec, b).position;
                     if p.is_finite() {
                         points.push(p);
                     }

@@ -86,17 +86,16 @@ impl LevelPass {
         })
     }
 
-    /// Bound `records` (the elements `mesh` draws; `uvs` their texture coordinates, which the
-    /// height map reads) with `lod` and upload the bounds, when the mesh or the surface's
-    /// parameters change. The caller makes sure no pending work uses the pass.
+    /// Bound `records` (the elements `mesh` draws) with `lod` and upload the bounds, when the
+    /// mesh or the surface's parameters change. The caller makes sure no pending work uses the
+    /// pass.
     pub fn update_bounds(
         &mut self,
         mesh: &GpuMesh,
         lod: &Lod,
         records: &[ElementRecord],
-        uvs: Option<&[[[f32; 2]; 3]]>,
     ) -> Result<(), RenderError> {
-        self.upload(mesh, &lod_records(lod, records, uvs))
+        self.upload(mesh, &lod_records(lod, records))
     }
 
     /// Upload bounds computed elsewhere (`lod::frame::lod_records`), one per element of `mesh`.

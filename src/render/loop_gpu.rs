@@ -19,8 +19,8 @@ use crate::gpu::{
     Pipeline, PipelineLayout,
 };
 use crate::subdiv::bft::{progress_line, Lattice};
-use crate::subdiv::{Boundary, LoopData, LoopFrame, Stencil};
-use crate::surface::RecordKind;
+use crate::subdiv::{LoopData, LoopFrame, Stencil};
+use crate::surface::{BuildOptions, PrePass, RecordKind};
 use glam::Vec3;
 use std::sync::Arc;
 
@@ -400,6 +400,8 @@ fn m1_grid(m1_count: u32, max: [u32; 2]) -> Result<[u32; 2], RenderError> {
 /// first read after M0 moved: an animated frame drawn on the GPU does no M1 work on the CPU.
 pub struct LoopScene {
     pub data: LoopData,
+    /// The options its data was built with (`PrePass::same_data`).
+    pub(super) build: BuildOptions,
     pub(super) frame: std::cell::OnceCell<LoopFrame>,
     pub gpu: GpuMesh,
     pub pass: LoopPass,
@@ -449,17 +451,48 @@ fn loop_limits(data: &LoopData, limits: &vk::PhysicalDeviceLimits) -> Result<(),
     Ok(())
 }
 
+impl Scene {
+    /// Build the data of `pass` (the pre-pass a surface declares, `Surface::pre_pass`) with
+    /// `build`'s options, unless it was built with them: what `Scene::prepare` runs before the
+    /// surface is drawn.
+    pub(super) fn prepare_pre_pass(
+        &mut self,
+        ctx: &Arc<Context>,
+        pool: &CommandPool,
+        renderer: &super::Renderer,
+        pass: PrePass,
+        build: &BuildOptions,
+    ) -> Result<(), RenderError> {
+        match pass {
+            PrePass::LoopStep => {
+                if self
+                    .loop_
+                    .as_ref()
+                    .is_some_and(|l| pass.same_data(&l.build, build))
+                {
+                    return Ok(());
+                }
+                self.loop_ = None;
+                self.static_vbo = None;
+                self.loop_ = Some(LoopScene::new(ctx, pool, renderer, self, build)?);
+            }
+        }
+        Ok(())
+    }
+}
+
 impl LoopScene {
     pub(super) fn new(
         ctx: &Arc<Context>,
         pool: &CommandPool,
         renderer: &super::Renderer,
         scene: &Scene,
-        boundary: Boundary,
-        lattice: Lattice,
+        build: &BuildOptions,
     ) -> Result<Self, RenderError> {
         let mesh = &scene.data.mesh;
-        let data = LoopData::new(mesh, boundary, lattice, progress_line("loop surface"))?;
+        let lattice = Lattice::new(build.bft_level);
+        let progress = progress_line("loop surface");
+        let data = LoopData::new(mesh, build.boundary, lattice, progress)?;
         loop_limits(&data, &ctx.info.limits)?;
         let pass = LoopPass::new(ctx, pool, &data, &mesh.positions)?;
         let elements = MeshData {
@@ -485,6 +518,7 @@ impl LoopScene {
         )?;
         Ok(Self {
             data,
+            build: *build,
             frame: std::cell::OnceCell::new(),
             gpu,
             pass,
@@ -496,6 +530,7 @@ impl LoopScene {
 mod tests {
     use super::*;
     use crate::mesh::test_support::load_model;
+    use crate::subdiv::Boundary;
 
     #[test]
     fn dispatch_grids_cover_every_group_within_the_limits() {

@@ -70,9 +70,10 @@ impl Capture {
 pub struct DrawConfig {
     pub surface: Surface,
     pub displace: Displace,
-    /// Per-frame parameters (the `Frame` block).
+    /// Per-frame values (the `Frame` block): a frame may change them without rebuilding.
     pub params: SurfaceParams,
-    /// Options built into the mesh's data (records, Loop's tables).
+    /// Options that change what is built: the mesh's data (records, Loop's tables) and the
+    /// pipelines (the normal field's specialization constant).
     pub build: BuildOptions,
     pub driver: Driver,
     pub level: u32,

@@ -375,7 +375,7 @@ fn key(cfg: &DrawConfig, capture: Capture, wire: bool, adaptive: bool) -> Pipeli
         surface: cfg.surface,
         displace: cfg.displace,
         normal_field: if cfg.surface.facts().options.contains(&"normal_field") {
-            cfg.params.normal_field
+            cfg.build.normal_field
         } else {
             NormalField::Paper
         },

@@ -10,7 +10,9 @@ use crate::mesh::Mesh;
 use crate::pattern::PatternSet;
 use crate::surface::stpn::VertexTag;
 use crate::surface::Surface;
-use crate::surface::{build_records, ElementRecord, Heightmap, RecordKind, Seams, RECORD_BYTES};
+use crate::surface::{
+    build_records, ElementRecord, Heightmap, Mirror, RecordKind, Seams, Sources, RECORD_BYTES,
+};
 use std::sync::Arc;
 
 /// Everything needed to draw one mesh with any driver: CPU data, GPU data, the pattern set and
@@ -150,26 +152,14 @@ impl Scene {
                 levels: levels.join(", "),
             });
         }
-        let loop_faces = cfg.surface.uses_loop_faces();
-        if loop_faces
-            && self.loop_.as_ref().is_none_or(|l| {
-                l.data.boundary != cfg.build.boundary
-                    || l.data.tables.lattice.lmax != cfg.build.bft_level
-            })
-        {
-            self.loop_ = None;
-            self.static_vbo = None;
-            let lattice = crate::surface::loop_::Lattice::new(cfg.build.bft_level);
-            self.loop_ = Some(LoopScene::new(
-                ctx,
-                pool,
-                renderer,
-                self,
-                cfg.build.boundary,
-                lattice,
-            )?);
+        // The surface's own pre-pass makes its elements (the coarse triangles' records
+        // otherwise).
+        let pre_pass = cfg.surface.pre_pass();
+        if let Some(pass) = pre_pass {
+            self.prepare_pre_pass(ctx, pool, renderer, pass, &cfg.build)?;
         }
-        if !loop_faces && self.records_stale {
+        let coarse = pre_pass.is_none();
+        if coarse && self.records_stale {
             self.gpu.update_records(&self.data.records);
             self.records_stale = false;
         }
@@ -182,7 +172,7 @@ impl Scene {
         if cfg.surface.facts().tags {
             crate::surface::stpn::check(&self.data.mesh, &self.tags).map_err(RenderError::Tags)?;
         }
-        if cfg.build.seams != self.data.seams && !loop_faces {
+        if cfg.build.seams != self.data.seams && coarse {
             self.data.records = build_records(self.data.kind, &self.data.mesh, cfg.build.seams);
             self.data.seams = cfg.build.seams;
             self.gpu.update_records(&self.data.records);
@@ -386,13 +376,15 @@ impl Scene {
         self.heightmap.lod_for(self.data.uv_extent, level)
     }
 
-    /// What the CPU mirror reads besides the records (texture coordinates, height map, tags).
-    pub fn inputs(&self, level: u32) -> super::static_vbo::MeshInputs<'_> {
-        super::static_vbo::MeshInputs {
+    /// What the scene holds for the CPU mirrors to read besides the records (texture
+    /// coordinates, the height map read at refinement level `level`, tags, Loop's M1 and tables
+    /// once prepared for loop).
+    pub fn sources(&self, level: u32) -> Sources<'_> {
+        Sources {
             uvs: self.data.uvs.as_deref(),
-            map: &self.heightmap,
+            heightmap: Some(&self.heightmap),
             lod: self.heightmap_lod(level),
-            tags: &self.tags,
+            tags: Some(&self.tags),
             loop_: self.loop_.as_ref().map(|l| {
                 let frame = l
                     .frame
@@ -400,6 +392,14 @@ impl Scene {
                 (&l.data, frame)
             }),
         }
+    }
+
+    /// The CPU mirror of what `cfg` draws (its surface and displacement with the inputs they
+    /// declare, from [`Scene::sources`] at `level`), or the sentence saying what it lacks
+    /// (loop before the scene was prepared for it; a height map without texture coordinates).
+    pub fn mirror(&self, cfg: &super::DrawConfig, level: u32) -> Result<Mirror<'_>, RenderError> {
+        Mirror::new(cfg.surface, cfg.displace, &cfg.build, &self.sources(level))
+            .map_err(RenderError::Incompatible)
     }
 
     /// Centre and radius of the mesh's bounding sphere.

@@ -40,6 +40,8 @@ struct BoundsKey {
     surface: Surface,
     displace: Displace,
     params: SurfaceParams,
+    /// The per-build options (the normal field the direction bounds read among them).
+    build: crate::surface::BuildOptions,
     /// The largest level (the height map's pyramid level follows it).
     max: u32,
     generation: u64,
@@ -205,6 +207,7 @@ impl Scene {
             surface: cfg.surface,
             displace: cfg.displace,
             params: cfg.params,
+            build: cfg.build,
             max: cfg.level,
             generation: self.generation,
             levels: mesh.levels.raw,
@@ -222,11 +225,8 @@ impl Scene {
         });
         if l.records_key != Some(key) {
             let records = {
-                let inputs = self.inputs(cfg.level);
-                let lod = Lod::new(cfg.surface, cfg.displace, &cfg.params, &inputs.element(0));
-                // Loop's elements are M1 faces: no texture coordinates of their own.
-                let uvs = inputs.uvs.filter(|_| !cfg.surface.uses_loop_faces());
-                lod_records(&lod, self.records(cfg.surface), uvs)
+                let lod = Lod::new(&self.mirror(cfg, cfg.level)?, &cfg.params);
+                lod_records(&lod, self.records(cfg.surface))
             };
             l.key = None;
             l.records = records.into();

@@ -9,13 +9,13 @@
 //! would re-upload every frame. docs/adaptivity.md, "The static baseline".
 
 use super::bindings::SET_MESH;
-use super::static_vbo::{ElementVertex, MeshInputs, StaticVbo, StaticVertex};
+use super::static_vbo::{ElementVertex, StaticVbo, StaticVertex};
 use super::{DrawConfig, GpuMesh, RenderError, Renderer, Scene, PUSH_DRAW_OFFSET, PUSH_STAGES};
 use crate::gpu::{vk, Buffer, Cmd, CommandPool, Context};
 use crate::lod::levels::ElementLevels;
 use crate::pattern::adaptive::{bary, drawn_levels, snap, DrawnLevels};
 use crate::pattern::Pattern;
-use crate::surface::{eval_with, ElementRecord, Inputs};
+use crate::surface::{ElementRecord, Mirror};
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -42,7 +42,7 @@ pub fn drawn(levels: &[ElementLevels], max: u32) -> Vec<Option<DrawnLevels>> {
 
 /// Every element of `records` refined on the CPU at its drawn levels `drawn` (from [`drawn`]) at
 /// largest level `cfg.level` (a power of two), with `cfg`'s surface, displacement and
-/// parameters: element `t`'s vertices are the pattern driver's adaptive vertices
+/// parameters (`mirror`: the surface and displacement with their inputs): element `t`'s vertices are the pattern driver's adaptive vertices
 /// (`pattern::adaptive::adaptive_element`, snapped weights included) in the inner level's
 /// pattern order, its triangles that pattern's, less those snapping made degenerate.
 /// `samples`: also each vertex's sample, for the per-fragment normal field.
@@ -50,7 +50,7 @@ pub fn refine_adaptive(
     cfg: &DrawConfig,
     records: &[ElementRecord],
     drawn: Vec<Option<DrawnLevels>>,
-    inputs: Option<&MeshInputs>,
+    mirror: &Mirror,
     samples: bool,
 ) -> AdaptiveRefined {
     let f = cfg.level;
@@ -65,7 +65,6 @@ pub fn refine_adaptive(
     for (t, rec) in records.iter().enumerate() {
         out.first.push(out.indices.len() as u32);
         let Some(d) = drawn[t] else { continue };
-        let inputs = inputs.map_or_else(Inputs::default, |h| h.element(t));
         let pattern = patterns[d.inner.trailing_zeros() as usize]
             .get_or_insert_with(|| Pattern::uniform(d.inner));
         let s = f / d.inner;
@@ -74,7 +73,7 @@ pub fn refine_adaptive(
         for (i, j) in pattern.lattice() {
             let p = snap(i * s, j * s, &d, f);
             let b = bary(p.0, p.1, f);
-            let sp = eval_with(cfg.surface, cfg.displace, &cfg.params, rec, b, &inputs);
+            let sp = mirror.eval(&cfg.params, t, rec, b);
             out.vertices.push([
                 sp.position.x,
                 sp.position.y,
@@ -184,7 +183,7 @@ pub(super) fn prepare(
         cfg,
         scene.records(cfg.surface),
         want,
-        Some(&scene.inputs(cfg.level)),
+        &scene.mirror(cfg, cfg.level)?,
         cfg.fragment_normal_field(),
     );
     scene.static_vbo = Some(upload(ctx, pool, cfg, refined, start)?);
@@ -317,7 +316,14 @@ mod tests {
         let all = vec![levels; 2];
         let mut culled = all.clone();
         culled[1] = ElementLevels::CULLED;
-        let r = refine_adaptive(&cfg, &records[..2], drawn(&culled, 8), None, true);
+        let mirror = crate::surface::Mirror::new(
+            cfg.surface,
+            cfg.displace,
+            &cfg.build,
+            &crate::surface::Sources::default(),
+        )
+        .unwrap();
+        let r = refine_adaptive(&cfg, &records[..2], drawn(&culled, 8), &mirror, true);
         let e = adaptive_element(&levels, 8).unwrap();
         assert_eq!(r.vertices.len(), e.bary.len());
         assert_eq!(
@@ -325,14 +331,7 @@ mod tests {
             vec![0, r.indices.len() as u32, r.indices.len() as u32]
         );
         for (k, b) in e.bary.iter().enumerate() {
-            let p = eval_with(
-                cfg.surface,
-                cfg.displace,
-                &cfg.params,
-                &records[0],
-                *b,
-                &Inputs::default(),
-            );
+            let p = mirror.eval(&cfg.params, 0, &records[0], *b);
             assert_eq!(r.vertices[k][..3], p.position.to_array());
             assert_eq!(r.samples[k][..3], b.map(f32::to_bits));
         }
@@ -344,7 +343,7 @@ mod tests {
             "{} of {all_tris}",
             r.indices.len()
         );
-        let both = refine_adaptive(&cfg, &records[..2], drawn(&all, 8), None, false);
+        let both = refine_adaptive(&cfg, &records[..2], drawn(&all, 8), &mirror, false);
         assert_eq!(both.indices.len(), 2 * r.indices.len());
         assert!(both.samples.is_empty());
     }

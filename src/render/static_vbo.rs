@@ -12,34 +12,7 @@ use super::{
 use crate::gpu::shaders::names;
 use crate::gpu::{vk, Buffer, Cmd, CommandPool, Context, GraphicsPipelineDesc};
 use crate::pattern::{index_count, vertex_count, Pattern};
-use crate::surface::stpn::VertexTag;
-use crate::surface::{eval_with, ElementRecord, Heightmap, Inputs};
-
-/// What the mirror reads besides the records, for a whole mesh: per-element texture
-/// coordinates (if any), the height map and its pyramid level, and the vertices' scalar tags.
-#[derive(Clone, Copy, Debug)]
-pub struct MeshInputs<'a> {
-    pub uvs: Option<&'a [[[f32; 2]; 3]]>,
-    pub map: &'a Heightmap,
-    pub lod: f32,
-    pub tags: &'a [VertexTag],
-    /// The `loop` surface's tables and M1.
-    pub loop_: Option<crate::surface::loop_::Inputs<'a>>,
-}
-
-impl<'a> MeshInputs<'a> {
-    /// The inputs of element `t`.
-    pub fn element(&self, t: usize) -> Inputs<'a> {
-        Inputs {
-            // (Loop's elements are M1 faces, beyond the coarse coordinates: it reads none.)
-            uv: self.uvs.and_then(|u| u.get(t)),
-            heightmap: Some(self.map),
-            lod: self.lod,
-            tags: Some(self.tags),
-            loop_: self.loop_,
-        }
-    }
-}
+use crate::surface::{ElementRecord, Mirror};
 use std::sync::Arc;
 
 /// Refined vertex: position, normal.
@@ -51,20 +24,20 @@ pub type ElementVertex = [u32; 4];
 /// The whole mesh refined on the CPU: vertices (pattern order, one block per coarse triangle)
 /// and the pattern's triangle list offset per triangle (the same vertex-cache order as the
 /// pattern driver's, so the baseline shades as few vertices as the pattern does).
-/// `cfg` gives the surface, displacement and parameters (its driver and level are not used).
+/// `mirror` is `cfg`'s surface and displacement with their inputs (`Scene::mirror`), `cfg` gives
+/// the parameters (its driver and level are not used).
 pub fn refine_on_cpu(
     cfg: &DrawConfig,
     records: &[ElementRecord],
     pattern: &Pattern,
-    inputs: Option<&MeshInputs>,
+    mirror: &Mirror,
 ) -> (Vec<StaticVertex>, Vec<u32>) {
     let pv = pattern.bary.len() as u32;
     let mut vertices = Vec::with_capacity(records.len() * pv as usize);
     let mut indices = Vec::with_capacity(records.len() * pattern.indices.len());
     for (t, rec) in records.iter().enumerate() {
-        let inputs = inputs.map_or_else(Inputs::default, |h| h.element(t));
         for &b in &pattern.bary {
-            let sp = eval_with(cfg.surface, cfg.displace, &cfg.params, rec, b, &inputs);
+            let sp = mirror.eval(&cfg.params, t, rec, b);
             vertices.push([
                 sp.position.x,
                 sp.position.y,
@@ -127,7 +100,7 @@ impl StaticVbo {
         cfg: &DrawConfig,
         records: &[ElementRecord],
         pattern: &Pattern,
-        inputs: Option<&MeshInputs>,
+        mirror: &Mirror,
     ) -> Result<Self, RenderError> {
         // Check the size before refining: the CPU would hold the same bytes.
         let bytes = records.len() as u64
@@ -144,7 +117,7 @@ impl StaticVbo {
             },
             "use a lower level or the pattern driver",
         )?;
-        let (v, i) = refine_on_cpu(cfg, records, pattern, inputs);
+        let (v, i) = refine_on_cpu(cfg, records, pattern, mirror);
         let vertices = Buffer::new_with_data(
             ctx,
             pool,
@@ -330,7 +303,7 @@ impl DriverKind for StaticDriver {
                 cfg,
                 scene.records(cfg.surface),
                 &scene.patterns.patterns[idx],
-                Some(&scene.inputs(cfg.level)),
+                &scene.mirror(cfg, cfg.level)?,
             )?);
         }
         Ok(())

@@ -8,7 +8,7 @@
 
 use super::heightmap::MapLevel;
 use super::stpn::VertexTag;
-use super::{Corners, ElementRecord, Heightmap, SurfaceParams};
+use super::{Corners, ElementRecord, Heightmap, NormalField, SurfaceParams};
 use crate::lod::{Bounds, Chord, Lod, Net, Sphere};
 use glam::Vec2;
 
@@ -32,8 +32,9 @@ pub enum SurfaceBound {
         /// wanted (edge 0's with `edge = true` of `direction`).
         geometry: fn(&SurfaceParams, &Corners, &[VertexTag; 3], bool) -> Patch,
         /// The unnormalized direction field displacement moves along (`SurfacePoint::direction`),
-        /// as nets: several where it depends on the side (`edge`: canonical edge 0 only).
-        direction: fn(&SurfaceParams, &Corners, &[VertexTag; 3], bool) -> Vec<Net>,
+        /// as nets: several where it depends on the side (`edge`: canonical edge 0 only); it
+        /// reads the normal field of the build options.
+        direction: fn(&SurfaceParams, NormalField, &Corners, &[VertexTag; 3], bool) -> Vec<Net>,
     },
     /// Bounds of its own for an element and for its stored edge `e`.
     Own {

@@ -20,7 +20,7 @@
 //! Watertight: `P′` depends on P and the direction only, which are bit-identical on shared edges.
 
 use super::bounds::{DisplaceBound, Height};
-use super::{dot3, heightmap, noise, DisplaceFacts, Inputs, SurfaceParams, SurfacePoint};
+use super::{dot3, heightmap, noise, DisplaceFacts, DisplaceInputs, SurfaceParams, SurfacePoint};
 use crate::lod::Sphere;
 use glam::Vec3;
 
@@ -147,34 +147,32 @@ fn sine_bound(params: &SurfaceParams, s: &Sphere) -> Height {
 }
 
 /// Height and its derivatives by the sample's `u` and `v`.
-fn height_uv(d: Displace, params: &SurfaceParams, sp: &SurfacePoint, inputs: &Inputs) -> [f32; 3] {
-    if d == Displace::Heightmap {
-        let Some(map) = inputs.heightmap else {
-            return [0.0; 3];
-        };
-        let (t, g) = map.sample(sp.uv, inputs.lod);
-        let a = params.amplitude;
-        let [du, dv] = sp.duv;
-        return [
-            a * (t - params.bias),
-            a * (g.x * du.x + g.y * du.y),
-            a * (g.x * dv.x + g.y * dv.y),
-        ];
-    }
+fn height_uv(d: &DisplaceInputs, params: &SurfaceParams, sp: &SurfacePoint) -> [f32; 3] {
+    let d = match d {
+        DisplaceInputs::Heightmap(h) => {
+            let (t, g) = h.map.sample(sp.uv, h.lod);
+            let a = params.amplitude;
+            let [du, dv] = sp.duv;
+            return [
+                a * (t - params.bias),
+                a * (g.x * du.x + g.y * du.y),
+                a * (g.x * dv.x + g.y * dv.y),
+            ];
+        }
+        DisplaceInputs::None => Displace::None,
+        DisplaceInputs::Sine => Displace::Sine,
+        DisplaceInputs::Noise => Displace::Noise,
+    };
     let (h, grad) = height(d, params, sp.position - params.origin);
     [h, dot3(grad, sp.dpdu), dot3(grad, sp.dpdv)]
 }
 
-pub fn apply(
-    d: Displace,
-    params: &SurfaceParams,
-    sp: SurfacePoint,
-    inputs: &Inputs,
-) -> SurfacePoint {
-    if d == Displace::None {
+/// Displace surface point `sp` by `d` (with its inputs).
+pub fn apply(d: &DisplaceInputs, params: &SurfaceParams, sp: SurfacePoint) -> SurfacePoint {
+    if matches!(d, DisplaceInputs::None) {
         return sp;
     }
-    let [h, hu, hv] = height_uv(d, params, &sp, inputs);
+    let [h, hu, hv] = height_uv(d, params, &sp);
     let n = sp.normal;
     let dir = sp.direction;
     let cross = sp.dpdu.cross(sp.dpdv);

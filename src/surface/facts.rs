@@ -26,6 +26,30 @@ impl Elements {
     }
 }
 
+/// A pass a surface declares to run before drawing: it makes the surface's elements from the
+/// coarse mesh. The surface says which; the renderer builds its data when the surface is first
+/// drawn (or its build options change) and records it every frame before the draws.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum PrePass {
+    /// One Loop subdivision step M0 -> M1, whose faces are the elements: its data (the step's
+    /// entries, M1's topology, the basis function tables of the build options' `boundary` and
+    /// `bft_level`) built once per mesh, the step run on the GPU every frame from the coarse
+    /// positions (src/render/loop_gpu.rs), and on the CPU for the mirror when it is read.
+    LoopStep,
+}
+
+impl PrePass {
+    /// Whether data built with `built` serves `want`: the options the pass's data is made of
+    /// are the same.
+    pub fn same_data(self, built: &super::BuildOptions, want: &super::BuildOptions) -> bool {
+        match self {
+            PrePass::LoopStep => {
+                built.boundary == want.boundary && built.bft_level == want.bft_level
+            }
+        }
+    }
+}
+
 /// Where a surface's normal field is evaluated.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FragmentNormals {
@@ -46,6 +70,8 @@ pub struct SurfaceFacts {
     /// One line for `--help`: what it is and where it comes from.
     pub help: &'static str,
     pub elements: Elements,
+    /// The pass that makes its elements before drawing, if any (`loop`: one Loop step).
+    pub pre_pass: Option<PrePass>,
     /// The command-line options (clap ids) that this surface reads and no other surface needs
     /// to (`alpha` for phong): an option read by none of the chosen surfaces is reported.
     pub options: &'static [&'static str],
@@ -128,6 +154,44 @@ mod tests {
     fn glsl(name: &str) -> String {
         let path = format!("{}/glsl/include/{name}.glsl", env!("CARGO_MANIFEST_DIR"));
         std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"))
+    }
+
+    /// A surface whose elements are not the coarse triangles declares the pass that makes them.
+    #[test]
+    fn elements_other_than_coarse_triangles_come_from_a_pre_pass() {
+        for s in Surface::ALL {
+            let f = s.facts();
+            assert_eq!(
+                f.pre_pass.is_some(),
+                f.elements != super::Elements::CoarseTriangles,
+                "{}",
+                f.name
+            );
+        }
+    }
+
+    /// Loop's step is rebuilt for its boundary rule and table level, not for the options of the
+    /// other surfaces or the pipelines.
+    #[test]
+    fn loop_step_data_depends_on_boundary_and_table_level_alone() {
+        use super::super::{loop_, BuildOptions, NormalField, Seams};
+        let pass = Surface::Loop.pre_pass().unwrap();
+        let built = BuildOptions::default();
+        let other = BuildOptions {
+            seams: Seams::Open,
+            normal_field: NormalField::Linear,
+            ..built
+        };
+        assert!(pass.same_data(&built, &other));
+        let boundary = BuildOptions {
+            boundary: loop_::Boundary::EdgeAndCorner,
+            ..built
+        };
+        let level = BuildOptions {
+            bft_level: built.bft_level + 1,
+            ..built
+        };
+        assert!(!pass.same_data(&built, &boundary) && !pass.same_data(&built, &level));
     }
 
     /// Each surface's declared bindings are exactly those its GLSL include declares.

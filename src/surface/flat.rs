@@ -15,6 +15,7 @@ pub const FACTS: SurfaceFacts = SurfaceFacts {
     name: "flat",
     help: "Linear interpolation of the coarse triangle's positions and normals",
     elements: Elements::CoarseTriangles,
+    pre_pass: None,
     options: &[],
     texture_coordinates: true,
     needs_every_face: false,
@@ -59,6 +60,12 @@ pub fn net(_: &SurfaceParams, c: &Corners, _: &[VertexTag; 3], _: bool) -> Patch
 
 /// The direction field displacement moves along: the linear interpolation of the geometry
 /// normals.
-pub fn direction(_: &SurfaceParams, c: &Corners, _: &[VertexTag; 3], _: bool) -> Vec<Net> {
+pub fn direction(
+    _: &SurfaceParams,
+    _: super::NormalField,
+    c: &Corners,
+    _: &[VertexTag; 3],
+    _: bool,
+) -> Vec<Net> {
     vec![linear_net(c.g)]
 }

@@ -27,6 +27,16 @@ pub struct Level {
     pub texels: Vec<f32>,
 }
 
+/// What the `heightmap` displacement's mirror reads besides the surface point (whose texture
+/// coordinates come from the element's, which [`super::Mirror::new`] makes sure exist): the
+/// map and the pyramid level to read.
+#[derive(Clone, Copy, Debug)]
+pub struct Inputs<'a> {
+    pub map: &'a Heightmap,
+    /// One per mesh and refinement level ([`Heightmap::lod_for`]).
+    pub lod: f32,
+}
+
 /// A height map and its mip pyramid (level 0 first, each half the size of the one before, down
 /// to 1 × 1; 2 × 2 box filter, the last row or column of an odd side folded into its neighbour).
 #[derive(Clone, Debug, PartialEq)]

@@ -15,7 +15,7 @@
 //! tangents there are the owner's (another parametrization of the same tangent plane).
 #![forbid(unsafe_code)]
 
-use super::facts::{Elements, FragmentNormals, SurfaceFacts};
+use super::facts::{Elements, FragmentNormals, PrePass, SurfaceFacts};
 use super::{ElementRecord, SurfacePoint};
 use crate::mesh::Mesh;
 use crate::subdiv::bft::Orient;
@@ -40,6 +40,7 @@ pub const FACTS: SurfaceFacts = SurfaceFacts {
     name: "loop",
     help: "The limit surface of Loop subdivision (Holländer & Boubekeur 2010): elements are the faces of one Loop step M1, evaluated from basis function tables (src/surface/loop.rs)",
     elements: Elements::LoopFaces,
+    pre_pass: Some(PrePass::LoopStep),
     options: &["boundary", "bft_level"],
     texture_coordinates: false,
     needs_every_face: true,

@@ -14,16 +14,24 @@
 use crate::lod::{Bounds, Chord, Lod, Sphere, EDGE_FACTOR, ELEMENT_FACTOR};
 use crate::pattern::weight;
 use crate::surface::bounds::DisplaceBound;
-use crate::surface::{loop_, ElementRecord};
+use crate::surface::{loop_, ElementRecord, SurfaceInputs};
 use glam::Vec3;
 
+/// Loop's inputs: only `loop` declares these bounds, and a mirror of `loop` holds them.
+fn inputs<'a>(lod: &Lod<'a>) -> loop_::Inputs<'a> {
+    match lod.mirror.surface {
+        SurfaceInputs::Loop(inputs) => inputs,
+        _ => unreachable!("loop's bounds are declared by loop alone"),
+    }
+}
+
 fn segments(lod: &Lod, rec: &ElementRecord) -> u32 {
-    let (data, _) = lod.inputs.loop_.expect("loop bounds need Inputs::loop_");
+    let (data, _) = inputs(lod);
     1 << (data.faces[rec.words[0] as usize][3] >> 3)
 }
 
 fn at(lod: &Lod, rec: &ElementRecord, bary: [f32; 3]) -> Vec3 {
-    let (data, frame) = lod.inputs.loop_.expect("loop bounds need Inputs::loop_");
+    let (data, frame) = inputs(lod);
     loop_::eval(data, frame, rec, bary).position
 }
 

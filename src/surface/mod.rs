@@ -21,6 +21,7 @@ pub mod displace;
 pub mod facts;
 pub mod flat;
 pub mod heightmap;
+mod inputs;
 #[path = "loop.rs"]
 pub mod loop_;
 pub mod noise;
@@ -31,8 +32,9 @@ mod record;
 pub mod stpn;
 
 pub use displace::Displace;
-pub use facts::{DisplaceFacts, Elements, FragmentNormals, SurfaceFacts};
+pub use facts::{DisplaceFacts, Elements, FragmentNormals, PrePass, SurfaceFacts};
 pub use heightmap::Heightmap;
+pub use inputs::{DisplaceInputs, Mirror, Sources, SurfaceInputs};
 pub use params::{shown_number, SurfaceParams, MAX_FREQUENCY_RADII, MAX_REACH_RADII};
 pub use pn::NormalField;
 pub use record::{
@@ -106,6 +108,11 @@ impl Surface {
         }
     }
 
+    /// The pass that makes the surface's elements before drawing, if any.
+    pub fn pre_pass(self) -> Option<PrePass> {
+        self.facts().pre_pass
+    }
+
     /// Whether the surface's elements are Loop's M1 faces (made by a pre-pass every frame).
     pub fn uses_loop_faces(self) -> bool {
         self.facts().elements == Elements::LoopFaces
@@ -129,8 +136,9 @@ pub enum Seams {
     Open,
 }
 
-/// Options built into a mesh's data (the element records, Loop's tables), not sent per frame:
-/// drawing with other options rebuilds that data ([`SurfaceParams`] holds the per-frame ones).
+/// Options that change what is built, not sent per frame: the mesh's data (the element records,
+/// Loop's tables) and the pipelines (specialization constants); drawing with other options
+/// rebuilds them ([`SurfaceParams`] holds the per-frame values, uploaded in the frame's uniforms).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct BuildOptions {
     /// Geometry at split normals (built into the local surfaces' element records).
@@ -140,6 +148,9 @@ pub struct BuildOptions {
     /// The `loop` surface's table level: 2^level segments per M1-face edge, the lattice whose
     /// points are exact (`--bft-level`, default 5).
     pub bft_level: u32,
+    /// The normal field of `pn` and `stpn` (the `NORMAL_FIELD` specialization constant on the
+    /// GPU, a pipeline of its own).
+    pub normal_field: NormalField,
 }
 
 impl Default for BuildOptions {
@@ -148,6 +159,7 @@ impl Default for BuildOptions {
             seams: Seams::Closed,
             boundary: loop_::Boundary::EdgeOnly,
             bft_level: loop_::DEFAULT_LMAX,
+            normal_field: NormalField::default(),
         }
     }
 }
@@ -184,20 +196,6 @@ pub struct SurfacePoint {
     /// derivatives by `u` and `v`.
     pub uv: glam::Vec2,
     pub duv: [glam::Vec2; 2],
-}
-
-/// What the `heightmap` displacement reads besides the record: the element's texture
-/// coordinates (stored corner order), the map, and the pyramid level to read (one per mesh and
-/// refinement level, [`Heightmap::lod_for`]).
-#[derive(Clone, Copy, Debug, Default)]
-pub struct Inputs<'a> {
-    pub uv: Option<&'a [[f32; 2]; 3]>,
-    pub heightmap: Option<&'a Heightmap>,
-    pub lod: f32,
-    /// The scalar tags of every vertex (`stpn`; neutral without).
-    pub tags: Option<&'a [stpn::VertexTag]>,
-    /// The `loop` surface's tables and M1 (required by it).
-    pub loop_: Option<loop_::Inputs<'a>>,
 }
 
 /// Corner data of a coarse triangle in canonical order, with the sample's weights.
@@ -305,33 +303,31 @@ pub fn normal_field(
 pub fn eval_corners(
     surface: Surface,
     params: &SurfaceParams,
+    field: NormalField,
     c: &Corners,
     tags: &[stpn::VertexTag; 3],
 ) -> Local {
     match surface {
         Surface::Flat => flat::eval(c),
         Surface::Phong => phong::eval(c, params.alpha),
-        Surface::Pn => pn::eval(c, params.normal_field),
-        Surface::Stpn => stpn::eval(c, tags, params.normal_field),
+        Surface::Pn => pn::eval(c, field),
+        Surface::Stpn => stpn::eval(c, tags, field),
         Surface::Loop => unreachable!("loop is not a local surface"),
     }
 }
 
-/// Evaluate `surface` (without displacement) at barycentric sample `bary` of element `rec`.
-/// Mirror of `surface_eval()` in `glsl/include/surface.glsl`.
-pub fn eval_surface(
+/// Evaluate local `surface` (without displacement) at barycentric sample `bary` of element
+/// `rec`, with normal field `field`, the vertices' scalar tags (`None`: neutral) and the
+/// element's texture coordinates `uv` ([`Mirror::eval_surface`] hands its inputs on).
+pub(crate) fn eval_local(
     surface: Surface,
     params: &SurfaceParams,
+    field: NormalField,
+    tags: Option<&[stpn::VertexTag]>,
     rec: &ElementRecord,
     bary: [f32; 3],
-    inputs: &Inputs,
+    uv: Option<&[[f32; 2]; 3]>,
 ) -> SurfacePoint {
-    if surface == Surface::Loop {
-        let (data, frame) = inputs
-            .loop_
-            .expect("the loop surface is evaluated with its M1 and tables (Inputs::loop_)");
-        return loop_::eval(data, frame, rec, bary);
-    }
     let r = CornerRecord::decode(rec);
     // `flat` needs no canonical order (see `stored_order`), and skipping the sort per vertex is
     // most of what the pattern driver does beyond the static buffer's work.
@@ -340,10 +336,10 @@ pub fn eval_surface(
     } else {
         canonical(&r, bary)
     };
-    let tags = inputs.tags.map_or([stpn::VertexTag::default(); 3], |t| {
+    let tags = tags.map_or([stpn::VertexTag::default(); 3], |t| {
         stpn::corner_tags(t, &r.idx, c.order)
     });
-    let l = eval_corners(surface, params, &c, &tags);
+    let l = eval_corners(surface, params, field, &c, &tags);
     let mut g = [Vec3::ZERO; 3];
     for i in 0..3 {
         g[c.order[i]] = l.grad[i];
@@ -351,16 +347,11 @@ pub fn eval_surface(
     let direction = if c.g == c.n {
         l.normal
     } else {
-        normal_field(
-            surface,
-            params.normal_field,
-            &Corners { n: c.g, ..c },
-            &tags,
-        )
+        normal_field(surface, field, &Corners { n: c.g, ..c }, &tags)
     };
     // Texture coordinates in canonical order, so both sides of a shared edge (with the same
     // coordinates at its ends) read the same point of the map.
-    let (uv, duv) = match inputs.uv {
+    let (uv, duv) = match uv {
         Some(t) => {
             let t = t.map(glam::Vec2::from);
             let o = c.order;
@@ -382,34 +373,50 @@ pub fn eval_surface(
     }
 }
 
-/// Evaluate `surface` with `displace` at barycentric sample `bary` of element `rec`: what every
-/// driver computes for every sample. Mirror of `evaluate()` in `glsl/include/surface.glsl`.
-pub fn eval(
-    surface: Surface,
-    displace: Displace,
-    params: &SurfaceParams,
-    rec: &ElementRecord,
-    bary: [f32; 3],
-) -> SurfacePoint {
-    eval_with(surface, displace, params, rec, bary, &Inputs::default())
-}
-
-/// [`eval`] with the height map's inputs.
-pub fn eval_with(
-    surface: Surface,
-    displace: Displace,
-    params: &SurfaceParams,
-    rec: &ElementRecord,
-    bary: [f32; 3],
-    inputs: &Inputs,
-) -> SurfacePoint {
-    let sp = eval_surface(surface, params, rec, bary, inputs);
-    displace::apply(displace, params, sp, inputs)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `s` with `d` at sample `bary` of `rec`, whose corners have texture coordinates `uv` on the
+    /// generated height map (the height map displacement reads them).
+    fn eval_uv(
+        s: Surface,
+        d: Displace,
+        params: &SurfaceParams,
+        rec: &ElementRecord,
+        bary: [f32; 3],
+        uv: [[f32; 2]; 3],
+    ) -> SurfacePoint {
+        let map = Heightmap::generated();
+        let uvs = [uv];
+        let sources = Sources {
+            uvs: Some(&uvs),
+            heightmap: Some(&map),
+            lod: 0.0,
+            ..Sources::default()
+        };
+        Mirror::new(s, d, &BuildOptions::default(), &sources)
+            .unwrap()
+            .eval(params, 0, rec, bary)
+    }
+
+    /// [`eval_uv`] on coordinates spanning a fifth of the map.
+    fn eval(
+        s: Surface,
+        d: Displace,
+        params: &SurfaceParams,
+        rec: &ElementRecord,
+        bary: [f32; 3],
+    ) -> SurfacePoint {
+        eval_uv(
+            s,
+            d,
+            params,
+            rec,
+            bary,
+            [[0.1, 0.2], [0.3, 0.25], [0.15, 0.4]],
+        )
+    }
 
     fn rec() -> CornerRecord {
         CornerRecord::new(
@@ -587,8 +594,10 @@ mod tests {
             let wb = crate::pattern::weight(k, n);
             for s in Surface::LOCAL {
                 for d in Displace::ALL {
-                    let p1 = eval(s, d, &params, &t1, [wa, wb, 0.0]);
-                    let p2 = eval(s, d, &params, &t2, [wb, wa, 0.0]);
+                    // The shared corners have the same texture coordinates on both sides.
+                    let (ua, ub) = ([0.1, 0.2], [0.3, 0.25]);
+                    let p1 = eval_uv(s, d, &params, &t1, [wa, wb, 0.0], [ua, ub, [0.5, 0.9]]);
+                    let p2 = eval_uv(s, d, &params, &t2, [wb, wa, 0.0], [ub, ua, [0.2, 0.8]]);
                     let what = format!("{} + {} at k = {k}", s.name(), d.name());
                     assert_eq!(
                         p1.position.to_array().map(f32::to_bits),
@@ -628,10 +637,23 @@ mod tests {
             for k in 1..n {
                 let wa = crate::pattern::weight(n - k, n);
                 let wb = crate::pattern::weight(k, n);
-                let p1 = eval_corners(s, &params, &stored(&r1, [wa, wb, 0.0]), &Default::default())
-                    .position;
-                let p2 = eval_corners(s, &params, &stored(&r2, [wb, wa, 0.0]), &Default::default())
-                    .position;
+                let field = NormalField::default();
+                let p1 = eval_corners(
+                    s,
+                    &params,
+                    field,
+                    &stored(&r1, [wa, wb, 0.0]),
+                    &Default::default(),
+                )
+                .position;
+                let p2 = eval_corners(
+                    s,
+                    &params,
+                    field,
+                    &stored(&r2, [wb, wa, 0.0]),
+                    &Default::default(),
+                )
+                .position;
                 if p1.to_array().map(f32::to_bits) != p2.to_array().map(f32::to_bits) {
                     differ += 1;
                 }

@@ -1,10 +1,13 @@
-//! The parameters of the surfaces and displacements sent per frame ([`SurfaceParams`]), their
-//! ranges and the limits on how far and how fast displacement may move a mesh.
+//! The values of the surfaces and displacements sent per frame ([`SurfaceParams`]), their
+//! ranges and the limits on how far and how fast displacement may move a mesh. What changes
+//! what is built (records, tables, pipelines) is in [`super::BuildOptions`].
 
-use super::{Displace, NormalField};
+use super::Displace;
 use glam::Vec3;
 
-/// Parameters of the surfaces and displacements (the `Frame` block's `params` on the GPU).
+/// The surfaces' and displacements' per-frame values (the `Frame` block's `params` on the GPU,
+/// and `origin` and `bias` beside them): a frame may change any of them without rebuilding
+/// anything.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SurfaceParams {
     /// Phong tessellation's shape factor α in [0, 1] (0: flat, 1: full projection).
@@ -21,9 +24,6 @@ pub struct SurfaceParams {
     pub origin: Vec3,
     /// The height map displacement's bias b: `P′ = P + a·(h − b)·N`.
     pub bias: f32,
-    /// The normal field of `pn` and `stpn` (the `NORMAL_FIELD` specialization constant on the
-    /// GPU, not a `Frame` value).
-    pub normal_field: NormalField,
 }
 
 /// `x` for messages: as typed for ordinary magnitudes, in exponent form for huge or tiny ones
@@ -53,7 +53,6 @@ impl Default for SurfaceParams {
             octaves: 1,
             origin: Vec3::ZERO,
             bias: 0.0,
-            normal_field: NormalField::default(),
         }
     }
 }

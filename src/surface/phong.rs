@@ -20,6 +20,7 @@ pub const FACTS: SurfaceFacts = SurfaceFacts {
     name: "phong",
     help: "Phong tessellation (Boubekeur & Alexa 2008): the flat point pulled towards the corners' tangent planes by the shape factor --alpha",
     elements: Elements::CoarseTriangles,
+    pre_pass: None,
     options: &["alpha", "pn_seams"],
     texture_coordinates: true,
     needs_every_face: false,

@@ -39,6 +39,7 @@ pub const FACTS: SurfaceFacts = SurfaceFacts {
     name: "pn",
     help: "Curved PN triangles (Vlachos et al. 2001, as in Boubekeur & Schlick 2005, appendix A): cubic Bézier geometry, quadratic normal field evaluated per fragment",
     elements: Elements::CoarseTriangles,
+    pre_pass: None,
     options: &["pn_seams", "normal_field"],
     texture_coordinates: true,
     needs_every_face: false,
@@ -279,9 +280,15 @@ pub fn field_net(field: NormalField, c: &Corners, n: [Vec3; 3]) -> Net {
 
 /// The direction field displacement moves along: the normal field `--normal-field` of the
 /// geometry normals.
-pub fn direction(p: &SurfaceParams, c: &Corners, _: &[VertexTag; 3], _: bool) -> Vec<Net> {
+pub fn direction(
+    _: &SurfaceParams,
+    field: NormalField,
+    c: &Corners,
+    _: &[VertexTag; 3],
+    _: bool,
+) -> Vec<Net> {
     let cg = Corners { n: c.g, ..*c };
-    vec![field_net(p.normal_field, &cg, cg.n)]
+    vec![field_net(field, &cg, cg.n)]
 }
 
 #[cfg(test)]

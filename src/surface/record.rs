@@ -311,17 +311,17 @@ mod tests {
             .iter()
             .any(|r| (0..3).any(|e| r.seam_flags().phong(e))));
         let params = super::super::SurfaceParams::default();
-        for r in &records {
+        let pn = super::super::Mirror::new(
+            Surface::Pn,
+            super::super::Displace::None,
+            &Default::default(),
+            &Default::default(),
+        )
+        .unwrap();
+        for (t, r) in records.iter().enumerate() {
             let e = r.encode();
             for (u, v) in [(0.25f32, 0.25f32), (0.5, 0.0), (0.1, 0.7)] {
-                let p = super::super::eval(
-                    Surface::Pn,
-                    super::super::Displace::None,
-                    &params,
-                    &e,
-                    [1.0 - u - v, u, v],
-                )
-                .position;
+                let p = pn.eval(&params, t, &e, [1.0 - u - v, u, v]).position;
                 let on_face = p.to_array().iter().any(|c| (c.abs() - 1.0).abs() < 1e-6);
                 assert!(on_face, "{p} is off the cube");
             }

@@ -35,6 +35,7 @@ pub const FACTS: SurfaceFacts = SurfaceFacts {
     name: "stpn",
     help: "Scalar-tagged PN triangles (Boubekeur, Reuter & Schlick 2005): PN with per-vertex tension, sharpness, bias and crease direction (--tags, or derived from the mesh's hard edges)",
     elements: Elements::CoarseTriangles,
+    pre_pass: None,
     options: &["pn_seams", "normal_field", "tags", "crease_angle"],
     texture_coordinates: true,
     needs_every_face: false,
@@ -488,6 +489,14 @@ pub fn shading_normals(c: &Corners, t: &[VertexTag; 3]) -> [Vec3; 3] {
     })
 }
 
+/// What the `stpn` mirror reads besides the record: its normal field (a per-build option) and
+/// every vertex's scalar tags (`None`: neutral tags, where the surface is `pn`).
+#[derive(Clone, Copy, Debug)]
+pub struct Inputs<'a> {
+    pub field: super::NormalField,
+    pub tags: Option<&'a [VertexTag]>,
+}
+
 pub fn eval(c: &Corners, t: &[VertexTag; 3], field: super::NormalField) -> Local {
     let shaded = Corners {
         n: shading_normals(c, t),
@@ -505,9 +514,14 @@ pub fn net(_: &SurfaceParams, c: &Corners, tags: &[VertexTag; 3], _: bool) -> Pa
 
 /// The direction field displacement moves along: `pn`'s of the shading normals; on an edge with
 /// crease corners every side's choice of sharp normal (the side is the element's to know).
-pub fn direction(p: &SurfaceParams, c: &Corners, tags: &[VertexTag; 3], edge: bool) -> Vec<Net> {
+pub fn direction(
+    _: &SurfaceParams,
+    field: super::NormalField,
+    c: &Corners,
+    tags: &[VertexTag; 3],
+    edge: bool,
+) -> Vec<Net> {
     let cg = Corners { n: c.g, ..*c };
-    let field = p.normal_field;
     if !edge {
         return vec![super::pn::field_net(field, &cg, shading_normals(&cg, tags))];
     }
@@ -534,7 +548,7 @@ pub fn direction(p: &SurfaceParams, c: &Corners, tags: &[VertexTag; 3], edge: bo
 mod tests {
     use super::*;
     use crate::mesh::test_support::load_model;
-    use crate::surface::{eval_with, Inputs, Surface, SurfaceParams};
+    use crate::surface::{BuildOptions, Mirror, Sources, Surface, SurfaceParams};
 
     /// Neutral tags give PN triangles: the same points to 4 ulp of the mesh's radius (the edge
     /// coefficient is the same point computed another way: `P + (Q − P)/3` projected, not
@@ -548,30 +562,26 @@ mod tests {
             crate::surface::Seams::Open,
         );
         let tags = vec![VertexTag::default(); mesh.positions.len()];
-        let inputs = Inputs {
+        let sources = Sources {
             tags: Some(&tags),
             ..Default::default()
         };
+        let mirror = |s| {
+            Mirror::new(
+                s,
+                crate::surface::Displace::None,
+                &BuildOptions::default(),
+                &sources,
+            )
+            .unwrap()
+        };
+        let (pn, stpn) = (mirror(Surface::Pn), mirror(Surface::Stpn));
         let p = SurfaceParams::default();
         let tol = 4.0 * f32::EPSILON * mesh.bounding_radius();
-        for r in &records {
+        for (t, r) in records.iter().enumerate() {
             for b in [[0.2f32, 0.3, 0.5], [0.5, 0.5, 0.0], [0.1, 0.1, 0.8]] {
-                let a = eval_with(
-                    Surface::Pn,
-                    crate::surface::Displace::None,
-                    &p,
-                    r,
-                    b,
-                    &inputs,
-                );
-                let s = eval_with(
-                    Surface::Stpn,
-                    crate::surface::Displace::None,
-                    &p,
-                    r,
-                    b,
-                    &inputs,
-                );
+                let a = pn.eval(&p, t, r, b);
+                let s = stpn.eval(&p, t, r, b);
                 assert!(
                     (a.position - s.position).abs().max_element() <= tol,
                     "{} vs {}",

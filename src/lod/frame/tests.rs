@@ -7,7 +7,7 @@ use crate::mesh::test_support::load_model;
 use crate::subdiv::bft::Lattice;
 use crate::subdiv::Boundary;
 use crate::surface::loop_::LoopData;
-use crate::surface::{build_records, Displace, Inputs, RecordKind, Seams, Surface, SurfaceParams};
+use crate::surface::{build_records, Displace, RecordKind, Seams, Sources, Surface, SurfaceParams};
 use glam::Mat4;
 
 fn spot() -> (crate::mesh::Mesh, Vec<ElementRecord>) {
@@ -34,17 +34,17 @@ fn shared_edges_hold_identical_bits() {
         (Surface::Phong, Displace::None),
         (Surface::Loop, Displace::None),
     ] {
-        let inputs = Inputs {
+        let inputs = Sources {
             loop_: Some((&data, &frame)),
             ..Default::default()
         };
-        let lod = Lod::new(surface, displace, &params, &inputs);
+        let lod = Lod::of(surface, displace, &params, &inputs);
         let records = if surface == Surface::Loop {
             &data.records
         } else {
             &recs
         };
-        let lr = lod_records(&lod, records, None);
+        let lr = lod_records(&lod, records);
         let mut seen: HashMap<(u32, u32), LodEdge> = HashMap::new();
         let mut shared = 0;
         let view = LodView::new(
@@ -80,9 +80,9 @@ fn levels_fall_with_distance_and_respect_the_cap() {
     let (mesh, recs) = spot();
     let r = mesh.bounding_radius();
     let params = SurfaceParams::for_radius(r);
-    let inputs = Inputs::default();
-    let lod = Lod::new(Surface::Pn, Displace::Noise, &params, &inputs);
-    let lr = lod_records(&lod, &recs, None);
+    let inputs = Sources::default();
+    let lod = Lod::of(Surface::Pn, Displace::Noise, &params, &inputs);
+    let lr = lod_records(&lod, &recs);
     let (lo, hi) = mesh.bounds();
     let centre = (lo + hi) * 0.5;
     for dyadic in [false, true] {
@@ -131,9 +131,9 @@ fn culling_follows_the_spheres_and_cones() {
     let (mesh, recs) = spot();
     let r = mesh.bounding_radius();
     let params = SurfaceParams::for_radius(r);
-    let inputs = Inputs::default();
-    let lod = Lod::new(Surface::Pn, Displace::None, &params, &inputs);
-    let lr = lod_records(&lod, &recs, None);
+    let inputs = Sources::default();
+    let lod = Lod::of(Surface::Pn, Displace::None, &params, &inputs);
+    let lr = lod_records(&lod, &recs);
     let (lo, hi) = mesh.bounds();
     let centre = (lo + hi) * 0.5;
     let eye = centre + Vec3::new(0.4, 0.25, 1.0).normalize() * (1.6 * r);
@@ -174,9 +174,9 @@ fn inner_levels_cover_own_bound_and_transitions() {
     let (mesh, recs) = spot();
     let r = mesh.bounding_radius();
     let params = SurfaceParams::for_radius(r);
-    let inputs = Inputs::default();
-    let lod = Lod::new(Surface::Pn, Displace::Sine, &params, &inputs);
-    let full = lod_records(&lod, &recs, None);
+    let inputs = Sources::default();
+    let lod = Lod::of(Surface::Pn, Displace::Sine, &params, &inputs);
+    let full = lod_records(&lod, &recs);
     // Without the edges' share (step 1), the raise (step 2) alone covers the strips.
     let mut bare = full.clone();
     for b in &mut bare {
@@ -242,20 +242,21 @@ fn height_map_bounds_read_each_element_s_coordinates() {
         .expect("the grid has texture coordinates");
     let map = crate::surface::Heightmap::generated();
     let params = SurfaceParams::for_radius(data.mesh.bounding_radius());
-    let inputs = Inputs {
+    let inputs = Sources {
+        uvs: Some(uvs),
         heightmap: Some(&map),
         ..Default::default()
     };
-    let lod = Lod::new(Surface::Pn, Displace::Heightmap, &params, &inputs);
-    let lr = lod_records(&lod, &data.records, Some(uvs));
+    let lod = Lod::of(Surface::Pn, Displace::Heightmap, &params, &inputs);
+    let lr = lod_records(&lod, &data.records);
     let mut differ = 0;
     for (i, rec) in data.records.iter().enumerate() {
-        let own = Lod::new(
+        let own = Lod::of(
             Surface::Pn,
             Displace::Heightmap,
             &params,
-            &Inputs {
-                uv: Some(&uvs[i]),
+            &Sources {
+                uvs: Some(std::slice::from_ref(&uvs[i])),
                 ..inputs
             },
         )

@@ -17,9 +17,10 @@ fn local_surface_bounds_hold_and_are_useful() {
     for surface in [Surface::Flat, Surface::Phong, Surface::Pn, Surface::Stpn] {
         let case = Case {
             surface,
+            field: NormalField::default(),
             displace: Displace::None,
             params: SurfaceParams::default(),
-            inputs: Inputs {
+            inputs: Sources {
                 tags: Some(&tags),
                 ..Default::default()
             },
@@ -30,7 +31,7 @@ fn local_surface_bounds_hold_and_are_useful() {
             assert!(m <= 20.0, "{what} on spot: median bound / truth {m}");
         }
         let plain = Case {
-            inputs: Inputs::default(),
+            inputs: Sources::default(),
             ..case
         };
         let (_, m) = plain.check(&random, &[1, 2, 4, 7], 2.0, what);
@@ -39,7 +40,7 @@ fn local_surface_bounds_hold_and_are_useful() {
         }
         // Hard edges: flagged seams, and crease tags for stpn.
         let hard = Case {
-            inputs: Inputs {
+            inputs: Sources {
                 tags: Some(&cyl_tags),
                 ..Default::default()
             },
@@ -70,9 +71,10 @@ fn halved_bounds_are_caught() {
     ] {
         let case = Case {
             surface,
+            field: NormalField::default(),
             displace,
             params: SurfaceParams::for_radius(spot.bounding_radius()),
-            inputs: Inputs::default(),
+            inputs: Sources::default(),
         };
         let r = std::panic::catch_unwind(|| {
             // Ratios of 2 are rare: the largest-curvature elements must show it.
@@ -105,13 +107,13 @@ fn displaced_bounds_hold() {
         for displace in [Displace::Sine, Displace::Noise] {
             let case = Case {
                 surface,
+                field: NormalField::Paper,
                 displace,
                 params: SurfaceParams {
                     octaves: 2,
-                    normal_field: NormalField::Paper,
                     ..SurfaceParams::for_radius(r)
                 },
-                inputs: Inputs::default(),
+                inputs: Sources::default(),
             };
             let what = format!("{} + {}", surface.name(), displace.name());
             let (min, median) = case.check(&sub, &[1, 2, 4, 6], r, &what);
@@ -141,15 +143,15 @@ fn displaced_bounds_hold() {
             let uv = t.t.unwrap().map(|i| grid.texcoords[i as usize].to_array());
             let case = Case {
                 surface,
+                field: normal_field,
                 displace: Displace::Heightmap,
                 params: SurfaceParams {
                     amplitude: 0.1 * grid.bounding_radius(),
                     bias: 0.5,
-                    normal_field,
                     ..Default::default()
                 },
-                inputs: Inputs {
-                    uv: Some(&uv),
+                inputs: Sources {
+                    uvs: Some(std::slice::from_ref(&uv)),
                     heightmap: Some(&map),
                     lod: 1.5,
                     ..Default::default()
@@ -192,22 +194,19 @@ fn displaced_bounds_hold_for_every_normal_field() {
                 );
                 let case = Case {
                     surface,
+                    field,
                     displace,
                     params: SurfaceParams {
-                        normal_field: field,
                         ..SurfaceParams::for_radius(r)
                     },
-                    inputs: Inputs::default(),
+                    inputs: Sources::default(),
                 };
                 let (min, median) = case.check(&every(&recs, 6), &[1, 2, 4, 6], r, &what);
                 assert!(min <= 30.0, "{what}: smallest bound / truth {min}");
                 assert!(median <= 300.0, "{what}: median bound / truth {median}");
                 let hard = Case {
-                    params: SurfaceParams {
-                        normal_field: field,
-                        ..SurfaceParams::for_radius(cyl_mesh.bounding_radius())
-                    },
-                    inputs: Inputs {
+                    params: SurfaceParams::for_radius(cyl_mesh.bounding_radius()),
+                    inputs: Sources {
                         tags: Some(&cyl_tags),
                         ..Default::default()
                     },
@@ -250,6 +249,7 @@ fn triangle_errors_hold_for_any_triangle() {
                 .map(|t| t.map(|i| grid.texcoords[i as usize].to_array()));
             let case = Case {
                 surface,
+                field: NormalField::default(),
                 displace,
                 params: if on_grid {
                     SurfaceParams {
@@ -260,8 +260,8 @@ fn triangle_errors_hold_for_any_triangle() {
                 } else {
                     SurfaceParams::for_radius(r)
                 },
-                inputs: Inputs {
-                    uv: uv.as_ref().filter(|_| on_grid),
+                inputs: Sources {
+                    uvs: uv.as_ref().filter(|_| on_grid).map(std::slice::from_ref),
                     heightmap: Some(&map),
                     lod: 0.5,
                     ..Default::default()
@@ -314,9 +314,10 @@ fn loop_bounds_hold() {
     let frame = data.frame(&mesh.positions);
     let case = Case {
         surface: Surface::Loop,
+        field: NormalField::default(),
         displace: Displace::None,
         params: SurfaceParams::default(),
-        inputs: Inputs {
+        inputs: Sources {
             loop_: Some((&data, &frame)),
             ..Default::default()
         },

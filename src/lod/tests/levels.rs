@@ -30,11 +30,11 @@ fn shared_edges_get_identical_bits() {
     let mut compared = 0;
     for surface in [Surface::Flat, Surface::Phong, Surface::Pn, Surface::Stpn] {
         for displace in [Displace::None, Displace::Sine, Displace::Noise] {
-            let inputs = Inputs {
+            let inputs = Sources {
                 tags: Some(&tags),
                 ..Default::default()
             };
-            let lod = Lod::new(surface, displace, &params, &inputs);
+            let lod = Lod::of(surface, displace, &params, &inputs);
             for s in sides.values().filter(|s| s.len() == 2) {
                 let a = lod.edge(&recs[s[0].0], s[0].1);
                 let b = lod.edge(&recs[s[1].0], s[1].1);
@@ -53,7 +53,7 @@ fn shared_edges_get_identical_bits() {
     // Hard edges: seams and crease corners (whose sharp normal depends on the side).
     let (cyl, cyl_recs) = corner_records("cylinder_hard_normals.obj");
     let (cyl_tags, _) = crate::surface::stpn::derive(&cyl);
-    let inputs = Inputs {
+    let inputs = Sources {
         tags: Some(&cyl_tags),
         ..Default::default()
     };
@@ -66,7 +66,7 @@ fn shared_edges_get_identical_bits() {
     }
     for surface in [Surface::Phong, Surface::Pn, Surface::Stpn] {
         for displace in [Displace::None, Displace::Sine] {
-            let lod = Lod::new(surface, displace, &params, &inputs);
+            let lod = Lod::of(surface, displace, &params, &inputs);
             for s in sides.values().filter(|s| s.len() == 2) {
                 let a = lod.edge(&cyl_recs[s[0].0], s[0].1);
                 let b = lod.edge(&cyl_recs[s[1].0], s[1].1);
@@ -84,11 +84,11 @@ fn shared_edges_get_identical_bits() {
     let (mesh, _) = load_model("spot_control_tri.obj");
     let data = LoopData::new(&mesh, Boundary::EdgeOnly, Lattice::new(3), |_| {}).unwrap();
     let frame = data.frame(&mesh.positions);
-    let inputs = Inputs {
+    let inputs = Sources {
         loop_: Some((&data, &frame)),
         ..Default::default()
     };
-    let lod = Lod::new(Surface::Loop, Displace::None, &params, &inputs);
+    let lod = Lod::of(Surface::Loop, Displace::None, &params, &inputs);
     let mut sides: std::collections::HashMap<(u32, u32), Vec<(usize, usize)>> = Default::default();
     for (f, face) in data.m1.faces.iter().enumerate() {
         for e in 0..3 {
@@ -164,9 +164,10 @@ fn spheres_contain_the_displaced_patch() {
         for displace in [Displace::None, Displace::Sine, Displace::Noise] {
             let case = Case {
                 surface,
+                field: NormalField::default(),
                 displace,
                 params,
-                inputs: Inputs::default(),
+                inputs: Sources::default(),
             };
             let lod = case.lod();
             for rec in recs.iter().step_by(3) {

@@ -1,5 +1,5 @@
 //! The bounds against the surfaces themselves: dense sampling of the real evaluation
-//! (`surface::eval_with`, what every driver mirrors) on real meshes and random elements.
+//! (`surface::Mirror::eval`, what every driver mirrors) on real meshes and random elements.
 
 use super::*;
 use crate::mesh::test_support::load_model;
@@ -9,8 +9,8 @@ use crate::subdiv::bft::Lattice;
 use crate::subdiv::Boundary;
 use crate::surface::loop_::LoopData;
 use crate::surface::{
-    build_records, eval_with, CornerRecord, Displace, ElementRecord, Heightmap, Inputs,
-    NormalField, RecordKind, Seams, Surface, SurfaceParams,
+    build_records, BuildOptions, CornerRecord, Displace, ElementRecord, Heightmap, Mirror,
+    NormalField, RecordKind, Seams, Sources, Surface, SurfaceParams, SurfacePoint,
 };
 use glam::{Mat4, Vec3, Vec4};
 
@@ -41,28 +41,35 @@ fn lattice_triangles(n: u32) -> Vec<[(u32, u32); 3]> {
     out
 }
 
+/// A surface, its normal field and a displacement, with the inputs they read (the texture
+/// coordinates, when given, are those of every element checked: element 0's).
 struct Case<'a> {
     surface: Surface,
+    field: NormalField,
     displace: Displace,
     params: SurfaceParams,
-    inputs: Inputs<'a>,
+    inputs: Sources<'a>,
 }
 
 impl Case<'_> {
+    fn mirror(&self) -> Mirror<'_> {
+        let build = BuildOptions {
+            normal_field: self.field,
+            ..BuildOptions::default()
+        };
+        Mirror::new(self.surface, self.displace, &build, &self.inputs).unwrap()
+    }
+
+    fn point(&self, rec: &ElementRecord, b: [f32; 3]) -> SurfacePoint {
+        self.mirror().eval(&self.params, 0, rec, b)
+    }
+
     fn at(&self, rec: &ElementRecord, b: [f32; 3]) -> Vec3 {
-        eval_with(
-            self.surface,
-            self.displace,
-            &self.params,
-            rec,
-            b,
-            &self.inputs,
-        )
-        .position
+        self.point(rec, b).position
     }
 
     fn lod(&self) -> Lod<'_> {
-        Lod::new(self.surface, self.displace, &self.params, &self.inputs)
+        Lod::new(&self.mirror(), &self.params)
     }
 
     /// The true largest distance between the surface and its interpolation at level `n`, over

@@ -34,9 +34,10 @@ fn frustum_and_back_face_culling_are_conservative() {
     for surface in [Surface::Flat, Surface::Phong, Surface::Pn] {
         let case = Case {
             surface,
+            field: NormalField::default(),
             displace: Displace::None,
             params: SurfaceParams::default(),
-            inputs: Inputs::default(),
+            inputs: Sources::default(),
         };
         let lod = case.lod();
         let (mut outside, mut back) = (0, 0);
@@ -72,14 +73,7 @@ fn frustum_and_back_face_culling_are_conservative() {
             }
             if away {
                 for (i, j) in crate::pattern::Pattern::uniform(12).lattice() {
-                    let sp = eval_with(
-                        surface,
-                        Displace::None,
-                        &case.params,
-                        rec,
-                        lattice_bary(12, i, j),
-                        &case.inputs,
-                    );
+                    let sp = case.point(rec, lattice_bary(12, i, j));
                     assert!((sp.position - eye).dot(sp.dpdu.cross(sp.dpdv)) > 0.0);
                 }
             }
@@ -192,7 +186,7 @@ fn end_to_end(
     let lod = case.lod();
     let view = &screen.view;
     let max = view.max_level;
-    let lr = lod_records(&lod, records, None);
+    let lr = lod_records(&lod, records);
     let count = records.len() as u32;
     let lv = LodView::new(view, Some(&screen.frustum), false, dyadic, count);
     let levels = frame_levels(&lv, &lr);
@@ -294,6 +288,7 @@ fn pixel_error_holds_end_to_end() {
     ] {
         let case = Case {
             surface,
+            field: NormalField::default(),
             displace,
             params: SurfaceParams {
                 amplitude: 0.01 * r,
@@ -305,7 +300,7 @@ fn pixel_error_holds_end_to_end() {
                 },
                 ..SurfaceParams::for_radius(r)
             },
-            inputs: Inputs {
+            inputs: Sources {
                 tags: Some(&tags),
                 loop_: Some((&data, &frame)),
                 ..Default::default()
