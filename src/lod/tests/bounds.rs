@@ -392,9 +392,10 @@ fn mixed_bounds_hold_and_phong_s_are_exact() {
         for (list, scale, g) in [(every(&recs, 3), r, 24), (random.clone(), 2.0, 16)] {
             let case = Case {
                 surface,
+                field: NormalField::default(),
                 displace,
                 params: SurfaceParams::for_radius(scale),
-                inputs: Inputs::default(),
+                inputs: Sources::default(),
             };
             let lod = case.lod();
             let mut tight = f32::INFINITY;
