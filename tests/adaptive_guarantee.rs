@@ -164,16 +164,18 @@ fn draw_and_measure_at(
     h.prepared_elements(scene, cfg, Capture::Vertices).unwrap();
     let camera = *camera;
     let (width, height) = SIZE;
-    scene.set_levels(
-        cfg,
-        &LevelView {
-            camera,
-            width,
-            height,
-            pixel_error: chosen_px,
-            cull: true,
-        },
-    );
+    scene
+        .set_levels(
+            cfg,
+            &LevelView {
+                camera,
+                width,
+                height,
+                pixel_error: chosen_px,
+                cull: true,
+            },
+        )
+        .unwrap();
     assert!(scene.level_pass(cfg).is_some(), "no level pass");
     h.adaptive = true;
     let drawn = drawn_triangles(h, scene, cfg, &camera);

@@ -42,7 +42,7 @@ fn gpu_levels_match_the_mirror_and_share_edges() {
                     cull: false,
                 };
                 let what = format!("{} at {:?}", surface.name(), camera.eye());
-                let got = scene.set_levels(&cfg, &view);
+                let got = scene.set_levels(&cfg, &view).unwrap();
                 // Drawn on the GPU: the mirror runs when the tally is read (below), not before.
                 assert!(!got.is_tallied(), "{what}: the mirror ran unread");
                 assert!(scene.level_pass(&cfg).is_some(), "{what}: no level pass");
@@ -78,7 +78,9 @@ fn gpu_levels_match_the_mirror_and_share_edges() {
                     }
                 }
                 // Culling zeroes inner levels only, and counts them.
-                let culled = scene.set_levels(&cfg, &LevelView { cull: true, ..view });
+                let culled = scene
+                    .set_levels(&cfg, &LevelView { cull: true, ..view })
+                    .unwrap();
                 h.draw(&mut scene, &cfg, &camera).unwrap();
                 let (after, drawn) = scene.drawn_levels(&cfg);
                 assert_eq!(culled.histogram, drawn.histogram, "{what}");

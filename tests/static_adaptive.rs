@@ -28,7 +28,7 @@ fn compare(h: &mut Headless, scene: &mut Scene, st: DrawConfig, view: &LevelView
     let max = st.level;
     h.adaptive = true;
     h.prepared_elements(scene, &st, Capture::None).unwrap();
-    scene.set_levels(&st, view);
+    scene.set_levels(&st, view).unwrap();
     h.render(scene, &st, &view.camera).unwrap();
     let levels = scene.static_levels(&st).expect("levels chosen").to_vec();
     let records = scene.records(st.surface).to_vec();
@@ -153,7 +153,7 @@ fn static_adaptive_uploads_when_the_levels_change() {
         // It refines at the mirror's levels, tallied at once; no level pass is made (its
         // bounds are not uploaded).
         let objects = meshrefine::gpu::live_objects();
-        assert!(scene.set_levels(&st, &view(far, 4.0)).is_tallied());
+        assert!(scene.set_levels(&st, &view(far, 4.0)).unwrap().is_tallied());
         assert_eq!(
             meshrefine::gpu::live_objects(),
             objects,
@@ -163,14 +163,14 @@ fn static_adaptive_uploads_when_the_levels_change() {
         let first = buffer(&scene).expect("refined");
         let cost = scene.static_vbo.as_ref().unwrap().adaptive.clone().unwrap();
         assert!(cost.upload_bytes > 0);
-        scene.set_levels(&st, &view(far, 4.0));
+        scene.set_levels(&st, &view(far, 4.0)).unwrap();
         h.render(&mut scene, &st, &far).unwrap();
         assert_eq!(
             buffer(&scene),
             Some(first),
             "the same levels uploaded again"
         );
-        scene.set_levels(&st, &view(far, 0.25));
+        scene.set_levels(&st, &view(far, 0.25)).unwrap();
         h.render(&mut scene, &st, &far).unwrap();
         let finer = scene.static_vbo.as_ref().unwrap().adaptive.clone().unwrap();
         assert_ne!(finer.drawn, cost.drawn);

@@ -142,16 +142,18 @@ fn tess_levels(cfg: &DrawConfig, l: &ElementLevels) -> Option<([u32; 3], u32)> {
 
 fn draw_frame(h: &mut Headless, scene: &mut Scene, cfg: &DrawConfig, camera: &Camera) -> Drawn {
     let (width, height) = SWEEP_SIZE;
-    scene.set_levels(
-        cfg,
-        &LevelView {
-            camera: *camera,
-            width,
-            height,
-            pixel_error: 1.0,
-            cull: false,
-        },
-    );
+    scene
+        .set_levels(
+            cfg,
+            &LevelView {
+                camera: *camera,
+                width,
+                height,
+                pixel_error: 1.0,
+                cull: false,
+            },
+        )
+        .unwrap();
     assert!(scene.level_pass(cfg).is_some(), "no level pass");
     h.adaptive = true;
     let cap = h.capture(scene, cfg, camera).unwrap();

@@ -100,9 +100,7 @@ fn static_positions_with(
 ) -> usize {
     // The scalar tags a scene derives from the mesh's hard edges (stpn).
     let (tags, _) = meshrefine::surface::stpn::derive(mesh);
-    let map = meshrefine::surface::Heightmap::generated();
     let sources = meshrefine::surface::Sources {
-        heightmap: Some(&map),
         tags: Some(&tags),
         loop_,
         ..Default::default()

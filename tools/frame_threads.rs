@@ -106,7 +106,7 @@ fn main() -> anyhow::Result<()> {
                         pixel_error,
                         cull,
                     },
-                );
+                )?;
             }
             let before = cpu_by_thread();
             let t = h.draw(&mut scene, &cfg, &camera)?;

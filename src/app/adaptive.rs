@@ -116,20 +116,20 @@ impl State {
         // What the bound asks for up to `max` (or the driver's limit), then the budget's cap.
         cfg.level = max.min(self.driver_max(&cfg));
         let t0 = Instant::now();
-        let mut report = self.scene.set_levels(&cfg, &view);
+        let mut report = self.scene.set_levels(&cfg, &view)?;
         let level = self.fit_adaptive_budget(&cfg, &report);
         let mut seconds = t0.elapsed().as_secs_f64();
         if level != cfg.level {
             cfg.level = level;
             let t0 = Instant::now();
-            report = self.scene.set_levels(&cfg, &view);
+            report = self.scene.set_levels(&cfg, &view)?;
             seconds += t0.elapsed().as_secs_f64();
         }
         if cfg.level != prepared {
             cfg = self.prepare_config(opts, Some(cfg.level))?;
             if cfg.level != level {
                 // Lowered again to what the driver draws: the levels must not exceed it.
-                report = self.scene.set_levels(&cfg, &view);
+                report = self.scene.set_levels(&cfg, &view)?;
             }
         }
         self.level_ms = seconds * 1e3;

@@ -59,11 +59,13 @@ impl State {
     pub(super) fn fit_adaptive_budget(
         &mut self,
         cfg: &DrawConfig,
-        report: &crate::lod::LevelReport,
+        chosen: &crate::render::ChosenLevels,
     ) -> u32 {
         if self.ctx.info.device_type != vk::PhysicalDeviceType::CPU || !self.frame_budget {
             return cfg.level;
         }
+        // Only a software device's budget reads the tally (the mirror runs now).
+        let report = chosen.report();
         let passes = if self.controls.wireframe { 2 } else { 1 };
         let measured = (self.adaptive_rate)
             .filter(|(c, _)| {

@@ -111,10 +111,10 @@ fn variant(
         return Ok(vec![first.row]);
     }
     // The smallest uniform level meeting the bound on every camera, as the driver rounds.
-    let bound = (cameras.iter())
-        .map(|&c| m.scene.set_levels(&cfg, &view(c)).uniform_level)
-        .max()
-        .unwrap_or(1);
+    let mut bound = 1;
+    for &c in cameras {
+        bound = bound.max(m.scene.set_levels(&cfg, &view(c))?.uniform_level);
+    }
     let mut list = vec![first];
     for (level, from) in uniform_levels(opts, a, bound) {
         let cfg = DrawConfig { level, ..cfg };
@@ -182,7 +182,7 @@ fn frame(
 ) -> Result<(), RenderError> {
     let chose = if t.adaptive {
         let start = Instant::now();
-        let report = m.scene.set_levels(&t.cfg, view);
+        let report = m.scene.set_levels(&t.cfg, view)?;
         let cpu_ms = start.elapsed().as_secs_f64() * 1e3;
         if round == 0 {
             t.reports.push(report.into_report());

@@ -11,7 +11,9 @@ use glam::{DVec3, Vec3};
 use meshrefine::gpu::Context;
 use meshrefine::lod::LevelReport;
 use meshrefine::mesh::Mesh;
-use meshrefine::render::{Camera, Capture, DrawConfig, Driver, Headless, LevelView, Scene};
+use meshrefine::render::{
+    Camera, Capture, ChosenLevels, DrawConfig, Driver, Headless, LevelView, Scene,
+};
 
 /// One sentence for the first bad value of a pixel error and its camera, before any work.
 /// `level_given`: `--level` was given too.
@@ -235,7 +237,7 @@ impl Adaptive<'_> {
 
     /// Prepare `scene` for `cfg` (whose level is the largest), choose every element's levels
     /// for the camera and an image of `size`, and make `h` draw adaptively. Returns the camera
-    /// (drawn frame) and what was chosen.
+    /// (drawn frame) and what was chosen (tallied by the CPU mirror when read).
     pub fn set_up(
         &self,
         h: &mut Headless,
@@ -244,7 +246,7 @@ impl Adaptive<'_> {
         capture: Capture,
         (width, height): (u32, u32),
         frame: &Frame,
-    ) -> Result<(Camera, LevelReport)> {
+    ) -> Result<(Camera, ChosenLevels)> {
         scene.skip_slow_warning();
         h.adaptive = true;
         h.prepared_elements(scene, cfg, capture)?;
@@ -258,9 +260,9 @@ impl Adaptive<'_> {
                 pixel_error: self.pixel_error,
                 cull: self.cull,
             },
-        );
+        )?;
         h.adaptive = true;
-        Ok((camera, report.into_report()))
+        Ok((camera, report))
     }
 
     /// The two lines that say what was drawn (export's header): the camera in mesh

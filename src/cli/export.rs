@@ -71,7 +71,11 @@ fn export(
     let name = input.mesh.name.clone();
     let mut scene = h.scene(input.mesh.clone(), cfg.level)?;
     apply_surface_inputs(&h, &mut scene, &input)?;
-    let (camera, adaptive_camera) = camera(&mut h, &mut scene, cfg, adaptive.as_ref(), size)?;
+    let adaptive_camera = adaptive_camera(&mut h, &mut scene, cfg, adaptive.as_ref(), size)?;
+    let camera = adaptive_camera.unwrap_or_else(|| {
+        let (c, r) = scene.bounding_sphere();
+        Camera::framing(c, r)
+    });
     // Long exports say how far they are on standard error (passes captured, lines written).
     let progress = Arc::new(Mutex::new(progress));
     h.max_capture_bytes = max_capture_bytes;
@@ -106,23 +110,21 @@ fn export(
     Ok(header[2].clone())
 }
 
-/// The camera of the export: the framing camera, or the adaptive one (also returned apart) once
-/// its levels are set up for the capture.
-fn camera(
+/// The adaptive camera of the export, its levels set up for the capture (`None`: uniform).
+fn adaptive_camera(
     h: &mut Headless,
     scene: &mut Scene,
     cfg: &DrawConfig,
     adaptive: Option<&Adaptive>,
     size: (u32, u32),
-) -> Result<(Camera, Option<Camera>)> {
-    let (c, r) = scene.bounding_sphere();
+) -> Result<Option<Camera>> {
     let Some(a) = adaptive else {
-        return Ok((Camera::framing(c, r), None));
+        return Ok(None);
     };
     // Drawn as it is: the mesh's own coordinates.
     let capture = cfg.driver.kind().export_capture().unwrap_or(Capture::None);
-    let (cam, _) = a.set_up(h, scene, cfg, capture, size, &Frame::IDENTITY)?;
-    Ok((cam, Some(cam)))
+    let (camera, _) = a.set_up(h, scene, cfg, capture, size, &Frame::IDENTITY)?;
+    Ok(Some(camera))
 }
 
 /// Reports each captured pass on `progress`; the count of passes done so far.

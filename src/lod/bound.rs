@@ -125,7 +125,7 @@ impl<'a> Lod<'a> {
     /// This `Lod` for element `t` (its texture coordinates).
     pub fn for_element(&self, t: usize) -> Self {
         Self {
-            uv: self.mirror.uv(t).or(self.uv),
+            uv: self.mirror.uv(t),
             ..*self
         }
     }

@@ -122,8 +122,14 @@ impl Scene {
     ///
     /// Where the device cannot hold the pass's buffers, the mirror's levels are uploaded
     /// instead (the same levels; [`Scene::level_pass`] is then `None`) and a warning says so.
-    /// The static driver refines at the mirror's levels: its bounds are not uploaded.
-    pub fn set_levels(&mut self, cfg: &DrawConfig, view: &LevelView) -> ChosenLevels {
+    /// The static driver refines at the mirror's levels: its bounds are not uploaded. Fails
+    /// only where `cfg` cannot be drawn on this scene (its surface's inputs are missing), which
+    /// [`Scene::prepare`] refuses first.
+    pub fn set_levels(
+        &mut self,
+        cfg: &DrawConfig,
+        view: &LevelView,
+    ) -> Result<ChosenLevels, RenderError> {
         let max = cfg.level;
         let dyadic = cfg.dyadic_levels();
         let eye = view.camera.eye();
@@ -139,8 +145,8 @@ impl Scene {
             count,
         );
         let on_cpu = cfg.driver.kind().refines_on_cpu();
-        let on_gpu = self.update_bounds(cfg, !on_cpu);
-        let l = self.levels.as_mut().expect("bounds");
+        let on_gpu = self.update_bounds(cfg, !on_cpu)?;
+        let l = self.levels.as_mut().expect("update_bounds leaves bounds");
         let records = l.records.clone();
         if on_cpu {
             // The static driver refines at the mirror's levels on the CPU: no level pass.
@@ -149,9 +155,9 @@ impl Scene {
             let chosen = ChosenLevels::tallied(&levels, dyadic, max);
             let g = self.generation;
             self.static_levels = Some(StaticLevels::new(cfg, g, levels));
-            return chosen;
+            return Ok(chosen);
         }
-        match on_gpu {
+        Ok(match on_gpu {
             Ok(()) => {
                 l.view = Some((cfg.surface, lod_view));
                 ChosenLevels {
@@ -168,7 +174,7 @@ impl Scene {
                 self.elements_mut(cfg.surface).upload_levels(&levels);
                 ChosenLevels::tallied(&levels, dyadic, max)
             }
-        }
+        })
     }
 
     /// The level pass and the camera of the last [`Scene::set_levels`], for
@@ -198,10 +204,15 @@ impl Scene {
         (levels, report)
     }
 
-    /// The level pass's bounds for `cfg`, computed when what they are made of changed, and
-    /// uploaded then when `upload`. The bounds are kept on the CPU even when the upload fails
-    /// (the mirror uses them).
-    fn update_bounds(&mut self, cfg: &DrawConfig, upload: bool) -> Result<(), RenderError> {
+    /// The level pass's bounds for `cfg`, computed when what they are made of changed (the
+    /// outer error: the surface's mirror cannot be built, nothing is changed), and uploaded then
+    /// when `upload` (the inner error: the device could not hold them). The bounds are kept on
+    /// the CPU even when the upload fails (the mirror uses them).
+    fn update_bounds(
+        &mut self,
+        cfg: &DrawConfig,
+        upload: bool,
+    ) -> Result<Result<(), RenderError>, RenderError> {
         let mesh = self.elements(cfg.surface);
         let key = BoundsKey {
             surface: cfg.surface,
@@ -214,8 +225,15 @@ impl Scene {
         };
         let have = |l: &SceneLevels| l.records_key == Some(key) && (!upload || l.key == Some(key));
         if self.levels.as_ref().is_some_and(have) {
-            return Ok(());
+            return Ok(Ok(()));
         }
+        let fresh = match &self.levels {
+            Some(l) if l.records_key == Some(key) => None,
+            _ => {
+                let lod = Lod::new(&self.mirror(cfg, cfg.level)?, &cfg.params);
+                Some(lod_records(&lod, self.records(cfg.surface)))
+            }
+        };
         let mut l = self.levels.take().unwrap_or(SceneLevels {
             pass: None,
             key: None,
@@ -223,18 +241,14 @@ impl Scene {
             records: Arc::new([]),
             view: None,
         });
-        if l.records_key != Some(key) {
-            let records = {
-                let lod = Lod::new(&self.mirror(cfg, cfg.level)?, &cfg.params);
-                lod_records(&lod, self.records(cfg.surface))
-            };
+        if let Some(records) = fresh {
             l.key = None;
             l.records = records.into();
             l.records_key = Some(key);
         }
         if !upload {
             self.levels = Some(l);
-            return Ok(());
+            return Ok(Ok(()));
         }
         let uploaded = match &mut l.pass {
             Some(pass) => pass.upload(self.elements(cfg.surface), &l.records),
@@ -248,7 +262,7 @@ impl Scene {
             l.key = Some(key);
         }
         self.levels = Some(l);
-        uploaded
+        Ok(uploaded)
     }
 }
 

@@ -387,6 +387,8 @@ fn mixed_bounds_hold_and_phong_s_are_exact() {
         (Surface::Stpn, Displace::None),
         (Surface::Phong, Displace::Sine),
         (Surface::Pn, Displace::Sine),
+        (Surface::Pn, Displace::Noise),
+        (Surface::Stpn, Displace::Sine),
     ] {
         let what = format!("{} + {}", surface.name(), displace.name());
         for (list, scale, g) in [(every(&recs, 3), r, 24), (random.clone(), 2.0, 16)] {
