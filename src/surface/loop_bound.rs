@@ -7,7 +7,12 @@
 //! the lattice points are exact there too). On an edge and at dyadic levels `N <= S` this is a
 //! proof (the drawn edge samples are lattice points, and a sequence with second differences
 //! `<= D` is within `H² D / 8` of its chord over `H` steps); inside the face the unit tests
-//! check it against dense sampling. Every drawn point lies in the convex hull of the lattice
+//! check it against dense sampling. The mixed bound `B_k` of directions `k, k + 1` (for the
+//! transition triangles, [`Bounds::mixed`]) is likewise the largest mixed difference
+//! `|Q_p − Q_{p+d_k} − Q_{p+d_{k+1}} + Q_{p+d_k+d_{k+1}}|` over the lattice's parallelograms,
+//! times `S²`: a second difference along a lattice vector `α d_k + β d_{k+1}` is a sum of `α²`
+//! pure differences along `d_k`, `β²` along `d_{k+1}` and `2αβ` mixed ones, as the quadratic form
+//! is; never above polarization's `Σ/2`. Every drawn point lies in the convex hull of the lattice
 //! points, whose sphere is the patch's. Displacement over `loop` has no bound here: such elements
 //! get the maximum level.
 
@@ -40,7 +45,13 @@ fn second(a: Vec3, b: Vec3, c: Vec3) -> f32 {
     ((a + c) - b * 2.0).length()
 }
 
-fn finish(lod: &Lod, m: [f32; 3], factor: f32, points: &[Vec3]) -> Bounds {
+/// `(a + d) − (b + c)`: the mixed difference of a lattice parallelogram `a, b, c, d` (`d`
+/// opposite `a`), the same bits whichever diagonal comes first.
+fn mixed(a: Vec3, b: Vec3, c: Vec3, d: Vec3) -> f32 {
+    ((a + d) - (b + c)).length()
+}
+
+fn finish(lod: &Lod, m: [f32; 3], b: Option<[f32; 3]>, factor: f32, points: &[Vec3]) -> Bounds {
     let sphere = Sphere::around(points);
     let worst = m.iter().fold(0.0f32, |a, &b| a.max(b));
     let (c2, grow) = match lod.displace.facts().bound {
@@ -51,8 +62,12 @@ fn finish(lod: &Lod, m: [f32; 3], factor: f32, points: &[Vec3]) -> Bounds {
         chord: Chord { c1: 0.0, c2 },
         sphere: sphere.grown(grow),
         second: m,
-        // No mixed bound of its own: polarization's `Σ/2` (src/lod/bound.rs, `Bounds::mixed`).
-        mixed: [0.5 * (m[0] + m[1] + m[2]); 3],
+        // The lattice's mixed differences where given (elements), never above polarization's
+        // `Σ/2` (src/lod/bound.rs, `Bounds::mixed`), which is all an edge has.
+        mixed: {
+            let half = 0.5 * (m[0] + m[1] + m[2]);
+            b.map_or([half; 3], |b| b.map(|x| x.min(half)))
+        },
         kink: Chord::ZERO,
         cone: None,
     }
@@ -87,8 +102,34 @@ pub fn element(lod: &Lod, rec: &ElementRecord) -> Bounds {
             }
         }
     }
+    // Mixed differences per stored pair (k, k + 1) of directions d0 = (1, 0), d1 = (−1, 1),
+    // d2 = (0, −1) in (i, j): over every lattice parallelogram p, p + a, p + b, p + a + b.
+    let mut b = [0.0f32; 3];
+    for j in 0..=s {
+        for i in 0..=s - j {
+            let c = q[j][i];
+            // (d0, d1): p, p + (1, 0), p + (−1, 1), p + (0, 1).
+            if i >= 1 && i + j < s {
+                b[0] = b[0].max(mixed(c, q[j][i + 1], q[j + 1][i - 1], q[j + 1][i]));
+            }
+            // (d1, d2): p, p + (−1, 1), p + (0, −1), p + (−1, 0).
+            if i >= 1 && j >= 1 {
+                b[1] = b[1].max(mixed(c, q[j + 1][i - 1], q[j - 1][i], q[j][i - 1]));
+            }
+            // (d2, d0): p, p + (0, −1), p + (1, 0), p + (1, −1).
+            if j >= 1 && i + j < s {
+                b[2] = b[2].max(mixed(c, q[j - 1][i], q[j][i + 1], q[j - 1][i + 1]));
+            }
+        }
+    }
     let s2 = (s * s) as f32;
-    finish(lod, d.map(|x| x * s2), ELEMENT_FACTOR, &points)
+    finish(
+        lod,
+        d.map(|x| x * s2),
+        Some(b.map(|x| x * s2)),
+        ELEMENT_FACTOR,
+        &points,
+    )
 }
 
 pub fn edge(lod: &Lod, rec: &ElementRecord, e: usize) -> Bounds {
@@ -105,5 +146,11 @@ pub fn edge(lod: &Lod, rec: &ElementRecord, e: usize) -> Bounds {
         .windows(3)
         .map(|w| second(w[0], w[1], w[2]))
         .fold(0.0f32, f32::max);
-    finish(lod, [d * (s * s) as f32, 0.0, 0.0], EDGE_FACTOR, &points)
+    finish(
+        lod,
+        [d * (s * s) as f32, 0.0, 0.0],
+        None,
+        EDGE_FACTOR,
+        &points,
+    )
 }

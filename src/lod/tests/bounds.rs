@@ -331,6 +331,43 @@ fn loop_bounds_hold() {
     assert!(m <= 20.0, "loop: median bound / truth {m}");
 }
 
+/// Loop's mixed bounds are its tables' lattice's mixed differences (or polarization's `Σ/2`
+/// where smaller): sampled on that lattice they agree, which pins the pairs' order, and they are
+/// below `Σ/2` somewhere (else the lattice's own would add nothing).
+#[test]
+fn loop_mixed_bounds_are_the_lattice_s() {
+    let (mesh, _) = load_model("spot_control_tri.obj");
+    let data = LoopData::new(&mesh, Boundary::EdgeOnly, Lattice::default(), |_| {}).unwrap();
+    let frame = data.frame(&mesh.positions);
+    let case = Case {
+        surface: Surface::Loop,
+        field: NormalField::default(),
+        displace: Displace::None,
+        params: SurfaceParams::default(),
+        inputs: Sources {
+            loop_: Some((&data, &frame)),
+            ..Default::default()
+        },
+    };
+    let lod = case.lod();
+    let mut tighter = 0;
+    for rec in every(&data.records, 17) {
+        let s = 1i32 << (data.faces[rec.words[0] as usize][3] >> 3);
+        let b = lod.element(&rec);
+        let (lattice, _) = sampled_mixed(&case, &rec, s);
+        let half = 0.5 * b.second.iter().sum::<f32>();
+        for (k, (&got, &sampled)) in b.mixed.iter().zip(&lattice).enumerate() {
+            let want = sampled.min(half);
+            assert!(
+                (got - want).abs() <= 1e-5 * want,
+                "pair {k}: bound {got} against the lattice's {want}"
+            );
+            tighter += usize::from(sampled < 0.9 * half);
+        }
+    }
+    assert!(tighter > 10, "only {tighter} pairs below Σ/2");
+}
+
 /// The largest `|D²P[d_k, d_{k+1}]|` sampled on lattice parallelograms of `g` segments per side:
 /// `|P(x) − P(x + a) − P(x + b) + P(x + a + b)| / h²` for the steps `a = h d_k`, `b = h d_{k+1}`
 /// (`h = 1/g`, stored directions). This is `h⁻²` times the integral of `D²P[a, b]` over the
