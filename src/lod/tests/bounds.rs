@@ -306,7 +306,7 @@ fn triangle_errors_hold_for_any_triangle() {
 }
 
 /// Loop: spot's M1 faces, at dyadic and other levels, with extraordinary vertices of valence 3
-/// to 10.
+/// to 10; and its mixed bounds against its lattice.
 #[test]
 fn loop_bounds_hold() {
     let (mesh, _) = load_model("spot_control_tri.obj");
@@ -329,26 +329,9 @@ fn loop_bounds_hold() {
         "loop",
     );
     assert!(m <= 20.0, "loop: median bound / truth {m}");
-}
-
-/// Loop's mixed bounds are its tables' lattice's mixed differences (or polarization's `Σ/2`
-/// where smaller): sampled on that lattice they agree, which pins the pairs' order, and they are
-/// below `Σ/2` somewhere (else the lattice's own would add nothing).
-#[test]
-fn loop_mixed_bounds_are_the_lattice_s() {
-    let (mesh, _) = load_model("spot_control_tri.obj");
-    let data = LoopData::new(&mesh, Boundary::EdgeOnly, Lattice::default(), |_| {}).unwrap();
-    let frame = data.frame(&mesh.positions);
-    let case = Case {
-        surface: Surface::Loop,
-        field: NormalField::default(),
-        displace: Displace::None,
-        params: SurfaceParams::default(),
-        inputs: Sources {
-            loop_: Some((&data, &frame)),
-            ..Default::default()
-        },
-    };
+    // The mixed bounds are the lattice's mixed differences (or polarization's `Σ/2` where
+    // smaller): sampled on that lattice they agree, which pins the pairs' order, and they are
+    // below `Σ/2` somewhere (else the lattice's own would add nothing).
     let lod = case.lod();
     let mut tighter = 0;
     for rec in every(&data.records, 17) {
