@@ -9,7 +9,7 @@
 //! would re-upload every frame. docs/adaptivity.md, "The static baseline".
 
 use super::bindings::SET_MESH;
-use super::static_vbo::{ElementVertex, StaticVbo, StaticVertex};
+use super::static_vbo::{static_vertex, ElementVertex, StaticVbo, StaticVertex};
 use super::{DrawConfig, GpuMesh, RenderError, Renderer, Scene, PUSH_DRAW_OFFSET, PUSH_STAGES};
 use crate::gpu::{vk, Buffer, Cmd, CommandPool, Context};
 use crate::lod::levels::ElementLevels;
@@ -73,15 +73,8 @@ pub fn refine_adaptive(
         for (i, j) in pattern.lattice() {
             let p = snap(i * s, j * s, &d, f);
             let b = bary(p.0, p.1, f);
-            let sp = mirror.eval(&cfg.params, t, rec, b);
-            out.vertices.push([
-                sp.position.x,
-                sp.position.y,
-                sp.position.z,
-                sp.normal.x,
-                sp.normal.y,
-                sp.normal.z,
-            ]);
+            out.vertices
+                .push(static_vertex(&mirror.eval(&cfg.params, t, rec, b)));
             if samples {
                 out.samples
                     .push([b[0].to_bits(), b[1].to_bits(), b[2].to_bits(), t as u32]);

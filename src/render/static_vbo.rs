@@ -18,6 +18,12 @@ use std::sync::Arc;
 /// Refined vertex: position, normal.
 pub type StaticVertex = [f32; 6];
 
+/// The static buffer's vertex for an evaluated point: position, then normal.
+pub fn static_vertex(sp: &crate::surface::SurfacePoint) -> StaticVertex {
+    let (p, n) = (sp.position, sp.normal);
+    [p.x, p.y, p.z, n.x, n.y, n.z]
+}
+
 /// A refined vertex's sample, for the per-fragment normal field: `(w, u, v)` bits and element.
 pub type ElementVertex = [u32; 4];
 
@@ -37,15 +43,7 @@ pub fn refine_on_cpu(
     let mut indices = Vec::with_capacity(records.len() * pattern.indices.len());
     for (t, rec) in records.iter().enumerate() {
         for &b in &pattern.bary {
-            let sp = mirror.eval(&cfg.params, t, rec, b);
-            vertices.push([
-                sp.position.x,
-                sp.position.y,
-                sp.position.z,
-                sp.normal.x,
-                sp.normal.y,
-                sp.normal.z,
-            ]);
+            vertices.push(static_vertex(&mirror.eval(&cfg.params, t, rec, b)));
         }
         let base = t as u32 * pv;
         indices.extend(pattern.indices.iter().map(|&i| base + i));
