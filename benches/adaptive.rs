@@ -89,6 +89,7 @@ fn main() {
                     Driver::Static,
                 ],
                 min_total_ms: 0.0,
+                camera: None,
                 adaptive: Some(BenchAdaptive {
                     scene: scene.into(),
                     cameras: cameras.clone(),

@@ -35,6 +35,7 @@ fn main() {
         height: 720,
         drivers: vec![],
         min_total_ms: 0.0,
+        camera: None,
         adaptive: None,
     };
     h.run("surfaces", &[mesh], &opts);

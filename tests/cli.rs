@@ -2271,27 +2271,34 @@ fn adaptive_options_refuse_bad_values() {
         ],
     );
     assert!(!png.exists() && !obj.exists() && !view_png.exists());
-    // The camera and culling options without --pixel-error are reported as ignored.
-    let out = meshrefine(&[
-        "render",
-        "-o",
-        p(&png),
-        "--fov",
-        "30",
-        "--cull",
-        "off",
-        "--level",
-        "2",
-    ]);
+    // The level options without --pixel-error are reported as ignored; the camera applies to
+    // uniform drawing too (an image from it differs from the framing camera's).
+    let framed = tmp("uniform-framed.png");
+    let args = |out: &Path, camera: &[&'static str]| {
+        let mut v = vec!["render", "-o", p(out), "--cull", "off", "--level", "2"];
+        v.extend(["--width", "64", "--height", "48"]);
+        v.extend(camera);
+        v.into_iter().map(String::from).collect::<Vec<_>>()
+    };
+    let run = |a: Vec<String>| meshrefine(&a.iter().map(String::as_str).collect::<Vec<_>>());
+    let out = run(args(&png, &["--fov", "30", "--eye", "0.35,0.65,-1.3"]));
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{stderr}");
-    assert!(
-        stderr.contains("--fov applies only with --pixel-error"),
-        "{stderr}"
-    );
+    assert!(!stderr.contains("--fov applies"), "{stderr}");
+    assert!(!stderr.contains("--eye applies"), "{stderr}");
     assert!(
         stderr.contains("--cull applies only with --pixel-error"),
         "{stderr}"
+    );
+    assert!(run(args(&framed, &[])).status.success());
+    assert_ne!(
+        std::fs::read(&png).unwrap(),
+        std::fs::read(&framed).unwrap()
+    );
+    // ... so its values are checked then too.
+    expect_error(
+        &["render", "-o", p(&png), "--level", "2", "--fov", "0"],
+        &["--fov 0 is not within (0, 180) degrees"],
     );
 }
 

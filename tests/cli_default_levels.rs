@@ -50,13 +50,15 @@ fn render_and_headless_view_are_adaptive_unless_level_is_given() {
     tess.extend(["--driver", "tess"]);
     let (stdout, _) = ok(&tess);
     assert!(stdout.contains(ADAPTIVE_LINE), "{stdout}");
-    // --level asks for one level everywhere, and the camera options are then ignored.
+    // --level asks for one level everywhere: the level options are then ignored, the camera
+    // is not.
     let mut uniform = args.clone();
-    uniform.extend(["--level", "4", "--fov", "30"]);
+    uniform.extend(["--level", "4", "--fov", "30", "--max-level", "8"]);
     let (stdout, stderr) = ok(&uniform);
     assert!(!stdout.contains("adaptive at"), "{stdout}");
+    assert!(!stderr.contains("--fov applies"), "{stderr}");
     assert!(
-        stderr.contains("--fov applies only with --pixel-error"),
+        stderr.contains("--max-level applies only with --pixel-error"),
         "{stderr}"
     );
     // The camera options apply by default, so they are checked then too.

@@ -50,6 +50,9 @@ pub struct BenchOptions {
     /// (milliseconds; 0: exactly `frames`), so frames of a few milliseconds, whose timestamps
     /// jitter most, get more samples. At most 20 × `frames` rounds.
     pub min_total_ms: f64,
+    /// The camera every frame is drawn from, in the drawn coordinates; `None`: the one framing
+    /// the mesh. Adaptive rows draw from [`BenchAdaptive::cameras`] where it names any.
+    pub camera: Option<Camera>,
     /// Draw adaptively ([`Scene::set_levels`]): each variant once with each element at the
     /// levels the view asks for, and, in the same run, uniformly at `levels` and (with
     /// [`BenchAdaptive::bound_levels`]) at the smallest uniform level meeting the same bound
@@ -247,10 +250,9 @@ impl MeshSetup {
             PatternSet::from_levels(&opts.levels),
         )?;
         let (c, r) = scene.bounding_sphere();
-        let camera = match opts.adaptive.as_ref().and_then(|a| a.cameras.first()) {
-            Some(&camera) => camera,
-            None => Camera::framing(c, r),
-        };
+        let adaptive = opts.adaptive.as_ref().and_then(|a| a.cameras.first());
+        let camera =
+            (adaptive.or(opts.camera.as_ref()).copied()).unwrap_or_else(|| Camera::framing(c, r));
         let coarse = scene.gpu.element_count;
         let params = opts.params.unwrap_or_else(|| SurfaceParams::for_radius(r));
         // The reference surface first (the throughput ratios are against it), then as asked.

@@ -24,6 +24,11 @@ pub fn check_view(px: f32, v: &ViewpointOpts, level_given: bool) -> Result<()> {
     if level_given {
         bail!("--pixel-error and --level are exclusive: adaptive levels come from the pixel error, --level asks for one level everywhere");
     }
+    check_camera(v)
+}
+
+/// One sentence for a bad `--fov`, or an `--eye` and `--look-at` with no view direction.
+pub fn check_camera(v: &ViewpointOpts) -> Result<()> {
     let fov = v.fov;
     if !(fov.is_finite() && fov > 0.0 && fov < 180.0) {
         bail!("--fov {fov} is not within (0, 180) degrees");
@@ -59,6 +64,9 @@ pub fn check(cli: &Cli, given: &Given) -> Result<()> {
     let Some(px) = opts.pixel_error else {
         if by_default {
             check_view(DEFAULT_PIXEL_ERROR, &opts.viewpoint, false)?;
+        } else if !matches!(cli.command, Command::Export(_)) {
+            // Uniform render, view and bench draw from the camera asked for too.
+            check_camera(&opts.viewpoint)?;
         }
         return Ok(());
     };
@@ -200,39 +208,12 @@ impl Adaptive<'_> {
         aspect: f32,
         frame: &Frame,
     ) -> Result<Camera> {
-        self.viewpoint_camera(scene.framing_camera(cfg, aspect), frame)
+        (self.opts.viewpoint).camera(scene.framing_camera(cfg, aspect), frame)
     }
 
-    /// `framing` (drawn frame) moved to the viewpoint asked for.
-    fn viewpoint_camera(&self, framing: Camera, frame: &Frame) -> Result<Camera> {
-        let (c, r) = (framing.target, framing.radius);
-        let v = &self.opts.viewpoint;
-        if v.eye.is_none() && v.look_at.is_none() && v.fov == 45.0 {
-            return Ok(framing);
-        }
-        let eye = v.eye.map_or(framing.eye(), |e| frame.drawn(Vec3::from(e)));
-        let target = v
-            .look_at
-            .map_or(framing.target, |t| frame.drawn(Vec3::from(t)));
-        // The depth range holds the whole mesh around the target.
-        let radius = r + (target - c).length();
-        Camera::looking(eye, target, v.fov.to_radians(), radius)
-            .ok_or_else(|| anyhow::anyhow!("{}", no_direction(frame.mesh(eye), frame.mesh(target))))
-    }
-
-    /// The camera asked for, for `mesh` as drawn (already in the drawn frame, mapped from the
-    /// mesh's own by `frame`): None for the framing camera the benchmark and the window start
-    /// with anyway.
+    /// The camera asked for, for `mesh` as drawn ([`ViewpointOpts::given_camera`]).
     pub fn given_camera(&self, mesh: &Mesh, frame: &Frame) -> Result<Option<Camera>> {
-        let v = &self.opts.viewpoint;
-        if v.eye.is_none() && v.look_at.is_none() && v.fov == 45.0 {
-            return Ok(None);
-        }
-        let (lo, hi) = mesh.bounds();
-        let c = (lo + hi) * 0.5;
-        let r = ((hi - lo) * 0.5).length().max(1e-6);
-        self.viewpoint_camera(Camera::framing(c, r), frame)
-            .map(Some)
+        self.opts.viewpoint.given_camera(mesh, frame)
     }
 
     /// Prepare `scene` for `cfg` (whose level is the largest), choose every element's levels
@@ -283,5 +264,42 @@ impl Adaptive<'_> {
             ),
             format!("levels {}", report.histogram_line()),
         ]
+    }
+}
+
+impl ViewpointOpts {
+    /// `--eye`, `--look-at` or `--fov` was given.
+    pub fn given(&self) -> bool {
+        self.eye.is_some() || self.look_at.is_some() || self.fov != 45.0
+    }
+
+    /// `framing` (drawn frame) moved to the viewpoint asked for.
+    pub fn camera(&self, framing: Camera, frame: &Frame) -> Result<Camera> {
+        let (c, r) = (framing.target, framing.radius);
+        let v = self;
+        if !v.given() {
+            return Ok(framing);
+        }
+        let eye = v.eye.map_or(framing.eye(), |e| frame.drawn(Vec3::from(e)));
+        let target = v
+            .look_at
+            .map_or(framing.target, |t| frame.drawn(Vec3::from(t)));
+        // The depth range holds the whole mesh around the target.
+        let radius = r + (target - c).length();
+        Camera::looking(eye, target, v.fov.to_radians(), radius)
+            .ok_or_else(|| anyhow::anyhow!("{}", no_direction(frame.mesh(eye), frame.mesh(target))))
+    }
+
+    /// The camera asked for, for `mesh` as drawn (already in the drawn frame, mapped from the
+    /// mesh's own by `frame`): None for the framing camera the benchmark and the window start
+    /// with anyway.
+    pub fn given_camera(&self, mesh: &Mesh, frame: &Frame) -> Result<Option<Camera>> {
+        if !self.given() {
+            return Ok(None);
+        }
+        let (lo, hi) = mesh.bounds();
+        let c = (lo + hi) * 0.5;
+        let r = ((hi - lo) * 0.5).length().max(1e-6);
+        self.camera(Camera::framing(c, r), frame).map(Some)
     }
 }

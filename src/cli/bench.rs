@@ -56,14 +56,18 @@ pub fn run(a: &BenchArgs, desc: &ContextDesc, levels_given: bool) -> Result<()> 
             })
             .collect(),
         min_total_ms: a.min_total_ms,
+        camera: None,
         adaptive: None,
     };
     let adaptive = a.adaptive.enabled(true);
     // Drawn centred and at unit size, like `render`: the timings do not change.
     let mut mesh = mesh;
     mesh.name = input.mesh.name.clone();
+    let scene_frame = Frame { centre, scale };
+    let camera = a.adaptive.viewpoint.given_camera(&mesh, &scene_frame)?;
     let report = with_context(desc, |ctx| {
         let mut opts = opts;
+        opts.camera = camera;
         if let Some(ad) = &adaptive {
             // Each variant adaptive up to the largest level (a power of two when the pattern or
             // static driver is measured: its largest level), seen by the camera asked for, and uniform
@@ -76,10 +80,9 @@ pub fn run(a: &BenchArgs, desc: &ContextDesc, levels_given: bool) -> Result<()> 
             let driver = (opts.drivers.iter().copied())
                 .min_by_key(|d| d.kind().integer_levels())
                 .unwrap_or_default();
-            let scene_frame = Frame { centre, scale };
             opts.adaptive = Some(meshrefine::bench::BenchAdaptive {
                 scene: String::new(),
-                cameras: ad.given_camera(&mesh, &scene_frame)?.into_iter().collect(),
+                cameras: camera.into_iter().collect(),
                 pixel_error: ad.pixel_error,
                 cull: ad.cull,
                 max_level: ad.max_level(&ctx, driver)?,

@@ -135,8 +135,13 @@ pub fn inapplicable(given: &Given, c: &Chosen) -> Vec<String> {
     out
 }
 
-/// The options of adaptive drawing besides `--pixel-error` (render, export, view, bench).
-const ADAPTIVE: &[&str] = &["max_level", "cull", "geomorph", "eye", "look_at", "fov"];
+/// The options of adaptive drawing besides `--pixel-error` and the camera (render, export,
+/// view, bench).
+const ADAPTIVE: &[&str] = &["max_level", "cull", "geomorph"];
+
+/// The camera's options: render, view and bench draw from the camera asked for, adaptive or
+/// uniform; a uniform export writes every element whatever the camera.
+const CAMERA: &[&str] = &["eye", "look_at", "fov"];
 
 /// One warning line for each of `ids` given without `--pixel-error` (`adaptive` false).
 fn adaptive_only(given: &Given, adaptive: bool, ids: &[&str]) -> Vec<String> {
@@ -184,6 +189,7 @@ pub fn warnings(cli: &Cli, given: &Given) -> Vec<String> {
             let mut out = one(&a.surface, driver, &check);
             let adaptive = a.adaptive.pixel_error.is_some();
             out.extend(adaptive_only(given, adaptive, ADAPTIVE));
+            out.extend(adaptive_only(given, adaptive, CAMERA));
             out.extend(adaptive_only(given, adaptive, &["width", "height"]));
             out
         }

@@ -2,7 +2,7 @@
 #![forbid(unsafe_code)]
 
 use super::adaptive::{closed, Adaptive, Frame};
-use super::args::RenderArgs;
+use super::args::{RenderArgs, ViewpointOpts};
 use super::input::{
     apply_surface_inputs, attach_surface_inputs, draw_config, for_viewing, load_mesh, Input,
 };
@@ -33,6 +33,7 @@ pub fn run(a: &RenderArgs, desc: &ContextDesc, level_given: bool) -> Result<()> 
         background: a.background,
         msaa: a.msaa,
         adaptive: (a.adaptive).or_default(level_given, closed(&input.mesh)),
+        viewpoint: &a.adaptive.viewpoint,
     };
     let report = with_context(desc, |ctx| render_png(ctx, input, &cfg, &image, &a.output))?;
     if let Some(line) = report {
@@ -80,6 +81,8 @@ pub struct ImageOptions<'a> {
     pub msaa: Option<u32>,
     /// Draw adaptively for the camera (`--pixel-error`, or by default).
     pub adaptive: Option<Adaptive<'a>>,
+    /// The camera (`--eye`, `--look-at`, `--fov`), adaptive or uniform.
+    pub viewpoint: &'a ViewpointOpts,
 }
 
 /// Renders `input` (centred and at unit size, see [`Mesh::for_viewing`]) to a PNG as `image`
@@ -118,10 +121,15 @@ pub fn render_png(
         // so that the framing sees the surface drawn: Loop's limit surface from its M1 faces.
         h.adaptive = adaptive.is_some();
         h.prepared_elements(&mut scene, &viewed, Capture::None)?;
-        let mut camera = scene.framing_camera(&viewed, width as f32 / height as f32);
+        let (centre, scale) = input.mesh.viewing_transform();
+        let frame = Frame { centre, scale };
+        // The framing camera of the surface as drawn, moved where the options ask.
+        let uniform_camera = |scene: &meshrefine::render::Scene, viewed: &DrawConfig| {
+            let framing = scene.framing_camera(viewed, width as f32 / height as f32);
+            opts.viewpoint.camera(framing, &frame)
+        };
+        let mut camera = uniform_camera(&scene, &viewed)?;
         if let Some(a) = &adaptive {
-            let (centre, scale) = input.mesh.viewing_transform();
-            let frame = Frame { centre, scale };
             let size = (width, height);
             let (cam, report) =
                 a.set_up(&mut h, &mut scene, &viewed, Capture::None, size, &frame)?;
@@ -137,7 +145,7 @@ pub fn render_png(
             h.adaptive = false;
             line = None;
             viewed.level = uniform_level;
-            camera = scene.framing_camera(&viewed, width as f32 / height as f32);
+            camera = uniform_camera(&scene, &viewed)?;
         }
         Ok(h.render(&mut scene, &viewed, &camera)?)
     })()
@@ -148,11 +156,7 @@ pub fn render_png(
     if covered_pixels_on(&image, opts.background) == 0 {
         // The default camera frames the surface as drawn, displacement included: only a camera
         // given on the command line can look past it.
-        let given = adaptive.is_some_and(|a| {
-            let v = &a.opts.viewpoint;
-            v.eye.is_some() || v.look_at.is_some() || v.fov != 45.0
-        });
-        let why = if given {
+        let why = if opts.viewpoint.given() {
             "the camera given by --eye, --look-at and --fov sees none of them, or each is much smaller than a pixel there"
                 .to_string()
         } else {

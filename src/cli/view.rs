@@ -102,6 +102,7 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc, given: &Given) -> Result<()> {
         msaa: a.msaa,
         // Adaptive by default as the window is; `--level` or `--lod` draw uniformly.
         adaptive: (a.adaptive).or_default(given.has("level") || a.lod, closed(&input.mesh)),
+        viewpoint: &a.adaptive.viewpoint,
     };
     let line = with_context(desc, |ctx| {
         render_png(ctx, input, &cfg, &image, &a.headless_output)
