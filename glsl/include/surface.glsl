@@ -95,6 +95,19 @@ vec3 surface_normal_field(ElementRecord rec, vec3 bary) {
     if (SURFACE == SURFACE_LOOP) {
         return loop_eval(rec, bary).normal;
     }
+    if (SURFACE == SURFACE_PN) {
+        // Shading only, per fragment: the field is symmetric in its corners, so it is taken in
+        // the stored order (the canonical one makes positions bit-identical across an edge;
+        // here it would only move the last bit), from the positions and normals alone (PN's
+        // field needs neither the geometry normals nor the seam flags).
+        Corners c;
+        for (int i = 0; i < 3; ++i) {
+            c.p[i] = uintBitsToFloat(rec.d[i].xyz);
+            c.n[i] = uintBitsToFloat(rec.d[3 + i].xyz);
+        }
+        c.w = bary;
+        return pn_normal(c);
+    }
     CornerRecord r = corner_record(rec);
     Corners c = canonical(r, bary);
     StTag tags[3];
