@@ -1496,6 +1496,61 @@ fn options_that_do_not_apply_warn_and_are_ignored() {
     );
 }
 
+/// Adaptive options nothing reads warn too: `--geomorph` for the static driver (it refines on
+/// the CPU, never glides) or tess under a --max-level that is no power of two (it draws integer
+/// levels), `--no-bound-levels` and info's `--driver` without `--pixel-error`; and `view`
+/// refuses `--lod` with `--pixel-error` (two ways of choosing levels).
+#[test]
+fn adaptive_options_nothing_reads_warn() {
+    let png = tmp("geomorph-unread.png");
+    let small = ["--width", "48", "--height", "32", "-o", p(&png)];
+    let render = |extra: &[&str]| warnings_of(&[&["render"], &small[..], extra].concat());
+    assert_eq!(
+        render(&["--driver", "static", "--geomorph", "on"]),
+        ["warning: --geomorph applies only to the pattern and tess drivers, not to the static driver: it is ignored"]
+    );
+    assert_eq!(
+        render(&["--driver", "tess", "--max-level", "12", "--geomorph", "on"]),
+        ["warning: --geomorph on: the tess driver glides only under a --max-level that is a power of two; at --max-level 12 it draws integer levels without gliding"]
+    );
+    // Where it glides, or is off, no word.
+    assert!(render(&["--driver", "tess", "--max-level", "16", "--geomorph", "on"]).is_empty());
+    assert!(render(&["--driver", "tess", "--max-level", "12", "--geomorph", "off"]).is_empty());
+    assert!(render(&["--driver", "pattern", "--geomorph", "off"]).is_empty());
+    let bench = [
+        "bench",
+        "--levels",
+        "1",
+        "--frames",
+        "1",
+        "--drivers",
+        "static",
+        "--width",
+        "32",
+        "--height",
+        "32",
+    ];
+    assert_eq!(
+        warnings_of(&[&bench[..], &["--no-bound-levels"]].concat()),
+        ["warning: --no-bound-levels applies only with --pixel-error: it is ignored"]
+    );
+    assert_eq!(
+        warnings_of(&["info", "--driver", "tess"]),
+        ["warning: --driver applies only with --pixel-error: it is ignored"]
+    );
+    expect_error(
+        &[
+            "view",
+            "--lod",
+            "--pixel-error",
+            "1",
+            "--headless-output",
+            p(&png),
+        ],
+        &["--pixel-error and --lod are exclusive"],
+    );
+}
+
 /// Displacement whose result would not be finite is refused before anything is drawn, naming
 /// the option; the default camera frames a displaced surface however far it moves (a blank
 /// image then comes only from a camera given on the command line, and says so).
@@ -2055,6 +2110,19 @@ fn info_reports_adaptive_levels_for_a_camera() {
     let tess_args = ["info", spot, "--pixel-error", "1", "--driver", "tess"];
     let gliding = ok(&tess_args);
     assert_eq!(levels_of(&gliding), levels_of(&pattern), "{gliding}");
+    // The static driver refines on the CPU at the pattern driver's levels.
+    let stat = ok(&[
+        "info",
+        spot,
+        "--pixel-error",
+        "1",
+        "--surface",
+        "pn",
+        "--driver",
+        "static",
+    ]);
+    assert!(stat.contains("driver static"), "{stat}");
+    assert_eq!(adaptive_report(&stat), adaptive_report(&pattern), "{stat}");
     let integers = ok(&[&tess_args[..], &["--geomorph", "off"]].concat());
     assert!(
         levels_of(&integers).iter().any(|l| !l.is_power_of_two()),
@@ -2063,10 +2131,6 @@ fn info_reports_adaptive_levels_for_a_camera() {
     expect_error(
         &["info", spot, "--pixel-error", "1", "--max-level", "48"],
         &["--max-level 48", "power of two"],
-    );
-    expect_error(
-        &["info", spot, "--pixel-error", "1", "--driver", "static"],
-        &["--driver static", "on the CPU"],
     );
     // Loop's elements are M1's faces.
     let loop_ = ok(&["info", spot, "--pixel-error", "1", "--surface", "loop"]);
@@ -2298,7 +2362,11 @@ fn adaptive_options_refuse_bad_values() {
     // ... so its values are checked then too.
     expect_error(
         &["render", "-o", p(&png), "--level", "2", "--fov", "0"],
-        &["--fov 0 is not within (0, 180) degrees"],
+        &["--fov 0 is not within [0.01, 180) degrees"],
+    );
+    expect_error(
+        &["render", "-o", p(&png), "--fov", "1e-9"],
+        &["--fov 0.000000001 is not within [0.01, 180) degrees"],
     );
 }
 
@@ -2430,9 +2498,12 @@ fn pixel_error_draws_adaptively_end_to_end() {
     assert!(close.contains("wrote"), "{close}");
     let text = std::fs::read_to_string(&obj).unwrap();
     let (camera, levels) = adaptive_header(&text);
-    for (got, want) in camera[..6].iter().zip([0.3, 0.2, 0.6, 0.0, 0.1, 0.3]) {
-        assert!((got - want).abs() < 1e-5, "{camera:?}");
-    }
+    // Exactly as given (not mapped to the drawn frame and back).
+    assert!(
+        text.contains("# camera eye 0.3 0.2 0.6 target 0 0.1 0.3 up 0 1 0 fov-y 50 "),
+        "{text}"
+    );
+    assert_eq!(&camera[..6], &[0.3, 0.2, 0.6, 0.0, 0.1, 0.3]);
     assert_eq!(camera[9], 50.0);
     let drawn: u64 = levels.iter().map(|l| l.1).sum();
     assert!(drawn > 0 && drawn < 372, "{levels:?}");

@@ -27,11 +27,15 @@ pub fn check_view(px: f32, v: &ViewpointOpts, level_given: bool) -> Result<()> {
     check_camera(v)
 }
 
+/// The narrowest vertical field of view: narrower, single precision cannot place the view
+/// frustum's planes (the image breaks up, culling fails).
+pub const MIN_FOV: f32 = 0.01;
+
 /// One sentence for a bad `--fov`, or an `--eye` and `--look-at` with no view direction.
 pub fn check_camera(v: &ViewpointOpts) -> Result<()> {
     let fov = v.fov;
-    if !(fov.is_finite() && fov > 0.0 && fov < 180.0) {
-        bail!("--fov {fov} is not within (0, 180) degrees");
+    if !(fov.is_finite() && (MIN_FOV..180.0).contains(&fov)) {
+        bail!("--fov {fov} is not within [{MIN_FOV}, 180) degrees");
     }
     if let (Some(eye), Some(target)) = (v.eye, v.look_at) {
         let (eye, target) = (Vec3::from(eye), Vec3::from(target));
@@ -61,6 +65,11 @@ pub fn check(cli: &Cli, given: &Given) -> Result<()> {
         Command::Bench(a) => (&a.adaptive, "levels", false),
         Command::Info(_) | Command::Devices => return Ok(()),
     };
+    if let (Command::View(a), Some(_)) = (&cli.command, opts.pixel_error) {
+        if a.lod {
+            bail!("--pixel-error and --lod are exclusive: --lod starts the window choosing one level by distance, --pixel-error each element's level from the pixel error");
+        }
+    }
     let Some(px) = opts.pixel_error else {
         if by_default {
             check_view(DEFAULT_PIXEL_ERROR, &opts.viewpoint, false)?;
@@ -255,8 +264,10 @@ impl Adaptive<'_> {
         (width, height): (u32, u32),
         report: &LevelReport,
     ) -> [String; 2] {
-        let [ex, ey, ez] = frame.mesh(camera.eye()).to_array();
-        let [tx, ty, tz] = frame.mesh(camera.target).to_array();
+        // The values given, exactly; the framing camera's mapped back to mesh coordinates.
+        let v = &self.opts.viewpoint;
+        let [ex, ey, ez] = v.eye.unwrap_or(frame.mesh(camera.eye()).to_array());
+        let [tx, ty, tz] = v.look_at.unwrap_or(frame.mesh(camera.target).to_array());
         [
             format!(
                 "camera eye {ex} {ey} {ez} target {tx} {ty} {tz} up 0 1 0 fov-y {} size {width} {height} pixel-error {}",

@@ -378,13 +378,13 @@ pub struct InfoArgs {
     /// The largest level any element gets (with --pixel-error).
     #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub max_level: u32,
-    /// The driver whose rounding of the levels is reported (with --pixel-error): pattern draws
-    /// powers of two, tess any integer (geomorphing, tess draws pattern's powers of two).
+    /// The driver whose rounding of the levels is reported (with --pixel-error): pattern and
+    /// static draw powers of two, tess any integer (geomorphing, tess draws powers of two too).
     #[arg(long, value_parser = choices::driver(), default_value = "pattern")]
     pub driver: Driver,
     /// Whether the reported drawing geomorphs (with --pixel-error; default: on, as render's):
     /// tess then draws powers of two under a --max-level that is one, integers otherwise.
-    #[arg(long, value_parser = choices::on_off())]
+    #[arg(long, value_parser = choices::geomorph())]
     pub geomorph: Option<bool>,
 }
 
@@ -422,22 +422,23 @@ pub struct ViewpointOpts {
 #[command(next_help_heading = "Adaptive drawing")]
 pub struct AdaptiveOpts {
     /// Draw adaptively: each element at the level that keeps the surface within this many
-    /// pixels of the drawn mesh, seen by the camera below (--driver tess, for view pattern too;
-    /// not with --level; render and view: 1 by default unless --level, or for view --lod).
+    /// pixels of the drawn mesh, seen by the camera below (every driver; not with --level;
+    /// render and view: 1 by default unless --level, or for view --lod, is given).
     #[arg(long, allow_negative_numbers = true)]
     pub pixel_error: Option<f32>,
-    /// The largest level any element gets (with --pixel-error; default: the largest the driver
-    /// draws on the device; the window: 64 or the tessellator's limit if lower).
+    /// The largest level any element gets (with --pixel-error; default: 64 for the pattern and
+    /// static drivers, whose levels are powers of two, and the tessellator's limit for tess;
+    /// both at most what the device draws).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub max_level: Option<u32>,
     /// Draw nothing of the elements outside the view or facing away (with --pixel-error;
     /// default: on, off for export).
-    #[arg(long, value_parser = choices::on_off())]
+    #[arg(long, value_parser = choices::cull())]
     pub cull: Option<bool>,
     /// Glide the vertices a finer level adds from their coarser neighbours' midpoint to the
     /// surface as the level grows, so nothing pops when levels change (with --pixel-error;
     /// default: on).
-    #[arg(long, value_parser = choices::on_off())]
+    #[arg(long, value_parser = choices::geomorph())]
     pub geomorph: Option<bool>,
     #[command(flatten)]
     pub viewpoint: ViewpointOpts,

@@ -54,18 +54,33 @@ pub fn driver() -> impl TypedValueParser<Value = Driver> {
 }
 
 /// `--cull`: `on` or `off`.
-pub fn on_off() -> impl TypedValueParser<Value = bool> {
-    parser(
-        &[true, false],
-        |b| if b { "on" } else { "off" },
-        |b| {
-            if b {
-                "cull"
-            } else {
-                "draw every element"
-            }
-        },
-    )
+pub fn cull() -> impl TypedValueParser<Value = bool> {
+    parser(&[true, false], on_off, |b| {
+        if b {
+            "draw nothing of the elements outside the view or facing away"
+        } else {
+            "draw every element"
+        }
+    })
+}
+
+/// `--geomorph`: `on` or `off`.
+pub fn geomorph() -> impl TypedValueParser<Value = bool> {
+    parser(&[true, false], on_off, |b| {
+        if b {
+            "glide the vertices a level adds into place"
+        } else {
+            "levels change in steps: the vertices a level adds appear in place"
+        }
+    })
+}
+
+fn on_off(b: bool) -> &'static str {
+    if b {
+        "on"
+    } else {
+        "off"
+    }
 }
 
 /// `--submit`.

@@ -151,9 +151,6 @@ fn check_level_options(a: &InfoArgs) -> Result<()> {
         return Ok(());
     };
     check_view(px, &a.camera.viewpoint, a.level.is_some())?;
-    if a.driver.kind().refines_on_cpu() {
-        anyhow::bail!("--pixel-error draws adaptively with the pattern and tess drivers, not with --driver {}: it refines every element on the CPU at one level", a.driver.name());
-    }
     super::adaptive::check_max_level_rounding(a.max_level, a.driver)
 }
 
@@ -187,7 +184,8 @@ fn print_levels(a: &InfoArgs, path: &str, mesh: &Mesh) -> Result<()> {
     let frustum = Frustum::from_view_proj(camera.view_proj(c.width as f32 / c.height as f32));
     let displace = meshrefine::surface::Displace::None;
     let tags = surface.facts().tags.then(|| stpn::derive(mesh).0);
-    // Rounded as the driver draws them: powers of two for pattern, and for tess while it glides.
+    // Rounded as the driver draws them: powers of two for pattern and static, and for tess
+    // while it glides.
     let dyadic = meshrefine::render::DrawConfig {
         geomorph: a.geomorph.unwrap_or(true),
         ..meshrefine::render::DrawConfig::new(a.driver, a.max_level)

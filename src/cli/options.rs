@@ -13,9 +13,10 @@
 //! default (`--alpha 0.75`) are told apart from the default itself.
 #![forbid(unsafe_code)]
 
-use super::args::Cli;
+use super::args::{AdaptiveOpts, Cli};
 use clap::parser::ValueSource;
 use clap::{CommandFactory as _, FromArgMatches as _};
+use meshrefine::render::Driver;
 use meshrefine::surface::{Displace, Surface};
 use std::collections::HashSet;
 
@@ -156,6 +157,40 @@ fn adaptive_only(given: &Given, adaptive: bool, ids: &[&str]) -> Vec<String> {
         .collect()
 }
 
+/// `--geomorph` given for drawing that cannot glide: the static driver never does (it refines
+/// on the CPU when the levels change), the tess driver only under a power-of-two largest level.
+fn geomorph_unread(
+    given: &Given,
+    adaptive: bool,
+    opts: &AdaptiveOpts,
+    drivers: &[Driver],
+) -> Vec<String> {
+    let (geomorph, max_level) = (opts.geomorph, opts.max_level);
+    if !adaptive || !given.has("geomorph") {
+        return Vec::new();
+    }
+    let glides = |d: &Driver| {
+        let level = max_level.unwrap_or(1).max(1);
+        !d.kind().refines_on_cpu() && (!d.kind().integer_levels() || level.is_power_of_two())
+    };
+    if drivers.iter().any(glides) {
+        return Vec::new();
+    }
+    let names: Vec<&str> = drivers.iter().map(|d| d.name()).collect();
+    if drivers.iter().all(|d| d.kind().refines_on_cpu()) {
+        return vec![format!(
+            "--geomorph applies only to the pattern and tess drivers, not to the {} driver: it is ignored",
+            or_list(&names)
+        )];
+    }
+    match (geomorph, max_level) {
+        (Some(true), Some(l)) => vec![format!(
+            "--geomorph on: the tess driver glides only under a --max-level that is a power of two; at --max-level {l} it draws integer levels without gliding"
+        )],
+        _ => Vec::new(),
+    }
+}
+
 /// The warnings (without "warning: ") for the options `cli`'s command ignores.
 pub fn warnings(cli: &Cli, given: &Given) -> Vec<String> {
     use super::args::Command;
@@ -181,6 +216,7 @@ pub fn warnings(cli: &Cli, given: &Given) -> Vec<String> {
             // Adaptive by default: only --level draws uniformly.
             let adaptive = a.adaptive.pixel_error.is_some() || !given.has("level");
             out.extend(adaptive_only(given, adaptive, ADAPTIVE));
+            out.extend(geomorph_unread(given, adaptive, &a.adaptive, &[d]));
             out
         }
         Command::Export(a) => {
@@ -191,6 +227,7 @@ pub fn warnings(cli: &Cli, given: &Given) -> Vec<String> {
             out.extend(adaptive_only(given, adaptive, ADAPTIVE));
             out.extend(adaptive_only(given, adaptive, CAMERA));
             out.extend(adaptive_only(given, adaptive, &["width", "height"]));
+            out.extend(geomorph_unread(given, adaptive, &a.adaptive, &[d]));
             out
         }
         Command::Bench(a) => {
@@ -201,11 +238,16 @@ pub fn warnings(cli: &Cli, given: &Given) -> Vec<String> {
                 displace_shown: shown("--displacements", &a.displacements, Displace::name),
                 driver: None,
             });
-            out.extend(adaptive_only(
-                given,
-                a.adaptive.pixel_error.is_some(),
-                ADAPTIVE,
-            ));
+            let adaptive = a.adaptive.pixel_error.is_some();
+            out.extend(adaptive_only(given, adaptive, ADAPTIVE));
+            out.extend(adaptive_only(given, adaptive, &["no_bound_levels"]));
+            // Adaptively every driver is measured unless some are named.
+            let drivers = if a.drivers.is_empty() {
+                Driver::ALL.to_vec()
+            } else {
+                a.drivers.clone()
+            };
+            out.extend(geomorph_unread(given, adaptive, &a.adaptive, &drivers));
             out
         }
         Command::Info(a) => {
@@ -223,6 +265,7 @@ pub fn warnings(cli: &Cli, given: &Given) -> Vec<String> {
                     "height",
                     "max_level",
                     "geomorph",
+                    "driver",
                 ],
             ));
             if let Some(s) = a.surface.filter(|s| !s.uses_loop_faces() && !adaptive) {
