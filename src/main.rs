@@ -38,8 +38,14 @@ pub fn note(line: std::fmt::Arguments) {
 mod cli;
 
 fn main() -> ExitCode {
+    // Warnings and errors read like the command's own ("warning: ..."); finer levels, asked for
+    // with RUST_LOG, keep their level and module.
     env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn"))
-        .format_timestamp(None)
+        .format(|buf, record| match record.level() {
+            log::Level::Warn => writeln!(buf, "warning: {}", record.args()),
+            log::Level::Error => writeln!(buf, "error: {}", record.args()),
+            level => writeln!(buf, "[{level} {}] {}", record.target(), record.args()),
+        })
         .init();
     let (cli, given) = match cli::parse() {
         Ok(parsed) => parsed,
