@@ -2132,6 +2132,34 @@ fn info_reports_adaptive_levels_for_a_camera() {
         &["info", spot, "--pixel-error", "1", "--max-level", "48"],
         &["--max-level 48", "power of two"],
     );
+    // Where --max-level keeps the bound from being met, info says on how many elements.
+    assert!(!pattern.contains("capped"), "{pattern}");
+    let pn = |px: &str, extra: &[&str]| {
+        ok(&[
+            &["info", spot, "--surface", "pn", "--pixel-error", px],
+            extra,
+        ]
+        .concat())
+    };
+    let tiny = pn("1e-6", &[]);
+    assert!(
+        tiny.contains("capped: 372 element(s) need a level above --max-level 64"),
+        "{tiny}"
+    );
+    let low = pn("1", &["--max-level", "16"]);
+    let capped: u64 = (low.lines())
+        .find_map(|l| l.trim().strip_prefix("capped: "))
+        .and_then(|l| l.split_whitespace().next()?.parse().ok())
+        .expect("a capped line");
+    // Exactly the elements the pattern driver draws above 16 at --max-level 64.
+    let above: u64 = (pattern.lines().find(|l| l.contains("levels (")).unwrap())
+        .split_whitespace()
+        .skip(3)
+        .map(|pair| pair.split_once(':').unwrap())
+        .filter(|(l, _)| l.parse::<u32>().unwrap() > 16)
+        .map(|(_, n)| n.parse::<u64>().unwrap())
+        .sum();
+    assert_eq!(capped, above, "{low}");
     // Loop's elements are M1's faces.
     let loop_ = ok(&["info", spot, "--pixel-error", "1", "--surface", "loop"]);
     assert!(loop_.contains("level:M1 faces"), "{loop_}");

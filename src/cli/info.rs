@@ -159,6 +159,9 @@ fn check_level_options(a: &InfoArgs) -> Result<()> {
 /// the triangles against the smallest uniform level that meets the same bound.
 fn print_levels(a: &InfoArgs, path: &str, mesh: &Mesh) -> Result<()> {
     use meshrefine::lod::frame::{frame_levels, lod_records, LevelStats, LodView};
+    use meshrefine::lod::levels::drawn_level;
+    // A largest level no bound reaches in practice: levels computed under it are uncapped.
+    const UNCAPPED: u32 = 1 << 20;
     use meshrefine::lod::{Frustum, Lod, Sphere, View};
     use meshrefine::surface::{build_records, stpn, BuildOptions, Mirror, Sources, Surface};
     let Some(px) = a.pixel_error else {
@@ -194,9 +197,18 @@ fn print_levels(a: &InfoArgs, path: &str, mesh: &Mesh) -> Result<()> {
     let levels = |lod: &Lod, records: &[meshrefine::surface::ElementRecord]| {
         let bounds = lod_records(lod, records);
         let lod_view = LodView::new(&view, Some(&frustum), false, dyadic, bounds.len() as u32);
-        LevelStats::new(&frame_levels(&lod_view, &bounds), dyadic, a.max_level)
+        let stats = LevelStats::new(&frame_levels(&lod_view, &bounds), dyadic, a.max_level);
+        // The same without the cap: the elements whose bound --max-level keeps from being met.
+        let free = LodView {
+            max_level: UNCAPPED,
+            ..lod_view
+        };
+        let capped = (frame_levels(&free, &bounds).iter())
+            .filter(|l| drawn_level(l.inner, dyadic, UNCAPPED) > a.max_level)
+            .count();
+        (stats, capped)
     };
-    let stats = if surface.uses_loop_faces() {
+    let (stats, capped) = if surface.uses_loop_faces() {
         let lattice = meshrefine::surface::loop_::Lattice::new(build.bft_level);
         let data = LoopData::new(mesh, build.boundary, lattice, |_| {})
             .map_err(|e| anyhow::anyhow!("{}: {e}", path))?;
@@ -244,6 +256,12 @@ fn print_levels(a: &InfoArgs, path: &str, mesh: &Mesh) -> Result<()> {
         report.histogram_line()
     );
     out!("  culled (outside the view): {}", report.culled);
+    if capped > 0 {
+        out!(
+            "  capped: {capped} element(s) need a level above --max-level {}: the bound is not met on them, nor by any uniform level up to it",
+            a.max_level
+        );
+    }
     out!(
         "  refined triangles: {} adaptive against {} at uniform level {} ({:.2}x)",
         report.adaptive_triangles,
