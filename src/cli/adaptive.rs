@@ -39,8 +39,34 @@ pub fn check_camera(v: &ViewpointOpts) -> Result<()> {
     }
     if let (Some(eye), Some(target)) = (v.eye, v.look_at) {
         let (eye, target) = (Vec3::from(eye), Vec3::from(target));
-        if Camera::looking(eye, target, fov.to_radians(), 1.0).is_none() {
+        // In f64: points far apart (1e20) are a direction, though their distance leaves f32.
+        let offset = eye.as_dvec3() - target.as_dvec3();
+        let distance = offset.length();
+        if !(distance > 0.0 && distance.is_finite() && (offset.y / distance).abs() <= 0.9999) {
             bail!("{}", no_direction(eye, target));
+        }
+    }
+    Ok(())
+}
+
+/// How far from the mesh `--eye` and `--look-at` may be, in bounding radii from the centre of
+/// its bounding box: the camera is placed in single precision in the drawn frame (the mesh
+/// centred, at unit radius), where farther points leave the range in which its distance and
+/// view and projection matrices are computed.
+pub const MAX_VIEWPOINT_RADII: f64 = 1e12;
+
+/// One sentence for an `--eye` or `--look-at` farther from the mesh than
+/// [`MAX_VIEWPOINT_RADII`] (`frame` maps the mesh to its drawn frame, where the bounding box's
+/// centre is the origin and its half diagonal 1).
+pub fn check_distance(v: &ViewpointOpts, frame: &Frame) -> Result<()> {
+    for (name, p) in [("--eye", v.eye), ("--look-at", v.look_at)] {
+        let Some(p) = p else { continue };
+        let radii = ((Vec3::from(p).as_dvec3() - frame.centre) * frame.scale).length();
+        if radii.is_nan() || radii > MAX_VIEWPOINT_RADII {
+            bail!(
+                "{name} {},{},{} is {radii:.1e} bounding radii from the mesh's centre: at most {MAX_VIEWPOINT_RADII:.0e} are supported",
+                p[0], p[1], p[2]
+            );
         }
     }
     Ok(())
@@ -146,7 +172,7 @@ pub fn closed(mesh: &Mesh) -> bool {
 }
 
 /// The map from the mesh's coordinates to the drawn ones (`p ↦ (p − centre) · scale`), as
-/// `Mesh::for_viewing` moves a mesh; the identity for a mesh drawn as it is.
+/// `Mesh::for_viewing` moves a mesh.
 #[derive(Clone, Copy, Debug)]
 pub struct Frame {
     pub centre: DVec3,
@@ -154,11 +180,6 @@ pub struct Frame {
 }
 
 impl Frame {
-    pub const IDENTITY: Frame = Frame {
-        centre: DVec3::ZERO,
-        scale: 1.0,
-    };
-
     pub fn drawn(&self, p: Vec3) -> Vec3 {
         ((p.as_dvec3() - self.centre) * self.scale).as_vec3()
     }
@@ -291,14 +312,19 @@ impl ViewpointOpts {
         if !v.given() {
             return Ok(framing);
         }
+        check_distance(v, frame)?;
         let eye = v.eye.map_or(framing.eye(), |e| frame.drawn(Vec3::from(e)));
         let target = v
             .look_at
             .map_or(framing.target, |t| frame.drawn(Vec3::from(t)));
         // The depth range holds the whole mesh around the target.
         let radius = r + (target - c).length();
-        Camera::looking(eye, target, v.fov.to_radians(), radius)
-            .ok_or_else(|| anyhow::anyhow!("{}", no_direction(frame.mesh(eye), frame.mesh(target))))
+        Camera::looking(eye, target, v.fov.to_radians(), radius).ok_or_else(|| {
+            // The values as given, or where the framing camera puts them.
+            let given = |p: Option<[f32; 3]>, drawn: Vec3| p.map_or(frame.mesh(drawn), Vec3::from);
+            let (e, t) = (given(v.eye, eye), given(v.look_at, target));
+            anyhow::anyhow!("{}", no_direction(e, t))
+        })
     }
 
     /// The camera asked for, for `mesh` as drawn (already in the drawn frame, mapped from the

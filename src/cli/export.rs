@@ -4,7 +4,9 @@
 
 use super::adaptive::{Adaptive, Frame};
 use super::args::ExportArgs;
-use super::input::{apply_surface_inputs, attach_surface_inputs, draw_config, load_mesh, Input};
+use super::input::{
+    apply_surface_inputs, attach_surface_inputs, draw_config, for_viewing, load_mesh, Input,
+};
 use super::progress::{count, count_of, plural, ProgressLine};
 use super::{require_extension, with_context};
 use anyhow::{bail, Context as _, Result};
@@ -69,9 +71,17 @@ fn export(
     let device = ctx.info.describe();
     let mut h = Headless::with_context(ctx, 64, 64)?;
     let name = input.mesh.name.clone();
-    let mut scene = h.scene(input.mesh.clone(), cfg.level)?;
+    // Drawn as render draws it, centred and at unit size (the camera and levels are render's,
+    // single-precision view maths keeps the mesh far from the origin), written back in the
+    // mesh's coordinates.
+    let (mesh, viewed) = for_viewing(&input.mesh, cfg);
+    let (centre, scale) = input.mesh.viewing_transform();
+    let frame = Frame { centre, scale };
+    let cfg = &viewed;
+    let mut scene = h.scene(mesh, cfg.level)?;
     apply_surface_inputs(&h, &mut scene, &input)?;
-    let adaptive_camera = adaptive_camera(&mut h, &mut scene, cfg, adaptive.as_ref(), size)?;
+    let adaptive_camera =
+        adaptive_camera(&mut h, &mut scene, cfg, adaptive.as_ref(), size, &frame)?;
     let camera = adaptive_camera.unwrap_or_else(|| {
         let (c, r) = scene.bounding_sphere();
         Camera::framing(c, r)
@@ -80,7 +90,10 @@ fn export(
     let progress = Arc::new(Mutex::new(progress));
     h.max_capture_bytes = max_capture_bytes;
     let passes = report_capture_passes(&mut h, &progress);
-    let refined = capture(&mut h, &mut scene, cfg, &camera, adaptive_camera.is_some())?;
+    let mut refined = capture(&mut h, &mut scene, cfg, &camera, adaptive_camera.is_some())?;
+    for p in &mut refined.positions {
+        *p = frame.mesh(*p);
+    }
     if scene.data.uvs.is_some() && cfg.surface.uses_loop_faces() {
         crate::note(format_args!(
             "warning: '{name}' has texture coordinates, but --surface loop writes none (vt): its elements are Loop's M1 faces, which carry none"
@@ -89,7 +102,7 @@ fn export(
     // The levels the GPU's level pass wrote for the capture, as the driver drew them.
     let levels = adaptive.as_ref().zip(adaptive_camera).map(|(a, cam)| {
         let (_, report) = scene.drawn_levels(cfg);
-        a.header(&cam, &Frame::IDENTITY, size, &report)
+        a.header(&cam, &frame, size, &report)
     });
     let header = header(&name, cfg, &device, &refined, levels);
     h.capture_progress = None;
@@ -117,13 +130,13 @@ fn adaptive_camera(
     cfg: &DrawConfig,
     adaptive: Option<&Adaptive>,
     size: (u32, u32),
+    frame: &Frame,
 ) -> Result<Option<Camera>> {
     let Some(a) = adaptive else {
         return Ok(None);
     };
-    // Drawn as it is: the mesh's own coordinates.
     let capture = cfg.driver.kind().export_capture().unwrap_or(Capture::None);
-    let (camera, _) = a.set_up(h, scene, cfg, capture, size, &Frame::IDENTITY)?;
+    let (camera, _) = a.set_up(h, scene, cfg, capture, size, frame)?;
     Ok(Some(camera))
 }
 

@@ -2,14 +2,13 @@
 //! GPU; with `--surface loop`, what Loop subdivision builds for it.
 #![forbid(unsafe_code)]
 
-use super::adaptive::{check_view, no_direction};
+use super::adaptive::{check_view, Frame};
 use super::args::InfoArgs;
 use super::choices::boundary_name;
 use super::input::degenerate_warning;
 use super::loop_check::loop_refusal;
 use crate::note;
 use anyhow::{bail, Result};
-use glam::Vec3;
 use meshrefine::mesh::{LoadReport, Mesh};
 use meshrefine::render::{Camera, Driver};
 use meshrefine::surface::loop_::LoopData;
@@ -168,21 +167,26 @@ fn print_levels(a: &InfoArgs, path: &str, mesh: &Mesh) -> Result<()> {
         return Ok(());
     };
     let c = &a.camera;
+    // In the drawn frame (centred, unit radius), as render chooses its levels: single-precision
+    // view maths far from the origin loses the mesh.
+    let (centre, scale) = mesh.viewing_transform();
+    let frame = Frame { centre, scale };
+    let radius = mesh.bounding_radius();
+    let drawn = mesh.for_viewing();
+    let mesh = &drawn;
     let bounds = Sphere::around(&mesh.positions);
     let framing = Camera::framing(bounds.centre, bounds.radius);
     let v = &c.viewpoint;
-    let eye = v.eye.map_or(framing.eye(), Vec3::from);
-    let target = v.look_at.map_or(bounds.centre, Vec3::from);
-    let fov = v.fov.to_radians();
-    let camera = Camera::looking(eye, target, fov, bounds.radius)
-        .ok_or_else(|| anyhow::anyhow!("{}", no_direction(eye, target)))?;
+    let camera = v.camera(framing, &frame)?;
+    let (eye, fov) = (camera.eye(), camera.fov_y);
     let surface = a.surface.unwrap_or(Surface::Pn);
     let build = BuildOptions {
         boundary: a.boundary,
         bft_level: a.bft_level,
         ..BuildOptions::default()
     };
-    let params = meshrefine::surface::SurfaceParams::for_radius(mesh.bounding_radius());
+    let params =
+        meshrefine::surface::SurfaceParams::for_radius(radius).in_drawn_frame(centre, scale);
     let view = View::new(eye, fov, c.height, px, a.max_level);
     let frustum = Frustum::from_view_proj(camera.view_proj(c.width as f32 / c.height as f32));
     let displace = meshrefine::surface::Displace::None;
@@ -239,8 +243,9 @@ fn print_levels(a: &InfoArgs, path: &str, mesh: &Mesh) -> Result<()> {
         histogram: stats.histogram,
         culled: stats.culled,
     };
-    let [ex, ey, ez] = eye.to_array();
-    let [tx, ty, tz] = target.to_array();
+    // As given, or where the framing camera is, in the mesh's coordinates.
+    let [ex, ey, ez] = v.eye.unwrap_or(frame.mesh(eye).to_array());
+    let [tx, ty, tz] = v.look_at.unwrap_or(frame.mesh(camera.target).to_array());
     out!(
         "adaptive {} at {px} px: {}x{}, fov-y {}°, eye {ex} {ey} {ez}, look-at {tx} {ty} {tz}, max level {}, driver {}",
         surface.name(),

@@ -21,6 +21,9 @@ pub struct Camera {
 /// for the demo's animation (which moves vertices by up to 3% of the radius).
 const DEPTH_MARGIN: f32 = 1.1;
 
+/// The fraction of the distance the depth range keeps in front of the target at least ([`Camera::depth_range`]).
+const DISTANT_MARGIN: f32 = 1e-3;
+
 /// The direction the framing cameras look from: yaw and pitch (radians).
 const FRAMING_YAW: f32 = 2.2;
 const FRAMING_PITCH: f32 = 0.35;
@@ -159,11 +162,17 @@ impl Camera {
     }
 
     /// Near and far planes: the bounding sphere (with a margin) from the eye; when the eye is
-    /// inside it, the near plane is a thousandth of the radius.
+    /// inside it, the near plane is a thousandth of the radius. From an eye more than about a
+    /// thousand radii away the near plane keeps at least a thousandth of the distance: in
+    /// `f32` the distance minus the radius rounds to the distance itself past about 1e7
+    /// radii, and a near plane there would cut through the sphere.
     pub fn depth_range(&self) -> (f32, f32) {
         let r = self.radius * DEPTH_MARGIN;
-        let near = (self.distance - r).max(self.radius * 1e-3);
-        let far = (self.distance + r).max(near * 2.0);
+        let d = self.distance;
+        let near = (d - r)
+            .min(d * (1.0 - DISTANT_MARGIN))
+            .max(self.radius * 1e-3);
+        let far = (d + r).max(near * 2.0);
         (near, far)
     }
 

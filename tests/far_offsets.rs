@@ -1,0 +1,203 @@
+//! Meshes and cameras far from the origin, from the command line: `info` and `export` choose the
+//! levels `render` draws (all in the drawn frame, centred and at unit radius), the same as for
+//! the mesh and camera moved to the origin; an eye far from the mesh culls nothing it sees; an
+//! eye or target too far to place is refused with its own sentence, naming the values given.
+
+mod common;
+
+use common::model_path;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn meshrefine(args: &[&str]) -> Output {
+    let _guard = common::gpu_lock();
+    Command::new(env!("CARGO_BIN_EXE_meshrefine"))
+        .env("MESHREFINE_VALIDATE", "1")
+        .args(args)
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .expect("run meshrefine")
+}
+
+fn ok(args: &[&str]) -> String {
+    let out = meshrefine(args);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{args:?}: {stderr}");
+    assert!(!stderr.contains("validation"), "{args:?}: {stderr}");
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+/// `args` fail with status 1 and one error line holding every one of `needles`.
+fn expect_error(args: &[&str], needles: &[&str]) -> String {
+    let out = meshrefine(args);
+    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert_eq!(out.status.code(), Some(1), "{args:?}: {stderr}");
+    assert!(!stderr.contains("panicked"), "{args:?}: {stderr}");
+    let errors: Vec<&str> = stderr.lines().filter(|l| l.starts_with("error:")).collect();
+    assert_eq!(errors.len(), 1, "{args:?}: {stderr}");
+    for n in needles {
+        assert!(errors[0].contains(n), "{args:?}: no '{n}' in {stderr}");
+    }
+    stderr
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let d = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("far_offsets");
+    std::fs::create_dir_all(&d).unwrap();
+    d.join(name)
+}
+
+fn p(path: &Path) -> &str {
+    path.to_str().unwrap()
+}
+
+/// The tetrahedron with every vertex moved by `offset` in x, y and z.
+fn shifted_tetrahedron(offset: f64) -> PathBuf {
+    let text = std::fs::read_to_string(model_path("tetrahedron.obj")).unwrap();
+    let mut out = String::new();
+    for line in text.lines() {
+        match line.strip_prefix("v ") {
+            Some(v) => {
+                let c: Vec<f64> = v.split_whitespace().map(|x| x.parse().unwrap()).collect();
+                let [x, y, z] = [c[0] + offset, c[1] + offset, c[2] + offset];
+                out.push_str(&format!("v {x} {y} {z}\n"));
+            }
+            None => out.push_str(&format!("{line}\n")),
+        }
+    }
+    let path = tmp(&format!("tetrahedron-{offset:e}.obj"));
+    std::fs::write(&path, out).unwrap();
+    path
+}
+
+/// What each command chose: (render's histogram, culled), (info's), export's `# levels` with
+/// culling and without, and the triangles export wrote with culling.
+struct Chosen {
+    render: (String, u64),
+    info: (String, u64),
+    export_culled: String,
+    export_all: String,
+    exported_triangles: u64,
+}
+
+fn chosen(mesh: &Path, offset: f64) -> Chosen {
+    let eye = format!("{},{},{}", offset + 3.0, offset + 2.0, offset + 4.0);
+    let target = format!("{offset},{offset},{offset}");
+    let camera = [
+        "--pixel-error",
+        "1",
+        "--eye",
+        &eye,
+        "--look-at",
+        &target,
+        "--width",
+        "160",
+        "--height",
+        "100",
+    ];
+    let with = |head: &[&str]| ok(&[head, &camera[..]].concat());
+    let png = tmp(&format!("far-{offset:e}.png"));
+    let out = with(&["render", p(mesh), "-o", p(&png)]);
+    // "adaptive at 1 px, max level 64: levels (level:elements) 16:4; culled 0"
+    let line = out.lines().find(|l| l.contains("levels (")).unwrap();
+    let (hist, culled) = line
+        .split_once("(level:elements) ")
+        .unwrap()
+        .1
+        .split_once("; culled ")
+        .unwrap();
+    let render = (hist.to_string(), culled.trim().parse().unwrap());
+    let out = with(&["info", p(mesh)]);
+    let after = |start: &str| -> String {
+        let l = out.lines().find(|l| l.trim_start().starts_with(start));
+        let l = l.unwrap_or_else(|| panic!("no '{start}' in {out}"));
+        l.split_once("): ").unwrap().1.trim().to_string()
+    };
+    let info = (after("levels ("), after("culled").parse().unwrap());
+    let obj = tmp(&format!("far-{offset:e}.obj"));
+    let export = |cull: &str| -> (String, u64) {
+        with(&["export", p(mesh), "-o", p(&obj), "--cull", cull]);
+        let text = std::fs::read_to_string(&obj).unwrap();
+        let levels = text.lines().find_map(|l| l.strip_prefix("# levels "));
+        let counts = text.lines().find(|l| l.ends_with(" triangles")).unwrap();
+        let triangles = counts.rsplit(", ").next().unwrap();
+        (
+            levels.unwrap_or_else(|| panic!("{text:.600}")).to_string(),
+            triangles.split(' ').next().unwrap().parse().unwrap(),
+        )
+    };
+    let (export_culled, exported_triangles) = export("on");
+    let (export_all, _) = export("off");
+    Chosen {
+        render,
+        info,
+        export_culled,
+        export_all,
+        exported_triangles,
+    }
+}
+
+#[test]
+fn info_and_export_choose_renders_levels_far_from_the_origin() {
+    let at_origin = chosen(&shifted_tetrahedron(0.0), 0.0);
+    assert_eq!(at_origin.render.1, 0, "{:?}", at_origin.render);
+    for offset in [1e5, 1e7] {
+        let far = chosen(&shifted_tetrahedron(offset), offset);
+        let what = format!("offset {offset:e}");
+        assert_eq!(far.render, at_origin.render, "{what}: render");
+        assert_eq!(far.info, far.render, "{what}: info against render");
+        assert_eq!(far.export_culled, far.render.0, "{what}: export --cull on");
+        assert_eq!(
+            far.export_all, at_origin.export_all,
+            "{what}: export --cull off"
+        );
+        assert_eq!(far.export_all, far.render.0, "{what}: export --cull off");
+        assert_eq!(
+            far.exported_triangles, at_origin.exported_triangles,
+            "{what}: triangles exported"
+        );
+        assert!(far.exported_triangles > 0, "{what}");
+    }
+}
+
+/// An eye 1e8 bounding radii from Spot sees all of it (a speck): nothing is culled.
+#[test]
+fn a_distant_eye_culls_nothing_in_view() {
+    for eye in ["1e7,0,0", "1e8,0,0", "1e11,0,0"] {
+        let out = ok(&["info", "--pixel-error", "1", "--eye", eye]);
+        assert!(
+            out.contains("culled (outside the view): 0\n"),
+            "--eye {eye}: {out}"
+        );
+        assert!(
+            out.contains("levels (level:coarse triangles): 1:372\n"),
+            "--eye {eye}: {out}"
+        );
+    }
+}
+
+/// An eye or target too far from the mesh to place: one sentence with the values as given and
+/// the limit, from every command (never "no view direction" with re-mapped values).
+#[test]
+fn an_eye_or_target_too_far_away_is_refused_as_given() {
+    let png = tmp("too-far.png");
+    let obj = tmp("too-far.obj");
+    for (option, value) in [("--eye", "1e20,0,0"), ("--look-at", "1e20,0,0")] {
+        for head in [
+            &["render", "-o", p(&png), "--width", "160", "--height", "100"][..],
+            &["info", "--pixel-error", "1"],
+            &["export", "-o", p(&obj), "--pixel-error", "1"],
+        ] {
+            let args = [head, &[option, value]].concat();
+            let stderr = expect_error(
+                &args,
+                &[
+                    &format!("{option} 100000000000000000000,0,0 is 7.3e19 bounding radii"),
+                    "at most 1e12 are supported",
+                ],
+            );
+            assert!(!stderr.contains("view direction"), "{args:?}: {stderr}");
+        }
+    }
+}
