@@ -2915,3 +2915,38 @@ fn an_adaptive_export_with_every_element_culled_is_an_error() {
     );
     assert!(!obj.exists());
 }
+
+/// An adaptive render warns of slow frames from the levels it chose, not from every element at
+/// the largest level.
+#[test]
+fn adaptive_renders_warn_of_slow_frames_from_the_levels_chosen() {
+    let spot = model_path("spot_tri.obj");
+    let png = tmp("adaptive-slow.png");
+    #[rustfmt::skip]
+    let out = meshrefine(&[
+        "render", p(&spot), "-o", p(&png), "--pixel-error", "4", "--width", "160", "--height", "100",
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    // 3268 elements at level 1 are drawn, not 5856 x 64².
+    assert!(!stderr.contains("refined triangles per frame"), "{stderr}");
+}
+
+/// A blank image whose elements culling removed says so, and that `--cull off` draws them.
+#[test]
+fn a_blank_image_of_culled_elements_blames_culling() {
+    let grid = model_path("grid_open_8x8.obj");
+    let png = tmp("culled-grid.png");
+    #[rustfmt::skip]
+    let args = ["render", p(&grid), "-o", p(&png), "--pixel-error", "1", "--width", "160", "--height", "100"];
+    expect_error(
+        &args,
+        &[
+            "is blank",
+            "culling removed all 128 elements as facing away from the eye; --cull off draws them",
+        ],
+    );
+    let mut off = args.to_vec();
+    off.extend(["--cull", "off"]);
+    assert!(ok(&off).contains("culled 0"));
+}
