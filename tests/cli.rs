@@ -2950,3 +2950,42 @@ fn a_blank_image_of_culled_elements_blames_culling() {
     off.extend(["--cull", "off"]);
     assert!(ok(&off).contains("culled 0"));
 }
+
+/// A benchmark row whose every element was culled draws no triangle: no time per triangle, and
+/// its note says why.
+#[test]
+fn bench_rows_with_every_element_culled_have_no_time_per_triangle() {
+    let grid = model_path("grid_open_8x8.obj");
+    let prefix = tmp("bench-culled");
+    let prefix = p(&prefix);
+    #[rustfmt::skip]
+    let out = ok(&[
+        "bench", p(&grid), "--frames", "1", "--width", "160", "--height", "90", "--levels", "2",
+        "--pixel-error", "1", "--surfaces", "pn", "--drivers", "tess,static", "--out", prefix,
+    ]);
+    let csv = std::fs::read_to_string(format!("{prefix}.csv")).unwrap();
+    let mut lines = csv.lines();
+    let keys = common::csv_fields(lines.next().unwrap());
+    let get = |r: &Vec<String>, key: &str| r[keys.iter().position(|k| k == key).unwrap()].clone();
+    let rows: Vec<Vec<String>> = lines.map(common::csv_fields).collect();
+    let culled: Vec<&Vec<String>> = rows
+        .iter()
+        .filter(|r| get(r, "adaptive") == "true")
+        .collect();
+    assert_eq!(culled.len(), 2, "{csv}");
+    for r in culled {
+        assert_eq!(get(r, "refined_triangles"), "0", "{csv}");
+        assert_eq!(get(r, "gpu_ns_per_refined_triangle"), "", "{csv}");
+        assert!(get(r, "note").starts_with("every element culled"), "{csv}");
+    }
+    let json = std::fs::read_to_string(format!("{prefix}.json")).unwrap();
+    assert!(
+        json.contains("\"gpu_ns_per_refined_triangle\":null"),
+        "{json}"
+    );
+    // The summary's cell is a dash.
+    let (header, table) = summary_table(&out);
+    let col = header.iter().position(|h| h == "ns/tri").unwrap();
+    let dashes = table.iter().filter(|r| r[col] == "–").count();
+    assert_eq!(dashes, 2, "{out}");
+}
