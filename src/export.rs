@@ -400,6 +400,89 @@ pub fn check_size(elements: u64, level: u32) -> Result<u64, String> {
     ))
 }
 
+/// Most bytes an adaptive capture into fixed slots may hold: what a whole export at
+/// [`MAX_EXPORT_TRIANGLES`] takes at most.
+pub const MAX_SLOT_CAPTURE_BYTES: u64 = MAX_EXPORT_TRIANGLES * MEMORY_PER_TRIANGLE;
+
+/// Refuses, before anything is evaluated, an adaptive export of `elements` elements by a driver
+/// that captures into fixed slots (the pattern driver: every element's vertices at its finest
+/// pattern, of `max_level`, whatever level it is drawn at; [`weld_adaptive`]) whose slots pass
+/// [`MAX_SLOT_CAPTURE_BYTES`]: one clause naming them, their memory and the largest
+/// `--max-level` (a power of two) that fits; `given`: `--max-level` was given (else the
+/// driver's default is named as such).
+pub fn check_slot_capture(elements: u64, max_level: u32, given: bool) -> Result<(), String> {
+    let bytes = |l: u32| {
+        let per =
+            crate::pattern::vertex_count(l) as u64 * std::mem::size_of::<CapturedVertex>() as u64;
+        elements.saturating_mul(per)
+    };
+    if bytes(max_level) <= MAX_SLOT_CAPTURE_BYTES {
+        return Ok(());
+    }
+    let gb = |bytes: u64| bytes as f64 / 1e9;
+    let lower = (0..max_level.max(1).ilog2())
+        .rev()
+        .map(|k| 1u32 << k)
+        .find(|&m| bytes(m) <= MAX_SLOT_CAPTURE_BYTES);
+    let remedy = match lower {
+        Some(m) => format!("use --max-level {m} or a smaller power of two, or --driver tess"),
+        None => "use --driver tess".to_string(),
+    };
+    Err(format!(
+        "--max-level {max_level}{}: the pattern driver's adaptive capture holds every element's vertices at its finest pattern whatever levels are chosen, {elements} elements x {}, about {:.1} GB of memory; at most {:.1} GB: {remedy}",
+        if given { "" } else { " (the default)" },
+        crate::pattern::vertex_count(max_level),
+        gb(bytes(max_level)),
+        gb(MAX_SLOT_CAPTURE_BYTES),
+    ))
+}
+
+/// Refuses an adaptive export (`--pixel-error`) whose chosen levels make more than
+/// [`MAX_EXPORT_TRIANGLES`], after the levels are chosen and before anything is captured:
+/// `histogram` holds the visible elements per drawn level (`LevelReport::histogram`), each
+/// counted at `N²` triangles (an upper bound: transition triangles along coarser edges make a
+/// few less). One clause naming the count, the estimated memory and file, and the remedy: a
+/// larger `--pixel-error`, or the largest `--max-level` below `max_level` that fits (a power of
+/// two where `power_of_two`, the pattern driver's). Returns the refined triangle count.
+pub fn check_adaptive_size(
+    histogram: &std::collections::BTreeMap<u32, u64>,
+    pixel_error: f32,
+    max_level: u32,
+    power_of_two: bool,
+) -> Result<u64, String> {
+    // The triangles the same levels make capped at `m` (a smaller --max-level caps them so).
+    let capped = |m: u32| -> u64 {
+        (histogram.iter())
+            .map(|(&l, &n)| n.saturating_mul(crate::pattern::triangle_count(l.min(m)) as u64))
+            .fold(0, u64::saturating_add)
+    };
+    let triangles = capped(u32::MAX);
+    if triangles <= MAX_EXPORT_TRIANGLES {
+        return Ok(triangles);
+    }
+    let gb = |bytes: u64| bytes as f64 / 1e9;
+    let elements: u64 = histogram.values().sum();
+    let lower = (1..max_level)
+        .rev()
+        .filter(|m| !power_of_two || m.is_power_of_two())
+        .find(|&m| capped(m) <= MAX_EXPORT_TRIANGLES);
+    let remedy = match lower {
+        Some(m) if power_of_two => {
+            format!("use a larger --pixel-error, or --max-level {m} or a smaller power of two")
+        }
+        Some(m) => format!("use a larger --pixel-error, or --max-level {m} or lower"),
+        None => format!(
+            "its {elements} elements in view are too many to export even at level 1 (a camera that sees fewer of them exports fewer)"
+        ),
+    };
+    Err(format!(
+        "--pixel-error {pixel_error} chooses levels that would export {triangles} refined triangles ({elements} elements in view, up to level {}), about {:.1} GB of memory and a {:.1} GB file; at most {MAX_EXPORT_TRIANGLES} (2^24) are exported: {remedy}",
+        histogram.keys().max().copied().unwrap_or(0),
+        gb(triangles.saturating_mul(MEMORY_PER_TRIANGLE)),
+        gb(triangles.saturating_mul(FILE_PER_TRIANGLE)),
+    ))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -502,5 +585,43 @@ mod tests {
             e.ends_with("too many elements to export at any level"),
             "{e}"
         );
+    }
+
+    /// Adaptive exports count the levels drawn, and advise the adaptive options: the largest
+    /// `--max-level` whose capped levels fit (a power of two for the pattern driver).
+    #[test]
+    fn adaptive_exports_are_refused_on_the_levels_drawn() {
+        use std::collections::BTreeMap;
+        // 4096 elements at level 64 are exactly 2^24 triangles; more at level 1 are too many.
+        let fits = BTreeMap::from([(64, 4096)]);
+        assert_eq!(check_adaptive_size(&fits, 1.0, 64, true), Ok(1 << 24));
+        let over = BTreeMap::from([(1, 1000), (64, 4096)]);
+        let e = check_adaptive_size(&over, 0.5, 64, true).unwrap_err();
+        assert!(e.starts_with("--pixel-error 0.5 chooses levels that would export 16778216 refined triangles (5096 elements in view, up to level 64)"), "{e}");
+        assert!(
+            e.ends_with("use a larger --pixel-error, or --max-level 32 or a smaller power of two"),
+            "{e}"
+        );
+        assert!(!e.contains("--level"), "{e}");
+        // Integer levels: the largest that fits, 63 (4096 x 63² + 1000 < 2^24).
+        let e = check_adaptive_size(&over, 0.5, 64, false).unwrap_err();
+        assert!(e.ends_with("--max-level 63 or lower"), "{e}");
+        let crowd = BTreeMap::from([(1, (1 << 24) + 1), (2, 1)]);
+        let e = check_adaptive_size(&crowd, 0.5, 64, true).unwrap_err();
+        assert!(e.contains("too many to export even at level 1"), "{e}");
+        // The pattern driver's slots: 5856 elements x vertex_count(64) fit, x vertex_count(128)
+        // do not.
+        assert!(check_slot_capture(5856, 64, false).is_ok());
+        let e = check_slot_capture(5856, 1024, true).unwrap_err();
+        assert!(
+            e.starts_with("--max-level 1024: the pattern driver's adaptive capture"),
+            "{e}"
+        );
+        assert!(
+            e.ends_with("use --max-level 64 or a smaller power of two, or --driver tess"),
+            "{e}"
+        );
+        let e = check_slot_capture(5856, 128, false).unwrap_err();
+        assert!(e.starts_with("--max-level 128 (the default):"), "{e}");
     }
 }

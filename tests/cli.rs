@@ -2930,3 +2930,161 @@ fn exports_report_progress_and_passes_keep_the_file() {
         assert!(stderr.contains(says), "{stderr}");
     }
 }
+
+/// An adaptive export is sized by the levels chosen for its camera (what it really exports),
+/// not by every element at the largest level, and a refusal advises the adaptive options, never
+/// `--level` (exclusive with `--pixel-error`); the pattern driver's capture, which holds every
+/// element's slots at the largest level, is refused by that level, advising a power of two.
+#[test]
+fn adaptive_exports_are_sized_by_the_levels_chosen() {
+    let spot = model_path("spot_tri.obj");
+    let obj = tmp("adaptive-size.obj");
+    std::fs::remove_file(&obj).ok();
+    let export = |extra: &[&str]| -> Vec<String> {
+        let mut args: Vec<String> = ["export", p(&spot), "-o", p(&obj)].map(String::from).into();
+        args.extend(extra.iter().map(|s| s.to_string()));
+        args
+    };
+    let run = |extra: &[&str], needles: &[&str]| {
+        let args = export(extra);
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        expect_error(&args, needles);
+        let stderr = String::from_utf8_lossy(&meshrefine(&args).stderr).to_string();
+        assert!(!stderr.contains("--level "), "{stderr}");
+        assert!(!obj.exists());
+    };
+    // 5856 elements at levels 1 and 2: about eleven thousand triangles, written.
+    let args = export(&["--pixel-error", "4", "--width", "160", "--height", "100"]);
+    let out = ok(&args.iter().map(String::as_str).collect::<Vec<_>>());
+    let triangles: u64 = out
+        .split(" triangles")
+        .next()
+        .unwrap()
+        .rsplit(' ')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!((5856..4 * 5856).contains(&triangles), "{out}");
+    std::fs::remove_file(&obj).unwrap();
+    // Levels up to 64 on most elements: more than 2^24 triangles.
+    run(
+        &["--pixel-error", "0.002"],
+        &[
+            "cannot export '",
+            "--pixel-error 0.002 chooses levels that would export",
+            "at most 16777216 (2^24)",
+            "use a larger --pixel-error, or --max-level 32 or a smaller power of two",
+        ],
+    );
+    // The pattern driver's capture at level 1024: 5856 elements x 525825 slots.
+    run(
+        &["--pixel-error", "4", "--max-level", "1024"],
+        &[
+            "--max-level 1024: the pattern driver's adaptive capture",
+            "5856 elements x 525825",
+            "use --max-level 64 or a smaller power of two, or --driver tess",
+        ],
+    );
+    // Loop's 23424 elements at the default largest level.
+    run(
+        &["--pixel-error", "4", "--surface", "loop"],
+        &[
+            "--max-level 64 (the default)",
+            "use --max-level 32 or a smaller power of two",
+        ],
+    );
+}
+
+/// An adaptive export whose every element is culled writes nothing and says why.
+#[test]
+fn an_adaptive_export_with_every_element_culled_is_an_error() {
+    let obj = tmp("all-culled.obj");
+    std::fs::remove_file(&obj).ok();
+    #[rustfmt::skip]
+    expect_error(
+        &[
+            "export", "-o", p(&obj), "--pixel-error", "1", "--cull", "on", "--eye", "100,0,0",
+            "--look-at", "200,0,0", "--width", "160", "--height", "100",
+        ],
+        &[
+            "cannot export 'the default mesh (spot)': every one of its 372 elements is culled",
+            "nothing to export; --cull off exports them",
+        ],
+    );
+    assert!(!obj.exists());
+}
+
+/// An adaptive render warns of slow frames from the levels it chose, not from every element at
+/// the largest level.
+#[test]
+fn adaptive_renders_warn_of_slow_frames_from_the_levels_chosen() {
+    let spot = model_path("spot_tri.obj");
+    let png = tmp("adaptive-slow.png");
+    #[rustfmt::skip]
+    let out = meshrefine(&[
+        "render", p(&spot), "-o", p(&png), "--pixel-error", "4", "--width", "160", "--height", "100",
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    // 3268 elements at level 1 are drawn, not 5856 x 64².
+    assert!(!stderr.contains("refined triangles per frame"), "{stderr}");
+}
+
+/// A blank image whose elements culling removed says so, and that `--cull off` draws them.
+#[test]
+fn a_blank_image_of_culled_elements_blames_culling() {
+    let grid = model_path("grid_open_8x8.obj");
+    let png = tmp("culled-grid.png");
+    #[rustfmt::skip]
+    let args = ["render", p(&grid), "-o", p(&png), "--pixel-error", "1", "--width", "160", "--height", "100"];
+    expect_error(
+        &args,
+        &[
+            "is blank",
+            "culling removed all 128 elements as facing away from the eye; --cull off draws them",
+        ],
+    );
+    let mut off = args.to_vec();
+    off.extend(["--cull", "off"]);
+    assert!(ok(&off).contains("culled 0"));
+}
+
+/// A benchmark row whose every element was culled draws no triangle: no time per triangle, and
+/// its note says why.
+#[test]
+fn bench_rows_with_every_element_culled_have_no_time_per_triangle() {
+    let grid = model_path("grid_open_8x8.obj");
+    let prefix = tmp("bench-culled");
+    let prefix = p(&prefix);
+    #[rustfmt::skip]
+    let out = ok(&[
+        "bench", p(&grid), "--frames", "1", "--width", "160", "--height", "90", "--levels", "2",
+        "--pixel-error", "1", "--surfaces", "pn", "--drivers", "tess,static", "--out", prefix,
+    ]);
+    let csv = std::fs::read_to_string(format!("{prefix}.csv")).unwrap();
+    let mut lines = csv.lines();
+    let keys = common::csv_fields(lines.next().unwrap());
+    let get = |r: &Vec<String>, key: &str| r[keys.iter().position(|k| k == key).unwrap()].clone();
+    let rows: Vec<Vec<String>> = lines.map(common::csv_fields).collect();
+    let culled: Vec<&Vec<String>> = rows
+        .iter()
+        .filter(|r| get(r, "adaptive") == "true")
+        .collect();
+    assert_eq!(culled.len(), 2, "{csv}");
+    for r in culled {
+        assert_eq!(get(r, "refined_triangles"), "0", "{csv}");
+        assert_eq!(get(r, "gpu_ns_per_refined_triangle"), "", "{csv}");
+        assert!(get(r, "note").starts_with("every element culled"), "{csv}");
+    }
+    let json = std::fs::read_to_string(format!("{prefix}.json")).unwrap();
+    assert!(
+        json.contains("\"gpu_ns_per_refined_triangle\":null"),
+        "{json}"
+    );
+    // The summary's cell is a dash.
+    let (header, table) = summary_table(&out);
+    let col = header.iter().position(|h| h == "ns/tri").unwrap();
+    let dashes = table.iter().filter(|r| r[col] == "–").count();
+    assert_eq!(dashes, 2, "{out}");
+}

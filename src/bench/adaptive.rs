@@ -343,6 +343,12 @@ fn into_rows(list: Vec<Timed>, cameras: usize) -> Vec<Row> {
         .expect("a variant has its adaptive row");
     if let Some(gpu) = first.gpu_ms {
         let mut notes = Vec::new();
+        if first.refined_triangles == 0 {
+            notes.push(
+                "every element culled (outside the view or facing away from the eye; --cull off draws them)"
+                    .to_string(),
+            );
+        }
         if cameras > 1 {
             notes.push(format!("means over {cameras} cameras"));
         }

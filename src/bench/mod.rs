@@ -172,10 +172,13 @@ pub struct Row {
 }
 
 impl Row {
-    /// Median GPU time per refined triangle, in nanoseconds: the per-triangle cost.
+    /// Median GPU time per refined triangle, in nanoseconds: the per-triangle cost (none when
+    /// no triangle was drawn: every element culled).
     pub fn ns_per_triangle(&self) -> Option<f64> {
-        self.gpu_ms
-            .map(|s| s.median * 1e6 / self.refined_triangles.max(1) as f64)
+        let triangles = self.refined_triangles;
+        (self.gpu_ms)
+            .filter(|_| triangles > 0)
+            .map(|s| s.median * 1e6 / triangles as f64)
     }
 }
 

@@ -13,7 +13,9 @@ use anyhow::{bail, Context as _, Result};
 use glam::Vec2;
 use meshrefine::export::{element_texcoord, RefinedMesh, TexcoordOf, TriangleWelder};
 use meshrefine::gpu::{Context, ContextDesc};
-use meshrefine::render::{Camera, Capture, CapturedVertex, DrawConfig, Headless, Scene, XfbVertex};
+use meshrefine::render::{
+    Camera, Capture, CapturedVertex, ChosenLevels, DrawConfig, Headless, Scene, XfbVertex,
+};
 use std::io::Write as _;
 use std::path::Path;
 use std::sync::atomic::{AtomicU32, Ordering};
@@ -30,12 +32,11 @@ pub fn run(a: &ExportArgs, desc: &ContextDesc) -> Result<()> {
     let elements = input.mesh.triangles.len() as u64 * if for_loop { 4 } else { 1 };
     let adaptive = a.adaptive.enabled(false);
     let shown = input.shown.clone();
-    let check_size = move |level| {
-        meshrefine::export::check_size(elements, level)
-            .map_err(|e| anyhow::anyhow!("cannot export '{shown}': {e}"))
-    };
     if adaptive.is_none() {
-        progress.set_size(check_size(a.level)?);
+        // Adaptive: checked on the levels chosen, once they are (`check_adaptive`).
+        let size = meshrefine::export::check_size(elements, a.level)
+            .map_err(|e| anyhow::anyhow!("cannot export '{shown}': {e}"))?;
+        progress.set_size(size);
     }
     let mut cfg = draw_config(&a.technique(), &input.mesh)?;
     attach_surface_inputs(&mut input, &a.surface, false)?;
@@ -44,7 +45,15 @@ pub fn run(a: &ExportArgs, desc: &ContextDesc) -> Result<()> {
         if let Some(a) = &adaptive {
             cfg.level = a.max_level(&ctx, cfg.driver)?;
             cfg.geomorph = a.geomorph;
-            progress.set_size(check_size(cfg.level)?);
+            let kind = cfg.driver.kind();
+            if kind.export_capture() == Some(Capture::Vertices) && !kind.capture_appends() {
+                meshrefine::export::check_slot_capture(
+                    elements,
+                    cfg.level,
+                    a.opts.max_level.is_some(),
+                )
+                .map_err(|e| anyhow::anyhow!("cannot export '{shown}': {e}"))?;
+            }
         }
         let shown = input.shown.clone();
         let knobs = (progress, max_capture_bytes);
@@ -66,7 +75,7 @@ fn export(
     output: &Path,
     adaptive: Option<Adaptive>,
     size: (u32, u32),
-    (progress, max_capture_bytes): (ProgressLine, Option<u64>),
+    (mut progress, max_capture_bytes): (ProgressLine, Option<u64>),
 ) -> Result<String> {
     let device = ctx.info.describe();
     let mut h = Headless::with_context(ctx, 64, 64)?;
@@ -82,6 +91,10 @@ fn export(
     apply_surface_inputs(&h, &mut scene, &input)?;
     let adaptive_camera =
         adaptive_camera(&mut h, &mut scene, cfg, adaptive.as_ref(), size, &frame)?;
+    if let Some((a, (_, chosen))) = adaptive.as_ref().zip(adaptive_camera.as_ref()) {
+        progress.set_size(check_adaptive(a, cfg, chosen)?);
+    }
+    let adaptive_camera = adaptive_camera.map(|(camera, _)| camera);
     let camera = adaptive_camera.unwrap_or_else(|| {
         let (c, r) = scene.bounding_sphere();
         Camera::framing(c, r)
@@ -123,7 +136,8 @@ fn export(
     Ok(header[2].clone())
 }
 
-/// The adaptive camera of the export, its levels set up for the capture (`None`: uniform).
+/// The adaptive camera of the export, its levels set up for the capture, and what they draw
+/// (`None`: uniform).
 fn adaptive_camera(
     h: &mut Headless,
     scene: &mut Scene,
@@ -131,13 +145,33 @@ fn adaptive_camera(
     adaptive: Option<&Adaptive>,
     size: (u32, u32),
     frame: &Frame,
-) -> Result<Option<Camera>> {
+) -> Result<Option<(Camera, ChosenLevels)>> {
     let Some(a) = adaptive else {
         return Ok(None);
     };
     let capture = cfg.driver.kind().export_capture().unwrap_or(Capture::None);
-    let (camera, _) = a.set_up(h, scene, cfg, capture, size, frame)?;
-    Ok(Some(camera))
+    let set_up = a.set_up(h, scene, cfg, capture, size, frame)?;
+    Ok(Some(set_up))
+}
+
+/// The refined triangles the levels `chosen` for an adaptive export make (the level pass's CPU
+/// mirror: what is captured), refused before anything is captured when they are none (every
+/// element culled) or more than an export writes.
+fn check_adaptive(a: &Adaptive, cfg: &DrawConfig, chosen: &ChosenLevels) -> Result<u64> {
+    if chosen.histogram.is_empty() {
+        bail!(
+            "every one of its {} elements is culled (outside the view or facing away from the eye), so there is nothing to export; --cull off exports them",
+            chosen.culled
+        );
+    }
+    let power_of_two = !cfg.driver.kind().integer_levels();
+    meshrefine::export::check_adaptive_size(
+        &chosen.histogram,
+        a.pixel_error,
+        cfg.level,
+        power_of_two,
+    )
+    .map_err(anyhow::Error::msg)
 }
 
 /// Reports each captured pass on `progress`; the count of passes done so far.

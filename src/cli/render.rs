@@ -102,6 +102,8 @@ pub fn render_png(
     let triangles = input.mesh.triangles.len();
     let samples = sample_count(&ctx, msaa)?;
     let mut line = None;
+    // The elements culled when the level pass culled every one (nothing was drawn).
+    let mut culled_all = None;
     let image = (|| -> Result<_> {
         let mut cfg = *cfg;
         let uniform_level = cfg.level;
@@ -120,6 +122,11 @@ pub fn render_png(
         // Prepared (for adaptive frames when drawing adaptively: `static` refines nothing yet)
         // so that the framing sees the surface drawn: Loop's limit surface from its M1 faces.
         h.adaptive = adaptive.is_some();
+        if adaptive.is_some() {
+            // Adaptive frames are not all at the largest level: they warn from the levels
+            // chosen (below).
+            scene.skip_slow_warning();
+        }
         h.prepared_elements(&mut scene, &viewed, Capture::None)?;
         let (centre, scale) = input.mesh.viewing_transform();
         let frame = Frame { centre, scale };
@@ -129,12 +136,18 @@ pub fn render_png(
             opts.viewpoint.camera(framing, &frame)
         };
         let mut camera = uniform_camera(&scene, &viewed)?;
+        // The triangles of a frame drawn as chosen below, for the slow-frame warning, and what
+        // draws faster.
+        let mut slow = None;
         if let Some(a) = &adaptive {
             let size = (width, height);
             let (cam, report) =
                 a.set_up(&mut h, &mut scene, &viewed, Capture::None, size, &frame)?;
             camera = cam;
             line = Some(levels_line(a, cfg.level, &report));
+            let advice = "a larger --pixel-error or a smaller --max-level draws faster";
+            slow = Some((report.adaptive_triangles, advice));
+            culled_all = report.histogram.is_empty().then_some(report.culled);
         }
         if let Some(why) = (adaptive.filter(|a| a.by_default))
             .map(|_| cannot_adapt(&mut h, &mut scene, &viewed))
@@ -145,7 +158,14 @@ pub fn render_png(
             h.adaptive = false;
             line = None;
             viewed.level = uniform_level;
+            culled_all = None;
+            let elements = scene.elements(viewed.surface).element_count as u64;
+            let refined = elements * viewed.refined_per_element() as u64;
+            slow = Some((refined, "a lower --level draws faster"));
             camera = uniform_camera(&scene, &viewed)?;
+        }
+        if let Some((refined, advice)) = slow {
+            scene.warn_if_slow(refined, advice);
         }
         Ok(h.render(&mut scene, &viewed, &camera)?)
     })()
@@ -156,12 +176,24 @@ pub fn render_png(
     if covered_pixels_on(&image, opts.background) == 0 {
         // The default camera frames the surface as drawn, displacement included: only a camera
         // given on the command line can look past it.
-        let why = if opts.viewpoint.given() {
+        let camera = if opts.viewpoint.given() {
             "the camera given by --eye, --look-at and --fov sees none of them, or each is much smaller than a pixel there"
-                .to_string()
         } else {
             "each is much smaller than a pixel when the whole mesh is framed, or seen edge-on"
-                .to_string()
+        };
+        let why = match culled_all {
+            // The framing camera sees every element's bounding sphere: they all face away.
+            Some(n) if !opts.viewpoint.given() => format!(
+                "culling removed all {n} elements as facing away from the eye; --cull off draws them"
+            ),
+            Some(n) => format!(
+                "culling removed all {n} elements: the camera given by --eye, --look-at and --fov sees none of them, or they face away from the eye (--cull off draws those)"
+            ),
+            // Some drawn, none covering a pixel: culling may have removed those that would.
+            None if adaptive.is_some_and(|a| a.cull) && line.is_some() => format!(
+                "{camera}, or culling removed those that would show (--cull off draws them)"
+            ),
+            None => camera.to_string(),
         };
         bail!(
             "'{}' is blank: no pixel of the {width}x{height} image shows any of the {triangles} triangle(s) of '{}' ({why})",

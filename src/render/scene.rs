@@ -208,15 +208,8 @@ impl Scene {
         renderer.prepare(cfg, capture, wire)?;
         let refined =
             self.elements(cfg.surface).element_count as u64 * cfg.refined_per_element() as u64;
-        let slow = software_frame_seconds(refined)
-            .filter(|_| ctx.info.device_type == vk::PhysicalDeviceType::CPU);
-        if let (Some((lo, hi)), false) = (slow, self.warned_slow) {
-            let (a, b) = SOFTWARE_NS_PER_TRIANGLE;
-            log::warn!(
-                "{refined} refined triangles per frame on a software device ({}): about {lo:.0} to {hi:.0} s a frame ({a:.0} to {b:.0} ns a triangle there); a lower --level draws faster",
-                ctx.info.name
-            );
-            self.warned_slow = true;
+        if !self.warned_slow {
+            self.warn_if_slow(refined, "a lower --level draws faster");
         }
         kind.prepare(self, ctx, pool, cfg)?;
         Ok(())
@@ -292,9 +285,26 @@ impl Scene {
     }
 
     /// Skip the slow-frame warning of the next [`Scene::prepare`]s: drawn adaptively, the
-    /// elements are not all at the configuration's (largest) level it would count them at.
+    /// elements are not all at the configuration's (largest) level it would count them at
+    /// (an adaptive frame warns from the levels chosen, [`Scene::warn_if_slow`]).
     pub fn skip_slow_warning(&mut self) {
         self.warned_slow = true;
+    }
+
+    /// Warn when frames of `refined` triangles take a second or more on a software device
+    /// ([`software_frame_seconds`]), ending with `advice` (what draws faster); whether or not
+    /// [`Scene::prepare`]'s own warning was skipped, which it skips from then on.
+    pub fn warn_if_slow(&mut self, refined: u64, advice: &str) {
+        let slow = software_frame_seconds(refined)
+            .filter(|_| self.ctx.info.device_type == vk::PhysicalDeviceType::CPU);
+        if let Some((lo, hi)) = slow {
+            let (a, b) = SOFTWARE_NS_PER_TRIANGLE;
+            log::warn!(
+                "{refined} refined triangles per frame on a software device ({}): about {lo:.0} to {hi:.0} s a frame ({a:.0} to {b:.0} ns a triangle there); {advice}",
+                self.ctx.info.name
+            );
+            self.warned_slow = true;
+        }
     }
 
     /// The records of [`Scene::elements`].
