@@ -38,13 +38,16 @@ pub fn note(line: std::fmt::Arguments) {
 mod cli;
 
 fn main() -> ExitCode {
-    // Warnings and errors read like the command's own ("warning: ..."); finer levels, asked for
-    // with RUST_LOG, keep their level and module.
+    // meshrefine's warnings and errors read like the command's own ("warning: ..."); other
+    // crates' messages and finer levels (asked for with RUST_LOG) keep their level and module.
     env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn"))
-        .format(|buf, record| match record.level() {
-            log::Level::Warn => writeln!(buf, "warning: {}", record.args()),
-            log::Level::Error => writeln!(buf, "error: {}", record.args()),
-            level => writeln!(buf, "[{level} {}] {}", record.target(), record.args()),
+        .format(|buf, record| {
+            let own = record.target().starts_with("meshrefine");
+            match record.level() {
+                log::Level::Warn if own => writeln!(buf, "warning: {}", record.args()),
+                log::Level::Error if own => writeln!(buf, "error: {}", record.args()),
+                level => writeln!(buf, "[{level} {}] {}", record.target(), record.args()),
+            }
         })
         .init();
     let (cli, given) = match cli::parse() {

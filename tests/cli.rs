@@ -3034,33 +3034,39 @@ fn adaptive_renders_warn_of_slow_frames_from_the_levels_chosen() {
 /// A blank image whose elements culling removed says so, and that `--cull off` draws them.
 #[test]
 fn a_blank_image_of_culled_elements_blames_culling() {
-    let grid = model_path("grid_open_8x8.obj");
-    let png = tmp("culled-grid.png");
+    let png = tmp("culled-away.png");
+    // Spot's centre is near the origin: this camera looks away from it.
     #[rustfmt::skip]
-    let args = ["render", p(&grid), "-o", p(&png), "--pixel-error", "1", "--width", "160", "--height", "100"];
+    let args = ["render", "-o", p(&png), "--pixel-error", "1", "--width", "160", "--height", "100",
+        "--eye", "3,0,0", "--look-at", "6,0,0"];
     expect_error(
         &args,
         &[
             "is blank",
-            "culling removed all 128 elements as facing away from the eye; --cull off draws them",
+            "culling removed all 372 elements: the camera given by --eye, --look-at and --fov sees none of them",
         ],
     );
-    let mut off = args.to_vec();
-    off.extend(["--cull", "off"]);
-    assert!(ok(&off).contains("culled 0"));
+    // An open surface shows its back side: its elements facing away are not culled, and the
+    // open grid, seen from below by the framing camera, is drawn.
+    let grid = model_path("grid_open_8x8.obj");
+    #[rustfmt::skip]
+    let below = ok(&["render", p(&grid), "-o", p(&png), "--pixel-error", "1", "--cull", "on",
+        "--width", "160", "--height", "100"]);
+    assert!(below.contains("culled 0"), "{below}");
 }
 
 /// A benchmark row whose every element was culled draws no triangle: no time per triangle, and
 /// its note says why.
 #[test]
 fn bench_rows_with_every_element_culled_have_no_time_per_triangle() {
-    let grid = model_path("grid_open_8x8.obj");
     let prefix = tmp("bench-culled");
     let prefix = p(&prefix);
+    // A camera looking away from Spot.
     #[rustfmt::skip]
     let out = ok(&[
-        "bench", p(&grid), "--frames", "1", "--width", "160", "--height", "90", "--levels", "2",
+        "bench", "--frames", "1", "--width", "160", "--height", "90", "--levels", "2",
         "--pixel-error", "1", "--surfaces", "pn", "--drivers", "tess,static", "--out", prefix,
+        "--eye", "3,0,0", "--look-at", "6,0,0",
     ]);
     let csv = std::fs::read_to_string(format!("{prefix}.csv")).unwrap();
     let mut lines = csv.lines();

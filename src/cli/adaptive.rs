@@ -147,28 +147,21 @@ impl AdaptiveOpts {
     }
 
     /// `render` and the headless `view`: adaptive at `--pixel-error`, else at
-    /// [`DEFAULT_PIXEL_ERROR`] unless `uniform` (`--level` given: one level everywhere). By
-    /// default it culls only a `closed` mesh: uniform drawing shows both sides of a surface,
-    /// and culling the elements facing away would open an open mesh's back side.
-    pub fn or_default(&self, uniform: bool, closed: bool) -> Option<Adaptive<'_>> {
+    /// [`DEFAULT_PIXEL_ERROR`] unless `uniform` (`--level` given: one level everywhere),
+    /// culling unless `--cull off` (elements facing away only on a closed mesh:
+    /// [`Scene::closed`]).
+    pub fn or_default(&self, uniform: bool) -> Option<Adaptive<'_>> {
         match self.enabled(true) {
             None if !uniform => Some(Adaptive {
                 opts: self,
                 pixel_error: DEFAULT_PIXEL_ERROR,
-                cull: self.cull.unwrap_or(closed),
+                cull: self.cull.unwrap_or(true),
                 geomorph: self.geomorph.unwrap_or(true),
                 by_default: true,
             }),
             a => a,
         }
     }
-}
-
-/// Whether `mesh` is closed and consistently oriented: no element facing away from the eye
-/// can then be seen from outside (default adaptive drawing culls it).
-pub fn closed(mesh: &Mesh) -> bool {
-    let s = mesh.stats();
-    s.boundary_edges == 0 && s.nonmanifold_edges == 0 && s.inconsistently_oriented_edges == 0
 }
 
 /// The map from the mesh's coordinates to the drawn ones (`p ↦ (p − centre) · scale`), as

@@ -409,7 +409,7 @@ pub struct ViewpointOpts {
     /// Camera position X,Y,Z (default: the framing camera's).
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
     pub eye: Option<[f32; 3]>,
-    /// The point looked at X,Y,Z (default: the centre of the mesh's bounding box).
+    /// The point looked at X,Y,Z (default: the framing camera's target).
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
     pub look_at: Option<[f32; 3]>,
     /// Vertical field of view in degrees.

@@ -1,7 +1,7 @@
 //! `meshrefine render`: one frame of a mesh, drawn headlessly, to a PNG.
 #![forbid(unsafe_code)]
 
-use super::adaptive::{closed, Adaptive, Frame};
+use super::adaptive::{Adaptive, Frame};
 use super::args::{RenderArgs, ViewpointOpts};
 use super::input::{
     apply_surface_inputs, attach_surface_inputs, draw_config, for_viewing, load_mesh, Input,
@@ -32,7 +32,7 @@ pub fn run(a: &RenderArgs, desc: &ContextDesc, level_given: bool) -> Result<()> 
         view: a.view,
         background: a.background,
         msaa: a.msaa,
-        adaptive: (a.adaptive).or_default(level_given, closed(&input.mesh)),
+        adaptive: (a.adaptive).or_default(level_given),
         viewpoint: &a.adaptive.viewpoint,
     };
     let report = with_context(desc, |ctx| render_png(ctx, input, &cfg, &image, &a.output))?;
@@ -182,9 +182,8 @@ pub fn render_png(
             "each is much smaller than a pixel when the whole mesh is framed, or seen edge-on"
         };
         let why = match culled_all {
-            // The framing camera sees every element's bounding sphere: they all face away.
             Some(n) if !opts.viewpoint.given() => format!(
-                "culling removed all {n} elements as facing away from the eye; --cull off draws them"
+                "culling removed all {n} elements, outside the view or facing away from the eye; --cull off draws them"
             ),
             Some(n) => format!(
                 "culling removed all {n} elements: the camera given by --eye, --look-at and --fov sees none of them, or they face away from the eye (--cull off draws those)"

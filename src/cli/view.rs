@@ -2,7 +2,7 @@
 //! headlessly to a PNG (which says why).
 #![forbid(unsafe_code)]
 
-use super::adaptive::{closed, Frame};
+use super::adaptive::Frame;
 use super::args::ViewArgs;
 use super::input::{attach_surface_inputs, draw_config, for_viewing, load_mesh};
 use super::loop_check::loop_refusal;
@@ -101,7 +101,7 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc, given: &Given) -> Result<()> {
         background: a.background,
         msaa: a.msaa,
         // Adaptive by default as the window is; `--level` or `--lod` draw uniformly.
-        adaptive: (a.adaptive).or_default(given.has("level") || a.lod, closed(&input.mesh)),
+        adaptive: (a.adaptive).or_default(given.has("level") || a.lod),
         viewpoint: &a.adaptive.viewpoint,
     };
     let line = with_context(desc, |ctx| {

@@ -34,6 +34,10 @@ pub struct Scene {
     pub adaptive_frames: bool,
     /// Those levels, for the static driver.
     pub(super) static_levels: Option<super::static_adaptive::StaticLevels>,
+    /// The mesh is closed and consistently oriented (its topology, which animation keeps):
+    /// only then are elements facing away from the eye culled ([`Scene::set_levels`]), as
+    /// an open surface shows its back side.
+    pub closed: bool,
     /// The `loop` surface's M1 faces, built by the first `prepare` that draws it.
     pub loop_: Option<LoopScene>,
     /// The coarse mesh's edges for the cage overlay, made when first drawn ([`Scene::cage`]).
@@ -98,6 +102,8 @@ impl Scene {
         max_chunk: Option<u32>,
     ) -> Result<Self, RenderError> {
         let data = MeshData::new(mesh, RecordKind::Corners, Seams::default());
+        let stats = data.mesh.stats();
+        let closed = stats.is_closed() && stats.inconsistently_oriented_edges == 0;
         let heightmap = Heightmap::generated();
         let (tags, _) = crate::surface::stpn::derive(&data.mesh);
         let gpu = GpuMesh::new(
@@ -122,6 +128,7 @@ impl Scene {
             patterns,
             static_vbo: None,
             adaptive_frames: false,
+            closed,
             static_levels: None,
             loop_: None,
             cage: None,

@@ -137,10 +137,11 @@ impl Scene {
         let aspect = view.width as f32 / view.height.max(1) as f32;
         let frustum = Frustum::from_view_proj(view.camera.view_proj(aspect));
         let count = self.elements(cfg.surface).element_count;
+        // Back faces of a closed surface only: an open one shows its back side.
         let lod_view = LodView::new(
             &metric,
             view.cull.then_some(&frustum),
-            view.cull,
+            view.cull && self.closed,
             dyadic,
             count,
         );
