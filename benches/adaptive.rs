@@ -46,7 +46,7 @@ fn main() {
         // The default largest level (64, lavapipe's tessellator limit), so that the close-up's
         // finest elements get their level and the uniform rows the level meeting the bound;
         // two timed frames, as lavapipe draws a 1080p frame of uniform tess at level 64 on Spot
-        // (2.3 M triangles) in over ten seconds.
+        // (2.3 M triangles) in seconds (docs/benchmarks.md).
         (vec![0.5, 1.0, 2.0, 4.0], 2, (1920, 1080), 64, 3)
     };
     // Spot's head is at -z (its snout at z = -0.70), its ears up to y = 0.98.
