@@ -82,6 +82,17 @@ fn render_and_headless_view_are_adaptive_unless_level_is_given() {
         let (stdout, _) = ok(&args);
         assert!(!stdout.contains("adaptive at"), "{args:?}: {stdout}");
     }
+    // Uniform, it draws from the camera given too.
+    let framed = std::fs::read(&view_png).unwrap();
+    let close = ["--eye", "0.35,0.65,-1.3", "--look-at", "0,0.5,-0.5"];
+    let args = [
+        &["view", "--headless-output", &view_png, "--lod"],
+        &close[..],
+    ]
+    .concat();
+    let (_, stderr) = ok(&args);
+    assert!(!stderr.contains("warning"), "{stderr}");
+    assert_ne!(std::fs::read(&view_png).unwrap(), framed, "--eye ignored");
 }
 
 /// The static driver draws adaptively too, by default and with `--pixel-error`, refining on the
