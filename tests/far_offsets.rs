@@ -201,3 +201,22 @@ fn an_eye_or_target_too_far_away_is_refused_as_given() {
         }
     }
 }
+
+/// A look-at far beyond the mesh, in the same direction from the eye as one at its centre,
+/// draws the same image, uniform and adaptive (the depth range holds the mesh, not a sphere
+/// grown around the far target, whose near plane cut the whole mesh away).
+#[test]
+fn a_far_look_at_draws_what_a_near_one_does() {
+    for level in [&["--level", "2"][..], &[]] {
+        let mut images = Vec::new();
+        for (i, target) in ["0,0,0", "0,0,10000"].iter().enumerate() {
+            let png = tmp(&format!("look-at-{i}.png"));
+            #[rustfmt::skip]
+            let args = [&["render", "-o", p(&png), "--width", "160", "--height", "100",
+                "--eye", "0,0,-3", "--look-at", target][..], level].concat();
+            ok(&args);
+            images.push(std::fs::read(&png).unwrap());
+        }
+        assert_eq!(images[0], images[1], "{level:?}");
+    }
+}

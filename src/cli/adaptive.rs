@@ -310,6 +310,17 @@ impl ViewpointOpts {
         let target = v
             .look_at
             .map_or(framing.target, |t| frame.drawn(Vec3::from(t)));
+        // A look-at far beyond the mesh would grow the sphere the depth range holds, and with
+        // it the near plane, past the mesh: the target moves back along the view ray to the
+        // point nearest the mesh's centre. Eye and direction, so the image, stay.
+        let ray = target - eye;
+        let dir = ray.normalize_or_zero();
+        let along = (c - eye).dot(dir);
+        let target = if along > r * 1e-3 && along < ray.length() {
+            eye + dir * along
+        } else {
+            target
+        };
         // The depth range holds the whole mesh around the target.
         let radius = r + (target - c).length();
         Camera::looking(eye, target, v.fov.to_radians(), radius).ok_or_else(|| {
