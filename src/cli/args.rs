@@ -440,7 +440,7 @@ pub struct AdaptiveOpts {
     /// default: on).
     #[arg(long, value_parser = choices::geomorph())]
     pub geomorph: Option<bool>,
-    #[command(flatten)]
+    #[command(flatten, next_help_heading = "Camera")]
     pub viewpoint: ViewpointOpts,
 }
 
