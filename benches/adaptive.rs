@@ -14,7 +14,7 @@
 use glam::Vec3;
 use meshrefine::bench::{BenchAdaptive, BenchOptions, Harness};
 use meshrefine::mesh::Mesh;
-use meshrefine::render::{Camera, Driver, Submit};
+use meshrefine::render::{Camera, Driver, Submit, View};
 use meshrefine::surface::{Displace, Surface};
 
 /// A mesh of assets/models, centred and at unit size as `meshrefine render` draws it, and the
@@ -99,6 +99,7 @@ fn main() {
                     bound_levels: true,
                     geomorph: true,
                 }),
+                view: View::Shaded,
             };
             jobs.push((vec![mesh.clone()], opts));
         }

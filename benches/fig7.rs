@@ -10,6 +10,7 @@
 
 use meshrefine::bench::{BenchOptions, Harness};
 use meshrefine::mesh::generate::grid_mesh;
+use meshrefine::render::View;
 use meshrefine::surface::{Displace, Surface};
 
 fn main() {
@@ -42,6 +43,7 @@ fn main() {
         min_total_ms: if h.quick { 0.0 } else { 2000.0 },
         camera: None,
         adaptive: None,
+        view: View::Shaded,
     };
     h.run("fig7", &meshes, &opts);
 }

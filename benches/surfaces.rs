@@ -6,6 +6,7 @@
 //! --displacements heightmap` measures it on a mesh that has them.)
 
 use meshrefine::bench::{BenchOptions, Harness};
+use meshrefine::render::View;
 use meshrefine::surface::{Displace, Surface};
 
 fn main() {
@@ -37,6 +38,7 @@ fn main() {
         min_total_ms: 0.0,
         camera: None,
         adaptive: None,
+        view: View::Shaded,
     };
     h.run("surfaces", &[mesh], &opts);
 }

@@ -12,7 +12,7 @@
 
 use meshrefine::bench::{BenchOptions, Harness};
 use meshrefine::mesh::generate::{sphere_mesh, torus_mesh, wavy_grid_mesh};
-use meshrefine::render::{Driver, Submit};
+use meshrefine::render::{Driver, Submit, View};
 use meshrefine::surface::{Displace, Surface};
 
 fn main() {
@@ -59,6 +59,7 @@ fn main() {
         min_total_ms: if h.quick { 0.0 } else { 1500.0 },
         camera: None,
         adaptive: None,
+        view: View::Shaded,
     };
     h.run("table1", &meshes, &opts);
     let fig8 = BenchOptions {

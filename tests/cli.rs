@@ -378,6 +378,48 @@ fn bench_reports_every_variant_with_ratios() {
     );
 }
 
+/// `bench --view plain` times frames drawn in one unlit colour and says so above the table and
+/// in the JSON; the default is the lit surface, and the JSON says that too.
+#[test]
+fn bench_view_plain_is_recorded() {
+    let tet = model_path("tetrahedron.obj");
+    std::fs::create_dir_all(tmp("bench-view")).unwrap();
+    for (view, note) in [("plain", true), ("shaded", false)] {
+        let prefix = tmp(&format!("bench-view/{view}"));
+        let mut args = vec![
+            "--validate",
+            "bench",
+            p(&tet),
+            "--surfaces",
+            "pn",
+            "--drivers",
+            "static,tess",
+            "--levels",
+            "2",
+            "--frames",
+            "1",
+            "--width",
+            "64",
+            "--height",
+            "64",
+            "--out",
+            p(&prefix),
+        ];
+        if view == "plain" {
+            args.extend(["--view", "plain"]);
+        }
+        ok(&args);
+        let md = std::fs::read_to_string(format!("{}.md", prefix.display())).unwrap();
+        assert_eq!(
+            md.contains("the `plain` view: one colour, unlit"),
+            note,
+            "{md}"
+        );
+        let json = std::fs::read_to_string(format!("{}.json", prefix.display())).unwrap();
+        assert!(json.contains(&format!("\"view\":\"{view}\"")), "{json}");
+    }
+}
+
 /// The header and rows of `bench`'s summary table: the line above the rule of dashes, split
 /// at runs of two or more spaces, and the lines below it up to the first blank one.
 fn summary_table(s: &str) -> (Vec<String>, Vec<Vec<String>>) {

@@ -434,6 +434,43 @@ fn levels_view_colours_by_level() {
     });
 }
 
+/// The `plain` view writes one colour wherever the surface is and nothing else: every pixel is
+/// the background or that one colour (one sample per pixel), the same for every driver and
+/// surface, and it covers exactly the pixels the shaded image covers (same triangles, same depth
+/// test; only the fragment stage's work is gone).
+#[test]
+fn plain_view_is_one_colour_over_the_shaded_coverage() {
+    with_gpu(320, 240, |h| {
+        let background = meshrefine::render::clear_color_srgb8();
+        let mut scene = h.scene(default_mesh(), 8).unwrap();
+        let (c, r) = scene.bounding_sphere();
+        let camera = Camera::framing(c, r);
+        let mut colour = None;
+        for driver in [Driver::Static, Driver::Pattern(Submit::Push), Driver::Tess] {
+            for surface in [Surface::Flat, Surface::Pn] {
+                let cfg = DrawConfig::new(driver, 8).with_surface(surface, Displace::None);
+                let name = format!("{} {}", driver.name(), surface.name());
+                h.view = View::Shaded;
+                let shaded = h.render(&mut scene, &cfg, &camera).unwrap();
+                h.view = View::Plain;
+                let plain = h.render(&mut scene, &cfg, &camera).unwrap();
+                h.view = View::Shaded;
+                let mut covered = 0;
+                for (p, q) in plain.rgba.chunks_exact(4).zip(shaded.rgba.chunks_exact(4)) {
+                    let (on_p, on_q) = (p != background, q != background);
+                    assert_eq!(on_p, on_q, "{name}: the plain view's coverage differs");
+                    if on_p {
+                        covered += 1;
+                        let c = *colour.get_or_insert([p[0], p[1], p[2], p[3]]);
+                        assert_eq!(p, c, "{name}: a second colour in the plain view");
+                    }
+                }
+                assert!(covered > 5000, "{name}: only {covered} pixels covered");
+            }
+        }
+    });
+}
+
 /// The cage overlay draws the coarse mesh's edges in its light cyan over the surface, for every
 /// driver (Loop's limit surface too, whose cage is its control mesh), alone or with the refined
 /// wireframe.

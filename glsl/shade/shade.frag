@@ -4,7 +4,8 @@
 // barycentric coordinates (the field, or with displacement the displaced normal), so highlights
 // do not depend on the refinement level; otherwise the interpolated vertex normal. The WIRE variant (a second
 // pass in polygon mode LINE) draws the refined triangles' edges, darker than the surface; frame.view = VIEW_NORMALS shows normals,
-// VIEW_LEVELS the lit surface coloured by the level its element is drawn at.
+// VIEW_LEVELS the lit surface coloured by the level its element is drawn at, VIEW_PLAIN the
+// surface colour alone (nothing evaluated, nothing lit).
 #define FRAGMENT_STAGE
 #include "records.glsl"
 #include "surface.glsl"
@@ -25,6 +26,10 @@ vec3 level_color(float level) {
 }
 
 void main() {
+    if (frame.view == VIEW_PLAIN) {
+        out_color = vec4(frame.base_color.rgb * (WIRE != 0 ? 0.6 : 1.0), 1.0);
+        return;
+    }
     vec3 n;
     if (FRAGMENT_FIELD == 0) {
         n = normalize(v_normal);

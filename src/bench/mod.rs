@@ -24,7 +24,7 @@ pub use report::{csv_fields, Align, Cell, Column, Report, COLUMNS, SUMMARY_WIDTH
 
 use crate::mesh::Mesh;
 use crate::pattern::PatternSet;
-use crate::render::{Camera, DrawConfig, Driver, Headless, RenderError, Scene};
+use crate::render::{Camera, DrawConfig, Driver, Headless, RenderError, Scene, View};
 use crate::surface::{BuildOptions, Displace, Surface, SurfaceParams};
 use std::sync::Arc;
 
@@ -58,6 +58,8 @@ pub struct BenchOptions {
     /// [`BenchAdaptive::bound_levels`]) at the smallest uniform level meeting the same bound
     /// and the smallest power of two at or above it; `None`: every element at each of `levels`.
     pub adaptive: Option<BenchAdaptive>,
+    /// What the frames show: [`View::Plain`] times the refined triangles without shading them.
+    pub view: View,
 }
 
 /// The views adaptive rows are drawn for, and what they are compared with.
@@ -199,6 +201,7 @@ pub fn run(
 ) -> Result<Report, RenderError> {
     let device = ctx.info.describe();
     let mut h = Headless::with_context(ctx.clone(), opts.width, opts.height)?;
+    h.view = opts.view;
     let mut rows = Vec::new();
     for mesh in meshes {
         if let Some(a) = &opts.adaptive {
@@ -227,6 +230,7 @@ pub fn run(
         frames: opts.frames.max(1),
         width: opts.width,
         height: opts.height,
+        view: opts.view,
         rows,
     })
 }

@@ -17,6 +17,7 @@
 
 pub use super::columns::{Column, COLUMNS};
 use super::{Row, Stat};
+use crate::render::View;
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -27,6 +28,8 @@ pub struct Report {
     pub frames: u32,
     pub width: u32,
     pub height: u32,
+    /// What the frames showed (the `plain` view: unlit, no fragment work).
+    pub view: View,
     pub rows: Vec<Row>,
 }
 
@@ -143,13 +146,29 @@ use Align::{Left, Right};
 pub const SUMMARY_WIDTH: usize = 120;
 
 impl Report {
+    /// What the frames showed, for the paragraph above the table: nothing for the lit surface.
+    fn view_note(&self) -> &'static str {
+        match self.view {
+            View::Shaded => "",
+            View::Normals => " (the normals view)",
+            View::Levels => " (the levels view)",
+            View::Plain => {
+                " (the `plain` view: one colour, unlit, so the fragment stage does no work and the times are the refined triangles' alone)"
+            }
+        }
+    }
+
     /// The full table in markdown, below a paragraph saying what was measured and how.
     pub fn markdown(&self) -> String {
         let mut s = String::new();
         let _ = writeln!(
             s,
-            "Device: {}. {}x{} offscreen, median (min–max) of {} timed frames (more where a note says so) after one warm-up frame, taken round the variants (of every surface together; with several surfaces each `static` alone first) in turn; ratios are against `static` at the same mesh and level, and throughput (refined triangles per GPU ms) against `flat` with the same variant, measured in the same run. Elements: the coarse triangles, or M1's faces for `loop`.\n",
-            self.device, self.width, self.height, self.frames
+            "Device: {}. {}x{} offscreen{}, median (min–max) of {} timed frames (more where a note says so) after one warm-up frame, taken round the variants (of every surface together; with several surfaces each `static` alone first) in turn; ratios are against `static` at the same mesh and level, and throughput (refined triangles per GPU ms) against `flat` with the same variant, measured in the same run. Elements: the coarse triangles, or M1's faces for `loop`.\n",
+            self.device,
+            self.width,
+            self.height,
+            self.view_note(),
+            self.frames
         );
         let columns: Vec<&Column> = COLUMNS.iter().filter(|c| c.markdown.is_some()).collect();
         let line = |cells: Vec<String>| format!("| {} |", cells.join(" | "));
@@ -206,11 +225,12 @@ impl Report {
             })
             .collect();
         format!(
-            "{{\"device\":{},\"frames\":{},\"width\":{},\"height\":{},\"rows\":[\n{}\n]}}\n",
+            "{{\"device\":{},\"frames\":{},\"width\":{},\"height\":{},\"view\":{},\"rows\":[\n{}\n]}}\n",
             json_string(&self.device),
             self.frames,
             self.width,
             self.height,
+            json_string(self.view.name()),
             rows.join(",\n")
         )
     }
@@ -450,6 +470,7 @@ mod tests {
             frames: 5,
             width: 1280,
             height: 720,
+            view: View::Shaded,
             rows,
         }
     }

@@ -495,6 +495,12 @@ pub struct BenchArgs {
     /// The offscreen image's height in pixels.
     #[arg(long, default_value_t = 720, help_heading = "Measurement")]
     pub height: u32,
+    /// What the frames show: `plain` draws the surface in one unlit colour, so that the times
+    /// are the refined triangles' alone (no fragment work; the `shaded` default lights each
+    /// pixel, evaluating pn's normal field per fragment).
+    #[arg(long, default_value = "shaded", value_parser = super::choices::view(),
+          help_heading = "Measurement")]
+    pub view: meshrefine::render::View,
     #[command(flatten)]
     pub adaptive: AdaptiveOpts,
     /// With --pixel-error: leave out the uniform rows at the smallest level meeting the same

@@ -58,6 +58,7 @@ pub fn run(a: &BenchArgs, desc: &ContextDesc, levels_given: bool) -> Result<()> 
         min_total_ms: a.min_total_ms,
         camera: None,
         adaptive: None,
+        view: a.view,
     };
     let adaptive = a.adaptive.enabled(true);
     // Drawn centred and at unit size, like `render`: the timings do not change.

@@ -173,6 +173,9 @@ pub fn view() -> impl TypedValueParser<Value = View> {
         View::Levels => {
             "the lit surface coloured by each element's level (blue at 1 to red at 256)"
         }
+        View::Plain => {
+            "the surface in one colour, unlit (its silhouette; the fragment stage does no work)"
+        }
     })
 }
 

@@ -169,16 +169,20 @@ pub enum View {
     Normals = 1,
     /// The lit surface coloured by each element's level (blue at 1 to red at 256).
     Levels = 2,
+    /// One colour, unlit: the fragment stage does no work beyond writing it (the geometry's
+    /// silhouette; timing what drawing the refined triangles costs without shading them).
+    Plain = 3,
 }
 
 impl View {
-    pub const ALL: [View; 3] = [View::Shaded, View::Normals, View::Levels];
+    pub const ALL: [View; 4] = [View::Shaded, View::Normals, View::Levels, View::Plain];
 
     pub fn name(self) -> &'static str {
         match self {
             View::Shaded => "shaded",
             View::Normals => "normals",
             View::Levels => "levels",
+            View::Plain => "plain",
         }
     }
 }
