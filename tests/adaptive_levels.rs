@@ -100,3 +100,77 @@ fn gpu_levels_match_the_mirror_and_share_edges() {
         }
     });
 }
+
+/// Culling never changes the image: on a closed mesh wound outwards (spot) the elements facing
+/// away are culled, and on the same mesh wound inside out (every face's corners reversed, whose
+/// visible faces are those facing away) none is culled for facing away, only for lying outside
+/// the view. Each is drawn adaptively with culling on and off, on every driver, and the images
+/// are compared pixel for pixel.
+#[test]
+fn culling_keeps_the_image_of_a_mesh_wound_either_way() {
+    with_gpu(160, 120, |h| {
+        let outward = meshrefine::mesh::default_mesh();
+        let mut inside_out = outward.clone();
+        for t in &mut inside_out.triangles {
+            t.p.swap(1, 2);
+            t.n.swap(1, 2);
+            if let Some(tc) = &mut t.t {
+                tc.swap(1, 2);
+            }
+        }
+        assert!(inside_out.signed_volume() < 0.0 && outward.signed_volume() > 0.0);
+        for (name, mesh, closed) in [
+            ("outward", outward, true),
+            ("inside out", inside_out, false),
+        ] {
+            let max = 8;
+            let mut scene = h.scene(mesh, max).unwrap();
+            let (c, r) = scene.bounding_sphere();
+            // Close enough that part of the mesh is outside the view.
+            let camera = Camera::looking(
+                c + glam::Vec3::new(0.3, 0.2, 0.9) * r,
+                c,
+                45f32.to_radians(),
+                r,
+            )
+            .unwrap();
+            for driver in [
+                Driver::Static,
+                Driver::Pattern(meshrefine::render::Submit::Push),
+                Driver::Tess,
+            ] {
+                let mut cfg =
+                    DrawConfig::new(driver, max).with_surface(Surface::Pn, Displace::None);
+                cfg.params = SurfaceParams::for_radius(r);
+                h.prepared_elements(&mut scene, &cfg, Capture::None)
+                    .unwrap();
+                let mut image = |cull| {
+                    let view = LevelView {
+                        camera,
+                        width: 160,
+                        height: 120,
+                        pixel_error: 1.0,
+                        cull,
+                    };
+                    let chosen = scene.set_levels(&cfg, &view).unwrap();
+                    h.adaptive = true;
+                    let img = h.render(&mut scene, &cfg, &camera).unwrap();
+                    h.adaptive = false;
+                    (img.rgba, chosen.report().culled)
+                };
+                let (all, none_culled) = image(false);
+                let (culled_img, culled) = image(true);
+                let what = format!("{name}, {}", driver.name());
+                assert_eq!(none_culled, 0, "{what}");
+                assert!(culled > 0, "{what}: nothing culled");
+                let differ = all
+                    .chunks_exact(4)
+                    .zip(culled_img.chunks_exact(4))
+                    .filter(|(a, b)| a != b)
+                    .count();
+                assert_eq!(differ, 0, "{what}: culling changed {differ} pixels");
+            }
+            assert_eq!(scene.closed, closed, "{name}");
+        }
+    });
+}

@@ -207,6 +207,24 @@ impl Mesh {
         mesh_stats(self.positions.len(), &self.position_indices())
     }
 
+    /// The volume the triangles enclose, signed: positive when they wind counter-clockwise seen
+    /// from outside (their normals point outwards), negative for an inside-out mesh. Meaningful
+    /// for a closed, consistently oriented mesh; summed in f64 about the bounds' centre.
+    pub fn signed_volume(&self) -> f64 {
+        let (lo, hi) = self.bounds();
+        let c = ((lo + hi) * 0.5).as_dvec3();
+        let at = |i: u32| {
+            self.positions
+                .get(i as usize)
+                .map_or(glam::DVec3::ZERO, |p| p.as_dvec3() - c)
+        };
+        self.triangles
+            .iter()
+            .map(|t| at(t.p[0]).dot(at(t.p[1]).cross(at(t.p[2]))))
+            .sum::<f64>()
+            / 6.0
+    }
+
     /// The position indices of every triangle (e.g. for an index buffer).
     pub fn position_indices(&self) -> Vec<[u32; 3]> {
         self.triangles.iter().map(|t| t.p).collect()
@@ -458,6 +476,35 @@ mod tests {
                     );
                 }
             }
+        }
+    }
+
+    #[test]
+    fn signed_volume_is_the_enclosed_volume_negative_inside_out() {
+        // The cube [0, 2]^3, wound counter-clockwise seen from outside: volume 8.
+        let p: Vec<Vec3> = (0..8)
+            .map(|i| Vec3::new((i & 1) as f32, (i >> 1 & 1) as f32, (i >> 2) as f32) * 2.0)
+            .collect();
+        let quads = [
+            [0, 2, 3, 1],
+            [4, 5, 7, 6],
+            [0, 1, 5, 4],
+            [2, 6, 7, 3],
+            [0, 4, 6, 2],
+            [1, 3, 7, 5],
+        ];
+        let tris: Vec<[u32; 3]> = quads
+            .iter()
+            .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
+            .collect();
+        let flipped: Vec<[u32; 3]> = tris.iter().map(|t| [t[0], t[2], t[1]]).collect();
+        let (cube, _) = Mesh::from_parts("cube", p.clone(), None, tris).unwrap();
+        let (inside_out, _) = Mesh::from_parts("cube", p, None, flipped).unwrap();
+        assert!(cube.stats().is_closed());
+        assert_eq!(cube.signed_volume(), 8.0);
+        assert_eq!(inside_out.signed_volume(), -8.0);
+        for file in ["tetrahedron.obj", "icosahedron.obj", "uvsphere12.obj"] {
+            assert!(load_model(file).0.signed_volume() > 0.0, "{file}");
         }
     }
 

@@ -34,9 +34,11 @@ pub struct Scene {
     pub adaptive_frames: bool,
     /// Those levels, for the static driver.
     pub(super) static_levels: Option<super::static_adaptive::StaticLevels>,
-    /// The mesh is closed and consistently oriented (its topology, which animation keeps):
-    /// only then are elements facing away from the eye culled ([`Scene::set_levels`]), as
-    /// an open surface shows its back side.
+    /// The mesh is closed, consistently oriented and wound outwards (a positive
+    /// [`Mesh::signed_volume`](crate::mesh::Mesh::signed_volume)), as its topology and
+    /// orientation are at load (animation keeps them): only then are elements facing away from
+    /// the eye culled ([`Scene::set_levels`]). An open surface shows its back side, and an
+    /// inside-out one shows only faces that face away.
     pub closed: bool,
     /// The `loop` surface's M1 faces, built by the first `prepare` that draws it.
     pub loop_: Option<LoopScene>,
@@ -103,7 +105,9 @@ impl Scene {
     ) -> Result<Self, RenderError> {
         let data = MeshData::new(mesh, RecordKind::Corners, Seams::default());
         let stats = data.mesh.stats();
-        let closed = stats.is_closed() && stats.inconsistently_oriented_edges == 0;
+        let closed = stats.is_closed()
+            && stats.inconsistently_oriented_edges == 0
+            && data.mesh.signed_volume() > 0.0;
         let heightmap = Heightmap::generated();
         let (tags, _) = crate::surface::stpn::derive(&data.mesh);
         let gpu = GpuMesh::new(
