@@ -3136,3 +3136,117 @@ fn bench_rows_with_every_element_culled_have_no_time_per_triangle() {
     let dashes = table.iter().filter(|r| r[col] == "–").count();
     assert_eq!(dashes, 2, "{out}");
 }
+
+/// Where the pixel error cannot be met, `render` and `export` say so on standard error, with
+/// the counts `info` prints: elements whose bound needs a level above `--max-level`, and those
+/// at the largest level whatever the pixel error (holding the eye in their bounds, or with no
+/// finite bound: the loop surface with displacement), checked against the levels drawn with a
+/// larger cap.
+#[test]
+fn render_and_export_say_where_the_pixel_error_is_not_met() {
+    let spot = model_path("spot_control_tri.obj");
+    let spot = p(&spot);
+    let camera = [
+        "--eye",
+        "0.3,0.2,0.6",
+        "--look-at",
+        "0,0.1,0.3",
+        "--width",
+        "320",
+        "--height",
+        "240",
+    ];
+    let run = |args: &[&str]| -> (String, String) {
+        let out = meshrefine(args);
+        let err = String::from_utf8_lossy(&out.stderr).into_owned();
+        assert!(out.status.success(), "{args:?}: {err}");
+        assert!(!err.contains("validation"), "{args:?}: {err}");
+        (String::from_utf8_lossy(&out.stdout).into_owned(), err)
+    };
+    let png = tmp("unmet.png");
+    let obj = tmp("unmet.obj");
+    // The number a note (or info line) starting with `start` and containing `has` begins with.
+    let count = |text: &str, start: &str, has: &str| -> u64 {
+        (text.lines())
+            .filter(|l| l.contains(has))
+            .find_map(|l| l.trim().strip_prefix(start))
+            .and_then(|l| l.split_whitespace().next()?.parse().ok())
+            .unwrap_or(0)
+    };
+    // The elements render draws above `level`, from its levels line.
+    let above = |stdout: &str, level: u32| -> u64 {
+        let line = stdout
+            .lines()
+            .find(|l| l.starts_with("adaptive at"))
+            .unwrap();
+        let pairs = line.split("(level:elements) ").nth(1).unwrap();
+        (pairs.split(';').next().unwrap().split_whitespace())
+            .map(|pair| pair.split_once(':').unwrap())
+            .filter(|(l, _)| l.parse::<u32>().unwrap() > level)
+            .map(|(_, n)| n.parse::<u64>().unwrap())
+            .sum()
+    };
+    let pn = [&camera[..], &["--surface", "pn", "--pixel-error", "1"]].concat();
+    let at = |max: &'static str| [&pn[..], &["--max-level", max]].concat();
+    let (free_out, free_err) = run(&[&["render", spot, "-o", p(&png)], &at("64")[..]].concat());
+    let (_, capped_err) = run(&[&["render", spot, "-o", p(&png)], &at("8")[..]].concat());
+    let capped = count(&capped_err, "note: the 1 px bound is not met on", "");
+    let near = |err: &str| count(err, "note:", "are at the eye");
+    assert!(capped > 0, "{capped_err}");
+    assert!(
+        capped_err.contains(&format!("note: the 1 px bound is not met on {capped} elements: they need a level above the largest, 8 (--max-level)")),
+        "{capped_err}"
+    );
+    // Every element needing more than 8 is drawn above 8 with the larger cap.
+    assert_eq!(
+        capped + near(&capped_err),
+        above(&free_out, 8),
+        "{capped_err}\n{free_out}"
+    );
+    assert_eq!(
+        near(&capped_err),
+        near(&free_err),
+        "{capped_err}\n{free_err}"
+    );
+    assert!(!free_err.contains("not met"), "{free_err}");
+    // Export culling as render does says the same; info counts the same elements at the eye
+    // (culling leaves those alone).
+    let export = ["export", spot, "-o", p(&obj), "--cull", "on"];
+    let (_, export_err) = run(&[&export[..], &at("8")[..]].concat());
+    assert!(
+        export_err.contains(&format!("not met on {capped} elements")),
+        "{export_err}"
+    );
+    let (info, _) = run(&[&["info", spot], &at("8")[..]].concat());
+    assert!(info.contains("capped: "), "{info}");
+    assert_eq!(count(&info, "near: ", ""), near(&capped_err), "{info}");
+    // Loop with displacement: no bound, every visible face at --max-level, and the advice
+    // names only --max-level.
+    let loop_args = [
+        &camera[..],
+        &[
+            "--surface",
+            "loop",
+            "--displace",
+            "sine",
+            "--pixel-error",
+            "1",
+            "--max-level",
+            "4",
+        ],
+    ]
+    .concat();
+    let (out, err) = run(&[&["render", spot, "-o", p(&png)], &loop_args[..]].concat());
+    let line = (err.lines().find(|l| l.contains("no finite error bound")))
+        .unwrap_or_else(|| panic!("{err}"));
+    assert!(
+        line.contains("(the loop surface with displacement has none): they are drawn at the largest level, 4, whatever --pixel-error"),
+        "{line}"
+    );
+    let n = count(&err, "note:", "no finite error bound") + near(&err);
+    let levels = out.lines().find(|l| l.starts_with("adaptive at")).unwrap();
+    assert!(
+        levels.contains(&format!("levels (level:elements) 4:{n};")),
+        "{levels}"
+    );
+}

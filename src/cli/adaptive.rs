@@ -6,6 +6,8 @@
 
 use super::args::{AdaptiveOpts, Cli, Command, ViewpointOpts};
 use super::options::Given;
+use super::progress::plural;
+use crate::note;
 use anyhow::{bail, Result};
 use glam::{DVec3, Vec3};
 use meshrefine::gpu::Context;
@@ -14,6 +16,7 @@ use meshrefine::mesh::Mesh;
 use meshrefine::render::{
     Camera, Capture, ChosenLevels, DrawConfig, Driver, Headless, LevelView, Scene,
 };
+use meshrefine::surface::Displace;
 
 /// One sentence for the first bad value of a pixel error and its camera, before any work.
 /// `level_given`: `--level` was given too.
@@ -266,7 +269,41 @@ impl Adaptive<'_> {
             },
         )?;
         h.adaptive = true;
+        self.note_unmet(cfg, &report);
         Ok((camera, report))
+    }
+
+    /// Says on standard error where the pixel error is not met: elements with no finite error
+    /// bound, and elements whose bound needs a level above the largest (`cfg.level`).
+    pub fn note_unmet(&self, cfg: &DrawConfig, report: &LevelReport) {
+        let (max, u) = (cfg.level, &report.unmet);
+        let whatever = format!(
+            "they are drawn at the largest level, {max}, whatever --pixel-error, and no pixel error is promised on them; --max-level sets their level"
+        );
+        if u.near > 0 {
+            note(format_args!(
+                "note: {} are at the eye (it is in or at their bounds: no distance bounds their error in pixels): {whatever}",
+                plural(u.near, "element")
+            ));
+        }
+        if u.unbounded > 0 {
+            let why = if cfg.surface.uses_loop_faces() && cfg.displace != Displace::None {
+                "the loop surface with displacement has none"
+            } else {
+                "docs/adaptivity.md says where none exists"
+            };
+            note(format_args!(
+                "note: {} have no finite error bound ({why}): {whatever}",
+                plural(u.unbounded, "element")
+            ));
+        }
+        if u.capped > 0 {
+            note(format_args!(
+                "note: the {} px bound is not met on {}: they need a level above the largest, {max} (--max-level)",
+                self.pixel_error,
+                plural(u.capped, "element")
+            ));
+        }
     }
 
     /// The two lines that say what was drawn (export's header): the camera in mesh

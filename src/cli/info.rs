@@ -157,10 +157,7 @@ fn check_level_options(a: &InfoArgs) -> Result<()> {
 /// level pass's levels, transition triangles included, rounded as the driver rounds them), and
 /// the triangles against the smallest uniform level that meets the same bound.
 fn print_levels(a: &InfoArgs, path: &str, mesh: &Mesh) -> Result<()> {
-    use meshrefine::lod::frame::{frame_levels, lod_records, LevelStats, LodView};
-    use meshrefine::lod::levels::drawn_level;
-    // A largest level no bound reaches in practice: levels computed under it are uncapped.
-    const UNCAPPED: u32 = 1 << 20;
+    use meshrefine::lod::frame::{frame_levels, lod_records, unmet, LevelStats, LodView};
     use meshrefine::lod::{Frustum, Lod, Sphere, View};
     use meshrefine::surface::{build_records, stpn, BuildOptions, Mirror, Sources, Surface};
     let Some(px) = a.pixel_error else {
@@ -201,18 +198,12 @@ fn print_levels(a: &InfoArgs, path: &str, mesh: &Mesh) -> Result<()> {
     let levels = |lod: &Lod, records: &[meshrefine::surface::ElementRecord]| {
         let bounds = lod_records(lod, records);
         let lod_view = LodView::new(&view, Some(&frustum), false, dyadic, bounds.len() as u32);
-        let stats = LevelStats::new(&frame_levels(&lod_view, &bounds), dyadic, a.max_level);
-        // The same without the cap: the elements whose bound --max-level keeps from being met.
-        let free = LodView {
-            max_level: UNCAPPED,
-            ..lod_view
-        };
-        let capped = (frame_levels(&free, &bounds).iter())
-            .filter(|l| drawn_level(l.inner, dyadic, UNCAPPED) > a.max_level)
-            .count();
-        (stats, capped)
+        let levels = frame_levels(&lod_view, &bounds);
+        let stats = LevelStats::new(&levels, dyadic, a.max_level);
+        // The elements whose bound --max-level keeps from being met.
+        (stats, unmet(&lod_view, &bounds, &levels))
     };
-    let (stats, capped) = if surface.uses_loop_faces() {
+    let (stats, unmet) = if surface.uses_loop_faces() {
         let lattice = meshrefine::surface::loop_::Lattice::new(build.bft_level);
         let data = LoopData::new(mesh, build.boundary, lattice, |_| {})
             .map_err(|e| anyhow::anyhow!("{}: {e}", path))?;
@@ -242,6 +233,7 @@ fn print_levels(a: &InfoArgs, path: &str, mesh: &Mesh) -> Result<()> {
         adaptive_triangles: stats.triangles,
         histogram: stats.histogram,
         culled: stats.culled,
+        unmet,
     };
     // As given, or where the framing camera is, in the mesh's coordinates.
     let [ex, ey, ez] = v.eye.unwrap_or(frame.mesh(eye).to_array());
@@ -261,9 +253,25 @@ fn print_levels(a: &InfoArgs, path: &str, mesh: &Mesh) -> Result<()> {
         report.histogram_line()
     );
     out!("  culled (outside the view): {}", report.culled);
-    if capped > 0 {
+    let u = &report.unmet;
+    if u.near > 0 {
         out!(
-            "  capped: {capped} element(s) need a level above --max-level {}: the bound is not met on them, nor by any uniform level up to it",
+            "  near: {} element(s) are at the eye (in or at their bounds): drawn at --max-level {} whatever the pixel error, no pixel error is promised on them",
+            u.near,
+            a.max_level
+        );
+    }
+    if u.unbounded > 0 {
+        out!(
+            "  unbounded: {} element(s) have no finite error bound (see docs/adaptivity.md): drawn at --max-level {} whatever the pixel error, no pixel error is promised on them",
+            u.unbounded,
+            a.max_level
+        );
+    }
+    if u.capped > 0 {
+        out!(
+            "  capped: {} element(s) need a level above --max-level {}: the bound is not met on them, nor by any uniform level up to it",
+            u.capped,
             a.max_level
         );
     }

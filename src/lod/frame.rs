@@ -463,6 +463,53 @@ pub fn frame_levels(view: &LodView, records: &[LodRecord]) -> Vec<ElementLevels>
     records.iter().map(|r| element_levels(view, r)).collect()
 }
 
+/// A largest level no finite bound reaches in practice: levels chosen under it are uncapped
+/// ([`unmet`]).
+pub const UNCAPPED: u32 = 1 << 20;
+
+/// The visible elements on which the pixel error is not met, because the largest level keeps
+/// them from it ([`unmet`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Unmet {
+    /// Elements with a finite bound that no level meets, the eye being in or at their bounds
+    /// (no distance bounds their error in pixels).
+    pub near: u64,
+    /// Other elements with no finite bound (a `loop` surface with displacement, a normal field
+    /// that may vanish): at the largest level whatever the pixel error.
+    pub unbounded: u64,
+    /// Elements whose bound needs a level above the largest.
+    pub capped: u64,
+}
+
+/// Where the levels `levels`, chosen by `view` for `records`, do not meet the pixel error: each
+/// visible element drawn at `view.max_level` is chosen again without that cap.
+pub fn unmet(view: &LodView, records: &[LodRecord], levels: &[ElementLevels]) -> Unmet {
+    let (dyadic, max) = (view.dyadic(), view.max_level);
+    let free = LodView {
+        max_level: UNCAPPED,
+        ..*view
+    };
+    let mut u = Unmet::default();
+    for (r, l) in records.iter().zip(levels) {
+        if l.culled() || drawn_level(l.inner, dyadic, max) < max {
+            continue;
+        }
+        match drawn_level(element_levels(&free, r).inner, dyadic, UNCAPPED) {
+            n if n >= UNCAPPED => {
+                let huge = |c: &[f32; 4]| c[0] >= HUGE || c[1] >= HUGE;
+                if huge(&r.chord) || r.edges.iter().any(|e| huge(&e.curve)) {
+                    u.unbounded += 1;
+                } else {
+                    u.near += 1;
+                }
+            }
+            n if n > max => u.capped += 1,
+            _ => {}
+        }
+    }
+    u
+}
+
 /// What one frame's levels draw: for `info`, the benchmark and the window.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct LevelStats {

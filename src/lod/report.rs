@@ -19,6 +19,8 @@ pub struct LevelReport {
     pub uniform_level: u32,
     /// Triangles every element makes at [`LevelReport::uniform_level`].
     pub uniform_triangles: u64,
+    /// Visible elements on which the pixel error is not met ([`Unmet`](super::frame::Unmet)).
+    pub unmet: super::frame::Unmet,
 }
 
 impl LevelReport {

@@ -12,7 +12,7 @@
 use super::static_adaptive::StaticLevels;
 use super::{Camera, DrawConfig, LevelPass, RenderError, Scene};
 use crate::gpu::vk;
-use crate::lod::frame::{frame_levels, lod_records, LevelStats, LodRecord, LodView};
+use crate::lod::frame::{frame_levels, lod_records, unmet, LevelStats, LodRecord, LodView};
 use crate::lod::levels::ElementLevels;
 use crate::lod::{Frustum, LevelReport, Lod, View};
 use crate::surface::{Displace, Surface, SurfaceParams};
@@ -67,19 +67,15 @@ pub(super) struct SceneLevels {
 /// are kept (a camera and shared bounds), so reading it later gives what `set_levels` chose.
 pub struct ChosenLevels {
     mirror: Option<(LodView, Arc<[LodRecord]>)>,
-    dyadic: bool,
-    max: u32,
     report: OnceCell<LevelReport>,
 }
 
 impl ChosenLevels {
     /// Levels already on the CPU (the static driver's, or uploaded instead of the pass).
-    fn tallied(levels: &[ElementLevels], dyadic: bool, max: u32) -> Self {
+    fn tallied(view: &LodView, records: &[LodRecord], levels: &[ElementLevels]) -> Self {
         Self {
             mirror: None,
-            dyadic,
-            max,
-            report: OnceCell::from(level_report(levels, dyadic, max)),
+            report: OnceCell::from(chosen_report(view, records, levels)),
         }
     }
 
@@ -87,7 +83,7 @@ impl ChosenLevels {
     pub fn report(&self) -> &LevelReport {
         self.report.get_or_init(|| {
             let (view, records) = self.mirror.as_ref().expect("a mirror or a tally");
-            level_report(&frame_levels(view, records), self.dyadic, self.max)
+            chosen_report(view, records, &frame_levels(view, records))
         })
     }
 
@@ -153,7 +149,7 @@ impl Scene {
             // The static driver refines at the mirror's levels on the CPU: no level pass.
             l.view = None;
             let levels = frame_levels(&lod_view, &records);
-            let chosen = ChosenLevels::tallied(&levels, dyadic, max);
+            let chosen = ChosenLevels::tallied(&lod_view, &records, &levels);
             let g = self.generation;
             self.static_levels = Some(StaticLevels::new(cfg, g, levels));
             return Ok(chosen);
@@ -163,8 +159,6 @@ impl Scene {
                 l.view = Some((cfg.surface, lod_view));
                 ChosenLevels {
                     mirror: Some((lod_view, records)),
-                    dyadic,
-                    max,
                     report: OnceCell::new(),
                 }
             }
@@ -173,7 +167,7 @@ impl Scene {
                 l.view = None;
                 let levels = frame_levels(&lod_view, &records);
                 self.elements_mut(cfg.surface).upload_levels(&levels);
-                ChosenLevels::tallied(&levels, dyadic, max)
+                ChosenLevels::tallied(&lod_view, &records, &levels)
             }
         })
     }
@@ -267,6 +261,14 @@ impl Scene {
     }
 }
 
+/// What `levels`, chosen by `view` for `records`, draw, and where the pixel error is not met.
+fn chosen_report(view: &LodView, records: &[LodRecord], levels: &[ElementLevels]) -> LevelReport {
+    LevelReport {
+        unmet: unmet(view, records, levels),
+        ..level_report(levels, view.dyadic(), view.max_level)
+    }
+}
+
 /// What `levels` draw on a driver that rounds as `dyadic` says, up to `max`.
 fn level_report(levels: &[ElementLevels], dyadic: bool, max: u32) -> LevelReport {
     let stats = LevelStats::new(levels, dyadic, max);
@@ -278,5 +280,6 @@ fn level_report(levels: &[ElementLevels], dyadic: bool, max: u32) -> LevelReport
         adaptive_triangles: stats.triangles,
         uniform_level,
         uniform_triangles: levels.len() as u64 * u * u,
+        ..LevelReport::default()
     }
 }
