@@ -193,24 +193,45 @@ pub fn throttled(mut report: impl FnMut(Progress)) -> impl FnMut(Progress) {
     }
 }
 
-/// [`throttled`] reports on one line of standard error that each report rewrites
-/// (`"{what}: 1234 of 24000 M1 faces classified"`), ended when every table is built: nothing
-/// for a build under a second.
+/// [`throttled`] reports on standard error (`"{what}: 1234 of 24000 M1 faces classified"`):
+/// on a terminal one line that each report rewrites, ended when every table is built;
+/// elsewhere (a log, a pipe) plain lines, at most one every [`PLAIN_PROGRESS_EVERY`] and the
+/// last. Nothing for a build under a second.
 pub fn progress_line(what: impl std::fmt::Display) -> impl FnMut(Progress) {
-    use std::io::Write;
+    use std::io::IsTerminal;
+    let terminal = std::io::stderr().is_terminal();
+    throttled(progress_writer(what, terminal, std::io::stderr))
+}
+
+/// [`progress_line`]'s reports, unthrottled, written to `out()`: rewriting one line in place
+/// where `terminal`, else plain lines.
+fn progress_writer<W: std::io::Write>(
+    what: impl std::fmt::Display,
+    terminal: bool,
+    mut out: impl FnMut() -> W,
+) -> impl FnMut(Progress) {
     let mut width = 0usize;
-    throttled(move |p| {
+    let mut written: Option<std::time::Instant> = None;
+    move |p| {
         let line = format!("{what}: {p}");
-        let end = if matches!(p, Progress::Tables(d, t) if d == t) {
-            "\n"
-        } else {
-            ""
-        };
+        let last = matches!(p, Progress::Tables(d, t) if d == t);
+        if !terminal {
+            let now = std::time::Instant::now();
+            if last || written.is_none_or(|at| now - at >= PLAIN_PROGRESS_EVERY) {
+                written = Some(now);
+                let _ = writeln!(out(), "{line}");
+            }
+            return;
+        }
+        let end = if last { "\n" } else { "" };
         let pad = width.saturating_sub(line.len());
         width = line.len();
-        let _ = write!(std::io::stderr().lock(), "\r{line}{:pad$}{end}", "");
-    })
+        let _ = write!(out(), "\r{line}{:pad$}{end}", "");
+    }
 }
+
+/// How often [`progress_line`] writes a plain line where standard error is not a terminal.
+pub const PLAIN_PROGRESS_EVERY: std::time::Duration = std::time::Duration::from_secs(5);
 
 /// Find every face's configuration in `topo` (M1) and build the tables of those it has.
 /// `progress` hears how far it is as the work goes (faces classified, tables built), always on
@@ -459,6 +480,56 @@ mod tests {
     use crate::subdiv::{loop_step, subdivide_to_limit};
     use glam::DVec3;
     use lattice::reflection;
+
+    /// A shared byte buffer standing in for standard error.
+    #[derive(Clone, Default)]
+    struct Sink(std::rc::Rc<std::cell::RefCell<Vec<u8>>>);
+
+    impl std::io::Write for Sink {
+        fn write(&mut self, b: &[u8]) -> std::io::Result<usize> {
+            self.0.borrow_mut().extend_from_slice(b);
+            Ok(b.len())
+        }
+        fn flush(&mut self) -> std::io::Result<()> {
+            Ok(())
+        }
+    }
+
+    #[test]
+    fn progress_rewrites_a_terminal_line_and_writes_plain_lines_elsewhere() {
+        let reports = [
+            Progress::Faces(10, 100),
+            Progress::Faces(100, 100),
+            Progress::Tables(1, 3),
+            Progress::Tables(3, 3),
+        ];
+        let text = |terminal| {
+            let sink = Sink::default();
+            let s = sink.clone();
+            let mut report = progress_writer("loop surface", terminal, move || s.clone());
+            reports.into_iter().for_each(&mut report);
+            String::from_utf8(sink.0.take()).unwrap()
+        };
+        // A log or a pipe: no carriage return, the first report and the last (the others come
+        // within PLAIN_PROGRESS_EVERY of the first), each a line.
+        let plain = text(false);
+        assert!(!plain.contains('\r'), "{plain:?}");
+        assert_eq!(
+            plain,
+            format!(
+                "loop surface: {}\nloop surface: {}\n",
+                reports[0], reports[3]
+            )
+        );
+        // A terminal: every report rewrites the line, the last ends it.
+        let terminal = text(true);
+        assert_eq!(terminal.matches('\r').count(), 4, "{terminal:?}");
+        assert!(
+            terminal.ends_with(&format!("{}\n", reports[3])),
+            "{terminal:?}"
+        );
+        assert_eq!(terminal.matches('\n').count(), 1, "{terminal:?}");
+    }
 
     #[test]
     fn rows_cover_the_lattice_once() {
