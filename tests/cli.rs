@@ -176,6 +176,14 @@ fn device_limits_and_options_are_checked() {
         &["no-such-gpu-anywhere", "available"],
     );
     expect_error(&["render", "-o", p(&out), "--width", "0"], &["0x720"]);
+    // lavapipe's largest image (16384 per side) at its default 4 samples per pixel: 4 GiB per
+    // attachment, over its 2 GiB maxMemoryAllocationSize; refused before anything is allocated.
+    expect_error(
+        &["render", "-o", p(&out), "--width", "16384", "--height", "16384"],
+        &[
+            "a 16384x16384 image at 4 sample(s) per pixel needs 4096 MiB per attachment, over the 2048 MiB this device allocates at once (maxMemoryAllocationSize): fewer samples per pixel (--msaa) or a smaller image fits",
+        ],
+    );
     // export offers only the drivers whose evaluation can be read back (clap: exit status 2).
     let out = meshrefine(&["export", "--driver", "static", "-o", "s.obj"]);
     assert_eq!(out.status.code(), Some(2));

@@ -86,6 +86,15 @@ impl Image {
         let raw = unsafe { ctx.device.create_image(&info, None) }.call("vkCreateImage")?;
         // SAFETY: image from this device.
         let requirements = unsafe { ctx.device.get_image_memory_requirements(raw) };
+        let max = ctx.info.max_memory_allocation_size;
+        if requirements.size > max {
+            // SAFETY: not bound, not in use.
+            unsafe { ctx.device.destroy_image(raw, None) };
+            return Err(GpuError::Other(format!(
+                "image '{name}' needs {} bytes, over this device's maxMemoryAllocationSize ({max})",
+                requirements.size
+            )));
+        }
         let allocation = match ctx.allocator().allocate(&AllocationCreateDesc {
             name,
             requirements,
@@ -231,6 +240,19 @@ impl OffscreenTarget {
         if width == 0 || height == 0 || width > max || height > max {
             return Err(GpuError::Other(format!(
                 "image size {width}x{height} is outside what the device supports (1..={max} per side)"
+            )));
+        }
+        // Each attachment is one allocation of 4 bytes per sample (RGBA8, D32): refused here
+        // in one sentence rather than by the allocator (and the validation layer) later.
+        let n = samples.as_raw().max(1) as u64;
+        let bytes = width as u64 * height as u64 * 4 * n;
+        let max_bytes = ctx.info.max_memory_allocation_size;
+        if bytes > max_bytes {
+            let mib = |b: u64| b.div_ceil(1 << 20);
+            return Err(GpuError::Other(format!(
+                "a {width}x{height} image at {n} sample(s) per pixel needs {} MiB per attachment, over the {} MiB this device allocates at once (maxMemoryAllocationSize): fewer samples per pixel (--msaa) or a smaller image fits",
+                mib(bytes),
+                mib(max_bytes)
             )));
         }
         let extent = vk::Extent2D { width, height };
