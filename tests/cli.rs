@@ -293,6 +293,38 @@ fn render_export_and_headless_view_work() {
     let s = ok(&["view", "--headless-output", p(&view_png), "--level", "3"]);
     assert!(s.contains("no display") && s.contains("view.png"), "{s}");
     assert!(view_png.exists());
+    // The last frame asked for is that one frame; what only a window reads is named, once.
+    let shot = tmp("view-shot.png");
+    let _ = std::fs::remove_file(&shot);
+    let args = ["view", "--headless-output", p(&view_png), "--level", "3"];
+    let window_only = [
+        "--screenshot",
+        p(&shot),
+        "--frames",
+        "5",
+        "--animate",
+        "--fullscreen",
+    ];
+    let out = meshrefine(&[&args[..], &window_only[..]].concat());
+    let (stdout, stderr) = (
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr),
+    );
+    assert!(out.status.success(), "{stderr}");
+    assert_eq!(
+        std::fs::read(&shot).unwrap(),
+        std::fs::read(&view_png).unwrap()
+    );
+    assert!(stdout.contains("wrote the screenshot"), "{stdout}");
+    let warnings: Vec<&str> = stderr
+        .lines()
+        .filter(|l| l.starts_with("warning:"))
+        .collect();
+    assert_eq!(
+        warnings,
+        ["warning: --frames, --animate, --fullscreen apply only to the window and are ignored: no display found (DISPLAY and WAYLAND_DISPLAY are unset)"],
+        "{stderr}"
+    );
     // A display that cannot be reached: the same fallback, saying so, at the window's size.
     std::fs::remove_file(&view_png).unwrap();
     let _guard = common::gpu_lock();

@@ -9,7 +9,7 @@ use super::loop_check::loop_refusal;
 use super::options::Given;
 use super::render::render_png;
 use super::{check_messages, require_extension, with_context};
-use anyhow::Result;
+use anyhow::{Context as _, Result};
 use meshrefine::gpu::ContextDesc;
 use std::io::Write as _;
 
@@ -94,6 +94,28 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc, given: &Given) -> Result<()> {
     } else {
         "no display found (DISPLAY and WAYLAND_DISPLAY are unset)".to_string()
     };
+    // What only a window reads: one warning naming them.
+    let window_only: Vec<&str> = [
+        "frames",
+        "animate",
+        "fullscreen",
+        "no_frame_budget",
+        "screenshot_dir",
+    ]
+    .into_iter()
+    .filter(|id| given.has(id))
+    .collect();
+    if !window_only.is_empty() {
+        let names: Vec<String> = (window_only.iter())
+            .map(|id| format!("--{}", id.replace('_', "-")))
+            .collect();
+        crate::note(format_args!(
+            "warning: {} {} only to the window and {} ignored: {why_headless}",
+            names.join(", "),
+            if names.len() == 1 { "applies" } else { "apply" },
+            if names.len() == 1 { "is" } else { "are" }
+        ));
+    }
     let image = super::render::ImageOptions {
         size: (a.width, a.height),
         wireframe: a.wireframe,
@@ -115,5 +137,11 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc, given: &Given) -> Result<()> {
         "{why_headless}: rendered the scene headlessly to {}",
         shown.display()
     );
+    // The last frame asked for: the one frame drawn.
+    if let Some(shot) = &a.screenshot {
+        std::fs::copy(&a.headless_output, shot)
+            .with_context(|| format!("cannot write the screenshot '{}'", shot.display()))?;
+        out!("wrote the screenshot {}", shot.display());
+    }
     Ok(())
 }
