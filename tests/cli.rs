@@ -3177,6 +3177,39 @@ fn bench_rows_with_every_element_culled_have_no_time_per_triangle() {
     assert_eq!(dashes, 2, "{out}");
 }
 
+/// A camera looking straight down renders the mesh from above (the image's up is -Z), and an
+/// adaptive export from it names that up in its header.
+#[test]
+fn a_camera_can_look_straight_down() {
+    let png = tmp("top-down.png");
+    let obj = tmp("top-down.obj");
+    let camera = [
+        "--eye",
+        "0,3,0",
+        "--look-at",
+        "0,0,0",
+        "--width",
+        "160",
+        "--height",
+        "120",
+    ];
+    ok(&[&["render", "-o", p(&png)][..], &camera[..]].concat());
+    assert!(covered(&png) > 1000, "{}", covered(&png));
+    ok(&[
+        &["export", "-o", p(&obj), "--pixel-error", "2"][..],
+        &camera[..],
+    ]
+    .concat());
+    let text = std::fs::read_to_string(&obj).unwrap();
+    assert!(
+        text.contains(
+            "\n# camera eye 0 3 0 target 0 0 0 up 0 0 -1 fov-y 45 size 160 120 pixel-error 2\n"
+        ),
+        "{}",
+        text.lines().take(6).collect::<Vec<_>>().join("\n")
+    );
+}
+
 /// Where the pixel error cannot be met, `render` and `export` say so on standard error, with
 /// the counts `info` prints: elements whose bound needs a level above `--max-level`, and those
 /// at the largest level whatever the pixel error (holding the eye in their bounds, or with no

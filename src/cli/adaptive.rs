@@ -45,7 +45,7 @@ pub fn check_camera(v: &ViewpointOpts) -> Result<()> {
         // In f64: points far apart (1e20) are a direction, though their distance leaves f32.
         let offset = eye.as_dvec3() - target.as_dvec3();
         let distance = offset.length();
-        if !(distance > 0.0 && distance.is_finite() && (offset.y / distance).abs() <= 0.9999) {
+        if !(distance > 0.0 && distance.is_finite()) {
             bail!("{}", no_direction(eye, target));
         }
     }
@@ -78,7 +78,7 @@ pub fn check_distance(v: &ViewpointOpts, frame: &Frame) -> Result<()> {
 /// The sentence for a camera without a view direction.
 pub fn no_direction(eye: Vec3, target: Vec3) -> String {
     format!(
-        "--eye {},{},{} and --look-at {},{},{} give no view direction (the same point, or straight up or down: up is +Y)",
+        "--eye {},{},{} and --look-at {},{},{} give no view direction: they are the same point",
         eye.x, eye.y, eye.z, target.x, target.y, target.z
     )
 }
@@ -319,9 +319,11 @@ impl Adaptive<'_> {
         let v = &self.opts.viewpoint;
         let [ex, ey, ez] = v.eye.unwrap_or(frame.mesh(camera.eye()).to_array());
         let [tx, ty, tz] = v.look_at.unwrap_or(frame.mesh(camera.target).to_array());
+        // +Y but looking (nearly) straight up or down (`Camera::up`).
+        let [ux, uy, uz] = camera.up().to_array();
         [
             format!(
-                "camera eye {ex} {ey} {ez} target {tx} {ty} {tz} up 0 1 0 fov-y {} size {width} {height} pixel-error {}",
+                "camera eye {ex} {ey} {ez} target {tx} {ty} {tz} up {ux} {uy} {uz} fov-y {} size {width} {height} pixel-error {}",
                 self.opts.viewpoint.fov, self.pixel_error
             ),
             format!("levels {}", report.histogram_line()),

@@ -24,6 +24,9 @@ const DEPTH_MARGIN: f32 = 1.1;
 /// The fraction of the distance the depth range keeps in front of the target at least ([`Camera::depth_range`]).
 const DISTANT_MARGIN: f32 = 1e-3;
 
+/// Past this `|sin pitch|` the view's up is not +Y ([`Camera::up`]).
+const VERTICAL_SIN: f32 = 0.9999;
+
 /// The direction the framing cameras look from: yaw and pitch (radians).
 const FRAMING_YAW: f32 = 2.2;
 const FRAMING_PITCH: f32 = 0.35;
@@ -125,9 +128,10 @@ impl Camera {
         cam
     }
 
-    /// A camera at `eye` looking at `target` (up is +Y) with a vertical field of view of
-    /// `fov_y` radians; `radius` is the scene's bounding radius (it sets the depth range).
-    /// `None` when the eye is at the target or a value is not finite.
+    /// A camera at `eye` looking at `target` (up is +Y, or where the camera looks nearly
+    /// straight up or down, as [`Camera::up`] says) with a vertical field of view of `fov_y`
+    /// radians; `radius` is the scene's bounding radius (it sets the depth range). `None` when
+    /// the eye is at the target or a value is not finite.
     pub fn looking(eye: Vec3, target: Vec3, fov_y: f32, radius: f32) -> Option<Self> {
         let offset = eye - target;
         let distance = offset.length();
@@ -135,9 +139,6 @@ impl Camera {
             return None;
         }
         let dir = offset / distance;
-        if dir.y.abs() > 0.9999 {
-            return None; // straight up or down: +Y cannot be up
-        }
         Some(Self {
             target,
             yaw: dir.x.atan2(dir.z),
@@ -150,6 +151,23 @@ impl Camera {
                 1.0
             },
         })
+    }
+
+    /// The up vector of the view: +Y, except where the camera looks within about 0.8° of
+    /// straight up or down (`|sin pitch| > 0.9999`), where +Y is (nearly) the view direction
+    /// and gives no up: there it is the direction in which raising the pitch moves the eye,
+    /// which lies in the plane of +Y and the view direction and so draws the same image as +Y
+    /// wherever both apply. Looking straight down (yaw 0), the image's up is -Z; straight up,
+    /// +Z.
+    pub fn up(&self) -> Vec3 {
+        let s = self.pitch.sin();
+        if s.abs() <= VERTICAL_SIN {
+            return Vec3::Y;
+        }
+        let up = Vec3::new(-s * self.yaw.sin(), self.pitch.cos(), -s * self.yaw.cos());
+        // Rounding's crumbs (cos(pi/2) is not 0 in f32) are zeros: straight down, (0, 0, -1).
+        let clean = |c: f32| if c.abs() < 1e-6 { 0.0 } else { c };
+        Vec3::new(clean(up.x), clean(up.y), clean(up.z)).normalize()
     }
 
     pub fn eye(&self) -> Vec3 {
@@ -180,7 +198,7 @@ impl Camera {
         let (near, far) = self.depth_range();
         let mut proj = Mat4::perspective_rh(self.fov_y, aspect.max(1e-6), near, far);
         proj.y_axis.y = -proj.y_axis.y; // Vulkan's clip space has y pointing down
-        proj * Mat4::look_at_rh(self.eye(), self.target, Vec3::Y)
+        proj * Mat4::look_at_rh(self.eye(), self.target, self.up())
     }
 
     pub fn orbit(&mut self, dx: f32, dy: f32) {
@@ -238,8 +256,42 @@ mod tests {
             );
         }
         assert!(Camera::looking(target, target, 0.8, 1.0).is_none());
-        assert!(Camera::looking(target + Vec3::Y, target, 0.8, 1.0).is_none());
         assert!(Camera::looking(Vec3::splat(f32::NAN), target, 0.8, 1.0).is_none());
+    }
+
+    #[test]
+    fn a_camera_looks_straight_down_or_up_with_minus_or_plus_z_up() {
+        let project = |cam: &Camera, p: Vec3| {
+            let c = cam.view_proj(1.0) * p.extend(1.0);
+            glam::Vec2::new(c.x / c.w, c.y / c.w) // Vulkan: y grows downwards
+        };
+        for (eye, up) in [
+            (Vec3::new(0.0, 5.0, 0.0), -Vec3::Z),
+            (Vec3::new(0.0, -5.0, 0.0), Vec3::Z),
+        ] {
+            let cam = Camera::looking(eye, Vec3::ZERO, 0.8, 1.0).unwrap();
+            assert!((cam.eye() - eye).length() < 1e-5, "{eye}");
+            assert_eq!(cam.up(), up, "{eye}");
+            assert!(project(&cam, Vec3::ZERO).length() < 1e-5, "{eye}");
+            let above = project(&cam, up * 0.5);
+            assert!(above.y < -0.1 && above.x.abs() < 1e-5, "{eye}: {above}");
+        }
+        // Just inside the vertical band and just outside it the image is the same (to
+        // rounding): the up vector changes, the view does not.
+        for (a, b) in [(0.99989f32, 0.99991f32), (-0.99989, -0.99991)] {
+            let cam = |s: f32| {
+                let eye =
+                    Vec3::new(0.3 * (1.0 - s * s).sqrt(), s, 0.954 * (1.0 - s * s).sqrt()) * 4.0;
+                Camera::looking(eye, Vec3::ZERO, 0.8, 1.0).unwrap()
+            };
+            let (ca, cb) = (cam(a), cam(b));
+            assert_eq!(ca.up(), Vec3::Y);
+            assert_ne!(cb.up(), Vec3::Y);
+            for p in [Vec3::X, Vec3::Z, -Vec3::X * 0.5, Vec3::new(0.2, 0.1, -0.3)] {
+                let (pa, pb) = (project(&ca, p), project(&cb, p));
+                assert!((pa - pb).length() < 1e-3, "{p}: {pa} {pb}");
+            }
+        }
     }
 
     #[test]
