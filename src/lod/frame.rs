@@ -74,6 +74,7 @@
 use super::bound::Lod;
 use super::levels::{drawn_level, ElementLevels};
 use super::{Bounds, Chord, Frustum, Sphere, View, ELEMENT_FACTOR};
+use crate::subdiv::bft::{progress_line, Progress};
 use crate::surface::ElementRecord;
 use bytemuck::{Pod, Zeroable};
 use glam::{Vec3, Vec4};
@@ -257,15 +258,66 @@ fn edge_key(lod: &Lod, rec: &ElementRecord, e: usize) -> (u32, u32) {
     (a.min(b), a.max(b))
 }
 
+/// `f(0) .. f(n)`, in order, computed in contiguous chunks on up to every core (one thread, the
+/// calling one, for fewer than 512 items), `progress` hearing how many are done now and then
+/// while the calling thread works on its chunk, and once at the end (on the calling thread).
+fn on_every_core<T: Send>(
+    n: usize,
+    f: impl Fn(usize) -> T + Sync,
+    progress: &mut dyn FnMut(usize),
+) -> Vec<T> {
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    let cores = std::thread::available_parallelism().map_or(1, |c| c.get());
+    let threads = cores.min(n / 256).max(1);
+    let chunk = n.div_ceil(threads).max(1);
+    let done = AtomicUsize::new(0);
+    let (f, done) = (&f, &done);
+    let run = move |t: usize| {
+        (t * chunk..((t + 1) * chunk).min(n))
+            .map(|i| {
+                let v = f(i);
+                done.fetch_add(1, Ordering::Relaxed);
+                v
+            })
+            .collect::<Vec<T>>()
+    };
+    let out = std::thread::scope(|s| {
+        let others: Vec<_> = (1..threads).map(|t| s.spawn(move || run(t))).collect();
+        // The first chunk here, saying how far all are every 256 items.
+        let mut first = Vec::with_capacity(chunk);
+        for i in 0..chunk.min(n) {
+            first.push(f(i));
+            if done.fetch_add(1, Ordering::Relaxed) % 256 == 255 {
+                progress(done.load(Ordering::Relaxed));
+            }
+        }
+        let rest = others
+            .into_iter()
+            .flat_map(|p| p.join().expect("a bounds thread panicked"));
+        first.into_iter().chain(rest).collect()
+    });
+    progress(n);
+    out
+}
+
 /// Every element's [`LodRecord`]: its bounds, and its edges' (each unique edge bounded once,
 /// the same bits in every slot that holds it), each element with its own texture coordinates
 /// (the `heightmap` displacement's, [`Lod::for_element`]).
+///
+/// The bounds are computed on every core (a large `loop` mesh's take seconds to minutes on
+/// one: each face's come from its lattice of exact limit points); the result does not depend
+/// on how the work is shared.
 pub fn lod_records(lod: &Lod, records: &[ElementRecord]) -> Vec<LodRecord> {
-    let elements: Vec<Bounds> = records
-        .iter()
-        .enumerate()
-        .map(|(i, r)| lod.for_element(i).element(r))
-        .collect();
+    lod_records_reporting(lod, records, progress_line("adaptive levels"))
+}
+
+/// [`lod_records`], telling `progress` how far it is (elements and edges bounded), on the
+/// calling thread.
+pub fn lod_records_reporting(
+    lod: &Lod,
+    records: &[ElementRecord],
+    mut progress: impl FnMut(Progress),
+) -> Vec<LodRecord> {
     // The slots of each unique edge, in element order.
     let mut slots: HashMap<(u32, u32), Vec<(usize, usize)>> = HashMap::new();
     let mut order = Vec::new();
@@ -279,6 +331,12 @@ pub fn lod_records(lod: &Lod, records: &[ElementRecord]) -> Vec<LodRecord> {
             list.push((i, e));
         }
     }
+    let total = records.len() + order.len();
+    let elements: Vec<Bounds> = on_every_core(
+        records.len(),
+        |i| lod.for_element(i).element(&records[i]),
+        &mut |d| progress(Progress::Bounds(d, total)),
+    );
     let mut out: Vec<LodRecord> = elements
         .iter()
         .map(|b| {
@@ -295,10 +353,16 @@ pub fn lod_records(lod: &Lod, records: &[ElementRecord]) -> Vec<LodRecord> {
             }
         })
         .collect();
-    for key in order {
+    let edges: Vec<Bounds> = on_every_core(
+        order.len(),
+        |k| {
+            let (i0, e0) = slots[&order[k]][0];
+            lod.for_element(i0).edge(&records[i0], e0)
+        },
+        &mut |d| progress(Progress::Bounds(records.len() + d, total)),
+    );
+    for (key, edge) in order.into_iter().zip(edges) {
         let list = &slots[&key];
-        let (i0, e0) = list[0];
-        let edge = lod.for_element(i0).edge(&records[i0], e0);
         // Each element's needs (dyadic, integer) and sphere.
         let need = |&(i, e): &(usize, usize)| {
             let b = &elements[i];

@@ -106,8 +106,8 @@ impl LevelPass {
         let range = limits.max_storage_buffer_range as u64;
         let bytes = std::mem::size_of_val(bounds) as u64;
         for (what, needed) in [
-            ("the level pass's bounds", bytes),
-            ("the level pass's levels", mesh.levels.size()),
+            ("the level pass's bounds buffer", bytes),
+            ("the level pass's levels buffer", mesh.levels.size()),
         ] {
             if needed > range {
                 return Err(RenderError::OverLimit {
@@ -116,7 +116,7 @@ impl LevelPass {
                     unit: "bytes",
                     limit: "maxStorageBufferRange",
                     max: range,
-                    remedy: "use a coarser mesh or uniform levels".into(),
+                    remedy: "a coarser mesh fits".into(),
                 });
             }
         }

@@ -267,3 +267,29 @@ fn height_map_bounds_read_each_element_s_coordinates() {
     }
     assert!(differ > 0);
 }
+
+/// The bounds computed on every core are those of one thread, in order, whatever the chunks;
+/// the progress heard ends at every element and edge bounded.
+#[test]
+fn bounds_on_every_core_are_those_of_one_thread() {
+    let mut heard = Vec::new();
+    let squares = on_every_core(1000, |i| i * i, &mut |d| heard.push(d));
+    assert_eq!(squares, (0..1000).map(|i| i * i).collect::<Vec<_>>());
+    assert_eq!(heard.last(), Some(&1000));
+    assert!(heard.windows(2).all(|w| w[0] <= w[1]), "{heard:?}");
+    let (mesh, recs) = spot();
+    let params = SurfaceParams::for_radius(mesh.bounding_radius());
+    let inputs = Sources::default();
+    let lod = Lod::of(Surface::Pn, Displace::Sine, &params, &inputs);
+    let mut last = None;
+    let lr = lod_records_reporting(&lod, &recs, |p| last = Some(p));
+    // 372 elements, 558 edges.
+    assert_eq!(last, Some(Progress::Bounds(930, 930)));
+    // Elements one at a time, on this thread.
+    for i in (0..recs.len()).step_by(7) {
+        let (a, b) = (&lr[i], &lod_records(&lod.for_element(i), &recs[i..=i])[0]);
+        assert_eq!(a.sphere, b.sphere);
+        assert_eq!(a.chord, b.chord);
+        assert_eq!(a.second, b.second);
+    }
+}

@@ -156,11 +156,21 @@ impl Tables {
     }
 }
 
-/// How far [`build`] is: faces classified, then tables built (done, total).
+/// How far [`build`] is: faces classified, then tables built (done, total); also how far the
+/// error bounds of adaptive levels are (`lod::frame::lod_records`: elements and edges
+/// bounded).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Progress {
     Faces(usize, usize),
     Tables(usize, usize),
+    Bounds(usize, usize),
+}
+
+impl Progress {
+    /// The report that ends the work (every table built, every bound computed).
+    pub fn is_last(&self) -> bool {
+        matches!(*self, Progress::Tables(d, t) | Progress::Bounds(d, t) if d == t)
+    }
 }
 
 impl std::fmt::Display for Progress {
@@ -168,6 +178,7 @@ impl std::fmt::Display for Progress {
         match self {
             Progress::Faces(d, t) => write!(f, "{d} of {t} M1 faces classified"),
             Progress::Tables(d, t) => write!(f, "{d} of {t} basis function tables built"),
+            Progress::Bounds(d, t) => write!(f, "{d} of {t} elements and edges bounded"),
         }
     }
 }
@@ -181,7 +192,7 @@ pub fn throttled(mut report: impl FnMut(Progress)) -> impl FnMut(Progress) {
     let mut last: Option<(std::time::Instant, Progress)> = None;
     move |p| {
         let now = std::time::Instant::now();
-        let finished = matches!(p, Progress::Tables(d, t) if d == t);
+        let finished = p.is_last();
         let due = match last {
             None => now - start >= second,
             Some((at, prev)) => prev != p && (finished || now - at >= second),
@@ -214,7 +225,7 @@ fn progress_writer<W: std::io::Write>(
     let mut written: Option<std::time::Instant> = None;
     move |p| {
         let line = format!("{what}: {p}");
-        let last = matches!(p, Progress::Tables(d, t) if d == t);
+        let last = p.is_last();
         if !terminal {
             let now = std::time::Instant::now();
             if last || written.is_none_or(|at| now - at >= PLAIN_PROGRESS_EVERY) {
