@@ -82,12 +82,15 @@ fn bench_histograms(csv: &str) -> Vec<String> {
 fn info_bench_render_and_export_choose_the_same_levels() {
     let spot = model_path("spot_control_tri.obj");
     let torus = model_path("torus_16x8.obj");
+    let grid = model_path("grid_uv_8x8.obj");
     let size = ["--width", "160", "--height", "120"];
-    // A plain surface, a displaced one (the camera fits the displaced surface), a field of
-    // view (the camera is fitted at it) and a lone eye (completed from the fitted camera).
-    let cases: [(&PathBuf, &[&str]); 4] = [
+    // A plain surface, displaced ones (the camera fits the displaced surface; the height map
+    // read at the mesh's texture coordinates), a field of view (the camera is fitted at it)
+    // and a lone eye (completed from the fitted camera).
+    let cases: [(&PathBuf, &[&str]); 5] = [
         (&spot, &["--pixel-error", "1"]),
         (&torus, &["--pixel-error", "1", "--displace", "sine"]),
+        (&grid, &["--pixel-error", "0.5", "--displace", "heightmap"]),
         (&spot, &["--pixel-error", "2", "--fov", "70"]),
         (&torus, &["--pixel-error", "1", "--eye", "0.5,2,3"]),
     ];
