@@ -89,7 +89,7 @@ fn main() {
                     Driver::Static,
                 ],
                 min_total_ms: 0.0,
-                camera: None,
+                camera: meshrefine::bench::BenchCamera::default(),
                 adaptive: Some(BenchAdaptive {
                     scene: scene.into(),
                     cameras: cameras.clone(),

@@ -41,7 +41,7 @@ fn main() {
         // Frames of a few milliseconds (the small grids) jitter most: at least 2 s of GPU
         // time per variant.
         min_total_ms: if h.quick { 0.0 } else { 2000.0 },
-        camera: None,
+        camera: meshrefine::bench::BenchCamera::default(),
         adaptive: None,
         view: View::Shaded,
     };

@@ -36,7 +36,7 @@ fn main() {
         height: 720,
         drivers: vec![],
         min_total_ms: 0.0,
-        camera: None,
+        camera: meshrefine::bench::BenchCamera::default(),
         adaptive: None,
         view: View::Shaded,
     };

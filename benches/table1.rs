@@ -57,7 +57,7 @@ fn main() {
         drivers: drivers.clone(),
         // At least 1.5 s of GPU time per variant, taken round the variants in turn.
         min_total_ms: if h.quick { 0.0 } else { 1500.0 },
-        camera: None,
+        camera: meshrefine::bench::BenchCamera::default(),
         adaptive: None,
         view: View::Shaded,
     };

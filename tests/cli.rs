@@ -2093,7 +2093,7 @@ fn adaptive_report(stdout: &str) -> (u64, u64, u32, u64, u64) {
     };
     let words = |l: String| -> Vec<String> { l.split_whitespace().map(String::from).collect() };
     let t = words(line("refined triangles:"));
-    let culled = words(line("culled"))[4].parse().unwrap();
+    let culled = words(line("culled")).last().unwrap().parse().unwrap();
     let histogram: u64 = words(line("levels ("))[3..]
         .iter()
         .map(|pair| pair.split(':').nth(1).unwrap().parse::<u64>().unwrap())
@@ -2111,8 +2111,9 @@ fn adaptive_report(stdout: &str) -> (u64, u64, u32, u64, u64) {
 fn info_reports_adaptive_levels_for_a_camera() {
     let spot = model_path("spot_control_tri.obj");
     let spot = p(&spot);
-    // The framing camera: every element in view, far fewer triangles than the uniform level
-    // that meets the same bound everywhere.
+    // The default camera: every element in view, those facing away culled (Spot is closed and
+    // wound outwards: as render culls them), far fewer triangles than the uniform level that
+    // meets the same bound everywhere.
     let (adaptive, uniform, level, culled, drawn) = adaptive_report(&ok(&[
         "info",
         spot,
@@ -2121,7 +2122,10 @@ fn info_reports_adaptive_levels_for_a_camera() {
         "--surface",
         "pn",
     ]));
-    assert_eq!((culled, drawn), (0, 372));
+    assert!(culled > 0 && culled + drawn == 372, "{culled} {drawn}");
+    let all = ok(&["info", spot, "--pixel-error", "1", "--cull", "off"]);
+    assert_eq!(adaptive_report(&all).3, 0);
+    assert_eq!(adaptive_report(&all).4, 372);
     assert!(level > 1 && adaptive < uniform / 2, "{adaptive} {uniform}");
     assert_eq!(uniform, 372 * level as u64 * level as u64);
     // A close-up: finer levels near the eye, the rest outside the view culled.
@@ -2186,7 +2190,8 @@ fn info_reports_adaptive_levels_for_a_camera() {
         levels_of(&tess).iter().any(|l| !l.is_power_of_two()),
         "{tess}"
     );
-    assert_eq!(adaptive_report(&tess).4, 372);
+    let (.., tess_culled, tess_drawn) = adaptive_report(&tess);
+    assert_eq!(tess_culled + tess_drawn, 372);
     // Geomorphing (the default) under a power-of-two largest level, tess draws the pattern's
     // powers of two, as render does; without it, its integers.
     let tess_args = ["info", spot, "--pixel-error", "1", "--driver", "tess"];
@@ -2223,7 +2228,8 @@ fn info_reports_adaptive_levels_for_a_camera() {
         ]
         .concat())
     };
-    let tiny = pn("1e-6", &[]);
+    // Every element drawn (culled ones are not drawn, so not capped).
+    let tiny = pn("1e-6", &["--cull", "off"]);
     assert!(
         tiny.contains("capped: 372 element(s) need a level above --max-level 64"),
         "{tiny}"
@@ -3282,8 +3288,8 @@ fn render_and_export_say_where_the_pixel_error_is_not_met() {
         "{capped_err}\n{free_err}"
     );
     assert!(!free_err.contains("not met"), "{free_err}");
-    // Export culling as render does says the same; info counts the same elements at the eye
-    // (culling leaves those alone).
+    // Export culling as render does says the same, and so does info (it culls as render
+    // does).
     let export = ["export", spot, "-o", p(&obj), "--cull", "on"];
     let (_, export_err) = run(&[&export[..], &at("8")[..]].concat());
     assert!(
@@ -3291,7 +3297,7 @@ fn render_and_export_say_where_the_pixel_error_is_not_met() {
         "{export_err}"
     );
     let (info, _) = run(&[&["info", spot], &at("8")[..]].concat());
-    assert!(info.contains("capped: "), "{info}");
+    assert_eq!(count(&info, "capped: ", ""), capped, "{info}");
     assert_eq!(count(&info, "near: ", ""), near(&capped_err), "{info}");
     // Loop with displacement: no bound, every visible face at --max-level, and the advice
     // names only --max-level.

@@ -4,25 +4,15 @@
 
 mod common;
 
-use std::path::PathBuf;
-use std::process::{Command, Output};
+use std::process::Output;
 
 /// The binary, validated, without a display.
 fn meshrefine(args: &[&str]) -> Output {
-    let _guard = common::gpu_lock();
-    Command::new(env!("CARGO_BIN_EXE_meshrefine"))
-        .env("MESHREFINE_VALIDATE", "1")
-        .env_remove("DISPLAY")
-        .env_remove("WAYLAND_DISPLAY")
-        .args(args)
-        .output()
-        .expect("run meshrefine")
+    common::validated_cli(args)
 }
 
 fn tmp(name: &str) -> String {
-    let d = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli-default-levels");
-    std::fs::create_dir_all(&d).unwrap();
-    d.join(name).to_str().unwrap().to_string()
+    common::tmp_file("cli-default-levels", name)
 }
 
 /// Runs `args`, expects success without a validation message; returns (stdout, stderr).

@@ -161,18 +161,37 @@ fn info_and_export_choose_renders_levels_far_from_the_origin() {
     }
 }
 
-/// An eye 1e8 bounding radii from Spot sees all of it (a speck): nothing is culled.
+/// An eye 1e8 bounding radii from Spot sees all of it (a speck): nothing is culled for being
+/// outside the view, only the faces facing away, the same ones as from 1e3 radii in the same
+/// direction (Spot is closed and wound outwards: info culls them as render does).
 #[test]
 fn a_distant_eye_culls_nothing_in_view() {
+    let culled = |out: &str| -> u64 {
+        (out.lines())
+            .find_map(|l| {
+                l.trim()
+                    .strip_prefix("culled (outside the view or facing away): ")
+            })
+            .unwrap_or_else(|| panic!("no culled line: {out}"))
+            .parse()
+            .unwrap()
+    };
+    let near = culled(&ok(&["info", "--pixel-error", "1", "--eye", "1e3,0,0"]));
+    assert!(near > 0 && near < 372 / 2, "{near}");
     for eye in ["1e7,0,0", "1e8,0,0", "1e11,0,0"] {
         let out = ok(&["info", "--pixel-error", "1", "--eye", eye]);
+        assert_eq!(culled(&out), near, "--eye {eye}: {out}");
         assert!(
-            out.contains("culled (outside the view): 0\n"),
+            out.contains(&format!(
+                "levels (level:coarse triangles): 1:{}\n",
+                372 - near
+            )),
             "--eye {eye}: {out}"
         );
+        let all = ok(&["info", "--pixel-error", "1", "--eye", eye, "--cull", "off"]);
         assert!(
-            out.contains("levels (level:coarse triangles): 1:372\n"),
-            "--eye {eye}: {out}"
+            all.contains("levels (level:coarse triangles): 1:372\n"),
+            "--eye {eye}: {all}"
         );
     }
 }

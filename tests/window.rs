@@ -650,3 +650,52 @@ fn the_demo_starts_adaptive_and_keys_change_its_controls() {
         "only {n} of {total} centre pixels show the mesh"
     );
 }
+
+/// The camera the demo starts with, from its title (`--eye X,Y,Z --look-at X,Y,Z`, the mesh's
+/// coordinates), as (eye, look-at).
+fn start_camera(x: &Xvfb, args: &[&str]) -> ([f64; 3], [f64; 3]) {
+    let demo = Demo::start(x, args);
+    let t0 = Instant::now();
+    let title = loop {
+        let title = demo.xdotool(&["getwindowname", &demo.window]);
+        if title.contains("--eye ") {
+            break title;
+        }
+        assert!(
+            t0.elapsed() < Duration::from_secs(60),
+            "no camera in the title: {title}"
+        );
+        std::thread::sleep(Duration::from_millis(100));
+    };
+    demo.quit();
+    let point = |after: &str| -> [f64; 3] {
+        let text = title.split(after).nth(1).unwrap();
+        let numbers: Vec<f64> = (text.split_whitespace().next().unwrap().split(','))
+            .map(|v| v.parse().unwrap())
+            .collect();
+        [numbers[0], numbers[1], numbers[2]]
+    };
+    (point("--eye "), point("--look-at "))
+}
+
+#[test]
+fn a_lone_eye_or_look_at_is_completed_from_the_fitted_camera() {
+    // As render: the one default camera (fitted to the surface drawn), and an --eye or
+    // --look-at given alone keeps the other from it; --fov alone fits the eye at it.
+    let _guard = common::gpu_lock();
+    let x = Xvfb::start();
+    let close = |a: [f64; 3], b: [f64; 3]| (0..3).all(|i| (a[i] - b[i]).abs() <= 2e-3);
+    let (eye, look_at) = start_camera(&x, &["--level", "2"]);
+    let (lone_eye, its_look_at) = start_camera(&x, &["--level", "2", "--eye", "2,1,2"]);
+    assert!(close(lone_eye, [2.0, 1.0, 2.0]), "{lone_eye:?}");
+    assert!(close(its_look_at, look_at), "{its_look_at:?} {look_at:?}");
+    let (its_eye, _) = start_camera(&x, &["--level", "2", "--look-at", "0,0.1,0"]);
+    assert!(close(its_eye, eye), "{its_eye:?} {eye:?}");
+    // A narrower field of view: fitted from farther away.
+    let (narrow_eye, narrow_look_at) = start_camera(&x, &["--level", "2", "--fov", "20"]);
+    let distance = |e: [f64; 3], t: [f64; 3]| (0..3).map(|i| (e[i] - t[i]).powi(2)).sum::<f64>();
+    assert!(
+        distance(narrow_eye, narrow_look_at) > 4.0 * distance(eye, look_at),
+        "{narrow_eye:?} {eye:?}"
+    );
+}

@@ -4,8 +4,8 @@
 //! (docs/window.md, "Adaptive mode").
 #![forbid(unsafe_code)]
 
-use super::{Camera, State, ViewOptions};
-use crate::render::DrawConfig;
+use super::{State, ViewOptions};
+use crate::render::{DrawConfig, Viewpoint};
 use anyhow::Result;
 use std::time::Instant;
 
@@ -18,8 +18,10 @@ pub struct AdaptiveView {
     pub on: bool,
     pub pixel_error: f32,
     pub cull: bool,
-    /// The first camera (drawn coordinates); None: the one that frames the mesh.
-    pub camera: Option<Camera>,
+    /// Where the first camera is and looks, and its field of view (drawn coordinates): what
+    /// it does not give comes from the camera fitted to the surface drawn, at its field of view
+    /// ([`Viewpoint::camera`]).
+    pub viewpoint: Viewpoint,
     /// The largest level; None: [`DEFAULT_MAX_LEVEL`], or less where a driver cannot draw it
     /// on this device.
     pub max_level: Option<u32>,

@@ -58,11 +58,6 @@ pub(super) fn run(
         ..opts.clone()
     };
     let mut m = MeshSetup::new(h, mesh, &setup)?;
-    let cameras = if a.cameras.is_empty() {
-        vec![m.camera]
-    } else {
-        a.cameras.clone()
-    };
     let mut rows = Vec::new();
     for cfg in variants(
         &m.surfaces,
@@ -71,20 +66,21 @@ pub(super) fn run(
         opts.build,
         &opts.drivers,
     ) {
-        rows.extend(variant(ctx, h, &mut m, cfg, &cameras, opts, a)?);
+        rows.extend(variant(ctx, h, &mut m, cfg, opts, a)?);
         m.scene.static_vbo = None;
     }
     h.adaptive = false;
     Ok(rows)
 }
 
-/// One variant: its adaptive row, then its uniform rows.
+/// One variant: its adaptive row, then its uniform rows, drawn from `a`'s cameras, or where it
+/// names none from [`BenchOptions::camera`] (by default fitted to the variant's surface x
+/// displacement as drawn, at its largest level: render's default camera).
 fn variant(
     ctx: &crate::gpu::Context,
     h: &mut Headless,
     m: &mut MeshSetup,
     cfg: DrawConfig,
-    cameras: &[Camera],
     opts: &BenchOptions,
     a: &BenchAdaptive,
 ) -> Result<Vec<Row>, RenderError> {
@@ -110,6 +106,12 @@ fn variant(
     if !first.drawn {
         return Ok(vec![first.row]);
     }
+    let cameras = if a.cameras.is_empty() {
+        vec![m.camera(&cfg, opts)?]
+    } else {
+        a.cameras.clone()
+    };
+    let cameras = &cameras[..];
     // The smallest uniform level meeting the bound on every camera, as the driver rounds.
     let mut bound = 1;
     for &c in cameras {

@@ -24,7 +24,7 @@ pub use report::{csv_fields, Align, Cell, Column, Report, COLUMNS, SUMMARY_WIDTH
 
 use crate::mesh::Mesh;
 use crate::pattern::PatternSet;
-use crate::render::{Camera, DrawConfig, Driver, Headless, RenderError, Scene, View};
+use crate::render::{Camera, DrawConfig, Driver, Headless, RenderError, Scene, View, Viewpoint};
 use crate::surface::{BuildOptions, Displace, Surface, SurfaceParams};
 use std::sync::Arc;
 
@@ -50,9 +50,10 @@ pub struct BenchOptions {
     /// (milliseconds; 0: exactly `frames`), so frames of a few milliseconds, whose timestamps
     /// jitter most, get more samples. At most 20 × `frames` rounds.
     pub min_total_ms: f64,
-    /// The camera every frame is drawn from, in the drawn coordinates; `None`: the one framing
-    /// the mesh. Adaptive rows draw from [`BenchAdaptive::cameras`] where it names any.
-    pub camera: Option<Camera>,
+    /// The camera the frames are drawn from, in the drawn coordinates: by default the one
+    /// fitted to each surface x displacement as drawn (render's default camera). Adaptive rows
+    /// draw from [`BenchAdaptive::cameras`] where it names any.
+    pub camera: BenchCamera,
     /// Draw adaptively ([`Scene::set_levels`]): each variant once with each element at the
     /// levels the view asks for, and, in the same run, uniformly at `levels` and (with
     /// [`BenchAdaptive::bound_levels`]) at the smallest uniform level meeting the same bound
@@ -62,14 +63,31 @@ pub struct BenchOptions {
     pub view: View,
 }
 
+/// The camera of a benchmark's frames ([`BenchOptions::camera`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum BenchCamera {
+    /// Fitted to each surface x displacement as drawn ([`Viewpoint::camera`]: at its field of
+    /// view, moved to its eye or point looked at where it gives one), as `render` frames it.
+    Fitted(Viewpoint),
+    /// The same camera for every row.
+    Fixed(Camera),
+}
+
+impl Default for BenchCamera {
+    /// The fitted camera at 45 degrees.
+    fn default() -> Self {
+        Self::Fitted(Viewpoint::default())
+    }
+}
+
 /// The views adaptive rows are drawn for, and what they are compared with.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BenchAdaptive {
     /// The scene's name in the table (`close-up`, `grazing`, ...; may be empty).
     pub scene: String,
     /// In the drawn coordinates; one: a still view; several: a path whose frames are averaged
-    /// (each row's times and counts are the means over the cameras); none: the camera that
-    /// frames the mesh.
+    /// (each row's times and counts are the means over the cameras); none:
+    /// [`BenchOptions::camera`].
     pub cameras: Vec<Camera>,
     pub pixel_error: f32,
     pub cull: bool,
@@ -216,7 +234,7 @@ pub fn run(
             // compare like with like (`static`, with several surfaces, aside: `time_round`).
             let mut runs = Vec::new();
             for cfg in variants(&m.surfaces, level, m.params, opts.build, &opts.drivers) {
-                runs.push(warm_up(&ctx, &mut h, &mut m, cfg)?);
+                runs.push(warm_up(&ctx, &mut h, &mut m, cfg, opts)?);
             }
             time_round(&mut h, &mut m, &mut runs, opts)?;
             rows.extend(into_rows(runs));
@@ -235,12 +253,13 @@ pub fn run(
     })
 }
 
-/// One mesh's scene, camera, parameters, surfaces in the order measured, and Loop's pre-pass
+/// One mesh's scene, cameras, parameters, surfaces in the order measured, and Loop's pre-pass
 /// cost.
 struct MeshSetup {
     name: String,
     scene: Scene,
-    camera: Camera,
+    /// The camera of each surface x displacement drawn so far ([`MeshSetup::camera`]).
+    cameras: Vec<((Surface, Displace), Camera)>,
     coarse: u32,
     params: SurfaceParams,
     surfaces: Vec<(Surface, Displace)>,
@@ -256,10 +275,7 @@ impl MeshSetup {
             mesh.clone(),
             PatternSet::from_levels(&opts.levels),
         )?;
-        let (c, r) = scene.bounding_sphere();
-        let adaptive = opts.adaptive.as_ref().and_then(|a| a.cameras.first());
-        let camera =
-            (adaptive.or(opts.camera.as_ref()).copied()).unwrap_or_else(|| Camera::framing(c, r));
+        let (_, r) = scene.bounding_sphere();
         let coarse = scene.gpu.element_count;
         let params = opts.params.unwrap_or_else(|| SurfaceParams::for_radius(r));
         // The reference surface first (the throughput ratios are against it), then as asked.
@@ -285,12 +301,36 @@ impl MeshSetup {
         Ok(Self {
             name: mesh.name.clone(),
             scene,
-            camera,
+            cameras: Vec::new(),
             coarse,
             params,
             surfaces,
             pre_pass_ms,
         })
+    }
+}
+
+impl MeshSetup {
+    /// The camera `cfg`'s frames are drawn from ([`BenchOptions::camera`]): fitted to its
+    /// surface x displacement as drawn (the scene prepared for it: Loop's M1 faces exist), once
+    /// per surface x displacement.
+    fn camera(&mut self, cfg: &DrawConfig, opts: &BenchOptions) -> Result<Camera, RenderError> {
+        let key = (cfg.surface, cfg.displace);
+        if let Some(&(_, camera)) = self.cameras.iter().find(|(k, _)| *k == key) {
+            return Ok(camera);
+        }
+        let camera = match opts.camera {
+            BenchCamera::Fixed(camera) => camera,
+            BenchCamera::Fitted(v) => {
+                let aspect = opts.width as f32 / opts.height.max(1) as f32;
+                v.camera(&self.scene.framing_points(cfg), aspect)
+                    .ok_or(RenderError::Unsupported(
+                        "the eye and the point looked at give no view direction (the same point, or straight up or down: up is +Y)",
+                    ))?
+            }
+        };
+        self.cameras.push((key, camera));
+        Ok(camera)
     }
 }
 
@@ -326,12 +366,14 @@ fn warm_up(
     h: &mut Headless,
     m: &mut MeshSetup,
     cfg: DrawConfig,
+    opts: &BenchOptions,
 ) -> Result<Run, RenderError> {
     let (mut row, refused) = new_row(ctx, h, m, &cfg)?;
     let drawn = refused.is_none();
     h.adaptive = false;
     if drawn {
-        h.draw(&mut m.scene, &cfg, &m.camera)?; // warm-up: shaders, static VBO
+        let camera = m.camera(&cfg, opts)?;
+        h.draw(&mut m.scene, &cfg, &camera)?; // warm-up: shaders, static VBO
     } else if let Some(e) = refused {
         row.note = format!("not drawn: {e}");
     }
@@ -421,11 +463,13 @@ fn time_round(
     };
     for group in groups {
         if several && group.len() == 1 {
-            h.draw(&mut m.scene, &runs[group[0]].cfg, &m.camera)?;
+            let camera = m.camera(&runs[group[0]].cfg, opts)?;
+            h.draw(&mut m.scene, &runs[group[0]].cfg, &camera)?;
         }
         while !group.iter().all(|&i| enough(&runs[i])) {
             for &i in &group {
-                let f = h.draw(&mut m.scene, &runs[i].cfg, &m.camera)?;
+                let camera = m.camera(&runs[i].cfg, opts)?;
+                let f = h.draw(&mut m.scene, &runs[i].cfg, &camera)?;
                 let r = &mut runs[i];
                 r.row.vertex_invocations = f.stats.map(|s| s.vertex_shader_invocations);
                 r.gpu.push(f.gpu_ms);

@@ -12,9 +12,8 @@ use anyhow::{bail, Result};
 use glam::{DVec3, Vec3};
 use meshrefine::gpu::Context;
 use meshrefine::lod::LevelReport;
-use meshrefine::mesh::Mesh;
 use meshrefine::render::{
-    Camera, Capture, ChosenLevels, DrawConfig, Driver, Headless, LevelView, Scene,
+    Camera, Capture, ChosenLevels, DrawConfig, Driver, Headless, LevelView, Scene, Viewpoint,
 };
 use meshrefine::surface::Displace;
 
@@ -224,9 +223,9 @@ impl Adaptive<'_> {
         })
     }
 
-    /// The camera in the drawn frame: the framing camera of `scene` drawn with `cfg` in an
-    /// image of `aspect` (what the uniform drawing shows, [`Scene::framing_camera`]), moved to
-    /// `--eye`, `--look-at` and `--fov` where given (mesh coordinates, mapped by `frame`).
+    /// The camera in the drawn frame: the camera fitted to what `scene` draws with `cfg`
+    /// ([`Scene::framing_points`]) in an image of `aspect` at `--fov`, moved to `--eye` and
+    /// `--look-at` where given (mesh coordinates, mapped by `frame`).
     pub fn camera(
         &self,
         scene: &Scene,
@@ -234,12 +233,7 @@ impl Adaptive<'_> {
         aspect: f32,
         frame: &Frame,
     ) -> Result<Camera> {
-        (self.opts.viewpoint).camera(scene.framing_camera(cfg, aspect), frame)
-    }
-
-    /// The camera asked for, for `mesh` as drawn ([`ViewpointOpts::given_camera`]).
-    pub fn given_camera(&self, mesh: &Mesh, frame: &Frame) -> Result<Option<Camera>> {
-        self.opts.viewpoint.given_camera(mesh, frame)
+        (self.opts.viewpoint).camera(&scene.framing_points(cfg), aspect, frame)
     }
 
     /// Prepare `scene` for `cfg` (whose level is the largest), choose every element's levels
@@ -337,49 +331,30 @@ impl ViewpointOpts {
         self.eye.is_some() || self.look_at.is_some() || self.fov != 45.0
     }
 
-    /// `framing` (drawn frame) moved to the viewpoint asked for.
-    pub fn camera(&self, framing: Camera, frame: &Frame) -> Result<Camera> {
-        let (c, r) = (framing.target, framing.radius);
-        let v = self;
-        if !v.given() {
-            return Ok(framing);
+    /// The viewpoint asked for, in the drawn frame (`frame` maps the mesh's coordinates to it).
+    pub fn drawn(&self, frame: &Frame) -> Viewpoint {
+        Viewpoint {
+            eye: self.eye.map(|e| frame.drawn(Vec3::from(e))),
+            look_at: self.look_at.map(|t| frame.drawn(Vec3::from(t))),
+            fov_y: self.fov.to_radians(),
         }
-        check_distance(v, frame)?;
-        let eye = v.eye.map_or(framing.eye(), |e| frame.drawn(Vec3::from(e)));
-        let target = v
-            .look_at
-            .map_or(framing.target, |t| frame.drawn(Vec3::from(t)));
-        // A look-at far beyond the mesh would grow the sphere the depth range holds, and with
-        // it the near plane, past the mesh: the target moves back along the view ray to the
-        // point nearest the mesh's centre. Eye and direction, so the image, stay.
-        let ray = target - eye;
-        let dir = ray.normalize_or_zero();
-        let along = (c - eye).dot(dir);
-        let target = if along > r * 1e-3 && along < ray.length() {
-            eye + dir * along
-        } else {
-            target
-        };
-        // The depth range holds the whole mesh around the target.
-        let radius = r + (target - c).length();
-        Camera::looking(eye, target, v.fov.to_radians(), radius).ok_or_else(|| {
-            // The values as given, or where the framing camera puts them.
-            let given = |p: Option<[f32; 3]>, drawn: Vec3| p.map_or(frame.mesh(drawn), Vec3::from);
-            let (e, t) = (given(v.eye, eye), given(v.look_at, target));
-            anyhow::anyhow!("{}", no_direction(e, t))
-        })
     }
 
-    /// The camera asked for, for `mesh` as drawn (already in the drawn frame, mapped from the
-    /// mesh's own by `frame`): None for the framing camera the benchmark and the window start
-    /// with anyway.
-    pub fn given_camera(&self, mesh: &Mesh, frame: &Frame) -> Result<Option<Camera>> {
-        if !self.given() {
-            return Ok(None);
-        }
-        let (lo, hi) = mesh.bounds();
-        let c = (lo + hi) * 0.5;
-        let r = ((hi - lo) * 0.5).length().max(1e-6);
-        self.camera(Camera::framing(c, r), frame).map(Some)
+    /// The camera (drawn frame) for an image of `aspect` showing `points`, the surface as drawn
+    /// (drawn frame): the default camera, fitted at `--fov`, moved to `--eye` and `--look-at`
+    /// where given, the one not given completed from it ([`Viewpoint::camera`]).
+    pub fn camera(&self, points: &[Vec3], aspect: f32, frame: &Frame) -> Result<Camera> {
+        check_distance(self, frame)?;
+        let v = self.drawn(frame);
+        let fitted = Camera::fit_with_fov(points, aspect, v.fov_y);
+        v.complete(fitted).ok_or_else(|| {
+            // The values as given, or where the fitted camera puts them.
+            let given = |p: Option<[f32; 3]>, drawn: Vec3| p.map_or(frame.mesh(drawn), Vec3::from);
+            let (e, t) = (
+                given(self.eye, fitted.eye()),
+                given(self.look_at, fitted.target),
+            );
+            anyhow::anyhow!("{}", no_direction(e, t))
+        })
     }
 }

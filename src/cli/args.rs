@@ -139,6 +139,15 @@ pub struct SurfaceOpts {
     /// box).
     #[arg(long, value_parser = choices::surface(), default_value = "pn")]
     pub surface: Surface,
+    #[command(flatten)]
+    pub drawn: DrawnOpts,
+}
+
+/// What the surface is drawn with besides which surface it is: its displacement, inputs and
+/// parameters (render's options, which `info --pixel-error` reads too).
+#[derive(Args, Debug, Clone)]
+#[command(next_help_heading = "Surface and displacement")]
+pub struct DrawnOpts {
     /// Displacement along the surface's normal.
     #[arg(long, value_parser = choices::displace(), default_value = "none")]
     pub displace: Displace,
@@ -361,20 +370,24 @@ pub struct InfoArgs {
     /// function tables' memory).
     #[arg(long, value_parser = choices::surface())]
     pub surface: Option<Surface>,
-    /// Loop subdivision's boundaries (with --surface loop).
-    #[arg(long, value_parser = choices::boundary(), default_value = "edge-only")]
-    pub boundary: Boundary,
-    /// The loop surface's table level (with --surface loop): 2^N segments per M1-face edge.
-    #[arg(long, default_value_t = meshrefine::surface::loop_::DEFAULT_LMAX,
-          value_parser = clap::value_parser!(u32).range(1..=meshrefine::surface::loop_::MAX_LMAX as i64))]
-    pub bft_level: u32,
+    /// The displacement, inputs and parameters of the surface whose levels are reported (with
+    /// --pixel-error; Loop's --boundary and --bft-level also with --surface loop): the levels
+    /// and the default camera are those of the surface as render draws it.
+    #[command(flatten)]
+    pub drawn: DrawnOpts,
     /// Report the level adaptive refinement gives each element for this pixel error, seen by
     /// the camera below: the level histogram and the triangles against the smallest uniform
-    /// level that meets the same bound (--surface, default pn; not with --level).
+    /// level that meets the same bound (--surface, default pn; not with --level). The levels
+    /// are those render draws with the same options.
     #[arg(long, allow_negative_numbers = true)]
     pub pixel_error: Option<f32>,
     #[command(flatten)]
     pub camera: CameraOpts,
+    /// Leave out of the report the elements outside the view or, on a closed mesh wound
+    /// outwards, facing away from the eye, as render culls them (with --pixel-error; default:
+    /// on, as render).
+    #[arg(long, value_parser = choices::cull())]
+    pub cull: Option<bool>,
     /// The largest level any element gets (with --pixel-error).
     #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub max_level: u32,
@@ -388,7 +401,19 @@ pub struct InfoArgs {
     pub geomorph: Option<bool>,
 }
 
-/// A camera in the mesh's own coordinates (up is +Y); the default frames the mesh.
+impl InfoArgs {
+    /// The surface options as render reads them: the surface whose levels are reported (pn
+    /// unless --surface), its displacement, inputs and parameters.
+    pub fn surface_opts(&self) -> SurfaceOpts {
+        SurfaceOpts {
+            surface: self.surface.unwrap_or(Surface::Pn),
+            drawn: self.drawn.clone(),
+        }
+    }
+}
+
+/// A camera in the mesh's own coordinates (up is +Y); the default is render's: the camera
+/// fitted to the surface as drawn.
 #[derive(Args, Debug, Clone)]
 #[command(next_help_heading = "Camera (with --pixel-error)")]
 pub struct CameraOpts {
@@ -403,16 +428,19 @@ pub struct CameraOpts {
 }
 
 /// Where the camera is and where it looks, in the mesh's own coordinates (up is +Y); the
-/// default is the camera that frames the mesh.
+/// default is the camera fitted to the surface as drawn (displacement included) at `--fov`,
+/// the same for every command; an `--eye` or `--look-at` given alone keeps the other from it.
 #[derive(Args, Debug, Clone)]
 pub struct ViewpointOpts {
-    /// Camera position X,Y,Z (default: the framing camera's).
+    /// Camera position X,Y,Z (default: the fitted camera's, which frames the surface as
+    /// drawn).
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
     pub eye: Option<[f32; 3]>,
-    /// The point looked at X,Y,Z (default: the framing camera's target).
+    /// The point looked at X,Y,Z (default: the fitted camera's target).
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
     pub look_at: Option<[f32; 3]>,
-    /// Vertical field of view in degrees.
+    /// Vertical field of view in degrees (without --eye the camera is fitted with it, so the
+    /// surface fills the image at any field of view).
     #[arg(long, default_value_t = 45.0)]
     pub fov: f32,
 }

@@ -7,6 +7,7 @@ use super::args::BenchArgs;
 use super::input::{for_viewing, load_mesh, split_three_creases};
 use super::with_context;
 use anyhow::{bail, Context as _, Result};
+use meshrefine::bench::BenchCamera;
 use meshrefine::gpu::ContextDesc;
 use meshrefine::render::{DrawConfig, Driver};
 use std::io::Write as _;
@@ -56,7 +57,7 @@ pub fn run(a: &BenchArgs, desc: &ContextDesc, levels_given: bool) -> Result<()> 
             })
             .collect(),
         min_total_ms: a.min_total_ms,
-        camera: None,
+        camera: BenchCamera::default(),
         adaptive: None,
         view: a.view,
     };
@@ -65,10 +66,13 @@ pub fn run(a: &BenchArgs, desc: &ContextDesc, levels_given: bool) -> Result<()> 
     let mut mesh = mesh;
     mesh.name = input.mesh.name.clone();
     let scene_frame = Frame { centre, scale };
-    let camera = a.adaptive.viewpoint.given_camera(&mesh, &scene_frame)?;
+    // Render's default camera: fitted to each surface x displacement as drawn, at --fov, moved
+    // to --eye and --look-at where given.
+    super::adaptive::check_distance(&a.adaptive.viewpoint, &scene_frame)?;
+    let viewpoint = a.adaptive.viewpoint.drawn(&scene_frame);
     let report = with_context(desc, |ctx| {
         let mut opts = opts;
-        opts.camera = camera;
+        opts.camera = BenchCamera::Fitted(viewpoint);
         if let Some(ad) = &adaptive {
             // Each variant adaptive up to the largest level (a power of two when the pattern or
             // static driver is measured: its largest level), seen by the camera asked for, and uniform
@@ -83,7 +87,7 @@ pub fn run(a: &BenchArgs, desc: &ContextDesc, levels_given: bool) -> Result<()> 
                 .unwrap_or_default();
             opts.adaptive = Some(meshrefine::bench::BenchAdaptive {
                 scene: String::new(),
-                cameras: camera.into_iter().collect(),
+                cameras: Vec::new(),
                 pixel_error: ad.pixel_error,
                 cull: ad.cull,
                 max_level: ad.max_level(&ctx, driver)?,

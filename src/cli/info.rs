@@ -5,18 +5,19 @@
 use super::adaptive::{check_view, Frame};
 use super::args::InfoArgs;
 use super::choices::boundary_name;
-use super::input::degenerate_warning;
+use super::input::{attach_surface_inputs, degenerate_warning, Input};
 use super::loop_check::loop_refusal;
 use crate::note;
 use anyhow::{bail, Result};
 use meshrefine::mesh::{LoadReport, Mesh};
-use meshrefine::render::{Camera, Driver};
+use meshrefine::render::Driver;
 use meshrefine::surface::loop_::LoopData;
 use std::io::Write as _;
 
 /// Runs `meshrefine info` with `a`.
 pub fn run(a: &InfoArgs) -> Result<()> {
     check_level_options(a)?;
+    a.drawn.params.build().map_err(anyhow::Error::msg)?;
     let (mesh, report, shown) = match &a.mesh {
         Some(path) => {
             let (mesh, report) = Mesh::load_obj(path)?;
@@ -45,7 +46,15 @@ pub fn run(a: &InfoArgs) -> Result<()> {
     if for_loop {
         print_loop(a, path, &mesh)?;
     }
-    print_levels(a, path, &mesh)?;
+    let input = Input {
+        mesh,
+        shown: shown.clone(),
+        heightmap: None,
+        tags: None,
+        loop_refusal: None,
+        report,
+    };
+    print_levels(a, input)?;
     Ok(())
 }
 
@@ -103,10 +112,10 @@ fn print_geometry(level: u32, triangles: u64) -> Result<()> {
 
 /// `--surface loop`: M1, the valence configurations and the basis function tables built.
 fn print_loop(a: &InfoArgs, path: &str, mesh: &Mesh) -> Result<()> {
-    let lattice = meshrefine::surface::loop_::Lattice::new(a.bft_level);
+    let lattice = meshrefine::surface::loop_::Lattice::new(a.drawn.params.bft_level);
     let data = LoopData::new(
         mesh,
-        a.boundary,
+        a.drawn.params.boundary,
         lattice,
         meshrefine::surface::loop_::progress_line(path),
     )
@@ -115,7 +124,7 @@ fn print_loop(a: &InfoArgs, path: &str, mesh: &Mesh) -> Result<()> {
         "loop: M1 has {} vertices and {} faces ({} boundaries)",
         data.m1.vertex_count,
         data.m1.faces.len(),
-        boundary_name(a.boundary)
+        boundary_name(a.drawn.params.boundary)
     );
     let configs: Vec<String> = data
         .valences()
@@ -155,39 +164,42 @@ fn check_level_options(a: &InfoArgs) -> Result<()> {
 
 /// With `--pixel-error`: the level each element is drawn at for the camera by `--driver` (the
 /// level pass's levels, transition triangles included, rounded as the driver rounds them), and
-/// the triangles against the smallest uniform level that meets the same bound.
-fn print_levels(a: &InfoArgs, path: &str, mesh: &Mesh) -> Result<()> {
+/// the triangles against the smallest uniform level that meets the same bound. Everything is
+/// as render has it with the same options: the surface as drawn (centred, at unit size, its
+/// displacement, inputs and parameters), its default camera fitted to that surface, culling.
+fn print_levels(a: &InfoArgs, mut input: Input) -> Result<()> {
     use meshrefine::lod::frame::{frame_levels, lod_records, unmet, LevelStats, LodView};
-    use meshrefine::lod::{Frustum, Lod, Sphere, View};
-    use meshrefine::surface::{build_records, stpn, BuildOptions, Mirror, Sources, Surface};
+    use meshrefine::lod::{Frustum, Lod, View};
+    use meshrefine::render::{framing_points, MeshData};
+    use meshrefine::surface::{stpn, Heightmap, Mirror, RecordKind, Sources};
     let Some(px) = a.pixel_error else {
         return Ok(());
     };
     let c = &a.camera;
+    let so = a.surface_opts();
+    let (surface, displace) = (so.surface, so.drawn.displace);
+    // The height map and tags render reads (stpn's triangles with three crease corners split).
+    attach_surface_inputs(&mut input, &so, false)?;
+    let path = input.shown.as_str();
+    let params = (so.drawn.params)
+        .params_for(&input.mesh, &[displace])
+        .map_err(anyhow::Error::msg)?;
+    let build = so.drawn.params.build().map_err(anyhow::Error::msg)?;
     // In the drawn frame (centred, unit radius), as render chooses its levels: single-precision
     // view maths far from the origin loses the mesh.
-    let (centre, scale) = mesh.viewing_transform();
+    let (centre, scale) = input.mesh.viewing_transform();
     let frame = Frame { centre, scale };
-    let radius = mesh.bounding_radius();
-    let drawn = mesh.for_viewing();
-    let mesh = &drawn;
-    let bounds = Sphere::around(&mesh.positions);
-    let framing = Camera::framing(bounds.centre, bounds.radius);
-    let v = &c.viewpoint;
-    let camera = v.camera(framing, &frame)?;
-    let (eye, fov) = (camera.eye(), camera.fov_y);
-    let surface = a.surface.unwrap_or(Surface::Pn);
-    let build = BuildOptions {
-        boundary: a.boundary,
-        bft_level: a.bft_level,
-        ..BuildOptions::default()
-    };
-    let params =
-        meshrefine::surface::SurfaceParams::for_radius(radius).in_drawn_frame(centre, scale);
-    let view = View::new(eye, fov, c.height, px, a.max_level);
-    let frustum = Frustum::from_view_proj(camera.view_proj(c.width as f32 / c.height as f32));
-    let displace = meshrefine::surface::Displace::None;
-    let tags = surface.facts().tags.then(|| stpn::derive(mesh).0);
+    let params = params.in_drawn_frame(centre, scale);
+    let data = MeshData::new(input.mesh.for_viewing(), RecordKind::Corners, build.seams);
+    let mesh = &data.mesh;
+    if let Some(why) = surface.incompatibility(displace, data.uvs.is_some()) {
+        bail!("{why}");
+    }
+    let tags = input.tags.take().unwrap_or_else(|| stpn::derive(mesh).0);
+    if surface.facts().tags {
+        stpn::check(mesh, &tags).map_err(anyhow::Error::msg)?;
+    }
+    let heightmap = input.heightmap.take().unwrap_or_else(Heightmap::generated);
     // Rounded as the driver draws them: powers of two for pattern and static, and for tess
     // while it glides.
     let dyadic = meshrefine::render::DrawConfig {
@@ -195,36 +207,50 @@ fn print_levels(a: &InfoArgs, path: &str, mesh: &Mesh) -> Result<()> {
         ..meshrefine::render::DrawConfig::new(a.driver, a.max_level)
     }
     .dyadic_levels();
-    let levels = |lod: &Lod, records: &[meshrefine::surface::ElementRecord]| {
-        let bounds = lod_records(lod, records);
-        let lod_view = LodView::new(&view, Some(&frustum), false, dyadic, bounds.len() as u32);
-        let levels = frame_levels(&lod_view, &bounds);
-        let stats = LevelStats::new(&levels, dyadic, a.max_level);
-        // The elements whose bound --max-level keeps from being met.
-        (stats, unmet(&lod_view, &bounds, &levels))
-    };
-    let (stats, unmet) = if surface.uses_loop_faces() {
+    let loop_data = if surface.uses_loop_faces() {
         let lattice = meshrefine::surface::loop_::Lattice::new(build.bft_level);
         let data = LoopData::new(mesh, build.boundary, lattice, |_| {})
             .map_err(|e| anyhow::anyhow!("{}: {e}", path))?;
         let frame = data.frame(&mesh.positions);
-        let sources = Sources {
-            loop_: Some((&data, &frame)),
-            ..Sources::default()
-        };
-        let mirror =
-            Mirror::new(surface, displace, &build, &sources).map_err(anyhow::Error::msg)?;
-        levels(&Lod::new(&mirror, &params), &data.records)
+        Some((data, frame))
     } else {
-        let records = build_records(surface.record_kind(), mesh, build.seams);
-        let sources = Sources {
-            tags: tags.as_deref(),
-            ..Sources::default()
-        };
-        let mirror =
-            Mirror::new(surface, displace, &build, &sources).map_err(anyhow::Error::msg)?;
-        levels(&Lod::new(&mirror, &params), &records)
+        None
     };
+    let sources = Sources {
+        uvs: data.uvs.as_deref(),
+        heightmap: Some(&heightmap),
+        // The height map's level at the largest level, as the scene reads it.
+        lod: heightmap.lod_for(data.uv_extent, a.max_level),
+        tags: Some(&tags),
+        loop_: loop_data.as_ref().map(|(d, f)| (d, f)),
+    };
+    let mirror = Mirror::new(surface, displace, &build, &sources).map_err(anyhow::Error::msg)?;
+    let records = match &loop_data {
+        Some((d, _)) => &d.records[..],
+        None => &data.records[..],
+    };
+    // Render's default camera: fitted to the surface as drawn, moved where the options ask.
+    let aspect = c.width as f32 / c.height as f32;
+    let points = framing_points(&mirror, &params, records, &mesh.positions);
+    let v = &c.viewpoint;
+    let camera = v.camera(&points, aspect, &frame)?;
+    let (eye, fov) = (camera.eye(), camera.fov_y);
+    let view = View::new(eye, fov, c.height, px, a.max_level);
+    let frustum = Frustum::from_view_proj(camera.view_proj(aspect));
+    // As render culls: outside the view, and facing away only on a closed mesh wound outwards.
+    let cull = a.cull.unwrap_or(true);
+    let bounds = lod_records(&Lod::new(&mirror, &params), records);
+    let lod_view = LodView::new(
+        &view,
+        cull.then_some(&frustum),
+        cull && mesh.closed_outward(),
+        dyadic,
+        bounds.len() as u32,
+    );
+    let levels = frame_levels(&lod_view, &bounds);
+    let stats = LevelStats::new(&levels, dyadic, a.max_level);
+    // The elements whose bound --max-level keeps from being met.
+    let unmet = unmet(&lod_view, &bounds, &levels);
     let elements = stats.histogram.values().sum::<u64>() + stats.culled;
     let uniform_level = stats.histogram.keys().max().copied().unwrap_or(1);
     let report = meshrefine::lod::LevelReport {
@@ -240,7 +266,10 @@ fn print_levels(a: &InfoArgs, path: &str, mesh: &Mesh) -> Result<()> {
     let [tx, ty, tz] = v.look_at.unwrap_or(frame.mesh(camera.target).to_array());
     out!(
         "adaptive {} at {px} px: {}x{}, fov-y {}°, eye {ex} {ey} {ez}, look-at {tx} {ty} {tz}, max level {}, driver {}",
-        surface.name(),
+        match displace {
+            meshrefine::surface::Displace::None => surface.name().to_string(),
+            d => format!("{} + {}", surface.name(), d.name()),
+        },
         c.width,
         c.height,
         v.fov,
@@ -252,7 +281,10 @@ fn print_levels(a: &InfoArgs, path: &str, mesh: &Mesh) -> Result<()> {
         surface.facts().elements.label(),
         report.histogram_line()
     );
-    out!("  culled (outside the view): {}", report.culled);
+    out!(
+        "  culled (outside the view or facing away): {}",
+        report.culled
+    );
     let u = &report.unmet;
     if u.near > 0 {
         out!(

@@ -116,10 +116,10 @@ pub fn attach_surface_inputs(input: &mut Input, s: &SurfaceOpts, any: bool) -> R
     input.heightmap = s.heightmap(any).map_err(anyhow::Error::msg)?;
     let lines = &input.report.triangle_lines;
     input.tags = (s.tags(&input.mesh, &input.shown, lines, any)).map_err(anyhow::Error::msg)?;
-    if s.surface.facts().tags && s.tags.is_none() {
-        split_three_creases(input, s.crease_angle)?;
+    if s.surface.facts().tags && s.drawn.tags.is_none() {
+        split_three_creases(input, s.drawn.crease_angle)?;
         let (_, corners) =
-            meshrefine::surface::stpn::derive_with_angle(&input.mesh, s.crease_angle);
+            meshrefine::surface::stpn::derive_with_angle(&input.mesh, s.drawn.crease_angle);
         if corners > 0 {
             note(format_args!(
                 "warning: '{}': {corners} vertices where three or more hard edges meet stay smooth under stpn (scalar-tagged PN triangles allow one crease per vertex; give tags with --tags)",
@@ -193,13 +193,14 @@ pub fn apply_surface_inputs(
 pub fn draw_config(t: &Technique, mesh: &Mesh) -> Result<DrawConfig> {
     Ok(DrawConfig {
         surface: t.surface.surface,
-        displace: t.surface.displace,
+        displace: t.surface.drawn.displace,
         params: t
             .surface
+            .drawn
             .params
-            .params_for(mesh, &[t.surface.displace])
+            .params_for(mesh, &[t.surface.drawn.displace])
             .map_err(anyhow::Error::msg)?,
-        build: t.surface.params.build().map_err(anyhow::Error::msg)?,
+        build: t.surface.drawn.params.build().map_err(anyhow::Error::msg)?,
         // `--driver pattern` parses as the pattern driver; `--submit` gives its mode.
         driver: match t.driver {
             Driver::Pattern(_) => Driver::Pattern(t.submit()),
@@ -253,16 +254,16 @@ impl SurfaceOpts {
         };
         // Derived tags are not checked here: the triangles with three crease corners they
         // give are split ([`split_three_creases`]).
-        if self.tags.is_none() && self.crease_angle.is_none() {
+        if self.drawn.tags.is_none() && self.drawn.crease_angle.is_none() {
             return Ok(None);
         }
-        if let Some(a) = self.crease_angle {
+        if let Some(a) = self.drawn.crease_angle {
             if !(a.is_finite() && a > 0.0 && a < 180.0) {
                 return Err(format!("--crease-angle {a} is not within (0, 180) degrees"));
             }
         }
-        let (base, _) = stpn::derive_with_angle(mesh, self.crease_angle);
-        let Some(path) = &self.tags else {
+        let (base, _) = stpn::derive_with_angle(mesh, self.drawn.crease_angle);
+        let Some(path) = &self.drawn.tags else {
             return Ok(Some(base));
         };
         let shown_tags = path.display().to_string();
@@ -291,10 +292,10 @@ impl SurfaceOpts {
         &self,
         any_displacement: bool,
     ) -> Result<Option<meshrefine::surface::Heightmap>, String> {
-        let Some(path) = &self.heightmap else {
+        let Some(path) = &self.drawn.heightmap else {
             return Ok(None);
         };
-        if !self.displace.facts().options.contains(&"heightmap") && !any_displacement {
+        if !self.drawn.displace.facts().options.contains(&"heightmap") && !any_displacement {
             return Ok(None);
         }
         meshrefine::surface::Heightmap::load_png(path).map(Some)

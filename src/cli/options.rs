@@ -144,6 +144,32 @@ const ADAPTIVE: &[&str] = &["max_level", "cull", "geomorph"];
 /// uniform; a uniform export writes every element whatever the camera.
 const CAMERA: &[&str] = &["eye", "look_at", "fov"];
 
+/// `info`'s options that only its report of adaptive levels reads (`--pixel-error`): the
+/// camera, the level options, and what changes the surface drawn (its displacement, inputs and
+/// parameters; not Loop's build options, which its Loop report reads too).
+const INFO_ADAPTIVE: &[&str] = &[
+    "eye",
+    "look_at",
+    "fov",
+    "width",
+    "height",
+    "max_level",
+    "geomorph",
+    "driver",
+    "cull",
+    "displace",
+    "heightmap",
+    "tags",
+    "crease_angle",
+    "alpha",
+    "amplitude",
+    "frequency",
+    "octaves",
+    "bias",
+    "pn_seams",
+    "normal_field",
+];
+
 /// One warning line for each of `ids` given without `--pixel-error` (`adaptive` false).
 fn adaptive_only(given: &Given, adaptive: bool, ids: &[&str]) -> Vec<String> {
     (ids.iter())
@@ -200,8 +226,8 @@ pub fn warnings(cli: &Cli, given: &Given) -> Vec<String> {
         f(&Chosen {
             surfaces: std::slice::from_ref(&s.surface),
             surface_shown: format!("--surface {}", s.surface.name()),
-            displaces: std::slice::from_ref(&s.displace),
-            displace_shown: format!("--displace {}", s.displace.name()),
+            displaces: std::slice::from_ref(&s.drawn.displace),
+            displace_shown: format!("--displace {}", s.drawn.displace.name()),
             driver: Some(driver),
         })
     };
@@ -251,23 +277,22 @@ pub fn warnings(cli: &Cli, given: &Given) -> Vec<String> {
             out
         }
         Command::Info(a) => {
-            let surfaces: Vec<Surface> = a.surface.into_iter().collect();
-            let mut out = Vec::new();
             let adaptive = a.pixel_error.is_some();
-            out.extend(adaptive_only(
-                given,
-                adaptive,
-                &[
-                    "eye",
-                    "look_at",
-                    "fov",
-                    "width",
-                    "height",
-                    "max_level",
-                    "geomorph",
-                    "driver",
-                ],
-            ));
+            // With --pixel-error the levels are reported for --surface, pn by default.
+            let surfaces: Vec<Surface> = match a.surface {
+                None if adaptive => vec![Surface::Pn],
+                s => s.into_iter().collect(),
+            };
+            let mut out = Vec::new();
+            out.extend(adaptive_only(given, adaptive, INFO_ADAPTIVE));
+            // Each is said once: without --pixel-error, that it applies only with it.
+            let given = &Given(
+                (given.0.iter())
+                    .filter(|id| adaptive || !INFO_ADAPTIVE.contains(&id.as_str()))
+                    .cloned()
+                    .collect(),
+            );
+            let check = |c: &Chosen| inapplicable(given, c);
             if let Some(s) = a.surface.filter(|s| !s.uses_loop_faces() && !adaptive) {
                 let builders: Vec<&str> = (Surface::ALL.into_iter())
                     .filter(|s| s.uses_loop_faces())
@@ -281,12 +306,13 @@ pub fn warnings(cli: &Cli, given: &Given) -> Vec<String> {
             }
             out.extend(check(&Chosen {
                 surfaces: &surfaces,
-                surface_shown: match a.surface {
-                    Some(s) => format!("--surface {}", s.name()),
-                    None => "info without --surface".to_string(),
+                surface_shown: match (a.surface, adaptive) {
+                    (Some(s), _) => format!("--surface {}", s.name()),
+                    (None, true) => "--surface pn".to_string(),
+                    (None, false) => "info without --surface".to_string(),
                 },
-                displaces: &[],
-                displace_shown: String::new(),
+                displaces: std::slice::from_ref(&a.drawn.displace),
+                displace_shown: format!("--displace {}", a.drawn.displace.name()),
                 driver: None,
             }));
             out

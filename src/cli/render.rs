@@ -130,10 +130,10 @@ pub fn render_png(
         h.prepared_elements(&mut scene, &viewed, Capture::None)?;
         let (centre, scale) = input.mesh.viewing_transform();
         let frame = Frame { centre, scale };
-        // The framing camera of the surface as drawn, moved where the options ask.
+        // The camera fitted to the surface as drawn, moved where the options ask.
         let uniform_camera = |scene: &meshrefine::render::Scene, viewed: &DrawConfig| {
-            let framing = scene.framing_camera(viewed, width as f32 / height as f32);
-            opts.viewpoint.camera(framing, &frame)
+            let points = scene.framing_points(viewed);
+            (opts.viewpoint).camera(&points, width as f32 / height as f32, &frame)
         };
         let mut camera = uniform_camera(&scene, &viewed)?;
         // The triangles of a frame drawn as chosen below, for the slow-frame warning, and what

@@ -79,7 +79,11 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc, given: &Given) -> Result<()> {
                     on: !(given.has("level") || a.lod),
                     pixel_error: ad.pixel_error,
                     cull: ad.cull,
-                    camera: ad.given_camera(&mesh, &Frame { centre, scale })?,
+                    viewpoint: {
+                        let frame = Frame { centre, scale };
+                        super::adaptive::check_distance(&a.adaptive.viewpoint, &frame)?;
+                        a.adaptive.viewpoint.drawn(&frame)
+                    },
                     max_level: ad.opts.max_level,
                 }
             },

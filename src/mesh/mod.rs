@@ -225,6 +225,14 @@ impl Mesh {
             / 6.0
     }
 
+    /// Closed, consistently oriented and wound outwards (a positive [`Mesh::signed_volume`]):
+    /// only such a mesh hides the faces that face away from an eye outside it, so only there
+    /// does adaptive drawing cull them (`render::Scene::closed`, and `info`'s report).
+    pub fn closed_outward(&self) -> bool {
+        let stats = self.stats();
+        stats.is_closed() && stats.inconsistently_oriented_edges == 0 && self.signed_volume() > 0.0
+    }
+
     /// The position indices of every triangle (e.g. for an index buffer).
     pub fn position_indices(&self) -> Vec<[u32; 3]> {
         self.triangles.iter().map(|t| t.p).collect()

@@ -66,6 +66,17 @@ impl Camera {
         Self::framing(Vec3::ZERO, 1.0).fit_from(points, aspect)
     }
 
+    /// [`Camera::fit`] with a vertical field of view of `fov_y` radians instead of 45 degrees:
+    /// the eye comes as close as that field of view lets it (farther for a narrow one, closer
+    /// for a wide one), so the points fill the image as they do at 45 degrees.
+    pub fn fit_with_fov(points: &[Vec3], aspect: f32, fov_y: f32) -> Self {
+        Self {
+            fov_y,
+            ..Self::framing(Vec3::ZERO, 1.0)
+        }
+        .fit_from(points, aspect)
+    }
+
     /// This camera moved so that, looking in the same direction with the same field of view, it
     /// shows every point of `points` as [`Camera::fit`] does from the framing direction (the
     /// window's fit-to-view). With no finite point, it is unchanged.
@@ -211,6 +222,64 @@ impl Camera {
     }
 }
 
+/// A viewpoint asked for (the command line's `--eye`, `--look-at` and `--fov`), in the drawn
+/// coordinates: what is not given comes from the camera fitted to the surface as drawn
+/// ([`Camera::fit_with_fov`] at `fov_y`), the one default camera of every command.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Viewpoint {
+    pub eye: Option<Vec3>,
+    pub look_at: Option<Vec3>,
+    /// Vertical field of view (radians).
+    pub fov_y: f32,
+}
+
+impl Default for Viewpoint {
+    /// The fitted camera at 45 degrees.
+    fn default() -> Self {
+        Self {
+            eye: None,
+            look_at: None,
+            fov_y: 45f32.to_radians(),
+        }
+    }
+}
+
+impl Viewpoint {
+    /// The camera for an image of `aspect` (width / height) showing `points`, the surface as
+    /// drawn ([`crate::render::framing_points`]): fitted at this field of view, then moved to
+    /// the eye and the point looked at where given, the other completed from the fitted camera.
+    /// `None` when the eye and the point looked at give no view direction (the same point, or
+    /// straight up or down).
+    pub fn camera(&self, points: &[Vec3], aspect: f32) -> Option<Camera> {
+        self.complete(Camera::fit_with_fov(points, aspect, self.fov_y))
+    }
+
+    /// `fitted` (a camera fitted at this field of view) moved to the eye and the point looked
+    /// at where given: the other comes from `fitted`.
+    pub fn complete(&self, fitted: Camera) -> Option<Camera> {
+        let (c, r) = (fitted.target, fitted.radius);
+        if self.eye.is_none() && self.look_at.is_none() {
+            return Some(fitted);
+        }
+        let eye = self.eye.unwrap_or(fitted.eye());
+        let target = self.look_at.unwrap_or(fitted.target);
+        // A look-at far beyond the mesh would grow the sphere the depth range holds, and with
+        // it the near plane, past the mesh: the target moves back along the view ray to the
+        // point nearest the mesh's centre. Eye and direction, so the image, stay.
+        let ray = target - eye;
+        let dir = ray.normalize_or_zero();
+        let along = (c - eye).dot(dir);
+        let target = if along > r * 1e-3 && along < ray.length() {
+            eye + dir * along
+        } else {
+            target
+        };
+        // The depth range holds the whole surface around the target.
+        let radius = r + (target - c).length();
+        Camera::looking(eye, target, self.fov_y, radius)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -334,5 +403,73 @@ mod tests {
         assert_eq!(Camera::fit(&[], 1.0), Camera::framing(Vec3::ZERO, 1.0));
         let one = Camera::fit(&[Vec3::ONE], 1.0);
         assert!(one.distance > 0.0 && one.target == Vec3::ONE);
+    }
+
+    #[test]
+    fn a_viewpoint_completes_what_it_does_not_give_from_the_fitted_camera() {
+        let points: Vec<Vec3> = (0..100)
+            .map(|i| {
+                let t = i as f32 * 0.61;
+                Vec3::new(t.sin(), 0.5 * (t * 1.3).cos(), 0.7 * (t * 0.7).sin())
+            })
+            .collect();
+        let aspect = 4.0 / 3.0;
+        // Nothing given: the fitted camera at 45 degrees, exactly.
+        let default = Viewpoint::default();
+        assert_eq!(
+            default.camera(&points, aspect),
+            Some(Camera::fit(&points, aspect))
+        );
+        // A field of view alone: fitted with it, so the points still touch the margin (closer
+        // for a wide one, farther for a narrow one).
+        for degrees in [20.0f32, 90.0, 170.0] {
+            let fov_y = degrees.to_radians();
+            let v = Viewpoint { fov_y, ..default };
+            let cam = v.camera(&points, aspect).unwrap();
+            assert_eq!(cam, Camera::fit_with_fov(&points, aspect, fov_y));
+            assert_eq!(cam.fov_y, fov_y);
+            let m = cam.view_proj(aspect);
+            let extent = (points.iter())
+                .map(|p| {
+                    let c = m * p.extend(1.0);
+                    assert!(c.w > 0.0, "{degrees}: {p} behind the eye");
+                    (c.x / c.w).abs().max((c.y / c.w).abs())
+                })
+                .fold(0.0f32, f32::max);
+            assert!(
+                (extent - (1.0 - FIT_MARGIN)).abs() < 2e-3,
+                "{degrees}: fills {extent}"
+            );
+        }
+        // A lone eye looks at the fitted camera's target; a lone point looked at is seen from
+        // the fitted camera's eye; both at the field of view given.
+        let fov_y = 60f32.to_radians();
+        let fitted = Camera::fit_with_fov(&points, aspect, fov_y);
+        let eye = Vec3::new(3.0, 1.0, -2.0);
+        let v = Viewpoint {
+            eye: Some(eye),
+            fov_y,
+            ..default
+        };
+        let cam = v.camera(&points, aspect).unwrap();
+        assert!((cam.eye() - eye).length() < 1e-5, "{}", cam.eye());
+        assert!((cam.target - fitted.target).length() < 1e-5);
+        assert_eq!(cam.fov_y, fov_y);
+        let target = Vec3::new(0.2, -0.1, 0.1);
+        let v = Viewpoint {
+            look_at: Some(target),
+            fov_y,
+            ..default
+        };
+        let cam = v.camera(&points, aspect).unwrap();
+        assert!((cam.eye() - fitted.eye()).length() < 1e-4, "{}", cam.eye());
+        assert!((cam.target - target).length() < 1e-5);
+        // An eye at the fitted target gives no direction.
+        let v = Viewpoint {
+            eye: Some(fitted.target),
+            fov_y,
+            ..default
+        };
+        assert_eq!(v.camera(&points, aspect), None);
     }
 }

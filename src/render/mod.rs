@@ -11,6 +11,7 @@ pub mod driver;
 mod error;
 pub mod frame;
 mod framing;
+pub use framing::framing_points;
 mod gpu_mesh;
 mod headless;
 pub mod level_pass;
@@ -24,7 +25,7 @@ pub mod static_vbo;
 pub mod tess;
 mod xfb_capture;
 
-pub use camera::{Camera, FIT_MARGIN};
+pub use camera::{Camera, Viewpoint, FIT_MARGIN};
 pub use driver::{Driver, DriverKind, Submit};
 pub use error::RenderError;
 pub use frame::Background;

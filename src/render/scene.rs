@@ -104,10 +104,7 @@ impl Scene {
         max_chunk: Option<u32>,
     ) -> Result<Self, RenderError> {
         let data = MeshData::new(mesh, RecordKind::Corners, Seams::default());
-        let stats = data.mesh.stats();
-        let closed = stats.is_closed()
-            && stats.inconsistently_oriented_edges == 0
-            && data.mesh.signed_volume() > 0.0;
+        let closed = data.mesh.closed_outward();
         let heightmap = Heightmap::generated();
         let (tags, _) = crate::surface::stpn::derive(&data.mesh);
         let gpu = GpuMesh::new(

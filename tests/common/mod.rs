@@ -93,3 +93,23 @@ pub fn pattern_tolerance(cfg: &DrawConfig, r: f32, records: &[ElementRecord]) ->
 /// The fields of one line of bench's CSV (not every test reads one).
 #[allow(unused_imports)]
 pub use meshrefine::bench::csv_fields;
+
+/// Runs the binary with `args` as a user would, with the validation layer on and no display,
+/// one at a time with this test process's other GPU work.
+pub fn validated_cli(args: &[&str]) -> std::process::Output {
+    let _guard = gpu_lock();
+    std::process::Command::new(env!("CARGO_BIN_EXE_meshrefine"))
+        .env("MESHREFINE_VALIDATE", "1")
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .args(args)
+        .output()
+        .expect("run meshrefine")
+}
+
+/// A path for `name` in the folder `dir` of the tests' temporary directory (made if missing).
+pub fn tmp_file(dir: &str, name: &str) -> String {
+    let d = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(dir);
+    std::fs::create_dir_all(&d).unwrap();
+    d.join(name).to_str().unwrap().to_string()
+}

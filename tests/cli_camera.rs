@@ -1,0 +1,265 @@
+//! One default camera everywhere: `info`, `bench`, `render` and adaptive `export` choose their
+//! levels for the same camera (fitted to the surface as drawn, displacement included) and cull
+//! alike, and `--fov` without `--eye` fits that camera at the field of view given. Run as a user
+//! would, with the validation layer on.
+
+mod common;
+
+use common::model_path;
+use std::path::PathBuf;
+use std::process::Output;
+
+/// The binary, validated, without a display.
+fn meshrefine(args: &[&str]) -> Output {
+    common::validated_cli(args)
+}
+
+fn tmp(name: &str) -> String {
+    common::tmp_file("cli-camera", name)
+}
+
+/// Runs `args`, expects success without a validation message; returns stdout.
+fn ok(args: &[&str]) -> String {
+    let out = meshrefine(args);
+    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert!(out.status.success(), "{args:?} failed: {stderr}");
+    assert!(!stderr.contains("validation"), "{args:?}: {stderr}");
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+/// `info`'s `levels (level:...): L:n ...` histogram.
+fn info_histogram(stdout: &str) -> String {
+    let line = (stdout.lines())
+        .find(|l| l.trim_start().starts_with("levels ("))
+        .unwrap_or_else(|| panic!("no levels line in:\n{stdout}"));
+    line.split_once("): ").unwrap().1.trim().to_string()
+}
+
+/// `info`'s count after `name: ` (0 when the line is not printed).
+fn info_count(stdout: &str, name: &str) -> u64 {
+    (stdout.lines())
+        .find_map(|l| l.trim().strip_prefix(&format!("{name}: ")))
+        .map_or(0, |rest| {
+            rest.split_whitespace().next().unwrap().parse().unwrap()
+        })
+}
+
+/// The `# levels` header line of an exported OBJ.
+fn export_histogram(obj: &str) -> String {
+    let text = std::fs::read_to_string(obj).unwrap();
+    let line = (text.lines().take(12))
+        .find_map(|l| l.strip_prefix("# levels "))
+        .unwrap_or_else(|| panic!("no levels header in {obj}"));
+    line.trim().to_string()
+}
+
+/// render's `levels (level:elements) H; culled N` as (H, N).
+fn render_histogram(stdout: &str) -> (String, u64) {
+    let line = (stdout.lines())
+        .find_map(|l| l.split_once("levels (level:elements) ").map(|(_, r)| r))
+        .unwrap_or_else(|| panic!("no adaptive line in:\n{stdout}"));
+    let (h, culled) = line.split_once("; culled ").unwrap();
+    (h.trim().to_string(), culled.trim().parse().unwrap())
+}
+
+/// The `level_histogram` column of every row of a bench CSV.
+fn bench_histograms(csv: &str) -> Vec<String> {
+    let text = std::fs::read_to_string(csv).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let column = header.iter().position(|c| *c == "level_histogram").unwrap();
+    // The first field (the device) is quoted and holds commas: count from the end.
+    let from_end = header.len() - column;
+    lines
+        .map(|l| {
+            let fields: Vec<&str> = l.split(',').collect();
+            fields[fields.len() - from_end].to_string()
+        })
+        .collect()
+}
+
+#[test]
+fn info_bench_render_and_export_choose_the_same_levels() {
+    let spot = model_path("spot_control_tri.obj");
+    let torus = model_path("torus_16x8.obj");
+    let grid = model_path("grid_uv_8x8.obj");
+    let size = ["--width", "160", "--height", "120"];
+    // A plain surface, displaced ones (the camera fits the displaced surface; the height map
+    // read at the mesh's texture coordinates), a field of view (the camera is fitted at it)
+    // and a lone eye (completed from the fitted camera).
+    let cases: [(&PathBuf, &[&str]); 5] = [
+        (&spot, &["--pixel-error", "1"]),
+        (&torus, &["--pixel-error", "1", "--displace", "sine"]),
+        (&grid, &["--pixel-error", "0.5", "--displace", "heightmap"]),
+        (&spot, &["--pixel-error", "2", "--fov", "70"]),
+        (&torus, &["--pixel-error", "1", "--eye", "0.5,2,3"]),
+    ];
+    for (i, (mesh, options)) in cases.into_iter().enumerate() {
+        let mesh = mesh.to_str().unwrap();
+        let with = |command: &str, extra: &[&str]| -> Vec<String> {
+            [&[command, mesh][..], options, &size, extra]
+                .concat()
+                .into_iter()
+                .map(String::from)
+                .collect()
+        };
+        let run = |args: Vec<String>| ok(&args.iter().map(String::as_str).collect::<Vec<_>>());
+        let info = run(with("info", &[]));
+        let levels = info_histogram(&info);
+        let culled = info_count(&info, "culled (outside the view or facing away)");
+        // render: its adaptive line (culling on, as info's default).
+        let png = tmp(&format!("same-{i}.png"));
+        let (drawn, render_culled) = render_histogram(&run(with("render", &["-o", &png])));
+        assert_eq!(
+            (&drawn, render_culled),
+            (&levels, culled),
+            "{options:?}:\n{info}"
+        );
+        // Adaptive export culls only with --cull on: then its header is info's histogram.
+        let obj = tmp(&format!("same-{i}.obj"));
+        run(with("export", &["--cull", "on", "-o", &obj]));
+        assert_eq!(export_histogram(&obj), levels, "{options:?}");
+        // Without culling on either side, every element is counted.
+        let all = info_histogram(&run(with("info", &["--cull", "off"])));
+        run(with("export", &["-o", &obj]));
+        assert_eq!(export_histogram(&obj), all, "{options:?}");
+        // bench draws the same view: its histogram column on every pattern row.
+        let prefix = tmp(&format!("same-{i}"));
+        let bench = with(
+            "bench",
+            &[
+                "--frames",
+                "1",
+                "--surfaces",
+                "pn",
+                "--drivers",
+                "pattern",
+                "--no-bound-levels",
+                "--out",
+                &prefix,
+            ],
+        );
+        let mut bench = bench;
+        // bench names its surfaces and displacements in the plural.
+        if let Some(d) = bench.iter().position(|a| a == "--displace") {
+            bench[d] = "--displacements".into();
+        }
+        run(bench);
+        let rows = bench_histograms(&format!("{prefix}.csv"));
+        assert!(!rows.is_empty());
+        for row in rows {
+            assert_eq!(row, levels, "{options:?}");
+        }
+    }
+}
+
+#[test]
+fn info_culls_faces_facing_away_as_render_does() {
+    // Spot is closed and wound outwards: from the default camera some elements face away,
+    // and info counts them culled unless --cull off, as render does.
+    let spot = model_path("spot_control_tri.obj");
+    let spot = spot.to_str().unwrap();
+    let info = ok(&["info", spot, "--pixel-error", "1"]);
+    let culled = info_count(&info, "culled (outside the view or facing away)");
+    assert!(culled > 0, "{info}");
+    let off = ok(&["info", spot, "--pixel-error", "1", "--cull", "off"]);
+    assert_eq!(
+        info_count(&off, "culled (outside the view or facing away)"),
+        0
+    );
+    // An open mesh shows its back side: nothing faces away.
+    let grid = model_path("wavy_grid_10x10.obj");
+    let grid = ok(&["info", grid.to_str().unwrap(), "--pixel-error", "1"]);
+    assert_eq!(
+        info_count(&grid, "culled (outside the view or facing away)"),
+        0
+    );
+    // The options that change the drawn surface are read only with --pixel-error.
+    let out = meshrefine(&["info", spot, "--displace", "sine", "--cull", "off"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("--displace applies only with --pixel-error")
+            && stderr.contains("--cull applies only with --pixel-error"),
+        "{stderr}"
+    );
+    // Bad values are one sentence, status 1.
+    let out = meshrefine(&[
+        "info",
+        spot,
+        "--pixel-error",
+        "1",
+        "--displace",
+        "sine",
+        "--amplitude",
+        "nan",
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(
+        stderr.trim(),
+        "error: --amplitude NaN is not a finite number",
+        "{stderr}"
+    );
+}
+
+/// Decoded RGBA pixels of a PNG and its size.
+fn decode(path: &str) -> (Vec<u8>, u32, u32) {
+    let decoder = png::Decoder::new(std::fs::File::open(path).unwrap());
+    let mut reader = decoder.read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    assert_eq!(info.color_type, png::ColorType::Rgba, "{path}");
+    buf.truncate(info.buffer_size());
+    (buf, info.width, info.height)
+}
+
+/// The bounding box (x0, x1, y0, y1) of the pixels unlike the top-left one (the background),
+/// and their count.
+fn covered_box(path: &str) -> ((u32, u32, u32, u32), usize) {
+    let (px, w, h) = decode(path);
+    let at = |x: u32, y: u32| &px[((y * w + x) * 4) as usize..][..4];
+    let background = at(0, 0).to_vec();
+    let (mut b, mut n) = ((u32::MAX, 0, u32::MAX, 0), 0);
+    for y in 0..h {
+        for x in 0..w {
+            if at(x, y) != background.as_slice() {
+                b = (b.0.min(x), b.1.max(x), b.2.min(y), b.3.max(y));
+                n += 1;
+            }
+        }
+    }
+    (b, n)
+}
+
+#[test]
+fn fov_without_eye_fits_the_camera_at_that_field_of_view() {
+    let (w, h) = (160u32, 120u32);
+    let render = |fov: &str| {
+        let png = tmp(&format!("fov-{fov}.png"));
+        let (ws, hs) = (w.to_string(), h.to_string());
+        ok(&[
+            "render", "-o", &png, "--width", &ws, "--height", &hs, "--fov", fov,
+        ]);
+        covered_box(&png)
+    };
+    // Spot at 4:3 is fitted by its height: at any field of view its silhouette spans the
+    // image's height up to the margin (FIT_MARGIN of the half-height, 4.8 px here) and stays
+    // clear of the side borders, as at 45 degrees.
+    let margin = meshrefine::render::FIT_MARGIN * h as f32 * 0.5;
+    let (_, at45) = render("45");
+    for fov in ["20", "45", "90"] {
+        let ((x0, x1, y0, y1), n) = render(fov);
+        let near = |v: u32, want: f32| (v as f32 - want).abs() <= 3.0;
+        assert!(
+            near(y0, margin) && near(y1, h as f32 - 1.0 - margin),
+            "--fov {fov}: rows {y0}..{y1}"
+        );
+        assert!(x0 > 0 && x1 < w - 1, "--fov {fov}: columns {x0}..{x1}");
+        // As much of the image covered as at 45 degrees, give or take the perspective.
+        assert!(n * 10 > at45 * 7, "--fov {fov}: {n} pixels against {at45}");
+    }
+    // A very wide field of view still shows the mesh, without an error.
+    let (_, n) = render("170");
+    assert!(n > 0);
+}
