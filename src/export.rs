@@ -476,7 +476,8 @@ pub fn check_adaptive_size(
         ),
     };
     Err(format!(
-        "--pixel-error {pixel_error} chooses levels that would export {triangles} refined triangles ({elements} elements in view, up to level {}), about {:.1} GB of memory and a {:.1} GB file; at most {MAX_EXPORT_TRIANGLES} (2^24) are exported: {remedy}",
+        "--pixel-error {} chooses levels that would export {triangles} refined triangles ({elements} elements in view, up to level {}), about {:.1} GB of memory and a {:.1} GB file; at most {MAX_EXPORT_TRIANGLES} (2^24) are exported: {remedy}",
+        crate::lod::px(pixel_error),
         histogram.keys().max().copied().unwrap_or(0),
         gb(triangles.saturating_mul(MEMORY_PER_TRIANGLE)),
         gb(triangles.saturating_mul(FILE_PER_TRIANGLE)),

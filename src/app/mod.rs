@@ -95,7 +95,7 @@ pub struct ViewOptions {
 pub const WINDOW_LEVELS: u32 = 256;
 
 /// Why the window cannot start from the viewpoint asked for.
-const NO_DIRECTION: &str = "--eye and --look-at give no view direction with the camera that frames the surface (the eye is at the point looked at, or straight above or below it: up is +Y)";
+const NO_DIRECTION: &str = "--eye and --look-at give no view direction with the camera that frames the surface: the eye is at the point looked at";
 
 pub const KEY_HELP: &str = "keys: left drag = orbit, right or middle drag = pan, wheel = zoom, \
 R = reset camera, Z or Home = fit view, 1/2/3 = static/pattern/tess, \

@@ -325,7 +325,7 @@ impl MeshSetup {
                 let aspect = opts.width as f32 / opts.height.max(1) as f32;
                 v.camera(&self.scene.framing_points(cfg), aspect)
                     .ok_or(RenderError::Unsupported(
-                        "the eye and the point looked at give no view direction (the same point, or straight up or down: up is +Y)",
+                        "the eye and the point looked at give no view direction: they are the same point",
                     ))?
             }
         };

@@ -29,6 +29,8 @@ pub fn check_view(px: f32, v: &ViewpointOpts, level_given: bool) -> Result<()> {
     check_camera(v)
 }
 
+pub use meshrefine::lod::px;
+
 /// The narrowest vertical field of view: narrower, single precision cannot place the view
 /// frustum's planes (the image breaks up, culling fails).
 pub const MIN_FOV: f32 = 0.01;
@@ -276,7 +278,7 @@ impl Adaptive<'_> {
         );
         if u.near > 0 {
             note(format_args!(
-                "note: {} are at the eye (it is in or at their bounds: no distance bounds their error in pixels): {whatever}",
+                "note: {} hold the eye in their bounds (no distance bounds their error in pixels): {whatever}",
                 plural(u.near, "element")
             ));
         }
@@ -294,7 +296,7 @@ impl Adaptive<'_> {
         if u.capped > 0 {
             note(format_args!(
                 "note: the {} px bound is not met on {}: they need a level above the largest, {max} (--max-level)",
-                self.pixel_error,
+                px(self.pixel_error),
                 plural(u.capped, "element")
             ));
         }
@@ -318,7 +320,8 @@ impl Adaptive<'_> {
         [
             format!(
                 "camera eye {ex} {ey} {ez} target {tx} {ty} {tz} up {ux} {uy} {uz} fov-y {} size {width} {height} pixel-error {}",
-                self.opts.viewpoint.fov, self.pixel_error
+                self.opts.viewpoint.fov,
+                px(self.pixel_error)
             ),
             format!("levels {}", report.histogram_line()),
         ]

@@ -90,7 +90,13 @@ pub fn run(a: &BenchArgs, desc: &ContextDesc, levels_given: bool) -> Result<()> 
                 cameras: Vec::new(),
                 pixel_error: ad.pixel_error,
                 cull: ad.cull,
-                max_level: ad.max_level(&ctx, driver)?,
+                max_level: ad.max_level(&ctx, driver).map_err(|e| {
+                    if a.drivers.is_empty() {
+                        anyhow::anyhow!("{e} (bench measures every driver unless --drivers names some: --drivers tess takes any level)")
+                    } else {
+                        e
+                    }
+                })?,
                 bound_levels: !a.no_bound_levels,
                 geomorph: ad.geomorph,
             });

@@ -265,11 +265,12 @@ fn print_levels(a: &InfoArgs, mut input: Input) -> Result<()> {
     let [ex, ey, ez] = v.eye.unwrap_or(frame.mesh(eye).to_array());
     let [tx, ty, tz] = v.look_at.unwrap_or(frame.mesh(camera.target).to_array());
     out!(
-        "adaptive {} at {px} px: {}x{}, fov-y {}°, eye {ex} {ey} {ez}, look-at {tx} {ty} {tz}, max level {}, driver {}",
+        "adaptive {} at {} px: {}x{}, fov-y {}°, eye {ex} {ey} {ez}, look-at {tx} {ty} {tz}, max level {}, driver {}",
         match displace {
             meshrefine::surface::Displace::None => surface.name().to_string(),
             d => format!("{} + {}", surface.name(), d.name()),
         },
+        super::adaptive::px(px),
         c.width,
         c.height,
         v.fov,
@@ -279,7 +280,11 @@ fn print_levels(a: &InfoArgs, mut input: Input) -> Result<()> {
     out!(
         "  levels (level:{}): {}",
         surface.facts().elements.label(),
-        report.histogram_line()
+        if report.histogram.is_empty() {
+            "none (every element culled)".to_string()
+        } else {
+            report.histogram_line()
+        }
     );
     out!(
         "  culled (outside the view or facing away): {}",
@@ -288,7 +293,7 @@ fn print_levels(a: &InfoArgs, mut input: Input) -> Result<()> {
     let u = &report.unmet;
     if u.near > 0 {
         out!(
-            "  near: {} element(s) are at the eye (in or at their bounds): drawn at --max-level {} whatever the pixel error, no pixel error is promised on them",
+            "  near: {} element(s) hold the eye in their bounds: drawn at --max-level {} whatever the pixel error, no pixel error is promised on them",
             u.near,
             a.max_level
         );
@@ -306,6 +311,10 @@ fn print_levels(a: &InfoArgs, mut input: Input) -> Result<()> {
             u.capped,
             a.max_level
         );
+    }
+    if report.histogram.is_empty() {
+        out!("  refined triangles: none drawn");
+        return Ok(());
     }
     out!(
         "  refined triangles: {} adaptive against {} at uniform level {} ({:.2}x)",

@@ -47,7 +47,7 @@ pub fn run(a: &RenderArgs, desc: &ContextDesc, level_given: bool) -> Result<()> 
 fn levels_line(a: &Adaptive, max: u32, report: &meshrefine::lod::LevelReport) -> String {
     format!(
         "adaptive at {} px, max level {max}: levels (level:elements) {}; culled {}",
-        a.pixel_error,
+        super::adaptive::px(a.pixel_error),
         report.histogram_line(),
         report.culled
     )

@@ -535,8 +535,8 @@ pub const UNCAPPED: u32 = 1 << 20;
 /// them from it ([`unmet`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Unmet {
-    /// Elements with a finite bound that no level meets, the eye being in or at their bounds
-    /// (no distance bounds their error in pixels).
+    /// Elements with a finite bound whose bounding sphere (or an edge's) holds the eye: no
+    /// distance bounds their error in pixels, no level meets it.
     pub near: u64,
     /// Other elements with no finite bound (a `loop` surface with displacement, a normal field
     /// that may vanish): at the largest level whatever the pixel error.
@@ -561,10 +561,17 @@ pub fn unmet(view: &LodView, records: &[LodRecord], levels: &[ElementLevels]) ->
         match drawn_level(element_levels(&free, r).inner, dyadic, UNCAPPED) {
             n if n >= UNCAPPED => {
                 let huge = |c: &[f32; 4]| c[0] >= HUGE || c[1] >= HUGE;
+                // The metric's tolerance is zero where a sphere holds the eye (`View::tolerance`).
+                let holds_eye = |s: &[f32; 4]| {
+                    let s = Vec4::from(*s);
+                    (s.truncate() - view.eye()).length() <= s.w
+                };
                 if huge(&r.chord) || r.edges.iter().any(|e| huge(&e.curve)) {
                     u.unbounded += 1;
-                } else {
+                } else if holds_eye(&r.sphere) || r.edges.iter().any(|e| holds_eye(&e.sphere)) {
                     u.near += 1;
+                } else {
+                    u.capped += 1;
                 }
             }
             n if n > max => u.capped += 1,

@@ -115,7 +115,7 @@ pub mod report;
 pub use bound::{Bounds, Lod};
 pub use cull::{Frustum, NormalCone};
 pub use net::Net;
-pub use report::LevelReport;
+pub use report::{px, LevelReport};
 
 use glam::Vec3;
 

@@ -34,3 +34,24 @@ impl LevelReport {
         pairs.join(" ")
     }
 }
+
+/// A pixel error as printed: as given where that is short, in exponent form far from 1
+/// (`1e-30`, not thirty zeros).
+pub fn px(value: f32) -> String {
+    if value != 0.0 && !(1e-3..1e6).contains(&value.abs()) {
+        format!("{value:e}")
+    } else {
+        format!("{value}")
+    }
+}
+
+#[cfg(test)]
+mod px_tests {
+    #[test]
+    fn pixel_errors_print_short() {
+        assert_eq!(super::px(1.0), "1");
+        assert_eq!(super::px(0.5), "0.5");
+        assert_eq!(super::px(1e-30), "1e-30");
+        assert_eq!(super::px(2.5e7), "2.5e7");
+    }
+}

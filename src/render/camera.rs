@@ -248,8 +248,7 @@ impl Viewpoint {
     /// The camera for an image of `aspect` (width / height) showing `points`, the surface as
     /// drawn ([`crate::render::framing_points`]): fitted at this field of view, then moved to
     /// the eye and the point looked at where given, the other completed from the fitted camera.
-    /// `None` when the eye and the point looked at give no view direction (the same point, or
-    /// straight up or down).
+    /// `None` when the eye and the point looked at give no view direction (the same point).
     pub fn camera(&self, points: &[Vec3], aspect: f32) -> Option<Camera> {
         self.complete(Camera::fit_with_fov(points, aspect, self.fov_y))
     }
