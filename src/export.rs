@@ -86,10 +86,10 @@ pub fn weld_with(
 }
 
 /// Weld the vertices the pattern driver captured drawing adaptively at largest level
-/// `max_level` (slots of the finest pattern per element, each written vertex's `id.z` its
-/// element's inner level; a culled element wrote none): each element's inner-level triangles
-/// ([`crate::pattern::adaptive::Hierarchy`]), those whose corners snapping welded together
-/// (degenerate) dropped.
+/// `max_level` (packed: each element's vertices at its drawn inner level only, in that level's
+/// pattern order, each written vertex's `id.z` that level; a culled element has none;
+/// [`CaptureResult::adaptive_elements`]): each element's inner-level triangles, those whose
+/// corners snapping welded together (degenerate) dropped.
 pub fn weld_adaptive(capture: &CaptureResult, max_level: u32) -> Result<RefinedMesh, String> {
     weld_adaptive_with(capture, max_level, None)
 }
@@ -101,47 +101,68 @@ pub fn weld_adaptive_with(
     max_level: u32,
     uv: Option<TexcoordOf<'_>>,
 ) -> Result<RefinedMesh, String> {
-    use crate::pattern::adaptive::Hierarchy;
-    let pv = capture.pattern_vertex_count as usize;
-    if pv != crate::pattern::vertex_count(max_level) as usize || !max_level.is_power_of_two() {
+    let Some(levels) = &capture.inner_levels else {
+        return Err("the capture was not drawn adaptively".to_string());
+    };
+    if !max_level.is_power_of_two() {
         return Err(format!(
-            "capture holds {pv} vertices per element, not the finest pattern of level {max_level}"
+            "adaptive captures have a power of two as largest level, not {max_level}"
+        ));
+    }
+    let packed: u64 = (levels.iter())
+        .map(|&l| {
+            if l == 0 {
+                0
+            } else {
+                crate::pattern::vertex_count(l) as u64
+            }
+        })
+        .sum();
+    if packed != capture.vertices.len() as u64 {
+        return Err(format!(
+            "capture holds {} vertices, the levels of its elements {packed}",
+            capture.vertices.len()
         ));
     }
     let mut w = Welder::default();
     let mut triangles = Vec::new();
     let mut texcoord_triangles = Vec::new();
-    for (t, slots) in capture.vertices.chunks(pv).enumerate() {
-        let Some(inner) = slots.iter().find(|v| v.position[3] == 1.0).map(|v| v.id[2]) else {
+    // Each level's triangles (the uniform pattern's: in the hierarchy's order).
+    let mut patterns: HashMap<u32, Vec<u32>> = HashMap::new();
+    let mut index = Vec::new();
+    for (t, (inner, vertices)) in capture.adaptive_elements().enumerate() {
+        if inner == 0 {
             continue; // culled
-        };
+        }
         if !inner.is_power_of_two() || inner > max_level {
             return Err(format!("element {t} was drawn at level {inner}"));
         }
-        let index: Vec<Option<(u32, u32, u32)>> = slots
-            .iter()
-            .map(|v| {
-                (v.position[3] == 1.0).then(|| {
-                    let (p, n) = w.add(
-                        Vec3::from_slice(&v.position[..3]),
-                        Vec3::from_slice(&v.normal[..3]),
-                    );
-                    (p, n, uv.map_or(0, |uv| w.add_texcoord(uv(v))))
-                })
-            })
-            .collect();
-        for tri in Hierarchy::level_indices(max_level, inner).chunks_exact(3) {
-            let mut c = [(0, 0); 3];
-            let mut ct = [0; 3];
-            for (k, &i) in tri.iter().enumerate() {
-                let (p, n, t) = index[i as usize]
-                    .ok_or_else(|| format!("the GPU did not write vertex {i} of element {t}"))?;
-                (c[k], ct[k]) = ((p, n), t);
+        index.clear();
+        for (i, v) in vertices.iter().enumerate() {
+            if v.position[3] != 1.0 {
+                return Err(format!("the GPU did not write vertex {i} of element {t}"));
             }
+            if v.id[2] != inner {
+                return Err(format!(
+                    "element {t} was drawn at level {}, captured at level {inner}",
+                    v.id[2]
+                ));
+            }
+            let (p, n) = w.add(
+                Vec3::from_slice(&v.position[..3]),
+                Vec3::from_slice(&v.normal[..3]),
+            );
+            index.push((p, n, uv.map_or(0, |uv| w.add_texcoord(uv(v)))));
+        }
+        let local = patterns
+            .entry(inner)
+            .or_insert_with(|| Pattern::uniform(inner).indices);
+        for tri in local.chunks_exact(3) {
+            let c = [0, 1, 2].map(|k| index[tri[k] as usize]);
             if c[0].0 != c[1].0 && c[1].0 != c[2].0 && c[2].0 != c[0].0 {
-                triangles.push(c);
+                triangles.push(c.map(|(p, n, _)| (p, n)));
                 if uv.is_some() {
-                    texcoord_triangles.push(ct);
+                    texcoord_triangles.push(c.map(|(_, _, t)| t));
                 }
             }
         }
@@ -400,43 +421,6 @@ pub fn check_size(elements: u64, level: u32) -> Result<u64, String> {
     ))
 }
 
-/// Most bytes an adaptive capture into fixed slots may hold: what a whole export at
-/// [`MAX_EXPORT_TRIANGLES`] takes at most.
-pub const MAX_SLOT_CAPTURE_BYTES: u64 = MAX_EXPORT_TRIANGLES * MEMORY_PER_TRIANGLE;
-
-/// Refuses, before anything is evaluated, an adaptive export of `elements` elements by a driver
-/// that captures into fixed slots (the pattern driver: every element's vertices at its finest
-/// pattern, of `max_level`, whatever level it is drawn at; [`weld_adaptive`]) whose slots pass
-/// [`MAX_SLOT_CAPTURE_BYTES`]: one clause naming them, their memory and the largest
-/// `--max-level` (a power of two) that fits; `given`: `--max-level` was given (else the
-/// driver's default is named as such).
-pub fn check_slot_capture(elements: u64, max_level: u32, given: bool) -> Result<(), String> {
-    let bytes = |l: u32| {
-        let per =
-            crate::pattern::vertex_count(l) as u64 * std::mem::size_of::<CapturedVertex>() as u64;
-        elements.saturating_mul(per)
-    };
-    if bytes(max_level) <= MAX_SLOT_CAPTURE_BYTES {
-        return Ok(());
-    }
-    let gb = |bytes: u64| bytes as f64 / 1e9;
-    let lower = (0..max_level.max(1).ilog2())
-        .rev()
-        .map(|k| 1u32 << k)
-        .find(|&m| bytes(m) <= MAX_SLOT_CAPTURE_BYTES);
-    let remedy = match lower {
-        Some(m) => format!("use --max-level {m} or a smaller power of two, or --driver tess"),
-        None => "use --driver tess".to_string(),
-    };
-    Err(format!(
-        "--max-level {max_level}{}: the pattern driver's adaptive capture holds every element's vertices at its finest pattern whatever levels are chosen, {elements} elements x {}, about {:.1} GB of memory; at most {:.1} GB: {remedy}",
-        if given { "" } else { " (the default)" },
-        crate::pattern::vertex_count(max_level),
-        gb(bytes(max_level)),
-        gb(MAX_SLOT_CAPTURE_BYTES),
-    ))
-}
-
 /// Refuses an adaptive export (`--pixel-error`) whose chosen levels make more than
 /// [`MAX_EXPORT_TRIANGLES`], after the levels are chosen and before anything is captured:
 /// `histogram` holds the visible elements per drawn level (`LevelReport::histogram`), each
@@ -549,6 +533,93 @@ mod tests {
         assert_eq!(heard, [(153, 153)]);
     }
 
+    /// A packed adaptive capture by hand: two triangles sharing an edge in the plane, element
+    /// 0 at level 2 with that edge at level 1 (its middle vertex snapped onto a corner),
+    /// element 1 at level 1, and a culled element between them. Welded: element 0's 4
+    /// triangles less the one snapping made degenerate, element 1's one, closed along the
+    /// shared edge; texture coordinates follow each vertex.
+    fn hand_capture() -> CaptureResult {
+        let v = |e: u32, p: [f32; 2], level: u32| CapturedVertex {
+            position: [p[0], p[1], 0.0, 1.0],
+            normal: [0.0, 0.0, 1.0, 0.0],
+            coord: [p[0], p[1], 0.0, 0.0],
+            id: [e, 0, level, 1],
+        };
+        // Element 0: corners (0,0) (1,0) (0,1), lattice of level 2 in its order; the shared
+        // edge is edge 1 (from (1,0) to (0,1)), whose middle (0.5,0.5) snapped onto (1,0).
+        let e0 = [
+            [0.0, 0.0],
+            [0.5, 0.0],
+            [1.0, 0.0],
+            [0.0, 0.5],
+            [1.0, 0.0],
+            [0.0, 1.0],
+        ];
+        // Element 2: (1,0) (1,1) (0,1) at level 1.
+        let e2 = [[1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+        let mut vertices: Vec<CapturedVertex> = e0.iter().map(|&p| v(0, p, 2)).collect();
+        vertices.extend(e2.iter().map(|&p| v(2, p, 1)));
+        CaptureResult {
+            vertices,
+            pattern_vertex_count: crate::pattern::vertex_count(4),
+            inner_levels: Some(vec![2, 0, 1]),
+            stats: None,
+        }
+    }
+
+    #[test]
+    fn packed_adaptive_captures_weld_each_element_at_its_level() {
+        let cap = hand_capture();
+        let levels: Vec<(u32, usize)> =
+            cap.adaptive_elements().map(|(l, v)| (l, v.len())).collect();
+        assert_eq!(levels, [(2, 6), (0, 0), (1, 3)]);
+        let uv = |v: &CapturedVertex| Vec2::new(v.coord[0], v.coord[1]);
+        let mesh = weld_adaptive_with(&cap, 4, Some(&uv)).unwrap();
+        // (0,0) (.5,0) (1,0) (0,.5) (0,1) (1,1): the snapped vertex welds onto (1,0).
+        assert_eq!(mesh.positions.len(), 6);
+        assert_eq!(mesh.normals.len(), 1);
+        let tris: Vec<[u32; 3]> = mesh.triangles.iter().map(|t| t.map(|c| c.0)).collect();
+        // Level 2's triangles (0 1 3) (1 2 4) (1 4 3) (3 4 5), the second degenerate; then
+        // element 2's.
+        assert_eq!(tris, [[0, 1, 3], [1, 2, 3], [3, 2, 4], [2, 5, 4]]);
+        assert_eq!(mesh.texcoord_triangles, tris);
+        assert_eq!(mesh.texcoords.len(), 6);
+        let mut edges = HashMap::new();
+        for t in &tris {
+            for k in 0..3 {
+                let (a, b) = (t[k].min(t[(k + 1) % 3]), t[k].max(t[(k + 1) % 3]));
+                *edges.entry((a, b)).or_insert(0) += 1;
+            }
+        }
+        // The shared edge (1,0)-(0,1) has both sides; the rest is the square's outline.
+        assert_eq!(edges[&(2, 4)], 2);
+        assert_eq!(edges.values().filter(|&&n| n == 1).count(), 6);
+    }
+
+    /// What a packed capture that does not match its levels says.
+    #[test]
+    fn packed_adaptive_captures_are_checked() {
+        let mut cap = hand_capture();
+        assert!(weld_adaptive(&cap, 1)
+            .unwrap_err()
+            .contains("element 0 was drawn at level 2"));
+        assert!(weld_adaptive(&cap, 3).unwrap_err().contains("power of two"));
+        cap.vertices[7].position[3] = 0.0;
+        let e = weld_adaptive(&cap, 4).unwrap_err();
+        assert_eq!(e, "the GPU did not write vertex 1 of element 2");
+        cap.vertices[7].position[3] = 1.0;
+        cap.vertices[1].id[2] = 4;
+        let e = weld_adaptive(&cap, 4).unwrap_err();
+        assert_eq!(e, "element 0 was drawn at level 4, captured at level 2");
+        cap.vertices.pop();
+        let e = weld_adaptive(&cap, 4).unwrap_err();
+        assert_eq!(e, "capture holds 8 vertices, the levels of its elements 9");
+        cap.inner_levels = None;
+        assert!(weld_adaptive(&cap, 4)
+            .unwrap_err()
+            .contains("not drawn adaptively"));
+    }
+
     #[test]
     fn obj_text_has_vt_only_with_texture_coordinates() {
         let mut mesh = RefinedMesh {
@@ -610,19 +681,5 @@ mod tests {
         let crowd = BTreeMap::from([(1, (1 << 24) + 1), (2, 1)]);
         let e = check_adaptive_size(&crowd, 0.5, 64, true).unwrap_err();
         assert!(e.contains("too many to export even at level 1"), "{e}");
-        // The pattern driver's slots: 5856 elements x vertex_count(64) fit, x vertex_count(128)
-        // do not.
-        assert!(check_slot_capture(5856, 64, false).is_ok());
-        let e = check_slot_capture(5856, 1024, true).unwrap_err();
-        assert!(
-            e.starts_with("--max-level 1024: the pattern driver's adaptive capture"),
-            "{e}"
-        );
-        assert!(
-            e.ends_with("use --max-level 64 or a smaller power of two, or --driver tess"),
-            "{e}"
-        );
-        let e = check_slot_capture(5856, 128, false).unwrap_err();
-        assert!(e.starts_with("--max-level 128 (the default):"), "{e}");
     }
 }

@@ -19,7 +19,8 @@ use common::{model, with_gpu};
 use glam::{Vec3, Vec4};
 use meshrefine::lod::levels::ElementLevels;
 use meshrefine::lod::View;
-use meshrefine::pattern::adaptive::{self, Hierarchy};
+use meshrefine::pattern::adaptive;
+use meshrefine::pattern::Pattern;
 use meshrefine::render::tess::{morph, outer_levels, tess_weights_levels};
 use meshrefine::render::{Camera, Capture, DrawConfig, Driver, Headless, LevelView, Scene, Submit};
 use meshrefine::surface::{Displace, Surface, SurfaceParams};
@@ -114,11 +115,11 @@ fn drawn_triangles(
         }
     }
     let (levels, _) = scene.drawn_levels(cfg);
-    for (t, slots) in cap.vertices.chunks(pv).enumerate() {
-        let Some(inner) = slots.iter().find(|v| v.position[3] == 1.0).map(|v| v.id[2]) else {
+    for (t, (inner, slots)) in cap.adaptive_elements().enumerate() {
+        if inner == 0 {
             continue; // culled
-        };
-        for tri in Hierarchy::level_indices(MAX, inner).chunks_exact(3) {
+        }
+        for tri in Pattern::uniform(inner).indices.chunks_exact(3) {
             let v = [tri[0], tri[1], tri[2]].map(|i| &slots[i as usize]);
             assert!(
                 v.iter().all(|v| v.position[3] == 1.0),

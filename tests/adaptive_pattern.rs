@@ -143,7 +143,6 @@ fn check_chunked(
     bft_level: Option<u32>,
 ) -> usize {
     let (mut scene, camera, r) = scene_chunked(h, model(file), max, chunk);
-    let pv = vertex_count(max) as usize;
     let mut moved = 0;
     for (c, &combo) in combos.iter().enumerate() {
         for submit in Submit::ALL {
@@ -161,7 +160,8 @@ fn check_chunked(
                 2e-3
             };
             let mirror = scene.mirror(&cfg, max).unwrap();
-            assert_eq!(cap.vertices.len(), records.len() * pv);
+            let elements: Vec<_> = cap.adaptive_elements().collect();
+            assert_eq!(elements.len(), records.len());
             let what = format!(
                 "{file} {} + {} {}",
                 combo.0.name(),
@@ -170,23 +170,24 @@ fn check_chunked(
             );
             let mut culled = 0;
             for (t, rec) in records.iter().enumerate() {
-                let slots = &cap.vertices[t * pv..(t + 1) * pv];
+                // Packed: the element's inner level's vertices only, in that level's order.
+                let (inner, slots) = elements[t];
                 let Some(e) = adaptive_element(&levels[t], max) else {
                     culled += 1;
+                    assert_eq!(inner, 0, "{what}: culled element {t} has a level");
                     assert!(
-                        slots.iter().all(|v| v.position[3] == 0.0),
+                        slots.is_empty(),
                         "{what}: culled element {t} drew something"
                     );
                     continue;
                 };
-                let drawn: HashSet<u32> = e.vertices.iter().copied().collect();
-                for (k, v) in slots.iter().enumerate() {
-                    if !drawn.contains(&(k as u32)) {
-                        assert_eq!(v.position[3], 0.0, "{what}: element {t} slot {k} not drawn");
-                    }
-                }
-                for (&k, &bary) in e.vertices.iter().zip(&e.bary) {
-                    let v = &slots[k as usize];
+                assert_eq!(inner, e.levels.inner, "{what}: element {t}'s level");
+                assert_eq!(
+                    slots.len(),
+                    e.vertices.len(),
+                    "{what}: element {t}'s vertices"
+                );
+                for ((&k, &bary), v) in e.vertices.iter().zip(&e.bary).zip(slots) {
                     let at = format!("{what}: element {t} vertex {k} at {bary:?}");
                     assert_eq!(v.position[3], 1.0, "{at} never written");
                     assert_eq!(v.id, [t as u32, k, e.levels.inner, 1], "{at}: slot");
@@ -261,7 +262,8 @@ fn adaptive_pattern_matches_the_mirror() {
 }
 
 /// Records and levels in chunks of 7 of icosahedron's 20 elements (one bin per chunk and level
-/// for `instanced`), captured in passes of 3 elements (the bins pass runs on each pass's range).
+/// for `instanced`), captured in passes of at most 3 finest patterns' vertices (several elements
+/// at their own levels; the bins pass runs on each pass's range).
 #[test]
 fn adaptive_pattern_in_chunks_and_capture_passes() {
     with_gpu(64, 64, |h| {
@@ -360,8 +362,12 @@ fn watertight(
             corners.len() + edges.values().map(|&n| n as usize - 1).sum::<usize>() + inner_vertices;
         h.adaptive = true;
         let cap = h.capture(&mut scene, &cfg, &camera).unwrap();
+        // `Headless::refined_mesh` welds the same adaptive capture.
+        let refined = h.refined_mesh(&mut scene, &cfg, &camera).unwrap();
         h.adaptive = false;
         let welded = weld_adaptive(&cap, max).unwrap();
+        assert_eq!(refined.positions, welded.positions);
+        assert_eq!(refined.triangles, welded.triangles);
         let what = format!(
             "{file} {} + {} {}",
             combo.0.name(),
@@ -411,7 +417,6 @@ fn adaptive_geomorph_matches_the_mirror_and_is_watertight() {
     with_gpu(64, 64, |h| {
         let max = 16;
         let (mut scene, camera, r) = scene_at(h, model("icosahedron_vn.obj"), max);
-        let pv = vertex_count(max) as usize;
         for (c, &combo) in COMBOS.iter().enumerate() {
             let mut cfg = config(Submit::ALL[c % 3], max, combo, r);
             cfg.geomorph = true;
@@ -424,13 +429,13 @@ fn adaptive_geomorph_matches_the_mirror_and_is_watertight() {
             let mirror = scene.mirror(&cfg, max).unwrap();
             let what = format!("{} + {} {}", combo.0.name(), combo.1.name(), cfg.label());
             let (mut morphing, mut worst) = (0usize, 0.0f32);
-            for (t, rec) in records.iter().enumerate() {
+            for ((t, rec), (_, slots)) in records.iter().enumerate().zip(cap.adaptive_elements()) {
                 let Some(e) = adaptive_element(&levels[t], max) else {
                     continue;
                 };
                 let eval = |b: [f32; 3]| mirror.eval(&cfg.params, t, rec, b).position;
-                for ((&k, &pt), &bary) in e.vertices.iter().zip(&e.points).zip(&e.bary) {
-                    let v = &cap.vertices[t * pv + k as usize];
+                let vertices = e.vertices.iter().zip(&e.points).zip(&e.bary).zip(slots);
+                for (((&k, &pt), &bary), v) in vertices {
                     let want = geomorph_position(&levels[t], &e.levels, max, pt, &eval);
                     morphing += (want != eval(bary)) as usize;
                     for a in 0..3 {

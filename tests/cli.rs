@@ -3039,8 +3039,7 @@ fn exports_report_progress_and_passes_keep_the_file() {
 
 /// An adaptive export is sized by the levels chosen for its camera (what it really exports),
 /// not by every element at the largest level, and a refusal advises the adaptive options, never
-/// `--level` (exclusive with `--pixel-error`); the pattern driver's capture, which holds every
-/// element's slots at the largest level, is refused by that level, advising a power of two.
+/// `--level` (exclusive with `--pixel-error`).
 #[test]
 fn adaptive_exports_are_sized_by_the_levels_chosen() {
     let spot = model_path("spot_tri.obj");
@@ -3083,23 +3082,111 @@ fn adaptive_exports_are_sized_by_the_levels_chosen() {
             "use a larger --pixel-error, or --max-level 32 or a smaller power of two",
         ],
     );
-    // The pattern driver's capture at level 1024: 5856 elements x 525825 slots.
-    run(
-        &["--pixel-error", "4", "--max-level", "1024"],
-        &[
-            "--max-level 1024: the pattern driver's adaptive capture",
-            "5856 elements x 525825",
-            "use --max-level 64 or a smaller power of two, or --driver tess",
-        ],
+}
+
+/// The closed, consistently oriented triangles of an exported OBJ's text (each undirected edge
+/// in exactly two faces, each directed edge in one), with its `# levels` histogram
+/// (level, elements) and its vertex and face counts.
+fn closed_adaptive_export(text: &str) -> (Vec<(u64, u64)>, usize, usize) {
+    let levels: Vec<(u64, u64)> = (text.lines())
+        .find_map(|l| l.strip_prefix("# levels "))
+        .expect("a # levels line")
+        .split_whitespace()
+        .map(|b| {
+            let (l, n) = b.split_once(':').expect("level:count");
+            (l.parse().unwrap(), n.parse().unwrap())
+        })
+        .collect();
+    let vertices = text.lines().filter(|l| l.starts_with("v ")).count();
+    let faces: Vec<[usize; 3]> = (text.lines())
+        .filter_map(|l| l.strip_prefix("f "))
+        .map(|f| {
+            let c: Vec<usize> = f
+                .split_whitespace()
+                .map(|c| c.split('/').next().unwrap().parse().unwrap())
+                .collect();
+            [c[0], c[1], c[2]]
+        })
+        .collect();
+    let mut undirected = std::collections::HashMap::new();
+    let mut directed = std::collections::HashSet::new();
+    for f in &faces {
+        for k in 0..3 {
+            let (a, b) = (f[k], f[(k + 1) % 3]);
+            *undirected.entry((a.min(b), a.max(b))).or_insert(0) += 1;
+            assert!(
+                directed.insert((a, b)),
+                "edge {a}-{b} twice in one direction"
+            );
+        }
+    }
+    let open = undirected.values().filter(|&&n| n != 2).count();
+    assert_eq!(open, 0, "{open} edges not shared by exactly two faces");
+    (levels, vertices, faces.len())
+}
+
+/// The pattern driver's adaptive export captures each element at the level it is drawn at
+/// only, so what it holds follows the levels chosen, not the largest level: up to
+/// `--max-level 1024` on Spot's 5856 elements (its finest pattern for every element would be
+/// 197 GB) and loop's 23424 elements at the default largest level export, welded closed with
+/// the vertex count their levels give; one element too large for a capture pass is one sentence.
+#[test]
+fn adaptive_pattern_exports_hold_only_the_levels_drawn() {
+    let spot = model_path("spot_tri.obj");
+    let obj = tmp("adaptive-packed.obj");
+    let export = |extra: &[&str]| -> String {
+        std::fs::remove_file(&obj).ok();
+        let mut args = vec!["export", p(&spot), "-o", p(&obj), "--width", "160"];
+        args.extend(["--height", "100"]);
+        args.extend(extra);
+        ok(&args);
+        std::fs::read_to_string(&obj).unwrap()
+    };
+    // Every element at level 1: the coarse mesh, its 2930 vertices and 5856 faces.
+    let text = export(&["--pixel-error", "4", "--max-level", "1024"]);
+    assert!(text.contains("max level 1024"), "{}", &text[..200]);
+    let (levels, vertices, faces) = closed_adaptive_export(&text);
+    assert_eq!(levels, [(1, 5856)]);
+    assert_eq!((vertices, faces), (2930, 5856));
+    // Mixed levels: Spot is a sphere, so welded closed it has 2 + F/2 vertices (Euler), and
+    // at most N² triangles an element at level N (fewer where snapping to a coarser edge
+    // dropped degenerate ones), at least half of them.
+    for extra in [
+        ["--pixel-error", "0.25", "--max-level", "1024"],
+        ["--pixel-error", "1", "--surface", "loop"],
+    ] {
+        let text = export(&extra);
+        let (levels, vertices, faces) = closed_adaptive_export(&text);
+        assert!(levels.len() > 1, "{extra:?}: one level only: {levels:?}");
+        let elements: u64 = levels.iter().map(|l| l.1).sum();
+        let expected = if extra.contains(&"loop") { 23424 } else { 5856 };
+        assert_eq!(elements, expected, "{extra:?}");
+        assert_eq!(vertices, 2 + faces / 2, "{extra:?}");
+        let most: u64 = levels.iter().map(|(l, n)| n * l * l).sum();
+        assert!(
+            faces as u64 <= most && 2 * faces as u64 > most,
+            "{extra:?}: {faces}"
+        );
+    }
+    // One element at level 4 needs 15 x 64 bytes: passes of 640 cannot hold it.
+    std::fs::remove_file(&obj).ok();
+    let env = [("MESHREFINE_MAX_CAPTURE_BYTES", "640")];
+    #[rustfmt::skip]
+    let args = [
+        "export", p(&spot), "-o", p(&obj), "--width", "160", "--height", "100", "--pixel-error",
+        "0.25",
+    ];
+    let out = meshrefine_env(&args, &env);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(
+        stderr.contains("cannot export '")
+            && stderr.contains("of one element drawn at level")
+            && stderr.contains("use a larger --pixel-error, or --max-level 2 or lower"),
+        "{stderr}"
     );
-    // Loop's 23424 elements at the default largest level.
-    run(
-        &["--pixel-error", "4", "--surface", "loop"],
-        &[
-            "--max-level 64 (the default)",
-            "use --max-level 32 or a smaller power of two",
-        ],
-    );
+    assert!(!obj.exists());
 }
 
 /// An adaptive export whose every element is culled writes nothing and says why.

@@ -14,7 +14,7 @@ use common::random_levels::random_levels;
 use common::{model, with_gpu};
 use glam::Vec3;
 use meshrefine::pattern::adaptive::adaptive_element;
-use meshrefine::pattern::{vertex_count, PatternSet};
+use meshrefine::pattern::PatternSet;
 use meshrefine::render::static_adaptive::{drawn, refine_adaptive};
 use meshrefine::render::{Camera, Capture, DrawConfig, Driver, Headless, LevelView, Scene, Submit};
 use meshrefine::surface::{
@@ -54,17 +54,15 @@ fn compare(h: &mut Headless, scene: &mut Scene, st: DrawConfig, view: &LevelView
         2e-3
     };
     let what = format!("{} + {}", st.surface.name(), st.displace.name());
-    let pv = vertex_count(max) as usize;
     let (mut at, mut elements) = (0, 0);
-    for (t, l) in levels.iter().enumerate() {
+    for ((t, l), (_, slots)) in levels.iter().enumerate().zip(cap.adaptive_elements()) {
         let (first, end) = (refined.first[t], refined.first[t + 1]);
         let Some(e) = adaptive_element(l, max) else {
             assert_eq!(first, end, "{what}: culled element {t} has triangles");
             continue;
         };
         elements += 1;
-        for (k, &slot) in e.vertices.iter().enumerate() {
-            let c = &cap.vertices[t * pv + slot as usize];
+        for (k, (&slot, c)) in e.vertices.iter().zip(slots).enumerate() {
             let s = refined.vertices[at + k];
             assert_eq!(
                 c.position[3], 1.0,

@@ -63,12 +63,20 @@ struct CapturedVertex {
 layout(set = SET_CAPTURE, binding = BINDING_CAPTURE, std430) writeonly buffer Capture {
     CapturedVertex captured[];
 };
-// Append counter (tess: the tessellator's vertices have no fixed index), capacity, and the first
-// element of this capture pass (pattern slots count from it).
+// Append counter (tess: the tessellator's vertices have no fixed index; the adaptive pattern
+// driver: vertices its packed capture had no room for), capacity, the first element of this
+// capture pass (pattern slots count from it) and, for an adaptive pattern capture, the packed
+// slot this pass's buffer starts at.
 layout(set = SET_CAPTURE, binding = BINDING_CAPTURE_COUNT, std430) buffer CaptureCount {
     uint capture_count;
     uint capture_capacity;
     uint capture_first;
+    uint capture_base;
+};
+// The adaptive pattern driver's packed capture: element e's vertices (its inner level's lattice)
+// from slot capture_offsets[e] to capture_offsets[e + 1] (src/render/packed_capture.rs).
+layout(set = SET_CAPTURE, binding = BINDING_CAPTURE_OFFSETS, std430) readonly buffer CaptureOffsets {
+    uint capture_offsets[];
 };
 #endif
 

@@ -142,9 +142,23 @@ void main() {
     v_bary = bary;
     gl_Position = frame.view_proj * vec4(sp.position, 1.0);
 #ifdef CAPTURE
-    // The finest pattern's slots; id.z the element's drawn inner level, id.w 1 (adaptive).
-    captured[(element - capture_first) * pc.draw.z + uint(gl_VertexIndex)] =
-        CapturedVertex(vec4(sp.position, 1.0), vec4(sp.normal, 0.0), vec4(bary, 0.0),
-                       uvec4(element, uint(gl_VertexIndex), n.w, 1u));
+    // Packed (src/render/packed_capture.rs): the element's vertices at its inner level only,
+    // point (i, j) of that level's own lattice at its lattice index (`bft_row`, the GLSL twin of
+    // pattern::lattice_index) after the element's first slot; id.y the finest pattern's vertex,
+    // id.z the inner level, id.w 1 (adaptive). A vertex outside the room the capture made for
+    // its element (a level other than the one it was sized for) is counted, not written.
+    uint s = f / max(n.w, 1u);
+    uvec2 q = raw / s;
+    uint slot = capture_offsets[element] + bft_row(n.w, q.x, q.y);
+    bool lattice = all(equal(raw % s, uvec2(0u)));
+    if (!lattice) {
+        // Not a vertex of the inner level (never drawn: its triangles index none).
+    } else if (n.w != 0u && slot < capture_offsets[element + 1u] && slot - capture_base < capture_capacity) {
+        captured[slot - capture_base] =
+            CapturedVertex(vec4(sp.position, 1.0), vec4(sp.normal, 0.0), vec4(bary, 0.0),
+                           uvec4(element, uint(gl_VertexIndex), n.w, 1u));
+    } else {
+        atomicAdd(capture_count, 1u);
+    }
 #endif
 }

@@ -45,15 +45,6 @@ pub fn run(a: &ExportArgs, desc: &ContextDesc) -> Result<()> {
         if let Some(a) = &adaptive {
             cfg.level = a.max_level(&ctx, cfg.driver)?;
             cfg.geomorph = a.geomorph;
-            let kind = cfg.driver.kind();
-            if kind.export_capture() == Some(Capture::Vertices) && !kind.capture_appends() {
-                meshrefine::export::check_slot_capture(
-                    elements,
-                    cfg.level,
-                    a.opts.max_level.is_some(),
-                )
-                .map_err(|e| anyhow::anyhow!("cannot export '{shown}': {e}"))?;
-            }
         }
         let shown = input.shown.clone();
         let knobs = (progress, max_capture_bytes);

@@ -58,8 +58,11 @@ pub const BINDING_LOOP_ROWS: u32 = 10;
 pub const SET_CAPTURE: u32 = 2;
 /// Set 2, binding 0: evaluated vertices, `CapturedVertex[]`.
 pub const BINDING_CAPTURE: u32 = 0;
-/// Set 2, binding 1: append counter and capacity (`tess` capture).
+/// Set 2, binding 1: append counter and capacity (`tess` capture), the pass's first element and
+/// first packed slot.
 pub const BINDING_CAPTURE_COUNT: u32 = 1;
+/// Set 2, binding 2: each element's first slot in the adaptive pattern driver's packed capture.
+pub const BINDING_CAPTURE_OFFSETS: u32 = 2;
 
 /// The Loop step's compute pass (its own set 0): per-M1-vertex entry offsets, entries
 /// (parent, weight), M0 positions in, M1 positions out.
@@ -110,6 +113,7 @@ pub const GLSL_DEFINES: &[(&str, u32)] = &[
     ("SET_CAPTURE", SET_CAPTURE),
     ("BINDING_CAPTURE", BINDING_CAPTURE),
     ("BINDING_CAPTURE_COUNT", BINDING_CAPTURE_COUNT),
+    ("BINDING_CAPTURE_OFFSETS", BINDING_CAPTURE_OFFSETS),
     ("LOOP_BINDING_OFFSETS", LOOP_BINDING_OFFSETS),
     ("LOOP_BINDING_ENTRIES", LOOP_BINDING_ENTRIES),
     ("LOOP_BINDING_M0", LOOP_BINDING_M0),

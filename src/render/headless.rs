@@ -43,13 +43,49 @@ pub struct Headless {
 /// Vertices the capture variant of a driver's pipeline wrote.
 /// - `pattern`: exactly `pattern_vertex_count` per coarse triangle, in pattern order, triangle
 ///   after triangle (`id = (triangle, pattern vertex)`).
+/// - `pattern` drawing adaptively: packed, each element's vertices at its drawn inner level
+///   `inner_levels[t]` only (`vertex_count` of it, none when culled), in that level's own pattern
+///   order, element after element ([`CaptureResult::adaptive_elements`]); `id = (element, the
+///   finest pattern's vertex, inner level, 1)`.
 /// - `tess`: every evaluation-stage invocation, in no particular order (`id.y = u32::MAX`,
 ///   `coord` = gl_TessCoord); an implementation may evaluate a vertex more than once.
 pub struct CaptureResult {
     pub vertices: Vec<CapturedVertex>,
+    /// The (finest) pattern's vertex count.
     pub pattern_vertex_count: u32,
+    /// The adaptive pattern driver's: each element's drawn inner level, 0 where culled.
+    pub inner_levels: Option<Vec<u32>>,
     pub stats: Option<PipelineStats>,
 }
+
+impl CaptureResult {
+    /// An adaptive pattern capture's elements in order: each one's drawn inner level (0:
+    /// culled) and its vertices, that level's pattern (empty when culled); nothing for another
+    /// capture.
+    pub fn adaptive_elements(&self) -> impl Iterator<Item = (u32, &[CapturedVertex])> + '_ {
+        let levels = self.inner_levels.as_deref().unwrap_or_default();
+        let mut first = 0;
+        levels.iter().map(move |&l| {
+            let count = if l == 0 { 0 } else { vertex_count(l) as usize };
+            let end = (first + count).min(self.vertices.len());
+            let vertices = &self.vertices[first.min(end)..end];
+            first = end;
+            (l, vertices)
+        })
+    }
+}
+
+/// One pass of a capture: the elements it draws, the packed slot its buffer starts at (the
+/// adaptive pattern driver's; 0 otherwise), and how many slots it fills (None: the driver
+/// appends, the counter says).
+pub(super) struct CapturePlan {
+    pub elements: std::ops::Range<u32>,
+    pub base: u32,
+    pub slots: Option<u64>,
+}
+
+/// Bytes of one captured vertex.
+pub(super) const VERTEX_BYTES: u64 = std::mem::size_of::<CapturedVertex>() as u64;
 
 /// Timings and counters of one frame.
 #[derive(Clone, Copy, Debug)]
@@ -356,7 +392,8 @@ impl Headless {
 
     /// Draw with the capture variant of `cfg`'s pipeline and read back every evaluated vertex.
     /// A capture buffer may span at most maxStorageBufferRange bytes, so a large capture is made
-    /// in passes, each drawing as many elements as fit.
+    /// in passes, each drawing as many elements as fit. Drawing adaptively, the pattern driver
+    /// captures each element at its drawn inner level only, packed ([`CaptureResult`]).
     pub fn capture(
         &mut self,
         scene: &mut Scene,
@@ -369,8 +406,7 @@ impl Headless {
                 "the static driver evaluates on the CPU: there is nothing to capture (use pattern or tess)",
             ));
         };
-        let vertex_bytes = std::mem::size_of::<CapturedVertex>() as u64;
-        let (limit, limit_name) = pass_limit(
+        let limit = pass_limit(
             (
                 self.ctx.info.limits.max_storage_buffer_range as u64,
                 "maxStorageBufferRange",
@@ -378,7 +414,11 @@ impl Headless {
             self.ctx.info.max_memory_allocation_size,
             self.max_capture_bytes,
         );
-        let fits = |per: u64| per * vertex_bytes <= limit && per <= u32::MAX as u64;
+        if self.adaptive && !cfg.driver.kind().capture_appends() {
+            return self.capture_packed(scene, cfg, camera, limit);
+        }
+        let (limit, limit_name) = limit;
+        let fits = |per: u64| per * VERTEX_BYTES <= limit && per <= u32::MAX as u64;
         if !fits(per_element as u64) {
             let per_at = |l: u32| cfg.driver.capture_per_element(l).unwrap_or(0) as u64;
             let remedy = match (1..cfg.level).rev().find(|&l| fits(per_at(l))) {
@@ -387,7 +427,7 @@ impl Headless {
             };
             return Err(RenderError::OverLimit {
                 what: format!("capturing the {per_element} evaluated vertices of one element"),
-                needed: per_element as u64 * vertex_bytes,
+                needed: per_element as u64 * VERTEX_BYTES,
                 unit: "bytes",
                 limit: limit_name,
                 max: limit,
@@ -395,72 +435,129 @@ impl Headless {
             });
         }
         let n = self.prepared_elements(scene, cfg, Capture::Vertices)?;
-        let per_pass = (limit / (per_element as u64 * vertex_bytes))
+        let per_pass = (limit / (per_element as u64 * VERTEX_BYTES))
             .min(u32::MAX as u64 / per_element as u64)
             .min(n.max(1) as u64) as u32;
+        let appends = cfg.driver.kind().capture_appends();
+        let passes = (0..n)
+            .step_by(per_pass as usize)
+            .map(|first| {
+                let elements = first..n.min(first + per_pass);
+                let slots = (!appends).then(|| elements.len() as u64 * pv as u64);
+                CapturePlan {
+                    elements,
+                    base: 0,
+                    slots,
+                }
+            })
+            .collect::<Vec<_>>();
         let capacity = per_pass as u64 * per_element as u64;
+        let (vertices, stats) = self.capture_passes(scene, cfg, camera, &passes, capacity, None)?;
+        Ok(CaptureResult {
+            vertices,
+            pattern_vertex_count: pv,
+            inner_levels: None,
+            stats,
+        })
+    }
+
+    /// Draw the capture `passes` (each into a buffer of `capacity` slots, zeroed first so that
+    /// a missed vertex keeps `w = 0`; `offsets`: the packed capture's per-element slots) and
+    /// read back what each wrote, in order.
+    pub(super) fn capture_passes(
+        &mut self,
+        scene: &mut Scene,
+        cfg: &DrawConfig,
+        camera: &Camera,
+        passes: &[CapturePlan],
+        capacity: u64,
+        offsets: Option<&Buffer>,
+    ) -> Result<(Vec<CapturedVertex>, Option<PipelineStats>), RenderError> {
+        let n = passes.last().map_or(0, |p| p.elements.end);
         let vertices = Buffer::new(
             &self.ctx,
             BufferDesc::new_readback(
-                capacity * vertex_bytes,
+                capacity.max(1) * VERTEX_BYTES,
                 vk::BufferUsageFlags::STORAGE_BUFFER,
             ),
             "capture output",
         )?;
         let mut counter = Buffer::new(
             &self.ctx,
-            BufferDesc::new_upload(12, vk::BufferUsageFlags::STORAGE_BUFFER),
+            BufferDesc::new_upload(16, vk::BufferUsageFlags::STORAGE_BUFFER),
             "capture counter",
         )?;
-        self.renderer.set_capture_target(&vertices, &counter);
+        // Without a packed capture the counter stands in for the offsets, which nothing reads.
+        let packed = offsets.is_some();
+        let offsets = offsets.map_or(counter.raw, |o| o.raw);
+        self.renderer
+            .set_capture_target(vertices.raw, counter.raw, offsets);
         let wire = std::mem::replace(&mut self.wireframe, false);
         let mut out = Vec::new();
         let mut stats = None;
-        let mut first = 0;
-        let result = loop {
-            if first >= n {
-                break Ok(());
-            }
-            let count = per_pass.min(n - first);
-            counter.write_pod(0, &[0u32, capacity as u32, first]);
+        let mut result = Ok(());
+        for (k, pass) in passes.iter().enumerate() {
+            let first = pass.elements.start;
+            counter.write_pod(0, &[0u32, capacity as u32, first, pass.base]);
             // Unwritten entries keep w = 0, so a missed vertex is detectable.
             if let Err(e) = self
                 .pool
                 .submit_and_wait(|cmd| cmd.fill_buffer(&vertices, 0))
             {
-                break Err(e.into());
+                result = Err(e.into());
+                break;
             }
-            let elements = first..first + count;
-            match self.draw_inner(scene, cfg, camera, Capture::Vertices, None, elements) {
+            match self.draw_inner(
+                scene,
+                cfg,
+                camera,
+                Capture::Vertices,
+                None,
+                pass.elements.clone(),
+            ) {
                 Ok(t) => stats = t.stats,
-                Err(e) => break Err(e),
-            }
-            let mut pass: Vec<CapturedVertex> = vertices.read_pod();
-            if cfg.driver.kind().capture_appends() {
-                let written = counter.read_pod::<u32>()[0] as u64;
-                if written > capacity {
-                    break Err(RenderError::CaptureOverflow { written, capacity });
+                Err(e) => {
+                    result = Err(e);
+                    break;
                 }
-                pass.truncate(written as usize);
-            } else {
-                pass.truncate(count as usize * pv as usize);
             }
-            out.extend(pass);
-            first += count;
-            self.report_pass(first, n, per_pass);
-        };
+            let mut read: Vec<CapturedVertex> = vertices.read_pod();
+            let count = counter.read_pod::<u32>()[0] as u64;
+            match pass.slots {
+                // Appended: the counter says how many.
+                None if count > capacity => {
+                    result = Err(RenderError::CaptureOverflow {
+                        written: count,
+                        capacity,
+                    });
+                    break;
+                }
+                None => read.truncate(count as usize),
+                // Packed: the counter holds the vertices there was no room for.
+                Some(_) if packed && count > 0 => {
+                    result = Err(RenderError::Capture(format!(
+                        "the GPU drew {count} vertices at levels other than those the capture was sized for"
+                    )));
+                    break;
+                }
+                Some(slots) => read.truncate(slots as usize),
+            }
+            out.extend(read);
+            self.report(CapturePass {
+                done: k as u32 + 1,
+                passes: passes.len() as u32,
+                elements_done: pass.elements.end,
+                elements: n,
+            });
+        }
         self.wireframe = wire;
-        result?;
-        Ok(CaptureResult {
-            vertices: out,
-            pattern_vertex_count: pv,
-            stats,
-        })
+        result.map(|()| (out, stats))
     }
 
     /// The refined mesh `cfg`'s driver draws, read back from its real drawing pipeline and
     /// welded on exact bits (what `meshrefine export` writes): the evaluated vertices joined by
-    /// the pattern's triangles, or the tessellator's triangles by transform feedback.
+    /// the pattern's triangles (drawing adaptively, each element's at its inner level), or the
+    /// tessellator's triangles by transform feedback.
     pub fn refined_mesh(
         &mut self,
         scene: &mut Scene,
@@ -475,6 +572,10 @@ impl Headless {
             }
             Some(_) => {
                 let cap = self.capture(scene, cfg, camera)?;
+                if cap.inner_levels.is_some() {
+                    return crate::export::weld_adaptive(&cap, cfg.level)
+                        .map_err(RenderError::Capture);
+                }
                 let pattern = scene
                     .patterns
                     .find(cfg.level)

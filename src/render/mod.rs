@@ -16,6 +16,7 @@ mod gpu_mesh;
 mod headless;
 pub mod level_pass;
 pub mod loop_gpu;
+mod packed_capture;
 pub mod pattern;
 mod pipelines;
 mod scene;

@@ -143,6 +143,7 @@ impl Renderer {
             &[
                 (BINDING_CAPTURE, T::STORAGE_BUFFER, GEOMETRY_STAGES), // CapturedVertex[] output
                 (BINDING_CAPTURE_COUNT, T::STORAGE_BUFFER, GEOMETRY_STAGES), // append counter
+                (BINDING_CAPTURE_OFFSETS, T::STORAGE_BUFFER, GEOMETRY_STAGES), // packed slots
             ],
             "set 2: capture",
         )?;
@@ -174,7 +175,7 @@ impl Renderer {
         let pool = DescriptorPool::new(
             ctx,
             2,
-            &[(T::UNIFORM_BUFFER, 2), (T::STORAGE_BUFFER, 2)],
+            &[(T::UNIFORM_BUFFER, 2), (T::STORAGE_BUFFER, 3)],
             "renderer descriptors",
         )?;
         let frame_set = pool.allocate(&frame_layout, "frame set")?;
@@ -217,21 +218,34 @@ impl Renderer {
         self.frame_ubo.write_pod(0, std::slice::from_ref(f));
     }
 
-    /// Point the capture bindings at `vertices` and `counter` (not while pending work uses the set).
-    pub fn set_capture_target(&self, vertices: &Buffer, counter: &Buffer) {
+    /// Point the capture bindings at `vertices`, `counter` and the packed capture's `offsets`
+    /// (not while pending work uses the set).
+    pub fn set_capture_target(
+        &self,
+        vertices: vk::Buffer,
+        counter: vk::Buffer,
+        offsets: vk::Buffer,
+    ) {
         let t = vk::DescriptorType::STORAGE_BUFFER;
         self.pool.write_buffer(
             self.capture_set,
             BINDING_CAPTURE,
             t,
-            vertices.raw,
+            vertices,
             vk::WHOLE_SIZE,
         );
         self.pool.write_buffer(
             self.capture_set,
             BINDING_CAPTURE_COUNT,
             t,
-            counter.raw,
+            counter,
+            vk::WHOLE_SIZE,
+        );
+        self.pool.write_buffer(
+            self.capture_set,
+            BINDING_CAPTURE_OFFSETS,
+            t,
+            offsets,
             vk::WHOLE_SIZE,
         );
     }

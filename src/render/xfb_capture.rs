@@ -29,14 +29,19 @@ impl Headless {
     /// Tell [`Headless::capture_progress`] that the elements before `first` of `n` are captured,
     /// in passes of `per_pass`.
     pub(super) fn report_pass(&mut self, first: u32, n: u32, per_pass: u32) {
+        let per_pass = per_pass.max(1);
+        self.report(CapturePass {
+            done: first.div_ceil(per_pass),
+            passes: n.div_ceil(per_pass).max(1),
+            elements_done: first,
+            elements: n,
+        });
+    }
+
+    /// Tell [`Headless::capture_progress`] that `pass` is done.
+    pub(super) fn report(&mut self, pass: CapturePass) {
         if let Some(report) = self.capture_progress.as_mut() {
-            let per_pass = per_pass.max(1);
-            report(CapturePass {
-                done: first.div_ceil(per_pass),
-                passes: n.div_ceil(per_pass).max(1),
-                elements_done: first,
-                elements: n,
-            });
+            report(pass);
         }
     }
 
