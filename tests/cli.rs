@@ -315,6 +315,18 @@ fn render_export_and_headless_view_work() {
         std::fs::read(&shot).unwrap(),
         std::fs::read(&view_png).unwrap()
     );
+    // The screenshot at the image's own path keeps the image (a copy onto itself would empty it).
+    let same = ["--screenshot", p(&view_png)];
+    let out = meshrefine(&[&args[..], &same[..]].concat());
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(
+        std::fs::read(&view_png).unwrap(),
+        std::fs::read(&shot).unwrap()
+    );
     assert!(stdout.contains("wrote the screenshot"), "{stdout}");
     let warnings: Vec<&str> = stderr
         .lines()
@@ -1709,7 +1721,7 @@ fn displacement_that_cannot_be_finite_is_refused_up_front() {
         &away,
         &[
             "is blank",
-            "the camera given by --eye, --look-at and --fov sees none of them",
+            "the camera given by --eye and --look-at sees none of them",
         ],
     );
 }
@@ -3236,7 +3248,7 @@ fn a_blank_image_of_culled_elements_blames_culling() {
         &args,
         &[
             "is blank",
-            "culling removed all 372 elements: the camera given by --eye, --look-at and --fov sees none of them",
+            "culling removed all 372 elements: the camera given by --eye and --look-at sees none of them",
         ],
     );
     // An open surface shows its back side: its elements facing away are not culled, and the

@@ -698,4 +698,40 @@ fn a_lone_eye_or_look_at_is_completed_from_the_fitted_camera() {
         distance(narrow_eye, narrow_look_at) > 4.0 * distance(eye, look_at),
         "{narrow_eye:?} {eye:?}"
     );
+    // Loop's limit surface, not its control cage, as export (render's camera) fits it.
+    let (loop_eye, loop_look_at) = start_camera(&x, &["--surface", "loop", "--level", "2"]);
+    let obj = std::env::temp_dir().join(format!("window-loop-{}.obj", std::process::id()));
+    let out = Command::new(env!("CARGO_BIN_EXE_meshrefine"))
+        .args([
+            "export",
+            "--surface",
+            "loop",
+            "--pixel-error",
+            "4",
+            "--width",
+            "1280",
+        ])
+        .args(["--height", "720", "-o"])
+        .arg(&obj)
+        .env_remove("DISPLAY")
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = std::fs::read_to_string(&obj).unwrap();
+    let _ = std::fs::remove_file(&obj);
+    let header = text
+        .lines()
+        .find(|l| l.starts_with("# camera eye "))
+        .unwrap();
+    let v: Vec<f64> = (header.split_whitespace().skip(3).take(7))
+        .filter_map(|w| w.parse().ok())
+        .collect();
+    // The title rounds to two decimals at Spot's scale.
+    let rounded = |a: [f64; 3], b: &[f64]| (0..3).all(|i| (a[i] - b[i]).abs() <= 6e-3);
+    assert!(rounded(loop_eye, &v[0..3]), "{loop_eye:?} {header}");
+    assert!(rounded(loop_look_at, &v[3..6]), "{loop_look_at:?} {header}");
 }

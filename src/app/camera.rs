@@ -9,7 +9,7 @@ use glam::{DVec3, Vec3};
 
 /// The sphere (drawn coordinates) that fit-to-view frames and that pan keeps inside the depth
 /// range: the coarse mesh's bounding sphere (the start camera fits the refined surface itself,
-/// [`Scene::framing_camera`]).
+/// [`crate::render::Viewpoint`]).
 pub(super) fn view_bounds(scene: &Scene) -> (Vec3, f32) {
     scene.bounding_sphere()
 }
@@ -19,8 +19,8 @@ pub(super) fn view_bounds(scene: &Scene) -> (Vec3, f32) {
 /// (the camera's radius around its target) grows to keep the sphere `bounds` inside it.
 pub(super) fn pan(camera: &mut Camera, (dx, dy): (f32, f32), height: f32, bounds: (Vec3, f32)) {
     let forward = (camera.target - camera.eye()).normalize();
-    // The pitch stays within ±1.5 rad: forward is never parallel to +Y.
-    let right = forward.cross(Vec3::Y).normalize();
+    // The image's own up (+Y, or the view's up looking straight down or up: `Camera::up`).
+    let right = forward.cross(camera.up()).normalize();
     let up = right.cross(forward);
     let per_pixel = 2.0 * camera.distance * (camera.fov_y * 0.5).tan() / height.max(1.0);
     camera.target += (up * dy - right * dx) * per_pixel;
@@ -99,23 +99,32 @@ mod tests {
     #[test]
     fn pan_moves_the_target_with_the_pointer() {
         let (c, r) = (Vec3::ZERO, 1.0);
-        let mut cam = Camera::framing(c, r);
-        cam.orbit(0.4, 0.2);
-        let before = cam;
-        let (w, h) = (800.0, 600.0);
-        let point = before.target;
-        pan(&mut cam, (40.0, -30.0), h, (c, r));
-        // The point that was at the centre is now 40 px right and 30 px up of it.
-        let ndc = project(&cam, point, w / h);
-        let px = glam::Vec2::new(ndc.x * w * 0.5, ndc.y * h * 0.5);
-        assert!((px - glam::Vec2::new(40.0, -30.0)).length() < 0.05, "{px}");
-        assert_eq!(
-            (cam.yaw, cam.pitch, cam.distance),
-            (before.yaw, before.pitch, before.distance)
-        );
-        let (near, far) = cam.depth_range();
-        let d = (cam.eye() - c).length();
-        assert!(near < d - r && far > d + r, "{near} {far} {d}");
+        let mut orbited = Camera::framing(c, r);
+        orbited.orbit(0.4, 0.2);
+        // Looking straight down and straight up too, where the image's up is not +Y.
+        let down = Camera::looking(Vec3::new(0.0, 3.0, 0.0), c, 0.8, r).unwrap();
+        let up = Camera::looking(Vec3::new(0.0, -3.0, 0.0), c, 0.8, r).unwrap();
+        for start in [orbited, down, up] {
+            let mut cam = start;
+            let (w, h) = (800.0, 600.0);
+            let point = start.target;
+            pan(&mut cam, (40.0, -30.0), h, (c, r));
+            // The point that was at the centre is now 40 px right and 30 px up of it.
+            let ndc = project(&cam, point, w / h);
+            let px = glam::Vec2::new(ndc.x * w * 0.5, ndc.y * h * 0.5);
+            assert!(
+                (px - glam::Vec2::new(40.0, -30.0)).length() < 0.05,
+                "{start:?}: {px}"
+            );
+            assert_eq!(
+                (cam.yaw, cam.pitch, cam.distance),
+                (start.yaw, start.pitch, start.distance)
+            );
+            assert!(cam.target.is_finite());
+            let (near, far) = cam.depth_range();
+            let d = (cam.eye() - c).length();
+            assert!(near < d - r && far > d + r, "{near} {far} {d}");
+        }
     }
 
     #[test]

@@ -286,7 +286,7 @@ impl App {
         let size = window.inner_size();
         let samples = sample_count(&ctx, self.opts.msaa)?;
         let swapchain = Swapchain::new(&ctx, display, handle, (size.width, size.height), samples)?;
-        let renderer = Renderer::multisampled(&ctx, swapchain.format, DEPTH_FORMAT, samples)?;
+        let mut renderer = Renderer::multisampled(&ctx, swapchain.format, DEPTH_FORMAT, samples)?;
         // With multisampling the panel is drawn over the resolved image, without depth.
         let overlay_depth = (samples == vk::SampleCountFlags::TYPE_1).then_some(DEPTH_FORMAT);
         let overlay = Overlay::new(&ctx, swapchain.format, overlay_depth)?;
@@ -303,7 +303,14 @@ impl App {
         });
         // Every power of two up to WINDOW_LEVELS (and the levels asked for), whatever the start.
         let max_level = cfg.level.max(adaptive_max).max(WINDOW_LEVELS);
-        let scene = self.scene(&ctx, &pool, &renderer, &mesh, [cfg.level, adaptive_max])?;
+        let mut scene = self.scene(&ctx, &pool, &renderer, &mesh, [cfg.level, adaptive_max])?;
+        if cfg.surface.uses_loop_faces() {
+            // Loop's limit surface, which the camera fits, exists once its M1 faces are made
+            // (as render prepares before framing). Where it cannot be drawn, the coarse vertices
+            // frame it and the first frame says why.
+            let none = crate::render::Capture::None;
+            let _ = scene.prepare(&ctx, &pool, &mut renderer, &cfg, none, false);
+        }
         let extent = swapchain.extent;
         // The one default camera (render's): fitted to the surface drawn at the field of view
         // asked for, moved to the eye or point looked at given, the other completed from it.

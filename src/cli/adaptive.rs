@@ -278,8 +278,8 @@ impl Adaptive<'_> {
         );
         if u.near > 0 {
             note(format_args!(
-                "note: {} hold the eye in their bounds (no distance bounds their error in pixels): {whatever}",
-                plural(u.near, "element")
+                "note: {} the eye in their bounds (no distance bounds their error in pixels): {whatever}",
+                counted(u.near, "holds", "hold")
             ));
         }
         if u.unbounded > 0 {
@@ -289,8 +289,8 @@ impl Adaptive<'_> {
                 "docs/adaptivity.md says where none exists"
             };
             note(format_args!(
-                "note: {} have no finite error bound ({why}): {whatever}",
-                plural(u.unbounded, "element")
+                "note: {} no finite error bound ({why}): {whatever}",
+                counted(u.unbounded, "has", "have")
             ));
         }
         if u.capped > 0 {
@@ -329,9 +329,9 @@ impl Adaptive<'_> {
 }
 
 impl ViewpointOpts {
-    /// `--eye`, `--look-at` or `--fov` was given.
-    pub fn given(&self) -> bool {
-        self.eye.is_some() || self.look_at.is_some() || self.fov != 45.0
+    /// `--eye` or `--look-at` was given: a camera placed by the user, not fitted.
+    pub fn placed(&self) -> bool {
+        self.eye.is_some() || self.look_at.is_some()
     }
 
     /// The viewpoint asked for, in the drawn frame (`frame` maps the mesh's coordinates to it).
@@ -360,4 +360,13 @@ impl ViewpointOpts {
             anyhow::anyhow!("{}", no_direction(e, t))
         })
     }
+}
+
+/// `n element(s)` with the verb that agrees: `1 element has`, `3 elements have`.
+fn counted(n: u64, one: &str, many: &str) -> String {
+    format!(
+        "{} {}",
+        plural(n, "element"),
+        if n == 1 { one } else { many }
+    )
 }

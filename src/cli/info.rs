@@ -209,8 +209,13 @@ fn print_levels(a: &InfoArgs, mut input: Input) -> Result<()> {
     .dyadic_levels();
     let loop_data = if surface.uses_loop_faces() {
         let lattice = meshrefine::surface::loop_::Lattice::new(build.bft_level);
-        let data = LoopData::new(mesh, build.boundary, lattice, |_| {})
-            .map_err(|e| anyhow::anyhow!("{}: {e}", path))?;
+        let data = LoopData::new(
+            mesh,
+            build.boundary,
+            lattice,
+            meshrefine::surface::loop_::progress_line(path),
+        )
+        .map_err(|e| anyhow::anyhow!("{}: {e}", path))?;
         let frame = data.frame(&mesh.positions);
         Some((data, frame))
     } else {

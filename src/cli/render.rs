@@ -183,17 +183,17 @@ pub fn render_png(
     if covered_pixels_on(&image, opts.background) == 0 {
         // The default camera frames the surface as drawn, displacement included: only a camera
         // given on the command line can look past it.
-        let camera = if opts.viewpoint.given() {
-            "the camera given by --eye, --look-at and --fov sees none of them, or each is much smaller than a pixel there"
+        let camera = if opts.viewpoint.placed() {
+            "the camera given by --eye and --look-at sees none of them, or each is much smaller than a pixel there"
         } else {
             "each is much smaller than a pixel when the whole mesh is framed, or seen edge-on"
         };
         let why = match culled_all {
-            Some(n) if !opts.viewpoint.given() => format!(
+            Some(n) if !opts.viewpoint.placed() => format!(
                 "culling removed all {n} elements, outside the view or facing away from the eye; --cull off draws them"
             ),
             Some(n) => format!(
-                "culling removed all {n} elements: the camera given by --eye, --look-at and --fov sees none of them, or they face away from the eye (--cull off draws those)"
+                "culling removed all {n} elements: the camera given by --eye and --look-at sees none of them, or they face away from the eye (--cull off draws those)"
             ),
             // Some drawn, none covering a pixel: culling may have removed those that would.
             None if adaptive.is_some_and(|a| a.cull) && line.is_some() => format!(

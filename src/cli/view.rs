@@ -143,8 +143,12 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc, given: &Given) -> Result<()> {
     );
     // The last frame asked for: the one frame drawn.
     if let Some(shot) = &a.screenshot {
-        std::fs::copy(&a.headless_output, shot)
-            .with_context(|| format!("cannot write the screenshot '{}'", shot.display()))?;
+        // Not onto itself: copying a file to its own path empties it.
+        let same = std::fs::canonicalize(shot).is_ok_and(|s| s == shown);
+        if !same {
+            std::fs::copy(&a.headless_output, shot)
+                .with_context(|| format!("cannot write the screenshot '{}'", shot.display()))?;
+        }
         out!("wrote the screenshot {}", shot.display());
     }
     Ok(())

@@ -249,8 +249,13 @@ impl OffscreenTarget {
         let max_bytes = ctx.info.max_memory_allocation_size;
         if bytes > max_bytes {
             let mib = |b: u64| b.div_ceil(1 << 20);
+            let remedy = if n > 1 {
+                "fewer samples per pixel (--msaa) or a smaller image fits"
+            } else {
+                "a smaller image fits"
+            };
             return Err(GpuError::Other(format!(
-                "a {width}x{height} image at {n} sample(s) per pixel needs {} MiB per attachment, over the {} MiB this device allocates at once (maxMemoryAllocationSize): fewer samples per pixel (--msaa) or a smaller image fits",
+                "a {width}x{height} image at {n} sample(s) per pixel needs {} MiB per attachment, over the {} MiB this device allocates at once (maxMemoryAllocationSize): {remedy}",
                 mib(bytes),
                 mib(max_bytes)
             )));

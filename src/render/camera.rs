@@ -100,7 +100,7 @@ impl Camera {
             ..cam
         };
         let forward = (aim.target - aim.eye()).normalize();
-        let right = forward.cross(Vec3::Y).normalize();
+        let right = forward.cross(aim.up()).normalize();
         let up = right.cross(forward);
         let ty = (cam.fov_y * 0.5).tan() * (1.0 - FIT_MARGIN);
         let tx = (cam.fov_y * 0.5).tan() * aspect * (1.0 - FIT_MARGIN);
