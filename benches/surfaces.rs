@@ -36,7 +36,8 @@ fn main() {
         height: 720,
         drivers: vec![],
         min_total_ms: 0.0,
-        camera: meshrefine::bench::BenchCamera::default(),
+        // One view of each mesh for every surface, as the recorded figures were made.
+        camera: meshrefine::bench::BenchCamera::Framing,
         adaptive: None,
         view: View::Shaded,
     };

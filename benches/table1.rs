@@ -57,7 +57,8 @@ fn main() {
         drivers: drivers.clone(),
         // At least 1.5 s of GPU time per variant, taken round the variants in turn.
         min_total_ms: if h.quick { 0.0 } else { 1500.0 },
-        camera: meshrefine::bench::BenchCamera::default(),
+        // One view of each mesh for every surface, as the recorded figures were made.
+        camera: meshrefine::bench::BenchCamera::Framing,
         adaptive: None,
         view: View::Shaded,
     };

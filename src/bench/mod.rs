@@ -71,6 +71,11 @@ pub enum BenchCamera {
     Fitted(Viewpoint),
     /// The same camera for every row.
     Fixed(Camera),
+    /// The camera framing each mesh's bounding sphere from the usual direction
+    /// ([`Camera::framing`]), one for every surface, displacement and driver of the mesh: the
+    /// paper-figure benchmarks (`cargo bench --bench fig7`, `table1`, `surfaces`) time every
+    /// surface from one view of the mesh.
+    Framing,
 }
 
 impl Default for BenchCamera {
@@ -321,6 +326,10 @@ impl MeshSetup {
         }
         let camera = match opts.camera {
             BenchCamera::Fixed(camera) => camera,
+            BenchCamera::Framing => {
+                let (c, r) = self.scene.bounding_sphere();
+                Camera::framing(c, r)
+            }
             BenchCamera::Fitted(v) => {
                 let aspect = opts.width as f32 / opts.height.max(1) as f32;
                 v.camera(&self.scene.framing_points(cfg), aspect)
