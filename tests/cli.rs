@@ -1096,6 +1096,27 @@ fn heightmap_displacement_and_its_errors() {
         ],
         &["icosahedron.obj", "no texture coordinates"],
     );
+    // Texture coordinates on some faces only: the count is named, for render and info.
+    let partial = write(
+        "partial-vt.obj",
+        b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\nf 2 4 3\n",
+    );
+    let partly = "the mesh has texture coordinates (vt) on 1 of its 2 faces, not on every one: the heightmap displacement reads the map on every face";
+    expect_error(
+        &["render", p(&partial), "-o", o, "--displace", "heightmap"],
+        &["partial-vt.obj", partly],
+    );
+    expect_error(
+        &[
+            "info",
+            p(&partial),
+            "--displace",
+            "heightmap",
+            "--pixel-error",
+            "1",
+        ],
+        &["partial-vt.obj", partly],
+    );
     let text = write("not-a.png", b"hello");
     let hm = ["--displace", "heightmap", "--heightmap"];
     for (extra, needle) in [

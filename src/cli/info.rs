@@ -192,8 +192,8 @@ fn print_levels(a: &InfoArgs, mut input: Input) -> Result<()> {
     let params = params.in_drawn_frame(centre, scale);
     let data = MeshData::new(input.mesh.for_viewing(), RecordKind::Corners, build.seams);
     let mesh = &data.mesh;
-    if let Some(why) = surface.incompatibility(displace, data.uvs.is_some()) {
-        bail!("{why}");
+    if let Some(why) = surface.incompatibility_on(displace, &data.mesh, data.uvs.is_some()) {
+        bail!("'{path}': {why}");
     }
     let tags = input.tags.take().unwrap_or_else(|| stpn::derive(mesh).0);
     if surface.facts().tags {

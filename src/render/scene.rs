@@ -171,9 +171,8 @@ impl Scene {
             self.gpu.update_records(&self.data.records);
             self.records_stale = false;
         }
-        if let Some(why) = cfg
-            .surface
-            .incompatibility(cfg.displace, self.data.uvs.is_some())
+        if let Some(why) =
+            (cfg.surface).incompatibility_on(cfg.displace, &self.data.mesh, self.data.uvs.is_some())
         {
             return Err(RenderError::Incompatible(why));
         }

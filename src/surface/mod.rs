@@ -123,6 +123,26 @@ impl Surface {
     pub fn incompatibility(self, displace: Displace, mesh_has_texcoords: bool) -> Option<String> {
         facts::incompatibility(self.facts(), displace.facts(), mesh_has_texcoords)
     }
+
+    /// [`Surface::incompatibility`] on `mesh` (`has_texcoords`: on every face), saying on how
+    /// many of its faces the texture coordinates are where only some faces have them.
+    pub fn incompatibility_on(
+        self,
+        displace: Displace,
+        mesh: &crate::mesh::Mesh,
+        has_texcoords: bool,
+    ) -> Option<String> {
+        let why = self.incompatibility(displace, has_texcoords)?;
+        let with = mesh.triangles.iter().filter(|t| t.t.is_some()).count();
+        if has_texcoords || with == 0 || !self.facts().texture_coordinates {
+            return Some(why);
+        }
+        Some(format!(
+            "the mesh has texture coordinates (vt) on {with} of its {} faces, not on every one: the {} displacement reads the map on every face",
+            mesh.triangles.len(),
+            displace.name()
+        ))
+    }
 }
 
 /// What the curved surfaces' geometry does at split normals (a position with several `vn`).
