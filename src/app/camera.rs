@@ -4,8 +4,39 @@
 //! (docs/window.md, "Keys and mouse").
 #![forbid(unsafe_code)]
 
-use crate::render::{Camera, Scene};
+use crate::gpu::{CommandPool, Context};
+use crate::render::{Camera, DrawConfig, Renderer, Scene, Viewpoint};
 use glam::{DVec3, Vec3};
+use std::sync::Arc;
+
+/// Why the window cannot start from the viewpoint asked for.
+const NO_DIRECTION: &str = "--eye and --look-at give no view direction with the camera that frames the surface: the eye is at the point looked at";
+
+/// The camera the demo starts with: the one default camera (render's), fitted to the surface
+/// `cfg` draws at the field of view asked for, moved to the eye or point looked at given, the
+/// other completed from it. For `loop` the scene is prepared first: its limit surface, which the
+/// camera fits, exists once its M1 faces are made (where it cannot be drawn, the coarse
+/// vertices frame it and the first frame says why).
+pub(super) fn start_camera(
+    (ctx, pool, renderer): (&Arc<Context>, &CommandPool, &mut Renderer),
+    scene: &mut Scene,
+    cfg: &DrawConfig,
+    viewpoint: &Viewpoint,
+    aspect: f32,
+) -> anyhow::Result<Camera> {
+    if cfg.surface.uses_loop_faces() {
+        let _ = scene.prepare(
+            ctx,
+            pool,
+            renderer,
+            cfg,
+            crate::render::Capture::None,
+            false,
+        );
+    }
+    (viewpoint.camera(&scene.framing_points(cfg), aspect))
+        .ok_or_else(|| anyhow::anyhow!("{NO_DIRECTION}"))
+}
 
 /// The sphere (drawn coordinates) that fit-to-view frames and that pan keeps inside the depth
 /// range: the coarse mesh's bounding sphere (the start camera fits the refined surface itself,

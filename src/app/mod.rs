@@ -94,9 +94,6 @@ pub struct ViewOptions {
 /// `+` reaches it whatever the start level. A pattern of level 256 is 33,153 vertices.
 pub const WINDOW_LEVELS: u32 = 256;
 
-/// Why the window cannot start from the viewpoint asked for.
-const NO_DIRECTION: &str = "--eye and --look-at give no view direction with the camera that frames the surface: the eye is at the point looked at";
-
 pub const KEY_HELP: &str = "keys: left drag = orbit, right or middle drag = pan, wheel = zoom, \
 R = reset camera, Z or Home = fit view, 1/2/3 = static/pattern/tess, \
 P/U/I = push/ubo/instanced, S = next surface, D = next displacement, N = next view, \
@@ -304,20 +301,10 @@ impl App {
         // Every power of two up to WINDOW_LEVELS (and the levels asked for), whatever the start.
         let max_level = cfg.level.max(adaptive_max).max(WINDOW_LEVELS);
         let mut scene = self.scene(&ctx, &pool, &renderer, &mesh, [cfg.level, adaptive_max])?;
-        if cfg.surface.uses_loop_faces() {
-            // Loop's limit surface, which the camera fits, exists once its M1 faces are made
-            // (as render prepares before framing). Where it cannot be drawn, the coarse vertices
-            // frame it and the first frame says why.
-            let none = crate::render::Capture::None;
-            let _ = scene.prepare(&ctx, &pool, &mut renderer, &cfg, none, false);
-        }
         let extent = swapchain.extent;
-        // The one default camera (render's): fitted to the surface drawn at the field of view
-        // asked for, moved to the eye or point looked at given, the other completed from it.
         let aspect = extent.width as f32 / extent.height as f32;
-        let start_camera = (a.viewpoint)
-            .camera(&scene.framing_points(&cfg), aspect)
-            .ok_or_else(|| anyhow!("{NO_DIRECTION}"))?;
+        let gpu = (&ctx, &pool, &mut renderer);
+        let start_camera = camera::start_camera(gpu, &mut scene, &cfg, &a.viewpoint, aspect)?;
         let mut rendered = Vec::new();
         per_image(&mut rendered, swapchain.images.len(), |i| {
             Semaphore::new(&ctx, &format!("rendered {i}"))
