@@ -43,8 +43,10 @@ pub fn run(a: &InfoArgs) -> Result<()> {
     if let Some(level) = a.level {
         print_geometry(level, mesh.triangles.len() as u64)?;
     }
-    if for_loop {
-        print_loop(a, path, &mesh)?;
+    // With --pixel-error the levels build Loop's data on the mesh as drawn and print these
+    // lines from it (the same topology, so the same tables): built once.
+    if for_loop && a.pixel_error.is_none() {
+        print_loop(a, &loop_data(a, path, &mesh)?)?;
     }
     let input = Input {
         mesh,
@@ -110,16 +112,22 @@ fn print_geometry(level: u32, triangles: u64) -> Result<()> {
     Ok(())
 }
 
-/// `--surface loop`: M1, the valence configurations and the basis function tables built.
-fn print_loop(a: &InfoArgs, path: &str, mesh: &Mesh) -> Result<()> {
+/// Loop's data for `mesh` (M1, the valence configurations, the basis function tables), with
+/// progress on long builds.
+fn loop_data(a: &InfoArgs, path: &str, mesh: &Mesh) -> Result<LoopData> {
     let lattice = meshrefine::surface::loop_::Lattice::new(a.drawn.params.bft_level);
-    let data = LoopData::new(
+    LoopData::new(
         mesh,
         a.drawn.params.boundary,
         lattice,
         meshrefine::surface::loop_::progress_line(path),
     )
-    .map_err(|e| anyhow::anyhow!("'{}': the loop surface cannot subdivide it: {e}", path))?;
+    .map_err(|e| anyhow::anyhow!("'{}': the loop surface cannot subdivide it: {e}", path))
+}
+
+/// `--surface loop`: M1, the valence configurations and the basis function tables built.
+fn print_loop(a: &InfoArgs, data: &LoopData) -> Result<()> {
+    let lattice = meshrefine::surface::loop_::Lattice::new(a.drawn.params.bft_level);
     out!(
         "loop: M1 has {} vertices and {} faces ({} boundaries)",
         data.m1.vertex_count,
@@ -208,14 +216,8 @@ fn print_levels(a: &InfoArgs, mut input: Input) -> Result<()> {
     }
     .dyadic_levels();
     let loop_data = if surface.uses_loop_faces() {
-        let lattice = meshrefine::surface::loop_::Lattice::new(build.bft_level);
-        let data = LoopData::new(
-            mesh,
-            build.boundary,
-            lattice,
-            meshrefine::surface::loop_::progress_line(path),
-        )
-        .map_err(|e| anyhow::anyhow!("{}: {e}", path))?;
+        let data = loop_data(a, path, mesh)?;
+        print_loop(a, &data)?;
         let frame = data.frame(&mesh.positions);
         Some((data, frame))
     } else {
