@@ -3216,6 +3216,7 @@ fn adaptive_pattern_exports_hold_only_the_levels_drawn() {
     assert!(
         stderr.contains("cannot export '")
             && stderr.contains("of one element drawn at level")
+            && stderr.contains("over the capture cap MESHREFINE_MAX_CAPTURE_BYTES (640)")
             && stderr.contains("use a larger --pixel-error, or --max-level 2 or lower"),
         "{stderr}"
     );

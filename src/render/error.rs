@@ -7,12 +7,13 @@ pub enum RenderError {
     #[error(transparent)]
     Gpu(#[from] GpuError),
     /// A request needs more than one of the device's limits allows.
-    #[error("{what} needs {needed} {unit}, over this device's {limit} ({max}): {remedy}")]
+    #[error("{what} needs {needed} {unit}, over {limit} ({max}): {remedy}")]
     OverLimit {
         what: String,
         needed: u64,
         /// What `needed` and `max` count: "bytes", "texels" or "vertices".
         unit: &'static str,
+        /// The limit, as the sentence names it: "this device's maxStorageBufferRange".
         limit: &'static str,
         max: u64,
         remedy: String,

@@ -434,7 +434,7 @@ fn check_heightmap(ctx: &Context, map: &Heightmap) -> Result<(), RenderError> {
             ),
             needed,
             unit: "texels",
-            limit: "maxTexelBufferElements",
+            limit: "this device's maxTexelBufferElements",
             max,
             remedy: "use a smaller height map".into(),
         });

@@ -96,22 +96,27 @@ pub struct FrameTiming {
 }
 
 /// The largest buffer one capture pass may use, and the name of the limit that sets it: the
-/// binding's own range limit, maxMemoryAllocationSize (one buffer is one allocation), and the
-/// tests' smaller cap where given.
+/// binding's own range limit, maxMemoryAllocationSize (one buffer is one allocation), and a
+/// smaller cap where given ([`Headless::max_capture_bytes`], lavapipe's pass size), with its
+/// name.
 pub(super) fn pass_limit(
     range: (u64, &'static str),
     allocation: u64,
-    cap: Option<u64>,
+    cap: Option<(u64, &'static str)>,
 ) -> (u64, &'static str) {
     let mut limit = range;
     if allocation < limit.0 {
-        limit = (allocation, "maxMemoryAllocationSize");
+        limit = (allocation, "this device's maxMemoryAllocationSize");
     }
     match cap {
-        Some(c) if c < limit.0 => (c, limit.1),
+        Some(c) if c.0 < limit.0 => c,
         _ => limit,
     }
 }
+
+/// The name of [`Headless::max_capture_bytes`] in over-limit sentences (`export` sets it from
+/// this variable).
+pub const CAPTURE_CAP_NAME: &str = "the capture cap MESHREFINE_MAX_CAPTURE_BYTES";
 
 /// The clear colour as the sRGB offscreen target stores it (8 bits per channel).
 pub fn clear_color_srgb8() -> [u8; 4] {
@@ -409,10 +414,10 @@ impl Headless {
         let limit = pass_limit(
             (
                 self.ctx.info.limits.max_storage_buffer_range as u64,
-                "maxStorageBufferRange",
+                "this device's maxStorageBufferRange",
             ),
             self.ctx.info.max_memory_allocation_size,
-            self.max_capture_bytes,
+            self.max_capture_bytes.map(|c| (c, CAPTURE_CAP_NAME)),
         );
         if self.adaptive && !cfg.driver.kind().capture_appends() {
             return self.capture_packed(scene, cfg, camera, limit);
@@ -601,9 +606,14 @@ mod tests {
         let range = (4u64 << 30, "maxTransformFeedbackBufferSize");
         assert_eq!(
             pass_limit(range, 2 << 30, None),
-            (2 << 30, "maxMemoryAllocationSize")
+            (2 << 30, "this device's maxMemoryAllocationSize")
         );
         assert_eq!(pass_limit(range, 8 << 30, None), range);
-        assert_eq!(pass_limit(range, 2 << 30, Some(1000)).0, 1000);
+        let cap = (1000, CAPTURE_CAP_NAME);
+        assert_eq!(pass_limit(range, 2 << 30, Some(cap)), cap);
+        assert_eq!(
+            pass_limit(range, 2 << 30, Some((3 << 30, "a cap"))).1,
+            "this device's maxMemoryAllocationSize"
+        );
     }
 }

@@ -114,7 +114,7 @@ impl LevelPass {
                     what: what.into(),
                     needed,
                     unit: "bytes",
-                    limit: "maxStorageBufferRange",
+                    limit: "this device's maxStorageBufferRange",
                     max: range,
                     remedy: "a coarser mesh fits".into(),
                 });
@@ -127,7 +127,7 @@ impl LevelPass {
                 what: "the level pass's elements".into(),
                 needed: bounds.len() as u64,
                 unit: "elements",
-                limit: "maxComputeWorkGroupCount",
+                limit: "this device's maxComputeWorkGroupCount",
                 max: max[0] as u64 * max[1] as u64 * GROUP as u64,
                 remedy: "use a coarser mesh".into(),
             })?;

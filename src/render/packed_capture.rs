@@ -93,7 +93,7 @@ impl Headless {
                 what: format!("capturing the {total} vertices the levels chosen draw"),
                 needed: total,
                 unit: "vertices",
-                limit: "32-bit capture slots",
+                limit: "the 32-bit capture slots' range",
                 max: u32::MAX as u64,
                 remedy: remedy(largest),
             });

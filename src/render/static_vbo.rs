@@ -83,7 +83,7 @@ pub(super) fn check_allocation(
             what: what(),
             needed: bytes,
             unit: "bytes",
-            limit: "maxMemoryAllocationSize",
+            limit: "this device's maxMemoryAllocationSize",
             max,
             remedy: remedy.into(),
         });

@@ -72,19 +72,18 @@ impl Headless {
         mut each: impl FnMut(&[[XfbVertex; 3]]),
     ) -> Result<(), RenderError> {
         let per_element = tess_triangle_count(cfg.level) as u64 * 3 * XFB_VERTEX_BYTES;
-        let lavapipe = self
-            .ctx
-            .info
-            .is_lavapipe()
-            .then_some(LAVAPIPE_MAX_CAPTURE_PASS_BYTES);
-        let cap = [self.max_capture_bytes, lavapipe]
-            .into_iter()
-            .flatten()
-            .min();
+        let lavapipe = self.ctx.info.is_lavapipe().then_some((
+            LAVAPIPE_MAX_CAPTURE_PASS_BYTES,
+            "lavapipe's capture pass size",
+        ));
+        let own = self
+            .max_capture_bytes
+            .map(|c| (c, super::headless::CAPTURE_CAP_NAME));
+        let cap = [own, lavapipe].into_iter().flatten().min_by_key(|c| c.0);
         let (limit, limit_name) = pass_limit(
             (
                 self.ctx.info.max_transform_feedback_buffer_size,
-                "maxTransformFeedbackBufferSize",
+                "this device's maxTransformFeedbackBufferSize",
             ),
             self.ctx.info.max_memory_allocation_size,
             cap,
