@@ -1461,6 +1461,59 @@ fn bench_min_total_ms_is_checked() {
     }
 }
 
+/// `bench --min-total-ms` keeps timing past `--frames` until every variant has that much GPU
+/// time, at most 20 x `--frames` frames, and the row's note says how many it took: a total no
+/// frame reaches stops at exactly 20 x `--frames`; 0 (the default) takes exactly `--frames`.
+#[test]
+fn bench_min_total_ms_times_up_to_twenty_times_frames() {
+    let tet = model_path("tetrahedron.obj");
+    std::fs::create_dir_all(tmp("bench-min-total")).unwrap();
+    for (total, note) in [
+        (Some("1e12"), "40 timed frames"),
+        (Some("0"), ""),
+        (None, ""),
+    ] {
+        let prefix = tmp(&format!("bench-min-total/{}", total.unwrap_or("default")));
+        #[rustfmt::skip]
+        let mut args = vec![
+            "--validate", "bench", p(&tet), "--drivers", "static", "--levels", "2",
+            "--frames", "2", "--width", "32", "--height", "32", "--out", p(&prefix),
+        ];
+        if let Some(total) = total {
+            args.extend(["--min-total-ms", total]);
+        }
+        let s = ok(&args);
+        let json = std::fs::read_to_string(format!("{}.json", prefix.display())).unwrap();
+        assert!(json.contains("\"frames\":2,"), "{json}");
+        assert!(
+            json.contains(&format!("\"note\":\"{note}\"")),
+            "{total:?}: expected note {note:?} in\n{json}"
+        );
+        // The terminal's summary notes it under the table.
+        let noted = s.contains("static: 40 timed frames");
+        assert_eq!(noted, !note.is_empty(), "{total:?}: {s}");
+    }
+    // With --pixel-error, the adaptive row and the uniform row beside it alike.
+    let prefix = tmp("bench-min-total/adaptive");
+    #[rustfmt::skip]
+    ok(&[
+        "--validate", "bench", p(&tet), "--surfaces", "pn", "--drivers", "tess",
+        "--pixel-error", "1", "--max-level", "4", "--no-bound-levels", "--levels", "2",
+        "--frames", "2", "--min-total-ms", "1e12", "--width", "32", "--height", "32",
+        "--out", p(&prefix),
+    ]);
+    let csv = std::fs::read_to_string(prefix.with_extension("csv")).unwrap();
+    let mut lines = csv.lines();
+    let keys = common::csv_fields(lines.next().unwrap());
+    let note = keys.iter().position(|k| k == "note").unwrap();
+    let notes: Vec<String> = lines.map(|l| common::csv_fields(l)[note].clone()).collect();
+    assert_eq!(notes.len(), 2, "{csv}");
+    assert!(
+        notes.iter().all(|n| n.starts_with("40 timed frames")),
+        "{csv}"
+    );
+}
+
 /// Runs and expects success; returns standard error's `warning:` lines.
 fn warnings_of(args: &[&str]) -> Vec<String> {
     let out = meshrefine(args);
