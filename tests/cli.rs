@@ -2987,7 +2987,8 @@ fn rgba_of(png_path: &Path) -> Vec<u8> {
 
 /// `render --background light` draws on the pale grey (its corner pixel is the light clear
 /// colour, the dark default's is the dark one); `--view levels` and `--view normals` colour
-/// the mesh differently from the shaded default; `--wireframe cage` adds the cyan cage.
+/// the mesh differently from the shaded default; `--wireframe cage` adds the cyan cage,
+/// `--wireframe` (`refined`) the refined edges and `--wireframe both` the two together.
 #[test]
 fn render_views_backgrounds_and_the_cage() {
     let small = [
@@ -3022,6 +3023,30 @@ fn render_views_backgrounds_and_the_cage() {
     let caged = render("cage.png", &["--wireframe", "cage"]);
     assert_eq!(cyan(&dark), 0);
     assert!(cyan(&caged) > 50, "{} cage pixels", cyan(&caged));
+    // `--wireframe` alone is `refined`: the refined edges, darker, no cage; `both` is the
+    // refined wireframe with the cage over it: every pixel it changes is the cage's cyan.
+    let refined = render("wire-refined.png", &["--wireframe"]);
+    let named = render("wire-refined-named.png", &["--wireframe", "refined"]);
+    assert_eq!(refined, named);
+    let both = render("wire-both.png", &["--wireframe", "both"]);
+    let changed = |a: &[u8], b: &[u8]| -> Vec<[u8; 4]> {
+        (a.chunks_exact(4).zip(b.chunks_exact(4)))
+            .filter(|(x, y)| x != y)
+            .map(|(_, y)| y.try_into().unwrap())
+            .collect()
+    };
+    assert_eq!(cyan(&refined), 0);
+    let edges = changed(&dark, &refined).len();
+    assert!(edges > 500, "{edges} refined edge pixels");
+    let edges = changed(&caged, &both).len();
+    assert!(edges > 500, "{edges} refined edge pixels with the cage");
+    let cage = changed(&refined, &both);
+    assert!(
+        cage.len() > 50,
+        "{} cage pixels over the wireframe",
+        cage.len()
+    );
+    assert_eq!(cyan(cage.as_flattened()), cage.len(), "{cage:?}");
     let out = meshrefine(&["render", "--background", "pink"]);
     assert_eq!(out.status.code(), Some(2));
 }
