@@ -3051,6 +3051,65 @@ fn render_views_backgrounds_and_the_cage() {
     assert_eq!(out.status.code(), Some(2));
 }
 
+/// `--normal-field` on the command line: each field exports `pn` at the same positions with
+/// normals of its own (the fields differ on a control cage, surfaces.md), displaces along its
+/// own normals (positions differ too with `--displace`), and renders its own shading; a value
+/// that is not a field is a usage error listing the fields.
+#[test]
+fn normal_fields_are_chosen_on_the_command_line() {
+    let spot = model_path("spot_control_tri.obj");
+    let export = |field: &str, extra: &[&str]| {
+        let out = tmp(&format!("normal-field-{field}{}.obj", extra.len()));
+        let mut args = vec!["--validate", "export", p(&spot), "-o", p(&out)];
+        args.extend(["--surface", "pn", "--level", "2", "--normal-field", field]);
+        args.extend(extra);
+        ok(&args);
+        let obj = std::fs::read_to_string(&out).unwrap();
+        let lines = |key: &str| -> Vec<String> {
+            let key = format!("{key} ");
+            obj.lines()
+                .filter(|l| l.starts_with(&key))
+                .map(String::from)
+                .collect()
+        };
+        (lines("v"), lines("vn"))
+    };
+    let fields = ["paper", "vlachos", "linear"];
+    let plain: Vec<_> = fields.iter().map(|f| export(f, &[])).collect();
+    let displaced: Vec<_> = (fields.iter())
+        .map(|f| export(f, &["--displace", "sine"]))
+        .collect();
+    let png = |field: &str| {
+        let out = tmp(&format!("normal-field-{field}.png"));
+        #[rustfmt::skip]
+        ok(&[
+            "--validate", "render", p(&spot), "-o", p(&out), "--surface", "pn", "--level", "2",
+            "--normal-field", field, "--width", "96", "--height", "64", "--msaa", "1",
+        ]);
+        rgba_of(&out)
+    };
+    let images: Vec<Vec<u8>> = fields.iter().map(|f| png(f)).collect();
+    for i in 0..3 {
+        for j in i + 1..3 {
+            let (a, b) = (fields[i], fields[j]);
+            assert_eq!(plain[i].0, plain[j].0, "{a} and {b}: positions");
+            assert_ne!(plain[i].1, plain[j].1, "{a} and {b}: the same normals");
+            assert_ne!(
+                displaced[i].0, displaced[j].0,
+                "{a} and {b}: displaced alike"
+            );
+            assert_ne!(images[i], images[j], "{a} and {b}: the same image");
+        }
+    }
+    let out = meshrefine(&["export", "--normal-field", "phong", "-o", "x.obj"]);
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("'phong'") && stderr.contains("paper, vlachos, linear"),
+        "{stderr}"
+    );
+}
+
 /// `meshrefine` with `args` and the environment variables `env`.
 fn meshrefine_env(args: &[&str], env: &[(&str, &str)]) -> Output {
     let _guard = common::gpu_lock();
