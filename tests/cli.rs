@@ -1461,6 +1461,59 @@ fn bench_min_total_ms_is_checked() {
     }
 }
 
+/// `bench --min-total-ms` keeps timing past `--frames` until every variant has that much GPU
+/// time, at most 20 x `--frames` frames, and the row's note says how many it took: a total no
+/// frame reaches stops at exactly 20 x `--frames`; 0 (the default) takes exactly `--frames`.
+#[test]
+fn bench_min_total_ms_times_up_to_twenty_times_frames() {
+    let tet = model_path("tetrahedron.obj");
+    std::fs::create_dir_all(tmp("bench-min-total")).unwrap();
+    for (total, note) in [
+        (Some("1e12"), "40 timed frames"),
+        (Some("0"), ""),
+        (None, ""),
+    ] {
+        let prefix = tmp(&format!("bench-min-total/{}", total.unwrap_or("default")));
+        #[rustfmt::skip]
+        let mut args = vec![
+            "--validate", "bench", p(&tet), "--drivers", "static", "--levels", "2",
+            "--frames", "2", "--width", "32", "--height", "32", "--out", p(&prefix),
+        ];
+        if let Some(total) = total {
+            args.extend(["--min-total-ms", total]);
+        }
+        let s = ok(&args);
+        let json = std::fs::read_to_string(format!("{}.json", prefix.display())).unwrap();
+        assert!(json.contains("\"frames\":2,"), "{json}");
+        assert!(
+            json.contains(&format!("\"note\":\"{note}\"")),
+            "{total:?}: expected note {note:?} in\n{json}"
+        );
+        // The terminal's summary notes it under the table.
+        let noted = s.contains("static: 40 timed frames");
+        assert_eq!(noted, !note.is_empty(), "{total:?}: {s}");
+    }
+    // With --pixel-error, the adaptive row and the uniform row beside it alike.
+    let prefix = tmp("bench-min-total/adaptive");
+    #[rustfmt::skip]
+    ok(&[
+        "--validate", "bench", p(&tet), "--surfaces", "pn", "--drivers", "tess",
+        "--pixel-error", "1", "--max-level", "4", "--no-bound-levels", "--levels", "2",
+        "--frames", "2", "--min-total-ms", "1e12", "--width", "32", "--height", "32",
+        "--out", p(&prefix),
+    ]);
+    let csv = std::fs::read_to_string(prefix.with_extension("csv")).unwrap();
+    let mut lines = csv.lines();
+    let keys = common::csv_fields(lines.next().unwrap());
+    let note = keys.iter().position(|k| k == "note").unwrap();
+    let notes: Vec<String> = lines.map(|l| common::csv_fields(l)[note].clone()).collect();
+    assert_eq!(notes.len(), 2, "{csv}");
+    assert!(
+        notes.iter().all(|n| n.starts_with("40 timed frames")),
+        "{csv}"
+    );
+}
+
 /// Runs and expects success; returns standard error's `warning:` lines.
 fn warnings_of(args: &[&str]) -> Vec<String> {
     let out = meshrefine(args);
@@ -2934,7 +2987,8 @@ fn rgba_of(png_path: &Path) -> Vec<u8> {
 
 /// `render --background light` draws on the pale grey (its corner pixel is the light clear
 /// colour, the dark default's is the dark one); `--view levels` and `--view normals` colour
-/// the mesh differently from the shaded default; `--wireframe cage` adds the cyan cage.
+/// the mesh differently from the shaded default; `--wireframe cage` adds the cyan cage,
+/// `--wireframe` (`refined`) the refined edges and `--wireframe both` the two together.
 #[test]
 fn render_views_backgrounds_and_the_cage() {
     let small = [
@@ -2969,8 +3023,91 @@ fn render_views_backgrounds_and_the_cage() {
     let caged = render("cage.png", &["--wireframe", "cage"]);
     assert_eq!(cyan(&dark), 0);
     assert!(cyan(&caged) > 50, "{} cage pixels", cyan(&caged));
+    // `--wireframe` alone is `refined`: the refined edges, darker, no cage; `both` is the
+    // refined wireframe with the cage over it: every pixel it changes is the cage's cyan.
+    let refined = render("wire-refined.png", &["--wireframe"]);
+    let named = render("wire-refined-named.png", &["--wireframe", "refined"]);
+    assert_eq!(refined, named);
+    let both = render("wire-both.png", &["--wireframe", "both"]);
+    let changed = |a: &[u8], b: &[u8]| -> Vec<[u8; 4]> {
+        (a.chunks_exact(4).zip(b.chunks_exact(4)))
+            .filter(|(x, y)| x != y)
+            .map(|(_, y)| y.try_into().unwrap())
+            .collect()
+    };
+    assert_eq!(cyan(&refined), 0);
+    let edges = changed(&dark, &refined).len();
+    assert!(edges > 500, "{edges} refined edge pixels");
+    let edges = changed(&caged, &both).len();
+    assert!(edges > 500, "{edges} refined edge pixels with the cage");
+    let cage = changed(&refined, &both);
+    assert!(
+        cage.len() > 50,
+        "{} cage pixels over the wireframe",
+        cage.len()
+    );
+    assert_eq!(cyan(cage.as_flattened()), cage.len(), "{cage:?}");
     let out = meshrefine(&["render", "--background", "pink"]);
     assert_eq!(out.status.code(), Some(2));
+}
+
+/// `--normal-field` on the command line: each field exports `pn` at the same positions with
+/// normals of its own (the fields differ on a control cage, surfaces.md), displaces along its
+/// own normals (positions differ too with `--displace`), and renders its own shading; a value
+/// that is not a field is a usage error listing the fields.
+#[test]
+fn normal_fields_are_chosen_on_the_command_line() {
+    let spot = model_path("spot_control_tri.obj");
+    let export = |field: &str, extra: &[&str]| {
+        let out = tmp(&format!("normal-field-{field}{}.obj", extra.len()));
+        let mut args = vec!["--validate", "export", p(&spot), "-o", p(&out)];
+        args.extend(["--surface", "pn", "--level", "2", "--normal-field", field]);
+        args.extend(extra);
+        ok(&args);
+        let obj = std::fs::read_to_string(&out).unwrap();
+        let lines = |key: &str| -> Vec<String> {
+            let key = format!("{key} ");
+            obj.lines()
+                .filter(|l| l.starts_with(&key))
+                .map(String::from)
+                .collect()
+        };
+        (lines("v"), lines("vn"))
+    };
+    let fields = ["paper", "vlachos", "linear"];
+    let plain: Vec<_> = fields.iter().map(|f| export(f, &[])).collect();
+    let displaced: Vec<_> = (fields.iter())
+        .map(|f| export(f, &["--displace", "sine"]))
+        .collect();
+    let png = |field: &str| {
+        let out = tmp(&format!("normal-field-{field}.png"));
+        #[rustfmt::skip]
+        ok(&[
+            "--validate", "render", p(&spot), "-o", p(&out), "--surface", "pn", "--level", "2",
+            "--normal-field", field, "--width", "96", "--height", "64", "--msaa", "1",
+        ]);
+        rgba_of(&out)
+    };
+    let images: Vec<Vec<u8>> = fields.iter().map(|f| png(f)).collect();
+    for i in 0..3 {
+        for j in i + 1..3 {
+            let (a, b) = (fields[i], fields[j]);
+            assert_eq!(plain[i].0, plain[j].0, "{a} and {b}: positions");
+            assert_ne!(plain[i].1, plain[j].1, "{a} and {b}: the same normals");
+            assert_ne!(
+                displaced[i].0, displaced[j].0,
+                "{a} and {b}: displaced alike"
+            );
+            assert_ne!(images[i], images[j], "{a} and {b}: the same image");
+        }
+    }
+    let out = meshrefine(&["export", "--normal-field", "phong", "-o", "x.obj"]);
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("'phong'") && stderr.contains("paper, vlachos, linear"),
+        "{stderr}"
+    );
 }
 
 /// `meshrefine` with `args` and the environment variables `env`.

@@ -35,3 +35,13 @@ fn the_library_example_renders_and_exports() {
     // Level 8: 64 triangles per coarse triangle, none dropped by the welding.
     assert_eq!(refined.triangles.len(), 64 * coarse);
 }
+
+/// README.md promises a short example: examples/embed.rs stays under 75 lines.
+#[test]
+fn the_library_example_is_under_75_lines() {
+    let source = include_str!("../examples/embed.rs");
+    let readme = include_str!("../README.md");
+    assert!(readme.contains("[examples/embed.rs](examples/embed.rs) (under 75 lines)"));
+    let lines = source.lines().count();
+    assert!(lines < 75, "examples/embed.rs has {lines} lines");
+}

@@ -147,7 +147,7 @@ fn variant(
         }
     }
     h.adaptive = false;
-    Ok(into_rows(list, cameras.len()))
+    Ok(into_rows(list, cameras.len(), frames))
 }
 
 /// The uniform levels timed beside the adaptive frame, each with what asked for it: the
@@ -286,8 +286,9 @@ fn over_cameras(samples: &[Vec<f64>]) -> Option<Stat> {
 }
 
 /// The timed configurations' rows; the adaptive row's note compares it with the uniform rows
-/// at the bound and its power of two.
-fn into_rows(list: Vec<Timed>, cameras: usize) -> Vec<Row> {
+/// at the bound and its power of two. A row timed past `frames` (`--min-total-ms`) notes how
+/// many frames it took, as the uniform benchmark's rows do.
+fn into_rows(list: Vec<Timed>, cameras: usize, frames: usize) -> Vec<Row> {
     let mut rows: Vec<Row> = Vec::with_capacity(list.len());
     for t in list {
         let mut row = t.row;
@@ -297,6 +298,13 @@ fn into_rows(list: Vec<Timed>, cameras: usize) -> Vec<Row> {
         }
         row.gpu_ms = over_cameras(&t.gpu);
         row.wall_ms = over_cameras(&t.wall);
+        let most = t.gpu.iter().map(Vec::len).max().unwrap_or(0);
+        if most > frames {
+            row.note = match cameras {
+                1 => format!("{most} timed frames"),
+                _ => format!("up to {most} timed frames per camera"),
+            };
+        }
         let cells = row
             .adaptive
             .as_mut()
@@ -344,7 +352,10 @@ fn into_rows(list: Vec<Timed>, cameras: usize) -> Vec<Row> {
         .split_first_mut()
         .expect("a variant has its adaptive row");
     if let Some(gpu) = first.gpu_ms {
-        let mut notes = Vec::new();
+        let mut notes: Vec<String> = Some(std::mem::take(&mut first.note))
+            .filter(|n| !n.is_empty())
+            .into_iter()
+            .collect();
         if first.refined_triangles == 0 {
             notes.push(
                 "every element culled (outside the view or facing away from the eye; --cull off draws them)"

@@ -199,7 +199,7 @@ impl GpuMesh {
         let n = data.records.len() as u64;
         let chunk = chunk_size(ctx, max_chunk);
         let chunks = n.div_ceil(chunk as u64).max(1) as u32;
-        check_heightmap(ctx, extras.heightmap)?;
+        check_heightmap(extras.heightmap, &ctx.info.limits)?;
         let records = upload_records(ctx, &data.records)?;
         let levels = storage(
             ctx,
@@ -422,9 +422,9 @@ fn storage<T: bytemuck::Pod>(
 
 /// Refuses a height map whose pyramid has more texels than a texel buffer may hold on this
 /// device (maxTexelBufferElements), before anything is uploaded.
-fn check_heightmap(ctx: &Context, map: &Heightmap) -> Result<(), RenderError> {
+fn check_heightmap(map: &Heightmap, limits: &vk::PhysicalDeviceLimits) -> Result<(), RenderError> {
     let needed = map.texel_count();
-    let max = ctx.info.limits.max_texel_buffer_elements as u64;
+    let max = limits.max_texel_buffer_elements as u64;
     if needed > max {
         let l = &map.levels[0];
         return Err(RenderError::OverLimit {
@@ -543,6 +543,30 @@ fn write_mesh_set(
             binding,
             vk::DescriptorType::UNIFORM_TEXEL_BUFFER,
             view.raw,
+        );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A height map whose pyramid is over maxTexelBufferElements is one sentence naming the
+    /// file, its size, the texels and the limit.
+    #[test]
+    fn a_heightmap_over_the_texel_limit_is_refused_naming_it() {
+        // 4 x 4 with its pyramid: 16 + 4 + 1 texels.
+        let map = Heightmap::from_heights("bumps.png", 4, 4, vec![0.5; 16]);
+        let mut limits = vk::PhysicalDeviceLimits {
+            max_texel_buffer_elements: 21,
+            ..Default::default()
+        };
+        check_heightmap(&map, &limits).unwrap();
+        limits.max_texel_buffer_elements = 20;
+        assert_eq!(
+            check_heightmap(&map, &limits).unwrap_err().to_string(),
+            "height map 'bumps.png' (4 x 4 pixels, with its mip pyramid) needs 21 texels, over \
+             this device's maxTexelBufferElements (20): use a smaller height map"
         );
     }
 }

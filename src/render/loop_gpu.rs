@@ -565,6 +565,29 @@ mod tests {
                 tables - 1
             )
         );
+        // Every other buffer the drawing stages read, each over a limit the ones before it fit
+        // (the row maps, always fewer than the tables' texels, with the tables emptied).
+        let mut no_tables = data.clone();
+        no_tables.tables.packed.pool.clear();
+        for (what, texels, data) in [
+            ("M1 positions", data.stencils.len(), &data),
+            ("M1 face tables", data.faces.len(), &data),
+            ("control points", data.control.len().div_ceil(4), &data),
+            (
+                "basis function table rows",
+                data.tables.packed.rows.len(),
+                &no_tables,
+            ),
+        ] {
+            limits.max_texel_buffer_elements = texels as u32 - 1;
+            let e = loop_limits(data, &limits).unwrap_err().to_string();
+            let over = format!("over this device's maxTexelBufferElements ({})", texels - 1);
+            let what = format!("the loop surface's {what} needs {texels} texels, {over}");
+            assert_eq!(
+                e,
+                format!("{what}: use a coarser mesh or a lower --bft-level")
+            );
+        }
         limits.max_storage_buffer_range = 1024;
         let e = loop_limits(&data, &limits).unwrap_err().to_string();
         assert!(
