@@ -101,74 +101,123 @@ fn gpu_levels_match_the_mirror_and_share_edges() {
     });
 }
 
-/// Culling never changes the image: on a closed mesh wound outwards (spot) the elements facing
-/// away are culled, and on the same mesh wound inside out (every face's corners reversed, whose
-/// visible faces are those facing away) none is culled for facing away, only for lying outside
-/// the view. Each is drawn adaptively with culling on and off, on every driver, and the images
-/// are compared pixel for pixel.
+/// Culling never changes the image: on a closed mesh wound outwards (spot) seen from outside the
+/// elements facing away are culled; on the same mesh wound inside out (every face's corners
+/// reversed, whose visible faces are those facing away), on spot beside an inside-out copy of
+/// itself, and with the eye inside the mesh, none is culled for facing away, only for lying
+/// outside the view. Each is drawn adaptively with culling on and off, on every driver, and the
+/// images are compared pixel for pixel.
 #[test]
 fn culling_keeps_the_image_of_a_mesh_wound_either_way() {
     with_gpu(160, 120, |h| {
         let outward = meshrefine::mesh::default_mesh();
-        let mut inside_out = outward.clone();
-        for t in &mut inside_out.triangles {
-            t.p.swap(1, 2);
-            t.n.swap(1, 2);
-            if let Some(tc) = &mut t.t {
-                tc.swap(1, 2);
+        let flip = |m: &meshrefine::mesh::Mesh| {
+            let mut m = m.clone();
+            for t in &mut m.triangles {
+                t.p.swap(1, 2);
+                t.n.swap(1, 2);
+                if let Some(tc) = &mut t.t {
+                    tc.swap(1, 2);
+                }
             }
-        }
+            m
+        };
+        let inside_out = flip(&outward);
+        let spot_positions = outward.positions.len();
         assert!(inside_out.signed_volume() < 0.0 && outward.signed_volume() > 0.0);
+        // Spot wound outwards beside a smaller copy of it wound inside out: the whole encloses
+        // a positive volume, but the copy's visible faces face away.
+        let mut mixed = outward.clone();
+        let (lo, hi) = outward.bounds();
+        let mut copy = flip(&outward);
+        for p in &mut copy.positions {
+            *p = *p * 0.5 + glam::Vec3::new(1.5 * (hi.x - lo.x), 0.0, 0.0);
+        }
+        let base = mixed.positions.len() as u32;
+        let base_n = mixed.normals.len() as u32;
+        mixed.positions.extend(copy.positions.iter().copied());
+        mixed.normals.extend(copy.normals.iter().copied());
+        mixed.triangles.extend(copy.triangles.iter().map(|t| {
+            let mut t = *t;
+            t.p = t.p.map(|i| i + base);
+            t.n = t.n.map(|i| i + base_n);
+            t.t = None;
+            t
+        }));
+        mixed.triangles.iter_mut().for_each(|t| t.t = None);
+        assert!(mixed.signed_volume() > 0.0 && !mixed.closed_outward());
         for (name, mesh, closed) in [
             ("outward", outward, true),
             ("inside out", inside_out, false),
+            ("one piece inside out", mixed, false),
         ] {
             let max = 8;
             let mut scene = h.scene(mesh, max).unwrap();
             let (c, r) = scene.bounding_sphere();
-            // Close enough that part of the mesh is outside the view.
-            let camera = Camera::looking(
+            // Close enough that part of the mesh is outside the view, and from inside the
+            // mesh (the centre of its bounds, where its winding number is 1 or -1): there the
+            // visible faces are those facing away.
+            let outside = Camera::looking(
                 c + glam::Vec3::new(0.3, 0.2, 0.9) * r,
                 c,
                 45f32.to_radians(),
                 r,
             )
             .unwrap();
-            for driver in [
-                Driver::Static,
-                Driver::Pattern(meshrefine::render::Submit::Push),
-                Driver::Tess,
-            ] {
-                let mut cfg =
-                    DrawConfig::new(driver, max).with_surface(Surface::Pn, Displace::None);
-                cfg.params = SurfaceParams::for_radius(r);
-                h.prepared_elements(&mut scene, &cfg, Capture::None)
-                    .unwrap();
-                let mut image = |cull| {
-                    let view = LevelView {
-                        camera,
-                        width: 160,
-                        height: 120,
-                        pixel_error: 1.0,
-                        cull,
+            // (Spot's positions come first in every mesh here.)
+            let spot = &scene.data.mesh.positions[..spot_positions];
+            let lo = spot.iter().fold(glam::Vec3::INFINITY, |a, &p| a.min(p));
+            let hi = spot.iter().fold(glam::Vec3::NEG_INFINITY, |a, &p| a.max(p));
+            let inside_eye = (lo + hi) * 0.5;
+            let inside = Camera::looking(
+                inside_eye,
+                inside_eye + glam::Vec3::new(0.2, -0.1, 1.0),
+                60f32.to_radians(),
+                r,
+            )
+            .unwrap();
+            let w = scene.data.mesh.winding_number(inside_eye);
+            assert!((w.abs() - 1.0).abs() < 1e-6, "{name}: winding number {w}");
+            for (where_, camera) in [("outside", outside), ("inside", inside)] {
+                for driver in [
+                    Driver::Static,
+                    Driver::Pattern(meshrefine::render::Submit::Push),
+                    Driver::Tess,
+                ] {
+                    let mut cfg =
+                        DrawConfig::new(driver, max).with_surface(Surface::Pn, Displace::None);
+                    cfg.params = SurfaceParams::for_radius(r);
+                    h.prepared_elements(&mut scene, &cfg, Capture::None)
+                        .unwrap();
+                    let mut image = |cull| {
+                        let view = LevelView {
+                            camera,
+                            width: 160,
+                            height: 120,
+                            pixel_error: 1.0,
+                            cull,
+                        };
+                        let chosen = scene.set_levels(&cfg, &view).unwrap();
+                        h.adaptive = true;
+                        let img = h.render(&mut scene, &cfg, &camera).unwrap();
+                        h.adaptive = false;
+                        (img.rgba, chosen.report().culled)
                     };
-                    let chosen = scene.set_levels(&cfg, &view).unwrap();
-                    h.adaptive = true;
-                    let img = h.render(&mut scene, &cfg, &camera).unwrap();
-                    h.adaptive = false;
-                    (img.rgba, chosen.report().culled)
-                };
-                let (all, none_culled) = image(false);
-                let (culled_img, culled) = image(true);
-                let what = format!("{name}, {}", driver.name());
-                assert_eq!(none_culled, 0, "{what}");
-                assert!(culled > 0, "{what}: nothing culled");
-                let differ = all
-                    .chunks_exact(4)
-                    .zip(culled_img.chunks_exact(4))
-                    .filter(|(a, b)| a != b)
-                    .count();
-                assert_eq!(differ, 0, "{what}: culling changed {differ} pixels");
+                    let (all, none_culled) = image(false);
+                    let (culled_img, culled) = image(true);
+                    let what = format!("{name}, {where_}, {}", driver.name());
+                    assert_eq!(none_culled, 0, "{what}");
+                    assert!(culled > 0, "{what}: nothing culled");
+                    let bg = meshrefine::render::clear_color_srgb8();
+                    let drawn = all.chunks_exact(4).filter(|p| p[..3] != bg[..3]).count();
+                    assert!(drawn > 160 * 120 / 4, "{what}: {drawn} pixels drawn");
+                    let differ = all
+                        .chunks_exact(4)
+                        .zip(culled_img.chunks_exact(4))
+                        .filter(|(a, b)| a != b)
+                        .count();
+                    assert_eq!(differ, 0, "{what}: culling changed {differ} pixels");
+                }
             }
             assert_eq!(scene.closed, closed, "{name}");
         }

@@ -384,8 +384,8 @@ pub struct InfoArgs {
     #[command(flatten)]
     pub camera: CameraOpts,
     /// Leave out of the report the elements outside the view or, on a closed mesh wound
-    /// outwards, facing away from the eye, as render culls them (with --pixel-error; default:
-    /// on, as render).
+    /// outwards seen from outside, facing away from the eye, as render culls them (with
+    /// --pixel-error; default: on, as render).
     #[arg(long, value_parser = choices::cull())]
     pub cull: Option<bool>,
     /// The largest level any element gets (with --pixel-error).

@@ -176,6 +176,7 @@ fn check_level_options(a: &InfoArgs) -> Result<()> {
 /// as render has it with the same options: the surface as drawn (centred, at unit size, its
 /// displacement, inputs and parameters), its default camera fitted to that surface, culling.
 fn print_levels(a: &InfoArgs, mut input: Input) -> Result<()> {
+    use meshrefine::lod::cull::eye_outside;
     use meshrefine::lod::frame::{frame_levels, lod_records, unmet, LevelStats, LodView};
     use meshrefine::lod::{Frustum, Lod, View};
     use meshrefine::render::{framing_points, MeshData};
@@ -244,13 +245,15 @@ fn print_levels(a: &InfoArgs, mut input: Input) -> Result<()> {
     let (eye, fov) = (camera.eye(), camera.fov_y);
     let view = View::new(eye, fov, c.height, px, a.max_level);
     let frustum = Frustum::from_view_proj(camera.view_proj(aspect));
-    // As render culls: outside the view, and facing away only on a closed mesh wound outwards.
+    // As render culls: outside the view, and facing away only on a closed mesh wound outwards
+    // seen from outside.
     let cull = a.cull.unwrap_or(true);
     let bounds = lod_records(&Lod::new(&mirror, &params), records);
+    let back_faces = cull && mesh.closed_outward() && eye_outside(eye, &bounds, mesh);
     let lod_view = LodView::new(
         &view,
         cull.then_some(&frustum),
-        cull && mesh.closed_outward(),
+        back_faces,
         dyadic,
         bounds.len() as u32,
     );

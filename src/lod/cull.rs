@@ -3,6 +3,7 @@
 
 use super::net::Net;
 use super::Sphere;
+use crate::mesh::Mesh;
 use glam::{Mat4, Vec3, Vec4};
 
 /// The six planes of a view-projection (Vulkan clip space: `-w <= x, y <= w`, `0 <= z <= w`),
@@ -99,4 +100,22 @@ impl NormalCone {
         let theta = self.cos.clamp(-1.0, 1.0).acos();
         beta + gamma + theta < std::f32::consts::FRAC_PI_2 - 1e-4
     }
+}
+
+/// Whether `eye` sees a closed mesh wound outwards ([`Mesh::closed_outward`]) from outside, so
+/// that its faces facing away are hidden behind its own front and may be culled: the eye lies
+/// outside every element's sphere (`records`, the spheres of the drawn surface) and the coarse
+/// mesh's winding number about it is zero. Every element's sphere contains its coarse triangle
+/// and its drawn patch (a net's hull holds its corners; displacement grows the sphere), hence
+/// every point between the two; blending each coarse triangle into its patch (shared edges
+/// stay shared: the surfaces are watertight) moves the surface only inside the spheres, so the
+/// winding number about an eye outside them is the drawn surface's. From inside (an eye in a
+/// room, or closer to the surface than a sphere's reach) the visible faces may face away: no
+/// culling for facing away then, only for lying outside the view.
+pub fn eye_outside(eye: Vec3, records: &[super::frame::LodRecord], mesh: &Mesh) -> bool {
+    let clear = records.iter().all(|r| {
+        let s = Vec4::from(r.sphere);
+        (s.truncate() - eye).length() > s.w
+    });
+    clear && mesh.winding_number(eye).abs() < 0.5
 }

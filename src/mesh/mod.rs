@@ -57,7 +57,7 @@ use glam::{Vec2, Vec3};
 
 pub use error::{MeshError, MAX_INDICES, MAX_OBJ_BYTES};
 pub use normals::{compute_area_weighted_normals, FALLBACK_NORMAL};
-pub use topology::mesh_stats;
+pub use topology::{mesh_stats, pieces};
 
 /// Welded triangle mesh. Positions are unique (welded: exactly-equal positions merged to one
 /// index). See the module documentation for the invariants.
@@ -211,6 +211,11 @@ impl Mesh {
     /// from outside (their normals point outwards), negative for an inside-out mesh. Meaningful
     /// for a closed, consistently oriented mesh; summed in f64 about the bounds' centre.
     pub fn signed_volume(&self) -> f64 {
+        self.piece_volumes().iter().sum()
+    }
+
+    /// [`Mesh::signed_volume`] of each connected piece ([`pieces`]), in their order.
+    pub fn piece_volumes(&self) -> Vec<f64> {
         let (lo, hi) = self.bounds();
         let c = ((lo + hi) * 0.5).as_dvec3();
         let at = |i: u32| {
@@ -218,19 +223,51 @@ impl Mesh {
                 .get(i as usize)
                 .map_or(glam::DVec3::ZERO, |p| p.as_dvec3() - c)
         };
-        self.triangles
-            .iter()
-            .map(|t| at(t.p[0]).dot(at(t.p[1]).cross(at(t.p[2]))))
-            .sum::<f64>()
-            / 6.0
+        let tris = self.position_indices();
+        let piece = pieces(self.positions.len(), &tris);
+        let mut volumes = vec![0.0f64; piece.iter().map(|&p| p as usize + 1).max().unwrap_or(0)];
+        for (t, &k) in tris.iter().zip(&piece) {
+            volumes[k as usize] += at(t[0]).dot(at(t[1]).cross(at(t[2]))) / 6.0;
+        }
+        volumes
     }
 
-    /// Closed, consistently oriented and wound outwards (a positive [`Mesh::signed_volume`]):
-    /// only such a mesh hides the faces that face away from an eye outside it, so only there
-    /// does adaptive drawing cull them (`render::Scene::closed`, and `info`'s report).
+    /// Closed, consistently oriented and every connected piece wound outwards (a positive
+    /// [`Mesh::piece_volumes`]): only such a mesh hides the faces that face away from an eye
+    /// outside it, so only there does adaptive drawing cull them (`render::Scene::closed`, and
+    /// `info`'s report), and only while the eye is outside it ([`Mesh::winding_number`],
+    /// `lod::cull::eye_outside`). A mesh with an inside-out piece shows that piece's faces
+    /// that face away.
     pub fn closed_outward(&self) -> bool {
         let stats = self.stats();
-        stats.is_closed() && stats.inconsistently_oriented_edges == 0 && self.signed_volume() > 0.0
+        stats.is_closed()
+            && stats.inconsistently_oriented_edges == 0
+            && self.piece_volumes().iter().all(|&v| v > 0.0)
+    }
+
+    /// The generalized winding number of the triangles about `p`: the signed solid angle they
+    /// subtend at `p` over 4π (A. van Oosterom and J. Strackee's formula, in f64). For a closed
+    /// mesh wound outwards: 0 outside, 1 inside (an integer up to rounding away from the
+    /// surface; -1 inside an inside-out mesh).
+    pub fn winding_number(&self, p: Vec3) -> f64 {
+        let p = p.as_dvec3();
+        let at = |i: u32| {
+            self.positions
+                .get(i as usize)
+                .map_or(glam::DVec3::ZERO, |q| q.as_dvec3() - p)
+        };
+        let total: f64 = self
+            .triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.p.map(at);
+                let (la, lb, lc) = (a.length(), b.length(), c.length());
+                let det = a.dot(b.cross(c));
+                let div = la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la;
+                2.0 * det.atan2(div)
+            })
+            .sum();
+        total / (4.0 * std::f64::consts::PI)
     }
 
     /// The position indices of every triangle (e.g. for an index buffer).
@@ -513,6 +550,53 @@ mod tests {
         assert_eq!(inside_out.signed_volume(), -8.0);
         for file in ["tetrahedron.obj", "icosahedron.obj", "uvsphere12.obj"] {
             assert!(load_model(file).0.signed_volume() > 0.0, "{file}");
+        }
+        // The cube beside an inside-out copy of itself moved along x: two pieces, one volume
+        // each, and not wound outwards as a whole although their sum is positive.
+        let mut p2: Vec<Vec3> = cube.positions.clone();
+        p2.extend(
+            cube.positions
+                .iter()
+                .map(|p| *p * 0.5 + Vec3::new(5.0, 0.0, 0.0)),
+        );
+        let mut t2 = cube.position_indices();
+        t2.extend(
+            cube.position_indices()
+                .iter()
+                .map(|t| [t[0] + 8, t[2] + 8, t[1] + 8]),
+        );
+        let (two, _) = Mesh::from_parts("two cubes", p2, None, t2).unwrap();
+        assert_eq!(
+            pieces(16, &two.position_indices()),
+            [[0; 12], [1; 12]].concat()
+        );
+        let v = two.piece_volumes();
+        assert!(v.len() == 2 && (v[0] - 8.0).abs() < 1e-9 && (v[1] + 1.0).abs() < 1e-9);
+        assert!(cube.closed_outward() && !inside_out.closed_outward() && !two.closed_outward());
+    }
+
+    /// The winding number is 1 inside a closed mesh wound outwards, 0 outside (however close),
+    /// -1 inside it wound inside out.
+    #[test]
+    fn winding_numbers_tell_inside_from_outside() {
+        let (sphere, _) = load_model("uvsphere12.obj");
+        let (spot, _) = load_model("spot_control_tri.obj");
+        let (lo, hi) = spot.bounds();
+        let inside_out = {
+            let mut m = sphere.clone();
+            m.triangles.iter_mut().for_each(|t| t.p.swap(1, 2));
+            m
+        };
+        let w = |m: &Mesh, p: Vec3| m.winding_number(p);
+        assert!((w(&sphere, Vec3::ZERO) - 1.0).abs() < 1e-9);
+        assert!((w(&inside_out, Vec3::ZERO) + 1.0).abs() < 1e-9);
+        assert!((w(&spot, (lo + hi) * 0.5) - 1.0).abs() < 1e-9);
+        for far in [
+            Vec3::new(3.0, 0.0, 0.0),
+            Vec3::new(0.0, 1.001, 0.0),
+            Vec3::splat(1e6),
+        ] {
+            assert!(w(&sphere, far).abs() < 1e-9, "{far}");
         }
     }
 

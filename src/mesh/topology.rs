@@ -192,6 +192,34 @@ fn link_components(link: &[(u32, u32)], neighbours: &[u32], parent: &mut Vec<usi
     (0..parent.len()).filter(|&i| find(parent, i) == i).count()
 }
 
+/// The connected piece of each triangle (triangles sharing a position are one piece), numbered
+/// by first appearance. Indices past `vertex_count` count as their own positions.
+pub fn pieces(vertex_count: usize, tris: &[[u32; 3]]) -> Vec<u32> {
+    let n = tris
+        .iter()
+        .flatten()
+        .map(|&i| i as usize + 1)
+        .max()
+        .unwrap_or(0)
+        .max(vertex_count);
+    let mut parent: Vec<usize> = (0..n).collect();
+    for t in tris {
+        let a = find(&mut parent, t[0] as usize);
+        for &i in &t[1..] {
+            let b = find(&mut parent, i as usize);
+            parent[b] = a;
+        }
+    }
+    let mut number: HashMap<usize, u32> = HashMap::new();
+    tris.iter()
+        .map(|t| {
+            let root = find(&mut parent, t[0] as usize);
+            let next = number.len() as u32;
+            *number.entry(root).or_insert(next)
+        })
+        .collect()
+}
+
 fn find(parent: &mut [usize], mut i: usize) -> usize {
     while parent[i] != i {
         parent[i] = parent[parent[i]];

@@ -12,6 +12,7 @@
 use super::static_adaptive::StaticLevels;
 use super::{Camera, DrawConfig, LevelPass, RenderError, Scene};
 use crate::gpu::vk;
+use crate::lod::cull::eye_outside;
 use crate::lod::frame::{frame_levels, lod_records, unmet, LevelStats, LodRecord, LodView};
 use crate::lod::levels::ElementLevels;
 use crate::lod::{Frustum, LevelReport, Lod, View};
@@ -60,6 +61,8 @@ pub(super) struct SceneLevels {
     records_key: Option<BoundsKey>,
     records: Arc<[LodRecord]>,
     view: Option<(Surface, LodView)>,
+    /// The last eye [`eye_outside`] answered for these records, and its answer.
+    outside: Option<(glam::Vec3, bool)>,
 }
 
 /// What the levels of one [`Scene::set_levels`] draw: the [`LevelReport`] (it dereferences to
@@ -133,18 +136,29 @@ impl Scene {
         let aspect = view.width as f32 / view.height.max(1) as f32;
         let frustum = Frustum::from_view_proj(view.camera.view_proj(aspect));
         let count = self.elements(cfg.surface).element_count;
-        // Back faces of a closed surface only: an open one shows its back side.
-        let lod_view = LodView::new(
-            &metric,
-            view.cull.then_some(&frustum),
-            view.cull && self.closed,
-            dyadic,
-            count,
-        );
         let on_cpu = cfg.driver.kind().refines_on_cpu();
         let on_gpu = self.update_bounds(cfg, !on_cpu)?;
         let l = self.levels.as_mut().expect("update_bounds leaves bounds");
         let records = l.records.clone();
+        // Faces facing away only on a closed surface seen from outside: an open one shows its
+        // back side, and from inside the visible faces face away.
+        let back_faces = view.cull
+            && self.closed
+            && match l.outside {
+                Some((e, outside)) if e == eye => outside,
+                _ => {
+                    let outside = eye_outside(eye, &records, &self.data.mesh);
+                    l.outside = Some((eye, outside));
+                    outside
+                }
+            };
+        let lod_view = LodView::new(
+            &metric,
+            view.cull.then_some(&frustum),
+            back_faces,
+            dyadic,
+            count,
+        );
         if on_cpu {
             // The static driver refines at the mirror's levels on the CPU: no level pass.
             l.view = None;
@@ -235,9 +249,11 @@ impl Scene {
             records_key: None,
             records: Arc::new([]),
             view: None,
+            outside: None,
         });
         if let Some(records) = fresh {
             l.key = None;
+            l.outside = None;
             l.records = records.into();
             l.records_key = Some(key);
         }

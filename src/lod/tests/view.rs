@@ -358,3 +358,34 @@ fn noise_constants_cover_the_scan() {
     }
     assert!(worst > 0.5 * g / 3f32.sqrt(), "{worst}");
 }
+
+/// Faces facing away are culled only for an eye outside the surface: not from inside spot, not
+/// from just outside its cage (inside an element's sphere, where the curved surface may bulge
+/// past the eye), and again from the close camera and from far away.
+#[test]
+fn back_faces_are_culled_only_from_outside() {
+    let (spot, recs) = corner_records("spot_control_tri_vn.obj");
+    let (eye, _, _, _) = close_camera(&spot);
+    let case = Case {
+        surface: Surface::Pn,
+        field: NormalField::default(),
+        displace: Displace::None,
+        params: SurfaceParams::default(),
+        inputs: Sources::default(),
+    };
+    let records = crate::lod::frame::lod_records(&case.lod(), &recs);
+    let outside = |e: Vec3| crate::lod::cull::eye_outside(e, &records, &spot);
+    let (lo, hi) = spot.bounds();
+    let centre = (lo + hi) * 0.5;
+    assert!(outside(eye));
+    assert!(outside(
+        centre + Vec3::new(0.0, 0.0, 50.0 * spot.bounding_radius())
+    ));
+    assert!(!outside(centre));
+    // A hair outside the cage, off a face's centre along its normal.
+    let t = spot.triangles[10].p.map(|i| spot.positions[i as usize]);
+    let n = (t[1] - t[0]).cross(t[2] - t[0]).normalize();
+    let near = (t[0] + t[1] + t[2]) / 3.0 + n * 1e-3;
+    assert!(spot.winding_number(near).abs() < 1e-6);
+    assert!(!outside(near));
+}
