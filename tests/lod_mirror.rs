@@ -125,7 +125,17 @@ fn gpu_bounds_match_the_cpu() {
             .into_iter()
             .chain(NormalField::ALL.map(|f| (Surface::Pn, f)));
         for (surface, field) in cases {
-            for displace in [Displace::None, Displace::Sine, Displace::Noise] {
+            // A sine of frequency zero displaces nothing: bounds as undisplaced, on both sides.
+            let flat_sine = SurfaceParams {
+                frequency: 0.0,
+                ..params
+            };
+            for (displace, params) in [
+                (Displace::None, params),
+                (Displace::Sine, params),
+                (Displace::Noise, params),
+                (Displace::Sine, flat_sine),
+            ] {
                 let mut f = FrameUniforms::zeroed();
                 f.params = params.to_gpu();
                 f.origin = params.origin.extend(0.0).to_array();
@@ -152,6 +162,8 @@ fn gpu_bounds_match_the_cpu() {
                 };
                 let mirror = Mirror::new(surface, displace, &build, &Sources::default()).unwrap();
                 let lod = Lod::new(&mirror, &params);
+                let plain = Mirror::new(surface, Displace::None, &build, &Sources::default());
+                let plain = Lod::new(&plain.unwrap(), &params);
                 let what = format!(
                     "{} ({}) + {}",
                     surface.name(),
@@ -165,6 +177,13 @@ fn gpu_bounds_match_the_cpu() {
                         lod.edge(rec, 1),
                         lod.edge(rec, 2),
                     ];
+                    if params.frequency == 0.0 {
+                        let undisplaced = plain.element(rec).chord;
+                        assert_eq!(want[0].chord, undisplaced, "{what}: element {i}");
+                        for e in 0..3 {
+                            assert_eq!(want[e + 1].chord, plain.edge(rec, e).chord, "{what}");
+                        }
+                    }
                     for (k, w) in want.iter().enumerate() {
                         let at = 12 * i + 3 * k;
                         let (ch, sp, cone) = (got[at], got[at + 1], got[at + 2]);
@@ -201,7 +220,7 @@ fn gpu_bounds_match_the_cpu() {
                 }
             }
         }
-        assert_eq!(compared, 15 * 4 * n);
+        assert_eq!(compared, 20 * 4 * n);
         assert!(cones > n, "{cones} cones");
     });
 }

@@ -306,6 +306,9 @@ LodNet lod_direction_net(uint surface, uint field, Corners c) {
 // params: (alpha, amplitude, frequency, octaves). Mirror: src/lod/displace.rs `height`.
 vec3 lod_height(uint d, vec4 params, vec3 origin, vec4 s) {
     float a = abs(params.y), f = params.z;
+    if (d == 1u && (a == 0.0 || f == 0.0)) {
+        return vec3(0.0); // no displacement at all
+    }
     if (d == 1u) {
         float r_min = length(s.xyz - origin) - s.w;
         float tangential = r_min > 0.0 ? f / r_min : LOD_HUGE;

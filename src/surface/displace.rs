@@ -129,9 +129,17 @@ pub fn height(d: Displace, params: &SurfaceParams, p: Vec3) -> (f32, Vec3) {
 /// `|∇η| <= |a| f`, and its Hessian's radial curvature `−a f² sin(f r)` and tangential
 /// `a f cos(f r) / r` give `|a| max(f², f / r_min)`, `r_min` the sphere's distance from the
 /// displacement's origin (the cone point of `|P|` at the origin has unbounded curvature: a patch
-/// containing it gets no finite bound).
+/// containing it gets no finite bound). A zero amplitude or frequency is no displacement at all:
+/// every bound zero.
 fn sine_bound(params: &SurfaceParams, s: &Sphere) -> Height {
     let (a, f) = (params.amplitude.abs(), params.frequency);
+    if a == 0.0 || f == 0.0 {
+        return Height {
+            max: 0.0,
+            grad: 0.0,
+            hess: 0.0,
+        };
+    }
     // η = a sin(f r): radial curvature −a f² sin(f r), tangential a f cos(f r) / r.
     let r_min = (s.centre - params.origin).length() - s.radius;
     let tangential = if r_min > 0.0 {
