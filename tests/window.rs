@@ -153,6 +153,8 @@ fn window_demo_presents_and_screenshots() {
         // 372 x 1024² triangles a frame would take minutes on lavapipe: the demo lowers the
         // level to keep frames under a second, and says so.
         ("budget", vec!["--level", "1024"]),
+        // A bound no level meets: the window says so on standard error, as render does.
+        ("unmet", vec!["--pixel-error", "0.25", "--max-level", "8"]),
     ] {
         let shot = dir.join(format!("{name}.png"));
         let _ = std::fs::remove_file(&shot);
@@ -161,6 +163,16 @@ fn window_demo_presents_and_screenshots() {
             assert!(
                 !stderr.contains("instead of adaptively"),
                 "{name}: {stderr}"
+            );
+        }
+        if name == "unmet" {
+            // Said once (the kinds do not change), not every frame.
+            let said = "px bound is not met on ";
+            assert_eq!(stderr.matches(said).count(), 1, "{stderr}");
+            assert!(
+                stderr.contains("note: the 0.25 px bound is not met on ")
+                    && stderr.contains("they need a level above the largest, 8 (--max-level)"),
+                "{stderr}"
             );
         }
         if name == "budget" {

@@ -68,6 +68,7 @@ impl State {
         self.fps_window = (Instant::now(), self.frames);
         let coarse = self.scene.elements(cfg.surface).element_count as u64;
         let bytes = self.scene.geometry_bytes(cfg);
+        self.say_unmet(cfg);
         let c = &self.controls;
         let flags = format!(
             "{}{}{}",
@@ -104,6 +105,33 @@ impl State {
         ));
     }
 
+    /// Where the last adaptive frame does not meet the pixel error, the `note:` lines render
+    /// prints, on standard error when their kinds (or the pixel error, or the largest level)
+    /// change: not every frame.
+    fn say_unmet(&mut self, cfg: &DrawConfig) {
+        let Some(r) = self.levels.as_ref() else {
+            self.unmet_said = None;
+            return;
+        };
+        let u = r.unmet;
+        let kinds = UnmetKinds {
+            near: u.near > 0,
+            unbounded: u.unbounded > 0,
+            capped: u.capped > 0,
+            max: cfg.level,
+            pixel_error: self.controls.pixel_error.to_bits(),
+        };
+        let lines = u.notes(self.controls.pixel_error, cfg.level, cfg.loop_displaced());
+        if lines.is_empty() {
+            self.unmet_said = None;
+        } else if self.unmet_said != Some(kinds) {
+            self.unmet_said = Some(kinds);
+            for line in lines {
+                eprintln!("{line}");
+            }
+        }
+    }
+
     /// What the last adaptive frame (drawing `cfg` of `coarse` elements) chose; None when it
     /// drew uniformly.
     fn adaptive_summary(&self, cfg: &DrawConfig, coarse: u64) -> Option<AdaptiveSummary> {
@@ -118,6 +146,7 @@ impl State {
             uniform_triangles: coarse * cfg.driver.refined_per_element(r.uniform_level) as u64,
             histogram: compact_histogram(&r.histogram),
             culled: r.culled,
+            unmet: r.unmet,
             level_ms: self.level_ms,
         })
     }
@@ -137,6 +166,8 @@ struct AdaptiveSummary {
     uniform_triangles: u64,
     histogram: String,
     culled: u64,
+    /// Where the pixel error is not met.
+    unmet: crate::lod::frame::Unmet,
     /// CPU time of choosing the levels (`Scene::set_levels`).
     level_ms: f64,
 }
@@ -192,8 +223,21 @@ impl AdaptiveSummary {
             ),
             ("levels (level:n)", self.histogram.clone()),
             ("culled", self.culled.to_string()),
-            ("choosing levels", format!("{:.2} ms (CPU)", self.level_ms)),
         ];
+        let u = self.unmet;
+        let unmet: Vec<String> = [
+            (u.capped, "need a level above the largest"),
+            (u.near, "hold the eye in their bounds"),
+            (u.unbounded, "have no finite bound"),
+        ]
+        .iter()
+        .filter(|(n, _)| *n > 0)
+        .map(|(n, why)| format!("{n} {why}"))
+        .collect();
+        if !unmet.is_empty() {
+            rows.push(("pixel error not met", unmet.join(", ")));
+        }
+        rows.extend([("choosing levels", format!("{:.2} ms (CPU)", self.level_ms))]);
         if self.frozen {
             rows.push((
                 "levels",
@@ -243,4 +287,15 @@ mod tests {
         );
         assert_eq!(h(&[]), "none");
     }
+}
+
+/// What kinds of unmet pixel error the window last said, and for which pixel error and
+/// largest level.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct UnmetKinds {
+    near: bool,
+    unbounded: bool,
+    capped: bool,
+    max: u32,
+    pixel_error: u32,
 }

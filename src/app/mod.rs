@@ -230,6 +230,9 @@ struct State {
     levels: Option<crate::render::ChosenLevels>,
     /// CPU time of choosing the last adaptive frame's levels, in milliseconds.
     level_ms: f64,
+    /// The kinds of unmet pixel error last said on standard error (`hud.rs`), to say them
+    /// again only when they change.
+    unmet_said: Option<hud::UnmetKinds>,
     /// The largest level the last adaptive frame drew (the frame budget may lower it).
     adaptive_level: Option<u32>,
     /// The camera and window size frozen levels are chosen for.
@@ -336,6 +339,7 @@ impl App {
             mode_note: None,
             levels: None,
             level_ms: 0.0,
+            unmet_said: None,
             adaptive_level: None,
             frozen: None,
             adaptive_rate: None,
@@ -351,7 +355,7 @@ impl App {
                 initial: cfg.params,
                 submit: cfg.driver.submit().unwrap_or_default(),
                 adaptive: a.on,
-                pixel_error: a.pixel_error,
+                pixel_error: ui::slider_pixel_error(a.pixel_error),
                 max_level: adaptive_max,
                 cull: a.cull,
                 freeze: false,

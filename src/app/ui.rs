@@ -59,6 +59,21 @@ pub struct Asked {
 /// The pixel error's range in the window (the slider and the `[` `]` keys).
 pub const PIXEL_ERRORS: std::ops::RangeInclusive<f32> = 0.25..=16.0;
 
+/// A pixel error from the command line as the window's slider holds it: within
+/// [`PIXEL_ERRORS`], with a warning where it had to move.
+pub fn slider_pixel_error(px: f32) -> f32 {
+    let held = px.clamp(*PIXEL_ERRORS.start(), *PIXEL_ERRORS.end());
+    if held != px {
+        log::warn!(
+            "the window's pixel error spans {} to {} px (its slider): --pixel-error {} is drawn at {held} px",
+            PIXEL_ERRORS.start(),
+            PIXEL_ERRORS.end(),
+            crate::lod::px(px)
+        );
+    }
+    held
+}
+
 impl Controls {
     /// The pattern driver with submission `s`.
     pub fn set_submit(&mut self, s: Submit) {

@@ -6,7 +6,6 @@
 
 use super::args::{AdaptiveOpts, Cli, Command, ViewpointOpts};
 use super::options::Given;
-use super::progress::plural;
 use crate::note;
 use anyhow::{bail, Result};
 use glam::{DVec3, Vec3};
@@ -15,7 +14,6 @@ use meshrefine::lod::LevelReport;
 use meshrefine::render::{
     Camera, Capture, ChosenLevels, DrawConfig, Driver, Headless, LevelView, Scene, Viewpoint,
 };
-use meshrefine::surface::Displace;
 
 /// One sentence for the first bad value of a pixel error and its camera, before any work.
 /// `level_given`: `--level` was given too.
@@ -272,33 +270,11 @@ impl Adaptive<'_> {
     /// Says on standard error where the pixel error is not met: elements with no finite error
     /// bound, and elements whose bound needs a level above the largest (`cfg.level`).
     pub fn note_unmet(&self, cfg: &DrawConfig, report: &LevelReport) {
-        let (max, u) = (cfg.level, &report.unmet);
-        let whatever = format!(
-            "they are drawn at the largest level, {max}, whatever --pixel-error, and no pixel error is promised on them; --max-level sets their level"
-        );
-        if u.near > 0 {
-            note(format_args!(
-                "note: {} the eye in their bounds (no distance bounds their error in pixels): {whatever}",
-                counted(u.near, "holds", "hold")
-            ));
-        }
-        if u.unbounded > 0 {
-            let why = if cfg.surface.uses_loop_faces() && cfg.displace != Displace::None {
-                "the loop surface with displacement has none"
-            } else {
-                "docs/adaptivity.md says where none exists"
-            };
-            note(format_args!(
-                "note: {} no finite error bound ({why}): {whatever}",
-                counted(u.unbounded, "has", "have")
-            ));
-        }
-        if u.capped > 0 {
-            note(format_args!(
-                "note: the {} px bound is not met on {}: they need a level above the largest, {max} (--max-level)",
-                px(self.pixel_error),
-                plural(u.capped, "element")
-            ));
+        for line in report
+            .unmet
+            .notes(self.pixel_error, cfg.level, cfg.loop_displaced())
+        {
+            note(format_args!("{line}"));
         }
     }
 
@@ -360,13 +336,4 @@ impl ViewpointOpts {
             anyhow::anyhow!("{}", no_direction(e, t))
         })
     }
-}
-
-/// `n element(s)` with the verb that agrees: `1 element has`, `3 elements have`.
-fn counted(n: u64, one: &str, many: &str) -> String {
-    format!(
-        "{} {}",
-        plural(n, "element"),
-        if n == 1 { one } else { many }
-    )
 }

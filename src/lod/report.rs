@@ -35,6 +35,50 @@ impl LevelReport {
     }
 }
 
+impl super::frame::Unmet {
+    /// One `note:` sentence for each kind of element on which `pixel_error` is not met, drawn
+    /// at largest level `max`: those holding the eye in their bounds, those with no finite
+    /// bound (`loop_displaced`: the loop surface with displacement, which has none), those
+    /// needing a level above `max`. What `render`, `view` and `export` print on standard
+    /// error, and the window when they change.
+    pub fn notes(&self, pixel_error: f32, max: u32, loop_displaced: bool) -> Vec<String> {
+        let why_unbounded = if loop_displaced {
+            "the loop surface with displacement has none"
+        } else {
+            "docs/adaptivity.md says where none exists"
+        };
+        let elements = |n: u64, one: &str, many: &str| {
+            let verb = if n == 1 { one } else { many };
+            format!("{n} element{} {verb}", if n == 1 { "" } else { "s" })
+        };
+        let whatever = format!(
+            "they are drawn at the largest level, {max}, whatever --pixel-error, and no pixel error is promised on them; --max-level sets their level"
+        );
+        let mut out = Vec::new();
+        if self.near > 0 {
+            out.push(format!(
+                "note: {} the eye in their bounds (no distance bounds their error in pixels): {whatever}",
+                elements(self.near, "holds", "hold")
+            ));
+        }
+        if self.unbounded > 0 {
+            out.push(format!(
+                "note: {} no finite error bound ({why_unbounded}): {whatever}",
+                elements(self.unbounded, "has", "have")
+            ));
+        }
+        if self.capped > 0 {
+            out.push(format!(
+                "note: the {} px bound is not met on {} element{}: they need a level above the largest, {max} (--max-level)",
+                px(pixel_error),
+                self.capped,
+                if self.capped == 1 { "" } else { "s" }
+            ));
+        }
+        out
+    }
+}
+
 /// A pixel error as printed: as given where that is short, in exponent form far from 1
 /// (`1e-30`, not thirty zeros).
 pub fn px(value: f32) -> String {

@@ -124,6 +124,12 @@ impl DrawConfig {
         self.geomorph && (!self.driver.kind().integer_levels() || self.level.is_power_of_two())
     }
 
+    /// The loop surface with displacement: no finite error bound on any element
+    /// (docs/adaptivity.md).
+    pub fn loop_displaced(&self) -> bool {
+        self.surface.uses_loop_faces() && self.displace != crate::surface::Displace::None
+    }
+
     /// Whether adaptive levels are rounded to powers of two: the pattern driver's
     /// hierarchical patterns, the static driver (which refines with their construction), and
     /// the tess driver while it glides.
