@@ -175,7 +175,25 @@ fn device_limits_and_options_are_checked() {
         &["render", "--device", "no-such-gpu-anywhere", "-o", p(&out)],
         &["no-such-gpu-anywhere", "available"],
     );
-    expect_error(&["render", "-o", p(&out), "--width", "0"], &["0x720"]);
+    // An image side outside 1..=16384 is a usage error (clap: status 2) in every command.
+    for command in [
+        &["render", "-o", p(&out)][..],
+        &["view", "--headless-output", p(&out)],
+        &["export", "-o", "x.obj"],
+        &["info"],
+        &["bench"],
+    ] {
+        for bad in [["--width", "0"], ["--height", "16385"]] {
+            let args: Vec<&str> = command.iter().chain(&bad).copied().collect();
+            let out = meshrefine(&args);
+            let stderr = String::from_utf8_lossy(&out.stderr);
+            assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+            assert!(
+                stderr.contains(&format!("invalid value '{}' for '{}", bad[1], bad[0])),
+                "{args:?}: {stderr}"
+            );
+        }
+    }
     // lavapipe's largest image (16384 per side) at its default 4 samples per pixel: 4 GiB per
     // attachment, over its 2 GiB maxMemoryAllocationSize; refused before anything is allocated.
     expect_error(
@@ -356,6 +374,62 @@ fn render_export_and_headless_view_work() {
     let png = png::Decoder::new(std::fs::File::open(&view_png).unwrap());
     let info = png.read_info().unwrap().info().clone();
     assert_eq!((info.width, info.height), (320, 200));
+}
+
+/// The headless `view` has no panel to switch to what an option applies to: it warns of the
+/// options its one image ignores as `render` does, and says that `--lod` (the window's level
+/// by distance) draws the image uniformly at `--level`: the image `--level` alone draws.
+#[test]
+fn headless_view_warns_of_what_its_image_ignores() {
+    let warnings = |out: &Output| -> Vec<String> {
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{stderr}");
+        (stderr.lines())
+            .filter(|l| l.starts_with("warning:"))
+            .map(String::from)
+            .collect()
+    };
+    let run = |png: &Path, extra: &[&str]| {
+        let mut args = vec![
+            "view",
+            "--headless-output",
+            p(png),
+            "--width",
+            "64",
+            "--height",
+            "48",
+        ];
+        args.extend(extra);
+        meshrefine(&args)
+    };
+    let (with, without) = (tmp("view-lod.png"), tmp("view-no-lod.png"));
+    for (lod, level) in [(&["--lod", "--level", "8"][..], "8"), (&["--lod"], "16")] {
+        assert_eq!(
+            warnings(&run(&with, lod)),
+            [format!(
+                "warning: --lod chooses levels by distance only in the window: no display found (DISPLAY and WAYLAND_DISPLAY are unset), so the image is drawn uniformly at --level {level}"
+            )],
+        );
+        assert!(warnings(&run(&without, &["--level", level])).is_empty());
+        assert_eq!(
+            std::fs::read(&with).unwrap(),
+            std::fs::read(&without).unwrap(),
+            "{lod:?}"
+        );
+    }
+    #[rustfmt::skip]
+    let out = run(&with, &[
+        "--level", "8", "--max-level", "8", "--cull", "off", "--geomorph", "off", "--alpha", "0.5",
+    ]);
+    assert_eq!(
+        warnings(&out),
+        [
+            "warning: --alpha applies only to --surface phong, not to --surface pn: it is ignored",
+            "warning: --max-level applies only with --pixel-error: it is ignored",
+            "warning: --cull applies only with --pixel-error: it is ignored",
+            "warning: --geomorph applies only with --pixel-error: it is ignored",
+        ]
+    );
 }
 
 #[test]
@@ -870,14 +944,24 @@ fn meaningless_requests_are_refused() {
         &["view", "--screenshot-dir", "no/such/dir"],
         &["--screenshot-dir 'no/such/dir'", "not a directory"],
     );
-    // Zero frames: clap refuses the value (usage error, status 2).
-    for args in [
-        vec!["bench", "--frames", "0"],
-        vec!["view", "--frames", "0"],
+    // Zero frames: clap refuses the value (usage error, status 2); a negative number is a value
+    // clap's range refuses as such, not an unexpected argument.
+    for (args, value) in [
+        (vec!["bench", "--frames", "0"], "'0'"),
+        (vec!["view", "--frames", "0"], "'0'"),
+        (
+            vec!["info", "--level", "-3"],
+            "invalid value '-3' for '--level",
+        ),
+        (
+            vec!["bench", "--levels", "-1e-30"],
+            "invalid value '-1e-30'",
+        ),
     ] {
         let out = meshrefine(&args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(2), "{args:?}");
-        assert!(String::from_utf8_lossy(&out.stderr).contains("'0'"));
+        assert!(stderr.contains(value), "{args:?}: {stderr}");
     }
 }
 
@@ -971,6 +1055,11 @@ fn surface_parameters_out_of_range_are_errors() {
         (
             &["--frequency", "-1"],
             "--frequency -1 is not a finite number >= 0",
+        ),
+        // A negative exponent is a value too (clap's test of a negative number misses it).
+        (
+            &["--frequency", "-1e-30"],
+            "--frequency -0.000000000000000000000000000001 is not a finite number >= 0",
         ),
     ] {
         let mut all = vec!["render", "-o", o, "--level", "2"];
@@ -2364,7 +2453,7 @@ fn info_reports_adaptive_levels_for_a_camera() {
     );
     expect_error(
         &["info", spot, "--pixel-error", "nan"],
-        &["--pixel-error NaN"],
+        &["--pixel-error nan"],
     );
     expect_error(
         &["info", spot, "--pixel-error", "1", "--level", "4"],
@@ -2501,7 +2590,16 @@ fn adaptive_options_refuse_bad_values() {
         };
         expect_error(&with(&["--pixel-error", "0"]), &["--pixel-error 0"]);
         expect_error(&with(&["--pixel-error", "-1"]), &["--pixel-error -1"]);
-        expect_error(&with(&["--pixel-error", "nan"]), &["--pixel-error NaN"]);
+        expect_error(&with(&["--pixel-error", "nan"]), &["--pixel-error nan"]);
+        // What was typed, not the f32 it parses to (inf), and a negative exponent is a value.
+        expect_error(
+            &with(&["--pixel-error", "1e39"]),
+            &["--pixel-error 1e39 is not a finite number > 0"],
+        );
+        expect_error(
+            &with(&["--pixel-error", "-1e-30"]),
+            &["--pixel-error -1e-30 is not a finite number > 0"],
+        );
         expect_error(&with(&["--pixel-error", "1", "--fov", "0"]), &["--fov 0"]);
         expect_error(
             &with(&["--pixel-error", "1", "--fov", "180"]),
@@ -2554,6 +2652,24 @@ fn adaptive_options_refuse_bad_values() {
             "--max-level 100: level 100 is beyond this device's maxTessellationGenerationLevel (64): the tess driver cannot draw it (use --driver pattern)",
         ],
     );
+    // export's refusals name the mesh as render's do; info, which draws nothing, refuses the
+    // level render refuses with the same sentence (the device's limits read, none opened).
+    let past =
+        "--max-level 100: level 100 is beyond this device's maxTessellationGenerationLevel (64)";
+    #[rustfmt::skip]
+    let refusals: [(&[&str], String); 3] = [
+        (&["export", "-o", p(&obj), "--driver", "tess", "--pixel-error", "1", "--max-level", "100"],
+         format!("error: cannot export 'the default mesh (spot)': {past}")),
+        (&["export", "-o", p(&obj), "--pixel-error", "1", "--max-level", "48"],
+         "error: cannot export 'the default mesh (spot)': --max-level 48 is not a power of two".into()),
+        (&["info", "--driver", "tess", "--pixel-error", "1", "--max-level", "100"],
+         format!("error: {past}")),
+    ];
+    for (args, sentence) in refusals {
+        expect_error(args, &[&sentence]);
+        let out = meshrefine(args);
+        assert!(out.stdout.is_empty(), "{args:?}");
+    }
     assert!(!png.exists() && !obj.exists() && !view_png.exists());
     // The level options without --pixel-error are reported as ignored; the camera applies to
     // uniform drawing too (an image from it differs from the framing camera's).
@@ -3393,6 +3509,61 @@ fn adaptive_renders_warn_of_slow_frames_from_the_levels_chosen() {
     assert!(out.status.success(), "{stderr}");
     // 3268 elements at level 1 are drawn, not 5856 x 64².
     assert!(!stderr.contains("refined triangles per frame"), "{stderr}");
+}
+
+/// bench's adaptive rows warn of slow frames from the levels chosen, as render does, not from
+/// every element at --max-level: none where few triangles are drawn (or none, every element
+/// culled), and where they are many, the adaptive row's own count with render's advice.
+#[test]
+fn bench_adaptive_rows_warn_of_slow_frames_from_the_levels_chosen() {
+    let bench = |args: &[&str]| {
+        let mut all = vec!["bench", "--frames", "1", "--width", "64", "--height", "48"];
+        all.extend(["--levels", "1", "--no-bound-levels"]);
+        all.extend(args);
+        let out = meshrefine(&all);
+        let stderr = String::from_utf8_lossy(&out.stderr).to_string();
+        assert!(out.status.success(), "{args:?}: {stderr}");
+        (String::from_utf8_lossy(&out.stdout).to_string(), stderr)
+    };
+    // Spot's 372 elements at --max-level 1024 would be 390 M triangles; a few thousand are drawn.
+    #[rustfmt::skip]
+    let (_, stderr) = bench(&[
+        "--pixel-error", "1", "--drivers", "pattern", "--surfaces", "pn", "--max-level", "1024",
+    ]);
+    assert!(!stderr.contains("refined triangles per frame"), "{stderr}");
+    #[rustfmt::skip]
+    let (_, stderr) = bench(&[
+        "--pixel-error", "1", "--drivers", "tess", "--surfaces", "pn,loop", "--eye", "5,0,0",
+        "--look-at", "10,0,0",
+    ]);
+    assert!(!stderr.contains("refined triangles per frame"), "{stderr}");
+    // Every element at tess level 18 (486 triangles each): 2.8 M triangles, a second or so.
+    let spot = model_path("spot_tri.obj");
+    #[rustfmt::skip]
+    let (stdout, stderr) = bench(&[
+        p(&spot), "--pixel-error", "0.0001", "--drivers", "tess", "--surfaces", "pn",
+        "--max-level", "18", "--geomorph", "off", "--cull", "off",
+    ]);
+    let (header, rows) = summary_table(&stdout);
+    let column = |name: &str| header.iter().position(|h| h == name).expect(name);
+    let adaptive = &rows[0];
+    assert_eq!(adaptive[column("level")], "18", "{stdout}");
+    let warned = format!(
+        "warning: {} refined triangles per frame on a software device",
+        adaptive[column("refined tris")]
+    );
+    let warnings: Vec<&str> = stderr
+        .lines()
+        .filter(|l| l.starts_with("warning:"))
+        .collect();
+    assert_eq!(warnings.len(), 1, "{stderr}");
+    assert!(warnings[0].starts_with(&warned), "{stderr}");
+    assert!(
+        warnings[0].ends_with(
+            "s a frame (100 to 400 ns a triangle there); a larger --pixel-error or a smaller --max-level draws faster"
+        ),
+        "{stderr}"
+    );
 }
 
 /// A blank image whose elements culling removed says so, and that `--cull off` draws them.

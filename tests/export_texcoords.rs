@@ -269,7 +269,7 @@ fn exports_without_texture_coordinates_are_unchanged() {
         }
     }
     // With texture coordinates, loop (whose elements carry none) writes none and says so, on
-    // both GPU drivers.
+    // both GPU drivers, naming the file as given, as every message does.
     let grid = model_path("grid_uv_8x8.obj");
     for driver in ["pattern", "tess"] {
         let name = format!("grid-loop-{driver}.obj");
@@ -277,7 +277,10 @@ fn exports_without_texture_coordinates_are_unchanged() {
         let (text, stderr) = export(&grid, &name, &args);
         assert!(!text.contains("\nvt "), "{name}");
         assert!(
-            stderr.contains("warning: 'grid_uv_8x8' has texture coordinates, but --surface loop writes none (vt)"),
+            stderr.contains(&format!(
+                "warning: '{}' has texture coordinates, but --surface loop writes none (vt)",
+                grid.display()
+            )),
             "{name}: {stderr}"
         );
     }

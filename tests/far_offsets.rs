@@ -197,7 +197,8 @@ fn a_distant_eye_culls_nothing_in_view() {
 }
 
 /// An eye or target too far from the mesh to place: one sentence with the values as given and
-/// the limit, from every command (never "no view direction" with re-mapped values).
+/// the limit, from every command (never "no view direction" with re-mapped values), and by info
+/// before it prints anything.
 #[test]
 fn an_eye_or_target_too_far_away_is_refused_as_given() {
     let png = tmp("too-far.png");
@@ -218,6 +219,14 @@ fn an_eye_or_target_too_far_away_is_refused_as_given() {
             );
             assert!(!stderr.contains("view direction"), "{args:?}: {stderr}");
         }
+        // Refused before anything is printed, as info's other camera errors are: no mesh
+        // statistics first.
+        let out = meshrefine(&["info", "--pixel-error", "1", option, value]);
+        assert!(
+            out.stdout.is_empty(),
+            "{}",
+            String::from_utf8_lossy(&out.stdout)
+        );
     }
 }
 

@@ -142,7 +142,11 @@ impl State {
 
     /// The largest level the driver of `cfg` draws on this device among the window's levels.
     pub(super) fn driver_max(&self, cfg: &DrawConfig) -> u32 {
-        let limit = cfg.driver.kind().level_limit(&self.ctx).map(|(max, _)| max);
+        let limit = cfg
+            .driver
+            .kind()
+            .level_limit(&self.ctx.info)
+            .map(|(max, _)| max);
         (self.scene.patterns.levels())
             .filter(|&l| limit.is_none_or(|max| l <= max))
             .filter(|&l| cfg.driver.kind().integer_levels() || l.is_power_of_two())

@@ -187,7 +187,13 @@ fn frame(
         let report = m.scene.set_levels(&t.cfg, view)?;
         let cpu_ms = start.elapsed().as_secs_f64() * 1e3;
         if round == 0 {
-            t.reports.push(report.into_report());
+            let report = report.into_report();
+            // Counted from the levels chosen (its prepare, at the largest level, did not warn).
+            if t.reports.is_empty() {
+                let refined = drawn_triangles(&t.cfg, &report);
+                m.scene.warn_once_if_slow(refined, report.faster());
+            }
+            t.reports.push(report);
         }
         // The level pass on the GPU, timed alone (each frame runs it again before
         // its draws); the CPU's time where the levels were uploaded instead.
@@ -269,6 +275,14 @@ fn timed(
     })
 }
 
+/// The triangles `cfg`'s driver makes for the levels of `report`, each drawn element at its
+/// inner level.
+fn drawn_triangles(cfg: &DrawConfig, report: &LevelReport) -> u64 {
+    (report.histogram.iter())
+        .map(|(&l, &count)| count * cfg.driver.refined_per_element(l) as u64)
+        .sum()
+}
+
 /// The mean over cameras of each camera's median, the least minimum and the greatest maximum.
 fn over_cameras(samples: &[Vec<f64>]) -> Option<Stat> {
     let stats: Vec<Stat> = (samples.iter())
@@ -311,11 +325,7 @@ fn into_rows(list: Vec<Timed>, cameras: usize, frames: usize) -> Vec<Row> {
             .expect("adaptive rows carry their cells");
         if t.adaptive {
             let n = t.reports.len().max(1) as u64;
-            let per = |r: &LevelReport| -> u64 {
-                (r.histogram.iter())
-                    .map(|(&l, &count)| count * t.cfg.driver.refined_per_element(l) as u64)
-                    .sum()
-            };
+            let per = |r: &LevelReport| drawn_triangles(&t.cfg, r);
             row.refined_triangles = (t.reports.iter().map(per).sum::<u64>() + n / 2) / n;
             let mut histogram: BTreeMap<u32, u64> = BTreeMap::new();
             for r in &t.reports {

@@ -4,12 +4,12 @@
 //! ([`Scene::set_levels`], written by the level pass on the GPU in every frame).
 #![forbid(unsafe_code)]
 
-use super::args::{AdaptiveOpts, Cli, Command, ViewpointOpts};
+use super::args::{AdaptiveOpts, Cli, Command, TypedF32, ViewpointOpts};
 use super::options::Given;
 use crate::note;
 use anyhow::{bail, Result};
 use glam::{DVec3, Vec3};
-use meshrefine::gpu::Context;
+use meshrefine::gpu::{Context, DeviceInfo};
 use meshrefine::lod::LevelReport;
 use meshrefine::render::{
     Camera, Capture, ChosenLevels, DrawConfig, Driver, Headless, LevelView, Scene, Viewpoint,
@@ -17,9 +17,9 @@ use meshrefine::render::{
 
 /// One sentence for the first bad value of a pixel error and its camera, before any work.
 /// `level_given`: `--level` was given too.
-pub fn check_view(px: f32, v: &ViewpointOpts, level_given: bool) -> Result<()> {
-    if !(px.is_finite() && px > 0.0) {
-        bail!("--pixel-error {px} is not a finite number > 0");
+pub fn check_view(px: &TypedF32, v: &ViewpointOpts, level_given: bool) -> Result<()> {
+    if !(px.value.is_finite() && px.value > 0.0) {
+        bail!("--pixel-error {} is not a finite number > 0", px.text);
     }
     if level_given {
         bail!("--pixel-error and --level are exclusive: adaptive levels come from the pixel error, --level asks for one level everywhere");
@@ -93,14 +93,14 @@ pub fn check(cli: &Cli, given: &Given) -> Result<()> {
         Command::Bench(a) => (&a.adaptive, "levels", false),
         Command::Info(_) | Command::Devices => return Ok(()),
     };
-    if let (Command::View(a), Some(_)) = (&cli.command, opts.pixel_error) {
+    if let (Command::View(a), Some(_)) = (&cli.command, &opts.pixel_error) {
         if a.lod {
             bail!("--pixel-error and --lod are exclusive: --lod starts the window choosing one level by distance, --pixel-error each element's level from the pixel error");
         }
     }
-    let Some(px) = opts.pixel_error else {
+    let Some(px) = &opts.pixel_error else {
         if by_default {
-            check_view(DEFAULT_PIXEL_ERROR, &opts.viewpoint, false)?;
+            check_view(&DEFAULT_PIXEL_ERROR.into(), &opts.viewpoint, false)?;
         } else if !matches!(cli.command, Command::Export(_)) {
             // Uniform render, view and bench draw from the camera asked for too.
             check_camera(&opts.viewpoint)?;
@@ -139,9 +139,9 @@ impl AdaptiveOpts {
     /// Adaptive drawing when `--pixel-error` was given, culling as `--cull` says or else
     /// `cull_default`.
     pub fn enabled(&self, cull_default: bool) -> Option<Adaptive<'_>> {
-        self.pixel_error.map(|px| Adaptive {
+        self.pixel_error.as_ref().map(|px| Adaptive {
             opts: self,
-            pixel_error: px,
+            pixel_error: px.value,
             cull: self.cull.unwrap_or(cull_default),
             geomorph: self.geomorph.unwrap_or(true),
             by_default: false,
@@ -184,6 +184,17 @@ impl Frame {
     }
 }
 
+/// `--max-level l` for `driver` on `device`: within what the driver draws there (the one level
+/// policy's sentence, `driver::check_level`, naming the option), and a power of two where its
+/// adaptive levels are ([`check_max_level_rounding`]).
+pub fn check_max_level(device: &DeviceInfo, l: u32, driver: Driver) -> Result<()> {
+    let cfg = DrawConfig::new(driver, l);
+    if let Err(e) = meshrefine::render::driver::check_level_on(device, &cfg) {
+        bail!("--max-level {l}: {e}");
+    }
+    check_max_level_rounding(l, driver)
+}
+
 /// `--max-level l` for a driver whose adaptive levels are powers of two (the pattern and static
 /// drivers, 1-to-4 splits) must be one.
 pub fn check_max_level_rounding(l: u32, driver: Driver) -> Result<()> {
@@ -204,15 +215,10 @@ impl Adaptive<'_> {
     /// static drivers), else the largest `driver` draws there, at most 1024; for the pattern
     /// and static drivers [`PATTERN_MAX_LEVEL`].
     pub fn max_level(&self, ctx: &Context, driver: Driver) -> Result<u32> {
-        let limit = driver.kind().level_limit(ctx);
+        let limit = driver.kind().level_limit(&ctx.info);
         let pattern = !driver.kind().integer_levels();
         if let Some(l) = self.opts.max_level {
-            // The one level policy's sentence (`driver::check_level`), naming the option.
-            let cfg = DrawConfig::new(driver, l);
-            if let Err(e) = meshrefine::render::driver::check_level(ctx, &cfg) {
-                bail!("--max-level {l}: {e}");
-            }
-            check_max_level_rounding(l, driver)?;
+            check_max_level(&ctx.info, l, driver)?;
             return Ok(l);
         }
         let limit = limit.map_or(1024, |(max, _)| max.min(1024));

@@ -50,16 +50,16 @@ pub enum Command {
 #[command(next_help_heading = "Surface parameters")]
 pub struct ParamOpts {
     /// Phong tessellation's shape factor, within [0, 1].
-    #[arg(long, default_value_t = 0.75)]
+    #[arg(long, allow_hyphen_values = true, default_value_t = 0.75)]
     pub alpha: f32,
     /// Displacement amplitude in the mesh's units (default: 3% of its bounding radius).
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_hyphen_values = true)]
     pub amplitude: Option<f32>,
     /// Displacement frequency per mesh unit (default: 24 / bounding radius).
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_hyphen_values = true)]
     pub frequency: Option<f32>,
     /// Octaves of the noise displacement.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, allow_hyphen_values = true, default_value_t = 1)]
     pub octaves: u32,
     /// PN and Phong geometry at split normals (a position with several vn): `closed` is
     /// crack-free, `open` is the papers' behaviour (cracks).
@@ -70,7 +70,7 @@ pub struct ParamOpts {
     #[arg(long, value_parser = choices::normal_field(), default_value = NormalField::default().name())]
     pub normal_field: NormalField,
     /// Height map displacement: P' = P + a·(h − bias)·N, h in [0, 1].
-    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub bias: f32,
     /// Loop subdivision's boundaries (--surface loop): `edge-only` keeps boundary edges sharp
     /// (OpenSubdiv's VTX_BOUNDARY_EDGE_ONLY), `edge-and-corner` also pins boundary vertices of
@@ -80,7 +80,7 @@ pub struct ParamOpts {
     /// The loop surface's basis function tables' level (--surface loop): 2^N segments per
     /// M1-face edge, the lattice whose points are exact limit points; each level up takes four
     /// times the memory.
-    #[arg(long, default_value_t = meshrefine::surface::loop_::DEFAULT_LMAX)]
+    #[arg(long, allow_hyphen_values = true, default_value_t = meshrefine::surface::loop_::DEFAULT_LMAX)]
     pub bft_level: u32,
 }
 
@@ -161,7 +161,7 @@ pub struct DrawnOpts {
     pub tags: Option<PathBuf>,
     /// For --surface stpn without --tags (or under it): edges whose faces meet at more than this
     /// many degrees are creases too (default: only positions with two vn are).
-    #[arg(long, value_name = "DEGREES")]
+    #[arg(long, allow_hyphen_values = true, value_name = "DEGREES")]
     pub crease_angle: Option<f32>,
     #[command(flatten)]
     pub params: ParamOpts,
@@ -180,7 +180,7 @@ pub struct Technique {
     pub submit: Option<Submit>,
     /// Refinement level N: N segments per coarse edge, N² triangles per coarse triangle, every
     /// element at it (render and view: given, it replaces adaptive drawing at 1 px).
-    #[arg(long, default_value_t = 16, value_parser = clap::value_parser!(u32).range(1..=1024), help_heading = "Driver and level")]
+    #[arg(long, allow_hyphen_values = true, default_value_t = 16, value_parser = clap::value_parser!(u32).range(1..=1024), help_heading = "Driver and level")]
     pub level: u32,
 }
 
@@ -198,7 +198,7 @@ pub struct ViewArgs {
     #[command(flatten)]
     pub technique: Technique,
     /// Exit after N frames (at least 1).
-    #[arg(long, value_parser = clap::value_parser!(u64).range(1..), help_heading = "Window")]
+    #[arg(long, allow_hyphen_values = true, value_parser = clap::value_parser!(u64).range(1..), help_heading = "Window")]
     pub frames: Option<u64>,
     /// Save the last frame to this PNG file.
     #[arg(long, value_name = "FILE.png", help_heading = "Window")]
@@ -221,7 +221,7 @@ pub struct ViewArgs {
     pub lod: bool,
     /// Multisampled anti-aliasing: samples per pixel, 1 (none), 2, 4 or 8 (default: 4 where
     /// the device supports it for colour and depth attachments, else the most it supports).
-    #[arg(long, value_parser = msaa_counts(), help_heading = "Window")]
+    #[arg(long, allow_hyphen_values = true, value_parser = msaa_counts(), help_heading = "Window")]
     pub msaa: Option<u32>,
     /// Where the headless fallback writes its image when no display exists.
     #[arg(
@@ -232,10 +232,10 @@ pub struct ViewArgs {
     )]
     pub headless_output: PathBuf,
     /// The window's width (and the headless fallback image's), in pixels at scale factor 1.
-    #[arg(long, default_value_t = 1280, value_parser = clap::value_parser!(u32).range(1..=16384), help_heading = "Window")]
+    #[arg(long, allow_hyphen_values = true, default_value_t = 1280, value_parser = image_side(), help_heading = "Window")]
     pub width: u32,
     /// The window's height (and the headless fallback image's), in pixels at scale factor 1.
-    #[arg(long, default_value_t = 720, value_parser = clap::value_parser!(u32).range(1..=16384), help_heading = "Window")]
+    #[arg(long, allow_hyphen_values = true, default_value_t = 720, value_parser = image_side(), help_heading = "Window")]
     pub height: u32,
     /// Start borderless fullscreen on the window's monitor (F11 toggles; leaving it returns
     /// to --width x --height).
@@ -267,10 +267,10 @@ pub struct RenderArgs {
     )]
     pub output: PathBuf,
     /// The image's width in pixels.
-    #[arg(long, default_value_t = 1280, help_heading = "Output")]
+    #[arg(long, allow_hyphen_values = true, default_value_t = 1280, value_parser = image_side(), help_heading = "Output")]
     pub width: u32,
     /// The image's height in pixels.
-    #[arg(long, default_value_t = 720, help_heading = "Output")]
+    #[arg(long, allow_hyphen_values = true, default_value_t = 720, value_parser = image_side(), help_heading = "Output")]
     pub height: u32,
     /// Draw a wireframe: the refined edges (the default when no value is given), the cage (the
     /// coarse mesh's edges) or both.
@@ -287,7 +287,7 @@ pub struct RenderArgs {
     pub background: meshrefine::render::Background,
     /// Multisampled anti-aliasing: samples per pixel, 1 (none), 2, 4 or 8 (default: 4 where
     /// the device supports it for colour and depth attachments, else the most it supports).
-    #[arg(long, value_parser = msaa_counts(), help_heading = "Output")]
+    #[arg(long, allow_hyphen_values = true, value_parser = msaa_counts(), help_heading = "Output")]
     pub msaa: Option<u32>,
     #[command(flatten)]
     pub technique: Technique,
@@ -317,15 +317,15 @@ pub struct ExportArgs {
     #[arg(long, value_parser = choices::submit(), help_heading = "Driver and level")]
     pub submit: Option<Submit>,
     /// Refinement level N: N segments per coarse edge.
-    #[arg(long, default_value_t = 16, value_parser = clap::value_parser!(u32).range(1..=1024), help_heading = "Driver and level")]
+    #[arg(long, allow_hyphen_values = true, default_value_t = 16, value_parser = clap::value_parser!(u32).range(1..=1024), help_heading = "Driver and level")]
     pub level: u32,
     #[command(flatten)]
     pub adaptive: AdaptiveOpts,
     /// The image's width in pixels the levels are chosen for (with --pixel-error).
-    #[arg(long, default_value_t = 1280, value_parser = clap::value_parser!(u32).range(1..=16384), help_heading = "Adaptive drawing")]
+    #[arg(long, allow_hyphen_values = true, default_value_t = 1280, value_parser = image_side(), help_heading = "Adaptive drawing")]
     pub width: u32,
     /// The image's height in pixels the levels are chosen for (with --pixel-error).
-    #[arg(long, default_value_t = 720, value_parser = clap::value_parser!(u32).range(1..=16384), help_heading = "Adaptive drawing")]
+    #[arg(long, allow_hyphen_values = true, default_value_t = 720, value_parser = image_side(), help_heading = "Adaptive drawing")]
     pub height: u32,
 }
 
@@ -364,7 +364,7 @@ pub struct InfoArgs {
     /// OBJ file (default: the embedded Spot control mesh).
     pub mesh: Option<PathBuf>,
     /// Also print the GPU geometry bytes each driver would hold at this level.
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    #[arg(long, allow_hyphen_values = true, value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub level: Option<u32>,
     /// Also report what this surface builds (`loop`: M1, valences, configurations and the basis
     /// function tables' memory).
@@ -379,8 +379,8 @@ pub struct InfoArgs {
     /// the camera below: the level histogram and the triangles against the smallest uniform
     /// level that meets the same bound (--surface, default pn; not with --level). The levels
     /// are those render draws with the same options.
-    #[arg(long, allow_negative_numbers = true)]
-    pub pixel_error: Option<f32>,
+    #[arg(long, value_parser = typed_f32, allow_hyphen_values = true)]
+    pub pixel_error: Option<TypedF32>,
     #[command(flatten)]
     pub camera: CameraOpts,
     /// Leave out of the report the elements outside the view or, on a closed mesh wound
@@ -389,7 +389,7 @@ pub struct InfoArgs {
     #[arg(long, value_parser = choices::cull())]
     pub cull: Option<bool>,
     /// The largest level any element gets (with --pixel-error).
-    #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    #[arg(long, allow_hyphen_values = true, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub max_level: u32,
     /// The driver whose rounding of the levels is reported (with --pixel-error): pattern and
     /// static draw powers of two, tess any integer (geomorphing, tess draws powers of two too).
@@ -420,10 +420,10 @@ pub struct CameraOpts {
     #[command(flatten)]
     pub viewpoint: ViewpointOpts,
     /// The image's width in pixels.
-    #[arg(long, default_value_t = 1280, value_parser = clap::value_parser!(u32).range(1..=16384))]
+    #[arg(long, allow_hyphen_values = true, default_value_t = 1280, value_parser = image_side())]
     pub width: u32,
     /// The image's height in pixels (the metric counts pixels of this height).
-    #[arg(long, default_value_t = 720, value_parser = clap::value_parser!(u32).range(1..=16384))]
+    #[arg(long, allow_hyphen_values = true, default_value_t = 720, value_parser = image_side())]
     pub height: u32,
 }
 
@@ -441,7 +441,7 @@ pub struct ViewpointOpts {
     pub look_at: Option<[f32; 3]>,
     /// Vertical field of view in degrees (without --eye the camera is fitted with it, so the
     /// surface fills the image at any field of view).
-    #[arg(long, default_value_t = 45.0)]
+    #[arg(long, allow_hyphen_values = true, default_value_t = 45.0)]
     pub fov: f32,
 }
 
@@ -452,12 +452,12 @@ pub struct AdaptiveOpts {
     /// Draw adaptively: each element at the level that keeps the surface within this many
     /// pixels of the drawn mesh, seen by the camera below (every driver; not with --level;
     /// render and view: 1 by default unless --level, or for view --lod, is given).
-    #[arg(long, allow_negative_numbers = true)]
-    pub pixel_error: Option<f32>,
+    #[arg(long, value_parser = typed_f32, allow_hyphen_values = true)]
+    pub pixel_error: Option<TypedF32>,
     /// The largest level any element gets (with --pixel-error; default: 64 for the pattern and
     /// static drivers, whose levels are powers of two, and the tessellator's limit for tess;
     /// both at most what the device draws).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    #[arg(long, allow_hyphen_values = true, value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub max_level: Option<u32>,
     /// Draw nothing of the elements outside the view or facing away (with --pixel-error;
     /// default: on, off for export).
@@ -470,6 +470,33 @@ pub struct AdaptiveOpts {
     pub geomorph: Option<bool>,
     #[command(flatten, next_help_heading = "Camera")]
     pub viewpoint: ViewpointOpts,
+}
+
+/// A number as typed and as parsed: a message about it names what was typed (`1e39`, which is
+/// `inf` once parsed).
+#[derive(Clone, Debug)]
+pub struct TypedF32 {
+    pub value: f32,
+    pub text: String,
+}
+
+impl From<f32> for TypedF32 {
+    /// A value given by the program (a default), named as a pixel error is printed.
+    fn from(value: f32) -> Self {
+        Self {
+            value,
+            text: meshrefine::lod::px(value),
+        }
+    }
+}
+
+/// [`TypedF32`]: any text `f32` parses (its checks are the option's own, in one sentence).
+fn typed_f32(s: &str) -> Result<TypedF32, String> {
+    let value = s.parse::<f32>().map_err(|e| format!("{e}"))?;
+    Ok(TypedF32 {
+        value,
+        text: s.to_string(),
+    })
 }
 
 /// `X,Y,Z`: three finite numbers.
@@ -499,29 +526,29 @@ pub struct BenchArgs {
     #[command(flatten)]
     pub params: ParamOpts,
     /// Levels to measure (comma separated).
-    #[arg(long, value_delimiter = ',', default_value = "8,16,32,64",
+    #[arg(long, allow_hyphen_values = true, value_delimiter = ',', default_value = "8,16,32,64",
           value_parser = clap::value_parser!(u32).range(1..=1024), help_heading = "Measurement")]
     pub levels: Vec<u32>,
     /// Also write the results to PREFIX.md (with this command line), PREFIX.csv and PREFIX.json.
     #[arg(long, value_name = "PREFIX", help_heading = "Measurement")]
     pub out: Option<PathBuf>,
     /// Timed frames per variant (after one warm-up frame; at least 1).
-    #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..), help_heading = "Measurement")]
+    #[arg(long, allow_hyphen_values = true, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..), help_heading = "Measurement")]
     pub frames: u32,
     /// Keep timing past --frames until every variant has this many GPU milliseconds in total
     /// (at most 20 x --frames frames): more samples for short frames, whose timestamps jitter.
     #[arg(
         long,
         default_value_t = 0.0,
-        allow_negative_numbers = true,
+        allow_hyphen_values = true,
         help_heading = "Measurement"
     )]
     pub min_total_ms: f64,
     /// The offscreen image's width in pixels.
-    #[arg(long, default_value_t = 1280, help_heading = "Measurement")]
+    #[arg(long, allow_hyphen_values = true, default_value_t = 1280, value_parser = image_side(), help_heading = "Measurement")]
     pub width: u32,
     /// The offscreen image's height in pixels.
-    #[arg(long, default_value_t = 720, help_heading = "Measurement")]
+    #[arg(long, allow_hyphen_values = true, default_value_t = 720, value_parser = image_side(), help_heading = "Measurement")]
     pub height: u32,
     /// What the frames show: `plain` draws the surface in one unlit colour, so that the times
     /// are the refined triangles' alone (no fragment work; the `shaded` default lights each
@@ -538,9 +565,81 @@ pub struct BenchArgs {
     pub no_bound_levels: bool,
 }
 
+/// The largest image side, in pixels, any command takes (`--width`, `--height`): the largest
+/// `maxImageDimension2D` of common devices (lavapipe's too); a device that draws less refuses
+/// the image in one sentence when it is made.
+pub const MAX_IMAGE_SIDE: u32 = 16384;
+
+/// `--width`, `--height`: 1 to [`MAX_IMAGE_SIDE`], in every command a usage error (status 2)
+/// outside.
+fn image_side() -> clap::builder::RangedI64ValueParser<u32> {
+    clap::value_parser!(u32).range(1..=MAX_IMAGE_SIDE as i64)
+}
+
 /// `--msaa`: 1, 2, 4 or 8.
 fn msaa_counts() -> impl clap::builder::TypedValueParser<Value = u32> {
     use clap::builder::TypedValueParser as _;
     clap::builder::PossibleValuesParser::new(["1", "2", "4", "8"])
         .map(|s| s.parse::<u32>().expect("a possible value"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::CommandFactory as _;
+    use std::any::TypeId;
+
+    /// Every option that takes a number takes a negative one as its value (`--frequency
+    /// -1e-30`, which clap's own test of a negative number misses), so that the option's own
+    /// check answers rather than clap's "unexpected argument".
+    #[test]
+    fn every_numeric_option_takes_hyphen_values() {
+        let numbers = [
+            TypeId::of::<f32>(),
+            TypeId::of::<f64>(),
+            TypeId::of::<u32>(),
+            TypeId::of::<u64>(),
+            TypeId::of::<TypedF32>(),
+            TypeId::of::<[f32; 3]>(),
+        ];
+        let cli = Cli::command();
+        let mut seen = 0;
+        for sub in cli.get_subcommands() {
+            for arg in sub.get_arguments().filter(|a| a.get_long().is_some()) {
+                let id = arg.get_value_parser().type_id();
+                if numbers.iter().any(|t| id == *t) {
+                    seen += 1;
+                    assert!(
+                        arg.is_allow_hyphen_values_set(),
+                        "{} --{}",
+                        sub.get_name(),
+                        arg.get_long().unwrap()
+                    );
+                }
+            }
+        }
+        assert!(seen > 40, "{seen}");
+    }
+
+    /// `--width` and `--height` are checked by clap alike in every command: 0 and
+    /// MAX_IMAGE_SIDE + 1 are usage errors, MAX_IMAGE_SIDE is taken.
+    #[test]
+    fn image_sides_are_checked_alike_in_every_command() {
+        for command in ["render", "view", "export", "info", "bench"] {
+            for option in ["--width", "--height"] {
+                let parse = |v: &str| {
+                    let mut args = vec!["meshrefine", command, option, v];
+                    if command == "export" {
+                        args.extend(["-o", "x.obj"]);
+                    }
+                    Cli::try_parse_from(args)
+                };
+                for bad in ["0", "16385", "-1"] {
+                    let e = parse(bad).expect_err(bad);
+                    assert_eq!(e.kind(), clap::error::ErrorKind::ValueValidation, "{e}");
+                }
+                parse("16384").unwrap();
+            }
+        }
+    }
 }

@@ -42,14 +42,17 @@ pub fn run(a: &ExportArgs, desc: &ContextDesc) -> Result<()> {
     attach_surface_inputs(&mut input, &a.surface, false)?;
     let size = (a.width, a.height);
     let counts = with_context(desc, |ctx| {
-        if let Some(a) = &adaptive {
-            cfg.level = a.max_level(&ctx, cfg.driver)?;
-            cfg.geomorph = a.geomorph;
-        }
         let shown = input.shown.clone();
-        let knobs = (progress, max_capture_bytes);
-        export(ctx, input, &cfg, &a.output, adaptive, size, knobs)
-            .with_context(|| format!("cannot export '{shown}'"))
+        // Every refusal, the options' on this device included, names the mesh as render's do.
+        (|| {
+            if let Some(a) = &adaptive {
+                cfg.level = a.max_level(&ctx, cfg.driver)?;
+                cfg.geomorph = a.geomorph;
+            }
+            let knobs = (progress, max_capture_bytes);
+            export(ctx, input, &cfg, &a.output, adaptive, size, knobs)
+        })()
+        .with_context(|| format!("cannot export '{shown}'"))
     })?;
     out!("{counts}");
     out!("wrote {}", a.output.display());
@@ -100,7 +103,8 @@ fn export(
     }
     if scene.data.uvs.is_some() && cfg.surface.uses_loop_faces() {
         crate::note(format_args!(
-            "warning: '{name}' has texture coordinates, but --surface loop writes none (vt): its elements are Loop's M1 faces, which carry none"
+            "warning: '{}' has texture coordinates, but --surface loop writes none (vt): its elements are Loop's M1 faces, which carry none",
+            input.shown
         ));
     }
     // The levels the GPU's level pass wrote for the capture, as the driver drew them.

@@ -2,21 +2,23 @@
 //! GPU; with `--surface loop`, what Loop subdivision builds for it.
 #![forbid(unsafe_code)]
 
-use super::adaptive::{check_view, Frame};
+use super::adaptive::{check_distance, check_view, Frame};
 use super::args::InfoArgs;
 use super::choices::boundary_name;
 use super::input::{attach_surface_inputs, degenerate_warning, Input};
 use super::loop_check::loop_refusal;
 use crate::note;
 use anyhow::{bail, Result};
+use meshrefine::gpu::ContextDesc;
 use meshrefine::mesh::{LoadReport, Mesh};
+use meshrefine::render::driver::LEAST_LEVEL_LIMIT;
 use meshrefine::render::Driver;
 use meshrefine::surface::loop_::LoopData;
 use std::io::Write as _;
 
 /// Runs `meshrefine info` with `a`.
-pub fn run(a: &InfoArgs) -> Result<()> {
-    check_level_options(a)?;
+pub fn run(a: &InfoArgs, desc: &ContextDesc) -> Result<()> {
+    check_level_options(a, desc)?;
     a.drawn.params.build().map_err(anyhow::Error::msg)?;
     let (mesh, report, shown) = match &a.mesh {
         Some(path) => {
@@ -35,6 +37,12 @@ pub fn run(a: &InfoArgs) -> Result<()> {
         if for_loop {
             bail!("{why}");
         }
+    }
+    if a.pixel_error.is_some() {
+        // The camera is refused before anything is printed, as its other errors are (its
+        // distance needs the mesh's bounding box, the frame its levels are chosen in).
+        let (centre, scale) = mesh.viewing_transform();
+        check_distance(&a.camera.viewpoint, &Frame { centre, scale })?;
     }
     if let Some(w) = degenerate_warning(path, &report) {
         note(format_args!("{w}"));
@@ -162,11 +170,18 @@ fn print_loop(a: &InfoArgs, data: &LoopData) -> Result<()> {
 }
 
 /// `--pixel-error` and the camera: one sentence for the first bad value, before any work.
-fn check_level_options(a: &InfoArgs) -> Result<()> {
-    let Some(px) = a.pixel_error else {
+/// A `--max-level` above [`LEAST_LEVEL_LIMIT`] is checked against the device render would draw
+/// on (its limits read, nothing opened), as render refuses it; at or under it no device is
+/// needed.
+fn check_level_options(a: &InfoArgs, desc: &ContextDesc) -> Result<()> {
+    let Some(px) = &a.pixel_error else {
         return Ok(());
     };
     check_view(px, &a.camera.viewpoint, a.level.is_some())?;
+    if a.max_level > LEAST_LEVEL_LIMIT {
+        let device = meshrefine::gpu::picked_device(desc)?;
+        return super::adaptive::check_max_level(&device, a.max_level, a.driver);
+    }
     super::adaptive::check_max_level_rounding(a.max_level, a.driver)
 }
 
@@ -181,7 +196,7 @@ fn print_levels(a: &InfoArgs, mut input: Input) -> Result<()> {
     use meshrefine::lod::{Frustum, Lod, View};
     use meshrefine::render::{framing_points, MeshData};
     use meshrefine::surface::{stpn, Heightmap, Mirror, RecordKind, Sources};
-    let Some(px) = a.pixel_error else {
+    let Some(px) = a.pixel_error.as_ref().map(|p| p.value) else {
         return Ok(());
     };
     let c = &a.camera;

@@ -41,7 +41,7 @@ pub fn run(cli: Cli, given: &options::Given) -> Result<()> {
         Command::Render(a) => render::run(a, &desc, given.has("level")),
         Command::View(a) => view::run(a, &desc, given),
         Command::Export(a) => export::run(a, &desc),
-        Command::Info(a) => info::run(a),
+        Command::Info(a) => info::run(a, &desc),
         Command::Bench(a) => bench::run(a, &desc, given.has("levels")),
         Command::Devices => devices(&desc),
     }

@@ -13,7 +13,7 @@
 //! default (`--alpha 0.75`) are told apart from the default itself.
 #![forbid(unsafe_code)]
 
-use super::args::{AdaptiveOpts, Cli};
+use super::args::{AdaptiveOpts, Cli, SurfaceOpts, Technique};
 use clap::parser::ValueSource;
 use clap::{CommandFactory as _, FromArgMatches as _};
 use meshrefine::render::Driver;
@@ -217,38 +217,50 @@ fn geomorph_unread(
     }
 }
 
+/// What a command that draws one surface with `driver` chose.
+fn single(s: &SurfaceOpts, driver: Driver) -> Chosen<'_> {
+    Chosen {
+        surfaces: std::slice::from_ref(&s.surface),
+        surface_shown: format!("--surface {}", s.surface.name()),
+        displaces: std::slice::from_ref(&s.drawn.displace),
+        displace_shown: format!("--displace {}", s.drawn.displace.name()),
+        driver: Some((
+            driver.submit().is_some(),
+            format!("--driver {}", driver.name()),
+        )),
+    }
+}
+
+/// The warnings (without "warning: ") for the options one image drawn with `technique` and
+/// `adaptive` ignores, drawn uniformly at `--level` where `uniform` says so (else adaptively,
+/// at `--pixel-error` or by default): `render`'s, and the headless `view`'s, which has no panel
+/// to switch to what they apply to.
+pub fn drawn_image(
+    given: &Given,
+    technique: &Technique,
+    adaptive: &AdaptiveOpts,
+    uniform: bool,
+) -> Vec<String> {
+    let d = technique.driver;
+    let mut out = inapplicable(given, &single(&technique.surface, d));
+    let on = adaptive.pixel_error.is_some() || !uniform;
+    out.extend(adaptive_only(given, on, ADAPTIVE));
+    out.extend(geomorph_unread(given, on, adaptive, &[d]));
+    out
+}
+
 /// The warnings (without "warning: ") for the options `cli`'s command ignores.
 pub fn warnings(cli: &Cli, given: &Given) -> Vec<String> {
     use super::args::Command;
-    let one = |s: &super::args::SurfaceOpts,
-               driver: (bool, String),
-               f: &dyn Fn(&Chosen) -> Vec<String>| {
-        f(&Chosen {
-            surfaces: std::slice::from_ref(&s.surface),
-            surface_shown: format!("--surface {}", s.surface.name()),
-            displaces: std::slice::from_ref(&s.drawn.displace),
-            displace_shown: format!("--displace {}", s.drawn.displace.name()),
-            driver: Some(driver),
-        })
-    };
     let check = |c: &Chosen| inapplicable(given, c);
     match &cli.command {
         // The window's panel can switch to whatever an option applies to.
         Command::View(_) | Command::Devices => Vec::new(),
-        Command::Render(a) => {
-            let d = a.technique.driver;
-            let driver = (d.submit().is_some(), format!("--driver {}", d.name()));
-            let mut out = one(&a.technique.surface, driver, &check);
-            // Adaptive by default: only --level draws uniformly.
-            let adaptive = a.adaptive.pixel_error.is_some() || !given.has("level");
-            out.extend(adaptive_only(given, adaptive, ADAPTIVE));
-            out.extend(geomorph_unread(given, adaptive, &a.adaptive, &[d]));
-            out
-        }
+        // Adaptive by default: only --level draws uniformly.
+        Command::Render(a) => drawn_image(given, &a.technique, &a.adaptive, given.has("level")),
         Command::Export(a) => {
             let d = a.driver.driver();
-            let driver = (d.submit().is_some(), format!("--driver {}", d.name()));
-            let mut out = one(&a.surface, driver, &check);
+            let mut out = check(&single(&a.surface, d));
             let adaptive = a.adaptive.pixel_error.is_some();
             out.extend(adaptive_only(given, adaptive, ADAPTIVE));
             out.extend(adaptive_only(given, adaptive, CAMERA));

@@ -145,15 +145,7 @@ pub fn render_png(
                 a.set_up(&mut h, &mut scene, &viewed, Capture::None, size, &frame)?;
             camera = cam;
             line = Some(levels_line(a, cfg.level, &report));
-            // Elements with no finite bound are at the largest level whatever the pixel error:
-            // where they are most of the frame, only the largest level draws faster.
-            let fixed = report.unmet.unbounded + report.unmet.near;
-            let advice = if fixed * 2 >= report.histogram.values().sum::<u64>().max(1) {
-                "a smaller --max-level draws faster"
-            } else {
-                "a larger --pixel-error or a smaller --max-level draws faster"
-            };
-            slow = Some((report.adaptive_triangles, advice));
+            slow = Some((report.adaptive_triangles, report.faster()));
             culled_all = report.histogram.is_empty().then_some(report.culled);
         }
         if let Some(why) = (adaptive.filter(|a| a.by_default))

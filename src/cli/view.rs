@@ -69,8 +69,8 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc, given: &Given) -> Result<()> {
                 // Adaptive mode by default; `--level` or `--lod` start uniform.
                 let ad = super::adaptive::Adaptive {
                     opts: &a.adaptive,
-                    pixel_error: (a.adaptive.pixel_error)
-                        .unwrap_or(meshrefine::app::DEFAULT_PIXEL_ERROR),
+                    pixel_error: (a.adaptive.pixel_error.as_ref())
+                        .map_or(meshrefine::app::DEFAULT_PIXEL_ERROR, |p| p.value),
                     cull: a.adaptive.cull.unwrap_or(true),
                     geomorph: a.adaptive.geomorph.unwrap_or(true),
                     by_default: a.adaptive.pixel_error.is_none(),
@@ -120,6 +120,19 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc, given: &Given) -> Result<()> {
             if names.len() == 1 { "is" } else { "are" }
         ));
     }
+    // `--lod` starts the window choosing one level by distance as its camera moves (not
+    // adaptive): the one image is drawn uniformly at --level, and says so.
+    let uniform = given.has("level") || a.lod;
+    if a.lod {
+        crate::note(format_args!(
+            "warning: --lod chooses levels by distance only in the window: {why_headless}, so the image is drawn uniformly at --level {}",
+            a.technique.level
+        ));
+    }
+    // No panel switches to what an option applies to: warned about as render warns.
+    for w in super::options::drawn_image(given, &a.technique, &a.adaptive, uniform) {
+        crate::note(format_args!("warning: {w}"));
+    }
     let image = super::render::ImageOptions {
         size: (a.width, a.height),
         wireframe: a.wireframe,
@@ -127,7 +140,7 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc, given: &Given) -> Result<()> {
         background: a.background,
         msaa: a.msaa,
         // Adaptive by default as the window is; `--level` or `--lod` draw uniformly.
-        adaptive: (a.adaptive).or_default(given.has("level") || a.lod),
+        adaptive: (a.adaptive).or_default(uniform),
         viewpoint: &a.adaptive.viewpoint,
     };
     let line = with_context(desc, |ctx| {

@@ -387,6 +387,17 @@ pub fn list_devices(desc: &ContextDesc) -> Result<Vec<Result<DeviceInfo, GpuErro
     listed
 }
 
+/// What a context would open for `desc` (the device [`Context::new`] picks, its capabilities
+/// queried, or why it cannot draw there), without opening it.
+pub fn picked_device(desc: &ContextDesc) -> Result<DeviceInfo, GpuError> {
+    let messages = Arc::new(Messages::default());
+    let parts = InstanceParts::new(desc, &messages)?;
+    let picked = pick_device(&parts.instance, desc)
+        .and_then(|(physical, _, info)| query_capabilities(&parts.instance, physical, info));
+    parts.destroy();
+    picked
+}
+
 impl Context {
     /// Instance, then the device's capabilities, then the device opened with them.
     pub fn new(desc: &ContextDesc) -> Result<Arc<Self>, GpuError> {

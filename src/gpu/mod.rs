@@ -25,7 +25,7 @@ mod swapchain;
 pub use buffer::{Buffer, BufferDesc, BufferView};
 pub use checked::{check_shutdown, with_context, ShutdownError};
 pub use commands::{CommandPool, Fence, Semaphore};
-pub use context::{list_devices, Context, ContextDesc, GpuError, Messages};
+pub use context::{list_devices, picked_device, Context, ContextDesc, GpuError, Messages};
 pub use device::DeviceInfo;
 pub use image::{
     sample_count, Image, ImageDesc, OffscreenTarget, Readback, DEPTH_FORMAT, MSAA_COUNTS,

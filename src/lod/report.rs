@@ -33,6 +33,18 @@ impl LevelReport {
             .collect();
         pairs.join(" ")
     }
+
+    /// What draws a frame of these levels faster, for the slow-frame warning: elements with no
+    /// finite bound, or holding the eye in theirs, are at the largest level whatever the pixel
+    /// error, so where they are most of the frame only a smaller largest level does.
+    pub fn faster(&self) -> &'static str {
+        let fixed = self.unmet.unbounded + self.unmet.near;
+        if fixed * 2 >= self.histogram.values().sum::<u64>().max(1) {
+            "a smaller --max-level draws faster"
+        } else {
+            "a larger --pixel-error or a smaller --max-level draws faster"
+        }
+    }
 }
 
 impl super::frame::Unmet {

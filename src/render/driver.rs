@@ -11,7 +11,7 @@
 
 use super::frame::FrameWork;
 use super::{Capture, DrawConfig, RenderError, Renderer, Scene};
-use crate::gpu::{CommandPool, Context, GraphicsPipelineDesc};
+use crate::gpu::{CommandPool, Context, DeviceInfo, GraphicsPipelineDesc};
 use std::sync::Arc;
 
 /// How barycentric samples are produced on the GPU. The submission mode belongs to the pattern
@@ -166,7 +166,7 @@ pub trait DriverKind: Sync {
 
     /// The finest level this device lets the driver draw and the limit's name, where the
     /// device limits it (a hardware level limit; [`check_level`] is the policy).
-    fn level_limit(&self, _ctx: &Context) -> Option<(u32, &'static str)> {
+    fn level_limit(&self, _device: &DeviceInfo) -> Option<(u32, &'static str)> {
         None
     }
 
@@ -251,12 +251,23 @@ pub trait DriverKind: Sync {
     fn cmd_draw(&self, cmd: &crate::gpu::Cmd<'_>, r: &Renderer, work: &FrameWork<'_>);
 }
 
+/// The least level limit of any Vulkan device: the required minimum of
+/// maxTessellationGenerationLevel. No driver's level at or under it is refused
+/// ([`check_level`]), whatever the device.
+pub const LEAST_LEVEL_LIMIT: u32 = 64;
+
 /// Check `cfg.level` against the device's limit for its driver. The one level policy: the
 /// command line refuses with this error; the window lowers the level and the benchmark skips the
 /// row, each showing the same sentence.
 pub fn check_level(ctx: &Context, cfg: &DrawConfig) -> Result<(), RenderError> {
+    check_level_on(&ctx.info, cfg)
+}
+
+/// [`check_level`] on a device known by its limits alone, none opened (`info`, which draws
+/// nothing, [`crate::gpu::picked_device`]).
+pub fn check_level_on(device: &DeviceInfo, cfg: &DrawConfig) -> Result<(), RenderError> {
     let kind = cfg.driver.kind();
-    match kind.level_limit(ctx) {
+    match kind.level_limit(device) {
         Some((max, limit)) if cfg.level > max => Err(RenderError::DriverLevel {
             driver: kind.name(),
             level: cfg.level,
@@ -271,7 +282,7 @@ pub fn check_level(ctx: &Context, cfg: &DrawConfig) -> Result<(), RenderError> {
 /// window's largest adaptive level when none is given: the panel switches drivers).
 pub fn shared_level_limit(ctx: &Context) -> Option<u32> {
     (Driver::ALL.iter())
-        .filter_map(|d| d.kind().level_limit(ctx))
+        .filter_map(|d| d.kind().level_limit(&ctx.info))
         .map(|(max, _)| max)
         .min()
 }

@@ -70,6 +70,19 @@ pub fn software_frame_seconds(refined: u64) -> Option<(f64, f64)> {
     (hi >= 1.0).then_some((lo, hi))
 }
 
+/// A range of seconds as the slow-frame warning says it: one decimal under 10 s, whole seconds
+/// from there (`0.3 to 1.2`, `2.5 to 10`, `39 to 156`), so that no end reads as 0.
+fn seconds_range(lo: f64, hi: f64) -> String {
+    let one = |s: f64| {
+        if s >= 9.95 {
+            format!("{s:.0}")
+        } else {
+            format!("{s:.1}")
+        }
+    };
+    format!("{} to {}", one(lo), one(hi))
+}
+
 impl Scene {
     /// Upload `mesh` with patterns for LOD up to `max_level`.
     pub fn new(
@@ -214,10 +227,12 @@ impl Scene {
             ));
         }
         renderer.prepare(cfg, capture, wire)?;
-        let refined =
-            self.elements(cfg.surface).element_count as u64 * cfg.refined_per_element() as u64;
-        if !self.warned_slow {
-            self.warn_if_slow(refined, "a lower --level draws faster");
+        // An adaptive frame's elements are not all at the configuration's (largest) level: it
+        // warns from the levels chosen instead ([`Scene::warn_once_if_slow`]).
+        if !self.adaptive_frames {
+            let refined =
+                self.elements(cfg.surface).element_count as u64 * cfg.refined_per_element() as u64;
+            self.warn_once_if_slow(refined, "a lower --level draws faster");
         }
         kind.prepare(self, ctx, pool, cfg)?;
         Ok(())
@@ -299,6 +314,14 @@ impl Scene {
         self.warned_slow = true;
     }
 
+    /// [`Scene::warn_if_slow`] unless a slow frame was warned about already (or the warning
+    /// skipped, [`Scene::skip_slow_warning`]).
+    pub fn warn_once_if_slow(&mut self, refined: u64, advice: &str) {
+        if !self.warned_slow {
+            self.warn_if_slow(refined, advice);
+        }
+    }
+
     /// Warn when frames of `refined` triangles take a second or more on a software device
     /// ([`software_frame_seconds`]), ending with `advice` (what draws faster); whether or not
     /// [`Scene::prepare`]'s own warning was skipped, which it skips from then on.
@@ -308,8 +331,9 @@ impl Scene {
         if let Some((lo, hi)) = slow {
             let (a, b) = SOFTWARE_NS_PER_TRIANGLE;
             log::warn!(
-                "{refined} refined triangles per frame on a software device ({}): about {lo:.0} to {hi:.0} s a frame ({a:.0} to {b:.0} ns a triangle there); {advice}",
-                self.ctx.info.name
+                "{refined} refined triangles per frame on a software device ({}): about {} s a frame ({a:.0} to {b:.0} ns a triangle there); {advice}",
+                self.ctx.info.name,
+                seconds_range(lo, hi)
             );
             self.warned_slow = true;
         }
@@ -438,5 +462,10 @@ mod tests {
         // Spot's 372 triangles at level 1024: 390 M triangles, tens of seconds or more.
         let (lo, hi) = software_frame_seconds(372 * 1024 * 1024).unwrap();
         assert!(lo > 30.0 && hi < 200.0 && lo < hi, "{lo} {hi}");
+        assert_eq!(seconds_range(lo, hi), "39 to 156");
+        // The smallest frame warned about: its lower end is not rounded to 0.
+        let (lo, hi) = software_frame_seconds(2_500_000).unwrap();
+        assert_eq!(seconds_range(lo, hi), "0.2 to 1.0");
+        assert_eq!(seconds_range(2.5, 9.99), "2.5 to 10");
     }
 }

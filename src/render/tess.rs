@@ -89,9 +89,9 @@ impl DriverKind for TessDriver {
         Some(Capture::Triangles)
     }
 
-    fn level_limit(&self, ctx: &Context) -> Option<(u32, &'static str)> {
+    fn level_limit(&self, device: &crate::gpu::DeviceInfo) -> Option<(u32, &'static str)> {
         Some((
-            ctx.info.limits.max_tessellation_generation_level,
+            device.limits.max_tessellation_generation_level,
             "maxTessellationGenerationLevel",
         ))
     }
