@@ -259,7 +259,44 @@ fn fov_without_eye_fits_the_camera_at_that_field_of_view() {
         // As much of the image covered as at 45 degrees, give or take the perspective.
         assert!(n * 10 > at45 * 7, "--fov {fov}: {n} pixels against {at45}");
     }
-    // A very wide field of view still shows the mesh, without an error.
-    let (_, n) = render("170");
-    assert!(n > 0);
+    // Wide fields of view keep the eye outside every element's reach, so no element holds the
+    // eye (no note says so) and the mesh lies wholly in front of the near plane: the eye stays
+    // back, and the mesh, centred, takes a smaller part of the image the wider the angle.
+    for (fov, least_rows) in [("150", 0.2), ("170", 0.05)] {
+        let png = tmp(&format!("fov-{fov}.png"));
+        let (ws, hs) = (w.to_string(), h.to_string());
+        let out = meshrefine(&[
+            "render", "-o", &png, "--width", &ws, "--height", &hs, "--fov", fov,
+        ]);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "--fov {fov}: {stderr}");
+        assert!(!stderr.contains("note:"), "--fov {fov}: {stderr}");
+        let ((x0, x1, y0, y1), n) = covered_box(&png);
+        assert!(n > 0, "--fov {fov}: blank");
+        assert!(
+            (y1 - y0 + 1) as f32 >= least_rows * h as f32,
+            "--fov {fov}: rows {y0}..{y1}"
+        );
+        // Centred (on the sampled points; perspective and the silhouette between them shift
+        // the drawn box a little).
+        let centre = |a: u32, b: u32, size: u32| {
+            ((a + b) as f32 - (size - 1) as f32).abs() <= 0.15 * size as f32
+        };
+        assert!(
+            centre(x0, x1, w) && centre(y0, y1, h),
+            "--fov {fov}: not centred: {x0}..{x1}, {y0}..{y1}"
+        );
+    }
+    // Near 180 degrees the mesh, in front of the eye and centred, is smaller than a pixel: the
+    // image is blank, which is an error that says so (and still no element holds the eye).
+    let png = tmp("fov-179.99.png");
+    let out = meshrefine(&[
+        "render", "-o", &png, "--width", "160", "--height", "120", "--fov", "179.99",
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("is blank") && !stderr.contains("note:"),
+        "{stderr}"
+    );
 }

@@ -15,8 +15,8 @@ impl State {
         if asked.fit_view {
             let e = self.swapchain.extent;
             let aspect = e.width as f32 / e.height.max(1) as f32;
-            let points = self.scene.framing_points(&self.controls.cfg);
-            self.camera = self.camera.fit_from(&points, aspect);
+            let framing = self.scene.framing_points(&self.controls.cfg);
+            self.camera = (self.camera).fit_clear_of(&framing.points, &framing.reach, aspect);
         }
         self.apply_window_mode();
     }

@@ -12,7 +12,8 @@ use glam::{DVec3, Vec3};
 use meshrefine::gpu::{Context, DeviceInfo};
 use meshrefine::lod::LevelReport;
 use meshrefine::render::{
-    Camera, Capture, ChosenLevels, DrawConfig, Driver, Headless, LevelView, Scene, Viewpoint,
+    Camera, Capture, ChosenLevels, DrawConfig, Driver, Framing, Headless, LevelView, Scene,
+    Viewpoint,
 };
 
 /// One sentence for the first bad value of a pixel error and its camera, before any work.
@@ -325,13 +326,13 @@ impl ViewpointOpts {
         }
     }
 
-    /// The camera (drawn frame) for an image of `aspect` showing `points`, the surface as drawn
+    /// The camera (drawn frame) for an image of `aspect` showing `framing`, the surface as drawn
     /// (drawn frame): the default camera, fitted at `--fov`, moved to `--eye` and `--look-at`
     /// where given, the one not given completed from it ([`Viewpoint::camera`]).
-    pub fn camera(&self, points: &[Vec3], aspect: f32, frame: &Frame) -> Result<Camera> {
+    pub fn camera(&self, framing: &Framing, aspect: f32, frame: &Frame) -> Result<Camera> {
         check_distance(self, frame)?;
         let v = self.drawn(frame);
-        let fitted = Camera::fit_with_fov(points, aspect, v.fov_y);
+        let fitted = Camera::fit_with_fov(framing, aspect, v.fov_y);
         v.complete(fitted).ok_or_else(|| {
             // The values as given, or where the fitted camera puts them.
             let given = |p: Option<[f32; 3]>, drawn: Vec3| p.map_or(frame.mesh(drawn), Vec3::from);

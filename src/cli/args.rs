@@ -439,8 +439,9 @@ pub struct ViewpointOpts {
     /// The point looked at X,Y,Z (default: the fitted camera's target).
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
     pub look_at: Option<[f32; 3]>,
-    /// Vertical field of view in degrees (without --eye the camera is fitted with it, so the
-    /// surface fills the image at any field of view).
+    /// Vertical field of view in degrees (without --eye the camera is fitted with it: the
+    /// surface fills the image as at 45 degrees, until at wide angles the eye, kept outside the
+    /// surface's reach, stays back and the surface takes less of the image).
     #[arg(long, allow_hyphen_values = true, default_value_t = 45.0)]
     pub fov: f32,
 }

@@ -254,9 +254,9 @@ fn print_levels(a: &InfoArgs, mut input: Input) -> Result<()> {
     };
     // Render's default camera: fitted to the surface as drawn, moved where the options ask.
     let aspect = c.width as f32 / c.height as f32;
-    let points = framing_points(&mirror, &params, records, &mesh.positions);
+    let framing = framing_points(&mirror, &params, records, &mesh.positions);
     let v = &c.viewpoint;
-    let camera = v.camera(&points, aspect, &frame)?;
+    let camera = v.camera(&framing, aspect, &frame)?;
     let (eye, fov) = (camera.eye(), camera.fov_y);
     let view = View::new(eye, fov, c.height, px, a.max_level);
     let frustum = Frustum::from_view_proj(camera.view_proj(aspect));

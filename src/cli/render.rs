@@ -132,8 +132,8 @@ pub fn render_png(
         let frame = Frame { centre, scale };
         // The camera fitted to the surface as drawn, moved where the options ask.
         let uniform_camera = |scene: &meshrefine::render::Scene, viewed: &DrawConfig| {
-            let points = scene.framing_points(viewed);
-            (opts.viewpoint).camera(&points, width as f32 / height as f32, &frame)
+            let framing = scene.framing_points(viewed);
+            (opts.viewpoint).camera(&framing, width as f32 / height as f32, &frame)
         };
         let mut camera = uniform_camera(&scene, &viewed)?;
         // The triangles of a frame drawn as chosen below, for the slow-frame warning, and what

@@ -1,6 +1,7 @@
 //! Orbit camera around a target, Vulkan clip conventions (depth 0..1, y down).
 
-use glam::{Mat4, Vec3};
+use super::Framing;
+use glam::{Mat4, Vec3, Vec4};
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Camera {
@@ -35,6 +36,10 @@ const FRAMING_PITCH: f32 = 0.35;
 /// tighter border.
 pub const FIT_MARGIN: f32 = 0.08;
 
+/// The fraction of the framed radius a fitted eye keeps at least between itself and the
+/// nearest point's depth: ten times the near plane's least distance ([`Camera::depth_range`]).
+const NEAR_CLEARANCE: f32 = 1e-2;
+
 impl Camera {
     /// A camera that frames a sphere of `radius` around `center`. For meshes far from the
     /// origin, or much smaller or larger than 1, draw
@@ -66,21 +71,32 @@ impl Camera {
         Self::framing(Vec3::ZERO, 1.0).fit_from(points, aspect)
     }
 
-    /// [`Camera::fit`] with a vertical field of view of `fov_y` radians instead of 45 degrees:
+    /// [`Camera::fit`] of `framing`'s points with a vertical field of view of `fov_y` radians
+    /// instead of 45 degrees, its eye outside each element's reach ([`Camera::fit_clear_of`]):
     /// the eye comes as close as that field of view lets it (farther for a narrow one, closer
-    /// for a wide one), so the points fill the image as they do at 45 degrees.
-    pub fn fit_with_fov(points: &[Vec3], aspect: f32, fov_y: f32) -> Self {
+    /// for a wide one), so the points fill the image as they do at 45 degrees, until the reach
+    /// or the near plane keeps it back (wide angles, coarse meshes).
+    pub fn fit_with_fov(framing: &Framing, aspect: f32, fov_y: f32) -> Self {
         Self {
             fov_y,
             ..Self::framing(Vec3::ZERO, 1.0)
         }
-        .fit_from(points, aspect)
+        .fit_clear_of(&framing.points, &framing.reach, aspect)
     }
 
     /// This camera moved so that, looking in the same direction with the same field of view, it
     /// shows every point of `points` as [`Camera::fit`] does from the framing direction (the
     /// window's fit-to-view). With no finite point, it is unchanged.
     pub fn fit_from(&self, points: &[Vec3], aspect: f32) -> Self {
+        self.fit_clear_of(points, &[], aspect)
+    }
+
+    /// [`Camera::fit_from`] with the eye outside every sphere of `reach` (centre, radius) and
+    /// the points wholly in front of the near plane: where the closest fit puts the eye inside
+    /// one, or within [`NEAR_CLEARANCE`] of the framed radius of the nearest point's depth, the
+    /// eye moves back along its line of sight until it is clear, so the points stay inside the
+    /// frustum, centred as before, and take less of the image.
+    pub fn fit_clear_of(&self, points: &[Vec3], reach: &[Vec4], aspect: f32) -> Self {
         let mut cam = *self;
         let points: Vec<Vec3> = points.iter().copied().filter(|p| p.is_finite()).collect();
         let Some(&first) = points.first() else {
@@ -120,9 +136,30 @@ impl Camera {
             zmax = zmax.max(z);
         }
         let (ex, ey) = (tx * (b - a) * 0.5, ty * (d - c) * 0.5);
-        let ez = ((a + b) * 0.5).min((c + d) * 0.5);
+        let mut ez = ((a + b) * 0.5).min((c + d) * 0.5);
+        // The target (below) is on the view axis, at the middle of the points' depths: moving
+        // the eye along the axis moves neither it nor the radius around it.
+        let mid = right * ex + up * ey + forward * ((zmin + zmax) * 0.5);
+        let framed = points
+            .iter()
+            .map(|p| (*p - mid).length())
+            .fold(0.0f32, f32::max);
+        // Each sphere the axis passes through keeps the eye behind it. Moved back along the
+        // axis from (ex, ey, ez), every point stays inside the frustum (the nearer cone lies
+        // inside the farther one with the same axis and angle) and (ex, ey) still centres them
+        // (the interval of centred positions is the same at every depth).
+        for s in reach {
+            let c = s.truncate();
+            let (x, y, z) = (c.dot(right), c.dot(up), c.dot(forward));
+            // A thousandth more, so that rounding leaves the eye outside.
+            let w = s.w * (1.0 + 1e-3);
+            let across = (x - ex) * (x - ex) + (y - ey) * (y - ey);
+            if across < w * w {
+                ez = ez.min(z - (w * w - across).sqrt());
+            }
+        }
+        ez = ez.min(zmin - framed * NEAR_CLEARANCE);
         let eye = right * ex + up * ey + forward * ez;
-        // The target: on the view axis, at the middle of the points' depths.
         let distance = (zmin + zmax) * 0.5 - ez;
         let target = eye + forward * distance;
         let radius = points
@@ -249,8 +286,8 @@ impl Viewpoint {
     /// drawn ([`crate::render::framing_points`]): fitted at this field of view, then moved to
     /// the eye and the point looked at where given, the other completed from the fitted camera.
     /// `None` when the eye and the point looked at give no view direction (the same point).
-    pub fn camera(&self, points: &[Vec3], aspect: f32) -> Option<Camera> {
-        self.complete(Camera::fit_with_fov(points, aspect, self.fov_y))
+    pub fn camera(&self, framing: &Framing, aspect: f32) -> Option<Camera> {
+        self.complete(Camera::fit_with_fov(framing, aspect, self.fov_y))
     }
 
     /// `fitted` (a camera fitted at this field of view) moved to the eye and the point looked
@@ -405,6 +442,63 @@ mod tests {
     }
 
     #[test]
+    fn a_fitted_eye_stays_outside_every_reach_and_before_the_near_plane() {
+        // A bumpy sphere of 400 points in 100 elements of four, each reaching twice its size.
+        let points: Vec<Vec3> = (0..400)
+            .map(|i| {
+                let (t, u) = (i as f32 * 0.37, i as f32 * 0.11);
+                Vec3::new(t.sin() * u.cos(), u.sin(), t.cos() * u.cos()) * (1.0 + 0.1 * t.sin())
+            })
+            .collect();
+        let reach: Vec<Vec4> = (points.chunks(4))
+            .map(|c| {
+                let centre = c.iter().copied().sum::<Vec3>() / 4.0;
+                let r = c.iter().map(|p| (*p - centre).length()).fold(0.0, f32::max);
+                centre.extend(2.0 * r)
+            })
+            .collect();
+        let framing = Framing {
+            points: points.clone(),
+            reach: reach.clone(),
+        };
+        let aspect = 16.0 / 9.0;
+        for degrees in [20.0f32, 45.0, 90.0, 120.0, 150.0, 170.0, 179.0, 179.99] {
+            let fov_y = degrees.to_radians();
+            let cam = Camera::fit_with_fov(&framing, aspect, fov_y);
+            let eye = cam.eye();
+            for s in &reach {
+                assert!(
+                    (eye - s.truncate()).length() > s.w,
+                    "{degrees}: the eye is in {s}"
+                );
+            }
+            let (near, _) = cam.depth_range();
+            let m = cam.view_proj(aspect);
+            let forward = (cam.target - eye).normalize();
+            for p in &points {
+                assert!(
+                    (*p - eye).dot(forward) > near,
+                    "{degrees}: {p} before the near plane"
+                );
+                let c = m * p.extend(1.0);
+                let (x, y) = (c.x / c.w, c.y / c.w);
+                assert!(
+                    x.abs() <= 1.0 - FIT_MARGIN + 1e-3 && y.abs() <= 1.0 - FIT_MARGIN + 1e-3,
+                    "{degrees}: {p} at {x} {y}"
+                );
+            }
+            // Where the reach does not keep it back (as at 45 degrees), the eye is where the
+            // points alone put it.
+            let free = Camera::fit_with_fov(&Framing::points(points.clone()), aspect, fov_y);
+            if degrees <= 45.0 {
+                assert_eq!(cam, free, "{degrees}");
+            } else {
+                assert!(cam.distance >= free.distance, "{degrees}");
+            }
+        }
+    }
+
+    #[test]
     fn a_viewpoint_completes_what_it_does_not_give_from_the_fitted_camera() {
         let points: Vec<Vec3> = (0..100)
             .map(|i| {
@@ -412,20 +506,22 @@ mod tests {
                 Vec3::new(t.sin(), 0.5 * (t * 1.3).cos(), 0.7 * (t * 0.7).sin())
             })
             .collect();
+        let framing = Framing::points(points.clone());
         let aspect = 4.0 / 3.0;
         // Nothing given: the fitted camera at 45 degrees, exactly.
         let default = Viewpoint::default();
         assert_eq!(
-            default.camera(&points, aspect),
+            default.camera(&framing, aspect),
             Some(Camera::fit(&points, aspect))
         );
         // A field of view alone: fitted with it, so the points still touch the margin (closer
-        // for a wide one, farther for a narrow one).
+        // for a wide one, farther for a narrow one), until the eye keeps its distance from the
+        // nearest point: at 170 degrees they take less of the image.
         for degrees in [20.0f32, 90.0, 170.0] {
             let fov_y = degrees.to_radians();
             let v = Viewpoint { fov_y, ..default };
-            let cam = v.camera(&points, aspect).unwrap();
-            assert_eq!(cam, Camera::fit_with_fov(&points, aspect, fov_y));
+            let cam = v.camera(&framing, aspect).unwrap();
+            assert_eq!(cam, Camera::fit_with_fov(&framing, aspect, fov_y));
             assert_eq!(cam.fov_y, fov_y);
             let m = cam.view_proj(aspect);
             let extent = (points.iter())
@@ -435,22 +531,24 @@ mod tests {
                     (c.x / c.w).abs().max((c.y / c.w).abs())
                 })
                 .fold(0.0f32, f32::max);
-            assert!(
-                (extent - (1.0 - FIT_MARGIN)).abs() < 2e-3,
-                "{degrees}: fills {extent}"
-            );
+            let fills = if degrees < 170.0 {
+                (extent - (1.0 - FIT_MARGIN)).abs() < 2e-3
+            } else {
+                extent > 0.3 && extent < 1.0 - FIT_MARGIN
+            };
+            assert!(fills, "{degrees}: fills {extent}");
         }
         // A lone eye looks at the fitted camera's target; a lone point looked at is seen from
         // the fitted camera's eye; both at the field of view given.
         let fov_y = 60f32.to_radians();
-        let fitted = Camera::fit_with_fov(&points, aspect, fov_y);
+        let fitted = Camera::fit_with_fov(&framing, aspect, fov_y);
         let eye = Vec3::new(3.0, 1.0, -2.0);
         let v = Viewpoint {
             eye: Some(eye),
             fov_y,
             ..default
         };
-        let cam = v.camera(&points, aspect).unwrap();
+        let cam = v.camera(&framing, aspect).unwrap();
         assert!((cam.eye() - eye).length() < 1e-5, "{}", cam.eye());
         assert!((cam.target - fitted.target).length() < 1e-5);
         assert_eq!(cam.fov_y, fov_y);
@@ -460,7 +558,7 @@ mod tests {
             fov_y,
             ..default
         };
-        let cam = v.camera(&points, aspect).unwrap();
+        let cam = v.camera(&framing, aspect).unwrap();
         assert!((cam.eye() - fitted.eye()).length() < 1e-4, "{}", cam.eye());
         assert!((cam.target - target).length() < 1e-5);
         // An eye at the fitted target gives no direction.
@@ -469,6 +567,6 @@ mod tests {
             fov_y,
             ..default
         };
-        assert_eq!(v.camera(&points, aspect), None);
+        assert_eq!(v.camera(&framing, aspect), None);
     }
 }

@@ -11,7 +11,7 @@ pub mod driver;
 mod error;
 pub mod frame;
 mod framing;
-pub use framing::framing_points;
+pub use framing::{framing_points, Framing, REACH};
 mod gpu_mesh;
 mod headless;
 pub mod level_pass;
