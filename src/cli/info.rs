@@ -170,15 +170,15 @@ fn print_loop(a: &InfoArgs, data: &LoopData) -> Result<()> {
 }
 
 /// `--pixel-error` and the camera: one sentence for the first bad value, before any work.
-/// A `--max-level` above [`LEAST_LEVEL_LIMIT`] is checked against the device render would draw
-/// on (its limits read, nothing opened), as render refuses it; at or under it no device is
-/// needed.
+/// A `--max-level` above [`LEAST_LEVEL_LIMIT`] for the tess driver (the only one with a
+/// device level limit) is checked against the device render would draw on (its limits read,
+/// nothing opened), as render refuses it; otherwise no device is needed.
 fn check_level_options(a: &InfoArgs, desc: &ContextDesc) -> Result<()> {
     let Some(px) = &a.pixel_error else {
         return Ok(());
     };
     check_view(px, &a.camera.viewpoint, a.level.is_some())?;
-    if a.max_level > LEAST_LEVEL_LIMIT {
+    if a.max_level > LEAST_LEVEL_LIMIT && matches!(a.driver, meshrefine::render::Driver::Tess) {
         let device = meshrefine::gpu::picked_device(desc)?;
         return super::adaptive::check_max_level(&device, a.max_level, a.driver);
     }
