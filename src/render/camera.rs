@@ -93,7 +93,7 @@ impl Camera {
 
     /// [`Camera::fit_from`] with the eye outside every sphere of `reach` (centre, radius) and
     /// the points wholly in front of the near plane: where the closest fit puts the eye inside
-    /// one, or within [`NEAR_CLEARANCE`] of the framed radius of the nearest point's depth, the
+    /// one, or within `NEAR_CLEARANCE` of the framed radius of the nearest point's depth, the
     /// eye moves back along its line of sight until it is clear, so the points stay inside the
     /// frustum, centred as before, and take less of the image.
     pub fn fit_clear_of(&self, points: &[Vec3], reach: &[Vec4], aspect: f32) -> Self {
