@@ -189,37 +189,97 @@ fn culling_keeps_the_image_of_a_mesh_wound_either_way() {
                     cfg.params = SurfaceParams::for_radius(r);
                     h.prepared_elements(&mut scene, &cfg, Capture::None)
                         .unwrap();
-                    let mut image = |cull| {
-                        let view = LevelView {
-                            camera,
-                            width: 160,
-                            height: 120,
-                            pixel_error: 1.0,
-                            cull,
-                        };
-                        let chosen = scene.set_levels(&cfg, &view).unwrap();
-                        h.adaptive = true;
-                        let img = h.render(&mut scene, &cfg, &camera).unwrap();
-                        h.adaptive = false;
-                        (img.rgba, chosen.report().culled)
-                    };
-                    let (all, none_culled) = image(false);
-                    let (culled_img, culled) = image(true);
+                    let (all, none_culled) = adaptive_image(h, &mut scene, &cfg, &camera, false);
+                    let (culled_img, culled) = adaptive_image(h, &mut scene, &cfg, &camera, true);
                     let what = format!("{name}, {where_}, {}", driver.name());
                     assert_eq!(none_culled, 0, "{what}");
                     assert!(culled > 0, "{what}: nothing culled");
                     let bg = meshrefine::render::clear_color_srgb8();
                     let drawn = all.chunks_exact(4).filter(|p| p[..3] != bg[..3]).count();
                     assert!(drawn > 160 * 120 / 4, "{what}: {drawn} pixels drawn");
-                    let differ = all
-                        .chunks_exact(4)
-                        .zip(culled_img.chunks_exact(4))
-                        .filter(|(a, b)| a != b)
-                        .count();
+                    let differ = differing(&all, &culled_img);
                     assert_eq!(differ, 0, "{what}: culling changed {differ} pixels");
                 }
             }
             assert_eq!(scene.closed, closed, "{name}");
         }
     });
+}
+
+/// Where a closed mesh's surface shows its back side from outside, culling keeps what faces
+/// away: Spot's control cage drawn `flat` folds through itself where the head meets the body
+/// (a face facing away is the first one seen there from below), and the hard-edged cylinder as
+/// `pn` with open seams shows its inside through the cracks. Images with culling on and off,
+/// one sample per pixel, compared pixel for pixel.
+#[test]
+fn culling_keeps_what_a_fold_or_a_crack_shows() {
+    with_gpu(320, 180, |h| {
+        let cases = [
+            (
+                "spot folded",
+                meshrefine::mesh::default_mesh(),
+                Surface::Flat,
+            ),
+            (
+                "cylinder cracked",
+                model("cylinder_hard_normals.obj"),
+                Surface::Pn,
+            ),
+        ];
+        for (name, mesh, surface) in cases {
+            let mut scene = h.scene(mesh, 8).unwrap();
+            let (c, r) = scene.bounding_sphere();
+            let eye = c + glam::Vec3::new(1.5, -1.0, -2.0).normalize() * (2.6 * r);
+            let camera = Camera::looking(eye, c, 45f32.to_radians(), r).unwrap();
+            let mut cfg = DrawConfig::new(Driver::Pattern(meshrefine::render::Submit::Push), 8)
+                .with_surface(surface, Displace::None);
+            cfg.params = SurfaceParams::for_radius(r);
+            if name == "cylinder cracked" {
+                cfg.build.seams = meshrefine::surface::Seams::Open;
+            }
+            h.prepared_elements(&mut scene, &cfg, Capture::None)
+                .unwrap();
+            let (all, _) = adaptive_image(h, &mut scene, &cfg, &camera, false);
+            let (culled_img, culled) = adaptive_image(h, &mut scene, &cfg, &camera, true);
+            let differ = differing(&all, &culled_img);
+            assert_eq!(differ, 0, "{name}: culling changed {differ} pixels");
+            assert_eq!(
+                culled, 0,
+                "{name}: culled {culled}, every element is in view"
+            );
+            assert!(scene.closed, "{name}");
+        }
+    });
+}
+
+/// `cfg` drawn adaptively at 1 px for `camera` at the context's size, culling on or off: the
+/// image and how many elements were culled.
+fn adaptive_image(
+    h: &mut meshrefine::render::Headless,
+    scene: &mut meshrefine::render::Scene,
+    cfg: &DrawConfig,
+    camera: &Camera,
+    cull: bool,
+) -> (Vec<u8>, u64) {
+    let e = h.target.color.desc.extent;
+    let (width, height) = (e.width, e.height);
+    let view = LevelView {
+        camera: *camera,
+        width,
+        height,
+        pixel_error: 1.0,
+        cull,
+    };
+    let chosen = scene.set_levels(cfg, &view).unwrap();
+    h.adaptive = true;
+    let img = h.render(scene, cfg, camera).unwrap();
+    h.adaptive = false;
+    (img.rgba, chosen.report().culled)
+}
+
+/// How many pixels of two RGBA images differ.
+fn differing(a: &[u8], b: &[u8]) -> usize {
+    (a.chunks_exact(4).zip(b.chunks_exact(4)))
+        .filter(|(x, y)| x != y)
+        .count()
 }

@@ -43,6 +43,7 @@
 mod animate;
 mod error;
 pub mod generate;
+mod intersect;
 mod normals;
 mod obj;
 mod scan;
@@ -268,6 +269,13 @@ impl Mesh {
             })
             .sum();
         total / (4.0 * std::f64::consts::PI)
+    }
+
+    /// Whether two triangles meet other than along a shared edge or at a shared corner
+    /// (`src/mesh/intersect.rs`): a closed mesh that does may show faces facing away from an
+    /// eye outside it, so culling them is off for such a `flat` surface.
+    pub fn self_intersects(&self) -> bool {
+        intersect::self_intersects(&self.positions, &self.position_indices())
     }
 
     /// The position indices of every triangle (e.g. for an index buffer).

@@ -124,6 +124,12 @@ impl DrawConfig {
         self.geomorph && (!self.driver.kind().integer_levels() || self.level.is_power_of_two())
     }
 
+    /// Whether a closed mesh makes a closed surface: not where open seams
+    /// (`--pn-seams open`) crack a surface that follows the normals (every one but `flat`).
+    pub fn closed_surface(&self) -> bool {
+        self.build.seams == crate::surface::Seams::Closed || self.surface == Surface::Flat
+    }
+
     /// The loop surface with displacement: no finite error bound on any element
     /// (docs/adaptivity.md).
     pub fn loop_displaced(&self) -> bool {

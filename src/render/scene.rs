@@ -40,6 +40,10 @@ pub struct Scene {
     /// the eye culled ([`Scene::set_levels`]). An open surface shows its back side, and an
     /// inside-out one shows only faces that face away.
     pub closed: bool,
+    /// Whether the coarse mesh intersects itself ([`Mesh::self_intersects`](crate::mesh::Mesh::self_intersects)),
+    /// found when first asked (`flat` drawn adaptively with culling), again after
+    /// [`Scene::update_mesh`].
+    pub(super) self_intersecting: std::cell::OnceCell<bool>,
     /// The `loop` surface's M1 faces, built by the first `prepare` that draws it.
     pub loop_: Option<LoopScene>,
     /// The coarse mesh's edges for the cage overlay, made when first drawn ([`Scene::cage`]).
@@ -144,6 +148,7 @@ impl Scene {
             static_vbo: None,
             adaptive_frames: false,
             closed,
+            self_intersecting: std::cell::OnceCell::new(),
             static_levels: None,
             loop_: None,
             cage: None,
@@ -244,6 +249,7 @@ impl Scene {
     /// by the next `prepare`. Only between frames.
     pub fn update_mesh(&mut self, mesh: Mesh, surface: Surface) {
         self.data = MeshData::new(mesh, self.data.kind, self.data.seams);
+        self.self_intersecting = std::cell::OnceCell::new();
         self.generation += 1;
         if let Some(l) = &mut self.loop_ {
             // Loop: only M0's positions go up; the passes make M1 on the GPU (the mirror's M1

@@ -141,9 +141,13 @@ impl Scene {
         let l = self.levels.as_mut().expect("update_bounds leaves bounds");
         let records = l.records.clone();
         // Faces facing away only on a closed surface seen from outside: an open one shows its
-        // back side, and from inside the visible faces face away.
+        // back side (so does one with open seams, through their cracks, and a `flat` one that
+        // folds through itself), and from inside the visible faces face away.
         let back_faces = view.cull
             && self.closed
+            && cfg.closed_surface()
+            && !(cfg.surface == Surface::Flat
+                && *(self.self_intersecting).get_or_init(|| self.data.mesh.self_intersects()))
             && match l.outside {
                 Some((e, outside)) if e == eye => outside,
                 _ => {
