@@ -53,7 +53,8 @@ fn gpu_levels_match_the_mirror_and_share_edges() {
                 let lod = Lod::new(&scene.mirror(&cfg, max).unwrap(), &cfg.params);
                 let metric = View::new(camera.eye(), camera.fov_y, 720, 1.0, max);
                 let bounds = lod_records(&lod, scene.records(surface));
-                let lod_view = LodView::new(&metric, None, false, false, bounds.len() as u32);
+                let lod_view =
+                    LodView::new(&metric, None, false, cfg.rounding(), bounds.len() as u32);
                 let mirror = frame_levels(&lod_view, &bounds);
                 for (i, (g, m)) in gpu.iter().zip(&mirror).enumerate() {
                     assert!(

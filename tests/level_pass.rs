@@ -19,7 +19,7 @@ use common::{model, with_gpu};
 use glam::{Mat4, Vec3};
 use meshrefine::gpu::vk;
 use meshrefine::lod::frame::{
-    corner_indices, frame_levels, lod_records, LodRecord, LodView, CULL_BACK_FACES,
+    corner_indices, frame_levels, lod_records, LodRecord, LodView, Rounding, CULL_BACK_FACES,
 };
 use meshrefine::lod::levels::{drawn_level, ElementLevels};
 use meshrefine::lod::{Frustum, Lod, View};
@@ -129,7 +129,7 @@ fn gpu_levels_match_the_cpu() {
             let mut bare = full.clone();
             for b in &mut bare {
                 for e in &mut b.edges {
-                    e.needs = [[0.0; 4]; 2];
+                    e.needs = [[0.0; 4]; 3];
                 }
             }
             let n = records.len();
@@ -145,18 +145,18 @@ fn gpu_levels_match_the_cpu() {
                 };
                 pass.upload(gpu_mesh, bounds).unwrap();
                 let frustum = Frustum::from_view_proj(vp);
-                for dyadic in [true, false] {
+                for rounding in Rounding::ALL {
+                    let dyadic = rounding.dyadic();
                     let what = format!(
-                        "{} + {}, {name} camera{}",
+                        "{} + {}, {name} camera, {rounding:?}",
                         surface.name(),
                         displace.name(),
-                        if dyadic { ", dyadic" } else { "" }
                     );
                     let view = LodView::new(
                         &View::new(eye, 0.8, 720, 1.0, 64),
                         Some(&frustum),
                         true,
-                        dyadic,
+                        rounding,
                         n as u32,
                     );
                     h.pool
@@ -278,7 +278,7 @@ fn a_frame_runs_the_level_pass_before_drawing() {
             &View::new(eye, 0.8, 36, 0.5, 64),
             Some(&frustum),
             true,
-            true,
+            cfg.rounding(),
             0,
         );
         let target = TargetView {

@@ -3,7 +3,7 @@
 // its inner level; inner 0: culled) from its bounds, computed once (LodRecord), and the camera
 // (push constants). One invocation per element, over the whole levels buffer.
 // Mirror, operation for operation: src/lod/frame.rs `element_levels` (the proof of the
-// transition triangles is in its module notes); tests/level_pass.rs compares the two.
+// transition triangles is in src/lod/frame/transitions.rs); tests/level_pass.rs compares the two.
 layout(local_size_x = 64) in;
 
 #include "lod_metric.glsl"
@@ -11,10 +11,11 @@ layout(local_size_x = 64) in;
 const uint CULL_FRUSTUM = 1u;
 const uint CULL_BACK_FACES = 2u;
 const uint DYADIC = 4u;
+const uint SNAPPED = 8u;
 
 struct LodEdge {
     vec4 curve;    // (c1, c2) of the edge curve
-    vec4 needs[2]; // (c1, c2) of each element's transition need: [0] dyadic, [1] integer
+    vec4 needs[3]; // (c1, c2) of each element's transition need: dyadic, integer, snapped
     vec4 sphere;
     vec4 sphere_a;
     vec4 sphere_b;
@@ -63,7 +64,8 @@ float level(vec2 c, vec4 s) {
 
 // Mirror: `edge_level`.
 float edge_level(LodEdge e) {
-    vec4 needs = e.needs[(view.flags & DYADIC) != 0u ? 0 : 1];
+    uint kind = view.flags & (DYADIC | SNAPPED);
+    vec4 needs = e.needs[kind == 0u ? 1 : (kind == DYADIC ? 0 : 2)];
     float own = level(e.curve.xy, e.sphere);
     float a = level(needs.xy, e.sphere_a);
     float b = level(needs.zw, e.sphere_b);
@@ -87,16 +89,8 @@ float twist(vec3 mixed, int e) {
     return 2.0 * max(mixed[e], mixed[(e + 2) % 3]);
 }
 
-// Mirror: `strip_level`.
-float strip_level(LodRecord r, int e, float a, float tol) {
-    vec3 m = r.second.xyz;
-    float k1 = r.chord.z, k2 = r.chord.w;
-    float t = twist(r.mixed.xyz, e);
-    float mb = max(m[(e + 1) % 3], m[(e + 2) % 3]);
-    float p = LOD_ELEMENT_FACTOR * mb + k2;
-    float q = LOD_ELEMENT_FACTOR * a * t + k1 + 2.0 * k2 * a;
-    float c = (LOD_ELEMENT_FACTOR * a * m[e] + k1 + k2 * a) * a;
-    float mx = float(view.max_level);
+// Mirror: `quadratic_level`.
+float quadratic_level(float p, float q, float c, float tol, float mx) {
     if (c >= tol) {
         return mx;
     }
@@ -107,6 +101,26 @@ float strip_level(LodRecord r, int e, float a, float tol) {
     }
     float beta = 2.0 * d / den;
     return clamp((1.0 + 1.0 / 65536.0) / beta, 1.0, mx);
+}
+
+// Mirror: `strip_level`.
+float strip_level(LodRecord r, int e, float a, float tol) {
+    vec3 m = r.second.xyz;
+    float k1 = r.chord.z, k2 = r.chord.w;
+    float t = twist(r.mixed.xyz, e);
+    float mb = max(m[(e + 1) % 3], m[(e + 2) % 3]);
+    float mx = float(view.max_level);
+    float h = (view.flags & SNAPPED) != 0u ? 0.5 : 1.0;
+    float p = LOD_ELEMENT_FACTOR * mb + k2;
+    float q = LOD_ELEMENT_FACTOR * h * a * t + k1 + 2.0 * k2 * a;
+    float c = (LOD_ELEMENT_FACTOR * h * h * a * m[e] + k1 + k2 * a) * a;
+    float sides = quadratic_level(p, q, c, tol, mx);
+    if (h == 1.0) {
+        return sides;
+    }
+    float bases = quadratic_level(k2, k1 + 2.0 * k2 * a,
+                                  (LOD_ELEMENT_FACTOR * a * m[e] + k1 + k2 * a) * a, tol, mx);
+    return max(sides, bases);
 }
 
 // Mirror: `outside` (`lod_outside`).

@@ -19,10 +19,13 @@ uvec4 adaptive_levels(vec4 levels, uint f) {
 }
 
 // Parameter a (units of 1/f) along an edge drawn at level n, snapped onto the edge's samples
-// (multiples of f/n): the nearest, a tie to the smaller. Mirror: adaptive::snap_edge.
+// (multiples of f/n): the nearest, a tie toward the nearer corner (to the smaller at the
+// middle), so that a point beside a corner (but the middle) snaps onto it. Mirror:
+// adaptive::snap_edge.
 uint snap_edge(uint a, uint n, uint f) {
     uint r = f / n;
-    return (2u * a + r - 1u) / (2u * r) * r;
+    uint up = 2u * a > f ? r : r - 1u;
+    return (2u * a + up) / (2u * r) * r;
 }
 
 // Lattice point (i, j) of level f moved onto its edge's samples where it lies on a stored edge

@@ -226,11 +226,12 @@ fn print_levels(a: &InfoArgs, mut input: Input) -> Result<()> {
     let heightmap = input.heightmap.take().unwrap_or_else(Heightmap::generated);
     // Rounded as the driver draws them: powers of two for pattern and static, and for tess
     // while it glides.
-    let dyadic = meshrefine::render::DrawConfig {
+    let rounding = meshrefine::render::DrawConfig {
         geomorph: a.geomorph.unwrap_or(true),
         ..meshrefine::render::DrawConfig::new(a.driver, a.max_level)
     }
-    .dyadic_levels();
+    .rounding();
+    let dyadic = rounding.dyadic();
     let loop_data = if surface.uses_loop_faces() {
         let data = loop_data(a, path, mesh)?;
         print_loop(a, &data)?;
@@ -274,7 +275,7 @@ fn print_levels(a: &InfoArgs, mut input: Input) -> Result<()> {
         &view,
         cull.then_some(&frustum),
         back_faces,
-        dyadic,
+        rounding,
         bounds.len() as u32,
     );
     let levels = frame_levels(&lod_view, &bounds);

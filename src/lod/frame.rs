@@ -13,67 +13,14 @@
 //! each of its (one or two) elements the level the transition triangles along it need (below),
 //! at that element's sphere.
 //!
-//! # Transition triangles (the proof)
-//! A driver draws an element at inner level `n` (`β = 1/n`) with the vertices of its boundary
-//! on the edges' own samples: a vertex on edge `e` at lattice parameter `k/n` moves to a sample
-//! of the edge's level `n_e <= n` (`a_e = 1/n_e`) less than `a_e` away (floor in the edge's
-//! canonical direction; dyadic or not). When `n_e = n` nothing moves. Otherwise the drawn
-//! triangles touching the edge are of three kinds. Their sides are bounded, in the element's
-//! lattice directions `d_k` (src/lod/mod.rs), from its second-derivative bounds `M_k >= sup
-//! |D²P[d_k, d_k]|` ([`super::Bounds::second`]) and its mixed ones `B_k >= sup |D²P[d_k,
-//! d_{k+1}]|` ([`super::Bounds::mixed`]), by expanding the quadratic form `Q = D²P(y)` at any
-//! point: `|Q(x u + z v)| <= x² |Q(u)| + z² |Q(v)| + 2|xz| |Q(u, v)|`
-//! ([`super::Bounds::second_along`]). `B_k` is each surface's own bound of the mixed term where
-//! it has one (a Bézier net's mixed second differences, src/lod/net.rs `Net::mixed`), and never
-//! more than polarization's `Σ/2`, `Σ = M_0 + M_1 + M_2` (as `d_k + d_{k+1} = −d_{k+2}`,
-//! `2 Q(d_k, d_{k+1}) = Q(d_{k+2}) − Q(d_k) − Q(d_{k+1})`), which is all a surface without one
-//! (`loop`) gets. Note `Q(d_e, d_{e+2}) = Q(d_{e+2}, d_e)`, bounded by `B_{e+2}`.
-//! - bases on the edge: `0` or `a_e d_e`: `|Q| <= a_e² M_e`;
-//! - sides from a moved vertex to the next row: `α d_e + β d_{e+1}` with `−a_e < α < a_e + β`
-//!   (floor) or `−a_e < α <= β` (ceiling); expanded on `(d_e, d_{e+1})` when `|α| <= a_e`
-//!   (cross term `2|α|β B_e`) and on `(d_e, d_{e+2})` otherwise (`(α − β) d_e − β d_{e+2}`,
-//!   `|α − β| <= a_e`, cross term `2|α − β|β B_{e+2}`): with the twist `T_e = 2 max(B_e,
-//!   B_{e+2})`, `|Q| <= S_e = a_e² M_e + a_e β T_e + β² max(M_{e+1}, M_{e+2})`, texel extent
-//!   `<= a_e + β`;
-//! - at a corner between edges `e` and `f`, sides `y d_e + z d_f` with `0 <= y <= a_e`,
-//!   `0 <= z <= a_f` (and sides of the second kind): with `m = min(y, z)`, `r = |y − z|`,
-//!   `y d_e + z d_f = −m d_g + r d_j` (`g` the third direction, `j` one of `e`, `f`), so
-//!   `|Q| <= m² M_g + r² M_j + 2 m r B_x`, `B_x = max_k B_k`, and with `m + r <= A = max(a_e,
-//!   a_f)`: `M_x (m + r)² + m r (2 B_x − 2 M_x)`, largest at `m r = 0` or `m = r = A/2`, so
-//!   `|Q| <= A² M_c`, `M_c = max(M_x, M_x/2 + B_x/2)`, `M_x = max_k M_k`.
-//!
-//! With `B_k = Σ/2` these are the bounds written with `Σ` alone; a surface's own mixed bound
-//! makes them smaller wherever its twist across the edge is smaller than polarization allows
-//! (on a nearly spherical patch of an equilateral element, `|Q(d_e, d_{e+1})|` is about a third
-//! of `Σ/2`).
-//!
-//! Every drawn triangle's error is then at most `9/40` of its sides' largest `|Q|` plus the kink
-//! terms at its sides' extent (the lattice triangle's proof, src/lod/mod.rs, holds for any
-//! triangle). Two steps make every one of them meet the element's tolerance `τ`:
-//! 1. The edge's level includes, for each of its elements, the level at which the chord
-//!    `((1 + λ) k_1, 9/40 · max(M_c, M_e + λ T_e + λ² max(M_{e+1}, M_{e+2})) + (1 + λ)² k_2)`
-//!    (`k` the kink terms) meets that element's tolerance ([`strip_need`]). So `a_e² · 9/40 M_c`
-//!    and the kink terms at `A` fit in `τ`: the corners are covered whatever `n`, and so is
-//!    `S_e` whenever `β <= λ a_e`. A dyadic driver takes `λ = 1/2` (a coarser edge is at most
-//!    half the inner level, so it rarely needs step 2), an integer one `λ = 1` (no raise is
-//!    needed then; step 2 only serves where a level is capped or a bound changes between the
-//!    two). On Spot these choices draw fewer triangles than the others tried (`λ = 1/4`, and
-//!    the other driver's).
-//! 2. The element checks, on the drawn levels ([`LodView::dyadic`] says how the driver
-//!    rounds), that `9/40 S_e + k_1 (a_e + β) + k_2 (a_e + β)² <= τ` for every edge drawn
-//!    coarser than its inside, and raises its inner level where not: a quadratic
-//!    `p β² + q β + r <= τ` solved for `β` (`strip_level`); raising it can make another edge
-//!    coarser than it, so this repeats (at most three times). After step 1 this is a safety
-//!    net (rounding at the thresholds); by itself, with step 1's share dropped, it would still
-//!    keep the guarantee wherever the corners fit (the tests run it so, GPU against CPU).
-//!
-//! Interior lattice triangles meet `τ` at the element's own level. Where a level is capped at
-//! the maximum, or a bound is infinite, nothing is promised (as for the levels themselves).
+//! An element drawn finer than an edge draws transition triangles along it; what both levels
+//! need for those to meet the pixel error too, and the proof, are in [`transitions`]: it
+//! depends on how the driver rounds levels and snaps its boundary ([`Rounding`]).
 #![forbid(unsafe_code)]
 
 use super::bound::Lod;
 use super::levels::{drawn_level, ElementLevels};
-use super::{Bounds, Chord, Frustum, Sphere, View, ELEMENT_FACTOR};
+use super::{Bounds, Chord, Frustum, Sphere, View};
 use crate::subdiv::bft::{progress_line, Progress};
 use crate::surface::ElementRecord;
 use bytemuck::{Pod, Zeroable};
@@ -83,23 +30,22 @@ use std::collections::{BTreeMap, HashMap};
 /// The mirror's "no finite bound" (GLSL keeps no infinities): `LOD_HUGE` in glsl/include/lod.glsl.
 pub const HUGE: f32 = 3.0e38;
 
-/// One edge slot of a [`LodRecord`] (std430, 96 bytes): the same bits in both elements'.
+/// One edge slot of a [`LodRecord`] (std430, 112 bytes): the same bits in both elements'.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct LodEdge {
     /// `(c1, c2)` of the edge curve's bound (`zw` unused).
     pub curve: [f32; 4],
     /// The transition needs ([`strip_need`]) `(c1, c2)` of the first element, then of the
-    /// second (the first's again on a boundary): `[0]` for a dyadic driver, `[1]` for an
-    /// integer one.
-    pub needs: [[f32; 4]; 2],
+    /// second (the first's again on a boundary), for each [`Rounding`] (`[Rounding::index]`).
+    pub needs: [[f32; 4]; 3],
     /// The edge's sphere, the first element's, the second's (centre, radius).
     pub sphere: [f32; 4],
     pub sphere_a: [f32; 4],
     pub sphere_b: [f32; 4],
 }
 
-/// What the level pass reads of one element (std430, 368 bytes): its own bounds and its three
+/// What the level pass reads of one element (std430, 416 bytes): its own bounds and its three
 /// stored edges'.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
@@ -117,14 +63,48 @@ pub struct LodRecord {
     pub edges: [LodEdge; 3],
 }
 
-const _: () = assert!(std::mem::size_of::<LodEdge>() == 96);
-const _: () = assert!(std::mem::size_of::<LodRecord>() == 368);
+const _: () = assert!(std::mem::size_of::<LodEdge>() == 112);
+const _: () = assert!(std::mem::size_of::<LodRecord>() == 416);
 
 /// Cull flags of [`LodView::flags`].
 pub const CULL_FRUSTUM: u32 = 1;
 pub const CULL_BACK_FACES: u32 = 2;
 /// The driver rounds levels to powers of two ([`drawn_level`]).
 pub const DYADIC: u32 = 4;
+/// With [`DYADIC`]: the driver snaps its boundary vertices to the nearest sample of their edge
+/// ([`Rounding::Snapped`]).
+pub const SNAPPED: u32 = 8;
+
+/// How a driver rounds an element's levels and draws its boundary along a coarser edge: what
+/// the level pass bounds the transition triangles for ([`transitions`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Rounding {
+    /// Any integer level, the tessellator's transitions (the tess driver without geomorphing).
+    Integer,
+    /// Powers of two, the tessellator's transitions (the tess driver while it glides).
+    Dyadic,
+    /// Powers of two, every boundary vertex snapped to the nearest sample of its edge, a tie
+    /// toward the nearer corner (the pattern driver, and the static baseline built as it draws).
+    Snapped,
+}
+
+impl Rounding {
+    pub const ALL: [Rounding; 3] = [Rounding::Dyadic, Rounding::Integer, Rounding::Snapped];
+
+    /// Whether levels are rounded to powers of two.
+    pub fn dyadic(self) -> bool {
+        self != Rounding::Integer
+    }
+
+    /// Where its transition needs are in [`LodEdge::needs`] (the order of [`Rounding::ALL`]).
+    pub fn index(self) -> usize {
+        match self {
+            Rounding::Dyadic => 0,
+            Rounding::Integer => 1,
+            Rounding::Snapped => 2,
+        }
+    }
+}
 
 /// The camera as the level pass reads it (push constants, 128 bytes; std140 and std430 alike).
 #[repr(C)]
@@ -136,7 +116,7 @@ pub struct LodView {
     pub eye_k: [f32; 4],
     pub pixel_error: f32,
     pub max_level: u32,
-    /// [`CULL_FRUSTUM`], [`CULL_BACK_FACES`], [`DYADIC`].
+    /// [`CULL_FRUSTUM`], [`CULL_BACK_FACES`], [`DYADIC`], [`SNAPPED`].
     pub flags: u32,
     /// Elements.
     pub count: u32,
@@ -146,18 +126,22 @@ const _: () = assert!(std::mem::size_of::<LodView>() == 128);
 
 impl LodView {
     /// `view`'s metric for `count` elements, culling against `frustum` when given and back
-    /// faces when `back_faces`, for a driver that draws dyadic levels when `dyadic`.
+    /// faces when `back_faces`, for a driver that rounds levels as `rounding` says.
     pub fn new(
         view: &View,
         frustum: Option<&Frustum>,
         back_faces: bool,
-        dyadic: bool,
+        rounding: Rounding,
         count: u32,
     ) -> Self {
         let planes = frustum.map_or([[0.0; 4]; 6], |f| f.planes.map(|p| p.to_array()));
         let flags = if frustum.is_some() { CULL_FRUSTUM } else { 0 }
             | if back_faces { CULL_BACK_FACES } else { 0 }
-            | if dyadic { DYADIC } else { 0 };
+            | match rounding {
+                Rounding::Integer => 0,
+                Rounding::Dyadic => DYADIC,
+                Rounding::Snapped => DYADIC | SNAPPED,
+            };
         Self {
             planes,
             eye_k: view.eye.extend(view.k).to_array(),
@@ -170,6 +154,14 @@ impl LodView {
 
     pub fn dyadic(&self) -> bool {
         self.flags & DYADIC != 0
+    }
+
+    pub fn rounding(&self) -> Rounding {
+        match (self.flags & DYADIC != 0, self.flags & SNAPPED != 0) {
+            (false, _) => Rounding::Integer,
+            (true, false) => Rounding::Dyadic,
+            (true, true) => Rounding::Snapped,
+        }
     }
 
     fn eye(&self) -> Vec3 {
@@ -209,40 +201,6 @@ fn enclosing(a: Sphere, b: Sphere) -> Sphere {
         centre,
         radius: r * (1.0 + 4.0 * f32::EPSILON),
     }
-}
-
-/// The chord an edge's level must meet at element `b`'s tolerance for the transition
-/// triangles along stored edge `e` (module notes, step 1), for a driver that rounds as
-/// `dyadic` says; zero where the element has no finite bound (nothing is promised there).
-pub fn strip_need(b: &Bounds, e: usize, dyadic: bool) -> Chord {
-    let (m, mixed) = (b.second, b.mixed);
-    let finite = m.iter().chain(&mixed).all(|x| x.is_finite())
-        && b.kink.c1.is_finite()
-        && b.kink.c2.is_finite()
-        && b.chord.c2.is_finite();
-    if !finite {
-        return Chord::ZERO;
-    }
-    let twist = twist(&mixed, e);
-    let mx = m[0].max(m[1]).max(m[2]);
-    let bx = mixed[0].max(mixed[1]).max(mixed[2]);
-    let mc = mx.max(0.5 * mx + 0.5 * bx);
-    let mb = m[(e + 1) % 3].max(m[(e + 2) % 3]);
-    // The transition sides' bound at β = λ a: λ = 1/2 (a dyadic driver's coarser edge is at
-    // most half the inner level), λ = 1 (an integer driver's may be just below it).
-    let lambda = if dyadic { 0.5 } else { 1.0 };
-    let ms = m[e] + lambda * twist + lambda * lambda * mb;
-    let h = 1.0 + lambda;
-    Chord {
-        c1: h * b.kink.c1,
-        c2: ELEMENT_FACTOR * mc.max(ms) + h * h * b.kink.c2,
-    }
-}
-
-/// `T_e = 2 max(B_e, B_{e+2})`: what bounds the cross term of a transition side along stored
-/// edge `e` (module notes), per unit `a_e β`. Mirror: `twist` in glsl/lod/levels.comp.
-fn twist(mixed: &[f32], e: usize) -> f32 {
-    2.0 * mixed[e].max(mixed[(e + 2) % 3])
 }
 
 /// An element's corners' global vertex indices (M1's for `loop`): what orders an edge
@@ -321,22 +279,22 @@ pub fn lod_records_reporting(
     );
     for (key, edge) in order.into_iter().zip(edges) {
         let list = &slots[&key];
-        // Each element's needs (dyadic, integer) and sphere.
+        // Each element's needs (one per rounding, Rounding::ALL's order) and sphere.
         let need = |&(i, e): &(usize, usize)| {
             let b = &elements[i];
-            ([true, false].map(|d| strip_need(b, e, d)), b.sphere)
+            (Rounding::ALL.map(|d| strip_need(b, e, d)), b.sphere)
         };
         let (needs_a, sphere_a) = need(&list[0]);
         let (mut needs_b, mut sphere_b) = list.get(1).map_or((needs_a, sphere_a), need);
         for extra in list.iter().skip(2) {
             let (c, s) = need(extra);
-            needs_b = [0, 1].map(|k| needs_b[k].max(c[k]));
+            needs_b = [0, 1, 2].map(|k| needs_b[k].max(c[k]));
             sphere_b = enclosing(sphere_b, s);
         }
         let [ec1, ec2] = chord2(edge.chord);
         let slot = LodEdge {
             curve: [ec1, ec2, 0.0, 0.0],
-            needs: [0, 1].map(|k| {
+            needs: [0, 1, 2].map(|k| {
                 let ([a1, a2], [b1, b2]) = (chord2(needs_a[k]), chord2(needs_b[k]));
                 [a1, a2, b1, b2]
             }),
@@ -374,36 +332,11 @@ fn level(v: &LodView, c: [f32; 2], s: [f32; 4]) -> f32 {
 /// The continuous level of an edge slot: the largest of its curve's and both elements'
 /// transition needs.
 fn edge_level(v: &LodView, e: &LodEdge) -> f32 {
-    let needs = e.needs[if v.dyadic() { 0 } else { 1 }];
+    let needs = e.needs[v.rounding().index()];
     let own = level(v, [e.curve[0], e.curve[1]], e.sphere);
     let a = level(v, [needs[0], needs[1]], e.sphere_a);
     let b = level(v, [needs[2], needs[3]], e.sphere_b);
     own.max(a).max(b)
-}
-
-/// The smallest inner level at which the transition triangles along stored edge `e`, drawn at
-/// `a = 1/n_e`, meet tolerance `tol` (module notes, step 2), or the maximum level where none
-/// does. Mirror: `strip_level` in glsl/lod/levels.comp.
-fn strip_level(v: &LodView, r: &LodRecord, e: usize, a: f32, tol: f32) -> f32 {
-    let m = r.second;
-    let (k1, k2) = (r.chord[2], r.chord[3]);
-    let t = twist(&r.mixed, e);
-    let mb = m[(e + 1) % 3].max(m[(e + 2) % 3]);
-    let p = ELEMENT_FACTOR * mb + k2;
-    let q = ELEMENT_FACTOR * a * t + k1 + 2.0 * k2 * a;
-    let c = (ELEMENT_FACTOR * a * m[e] + k1 + k2 * a) * a;
-    let max = v.max_level as f32;
-    if c >= tol {
-        return max;
-    }
-    let d = tol - c;
-    // β = (−q + sqrt(q² + 4pd)) / 2p, in the form without cancellation.
-    let den = q + (q * q + 4.0 * p * d).sqrt();
-    if den <= 0.0 {
-        return 1.0;
-    }
-    let beta = 2.0 * d / den;
-    ((1.0 + 1.0 / 65536.0) / beta).clamp(1.0, max)
 }
 
 /// Whether sphere `s` lies wholly outside one of the view's planes. Mirror: `lod_outside`.
@@ -442,41 +375,6 @@ pub fn element_levels(v: &LodView, r: &LodRecord) -> ElementLevels {
     ElementLevels {
         edges,
         inner: raise_for_transitions(v, r, &edges, inner),
-    }
-}
-
-/// The inner level raised until every transition triangle meets the element's tolerance
-/// (module notes, step 2): unchanged where no edge is drawn coarser than the inside or the
-/// triangles already fit, else the drawn level that fits (an exact integer).
-fn raise_for_transitions(v: &LodView, r: &LodRecord, edges: &[f32; 3], inner: f32) -> f32 {
-    let (dyadic, max) = (v.dyadic(), v.max_level);
-    if r.chord[1] >= HUGE || r.chord[0] >= HUGE {
-        return inner;
-    }
-    let tol = tolerance(v, r.sphere);
-    let drawn_edges = edges.map(|l| drawn_level(l, dyadic, max));
-    let mut n = drawn_level(inner, dyadic, max);
-    let mut raised = false;
-    for _ in 0..4 {
-        if n >= max {
-            break;
-        }
-        let mut need = 0.0f32;
-        for (e, &ne) in drawn_edges.iter().enumerate() {
-            if ne < n {
-                need = need.max(strip_level(v, r, e, 1.0 / ne as f32, tol));
-            }
-        }
-        if need <= n as f32 {
-            break;
-        }
-        n = drawn_level(need, dyadic, max);
-        raised = true;
-    }
-    if raised {
-        n as f32
-    } else {
-        inner
     }
 }
 
@@ -570,6 +468,9 @@ impl LevelStats {
 
 mod cores;
 use cores::on_every_core;
+pub mod transitions;
+use transitions::raise_for_transitions;
+pub use transitions::strip_need;
 
 #[cfg(test)]
 mod tests;

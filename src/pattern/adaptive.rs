@@ -36,11 +36,15 @@ pub fn drawn_levels(levels: &ElementLevels, max: u32) -> Option<DrawnLevels> {
 }
 
 /// Parameter `a` (in units of `1/f`) along an edge drawn at level `n` snapped onto that edge's
-/// samples, multiples of `f/n`: the nearest one, a tie going to the smaller. Mirror of
-/// `snap_edge` in glsl/pattern/adaptive.glsl.
+/// samples, multiples of `f/n`: the nearest one, a tie going toward the nearer corner (to the
+/// smaller at the middle), so that a point beside a corner snaps onto it (unless it is the
+/// middle itself) and no transition triangle spans two edges' samples
+/// (src/lod/frame/transitions.rs). Mirror of `snap_edge` in
+/// glsl/pattern/adaptive.glsl.
 pub fn snap_edge(a: u32, n: u32, f: u32) -> u32 {
     let r = f / n;
-    (2 * a + r - 1) / (2 * r) * r
+    let up = if 2 * a > f { r } else { r - 1 };
+    (2 * a + up) / (2 * r) * r
 }
 
 /// Lattice point `(i, j)` of the finest level `f` moved onto its edge's samples where it lies on
@@ -359,6 +363,38 @@ mod tests {
                         (0..=n).map(|k| k * (f / n)).collect();
                     assert_eq!(fwd, want);
                     assert_eq!(back, want);
+                }
+            }
+        }
+    }
+
+    /// What the transition triangles' bound takes of the snapping (src/lod/frame/transitions.rs):
+    /// a move of at most half a sample, in order, and onto the corner for the points beside one
+    /// whenever the edge is coarser than the inside; the same from either end.
+    #[test]
+    fn snapping_moves_half_a_sample_and_collapses_corners() {
+        let f = 64u32;
+        for n in (0..=6).map(|l| 1u32 << l) {
+            for inner in (0..=6).map(|l| 1u32 << l).filter(|&m| m > n) {
+                let step = f / inner;
+                let snapped: Vec<u32> = (0..=inner).map(|a| snap_edge(a * step, n, f)).collect();
+                for (a, &s) in snapped.iter().enumerate() {
+                    let a = a as u32 * step;
+                    assert!(2 * s.abs_diff(a) <= f / n, "{a} -> {s} at {n}");
+                    // The reversed edge snaps the mirrored point to the mirrored sample (but
+                    // the middle of an edge at level 1, a tie between its corners).
+                    if 2 * a != f || n > 1 {
+                        assert_eq!(f - snap_edge(f - a, n, f), s, "{a} at {n} from the end");
+                    }
+                }
+                assert!(snapped.windows(2).all(|w| w[0] <= w[1]));
+                // (At inner level 2 the one point beside both corners is the middle: it goes to
+                // the smaller.)
+                if inner == 2 {
+                    assert_eq!(snapped[1], 0);
+                } else {
+                    let ends = (snapped[1], snapped[inner as usize - 1]);
+                    assert_eq!(ends, (0, f), "{n} in {inner}");
                 }
             }
         }

@@ -134,7 +134,13 @@ fn sweep(geomorph: bool) -> (f32, usize, usize) {
         };
         let view = View::new(eye, fov, size.y as u32, 1.0, F);
         let levels = frame_levels(
-            &LodView::new(&view, None, false, true, recs.len() as u32),
+            &LodView::new(
+                &view,
+                None,
+                false,
+                crate::lod::frame::Rounding::Snapped,
+                recs.len() as u32,
+            ),
             &lr,
         );
         let now: Vec<Option<Drawn>> = (levels.iter().zip(&recs).enumerate())

@@ -140,7 +140,21 @@ impl DrawConfig {
     /// hierarchical patterns, the static driver (which refines with their construction), and
     /// the tess driver while it glides.
     pub fn dyadic_levels(&self) -> bool {
-        !self.driver.kind().integer_levels() || self.glides()
+        self.rounding().dyadic()
+    }
+
+    /// How the driver rounds adaptive levels and meets a coarser edge, as the level pass
+    /// bounds it: the tessellator's own transitions for tess (dyadic while it glides), the
+    /// pattern's boundary snapped to the nearest edge sample for pattern and static.
+    pub fn rounding(&self) -> crate::lod::frame::Rounding {
+        use crate::lod::frame::Rounding;
+        if !self.driver.kind().integer_levels() {
+            Rounding::Snapped
+        } else if self.glides() {
+            Rounding::Dyadic
+        } else {
+            Rounding::Integer
+        }
     }
 
     /// Triangles the GPU makes per element.

@@ -130,7 +130,6 @@ impl Scene {
         view: &LevelView,
     ) -> Result<ChosenLevels, RenderError> {
         let max = cfg.level;
-        let dyadic = cfg.dyadic_levels();
         let eye = view.camera.eye();
         let metric = View::new(eye, view.camera.fov_y, view.height, view.pixel_error, max);
         let aspect = view.width as f32 / view.height.max(1) as f32;
@@ -160,7 +159,7 @@ impl Scene {
             &metric,
             view.cull.then_some(&frustum),
             back_faces,
-            dyadic,
+            cfg.rounding(),
             count,
         );
         if on_cpu {
@@ -201,7 +200,7 @@ impl Scene {
         let same = surface == cfg.surface
             && key.levels == self.elements(cfg.surface).levels.raw
             && view.max_level == cfg.level.max(1)
-            && view.dyadic() == cfg.dyadic_levels()
+            && view.rounding() == cfg.rounding()
             && !cfg.driver.kind().refines_on_cpu();
         same.then_some((l.pass.as_ref()?, view))
     }

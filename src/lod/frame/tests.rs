@@ -3,6 +3,7 @@
 
 use super::*;
 use crate::lod::levels::drawn_level;
+use crate::lod::ELEMENT_FACTOR;
 use crate::mesh::test_support::load_model;
 use crate::subdiv::bft::Lattice;
 use crate::subdiv::Boundary;
@@ -51,7 +52,7 @@ fn shared_edges_hold_identical_bits() {
             &view_at(Vec3::new(0.0, 0.3, 3.0 * r), 64),
             None,
             false,
-            true,
+            Rounding::Snapped,
             lr.len() as u32,
         );
         let levels = frame_levels(&view, &lr);
@@ -85,10 +86,11 @@ fn levels_fall_with_distance_and_respect_the_cap() {
     let lr = lod_records(&lod, &recs);
     let (lo, hi) = mesh.bounds();
     let centre = (lo + hi) * 0.5;
-    for dyadic in [false, true] {
+    for rounding in Rounding::ALL {
+        let dyadic = rounding.dyadic();
         let at = |d: f32, max: u32| {
             let v = view_at(centre + Vec3::new(0.3, 0.2, 1.0).normalize() * d, max);
-            frame_levels(&LodView::new(&v, None, false, dyadic, 0), &lr)
+            frame_levels(&LodView::new(&v, None, false, rounding, 0), &lr)
         };
         let mut last: Option<Vec<ElementLevels>> = None;
         for d in [1.5 * r, 3.0 * r, 6.0 * r, 12.0 * r] {
@@ -143,13 +145,19 @@ fn culling_follows_the_spheres_and_cones() {
     let frustum = Frustum::from_view_proj(proj * Mat4::look_at_rh(eye, target, Vec3::Y));
     let view = view_at(eye, 64);
     let count = lr.len() as u32;
-    let none = frame_levels(&LodView::new(&view, None, false, true, count), &lr);
-    assert!(none.iter().all(|l| !l.culled()));
-    let f = frame_levels(
-        &LodView::new(&view, Some(&frustum), false, true, count),
+    let none = frame_levels(
+        &LodView::new(&view, None, false, Rounding::Snapped, count),
         &lr,
     );
-    let fb = frame_levels(&LodView::new(&view, Some(&frustum), true, true, count), &lr);
+    assert!(none.iter().all(|l| !l.culled()));
+    let f = frame_levels(
+        &LodView::new(&view, Some(&frustum), false, Rounding::Snapped, count),
+        &lr,
+    );
+    let fb = frame_levels(
+        &LodView::new(&view, Some(&frustum), true, Rounding::Snapped, count),
+        &lr,
+    );
     let (mut out, mut back) = (0, 0);
     for (i, rec) in recs.iter().enumerate() {
         let b = lod.element(rec);
@@ -181,14 +189,17 @@ fn inner_levels_cover_own_bound_and_transitions() {
     let mut bare = full.clone();
     for b in &mut bare {
         for e in &mut b.edges {
-            e.needs = [[0.0; 4]; 2];
+            e.needs = [[0.0; 4]; 3];
         }
     }
     let view = view_at(Vec3::new(0.2, 0.3, 2.0 * r), 1 << 12);
     let (mut raised, mut checked) = (0, 0);
-    for (dyadic, lr) in [(false, &full), (true, &full), (false, &bare), (true, &bare)] {
-        let step1 = std::ptr::eq(lr, &full);
-        let lv = LodView::new(&view, None, false, dyadic, 0);
+    for (rounding, lr) in Rounding::ALL
+        .into_iter()
+        .flat_map(|k| [(k, &full), (k, &bare)])
+    {
+        let (step1, dyadic) = (std::ptr::eq(lr, &full), rounding.dyadic());
+        let lv = LodView::new(&view, None, false, rounding, 0);
         for (rec, (l, x)) in recs.iter().zip(frame_levels(&lv, lr).iter().zip(lr)) {
             let b = lod.element(rec);
             let edges = [0, 1, 2].map(|e| lod.edge(rec, e));
@@ -213,9 +224,21 @@ fn inner_levels_cover_own_bound_and_transitions() {
                     let (m, bm) = (x.second, x.mixed);
                     let twist = 2.0 * bm[e].max(bm[(e + 2) % 3]);
                     let mb = m[(e + 1) % 3].max(m[(e + 2) % 3]);
-                    let s = a * a * m[e] + a * beta * twist + beta * beta * mb;
-                    // The corners fit: `M_c <= 1.25 max_k M_k` whatever `B_k` (`2 B_k <= Σ`).
-                    let corner = 1.25 * a * a * m[0].max(m[1]).max(m[2]);
+                    let base = a * a * m[e];
+                    // Moves of up to a sample, or half of one where snapped.
+                    let h = if rounding == Rounding::Snapped {
+                        0.5
+                    } else {
+                        1.0
+                    };
+                    let s =
+                        (h * h * a * a * m[e] + h * a * beta * twist + beta * beta * mb).max(base);
+                    // The corners fit: `M_c <= 1.25 max_k M_k` whatever `B_k` (`2 B_k <= Σ`);
+                    // snapped, there are none, and the bases fit.
+                    let corner = match rounding {
+                        Rounding::Snapped => base,
+                        _ => 1.25 * a * a * m[0].max(m[1]).max(m[2]),
+                    };
                     if step1 || ELEMENT_FACTOR * corner <= tol {
                         assert!(ELEMENT_FACTOR * s <= tol * 1.0001, "{s} vs {tol}");
                         checked += 1;

@@ -1,6 +1,7 @@
 //! Culling and the metric end to end, through a real camera.
 
 use super::*;
+use crate::lod::frame::Rounding;
 
 /// A camera close to spot, looking past part of it.
 fn close_camera(spot: &Mesh) -> (Vec3, Mat4, f32, f32) {
@@ -143,9 +144,10 @@ impl Screen {
 }
 
 /// Where a driver draws lattice vertex `(i, j)` of level `n`: on a stored edge `k` whose drawn
-/// level `ne[k]` is coarser, floored onto the edge's samples in its canonical direction (from
-/// the corner with the lower global index, `idx`), as the drivers snap boundary vertices.
-fn snapped(n: u32, i: u32, j: u32, ne: [u32; 3], idx: [u32; 3]) -> [f32; 3] {
+/// level `ne[k]` is coarser, snapped as the pattern driver does for [`Rounding::Snapped`]
+/// (`snap_edge`), else floored onto the edge's samples in its canonical direction (from the
+/// corner with the lower global index, `idx`): the moves the tessellator's bound allows.
+fn snapped(n: u32, i: u32, j: u32, ne: [u32; 3], idx: [u32; 3], rounding: Rounding) -> [f32; 3] {
     // The edge the vertex is on (corners are on two and never move) and its step from corner k.
     let on = if j == 0 && i > 0 && i < n {
         Some((0, i))
@@ -159,7 +161,9 @@ fn snapped(n: u32, i: u32, j: u32, ne: [u32; 3], idx: [u32; 3]) -> [f32; 3] {
     let Some((k, m)) = on else {
         return lattice_bary(n, i, j);
     };
-    let c = if idx[k] < idx[(k + 1) % 3] {
+    let c = if rounding == Rounding::Snapped {
+        crate::pattern::adaptive::snap_edge(m, ne[k], n) / (n / ne[k])
+    } else if idx[k] < idx[(k + 1) % 3] {
         m * ne[k] / n
     } else {
         ne[k] - (n - m) * ne[k] / n
@@ -170,8 +174,16 @@ fn snapped(n: u32, i: u32, j: u32, ne: [u32; 3], idx: [u32; 3]) -> [f32; 3] {
     b
 }
 
+fn rounding_name(r: Rounding) -> &'static str {
+    match r {
+        Rounding::Integer => "",
+        Rounding::Dyadic => " (dyadic)",
+        Rounding::Snapped => " (snapped)",
+    }
+}
+
 /// Levels for every element in view from the level pass's mirror (`lod::frame`), for a driver
-/// that rounds as `dyadic` says; then dense samples of the triangles the driver draws (the
+/// that rounds as `rounding` says; then dense samples of the triangles the driver draws (the
 /// inner lattice at the drawn inner level, boundary vertices snapped onto each edge's drawn
 /// level: the transition triangles included), and of each edge at its own drawn level;
 /// returns (elements checked, elements capped, worst metric px).
@@ -179,7 +191,7 @@ fn end_to_end(
     case: &Case,
     records: &[ElementRecord],
     screen: &Screen,
-    dyadic: bool,
+    rounding: Rounding,
 ) -> (usize, usize, f32) {
     use crate::lod::frame::{corner_indices, frame_levels, lod_records, LodView};
     use crate::lod::levels::drawn_level;
@@ -188,14 +200,15 @@ fn end_to_end(
     let max = view.max_level;
     let lr = lod_records(&lod, records);
     let count = records.len() as u32;
-    let lv = LodView::new(view, Some(&screen.frustum), false, dyadic, count);
+    let dyadic = rounding.dyadic();
+    let lv = LodView::new(view, Some(&screen.frustum), false, rounding, count);
     let levels = frame_levels(&lv, &lr);
     // The same without the cap: an element whose drawn levels differ was capped.
     let uncapped = View {
         max_level: 1 << 16,
         ..*view
     };
-    let free = frame_levels(&LodView::new(&uncapped, None, false, dyadic, count), &lr);
+    let free = frame_levels(&LodView::new(&uncapped, None, false, rounding, count), &lr);
     let (mut drawn, mut capped, mut worst) = (0usize, 0usize, 0.0f32);
     let (mut tris, mut plain) = (0u64, 0u64);
     for (ix, rec) in records.iter().enumerate() {
@@ -223,11 +236,11 @@ fn end_to_end(
                 "{} + {} at level {n}, edges {ne:?}{}",
                 case.surface.name(),
                 case.displace.name(),
-                if dyadic { " (dyadic)" } else { "" }
+                rounding_name(rounding)
             )
         };
         for t in lattice_triangles(n) {
-            let bb = t.map(|(i, j)| snapped(n, i, j, ne, idx));
+            let bb = t.map(|(i, j)| snapped(n, i, j, ne, idx, rounding));
             let p = bb.map(|x| case.at(rec, x));
             for c in 0..=4u32 {
                 for a in 0..=4 - c {
@@ -311,13 +324,14 @@ fn pixel_error_holds_end_to_end() {
         } else {
             recs.clone()
         };
-        for dyadic in [true, false] {
-            let (drawn, capped, worst) = end_to_end(&case, &records, &screen, dyadic);
+        for rounding in Rounding::ALL {
+            let dyadic = rounding.dyadic();
+            let (drawn, capped, worst) = end_to_end(&case, &records, &screen, rounding);
             let what = format!(
                 "{} + {}{}",
                 surface.name(),
                 displace.name(),
-                if dyadic { " (dyadic)" } else { "" }
+                rounding_name(rounding)
             );
             eprintln!("{what}: {drawn} elements checked, {capped} capped, worst {worst} px");
             assert!(drawn > 50, "{what}: only {drawn} elements in view");

@@ -1,0 +1,213 @@
+//! The transition triangles along an edge drawn coarser than its element's inside: what an
+//! edge's level and an element's inner level need so that they too meet the pixel error.
+//!
+//! # The proof
+//! A driver draws an element at inner level `n` (`β = 1/n`) with the vertices of its boundary
+//! on the edges' own samples: a vertex on edge `e` at lattice parameter `k/n` moves to a sample
+//! of the edge's level `n_e <= n` (`a_e = 1/n_e`). When `n_e = n` nothing moves. How far a
+//! vertex moves, and where, depends on the driver ([`Rounding`]):
+//! - [`Rounding::Integer`] and [`Rounding::Dyadic`] (the tessellator, whose transitions are its
+//!   own): less than `a_e` (as a floor in the edge's canonical direction would), anywhere;
+//! - [`Rounding::Snapped`] (the pattern driver and the static baseline, dyadic): onto the
+//!   nearest sample, a tie toward the nearer corner, so at most `a_e/2`; and as a coarser
+//!   edge is at most half the inner level (`β <= a_e/2`), the vertex beside a corner moves
+//!   onto that corner whenever it is not also beside the other one (`n >= 4`; at `n = 2` the
+//!   midpoint of an edge drawn at level 1 moves onto the edge's first corner, `a_e/2` away).
+//!
+//! The drawn triangles touching the edge are then of three kinds. Their sides are bounded, in
+//! the element's lattice directions `d_k` (src/lod/mod.rs), from its second-derivative bounds
+//! `M_k >= sup |D²P[d_k, d_k]|` ([`Bounds::second`]) and its mixed ones `B_k >= sup
+//! |D²P[d_k, d_{k+1}]|` ([`Bounds::mixed`]), by expanding the quadratic form `Q = D²P(y)` at
+//! any point: `|Q(x u + z v)| <= x² |Q(u)| + z² |Q(v)| + 2|xz| |Q(u, v)|`
+//! ([`Bounds::second_along`]). `B_k` is each surface's own bound of the mixed term where it
+//! has one (a Bézier net's mixed second differences, src/lod/net.rs `Net::mixed`), and never
+//! more than polarization's `Σ/2`, `Σ = M_0 + M_1 + M_2` (as `d_k + d_{k+1} = −d_{k+2}`,
+//! `2 Q(d_k, d_{k+1}) = Q(d_{k+2}) − Q(d_k) − Q(d_{k+1})`), which is all a surface without one
+//! (`loop`) gets. Note `Q(d_e, d_{e+2}) = Q(d_{e+2}, d_e)`, bounded by `B_{e+2}`. With `h` the
+//! largest move over `a_e` (1, or `1/2` snapped):
+//! - bases on the edge: `0` or `a_e d_e` (consecutive lattice points, `β` apart, move onto the
+//!   same sample or neighbouring ones): `|Q| <= a_e² M_e`;
+//! - sides from a moved vertex to the next row: `α d_e + β d_{e+1}` with
+//!   `−h a_e <= α <= h a_e + β` (the lattice side's `0` or `β`, less the move); expanded on
+//!   `(d_e, d_{e+1})` when `|α| <= h a_e` (cross term `2|α|β B_e`) and on `(d_e, d_{e+2})`
+//!   otherwise (`(α − β) d_e − β d_{e+2}`, `|α − β| <= h a_e`, cross term
+//!   `2|α − β|β B_{e+2}`): with the twist `T_e = 2 max(B_e, B_{e+2})`,
+//!   `|Q| <= S_e = h² a_e² M_e + h a_e β T_e + β² max(M_{e+1}, M_{e+2})`, texel extent
+//!   `<= a_e + β`;
+//! - at a corner between edges `e` and `f`, where a vertex beside the corner moves away from
+//!   it (not [`Rounding::Snapped`]: there the only triangles with vertices on two edges are
+//!   the corner's two lattice triangles, whose vertices beside the corner either stay or move
+//!   onto it, leaving lattice sides and sides of the second kind; at `n = 2`, where every
+//!   vertex is on the boundary, a midpoint moved onto the far corner leaves a whole edge, a
+//!   base, and sides of the second kind with `α = a_e`), sides `y d_e + z d_f` with
+//!   `0 <= y <= a_e`, `0 <= z <= a_f`: with `m = min(y, z)`, `r = |y − z|`,
+//!   `y d_e + z d_f = −m d_g + r d_j` (`g` the third direction, `j` one of `e`, `f`), so
+//!   `|Q| <= m² M_g + r² M_j + 2 m r B_x`, `B_x = max_k B_k`, and with
+//!   `m + r <= A = max(a_e, a_f)`: `M_x (m + r)² + m r (2 B_x − 2 M_x)`, largest at `m r = 0`
+//!   or `m = r = A/2`, so `|Q| <= A² M_c`, `M_c = max(M_x, M_x/2 + B_x/2)`, `M_x = max_k M_k`.
+//!
+//! With `B_k = Σ/2` these are the bounds written with `Σ` alone; a surface's own mixed bound
+//! makes them smaller wherever its twist across the edge is smaller than polarization allows
+//! (on a nearly spherical patch of an equilateral element, `|Q(d_e, d_{e+1})|` is about a third
+//! of `Σ/2`).
+//!
+//! Every drawn triangle's error is then at most `9/40` of its sides' largest `|Q|` plus the kink
+//! terms at its sides' extent (the lattice triangle's proof, src/lod/mod.rs, holds for any
+//! triangle). Two steps make every one of them meet the element's tolerance `τ`:
+//! 1. The edge's level includes, for each of its elements, the level at which the chord
+//!    `((1 + λ) k_1, 9/40 · max(M_c, M_e + λ T_e + λ² max(M_{e+1}, M_{e+2})) + (1 + λ)² k_2)`
+//!    (`k` the kink terms; snapped: `max(M_e, M_e/4 + λ/2 T_e + λ² max(M_{e+1}, M_{e+2}))`,
+//!    no corners) meets that element's tolerance ([`strip_need`]). So the bases, the corners
+//!    and the kink terms at `a_e + β` fit in `τ` whatever `n`, and so does `S_e` whenever `β <=
+//!    λ a_e`. A dyadic driver takes `λ = 1/2` (a coarser edge is at most half the inner level,
+//!    so it rarely needs step 2), an integer one `λ = 1` (no raise is needed then; step 2 only
+//!    serves where a level is capped or a bound changes between the two). On Spot these
+//!    choices draw fewer triangles than the others tried (`λ = 1/4`, and the other driver's).
+//! 2. The element checks, on the drawn levels ([`LodView::rounding`] says how the driver
+//!    rounds and snaps), that `9/40 max(a_e² M_e, S_e) + k_1 (a_e + β) + k_2 (a_e + β)² <= τ`
+//!    for every edge drawn coarser than its inside, and raises its inner level where not
+//!    (`S_e` and the kink terms are quadratics in `β`, solved for it: `strip_level`); raising
+//!    it can make another edge coarser than it, so this repeats (at most three times). After
+//!    step 1 this is a safety net (rounding at the thresholds); by itself, with step 1's share
+//!    dropped, it would still keep the guarantee wherever the bases and corners fit (the tests
+//!    run it so, GPU against CPU).
+//!
+//! Snapping to the nearest sample, a tie toward the nearer corner, is what makes the snapped
+//! drivers' transitions cheap: their edges need about the level their elements' insides need
+//! along them (`M_e`), where a floor's corners need it across the whole element (`M_c`) and its
+//! sides twice the move. On Spot as `pn` close up at 1 px (the test
+//! `pixel_error_holds_end_to_end`) the transitions then cost about a tenth more triangles than
+//! levels that ignore them, against 2.6 (dyadic) and 3.6 (integer) times as many with the
+//! tessellator's bound.
+//!
+//! Interior lattice triangles meet `τ` at the element's own level. Where a level is capped at
+//! the maximum, or a bound is infinite, nothing is promised (as for the levels themselves).
+#![forbid(unsafe_code)]
+
+use super::{tolerance, LodRecord, LodView, Rounding, HUGE};
+use crate::lod::levels::drawn_level;
+use crate::lod::{Bounds, Chord, ELEMENT_FACTOR};
+
+/// The chord an edge's level must meet at element `b`'s tolerance for the transition
+/// triangles along stored edge `e` (module notes, step 1), for a driver that rounds and snaps
+/// as `rounding` says; zero where the element has no finite bound (nothing is promised there).
+pub fn strip_need(b: &Bounds, e: usize, rounding: Rounding) -> Chord {
+    let (m, mixed) = (b.second, b.mixed);
+    let finite = m.iter().chain(&mixed).all(|x| x.is_finite())
+        && b.kink.c1.is_finite()
+        && b.kink.c2.is_finite()
+        && b.chord.c2.is_finite();
+    if !finite {
+        return Chord::ZERO;
+    }
+    let twist = twist(&mixed, e);
+    let mb = m[(e + 1) % 3].max(m[(e + 2) % 3]);
+    // The transition sides' bound at β = λ a: λ = 1/2 (a dyadic driver's coarser edge is at
+    // most half the inner level), λ = 1 (an integer driver's may be just below it).
+    let lambda = if rounding.dyadic() { 0.5 } else { 1.0 };
+    let q = if rounding == Rounding::Snapped {
+        // Moves of at most half a sample, no corner triangles: the bases' `M_e` or the sides'.
+        m[e].max(0.25 * m[e] + 0.5 * lambda * twist + lambda * lambda * mb)
+    } else {
+        let mx = m[0].max(m[1]).max(m[2]);
+        let bx = mixed[0].max(mixed[1]).max(mixed[2]);
+        let mc = mx.max(0.5 * mx + 0.5 * bx);
+        mc.max(m[e] + lambda * twist + lambda * lambda * mb)
+    };
+    let h = 1.0 + lambda;
+    Chord {
+        c1: h * b.kink.c1,
+        c2: ELEMENT_FACTOR * q + h * h * b.kink.c2,
+    }
+}
+
+/// `T_e = 2 max(B_e, B_{e+2})`: what bounds the cross term of a transition side along stored
+/// edge `e` (module notes), per unit `a_e β`. Mirror: `twist` in glsl/lod/levels.comp.
+fn twist(mixed: &[f32], e: usize) -> f32 {
+    2.0 * mixed[e].max(mixed[(e + 2) % 3])
+}
+
+/// The smallest level `1/β` at which `p β² + q β + c <= tol`, or `max` where none is (`c >=
+/// tol`); 1 where any is. Mirror: `quadratic_level` in glsl/lod/levels.comp.
+fn quadratic_level(p: f32, q: f32, c: f32, tol: f32, max: f32) -> f32 {
+    if c >= tol {
+        return max;
+    }
+    let d = tol - c;
+    // β = (−q + sqrt(q² + 4pd)) / 2p, in the form without cancellation.
+    let den = q + (q * q + 4.0 * p * d).sqrt();
+    if den <= 0.0 {
+        return 1.0;
+    }
+    let beta = 2.0 * d / den;
+    ((1.0 + 1.0 / 65536.0) / beta).clamp(1.0, max)
+}
+
+/// The smallest inner level at which the transition triangles along stored edge `e`, drawn at
+/// `a = 1/n_e`, meet tolerance `tol` (module notes, step 2), or the maximum level where none
+/// does. Mirror: `strip_level` in glsl/lod/levels.comp.
+fn strip_level(v: &LodView, r: &LodRecord, e: usize, a: f32, tol: f32) -> f32 {
+    let m = r.second;
+    let (k1, k2) = (r.chord[2], r.chord[3]);
+    let t = twist(&r.mixed, e);
+    let mb = m[(e + 1) % 3].max(m[(e + 2) % 3]);
+    let max = v.max_level as f32;
+    // The kink terms at a + β, then the sides' S_e (a move of at most h a).
+    let h = if v.rounding() == Rounding::Snapped {
+        0.5
+    } else {
+        1.0
+    };
+    let p = ELEMENT_FACTOR * mb + k2;
+    let q = ELEMENT_FACTOR * h * a * t + k1 + 2.0 * k2 * a;
+    let c = (ELEMENT_FACTOR * h * h * a * m[e] + k1 + k2 * a) * a;
+    let sides = quadratic_level(p, q, c, tol, max);
+    if h == 1.0 {
+        // The bases' a² M_e is S_e's own first term.
+        return sides;
+    }
+    let bases = quadratic_level(
+        k2,
+        k1 + 2.0 * k2 * a,
+        (ELEMENT_FACTOR * a * m[e] + k1 + k2 * a) * a,
+        tol,
+        max,
+    );
+    sides.max(bases)
+}
+
+/// The inner level raised until every transition triangle meets the element's tolerance
+/// (module notes, step 2): unchanged where no edge is drawn coarser than the inside or the
+/// triangles already fit, else the drawn level that fits (an exact integer). Mirror:
+/// `raise_for_transitions` in glsl/lod/levels.comp.
+pub fn raise_for_transitions(v: &LodView, r: &LodRecord, edges: &[f32; 3], inner: f32) -> f32 {
+    let (dyadic, max) = (v.dyadic(), v.max_level);
+    if r.chord[1] >= HUGE || r.chord[0] >= HUGE {
+        return inner;
+    }
+    let tol = tolerance(v, r.sphere);
+    let drawn_edges = edges.map(|l| drawn_level(l, dyadic, max));
+    let mut n = drawn_level(inner, dyadic, max);
+    let mut raised = false;
+    for _ in 0..4 {
+        if n >= max {
+            break;
+        }
+        let mut need = 0.0f32;
+        for (e, &ne) in drawn_edges.iter().enumerate() {
+            if ne < n {
+                need = need.max(strip_level(v, r, e, 1.0 / ne as f32, tol));
+            }
+        }
+        if need <= n as f32 {
+            break;
+        }
+        n = drawn_level(need, dyadic, max);
+        raised = true;
+    }
+    if raised {
+        n as f32
+    } else {
+        inner
+    }
+}
