@@ -426,11 +426,12 @@ pub fn check_size(elements: u64, level: u32) -> Result<u64, String> {
 /// `histogram` holds the visible elements per drawn level (`LevelReport::histogram`), each
 /// counted at `N²` triangles (an upper bound: transition triangles along coarser edges make a
 /// few less). One clause naming the count, the estimated memory and file, and the remedy: a
-/// larger `--pixel-error`, or the largest `--max-level` below `max_level` that fits (a power of
-/// two where `power_of_two`, the pattern driver's). Returns the refined triangle count.
+/// larger `--pixel-error` (named `pixel_error`, as given), or the largest `--max-level` below
+/// `max_level` that fits (a power of two where `power_of_two`, the pattern driver's). Returns
+/// the refined triangle count.
 pub fn check_adaptive_size(
     histogram: &std::collections::BTreeMap<u32, u64>,
-    pixel_error: f32,
+    pixel_error: &str,
     max_level: u32,
     power_of_two: bool,
 ) -> Result<u64, String> {
@@ -461,7 +462,7 @@ pub fn check_adaptive_size(
     };
     Err(format!(
         "--pixel-error {} chooses levels that would export {triangles} refined triangles ({elements} elements in view, up to level {}), about {:.1} GB of memory and a {:.1} GB file; at most {MAX_EXPORT_TRIANGLES} (2^24) are exported: {remedy}",
-        crate::lod::px(pixel_error),
+        pixel_error,
         histogram.keys().max().copied().unwrap_or(0),
         gb(triangles.saturating_mul(MEMORY_PER_TRIANGLE)),
         gb(triangles.saturating_mul(FILE_PER_TRIANGLE)),
@@ -666,9 +667,9 @@ mod tests {
         use std::collections::BTreeMap;
         // 4096 elements at level 64 are exactly 2^24 triangles; more at level 1 are too many.
         let fits = BTreeMap::from([(64, 4096)]);
-        assert_eq!(check_adaptive_size(&fits, 1.0, 64, true), Ok(1 << 24));
+        assert_eq!(check_adaptive_size(&fits, "1", 64, true), Ok(1 << 24));
         let over = BTreeMap::from([(1, 1000), (64, 4096)]);
-        let e = check_adaptive_size(&over, 0.5, 64, true).unwrap_err();
+        let e = check_adaptive_size(&over, "0.5", 64, true).unwrap_err();
         assert!(e.starts_with("--pixel-error 0.5 chooses levels that would export 16778216 refined triangles (5096 elements in view, up to level 64)"), "{e}");
         assert!(
             e.ends_with("use a larger --pixel-error, or --max-level 32 or a smaller power of two"),
@@ -676,10 +677,10 @@ mod tests {
         );
         assert!(!e.contains("--level"), "{e}");
         // Integer levels: the largest that fits, 63 (4096 x 63² + 1000 < 2^24).
-        let e = check_adaptive_size(&over, 0.5, 64, false).unwrap_err();
+        let e = check_adaptive_size(&over, "0.5", 64, false).unwrap_err();
         assert!(e.ends_with("--max-level 63 or lower"), "{e}");
         let crowd = BTreeMap::from([(1, (1 << 24) + 1), (2, 1)]);
-        let e = check_adaptive_size(&crowd, 0.5, 64, true).unwrap_err();
+        let e = check_adaptive_size(&crowd, "0.5", 64, true).unwrap_err();
         assert!(e.contains("too many to export even at level 1"), "{e}");
     }
 }

@@ -1038,14 +1038,17 @@ fn export_and_reload(obj: &Path, args: &[&str]) -> meshrefine::mesh::Mesh {
     meshrefine::mesh::Mesh::load_obj(obj).unwrap().0
 }
 
-/// Surface and displacement parameters out of range: one sentence naming the option, exit 1.
+/// Surface and displacement parameters out of range: one sentence naming the option and the
+/// value as typed, exit 1.
 #[test]
 fn surface_parameters_out_of_range_are_errors() {
     let out = tmp("params.png");
     let o = out.to_str().unwrap();
     for (args, needle) in [
         (&["--alpha", "2"][..], "--alpha 2 is not within [0, 1]"),
-        (&["--alpha", "nan"], "--alpha NaN"),
+        (&["--alpha", "nan"], "--alpha nan is not within [0, 1]"),
+        (&["--alpha", "1e3"], "--alpha 1e3 is not within [0, 1]"),
+        (&["--bias", "-inf"], "--bias -inf is not a finite number"),
         (&["--octaves", "0"], "--octaves 0 is not within [1, 8]"),
         (&["--octaves", "9"], "--octaves 9"),
         (
@@ -1059,7 +1062,7 @@ fn surface_parameters_out_of_range_are_errors() {
         // A negative exponent is a value too (clap's test of a negative number misses it).
         (
             &["--frequency", "-1e-30"],
-            "--frequency -0.000000000000000000000000000001 is not a finite number >= 0",
+            "--frequency -1e-30 is not a finite number >= 0",
         ),
     ] {
         let mut all = vec!["render", "-o", o, "--level", "2"];
@@ -1219,7 +1222,7 @@ fn heightmap_displacement_and_its_errors() {
         ),
         (
             vec![hm[0], hm[1], "--bias", "nan"],
-            "--bias NaN is not a finite number",
+            "--bias nan is not a finite number",
         ),
     ] {
         let mut args = vec!["render", p(&grid), "-o", o];
@@ -2711,7 +2714,11 @@ fn adaptive_options_refuse_bad_values() {
     );
     expect_error(
         &["render", "-o", p(&png), "--fov", "1e-9"],
-        &["--fov 0.000000001 is not within [0.01, 180) degrees"],
+        &["--fov 1e-9 is not within [0.01, 180) degrees"],
+    );
+    expect_error(
+        &["render", "-o", p(&png), "--fov", "NaN"],
+        &["--fov NaN is not within [0.01, 180) degrees"],
     );
 }
 
@@ -3369,10 +3376,10 @@ fn adaptive_exports_are_sized_by_the_levels_chosen() {
     std::fs::remove_file(&obj).unwrap();
     // Levels up to 64 on most elements: more than 2^24 triangles.
     run(
-        &["--pixel-error", "0.001"],
+        &["--pixel-error", "1e-3"],
         &[
             "cannot export '",
-            "--pixel-error 0.001 chooses levels that would export",
+            "--pixel-error 1e-3 chooses levels that would export",
             "at most 16777216 (2^24)",
             "use a larger --pixel-error, or --max-level 32 or a smaller power of two",
         ],

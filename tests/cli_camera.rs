@@ -198,7 +198,7 @@ fn info_culls_faces_facing_away_as_render_does() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(
         stderr.trim(),
-        "error: --amplitude NaN is not a finite number",
+        "error: --amplitude nan is not a finite number",
         "{stderr}"
     );
 }

@@ -36,9 +36,12 @@ pub const MIN_FOV: f32 = 0.01;
 
 /// One sentence for a bad `--fov`, or an `--eye` and `--look-at` with no view direction.
 pub fn check_camera(v: &ViewpointOpts) -> Result<()> {
-    let fov = v.fov;
+    let fov = v.fov.value;
     if !(fov.is_finite() && (MIN_FOV..180.0).contains(&fov)) {
-        bail!("--fov {fov} is not within [{MIN_FOV}, 180) degrees");
+        bail!(
+            "--fov {} is not within [{MIN_FOV}, 180) degrees",
+            v.fov.text
+        );
     }
     if let (Some(eye), Some(target)) = (v.eye, v.look_at) {
         let (eye, target) = (Vec3::from(eye), Vec3::from(target));
@@ -303,7 +306,7 @@ impl Adaptive<'_> {
         [
             format!(
                 "camera eye {ex} {ey} {ez} target {tx} {ty} {tz} up {ux} {uy} {uz} fov-y {} size {width} {height} pixel-error {}",
-                self.opts.viewpoint.fov,
+                self.opts.viewpoint.fov.value,
                 px(self.pixel_error)
             ),
             format!("levels {}", report.histogram_line()),
@@ -322,7 +325,7 @@ impl ViewpointOpts {
         Viewpoint {
             eye: self.eye.map(|e| frame.drawn(Vec3::from(e))),
             look_at: self.look_at.map(|t| frame.drawn(Vec3::from(t))),
-            fov_y: self.fov.to_radians(),
+            fov_y: self.fov.value.to_radians(),
         }
     }
 

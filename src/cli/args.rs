@@ -50,14 +50,14 @@ pub enum Command {
 #[command(next_help_heading = "Surface parameters")]
 pub struct ParamOpts {
     /// Phong tessellation's shape factor, within [0, 1].
-    #[arg(long, allow_hyphen_values = true, default_value_t = 0.75)]
-    pub alpha: f32,
+    #[arg(long, value_parser = typed_f32, allow_hyphen_values = true, default_value = "0.75")]
+    pub alpha: TypedF32,
     /// Displacement amplitude in the mesh's units (default: 3% of its bounding radius).
-    #[arg(long, allow_hyphen_values = true)]
-    pub amplitude: Option<f32>,
+    #[arg(long, value_parser = typed_f32, allow_hyphen_values = true)]
+    pub amplitude: Option<TypedF32>,
     /// Displacement frequency per mesh unit (default: 24 / bounding radius).
-    #[arg(long, allow_hyphen_values = true)]
-    pub frequency: Option<f32>,
+    #[arg(long, value_parser = typed_f32, allow_hyphen_values = true)]
+    pub frequency: Option<TypedF32>,
     /// Octaves of the noise displacement.
     #[arg(long, allow_hyphen_values = true, default_value_t = 1)]
     pub octaves: u32,
@@ -70,8 +70,8 @@ pub struct ParamOpts {
     #[arg(long, value_parser = choices::normal_field(), default_value = NormalField::default().name())]
     pub normal_field: NormalField,
     /// Height map displacement: P' = P + a·(h − bias)·N, h in [0, 1].
-    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
-    pub bias: f32,
+    #[arg(long, value_parser = typed_f32, default_value = "0", allow_hyphen_values = true)]
+    pub bias: TypedF32,
     /// Loop subdivision's boundaries (--surface loop): `edge-only` keeps boundary edges sharp
     /// (OpenSubdiv's VTX_BOUNDARY_EDGE_ONLY), `edge-and-corner` also pins boundary vertices of
     /// valence 2 (VTX_BOUNDARY_EDGE_AND_CORNER).
@@ -85,16 +85,38 @@ pub struct ParamOpts {
 }
 
 impl ParamOpts {
-    /// The parameters for a mesh of bounding radius `radius`, checked.
+    /// The parameters for a mesh of bounding radius `radius`, checked (a bad value named as
+    /// typed).
     pub fn params(&self, radius: f32) -> Result<SurfaceParams, String> {
+        let finite = |name: &str, x: &TypedF32, within: Option<(f32, f32, &str)>| {
+            let ok = x.value.is_finite()
+                && within.is_none_or(|(lo, hi, _)| (lo..=hi).contains(&x.value));
+            match within {
+                _ if ok => Ok(()),
+                Some((.., range)) => Err(format!("--{name} {} is not {range}", x.text)),
+                None => Err(format!("--{name} {} is not a finite number", x.text)),
+            }
+        };
+        finite("alpha", &self.alpha, Some((0.0, 1.0, "within [0, 1]")))?;
+        if let Some(a) = &self.amplitude {
+            finite("amplitude", a, None)?;
+        }
+        if let Some(f) = &self.frequency {
+            finite(
+                "frequency",
+                f,
+                Some((0.0, f32::MAX, "a finite number >= 0")),
+            )?;
+        }
+        finite("bias", &self.bias, None)?;
         let d = SurfaceParams::for_radius(radius);
         let p = SurfaceParams {
-            alpha: self.alpha,
-            amplitude: self.amplitude.unwrap_or(d.amplitude),
-            frequency: self.frequency.unwrap_or(d.frequency),
+            alpha: self.alpha.value,
+            amplitude: self.amplitude.as_ref().map_or(d.amplitude, |a| a.value),
+            frequency: self.frequency.as_ref().map_or(d.frequency, |f| f.value),
             octaves: self.octaves,
             origin: d.origin,
-            bias: self.bias,
+            bias: self.bias.value,
         };
         p.validate()?;
         Ok(p)
@@ -442,8 +464,8 @@ pub struct ViewpointOpts {
     /// Vertical field of view in degrees (without --eye the camera is fitted with it: the
     /// surface fills the image as at 45 degrees, until at wide angles the eye, kept outside the
     /// surface's reach, stays back and the surface takes less of the image).
-    #[arg(long, allow_hyphen_values = true, default_value_t = 45.0)]
-    pub fov: f32,
+    #[arg(long, value_parser = typed_f32, allow_hyphen_values = true, default_value = "45")]
+    pub fov: TypedF32,
 }
 
 /// Adaptive drawing: each element at the level a pixel error asks for, seen by a camera.

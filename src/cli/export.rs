@@ -160,13 +160,11 @@ fn check_adaptive(a: &Adaptive, cfg: &DrawConfig, chosen: &ChosenLevels) -> Resu
         );
     }
     let power_of_two = !cfg.driver.kind().integer_levels();
-    meshrefine::export::check_adaptive_size(
-        &chosen.histogram,
-        a.pixel_error,
-        cfg.level,
-        power_of_two,
-    )
-    .map_err(anyhow::Error::msg)
+    // The pixel error as typed (render's default when none was).
+    let named = (a.opts.pixel_error.as_ref())
+        .map_or_else(|| super::adaptive::px(a.pixel_error), |t| t.text.clone());
+    meshrefine::export::check_adaptive_size(&chosen.histogram, &named, cfg.level, power_of_two)
+        .map_err(anyhow::Error::msg)
 }
 
 /// Reports each captured pass on `progress`; the count of passes done so far.

@@ -304,7 +304,7 @@ fn print_levels(a: &InfoArgs, mut input: Input) -> Result<()> {
         super::adaptive::px(px),
         c.width,
         c.height,
-        v.fov,
+        v.fov.value,
         a.max_level,
         a.driver.name()
     );
