@@ -118,7 +118,7 @@ fn gpu_bounds_match_the_cpu() {
             octaves: 2,
             ..SurfaceParams::for_radius(r)
         };
-        let (mut compared, mut cones) = (0, 0);
+        let (mut compared, mut cones, mut still_cones) = (0, 0, 0);
         // pn with each normal field (the direction displacement moves along).
         let cases = [Surface::Flat, Surface::Phong]
             .map(|s| (s, NormalField::default()))
@@ -126,8 +126,13 @@ fn gpu_bounds_match_the_cpu() {
             .chain(NormalField::ALL.map(|f| (Surface::Pn, f)));
         for (surface, field) in cases {
             // A sine of frequency zero displaces nothing: bounds as undisplaced, on both sides.
+            // Nor does any displacement of amplitude zero: both keep the undisplaced cones.
             let flat_sine = SurfaceParams {
                 frequency: 0.0,
+                ..params
+            };
+            let still = SurfaceParams {
+                amplitude: 0.0,
                 ..params
             };
             for (displace, params) in [
@@ -135,6 +140,7 @@ fn gpu_bounds_match_the_cpu() {
                 (Displace::Sine, params),
                 (Displace::Noise, params),
                 (Displace::Sine, flat_sine),
+                (Displace::Noise, still),
             ] {
                 let mut f = FrameUniforms::zeroed();
                 f.params = params.to_gpu();
@@ -215,12 +221,20 @@ fn gpu_bounds_match_the_cpu() {
                             ),
                         }
                         cones += w.cone.is_some() as usize;
+                        if displace != Displace::None && !params.moves(displace) {
+                            still_cones += w.cone.is_some() as usize;
+                        }
                         compared += 1;
                     }
                 }
             }
         }
-        assert_eq!(compared, 20 * 4 * n);
+        assert_eq!(compared, 20 * 5 * n);
         assert!(cones > n, "{cones} cones");
+        // Displacement that moves nothing keeps the cones (facing-away culling stays on).
+        assert!(
+            still_cones > n,
+            "{still_cones} cones without a moving displacement"
+        );
     });
 }

@@ -302,6 +302,12 @@ LodNet lod_direction_net(uint surface, uint field, Corners c) {
     return net;
 }
 
+// Whether displacement d (1 sine, 2 noise) moves any point: not without amplitude, nor a sine
+// without frequency. Mirror: src/surface/params.rs `SurfaceParams::moves`.
+bool lod_moves(uint d, vec4 params) {
+    return d != 0u && params.y != 0.0 && !(d == 1u && params.z == 0.0);
+}
+
 // Height bounds (max, gradient, Hessian) of displacement d (1 sine, 2 noise) over sphere s.
 // params: (alpha, amplitude, frequency, octaves). Mirror: src/lod/displace.rs `height`.
 vec3 lod_height(uint d, vec4 params, vec3 origin, vec4 s) {
@@ -409,7 +415,7 @@ LodBounds lod_local(uint surface, uint field, uint d, vec4 params, vec3 origin, 
     b.second = m;
     // Canonical order c.o an odd permutation of the stored corners: the orientation flips.
     bool odd = !((c.o[0] == 0 && c.o[1] == 1) || (c.o[0] == 1 && c.o[1] == 2) || (c.o[0] == 2 && c.o[1] == 0));
-    b.cone = (edge < 0 && exact && d == 0u) ? lod_normal_cone(net, odd) : vec4(0.0);
+    b.cone = (edge < 0 && exact && !lod_moves(d, params)) ? lod_normal_cone(net, odd) : vec4(0.0);
     return b;
 }
 

@@ -234,7 +234,8 @@ impl<'a> Lod<'a> {
                 }
             }
         }
-        let cone = match (edge, exact, displaced) {
+        // The normal cone is the undisplaced surface's: only where nothing moves it.
+        let cone = match (edge, exact, self.params.moves(self.displace)) {
             (None, Some(net), false) => super::cull::normal_cone(&net, odd_permutation(c.order)),
             _ => None,
         };

@@ -106,6 +106,15 @@ impl SurfaceParams {
         Ok(())
     }
 
+    /// Whether displacement `d` moves any point: not without amplitude, nor a sine without
+    /// frequency (`a sin(0)`), which draw the undisplaced surface bit for bit (`P + 0`).
+    /// Mirror: `lod_moves` in glsl/include/lod.glsl.
+    pub fn moves(&self, d: Displace) -> bool {
+        d != Displace::None
+            && self.amplitude != 0.0
+            && !(d == Displace::Sine && self.frequency == 0.0)
+    }
+
     /// How far displacement `d` can move a point, in the mesh's units: |a| times the largest
     /// |height| (1 for sine, 2 for noise's octaves, 1 + |bias| for a height map).
     pub fn reach(&self, d: Displace) -> f64 {
