@@ -192,7 +192,7 @@ fn end_to_end(
     records: &[ElementRecord],
     screen: &Screen,
     rounding: Rounding,
-) -> (usize, usize, f32) {
+) -> (usize, usize, f32, [u64; 2]) {
     use crate::lod::frame::{corner_indices, frame_levels, lod_records, LodView};
     use crate::lod::levels::drawn_level;
     let lod = case.lod();
@@ -272,7 +272,7 @@ fn end_to_end(
         }
     }
     eprintln!("{tris} triangles, {plain} without the transitions' needs");
-    (drawn, capped, worst)
+    (drawn, capped, worst, [tris, plain])
 }
 
 /// The metric end to end: levels for a real mesh and camera (the level pass's mirror, for a
@@ -326,7 +326,8 @@ fn pixel_error_holds_end_to_end() {
         };
         for rounding in Rounding::ALL {
             let dyadic = rounding.dyadic();
-            let (drawn, capped, worst) = end_to_end(&case, &records, &screen, rounding);
+            let (drawn, capped, worst, [tris, plain]) =
+                end_to_end(&case, &records, &screen, rounding);
             let what = format!(
                 "{} + {}{}",
                 surface.name(),
@@ -343,6 +344,21 @@ fn pixel_error_holds_end_to_end() {
                 "{what}: {capped} of {drawn} elements capped"
             );
             assert!(worst > 1.0 / least, "{what}: worst {worst} px");
+            // The pattern driver's snapping keeps its transitions cheap (docs/adaptivity.md,
+            // "Transition triangles": about a tenth more triangles on pn, where the
+            // tessellator's bound asks for several times as many).
+            if rounding == Rounding::Snapped && surface == Surface::Pn {
+                assert!(
+                    5 * tris <= 6 * plain,
+                    "{what}: {tris} triangles against {plain}"
+                );
+            }
+            if rounding == Rounding::Dyadic && surface == Surface::Pn {
+                assert!(
+                    tris >= 2 * plain,
+                    "{what}: {tris} triangles against {plain}"
+                );
+            }
         }
     }
 }
