@@ -312,7 +312,7 @@ bool lod_moves(uint d, vec4 params) {
 // params: (alpha, amplitude, frequency, octaves). Mirror: src/lod/displace.rs `height`.
 vec3 lod_height(uint d, vec4 params, vec3 origin, vec4 s) {
     float a = abs(params.y), f = params.z;
-    if (d == 1u && (a == 0.0 || f == 0.0)) {
+    if (d == 1u && !lod_moves(d, params)) {
         return vec3(0.0); // no displacement at all
     }
     if (d == 1u) {

@@ -4,6 +4,8 @@
 #![forbid(unsafe_code)]
 
 use super::choices;
+pub use super::numbers::TypedF32;
+use super::numbers::{parse_vec3, typed_f32};
 use clap::{Args, Parser, Subcommand};
 use meshrefine::render::{Driver, Submit};
 use meshrefine::surface::loop_::Boundary;
@@ -88,27 +90,15 @@ impl ParamOpts {
     /// The parameters for a mesh of bounding radius `radius`, checked (a bad value named as
     /// typed).
     pub fn params(&self, radius: f32) -> Result<SurfaceParams, String> {
-        let finite = |name: &str, x: &TypedF32, within: Option<(f32, f32, &str)>| {
-            let ok = x.value.is_finite()
-                && within.is_none_or(|(lo, hi, _)| (lo..=hi).contains(&x.value));
-            match within {
-                _ if ok => Ok(()),
-                Some((.., range)) => Err(format!("--{name} {} is not {range}", x.text)),
-                None => Err(format!("--{name} {} is not a finite number", x.text)),
-            }
-        };
-        finite("alpha", &self.alpha, Some((0.0, 1.0, "within [0, 1]")))?;
+        self.alpha
+            .check("alpha", Some((0.0, 1.0, "within [0, 1]")))?;
         if let Some(a) = &self.amplitude {
-            finite("amplitude", a, None)?;
+            a.check("amplitude", None)?;
         }
         if let Some(f) = &self.frequency {
-            finite(
-                "frequency",
-                f,
-                Some((0.0, f32::MAX, "a finite number >= 0")),
-            )?;
+            f.check("frequency", Some((0.0, f32::MAX, "a finite number >= 0")))?;
         }
-        finite("bias", &self.bias, None)?;
+        self.bias.check("bias", None)?;
         let d = SurfaceParams::for_radius(radius);
         let p = SurfaceParams {
             alpha: self.alpha.value,
@@ -493,43 +483,6 @@ pub struct AdaptiveOpts {
     pub geomorph: Option<bool>,
     #[command(flatten, next_help_heading = "Camera")]
     pub viewpoint: ViewpointOpts,
-}
-
-/// A number as typed and as parsed: a message about it names what was typed (`1e39`, which is
-/// `inf` once parsed).
-#[derive(Clone, Debug)]
-pub struct TypedF32 {
-    pub value: f32,
-    pub text: String,
-}
-
-impl From<f32> for TypedF32 {
-    /// A value given by the program (a default), named as a pixel error is printed.
-    fn from(value: f32) -> Self {
-        Self {
-            value,
-            text: meshrefine::lod::px(value),
-        }
-    }
-}
-
-/// [`TypedF32`]: any text `f32` parses (its checks are the option's own, in one sentence).
-fn typed_f32(s: &str) -> Result<TypedF32, String> {
-    let value = s.parse::<f32>().map_err(|e| format!("{e}"))?;
-    Ok(TypedF32 {
-        value,
-        text: s.to_string(),
-    })
-}
-
-/// `X,Y,Z`: three finite numbers.
-fn parse_vec3(s: &str) -> Result<[f32; 3], String> {
-    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
-    let numbers: Vec<f32> = parts.iter().filter_map(|p| p.parse().ok()).collect();
-    match numbers[..] {
-        [x, y, z] if parts.len() == 3 && numbers.iter().all(|v| v.is_finite()) => Ok([x, y, z]),
-        _ => Err(format!("'{s}' is not three finite numbers X,Y,Z")),
-    }
 }
 
 #[derive(Args, Debug)]

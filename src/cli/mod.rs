@@ -16,6 +16,7 @@ mod export;
 mod info;
 mod input;
 mod loop_check;
+mod numbers;
 mod options;
 mod progress;
 mod render;

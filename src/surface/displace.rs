@@ -133,7 +133,7 @@ pub fn height(d: Displace, params: &SurfaceParams, p: Vec3) -> (f32, Vec3) {
 /// every bound zero.
 fn sine_bound(params: &SurfaceParams, s: &Sphere) -> Height {
     let (a, f) = (params.amplitude.abs(), params.frequency);
-    if a == 0.0 || f == 0.0 {
+    if !params.moves(super::Displace::Sine) {
         return Height {
             max: 0.0,
             grad: 0.0,

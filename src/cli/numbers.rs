@@ -1,0 +1,53 @@
+//! Numeric option values: a number kept as typed (its messages name what the user wrote) and
+//! three coordinates.
+#![forbid(unsafe_code)]
+
+/// A number as typed and as parsed: a message about it names what was typed (`1e39`, which is
+/// `inf` once parsed).
+#[derive(Clone, Debug)]
+pub struct TypedF32 {
+    pub value: f32,
+    pub text: String,
+}
+
+impl TypedF32 {
+    /// One sentence naming option `--name` and the value as typed when it is not finite, or
+    /// outside `within` (`lo`, `hi`, how the sentence says the range).
+    pub fn check(&self, name: &str, within: Option<(f32, f32, &str)>) -> Result<(), String> {
+        let v = self.value;
+        match within {
+            _ if v.is_finite() && within.is_none_or(|(lo, hi, _)| (lo..=hi).contains(&v)) => Ok(()),
+            Some((.., range)) => Err(format!("--{name} {} is not {range}", self.text)),
+            None => Err(format!("--{name} {} is not a finite number", self.text)),
+        }
+    }
+}
+
+impl From<f32> for TypedF32 {
+    /// A value given by the program (a default), named as a pixel error is printed.
+    fn from(value: f32) -> Self {
+        Self {
+            value,
+            text: meshrefine::lod::px(value),
+        }
+    }
+}
+
+/// [`TypedF32`]: any text `f32` parses (its checks are the option's own, in one sentence).
+pub fn typed_f32(s: &str) -> Result<TypedF32, String> {
+    let value = s.parse::<f32>().map_err(|e| format!("{e}"))?;
+    Ok(TypedF32 {
+        value,
+        text: s.to_string(),
+    })
+}
+
+/// `X,Y,Z`: three finite numbers.
+pub fn parse_vec3(s: &str) -> Result<[f32; 3], String> {
+    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
+    let numbers: Vec<f32> = parts.iter().filter_map(|p| p.parse().ok()).collect();
+    match numbers[..] {
+        [x, y, z] if parts.len() == 3 && numbers.iter().all(|v| v.is_finite()) => Ok([x, y, z]),
+        _ => Err(format!("'{s}' is not three finite numbers X,Y,Z")),
+    }
+}
