@@ -3,9 +3,29 @@
 # WAYLAND_DISPLAY), otherwise a headless render of the default scene to meshrefine-view.png.
 # The scene: Spot's control cage as Loop's limit surface, refined adaptively for a 1-pixel
 # bound (levels per element from the camera, crack-free), anti-aliased, with the cage drawn
-# over it. Extra arguments go to `meshrefine view` (e.g. --surface pn, --wireframe both).
+# over it. Extra arguments go to `meshrefine view` and replace those defaults (e.g.
+# --surface pn, --wireframe both, --level 4 instead of the pixel error).
+# MESHREFINE_DEMO_PRINT=1 prints the arguments given to `view`, one a line, and does nothing else.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# The defaults the user's arguments do not replace (`--opt value` or `--opt=value`).
+given() {
+    local a
+    for a in "${@:2}"; do
+        for opt in $1; do
+            [[ $a == "$opt" || $a == "$opt="* ]] && return 0
+        done
+    done
+    return 1
+}
+defaults=()
+given --surface "$@" || defaults+=(--surface loop)
+given --wireframe "$@" || defaults+=(--wireframe cage)
+given "--pixel-error --level" "$@" || defaults+=(--pixel-error 1)
+if [[ ${MESHREFINE_DEMO_PRINT:-} == 1 ]]; then
+    printf '%s\n' "${defaults[@]}" "$@"
+    exit 0
+fi
 source scripts/setup.sh
 cargo build --quiet
-exec ./target/debug/meshrefine view --surface loop --wireframe cage --pixel-error 1 "$@"
+exec ./target/debug/meshrefine view "${defaults[@]}" "$@"

@@ -257,6 +257,14 @@ fn info_reports_topology_and_footprint() {
         s.contains(&format!("static {static_bytes:>15}")) || s.contains(&static_bytes.to_string()),
         "{s}"
     );
+    // Loop's elements are M1's faces: the icosahedron's 20 triangles make 80, x 64 at level 8
+    // (what `export --surface loop --level 8` writes).
+    let ico = model_path("icosahedron.obj");
+    let s = ok(&["info", p(&ico), "--surface", "loop", "--level", "8"]);
+    assert!(
+        s.contains("5120 refined triangles (64 per face of M1"),
+        "{s}"
+    );
 }
 
 #[test]
@@ -866,6 +874,9 @@ fn meshes_of_any_f32_scale_are_framed_and_blank_images_are_errors() {
     assert!(png.exists() && covered(&png) == 0);
     let out = meshrefine(&args);
     assert!(!String::from_utf8_lossy(&out.stdout).contains("wrote"));
+    // Drawn adaptively (the default) with nothing culled: the message blames no culling.
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("cull"), "{stderr}");
 }
 
 #[test]
@@ -3849,4 +3860,58 @@ fn info_prints_extreme_pixel_errors_and_empty_views_plainly() {
         stderr.contains("note: the 1e-30 px bound is not met on"),
         "{stderr}"
     );
+}
+
+/// `scripts/demo.sh` passes its arguments to `view` and keeps only the defaults they do not
+/// replace (docs/window.md's example `--surface pn --wireframe both`; `--level` instead of the
+/// pixel error), and `view` accepts what it passes.
+#[test]
+fn demo_script_arguments_replace_its_defaults() {
+    let demo = |args: &[&str]| -> Vec<String> {
+        let out = Command::new("bash")
+            .arg(concat!(env!("CARGO_MANIFEST_DIR"), "/scripts/demo.sh"))
+            .args(args)
+            .env("MESHREFINE_DEMO_PRINT", "1")
+            .output()
+            .expect("run bash");
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        String::from_utf8_lossy(&out.stdout)
+            .lines()
+            .map(String::from)
+            .collect()
+    };
+    let joined = |v: Vec<String>| v.join(" ");
+    assert_eq!(
+        joined(demo(&[])),
+        "--surface loop --wireframe cage --pixel-error 1"
+    );
+    assert_eq!(
+        joined(demo(&["--surface", "pn", "--wireframe", "both"])),
+        "--pixel-error 1 --surface pn --wireframe both"
+    );
+    assert_eq!(
+        joined(demo(&["--surface=flat", "--level", "2", "x.obj"])),
+        "--wireframe cage --surface=flat --level 2 x.obj"
+    );
+    let png = tmp("demo.png");
+    let mut args = demo(&["--surface", "pn", "--wireframe", "both"]);
+    args.extend(
+        [
+            "--width",
+            "64",
+            "--height",
+            "36",
+            "--headless-output",
+            p(&png),
+        ]
+        .map(String::from),
+    );
+    let mut view = vec!["view"];
+    view.extend(args.iter().map(String::as_str));
+    let out = ok(&view);
+    assert!(out.contains("adaptive at 1 px"), "{out}");
 }

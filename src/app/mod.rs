@@ -51,7 +51,7 @@ pub struct NoWindowSystem(pub String);
 pub struct ViewOptions {
     pub cfg: DrawConfig,
     /// Exit after this many frames.
-    pub frames: Option<u64>,
+    pub frames: Option<u32>,
     /// Save the last frame here.
     pub screenshot: Option<PathBuf>,
     pub wireframe: bool,
@@ -438,7 +438,7 @@ impl State {
             self.controls.asked.screenshot |= asked.screenshot;
             return Ok(true);
         };
-        let last = self.quit || opts.frames.is_some_and(|n| self.frames + 1 >= n);
+        let last = self.quit || opts.frames.is_some_and(|n| self.frames + 1 >= u64::from(n));
         // `--screenshot` saves the last frame, the screenshot key this one (on the last frame
         // with `--screenshot` too, it is saved once, to `--screenshot`).
         let shot = match (last, &opts.screenshot) {

@@ -210,8 +210,8 @@ pub struct ViewArgs {
     #[command(flatten)]
     pub technique: Technique,
     /// Exit after N frames (at least 1).
-    #[arg(long, allow_hyphen_values = true, value_parser = clap::value_parser!(u64).range(1..), help_heading = "Window")]
-    pub frames: Option<u64>,
+    #[arg(long, allow_hyphen_values = true, value_parser = clap::value_parser!(u32).range(1..), help_heading = "Window")]
+    pub frames: Option<u32>,
     /// Save the last frame to this PNG file.
     #[arg(long, value_name = "FILE.png", help_heading = "Window")]
     pub screenshot: Option<PathBuf>,

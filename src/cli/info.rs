@@ -49,7 +49,9 @@ pub fn run(a: &InfoArgs, desc: &ContextDesc) -> Result<()> {
     }
     print_stats(path, &mesh, &report)?;
     if let Some(level) = a.level {
-        print_geometry(level, mesh.triangles.len() as u64)?;
+        // Loop's drivers draw the faces of one Loop step, four to a coarse triangle.
+        let elements = mesh.triangles.len() as u64 * if for_loop { 4 } else { 1 };
+        print_geometry(level, elements, for_loop)?;
     }
     // With --pixel-error the levels build Loop's data on the mesh as drawn and print these
     // lines from it (the same topology, so the same tables): built once.
@@ -102,11 +104,17 @@ fn print_stats(path: &str, mesh: &Mesh, report: &LoadReport) -> Result<()> {
     Ok(())
 }
 
-/// `--level`: the refined triangles of `triangles` coarse ones, and each driver's GPU geometry.
-fn print_geometry(level: u32, triangles: u64) -> Result<()> {
-    let t = triangles;
+/// `--level`: the refined triangles of `elements` (the coarse triangles, or M1's faces for
+/// `loop`), and each driver's GPU geometry.
+fn print_geometry(level: u32, elements: u64, m1_faces: bool) -> Result<()> {
+    let t = elements;
+    let element = if m1_faces {
+        "face of M1 (one Loop step)"
+    } else {
+        "coarse triangle"
+    };
     out!(
-        "level {level}: {} refined triangles ({} per coarse triangle)",
+        "level {level}: {} refined triangles ({} per {element})",
         t * meshrefine::pattern::triangle_count(level) as u64,
         meshrefine::pattern::triangle_count(level)
     );

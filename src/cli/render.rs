@@ -104,6 +104,8 @@ pub fn render_png(
     let mut line = None;
     // The elements culled when the level pass culled every one (nothing was drawn).
     let mut culled_all = None;
+    // Whether the level pass culled any element.
+    let mut culled_some = false;
     let image = (|| -> Result<_> {
         let mut cfg = *cfg;
         let uniform_level = cfg.level;
@@ -147,6 +149,7 @@ pub fn render_png(
             line = Some(levels_line(a, cfg.level, &report));
             slow = Some((report.adaptive_triangles, report.faster()));
             culled_all = report.histogram.is_empty().then_some(report.culled);
+            culled_some = report.culled > 0;
         }
         if let Some(why) = (adaptive.filter(|a| a.by_default))
             .map(|_| cannot_adapt(&mut h, &mut scene, &viewed))
@@ -188,7 +191,7 @@ pub fn render_png(
                 "culling removed all {n} elements: the camera given by --eye and --look-at sees none of them, or they face away from the eye (--cull off draws those)"
             ),
             // Some drawn, none covering a pixel: culling may have removed those that would.
-            None if adaptive.is_some_and(|a| a.cull) && line.is_some() => format!(
+            None if culled_some && line.is_some() => format!(
                 "{camera}, or culling removed those that would show (--cull off draws them)"
             ),
             None => camera.to_string(),

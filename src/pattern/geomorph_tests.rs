@@ -191,7 +191,8 @@ fn geomorphing_removes_popping() {
     assert!(changes > 100, "only {changes} level changes");
     assert!(n_on > 100_000 && n_off > 100_000);
     assert!(on <= 0.2, "geomorphing pops by {on} px");
-    // Measured: on 0.085 px, off 0.27 px (the bound is about three times the true error).
+    // Without geomorphing a level change moves the surface by a good part of the pixel error
+    // (docs/adaptivity.md, "The popping test", gives the figures).
     assert!(
         off > 0.2 && off > 2.5 * on,
         "without geomorphing only {off} px (with: {on} px): the test sees no popping"
