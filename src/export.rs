@@ -11,14 +11,17 @@ pub use texcoords::element_texcoord;
 
 use crate::pattern::Pattern;
 use crate::render::{CaptureResult, CapturedVertex, XfbVertex};
-use glam::{Vec2, Vec3};
+use glam::{DVec3, Vec2, Vec3};
 use std::collections::HashMap;
 use std::fmt::Write as _;
 
 /// A welded triangle mesh with separately indexed normals (OBJ's `v`/`vn`).
 #[derive(Clone, Debug, Default)]
 pub struct RefinedMesh {
+    /// As drawn; written where [`RefinedMesh::placement`] puts them.
     pub positions: Vec<Vec3>,
+    /// Where the positions drawn lie in the coordinates written (the identity by default).
+    pub placement: Placement,
     pub normals: Vec<Vec3>,
     /// Per corner: (position index, normal index).
     pub triangles: Vec<[(u32, u32); 3]>,
@@ -26,6 +29,46 @@ pub struct RefinedMesh {
     pub texcoords: Vec<Vec2>,
     /// Per corner of each triangle, its index into `texcoords` (empty when there are none).
     pub texcoord_triangles: Vec<[u32; 3]>,
+}
+
+/// The map from drawn positions to written ones, `drawn / scale + centre` in `f64`: the inverse
+/// of `Mesh::viewing_transform`, so an export is written in the mesh's own coordinates while
+/// the GPU draws it centred at unit size.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Placement {
+    pub centre: DVec3,
+    pub scale: f64,
+}
+
+impl Default for Placement {
+    fn default() -> Self {
+        Self {
+            centre: DVec3::ZERO,
+            scale: 1.0,
+        }
+    }
+}
+
+impl Placement {
+    /// Whether the written coordinates need more than `f32`: the mesh lies farther from the
+    /// origin than three times its size (a drawn position's `f32` step, `2^-24` of the
+    /// bounding radius, would be lost to the larger coordinate's). Then each coordinate is
+    /// written as the shortest decimal of its `f64` value, else of its `f32` rounding (shorter
+    /// lines, and the digits single-precision readers take).
+    pub fn wide(&self) -> bool {
+        self.centre.abs().max_element() * self.scale > 3.0
+    }
+
+    /// Writes `p` placed, `v X Y Z`.
+    fn write_v(&self, line: &mut String, p: Vec3) {
+        let q = p.as_dvec3() / self.scale + self.centre;
+        let _ = if self.wide() {
+            writeln!(line, "v {} {} {}", q.x, q.y, q.z)
+        } else {
+            let q = q.as_vec3();
+            writeln!(line, "v {} {} {}", q.x, q.y, q.z)
+        };
+    }
 }
 
 /// The texture coordinates of a captured vertex (from its element and sample), for
@@ -331,8 +374,8 @@ pub fn write_obj(
     for h in header {
         writeln!(out, "# {h}")?;
     }
-    for p in &mesh.positions {
-        let _ = writeln!(line, "v {} {} {}", p.x, p.y, p.z);
+    for &p in &mesh.positions {
+        mesh.placement.write_v(&mut line, p);
         emit(out, &mut line)?;
     }
     for t in &mesh.texcoords {

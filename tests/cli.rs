@@ -3915,3 +3915,49 @@ fn demo_script_arguments_replace_its_defaults() {
     let out = ok(&view);
     assert!(out.contains("adaptive at 1 px"), "{out}");
 }
+
+/// An export of a mesh far from the origin keeps the refined shape: written in `f64` where
+/// `f32` would round it away, it is the same mesh as at the origin, moved (the tetrahedron at
+/// 1e7, every corner exact in `f32`; at that offset `f32` steps by 1, the whole tetrahedron's
+/// size). Near the origin the lines are `f32`'s.
+#[test]
+fn exports_far_from_the_origin_keep_their_shape() {
+    let coords = |text: &str| -> Vec<[f64; 3]> {
+        (text.lines())
+            .filter_map(|l| l.strip_prefix("v "))
+            .map(|l| {
+                let c: Vec<f64> = l.split(' ').map(|x| x.parse().unwrap()).collect();
+                [c[0], c[1], c[2]]
+            })
+            .collect()
+    };
+    let export = |name: &str, offset: f64, surface: &str, driver: &str| -> String {
+        let mesh = write(&format!("{name}.obj"), tetrahedron(1.0, offset).as_bytes());
+        let obj = tmp(&format!("{name}-{surface}-{driver}.out.obj"));
+        let args = ["export", p(&mesh), "--surface", surface, "--driver", driver];
+        ok(&[&args[..], &["--level", "8", "-o", p(&obj)]].concat());
+        std::fs::read_to_string(&obj).unwrap()
+    };
+    for (surface, driver) in [("pn", "pattern"), ("phong", "tess")] {
+        let near = export("tet-origin", 0.0, surface, driver);
+        let far = export("tet-1e7", 1e7, surface, driver);
+        let (near, far) = (coords(&near), coords(&far));
+        assert_eq!(near.len(), far.len());
+        assert!(near.len() > 100);
+        let worst = near
+            .iter()
+            .zip(&far)
+            .flat_map(|(a, b)| (0..3).map(move |k| (b[k] - 1e7 - a[k]).abs()))
+            .fold(0.0f64, f64::max);
+        // Near: f32's rounding of coordinates up to 1.4 (at most 6e-8); far: f64's.
+        assert!(worst < 2e-7, "{surface} {driver}: moved by {worst}");
+        let mut distinct: Vec<String> = far.iter().map(|c| format!("{c:?}")).collect();
+        distinct.sort();
+        distinct.dedup();
+        assert_eq!(
+            distinct.len(),
+            far.len(),
+            "{surface} {driver}: vertices merged"
+        );
+    }
+}

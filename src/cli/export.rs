@@ -98,9 +98,7 @@ fn export(
     h.max_capture_bytes = max_capture_bytes;
     let passes = report_capture_passes(&mut h, &progress);
     let mut refined = capture(&mut h, &mut scene, cfg, &camera, adaptive_camera.is_some())?;
-    for p in &mut refined.positions {
-        *p = frame.mesh(*p);
-    }
+    refined.placement = meshrefine::export::Placement { centre, scale };
     if scene.data.uvs.is_some() && cfg.surface.uses_loop_faces() {
         crate::note(format_args!(
             "warning: '{}' has texture coordinates, but --surface loop writes none (vt): its elements are Loop's M1 faces, which carry none",
