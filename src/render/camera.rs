@@ -305,8 +305,15 @@ impl Viewpoint {
         let ray = target - eye;
         let dir = ray.normalize_or_zero();
         let along = (c - eye).dot(dir);
+        // A look-at beyond the whole surface with the surface not ahead of the eye (behind or
+        // beside it) comes back as far as the surface's farthest point: the camera keeps the
+        // target and rebuilds the eye from it (`Camera::eye`), in f32, which at a distance of
+        // 1e7 radii would move the eye by a good part of the mesh.
+        let reach = (c - eye).length() + r;
         let target = if along > r * 1e-3 && along < ray.length() {
             eye + dir * along
+        } else if ray.length() > reach {
+            eye + dir * reach
         } else {
             target
         };
@@ -494,6 +501,37 @@ mod tests {
                 assert_eq!(cam, free, "{degrees}");
             } else {
                 assert!(cam.distance >= free.distance, "{degrees}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_distant_look_at_keeps_the_fitted_eye_and_its_own_direction() {
+        let points: Vec<Vec3> = (0..8)
+            .map(|i| Vec3::new((i & 1) as f32, ((i >> 1) & 1) as f32, (i >> 2) as f32) - 0.5)
+            .collect();
+        let framing = Framing::points(points);
+        let fitted = Camera::fit_with_fov(&framing, 4.0 / 3.0, 45f32.to_radians());
+        let eye = fitted.eye();
+        for d in [1e3f32, 1e5, 1e7, 1e12] {
+            for axis in [
+                Vec3::X,
+                -Vec3::X,
+                Vec3::Z,
+                -Vec3::Z,
+                Vec3::new(0.6, 0.0, 0.8),
+            ] {
+                let look_at = axis * d;
+                let v = Viewpoint {
+                    look_at: Some(look_at),
+                    ..Viewpoint::default()
+                };
+                let cam = v.complete(fitted).unwrap();
+                let moved = (cam.eye() - eye).length();
+                assert!(moved < 1e-5, "{d} {axis}: the eye moved by {moved}");
+                let want = (look_at - eye).normalize();
+                let got = (cam.target - cam.eye()).normalize();
+                assert!(got.dot(want) > 1.0 - 1e-6, "{d} {axis}: looks along {got}");
             }
         }
     }
