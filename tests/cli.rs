@@ -2395,6 +2395,24 @@ fn info_reports_adaptive_levels_for_a_camera() {
         triangles(&gliding) > triangles(&pattern),
         "{gliding}\n{pattern}"
     );
+    // Counted as the tessellator draws them (as bench counts them), not N² an element.
+    let tess_count = |out: &str| -> (u64, u64) {
+        let l = out.lines().find(|l| l.contains("levels (")).unwrap();
+        let (.., culled, drawn) = adaptive_report(out);
+        let uniform = adaptive_report(out).2;
+        let per = meshrefine::render::tess::tess_triangle_count;
+        let adaptive = (l.split_whitespace().skip(3))
+            .map(|pair| {
+                let (level, n) = pair.split_once(':').unwrap();
+                n.parse::<u64>().unwrap() * per(level.parse().unwrap()) as u64
+            })
+            .sum();
+        (adaptive, (culled + drawn) * per(uniform) as u64)
+    };
+    for out in [&gliding, &tess] {
+        let (adaptive, uniform, ..) = adaptive_report(out);
+        assert_eq!((adaptive, uniform), tess_count(out), "{out}");
+    }
     // The static driver refines on the CPU at the pattern driver's levels.
     let stat = ok(&[
         "info",
@@ -2464,6 +2482,13 @@ fn info_reports_adaptive_levels_for_a_camera() {
         .map(|(_, n)| n.parse::<u64>().unwrap())
         .sum();
     assert_eq!(capped, above, "{low}");
+    // The uniform level compared with is the cap, which does not meet the bound either.
+    assert!(
+        low.contains("at uniform level 8 (")
+            && low.contains("the largest level, which does not meet the bound either)"),
+        "{low}"
+    );
+    assert!(!pattern.contains("does not meet the bound"), "{pattern}");
     // Loop's elements are M1's faces.
     let loop_ = ok(&["info", spot, "--pixel-error", "1", "--surface", "loop"]);
     assert!(loop_.contains("level:M1 faces"), "{loop_}");
@@ -3744,7 +3769,8 @@ fn render_and_export_say_where_the_pixel_error_is_not_met() {
     let (free_out, free_err) = run(&[&["render", spot, "-o", p(&png)], &at("64")[..]].concat());
     let (_, capped_err) = run(&[&["render", spot, "-o", p(&png)], &at("8")[..]].concat());
     let capped = count(&capped_err, "note: the 1 px bound is not met on", "");
-    let near = |err: &str| count(err, "note:", "hold the eye in their bounds");
+    // "1 element holds the eye in its bounds", "N elements hold the eye in their bounds".
+    let near = |err: &str| count(err, "note:", "the eye in");
     assert!(capped > 0, "{capped_err}");
     assert!(
         capped_err.contains(&format!("note: the 1 px bound is not met on {capped} elements: they need a level above the largest, 8 (--max-level)")),

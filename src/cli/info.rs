@@ -355,12 +355,19 @@ fn print_levels(a: &InfoArgs, mut input: Input) -> Result<()> {
         out!("  refined triangles: none drawn");
         return Ok(());
     }
+    // As the driver draws them (the tessellator makes about 1.5 N² at level N).
+    let (adaptive, uniform) = report.triangles_on(|l| a.driver.refined_per_element(l));
+    // Where --max-level keeps the bound from being met, the uniform level is that cap, which
+    // does not meet it either.
+    let capped = if u.capped > 0 {
+        "; the largest level, which does not meet the bound either"
+    } else {
+        ""
+    };
     out!(
-        "  refined triangles: {} adaptive against {} at uniform level {} ({:.2}x)",
-        report.adaptive_triangles,
-        report.uniform_triangles,
+        "  refined triangles: {adaptive} adaptive against {uniform} at uniform level {} ({:.2}x{capped})",
         report.uniform_level,
-        report.adaptive_triangles as f64 / report.uniform_triangles.max(1) as f64
+        adaptive as f64 / uniform.max(1) as f64
     );
     Ok(())
 }

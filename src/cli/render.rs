@@ -147,7 +147,10 @@ pub fn render_png(
                 a.set_up(&mut h, &mut scene, &viewed, Capture::None, size, &frame)?;
             camera = cam;
             line = Some(levels_line(a, cfg.level, &report));
-            slow = Some((report.adaptive_triangles, report.faster()));
+            let drawn = report
+                .triangles_on(|l| viewed.driver.refined_per_element(l))
+                .0;
+            slow = Some((drawn, report.faster()));
             culled_all = report.histogram.is_empty().then_some(report.culled);
             culled_some = report.culled > 0;
         }

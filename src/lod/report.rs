@@ -34,6 +34,19 @@ impl LevelReport {
         pairs.join(" ")
     }
 
+    /// The triangles of [`LevelReport::adaptive_triangles`] and
+    /// [`LevelReport::uniform_triangles`] on a driver that draws `per_element(l)` triangles
+    /// for an element at level `l` (`Driver::refined_per_element`: `N²` on the pattern and
+    /// static drivers, the tessellator's count for `tess`, each element counted with its edges
+    /// at its inner level).
+    pub fn triangles_on(&self, per_element: impl Fn(u32) -> u32) -> (u64, u64) {
+        let adaptive = (self.histogram.iter())
+            .map(|(&l, &n)| n * per_element(l) as u64)
+            .sum();
+        let elements = self.histogram.values().sum::<u64>() + self.culled;
+        (adaptive, elements * per_element(self.uniform_level) as u64)
+    }
+
     /// What draws a frame of these levels faster, for the slow-frame warning: elements with no
     /// finite bound, or holding the eye in theirs, are at the largest level whatever the pixel
     /// error, so where they are most of the frame only a smaller largest level does.
@@ -63,28 +76,40 @@ impl super::frame::Unmet {
             let verb = if n == 1 { one } else { many };
             format!("{n} element{} {verb}", if n == 1 { "" } else { "s" })
         };
-        let whatever = format!(
-            "they are drawn at the largest level, {max}, whatever --pixel-error, and no pixel error is promised on them; --max-level sets their level"
-        );
+        // The pronouns of one element or several: (they, them, their, are).
+        let words = |n: u64| match n {
+            1 => ("it", "it", "its", "is"),
+            _ => ("they", "them", "their", "are"),
+        };
+        let whatever = |n: u64| {
+            let (they, them, their, are) = words(n);
+            format!(
+                "{they} {are} drawn at the largest level, {max}, whatever --pixel-error, and no pixel error is promised on {them}; --max-level sets {their} level"
+            )
+        };
         let mut out = Vec::new();
         if self.near > 0 {
+            let their = words(self.near).2;
             out.push(format!(
-                "note: {} the eye in their bounds (no distance bounds their error in pixels): {whatever}",
-                elements(self.near, "holds", "hold")
+                "note: {} the eye in {their} bounds (no distance bounds {their} error in pixels): {}",
+                elements(self.near, "holds", "hold"),
+                whatever(self.near)
             ));
         }
         if self.unbounded > 0 {
             out.push(format!(
-                "note: {} no finite error bound ({why_unbounded}): {whatever}",
-                elements(self.unbounded, "has", "have")
+                "note: {} no finite error bound ({why_unbounded}): {}",
+                elements(self.unbounded, "has", "have"),
+                whatever(self.unbounded)
             ));
         }
         if self.capped > 0 {
             out.push(format!(
-                "note: the {} px bound is not met on {} element{}: they need a level above the largest, {max} (--max-level)",
+                "note: the {} px bound is not met on {} element{}: {} a level above the largest, {max} (--max-level)",
                 px(pixel_error),
                 self.capped,
-                if self.capped == 1 { "" } else { "s" }
+                if self.capped == 1 { "" } else { "s" },
+                if self.capped == 1 { "it needs" } else { "they need" }
             ));
         }
         out
@@ -109,5 +134,43 @@ mod px_tests {
         assert_eq!(super::px(0.5), "0.5");
         assert_eq!(super::px(1e-30), "1e-30");
         assert_eq!(super::px(2.5e7), "2.5e7");
+    }
+}
+
+#[cfg(test)]
+mod notes_tests {
+    use crate::lod::frame::Unmet;
+
+    #[test]
+    fn notes_agree_in_number() {
+        let cases = [
+            (
+                (1, 1, 1),
+                vec![
+                    "1 element holds the eye in its bounds (no distance bounds its error in pixels): it is drawn at the largest level, 8",
+                    "1 element has no finite error bound (docs/adaptivity.md says where none exists): it is drawn",
+                    "no pixel error is promised on it; --max-level sets its level",
+                    "not met on 1 element: it needs a level above the largest, 8",
+                ],
+            ),
+            (
+                (2, 0, 3),
+                vec![
+                    "2 elements hold the eye in their bounds (no distance bounds their error in pixels): they are drawn",
+                    "not met on 3 elements: they need",
+                ],
+            ),
+        ];
+        for ((near, unbounded, capped), wanted) in cases {
+            let unmet = Unmet {
+                near,
+                unbounded,
+                capped,
+            };
+            let notes = unmet.notes(1.0, 8, false).join("\n");
+            for w in wanted {
+                assert!(notes.contains(w), "{w:?} not in {notes}");
+            }
+        }
     }
 }
