@@ -3838,6 +3838,30 @@ fn render_and_export_say_where_the_pixel_error_is_not_met() {
 fn info_prints_extreme_pixel_errors_and_empty_views_plainly() {
     let tiny = ok(&["info", "--pixel-error", "1e-30", "--max-level", "2"]);
     assert!(tiny.contains("adaptive pn at 1e-30 px:"), "{tiny}");
+    // Up to f32's largest: level 1 everywhere, on the CPU (info) and on the GPU (export's
+    // header holds the levels its level pass wrote).
+    let ico = model_path("icosahedron.obj");
+    let obj = tmp("huge-px.obj");
+    for px in ["1e38", "2e38", "3.4e38"] {
+        let args = [
+            "--pixel-error",
+            px,
+            "--cull",
+            "off",
+            "--width",
+            "64",
+            "--height",
+            "48",
+        ];
+        let info = ok(&[&["info", p(&ico)], &args[..]].concat());
+        assert!(
+            info.contains("levels (level:coarse triangles): 1:20\n"),
+            "{info}"
+        );
+        ok(&[&["export", p(&ico), "-o", p(&obj)], &args[..]].concat());
+        let text = std::fs::read_to_string(&obj).unwrap();
+        assert!(text.contains("\n# levels 1:20\n"), "{px}");
+    }
     let away = ok(&[
         "info",
         "--pixel-error",

@@ -18,9 +18,16 @@ float lod_chord_error(vec2 chord, float n) {
     return (chord.x + chord.y * x) * x;
 }
 
+// Level 1 without solving where its bound is this far below the tolerance (before the solver's
+// c2 * tol can overflow). Mirror: `LEVEL_ONE_MARGIN`.
+const float LOD_LEVEL_ONE_MARGIN = 1.0001;
+
 // The smallest real N >= 1 with error(N) <= tol, uncapped. Mirror: `Chord::level_for`.
 float lod_level_for(vec2 chord, float tol) {
     if (chord.x == 0.0 && chord.y == 0.0) {
+        return 1.0;
+    }
+    if ((chord.x + chord.y) * LOD_LEVEL_ONE_MARGIN <= tol) {
         return 1.0;
     }
     float root = (chord.x + sqrt(chord.x * chord.x + 4.0 * chord.y * tol)) / (2.0 * tol);

@@ -94,6 +94,9 @@ float quadratic_level(float p, float q, float c, float tol, float mx) {
     if (c >= tol) {
         return mx;
     }
+    if ((p + q + c) * LOD_LEVEL_ONE_MARGIN <= tol) {
+        return 1.0;
+    }
     float d = tol - c;
     float den = q + sqrt(q * q + 4.0 * p * d);
     if (den <= 0.0) {

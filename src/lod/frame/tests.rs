@@ -316,3 +316,38 @@ fn bounds_on_every_core_are_those_of_one_thread() {
         assert_eq!(a.second, b.second);
     }
 }
+
+/// Pixel errors up to f32's largest give level 1 everywhere, for every rounding, with or
+/// without displacement: the solvers' `c2 · tol` and `4 p d` overflow there, and used to give
+/// NaN (a finer level than at a smaller pixel error, and another on the GPU).
+#[test]
+fn huge_pixel_errors_draw_level_one() {
+    let (mesh, recs) = spot();
+    let r = mesh.bounding_radius();
+    let params = SurfaceParams::for_radius(r);
+    for displace in [Displace::None, Displace::Sine] {
+        let lod = Lod::of(Surface::Pn, displace, &params, &Sources::default());
+        let lr = lod_records(&lod, &recs);
+        for pixel_error in [1e30, 1e38, 2e38, f32::MAX] {
+            for rounding in Rounding::ALL {
+                let eye = Vec3::new(0.3, 0.4, 2.5 * r);
+                let view = View::new(eye, 0.8, 720, pixel_error, 64);
+                let view = LodView::new(&view, None, false, rounding, lr.len() as u32);
+                for (i, l) in frame_levels(&view, &lr).iter().enumerate() {
+                    assert!(
+                        l.inner == 1.0 && l.edges == [1.0; 3],
+                        "{} at {pixel_error} px, {rounding:?}: element {i} at {l:?}",
+                        displace.name()
+                    );
+                }
+            }
+        }
+    }
+    // The shortcut agrees with the formula where both apply.
+    let chord = Chord { c1: 0.3, c2: 0.7 };
+    for tol in [1.0001f32, 1.001, 2.0, 1e9] {
+        let root = (chord.c1 + (chord.c1 * chord.c1 + 4.0 * chord.c2 * tol).sqrt()) / (2.0 * tol);
+        assert_eq!((root * (1.0 + 1.0 / 65536.0)).max(1.0), 1.0, "{tol}");
+        assert_eq!(chord.level_for(tol), 1.0, "{tol}");
+    }
+}

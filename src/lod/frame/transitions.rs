@@ -86,7 +86,7 @@
 
 use super::{tolerance, LodRecord, LodView, Rounding, HUGE};
 use crate::lod::levels::drawn_level;
-use crate::lod::{Bounds, Chord, ELEMENT_FACTOR};
+use crate::lod::{Bounds, Chord, ELEMENT_FACTOR, LEVEL_ONE_MARGIN};
 
 /// The chord an edge's level must meet at element `b`'s tolerance for the transition
 /// triangles along stored edge `e` (module notes, step 1), for a driver that rounds and snaps
@@ -132,6 +132,11 @@ fn twist(mixed: &[f32], e: usize) -> f32 {
 fn quadratic_level(p: f32, q: f32, c: f32, tol: f32, max: f32) -> f32 {
     if c >= tol {
         return max;
+    }
+    // Level 1 with room to spare (`p β² + q β + c <= (p + q + c) β²` for β >= 1, so the root is
+    // past `sqrt(LEVEL_ONE_MARGIN)`), said before `4 p d` can overflow (`Chord::level_for`).
+    if (p + q + c) * LEVEL_ONE_MARGIN <= tol {
+        return 1.0;
     }
     let d = tol - c;
     // β = (−q + sqrt(q² + 4pd)) / 2p, in the form without cancellation.
