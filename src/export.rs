@@ -500,11 +500,11 @@ pub fn check_adaptive_size(
         }
         Some(m) => format!("use a larger --pixel-error, or --max-level {m} or lower"),
         None => format!(
-            "its {elements} elements in view are too many to export even at level 1 (a camera that sees fewer of them exports fewer)"
+            "its {elements} elements drawn are too many to export even at level 1 (a camera that sees fewer of them exports fewer)"
         ),
     };
     Err(format!(
-        "--pixel-error {} chooses levels that would export {triangles} refined triangles ({elements} elements in view, up to level {}), about {:.1} GB of memory and a {:.1} GB file; at most {MAX_EXPORT_TRIANGLES} (2^24) are exported: {remedy}",
+        "--pixel-error {} chooses levels that would export {triangles} refined triangles ({elements} elements drawn, up to level {}), about {:.1} GB of memory and a {:.1} GB file; at most {MAX_EXPORT_TRIANGLES} (2^24) are exported: {remedy}",
         pixel_error,
         histogram.keys().max().copied().unwrap_or(0),
         gb(triangles.saturating_mul(MEMORY_PER_TRIANGLE)),
@@ -713,7 +713,7 @@ mod tests {
         assert_eq!(check_adaptive_size(&fits, "1", 64, true), Ok(1 << 24));
         let over = BTreeMap::from([(1, 1000), (64, 4096)]);
         let e = check_adaptive_size(&over, "0.5", 64, true).unwrap_err();
-        assert!(e.starts_with("--pixel-error 0.5 chooses levels that would export 16778216 refined triangles (5096 elements in view, up to level 64)"), "{e}");
+        assert!(e.starts_with("--pixel-error 0.5 chooses levels that would export 16778216 refined triangles (5096 elements drawn, up to level 64)"), "{e}");
         assert!(
             e.ends_with("use a larger --pixel-error, or --max-level 32 or a smaller power of two"),
             "{e}"
