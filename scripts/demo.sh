@@ -8,10 +8,12 @@
 # MESHREFINE_DEMO_PRINT=1 prints the arguments given to `view`, one a line, and does nothing else.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-# The defaults the user's arguments do not replace (`--opt value` or `--opt=value`).
+# Whether the user's arguments (after the first, the options looked for) give one of those
+# options (`--opt value` or `--opt=value`; none after `--`).
 given() {
-    local a
+    local a opt
     for a in "${@:2}"; do
+        [[ $a == -- ]] && return 1
         for opt in $1; do
             [[ $a == "$opt" || $a == "$opt="* ]] && return 0
         done
@@ -21,7 +23,7 @@ given() {
 defaults=()
 given --surface "$@" || defaults+=(--surface loop)
 given --wireframe "$@" || defaults+=(--wireframe cage)
-given "--pixel-error --level" "$@" || defaults+=(--pixel-error 1)
+given "--pixel-error --level --lod" "$@" || defaults+=(--pixel-error 1)
 if [[ ${MESHREFINE_DEMO_PRINT:-} == 1 ]]; then
     printf '%s\n' "${defaults[@]}" "$@"
     exit 0

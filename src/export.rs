@@ -50,19 +50,20 @@ impl Default for Placement {
 }
 
 impl Placement {
-    /// Whether the written coordinates need more than `f32`: the mesh lies farther from the
-    /// origin than three times its size (a drawn position's `f32` step, `2^-24` of the
-    /// bounding radius, would be lost to the larger coordinate's). Then each coordinate is
-    /// written as the shortest decimal of its `f64` value, else of its `f32` rounding (shorter
-    /// lines, and the digits single-precision readers take).
-    pub fn wide(&self) -> bool {
-        self.centre.abs().max_element() * self.scale > 3.0
+    /// Whether the written coordinates need more than `f32`: the mesh's centre lies more than
+    /// 256 bounding radii from the origin, where `f32`'s step at the centre, `2^-24` of its
+    /// distance, exceeds `2^-16` radii, no longer far below the shortest refined edges (an
+    /// element of a dense mesh at level 1024). Then each coordinate is written as the
+    /// shortest decimal of its `f64` value, else of its `f32` rounding (shorter lines, the
+    /// digits single-precision readers take).
+    pub fn needs_f64(&self) -> bool {
+        self.centre.abs().max_element() * self.scale > 256.0
     }
 
-    /// Writes `p` placed, `v X Y Z`.
-    fn write_v(&self, line: &mut String, p: Vec3) {
+    /// Writes `p` placed, `v X Y Z`, in `f64` where `wide` ([`Placement::needs_f64`]).
+    fn write_v(&self, line: &mut String, p: Vec3, wide: bool) {
         let q = p.as_dvec3() / self.scale + self.centre;
-        let _ = if self.wide() {
+        let _ = if wide {
             writeln!(line, "v {} {} {}", q.x, q.y, q.z)
         } else {
             let q = q.as_vec3();
@@ -374,8 +375,9 @@ pub fn write_obj(
     for h in header {
         writeln!(out, "# {h}")?;
     }
+    let wide = mesh.placement.needs_f64();
     for &p in &mesh.positions {
-        mesh.placement.write_v(&mut line, p);
+        mesh.placement.write_v(&mut line, p, wide);
         emit(out, &mut line)?;
     }
     for t in &mesh.texcoords {

@@ -262,7 +262,9 @@ fn info_reports_topology_and_footprint() {
     let ico = model_path("icosahedron.obj");
     let s = ok(&["info", p(&ico), "--surface", "loop", "--level", "8"]);
     assert!(
-        s.contains("5120 refined triangles (64 per face of M1"),
+        s.contains(
+            "5120 refined triangles (64 per M1 face: the elements are one Loop step's faces)"
+        ),
         "{s}"
     );
 }
@@ -2383,7 +2385,7 @@ fn info_reports_adaptive_levels_for_a_camera() {
     assert_eq!(tess_culled + tess_drawn, 372);
     // Geomorphing (the default) under a power-of-two largest level, tess draws powers of two,
     // as render does; without it, its integers. Its transitions are the tessellator's, bounded
-    // for larger moves than the pattern's snapping makes: more triangles at the same levels.
+    // for larger moves than the pattern's snapping makes: higher levels, more triangles.
     let tess_args = ["info", spot, "--pixel-error", "1", "--driver", "tess"];
     let gliding = ok(&tess_args);
     assert!(
@@ -3947,6 +3949,15 @@ fn demo_script_arguments_replace_its_defaults() {
         joined(demo(&["--surface=flat", "--level", "2", "x.obj"])),
         "--wireframe cage --surface=flat --level 2 x.obj"
     );
+    assert_eq!(
+        joined(demo(&["--lod", "--wireframe=both"])),
+        "--surface loop --lod --wireframe=both"
+    );
+    // After `--`, arguments are not options.
+    assert_eq!(
+        joined(demo(&["--", "--surface"])),
+        "--surface loop --wireframe cage --pixel-error 1 -- --surface"
+    );
     let png = tmp("demo.png");
     let mut args = demo(&["--surface", "pn", "--wireframe", "both"]);
     args.extend(
@@ -3969,7 +3980,7 @@ fn demo_script_arguments_replace_its_defaults() {
 /// An export of a mesh far from the origin keeps the refined shape: written in `f64` where
 /// `f32` would round it away, it is the same mesh as at the origin, moved (the tetrahedron at
 /// 1e7, every corner exact in `f32`; at that offset `f32` steps by 1, the whole tetrahedron's
-/// size). Near the origin the lines are `f32`'s.
+/// size). Near the origin, up to 256 radii away, the lines are `f32`'s.
 #[test]
 fn exports_far_from_the_origin_keep_their_shape() {
     let coords = |text: &str| -> Vec<[f64; 3]> {
@@ -3989,9 +4000,19 @@ fn exports_far_from_the_origin_keep_their_shape() {
         std::fs::read_to_string(&obj).unwrap()
     };
     for (surface, driver) in [("pn", "pattern"), ("phong", "tess")] {
-        let near = export("tet-origin", 0.0, surface, driver);
-        let far = export("tet-1e7", 1e7, surface, driver);
-        let (near, far) = (coords(&near), coords(&far));
+        let near_text = export("tet-origin", 0.0, surface, driver);
+        let far_text = export("tet-1e7", 1e7, surface, driver);
+        // Near the origin (and at 100 radii) each coordinate is its f32's shortest decimal;
+        // far away, digits f32 does not hold.
+        let f32_digits = |text: &str| {
+            (text.lines())
+                .filter_map(|l| l.strip_prefix("v "))
+                .flat_map(|l| l.split(' '))
+                .all(|c| c.parse::<f32>().unwrap().to_string() == c)
+        };
+        assert!(f32_digits(&near_text) && !f32_digits(&far_text));
+        assert!(f32_digits(&export("tet-100", 100.0, surface, driver)));
+        let (near, far) = (coords(&near_text), coords(&far_text));
         assert_eq!(near.len(), far.len());
         assert!(near.len() > 100);
         let worst = near

@@ -12,9 +12,7 @@ impl State {
     /// element at its inner level.
     pub(super) fn refined(&self, cfg: &DrawConfig, coarse: u64) -> u64 {
         match &self.levels {
-            Some(r) => (r.histogram.iter())
-                .map(|(&n, &count)| count * cfg.driver.refined_per_element(n) as u64)
-                .sum(),
+            Some(r) => r.triangles_on(|l| cfg.driver.refined_per_element(l)).0,
             None => coarse * cfg.refined_per_element() as u64,
         }
     }

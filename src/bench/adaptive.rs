@@ -278,9 +278,7 @@ fn timed(
 /// The triangles `cfg`'s driver makes for the levels of `report`, each drawn element at its
 /// inner level.
 fn drawn_triangles(cfg: &DrawConfig, report: &LevelReport) -> u64 {
-    (report.histogram.iter())
-        .map(|(&l, &count)| count * cfg.driver.refined_per_element(l) as u64)
-        .sum()
+    report.triangles_on(|l| cfg.driver.refined_per_element(l)).0
 }
 
 /// The mean over cameras of each camera's median, the least minimum and the greatest maximum.

@@ -109,7 +109,7 @@ fn print_stats(path: &str, mesh: &Mesh, report: &LoadReport) -> Result<()> {
 fn print_geometry(level: u32, elements: u64, m1_faces: bool) -> Result<()> {
     let t = elements;
     let element = if m1_faces {
-        "face of M1 (one Loop step)"
+        "M1 face: the elements are one Loop step's faces"
     } else {
         "coarse triangle"
     };
@@ -290,12 +290,9 @@ fn print_levels(a: &InfoArgs, mut input: Input) -> Result<()> {
     let stats = LevelStats::new(&levels, dyadic, a.max_level);
     // The elements whose bound --max-level keeps from being met.
     let unmet = unmet(&lod_view, &bounds, &levels);
-    let elements = stats.histogram.values().sum::<u64>() + stats.culled;
     let uniform_level = stats.histogram.keys().max().copied().unwrap_or(1);
     let report = meshrefine::lod::LevelReport {
         uniform_level,
-        uniform_triangles: elements * uniform_level as u64 * uniform_level as u64,
-        adaptive_triangles: stats.triangles,
         histogram: stats.histogram,
         culled: stats.culled,
         unmet,
@@ -357,9 +354,9 @@ fn print_levels(a: &InfoArgs, mut input: Input) -> Result<()> {
     }
     // As the driver draws them (the tessellator makes about 1.5 N² at level N).
     let (adaptive, uniform) = report.triangles_on(|l| a.driver.refined_per_element(l));
-    // Where --max-level keeps the bound from being met, the uniform level is that cap, which
-    // does not meet it either.
-    let capped = if u.capped > 0 {
+    // Where the bound is not met on some elements (above --max-level, or met by no level),
+    // the uniform level is the cap, which does not meet it either.
+    let capped = if u.capped + u.near + u.unbounded > 0 {
         "; the largest level, which does not meet the bound either"
     } else {
         ""

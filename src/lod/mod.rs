@@ -150,7 +150,8 @@ impl Chord {
     /// finite level does): `N = (c1 + sqrt(c1² + 4 c2 tol)) / (2 tol)`, made a hair larger so
     /// that rounding never lands below the exact root.
     pub fn level_for(&self, tol: f32) -> f32 {
-        // Level 1 meets it with room to spare (the formula gives 1 there too): said before the
+        // Level 1 meets it with room to spare (the coefficients are non-negative; the formula
+        // gives 1 there too wherever its intermediates are normal floats): said before the
         // formula, whose `c2 · tol` overflows for a huge tolerance (a pixel error near f32's
         // largest), where it would give NaN or infinity.
         if (self.c1 + self.c2) * LEVEL_ONE_MARGIN <= tol {
@@ -172,8 +173,10 @@ impl Chord {
 }
 
 /// How far below a tolerance an error bound at level 1 must be for the level to be 1 without
-/// solving for it: then the solution is below `1 / (1 + 2^-16)`, which the solvers' margin keeps
-/// at 1 too, so the shortcut changes no level. Mirror: `LOD_LEVEL_ONE_MARGIN`.
+/// solving for it: then (the bounds' coefficients being non-negative) the solution is at most
+/// `1 / sqrt(1.0001)`, below `1 / (1 + 2^-16)`, which the solvers' margin keeps at 1 too, so
+/// the shortcut changes no level the solvers give in normal floats (with subnormal
+/// intermediates they could give just above 1). Mirror: `LOD_LEVEL_ONE_MARGIN`.
 pub const LEVEL_ONE_MARGIN: f32 = 1.0001;
 
 /// A sphere that contains a patch (surface and displacement).

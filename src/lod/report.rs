@@ -12,13 +12,9 @@ pub struct LevelReport {
     pub histogram: BTreeMap<u32, u64>,
     /// Elements outside the view frustum (their bounding spheres are).
     pub culled: u64,
-    /// Triangles the visible elements make at their inner levels (`N²` each).
-    pub adaptive_triangles: u64,
     /// The smallest level that, given to every element, meets the same pixel error everywhere:
     /// the largest inner level any visible element needs (1 when none is visible).
     pub uniform_level: u32,
-    /// Triangles every element makes at [`LevelReport::uniform_level`].
-    pub uniform_triangles: u64,
     /// Visible elements on which the pixel error is not met ([`Unmet`](super::frame::Unmet)).
     pub unmet: super::frame::Unmet,
 }
@@ -34,11 +30,11 @@ impl LevelReport {
         pairs.join(" ")
     }
 
-    /// The triangles of [`LevelReport::adaptive_triangles`] and
-    /// [`LevelReport::uniform_triangles`] on a driver that draws `per_element(l)` triangles
-    /// for an element at level `l` (`Driver::refined_per_element`: `N²` on the pattern and
-    /// static drivers, the tessellator's count for `tess`, each element counted with its edges
-    /// at its inner level).
+    /// The triangles the visible elements make at their inner levels, and every element at
+    /// [`LevelReport::uniform_level`], on a driver that draws `per_element(l)` triangles for an
+    /// element at level `l` (`Driver::refined_per_element`: `N²` on the pattern and static
+    /// drivers, the tessellator's count for `tess`, each element counted with its edges at its
+    /// inner level).
     pub fn triangles_on(&self, per_element: impl Fn(u32) -> u32) -> (u64, u64) {
         let adaptive = (self.histogram.iter())
             .map(|(&l, &n)| n * per_element(l) as u64)

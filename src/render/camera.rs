@@ -308,7 +308,9 @@ impl Viewpoint {
         // A look-at beyond the whole surface with the surface not ahead of the eye (behind or
         // beside it) comes back as far as the surface's farthest point: the camera keeps the
         // target and rebuilds the eye from it (`Camera::eye`), in f32, which at a distance of
-        // 1e7 radii would move the eye by a good part of the mesh.
+        // 1e7 radii would move the eye by a good part of the mesh. The eye and direction stay;
+        // the depth range, which follows the target, still holds the whole surface (its near
+        // plane comes no farther from the eye).
         let reach = (c - eye).length() + r;
         let target = if along > r * 1e-3 && along < ray.length() {
             eye + dir * along

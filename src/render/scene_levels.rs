@@ -292,13 +292,10 @@ fn chosen_report(view: &LodView, records: &[LodRecord], levels: &[ElementLevels]
 fn level_report(levels: &[ElementLevels], dyadic: bool, max: u32) -> LevelReport {
     let stats = LevelStats::new(levels, dyadic, max);
     let uniform_level = stats.histogram.keys().max().copied().unwrap_or(1);
-    let u = uniform_level as u64;
     LevelReport {
         histogram: stats.histogram,
         culled: stats.culled,
-        adaptive_triangles: stats.triangles,
         uniform_level,
-        uniform_triangles: levels.len() as u64 * u * u,
         ..LevelReport::default()
     }
 }

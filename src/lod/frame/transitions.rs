@@ -216,3 +216,56 @@ pub fn raise_for_transitions(v: &LodView, r: &LodRecord, edges: &[f32; 3], inner
         inner
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::quadratic_level;
+
+    /// The solver without the level-1 shortcut, as it was.
+    fn solved(p: f32, q: f32, c: f32, tol: f32, max: f32) -> f32 {
+        if c >= tol {
+            return max;
+        }
+        let d = tol - c;
+        let den = q + (q * q + 4.0 * p * d).sqrt();
+        if den <= 0.0 {
+            return 1.0;
+        }
+        ((1.0 + 1.0 / 65536.0) / (2.0 * d / den)).clamp(1.0, max)
+    }
+
+    /// Level 1 for tolerances up to infinity (the solver's `4 p d` overflows there), and the
+    /// solver's own level wherever both apply, near the shortcut's threshold too.
+    #[test]
+    fn the_level_one_shortcut_agrees_with_the_solver() {
+        let coefficients = [
+            (0.5f32, 0.25f32, 0.125f32),
+            (3.0, 0.0, 0.01),
+            (0.0, 2.0, 0.0),
+            (1e-3, 1e-2, 1e-4),
+        ];
+        for &(p, q, c) in &coefficients {
+            for tol in [1e38, f32::MAX, f32::INFINITY] {
+                assert_eq!(
+                    quadratic_level(p, q, c, tol, 64.0),
+                    1.0,
+                    "{p} {q} {c} at {tol}"
+                );
+            }
+            let one = p + q + c;
+            let mut checked = 0;
+            for k in 0..2000 {
+                // From just below level 1's bound to a few times past it.
+                let tol = one * (0.999 + k as f32 * 1e-3);
+                if tol.is_finite() && (p + q + c) * crate::lod::LEVEL_ONE_MARGIN <= tol {
+                    assert_eq!(
+                        quadratic_level(p, q, c, tol, 64.0),
+                        solved(p, q, c, tol, 64.0)
+                    );
+                    checked += 1;
+                }
+            }
+            assert!(checked > 1000);
+        }
+    }
+}
