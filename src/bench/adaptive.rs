@@ -112,7 +112,8 @@ fn variant(
         a.cameras.clone()
     };
     let cameras = &cameras[..];
-    // The smallest uniform level meeting the bound on every camera, as the driver rounds.
+    // The smallest uniform level meeting the bound on every camera (any integer: a uniform
+    // frame has no transitions to round for).
     let mut bound = 1;
     for &c in cameras {
         bound = bound.max(m.scene.set_levels(&cfg, &view(c))?.uniform_level);

@@ -99,7 +99,7 @@ pub struct BenchAdaptive {
     /// The largest level an element may get (a power of two for the pattern driver).
     pub max_level: u32,
     /// Also time the smallest uniform level meeting the bound on every camera
-    /// ([`crate::lod::LevelReport::uniform_level`], as the driver rounds) and the smallest power
+    /// ([`crate::lod::LevelReport::uniform_level`], any integer) and the smallest power
     /// of two at or above it.
     pub bound_levels: bool,
     /// Glide the vertices a level adds (`DrawConfig::geomorph`).

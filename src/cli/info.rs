@@ -200,7 +200,9 @@ fn check_level_options(a: &InfoArgs, desc: &ContextDesc) -> Result<()> {
 /// displacement, inputs and parameters), its default camera fitted to that surface, culling.
 fn print_levels(a: &InfoArgs, mut input: Input) -> Result<()> {
     use meshrefine::lod::cull::eye_outside;
-    use meshrefine::lod::frame::{frame_levels, lod_records, unmet, LevelStats, LodView};
+    use meshrefine::lod::frame::{
+        frame_levels, lod_records, uniform_level, unmet, LevelStats, LodView,
+    };
     use meshrefine::lod::{Frustum, Lod, View};
     use meshrefine::render::{framing_points, MeshData};
     use meshrefine::surface::{stpn, Heightmap, Mirror, RecordKind, Sources};
@@ -290,9 +292,8 @@ fn print_levels(a: &InfoArgs, mut input: Input) -> Result<()> {
     let stats = LevelStats::new(&levels, dyadic, a.max_level);
     // The elements whose bound --max-level keeps from being met.
     let unmet = unmet(&lod_view, &bounds, &levels);
-    let uniform_level = stats.histogram.keys().max().copied().unwrap_or(1);
     let report = meshrefine::lod::LevelReport {
-        uniform_level,
+        uniform_level: uniform_level(&lod_view, &bounds, &levels),
         histogram: stats.histogram,
         culled: stats.culled,
         unmet,

@@ -378,6 +378,26 @@ pub fn element_levels(v: &LodView, r: &LodRecord) -> ElementLevels {
     }
 }
 
+/// The smallest level that, given to every element, meets `view`'s pixel error on every
+/// element `levels` draws (up to the largest level): each element's own need and its edges'
+/// curves', without the transition needs (a uniform frame has no coarser edges), as an integer
+/// (every driver draws any uniform level), so possibly below the largest level the adaptive
+/// frame draws; 1 when none is drawn.
+pub fn uniform_level(view: &LodView, records: &[LodRecord], levels: &[ElementLevels]) -> u32 {
+    let max = view.max_level;
+    (records.iter().zip(levels))
+        .filter(|(_, l)| !l.culled())
+        .map(|(r, _)| {
+            let own = level(view, [r.chord[0], r.chord[1]], r.sphere);
+            let need = (r.edges.iter())
+                .map(|e| level(view, [e.curve[0], e.curve[1]], e.sphere))
+                .fold(own, f32::max);
+            drawn_level(need, false, max)
+        })
+        .max()
+        .unwrap_or(1)
+}
+
 /// Every element's levels for `view`: the mirror of the level pass.
 pub fn frame_levels(view: &LodView, records: &[LodRecord]) -> Vec<ElementLevels> {
     records.iter().map(|r| element_levels(view, r)).collect()

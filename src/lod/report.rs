@@ -12,8 +12,9 @@ pub struct LevelReport {
     pub histogram: BTreeMap<u32, u64>,
     /// Elements outside the view frustum (their bounding spheres are).
     pub culled: u64,
-    /// The smallest level that, given to every element, meets the same pixel error everywhere:
-    /// the largest inner level any visible element needs (1 when none is visible).
+    /// The smallest level that, given to every element, meets the same pixel error on every
+    /// visible one (`lod::frame::uniform_level`: any integer, without the transitions an
+    /// adaptive frame draws, so possibly below its largest level; 1 when none is visible).
     pub uniform_level: u32,
     /// Visible elements on which the pixel error is not met ([`Unmet`](super::frame::Unmet)).
     pub unmet: super::frame::Unmet,

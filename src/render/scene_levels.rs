@@ -13,7 +13,9 @@ use super::static_adaptive::StaticLevels;
 use super::{Camera, DrawConfig, LevelPass, RenderError, Scene};
 use crate::gpu::vk;
 use crate::lod::cull::eye_outside;
-use crate::lod::frame::{frame_levels, lod_records, unmet, LevelStats, LodRecord, LodView};
+use crate::lod::frame::{
+    frame_levels, lod_records, uniform_level, unmet, LevelStats, LodRecord, LodView,
+};
 use crate::lod::levels::ElementLevels;
 use crate::lod::{Frustum, LevelReport, Lod, View};
 use crate::surface::{Displace, Surface, SurfaceParams};
@@ -206,7 +208,8 @@ impl Scene {
     }
 
     /// The levels the last adaptive frame drawn with `cfg` left in the mesh's levels buffer (the
-    /// GPU's, read back: only once the frame is done), tallied as the driver draws them.
+    /// GPU's, read back: only once the frame is done), tallied as the driver draws them (the
+    /// histogram and the culled elements; `set_levels`'s report has the uniform level).
     pub fn drawn_levels(&self, cfg: &DrawConfig) -> (Vec<ElementLevels>, LevelReport) {
         let levels: Vec<ElementLevels> = self.elements(cfg.surface).levels.read_pod();
         let dyadic = cfg.dyadic_levels();
@@ -284,11 +287,14 @@ impl Scene {
 fn chosen_report(view: &LodView, records: &[LodRecord], levels: &[ElementLevels]) -> LevelReport {
     LevelReport {
         unmet: unmet(view, records, levels),
+        uniform_level: uniform_level(view, records, levels),
         ..level_report(levels, view.dyadic(), view.max_level)
     }
 }
 
-/// What `levels` draw on a driver that rounds as `dyadic` says, up to `max`.
+/// What `levels` draw on a driver that rounds as `dyadic` says, up to `max`; without the
+/// records, its uniform level is the largest level drawn ([`chosen_report`]'s is the smallest
+/// uniform level meeting the bound).
 fn level_report(levels: &[ElementLevels], dyadic: bool, max: u32) -> LevelReport {
     let stats = LevelStats::new(levels, dyadic, max);
     let uniform_level = stats.histogram.keys().max().copied().unwrap_or(1);
