@@ -125,6 +125,19 @@ pub fn check_output(path: &Path, option: &str, kind: Output) -> Result<(), Strin
                 ));
             }
         }
+        // The files it writes: any that exists must be a file to replace.
+        for ext in ["md", "csv", "json"] {
+            let file = std::path::PathBuf::from(format!("{text}.{ext}"));
+            if let Ok(m) = std::fs::metadata(&file) {
+                if !m.is_file() {
+                    return Err(format!(
+                        "{option} '{shown}' would write '{}', which is {}, not a file",
+                        file.display(),
+                        file_kind(m.file_type())
+                    ));
+                }
+            }
+        }
     }
     Ok(())
 }
@@ -183,5 +196,16 @@ mod tests {
         assert!(e.contains("is a character device"), "{e}");
         let e = check_output(Path::new("/dev/null/x"), "-o", Output::File).unwrap_err();
         assert!(e.contains("is a character device, not a folder"), "{e}");
+        // A prefix whose PREFIX.json is a directory would fail after the whole benchmark.
+        let prefix = d.join("results");
+        std::fs::create_dir_all(d.join("results.json")).unwrap();
+        let e = check_output(&prefix, "--out", Output::Prefix).unwrap_err();
+        assert!(
+            e.contains("would write '") && e.contains("results.json', which is a directory"),
+            "{e}"
+        );
+        std::fs::write(d.join("results.md"), "old").unwrap();
+        std::fs::remove_dir(d.join("results.json")).unwrap();
+        assert_eq!(check_output(&prefix, "--out", Output::Prefix), Ok(()));
     }
 }

@@ -405,6 +405,11 @@ fn switching_to_loop_on_a_mesh_it_refuses_shows_pn() {
     );
     demo.xdotool(&["key", "s"]);
     std::thread::sleep(Duration::from_secs(4));
+    // S goes on from loop, not from the pn shown: flat, phong, pn, stpn, then loop again.
+    for _ in 0..4 {
+        demo.xdotool(&["key", "s"]);
+        std::thread::sleep(Duration::from_secs(2));
+    }
     let stderr = demo.quit();
     assert!(stderr.contains("dropped 1 degenerate face"), "{stderr}");
     assert!(
@@ -413,6 +418,10 @@ fn switching_to_loop_on_a_mesh_it_refuses_shows_pn() {
             && stderr.contains("showing pn instead"),
         "{stderr}"
     );
+    assert_eq!(stderr.matches("showing pn instead").count(), 1, "{stderr}");
+    // The file is named once in the warning.
+    let line = stderr.lines().find(|l| l.contains("showing pn")).unwrap();
+    assert_eq!(line.matches("loop_refused.obj").count(), 1, "{line}");
 }
 
 #[test]
@@ -533,8 +542,17 @@ fn keys_switch_driver_level_and_views() {
         ("l", "(LOD)"),
         ("a", "animated"),
     ] {
-        demo.xdotool(&["key", key]);
-        wait_title(want);
+        let title = {
+            demo.xdotool(&["key", key]);
+            wait_title(want)
+        };
+        if want == "(LOD)" {
+            // LOD chooses among the levels up to the one it was turned on at (4).
+            let level: u32 = (title.split(" level ").nth(1))
+                .and_then(|t| t.split(' ').next()?.parse().ok())
+                .unwrap_or_else(|| panic!("{title}"));
+            assert!(level <= 4, "{title}");
+        }
     }
     demo.quit();
 }

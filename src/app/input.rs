@@ -132,7 +132,8 @@ impl State {
             Key::Character(ch) => match ch.as_str() {
                 "1" | "2" | "3" => c.set_driver(Driver::ALL[(ch.as_bytes()[0] - b'1') as usize]),
                 "s" | "S" => {
-                    c.cfg.surface = next(&Surface::ALL, c.cfg.surface);
+                    let from = c.refused.take().unwrap_or(c.cfg.surface);
+                    c.cfg.surface = next(&Surface::ALL, from);
                     // A displacement the new surface cannot take (Loop's M1 has no texture
                     // coordinates for the height map) is switched off.
                     if c.cfg.surface.incompatibility(c.cfg.displace, uvs).is_some() {

@@ -351,6 +351,8 @@ impl App {
                 cage: self.opts.cage,
                 animate: self.opts.animate,
                 lod: self.opts.lod,
+                lod_max: cfg.level,
+                refused: None,
                 view: View::Shaded,
                 initial: cfg.params,
                 submit: cfg.driver.submit().unwrap_or_default(),
@@ -501,10 +503,13 @@ impl State {
         }
         if self.controls.lod && !self.controls.adaptive {
             let (_, r) = self.scene.bounding_sphere();
-            self.controls.cfg.level = self
-                .scene
-                .patterns
-                .level_for_distance(self.camera.distance, r);
+            let max = self.controls.lod_max;
+            self.controls.cfg.level =
+                self.scene
+                    .patterns
+                    .level_for_distance(self.camera.distance, r, max);
+        } else {
+            self.controls.lod_max = self.controls.cfg.level;
         }
     }
 
@@ -568,11 +573,15 @@ impl State {
                     }
                     _ => "",
                 };
-                log::warn!(
-                    "'{}': {e}{hint}: showing {} instead",
-                    opts.source,
-                    fallback.name()
-                );
+                let file = format!("'{}'", opts.source);
+                let e = e.to_string();
+                let e = if e.contains(&file) {
+                    e
+                } else {
+                    format!("{file}: {e}")
+                };
+                log::warn!("{e}{hint}: showing {} instead", fallback.name());
+                self.controls.refused = Some(cfg.surface);
                 cfg.surface = fallback;
                 prepare(&cfg)?;
                 self.controls.cfg.surface = fallback;

@@ -20,6 +20,12 @@ pub struct Controls {
     pub animate: bool,
     /// Level of detail by camera distance (sets `cfg.level` every frame).
     pub lod: bool,
+    /// The largest level LOD chooses: the uniform level of the moment it was turned on (at
+    /// the start, `--level`).
+    pub lod_max: u32,
+    /// The surface last asked for that the mesh refused (its fallback is shown): `S` goes on
+    /// from it, not from the fallback.
+    pub refused: Option<Surface>,
     /// What the fragment stage shows.
     pub view: View,
     /// The parameters the demo started with: the sliders' ranges are scaled to them.

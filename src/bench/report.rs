@@ -192,12 +192,17 @@ impl Report {
     /// Write `prefix.md` (headed by the command that made it), `prefix.csv` and `prefix.json`.
     /// The folder must exist: outputs never create folders (the command line checks the prefix up front, `meshrefine::paths`).
     pub fn write_files(&self, prefix: &Path, command: &str) -> std::io::Result<()> {
-        std::fs::write(
-            with_extension(prefix, "md"),
-            format!("Command: `{command}`\n\n{}", self.markdown()),
-        )?;
-        std::fs::write(with_extension(prefix, "csv"), self.csv())?;
-        std::fs::write(with_extension(prefix, "json"), self.json())
+        let files = [
+            ("md", format!("Command: `{command}`\n\n{}", self.markdown())),
+            ("csv", self.csv()),
+            ("json", self.json()),
+        ];
+        for (ext, text) in files {
+            let path = with_extension(prefix, ext);
+            std::fs::write(&path, text)
+                .map_err(|e| std::io::Error::new(e.kind(), format!("'{}': {e}", path.display())))?;
+        }
+        Ok(())
     }
 
     /// Every column, one row per line, headed by the column keys.

@@ -107,9 +107,16 @@ pub fn run(a: &BenchArgs, desc: &ContextDesc, levels_given: bool) -> Result<()> 
     if let Some(prefix) = &a.out {
         let args: Vec<String> = std::env::args().skip(1).collect();
         let command = format!("meshrefine {}", args.join(" "));
-        report
-            .write_files(prefix, &command)
-            .with_context(|| format!("cannot write '{}.md'", prefix.display()))?;
+        if let Err(e) = report.write_files(prefix, &command) {
+            // The measurements are not lost: the summary first, then why the files are not.
+            out!("{}", report.summary(None));
+            return Err(e).with_context(|| {
+                format!(
+                    "cannot write the results to {}.{{md,csv,json}}",
+                    prefix.display()
+                )
+            });
+        }
     }
     out!("{}", report.summary(a.out.as_deref()));
     if let Some(prefix) = &a.out {

@@ -152,17 +152,24 @@ impl PatternSet {
         self.patterns.iter().position(|p| p.level == level)
     }
 
-    /// The level to draw for an object of bounding radius `radius` seen from `distance`:
-    /// the finest level when the object is close, one level coarser each time the distance
-    /// doubles past `near = 2·radius`.
-    pub fn level_for_distance(&self, distance: f32, radius: f32) -> u32 {
+    /// The level to draw for an object of bounding radius `radius` seen from `distance`, among
+    /// the set's levels up to `max` (the smallest where none is): the finest of them when the
+    /// object is close, one level coarser each time the distance doubles past
+    /// `near = 2·radius`.
+    pub fn level_for_distance(&self, distance: f32, radius: f32, max: u32) -> u32 {
         let near = 2.0 * radius.max(f32::MIN_POSITIVE);
         let steps = if distance <= near {
             0
         } else {
             (distance / near).log2().floor() as usize
         };
-        let idx = self.patterns.len().saturating_sub(1 + steps);
+        let count = self
+            .patterns
+            .iter()
+            .filter(|p| p.level <= max)
+            .count()
+            .max(1);
+        let idx = count.saturating_sub(1 + steps);
         self.patterns[idx].level
     }
 }
@@ -253,9 +260,14 @@ mod tests {
             vec![1, 2, 4, 8, 16, 32, 48]
         );
         assert_eq!(PatternSet::up_to(1).levels().collect::<Vec<_>>(), vec![1]);
-        assert_eq!(set.level_for_distance(1.0, 1.0), 48);
-        assert_eq!(set.level_for_distance(4.5, 1.0), 32);
-        assert_eq!(set.level_for_distance(1e9, 1.0), 1);
+        assert_eq!(set.level_for_distance(1.0, 1.0, 48), 48);
+        assert_eq!(set.level_for_distance(4.5, 1.0, 48), 32);
+        assert_eq!(set.level_for_distance(1e9, 1.0, 48), 1);
+        // Up to a cap: the finest level at most it, coarser from there.
+        assert_eq!(set.level_for_distance(1.0, 1.0, 8), 8);
+        assert_eq!(set.level_for_distance(1.0, 1.0, 12), 8);
+        assert_eq!(set.level_for_distance(4.5, 1.0, 8), 4);
+        assert_eq!(set.level_for_distance(1.0, 1.0, 0), 1);
         assert_eq!(set.find(16), Some(4));
     }
 }
