@@ -239,7 +239,7 @@ impl AdaptiveSummary {
         if self.frozen {
             rows.push((
                 "levels",
-                "frozen: the camera moves, they do not".to_string(),
+                "frozen: chosen for the camera of that moment".to_string(),
             ));
         }
         rows

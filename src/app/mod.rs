@@ -161,10 +161,7 @@ pub fn run(desc: ContextDesc, mesh: Mesh, opts: ViewOptions) -> Result<Arc<Messa
             let why = panicked.lock().unwrap_or_else(|p| p.into_inner()).take();
             log::debug!("window system panic: {why:?}");
             return Err(anyhow!(
-                "the window system failed (was the window closed by another program?): {}",
-                why.as_deref()
-                    .and_then(|w| w.lines().last())
-                    .unwrap_or("no reason given")
+                "the window system failed: the window was closed by another program, or its display went away"
             ));
         }
     }
@@ -503,11 +500,8 @@ impl State {
         }
         if self.controls.lod && !self.controls.adaptive {
             let (_, r) = self.scene.bounding_sphere();
-            let max = self.controls.lod_max;
-            self.controls.cfg.level =
-                self.scene
-                    .patterns
-                    .level_for_distance(self.camera.distance, r, max);
+            let (max, d) = (self.controls.lod_max, self.camera.distance);
+            self.controls.cfg.level = self.scene.patterns.level_for_distance(d, r, max);
         } else {
             self.controls.lod_max = self.controls.cfg.level;
         }
