@@ -4041,3 +4041,19 @@ fn exports_far_from_the_origin_keep_their_shape() {
         );
     }
 }
+
+/// A value given twice in `bench`'s lists is timed once, as a driver given twice is.
+#[test]
+fn bench_lists_time_each_value_once() {
+    let prefix = tmp("bench-dedup");
+    let p = prefix.display().to_string();
+    #[rustfmt::skip]
+    ok(&[
+        "bench", "--surfaces", "flat,pn,flat", "--displacements", "none,none", "--levels", "2,2",
+        "--drivers", "static,static", "--frames", "1", "--width", "64", "--height", "48",
+        "--out", &p,
+    ]);
+    let csv = std::fs::read_to_string(prefix.with_extension("csv")).unwrap();
+    // flat and pn, at level 2, static: two rows.
+    assert_eq!(csv.lines().count(), 1 + 2, "{csv}");
+}

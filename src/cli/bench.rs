@@ -15,15 +15,21 @@ use std::io::Write as _;
 /// Runs `meshrefine bench` with `a` (`levels_given`: `--levels` was on the command line; with
 /// `--pixel-error` only those uniform levels are timed beside the adaptive rows).
 pub fn run(a: &BenchArgs, desc: &ContextDesc, levels_given: bool) -> Result<()> {
+    // A value given twice in a list is timed once (as drivers are).
+    let (levels, surfaces, displacements) = (
+        dedup(&a.levels),
+        dedup(&a.surfaces),
+        dedup(&a.displacements),
+    );
     if !(a.min_total_ms.is_finite() && a.min_total_ms >= 0.0) {
         bail!(
             "--min-total-ms {} is not a finite number >= 0",
             a.min_total_ms
         );
     }
-    let every_face = a.surfaces.iter().any(|s| s.facts().needs_every_face);
+    let every_face = surfaces.iter().any(|s| s.facts().needs_every_face);
     let mut input = load_mesh(a.mesh.as_deref(), every_face)?;
-    if a.surfaces.iter().any(|s| s.facts().tags) {
+    if surfaces.iter().any(|s| s.facts().tags) {
         // As render does: every surface is then timed on the same, split, mesh.
         split_three_creases(&mut input, None)?;
     }
@@ -31,16 +37,15 @@ pub fn run(a: &BenchArgs, desc: &ContextDesc, levels_given: bool) -> Result<()> 
     let (centre, scale) = input.mesh.viewing_transform();
     let params = a
         .params
-        .params_for(&input.mesh, &a.displacements)
+        .params_for(&input.mesh, &displacements)
         .map_err(anyhow::Error::msg)?
         .in_drawn_frame(centre, scale);
-    let surfaces = a
-        .surfaces
+    let surfaces = surfaces
         .iter()
-        .flat_map(|&s| a.displacements.iter().map(move |&d| (s, d)))
+        .flat_map(|&s| displacements.iter().map(move |&d| (s, d)))
         .collect();
     let opts = meshrefine::bench::BenchOptions {
-        levels: a.levels.clone(),
+        levels,
         surfaces,
         params: Some(params),
         build: a.params.build().map_err(anyhow::Error::msg)?,
@@ -123,4 +128,15 @@ pub fn run(a: &BenchArgs, desc: &ContextDesc, levels_given: bool) -> Result<()> 
         out!("wrote {}.{{md,csv,json}}", prefix.display());
     }
     Ok(())
+}
+
+/// `list` without its repeated values, in the order first given.
+fn dedup<T: PartialEq + Copy>(list: &[T]) -> Vec<T> {
+    let mut out: Vec<T> = Vec::with_capacity(list.len());
+    for &x in list {
+        if !out.contains(&x) {
+            out.push(x);
+        }
+    }
+    out
 }
