@@ -99,7 +99,7 @@ impl State {
             coarse,
             self.refined(cfg, coarse),
             bytes as f64 / 1e6,
-            self.max_level,
+            self.driver_max(cfg),
         ));
     }
 
@@ -187,8 +187,15 @@ impl AdaptiveSummary {
         if self.triangles == 0 {
             return "-".to_string();
         }
+        let u = self.unmet;
+        // Where no level meets the bound everywhere, the uniform level is the cap.
+        let not_met = if u.capped + u.near + u.unbounded > 0 {
+            ", which does not meet the bound either"
+        } else {
+            ""
+        };
         format!(
-            "{:.1}x",
+            "{:.1}x{not_met}",
             self.uniform_triangles as f64 / self.triangles as f64
         )
     }
@@ -284,6 +291,30 @@ mod tests {
             "3-4:3 5-8:4 9-16:1 64:2"
         );
         assert_eq!(h(&[]), "none");
+    }
+
+    /// The uniform comparison says when the uniform level (then the cap) does not meet the
+    /// bound either.
+    #[test]
+    fn the_uniform_comparison_says_when_it_does_not_meet_the_bound() {
+        let mut a = AdaptiveSummary {
+            pixel_error: 1.0,
+            max_level: 64,
+            cull: true,
+            frozen: false,
+            triangles: 1000,
+            uniform_level: 16,
+            uniform_triangles: 4200,
+            histogram: "8:10".into(),
+            culled: 0,
+            unmet: crate::lod::frame::Unmet::default(),
+            level_ms: 0.0,
+        };
+        assert_eq!(a.ratio(), "4.2x");
+        a.unmet.near = 1;
+        assert_eq!(a.ratio(), "4.2x, which does not meet the bound either");
+        a.triangles = 0;
+        assert_eq!(a.ratio(), "-");
     }
 }
 

@@ -212,7 +212,6 @@ struct State {
     screenshot_note: Option<String>,
     /// What the last frame drew (LOD and the tessellator's limit applied).
     drawn: DrawConfig,
-    max_level: u32,
     /// The level last lowered to what the driver can draw (said once).
     level_note: Option<u32>,
     /// Set while the frame draws a lower level than asked, to keep frames under a second on a
@@ -298,8 +297,6 @@ impl App {
             let max = limit.map_or(DEFAULT_MAX_LEVEL, |max| max.min(DEFAULT_MAX_LEVEL));
             1 << max.max(1).ilog2()
         });
-        // Every power of two up to WINDOW_LEVELS (and the levels asked for), whatever the start.
-        let max_level = cfg.level.max(adaptive_max).max(WINDOW_LEVELS);
         let mut scene = self.scene(&ctx, &pool, &renderer, &mesh, [cfg.level, adaptive_max])?;
         let extent = swapchain.extent;
         let aspect = extent.width as f32 / extent.height as f32;
@@ -363,7 +360,6 @@ impl App {
                 asked: Asked::default(),
             },
             drawn: cfg,
-            max_level,
             level_note: None,
             budget_note: None,
             frame_budget: self.opts.frame_budget,
