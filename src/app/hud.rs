@@ -47,7 +47,7 @@ impl State {
             animating: self.controls.animate,
             note: self.budget_note.as_deref(),
             mode_note: self.mode_note.as_deref(),
-            adaptive_rows: (shown.then(|| self.adaptive_summary(&d, coarse)).flatten())
+            adaptive_rows: (shown.then(|| self.adaptive_summary(&d)).flatten())
                 .map(|a| a.rows())
                 .unwrap_or_default(),
             camera: &camera,
@@ -75,7 +75,7 @@ impl State {
             if c.animate { " animated" } else { "" },
         );
         let camera = camera::camera_args(&self.camera, self.viewing);
-        if let Some(a) = self.adaptive_summary(cfg, coarse) {
+        if let Some(a) = self.adaptive_summary(cfg) {
             self.window.set_title(&format!(
                 "meshrefine | {} {}{flags} | {:.0} fps | GPU {:.2} ms | {coarse} -> {} | {:.2} MB geometry | {camera}",
                 cfg.label(),
@@ -130,18 +130,19 @@ impl State {
         }
     }
 
-    /// What the last adaptive frame (drawing `cfg` of `coarse` elements) chose; None when it
+    /// What the last adaptive frame (drawing `cfg`) chose; None when it
     /// drew uniformly.
-    fn adaptive_summary(&self, cfg: &DrawConfig, coarse: u64) -> Option<AdaptiveSummary> {
+    fn adaptive_summary(&self, cfg: &DrawConfig) -> Option<AdaptiveSummary> {
         let r = self.levels.as_ref()?;
+        let (triangles, uniform_triangles) = r.triangles_on(|l| cfg.driver.refined_per_element(l));
         Some(AdaptiveSummary {
             pixel_error: self.controls.pixel_error,
             max_level: cfg.level,
             cull: self.controls.cull,
             frozen: self.frozen.is_some(),
-            triangles: self.refined(cfg, coarse),
+            triangles,
             uniform_level: r.uniform_level,
-            uniform_triangles: coarse * cfg.driver.refined_per_element(r.uniform_level) as u64,
+            uniform_triangles,
             histogram: compact_histogram(&r.histogram),
             culled: r.culled,
             unmet: r.unmet,
@@ -187,9 +188,8 @@ impl AdaptiveSummary {
         if self.triangles == 0 {
             return "-".to_string();
         }
-        let u = self.unmet;
         // Where no level meets the bound everywhere, the uniform level is the cap.
-        let not_met = if u.capped + u.near + u.unbounded > 0 {
+        let not_met = if self.unmet.any() {
             ", which does not meet the bound either"
         } else {
             ""

@@ -357,7 +357,7 @@ fn print_levels(a: &InfoArgs, mut input: Input) -> Result<()> {
     let (adaptive, uniform) = report.triangles_on(|l| a.driver.refined_per_element(l));
     // Where the bound is not met on some elements (above --max-level, or met by no level),
     // the uniform level is the cap, which does not meet it either.
-    let capped = if u.capped + u.near + u.unbounded > 0 {
+    let capped = if u.any() {
         "; the largest level, which does not meet the bound either"
     } else {
         ""

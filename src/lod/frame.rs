@@ -333,10 +333,15 @@ fn level(v: &LodView, c: [f32; 2], s: [f32; 4]) -> f32 {
 /// transition needs.
 fn edge_level(v: &LodView, e: &LodEdge) -> f32 {
     let needs = e.needs[v.rounding().index()];
-    let own = level(v, [e.curve[0], e.curve[1]], e.sphere);
+    let own = curve_level(v, e);
     let a = level(v, [needs[0], needs[1]], e.sphere_a);
     let b = level(v, [needs[2], needs[3]], e.sphere_b);
     own.max(a).max(b)
+}
+
+/// The continuous level an edge's own curve needs (no transitions).
+fn curve_level(v: &LodView, e: &LodEdge) -> f32 {
+    level(v, [e.curve[0], e.curve[1]], e.sphere)
 }
 
 /// Whether sphere `s` lies wholly outside one of the view's planes. Mirror: `lod_outside`.
@@ -390,7 +395,7 @@ pub fn uniform_level(view: &LodView, records: &[LodRecord], levels: &[ElementLev
         .map(|(r, _)| {
             let own = level(view, [r.chord[0], r.chord[1]], r.sphere);
             let need = (r.edges.iter())
-                .map(|e| level(view, [e.curve[0], e.curve[1]], e.sphere))
+                .map(|e| curve_level(view, e))
                 .fold(own, f32::max);
             drawn_level(need, false, max)
         })
@@ -419,6 +424,14 @@ pub struct Unmet {
     pub unbounded: u64,
     /// Elements whose bound needs a level above the largest.
     pub capped: u64,
+}
+
+impl Unmet {
+    /// Whether the pixel error is not met on some element (then no uniform level up to the
+    /// largest meets it either).
+    pub fn any(&self) -> bool {
+        self.near + self.unbounded + self.capped > 0
+    }
 }
 
 /// Where the levels `levels`, chosen by `view` for `records`, do not meet the pixel error: each
@@ -464,9 +477,6 @@ pub struct LevelStats {
     pub histogram: BTreeMap<u32, u64>,
     /// Elements culled (frustum or back faces).
     pub culled: u64,
-    /// Refined triangles the visible elements make at their drawn inner levels (`N²` each; the
-    /// transition triangles along coarser edges make a few less).
-    pub triangles: u64,
 }
 
 impl LevelStats {
@@ -480,7 +490,6 @@ impl LevelStats {
             }
             let n = drawn_level(l.inner, dyadic, max);
             *s.histogram.entry(n).or_default() += 1;
-            s.triangles += n as u64 * n as u64;
         }
         s
     }

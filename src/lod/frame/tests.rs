@@ -108,7 +108,10 @@ fn levels_fall_with_distance_and_respect_the_cap() {
                         assert!(n.edges[e] <= p.edges[e]);
                     }
                 }
-                let tris = |v: &[ElementLevels]| LevelStats::new(v, dyadic, 64).triangles;
+                let tris = |v: &[ElementLevels]| -> u64 {
+                    let h = LevelStats::new(v, dyadic, 64).histogram;
+                    h.iter().map(|(&n, &k)| k * n as u64 * n as u64).sum()
+                };
                 assert!(tris(&now) <= tris(prev), "at {d}");
             }
             last = Some(now);
