@@ -284,3 +284,64 @@ fn differing(a: &[u8], b: &[u8]) -> usize {
         .filter(|(x, y)| x != y)
         .count()
 }
+
+/// The bounds are computed once per mesh, surface and displacement: a new camera, pixel error
+/// or largest level keeps them (the window changes those every frame or key press, and a large
+/// mesh's bounds take seconds), another surface makes new ones, and the levels chosen at a
+/// smaller largest level from the kept bounds are capped there.
+#[test]
+fn bounds_are_kept_while_only_the_view_or_the_largest_level_change() {
+    with_gpu(64, 64, |h| {
+        let mut scene = h.scene(model("spot_control_tri.obj"), 16).unwrap();
+        let (c, r) = scene.bounding_sphere();
+        let cfg = |surface: Surface, max: u32| {
+            let mut cfg = DrawConfig::new(Driver::Tess, max).with_surface(surface, Displace::None);
+            cfg.params = SurfaceParams::for_radius(r);
+            cfg
+        };
+        let view = |pixel_error: f32, eye: glam::Vec3| LevelView {
+            camera: Camera::looking(c + eye * r, c, 45f32.to_radians(), r).unwrap(),
+            width: 320,
+            height: 180,
+            pixel_error,
+            cull: true,
+        };
+        let pn16 = cfg(Surface::Pn, 16);
+        h.prepared_elements(&mut scene, &pn16, Capture::None)
+            .unwrap();
+        let first = scene
+            .set_levels(&pn16, &view(1.0, glam::Vec3::Z * 3.0))
+            .unwrap();
+        let bounds = scene.level_bounds().unwrap().clone();
+        assert!(first.histogram.keys().all(|&l| l <= 16));
+        for (max, pixel_error, eye) in [
+            (16, 0.25, glam::Vec3::new(0.3, 0.2, 0.5)),
+            (4, 0.25, glam::Vec3::new(0.3, 0.2, 0.5)),
+            (8, 2.0, glam::Vec3::X * 4.0),
+        ] {
+            let chosen = scene
+                .set_levels(&cfg(Surface::Pn, max), &view(pixel_error, eye))
+                .unwrap();
+            let kept = scene.level_bounds().unwrap();
+            assert!(
+                std::sync::Arc::ptr_eq(kept, &bounds),
+                "bounds made again at max {max}, {pixel_error} px"
+            );
+            assert!(
+                chosen.histogram.keys().all(|&l| l <= max),
+                "{:?}",
+                chosen.histogram
+            );
+        }
+        let phong = cfg(Surface::Phong, 16);
+        h.prepared_elements(&mut scene, &phong, Capture::None)
+            .unwrap();
+        scene
+            .set_levels(&phong, &view(1.0, glam::Vec3::Z * 3.0))
+            .unwrap();
+        assert!(!std::sync::Arc::ptr_eq(
+            scene.level_bounds().unwrap(),
+            &bounds
+        ));
+    });
+}

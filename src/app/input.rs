@@ -121,9 +121,11 @@ impl State {
     /// Handle a key; false quits.
     pub(super) fn key(&mut self, key: &Key) -> bool {
         let levels: Vec<u32> = self.scene.patterns.levels().collect();
+        let limit = (self.controls.cfg.driver.kind())
+            .level_limit(&self.ctx.info)
+            .map(|(max, _)| max);
         let uvs = self.scene.data.uvs.is_some();
         let c = &mut self.controls;
-        let pos = levels.iter().position(|&l| l == c.level()).unwrap_or(0);
         match key {
             Key::Named(NamedKey::Escape) => return false,
             Key::Named(NamedKey::Home) => c.asked.fit_view = true,
@@ -154,8 +156,8 @@ impl State {
                 "p" | "P" => c.set_submit(Submit::Push),
                 "u" | "U" => c.set_submit(Submit::Ubo),
                 "i" | "I" => c.set_submit(Submit::Instanced),
-                "+" | "=" => c.set_level(levels[(pos + 1).min(levels.len() - 1)]),
-                "-" | "_" => c.set_level(levels[pos.saturating_sub(1)]),
+                "+" | "=" => c.set_level(step_level(&levels, limit, c.level(), true)),
+                "-" | "_" => c.set_level(step_level(&levels, limit, c.level(), false)),
                 "m" | "M" => c.adaptive = !c.adaptive,
                 "c" | "C" => c.cull = !c.cull,
                 "f" | "F" => c.freeze = !c.freeze,
@@ -177,6 +179,28 @@ impl State {
     }
 }
 
+/// The window's level after `current` (`up`) or before it among `levels` (ascending), up to
+/// the driver's `limit`: `+` stops at the finest level the driver draws (rather than counting
+/// on past it with nothing changing on screen), and a level beyond it steps down from there.
+fn step_level(levels: &[u32], limit: Option<u32>, current: u32, up: bool) -> u32 {
+    let usable: Vec<u32> = (levels.iter().copied())
+        .filter(|&l| limit.is_none_or(|max| l <= max))
+        .collect();
+    let Some(&last) = usable.last() else {
+        return current;
+    };
+    let current = current.min(last);
+    // The position of the largest usable level at or below the current one.
+    let pos = usable.iter().rposition(|&l| l <= current).unwrap_or(0);
+    if up {
+        usable[(pos + 1).min(usable.len() - 1)]
+    } else if usable[pos] < current {
+        usable[pos]
+    } else {
+        usable[pos.saturating_sub(1)]
+    }
+}
+
 /// Whether `e` says the window's surface is gone (the window was destroyed under the demo).
 fn surface_lost(e: &anyhow::Error) -> bool {
     matches!(
@@ -186,4 +210,26 @@ fn surface_lost(e: &anyhow::Error) -> bool {
             ..
         })
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::step_level;
+
+    #[test]
+    fn levels_step_within_what_the_driver_draws() {
+        let levels = [1, 2, 3, 4, 8, 16, 32, 64, 128, 256];
+        assert_eq!(step_level(&levels, None, 4, true), 8);
+        assert_eq!(step_level(&levels, None, 4, false), 3);
+        assert_eq!(step_level(&levels, None, 256, true), 256);
+        assert_eq!(step_level(&levels, None, 1, false), 1);
+        // The tessellator up to 64 on this device: `+` stops there, `-` from past it goes
+        // below what is shown.
+        assert_eq!(step_level(&levels, Some(64), 64, true), 64);
+        assert_eq!(step_level(&levels, Some(64), 256, false), 32);
+        assert_eq!(step_level(&levels, Some(64), 128, true), 64);
+        // A level between the listed ones steps to its neighbours.
+        assert_eq!(step_level(&levels, None, 5, true), 8);
+        assert_eq!(step_level(&levels, None, 5, false), 4);
+    }
 }

@@ -158,17 +158,48 @@ impl Report {
         }
     }
 
+    /// What the report's ratios compare, as the rows hold them: uniform rows against `static`
+    /// and `flat` (columns), adaptive rows against the uniform rows of the same run (their
+    /// notes; the ratio columns stay empty there). `short` for the terminal's summary.
+    fn ratios_said(&self, short: bool) -> String {
+        let adaptive = self.rows.iter().any(|r| r.adaptive.is_some());
+        let columns = self
+            .rows
+            .iter()
+            .any(|r| r.gpu_ratio.is_some() || r.throughput_vs_flat.is_some());
+        let mut said = Vec::new();
+        if columns {
+            said.push(if short {
+                "Ratios against `static` of the same surface, throughput against `flat` with the \
+                 same variant, both from the same run."
+            } else {
+                "Ratios are against `static` at the same mesh and level, and throughput (refined \
+                 triangles per GPU ms) against `flat` with the same variant, measured in the same \
+                 run."
+            });
+        }
+        if adaptive {
+            said.push(
+                "Each adaptive row's note compares it with the uniform rows of the same run below \
+                 it: the smallest uniform level meeting the same bound (`bound`) and the power of \
+                 two at or above it (`pow2`).",
+            );
+        }
+        said.iter().map(|x| format!("{x} ")).collect()
+    }
+
     /// The full table in markdown, below a paragraph saying what was measured and how.
     pub fn markdown(&self) -> String {
         let mut s = String::new();
         let _ = writeln!(
             s,
-            "Device: {}. {}x{} offscreen{}, median (min–max) of {} timed frames (more where a note says so) after one warm-up frame, taken round the variants (of every surface together; with several surfaces each `static` alone first) in turn; ratios are against `static` at the same mesh and level, and throughput (refined triangles per GPU ms) against `flat` with the same variant, measured in the same run. Elements: the coarse triangles, or M1's faces for `loop`.\n",
+            "Device: {}. {}x{} offscreen{}, median (min–max) of {} timed frames (more where a note says so) after one warm-up frame, taken round the variants (of every surface together; with several surfaces each `static` alone first) in turn. {}Elements: the coarse triangles, or M1's faces for `loop`.\n",
             self.device,
             self.width,
             self.height,
             self.view_note(),
-            self.frames
+            self.frames,
+            self.ratios_said(false)
         );
         let columns: Vec<&Column> = COLUMNS.iter().filter(|c| c.markdown.is_some()).collect();
         let line = |cells: Vec<String>| format!("| {} |", cells.join(" | "));
@@ -275,12 +306,16 @@ impl Report {
         let mut s = String::new();
         wrap(
             &mut s,
-            &format!(
+            format!(
                 "Device: {}. {}x{}, median GPU time of {} timed frames per variant (more where a \
-                 note says so); ratios against `static` of the same surface, throughput against \
-                 `flat` with the same variant, both from the same run.",
-                self.device, self.width, self.height, self.frames
-            ),
+                 note says so). {}",
+                self.device,
+                self.width,
+                self.height,
+                self.frames,
+                self.ratios_said(true)
+            )
+            .trim_end(),
             "",
         );
         let mut columns: Vec<(&Column, Vec<String>)> = COLUMNS
@@ -708,5 +743,42 @@ mod tests {
         let static_row = s.lines().find(|l| l.starts_with("static ")).expect(&s);
         let cells: Vec<&str> = static_row.split_whitespace().collect();
         assert_eq!(cells, ["static", "12.35", "8.10", "0.99", "1.50"], "{s}");
+    }
+
+    /// The paragraph above the table says what the rows' ratios compare: `static` and `flat`
+    /// where those columns hold values, the uniform rows where adaptive rows compare with them
+    /// in their notes (and leave those columns empty).
+    #[test]
+    fn the_header_says_what_the_ratios_compare() {
+        let uniform = report(vec![row("spot", 2, "static", true)]);
+        let adaptive_row = |adaptive: bool| {
+            let mut r = row("spot", 64, "pattern/instanced", true);
+            (r.gpu_ratio, r.wall_ratio, r.throughput_vs_flat) = (None, None, None);
+            r.adaptive = Some(crate::bench::AdaptiveCells {
+                scene: "close-up".into(),
+                pixel_error: 1.0,
+                adaptive,
+                level_from: if adaptive { "view" } else { "bound" }.into(),
+                level_pass_ms: None,
+                level_pass_on: None,
+                culled_elements: None,
+                cpu_ms: None,
+                upload_bytes: None,
+                histogram: String::new(),
+            });
+            r
+        };
+        let adaptive = report(vec![adaptive_row(true), adaptive_row(false)]);
+        for (r, static_ratios, notes) in [(&uniform, true, false), (&adaptive, false, true)] {
+            for text in [r.markdown(), r.summary(None)] {
+                let flat = text.replace('\n', " ");
+                assert_eq!(flat.contains("against `static`"), static_ratios, "{text}");
+                assert_eq!(flat.contains("adaptive row's note"), notes, "{text}");
+                assert!(
+                    !flat.contains("  Elements") && !flat.contains(";  "),
+                    "{text}"
+                );
+            }
+        }
     }
 }

@@ -45,8 +45,9 @@ struct BoundsKey {
     params: SurfaceParams,
     /// The per-build options (the normal field the direction bounds read among them).
     build: crate::surface::BuildOptions,
-    /// The largest level (the height map's pyramid level follows it).
-    max: u32,
+    /// The height map's pyramid level the bounds read (`heightmap` only: it follows the
+    /// largest level; no other bound depends on that level, so changing it alone keeps them).
+    pyramid: Option<f32>,
     generation: u64,
     /// The levels buffer written (another mesh after a re-upload or Loop's faces).
     levels: vk::Buffer,
@@ -191,6 +192,13 @@ impl Scene {
         })
     }
 
+    /// The bounds the last [`Scene::set_levels`] chose levels from (shared with the level
+    /// pass's mirror): computed once per mesh, surface, displacement and parameters, and kept
+    /// while only the camera, the pixel error or the largest level change.
+    pub fn level_bounds(&self) -> Option<&Arc<[LodRecord]>> {
+        self.levels.as_ref().map(|l| &l.records)
+    }
+
     /// The level pass and the camera of the last [`Scene::set_levels`], for
     /// `FrameWork::level_pass` of every adaptive frame drawn with `cfg`: `None` unless that call
     /// was for `cfg`'s elements, largest level and rounding (or the device could not hold the
@@ -234,7 +242,7 @@ impl Scene {
             displace: cfg.displace,
             params: cfg.params,
             build: cfg.build,
-            max: cfg.level,
+            pyramid: (cfg.displace == Displace::Heightmap).then(|| self.heightmap_lod(cfg.level)),
             generation: self.generation,
             levels: mesh.levels.raw,
         };
