@@ -4057,3 +4057,77 @@ fn bench_lists_time_each_value_once() {
     // flat and pn, at level 2, static: two rows.
     assert_eq!(csv.lines().count(), 1 + 2, "{csv}");
 }
+
+/// Where a mesh's normal field vanishes (corner normals pointing opposite ways: a fold whose
+/// computed normals cancel, a star polygon whose fan folds over itself, explicit opposite
+/// normals), every exported normal is still unit length and every position finite, on every
+/// surface, displaced or not (the field is what displacement moves along).
+#[test]
+fn vanishing_normal_fields_export_unit_normals() {
+    let fold = write(
+        "fold.obj",
+        b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 1 4\n",
+    );
+    let mut star = String::new();
+    for k in 0..10 {
+        let (r, a) = (
+            if k % 2 == 0 { 1.0 } else { 0.3 },
+            k as f64 * 0.2 * std::f64::consts::PI,
+        );
+        star += &format!("v {} {} 0\n", r * a.cos(), r * a.sin());
+    }
+    star += "f 1 2 3 4 5 6 7 8 9 10\n";
+    let star = write("star.obj", star.as_bytes());
+    let opposite = write(
+        "opposite.obj",
+        b"v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nvn 0 0 -1\nf 1//1 2//2 3//1\n",
+    );
+    let out = tmp("vanishing.obj");
+    let runs: [(&Path, &str, &str, &str); 8] = [
+        (&fold, "flat", "sine", "pattern"),
+        (&fold, "pn", "none", "tess"),
+        (&fold, "loop", "sine", "pattern"),
+        (&star, "phong", "noise", "pattern"),
+        (&star, "loop", "none", "tess"),
+        (&opposite, "stpn", "sine", "tess"),
+        (&opposite, "pn", "noise", "pattern"),
+        (&opposite, "flat", "none", "pattern"),
+    ];
+    for (mesh, surface, displace, driver) in runs {
+        let args = [
+            "export",
+            p(mesh),
+            "--surface",
+            surface,
+            "--displace",
+            displace,
+            "--driver",
+            driver,
+            "--level",
+            "4",
+            "-o",
+            p(&out),
+        ];
+        ok(&args);
+        let text = std::fs::read_to_string(&out).unwrap();
+        let mut normals = 0;
+        for line in text.lines() {
+            let values = |tag: &str| -> Option<Vec<f32>> {
+                let rest = line.strip_prefix(tag)?;
+                Some(
+                    rest.split_whitespace()
+                        .map(|x| x.parse().unwrap())
+                        .collect(),
+                )
+            };
+            if let Some(v) = values("v ") {
+                assert!(v.iter().all(|x| x.is_finite()), "{args:?}: {line}");
+            } else if let Some(n) = values("vn ") {
+                let length = n.iter().map(|x| x * x).sum::<f32>().sqrt();
+                assert!((length - 1.0).abs() < 1e-3, "{args:?}: {line}");
+                normals += 1;
+            }
+        }
+        assert!(normals > 0, "{args:?}: no normals written");
+    }
+}

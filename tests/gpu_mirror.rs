@@ -500,6 +500,17 @@ fn every_surface_and_displacement_on_pattern() {
     });
 }
 
+/// A normal field that vanishes (at the middle of an edge whose corners' normals point opposite
+/// ways) takes the same corner's normal on the GPU as in the mirror, and stays finite under
+/// every displacement and submission (the tessellator's evaluation is the same code: this
+/// mesh's tess exports are checked in tests/watertight.rs and tests/cli.rs).
+#[test]
+fn vanishing_normal_fields_match_the_mirror() {
+    with_gpu(64, 64, |h| {
+        check_pattern("octahedron_opposite_vn.obj", h, &[4], true);
+    });
+}
+
 /// Every surface x displacement on the tess driver.
 #[test]
 fn every_surface_and_displacement_on_tess() {

@@ -229,6 +229,8 @@ fn every_normal_field_is_watertight_under_displacement() {
             "icosahedron.obj",
             "spot_control_tri.obj",
             "cylinder_hard_normals.obj",
+            // The field vanishes in the middle of an edge: both sides take the same normal.
+            "octahedron_opposite_vn.obj",
         ] {
             let mesh = model(file);
             let records =

@@ -60,6 +60,36 @@ float dot3(vec3 a, vec3 b) {
     return d;
 }
 
+// Below this squared length a normal field's value is taken to vanish (`unit_field`). Mirror:
+// src/surface/mod.rs `FIELD_MIN2`.
+const float FIELD_MIN2 = 1e-24;
+
+// Whether corner i weighs more than corner j at the sample, the larger normal (compared x, then y,
+// then z) on a tie. Mirror: src/surface/mod.rs `heavier`.
+bool heavier(Corners c, int i, int j) {
+    if (c.w[i] != c.w[j]) return c.w[i] > c.w[j];
+    vec3 a = c.n[i], b = c.n[j];
+    if (a.x != b.x) return a.x > b.x;
+    if (a.y != b.y) return a.y > b.y;
+    return a.z > b.z;
+}
+
+// A normal field's value v at the sample, made unit length. Where it vanishes (corner normals
+// pointing opposite ways, as across a fold of the mesh), the normal of the corner weighing most:
+// chosen from the corners' weights and normals alone, whatever their order, so that the two
+// elements sharing an edge choose the same one there (displacement moves along it). Mirror:
+// src/surface/mod.rs `unit_field`.
+vec3 unit_field(vec3 v, Corners c) {
+    if (dot3(v, v) > FIELD_MIN2) {
+        return normalize(v);
+    }
+    int best = 0;
+    for (int i = 1; i < 3; ++i) {
+        if (heavier(c, i, best)) best = i;
+    }
+    return c.n[best];
+}
+
 // The edge (0: corners 0-1, 1: 1-2, 2: 2-0) joining corners i and j, either way round.
 // Mirror: src/surface/mod.rs `edge_of`.
 int edge_of(int i, int j) {

@@ -15,7 +15,7 @@ vec3 flat_normal(Corners c) {
     // `precise` too: flat evaluates in stored order, and on a shared edge both sides must add
     // the same two unfused products (the normal is what displacement moves along).
     precise vec3 n = c.n[0] * c.w[0] + c.n[1] * c.w[1] + c.n[2] * c.w[2];
-    return normalize(n);
+    return unit_field(n, c);
 }
 
 // ∂P/∂b_i of each canonical corner in g.

@@ -90,6 +90,29 @@ uint loop_stored(uint orient, uint i) {
     return (orient & 4u) != 0u ? (rot + 3u - i) % 3u : (rot + i) % 3u;
 }
 
+// Where M1's normals cancel at the sample (a fold of the mesh): the normal of the control vertex
+// weighing most (of those with a normal), the larger normal (x, then y, then z) on a tie; from
+// the weights and normals alone, so that the two faces sharing an edge choose the same one there.
+// Rows e0, e1, e2 blended by l as the sum blends them. Mirror: src/surface/loop.rs
+// `heaviest_normal`.
+vec3 loop_heaviest_normal(uint first, uint k4, uint pe, uint e0, uint e1, uint e2, vec3 l) {
+    float best = -3.0e38;
+    vec3 n = vec3(0.0, 0.0, 1.0);
+    for (uint c = 0u; c < k4 / 4u; ++c) {
+        uvec4 v = texelFetch(loop_control4, int(first / 4u + c));
+        vec4 w = bft_weights(e0, c, pe) * l.x + bft_weights(e1, c, pe) * l.y + bft_weights(e2, c, pe) * l.z;
+        for (uint e = 0u; e < 4u; ++e) {
+            vec3 m = loop_n1_at(v[e]).xyz;
+            bool tie = w[e] == best && (m.x != n.x ? m.x > n.x : (m.y != n.y ? m.y > n.y : m.z > n.z));
+            if (m != vec3(0.0) && (w[e] > best || tie)) {
+                best = w[e];
+                n = m;
+            }
+        }
+    }
+    return n;
+}
+
 // Face g at weights b of its stored corners. Mirror: loop_::eval_face (and `cell`).
 SurfacePoint loop_eval_face(uint g, vec3 b) {
     uvec4 f = texelFetch(loop_faces_t, int(g));
@@ -118,6 +141,9 @@ SurfacePoint loop_eval_face(uint g, vec3 b) {
         }
         float nl = length(n);
         vec3 normal = nl > 0.0 ? n / nl : vec3(0.0);
+        if (LOOP_NORMALS && !(dot3(n, n) > FIELD_MIN2)) {
+            normal = loop_heaviest_normal(first, k4, pe, e, e, e, vec3(1.0, 0.0, 0.0));
+        }
         // Tangents are not used without displacement.
         return SurfacePoint(p, normal, normal, vec3(0.0), vec3(0.0), vec2(0.0), vec2(0.0), vec2(0.0));
     }
@@ -169,6 +195,9 @@ SurfacePoint loop_eval_face(uint g, vec3 b) {
     vec3 position = p;
     float nl = length(ns);
     vec3 normal = nl > 0.0 ? ns / nl : vec3(0.0);
+    if (LOOP_NORMALS && !(dot3(ns, ns) > FIELD_MIN2)) {
+        normal = loop_heaviest_normal(first, k4, pe, e0, e1, e2, l);
+    }
     // Tangents per unit weight of canonical corners 1 and 2, back to the stored corners.
     dx *= s;
     dy *= s;

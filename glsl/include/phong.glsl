@@ -19,7 +19,9 @@ vec3 phong_corner_normal(Corners c, int i) {
     vec3 a_ik = c.seam_phong[edge_of(i, k)] ? c.g[i] : c.n[i];
     if (a_ij == a_ik || c.w[k] == 0.0) return a_ij;
     if (c.w[j] == 0.0) return a_ik;
-    return normalize(a_ij * c.w[j] + a_ik * c.w[k]);
+    vec3 s = a_ij * c.w[j] + a_ik * c.w[k];
+    // Opposite choices (a seam's two normals) blend to nothing halfway: the edge's first.
+    return dot3(s, s) > FIELD_MIN2 ? normalize(s) : a_ij;
 }
 
 void phong_eval(Corners c, float alpha, out vec3 position, out vec3 normal, out vec3 g[3]) {

@@ -65,7 +65,7 @@ vec3 pn_normal_field(uint field, Corners c) {
            + pn_field_control(field, c, 0, 1) * (w[0] * w[1])
            + pn_field_control(field, c, 1, 2) * (w[1] * w[2])
            + pn_field_control(field, c, 2, 0) * (w[2] * w[0]);
-    return normalize(n);
+    return unit_field(n, c);
 }
 
 // The chosen normal field (the NORMAL_FIELD specialization constant).

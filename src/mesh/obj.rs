@@ -36,6 +36,10 @@ pub(crate) fn load_obj(path: &Path) -> Result<(Mesh, LoadReport), MeshError> {
     parse_obj(&shown, mesh_name(&shown), &text)
 }
 
+/// A UTF-8 byte order mark, which some Windows editors write at the start of a text file: not
+/// part of its first line.
+const BOM: &str = "\u{feff}";
+
 use crate::paths::file_kind;
 
 /// The bytes of a regular OBJ file of at most [`MAX_OBJ_BYTES`], read incrementally.
@@ -172,6 +176,11 @@ impl Head {
             let Ok(line) = std::str::from_utf8(raw) else {
                 return Err(not_obj(self.lines, "is not UTF-8 text".into()));
             };
+            let line = if self.lines == 1 {
+                line.strip_prefix(BOM).unwrap_or(line)
+            } else {
+                line
+            };
             let line = line.trim();
             if line.is_empty() || line.starts_with('#') {
                 continue;
@@ -196,6 +205,7 @@ pub(crate) fn parse_obj(
     name: String,
     text: &str,
 ) -> Result<(Mesh, LoadReport), MeshError> {
+    let text = text.strip_prefix(BOM).unwrap_or(text);
     let scan = Scan::run(path, text)?;
     let use_given_normals = scan.use_file_normals(path)?;
 
@@ -437,6 +447,20 @@ mod tests {
                 Err(_) => panic!("panicked on {text:?}"),
             }
         }
+    }
+
+    /// A byte order mark before the first statement (Windows editors write one) is read past,
+    /// not reported as an unknown statement.
+    #[test]
+    fn a_byte_order_mark_is_read_past() {
+        let dir = std::env::temp_dir().join(format!("meshwork-bom-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("bom.obj");
+        std::fs::write(&path, "\u{feff}v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+        let loaded = Mesh::load_obj(&path);
+        std::fs::remove_dir_all(&dir).ok();
+        let (mesh, _) = loaded.unwrap();
+        assert_eq!((mesh.positions.len(), mesh.triangles.len()), (3, 1));
     }
 
     #[test]

@@ -37,7 +37,7 @@ pub fn point(c: &Corners) -> Vec3 {
 /// The normalized linear interpolation of the corner normals.
 pub fn normal(c: &Corners) -> Vec3 {
     let [w0, w1, w2] = c.w;
-    (c.n[0] * w0 + c.n[1] * w1 + c.n[2] * w2).normalize_or_zero()
+    super::unit_field(c.n[0] * w0 + c.n[1] * w1 + c.n[2] * w2, c)
 }
 
 pub fn eval(c: &Corners) -> Local {

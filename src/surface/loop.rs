@@ -144,6 +144,20 @@ pub fn cell(lattice: Lattice, x: f32, y: f32) -> ([usize; 3], [f32; 3], [[usize;
     }
 }
 
+/// Whether control vertex `a` (weight, normal) weighs more than `b`, the larger normal (x,
+/// then y, then z) on a tie. Mirror: the comparison in `loop_heaviest_normal`.
+fn heavier_normal(a: (f32, Vec3), b: (f32, Vec3)) -> bool {
+    let (m, n) = (a.1, b.1);
+    let larger = if m.x != n.x {
+        m.x > n.x
+    } else if m.y != n.y {
+        m.y > n.y
+    } else {
+        m.z > n.z
+    };
+    a.0 > b.0 || (a.0 == b.0 && larger)
+}
+
 /// Evaluate face `g` at weights `b` of its stored corners. Mirror of `loop_eval_face`.
 pub fn eval_face(data: &LoopData, frame: &LoopFrame, g: u32, b: [f32; 3]) -> SurfacePoint {
     let [base, kp, first, orient] = data.faces[g as usize];
@@ -167,18 +181,30 @@ pub fn eval_face(data: &LoopData, frame: &LoopFrame, g: u32, b: [f32; 3]) -> Sur
     let packed = &data.tables.packed;
     let rows = rows.map(|r| packed.entry(base as usize + r));
     // Padded columns too, as the GPU sums them (weight zero: the sum keeps its value).
+    // The heaviest control vertex with a normal, for where M1's normals cancel.
+    let mut heaviest = (-3.0e38f32, Vec3::Z);
     for c in 0..padded(k) {
         let v = data.control[first as usize + c] as usize;
         let (pv, nv) = (frame.positions[v], frame.normals[v]);
         let w3 = rows.map(|at| packed.weight(at, c, pairs));
         let w = w3[0] * l[0] + w3[1] * l[1] + w3[2] * l[2];
+        if nv != Vec3::ZERO && heavier_normal((w, nv), heaviest) {
+            heaviest = (w, nv);
+        }
         p += pv * w;
         n += nv * w;
         dx += pv * (w3[d[0][0]] - w3[d[0][1]]);
         dy += pv * (w3[d[1][0]] - w3[d[1][1]]);
     }
     let position = p;
-    let normal = n.normalize_or_zero();
+    // Where M1's normals cancel (a fold of the mesh): the heaviest's
+    // (`loop_heaviest_normal`, from the weights and normals alone, so the two faces sharing an
+    // edge choose the same one there).
+    let normal = if super::dot3(n, n) > super::FIELD_MIN2 {
+        n.normalize()
+    } else {
+        heaviest.1
+    };
     let (dx, dy) = (dx * s, dy * s);
     let canon = [Vec3::ZERO, dx, dy];
     let mut grad = [Vec3::ZERO; 3];

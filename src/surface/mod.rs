@@ -250,6 +250,39 @@ pub fn dot3(a: Vec3, b: Vec3) -> f32 {
     a.x * b.x + a.y * b.y + a.z * b.z
 }
 
+/// Below this squared length a normal field's value is taken to vanish ([`unit_field`]).
+/// Mirror: `FIELD_MIN2` in glsl/include/corners.glsl.
+pub const FIELD_MIN2: f32 = 1e-24;
+
+/// Whether corner `i` weighs more than corner `j` at the sample, the larger normal (compared
+/// x, then y, then z) on a tie. Mirror: `heavier` in corners.glsl.
+fn heavier(c: &Corners, i: usize, j: usize) -> bool {
+    if c.w[i] != c.w[j] {
+        return c.w[i] > c.w[j];
+    }
+    let (a, b) = (c.n[i], c.n[j]);
+    if a.x != b.x {
+        return a.x > b.x;
+    }
+    if a.y != b.y {
+        return a.y > b.y;
+    }
+    a.z > b.z
+}
+
+/// A normal field's value `v` at the sample, made unit length. Where it vanishes (corner
+/// normals pointing opposite ways, as across a fold of the mesh), the normal of the corner
+/// weighing most: chosen from the corners' weights and normals alone, whatever their order, so
+/// that the two elements sharing an edge choose the same one there (displacement moves along
+/// it). Mirror: `unit_field` in glsl/include/corners.glsl.
+pub fn unit_field(v: Vec3, c: &Corners) -> Vec3 {
+    if dot3(v, v) > FIELD_MIN2 {
+        return v.normalize();
+    }
+    let best = (1..3).fold(0, |best, i| if heavier(c, i, best) { i } else { best });
+    c.n[best]
+}
+
 /// Canonical corner order for barycentric sample `bary = (w, u, v)` (weights of corners 0, 1, 2):
 /// ascending global vertex index, then zero-weight corners moved last (stable).
 /// Mirror of `canonical()` in `glsl/include/corners.glsl`.
@@ -505,6 +538,16 @@ mod tests {
             let e = p.check_displacement(d, radius, 2.0).unwrap_err();
             assert!(e.contains(needle), "{e}");
         };
+        // A mesh far from its origin: the phase, not the frequency per radius, is too large.
+        let far = SurfaceParams {
+            frequency: 20.0,
+            ..Default::default()
+        };
+        for d in [Displace::Sine, Displace::Noise] {
+            far.check_displacement(d, radius, 1e4).unwrap();
+            let e = far.check_displacement(d, radius, 1.7e7).unwrap_err();
+            assert!(e.contains("phases of") && e.contains("origin"), "{e}");
+        }
         let big = SurfaceParams {
             amplitude: 3.4e38,
             ..Default::default()

@@ -44,6 +44,12 @@ pub const MAX_REACH_RADII: f64 = 1e6;
 /// Largest displacement frequency accepted, in radians per bounding radius of the mesh.
 pub const MAX_FREQUENCY_RADII: f64 = 1e6;
 
+/// Largest phase accepted for `sine` and `noise`, in radians: their argument (`f·|P|`, and
+/// `2^o f·P` for each octave) is a function of the mesh's own coordinates, computed in `f32`,
+/// which resolves it to within half a radian up to 2^22. A mesh far from its origin reaches
+/// phases the frequency limit alone would not bound.
+pub const MAX_PHASE: f64 = 4_194_304.0;
+
 impl Default for SurfaceParams {
     fn default() -> Self {
         Self {
@@ -144,8 +150,9 @@ impl SurfaceParams {
     /// Refuses a displacement whose result would not be finite or meaningful on a mesh of
     /// bounding radius `radius` whose points are at most `extent` from the origin, before
     /// anything is drawn: the reach at most [`MAX_REACH_RADII`] radii, the highest frequency
-    /// (the last octave's) at most [`MAX_FREQUENCY_RADII`] radians per radius, and the
-    /// displaced points within `f32`. Within these limits positions, tangents and normals stay
+    /// (the last octave's) at most [`MAX_FREQUENCY_RADII`] radians per radius and
+    /// [`MAX_PHASE`] radians at the mesh's farthest point from its origin, and the displaced
+    /// points within `f32`. Within these limits positions, tangents and normals stay
     /// finite (the normal's perturbation is at most about a·f, whose square is far from
     /// overflowing).
     pub fn check_displacement(&self, d: Displace, radius: f32, extent: f32) -> Result<(), String> {
@@ -185,6 +192,14 @@ impl SurfaceParams {
                 };
                 return Err(format!(
                     "--frequency {} is {top:.3e} radians per bounding radius of the mesh{with}; at most {MAX_FREQUENCY_RADII:e} is accepted (beyond that the displacement is noise at any level and its normals are not finite)",
+                    shown_number(self.frequency)
+                ));
+            }
+            let phase = top / r * extent as f64;
+            if phase > MAX_PHASE {
+                return Err(format!(
+                    "--displace {} at --frequency {} reaches phases of {phase:.3e} radians on this mesh, whose points lie up to {extent:.3e} from its origin (the displacement is a function of the mesh's coordinates); f32 resolves them up to 2^22 (about 4.2e6): move the mesh nearer its origin or lower --frequency",
+                    d.name(),
                     shown_number(self.frequency)
                 ));
             }

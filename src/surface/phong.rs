@@ -52,7 +52,13 @@ pub fn corner_normal(c: &Corners, i: usize) -> glam::Vec3 {
     } else if c.w[j] == 0.0 {
         a_ik
     } else {
-        (a_ij * c.w[j] + a_ik * c.w[k]).normalize()
+        // Opposite choices (a seam's two normals) blend to nothing halfway: the edge's first.
+        let s = a_ij * c.w[j] + a_ik * c.w[k];
+        if super::dot3(s, s) > super::FIELD_MIN2 {
+            s.normalize()
+        } else {
+            a_ij
+        }
     }
 }
 

@@ -178,7 +178,7 @@ pub fn normal(c: &Corners, field: NormalField) -> Vec3 {
         + field_control(c, 0, 1, field) * (w0 * w1)
         + field_control(c, 1, 2, field) * (w1 * w2)
         + field_control(c, 2, 0, field) * (w2 * w0);
-    n.normalize_or_zero()
+    super::unit_field(n, c)
 }
 
 pub fn control(c: &Corners) -> Control {

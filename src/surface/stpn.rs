@@ -291,6 +291,8 @@ pub fn parse(
     let mut tags = base.to_vec();
     // The line that tagged each vertex so far.
     let mut tagged_at: std::collections::HashMap<usize, usize> = std::collections::HashMap::new();
+    // A byte order mark (some Windows editors write one) is not part of the first line.
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     for (i, line) in text.lines().enumerate() {
         let at = |msg: String| format!("tags file '{shown}' line {}: {msg}", i + 1);
         let Some(v) = tag_numbers(line).map_err(at)? else {
@@ -637,6 +639,9 @@ mod tests {
         let ok = format!("# tags\n\nt {} {} {} 0.5\n", p.x, p.y, p.z);
         let tags = parse("t.tags", &ok, &mesh, &base).unwrap();
         assert_eq!(tags[0].tension, 0.5);
+        // A byte order mark before the first line (Windows editors write one) is read past.
+        let marked = format!("\u{feff}t {} {} {} 0.5\n", p.x, p.y, p.z);
+        assert_eq!(parse("t.tags", &marked, &mesh, &base).unwrap(), tags);
         let n0 =
             crate::mesh::compute_area_weighted_normals(&mesh.positions, &mesh.position_indices())
                 [0];
