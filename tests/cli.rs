@@ -4059,7 +4059,7 @@ fn bench_lists_time_each_value_once() {
 }
 
 /// Where a mesh's normal field vanishes (corner normals pointing opposite ways: a fold whose
-/// computed normals cancel, a star polygon whose fan folds over itself, explicit opposite
+/// computed normals cancel, a pentagram (a polygon crossing itself, fanned), explicit opposite
 /// normals), every exported normal is still unit length and every position finite, on every
 /// surface, displaced or not (the field is what displacement moves along).
 #[test]
@@ -4069,14 +4069,11 @@ fn vanishing_normal_fields_export_unit_normals() {
         b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 1 4\n",
     );
     let mut star = String::new();
-    for k in 0..10 {
-        let (r, a) = (
-            if k % 2 == 0 { 1.0 } else { 0.3 },
-            k as f64 * 0.2 * std::f64::consts::PI,
-        );
-        star += &format!("v {} {} 0\n", r * a.cos(), r * a.sin());
+    for k in 0..5 {
+        let a = k as f64 * 0.8 * std::f64::consts::PI;
+        star += &format!("v {} {} 0\n", a.cos(), a.sin());
     }
-    star += "f 1 2 3 4 5 6 7 8 9 10\n";
+    star += "f 1 2 3 4 5\n";
     let star = write("star.obj", star.as_bytes());
     let opposite = write(
         "opposite.obj",
@@ -4130,4 +4127,38 @@ fn vanishing_normal_fields_export_unit_normals() {
         }
         assert!(normals > 0, "{args:?}: no normals written");
     }
+}
+
+/// Lines that are no OBJ statement (a capital `F`, a word run into its numbers, stray text)
+/// drop what they meant to say: the loader says how many it ignored and where the first is;
+/// the statements of the format meshrefine does not draw (groups, materials, lines) pass
+/// silently.
+#[test]
+fn lines_that_are_no_obj_statement_are_warned_about() {
+    let misspelt = write(
+        "misspelt.obj",
+        b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nF 2 4 3\nf2 4 3\ng side\nusemtl red\nl 1 2\n",
+    );
+    let out = meshrefine(&["info", p(&misspelt)]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    let warnings: Vec<&str> = stderr
+        .lines()
+        .filter(|l| l.contains("no OBJ statement"))
+        .collect();
+    assert_eq!(warnings.len(), 1, "{stderr}");
+    assert!(
+        warnings[0].contains("2 line(s)") && warnings[0].contains("line 6, 'F'"),
+        "{stderr}"
+    );
+    let clean = write(
+        "groups.obj",
+        b"mtllib none.mtl\no thing\ng side\ns 1\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\nl 1 2\n",
+    );
+    let out = meshrefine(&["info", p(&clean)]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        out.status.success() && !stderr.contains("no OBJ statement"),
+        "{stderr}"
+    );
 }

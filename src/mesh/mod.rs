@@ -46,6 +46,7 @@ pub mod generate;
 mod intersect;
 mod normals;
 mod obj;
+mod polygon;
 mod scan;
 mod split;
 mod topology;

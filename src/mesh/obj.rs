@@ -10,8 +10,9 @@
 //! `vn x y z` and `f` lines with absolute, range-checked `v` or `v//vn` indices remain; every
 //! other statement (groups, objects, materials, texture coordinates, lines, points) becomes
 //! an empty line, which also merges all objects and groups into one mesh. Texture coordinates
-//! are taken from the scan itself (validated there, fanned like `tobj`'s triangles). `tobj` then parses
-//! that text and fan-triangulates polygons (`0 1 2`, `0 2 3`, ...).
+//! are taken from the scan itself (validated there). `tobj` then parses that text and
+//! fan-triangulates polygons (`0 1 2`, `0 2 3`, ...), whose corners are taken back from its fans
+//! and triangulated again by their shape (src/mesh/polygon.rs: the same fan where convex).
 
 use std::io::{Cursor, Read as _};
 use std::path::Path;
@@ -110,7 +111,7 @@ fn read_obj_bytes(shown: &str, path: &Path) -> Result<Vec<u8>, MeshError> {
 
 /// Every statement keyword of the OBJ format (Wavefront's "Object Files (.obj)", appendix B1),
 /// including those meshrefine ignores (groups, materials, free-form geometry).
-const OBJ_KEYWORDS: &[&str] = &[
+pub(crate) const OBJ_KEYWORDS: &[&str] = &[
     "v",
     "vt",
     "vn",
@@ -233,17 +234,28 @@ pub(crate) fn parse_obj(
     let mut triangles = Vec::with_capacity(expected);
     let mut next = 0;
     for (face, info) in scan.faces.iter().enumerate() {
-        let first = next / 3;
-        for _ in 2..info.corners {
-            let p = [p_idx[next], p_idx[next + 1], p_idx[next + 2]];
+        // tobj's fan, corners (0, k-1, k) for k in 2..corners, back to the polygon's corners.
+        let at = |k: usize| {
+            if k < 3 {
+                next + k
+            } else {
+                next + 3 * (k - 2) + 2
+            }
+        };
+        let corner = |k: usize| (p_idx[at(k)], n_idx.get(at(k)).copied());
+        let corners: Vec<(u32, Option<u32>)> = (0..info.corners).map(corner).collect();
+        let shape: Vec<Vec3> = corners
+            .iter()
+            .map(|&(p, _)| positions[p as usize])
+            .collect();
+        for [a, b, c] in super::polygon::triangulate(&shape) {
+            let p = [a, b, c].map(|k| corners[k].0);
             let n = if use_given_normals {
-                [n_idx[next], n_idx[next + 1], n_idx[next + 2]]
+                [a, b, c].map(|k| corners[k].1.expect("checked: a normal per corner"))
             } else {
                 p
             };
-            // tobj's fan: corners (0, k-1, k) for k in 2..corners.
-            let k = next / 3 - first + 2;
-            let t = info.texcoords.as_ref().map(|t| [t[0], t[k - 1], t[k]]);
+            let t = info.texcoords.as_ref().map(|t| [t[a], t[b], t[c]]);
             triangles.push(RawTriangle {
                 p,
                 n,
@@ -251,8 +263,8 @@ pub(crate) fn parse_obj(
                 face,
                 line: Some(info.line),
             });
-            next += 3;
         }
+        next += 3 * (info.corners - 2);
     }
 
     let polygons_triangulated = scan.faces.iter().filter(|f| f.corners > 3).count();

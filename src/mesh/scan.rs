@@ -4,7 +4,7 @@
 //! `vt u [v [w]]` (finite; `w` ignored), and `f` with corners `v`, `v/vt`, `v//vn` or
 //! `v/vt/vn` (positive 1-based or negative relative indices; every index, texture ones
 //! included, must refer to a statement of its kind). `#` starts a comment
-//! anywhere on a line. Everything else is ignored. Absolute indices may refer to vertices
+//! anywhere on a line. The other statements of the format are ignored, and so are lines that are no statement of it (with one warning). Absolute indices may refer to vertices
 //! defined later in the file; relative ones count back from the current line.
 
 use glam::{Vec2, Vec3};
@@ -144,6 +144,9 @@ impl Scan {
                 normals: Vec::new(),
             },
         };
+        // Lines that are no OBJ statement (a misspelt `F 1 2 3`, stray text): how many, the
+        // first's line and word.
+        let (mut unknown, mut first_unknown) = (0usize, None);
         for (i, line) in text.lines().enumerate() {
             let (keyword, words) = statement(line);
             let words: Vec<&str> = words.collect();
@@ -152,9 +155,18 @@ impl Scan {
                 Some("vn") => s.normal(i + 1, &words)?,
                 Some("vt") => s.texcoord(i + 1, &words)?,
                 Some("f") => s.face(i + 1, &words)?,
+                Some(k) if !super::obj::OBJ_KEYWORDS.contains(&k) => {
+                    unknown += 1;
+                    first_unknown.get_or_insert((i + 1, k.chars().take(40).collect::<String>()));
+                }
                 _ => {}
             }
             s.scan.canonical.push('\n');
+        }
+        if let Some((line, word)) = first_unknown {
+            log::warn!(
+                "'{path}': {unknown} line(s) with no OBJ statement ignored (the first: line {line}, '{word}')"
+            );
         }
 
         if s.corners_total > MAX_INDICES {
