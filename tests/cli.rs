@@ -2520,7 +2520,24 @@ fn info_reports_adaptive_levels_for_a_camera() {
             "--look-at",
             "1,2,3",
         ],
-        &["--eye 1,2,3", "no view direction"],
+        &["--eye 1,2,3", "no view direction", "the same point"],
+    );
+    // Points written as typed (not 39 digits), and two points f32 cannot tell apart as a
+    // direction are not called the same.
+    expect_error(
+        &[
+            "render",
+            spot,
+            "--eye",
+            "0.5,0.5,1e-30",
+            "--look-at",
+            "0.5,0.5,0",
+        ],
+        &["--eye 0.5,0.5,1e-30 and", "too close together"],
+    );
+    expect_error(
+        &["render", spot, "--eye", "1e38,0,0", "--look-at", "0,0,0"],
+        &["--eye 1e38,0,0 is"],
     );
     expect_error(
         &["info", spot, "--pixel-error", "1", "--fov", "180"],

@@ -15,6 +15,7 @@ use meshrefine::render::{
     Camera, Capture, ChosenLevels, DrawConfig, Driver, Framing, Headless, LevelView, Scene,
     Viewpoint,
 };
+use meshrefine::surface::shown_number;
 
 /// One sentence for the first bad value of a pixel error and its camera, before any work.
 /// `level_given`: `--level` was given too.
@@ -70,8 +71,8 @@ pub fn check_distance(v: &ViewpointOpts, frame: &Frame) -> Result<()> {
         let radii = ((Vec3::from(p).as_dvec3() - frame.centre) * frame.scale).length();
         if radii.is_nan() || radii > MAX_VIEWPOINT_RADII {
             bail!(
-                "{name} {},{},{} is {radii:.1e} bounding radii from the mesh's centre: at most {MAX_VIEWPOINT_RADII:.0e} are supported",
-                p[0], p[1], p[2]
+                "{name} {} is {radii:.1e} bounding radii from the mesh's centre: at most {MAX_VIEWPOINT_RADII:.0e} are supported",
+                shown_point(p)
             );
         }
     }
@@ -80,10 +81,22 @@ pub fn check_distance(v: &ViewpointOpts, frame: &Frame) -> Result<()> {
 
 /// The sentence for a camera without a view direction.
 pub fn no_direction(eye: Vec3, target: Vec3) -> String {
+    let why = if eye == target {
+        "they are the same point"
+    } else {
+        "they are too close together for one"
+    };
     format!(
-        "--eye {},{},{} and --look-at {},{},{} give no view direction: they are the same point",
-        eye.x, eye.y, eye.z, target.x, target.y, target.z
+        "--eye {} and --look-at {} give no view direction: {why}",
+        shown_point(eye.to_array()),
+        shown_point(target.to_array())
     )
+}
+
+/// A point as an option takes it, each coordinate as [`shown_number`] writes it (`1e38`, not
+/// its 39 digits).
+fn shown_point(p: [f32; 3]) -> String {
+    p.map(shown_number).join(",")
 }
 
 /// The adaptive options of `cli`'s command, checked: the pixel error and camera, and `--level`
