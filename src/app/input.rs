@@ -125,6 +125,12 @@ impl State {
             .level_limit(&self.ctx.info)
             .map(|(max, _)| max);
         let uvs = self.scene.data.uvs.is_some();
+        // The displacement limits the command line checks, in the drawn frame (a mesh far from
+        // its own origin cannot take `sine` or `noise` there: docs/errors.md).
+        let (centre, radius) = self.scene.bounding_sphere();
+        let params = self.controls.cfg.params;
+        let extent = (centre - params.origin).length() + radius;
+        let beyond = |d| params.check_displacement(d, radius, extent).is_err();
         let c = &mut self.controls;
         match key {
             Key::Named(NamedKey::Escape) => return false,
@@ -145,10 +151,9 @@ impl State {
                 "d" | "D" => {
                     // Skip the displacements this surface and mesh cannot take (no displacement
                     // always can).
-                    c.cfg.displace = next(&Displace::ALL, c.cfg.displace);
-                    while c.cfg.surface.incompatibility(c.cfg.displace, uvs).is_some() {
-                        c.cfg.displace = next(&Displace::ALL, c.cfg.displace);
-                    }
+                    let surface = c.cfg.surface;
+                    let takes = |d| surface.incompatibility(d, uvs).is_none() && !beyond(d);
+                    c.cfg.displace = next_displacement(c.cfg.displace, takes);
                 }
                 "n" | "N" => {
                     c.view = next(&View::ALL, c.view);
@@ -177,6 +182,16 @@ impl State {
         }
         true
     }
+}
+
+/// The displacement after `from` (in [`Displace::ALL`]'s order, round) that the surface and mesh
+/// `take`; none, which every surface takes, where no other is.
+fn next_displacement(from: Displace, take: impl Fn(Displace) -> bool) -> Displace {
+    let mut d = next(&Displace::ALL, from);
+    while d != Displace::None && !take(d) {
+        d = next(&Displace::ALL, d);
+    }
+    d
 }
 
 /// The window's level after `current` (`up`) or before it among `levels` (ascending), up to
@@ -215,6 +230,41 @@ fn surface_lost(e: &anyhow::Error) -> bool {
 #[cfg(test)]
 mod tests {
     use super::step_level;
+
+    /// `D` skips the displacements the mesh cannot take: the height map without texture
+    /// coordinates, `sine` and `noise` beyond the displacement limits (a mesh far from its
+    /// origin), as the command line refuses them.
+    #[test]
+    fn d_skips_what_the_mesh_cannot_take() {
+        use crate::surface::{Displace, Surface, SurfaceParams};
+        let far = |d| {
+            SurfaceParams::default()
+                .check_displacement(d, 1.0, 1.7e7)
+                .is_err()
+        };
+        let takes = |uvs: bool| move |d| Surface::Pn.incompatibility(d, uvs).is_none() && !far(d);
+        assert_eq!(
+            super::next_displacement(Displace::None, takes(false)),
+            Displace::None
+        );
+        assert_eq!(
+            super::next_displacement(Displace::None, takes(true)),
+            Displace::Heightmap
+        );
+        let near = |d| Surface::Pn.incompatibility(d, false).is_none();
+        assert_eq!(
+            super::next_displacement(Displace::None, near),
+            Displace::Sine
+        );
+        assert_eq!(
+            super::next_displacement(Displace::Sine, near),
+            Displace::Noise
+        );
+        assert_eq!(
+            super::next_displacement(Displace::Noise, near),
+            Displace::None
+        );
+    }
 
     #[test]
     fn levels_step_within_what_the_driver_draws() {

@@ -35,7 +35,7 @@ pub use displace::Displace;
 pub use facts::{DisplaceFacts, Elements, FragmentNormals, PrePass, SurfaceFacts};
 pub use heightmap::Heightmap;
 pub use inputs::{DisplaceInputs, Mirror, Sources, SurfaceInputs};
-pub use params::{shown_number, SurfaceParams, MAX_FREQUENCY_RADII, MAX_REACH_RADII};
+pub use params::{shown_number, SurfaceParams, MAX_FREQUENCY_RADII, MAX_PHASE, MAX_REACH_RADII};
 pub use pn::NormalField;
 pub use record::{
     build_records, corner_records, oct_decode, oct_encode, split_positions, CornerRecord,
