@@ -4168,9 +4168,11 @@ fn lines_that_are_no_obj_statement_are_warned_about() {
         warnings[0].contains("2 line(s)") && warnings[0].contains("line 6, 'F'"),
         "{stderr}"
     );
+    // Statements of the format that draw nothing here, and a statement continued on the next
+    // line with `\`.
     let clean = write(
         "groups.obj",
-        b"mtllib none.mtl\no thing\ng side\ns 1\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\nl 1 2\n",
+        b"mtllib none.mtl\no thing\ng side \\\n  top\ns 1\ncall other.obj\ncsh ls\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\nl 1 2\n",
     );
     let out = meshrefine(&["info", p(&clean)]);
     let stderr = String::from_utf8_lossy(&out.stderr);

@@ -2,7 +2,7 @@
 
 use super::ui::PIXEL_ERRORS;
 use super::{camera, next, App, State, ViewOptions};
-use crate::render::{Background, Driver, Submit, View};
+use crate::render::{Background, DrawConfig, Driver, Submit, View};
 use crate::surface::{Displace, Surface};
 use winit::application::ApplicationHandler;
 use winit::event::{ElementState, MouseButton, MouseScrollDelta, WindowEvent};
@@ -118,6 +118,27 @@ impl State {
         }
     }
 
+    /// Why the mesh cannot take displacement `d` with `cfg`'s parameters: the limits the command
+    /// line checks (docs/errors.md, "Displacement limits"), in the drawn frame: a mesh far
+    /// from its own origin cannot take `sine` or `noise`, and the panel's sliders can ask for
+    /// more than any mesh takes.
+    pub(super) fn displacement_refusal(&self, cfg: &DrawConfig, d: Displace) -> Option<String> {
+        let (centre, radius) = self.scene.bounding_sphere();
+        let extent = (centre - cfg.params.origin).length() + radius;
+        cfg.params.check_displacement(d, radius, extent).err()
+    }
+
+    /// `cfg` without a displacement the mesh cannot take (the panel's buttons and sliders can
+    /// choose one), said once per refusal.
+    pub(super) fn limit_displacement(&mut self, cfg: &mut DrawConfig, source: &str) {
+        let Some(why) = self.displacement_refusal(cfg, cfg.displace) else {
+            return;
+        };
+        log::warn!("'{source}': {why}: showing no displacement");
+        cfg.displace = Displace::None;
+        self.controls.cfg.displace = Displace::None;
+    }
+
     /// Handle a key; false quits.
     pub(super) fn key(&mut self, key: &Key) -> bool {
         let levels: Vec<u32> = self.scene.patterns.levels().collect();
@@ -125,12 +146,10 @@ impl State {
             .level_limit(&self.ctx.info)
             .map(|(max, _)| max);
         let uvs = self.scene.data.uvs.is_some();
-        // The displacement limits the command line checks, in the drawn frame (a mesh far from
-        // its own origin cannot take `sine` or `noise` there: docs/errors.md).
-        let (centre, radius) = self.scene.bounding_sphere();
-        let params = self.controls.cfg.params;
-        let extent = (centre - params.origin).length() + radius;
-        let beyond = |d| params.check_displacement(d, radius, extent).is_err();
+        let refused: Vec<Displace> = (Displace::ALL.into_iter())
+            .filter(|&d| self.displacement_refusal(&self.controls.cfg, d).is_some())
+            .collect();
+        let beyond = |d| refused.contains(&d);
         let c = &mut self.controls;
         match key {
             Key::Named(NamedKey::Escape) => return false,

@@ -512,6 +512,7 @@ impl State {
         adaptive_level: Option<u32>,
     ) -> Result<DrawConfig> {
         let mut cfg = self.controls.cfg;
+        self.limit_displacement(&mut cfg, &opts.source);
         if let Some(l) = adaptive_level {
             cfg.level = l;
         }

@@ -181,8 +181,8 @@ impl Report {
         if adaptive {
             said.push(
                 "Each adaptive row's note compares it with the uniform rows of the same run below \
-                 it: the smallest uniform level meeting the same bound (`bound`) and the power of \
-                 two at or above it (`pow2`).",
+                 it (`levels from`: the levels asked for, the smallest uniform level meeting the \
+                 same bound, `bound`, and the power of two at or above it, `pow2`).",
             );
         }
         said.iter().map(|x| format!("{x} ")).collect()

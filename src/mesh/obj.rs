@@ -149,6 +149,8 @@ pub(crate) const OBJ_KEYWORDS: &[&str] = &[
     "stech",
     "maplib",
     "usemap",
+    "call",
+    "csh",
 ];
 
 /// The check of a file's first statement while it is read.

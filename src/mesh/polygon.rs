@@ -1,33 +1,72 @@
 //! Triangulating an OBJ polygon (a face of more than three corners): a convex polygon as a fan
 //! from its first corner (`0 1 2`, `0 2 3`, ...: what `tobj` makes, and what a reader of the file
 //! expects), a concave one by ear clipping in its plane, so that its triangles cover it exactly,
-//! without overlapping or turning over where a fan would.
+//! without overlapping or turning over where a fan would. A polygon that crosses itself, or
+//! touches itself at a corner it lists twice, has no such triangulation: it gets triangles for
+//! every corner but two all the same, which may overlap.
 #![forbid(unsafe_code)]
 
 use glam::{DVec2, DVec3, Vec3};
 
 /// Polygons with more corners than this are fanned whatever their shape (ear clipping takes a
-/// time that grows with the cube of the corners in the worst case).
-pub const MAX_CLIPPED_CORNERS: usize = 1024;
+/// time that grows with the square of the corners, and with their cube at worst).
+pub const MAX_CLIPPED_CORNERS: usize = 256;
+
+/// A turn this small against the product of its two sides' lengths is no turn (the projection
+/// into the plane, in `f64`), nor one within the rounding of the corners' `f32` coordinates
+/// ([`Plane::slack`]): corners on a line with their neighbours, as a T-junction's, either way.
+const STRAIGHT: f64 = 1e-9;
+
+/// A polygon's corners in its plane, and how far off it rounding may have put them.
+struct Plane {
+    p: Vec<DVec2>,
+    /// `4 ε` times the largest coordinate: what a straight corner's turn may be off, per unit
+    /// length of its two sides.
+    slack: f64,
+}
 
 /// The triangles of the polygon with corner positions `corners` (in the face's order), as
-/// triples of corner numbers wound as the polygon is: a fan where the polygon is convex (or
-/// has no plane: every corner on a line, or more corners than [`MAX_CLIPPED_CORNERS`]), else
-/// its ears clipped one by one.
+/// triples of corner numbers wound as the polygon is: a fan where the polygon is convex (corners
+/// on a line with their neighbours included) or has no plane (every corner on a line, or more
+/// corners than [`MAX_CLIPPED_CORNERS`]), else its ears clipped one by one (what is left fanned
+/// where no ear can be found: a polygon crossing itself).
 pub fn triangulate(corners: &[Vec3]) -> Vec<[usize; 3]> {
     let n = corners.len();
     let fan = || (2..n).map(|k| [0, k - 1, k]).collect();
     if n <= 3 || n > MAX_CLIPPED_CORNERS {
         return fan();
     }
-    let Some(flat) = in_plane(corners) else {
+    let Some(p) = in_plane(corners) else {
         return fan();
     };
-    let turn = |a: usize, b: usize, c: usize| cross(flat[b] - flat[a], flat[c] - flat[b]);
-    if (0..n).all(|i| turn((i + n - 1) % n, i, (i + 1) % n) >= 0.0) {
+    let largest = corners
+        .iter()
+        .map(|c| c.abs().max_element())
+        .fold(0.0f32, f32::max);
+    let flat = Plane {
+        p,
+        slack: 4.0 * f32::EPSILON as f64 * largest as f64,
+    };
+    if (0..n).all(|i| turn(&flat, (i + n - 1) % n, i, (i + 1) % n) >= 0) {
         return fan();
     }
-    clip_ears(&flat).unwrap_or_else(fan)
+    clip_ears(&flat)
+}
+
+/// Whether corner `b` (between `a` and `c`) turns left (1), right (-1) or goes straight on (0)
+/// within rounding ([`STRAIGHT`], [`Plane::slack`]).
+fn turn(plane: &Plane, a: usize, b: usize, c: usize) -> i32 {
+    let p = &plane.p;
+    let (u, v) = (p[b] - p[a], p[c] - p[b]);
+    let t = cross(u, v);
+    let (lu, lv) = (u.length(), v.length());
+    if t.abs() <= STRAIGHT * lu * lv + plane.slack * (lu + lv) {
+        0
+    } else if t > 0.0 {
+        1
+    } else {
+        -1
+    }
 }
 
 /// The corners in the polygon's plane (Newell's normal: counter-clockwise seen from it), in
@@ -60,39 +99,49 @@ fn inside(p: DVec2, a: DVec2, b: DVec2, c: DVec2) -> bool {
 }
 
 /// Ear clipping of a counter-clockwise polygon: each step cuts off a corner that turns left and
-/// whose triangle holds no other remaining corner (a corner on a line with its neighbours is
-/// cut off last, as a sliver, where nothing else is left to cut). `None` where no corner can be
-/// cut (the polygon crosses itself).
-fn clip_ears(p: &[DVec2]) -> Option<Vec<[usize; 3]>> {
+/// whose triangle holds no other remaining corner that turns right (only those can lie inside a
+/// simple polygon's ear; corners at the same position as the ear's own are its own), searching
+/// on from the last ear; a corner on a line with its neighbours is cut off as a sliver only
+/// where no ear is left. Where no corner can be cut at all (the polygon crosses itself), what
+/// is left is fanned.
+fn clip_ears(plane: &Plane) -> Vec<[usize; 3]> {
+    let p = &plane.p;
     let mut left: Vec<usize> = (0..p.len()).collect();
     let mut out = Vec::with_capacity(p.len() - 2);
+    let mut from = 0;
     while left.len() > 3 {
         let m = left.len();
         let corner = |k: usize| (left[(k + m - 1) % m], left[k], left[(k + 1) % m]);
         let ear = |k: usize, strict: bool| {
             let (a, b, c) = corner(k);
-            let turn = cross(p[b] - p[a], p[c] - p[b]);
-            let turns = if strict { turn > 0.0 } else { turn >= 0.0 };
-            turns
-                && left.iter().all(|&q| {
+            let t = turn(plane, a, b, c);
+            (t > 0 || (!strict && t == 0))
+                && left.iter().enumerate().all(|(j, &q)| {
                     q == a
                         || q == b
                         || q == c
                         || p[q] == p[a]
                         || p[q] == p[b]
                         || p[q] == p[c]
+                        || turn(plane, left[(j + m - 1) % m], q, left[(j + 1) % m]) > 0
                         || !inside(p[q], p[a], p[b], p[c])
                 })
         };
-        let k = (0..m)
+        let order = |k: usize| (from + k) % m;
+        let found = (0..m)
+            .map(order)
             .find(|&k| ear(k, true))
-            .or_else(|| (0..m).find(|&k| ear(k, false)))?;
+            .or_else(|| (0..m).map(order).find(|&k| ear(k, false)));
+        let Some(k) = found else {
+            break;
+        };
         let (a, b, c) = corner(k);
         out.push([a, b, c]);
         left.remove(k);
+        from = k.min(left.len() - 1).saturating_sub(1);
     }
-    out.push([left[0], left[1], left[2]]);
-    Some(out)
+    out.extend((2..left.len()).map(|k| [left[0], left[k - 1], left[k]]));
+    out
 }
 
 #[cfg(test)]
@@ -178,6 +227,46 @@ mod tests {
                 assert_eq!(triangulate(&tilted), tris);
             }
         }
+    }
+
+    /// A rectangle with its sides' midpoints as corners (T-junctions), placed in random planes:
+    /// its midpoints are on a line with their neighbours up to rounding, and it is fanned as a
+    /// convex polygon every time (as it was before ear clipping existed).
+    #[test]
+    fn corners_on_a_line_keep_the_fan() {
+        let rect = [
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(1.5, 0.0, 0.0),
+            Vec3::new(3.0, 0.0, 0.0),
+            Vec3::new(3.0, 1.0, 0.0),
+            Vec3::new(1.5, 1.0, 0.0),
+            Vec3::new(0.0, 1.0, 0.0),
+        ];
+        let fan: Vec<[usize; 3]> = (2..6).map(|k| [0, k - 1, k]).collect();
+        for k in 0..300 {
+            let a = k as f32 * 0.731;
+            let q = glam::Quat::from_rotation_x(a) * glam::Quat::from_rotation_z(1.3 * a);
+            let placed: Vec<Vec3> = rect.iter().map(|&v| q * v + Vec3::splat(a)).collect();
+            assert_eq!(triangulate(&placed), fan, "placement {k}");
+        }
+    }
+
+    /// A pentagram crosses itself: no ear clipping covers it, and it gets a triangle for every
+    /// corner but two, as a fan would give it.
+    #[test]
+    fn a_polygon_crossing_itself_still_gets_its_triangles() {
+        let star: Vec<Vec3> = (0..5)
+            .map(|k| {
+                let a = k as f32 * 0.8 * std::f32::consts::PI;
+                Vec3::new(a.cos(), a.sin(), 0.0)
+            })
+            .collect();
+        let tris = triangulate(&star);
+        assert_eq!(tris.len(), 3);
+        let mut used: Vec<usize> = tris.iter().flatten().copied().collect();
+        used.sort();
+        used.dedup();
+        assert_eq!(used, vec![0, 1, 2, 3, 4]);
     }
 
     #[test]

@@ -147,15 +147,18 @@ impl Scan {
         // Lines that are no OBJ statement (a misspelt `F 1 2 3`, stray text): how many, the
         // first's line and word.
         let (mut unknown, mut first_unknown) = (0usize, None);
+        // Whether the line before ended in `\`: this one continues its statement.
+        let mut continued = false;
         for (i, line) in text.lines().enumerate() {
             let (keyword, words) = statement(line);
             let words: Vec<&str> = words.collect();
+            let continues = std::mem::replace(&mut continued, line.trim_end().ends_with('\\'));
             match keyword {
                 Some("v") => s.vertex(i + 1, &words)?,
                 Some("vn") => s.normal(i + 1, &words)?,
                 Some("vt") => s.texcoord(i + 1, &words)?,
                 Some("f") => s.face(i + 1, &words)?,
-                Some(k) if !super::obj::OBJ_KEYWORDS.contains(&k) => {
+                Some(k) if !continues && !super::obj::OBJ_KEYWORDS.contains(&k) => {
                     unknown += 1;
                     first_unknown.get_or_insert((i + 1, k.chars().take(40).collect::<String>()));
                 }
