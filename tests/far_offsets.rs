@@ -213,7 +213,7 @@ fn an_eye_or_target_too_far_away_is_refused_as_given() {
             let stderr = expect_error(
                 &args,
                 &[
-                    &format!("{option} 100000000000000000000,0,0 is 7.3e19 bounding radii"),
+                    &format!("{option} 1e20,0,0 is 7.3e19 bounding radii"),
                     "at most 1e12 are supported",
                 ],
             );
