@@ -548,6 +548,14 @@ mod tests {
             let e = far.check_displacement(d, radius, 1.7e7).unwrap_err();
             assert!(e.contains("phases of") && e.contains("origin"), "{e}");
         }
+        // The last octave's phase: fewer octaves are a way out.
+        let octaves = SurfaceParams { octaves: 8, ..far };
+        let e = octaves
+            .check_displacement(Displace::Noise, radius, 2e3)
+            .unwrap_err();
+        assert!(e.ends_with("lower --frequency or --octaves"), "{e}");
+        far.check_displacement(Displace::Noise, radius, 2e3)
+            .unwrap();
         let big = SurfaceParams {
             amplitude: 3.4e38,
             ..Default::default()

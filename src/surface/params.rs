@@ -198,9 +198,10 @@ impl SurfaceParams {
             let phase = top / r * extent as f64;
             if phase > MAX_PHASE {
                 return Err(format!(
-                    "--displace {} at --frequency {} reaches phases of {phase:.3e} radians on this mesh, whose points lie up to {extent:.3e} from its origin (the displacement is a function of the mesh's coordinates); f32 resolves them up to 2^22 (about 4.2e6): move the mesh nearer its origin or lower --frequency",
+                    "--displace {} at --frequency {} reaches phases of {phase:.3e} radians on this mesh, whose points lie up to {extent:.3e} from its origin (the displacement is a function of the mesh's coordinates); f32 resolves them up to 2^22 (about 4.2e6): move the mesh nearer its origin or lower --frequency{}",
                     d.name(),
-                    shown_number(self.frequency)
+                    shown_number(self.frequency),
+                    if octaves > 1 { " or --octaves" } else { "" }
                 ));
             }
         }
