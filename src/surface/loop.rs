@@ -105,6 +105,44 @@ pub fn eval(
     eval_face(data, frame, g, b)
 }
 
+/// The exact limit point of M1 face `rec` at its stored lattice point `(i, j)` (weight `i/S` on
+/// stored corner 1, `j/S` on corner 2), strictly inside the face: the one table row there summed
+/// over the control vertices, as [`eval`] sums it at that point (the same bits up to the sign of
+/// a zero: `eval` weighs the cell's other two rows by zero), without the normal and tangents.
+/// What the bounds read at every lattice point ([`bound`]).
+pub fn interior_point(
+    data: &LoopData,
+    frame: &LoopFrame,
+    rec: &ElementRecord,
+    i: u32,
+    j: u32,
+) -> Vec3 {
+    let g = FaceRecord::decode(rec).face as usize;
+    let [base, kp, first, orient] = data.faces[g];
+    let (k, pairs) = ((kp & 0xffff) as usize, (kp >> 16) as usize);
+    let o = Orient {
+        rot: (orient & 3) as u8,
+        mirror: orient & 4 != 0,
+    };
+    let lattice = Lattice::new(orient >> 3);
+    let s = lattice.segments();
+    debug_assert!(
+        i > 0 && j > 0 && i + j < s,
+        "({i}, {j}) is not inside the face"
+    );
+    // Canonical lattice coordinates, as `eval_face` takes them from the barycentrics.
+    let stored = [s - i - j, i, j];
+    let row = lattice.row(stored[o.stored(1)], stored[o.stored(2)]);
+    let packed = &data.tables.packed;
+    let at = packed.entry(base as usize + row);
+    let mut p = Vec3::ZERO;
+    for c in 0..padded(k) {
+        let v = data.control[first as usize + c] as usize;
+        p += frame.positions[v] * packed.weight(at, c, pairs);
+    }
+    p
+}
+
 /// The lattice triangle around canonical lattice coordinates (x, y) (units of 1/S): its
 /// three rows, their interpolation weights, and the rows whose differences are d/dx and d/dy
 /// (`(plus, minus)` index pairs into the three). Mirror of `bft_cell` in loop.glsl.
@@ -158,36 +196,89 @@ fn heavier_normal(a: (f32, Vec3), b: (f32, Vec3)) -> bool {
     a.0 > b.0 || (a.0 == b.0 && larger)
 }
 
+/// Where face `g` is read at weights `b` of its stored corners: its control vertices, the
+/// lattice triangle around the point (the three rows, where each starts in the packed tables
+/// and whether it is read mirrored, their interpolation weights, the rows whose differences are
+/// the tangents) and the orientation. The first half of `loop_eval_face`.
+struct FaceCell {
+    /// Control vertices: padded count, column pairs, first index into `LoopData::control`.
+    k: usize,
+    pairs: usize,
+    first: usize,
+    rows: [(usize, bool); 3],
+    l: [f32; 3],
+    d: [[usize; 2]; 2],
+    o: Orient,
+    s: f32,
+}
+
+impl FaceCell {
+    fn new(data: &LoopData, g: u32, b: [f32; 3]) -> Self {
+        let [base, kp, first, orient] = data.faces[g as usize];
+        let o = Orient {
+            rot: (orient & 3) as u8,
+            mirror: orient & 4 != 0,
+        };
+        let lattice = Lattice::new(orient >> 3);
+        // Canonical corner i is stored corner o.stored(i).
+        let s = lattice.segments() as f32;
+        let x = b[o.stored(1)] * s;
+        let y = b[o.stored(2)] * s;
+        let (rows, l, d) = cell(lattice, x, y);
+        debug_assert!(rows.iter().all(|&r| r < lattice.rows()));
+        let packed = &data.tables.packed;
+        FaceCell {
+            k: padded((kp & 0xffff) as usize),
+            pairs: (kp >> 16) as usize,
+            first: first as usize,
+            rows: rows.map(|r| packed.entry(base as usize + r)),
+            l,
+            d,
+            o,
+            s,
+        }
+    }
+
+    /// Control vertex `c`'s weight in each of the three rows.
+    fn weights(&self, data: &LoopData, c: usize) -> [f32; 3] {
+        self.rows
+            .map(|at| data.tables.packed.weight(at, c, self.pairs))
+    }
+
+    /// The weight interpolated at the point.
+    fn weight(&self, w3: [f32; 3]) -> f32 {
+        w3[0] * self.l[0] + w3[1] * self.l[1] + w3[2] * self.l[2]
+    }
+}
+
+/// The position alone of [`eval`] at sample `bary` of `rec`'s face, the same bits, without the
+/// normal and tangents: what the bounds read on edges and corners ([`bound`]).
+pub fn position(data: &LoopData, frame: &LoopFrame, rec: &ElementRecord, bary: [f32; 3]) -> Vec3 {
+    let (g, b) = owner(rec, bary);
+    let cell = FaceCell::new(data, g, b);
+    let mut p = Vec3::ZERO;
+    for c in 0..cell.k {
+        let v = data.control[cell.first + c] as usize;
+        p += frame.positions[v] * cell.weight(cell.weights(data, c));
+    }
+    p
+}
+
 /// Evaluate face `g` at weights `b` of its stored corners. Mirror of `loop_eval_face`.
 pub fn eval_face(data: &LoopData, frame: &LoopFrame, g: u32, b: [f32; 3]) -> SurfacePoint {
-    let [base, kp, first, orient] = data.faces[g as usize];
-    let (k, pairs) = ((kp & 0xffff) as usize, (kp >> 16) as usize);
-    let o = Orient {
-        rot: (orient & 3) as u8,
-        mirror: orient & 4 != 0,
-    };
-    let lattice = Lattice::new(orient >> 3);
-    // Canonical corner i is stored corner o.stored(i).
-    let s = lattice.segments() as f32;
-    let x = b[o.stored(1)] * s;
-    let y = b[o.stored(2)] * s;
-    let (rows, l, d) = cell(lattice, x, y);
-    debug_assert!(rows.iter().all(|&r| r < lattice.rows()));
+    let cell = FaceCell::new(data, g, b);
+    let (o, s, d) = (cell.o, cell.s, cell.d);
     // The three rows' weights interpolated first, then one weighted sum, and two for the
     // tangents (the lattice triangle's edges).
     let (mut p, mut n, mut dx, mut dy) = (Vec3::ZERO, Vec3::ZERO, Vec3::ZERO, Vec3::ZERO);
-    // Each row: where it starts, and whether it is read as its mirror image (column pairs
-    // swapped).
-    let packed = &data.tables.packed;
-    let rows = rows.map(|r| packed.entry(base as usize + r));
     // Padded columns too, as the GPU sums them (weight zero: the sum keeps its value).
     // The heaviest control vertex with a normal, for where M1's normals cancel.
     let mut heaviest = (-3.0e38f32, Vec3::Z);
-    for c in 0..padded(k) {
-        let v = data.control[first as usize + c] as usize;
+    for c in 0..cell.k {
+        let v = data.control[cell.first + c] as usize;
         let (pv, nv) = (frame.positions[v], frame.normals[v]);
-        let w3 = rows.map(|at| packed.weight(at, c, pairs));
-        let w = w3[0] * l[0] + w3[1] * l[1] + w3[2] * l[2];
+        let w3 = cell.weights(data, c);
+        let w = cell.weight(w3);
         if nv != Vec3::ZERO && heavier_normal((w, nv), heaviest) {
             heaviest = (w, nv);
         }
@@ -290,6 +381,45 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// What the bounds read is `eval`'s position, on every face (regular and extraordinary,
+    /// both boundary rules, tables read mirrored): `position` the same bits at every lattice
+    /// point and at points between them, `interior_point` equal as numbers (a zero's sign may
+    /// differ) at the lattice points strictly inside.
+    #[test]
+    fn bound_points_are_eval_positions() {
+        let bits = |p: Vec3| p.to_array().map(f32::to_bits);
+        let mut mirrored = 0;
+        for (file, boundary) in [
+            ("spot_control_tri.obj", Boundary::EdgeOnly),
+            ("fan24_open.obj", Boundary::EdgeAndCorner),
+            ("halfdisc17_open.obj", Boundary::EdgeOnly),
+            ("tetrahedron.obj", Boundary::EdgeOnly),
+        ] {
+            let (_, data, frame) = setup(file, boundary);
+            for rec in &data.records {
+                let g = FaceRecord::decode(rec).face as usize;
+                let orient = data.faces[g][3];
+                mirrored += usize::from(orient & 4 != 0);
+                let s = Lattice::new(orient >> 3).segments();
+                for n in [s, 37] {
+                    for j in 0..=n {
+                        for i in 0..=n - j {
+                            let b = [weight(n - i - j, n), weight(i, n), weight(j, n)];
+                            let want = eval(&data, &frame, rec, b).position;
+                            let at = format!("{file} face {g} ({i}, {j})/{n}");
+                            assert_eq!(bits(position(&data, &frame, rec, b)), bits(want), "{at}");
+                            if n == s && i > 0 && j > 0 && i + j < s {
+                                let got = interior_point(&data, &frame, rec, i, j);
+                                assert!(got == want, "{at}: {got} != {want}");
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        assert!(mirrored > 0, "no table read mirrored");
     }
 
     /// At lattice points (level 32 and every level dividing it) the surface is the limit of

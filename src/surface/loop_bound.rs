@@ -35,20 +35,22 @@ fn segments(lod: &Lod, rec: &ElementRecord) -> u32 {
     1 << (data.faces[rec.words[0] as usize][3] >> 3)
 }
 
+/// The drawn surface's point at `bary`: `loop_::eval`'s position.
 fn at(lod: &Lod, rec: &ElementRecord, bary: [f32; 3]) -> Vec3 {
     let (data, frame) = inputs(lod);
-    loop_::eval(data, frame, rec, bary).position
+    loop_::position(data, frame, rec, bary)
 }
 
-/// `(a + c) − 2b`: the same bits read in either direction.
-fn second(a: Vec3, b: Vec3, c: Vec3) -> f32 {
-    ((a + c) - b * 2.0).length()
+/// `|(a + c) − 2b|²`: the same bits read in either direction. The largest of these, square
+/// rooted, is the largest length (the square root is monotonic, correctly rounded).
+fn second2(a: Vec3, b: Vec3, c: Vec3) -> f32 {
+    ((a + c) - b * 2.0).length_squared()
 }
 
-/// `(a + d) − (b + c)`: the mixed difference of a lattice parallelogram `a, b, c, d` (`d`
+/// `|(a + d) − (b + c)|²`: the mixed difference of a lattice parallelogram `a, b, c, d` (`d`
 /// opposite `a`), the same bits whichever diagonal comes first.
-fn mixed(a: Vec3, b: Vec3, c: Vec3, d: Vec3) -> f32 {
-    ((a + d) - (b + c)).length()
+fn mixed2(a: Vec3, b: Vec3, c: Vec3, d: Vec3) -> f32 {
+    ((a + d) - (b + c)).length_squared()
 }
 
 fn finish(lod: &Lod, m: [f32; 3], b: Option<[f32; 3]>, factor: f32, points: &[Vec3]) -> Bounds {
@@ -76,29 +78,36 @@ fn finish(lod: &Lod, m: [f32; 3], b: Option<[f32; 3]>, factor: f32, points: &[Ve
 pub fn element(lod: &Lod, rec: &ElementRecord) -> Bounds {
     let s = segments(lod, rec);
     let n = s as usize + 1;
-    // q[j][i]: lattice point (i, j), weight i/S on corner 1, j/S on corner 2.
-    let mut q = vec![vec![Vec3::ZERO; n]; n];
+    // q(j, i): lattice point (i, j), weight i/S on corner 1, j/S on corner 2.
+    let mut flat = vec![Vec3::ZERO; n * n];
     let mut points = Vec::with_capacity(n * (n + 1) / 2);
     for j in 0..=s {
         for i in 0..=s - j {
-            let p = at(lod, rec, [weight(s - i - j, s), weight(i, s), weight(j, s)]);
-            q[j as usize][i as usize] = p;
+            let p = if i > 0 && j > 0 && i + j < s {
+                let (data, frame) = inputs(lod);
+                loop_::interior_point(data, frame, rec, i, j)
+            } else {
+                // On an edge or corner: its owner's point, as every driver draws it.
+                at(lod, rec, [weight(s - i - j, s), weight(i, s), weight(j, s)])
+            };
+            flat[j as usize * n + i as usize] = p;
             points.push(p);
         }
     }
+    let q = |j: usize, i: usize| flat[j * n + i];
     let mut d = [0.0f32; 3];
     let s = s as usize;
     for j in 0..=s {
         for i in 0..=s - j {
-            let c = q[j][i];
+            let c = q(j, i);
             if i >= 1 && i + j < s {
-                d[0] = d[0].max(second(q[j][i - 1], c, q[j][i + 1]));
+                d[0] = d[0].max(second2(q(j, i - 1), c, q(j, i + 1)));
             }
             if i >= 1 && j >= 1 {
-                d[1] = d[1].max(second(q[j - 1][i + 1], c, q[j + 1][i - 1]));
+                d[1] = d[1].max(second2(q(j - 1, i + 1), c, q(j + 1, i - 1)));
             }
             if j >= 1 && i + j < s {
-                d[2] = d[2].max(second(q[j - 1][i], c, q[j + 1][i]));
+                d[2] = d[2].max(second2(q(j - 1, i), c, q(j + 1, i)));
             }
         }
     }
@@ -107,26 +116,26 @@ pub fn element(lod: &Lod, rec: &ElementRecord) -> Bounds {
     let mut b = [0.0f32; 3];
     for j in 0..=s {
         for i in 0..=s - j {
-            let c = q[j][i];
+            let c = q(j, i);
             // (d0, d1): p, p + (1, 0), p + (−1, 1), p + (0, 1).
             if i >= 1 && i + j < s {
-                b[0] = b[0].max(mixed(c, q[j][i + 1], q[j + 1][i - 1], q[j + 1][i]));
+                b[0] = b[0].max(mixed2(c, q(j, i + 1), q(j + 1, i - 1), q(j + 1, i)));
             }
             // (d1, d2): p, p + (−1, 1), p + (0, −1), p + (−1, 0).
             if i >= 1 && j >= 1 {
-                b[1] = b[1].max(mixed(c, q[j + 1][i - 1], q[j - 1][i], q[j][i - 1]));
+                b[1] = b[1].max(mixed2(c, q(j + 1, i - 1), q(j - 1, i), q(j, i - 1)));
             }
             // (d2, d0): p, p + (0, −1), p + (1, 0), p + (1, −1).
             if j >= 1 && i + j < s {
-                b[2] = b[2].max(mixed(c, q[j - 1][i], q[j][i + 1], q[j - 1][i + 1]));
+                b[2] = b[2].max(mixed2(c, q(j - 1, i), q(j, i + 1), q(j - 1, i + 1)));
             }
         }
     }
     let s2 = (s * s) as f32;
     finish(
         lod,
-        d.map(|x| x * s2),
-        Some(b.map(|x| x * s2)),
+        d.map(|x| x.sqrt() * s2),
+        Some(b.map(|x| x.sqrt() * s2)),
         ELEMENT_FACTOR,
         &points,
     )
@@ -144,8 +153,9 @@ pub fn edge(lod: &Lod, rec: &ElementRecord, e: usize) -> Bounds {
         .collect();
     let d = points
         .windows(3)
-        .map(|w| second(w[0], w[1], w[2]))
-        .fold(0.0f32, f32::max);
+        .map(|w| second2(w[0], w[1], w[2]))
+        .fold(0.0f32, f32::max)
+        .sqrt();
     finish(
         lod,
         [d * (s * s) as f32, 0.0, 0.0],
