@@ -554,7 +554,21 @@ fn keys_switch_driver_level_and_views() {
             assert!(level <= 4, "{title}");
         }
     }
-    demo.quit();
+    // Adaptive mode's keys change nothing in uniform mode (and say so): switching to it shows
+    // culling on and the levels not frozen, as they were.
+    demo.xdotool(&["key", "c"]);
+    demo.xdotool(&["key", "f"]);
+    demo.xdotool(&["key", "m"]);
+    let title = wait_title("adaptive");
+    assert!(
+        title.contains("cull on") && !title.contains("frozen"),
+        "{title}"
+    );
+    let stderr = demo.quit();
+    assert!(
+        stderr.contains("'c' acts in adaptive mode only (M switches to it)"),
+        "{stderr}"
+    );
 }
 
 #[test]
@@ -771,4 +785,72 @@ fn a_lone_eye_or_look_at_is_completed_from_the_fitted_camera() {
     let rounded = |a: [f64; 3], b: &[f64]| (0..3).all(|i| (a[i] - b[i]).abs() <= 6e-3);
     assert!(rounded(loop_eye, &v[0..3]), "{loop_eye:?} {header}");
     assert!(rounded(loop_look_at, &v[3..6]), "{loop_look_at:?} {header}");
+}
+
+/// CPU time (user + system, in clock ticks) the process has used so far.
+fn cpu_ticks(pid: u32) -> u64 {
+    let stat = std::fs::read_to_string(format!("/proc/{pid}/stat")).unwrap();
+    // Fields after the command's closing parenthesis: utime and stime are the 12th and 13th.
+    let rest = &stat[stat.rfind(')').unwrap() + 2..];
+    let f: Vec<u64> = rest
+        .split_whitespace()
+        .skip(11)
+        .take(2)
+        .map(|w| w.parse().unwrap())
+        .collect();
+    f[0] + f[1]
+}
+
+/// A minimised window draws nothing (X11 reports no zero size for it: winit's minimised state
+/// and occlusion say it), and draws again once restored.
+#[test]
+fn a_minimised_window_pauses() {
+    let x = Xvfb::start();
+    // Minimising is the window manager's business.
+    let mut wm = Command::new("openbox")
+        .env("DISPLAY", &x.display)
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("openbox is not installed: run scripts/setup.sh (apt-get install openbox)");
+    let model = common::model_path("tetrahedron.obj");
+    let demo = Demo::start(
+        &x,
+        &[model.to_str().unwrap(), "--width", "320", "--height", "240"],
+    );
+    let title = || demo.xdotool(&["getwindowname", &demo.window]);
+    let frames_flow = || {
+        let first = title();
+        let start = Instant::now();
+        while start.elapsed() < Duration::from_secs(120) {
+            std::thread::sleep(Duration::from_millis(200));
+            let now = title();
+            if now != first && now.contains(" fps") {
+                return true;
+            }
+        }
+        false
+    };
+    assert!(frames_flow(), "no frames before minimising: {}", title());
+    let pid = demo.child.id();
+    let (visible0, t0) = (cpu_ticks(pid), Instant::now());
+    std::thread::sleep(Duration::from_secs(2));
+    let visible = cpu_ticks(pid) - visible0;
+    let visible_s = t0.elapsed().as_secs_f64();
+    demo.xdotool(&["windowminimize", "--sync", &demo.window]);
+    std::thread::sleep(Duration::from_secs(1));
+    let (hidden0, t0) = (cpu_ticks(pid), Instant::now());
+    std::thread::sleep(Duration::from_secs(3));
+    let hidden = cpu_ticks(pid) - hidden0;
+    let hidden_s = t0.elapsed().as_secs_f64();
+    // Drawing keeps a core busy (about 100 ticks a second); paused, the process sleeps.
+    assert!(
+        (hidden as f64 / hidden_s) < 0.1 * (visible as f64 / visible_s),
+        "minimised: {hidden} ticks in {hidden_s:.1} s, visible: {visible} in {visible_s:.1} s"
+    );
+    demo.xdotool(&["windowactivate", "--sync", &demo.window]);
+    assert!(frames_flow(), "no frames after restoring: {}", title());
+    demo.quit();
+    let _ = wm.kill();
+    let _ = wm.wait();
 }

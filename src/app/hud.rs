@@ -183,27 +183,31 @@ impl AdaptiveSummary {
         )
     }
 
-    /// How many fewer triangles than the uniform level (`4.2x`; `-` when nothing is drawn).
+    /// Adaptive drawing's triangles against the uniform level's (`adaptive draws 4.2x fewer`,
+    /// or `1.9x more` where dyadic levels and transitions cost more than one integer level;
+    /// `-` when nothing is drawn).
     fn ratio(&self) -> String {
         if self.triangles == 0 {
             return "-".to_string();
         }
-        // Where no level meets the bound everywhere, the uniform level is the cap.
-        let not_met = if self.unmet.any() {
-            ", which does not meet the bound either"
+        let r = self.uniform_triangles as f64 / self.triangles as f64;
+        let than = if r >= 1.0 {
+            format!("adaptive draws {r:.1}x fewer")
         } else {
-            ""
+            format!("adaptive draws {:.1}x more", 1.0 / r)
         };
-        format!(
-            "{:.1}x{not_met}",
-            self.uniform_triangles as f64 / self.triangles as f64
-        )
+        // Where no level meets the bound everywhere, the uniform level is the cap.
+        if self.unmet.any() {
+            format!("{than}; the uniform level does not meet the bound either")
+        } else {
+            than
+        }
     }
 
     /// The title's counts: triangles against the uniform level, levels, culling, cost.
     fn counts(&self) -> String {
         format!(
-            "{} triangles, uniform level {} {} ({} fewer) | levels {} | culled {} | levels on the GPU, CPU mirror {:.1} ms",
+            "{} triangles, uniform level {} {} ({}) | levels {} | culled {} | levels on the GPU, CPU mirror {:.1} ms",
             self.triangles,
             self.uniform_level,
             self.uniform_triangles,
@@ -310,9 +314,15 @@ mod tests {
             unmet: crate::lod::frame::Unmet::default(),
             level_ms: 0.0,
         };
-        assert_eq!(a.ratio(), "4.2x");
+        assert_eq!(a.ratio(), "adaptive draws 4.2x fewer");
         a.unmet.near = 1;
-        assert_eq!(a.ratio(), "4.2x, which does not meet the bound either");
+        assert_eq!(
+            a.ratio(),
+            "adaptive draws 4.2x fewer; the uniform level does not meet the bound either"
+        );
+        a.unmet.near = 0;
+        a.uniform_triangles = 520;
+        assert_eq!(a.ratio(), "adaptive draws 1.9x more");
         a.triangles = 0;
         assert_eq!(a.ratio(), "-");
     }

@@ -39,6 +39,7 @@ impl ApplicationHandler for App {
                 event_loop.exit();
             }
             WindowEvent::Resized(_) => s.resize = true,
+            WindowEvent::Occluded(hidden) => s.occluded = hidden,
             WindowEvent::MouseInput {
                 state,
                 button: MouseButton::Left,
@@ -103,7 +104,11 @@ impl ApplicationHandler for App {
 
     fn about_to_wait(&mut self, _event_loop: &ActiveEventLoop) {
         if let Some(s) = &self.state {
-            s.window.request_redraw();
+            // Minimised (X11 reports no zero size for it) or wholly covered: no frames until
+            // it shows again, whose events (map, expose) wake the loop with a redraw.
+            if !(s.occluded || s.window.is_minimized() == Some(true)) {
+                s.window.request_redraw();
+            }
         }
     }
 }
@@ -183,10 +188,22 @@ impl State {
                 "+" | "=" => c.set_level(step_level(&levels, limit, c.level(), true)),
                 "-" | "_" => c.set_level(step_level(&levels, limit, c.level(), false)),
                 "m" | "M" => c.adaptive = !c.adaptive,
-                "c" | "C" => c.cull = !c.cull,
-                "f" | "F" => c.freeze = !c.freeze,
-                "[" => c.pixel_error = (c.pixel_error * 0.5).max(*PIXEL_ERRORS.start()),
-                "]" => c.pixel_error = (c.pixel_error * 2.0).min(*PIXEL_ERRORS.end()),
+                "c" | "C" if c.adaptive => c.cull = !c.cull,
+                "f" | "F" if c.adaptive => c.freeze = !c.freeze,
+                "[" if c.adaptive => {
+                    c.pixel_error = (c.pixel_error * 0.5).max(*PIXEL_ERRORS.start())
+                }
+                "]" if c.adaptive => c.pixel_error = (c.pixel_error * 2.0).min(*PIXEL_ERRORS.end()),
+                // Each mode's own keys change nothing in the other (it would show up unasked
+                // on switching back), and say so.
+                "c" | "C" | "f" | "F" | "[" | "]" => {
+                    log::warn!("'{ch}' acts in adaptive mode only (M switches to it)")
+                }
+                "l" | "L" if c.adaptive => {
+                    log::warn!(
+                        "'{ch}' (LOD by distance) acts in uniform mode only (M switches to it)"
+                    )
+                }
                 "w" | "W" => c.wireframe = !c.wireframe,
                 "k" | "K" => c.cage = !c.cage,
                 "a" | "A" => c.animate = !c.animate,

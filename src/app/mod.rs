@@ -245,6 +245,8 @@ struct State {
     frames: u64,
     recorded_once: bool,
     resize: bool,
+    /// The window is wholly covered (`WindowEvent::Occluded`): frames pause.
+    occluded: bool,
     /// Quit was asked for: the next frame is the last (and saves the screenshot).
     quit: bool,
     drag: Option<(f64, f64)>,
@@ -367,6 +369,7 @@ impl App {
             frames: 0,
             recorded_once: false,
             resize: false,
+            occluded: false,
             quit: false,
             drag: None,
             pan_drag: None,

@@ -239,6 +239,10 @@ fn panel(ctx: &egui::Context, c: &mut Controls, info: &PanelInfo) {
         .default_width(250.0)
         .resizable(false)
         .collapsible(true)
+        // Taller than the window (a small window, the default size in adaptive mode): the
+        // panel scrolls instead of losing its last rows.
+        .vscroll(true)
+        .max_height((ctx.screen_rect().height() - 20.0).max(60.0))
         .show(ctx, |ui| {
             ui.add(egui::Label::new(info.device).wrap());
             ui.separator();
