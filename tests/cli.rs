@@ -3318,6 +3318,53 @@ fn meshrefine_env(args: &[&str], env: &[(&str, &str)]) -> Output {
         .expect("run meshrefine")
 }
 
+/// Runs meshrefine with `args` and `env`, expecting success; returns its standard error.
+fn succeeds(args: &[&str], env: &[(&str, &str)]) -> String {
+    let out = meshrefine_env(args, env);
+    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert!(out.status.success(), "{args:?}: {stderr}");
+    stderr
+}
+
+/// An adaptive export made in many passes runs Loop's step and the level pass once, in the
+/// first, and the passes after it draw from what they wrote: the same file as one pass, on both
+/// drivers (`loop` has the pre-pass; the pattern driver bins each pass from the levels).
+#[test]
+fn adaptive_exports_in_passes_keep_the_file() {
+    let ico = model_path("icosahedron.obj");
+    // Three elements a pass at the largest level (8): 64 tess triangles of 3 vertices.
+    let xfb_vertex = std::mem::size_of::<meshrefine::render::XfbVertex>();
+    let bytes = (3 * 64 * 3 * xfb_vertex).to_string();
+    for driver in ["tess", "pattern"] {
+        let one = tmp(&format!("adaptive_passes_one_{driver}.obj"));
+        let many = tmp(&format!("adaptive_passes_many_{driver}.obj"));
+        let run = |o: &Path, env: &[(&str, &str)]| {
+            let mut a = vec!["export", p(&ico), "-o", p(o), "--surface", "loop"];
+            a.extend([
+                "--pixel-error",
+                "0.5",
+                "--max-level",
+                "8",
+                "--driver",
+                driver,
+            ]);
+            succeeds(&a, env)
+        };
+        run(&one, &[]);
+        let env = [
+            ("MESHREFINE_PROGRESS_AFTER", "0"),
+            ("MESHREFINE_MAX_CAPTURE_BYTES", bytes.as_str()),
+        ];
+        let loud = run(&many, &env);
+        let passes = loud.lines().filter(|l| l.contains(" passes (")).count();
+        assert!(passes >= 5, "{driver}: {passes} passes: {loud}");
+        assert!(
+            std::fs::read(&one).unwrap() == std::fs::read(&many).unwrap(),
+            "{driver}: passes change the file"
+        );
+    }
+}
+
 /// A long export reports how far it is on standard error, a few plain lines when that is not a
 /// terminal: each pass captured, the writing, the end (forced here from the start with
 /// MESHREFINE_PROGRESS_AFTER=0). An export made in many small passes (MESHREFINE_MAX_CAPTURE_BYTES)
@@ -3346,10 +3393,7 @@ fn exports_report_progress_and_passes_keep_the_file() {
                 "--driver",
                 driver,
             ];
-            let out = meshrefine_env(&a, env);
-            let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
-            assert!(out.status.success(), "{a:?}: {stderr}");
-            stderr
+            succeeds(&a, env)
         };
         let quiet = run(&one, &[]);
         assert!(!quiet.contains("export:"), "{quiet}");

@@ -38,6 +38,11 @@ pub struct Headless {
     pub max_capture_bytes: Option<u64>,
     /// Hears each capture pass as it ends (a progress report for long captures).
     pub capture_progress: Option<Box<dyn FnMut(CapturePass) + Send>>,
+    /// Within a capture after its first pass: the pre-pass (Loop's step) and the level pass
+    /// have written what they write for the whole mesh, so the passes after it draw from that
+    /// (each would otherwise run both over every element: time growing with the square of
+    /// the mesh where the passes are many).
+    pub(super) passes_reuse: bool,
 }
 
 /// Vertices the capture variant of a driver's pipeline wrote.
@@ -193,6 +198,7 @@ impl Headless {
             view: View::Shaded,
             max_capture_bytes: None,
             capture_progress: None,
+            passes_reuse: false,
         })
     }
 
@@ -361,9 +367,13 @@ impl Headless {
             adaptive: self.adaptive,
             cage: scene.cage.as_ref().filter(|_| cage),
             clear: self.background.color(),
-            level_pass: scene.level_pass(cfg).filter(|_| self.adaptive),
+            level_pass: (scene.level_pass(cfg)).filter(|_| self.adaptive && !self.passes_reuse),
             elements,
             ..FrameWork::new(scene, *cfg)
+        };
+        let work = FrameWork {
+            pre_pass: work.pre_pass.filter(|_| !self.passes_reuse),
+            ..work
         };
         let start = Instant::now();
         self.pool.submit_and_wait(|cmd| {
@@ -512,6 +522,7 @@ impl Headless {
                 result = Err(e.into());
                 break;
             }
+            self.passes_reuse = k > 0;
             match self.draw_inner(
                 scene,
                 cfg,
@@ -556,6 +567,7 @@ impl Headless {
             });
         }
         self.wireframe = wire;
+        self.passes_reuse = false;
         result.map(|()| (out, stats))
     }
 

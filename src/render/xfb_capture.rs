@@ -128,6 +128,7 @@ impl Headless {
             let count = per_pass.min(n - first);
             let elements = first..first + count;
             counter.write_pod(0, &[0u32]);
+            self.passes_reuse = first > 0;
             if let Err(e) = self.draw_inner(
                 scene,
                 cfg,
@@ -155,6 +156,7 @@ impl Headless {
             self.report_pass(first, n, per_pass);
         };
         self.wireframe = wire;
+        self.passes_reuse = false;
         result
     }
 }
