@@ -93,23 +93,46 @@ fn size_refusal(m1: &Topology, report: &LoadReport) -> Option<String> {
     if total <= CONTROL_LIMIT {
         return None;
     }
-    const MIB: u64 = 1 << 20;
     // M1's vertex points keep M0's numbers (the file's vertices); an edge point's valence is
-    // at most 6 inside, so the vertex listed most is one of the file's.
-    let vertex = most.map_or(String::new(), |(v, _)| {
-        let (ring, on_boundary) = m1.one_ring(v);
-        format!(
-            " ({} has {} neighbours{}, and each face around it lists them all)",
-            report.vertex(v),
-            ring.len(),
-            if on_boundary { " on the boundary" } else { "" }
-        )
-    });
-    Some(format!(
-        "its faces after one Loop step would list about {total} control points{vertex}, {} MiB, past the limit of {CONTROL_LIMIT} control points ({} MiB) that the loop surface's basis function tables take (the lists grow with the square of a vertex's valence)",
+    // at most 6 inside, so the vertex listed most is one of the file's. Named where its faces
+    // list a tenth of the whole or more: otherwise the faces are simply too many.
+    let vertex = most
+        .filter(|&(_, listed)| listed * 10 >= total)
+        .map(|(v, _)| {
+            let (ring, on_boundary) = m1.one_ring(v);
+            format!(
+                "{} has {} neighbours{}, and each face around it lists them all",
+                report.vertex(v),
+                ring.len(),
+                if on_boundary { " on the boundary" } else { "" }
+            )
+        });
+    Some(size_sentence(total, m1.faces.len() as u64, vertex))
+}
+
+/// [`size_refusal`]'s sentence: `total` control points listed by `faces` faces of M1, and the
+/// vertex whose faces list the most, where it dominates.
+fn size_sentence(total: u64, faces: u64, vertex: Option<String>) -> String {
+    const MIB: u64 = 1 << 20;
+    let head = format!("its faces after one Loop step would list about {total} control points",);
+    let limit = format!(
+        "{} MiB, past the limit of {CONTROL_LIMIT} control points ({} MiB) that the loop surface's basis function tables take",
         (4 * total).div_ceil(MIB),
         4 * CONTROL_LIMIT / MIB
-    ))
+    );
+    match vertex {
+        Some(v) => {
+            format!("{head} ({v}), {limit} (the lists grow with the square of a vertex's valence)")
+        }
+        None => {
+            // Each triangle makes four faces of M1, each listing about the mean.
+            let per_face = total as f64 / faces.max(1) as f64;
+            let fits = (CONTROL_LIMIT as f64 / per_face / 4.0) as u64;
+            format!(
+                "{head} ({faces} faces of about {per_face:.0} each), {limit}: the mesh has too many triangles for it (about {fits} of such valences fit)"
+            )
+        }
+    }
 }
 
 fn m0_message(mesh: &Mesh, report: &LoadReport, e: &TopologyError) -> String {
@@ -202,6 +225,17 @@ mod tests {
             "{e}"
         );
         assert_eq!(refusal("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"), None);
+    }
+
+    /// A mesh past the limit through its size alone (no vertex dominating) is told so, with
+    /// about how many triangles fit.
+    #[test]
+    fn too_many_faces_are_not_blamed_on_a_vertex() {
+        let e = size_sentence(84_000_000, 4_000_000, None);
+        assert_eq!(
+            e,
+            "its faces after one Loop step would list about 84000000 control points (4000000 faces of about 21 each), 321 MiB, past the limit of 33554432 control points (128 MiB) that the loop surface's basis function tables take: the mesh has too many triangles for it (about 399457 of such valences fit)"
+        );
     }
 
     /// A bicone of 2n triangles: two poles of valence n (the file's vertices 1 and 2).
