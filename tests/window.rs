@@ -854,3 +854,51 @@ fn a_minimised_window_pauses() {
     let _ = wm.kill();
     let _ = wm.wait();
 }
+
+/// The frame budget learns from slow frames in uniform mode too: the tessellator's wireframe
+/// pass costs lavapipe far more a triangle than the estimate (about 20 s a frame for
+/// spot_tri at level 8), so after a measured slow frame the demo draws a level that fits and
+/// says so, instead of every frame taking seconds.
+#[test]
+fn slow_wireframe_frames_lower_the_level() {
+    let _guard = common::gpu_lock();
+    let x = Xvfb::start();
+    let model = common::model_path("spot_control_tri.obj");
+    let demo = Demo::start(
+        &x,
+        &[
+            model.to_str().unwrap(),
+            "--driver",
+            "tess",
+            "--level",
+            "24",
+            "--wireframe",
+            "--width",
+            "480",
+            "--height",
+            "320",
+            "--msaa",
+            "1",
+        ],
+    );
+    let t0 = Instant::now();
+    let title = loop {
+        let title = demo.xdotool(&["getwindowname", &demo.window]);
+        let level =
+            (title.split(" level ").nth(1)).and_then(|t| t.split(' ').next()?.parse::<u32>().ok());
+        if level.is_some_and(|l| l < 24) {
+            break title;
+        }
+        assert!(
+            t0.elapsed() < Duration::from_secs(150),
+            "the level never came down: {title}"
+        );
+        std::thread::sleep(Duration::from_millis(200));
+    };
+    assert!(title.contains(" wire"), "{title}");
+    let stderr = demo.quit();
+    assert!(
+        stderr.contains("level 24 would take over a second a frame on this software device"),
+        "{stderr}"
+    );
+}

@@ -154,26 +154,57 @@ impl State {
             .unwrap_or(1)
     }
 
-    /// After a slow adaptive frame (over a quarter second, so that the triangles dominate its
-    /// time) drawn as the one before it (no pipeline compiled in it): its GPU time per refined triangle, kept if slower than the last one measured for
-    /// the same driver, surface and displacement.
-    pub(super) fn measure_adaptive_rate(&mut self) {
+    /// After a slow frame (over a quarter second, so that the triangles dominate its time)
+    /// drawn as the one before it (no pipeline compiled in it), in either mode: its GPU time
+    /// per refined triangle and pass, kept if slower than the last one measured for the same
+    /// driver, surface, displacement and wireframe (on lavapipe the tessellator's wireframe
+    /// pass costs a hundred times a shaded one's triangles, adaptive frames more than uniform
+    /// ones), in the same mode, for the frame budget ([`MeasuredRate`]).
+    pub(super) fn measure_rate(&mut self) {
         let d = self.drawn;
-        if self.levels.is_none() || !self.warm || self.gpu_ms < 250.0 {
+        if !self.warm || self.gpu_ms < 250.0 {
             return;
         }
         let coarse = self.scene.elements(d.surface).element_count as u64;
-        let passes = if self.controls.wireframe { 2 } else { 1 };
-        let triangles = self.refined(&d, coarse) * passes;
+        let wire = self.controls.wireframe;
+        let triangles = self.refined(&d, coarse) * if wire { 2 } else { 1 };
         if triangles == 0 {
             return;
         }
         let ns = self.gpu_ms * 1e6 / triangles as f64;
-        let same =
-            |c: &DrawConfig| (c.driver, c.surface, c.displace) == (d.driver, d.surface, d.displace);
-        match &mut self.adaptive_rate {
-            Some((c, rate)) if same(c) => *rate = rate.max(ns),
-            other => *other = Some((d, ns)),
+        let key = MeasuredRate::key(&d, wire, self.levels.is_some());
+        match &mut self.measured_rate {
+            Some(m) if m.key == key => m.ns = m.ns.max(ns),
+            other => *other = Some(MeasuredRate { key, ns }),
         }
+    }
+}
+
+/// The slowest GPU time per refined triangle and pass measured on one configuration's slow
+/// frames (`State::measure_rate`), which the frame budget also counts.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct MeasuredRate {
+    key: RateKey,
+    pub ns: f64,
+}
+
+/// What a measured rate is for: driver, surface, displacement, wireframe, adaptive.
+type RateKey = (
+    crate::render::Driver,
+    crate::surface::Surface,
+    crate::surface::Displace,
+    bool,
+    bool,
+);
+
+impl MeasuredRate {
+    fn key(cfg: &DrawConfig, wire: bool, adaptive: bool) -> RateKey {
+        (cfg.driver, cfg.surface, cfg.displace, wire, adaptive)
+    }
+
+    /// The rate measured for `cfg` drawn with or without the wireframe, adaptively or not; 0
+    /// where none is.
+    pub fn for_config(m: Option<Self>, cfg: &DrawConfig, wire: bool, adaptive: bool) -> f64 {
+        (m.filter(|m| m.key == Self::key(cfg, wire, adaptive))).map_or(0.0, |m| m.ns)
     }
 }

@@ -4,14 +4,15 @@
 //! on a software device").
 #![forbid(unsafe_code)]
 
+use super::adaptive::MeasuredRate;
 use super::State;
 use crate::gpu::vk;
 use crate::render::{software_frame_seconds, DrawConfig};
 
 impl State {
     /// On a software device, lower `cfg.level` to the finest level whose frame the slower
-    /// estimate ([`software_frame_seconds`]) puts under a second (the wireframe
-    /// pass counted as a second draw), and say so in the panel: the window stays responsive
+    /// estimate ([`software_frame_seconds`], or the slower rate measured on this configuration's
+    /// slow frames) puts under a second (the wireframe pass counted as a second draw), and say so in the panel: the window stays responsive
     /// whatever level is asked for. Other devices draw what is asked.
     pub(super) fn fit_frame_budget(&mut self, cfg: &mut DrawConfig, wire: bool) {
         self.budget_note = None;
@@ -22,11 +23,12 @@ impl State {
         }
         let elements = self.scene.elements(cfg.surface).element_count as u64;
         let passes = if wire { 2 } else { 1 };
+        let measured = MeasuredRate::for_config(self.measured_rate, cfg, wire, false);
         let fits = |level: u32| {
             let mut c = *cfg;
             c.level = level;
             let refined = elements * c.refined_per_element() as u64 * passes;
-            software_frame_seconds(refined).is_none()
+            software_frame_seconds(refined).is_none() && refined as f64 * measured * 1e-9 < 1.0
         };
         if fits(cfg.level) {
             return;
@@ -67,11 +69,8 @@ impl State {
         // Only a software device's budget reads the tally (the mirror runs now).
         let report = chosen.report();
         let passes = if self.controls.wireframe { 2 } else { 1 };
-        let measured = (self.adaptive_rate)
-            .filter(|(c, _)| {
-                (c.driver, c.surface, c.displace) == (cfg.driver, cfg.surface, cfg.displace)
-            })
-            .map_or(0.0, |(_, ns)| ns);
+        let measured =
+            MeasuredRate::for_config(self.measured_rate, cfg, self.controls.wireframe, true);
         let fits = |cap: u32| {
             let refined: u64 = (report.histogram.iter())
                 .map(|(&n, &count)| count * cfg.driver.refined_per_element(n.min(cap)) as u64)

@@ -235,7 +235,7 @@ struct State {
     frozen: Option<(Camera, vk::Extent2D)>,
     /// The slowest GPU time per refined triangle measured on a slow adaptive frame (over a
     /// quarter second) of this driver, surface and displacement, in nanoseconds.
-    adaptive_rate: Option<(DrawConfig, f64)>,
+    measured_rate: Option<adaptive::MeasuredRate>,
     /// What the last frame drew (configuration, wireframe, adaptively), and whether the frame
     /// before drew the same: only then were its pipelines compiled before it (lavapipe compiles
     /// at the first draw, inside the frame's GPU time).
@@ -338,7 +338,7 @@ impl App {
             unmet_said: None,
             adaptive_level: None,
             frozen: None,
-            adaptive_rate: None,
+            measured_rate: None,
             last_drawn: None,
             warm: false,
             controls: Controls {
@@ -471,7 +471,7 @@ impl State {
         self.fence.wait()?;
         if self.recorded_once {
             self.gpu_ms = self.queries.gpu_ms(0)?;
-            self.measure_adaptive_rate();
+            self.measure_rate();
         }
         if self.resize {
             self.ctx.wait_idle()?;
