@@ -275,19 +275,21 @@ impl Adaptive<'_> {
         h.adaptive = true;
         h.prepared_elements(scene, cfg, capture)?;
         let camera = self.camera(scene, cfg, width as f32 / height as f32, frame)?;
-        let report = scene.set_levels(
-            cfg,
-            &LevelView {
-                camera,
-                width,
-                height,
-                pixel_error: self.pixel_error,
-                cull: self.cull,
-            },
-        )?;
+        let report = scene.set_levels(cfg, &self.level_view(camera, (width, height)))?;
         h.adaptive = true;
         self.note_unmet(cfg, &report);
         Ok((camera, report))
+    }
+
+    /// What chooses the levels: the camera, an image of `size`, the pixel error and culling.
+    pub fn level_view(&self, camera: Camera, (width, height): (u32, u32)) -> LevelView {
+        LevelView {
+            camera,
+            width,
+            height,
+            pixel_error: self.pixel_error,
+            cull: self.cull,
+        }
     }
 
     /// Says on standard error where the pixel error is not met: elements with no finite error

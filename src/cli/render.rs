@@ -61,6 +61,18 @@ fn cannot_adapt(h: &mut Headless, scene: &mut Scene, cfg: &DrawConfig) -> Result
     Ok(refusal.map(|e| e.to_string()))
 }
 
+/// `cfg` at the largest level drawn among the levels of `report` (a power of two where the
+/// driver's levels are), where that is below `cfg.level`.
+fn chosen_max(cfg: &DrawConfig, report: &meshrefine::render::ChosenLevels) -> Option<DrawConfig> {
+    let drawn = *report.report().histogram.keys().max()?;
+    let level = if cfg.dyadic_levels() {
+        drawn.next_power_of_two()
+    } else {
+        drawn
+    };
+    (level < cfg.level).then_some(DrawConfig { level, ..*cfg })
+}
+
 /// The note that an image drawn adaptively by default is drawn at `level` instead, and why.
 fn uniform_instead(level: u32, why: &str) {
     note(format_args!(
@@ -143,9 +155,19 @@ pub fn render_png(
         let mut slow = None;
         if let Some(a) = &adaptive {
             let size = (width, height);
-            let (cam, report) =
+            let (cam, mut report) =
                 a.set_up(&mut h, &mut scene, &viewed, Capture::None, size, &frame)?;
             camera = cam;
+            // Where the draws up to the largest level do not fit the device (millions of
+            // elements), those up to the largest level chosen may: the same levels.
+            if cannot_adapt(&mut h, &mut scene, &viewed)?.is_some() {
+                if let Some(lowered) = chosen_max(&viewed, &report) {
+                    if cannot_adapt(&mut h, &mut scene, &lowered)?.is_none() {
+                        report = scene.set_levels(&lowered, &a.level_view(camera, size))?;
+                        viewed = lowered;
+                    }
+                }
+            }
             line = Some(levels_line(a, cfg.level, &report));
             let drawn = report
                 .triangles_on(|l| viewed.driver.refined_per_element(l))

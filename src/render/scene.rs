@@ -44,6 +44,9 @@ pub struct Scene {
     /// found when first asked (`flat` drawn adaptively with culling), again after
     /// [`Scene::update_mesh`].
     pub(super) self_intersecting: std::cell::OnceCell<bool>,
+    /// The warning that the level pass cannot hold this mesh's bounds was given (once a scene:
+    /// the window chooses levels every frame).
+    pub(super) cpu_levels_said: bool,
     /// The `loop` surface's M1 faces, built by the first `prepare` that draws it.
     pub loop_: Option<LoopScene>,
     /// The coarse mesh's edges for the cage overlay, made when first drawn ([`Scene::cage`]).
@@ -149,6 +152,7 @@ impl Scene {
             adaptive_frames: false,
             closed,
             self_intersecting: std::cell::OnceCell::new(),
+            cpu_levels_said: false,
             static_levels: None,
             loop_: None,
             cage: None,

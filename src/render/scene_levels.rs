@@ -183,7 +183,11 @@ impl Scene {
                 }
             }
             Err(e) => {
-                log::warn!("{e}; adaptive levels are chosen on the CPU instead, the same levels");
+                if !std::mem::replace(&mut self.cpu_levels_said, true) {
+                    log::warn!(
+                        "{e}; adaptive levels are chosen on the CPU instead, the same levels"
+                    );
+                }
                 l.view = None;
                 let levels = frame_levels(&lod_view, &records);
                 self.elements_mut(cfg.surface).upload_levels(&levels);
