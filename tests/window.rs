@@ -530,6 +530,10 @@ fn keys_switch_driver_level_and_views() {
     wait_camera("Home", &|(c, l)| {
         *c != start.0 && *c != panned.0 && *l != panned.1
     });
+    // The tessellator's pipelines are new here: while the frame waits for them (compiled at
+    // their first draw on lavapipe) the title says so.
+    demo.xdotool(&["key", "3"]);
+    wait_title("compiling this frame's new pipelines");
     for (key, want) in [
         ("3", "tess level 8"),
         // Beyond the level the demo started at.

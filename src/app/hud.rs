@@ -17,6 +17,18 @@ impl State {
         }
     }
 
+    /// Where this frame created pipelines (`before`: how many there were) on a software
+    /// device, which compiles their shaders at the first draw (seconds, for the tessellator's
+    /// on lavapipe), say so in the title while it waits.
+    pub(super) fn say_compiling(&self, before: usize) {
+        let software = self.ctx.info.device_type == crate::gpu::vk::PhysicalDeviceType::CPU;
+        if software && self.renderer.pipeline_count() > before {
+            self.window.set_title(
+                "meshrefine | compiling this frame's new pipelines (seconds on a software device)",
+            );
+        }
+    }
+
     /// Lay out the overlay panel for this frame, with the last frame's statistics.
     pub(super) fn run_ui(&mut self) -> ui::UiFrame {
         let levels: Vec<u32> = self.scene.patterns.levels().collect();

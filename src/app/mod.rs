@@ -426,7 +426,9 @@ impl State {
         let asked = std::mem::take(&mut self.controls.asked);
         self.apply_asked(&asked);
         self.advance_scene();
+        let pipelines = self.renderer.pipeline_count();
         let (cfg, adaptive) = self.prepare_frame(opts)?;
+        self.say_compiling(pipelines);
         let drawn = Some((cfg, self.controls.wireframe, adaptive));
         self.warm = self.last_drawn == drawn;
         self.last_drawn = drawn;

@@ -285,6 +285,11 @@ impl Renderer {
         Ok(())
     }
 
+    /// How many drawing pipelines have been created (each once).
+    pub fn pipeline_count(&self) -> usize {
+        self.pipelines.len()
+    }
+
     /// Create (once) the cage overlay's pipeline.
     pub fn prepare_cage(&mut self) -> Result<(), GpuError> {
         if self.cage.is_none() {
