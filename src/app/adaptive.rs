@@ -157,35 +157,25 @@ impl State {
     /// After a slow frame (over a quarter second, so that the triangles dominate its time)
     /// drawn as the one before it (no pipeline compiled in it), in either mode: its GPU time
     /// per refined triangle and pass, kept if slower than the last one measured for the same
-    /// driver, surface, displacement and wireframe (on lavapipe the tessellator's wireframe
-    /// pass costs a hundred times a shaded one's triangles, adaptive frames more than uniform
-    /// ones), in the same mode, for the frame budget ([`MeasuredRate`]).
+    /// driver, surface, displacement, wireframe and mode (on lavapipe the tessellator's
+    /// wireframe pass costs a hundred times a shaded one's triangles, adaptive frames more than
+    /// uniform ones), for the frame budget ([`MeasuredRates`]). Called before the next frame
+    /// is prepared: what is measured is the frame as drawn, whatever keys were pressed since.
     pub(super) fn measure_rate(&mut self) {
-        let d = self.drawn;
+        let Some((d, wire, adaptive)) = self.last_drawn else {
+            return;
+        };
         if !self.warm || self.gpu_ms < 250.0 {
             return;
         }
         let coarse = self.scene.elements(d.surface).element_count as u64;
-        let wire = self.controls.wireframe;
         let triangles = self.refined(&d, coarse) * if wire { 2 } else { 1 };
         if triangles == 0 {
             return;
         }
         let ns = self.gpu_ms * 1e6 / triangles as f64;
-        let key = MeasuredRate::key(&d, wire, self.levels.is_some());
-        match &mut self.measured_rate {
-            Some(m) if m.key == key => m.ns = m.ns.max(ns),
-            other => *other = Some(MeasuredRate { key, ns }),
-        }
+        self.measured_rates.record(&d, wire, adaptive, ns);
     }
-}
-
-/// The slowest GPU time per refined triangle and pass measured on one configuration's slow
-/// frames (`State::measure_rate`), which the frame budget also counts.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) struct MeasuredRate {
-    key: RateKey,
-    pub ns: f64,
 }
 
 /// What a measured rate is for: driver, surface, displacement, wireframe, adaptive.
@@ -197,14 +187,50 @@ type RateKey = (
     bool,
 );
 
-impl MeasuredRate {
+/// The slowest GPU time per refined triangle and pass measured on each configuration's slow
+/// frames (`State::measure_rate`), which the frame budget also counts.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub(super) struct MeasuredRates(Vec<(RateKey, f64)>);
+
+impl MeasuredRates {
     fn key(cfg: &DrawConfig, wire: bool, adaptive: bool) -> RateKey {
         (cfg.driver, cfg.surface, cfg.displace, wire, adaptive)
     }
 
+    /// Keep `ns` for `cfg` drawn so where it is slower than the one kept.
+    pub fn record(&mut self, cfg: &DrawConfig, wire: bool, adaptive: bool, ns: f64) {
+        let key = Self::key(cfg, wire, adaptive);
+        match self.0.iter_mut().find(|(k, _)| *k == key) {
+            Some((_, kept)) => *kept = kept.max(ns),
+            None => self.0.push((key, ns)),
+        }
+    }
+
     /// The rate measured for `cfg` drawn with or without the wireframe, adaptively or not; 0
     /// where none is.
-    pub fn for_config(m: Option<Self>, cfg: &DrawConfig, wire: bool, adaptive: bool) -> f64 {
-        (m.filter(|m| m.key == Self::key(cfg, wire, adaptive))).map_or(0.0, |m| m.ns)
+    pub fn for_config(&self, cfg: &DrawConfig, wire: bool, adaptive: bool) -> f64 {
+        let key = Self::key(cfg, wire, adaptive);
+        (self.0.iter().find(|(k, _)| *k == key)).map_or(0.0, |&(_, ns)| ns)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Each configuration keeps its own slowest rate: another's does not replace it.
+    #[test]
+    fn rates_are_kept_per_configuration() {
+        use crate::render::Driver;
+        let pn = DrawConfig::new(Driver::Pattern(Default::default()), 8);
+        let tess = DrawConfig::new(Driver::Tess, 8);
+        let mut r = MeasuredRates::default();
+        r.record(&tess, true, false, 30_000.0);
+        r.record(&pn, false, true, 500.0);
+        r.record(&tess, true, false, 20_000.0);
+        assert_eq!(r.for_config(&tess, true, false), 30_000.0);
+        assert_eq!(r.for_config(&tess, false, false), 0.0);
+        assert_eq!(r.for_config(&tess, true, true), 0.0);
+        assert_eq!(r.for_config(&pn, false, true), 500.0);
     }
 }

@@ -4,7 +4,6 @@
 //! on a software device").
 #![forbid(unsafe_code)]
 
-use super::adaptive::MeasuredRate;
 use super::State;
 use crate::gpu::vk;
 use crate::render::{software_frame_seconds, DrawConfig};
@@ -23,7 +22,7 @@ impl State {
         }
         let elements = self.scene.elements(cfg.surface).element_count as u64;
         let passes = if wire { 2 } else { 1 };
-        let measured = MeasuredRate::for_config(self.measured_rate, cfg, wire, false);
+        let measured = self.measured_rates.for_config(cfg, wire, false);
         let fits = |level: u32| {
             let mut c = *cfg;
             c.level = level;
@@ -69,8 +68,9 @@ impl State {
         // Only a software device's budget reads the tally (the mirror runs now).
         let report = chosen.report();
         let passes = if self.controls.wireframe { 2 } else { 1 };
-        let measured =
-            MeasuredRate::for_config(self.measured_rate, cfg, self.controls.wireframe, true);
+        let measured = self
+            .measured_rates
+            .for_config(cfg, self.controls.wireframe, true);
         let fits = |cap: u32| {
             let refined: u64 = (report.histogram.iter())
                 .map(|(&n, &count)| count * cfg.driver.refined_per_element(n.min(cap)) as u64)

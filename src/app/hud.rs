@@ -203,7 +203,9 @@ impl AdaptiveSummary {
             return "-".to_string();
         }
         let r = self.uniform_triangles as f64 / self.triangles as f64;
-        let than = if r >= 1.0 {
+        let than = if (0.95..1.05).contains(&r) {
+            "adaptive draws about as many".to_string()
+        } else if r >= 1.0 {
             format!("adaptive draws {r:.1}x fewer")
         } else {
             format!("adaptive draws {:.1}x more", 1.0 / r)
@@ -335,6 +337,8 @@ mod tests {
         a.unmet.near = 0;
         a.uniform_triangles = 520;
         assert_eq!(a.ratio(), "adaptive draws 1.9x more");
+        a.uniform_triangles = 990;
+        assert_eq!(a.ratio(), "adaptive draws about as many");
         a.triangles = 0;
         assert_eq!(a.ratio(), "-");
     }

@@ -105,8 +105,9 @@ impl ApplicationHandler for App {
     fn about_to_wait(&mut self, _event_loop: &ActiveEventLoop) {
         if let Some(s) = &self.state {
             // Minimised (X11 reports no zero size for it) or wholly covered: no frames until
-            // it shows again, whose events (map, expose) wake the loop with a redraw.
-            if !(s.occluded || s.window.is_minimized() == Some(true)) {
+            // it shows again, whose events (map, expose) wake the loop with a redraw; except
+            // the last one asked for on quitting, to save the screenshot.
+            if s.quit || !(s.occluded || s.window.is_minimized() == Some(true)) {
                 s.window.request_redraw();
             }
         }

@@ -235,7 +235,7 @@ struct State {
     frozen: Option<(Camera, vk::Extent2D)>,
     /// The slowest GPU time per refined triangle measured on a slow adaptive frame (over a
     /// quarter second) of this driver, surface and displacement, in nanoseconds.
-    measured_rate: Option<adaptive::MeasuredRate>,
+    measured_rates: adaptive::MeasuredRates,
     /// What the last frame drew (configuration, wireframe, adaptively), and whether the frame
     /// before drew the same: only then were its pipelines compiled before it (lavapipe compiles
     /// at the first draw, inside the frame's GPU time).
@@ -338,7 +338,7 @@ impl App {
             unmet_said: None,
             adaptive_level: None,
             frozen: None,
-            measured_rate: None,
+            measured_rates: Default::default(),
             last_drawn: None,
             warm: false,
             controls: Controls {

@@ -62,7 +62,9 @@ fn cannot_adapt(h: &mut Headless, scene: &mut Scene, cfg: &DrawConfig) -> Result
 }
 
 /// `cfg` at the largest level drawn among the levels of `report` (a power of two where the
-/// driver's levels are), where that is below `cfg.level`.
+/// driver's levels are), where that is below `cfg.level` and draws the same image: not for
+/// the height map, whose mip level follows the largest level, nor where the normal field
+/// would move between fragments and vertices (`loop` from level 16).
 fn chosen_max(cfg: &DrawConfig, report: &meshrefine::render::ChosenLevels) -> Option<DrawConfig> {
     let drawn = *report.report().histogram.keys().max()?;
     let level = if cfg.dyadic_levels() {
@@ -70,7 +72,10 @@ fn chosen_max(cfg: &DrawConfig, report: &meshrefine::render::ChosenLevels) -> Op
     } else {
         drawn
     };
-    (level < cfg.level).then_some(DrawConfig { level, ..*cfg })
+    let lowered = DrawConfig { level, ..*cfg };
+    let same = cfg.displace != meshrefine::surface::Displace::Heightmap
+        && lowered.fragment_normal_field() == cfg.fragment_normal_field();
+    (level < cfg.level && same).then_some(lowered)
 }
 
 /// The note that an image drawn adaptively by default is drawn at `level` instead, and why.
