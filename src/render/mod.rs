@@ -12,6 +12,7 @@ mod error;
 pub mod frame;
 mod framing;
 pub use framing::{framing_points, Framing, REACH};
+mod capture;
 mod gpu_mesh;
 mod headless;
 pub mod level_pass;
