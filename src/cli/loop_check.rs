@@ -9,7 +9,7 @@
 #![forbid(unsafe_code)]
 
 use meshrefine::mesh::{LoadReport, Mesh};
-use meshrefine::subdiv::bft::{control_estimate, CONTROL_LIMIT};
+use meshrefine::subdiv::bft::{control_estimate_m0, CONTROL_LIMIT};
 use meshrefine::subdiv::{Topology, TopologyError};
 
 /// Loop subdivides the file's topology, which a dropped face would change (a hole where it
@@ -67,11 +67,14 @@ pub fn topology_refusal(mesh: &Mesh, report: &LoadReport) -> Option<String> {
         Ok(t) => t,
         Err(e) => return Some(m0_message(mesh, report, &e)),
     };
+    // M1's size is known from M0 (M1 of a million triangles takes seconds to build).
+    if let Some(why) = size_refusal(&m0, report) {
+        return Some(why);
+    }
     // M0 passed: M1 can only fail where M0 is manifold but one step is not (not expected once
     // duplicate faces are gone); said without M1's indices, which mean nothing to the user.
-    let m1 = meshrefine::subdiv::m1_topology(mesh);
     drop(m0);
-    match m1 {
+    match meshrefine::subdiv::m1_topology(mesh) {
         Err(e) => Some(format!(
             "after one Loop step its topology breaks ({}), which Loop subdivision cannot continue from",
             match e {
@@ -82,14 +85,15 @@ pub fn topology_refusal(mesh: &Mesh, report: &LoadReport) -> Option<String> {
                 TopologyError::TooManyControlPoints { .. } => "its faces list too many control points",
             }
         )),
-        Ok(m1) => size_refusal(&m1, report),
+        Ok(_) => None,
     }
 }
 
-/// Why the basis function tables of M1 (`m1`) would be too large to build, estimated before
-/// building them ([`control_estimate`]): the faces' control lists past [`CONTROL_LIMIT`].
-fn size_refusal(m1: &Topology, report: &LoadReport) -> Option<String> {
-    let (total, most) = control_estimate(m1);
+/// Why the basis function tables of M1 would be too large to build, estimated from M0 (`m0`)
+/// before building anything ([`control_estimate_m0`]): the faces' control lists past
+/// [`CONTROL_LIMIT`].
+fn size_refusal(m0: &Topology, report: &LoadReport) -> Option<String> {
+    let (total, most) = control_estimate_m0(m0);
     if total <= CONTROL_LIMIT {
         return None;
     }
@@ -99,7 +103,7 @@ fn size_refusal(m1: &Topology, report: &LoadReport) -> Option<String> {
     let vertex = most
         .filter(|&(_, listed)| listed * 10 >= total)
         .map(|(v, _)| {
-            let (ring, on_boundary) = m1.one_ring(v);
+            let (ring, on_boundary) = m0.one_ring(v);
             format!(
                 "{} has {} neighbours{}, and each face around it lists them all",
                 report.vertex(v),
@@ -107,7 +111,7 @@ fn size_refusal(m1: &Topology, report: &LoadReport) -> Option<String> {
                 if on_boundary { " on the boundary" } else { "" }
             )
         });
-    Some(size_sentence(total, m1.faces.len() as u64, vertex))
+    Some(size_sentence(total, 4 * m0.faces.len() as u64, vertex))
 }
 
 /// [`size_refusal`]'s sentence: `total` control points listed by `faces` faces of M1, and the

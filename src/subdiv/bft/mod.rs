@@ -80,31 +80,48 @@ pub const RING_REACH: usize = 20;
 /// of the valence: two poles of valence 4,000 list 2^25; the build holds them about twice.
 pub const CONTROL_LIMIT: u64 = 1 << 25;
 
+/// How many control points the faces around one vertex of M1 list: `n` its valence, on a
+/// boundary or not ([`control_estimate`]).
+fn listed_around(n: u64, on_boundary: bool) -> u64 {
+    let reach = RING_REACH as u64;
+    if !on_boundary {
+        n * (n + 1)
+    } else if n <= 2 * reach + 2 {
+        n.saturating_sub(1) * (n + 1)
+    } else {
+        // Each face lists its fan only as far as it reaches, and the two ends.
+        (n - 1) * (2 * reach + 4)
+    }
+}
+
 /// About how many control points the faces of `topo` (M1) will list, known before anything is
 /// built: each face lists its corners' one-rings, a wide boundary fan only as far as
 /// [`RING_REACH`] (an overestimate by the rings' overlaps, at most a few a face).
 /// Returns the estimate and the vertex whose faces list the most with their count.
 pub fn control_estimate(topo: &Topology) -> (u64, Option<(u32, u64)>) {
-    let reach = RING_REACH as u64;
     let mut total = 0;
     let mut most: Option<(u32, u64)> = None;
     for v in 0..topo.vertex_count as u32 {
         let (ring, on_boundary) = topo.one_ring(v);
-        let n = ring.len() as u64;
-        let listed = if !on_boundary {
-            n * (n + 1)
-        } else if n <= 2 * reach + 2 {
-            n.saturating_sub(1) * (n + 1)
-        } else {
-            // Each face lists its fan only as far as it reaches, and the two ends.
-            (n - 1) * (2 * reach + 4)
-        };
+        let listed = listed_around(ring.len() as u64, on_boundary);
         total += listed;
         if most.is_none_or(|(_, m)| listed > m) {
             most = Some((v, listed));
         }
     }
     (total, most)
+}
+
+/// [`control_estimate`] of M1 from M0 (`m0`), without building M1: M1's vertex points keep
+/// their vertices' valences and boundaries, an edge point inside has six neighbours and one on
+/// the boundary four. The same total; the vertex that lists the most is among M0's (an edge
+/// point lists at most 42, which decides nothing).
+pub fn control_estimate_m0(m0: &Topology) -> (u64, Option<(u32, u64)>) {
+    let (vertices, most) = control_estimate(m0);
+    let boundary = m0.twin.iter().filter(|t| t.is_none()).count() as u64;
+    let inside = (m0.twin.len() as u64 - boundary) / 2;
+    let edges = inside * listed_around(6, false) + boundary * listed_around(4, true);
+    (vertices + edges, most)
 }
 
 /// [`TopologyError::TooManyControlPoints`] where the faces of `topo` (M1) would list more than
@@ -692,6 +709,28 @@ mod tests {
             // As many tables either way: the configurations do not grow with the valence.
             assert_eq!(small.configs.len(), large.configs.len(), "{name}");
             assert!(small.work < per * n as u64, "{name}: {}", small.work);
+        }
+    }
+
+    /// M1's estimate from M0 alone is the one M1's topology gives, inside and on boundaries,
+    /// with a fan wider than [`RING_REACH`] reaches and poles.
+    #[test]
+    fn the_estimate_from_m0_is_m1s() {
+        use crate::mesh::generate::{grid_mesh, half_disc_fan_mesh, sphere_mesh, torus_mesh};
+        for mesh in [
+            grid_mesh(50),
+            half_disc_fan_mesh(60),
+            half_disc_fan_mesh(5),
+            sphere_mesh(70, 3),
+            torus_mesh(7, 5),
+        ] {
+            let m0 = Topology::of_mesh(&mesh).unwrap();
+            let m1 = crate::subdiv::m1_topology(&mesh).unwrap();
+            let (total, most) = control_estimate_m0(&m0);
+            assert_eq!(total, control_estimate(&m1).0);
+            let (v, listed) = most.unwrap();
+            assert_eq!(listed, control_estimate(&m0).1.unwrap().1);
+            assert_eq!(m0.one_ring(v).0.len(), m1.one_ring(v).0.len());
         }
     }
 
