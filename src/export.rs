@@ -442,22 +442,25 @@ pub const FILE_PER_TRIANGLE: u64 = 90;
 
 /// Refuses, before anything is evaluated, an export of `elements` elements (coarse triangles,
 /// or M1's faces for the loop surface) at `level` whose refined size passes
-/// [`MAX_EXPORT_TRIANGLES`]: one clause naming the count, the estimated memory and file, and
-/// the highest level that fits. Returns the refined triangle count.
-pub fn check_size(elements: u64, level: u32) -> Result<u64, String> {
-    let per = crate::pattern::triangle_count(level) as u64;
-    let triangles = elements.saturating_mul(per);
+/// [`MAX_EXPORT_TRIANGLES`], each element making `per_element(level)` triangles (the driver's:
+/// `N²` from a pattern, about `1.5 N²` from the tessellator): one clause naming the count, the
+/// estimated memory and file, and the highest level that fits. Returns the refined triangle
+/// count.
+pub fn check_size(
+    elements: u64,
+    level: u32,
+    per_element: impl Fn(u32) -> u32,
+) -> Result<u64, String> {
+    let made = |l: u32| elements.saturating_mul(per_element(l) as u64);
+    let per = per_element(level) as u64;
+    let triangles = made(level);
     if triangles <= MAX_EXPORT_TRIANGLES {
         return Ok(triangles);
     }
     let gb = |bytes: u64| bytes as f64 / 1e9;
-    let fits = ((MAX_EXPORT_TRIANGLES / elements.max(1)) as f64)
-        .sqrt()
-        .floor() as u64;
-    let remedy = if fits >= 1 {
-        format!("use --level {fits} or lower for this mesh")
-    } else {
-        "this mesh has too many elements to export at any level".to_string()
+    let remedy = match (1..level).rev().find(|&l| made(l) <= MAX_EXPORT_TRIANGLES) {
+        Some(fits) => format!("use --level {fits} or lower for this mesh"),
+        None => "this mesh has too many elements to export at any level".to_string(),
     };
     Err(format!(
         "--level {level} would export {triangles} refined triangles ({elements} elements x {per}), about {:.1} GB of memory and a {:.1} GB file; at most {MAX_EXPORT_TRIANGLES} (2^24) are exported: {remedy}",
@@ -469,8 +472,8 @@ pub fn check_size(elements: u64, level: u32) -> Result<u64, String> {
 /// Refuses an adaptive export (`--pixel-error`) whose chosen levels make more than
 /// [`MAX_EXPORT_TRIANGLES`], after the levels are chosen and before anything is captured:
 /// `histogram` holds the visible elements per drawn level (`LevelReport::histogram`), each
-/// counted at `N²` triangles (an upper bound: transition triangles along coarser edges make a
-/// few less). One clause naming the count, the estimated memory and file, and the remedy: a
+/// counted at `per_element(N)` triangles, the driver's at a uniform level (an upper bound:
+/// transition triangles along coarser edges make a few less). One clause naming the count, the estimated memory and file, and the remedy: a
 /// larger `--pixel-error` (named `pixel_error`, as given), or the largest `--max-level` below
 /// `max_level` that fits (a power of two where `power_of_two`, the pattern driver's). Returns
 /// the refined triangle count.
@@ -479,11 +482,12 @@ pub fn check_adaptive_size(
     pixel_error: &str,
     max_level: u32,
     power_of_two: bool,
+    per_element: impl Fn(u32) -> u32,
 ) -> Result<u64, String> {
     // The triangles the same levels make capped at `m` (a smaller --max-level caps them so).
     let capped = |m: u32| -> u64 {
         (histogram.iter())
-            .map(|(&l, &n)| n.saturating_mul(crate::pattern::triangle_count(l.min(m)) as u64))
+            .map(|(&l, &n)| n.saturating_mul(per_element(l.min(m)) as u64))
             .fold(0, u64::saturating_add)
     };
     let triangles = capped(u32::MAX);
@@ -685,8 +689,14 @@ mod tests {
         );
     }
 
+    /// Triangles a pattern makes per element.
+    fn n2(level: u32) -> u32 {
+        crate::pattern::triangle_count(level)
+    }
+
     #[test]
     fn exports_are_refused_past_the_limit_with_the_level_that_fits() {
+        let check_size = |e, l| super::check_size(e, l, n2);
         // 16 elements at level 1024 are exactly 2^24 triangles; one more element is too many.
         assert_eq!(check_size(16, 1024), Ok(1 << 24));
         let e = check_size(17, 1024).unwrap_err();
@@ -705,11 +715,43 @@ mod tests {
         );
     }
 
+    /// The tessellator makes about 1.5 N² triangles an element: its exports are counted so
+    /// (Spot's 5,856 triangles at level 53 make 24.7 M, past the limit), and the level advised
+    /// fits; a coarser edge only takes triangles away, so the uniform count bounds adaptive ones.
+    #[test]
+    fn tess_exports_count_the_tessellators_triangles() {
+        use crate::render::tess::{tess_triangle_count, tess_triangle_count_levels};
+        let e = check_size(5856, 53, tess_triangle_count).unwrap_err();
+        assert!(
+            e.starts_with(
+                "--level 53 would export 24671328 refined triangles (5856 elements x 4213)"
+            ),
+            "{e}"
+        );
+        assert!(e.ends_with("use --level 43 or lower for this mesh"), "{e}");
+        assert!(check_size(5856, 43, tess_triangle_count).is_ok());
+        assert!(check_size(5856, 44, tess_triangle_count).is_err());
+        let over = std::collections::BTreeMap::from([(64, 4096)]);
+        let e = check_adaptive_size(&over, "1", 64, true, tess_triangle_count).unwrap_err();
+        assert!(
+            e.ends_with("--max-level 32 or a smaller power of two"),
+            "{e}"
+        );
+        for inner in 1..=64 {
+            for outer in 1..=inner {
+                let levels = tess_triangle_count_levels([outer, inner, 1], inner);
+                assert!(levels <= tess_triangle_count(inner), "{outer} {inner}");
+            }
+        }
+    }
+
     /// Adaptive exports count the levels drawn, and advise the adaptive options: the largest
     /// `--max-level` whose capped levels fit (a power of two for the pattern driver).
     #[test]
     fn adaptive_exports_are_refused_on_the_levels_drawn() {
         use std::collections::BTreeMap;
+        let check_adaptive_size =
+            |h, px, max, pow2| super::check_adaptive_size(h, px, max, pow2, n2);
         // 4096 elements at level 64 are exactly 2^24 triangles; more at level 1 are too many.
         let fits = BTreeMap::from([(64, 4096)]);
         assert_eq!(check_adaptive_size(&fits, "1", 64, true), Ok(1 << 24));

@@ -427,6 +427,11 @@ fn headless_view_warns_of_what_its_image_ignores() {
             "{lod:?}"
         );
     }
+    // What only a window reads is ignored with one warning, even a directory that is none.
+    assert_eq!(
+        warnings(&run(&with, &["--level", "8", "--frames", "3", "--screenshot-dir", "no/such/dir"])),
+        ["warning: --frames, --screenshot-dir apply only to the window and are ignored: no display found (DISPLAY and WAYLAND_DISPLAY are unset)"]
+    );
     #[rustfmt::skip]
     let out = run(&with, &[
         "--level", "8", "--max-level", "8", "--cull", "off", "--geomorph", "off", "--alpha", "0.5",
@@ -921,6 +926,32 @@ fn texture_coordinates_are_validated() {
     ok(&["info", p(&good)]);
 }
 
+/// `--help` groups every option of a command under a heading of its own (docs/cli.md): only
+/// the global options and `--help` are left under the plain "Options".
+#[test]
+fn help_groups_every_option_under_a_heading() {
+    for command in ["render", "view", "export", "info", "bench", "devices"] {
+        let out = meshrefine(&[command, "--help"]);
+        assert!(out.status.success());
+        let help = String::from_utf8_lossy(&out.stdout);
+        let mut heading = "";
+        for line in help.lines() {
+            if !line.starts_with(' ') && line.ends_with(':') {
+                heading = line;
+            } else if let Some(option) = (line.split_whitespace())
+                .find(|w| w.starts_with("--"))
+                .filter(|_| line.trim_start().starts_with('-'))
+            {
+                let global = ["--validate", "--device", "--help"].contains(&option);
+                assert!(
+                    heading != "Options:" || global,
+                    "{command}: {option} under the plain Options heading:\n{help}"
+                );
+            }
+        }
+    }
+}
+
 #[test]
 fn view_help_lists_the_window_keys() {
     let out = meshrefine(&["view", "--help"]);
@@ -953,9 +984,18 @@ fn meaningless_requests_are_refused() {
         &["v.jpeg", ".png"],
     );
     expect_error(&["view", "--screenshot", "s.bmp"], &["s.bmp", ".png"]);
-    expect_error(
-        &["view", "--screenshot-dir", "no/such/dir"],
-        &["--screenshot-dir 'no/such/dir'", "not a directory"],
+    // A window (a display named) reads --screenshot-dir: refused before it opens.
+    let out = bin()
+        .args(["view", "--screenshot-dir", "no/such/dir"])
+        .env("DISPLAY", ":4242")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert_eq!(
+        stderr.trim(),
+        "error: --screenshot-dir 'no/such/dir' is not a directory (the screenshot key writes meshrefine-<n>.png there)"
     );
     // Zero frames: clap refuses the value (usage error, status 2); a negative number is a value
     // clap's range refuses as such, not an unexpected argument.
@@ -3091,6 +3131,8 @@ fn devices_lists_lavapipe_with_its_features() {
         "{s}"
     );
     assert!(s.lines().all(|l| l.chars().count() <= 120), "{s}");
+    // It lists every device whatever --device names.
+    assert_eq!(ok(&["--device", "no such device", "devices"]), s);
 }
 
 /// A height map whose level 0 alone (5800² f32 texels, 134.6 MB) is more than a storage buffer

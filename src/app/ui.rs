@@ -465,3 +465,18 @@ fn display(ui: &mut egui::Ui, c: &mut Controls, info: &PanelInfo) {
     }
     ui.weak("drag: orbit, right or middle drag: pan, wheel: zoom; H hides this panel");
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A pixel error from the command line is held within the slider's range, at its nearest
+    /// end (docs/window.md).
+    #[test]
+    fn the_slider_holds_the_pixel_error_at_its_nearest_end() {
+        assert_eq!(slider_pixel_error(64.0), 16.0);
+        assert_eq!(slider_pixel_error(0.1), 0.25);
+        assert_eq!(slider_pixel_error(1.5), 1.5);
+        assert_eq!(slider_pixel_error(16.0), 16.0);
+    }
+}

@@ -376,11 +376,11 @@ pub struct InfoArgs {
     /// OBJ file (default: the embedded Spot control mesh).
     pub mesh: Option<PathBuf>,
     /// Also print the GPU geometry bytes each driver would hold at this level.
-    #[arg(long, allow_hyphen_values = true, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    #[arg(long, allow_hyphen_values = true, value_parser = clap::value_parser!(u32).range(1..=1024), help_heading = "Driver and level")]
     pub level: Option<u32>,
     /// Also report what this surface builds (`loop`: M1, valences, configurations and the basis
     /// function tables' memory).
-    #[arg(long, value_parser = choices::surface())]
+    #[arg(long, value_parser = choices::surface(), help_heading = "Surface and displacement")]
     pub surface: Option<Surface>,
     /// The displacement, inputs and parameters of the surface whose levels are reported (with
     /// --pixel-error; Loop's --boundary and --bft-level also with --surface loop): the levels
@@ -391,25 +391,25 @@ pub struct InfoArgs {
     /// the camera below: the level histogram and the triangles against the smallest uniform
     /// level that meets the same bound (--surface, default pn; not with --level). The levels
     /// are those render draws with the same options.
-    #[arg(long, value_parser = typed_f32, allow_hyphen_values = true)]
+    #[arg(long, value_parser = typed_f32, allow_hyphen_values = true, help_heading = "Adaptive drawing")]
     pub pixel_error: Option<TypedF32>,
     #[command(flatten)]
     pub camera: CameraOpts,
     /// Leave out of the report the elements outside the view or, on a closed mesh wound
     /// outwards seen from outside, facing away from the eye, as render culls them (with
     /// --pixel-error; default: on, as render).
-    #[arg(long, value_parser = choices::cull())]
+    #[arg(long, value_parser = choices::cull(), help_heading = "Adaptive drawing")]
     pub cull: Option<bool>,
     /// The largest level any element gets (with --pixel-error).
-    #[arg(long, allow_hyphen_values = true, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    #[arg(long, allow_hyphen_values = true, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=1024), help_heading = "Adaptive drawing")]
     pub max_level: u32,
     /// The driver whose rounding of the levels is reported (with --pixel-error): pattern and
     /// static draw powers of two, tess any integer (geomorphing, tess draws powers of two too).
-    #[arg(long, value_parser = choices::driver(), default_value = "pattern")]
+    #[arg(long, value_parser = choices::driver(), default_value = "pattern", help_heading = "Adaptive drawing")]
     pub driver: Driver,
     /// Whether the reported drawing geomorphs (with --pixel-error; default: on, as render's):
     /// tess then draws powers of two under a --max-level that is one, integers otherwise.
-    #[arg(long, value_parser = choices::geomorph())]
+    #[arg(long, value_parser = choices::geomorph(), help_heading = "Adaptive drawing")]
     pub geomorph: Option<bool>,
 }
 
@@ -467,18 +467,18 @@ pub struct AdaptiveOpts {
     /// render and view: 1 by default unless --level, or for view --lod, is given).
     #[arg(long, value_parser = typed_f32, allow_hyphen_values = true)]
     pub pixel_error: Option<TypedF32>,
-    /// The largest level any element gets (with --pixel-error; default: 64 for the pattern and
-    /// static drivers, whose levels are powers of two, and the tessellator's limit for tess;
+    /// The largest level any element gets (when drawing adaptively: with --pixel-error, or in
+    /// render and view without --level; default: 64 for the pattern and static drivers, whose levels are powers of two, and the tessellator's limit for tess;
     /// both at most what the device draws).
     #[arg(long, allow_hyphen_values = true, value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub max_level: Option<u32>,
-    /// Draw nothing of the elements outside the view or facing away (with --pixel-error;
+    /// Draw nothing of the elements outside the view or facing away (when drawing adaptively;
     /// default: on, off for export).
     #[arg(long, value_parser = choices::cull())]
     pub cull: Option<bool>,
     /// Glide the vertices a finer level adds from their coarser neighbours' midpoint to the
-    /// surface as the level grows, so nothing pops when levels change (with --pixel-error;
-    /// default: on).
+    /// surface as the level grows, so nothing pops when levels change (when drawing
+    /// adaptively; default: on).
     #[arg(long, value_parser = choices::geomorph())]
     pub geomorph: Option<bool>,
     #[command(flatten, next_help_heading = "Camera")]
@@ -490,14 +490,14 @@ pub struct BenchArgs {
     /// OBJ file (default: the embedded Spot control mesh).
     pub mesh: Option<PathBuf>,
     /// Surfaces to measure (comma separated).
-    #[arg(long, value_parser = choices::surface(), value_delimiter = ',', default_value = "flat")]
+    #[arg(long, value_parser = choices::surface(), value_delimiter = ',', default_value = "flat", help_heading = "Measurement")]
     pub surfaces: Vec<Surface>,
     /// Displacements to measure with every surface (comma separated).
-    #[arg(long, value_parser = choices::displace(), value_delimiter = ',', default_value = "none")]
+    #[arg(long, value_parser = choices::displace(), value_delimiter = ',', default_value = "none", help_heading = "Measurement")]
     pub displacements: Vec<Displace>,
     /// Drivers to measure (comma separated; default: every driver and submission mode; `pattern`
     /// means all three submissions; the ratios to static need `static` among them).
-    #[arg(long, value_parser = choices::driver(), value_delimiter = ',')]
+    #[arg(long, value_parser = choices::driver(), value_delimiter = ',', help_heading = "Measurement")]
     pub drivers: Vec<Driver>,
     #[command(flatten)]
     pub params: ParamOpts,

@@ -32,13 +32,14 @@ pub fn run(a: &ExportArgs, desc: &ContextDesc) -> Result<()> {
     let elements = input.mesh.triangles.len() as u64 * if for_loop { 4 } else { 1 };
     let adaptive = a.adaptive.enabled(false);
     let shown = input.shown.clone();
+    let mut cfg = draw_config(&a.technique(), &input.mesh)?;
     if adaptive.is_none() {
         // Adaptive: checked on the levels chosen, once they are (`check_adaptive`).
-        let size = meshrefine::export::check_size(elements, a.level)
+        let per_element = |l| cfg.driver.refined_per_element(l);
+        let size = meshrefine::export::check_size(elements, a.level, per_element)
             .map_err(|e| anyhow::anyhow!("cannot export '{shown}': {e}"))?;
         progress.set_size(size);
     }
-    let mut cfg = draw_config(&a.technique(), &input.mesh)?;
     attach_surface_inputs(&mut input, &a.surface, false)?;
     let size = (a.width, a.height);
     let counts = with_context(desc, |ctx| {
@@ -161,8 +162,15 @@ fn check_adaptive(a: &Adaptive, cfg: &DrawConfig, chosen: &ChosenLevels) -> Resu
     // The pixel error as typed (render's default when none was).
     let named = (a.opts.pixel_error.as_ref())
         .map_or_else(|| super::adaptive::px(a.pixel_error), |t| t.text.clone());
-    meshrefine::export::check_adaptive_size(&chosen.histogram, &named, cfg.level, power_of_two)
-        .map_err(anyhow::Error::msg)
+    let per_element = |l| cfg.driver.refined_per_element(l);
+    meshrefine::export::check_adaptive_size(
+        &chosen.histogram,
+        &named,
+        cfg.level,
+        power_of_two,
+        per_element,
+    )
+    .map_err(anyhow::Error::msg)
 }
 
 /// Reports each captured pass on `progress`; the count of passes done so far.

@@ -23,14 +23,6 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc, given: &Given) -> Result<()> {
         "png",
         "the headless view writes a PNG image",
     )?;
-    if let Some(dir) = &a.screenshot_dir {
-        if !dir.is_dir() {
-            anyhow::bail!(
-                "--screenshot-dir '{}' is not a directory (the screenshot key writes meshrefine-<n>.png there)",
-                dir.display()
-            );
-        }
-    }
     let for_loop = a.technique.surface.surface.facts().needs_every_face;
     let mut input = load_mesh(a.mesh.as_deref(), for_loop)?;
     if input.loop_refusal.is_none() && a.mesh.is_some() {
@@ -44,6 +36,15 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc, given: &Given) -> Result<()> {
     let has_display =
         std::env::var_os("DISPLAY").is_some() || std::env::var_os("WAYLAND_DISPLAY").is_some();
     let why_headless = if has_display {
+        // Only the window reads it: without a display it is ignored with the others below.
+        if let Some(dir) = &a.screenshot_dir {
+            if !dir.is_dir() {
+                anyhow::bail!(
+                    "--screenshot-dir '{}' is not a directory (the screenshot key writes meshrefine-<n>.png there)",
+                    dir.display()
+                );
+            }
+        }
         let (mesh, viewed) = for_viewing(&input.mesh, &cfg);
         let (centre, scale) = input.mesh.viewing_transform();
         let opts = meshrefine::app::ViewOptions {

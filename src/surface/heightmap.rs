@@ -473,5 +473,30 @@ mod tests {
         );
         let m = Heightmap::load_png(&g16).unwrap();
         assert_eq!(m.levels[0].texels, [0.0, 1.0]);
+        // Alpha is read past: the heights are the grey samples'.
+        let ga = write(
+            "ga.png",
+            png::ColorType::GrayscaleAlpha,
+            png::BitDepth::Eight,
+            &[0, 0x80, 0xff, 0x10],
+        );
+        assert_eq!(
+            Heightmap::load_png(&ga).unwrap().levels[0].texels,
+            [0.0, 1.0]
+        );
+        // A side past MAX_SIDE is refused from the header, before its pixels are read.
+        let wide = dir.join("wide.png");
+        {
+            let mut e = png::Encoder::new(std::fs::File::create(&wide).unwrap(), MAX_SIDE + 1, 1);
+            e.set_color(png::ColorType::Grayscale);
+            e.set_depth(png::BitDepth::Eight);
+            let row = vec![0u8; MAX_SIDE as usize + 1];
+            e.write_header().unwrap().write_image_data(&row).unwrap();
+        }
+        let e = Heightmap::load_png(&wide).unwrap_err();
+        assert!(
+            e.ends_with("is 8193 x 1 pixels: each side must be within 1 to 8192"),
+            "{e}"
+        );
     }
 }

@@ -711,6 +711,13 @@ mod tests {
                 ),
                 "line 3: the vertex at",
             ),
+            (
+                format!(
+                    "t {} {} {} 0\nt {} {} {} 0.5\n",
+                    p.x, p.y, p.z, p.x, p.y, p.z
+                ),
+                "was already tagged at line 1: one line per vertex",
+            ),
         ] {
             let e = parse("t.tags", &text, &mesh, &base).unwrap_err();
             assert!(
