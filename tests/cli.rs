@@ -4161,6 +4161,45 @@ fn bench_lists_time_each_value_once() {
     assert_eq!(csv.lines().count(), 1 + 2, "{csv}");
 }
 
+/// A polygon whose triangles cannot cover it (a bow tie crossing itself, a concave star past
+/// the corners that are clipped) is loaded with one warning naming its line; warped quads and a
+/// concave polygon within the limit load silently.
+#[test]
+fn polygons_that_triangles_cannot_cover_are_named() {
+    let stderr_of = |name: &str, text: String| {
+        let path = write(name, text.as_bytes());
+        let out = meshrefine(&["info", p(&path)]);
+        assert!(out.status.success());
+        String::from_utf8_lossy(&out.stderr).into_owned()
+    };
+    let bow = "v 0 0 0\nv 1 1 0\nv 1 0 0\nv 0 1 0\nf 1 2 3 4\nv 0 0 1\nv 1 1 1\nv 1 0 1\nv 0 1 1\nf 5 6 7 8\n".to_string();
+    assert_eq!(
+        stderr_of("bow.obj", bow).trim_end(),
+        format!(
+            "warning: '{}': 2 polygons (the first at line 5) cross or touch themselves, or are concave with more than 256 corners: they are split into triangles that may overlap or turn over (split such faces into simple polygons in the file)",
+            tmp("bow.obj").display()
+        )
+    );
+    let star = |n: usize| {
+        let mut text = String::new();
+        for k in 0..n {
+            let r = 1.0 - 0.5 * (k % 2) as f64;
+            let a = k as f64 * std::f64::consts::TAU / n as f64;
+            text += &format!("v {} {} 0\n", r * a.cos(), r * a.sin());
+        }
+        text + "f " + &(1..=n).map(|k| k.to_string()).collect::<Vec<_>>().join(" ") + "\n"
+    };
+    let big = stderr_of("star1000.obj", star(1000));
+    assert!(
+        big.contains("the polygon at line 1001 crosses or touches itself"),
+        "{big}"
+    );
+    assert_eq!(stderr_of("star256.obj", star(256)), "");
+    let warped =
+        "v 0 0 0\nv 1 0 0.2\nv 1 1 0\nv 0 1 0.3\nv 2 0 0\nv 2 1 0.1\nf 1 2 3 4\nf 2 5 6 3\n";
+    assert_eq!(stderr_of("warped.obj", warped.to_string()), "");
+}
+
 /// Where a mesh's normal field vanishes (corner normals pointing opposite ways: a fold whose
 /// computed normals cancel, a pentagram (a polygon crossing itself, fanned), explicit opposite
 /// normals), every exported normal is still unit length and every position finite, on every

@@ -5,7 +5,7 @@
 use super::adaptive::{check_distance, check_view, Frame};
 use super::args::InfoArgs;
 use super::choices::boundary_name;
-use super::input::{attach_surface_inputs, degenerate_warning, Input};
+use super::input::{attach_surface_inputs, load_warnings, Input};
 use super::loop_check::loop_refusal;
 use crate::note;
 use anyhow::{bail, Result};
@@ -44,7 +44,7 @@ pub fn run(a: &InfoArgs, desc: &ContextDesc) -> Result<()> {
         let (centre, scale) = mesh.viewing_transform();
         check_distance(&a.camera.viewpoint, &Frame { centre, scale })?;
     }
-    if let Some(w) = degenerate_warning(path, &report) {
+    for w in load_warnings(path, &report) {
         note(format_args!("{w}"));
     }
     print_stats(path, &mesh, &report)?;

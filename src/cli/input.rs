@@ -48,7 +48,7 @@ pub fn load_mesh(path: Option<&Path>, for_loop: bool) -> Result<Input> {
     if let Some(why) = loop_refusal.as_ref().filter(|_| for_loop) {
         bail!("{why}");
     }
-    if let Some(w) = degenerate_warning(&shown, &report) {
+    for w in load_warnings(&shown, &report) {
         note(format_args!("{w}"));
     }
     if let Err(MeshError::NonManifold {
@@ -100,13 +100,45 @@ pub fn degenerate_warning(shown: &str, report: &LoadReport) -> Option<String> {
         })
         .collect();
     if runs.len() > LISTED_DEGENERATE {
-        listed.push(format!("and {} more", runs.len() - LISTED_DEGENERATE));
+        let more: usize = runs[LISTED_DEGENERATE..].iter().map(|(_, n)| n).sum();
+        listed.push(format!("and {more} more triangle(s)"));
     }
     Some(format!(
         "warning: '{shown}': dropped {} degenerate face(s) (repeated vertex, zero area, an area f32 cannot represent, or the same three vertices as an earlier face): {}",
         dropped.len(),
         listed.join("; ")
     ))
+}
+
+/// One warning line for the polygons whose triangles may overlap or turn over: how many, and
+/// the first few lines.
+pub fn polygon_warning(shown: &str, report: &LoadReport) -> Option<String> {
+    let lines = &report.uncovered_polygons;
+    let first = lines.first()?;
+    let (which, what) = match lines.len() {
+        1 => (
+            format!("the polygon at line {first}"),
+            "crosses or touches itself, or is concave with more than {MAX} corners: it is",
+        ),
+        n => (
+            format!("{n} polygons (the first at line {first})"),
+            "cross or touch themselves, or are concave with more than {MAX} corners: they are",
+        ),
+    };
+    let what = what.replace("{MAX}", &meshrefine::mesh::MAX_CLIPPED_CORNERS.to_string());
+    Some(format!(
+        "warning: '{shown}': {which} {what} split into triangles that may overlap or turn over (split such faces into simple polygons in the file)"
+    ))
+}
+
+/// The warnings loading gives: dropped degenerate faces, polygons not covered.
+pub fn load_warnings(shown: &str, report: &LoadReport) -> impl Iterator<Item = String> {
+    [
+        degenerate_warning(shown, report),
+        polygon_warning(shown, report),
+    ]
+    .into_iter()
+    .flatten()
 }
 
 /// Loads what `--heightmap` and `--tags` name for `input`'s mesh; with `--surface stpn` and no
@@ -327,7 +359,7 @@ mod tests {
             "{w}"
         );
         assert!(
-            w.ends_with(": at line 7, has zero area (1000 triangles); at line 8, repeats a vertex index; at line 9, repeats a vertex index; and 2 more"),
+            w.ends_with(": at line 7, has zero area (1000 triangles); at line 8, repeats a vertex index; at line 9, repeats a vertex index; and 2 more triangle(s)"),
             "{w}"
         );
     }

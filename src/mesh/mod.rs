@@ -47,6 +47,7 @@ mod intersect;
 mod normals;
 mod obj;
 mod polygon;
+pub use polygon::MAX_CLIPPED_CORNERS;
 mod scan;
 mod split;
 mod topology;
@@ -99,6 +100,9 @@ pub struct LoadReport {
     pub normals_computed: bool,
     /// Faces with more than three corners that were split into triangles.
     pub polygons_triangulated: usize,
+    /// Lines of the polygons whose triangles may overlap or turn over (src/mesh/polygon.rs:
+    /// a polygon crossing or touching itself, or concave with more corners than are clipped).
+    pub uncovered_polygons: Vec<usize>,
     /// For OBJ input, the line of each kept triangle's face, indexed like [`Mesh::triangles`]
     /// (empty otherwise): messages name faces as the file does.
     pub triangle_lines: Vec<usize>,

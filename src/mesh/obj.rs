@@ -234,6 +234,8 @@ pub(crate) fn parse_obj(
     }
 
     let mut triangles = Vec::with_capacity(expected);
+    // Lines of the polygons whose triangles do not cover them without turning over.
+    let mut uncovered = Vec::new();
     let mut next = 0;
     for (face, info) in scan.faces.iter().enumerate() {
         // tobj's fan, corners (0, k-1, k) for k in 2..corners, back to the polygon's corners.
@@ -250,7 +252,11 @@ pub(crate) fn parse_obj(
             .iter()
             .map(|&(p, _)| positions[p as usize])
             .collect();
-        for [a, b, c] in super::polygon::triangulate(&shape) {
+        let (split, covers) = super::polygon::triangulate(&shape);
+        if !covers {
+            uncovered.push(info.line);
+        }
+        for [a, b, c] in split {
             let p = [a, b, c].map(|k| corners[k].0);
             let n = if use_given_normals {
                 [a, b, c].map(|k| corners[k].1.expect("checked: a normal per corner"))
@@ -280,6 +286,7 @@ pub(crate) fn parse_obj(
         polygons_triangulated,
     })?;
     result.1.vertex_numbers = vertex_numbers(&result.0.positions, &scan.positions);
+    result.1.uncovered_polygons = uncovered;
     log::debug!(
         "'{path}': {} vertices, {} triangles, normals {}",
         result.0.positions.len(),

@@ -3,7 +3,8 @@
 //! expects), a concave one by ear clipping in its plane, so that its triangles cover it exactly,
 //! without overlapping or turning over where a fan would. A polygon that crosses itself, or
 //! touches itself at a corner it lists twice, has no such triangulation: it gets triangles for
-//! every corner but two all the same, which may overlap.
+//! every corner but two all the same, which may overlap, and [`triangulate`] says so (the
+//! loader warns, naming its line).
 #![forbid(unsafe_code)]
 
 use glam::{DVec2, DVec3, Vec3};
@@ -27,30 +28,82 @@ struct Plane {
 
 /// The triangles of the polygon with corner positions `corners` (in the face's order), as
 /// triples of corner numbers wound as the polygon is: a fan where the polygon is convex (corners
-/// on a line with their neighbours included) or has no plane (every corner on a line, or more
-/// corners than [`MAX_CLIPPED_CORNERS`]), else its ears clipped one by one (what is left fanned
-/// where no ear can be found: a polygon crossing itself).
-pub fn triangulate(corners: &[Vec3]) -> Vec<[usize; 3]> {
+/// on a line with their neighbours included) or has no plane (every corner on a line, or lobes
+/// whose areas cancel), else its ears clipped one by one (what is left fanned where no ear can
+/// be found: a polygon crossing itself), or fanned where it has more corners than
+/// [`MAX_CLIPPED_CORNERS`]. With whether they cover it without turning over: false where a
+/// triangle is wound against the polygon's plane (a polygon crossing or touching itself, or
+/// too large to clip), or has area where the polygon has no plane.
+pub fn triangulate(corners: &[Vec3]) -> (Vec<[usize; 3]>, bool) {
     let n = corners.len();
-    let fan = || (2..n).map(|k| [0, k - 1, k]).collect();
-    if n <= 3 || n > MAX_CLIPPED_CORNERS {
-        return fan();
+    let fan = || -> Vec<[usize; 3]> { (2..n).map(|k| [0, k - 1, k]).collect() };
+    if n <= 3 {
+        return (fan(), true);
     }
-    let Some(p) = in_plane(corners) else {
-        return fan();
-    };
     let largest = corners
         .iter()
         .map(|c| c.abs().max_element())
         .fold(0.0f32, f32::max);
-    let flat = Plane {
-        p,
-        slack: 4.0 * f32::EPSILON as f64 * largest as f64,
+    let slack = 4.0 * f32::EPSILON as f64 * largest as f64;
+    let Some(p) = in_plane(corners) else {
+        let triangles = fan();
+        let flat = triangles.iter().all(|&t| !has_area(corners, t, slack));
+        return (triangles, flat);
     };
-    if (0..n).all(|i| turn(&flat, (i + n - 1) % n, i, (i + 1) % n) >= 0) {
-        return fan();
+    let flat = Plane { p, slack };
+    if (0..n).all(|i| turn(&flat, (i + n - 1) % n, i, (i + 1) % n) >= 0) && turns_once(&flat) {
+        return (fan(), true);
     }
-    clip_ears(&flat)
+    if n > MAX_CLIPPED_CORNERS {
+        return (fan(), false);
+    }
+    let triangles = clip_ears(&flat);
+    let covers = triangles.iter().all(|&[a, b, c]| turn(&flat, a, b, c) >= 0) && simple(&flat);
+    (triangles, covers)
+}
+
+/// Whether the polygon turns once round (its exterior angles sum to one turn, not two or more
+/// as a pentagram's): with no corner turning right, it is then convex.
+fn turns_once(plane: &Plane) -> bool {
+    let (p, n) = (&plane.p, plane.p.len());
+    let total: f64 = (0..n)
+        .map(|i| {
+            let (u, v) = (p[i] - p[(i + n - 1) % n], p[(i + 1) % n] - p[i]);
+            cross(u, v).atan2(u.dot(v))
+        })
+        .sum();
+    total.abs() < 3.0 * std::f64::consts::PI
+}
+
+/// Whether no two sides of the polygon cross (beyond rounding; sides meeting at a corner, or
+/// touching, do not count).
+fn simple(plane: &Plane) -> bool {
+    let (p, n) = (&plane.p, plane.p.len());
+    let side = |a: DVec2, b: DVec2, q: DVec2| {
+        let (u, v) = (b - a, q - a);
+        let t = cross(u, v);
+        let (lu, lv) = (u.length(), v.length());
+        if t.abs() <= STRAIGHT * lu * lv + plane.slack * (lu + lv) {
+            0
+        } else {
+            t.signum() as i32
+        }
+    };
+    (0..n).all(|i| {
+        let (a, b) = (p[i], p[(i + 1) % n]);
+        (i + 2..n).filter(|&j| (j + 1) % n != i).all(|j| {
+            let (c, d) = (p[j], p[(j + 1) % n]);
+            side(a, b, c) * side(a, b, d) >= 0 || side(c, d, a) * side(c, d, b) >= 0
+        })
+    })
+}
+
+/// Whether triangle `t` of `corners` has an area beyond rounding (as [`turn`] judges a turn).
+fn has_area(corners: &[Vec3], t: [usize; 3], slack: f64) -> bool {
+    let [a, b, c] = t.map(|i| corners[i].as_dvec3());
+    let (u, v) = (b - a, c - a);
+    let (lu, lv) = (u.length(), v.length());
+    u.cross(v).length() > STRAIGHT * lu * lv + slack * (lu + lv)
 }
 
 /// Whether corner `b` (between `a` and `c`) turns left (1), right (-1) or goes straight on (0)
@@ -175,7 +228,7 @@ mod tests {
             .collect();
         assert_eq!(
             triangulate(&hexagon),
-            vec![[0, 1, 2], [0, 2, 3], [0, 3, 4], [0, 4, 5]]
+            (vec![[0, 1, 2], [0, 2, 3], [0, 3, 4], [0, 4, 5]], true)
         );
         // A quad with a corner on the line of its neighbours is still a fan.
         let quad = [
@@ -184,7 +237,16 @@ mod tests {
             Vec3::new(2.0, 0.0, 0.0),
             Vec3::new(1.0, 1.0, 0.0),
         ];
-        assert_eq!(triangulate(&quad), vec![[0, 1, 2], [0, 2, 3]]);
+        assert_eq!(triangulate(&quad), (vec![[0, 1, 2], [0, 2, 3]], true));
+        // Past MAX_CLIPPED_CORNERS a convex polygon is still a fan that covers it.
+        let round: Vec<Vec3> = (0..1000)
+            .map(|k| {
+                let a = k as f32 * std::f32::consts::TAU / 1000.0;
+                Vec3::new(a.cos(), a.sin(), 0.0)
+            })
+            .collect();
+        let (tris, covers) = triangulate(&round);
+        assert!(covers && tris.len() == 998 && tris[997] == [0, 998, 999]);
     }
 
     /// A star and an arrow, counter-clockwise and clockwise: their triangles are as many as a
@@ -213,7 +275,8 @@ mod tests {
                 if reversed {
                     p.reverse();
                 }
-                let tris = triangulate(&p);
+                let (tris, covers) = triangulate(&p);
+                assert!(covers);
                 assert_eq!(tris.len(), p.len() - 2);
                 let whole = polygon_area(&p);
                 let sum: f64 = tris.iter().map(|&t| area(&p, t)).sum();
@@ -224,7 +287,7 @@ mod tests {
                 // Tilted out of z = 0 (a rotation keeps which triangles it makes).
                 let q = glam::Quat::from_rotation_x(0.7) * glam::Quat::from_rotation_y(-1.2);
                 let tilted: Vec<Vec3> = p.iter().map(|&v| q * v + Vec3::splat(5.0)).collect();
-                assert_eq!(triangulate(&tilted), tris);
+                assert_eq!(triangulate(&tilted), (tris, true));
             }
         }
     }
@@ -247,12 +310,13 @@ mod tests {
             let a = k as f32 * 0.731;
             let q = glam::Quat::from_rotation_x(a) * glam::Quat::from_rotation_z(1.3 * a);
             let placed: Vec<Vec3> = rect.iter().map(|&v| q * v + Vec3::splat(a)).collect();
-            assert_eq!(triangulate(&placed), fan, "placement {k}");
+            assert_eq!(triangulate(&placed), (fan.clone(), true), "placement {k}");
         }
     }
 
     /// A pentagram crosses itself: no ear clipping covers it, and it gets a triangle for every
-    /// corner but two, as a fan would give it.
+    /// corner but two, as a fan would give it, said not to cover it; so do a bow tie (whose
+    /// lobes' areas cancel: no plane) and a concave star past MAX_CLIPPED_CORNERS (fanned).
     #[test]
     fn a_polygon_crossing_itself_still_gets_its_triangles() {
         let star: Vec<Vec3> = (0..5)
@@ -261,12 +325,28 @@ mod tests {
                 Vec3::new(a.cos(), a.sin(), 0.0)
             })
             .collect();
-        let tris = triangulate(&star);
+        let (tris, covers) = triangulate(&star);
+        assert!(!covers);
         assert_eq!(tris.len(), 3);
         let mut used: Vec<usize> = tris.iter().flatten().copied().collect();
         used.sort();
         used.dedup();
         assert_eq!(used, vec![0, 1, 2, 3, 4]);
+        let bow_tie = [Vec3::ZERO, Vec3::new(1.0, 1.0, 0.0), Vec3::X, Vec3::Y];
+        assert_eq!(triangulate(&bow_tie), (vec![[0, 1, 2], [0, 2, 3]], false));
+        let star = |n: usize| -> Vec<Vec3> {
+            (0..n)
+                .map(|k| {
+                    let r = 1.0 - 0.5 * (k % 2) as f32;
+                    let a = k as f32 * std::f32::consts::TAU / n as f32;
+                    Vec3::new(r * a.cos(), r * a.sin(), 0.0)
+                })
+                .collect()
+        };
+        let (tris, covers) = triangulate(&star(1000));
+        assert!(!covers && tris.len() == 998);
+        // At the limit it is clipped, and covered.
+        assert!(triangulate(&star(MAX_CLIPPED_CORNERS)).1);
     }
 
     #[test]
@@ -277,6 +357,6 @@ mod tests {
             Vec3::new(2.0, 0.0, 0.0),
             Vec3::new(3.0, 0.0, 0.0),
         ];
-        assert_eq!(triangulate(&line), vec![[0, 1, 2], [0, 2, 3]]);
+        assert_eq!(triangulate(&line), (vec![[0, 1, 2], [0, 2, 3]], true));
     }
 }

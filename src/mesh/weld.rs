@@ -124,6 +124,7 @@ pub(crate) fn assemble(raw: RawMesh) -> Result<(Mesh, LoadReport), MeshError> {
         polygons_triangulated: raw.polygons_triangulated,
         triangle_lines,
         vertex_numbers: Vec::new(),
+        uncovered_polygons: Vec::new(),
     };
     Ok((mesh, report))
 }
