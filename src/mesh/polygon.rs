@@ -51,8 +51,9 @@ pub fn triangulate(corners: &[Vec3]) -> (Vec<[usize; 3]>, bool) {
         return (triangles, flat);
     };
     let flat = Plane { p, slack };
-    if (0..n).all(|i| turn(&flat, (i + n - 1) % n, i, (i + 1) % n) >= 0) && turns_once(&flat) {
-        return (fan(), true);
+    if (0..n).all(|i| turn(&flat, (i + n - 1) % n, i, (i + 1) % n) >= 0) {
+        // Convex where it turns once round; a pentagram's fan overlaps.
+        return (fan(), turns_once(&flat));
     }
     if n > MAX_CLIPPED_CORNERS {
         return (fan(), false);
@@ -314,7 +315,7 @@ mod tests {
         }
     }
 
-    /// A pentagram crosses itself: no ear clipping covers it, and it gets a triangle for every
+    /// A pentagram crosses itself: no corner turns right, so it is fanned, which cannot cover it, and it gets a triangle for every
     /// corner but two, as a fan would give it, said not to cover it; so do a bow tie (whose
     /// lobes' areas cancel: no plane) and a concave star past MAX_CLIPPED_CORNERS (fanned).
     #[test]
