@@ -315,8 +315,8 @@ mod tests {
         }
     }
 
-    /// A pentagram crosses itself: no corner turns right, so it is fanned, which cannot cover it, and it gets a triangle for every
-    /// corner but two, as a fan would give it, said not to cover it; so do a bow tie (whose
+    /// A pentagram crosses itself: no corner turns right, so it is fanned (a triangle for every
+    /// corner but two), said not to cover it as it turns twice round; so are a bow tie (whose
     /// lobes' areas cancel: no plane) and a concave star past MAX_CLIPPED_CORNERS (fanned).
     #[test]
     fn a_polygon_crossing_itself_still_gets_its_triangles() {
