@@ -63,6 +63,10 @@ fn main() -> ExitCode {
             };
         }
     };
+    if let Err(e) = cli::check_values(&cli) {
+        note(format_args!("error: {e}"));
+        return ExitCode::FAILURE;
+    }
     for w in cli::warnings(&cli, &given) {
         note(format_args!("warning: {w}"));
     }

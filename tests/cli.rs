@@ -158,6 +158,22 @@ fn device_limits_and_options_are_checked() {
             "level 65 is beyond this device's maxTessellationGenerationLevel (64): the tess driver cannot draw it (use --driver pattern)",
         ],
     );
+    // An export at a level whose capture is also too large says the level first.
+    let obj = tmp("tess1024.obj");
+    let tet = model_path("tetrahedron.obj");
+    expect_error(
+        &[
+            "export",
+            p(&tet),
+            "--driver",
+            "tess",
+            "--level",
+            "1024",
+            "-o",
+            p(&obj),
+        ],
+        &["level 1024 is beyond this device's maxTessellationGenerationLevel (64)"],
+    );
     expect_error(
         &[
             "render",
@@ -928,6 +944,64 @@ fn texture_coordinates_are_validated() {
 
 /// `--help` groups every option of a command under a heading of its own (docs/cli.md): only
 /// the global options and `--help` are left under the plain "Options".
+/// A value out of its range is refused even where nothing drawn reads the option: one error,
+/// never a warning that it is ignored before it (the value shown as typed).
+#[test]
+fn bad_values_of_unread_options_are_refused_alone() {
+    let tet = model_path("tetrahedron.obj");
+    for (option, value, needle) in [
+        ("--alpha", "7", "--alpha 7 is not within [0, 1]"),
+        ("--octaves", "99", "--octaves 99 is not within [1, 8]"),
+        (
+            "--crease-angle",
+            "nan",
+            "--crease-angle nan is not within (0, 180) degrees",
+        ),
+        (
+            "--crease-angle",
+            "1e-50",
+            "--crease-angle 1e-50 is not within (0, 180) degrees",
+        ),
+    ] {
+        let args = ["info", p(&tet), option, value];
+        expect_error(&args, &[needle]);
+        let stderr = String::from_utf8_lossy(&meshrefine(&args).stderr).into_owned();
+        assert!(!stderr.contains("warning"), "{stderr}");
+    }
+}
+
+/// An `--eye` at the default camera's target names that target as the default's, not as a
+/// `--look-at` never given.
+#[test]
+fn an_eye_on_the_default_target_names_the_default() {
+    let tet = model_path("tetrahedron.obj");
+    let info = ok(&[
+        "info",
+        p(&tet),
+        "--pixel-error",
+        "1",
+        "--width",
+        "320",
+        "--height",
+        "240",
+    ]);
+    let target = (info
+        .split(", look-at ")
+        .nth(1)
+        .unwrap()
+        .split(',')
+        .next()
+        .unwrap())
+    .replace(' ', ",");
+    let eye = format!("--eye={target}");
+    expect_error(
+        &["render", p(&tet), &eye, "--width", "320", "--height", "240"],
+        &[&format!(
+            "--eye {target} and the default camera's target ({target}) give no view direction: they are the same point"
+        )],
+    );
+}
+
 #[test]
 fn help_groups_every_option_under_a_heading() {
     for command in ["render", "view", "export", "info", "bench", "devices"] {

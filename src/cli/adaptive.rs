@@ -50,7 +50,7 @@ pub fn check_camera(v: &ViewpointOpts) -> Result<()> {
         let offset = eye.as_dvec3() - target.as_dvec3();
         let distance = offset.length();
         if !(distance > 0.0 && distance.is_finite()) {
-            bail!("{}", no_direction(eye, target));
+            bail!("{}", no_direction((eye, true), (target, true)));
         }
     }
     Ok(())
@@ -79,17 +79,29 @@ pub fn check_distance(v: &ViewpointOpts, frame: &Frame) -> Result<()> {
     Ok(())
 }
 
-/// The sentence for a camera without a view direction.
-pub fn no_direction(eye: Vec3, target: Vec3) -> String {
+/// The sentence for a camera without a view direction: its eye and target, each given
+/// (`true`) or the default camera's.
+pub fn no_direction(
+    (eye, eye_given): (Vec3, bool),
+    (target, target_given): (Vec3, bool),
+) -> String {
     let why = if eye == target {
         "they are the same point"
     } else {
         "they are too close together for one"
     };
+    let name = |p: Vec3, given: bool, option: &str, default: &str| {
+        let p = shown_point(p.to_array());
+        if given {
+            format!("{option} {p}")
+        } else {
+            format!("the default camera's {default} ({p})")
+        }
+    };
     format!(
-        "--eye {} and --look-at {} give no view direction: {why}",
-        shown_point(eye.to_array()),
-        shown_point(target.to_array())
+        "{} and {} give no view direction: {why}",
+        name(eye, eye_given, "--eye", "eye"),
+        name(target, target_given, "--look-at", "target")
     )
 }
 
@@ -353,7 +365,9 @@ impl ViewpointOpts {
         let fitted = Camera::fit_with_fov(framing, aspect, v.fov_y);
         v.complete(fitted).ok_or_else(|| {
             // The values as given, or where the fitted camera puts them.
-            let given = |p: Option<[f32; 3]>, drawn: Vec3| p.map_or(frame.mesh(drawn), Vec3::from);
+            let given = |p: Option<[f32; 3]>, drawn: Vec3| {
+                (p.map_or(frame.mesh(drawn), Vec3::from), p.is_some())
+            };
             let (e, t) = (
                 given(self.eye, fitted.eye()),
                 given(self.look_at, fitted.target),

@@ -173,8 +173,8 @@ pub struct DrawnOpts {
     pub tags: Option<PathBuf>,
     /// For --surface stpn without --tags (or under it): edges whose faces meet at more than this
     /// many degrees are creases too (default: only positions with two vn are).
-    #[arg(long, allow_hyphen_values = true, value_name = "DEGREES")]
-    pub crease_angle: Option<f32>,
+    #[arg(long, allow_hyphen_values = true, value_name = "DEGREES", value_parser = typed_f32)]
+    pub crease_angle: Option<TypedF32>,
     #[command(flatten)]
     pub params: ParamOpts,
 }

@@ -141,6 +141,18 @@ pub fn load_warnings(shown: &str, report: &LoadReport) -> impl Iterator<Item = S
     .flatten()
 }
 
+/// `--crease-angle`'s range: (0, 180) degrees.
+pub fn check_crease_angle(a: &super::numbers::TypedF32) -> Result<(), String> {
+    if a.value.is_finite() && a.value > 0.0 && a.value < 180.0 {
+        Ok(())
+    } else {
+        Err(format!(
+            "--crease-angle {} is not within (0, 180) degrees",
+            a.text
+        ))
+    }
+}
+
 /// Loads what `--heightmap` and `--tags` name for `input`'s mesh; with `--surface stpn` and no
 /// tags file, says where derived tags cannot keep a crease.
 /// `any` for the window, whose panel can switch to the surface or displacement they apply to.
@@ -149,9 +161,11 @@ pub fn attach_surface_inputs(input: &mut Input, s: &SurfaceOpts, any: bool) -> R
     let lines = &input.report.triangle_lines;
     input.tags = (s.tags(&input.mesh, &input.shown, lines, any)).map_err(anyhow::Error::msg)?;
     if s.surface.facts().tags && s.drawn.tags.is_none() {
-        split_three_creases(input, s.drawn.crease_angle)?;
-        let (_, corners) =
-            meshrefine::surface::stpn::derive_with_angle(&input.mesh, s.drawn.crease_angle);
+        split_three_creases(input, s.drawn.crease_angle.as_ref().map(|a| a.value))?;
+        let (_, corners) = meshrefine::surface::stpn::derive_with_angle(
+            &input.mesh,
+            s.drawn.crease_angle.as_ref().map(|a| a.value),
+        );
         if corners > 0 {
             note(format_args!(
                 "warning: '{}': {corners} vertices where three or more hard edges meet stay smooth under stpn (scalar-tagged PN triangles allow one crease per vertex; give tags with --tags)",
@@ -289,12 +303,11 @@ impl SurfaceOpts {
         if self.drawn.tags.is_none() && self.drawn.crease_angle.is_none() {
             return Ok(None);
         }
-        if let Some(a) = self.drawn.crease_angle {
-            if !(a.is_finite() && a > 0.0 && a < 180.0) {
-                return Err(format!("--crease-angle {a} is not within (0, 180) degrees"));
-            }
+        if let Some(a) = &self.drawn.crease_angle {
+            check_crease_angle(a)?;
         }
-        let (base, _) = stpn::derive_with_angle(mesh, self.drawn.crease_angle);
+        let angle = self.drawn.crease_angle.as_ref().map(|a| a.value);
+        let (base, _) = stpn::derive_with_angle(mesh, angle);
         let Some(path) = &self.drawn.tags else {
             return Ok(Some(base));
         };

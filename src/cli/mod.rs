@@ -23,7 +23,7 @@ mod render;
 mod view;
 
 pub use args::Cli;
-pub use options::{parse, warnings};
+pub use options::{check_values, parse, warnings};
 
 use crate::note;
 use anyhow::{bail, Result};

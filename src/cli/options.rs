@@ -332,6 +332,34 @@ pub fn warnings(cli: &Cli, given: &Given) -> Vec<String> {
     }
 }
 
+/// Checks the values of `cli`'s surface and displacement parameters, whether or not what is
+/// drawn reads them (a value out of its range is refused, not said to be ignored), before any
+/// warning or work: one sentence naming the option and its value.
+pub fn check_values(cli: &Cli) -> Result<(), String> {
+    use super::args::{Command, DrawnOpts};
+    let (params, drawn): (&super::args::ParamOpts, Option<&DrawnOpts>) = match &cli.command {
+        Command::Render(a) => (
+            &a.technique.surface.drawn.params,
+            Some(&a.technique.surface.drawn),
+        ),
+        Command::View(a) => (
+            &a.technique.surface.drawn.params,
+            Some(&a.technique.surface.drawn),
+        ),
+        Command::Export(a) => (&a.surface.drawn.params, Some(&a.surface.drawn)),
+        Command::Info(a) => (&a.drawn.params, Some(&a.drawn)),
+        Command::Bench(a) => (&a.params, None),
+        Command::Devices => return Ok(()),
+    };
+    // The radius only sets the defaults of what is not given.
+    params.params(1.0)?;
+    params.build()?;
+    if let Some(a) = drawn.and_then(|d| d.crease_angle.as_ref()) {
+        super::input::check_crease_angle(a)?;
+    }
+    Ok(())
+}
+
 /// Checks every output path of `cli`'s command by the rules of `meshrefine::paths`, before any
 /// work is done.
 pub fn check_outputs(cli: &Cli) -> Result<(), String> {

@@ -71,6 +71,8 @@ impl Headless {
         camera: &Camera,
         mut each: impl FnMut(&[[XfbVertex; 3]]),
     ) -> Result<(), RenderError> {
+        // A level the device cannot tessellate is said as such before its capture's size.
+        super::driver::check_level(&self.ctx, cfg)?;
         let per_element = tess_triangle_count(cfg.level) as u64 * 3 * XFB_VERTEX_BYTES;
         let lavapipe = self.ctx.info.is_lavapipe().then_some((
             LAVAPIPE_MAX_CAPTURE_PASS_BYTES,
