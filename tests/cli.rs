@@ -158,6 +158,23 @@ fn device_limits_and_options_are_checked() {
             "level 65 is beyond this device's maxTessellationGenerationLevel (64): the tess driver cannot draw it (use --driver pattern)",
         ],
     );
+    // A benchmark that can draw none of its variants fails, saying why.
+    expect_error(
+        &[
+            "bench",
+            p(&model_path("tetrahedron.obj")),
+            "--levels",
+            "128",
+            "--drivers",
+            "tess",
+            "--frames",
+            "1",
+        ],
+        &[
+            "nothing was measured",
+            "level 128 is beyond this device's maxTessellationGenerationLevel (64)",
+        ],
+    );
     // An export at a level whose capture is also too large says the level first.
     let obj = tmp("tess1024.obj");
     let tet = model_path("tetrahedron.obj");
@@ -1058,6 +1075,10 @@ fn meaningless_requests_are_refused() {
         &["v.jpeg", ".png"],
     );
     expect_error(&["view", "--screenshot", "s.bmp"], &["s.bmp", ".png"]);
+    expect_error(
+        &["render", p(&cube), "-o", ".png"],
+        &["output file '.png' has no name before its .png"],
+    );
     // A window (a display named) reads --screenshot-dir: refused before it opens.
     let out = bin()
         .args(["view", "--screenshot-dir", "no/such/dir"])

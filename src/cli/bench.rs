@@ -127,6 +127,20 @@ pub fn run(a: &BenchArgs, desc: &ContextDesc, levels_given: bool) -> Result<()> 
     if let Some(prefix) = &a.out {
         out!("wrote {}.{{md,csv,json}}", prefix.display());
     }
+    // A run that timed nothing measured nothing: its rows say why, and it fails.
+    let timed = report
+        .rows
+        .iter()
+        .any(|r| r.gpu_ms.is_some() || r.wall_ms.is_some());
+    if !timed {
+        let why = (report.rows.iter())
+            .find_map(|r| r.note.strip_prefix("not drawn: "))
+            .unwrap_or("no variant was drawn");
+        bail!(
+            "nothing was measured on '{}': no variant could be drawn ({why})",
+            input.shown
+        );
+    }
     Ok(())
 }
 

@@ -64,6 +64,17 @@ pub fn require_extension(path: &Path, ext: &str, what: &str) -> Result<()> {
         .and_then(|e| e.to_str())
         .is_some_and(|e| e.eq_ignore_ascii_case(ext));
     if !matches {
+        // `.png` alone is a hidden file's name without an extension (Rust's reading).
+        let bare = path
+            .file_name()
+            .and_then(|n| n.to_str())
+            .is_some_and(|n| n.eq_ignore_ascii_case(&format!(".{ext}")));
+        if bare {
+            bail!(
+                "output file '{}' has no name before its .{ext} (name it, e.g. out.{ext})",
+                path.display()
+            );
+        }
         bail!(
             "output file '{}' does not end in .{ext}: {what} (name it .{ext})",
             path.display()
