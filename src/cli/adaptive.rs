@@ -21,7 +21,11 @@ use meshrefine::surface::shown_number;
 /// `level_given`: `--level` was given too.
 pub fn check_view(px: &TypedF32, v: &ViewpointOpts, level_given: bool) -> Result<()> {
     if !(px.value.is_finite() && px.value > 0.0) {
-        bail!("--pixel-error {} is not a finite number > 0", px.text);
+        bail!(
+            "--pixel-error {} is not a finite number > 0{}",
+            px.text,
+            px.in_f32()
+        );
     }
     if level_given {
         bail!("--pixel-error and --level are exclusive: adaptive levels come from the pixel error, --level asks for one level everywhere");

@@ -15,10 +15,28 @@ impl TypedF32 {
     /// outside `within` (`lo`, `hi`, how the sentence says the range).
     pub fn check(&self, name: &str, within: Option<(f32, f32, &str)>) -> Result<(), String> {
         let v = self.value;
+        let why = self.in_f32();
         match within {
             _ if v.is_finite() && within.is_none_or(|(lo, hi, _)| (lo..=hi).contains(&v)) => Ok(()),
-            Some((.., range)) => Err(format!("--{name} {} is not {range}", self.text)),
-            None => Err(format!("--{name} {} is not a finite number", self.text)),
+            Some((.., range)) => Err(format!("--{name} {} is not {range}{why}", self.text)),
+            None => Err(format!(
+                "--{name} {} is not a finite number{why}",
+                self.text
+            )),
+        }
+    }
+
+    /// Why a number typed finite and non-zero reads otherwise in single precision ("" if it
+    /// does not): the clause a sentence refusing it adds.
+    pub fn in_f32(&self) -> &'static str {
+        match self.text.trim().parse::<f64>() {
+            Ok(x) if x.is_finite() && self.value.is_infinite() => {
+                " in single precision (it is beyond f32's largest, about 3.4e38)"
+            }
+            Ok(x) if x != 0.0 && self.value == 0.0 => {
+                " in single precision (it is below f32's smallest, about 1.4e-45, and reads as 0)"
+            }
+            _ => "",
         }
     }
 }

@@ -64,6 +64,41 @@ fn statement(line: &str) -> (Option<&str>, std::str::SplitWhitespace<'_>) {
     (words.next(), words)
 }
 
+/// The file's statements: (1-based line of the first, its text, how many lines it spans). A
+/// line ending in `\` continues on the next (the OBJ format's continuation: the two are one
+/// statement, the backslash a space); lines end in `\n`, `\r\n` or, in a file with no `\n`
+/// at all, a lone `\r` (old Mac text).
+fn statements(text: &str) -> Vec<(usize, std::borrow::Cow<'_, str>, usize)> {
+    use std::borrow::Cow;
+    let lines: Vec<&str> = if !text.contains('\n') && text.contains('\r') {
+        text.strip_suffix('\r')
+            .unwrap_or(text)
+            .split('\r')
+            .collect()
+    } else {
+        text.lines().collect()
+    };
+    let mut out = Vec::with_capacity(lines.len());
+    let mut i = 0;
+    while i < lines.len() {
+        let (first, mut joined, mut span) = (i, Cow::Borrowed(lines[i]), 1);
+        while joined.trim_end().ends_with('\\') && i + span < lines.len() {
+            let mut s = joined
+                .trim_end()
+                .strip_suffix('\\')
+                .unwrap_or("")
+                .to_string();
+            s.push(' ');
+            s.push_str(lines[i + span]);
+            joined = Cow::Owned(s);
+            span += 1;
+        }
+        out.push((first + 1, joined, span));
+        i += span;
+    }
+    out
+}
+
 /// An index as written, resolved to 0-based, or why not.
 enum Resolved {
     Ok(usize),
@@ -102,9 +137,10 @@ impl Scan {
     pub(crate) fn run(path: &str, text: &str) -> Result<Scan, MeshError> {
         // Pass 1: totals, for forward references, and a check for binary data.
         let (mut v_total, mut vn_total, mut vt_total) = (0usize, 0usize, 0usize);
-        for (i, line) in text.lines().enumerate() {
+        let statements = statements(text);
+        for (ln, line, _) in &statements {
             if line.contains('\0') {
-                return Err(binary_data(path, i + 1));
+                return Err(binary_data(path, *ln));
             }
             match statement(line).0 {
                 Some("v") => v_total += 1,
@@ -147,24 +183,25 @@ impl Scan {
         // Lines that are no OBJ statement (a misspelt `F 1 2 3`, stray text): how many, the
         // first's line and word.
         let (mut unknown, mut first_unknown) = (0usize, None);
-        // Whether the line before ended in `\`: this one continues its statement.
-        let mut continued = false;
-        for (i, line) in text.lines().enumerate() {
+        for (ln, line, span) in &statements {
             let (keyword, words) = statement(line);
             let words: Vec<&str> = words.collect();
-            let continues = std::mem::replace(&mut continued, line.trim_end().ends_with('\\'));
+            let ln = *ln;
             match keyword {
-                Some("v") => s.vertex(i + 1, &words)?,
-                Some("vn") => s.normal(i + 1, &words)?,
-                Some("vt") => s.texcoord(i + 1, &words)?,
-                Some("f") => s.face(i + 1, &words)?,
-                Some(k) if !continues && !super::obj::OBJ_KEYWORDS.contains(&k) => {
+                Some("v") => s.vertex(ln, &words)?,
+                Some("vn") => s.normal(ln, &words)?,
+                Some("vt") => s.texcoord(ln, &words)?,
+                Some("f") => s.face(ln, &words)?,
+                Some(k) if !super::obj::OBJ_KEYWORDS.contains(&k) => {
                     unknown += 1;
-                    first_unknown.get_or_insert((i + 1, k.chars().take(40).collect::<String>()));
+                    first_unknown.get_or_insert((ln, k.chars().take(40).collect::<String>()));
                 }
                 _ => {}
             }
-            s.scan.canonical.push('\n');
+            // One line of canonical text per line of the file: tobj's lines are the file's.
+            for _ in 0..*span {
+                s.scan.canonical.push('\n');
+            }
         }
         if let Some((line, word)) = first_unknown {
             log::warn!(
@@ -217,7 +254,7 @@ impl Scan {
                 let problem = if v.is_finite() {
                     "has zero length"
                 } else {
-                    "is NaN or infinite"
+                    "is not a finite f32 (NaN, infinite, or beyond about ±3.4e38)"
                 };
                 return Err(MeshError::BadNormal {
                     path: path.into(),
@@ -491,6 +528,33 @@ mod tests {
         assert_eq!(scan.faces[0].with_normals, 2);
     }
 
+    /// A statement continued with `\` is one statement, named by its first line; its lines
+    /// stay lines of the canonical text. A file with lone `\r` line ends (old Mac text) reads
+    /// as one with `\n`.
+    #[test]
+    fn continued_statements_and_carriage_returns() {
+        let text = "v 0 0 0\nv 1 \\\n 0 0\nv 0 1 0\nf 1 \\\n2 \\\n 3\nf 1 2 9\n";
+        let Err(e) = Scan::run("x", text) else {
+            panic!("accepted")
+        };
+        assert_eq!(
+            e.to_string(),
+            "'x' line 8: face refers to vertex 9 but the file defines only 3 vertices"
+        );
+        let scan = Scan::run("x", &text.replace("f 1 2 9\n", "")).unwrap();
+        assert_eq!(scan.canonical, "v 0 0 0\nv 1 0 0\n\nv 0 1 0\nf 1 2 3\n\n\n");
+        assert_eq!(scan.faces[0].line, 5);
+        let empty = Scan::run("x", &TRI.replace('\n', "\r"));
+        assert!(matches!(empty, Err(MeshError::EmptyMesh { .. })));
+        let mac = Scan::run("x", &format!("{TRI}f 1 2 3\n").replace('\n', "\r")).unwrap();
+        assert_eq!(
+            mac.canonical,
+            Scan::run("x", &format!("{TRI}f 1 2 3\n"))
+                .unwrap()
+                .canonical
+        );
+    }
+
     #[test]
     fn out_of_range_indices_name_the_line() {
         assert_eq!(
@@ -540,7 +604,7 @@ mod tests {
         for bad in ["nan", "NaN", "inf", "-infinity", "1e39"] {
             assert_eq!(
                 err(&format!("v 0 0 0\nv {bad} 0 0\nv 0 1 0\nf 1 2 3\n")),
-                "'x.obj' line 2: vertex coordinate is NaN or infinite",
+                "'x.obj' line 2: vertex coordinate is not a finite f32 (NaN, infinite, or beyond about ±3.4e38)",
                 "{bad}"
             );
         }
@@ -550,7 +614,7 @@ mod tests {
         ));
         assert_eq!(
             err("v 1 2 3 inf\n"),
-            "'x.obj' line 1: vertex weight is NaN or infinite"
+            "'x.obj' line 1: vertex weight is not a finite f32 (NaN, infinite, or beyond about ±3.4e38)"
         );
     }
 
@@ -655,11 +719,11 @@ mod tests {
             ),
             (
                 format!("{TRI}vt nan 0\nf 1 2 3\n"),
-                "'x.obj' line 4: texture coordinate is NaN or infinite",
+                "'x.obj' line 4: texture coordinate is not a finite f32 (NaN, infinite, or beyond about ±3.4e38)",
             ),
             (
                 format!("{TRI}vt 0 inf\nf 1 2 3\n"),
-                "'x.obj' line 4: texture coordinate is NaN or infinite",
+                "'x.obj' line 4: texture coordinate is not a finite f32 (NaN, infinite, or beyond about ±3.4e38)",
             ),
             (
                 format!("{TRI}vt\nf 1 2 3\n"),
@@ -693,7 +757,7 @@ mod tests {
         );
         assert_eq!(
             err(&format!("{TRI}vn 0 0 1\nvn nan 0 1\nf 1//1 2//1 3//2\n")),
-            "'x.obj' line 5: normal (NaN, 0, 1) used by the face on line 6 is NaN or infinite"
+            "'x.obj' line 5: normal (NaN, 0, 1) used by the face on line 6 is not a finite f32 (NaN, infinite, or beyond about ±3.4e38)"
         );
         // An unused bad normal is harmless, and so is one on a file whose normals are
         // recomputed because some faces have none.
