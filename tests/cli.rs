@@ -4295,6 +4295,25 @@ fn polygons_that_triangles_cannot_cover_are_named() {
     assert_eq!(stderr_of("warped.obj", warped.to_string()), "");
 }
 
+/// A face that gives `vt` on some corners only has none, and loading says so once.
+#[test]
+fn partial_texture_coordinates_are_said() {
+    let path = write(
+        "partial_vt.obj",
+        b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0 0\nvt 1 0\nf 1/1 2/2 3\nf 2/2 4 3\n",
+    );
+    let out = meshrefine(&["info", p(&path)]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert_eq!(
+        stderr.trim_end(),
+        format!(
+            "warning: '{}': 2 face(s) give texture coordinates (vt) for some corners only (the first at line 7): those faces have none",
+            path.display()
+        )
+    );
+}
+
 /// Where a mesh's normal field vanishes (corner normals pointing opposite ways: a fold whose
 /// computed normals cancel, a pentagram (a polygon crossing itself, fanned), explicit opposite
 /// normals), every exported normal is still unit length and every position finite, on every

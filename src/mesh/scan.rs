@@ -129,6 +129,8 @@ struct Scanner<'a> {
     vt_total: usize,
     v_count: usize,
     corners_total: usize,
+    /// Faces giving `vt` on some corners only (they get none), and the first's line.
+    partial_texcoords: (usize, Option<usize>),
     scan: Scan,
 }
 
@@ -171,6 +173,7 @@ impl Scan {
             vt_total,
             v_count: 0,
             corners_total: 0,
+            partial_texcoords: (0, None),
             scan: Scan {
                 canonical: String::with_capacity(text.len()),
                 faces: Vec::new(),
@@ -202,6 +205,11 @@ impl Scan {
             for _ in 0..*span {
                 s.scan.canonical.push('\n');
             }
+        }
+        if let (n, Some(line)) = s.partial_texcoords {
+            log::warn!(
+                "'{path}': {n} face(s) give texture coordinates (vt) for some corners only (the first at line {line}): those faces have none"
+            );
         }
         if let Some((line, word)) = first_unknown {
             log::warn!(
@@ -389,6 +397,7 @@ impl Scanner<'_> {
             ));
         }
         let mut with_normals = 0;
+        let mut with_texcoords = 0;
         let mut texcoords = Some(Vec::with_capacity(words.len()));
         let mut canonical = String::from("f");
         for word in words {
@@ -397,6 +406,7 @@ impl Scanner<'_> {
             match t {
                 Some(t) => {
                     let t = self.texcoord_index(ln, t)?;
+                    with_texcoords += 1;
                     if let Some(ts) = &mut texcoords {
                         ts.push(t as u32);
                     }
@@ -410,6 +420,10 @@ impl Scanner<'_> {
                 self.scan.normal_refs.push((n, ln));
                 with_normals += 1;
             }
+        }
+        if with_texcoords > 0 && with_texcoords < words.len() {
+            self.partial_texcoords.0 += 1;
+            self.partial_texcoords.1.get_or_insert(ln);
         }
         self.scan.canonical.push_str(&canonical);
         self.corners_total = self
