@@ -912,6 +912,10 @@ fn meshes_of_any_f32_scale_are_framed_and_blank_images_are_errors() {
     args.extend(size);
     expect_error(&args, &["specks.png", "is blank", "specks.obj"]);
     assert!(png.exists() && covered(&png) == 0);
+    // A field of view that shrinks the mesh to a speck is named.
+    let mut wide = vec!["render", "--fov", "179.999", "-o", p(&png)];
+    wide.extend(size);
+    expect_error(&wide, &["is blank", "framed at --fov 179.999"]);
     let out = meshrefine(&args);
     assert!(!String::from_utf8_lossy(&out.stdout).contains("wrote"));
     // Drawn adaptively (the default) with nothing culled: the message blames no culling.

@@ -208,10 +208,17 @@ pub fn render_png(
     if covered_pixels_on(&image, opts.background) == 0 {
         // The default camera frames the surface as drawn, displacement included: only a camera
         // given on the command line can look past it.
-        let camera = if opts.viewpoint.placed() {
-            "the camera given by --eye and --look-at sees none of them, or each is much smaller than a pixel there"
+        // A field of view other than the default names itself: at 179° the mesh is a speck.
+        let fov = &opts.viewpoint.fov;
+        let at_fov = if fov.value != 45.0 {
+            format!(" at --fov {}", fov.text)
         } else {
-            "each is much smaller than a pixel when the whole mesh is framed, or seen edge-on"
+            String::new()
+        };
+        let camera = if opts.viewpoint.placed() {
+            format!("the camera given by --eye and --look-at sees none of them, or each is much smaller than a pixel there{at_fov}")
+        } else {
+            format!("each is much smaller than a pixel when the whole mesh is framed{at_fov}, or seen edge-on")
         };
         let why = match culled_all {
             Some(n) if !opts.viewpoint.placed() => format!(
@@ -224,7 +231,7 @@ pub fn render_png(
             None if culled_some && line.is_some() => format!(
                 "{camera}, or culling removed those that would show (--cull off draws them)"
             ),
-            None => camera.to_string(),
+            None => camera,
         };
         bail!(
             "'{}' is blank: no pixel of the {width}x{height} image shows any of the {triangles} triangle(s) of '{}' ({why})",
