@@ -3495,10 +3495,16 @@ fn adaptive_exports_in_passes_keep_the_file() {
         let env = [
             ("MESHREFINE_PROGRESS_AFTER", "0"),
             ("MESHREFINE_MAX_CAPTURE_BYTES", bytes.as_str()),
+            ("RUST_LOG", "meshrefine::render::headless=debug"),
         ];
         let loud = run(&many, &env);
         let passes = loud.lines().filter(|l| l.contains(" passes (")).count();
         assert!(passes >= 5, "{driver}: {passes} passes: {loud}");
+        // Loop's step and the level pass run in the first pass only.
+        for said in ["records the level pass", "records Loop's pre-pass"] {
+            let n = loud.lines().filter(|l| l.contains(said)).count();
+            assert_eq!(n, 1, "{driver}: '{said}' {n} times: {loud}");
+        }
         assert!(
             std::fs::read(&one).unwrap() == std::fs::read(&many).unwrap(),
             "{driver}: passes change the file"

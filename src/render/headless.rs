@@ -375,6 +375,13 @@ impl Headless {
             pre_pass: work.pre_pass.filter(|_| !self.passes_reuse),
             ..work
         };
+        // Said for tests of the capture passes (RUST_LOG): each runs once, in the first pass.
+        if work.level_pass.is_some() {
+            log::debug!("this frame records the level pass");
+        }
+        if work.pre_pass.is_some() {
+            log::debug!("this frame records Loop's pre-pass");
+        }
         let start = Instant::now();
         self.pool.submit_and_wait(|cmd| {
             cmd_render(
