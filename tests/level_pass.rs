@@ -244,34 +244,38 @@ fn gpu_levels_match_the_cpu() {
     });
 }
 
+/// Spot's cage as `pn` on the instanced pattern driver at level 4, prepared, with its bounds.
+fn spot_pn(h: &mut meshrefine::render::Headless) -> (Scene, DrawConfig, Vec<LodRecord>) {
+    let mut scene = Scene::new(
+        &h.ctx,
+        &h.pool,
+        &h.renderer,
+        model("spot_control_tri.obj"),
+        4,
+    )
+    .unwrap();
+    let cfg = DrawConfig {
+        surface: Surface::Pn,
+        ..DrawConfig::new(Driver::Pattern(Submit::Instanced), 4)
+    };
+    scene
+        .prepare(&h.ctx, &h.pool, &mut h.renderer, &cfg, Capture::None, false)
+        .unwrap();
+    let mirror = Mirror::new(cfg.surface, cfg.displace, &cfg.build, &Sources::default()).unwrap();
+    let bounds = lod_records(&Lod::new(&mirror, &cfg.params), &scene.data.records);
+    (scene, cfg, bounds)
+}
+
 /// A frame that carries the level pass (`FrameWork::level_pass`) runs it before drawing, into
 /// the drawn mesh's levels, with its barriers inside a real frame (the validation layer
 /// watches): the levels it leaves are the mirror's.
 #[test]
 fn a_frame_runs_the_level_pass_before_drawing() {
     with_gpu(64, 36, |h| {
-        let mut scene = Scene::new(
-            &h.ctx,
-            &h.pool,
-            &h.renderer,
-            model("spot_control_tri.obj"),
-            4,
-        )
-        .unwrap();
-        let cfg = DrawConfig {
-            surface: Surface::Pn,
-            ..DrawConfig::new(Driver::Pattern(Submit::Instanced), 4)
-        };
-        scene
-            .prepare(&h.ctx, &h.pool, &mut h.renderer, &cfg, Capture::None, false)
-            .unwrap();
+        let (scene, cfg, bounds) = spot_pn(h);
         let (c, r) = scene.bounding_sphere();
-        let mirror =
-            Mirror::new(cfg.surface, cfg.displace, &cfg.build, &Sources::default()).unwrap();
-        let lod = Lod::new(&mirror, &cfg.params);
         let mut pass = LevelPass::new(&h.ctx).unwrap();
-        pass.update_bounds(&scene.gpu, &lod, &scene.data.records)
-            .unwrap();
+        pass.upload(&scene.gpu, &bounds).unwrap();
         let (_, eye, vp) = cameras(c, r)[1];
         let frustum = Frustum::from_view_proj(vp);
         let view = LodView::new(
@@ -301,7 +305,7 @@ fn a_frame_runs_the_level_pass_before_drawing() {
             })
             .unwrap();
         let gpu: Vec<ElementLevels> = scene.gpu.levels.read_pod();
-        let cpu = frame_levels(&view, &lod_records(&lod, &scene.data.records));
+        let cpu = frame_levels(&view, &bounds);
         let (mut culled, mut refined) = (0, 0);
         for (i, (g, k)) in gpu.iter().zip(&cpu).enumerate() {
             assert_eq!(g.culled(), k.culled(), "element {i}");
@@ -314,5 +318,51 @@ fn a_frame_runs_the_level_pass_before_drawing() {
             "{culled} culled, {refined} refined"
         );
         drop(pass);
+    });
+}
+
+/// Bounds too many for one storage-buffer descriptor are dispatched in chunks, each bound by its
+/// own set: chunks of 1, 7 and 100 of Spot's 372 elements (levels poisoned before each run)
+/// write the bits one dispatch writes.
+#[test]
+fn chunked_dispatches_write_the_levels_one_writes() {
+    with_gpu(16, 16, |h| {
+        let (mut scene, cfg, bounds) = spot_pn(h);
+        let (c, r) = scene.bounding_sphere();
+        let n = bounds.len();
+        let (_, eye, vp) = cameras(c, r)[1];
+        let view = LodView::new(
+            &View::new(eye, 0.8, 720, 1.0, 64),
+            Some(&Frustum::from_view_proj(vp)),
+            true,
+            cfg.rounding(),
+            n as u32,
+        );
+        let poison: Vec<ElementLevels> =
+            bytemuck::cast_slice(&vec![0xdead_beef_u32; 4 * n]).to_vec();
+        let mut run = |chunk: Option<u32>| -> (Vec<u32>, usize) {
+            let mut pass = LevelPass::with_max_chunk(&h.ctx, chunk).unwrap();
+            pass.upload(&scene.gpu, &bounds).unwrap();
+            scene.gpu.upload_levels(&poison);
+            h.pool
+                .submit_and_wait(|cmd| {
+                    pass.cmd_record(cmd, &scene.gpu, &view);
+                    cmd.barrier_to_host();
+                })
+                .unwrap();
+            let levels: Vec<ElementLevels> = scene.gpu.levels.read_pod();
+            (bytemuck::cast_slice(&levels).to_vec(), pass.dispatches())
+        };
+        let (whole, one) = run(None);
+        assert_eq!(one, 1);
+        assert!(!whole.contains(&0xdead_beef));
+        for chunk in [1, 7, 100] {
+            let (split, dispatches) = run(Some(chunk));
+            assert!(
+                dispatches > 1,
+                "chunks of {chunk}: {dispatches} dispatch(es)"
+            );
+            assert!(split == whole, "chunks of {chunk} write other levels");
+        }
     });
 }

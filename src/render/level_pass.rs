@@ -5,7 +5,9 @@
 //! Bounds are computed on the CPU once per mesh and parameters ([`LevelPass::update_bounds`],
 //! `lod::frame::lod_records`) and uploaded as one `LodRecord` per element; a frame costs one
 //! dispatch of cheap math (`glsl/lod/levels.comp`, mirrored by `lod::frame::frame_levels`), the
-//! camera in push constants, and no readback.
+//! camera in push constants, and no readback. A storage-buffer descriptor spans at most
+//! maxStorageBufferRange bytes (322,638 bounds on lavapipe), so a larger mesh's bounds and levels
+//! are bound and dispatched in chunks, one descriptor set each: the shader is the same.
 
 use super::bindings::{LEVEL_BINDING_LEVELS, LEVEL_BINDING_RECORDS};
 use super::gpu_mesh::GpuMesh;
@@ -30,20 +32,37 @@ pub struct LevelPass {
     /// One `LodRecord` per element (at least one: a buffer may not be empty).
     records: Buffer,
     count: u32,
-    /// The levels buffer the set points at (the mesh of the last [`LevelPass::update_bounds`]).
+    /// The levels buffer the sets point at (the mesh of the last [`LevelPass::update_bounds`]).
     levels: vk::Buffer,
-    grid: [u32; 2],
+    /// The dispatches, each over a range of elements bound by its own set.
+    chunks: Vec<Chunk>,
+    /// At most this many elements a chunk (None: as many as the device's limits allow; tests
+    /// pass small chunks to exercise dispatching chunk by chunk).
+    max_chunk: Option<u32>,
     pipeline: Pipeline,
     layout: PipelineLayout,
+    /// Sets for the chunks (made again when their number changes).
     pool: DescriptorPool,
+    set_layout: DescriptorSetLayout,
+}
+
+/// One dispatch of the level pass: `count` elements from `first`, bound by `set`.
+struct Chunk {
+    count: u32,
+    grid: [u32; 2],
     set: vk::DescriptorSet,
-    _set_layout: DescriptorSetLayout,
 }
 
 impl LevelPass {
     /// The pipeline and its descriptor set, with no bounds yet ([`LevelPass::update_bounds`]
     /// before the first [`LevelPass::cmd_record`]).
     pub fn new(ctx: &Arc<Context>) -> Result<Self, RenderError> {
+        Self::with_max_chunk(ctx, None)
+    }
+
+    /// [`LevelPass::new`] dispatching at most `max_chunk` elements at a time (rounded down to
+    /// what keeps each chunk's buffers aligned): tests exercise the chunks on small meshes.
+    pub fn with_max_chunk(ctx: &Arc<Context>, max_chunk: Option<u32>) -> Result<Self, RenderError> {
         let c = vk::ShaderStageFlags::COMPUTE;
         let storage = vk::DescriptorType::STORAGE_BUFFER;
         let set_layout = DescriptorSetLayout::new(
@@ -63,7 +82,6 @@ impl LevelPass {
         )?;
         let pipeline = Pipeline::new_compute(ctx, &layout, "lod/levels.comp", "level pass")?;
         let pool = DescriptorPool::new(ctx, 1, &[(storage, 2)], "level pass descriptors")?;
-        let set = pool.allocate(&set_layout, "level pass set")?;
         let records = Buffer::new(
             ctx,
             BufferDesc::new_upload(
@@ -77,12 +95,12 @@ impl LevelPass {
             records,
             count: 0,
             levels: vk::Buffer::null(),
-            grid: [1, 1],
+            chunks: Vec::new(),
+            max_chunk,
             pipeline,
             layout,
             pool,
-            set,
-            _set_layout: set_layout,
+            set_layout,
         })
     }
 
@@ -98,39 +116,77 @@ impl LevelPass {
         self.upload(mesh, &lod_records(lod, records))
     }
 
+    /// Elements a chunk holds: as many as maxStorageBufferRange lets one descriptor span of the
+    /// bounds and of the levels, a multiple of what keeps the next chunk's offsets aligned to
+    /// minStorageBufferOffsetAlignment, and at most `max_chunk`; all of `n` when they fit.
+    fn chunk_size(&self, n: u64) -> u64 {
+        let limits = &self.ctx.info.limits;
+        let range = limits.max_storage_buffer_range as u64;
+        let align = limits.min_storage_buffer_offset_alignment.max(1);
+        let (record, level) = (
+            std::mem::size_of::<LodRecord>() as u64,
+            std::mem::size_of::<ElementLevels>() as u64,
+        );
+        let step = (1..=align)
+            .find(|k| (k * record) % align == 0 && (k * level) % align == 0)
+            .unwrap_or(align);
+        let fit = (range / record).min(range / level);
+        let fit = fit.min(self.max_chunk.map_or(u64::MAX, u64::from));
+        if fit >= n {
+            n
+        } else {
+            (fit / step * step).max(step)
+        }
+    }
+
     /// Upload bounds computed elsewhere (`lod::frame::lod_records`), one per element of `mesh`.
     /// The caller makes sure no pending work uses the pass.
     pub fn upload(&mut self, mesh: &GpuMesh, bounds: &[LodRecord]) -> Result<(), RenderError> {
         assert_eq!(bounds.len() as u32, mesh.element_count);
-        let limits = &self.ctx.info.limits;
-        let range = limits.max_storage_buffer_range as u64;
+        let info = &self.ctx.info;
         let bytes = std::mem::size_of_val(bounds) as u64;
+        let allocation = info.max_memory_allocation_size;
         for (what, needed) in [
             ("the level pass's bounds buffer", bytes),
             ("the level pass's levels buffer", mesh.levels.size()),
         ] {
-            if needed > range {
+            if needed > allocation {
                 return Err(RenderError::OverLimit {
                     what: what.into(),
                     needed,
                     unit: "bytes",
-                    limit: "this device's maxStorageBufferRange",
-                    max: range,
+                    limit: "this device's maxMemoryAllocationSize",
+                    max: allocation,
                     remedy: "a coarser mesh fits".into(),
                 });
             }
         }
-        let max = limits.max_compute_work_group_count;
-        let groups = (bounds.len() as u32).div_ceil(GROUP);
-        let grid =
-            dispatch_grid(groups, [max[0], max[1]]).ok_or_else(|| RenderError::OverLimit {
-                what: "the level pass's elements".into(),
-                needed: bounds.len() as u64,
-                unit: "elements",
-                limit: "this device's maxComputeWorkGroupCount",
-                max: max[0] as u64 * max[1] as u64 * GROUP as u64,
-                remedy: "use a coarser mesh".into(),
-            })?;
+        let n = bounds.len() as u64;
+        let chunk = self.chunk_size(n);
+        let record = std::mem::size_of::<LodRecord>() as u64;
+        let level = std::mem::size_of::<ElementLevels>() as u64;
+        let max = info.limits.max_compute_work_group_count;
+        let over_groups = || RenderError::OverLimit {
+            what: "the level pass's elements".into(),
+            needed: n,
+            unit: "elements",
+            limit: "this device's maxComputeWorkGroupCount",
+            max: max[0] as u64 * max[1] as u64 * GROUP as u64,
+            remedy: "use a coarser mesh".into(),
+        };
+        // (first, count, grid) of each dispatch; one, of no element, for an empty mesh.
+        let mut plan = Vec::new();
+        let mut first = 0;
+        loop {
+            let count = chunk.min(n - first) as u32;
+            let grid =
+                dispatch_grid(count.div_ceil(GROUP), [max[0], max[1]]).ok_or_else(over_groups)?;
+            plan.push((first, count, grid));
+            first += chunk.max(1);
+            if first >= n {
+                break;
+            }
+        }
         if self.records.size() < bytes.max(1) {
             self.records = Buffer::new(
                 &self.ctx,
@@ -140,24 +196,49 @@ impl LevelPass {
         }
         self.records.write_pod(0, bounds);
         let storage = vk::DescriptorType::STORAGE_BUFFER;
-        self.pool.write_buffer(
-            self.set,
-            LEVEL_BINDING_RECORDS,
-            storage,
-            self.records.raw,
-            vk::WHOLE_SIZE,
-        );
-        self.pool.write_buffer(
-            self.set,
-            LEVEL_BINDING_LEVELS,
-            storage,
-            mesh.levels.raw,
-            mesh.element_count.max(1) as u64 * std::mem::size_of::<ElementLevels>() as u64,
-        );
+        let sets = plan.len() as u32;
+        if sets != self.chunks.len() as u32 || self.chunks.is_empty() {
+            self.chunks.clear();
+            self.pool = DescriptorPool::new(
+                &self.ctx,
+                sets,
+                &[(storage, 2 * sets)],
+                "level pass descriptors",
+            )?;
+        }
+        let old: Vec<vk::DescriptorSet> = self.chunks.drain(..).map(|c| c.set).collect();
+        for (k, (first, count, grid)) in plan.into_iter().enumerate() {
+            let set = match old.get(k) {
+                Some(&set) => set,
+                None => self.pool.allocate(&self.set_layout, "level pass set")?,
+            };
+            let span = count.max(1) as u64;
+            (self.pool).write_buffer_at(
+                set,
+                LEVEL_BINDING_RECORDS,
+                storage,
+                self.records.raw,
+                first * record,
+                span * record,
+            );
+            (self.pool).write_buffer_at(
+                set,
+                LEVEL_BINDING_LEVELS,
+                storage,
+                mesh.levels.raw,
+                first * level,
+                span * level,
+            );
+            self.chunks.push(Chunk { count, grid, set });
+        }
         self.count = bounds.len() as u32;
         self.levels = mesh.levels.raw;
-        self.grid = grid;
         Ok(())
+    }
+
+    /// Dispatches a frame's pass makes (one per chunk).
+    pub fn dispatches(&self) -> usize {
+        self.chunks.len()
     }
 
     /// Elements the pass has bounds for.
@@ -179,15 +260,22 @@ impl LevelPass {
         };
         cmd.barrier_draws_to_levels();
         cmd.bind_compute_pipeline(self.pipeline.raw);
-        cmd.bind_compute_descriptor_set(self.layout.raw, 0, self.set);
-        cmd.push_constants(
-            self.layout.raw,
-            vk::ShaderStageFlags::COMPUTE,
-            0,
-            bytemuck::bytes_of(&view),
-        );
-        let [x, y] = self.grid;
-        cmd.dispatch(x, y, 1);
+        // The chunks write disjoint ranges of the levels: no barrier between them.
+        for chunk in &self.chunks {
+            let view = LodView {
+                count: chunk.count,
+                ..view
+            };
+            cmd.bind_compute_descriptor_set(self.layout.raw, 0, chunk.set);
+            cmd.push_constants(
+                self.layout.raw,
+                vk::ShaderStageFlags::COMPUTE,
+                0,
+                bytemuck::bytes_of(&view),
+            );
+            let [x, y] = chunk.grid;
+            cmd.dispatch(x, y, 1);
+        }
         cmd.barrier_levels_to_draws();
     }
 }
