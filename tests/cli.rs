@@ -963,8 +963,6 @@ fn texture_coordinates_are_validated() {
     ok(&["info", p(&good)]);
 }
 
-/// `--help` groups every option of a command under a heading of its own (docs/cli.md): only
-/// the global options and `--help` are left under the plain "Options".
 /// A value out of its range is refused even where nothing drawn reads the option: one error,
 /// never a warning that it is ignored before it (the value shown as typed).
 #[test]
@@ -1023,6 +1021,8 @@ fn an_eye_on_the_default_target_names_the_default() {
     );
 }
 
+/// `--help` groups every option of a command under a heading of its own (docs/cli.md): only
+/// the global options and `--help` are left under the plain "Options".
 #[test]
 fn help_groups_every_option_under_a_heading() {
     for command in ["render", "view", "export", "info", "bench", "devices"] {

@@ -77,7 +77,7 @@ pub enum MeshError {
         count: usize,
     },
     /// A coordinate is NaN or infinite; `what` names the value (e.g. "vertex coordinate").
-    #[error("{}: {what} is not a finite f32 (NaN, infinite, or beyond about ±3.4e38)", at(.path, .line))]
+    #[error("{}: {what} is not finite in f32 (NaN, infinite, or beyond about ±3.4e38)", at(.path, .line))]
     NonFinite {
         /// The file path as displayed, or the name given instead of one.
         path: String,
@@ -215,7 +215,7 @@ mod tests {
                     line: Some(3),
                     what: "vertex coordinate".into(),
                 },
-                "'x.obj' line 3: vertex coordinate is not a finite f32 (NaN, infinite, or beyond about ±3.4e38)",
+                "'x.obj' line 3: vertex coordinate is not finite in f32 (NaN, infinite, or beyond about ±3.4e38)",
             ),
             (
                 MeshError::NonManifold {

@@ -64,16 +64,19 @@ pub fn triangulate(corners: &[Vec3]) -> (Vec<[usize; 3]>, bool) {
 }
 
 /// Whether the polygon turns once round (its exterior angles sum to one turn, not two or more
-/// as a pentagram's): with no corner turning right, it is then convex.
+/// as a pentagram's): with no corner turning right, it is then convex. Only the corners that
+/// [`turn`] finds turning left count: a corner straight within rounding (a zigzag of `f32`
+/// crumbs, a repeated corner) turns by nothing.
 fn turns_once(plane: &Plane) -> bool {
     let (p, n) = (&plane.p, plane.p.len());
     let total: f64 = (0..n)
+        .filter(|&i| turn(plane, (i + n - 1) % n, i, (i + 1) % n) > 0)
         .map(|i| {
             let (u, v) = (p[i] - p[(i + n - 1) % n], p[(i + 1) % n] - p[i]);
             cross(u, v).atan2(u.dot(v))
         })
         .sum();
-    total.abs() < 3.0 * std::f64::consts::PI
+    total < 3.0 * std::f64::consts::PI
 }
 
 /// Whether no two sides of the polygon cross (beyond rounding; sides meeting at a corner, or

@@ -65,9 +65,10 @@ fn statement(line: &str) -> (Option<&str>, std::str::SplitWhitespace<'_>) {
 }
 
 /// The file's statements: (1-based line of the first, its text, how many lines it spans). A
-/// line ending in `\` continues on the next (the OBJ format's continuation: the two are one
-/// statement, the backslash a space); lines end in `\n`, `\r\n` or, in a file with no `\n`
-/// at all, a lone `\r` (old Mac text).
+/// line whose statement (the text before any `#` comment) ends in `\\` continues on the next
+/// (the OBJ format's continuation: the two are one statement, the backslash a space; on the
+/// last line it is a space too); lines end in `\\n`, `\\r\\n` or, in a file with no `\\n` at
+/// all, a lone `\\r` (old Mac text).
 fn statements(text: &str) -> Vec<(usize, std::borrow::Cow<'_, str>, usize)> {
     use std::borrow::Cow;
     let lines: Vec<&str> = if !text.contains('\n') && text.contains('\r') {
@@ -78,23 +79,35 @@ fn statements(text: &str) -> Vec<(usize, std::borrow::Cow<'_, str>, usize)> {
     } else {
         text.lines().collect()
     };
+    // Where the line's continuing backslash is (none in a comment, which ends the line).
+    let continued = |line: &str| -> Option<usize> {
+        let line = line.trim_end();
+        (!line.contains('#') && line.ends_with('\\')).then(|| line.len() - 1)
+    };
     let mut out = Vec::with_capacity(lines.len());
     let mut i = 0;
     while i < lines.len() {
-        let (first, mut joined, mut span) = (i, Cow::Borrowed(lines[i]), 1);
-        while joined.trim_end().ends_with('\\') && i + span < lines.len() {
-            let mut s = joined
-                .trim_end()
-                .strip_suffix('\\')
-                .unwrap_or("")
-                .to_string();
-            s.push(' ');
-            s.push_str(lines[i + span]);
-            joined = Cow::Owned(s);
-            span += 1;
+        let Some(cut) = continued(lines[i]) else {
+            out.push((i + 1, Cow::Borrowed(lines[i]), 1));
+            i += 1;
+            continue;
+        };
+        // Pieces appended once each: time linear in the statement's length.
+        let (first, mut joined, mut cut) = (i, String::new(), Some(cut));
+        while let Some(c) = cut {
+            joined.push_str(&lines[i][..c]);
+            joined.push(' ');
+            i += 1;
+            cut = match lines.get(i) {
+                Some(line) => continued(line),
+                None => break,
+            };
         }
-        out.push((first + 1, joined, span));
-        i += span;
+        if let Some(line) = lines.get(i) {
+            joined.push_str(line);
+            i += 1;
+        }
+        out.push((first + 1, Cow::Owned(joined), i - first));
     }
     out
 }
@@ -262,7 +275,7 @@ impl Scan {
                 let problem = if v.is_finite() {
                     "has zero length"
                 } else {
-                    "is not a finite f32 (NaN, infinite, or beyond about ±3.4e38)"
+                    "is not finite in f32 (NaN, infinite, or beyond about ±3.4e38)"
                 };
                 return Err(MeshError::BadNormal {
                     path: path.into(),
@@ -560,6 +573,16 @@ mod tests {
         assert_eq!(scan.faces[0].line, 5);
         let empty = Scan::run("x", &TRI.replace('\n', "\r"));
         assert!(matches!(empty, Err(MeshError::EmptyMesh { .. })));
+        // A backslash ending a comment continues nothing; one on the last line is a space.
+        let commented = format!("# C:\\models\\\n{TRI}f 1 2 3 \\\n");
+        let scan = Scan::run("x", &commented).unwrap();
+        assert_eq!(scan.positions.len(), 3);
+        assert_eq!(scan.faces[0].line, 5);
+        // A statement continued over 200,000 lines (joined piece by piece, each once).
+        let long = format!("{TRI}f 1 \\\n{}2 \\\n3\n", "\\\n".repeat(200_000));
+        let scan = Scan::run("x", &long).unwrap();
+        assert_eq!(scan.canonical.lines().count(), 200_006);
+        assert_eq!(scan.faces[0].corners, 3);
         let mac = Scan::run("x", &format!("{TRI}f 1 2 3\n").replace('\n', "\r")).unwrap();
         assert_eq!(
             mac.canonical,
@@ -618,7 +641,7 @@ mod tests {
         for bad in ["nan", "NaN", "inf", "-infinity", "1e39"] {
             assert_eq!(
                 err(&format!("v 0 0 0\nv {bad} 0 0\nv 0 1 0\nf 1 2 3\n")),
-                "'x.obj' line 2: vertex coordinate is not a finite f32 (NaN, infinite, or beyond about ±3.4e38)",
+                "'x.obj' line 2: vertex coordinate is not finite in f32 (NaN, infinite, or beyond about ±3.4e38)",
                 "{bad}"
             );
         }
@@ -628,7 +651,7 @@ mod tests {
         ));
         assert_eq!(
             err("v 1 2 3 inf\n"),
-            "'x.obj' line 1: vertex weight is not a finite f32 (NaN, infinite, or beyond about ±3.4e38)"
+            "'x.obj' line 1: vertex weight is not finite in f32 (NaN, infinite, or beyond about ±3.4e38)"
         );
     }
 
@@ -733,11 +756,11 @@ mod tests {
             ),
             (
                 format!("{TRI}vt nan 0\nf 1 2 3\n"),
-                "'x.obj' line 4: texture coordinate is not a finite f32 (NaN, infinite, or beyond about ±3.4e38)",
+                "'x.obj' line 4: texture coordinate is not finite in f32 (NaN, infinite, or beyond about ±3.4e38)",
             ),
             (
                 format!("{TRI}vt 0 inf\nf 1 2 3\n"),
-                "'x.obj' line 4: texture coordinate is not a finite f32 (NaN, infinite, or beyond about ±3.4e38)",
+                "'x.obj' line 4: texture coordinate is not finite in f32 (NaN, infinite, or beyond about ±3.4e38)",
             ),
             (
                 format!("{TRI}vt\nf 1 2 3\n"),
@@ -771,7 +794,7 @@ mod tests {
         );
         assert_eq!(
             err(&format!("{TRI}vn 0 0 1\nvn nan 0 1\nf 1//1 2//1 3//2\n")),
-            "'x.obj' line 5: normal (NaN, 0, 1) used by the face on line 6 is not a finite f32 (NaN, infinite, or beyond about ±3.4e38)"
+            "'x.obj' line 5: normal (NaN, 0, 1) used by the face on line 6 is not finite in f32 (NaN, infinite, or beyond about ±3.4e38)"
         );
         // An unused bad normal is harmless, and so is one on a file whose normals are
         // recomputed because some faces have none.

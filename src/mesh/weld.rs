@@ -325,7 +325,7 @@ mod tests {
         bad[2].y = f32::NAN;
         assert_eq!(
             msg(from_parts("m", bad, None, vec![[0, 1, 2]])),
-            "'m': coordinate of vertex 2 (0-based) is not a finite f32 (NaN, infinite, or beyond about ±3.4e38)"
+            "'m': coordinate of vertex 2 (0-based) is not finite in f32 (NaN, infinite, or beyond about ±3.4e38)"
         );
         assert_eq!(
             msg(from_parts(

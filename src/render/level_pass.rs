@@ -54,14 +54,15 @@ struct Chunk {
 }
 
 impl LevelPass {
-    /// The pipeline and its descriptor set, with no bounds yet ([`LevelPass::update_bounds`]
-    /// before the first [`LevelPass::cmd_record`]).
+    /// The pipeline, with no bounds yet ([`LevelPass::update_bounds`] before the first
+    /// [`LevelPass::cmd_record`]; the descriptor sets come with the bounds, one per chunk).
     pub fn new(ctx: &Arc<Context>) -> Result<Self, RenderError> {
         Self::with_max_chunk(ctx, None)
     }
 
-    /// [`LevelPass::new`] dispatching at most `max_chunk` elements at a time (rounded down to
-    /// what keeps each chunk's buffers aligned): tests exercise the chunks on small meshes.
+    /// [`LevelPass::new`] dispatching at most `max_chunk` elements at a time (rounded down to a
+    /// multiple of what keeps each chunk's buffers aligned, and up to that where smaller):
+    /// tests exercise the chunks on small meshes.
     pub fn with_max_chunk(ctx: &Arc<Context>, max_chunk: Option<u32>) -> Result<Self, RenderError> {
         let c = vk::ShaderStageFlags::COMPUTE;
         let storage = vk::DescriptorType::STORAGE_BUFFER;
