@@ -178,7 +178,7 @@ pub fn weld_adaptive_with(
         if inner == 0 {
             continue; // culled
         }
-        if !inner.is_power_of_two() || inner > max_level {
+        if inner > max_level {
             return Err(format!("element {t} was drawn at level {inner}"));
         }
         index.clear();

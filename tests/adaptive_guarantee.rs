@@ -125,7 +125,8 @@ fn drawn_triangles(
                 v.iter().all(|v| v.position[3] == 1.0),
                 "element {t}: corner not written"
             );
-            let d = adaptive::drawn_levels(&levels[t], MAX).expect("a drawn element");
+            let d = adaptive::drawn_levels(&levels[t], MAX, cfg.dyadic_levels())
+                .expect("a drawn element");
             out.push((
                 t,
                 v.map(|v| match cfg.glides() {
@@ -234,7 +235,7 @@ fn draw_and_measure_at(
 /// Whether an element is drawn mid-morph: one of its edges' or its inner level's morph factor
 /// (dyadic levels, `pattern::adaptive`) is in `[0.05, 0.95]`.
 fn mid_morph(l: &ElementLevels, cfg: &DrawConfig) -> bool {
-    let Some(d) = adaptive::drawn_levels(l, cfg.level) else {
+    let Some(d) = adaptive::drawn_levels(l, cfg.level, true) else {
         return false;
     };
     let lambda = l.edges.iter().copied().fold(l.inner, f32::max);

@@ -19,7 +19,9 @@ use common::{model, with_gpu};
 use meshrefine::export::weld_adaptive;
 use meshrefine::lod::levels::ElementLevels;
 use meshrefine::mesh::Mesh;
-use meshrefine::pattern::adaptive::{adaptive_element, drawn_levels, geomorph_position};
+use meshrefine::pattern::adaptive::{
+    adaptive_element, drawn_levels, geomorph_position, IntegerPatterns,
+};
 use meshrefine::pattern::{vertex_count, PatternSet};
 use meshrefine::render::{Camera, Capture, DrawConfig, Driver, Headless, Scene, Submit};
 use meshrefine::subdiv::FaceRecord;
@@ -160,6 +162,11 @@ fn check_chunked(
                 2e-3
             };
             let mirror = scene.mirror(&cfg, max).unwrap();
+            // The patterns' own weights (the finest pattern's, or the integer patterns').
+            let plain = match cfg.dyadic_levels() {
+                true => meshrefine::pattern::Pattern::uniform(max).bary,
+                false => IntegerPatterns::new(max).bary,
+            };
             let elements: Vec<_> = cap.adaptive_elements().collect();
             assert_eq!(elements.len(), records.len());
             let what = format!(
@@ -172,7 +179,7 @@ fn check_chunked(
             for (t, rec) in records.iter().enumerate() {
                 // Packed: the element's inner level's vertices only, in that level's order.
                 let (inner, slots) = elements[t];
-                let Some(e) = adaptive_element(&levels[t], max) else {
+                let Some(e) = adaptive_element(&levels[t], max, cfg.dyadic_levels()) else {
                     culled += 1;
                     assert_eq!(inner, 0, "{what}: culled element {t} has a level");
                     assert!(
@@ -192,8 +199,7 @@ fn check_chunked(
                     assert_eq!(v.position[3], 1.0, "{at} never written");
                     assert_eq!(v.id, [t as u32, k, e.levels.inner, 1], "{at}: slot");
                     assert_eq!(&v.coord[..3], &bary[..], "{at}: weights");
-                    let plain = meshrefine::pattern::Pattern::uniform(max).bary[k as usize];
-                    moved += (plain != bary) as usize;
+                    moved += (plain[k as usize] != bary) as usize;
                     let want = mirror.eval(&cfg.params, t, rec, bary);
                     for a in 0..3 {
                         let d = (v.position[a] - want.position[a]).abs();
@@ -345,7 +351,7 @@ fn watertight(
         let mut corners = HashSet::new();
         let mut differs = false;
         for (t, l) in tris.iter().zip(&levels) {
-            let d = drawn_levels(l, max).unwrap();
+            let d = drawn_levels(l, max, cfg.dyadic_levels()).unwrap();
             inner_vertices += ((d.inner - 1) * (d.inner.max(2) - 2) / 2) as usize;
             for k in 0..3 {
                 let (a, b) = (t[k], t[(k + 1) % 3]);
@@ -430,7 +436,7 @@ fn adaptive_geomorph_matches_the_mirror_and_is_watertight() {
             let what = format!("{} + {} {}", combo.0.name(), combo.1.name(), cfg.label());
             let (mut morphing, mut worst) = (0usize, 0.0f32);
             for ((t, rec), (_, slots)) in records.iter().enumerate().zip(cap.adaptive_elements()) {
-                let Some(e) = adaptive_element(&levels[t], max) else {
+                let Some(e) = adaptive_element(&levels[t], max, true) else {
                     continue;
                 };
                 let eval = |b: [f32; 3]| mirror.eval(&cfg.params, t, rec, b).position;

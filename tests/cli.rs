@@ -2491,7 +2491,8 @@ fn info_reports_adaptive_levels_for_a_camera() {
     assert!(a4 < adaptive, "{a4} {adaptive}");
     // The pattern driver (the default) draws powers of two; tess any integer; both the levels
     // the level pass writes (transition triangles included).
-    let pattern = ok(&["info", spot, "--pixel-error", "1", "--surface", "pn"]);
+    let pattern_args = ["info", spot, "--pixel-error", "1", "--surface", "pn"];
+    let pattern = ok(&pattern_args);
     assert!(pattern.contains("driver pattern"), "{pattern}");
     let tess = ok(&[
         "info",
@@ -2554,7 +2555,20 @@ fn info_reports_adaptive_levels_for_a_camera() {
         let (adaptive, uniform, ..) = adaptive_report(out);
         assert_eq!((adaptive, uniform), tess_count(out), "{out}");
     }
-    // The static driver refines on the CPU at the pattern driver's levels.
+    // The static driver refines on the CPU at integer levels: those the pattern driver draws
+    // without geomorphing (non-nested levels cannot glide), fewer triangles than its powers of
+    // two.
+    let integer_pattern = ok(&[&pattern_args[..], &["--geomorph", "off"]].concat());
+    assert!(
+        levels_of(&integer_pattern)
+            .iter()
+            .any(|l| !l.is_power_of_two()),
+        "{integer_pattern}"
+    );
+    assert!(
+        triangles(&integer_pattern) < triangles(&pattern),
+        "{integer_pattern}\n{pattern}"
+    );
     let stat = ok(&[
         "info",
         spot,
@@ -2566,7 +2580,11 @@ fn info_reports_adaptive_levels_for_a_camera() {
         "static",
     ]);
     assert!(stat.contains("driver static"), "{stat}");
-    assert_eq!(adaptive_report(&stat), adaptive_report(&pattern), "{stat}");
+    assert_eq!(
+        adaptive_report(&stat),
+        adaptive_report(&integer_pattern),
+        "{stat}"
+    );
     let integers = ok(&[&tess_args[..], &["--geomorph", "off"]].concat());
     assert!(
         levels_of(&integers).iter().any(|l| !l.is_power_of_two()),

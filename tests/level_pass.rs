@@ -129,7 +129,7 @@ fn gpu_levels_match_the_cpu() {
             let mut bare = full.clone();
             for b in &mut bare {
                 for e in &mut b.edges {
-                    e.needs = [[0.0; 4]; 3];
+                    e.needs = [[0.0; 4]; 4];
                 }
             }
             let n = records.len();

@@ -15,7 +15,8 @@ const uint SNAPPED = 8u;
 
 struct LodEdge {
     vec4 curve;    // (c1, c2) of the edge curve
-    vec4 needs[3]; // (c1, c2) of each element's transition need: dyadic, integer, snapped
+    vec4 needs[4]; // (c1, c2) of each element's transition need: dyadic, integer, snapped,
+                   // snapped integer
     vec4 sphere;
     vec4 sphere_a;
     vec4 sphere_b;
@@ -65,7 +66,7 @@ float level(vec2 c, vec4 s) {
 // Mirror: `edge_level`.
 float edge_level(LodEdge e) {
     uint kind = view.flags & (DYADIC | SNAPPED);
-    vec4 needs = e.needs[kind == 0u ? 1 : (kind == DYADIC ? 0 : 2)];
+    vec4 needs = e.needs[kind == 0u ? 1 : (kind == DYADIC ? 0 : (kind == SNAPPED ? 3 : 2))];
     float own = level(e.curve.xy, e.sphere);
     float a = level(needs.xy, e.sphere_a);
     float b = level(needs.zw, e.sphere_b);

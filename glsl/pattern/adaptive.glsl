@@ -5,17 +5,53 @@
 #define PATTERN_ADAPTIVE_GLSL
 
 // The levels an element is drawn with at largest level f (a power of two): its three edges'
-// and its inner level, dyadic; the inner level at least every edge's, an edge's at least 1.
+// and its inner level, powers of two where dyadic (the hierarchical patterns) else integers
+// (the integer patterns); the inner level at least every edge's, an edge's at least 1.
 // inner 0: culled. Mirror: adaptive::drawn_levels.
-uvec4 adaptive_levels(vec4 levels, uint f) {
-    uint inner = drawn_level(levels.w, true, f);
+uvec4 adaptive_levels(vec4 levels, uint f, bool dyadic) {
+    uint inner = drawn_level(levels.w, dyadic, f);
     if (inner == 0u) {
         return uvec4(0u);
     }
-    uvec3 e = max(uvec3(drawn_level(levels.x, true, f), drawn_level(levels.y, true, f),
-                        drawn_level(levels.z, true, f)),
+    uvec3 e = max(uvec3(drawn_level(levels.x, dyadic, f), drawn_level(levels.y, dyadic, f),
+                        drawn_level(levels.z, dyadic, f)),
                   uvec3(1u));
     return uvec4(e, max(inner, max(e.x, max(e.y, e.z))));
+}
+
+// The sample of an edge drawn at level m that lattice parameter a/n (m <= n) snaps to, as
+// snap_edge does for any integer levels: its index s, the sample being s/m. Mirror:
+// adaptive::snap_sample.
+uint snap_sample(uint a, uint m, uint n) {
+    uint down = 2u * a <= n ? 1u : 0u;
+    return (2u * a * m + n - down) / (2u * n);
+}
+
+// The weights the integer patterns draw lattice point ij of inner level n.w at: on stored
+// edge k (edge 0: j = 0, from corner 0; edge 1: i + j = n, from corner 1; edge 2: i = 0, from
+// corner 2) the sample s of the edge's level m it snaps to, (m - s)/m and s/m for corners k
+// and k + 1, divided as written (both elements sharing the edge divide the same integers);
+// inside, the pattern's own weights `inside`. Mirror: adaptive::integer_bary.
+vec3 integer_weights(uvec2 ij, uvec4 n, vec3 inside) {
+    uint k, a;
+    if (ij.y == 0u) {
+        k = 0u;
+        a = ij.x;
+    } else if (ij.x + ij.y == n.w) {
+        k = 1u;
+        a = ij.y;
+    } else if (ij.x == 0u) {
+        k = 2u;
+        a = n.w - ij.y;
+    } else {
+        return inside;
+    }
+    uint m = n[k];
+    uint s = snap_sample(a, m, n.w);
+    vec3 b = vec3(0.0);
+    b[k] = float(m - s) / float(m);
+    b[(k + 1u) % 3u] = float(s) / float(m);
+    return b;
 }
 
 // Parameter a (units of 1/f) along an edge drawn at level n, snapped onto the edge's samples

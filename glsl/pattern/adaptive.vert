@@ -11,13 +11,17 @@
 #include "adaptive.glsl"
 
 layout(constant_id = SPEC_SUBMIT) const uint SUBMIT = 2; // 0 push, 1 ubo, 2 instanced
-// Geomorphing (docs/adaptivity.md): 1 morphs the vertices the finest drawn levels add.
+// Geomorphing (docs/adaptivity.md): 1 morphs the vertices the finest drawn levels add, at
+// dyadic levels from the hierarchical patterns; 0 draws integer levels from the integer
+// patterns (non-nested levels cannot glide).
 layout(constant_id = SPEC_GEOMORPH) const uint GEOMORPH = 0;
 
 // `ubo` submission, as in pattern.vert.
 layout(set = SET_MESH, binding = BINDING_ELEMENT_UBO, std140) uniform RecordUbo { ElementRecord recs[UBO_WINDOW]; } rec_ubo;
 
-layout(location = 0) in vec3 in_bary; // (w, u, v) of the finest level pc.draw.x
+// (w, u, v) of the finest level pc.draw.x (GEOMORPH), of the element's inner level (integer
+// patterns: the draw's vertex offset picks the level's vertices).
+layout(location = 0) in vec3 in_bary;
 // `instanced`: the element of this instance, from its bin's list (bound at the bin's first
 // entry, src/render/pattern.rs); the other modes ignore it.
 layout(location = 8) in uint in_element;
@@ -57,16 +61,15 @@ bool edge_plan(uvec2 q, uvec4 n, vec4 lv, uint f, out uvec2 qs, out uvec2 a, out
     return true;
 }
 
-// Where the geomorphing driver draws finest-lattice point raw (before snapping; ij after, true
-// position p). A boundary point is its snapped sample, morphing with its edge's level when that
+// Where the geomorphing driver draws finest-lattice point raw (before snapping; its snapped
+// sample's true position p). A boundary point is its snapped sample, morphing with its edge's level when that
 // level adds it; an inside point new at the inner level morphs between its parents' drawn
 // positions (a boundary parent snapped and morphing with its edge). The surface is evaluated at
 // one call site in a loop whose trip count depends on the vertex, so that a costly surface
 // (loop's table sums) is compiled once rather than inlined up to six times; the loop runs over
 // the evaluations the vertex needs only (a SIMD batch of vertices runs the most any of them
 // needs: usually 2, not 6; docs/bench/geomorph-cost.md). Mirror: adaptive::geomorph_position.
-vec3 geomorph_position(ElementRecord rec, uint local, uvec2 raw, uvec2 ij, vec3 p, uvec4 n, vec4 lv,
-                       uint f) {
+vec3 geomorph_position(ElementRecord rec, uint local, uvec2 raw, vec3 p, uvec4 n, vec4 lv, uint f) {
     bool edge = morph_edge(raw, f) >= 0;
     float mi = 1.0;
     uvec2 q0 = raw, q1 = raw;
@@ -126,15 +129,22 @@ void main() {
     } else {
         rec = records[local];
     }
-    uvec4 n = adaptive_levels(element_levels[local], f);
-    // The finest lattice's weights are exact multiples of 1/f: (i, j) back exactly.
-    uvec2 raw = uvec2(in_bary.y * float(f), in_bary.z * float(f));
-    uvec2 ij = adaptive_snap(raw, n, f);
-    vec3 bary = lattice_weights(ij, f);
+    uvec4 n = adaptive_levels(element_levels[local], f, GEOMORPH != 0u);
+    vec3 bary;
+    uvec2 raw;
+    if (GEOMORPH != 0u) {
+        // The finest lattice's weights are exact multiples of 1/f: (i, j) back exactly.
+        raw = uvec2(in_bary.y * float(f), in_bary.z * float(f));
+        bary = lattice_weights(adaptive_snap(raw, n, f), f);
+    } else {
+        // The inner level's weights i/n, j/n (n <= 1024): (i, j) back by rounding.
+        raw = uvec2(round(in_bary.yz * float(n.w)));
+        bary = integer_weights(raw, n, in_bary);
+    }
     SurfacePoint sp = evaluate(rec, Sample(local, bary));
     if (GEOMORPH != 0u) {
         // The normal stays the true point's (docs/adaptivity.md, "Geomorphing").
-        sp.position = geomorph_position(rec, local, raw, ij, sp.position, n, element_levels[local], f);
+        sp.position = geomorph_position(rec, local, raw, sp.position, n, element_levels[local], f);
     }
     v_position = sp.position;
     v_normal = sp.normal;
@@ -144,10 +154,11 @@ void main() {
 #ifdef CAPTURE
     // Packed (src/render/packed_capture.rs): the element's vertices at its inner level only,
     // point (i, j) of that level's own lattice at its lattice index (`bft_row`, the GLSL twin of
-    // pattern::lattice_index) after the element's first slot; id.y the finest pattern's vertex,
-    // id.z the inner level, id.w 1 (adaptive). A vertex outside the room the capture made for
-    // its element (a level other than the one it was sized for) is counted, not written.
-    uint s = f / max(n.w, 1u);
+    // pattern::lattice_index) after the element's first slot; id.y the pattern's vertex (the
+    // finest's, or the integer patterns'), id.z the inner level, id.w 1 (adaptive). A vertex
+    // outside the room the capture made for its element (a level other than the one it was
+    // sized for) is counted, not written.
+    uint s = GEOMORPH != 0u ? f / max(n.w, 1u) : 1u;
     uvec2 q = raw / s;
     uint slot = capture_offsets[element] + bft_row(n.w, q.x, q.y);
     bool lattice = all(equal(raw % s, uvec2(0u)));

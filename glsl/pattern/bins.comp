@@ -29,33 +29,46 @@ layout(push_constant, std430) uniform Push {
     uint f;      // the largest level, 2^L
     uint n;      // elements in the mesh
     uint chunk;  // elements per chunk
+    uint dyadic; // 1: the hierarchical patterns (levels 2^l, l = 0..L); 0: the integer
+                 // patterns (levels 1..f, src/pattern/adaptive.rs `IntegerPatterns`)
 } pc;
+
+// Level n's command, instance count 0: its index range (and, integer, its vertex offset).
+void write_command(uint o, uint n) {
+    bool dyadic = pc.dyadic != 0u;
+    uint l = dyadic ? uint(findMSB(n)) : 0u;
+    commands[o] = 3u * n * n;
+    commands[o + 1u] = 0u;
+    commands[o + 2u] = dyadic ? (1u << (2u * l)) - 1u : (n - 1u) * n * (2u * n - 1u) / 2u;
+    commands[o + 3u] = dyadic ? 0u : n * (n + 1u) * (n + 2u) / 6u - 1u;
+    commands[o + 4u] = 0u;
+}
+
+// The bin of level n (n >= 1).
+uint bin_of(uint n) {
+    return pc.dyadic != 0u ? uint(findMSB(n)) : n - 1u;
+}
 
 void main() {
     uint k = pc.first + gl_GlobalInvocationID.x;
     if (k >= pc.end) {
         return;
     }
-    uint levels = uint(findMSB(pc.f)) + 1u;
+    bool dyadic = pc.dyadic != 0u;
+    uint levels = dyadic ? uint(findMSB(pc.f)) + 1u : pc.f;
     if (pc.phase == 0u) {
         uint l = k % levels;
-        uint o = 5u * (pc.n + k);
-        commands[o] = 3u << (2u * l);
-        commands[o + 1u] = 0u;
-        commands[o + 2u] = (1u << (2u * l)) - 1u;
-        commands[o + 3u] = 0u;
-        commands[o + 4u] = 0u;
+        write_command(5u * (pc.n + k), dyadic ? 1u << l : l + 1u);
         return;
     }
-    uint inner = adaptive_levels(element_levels[k], pc.f).w;
-    uint l = inner == 0u ? 0u : uint(findMSB(inner));
+    uint inner = adaptive_levels(element_levels[k], pc.f, dyadic).w;
     uint o = 5u * k;
+    // A culled element: level 1's range with no indices.
+    write_command(o, max(inner, 1u));
     commands[o] = 3u * inner * inner;
     commands[o + 1u] = 1u;
-    commands[o + 2u] = (1u << (2u * l)) - 1u;
-    commands[o + 3u] = 0u;
-    commands[o + 4u] = 0u;
     if (inner != 0u) {
+        uint l = bin_of(inner);
         uint c = k / pc.chunk;
         uint slot = atomicAdd(commands[5u * (pc.n + c * levels + l) + 1u], 1u);
         lists[l * pc.n + c * pc.chunk + slot] = k;

@@ -24,7 +24,7 @@ void main() {
             uvec3 outer = uvec3(drawn_level(l.y, false, max_level), drawn_level(l.z, false, max_level),
                                 drawn_level(l.x, false, max_level));
             if (GEOMORPH != 0u) {
-                uvec4 d = adaptive_levels(l, 1u << findMSB(max(max_level, 1u)));
+                uvec4 d = adaptive_levels(l, 1u << findMSB(max(max_level, 1u)), true);
                 inner = d.w;
                 outer = d.yzx;
             }

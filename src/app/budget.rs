@@ -82,9 +82,9 @@ impl State {
         if fits(asked) {
             return asked;
         }
-        let dyadic = cfg.dyadic_levels();
+        let pow2 = cfg.power_of_two_max();
         let level = (self.scene.patterns.levels())
-            .filter(|&l| l < asked && (!dyadic || l.is_power_of_two()) && fits(l))
+            .filter(|&l| l < asked && (!pow2 || l.is_power_of_two()) && fits(l))
             .last()
             .unwrap_or(1);
         let note = format!(

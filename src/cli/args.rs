@@ -404,11 +404,11 @@ pub struct InfoArgs {
     #[arg(long, allow_hyphen_values = true, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=1024), help_heading = "Adaptive drawing")]
     pub max_level: u32,
     /// The driver whose rounding of the levels is reported (with --pixel-error): pattern and
-    /// static draw powers of two, tess any integer (geomorphing, tess draws powers of two too).
+    /// tess draw powers of two while geomorphing, any integer without; static any integer.
     #[arg(long, value_parser = choices::driver(), default_value = "pattern", help_heading = "Adaptive drawing")]
     pub driver: Driver,
     /// Whether the reported drawing geomorphs (with --pixel-error; default: on, as render's):
-    /// tess then draws powers of two under a --max-level that is one, integers otherwise.
+    /// pattern then draws powers of two, tess too under a --max-level that is one.
     #[arg(long, value_parser = choices::geomorph(), help_heading = "Adaptive drawing")]
     pub geomorph: Option<bool>,
 }

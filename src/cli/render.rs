@@ -67,7 +67,7 @@ fn cannot_adapt(h: &mut Headless, scene: &mut Scene, cfg: &DrawConfig) -> Result
 /// would move between fragments and vertices (`loop` from level 16).
 fn chosen_max(cfg: &DrawConfig, report: &meshrefine::render::ChosenLevels) -> Option<DrawConfig> {
     let drawn = *report.report().histogram.keys().max()?;
-    let level = if cfg.dyadic_levels() {
+    let level = if cfg.power_of_two_max() {
         drawn.next_power_of_two()
     } else {
         drawn

@@ -30,7 +30,7 @@ use std::collections::{BTreeMap, HashMap};
 /// The mirror's "no finite bound" (GLSL keeps no infinities): `LOD_HUGE` in glsl/include/lod.glsl.
 pub const HUGE: f32 = 3.0e38;
 
-/// One edge slot of a [`LodRecord`] (std430, 112 bytes): the same bits in both elements'.
+/// One edge slot of a [`LodRecord`] (std430, 128 bytes): the same bits in both elements'.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct LodEdge {
@@ -38,14 +38,14 @@ pub struct LodEdge {
     pub curve: [f32; 4],
     /// The transition needs ([`strip_need`]) `(c1, c2)` of the first element, then of the
     /// second (the first's again on a boundary), for each [`Rounding`] (`[Rounding::index]`).
-    pub needs: [[f32; 4]; 3],
+    pub needs: [[f32; 4]; 4],
     /// The edge's sphere, the first element's, the second's (centre, radius).
     pub sphere: [f32; 4],
     pub sphere_a: [f32; 4],
     pub sphere_b: [f32; 4],
 }
 
-/// What the level pass reads of one element (std430, 416 bytes): its own bounds and its three
+/// What the level pass reads of one element (std430, 464 bytes): its own bounds and its three
 /// stored edges'.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
@@ -63,16 +63,16 @@ pub struct LodRecord {
     pub edges: [LodEdge; 3],
 }
 
-const _: () = assert!(std::mem::size_of::<LodEdge>() == 112);
-const _: () = assert!(std::mem::size_of::<LodRecord>() == 416);
+const _: () = assert!(std::mem::size_of::<LodEdge>() == 128);
+const _: () = assert!(std::mem::size_of::<LodRecord>() == 464);
 
 /// Cull flags of [`LodView::flags`].
 pub const CULL_FRUSTUM: u32 = 1;
 pub const CULL_BACK_FACES: u32 = 2;
 /// The driver rounds levels to powers of two ([`drawn_level`]).
 pub const DYADIC: u32 = 4;
-/// With [`DYADIC`]: the driver snaps its boundary vertices to the nearest sample of their edge
-/// ([`Rounding::Snapped`]).
+/// The driver snaps its boundary vertices to the nearest sample of their edge
+/// ([`Rounding::Snapped`] with [`DYADIC`], [`Rounding::SnappedInteger`] without).
 pub const SNAPPED: u32 = 8;
 
 /// How a driver rounds an element's levels and draws its boundary along a coarser edge: what
@@ -86,14 +86,28 @@ pub enum Rounding {
     /// Powers of two, every boundary vertex snapped to the nearest sample of its edge, a tie
     /// toward the nearer corner (the pattern driver, and the static baseline built as it draws).
     Snapped,
+    /// Any integer level, snapped as [`Rounding::Snapped`] (the pattern driver and the static
+    /// baseline without geomorphing: non-nested levels cannot glide).
+    SnappedInteger,
 }
 
 impl Rounding {
-    pub const ALL: [Rounding; 3] = [Rounding::Dyadic, Rounding::Integer, Rounding::Snapped];
+    pub const ALL: [Rounding; 4] = [
+        Rounding::Dyadic,
+        Rounding::Integer,
+        Rounding::Snapped,
+        Rounding::SnappedInteger,
+    ];
 
     /// Whether levels are rounded to powers of two.
     pub fn dyadic(self) -> bool {
-        self != Rounding::Integer
+        matches!(self, Rounding::Dyadic | Rounding::Snapped)
+    }
+
+    /// Whether boundary vertices move onto the nearest sample of their edge (at most half a
+    /// sample), rather than anywhere within a sample (the tessellator's transitions).
+    pub fn snapped(self) -> bool {
+        matches!(self, Rounding::Snapped | Rounding::SnappedInteger)
     }
 
     /// Where its transition needs are in [`LodEdge::needs`] (the order of [`Rounding::ALL`]).
@@ -102,6 +116,7 @@ impl Rounding {
             Rounding::Dyadic => 0,
             Rounding::Integer => 1,
             Rounding::Snapped => 2,
+            Rounding::SnappedInteger => 3,
         }
     }
 }
@@ -141,6 +156,7 @@ impl LodView {
                 Rounding::Integer => 0,
                 Rounding::Dyadic => DYADIC,
                 Rounding::Snapped => DYADIC | SNAPPED,
+                Rounding::SnappedInteger => SNAPPED,
             };
         Self {
             planes,
@@ -158,7 +174,8 @@ impl LodView {
 
     pub fn rounding(&self) -> Rounding {
         match (self.flags & DYADIC != 0, self.flags & SNAPPED != 0) {
-            (false, _) => Rounding::Integer,
+            (false, false) => Rounding::Integer,
+            (false, true) => Rounding::SnappedInteger,
             (true, false) => Rounding::Dyadic,
             (true, true) => Rounding::Snapped,
         }
@@ -288,13 +305,13 @@ pub fn lod_records_reporting(
         let (mut needs_b, mut sphere_b) = list.get(1).map_or((needs_a, sphere_a), need);
         for extra in list.iter().skip(2) {
             let (c, s) = need(extra);
-            needs_b = [0, 1, 2].map(|k| needs_b[k].max(c[k]));
+            needs_b = [0, 1, 2, 3].map(|k| needs_b[k].max(c[k]));
             sphere_b = enclosing(sphere_b, s);
         }
         let [ec1, ec2] = chord2(edge.chord);
         let slot = LodEdge {
             curve: [ec1, ec2, 0.0, 0.0],
-            needs: [0, 1, 2].map(|k| {
+            needs: [0, 1, 2, 3].map(|k| {
                 let ([a1, a2], [b1, b2]) = (chord2(needs_a[k]), chord2(needs_b[k]));
                 [a1, a2, b1, b2]
             }),

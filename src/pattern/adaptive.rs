@@ -13,8 +13,9 @@ use super::{index_count, lattice_index, weight, Pattern};
 use crate::lod::levels::{drawn_level, ElementLevels};
 use glam::Vec3;
 
-/// The levels one element is drawn with: its three stored edges' and its inner level, all
-/// powers of two at most the frame's largest level, each edge at most the inner level.
+/// The levels one element is drawn with: its three stored edges' and its inner level, at most
+/// the frame's largest level (powers of two for the hierarchical patterns), each edge at most
+/// the inner level.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct DrawnLevels {
     pub edges: [u32; 3],
@@ -22,15 +23,17 @@ pub struct DrawnLevels {
 }
 
 /// The levels the adaptive pattern driver draws `levels` with at largest level `max` (a power
-/// of two); `None`: culled. Mirror of `adaptive_levels` in glsl/pattern/adaptive.glsl. The inner
-/// level is raised to the largest edge level (a level pass promises it; raising it keeps a
-/// wrong one from opening a crack) and an edge level is at least 1.
-pub fn drawn_levels(levels: &ElementLevels, max: u32) -> Option<DrawnLevels> {
-    let inner = drawn_level(levels.inner, true, max);
+/// of two), powers of two where `dyadic` (the hierarchical patterns, while geomorphing), else
+/// any integer (the integer patterns); `None`: culled. Mirror of `adaptive_levels` in
+/// glsl/pattern/adaptive.glsl. The inner level is raised to the largest edge level (a level
+/// pass promises it; raising it keeps a wrong one from opening a crack) and an edge level is at
+/// least 1.
+pub fn drawn_levels(levels: &ElementLevels, max: u32, dyadic: bool) -> Option<DrawnLevels> {
+    let inner = drawn_level(levels.inner, dyadic, max);
     if inner == 0 {
         return None;
     }
-    let edges = levels.edges.map(|e| drawn_level(e, true, max).max(1));
+    let edges = levels.edges.map(|e| drawn_level(e, dyadic, max).max(1));
     let inner = edges.iter().copied().fold(inner, u32::max);
     Some(DrawnLevels { edges, inner })
 }
@@ -45,6 +48,74 @@ pub fn snap_edge(a: u32, n: u32, f: u32) -> u32 {
     let r = f / n;
     let up = if 2 * a > f { r } else { r - 1 };
     (2 * a + up) / (2 * r) * r
+}
+
+/// The sample of an edge drawn at level `m` that lattice parameter `a/n` (`m <= n`) snaps to,
+/// as [`snap_edge`] snaps (the nearest, a tie toward the nearer corner, to the smaller at the
+/// middle), for any integer levels: its index `k`, the sample being `k/m`. Mirror of
+/// `snap_sample` in glsl/pattern/adaptive.glsl.
+pub fn snap_sample(a: u32, m: u32, n: u32) -> u32 {
+    let down = u32::from(2 * a <= n);
+    (2 * a * m + n - down) / (2 * n)
+}
+
+/// The weights the integer patterns draw lattice point `(i, j)` of an element's inner level
+/// `d.inner` at: on stored edge `k` (as [`edge_of`] classifies it), the sample of the edge's
+/// level `d.edges[k]` it snaps to ([`snap_sample`]), `(m − s)/m` for corner `k` and `s/m` for
+/// corner `k + 1`, each divided as written (the two elements sharing the edge divide the same
+/// integers); inside, the uniform pattern's `(n − i − j)/n, i/n, j/n`. Mirror of
+/// `integer_weights` in glsl/pattern/adaptive.glsl.
+pub fn integer_bary(i: u32, j: u32, d: &DrawnLevels) -> [f32; 3] {
+    let n = d.inner;
+    let Some(k) = edge_of(i, j, n) else {
+        return [weight(n - i - j, n), weight(i, n), weight(j, n)];
+    };
+    // The parameter from corner k (edge 0: i; edge 1: j; edge 2: n - j).
+    let a = [i, j, n - j][k];
+    let m = d.edges[k];
+    let s = snap_sample(a, m, n);
+    let mut b = [0.0f32; 3];
+    b[k] = (m - s) as f32 / m as f32;
+    b[(k + 1) % 3] = s as f32 / m as f32;
+    b
+}
+
+/// The integer patterns for adaptive drawing without geomorphing: every level `1..=f`'s uniform
+/// pattern, its vertices (weights) after the previous levels' and its triangles (indices local
+/// to its own vertices) after theirs, drawn with a vertex offset ([`IntegerPatterns::base_vertex`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct IntegerPatterns {
+    pub level: u32,
+    pub bary: Vec<[f32; 3]>,
+    pub indices: Vec<u32>,
+}
+
+impl IntegerPatterns {
+    /// Levels `1..=f`.
+    pub fn new(f: u32) -> Self {
+        let mut bary = Vec::with_capacity(Self::base_vertex(f + 1) as usize);
+        let mut indices = Vec::with_capacity(Self::first_index(f + 1) as usize);
+        for n in 1..=f {
+            let p = Pattern::uniform(n);
+            bary.extend(p.bary);
+            indices.extend(p.indices);
+        }
+        Self {
+            level: f,
+            bary,
+            indices,
+        }
+    }
+
+    /// First index of level `n`'s triangles: `3 (1² + ... + (n − 1)²)`.
+    pub const fn first_index(n: u32) -> u32 {
+        (n - 1) * n * (2 * n - 1) / 2
+    }
+
+    /// First vertex of level `n`: the vertices of levels `1..n`, `n (n + 1)(n + 2)/6 − 1`.
+    pub const fn base_vertex(n: u32) -> u32 {
+        n * (n + 1) * (n + 2) / 6 - 1
+    }
 }
 
 /// Lattice point `(i, j)` of the finest level `f` moved onto its edge's samples where it lies on
@@ -133,9 +204,40 @@ pub struct AdaptiveElement {
 }
 
 /// The CPU mirror of one element drawn adaptively with `levels` at largest level `f` (a power
-/// of two); `None`: culled, nothing drawn.
-pub fn adaptive_element(levels: &ElementLevels, f: u32) -> Option<AdaptiveElement> {
-    let d = drawn_levels(levels, f)?;
+/// of two), at powers of two where `dyadic` ([`dyadic_element`]) else at integer levels
+/// ([`integer_element`]); `None`: culled, nothing drawn.
+pub fn adaptive_element(levels: &ElementLevels, f: u32, dyadic: bool) -> Option<AdaptiveElement> {
+    if dyadic {
+        dyadic_element(levels, f)
+    } else {
+        integer_element(levels, f)
+    }
+}
+
+/// One element drawn from the integer patterns ([`IntegerPatterns`]): vertices numbered in
+/// the patterns' vertex buffer, weights from [`integer_bary`], `points` its inner level's
+/// lattice points.
+pub fn integer_element(levels: &ElementLevels, f: u32) -> Option<AdaptiveElement> {
+    let d = drawn_levels(levels, f, false)?;
+    let n = d.inner;
+    let base = IntegerPatterns::base_vertex(n);
+    let p = Pattern::uniform(n);
+    let points: Vec<(u32, u32)> = p.lattice().collect();
+    Some(AdaptiveElement {
+        levels: d,
+        vertices: (0..points.len() as u32).map(|k| base + k).collect(),
+        bary: points
+            .iter()
+            .map(|&(i, j)| integer_bary(i, j, &d))
+            .collect(),
+        points,
+        triangles: p.triangles().iter().map(|t| t.map(|k| base + k)).collect(),
+    })
+}
+
+/// One element drawn from the hierarchical patterns ([`Hierarchy`]).
+pub fn dyadic_element(levels: &ElementLevels, f: u32) -> Option<AdaptiveElement> {
+    let d = drawn_levels(levels, f, true)?;
     let s = f / d.inner;
     let mut vertices = Vec::new();
     let mut out = Vec::new();
@@ -403,13 +505,21 @@ mod tests {
     #[test]
     fn uniform_levels_draw_the_uniform_pattern() {
         let f = 32;
-        for n in [1u32, 4, 32] {
-            let e = adaptive_element(&ElementLevels::uniform(n as f32), f).unwrap();
+        for (n, dyadic) in [
+            (1u32, true),
+            (4, true),
+            (32, true),
+            (1, false),
+            (7, false),
+            (32, false),
+        ] {
+            let e = adaptive_element(&ElementLevels::uniform(n as f32), f, dyadic).unwrap();
             let p = Pattern::uniform(n);
             assert_eq!(e.bary, p.bary, "level {n}");
             assert_eq!(e.triangles.len() as u32, n * n);
         }
-        assert!(adaptive_element(&ElementLevels::CULLED, f).is_none());
+        assert!(adaptive_element(&ElementLevels::CULLED, f, true).is_none());
+        assert!(adaptive_element(&ElementLevels::CULLED, f, false).is_none());
     }
 
     #[test]
@@ -455,15 +565,15 @@ mod tests {
         let f = 8;
         let eval = |b: [f32; 3]| Vec3::new(b[1], b[2], b[1] * b[1] + b[2] * b[2]);
         let l = ElementLevels::uniform(4.0);
-        let d = drawn_levels(&l, f).unwrap();
-        let e = adaptive_element(&l, f).unwrap();
+        let d = drawn_levels(&l, f, true).unwrap();
+        let e = dyadic_element(&l, f).unwrap();
         for (&pt, b) in e.points.iter().zip(&e.bary) {
             assert_eq!(geomorph_position(&l, &d, f, pt, &eval), eval(*b));
             assert_eq!(geomorph_weights(&l, &d, f, pt), *b);
         }
         let l = ElementLevels::uniform(2.0 + 1e-6);
-        let d = drawn_levels(&l, f).unwrap();
-        let e = adaptive_element(&l, f).unwrap();
+        let d = drawn_levels(&l, f, true).unwrap();
+        let e = dyadic_element(&l, f).unwrap();
         for (&(i, j), b) in e.points.iter().zip(&e.bary) {
             let got = geomorph_position(&l, &d, f, (i, j), &eval);
             if is_new(i, j, 2) {
@@ -488,12 +598,103 @@ mod tests {
             inner: 5.0,
         };
         assert_eq!(
-            drawn_levels(&l, 16),
+            drawn_levels(&l, 16, true),
             Some(DrawnLevels {
                 edges: [4, 1, 16],
                 inner: 16
             })
         );
+        assert_eq!(
+            drawn_levels(&l, 16, false),
+            Some(DrawnLevels {
+                edges: [3, 1, 16],
+                inner: 16
+            })
+        );
+    }
+
+    /// Integer snapping reaches every sample of the edge's level and nothing else, moves no
+    /// vertex by more than half a sample, keeps the corners, goes toward the nearer corner on
+    /// a tie, and equals the dyadic snapping where the edge's level divides the inner level.
+    #[test]
+    fn integer_snapping_reaches_every_sample_within_half_a_sample() {
+        for n in 1..=40u32 {
+            for m in 1..=n {
+                let k: Vec<u32> = (0..=n).map(|a| snap_sample(a, m, n)).collect();
+                assert_eq!((k[0], k[n as usize]), (0, m), "{m} of {n}");
+                for w in k.windows(2) {
+                    assert!(w[1] == w[0] || w[1] == w[0] + 1, "{m} of {n}: {k:?}");
+                }
+                for (a, &s) in k.iter().enumerate() {
+                    // |a/n − s/m| <= 1/(2m), in integers.
+                    let d = (2 * a as i64 * m as i64 - 2 * s as i64 * n as i64).abs();
+                    assert!(d <= n as i64, "{a}/{n} to {s}/{m}");
+                    if d == n as i64 {
+                        // A tie: toward the nearer corner (the first at the middle).
+                        assert_eq!(2 * s * n <= 2 * a as u32 * m, 2 * a as u32 <= n);
+                    }
+                    if n % m == 0 && (n / m).is_power_of_two() && n.is_power_of_two() {
+                        assert_eq!(snap_edge(a as u32, m, n), s * (n / m));
+                    }
+                }
+            }
+        }
+    }
+
+    /// The integer patterns' ranges: each level's first index and vertex, and its weights the
+    /// uniform pattern's.
+    #[test]
+    fn integer_patterns_number_every_level_after_the_previous() {
+        let p = IntegerPatterns::new(9);
+        for n in 1..=9u32 {
+            let u = Pattern::uniform(n);
+            let (v, i) = (
+                IntegerPatterns::base_vertex(n),
+                IntegerPatterns::first_index(n),
+            );
+            assert_eq!(&p.bary[v as usize..][..u.bary.len()], &u.bary[..]);
+            assert_eq!(&p.indices[i as usize..][..u.indices.len()], &u.indices[..]);
+        }
+        assert_eq!(p.bary.len() as u32, IntegerPatterns::base_vertex(10));
+        assert_eq!(p.indices.len() as u32, IntegerPatterns::first_index(10));
+    }
+
+    /// Both elements sharing an edge draw its vertices at the same weights, whichever way each
+    /// measures it and whatever their inner levels: the same bits for the same corner.
+    #[test]
+    fn integer_edges_get_the_same_weights_from_both_sides() {
+        for m in 1..=13u32 {
+            for (na, nb) in [(m, m), (m, m + 1), (m + 3, 2 * m + 1), (3 * m, m + 5)] {
+                // Element A has the edge as stored edge 0 (corner 0 to corner 1), B as stored
+                // edge 2 (corner 2 to corner 0) with B's corner 2 = A's corner 1.
+                let da = DrawnLevels {
+                    edges: [m, na, na],
+                    inner: na,
+                };
+                let db = DrawnLevels {
+                    edges: [nb, nb, m],
+                    inner: nb,
+                };
+                let side = |w: &[[f32; 3]], c0: usize, c1: usize| -> Vec<(u32, u32)> {
+                    let mut v: Vec<(u32, u32)> = w
+                        .iter()
+                        .map(|b| (b[c0].to_bits(), b[c1].to_bits()))
+                        .collect();
+                    v.sort_unstable();
+                    v.dedup();
+                    v
+                };
+                let a: Vec<[f32; 3]> = (0..=na).map(|i| integer_bary(i, 0, &da)).collect();
+                let b: Vec<[f32; 3]> = (0..=nb).map(|j| integer_bary(0, j, &db)).collect();
+                // A's corner 0 is B's corner 0; A's corner 1 is B's corner 2.
+                assert_eq!(
+                    side(&a, 0, 1),
+                    side(&b, 0, 2),
+                    "edge {m}, inner {na} and {nb}"
+                );
+                assert_eq!(side(&a, 0, 1).len() as u32, m + 1);
+            }
+        }
     }
 }
 

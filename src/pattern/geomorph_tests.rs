@@ -38,7 +38,7 @@ struct Drawn {
 }
 
 fn drawn(l: &ElementLevels, eval: &dyn Fn([f32; 3]) -> Vec3, geomorph: bool) -> Option<Drawn> {
-    let e = adaptive_element(l, F)?;
+    let e = dyadic_element(l, F)?;
     let slot: std::collections::HashMap<u32, usize> = e
         .vertices
         .iter()
@@ -154,7 +154,8 @@ fn sweep(geomorph: bool) -> (f32, usize, usize) {
                 let (Some(d1), Some(d0)) = (d1, d0) else {
                     continue;
                 };
-                changes += (drawn_levels(&levels[t], F) != drawn_levels(&pl[t], F)) as usize;
+                changes +=
+                    (drawn_levels(&levels[t], F, true) != drawn_levels(&pl[t], F, true)) as usize;
                 for (&q, &x1) in d1.params.iter().zip(&d1.positions) {
                     let x0 = d0.at(q);
                     let w = q / F as f64;

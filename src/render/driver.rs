@@ -310,10 +310,11 @@ mod tests {
         }
     }
 
-    /// Gliding and dyadic levels as docs/adaptivity.md ("Geomorphing") says: for the drivers
-    /// whose levels are powers of two, `glides` is `geomorph` (the static driver's CPU
-    /// refinement then draws without gliding); the tess driver glides (and rounds to powers of
-    /// two) only under a largest level that is one, and draws integer levels otherwise.
+    /// Gliding and dyadic levels as docs/adaptivity.md ("Geomorphing") says: the pattern
+    /// driver glides at powers of two with `geomorph` and draws integer levels without; the
+    /// static driver never glides and draws integer levels; the tess driver glides (and rounds
+    /// to powers of two) only under a largest level that is one, and draws integer levels
+    /// otherwise.
     #[test]
     fn gliding_follows_the_levels() {
         // (driver, level, geomorph) -> (glides, dyadic levels)
@@ -322,9 +323,14 @@ mod tests {
             (Driver::Tess, 12, true, (false, false)),
             (Driver::Tess, 16, false, (false, false)),
             (Driver::Pattern(Submit::Push), 16, true, (true, true)),
-            (Driver::Pattern(Submit::Instanced), 16, false, (false, true)),
-            (Driver::Static, 16, true, (true, true)),
-            (Driver::Static, 16, false, (false, true)),
+            (
+                Driver::Pattern(Submit::Instanced),
+                16,
+                false,
+                (false, false),
+            ),
+            (Driver::Static, 16, true, (false, false)),
+            (Driver::Static, 16, false, (false, false)),
         ];
         for (d, level, geomorph, want) in cases {
             let cfg = DrawConfig {

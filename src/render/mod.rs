@@ -117,12 +117,16 @@ impl DrawConfig {
         }
     }
 
-    /// Whether adaptive frames glide their vertices: [`DrawConfig::geomorph`], except for a
+    /// Whether adaptive frames glide their vertices: [`DrawConfig::geomorph`], except for the
+    /// static driver, which never does (it refines on the CPU when the levels change), and a
     /// driver with integer levels (the tess driver, [`DriverKind::integer_levels`]) under a
     /// largest level that is not a power of two (its morph needs dyadic levels), which then
     /// draws its integer levels without gliding.
     pub fn glides(&self) -> bool {
-        self.geomorph && (!self.driver.kind().integer_levels() || self.level.is_power_of_two())
+        let kind = self.driver.kind();
+        self.geomorph
+            && !kind.refines_on_cpu()
+            && (!kind.integer_levels() || self.level.is_power_of_two())
     }
 
     /// Whether a closed mesh makes a closed surface: not where open seams
@@ -137,25 +141,37 @@ impl DrawConfig {
         self.surface.uses_loop_faces() && self.displace != crate::surface::Displace::None
     }
 
-    /// Whether adaptive levels are rounded to powers of two: the pattern driver's
-    /// hierarchical patterns, the static driver (which refines with their construction), and
-    /// the tess driver while it glides.
+    /// Whether adaptive levels are rounded to powers of two: while the pattern or tess driver
+    /// glides (the pattern driver's hierarchical patterns, the tessellator's morph between
+    /// them).
     pub fn dyadic_levels(&self) -> bool {
         self.rounding().dyadic()
     }
 
     /// How the driver rounds adaptive levels and meets a coarser edge, as the level pass
     /// bounds it: the tessellator's own transitions for tess (dyadic while it glides), the
-    /// pattern's boundary snapped to the nearest edge sample for pattern and static.
+    /// pattern's boundary snapped to the nearest edge sample for pattern and static (dyadic
+    /// while the pattern driver glides: its hierarchical patterns; else integer).
     pub fn rounding(&self) -> crate::lod::frame::Rounding {
         use crate::lod::frame::Rounding;
         if !self.driver.kind().integer_levels() {
-            Rounding::Snapped
+            if self.glides() {
+                Rounding::Snapped
+            } else {
+                Rounding::SnappedInteger
+            }
         } else if self.glides() {
             Rounding::Dyadic
         } else {
             Rounding::Integer
         }
+    }
+
+    /// Whether the largest level of an adaptive frame is a power of two: the pattern and
+    /// static drivers' (their adaptive patterns are built up to a power of two, whichever
+    /// levels they draw), the tess driver's while it glides.
+    pub fn power_of_two_max(&self) -> bool {
+        !self.driver.kind().integer_levels() || self.dyadic_levels()
     }
 
     /// Triangles the GPU makes per element.

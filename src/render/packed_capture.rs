@@ -60,7 +60,7 @@ impl Headless {
             .levels_drawn(scene, cfg)?
             .iter()
             .take(n as usize)
-            .map(|l| drawn_levels(l, cfg.level).map_or(0, |d| d.inner))
+            .map(|l| drawn_levels(l, cfg.level, cfg.dyadic_levels()).map_or(0, |d| d.inner))
             .collect();
         let offsets = packed_offsets(&inner);
         let total = offsets.last().copied().unwrap_or(0);

@@ -19,7 +19,7 @@ use crate::gpu::{
     vk, Buffer, BufferDesc, Cmd, CommandPool, Context, DescriptorPool, DescriptorSetLayout,
     GraphicsPipelineDesc, Pipeline, PipelineLayout,
 };
-use crate::pattern::adaptive::Hierarchy;
+use crate::pattern::adaptive::{Hierarchy, IntegerPatterns};
 use crate::pattern::{index_count, vertex_count};
 use crate::surface::{ElementRecord, RECORD_BYTES};
 use bytemuck::{Pod, Zeroable};
@@ -194,13 +194,14 @@ impl DriverKind for PatternDriver {
             Some(l) if cfg.surface.uses_loop_faces() => &mut l.gpu,
             _ => &mut scene.gpu,
         };
-        if check_adaptive_fits(ctx, mesh.element_count, mesh.chunk, cfg.level).is_err() {
+        let dyadic = cfg.dyadic_levels();
+        if check_adaptive_fits(ctx, mesh.element_count, mesh.chunk, cfg.level, dyadic).is_err() {
             mesh.adaptive = None;
             return Ok(());
         }
-        if mesh.adaptive.as_ref().is_none_or(|a| a.level != cfg.level) {
+        if (mesh.adaptive.as_ref()).is_none_or(|a| a.level != cfg.level || a.dyadic != dyadic) {
             mesh.adaptive = None;
-            mesh.adaptive = Some(AdaptivePattern::new(ctx, pool, mesh, cfg.level)?);
+            mesh.adaptive = Some(AdaptivePattern::new(ctx, pool, mesh, cfg.level, dyadic)?);
         }
         Ok(())
     }
@@ -215,7 +216,8 @@ impl DriverKind for PatternDriver {
     ) -> Result<(), RenderError> {
         check_adaptive_level(cfg)?;
         let mesh = scene.elements(cfg.surface);
-        check_adaptive_fits(ctx, mesh.element_count, mesh.chunk, cfg.level)
+        let dyadic = cfg.dyadic_levels();
+        check_adaptive_fits(ctx, mesh.element_count, mesh.chunk, cfg.level, dyadic)
     }
 
     /// An adaptive frame's bins pass.
@@ -260,7 +262,7 @@ fn adaptive_of<'a>(work: &FrameWork<'a>) -> &'a AdaptivePattern {
     work.mesh
         .adaptive
         .as_ref()
-        .filter(|a| a.level == work.cfg.level)
+        .filter(|a| a.level == work.cfg.level && a.dyadic == work.cfg.dyadic_levels())
         .expect("an adaptive frame at a power of two, prepared")
 }
 
@@ -301,6 +303,7 @@ pub fn check_adaptive_fits(
     elements: u32,
     chunk: u32,
     level: u32,
+    dyadic: bool,
 ) -> Result<(), RenderError> {
     let limits = &ctx.info.limits;
     let range = limits.max_storage_buffer_range as u64;
@@ -312,11 +315,13 @@ pub fn check_adaptive_fits(
     } else {
         (range, "maxStorageBufferRange")
     };
-    let (commands, lists) = adaptive_bytes(elements, chunk, level);
+    let (commands, lists) = adaptive_bytes(elements, chunk, level, dyadic);
     let needed = commands.max(lists);
     if needed > max {
-        let levels = level.trailing_zeros() as u64 + 1;
+        let levels = bins_per_chunk(level, dyadic) as u64;
         let fits = max / (4 * levels).max(COMMAND_BYTES + 1);
+        // Integer levels bin by every level, powers of two by a few.
+        let glide = if dyadic { "" } else { ", with --geomorph on" };
         return Err(RenderError::OverLimit {
             what: format!(
                 "drawing {elements} elements adaptively up to level {level} (indirect commands and bins)"
@@ -325,16 +330,28 @@ pub fn check_adaptive_fits(
             unit: "bytes",
             limit,
             max,
-            remedy: format!("draw at most about {fits} elements adaptively, or draw uniformly"),
+            remedy: format!(
+                "draw at most about {fits} elements adaptively{glide}, or draw uniformly"
+            ),
         });
     }
     Ok(())
 }
 
+/// The levels an adaptive draw bins by at largest level `level`: the hierarchy's `2^l`,
+/// `l = 0..=L` where `dyadic`, else every level `1..=level`.
+fn bins_per_chunk(level: u32, dyadic: bool) -> u32 {
+    if dyadic {
+        level.trailing_zeros() + 1
+    } else {
+        level
+    }
+}
+
 /// Bytes of the adaptive draws' commands and bin lists.
-fn adaptive_bytes(elements: u32, chunk: u32, level: u32) -> (u64, u64) {
+fn adaptive_bytes(elements: u32, chunk: u32, level: u32, dyadic: bool) -> (u64, u64) {
     let n = elements.max(1) as u64;
-    let levels = level.trailing_zeros() as u64 + 1;
+    let levels = bins_per_chunk(level, dyadic) as u64;
     let bins = n.div_ceil(chunk.max(1) as u64) * levels;
     ((n + bins) * COMMAND_BYTES, levels * n * 4)
 }
@@ -355,15 +372,22 @@ struct BinsPush {
     f: u32,
     n: u32,
     chunk: u32,
+    dyadic: u32,
 }
 
-/// What drawing one mesh's elements adaptively at largest level `f` needs besides the finest
-/// uniform pattern (whose vertices it draws): the hierarchical index ranges, the indirect
-/// commands and bins the pass glsl/pattern/bins.comp writes from the levels buffer each frame,
-/// and that pass. Built by [`PatternDriver`]'s `prepare` for a level that is a power of two.
+/// What drawing one mesh's elements adaptively at largest level `f` needs: the patterns (at
+/// dyadic levels, the hierarchical index ranges into the finest uniform pattern's vertices; at
+/// integer levels, every level's own vertices and triangles), the indirect commands and bins
+/// the pass glsl/pattern/bins.comp writes from the levels buffer each frame, and that pass.
+/// Built by [`PatternDriver`]'s `prepare` for a level that is a power of two.
 pub struct AdaptivePattern {
     pub level: u32,
-    /// Every dyadic level's triangles, indexing the finest pattern's vertices.
+    /// Levels are powers of two (geomorphing), else any integer.
+    pub dyadic: bool,
+    /// The integer patterns' vertices (`None` at dyadic levels: the finest pattern's).
+    pub vertices: Option<Buffer>,
+    /// Every level's triangles: dyadic, indexing the finest pattern's vertices; integer, each
+    /// level's own (drawn with its vertex offset).
     pub indices: Buffer,
     /// Per element one command (`push`, `ubo`), then per chunk and level one bin's command.
     pub commands: Buffer,
@@ -380,25 +404,32 @@ pub struct AdaptivePattern {
 }
 
 impl AdaptivePattern {
-    /// For `mesh`'s elements at largest level `f` (a power of two).
+    /// For `mesh`'s elements at largest level `f` (a power of two), at powers of two where
+    /// `dyadic`, else at integer levels.
     pub fn new(
         ctx: &Arc<Context>,
         pool: &CommandPool,
         mesh: &GpuMesh,
         f: u32,
+        dyadic: bool,
     ) -> Result<Self, RenderError> {
         use vk::BufferUsageFlags as U;
         let n = mesh.element_count.max(1);
         let chunks = n.div_ceil(mesh.chunk);
-        let hierarchy = Hierarchy::new(f);
-        let indices = Buffer::new_with_data(
-            ctx,
-            pool,
-            U::INDEX_BUFFER,
-            &hierarchy.indices,
-            &format!("hierarchical patterns up to {f}"),
-        )?;
-        let (command_bytes, list_bytes) = adaptive_bytes(n, mesh.chunk, f);
+        let (vertices, indices) = if dyadic {
+            let hierarchy = Hierarchy::new(f);
+            let name = format!("hierarchical patterns up to {f}");
+            let indices =
+                Buffer::new_with_data(ctx, pool, U::INDEX_BUFFER, &hierarchy.indices, &name)?;
+            (None, indices)
+        } else {
+            let p = IntegerPatterns::new(f);
+            let name = format!("integer patterns up to {f}");
+            let vertices = Buffer::new_with_data(ctx, pool, U::VERTEX_BUFFER, &p.bary, &name)?;
+            let indices = Buffer::new_with_data(ctx, pool, U::INDEX_BUFFER, &p.indices, &name)?;
+            (Some(vertices), indices)
+        };
+        let (command_bytes, list_bytes) = adaptive_bytes(n, mesh.chunk, f, dyadic);
         let commands = Buffer::new(
             ctx,
             BufferDesc::new_gpu_only(command_bytes, U::STORAGE_BUFFER | U::INDIRECT_BUFFER),
@@ -429,6 +460,8 @@ impl AdaptivePattern {
         }
         Ok(Self {
             level: f,
+            dyadic,
+            vertices,
             indices,
             commands,
             lists,
@@ -443,9 +476,9 @@ impl AdaptivePattern {
         })
     }
 
-    /// Levels in the hierarchy (`L + 1`).
+    /// Bins per chunk: levels in the hierarchy (`L + 1`), or every integer level.
     fn levels(&self) -> u32 {
-        self.level.trailing_zeros() + 1
+        bins_per_chunk(self.level, self.dyadic)
     }
 
     /// Record the bins pass for `elements`: the bins' commands, then each element's command and
@@ -467,6 +500,7 @@ impl AdaptivePattern {
                     f: self.level,
                     n: self.elements,
                     chunk: self.chunk,
+                    dyadic: self.dyadic as u32,
                 };
                 cmd.push_constants(
                     self.layout.raw,
@@ -489,7 +523,8 @@ impl AdaptivePattern {
         e as u64 * COMMAND_BYTES
     }
 
-    /// Byte offset of the bin of the chunk starting at element `base` and level `2^l`.
+    /// Byte offset of the bin of the chunk starting at element `base` and bin `l` (level `2^l`,
+    /// or `l + 1` at integer levels).
     fn bin_command(&self, base: u32, l: u32) -> u64 {
         let bin = (base / self.chunk) * self.levels() + l;
         (self.elements as u64 + bin as u64) * COMMAND_BYTES
@@ -502,7 +537,8 @@ impl AdaptivePattern {
 }
 
 /// Record the adaptive draws of the elements `range` of `mesh` (the bins pass already
-/// recorded): the finest pattern's vertices, the hierarchy's index ranges, the commands the pass
+/// recorded): the patterns' vertices and index ranges (the finest pattern's vertices and the
+/// hierarchy's ranges, or the integer patterns'), the commands the pass
 /// wrote. The same per-element loop as [`cmd_draw`] for `push` and `ubo`; one indirect draw per
 /// chunk and level for `instanced`.
 fn cmd_draw_adaptive(
@@ -526,7 +562,7 @@ fn cmd_draw_adaptive(
             bytemuck::cast_slice(&words),
         )
     };
-    cmd.bind_vertex_buffer(0, &finest.vertices);
+    cmd.bind_vertex_buffer(0, a.vertices.as_ref().unwrap_or(&finest.vertices));
     // The element lists (`instanced` rebinds them per bin; the other modes ignore them).
     cmd.bind_vertex_buffer(2, &a.lists);
     cmd.bind_index_buffer_u32(&a.indices);

@@ -2,18 +2,19 @@
 //! would do without refinement on the GPU. When the levels change (`Scene::set_levels`, from the
 //! level pass's CPU mirror `lod::frame::frame_levels`), every element is refined on the CPU at
 //! its drawn levels with the pattern driver's crack-free construction (`pattern::adaptive`: its
-//! inner level's lattice, boundary vertices snapped onto their edge's dyadic level, the same
+//! inner level's lattice, boundary vertices snapped onto their edge's level, the same
 //! triangles), evaluated with the surfaces' mirrors and uploaded as one vertex and index buffer;
 //! the draws then read each element's index range. Triangles that snapping made degenerate are
-//! not stored. Vertices do not glide (`DrawConfig::geomorph` is the pattern driver's): gliding
-//! would re-upload every frame. docs/adaptivity.md, "The static baseline".
+//! not stored. Vertices do not glide (gliding would re-upload every frame), but the levels are
+//! those the pattern driver draws: powers of two with `DrawConfig::geomorph`, any integer
+//! without. docs/adaptivity.md, "The static baseline".
 
 use super::bindings::SET_MESH;
 use super::static_vbo::{static_vertex, ElementVertex, StaticVbo, StaticVertex};
 use super::{DrawConfig, GpuMesh, RenderError, Renderer, Scene, PUSH_DRAW_OFFSET, PUSH_STAGES};
 use crate::gpu::{vk, Buffer, Cmd, CommandPool, Context};
 use crate::lod::levels::ElementLevels;
-use crate::pattern::adaptive::{bary, drawn_levels, snap, DrawnLevels};
+use crate::pattern::adaptive::{bary, drawn_levels, integer_bary, snap, DrawnLevels};
 use crate::pattern::Pattern;
 use crate::surface::{ElementRecord, Mirror};
 use std::sync::Arc;
@@ -35,16 +36,21 @@ pub struct AdaptiveRefined {
 }
 
 /// The drawn levels of `levels` at largest level `max` (a power of two), as the pattern driver
-/// draws them.
-pub fn drawn(levels: &[ElementLevels], max: u32) -> Vec<Option<DrawnLevels>> {
-    levels.iter().map(|l| drawn_levels(l, max)).collect()
+/// draws them (powers of two where `dyadic`).
+pub fn drawn(levels: &[ElementLevels], max: u32, dyadic: bool) -> Vec<Option<DrawnLevels>> {
+    levels
+        .iter()
+        .map(|l| drawn_levels(l, max, dyadic))
+        .collect()
 }
 
 /// Every element of `records` refined on the CPU at its drawn levels `drawn` (from [`drawn`]) at
 /// largest level `cfg.level` (a power of two), with `cfg`'s surface, displacement and
-/// parameters (`mirror`: the surface and displacement with their inputs): element `t`'s vertices are the pattern driver's adaptive vertices
-/// (`pattern::adaptive::adaptive_element`, snapped weights included) in the inner level's
-/// pattern order, its triangles that pattern's, less those snapping made degenerate.
+/// parameters (`mirror`: the surface and displacement with their inputs): element `t`'s
+/// vertices are the pattern driver's adaptive vertices (`pattern::adaptive::adaptive_element`,
+/// snapped weights included; dyadic or integer levels as `drawn` holds them, as
+/// `cfg.dyadic_levels()` says) in the inner level's pattern order, its triangles that
+/// pattern's, less those snapping made degenerate.
 /// `samples`: also each vertex's sample, for the per-fragment normal field.
 pub fn refine_adaptive(
     cfg: &DrawConfig,
@@ -59,27 +65,32 @@ pub fn refine_adaptive(
         first: Vec::with_capacity(records.len() + 1),
         ..AdaptiveRefined::default()
     };
-    // The uniform patterns by level (a power of two up to f).
-    let mut patterns: Vec<Option<Pattern>> = vec![None; f.trailing_zeros() as usize + 1];
+    let dyadic = cfg.dyadic_levels();
+    // The uniform patterns by level (up to f).
+    let mut patterns: Vec<Option<Pattern>> = vec![None; f as usize + 1];
+    // Each vertex's weights: equal weights, the same point.
     let mut points = Vec::new();
     for (t, rec) in records.iter().enumerate() {
         out.first.push(out.indices.len() as u32);
         let Some(d) = drawn[t] else { continue };
-        let pattern = patterns[d.inner.trailing_zeros() as usize]
-            .get_or_insert_with(|| Pattern::uniform(d.inner));
+        let pattern = patterns[d.inner as usize].get_or_insert_with(|| Pattern::uniform(d.inner));
         let s = f / d.inner;
         let base = out.vertices.len() as u32;
         points.clear();
         for (i, j) in pattern.lattice() {
-            let p = snap(i * s, j * s, &d, f);
-            let b = bary(p.0, p.1, f);
+            let b = if dyadic {
+                let p = snap(i * s, j * s, &d, f);
+                bary(p.0, p.1, f)
+            } else {
+                integer_bary(i, j, &d)
+            };
             out.vertices
                 .push(static_vertex(&mirror.eval(&cfg.params, t, rec, b)));
             if samples {
                 out.samples
                     .push([b[0].to_bits(), b[1].to_bits(), b[2].to_bits(), t as u32]);
             }
-            points.push(p);
+            points.push(b);
         }
         for tri in pattern.indices.chunks_exact(3) {
             let [a, b, c] = [tri[0], tri[1], tri[2]].map(|k| points[k as usize]);
@@ -116,25 +127,17 @@ pub(super) struct StaticLevels {
 impl StaticLevels {
     pub(super) fn new(cfg: &DrawConfig, generation: u64, levels: Vec<ElementLevels>) -> Self {
         Self {
-            cfg: key(cfg),
+            cfg: *cfg,
             generation,
             levels,
         }
     }
 }
 
-/// What refined vertices depend on: the configuration less its driver and gliding.
-fn key(cfg: &DrawConfig) -> DrawConfig {
-    DrawConfig {
-        geomorph: false,
-        ..*cfg
-    }
-}
-
 /// The levels chosen for `cfg` in `scene`, if any.
 fn levels_for<'a>(scene: &'a Scene, cfg: &DrawConfig) -> Option<&'a [ElementLevels]> {
     (scene.static_levels.as_ref())
-        .filter(|l| l.cfg == key(cfg) && l.generation == scene.generation)
+        .filter(|l| l.cfg == *cfg && l.generation == scene.generation)
         .map(|l| &l.levels[..])
 }
 
@@ -162,7 +165,7 @@ pub(super) fn prepare(
         scene.static_vbo = None;
         return Ok(());
     };
-    let want = drawn(levels, cfg.level);
+    let want = drawn(levels, cfg.level, cfg.dyadic_levels());
     let current = scene
         .static_vbo
         .as_ref()
@@ -316,8 +319,8 @@ mod tests {
             &crate::surface::Sources::default(),
         )
         .unwrap();
-        let r = refine_adaptive(&cfg, &records[..2], drawn(&culled, 8), &mirror, true);
-        let e = adaptive_element(&levels, 8).unwrap();
+        let r = refine_adaptive(&cfg, &records[..2], drawn(&culled, 8, false), &mirror, true);
+        let e = adaptive_element(&levels, 8, false).unwrap();
         assert_eq!(r.vertices.len(), e.bary.len());
         assert_eq!(
             r.first,
@@ -328,15 +331,16 @@ mod tests {
             assert_eq!(r.vertices[k][..3], p.position.to_array());
             assert_eq!(r.samples[k][..3], b.map(f32::to_bits));
         }
-        // Edge 0 at level 1 merges 7 of its 9 boundary vertices into the corners: the
-        // triangles between them and the first row become degenerate.
+        // Edge 0 at level 1 merges 7 of its 9 boundary vertices into the corners, edge 1 at
+        // level 3 five into its samples: the triangles between them and the first row
+        // become degenerate.
         let all_tris = Pattern::uniform(8).indices.len();
         assert!(
             r.indices.len() < all_tris,
             "{} of {all_tris}",
             r.indices.len()
         );
-        let both = refine_adaptive(&cfg, &records[..2], drawn(&all, 8), &mirror, false);
+        let both = refine_adaptive(&cfg, &records[..2], drawn(&all, 8, false), &mirror, false);
         assert_eq!(both.indices.len(), 2 * r.indices.len());
         assert!(both.samples.is_empty());
     }

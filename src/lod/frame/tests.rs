@@ -192,7 +192,7 @@ fn inner_levels_cover_own_bound_and_transitions() {
     let mut bare = full.clone();
     for b in &mut bare {
         for e in &mut b.edges {
-            e.needs = [[0.0; 4]; 3];
+            e.needs = [[0.0; 4]; 4];
         }
     }
     let view = view_at(Vec3::new(0.2, 0.3, 2.0 * r), 1 << 12);
@@ -229,11 +229,7 @@ fn inner_levels_cover_own_bound_and_transitions() {
                     let mb = m[(e + 1) % 3].max(m[(e + 2) % 3]);
                     let base = a * a * m[e];
                     // Moves of up to a sample, or half of one where snapped.
-                    let h = if rounding == Rounding::Snapped {
-                        0.5
-                    } else {
-                        1.0
-                    };
+                    let h = if rounding.snapped() { 0.5 } else { 1.0 };
                     let s =
                         (h * h * a * a * m[e] + h * a * beta * twist + beta * beta * mb).max(base);
                     // The corners fit: `M_c <= 1.25 max_k M_k` whatever `B_k` (`2 B_k <= Σ`);

@@ -104,15 +104,25 @@ pub fn strip_need(b: &Bounds, e: usize, rounding: Rounding) -> Chord {
     let mb = m[(e + 1) % 3].max(m[(e + 2) % 3]);
     // The transition sides' bound at β = λ a: λ = 1/2 (a dyadic driver's coarser edge is at
     // most half the inner level), λ = 1 (an integer driver's may be just below it).
-    let lambda = if rounding.dyadic() { 0.5 } else { 1.0 };
-    let q = if rounding == Rounding::Snapped {
-        // Moves of at most half a sample, no corner triangles: the bases' `M_e` or the sides'.
-        m[e].max(0.25 * m[e] + 0.5 * lambda * twist + lambda * lambda * mb)
+    let lambda = if rounding == Rounding::Integer {
+        1.0
     } else {
-        let mx = m[0].max(m[1]).max(m[2]);
-        let bx = mixed[0].max(mixed[1]).max(mixed[2]);
-        let mc = mx.max(0.5 * mx + 0.5 * bx);
-        mc.max(m[e] + lambda * twist + lambda * lambda * mb)
+        0.5
+    };
+    let mx = m[0].max(m[1]).max(m[2]);
+    let bx = mixed[0].max(mixed[1]).max(mixed[2]);
+    let mc = mx.max(0.5 * mx + 0.5 * bx);
+    // Sides after a move of at most half a sample (snapped) or a whole one.
+    let sides = if rounding.snapped() {
+        0.25 * m[e] + 0.5 * lambda * twist + lambda * lambda * mb
+    } else {
+        m[e] + lambda * twist + lambda * lambda * mb
+    };
+    let q = match rounding {
+        // No corner triangles: the bases' `M_e` or the sides'.
+        Rounding::Snapped => m[e].max(sides),
+        // Corner triangles (`M_c >= M_e` covers the bases).
+        Rounding::SnappedInteger | Rounding::Dyadic | Rounding::Integer => mc.max(sides),
     };
     let h = 1.0 + lambda;
     Chord {
@@ -158,11 +168,7 @@ fn strip_level(v: &LodView, r: &LodRecord, e: usize, a: f32, tol: f32) -> f32 {
     let mb = m[(e + 1) % 3].max(m[(e + 2) % 3]);
     let max = v.max_level as f32;
     // The kink terms at a + β, then the sides' S_e (a move of at most h a).
-    let h = if v.rounding() == Rounding::Snapped {
-        0.5
-    } else {
-        1.0
-    };
+    let h = if v.rounding().snapped() { 0.5 } else { 1.0 };
     let p = ELEMENT_FACTOR * mb + k2;
     let q = ELEMENT_FACTOR * h * a * t + k1 + 2.0 * k2 * a;
     let c = (ELEMENT_FACTOR * h * h * a * m[e] + k1 + k2 * a) * a;

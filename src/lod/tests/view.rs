@@ -163,6 +163,8 @@ fn snapped(n: u32, i: u32, j: u32, ne: [u32; 3], idx: [u32; 3], rounding: Roundi
     };
     let c = if rounding == Rounding::Snapped {
         crate::pattern::adaptive::snap_edge(m, ne[k], n) / (n / ne[k])
+    } else if rounding == Rounding::SnappedInteger {
+        crate::pattern::adaptive::snap_sample(m, ne[k], n)
     } else if idx[k] < idx[(k + 1) % 3] {
         m * ne[k] / n
     } else {
@@ -179,6 +181,7 @@ fn rounding_name(r: Rounding) -> &'static str {
         Rounding::Integer => "",
         Rounding::Dyadic => " (dyadic)",
         Rounding::Snapped => " (snapped)",
+        Rounding::SnappedInteger => " (snapped integer)",
     }
 }
 

@@ -41,7 +41,7 @@ use glam::Vec3;
 /// culled. Mirror of glsl/tess/tess.tesc with `GEOMORPH`.
 pub fn morph_levels(levels: &ElementLevels, max: u32) -> Option<([u32; 3], u32)> {
     let f = 1u32 << (31 - max.max(1).leading_zeros());
-    let d = drawn_levels(levels, f)?;
+    let d = drawn_levels(levels, f, true)?;
     Some(([d.edges[1], d.edges[2], d.edges[0]], d.inner))
 }
 
