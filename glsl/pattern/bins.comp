@@ -1,6 +1,6 @@
 #version 460
 // The adaptive pattern driver's draws, from the elements' levels, without a readback
-// (src/render/pattern.rs `AdaptivePattern`): per element one VkDrawIndexedIndirectCommand (its
+// (src/render/pattern/bins.rs `AdaptivePattern`): per element one VkDrawIndexedIndirectCommand (its
 // inner level's index range; zero indices when culled) for the `push` and `ubo` submissions, and
 // per chunk and level one bin (`instanced`): the command, its instance count by atomics, and the
 // list of its elements, read by the vertex stage as an instance-rate attribute.

@@ -1,0 +1,256 @@
+//! The adaptive pattern driver's draws without a readback: the patterns it draws from, the
+//! indirect commands and bins glsl/pattern/bins.comp writes from the levels buffer each frame,
+//! and whether a device can hold them.
+
+use super::super::{GpuMesh, RenderError};
+use crate::gpu::shaders::names;
+use crate::gpu::{
+    vk, Buffer, BufferDesc, Cmd, CommandPool, Context, DescriptorPool, DescriptorSetLayout,
+    Pipeline, PipelineLayout,
+};
+use crate::pattern::adaptive::{Hierarchy, IntegerPatterns};
+use bytemuck::{Pod, Zeroable};
+use std::sync::Arc;
+
+/// Whether this device can hold the adaptive draws of `elements` elements in chunks of `chunk`
+/// at largest level `level` (a power of two): the bins pass binds its commands and lists whole,
+/// so each must fit maxStorageBufferRange and one allocation. Nothing else is asked of the
+/// device: the draws are core `vkCmdDrawIndexedIndirect` with a draw count of 1 and
+/// `firstInstance` 0 (neither multiDrawIndirect nor drawIndirectFirstInstance).
+pub fn check_adaptive_fits(
+    ctx: &Context,
+    elements: u32,
+    chunk: u32,
+    level: u32,
+    dyadic: bool,
+) -> Result<(), RenderError> {
+    let limits = &ctx.info.limits;
+    let range = limits.max_storage_buffer_range as u64;
+    let (max, limit) = if ctx.info.max_memory_allocation_size < range {
+        (
+            ctx.info.max_memory_allocation_size,
+            "maxMemoryAllocationSize",
+        )
+    } else {
+        (range, "maxStorageBufferRange")
+    };
+    let (commands, lists) = adaptive_bytes(elements, chunk, level, dyadic);
+    let needed = commands.max(lists);
+    if needed > max {
+        let levels = bins_per_chunk(level, dyadic) as u64;
+        let fits = max / (4 * levels).max(COMMAND_BYTES + 1);
+        // Integer levels bin by every level, powers of two by a few.
+        let glide = if dyadic { "" } else { ", with --geomorph on" };
+        return Err(RenderError::OverLimit {
+            what: format!(
+                "drawing {elements} elements adaptively up to level {level} (indirect commands and bins)"
+            ),
+            needed,
+            unit: "bytes",
+            limit,
+            max,
+            remedy: format!(
+                "draw at most about {fits} elements adaptively{glide}, or draw uniformly"
+            ),
+        });
+    }
+    Ok(())
+}
+
+/// The levels an adaptive draw bins by at largest level `level`: the hierarchy's `2^l`,
+/// `l = 0..=L` where `dyadic`, else every level `1..=level`.
+fn bins_per_chunk(level: u32, dyadic: bool) -> u32 {
+    if dyadic {
+        level.trailing_zeros() + 1
+    } else {
+        level
+    }
+}
+
+/// Bytes of the adaptive draws' commands and bin lists.
+fn adaptive_bytes(elements: u32, chunk: u32, level: u32, dyadic: bool) -> (u64, u64) {
+    let n = elements.max(1) as u64;
+    let levels = bins_per_chunk(level, dyadic) as u64;
+    let bins = n.div_ceil(chunk.max(1) as u64) * levels;
+    ((n + bins) * COMMAND_BYTES, levels * n * 4)
+}
+
+/// Bytes of one `VkDrawIndexedIndirectCommand`.
+const COMMAND_BYTES: u64 = 20;
+
+/// Elements (phase 1) or bins (phase 0) one dispatch of the bins pass covers.
+const BINS_PER_DISPATCH: u32 = 64 * 65_535;
+
+/// `Push` of glsl/pattern/bins.comp.
+#[repr(C)]
+#[derive(Clone, Copy, Pod, Zeroable)]
+struct BinsPush {
+    phase: u32,
+    first: u32,
+    end: u32,
+    f: u32,
+    n: u32,
+    chunk: u32,
+    dyadic: u32,
+}
+
+/// What drawing one mesh's elements adaptively at largest level `f` needs: the patterns (at
+/// dyadic levels, the hierarchical index ranges into the finest uniform pattern's vertices; at
+/// integer levels, every level's own vertices and triangles), the indirect commands and bins
+/// the pass glsl/pattern/bins.comp writes from the levels buffer each frame, and that pass.
+/// Built by [`super::PatternDriver`]'s `prepare` for a level that is a power of two.
+pub struct AdaptivePattern {
+    pub level: u32,
+    /// Levels are powers of two (geomorphing), else any integer.
+    pub dyadic: bool,
+    /// The integer patterns' vertices (`None` at dyadic levels: the finest pattern's).
+    pub vertices: Option<Buffer>,
+    /// Every level's triangles: dyadic, indexing the finest pattern's vertices; integer, each
+    /// level's own (drawn with its vertex offset).
+    pub indices: Buffer,
+    /// Per element one command (`push`, `ubo`), then per chunk and level one bin's command.
+    pub commands: Buffer,
+    /// Each bin's elements: level `l`, chunk `c` from entry `l n + c chunk`.
+    pub lists: Buffer,
+    elements: u32,
+    chunk: u32,
+    chunks: u32,
+    set: vk::DescriptorSet,
+    _pool: DescriptorPool,
+    pipeline: Pipeline,
+    layout: PipelineLayout,
+    _set_layout: DescriptorSetLayout,
+}
+
+impl AdaptivePattern {
+    /// For `mesh`'s elements at largest level `f` (a power of two), at powers of two where
+    /// `dyadic`, else at integer levels.
+    pub fn new(
+        ctx: &Arc<Context>,
+        pool: &CommandPool,
+        mesh: &GpuMesh,
+        f: u32,
+        dyadic: bool,
+    ) -> Result<Self, RenderError> {
+        use vk::BufferUsageFlags as U;
+        let n = mesh.element_count.max(1);
+        let chunks = n.div_ceil(mesh.chunk);
+        let (vertices, indices) = if dyadic {
+            let hierarchy = Hierarchy::new(f);
+            let name = format!("hierarchical patterns up to {f}");
+            let indices =
+                Buffer::new_with_data(ctx, pool, U::INDEX_BUFFER, &hierarchy.indices, &name)?;
+            (None, indices)
+        } else {
+            let p = IntegerPatterns::new(f);
+            let name = format!("integer patterns up to {f}");
+            let vertices = Buffer::new_with_data(ctx, pool, U::VERTEX_BUFFER, &p.bary, &name)?;
+            let indices = Buffer::new_with_data(ctx, pool, U::INDEX_BUFFER, &p.indices, &name)?;
+            (Some(vertices), indices)
+        };
+        let (command_bytes, list_bytes) = adaptive_bytes(n, mesh.chunk, f, dyadic);
+        let commands = Buffer::new(
+            ctx,
+            BufferDesc::new_gpu_only(command_bytes, U::STORAGE_BUFFER | U::INDIRECT_BUFFER),
+            "adaptive pattern commands",
+        )?;
+        let lists = Buffer::new(
+            ctx,
+            BufferDesc::new_gpu_only(list_bytes, U::STORAGE_BUFFER | U::VERTEX_BUFFER),
+            "adaptive pattern bins",
+        )?;
+        let c = vk::ShaderStageFlags::COMPUTE;
+        let t = vk::DescriptorType::STORAGE_BUFFER;
+        let set_layout =
+            DescriptorSetLayout::new(ctx, &[(0, t, c), (1, t, c), (2, t, c)], "pattern bins set")?;
+        let layout = PipelineLayout::new(
+            ctx,
+            &[&set_layout],
+            std::mem::size_of::<BinsPush>() as u32,
+            c,
+            "pattern bins",
+        )?;
+        let pipeline =
+            Pipeline::new_compute(ctx, &layout, names::PATTERN_BINS_COMP, "pattern bins")?;
+        let dpool = DescriptorPool::new(ctx, 1, &[(t, 3)], "pattern bins descriptors")?;
+        let set = dpool.allocate(&set_layout, "pattern bins set")?;
+        for (b, buffer) in [(0, &mesh.levels), (1, &commands), (2, &lists)] {
+            dpool.write_buffer(set, b, t, buffer.raw, vk::WHOLE_SIZE);
+        }
+        Ok(Self {
+            level: f,
+            dyadic,
+            vertices,
+            indices,
+            commands,
+            lists,
+            elements: n,
+            chunk: mesh.chunk,
+            chunks,
+            set,
+            _pool: dpool,
+            pipeline,
+            layout,
+            _set_layout: set_layout,
+        })
+    }
+
+    /// Bins per chunk: levels in the hierarchy (`L + 1`), or every integer level.
+    pub(super) fn levels(&self) -> u32 {
+        bins_per_chunk(self.level, self.dyadic)
+    }
+
+    /// Record the bins pass for `elements`: the bins' commands, then each element's command and
+    /// bin; barriers before (earlier draws read the same buffers) and after (the draws read
+    /// them: indirect commands, vertex input, vertex stage).
+    pub fn cmd_bins(&self, cmd: &Cmd<'_>, elements: std::ops::Range<u32>) {
+        cmd.barrier_to_compute();
+        cmd.bind_compute_pipeline(self.pipeline.raw);
+        cmd.bind_compute_descriptor_set(self.layout.raw, 0, self.set);
+        let bins = self.chunks * self.levels();
+        for (phase, range) in [(0, 0..bins), (1, elements)] {
+            let mut first = range.start;
+            while first < range.end {
+                let end = range.end.min(first + BINS_PER_DISPATCH);
+                let push = BinsPush {
+                    phase,
+                    first,
+                    end,
+                    f: self.level,
+                    n: self.elements,
+                    chunk: self.chunk,
+                    dyadic: self.dyadic as u32,
+                };
+                cmd.push_constants(
+                    self.layout.raw,
+                    vk::ShaderStageFlags::COMPUTE,
+                    0,
+                    bytemuck::bytes_of(&push),
+                );
+                cmd.dispatch((end - first).div_ceil(64), 1, 1);
+                first = end;
+            }
+            if phase == 0 {
+                cmd.barrier_to_compute();
+            }
+        }
+        cmd.barrier_compute_to_indirect();
+    }
+
+    /// Byte offset of element `e`'s command.
+    pub(super) fn element_command(&self, e: u32) -> u64 {
+        e as u64 * COMMAND_BYTES
+    }
+
+    /// Byte offset of the bin of the chunk starting at element `base` and bin `l` (level `2^l`,
+    /// or `l + 1` at integer levels).
+    pub(super) fn bin_command(&self, base: u32, l: u32) -> u64 {
+        let bin = (base / self.chunk) * self.levels() + l;
+        (self.elements as u64 + bin as u64) * COMMAND_BYTES
+    }
+
+    /// Byte offset of that bin's element list.
+    pub(super) fn bin_list(&self, base: u32, l: u32) -> u64 {
+        (l as u64 * self.elements as u64 + base as u64) * 4
+    }
+}
