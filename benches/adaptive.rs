@@ -8,8 +8,10 @@
 //! on the CPU and uploading every frame, as for a moving camera): each element at its own
 //! levels (up to 64, the default largest level), and every element at the smallest uniform
 //! level meeting the same bound and at the smallest power of two at or above it. Writes
-//! docs/bench/adaptive.{md,csv,json} (see `meshrefine::bench::Harness`);
-//! `MESHREFINE_BENCH_QUICK=1` runs a smaller set (4 px, largest level 8).
+//! docs/bench/adaptive.{md,csv,json} (see `meshrefine::bench::Harness`); then the pattern
+//! driver without geomorphing (integer levels, the integer patterns) on the same scenes into
+//! docs/bench/adaptive-integer.{md,csv,json}. `MESHREFINE_BENCH_QUICK=1` runs a smaller set
+//! (4 px, largest level 8).
 
 use glam::Vec3;
 use meshrefine::bench::{BenchAdaptive, BenchOptions, Harness};
@@ -72,9 +74,53 @@ fn main() {
         ("grazing", &terrain, vec![grazing]),
         ("flythrough", &spot, path),
     ];
+    // (geomorphing, drivers): the default, every driver (static never glides: integer levels);
+    // then the pattern driver at integer levels.
+    let runs = [
+        (
+            "adaptive",
+            true,
+            vec![
+                Driver::Pattern(Submit::Instanced),
+                Driver::Tess,
+                Driver::Static,
+            ],
+        ),
+        (
+            "adaptive-integer",
+            false,
+            vec![Driver::Pattern(Submit::Instanced)],
+        ),
+    ];
+    for (name, geomorph, drivers) in runs {
+        h.run_all(
+            name,
+            &jobs(
+                &scenes,
+                &pixel_errors,
+                frames,
+                (width, height),
+                max_level,
+                geomorph,
+                &drivers,
+            ),
+        );
+    }
+}
+
+/// Every scene at every pixel error for `drivers`, geomorphing as `geomorph` says.
+fn jobs(
+    scenes: &[(&str, &Mesh, Vec<Camera>)],
+    pixel_errors: &[f32],
+    frames: u32,
+    (width, height): (u32, u32),
+    max_level: u32,
+    geomorph: bool,
+    drivers: &[Driver],
+) -> Vec<(Vec<Mesh>, BenchOptions)> {
     let mut jobs = Vec::new();
     for (scene, mesh, cameras) in scenes {
-        for &pixel_error in &pixel_errors {
+        for &pixel_error in pixel_errors {
             let opts = BenchOptions {
                 build: Default::default(),
                 levels: vec![],
@@ -83,26 +129,22 @@ fn main() {
                 frames,
                 width,
                 height,
-                drivers: vec![
-                    Driver::Pattern(Submit::Instanced),
-                    Driver::Tess,
-                    Driver::Static,
-                ],
+                drivers: drivers.to_vec(),
                 min_total_ms: 0.0,
                 camera: meshrefine::bench::BenchCamera::default(),
                 adaptive: Some(BenchAdaptive {
-                    scene: scene.into(),
+                    scene: (*scene).into(),
                     cameras: cameras.clone(),
                     pixel_error,
                     cull: true,
                     max_level,
                     bound_levels: true,
-                    geomorph: true,
+                    geomorph,
                 }),
                 view: View::Shaded,
             };
-            jobs.push((vec![mesh.clone()], opts));
+            jobs.push((vec![(*mesh).clone()], opts));
         }
     }
-    h.run_all("adaptive", &jobs);
+    jobs
 }

@@ -14,7 +14,8 @@ no packages; each chart is an SVG beside its CSV and says in its title which way
               submissions and tess against static, per mesh (fig7.csv)
 - adaptive:   docs/bench/adaptive-{triangles,time}.svg  refined triangles (against the smallest
               uniform level meeting the same bound) and GPU ms (against its next power of two)
-              against the pixel error, per scene and driver (adaptive.csv)
+              against the pixel error, per scene and driver (adaptive.csv; the pattern driver
+              without geomorphing from adaptive-integer.csv)
 """
 import csv
 import math
@@ -207,6 +208,12 @@ def adaptive():
     rows = read("adaptive.csv")
     if not rows:
         return
+    # The pattern driver without geomorphing (integer levels): its adaptive rows beside the
+    # others (its uniform rows are the geomorphing run's uniform frames again).
+    for r in read("adaptive-integer.csv") or []:
+        if r["adaptive"] == "true":
+            r["variant"] += ", geomorph off"
+            rows.append(r)
     rows = [r for r in rows if r["gpu_ms_median"]]
     keys = sorted({(r["scene"], r["variant"]) for r in rows})
     # Triangles against the smallest uniform level meeting the bound; GPU time against the
@@ -217,6 +224,8 @@ def adaptive():
         series = []
         for i, (scene, variant) in enumerate(keys):
             for j, mode in enumerate(("adaptive", "uniform")):
+                if mode == "uniform" and variant.endswith("geomorph off"):
+                    continue
                 data = [(float(r["pixel_error"]), float(r[col])) for r in rows
                         if r["scene"] == scene and r["variant"] == variant and r[col]
                         and (r["adaptive"] == "true" if mode == "adaptive"

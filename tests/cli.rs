@@ -3130,7 +3130,7 @@ fn small_adaptive_bench<'a>(spot: &'a str, extra: &[&'a str]) -> Vec<&'a str> {
 /// The pattern driver (the default) draws adaptively from the command line too: `export
 /// --pixel-error` captures its hierarchical patterns and welds them closed on a closed mesh
 /// (no culling by default), every element at a power of two up to 64, the header's levels
-/// those the GPU's level pass wrote; render says what it drew; bench without `--drivers`
+/// those the GPU's level pass wrote (with `--geomorph off` integer levels, closed as well); render says what it drew; bench without `--drivers`
 /// measures the pattern driver's submissions, tess and static.
 #[test]
 fn pixel_error_draws_adaptively_with_the_pattern_driver() {
@@ -3158,12 +3158,43 @@ fn pixel_error_draws_adaptively_with_the_pattern_driver() {
         "{}",
         mesh.triangles.len()
     );
-    // Wound like the coarse triangles on a sphere, closed.
+    // Without geomorphing: integer levels from the integer patterns, closed too, and fewer
+    // triangles than at powers of two.
+    let int_obj = tmp("adaptive-pattern-integer.obj");
+    ok(&[
+        "export",
+        spot,
+        "-o",
+        p(&int_obj),
+        "--pixel-error",
+        "2",
+        "--geomorph",
+        "off",
+    ]);
+    let int_text = std::fs::read_to_string(&int_obj).unwrap();
+    let (_, int_levels) = adaptive_header(&int_text);
+    assert_eq!(int_levels.iter().map(|l| l.1).sum::<u64>(), 372);
+    assert!(
+        (int_levels.iter()).any(|&(l, _)| !l.is_power_of_two()),
+        "{int_levels:?}"
+    );
+    let (int_mesh, _) = meshrefine::mesh::Mesh::load_obj(&int_obj).unwrap();
+    assert_eq!(
+        int_mesh.stats().boundary_edges,
+        0,
+        "integer export has cracks"
+    );
+    assert_eq!(int_mesh.stats().inconsistently_oriented_edges, 0);
+    assert!(int_mesh.triangles.len() < mesh.triangles.len());
+    // Wound like the coarse triangles on a sphere, closed, at both roundings.
     let sphere = model_path("uvsphere12.obj");
-    ok(&["export", p(&sphere), "-o", p(&obj), "--pixel-error", "0.5"]);
-    let (ball, _) = meshrefine::mesh::Mesh::load_obj(&obj).unwrap();
-    assert_eq!(ball.stats().boundary_edges, 0);
-    assert_faces_agree_with_normals(&ball);
+    for geomorph in ["on", "off"] {
+        let args = ["--pixel-error", "0.5", "--geomorph", geomorph];
+        ok(&[&["export", p(&sphere), "-o", p(&obj)][..], &args].concat());
+        let (ball, _) = meshrefine::mesh::Mesh::load_obj(&obj).unwrap();
+        assert_eq!(ball.stats().boundary_edges, 0);
+        assert_faces_agree_with_normals(&ball);
+    }
     let png = tmp("adaptive-pattern.png");
     let out = ok(&[
         "render",

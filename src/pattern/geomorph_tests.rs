@@ -37,7 +37,41 @@ struct Drawn {
     triangles: Vec<[usize; 3]>,
 }
 
+/// Without geomorphing: the integer levels the pattern driver then draws, each vertex's
+/// parameter in units of the finest lattice `F` (edge samples `s/m` from the integers, as
+/// `integer_bary` divides them).
+fn drawn_integer(l: &ElementLevels, eval: &dyn Fn([f32; 3]) -> Vec3) -> Option<Drawn> {
+    let e = integer_element(l, F)?;
+    let (d, n) = (e.levels, e.levels.inner);
+    let corner = [
+        DVec2::ZERO,
+        DVec2::new(F as f64, 0.0),
+        DVec2::new(0.0, F as f64),
+    ];
+    let params = (e.points.iter())
+        .map(|&(i, j)| match edge_of(i, j, n) {
+            Some(k) => {
+                let (a, m) = ([i, j, n - j][k], d.edges[k]);
+                let s = snap_sample(a, m, n) as f64 / m as f64;
+                corner[k] * (1.0 - s) + corner[(k + 1) % 3] * s
+            }
+            None => DVec2::new(i as f64, j as f64) * (F as f64 / n as f64),
+        })
+        .collect();
+    let base = IntegerPatterns::base_vertex(n);
+    Some(Drawn {
+        params,
+        positions: e.bary.iter().map(|&b| eval(b)).collect(),
+        triangles: (e.triangles.iter())
+            .map(|t| t.map(|v| (v - base) as usize))
+            .collect(),
+    })
+}
+
 fn drawn(l: &ElementLevels, eval: &dyn Fn([f32; 3]) -> Vec3, geomorph: bool) -> Option<Drawn> {
+    if !geomorph {
+        return drawn_integer(l, eval);
+    }
     let e = dyadic_element(l, F)?;
     let slot: std::collections::HashMap<u32, usize> = e
         .vertices
@@ -138,7 +172,11 @@ fn sweep(geomorph: bool) -> (f32, usize, usize) {
                 &view,
                 None,
                 false,
-                crate::lod::frame::Rounding::Snapped,
+                if geomorph {
+                    crate::lod::frame::Rounding::Snapped
+                } else {
+                    crate::lod::frame::Rounding::SnappedInteger
+                },
                 recs.len() as u32,
             ),
             &lr,
@@ -154,8 +192,8 @@ fn sweep(geomorph: bool) -> (f32, usize, usize) {
                 let (Some(d1), Some(d0)) = (d1, d0) else {
                     continue;
                 };
-                changes +=
-                    (drawn_levels(&levels[t], F, true) != drawn_levels(&pl[t], F, true)) as usize;
+                changes += (drawn_levels(&levels[t], F, geomorph)
+                    != drawn_levels(&pl[t], F, geomorph)) as usize;
                 for (&q, &x1) in d1.params.iter().zip(&d1.positions) {
                     let x0 = d0.at(q);
                     let w = q / F as f64;
@@ -178,10 +216,10 @@ fn sweep(geomorph: bool) -> (f32, usize, usize) {
 }
 
 /// A camera moving 3% closer per frame toward Spot (pn, 1 px, levels from the level pass's
-/// mirror for a dyadic driver, 1280×720): with geomorphing every drawn vertex moves on screen
-/// at most 0.2 px more than its surface point does, measured from the mesh drawn the frame
-/// before at the vertex's parameter; without, the vertices a level change adds pop by a
-/// sizeable fraction of a pixel.
+/// mirror as the pattern driver rounds them, 1280×720): with geomorphing (powers of two)
+/// every drawn vertex moves on screen at most 0.2 px more than its surface point does,
+/// measured from the mesh drawn the frame before at the vertex's parameter; without (integer
+/// levels), the vertices a level change moves pop by a sizeable fraction of a pixel.
 #[test]
 fn geomorphing_removes_popping() {
     let (on, n_on, changes) = sweep(true);

@@ -6,7 +6,7 @@
 //! `lod::frame::lod_records`) and uploaded as one `LodRecord` per element; a frame costs one
 //! dispatch of cheap math (`glsl/lod/levels.comp`, mirrored by `lod::frame::frame_levels`), the
 //! camera in push constants, and no readback. A storage-buffer descriptor spans at most
-//! maxStorageBufferRange bytes (322,638 bounds on lavapipe), so a larger mesh's bounds and levels
+//! maxStorageBufferRange bytes (289,262 bounds on lavapipe), so a larger mesh's bounds and levels
 //! are bound and dispatched in chunks, one descriptor set each: the shader is the same.
 
 use super::bindings::{LEVEL_BINDING_LEVELS, LEVEL_BINDING_RECORDS};

@@ -8,11 +8,16 @@
 //! vertex moves, and where, depends on the driver ([`Rounding`]):
 //! - [`Rounding::Integer`] and [`Rounding::Dyadic`] (the tessellator, whose transitions are its
 //!   own): less than `a_e` (as a floor in the edge's canonical direction would), anywhere;
-//! - [`Rounding::Snapped`] (the pattern driver and the static baseline, dyadic): onto the
-//!   nearest sample, a tie toward the nearer corner, so at most `a_e/2`; and as a coarser
-//!   edge is at most half the inner level (`β <= a_e/2`), the vertex beside a corner moves
-//!   onto that corner whenever it is not also beside the other one (`n >= 4`; at `n = 2` the
-//!   midpoint of an edge drawn at level 1 moves onto the edge's first corner, `a_e/2` away).
+//! - [`Rounding::Snapped`] (the pattern driver while it glides, dyadic): onto the nearest
+//!   sample, a tie toward the nearer corner, so at most `a_e/2`; and as a coarser edge is at
+//!   most half the inner level (`β <= a_e/2`), the vertex beside a corner moves onto that
+//!   corner whenever it is not also beside the other one (`n >= 4`; at `n = 2` the midpoint of
+//!   an edge drawn at level 1 moves onto the edge's first corner, `a_e/2` away);
+//! - [`Rounding::SnappedInteger`] (the pattern driver without geomorphing, and the static
+//!   baseline): snapped alike, at most `a_e/2`, but at integer levels a coarser edge may be
+//!   finer than half the inner level (`a_e/2 < β < a_e`), and then the vertex beside a corner
+//!   moves onto the edge's first sample, `a_e` from the corner: corner triangles as for the
+//!   tessellator (below).
 //!
 //! The drawn triangles touching the edge are then of three kinds. Their sides are bounded, in
 //! the element's lattice directions `d_k` (src/lod/mod.rs), from its second-derivative bounds
@@ -35,7 +40,7 @@
 //!   `|Q| <= S_e = h² a_e² M_e + h a_e β T_e + β² max(M_{e+1}, M_{e+2})`, texel extent
 //!   `<= a_e + β`;
 //! - at a corner between edges `e` and `f`, where a vertex beside the corner moves away from
-//!   it (not [`Rounding::Snapped`]: there the only triangles with vertices on two edges are
+//!   it, to at most `a_e` (not [`Rounding::Snapped`]: there the only triangles with vertices on two edges are
 //!   the corner's two lattice triangles, whose vertices beside the corner either stay or move
 //!   onto it, leaving lattice sides and sides of the second kind; at `n = 2`, where every
 //!   vertex is on the boundary, a midpoint moved onto the far corner leaves a whole edge, a
@@ -57,12 +62,18 @@
 //! 1. The edge's level includes, for each of its elements, the level at which the chord
 //!    `((1 + λ) k_1, 9/40 · max(M_c, M_e + λ T_e + λ² max(M_{e+1}, M_{e+2})) + (1 + λ)² k_2)`
 //!    (`k` the kink terms; snapped: `max(M_e, M_e/4 + λ/2 T_e + λ² max(M_{e+1}, M_{e+2}))`,
-//!    no corners) meets that element's tolerance ([`strip_need`]). So the bases, the corners
-//!    and the kink terms at `a_e + β` fit in `τ` whatever `n`, and so does `S_e` whenever `β <=
-//!    λ a_e`. A dyadic driver takes `λ = 1/2` (a coarser edge is at most half the inner level,
-//!    so it rarely needs step 2), an integer one `λ = 1` (no raise is needed then; step 2 only
-//!    serves where a level is capped or a bound changes between the two). On Spot these
-//!    choices draw fewer triangles than the others tried (`λ = 1/4`, and the other driver's).
+//!    no corners; snapped integer: `max(M_c, M_e/4 + λ/2 T_e + λ² max(M_{e+1}, M_{e+2}))`, as
+//!    `M_c >= M_e` covers the bases) meets that element's tolerance ([`strip_need`]). So the
+//!    bases, the corners and the kink terms at `a_e + β` fit in `τ` whatever `n`, and so does
+//!    `S_e` whenever `β <= λ a_e`. A dyadic driver takes `λ = 1/2` (a coarser edge is at most
+//!    half the inner level, so it rarely needs step 2), the tessellator's integer levels
+//!    `λ = 1` (no raise is needed then; step 2 only serves where a level is capped or a bound
+//!    changes between the two), the snapped integer levels `λ = 1/2` too (step 2 raises the
+//!    inner level where a coarser edge is finer than half of it and its sides do not fit). On
+//!    Spot these choices draw fewer triangles than the others tried (`λ = 1/4`, `λ = 3/4`,
+//!    and the other drivers'; for the snapped integer levels, keeping the corners out of the
+//!    edge's need and raising the inner level to twice a coarser edge's where they do not fit
+//!    drew about a seventh more).
 //! 2. The element checks, on the drawn levels ([`LodView::rounding`] says how the driver
 //!    rounds and snaps), that `9/40 max(a_e² M_e, S_e) + k_1 (a_e + β) + k_2 (a_e + β)² <= τ`
 //!    for every edge drawn coarser than its inside, and raises its inner level where not
@@ -103,7 +114,8 @@ pub fn strip_need(b: &Bounds, e: usize, rounding: Rounding) -> Chord {
     let twist = twist(&mixed, e);
     let mb = m[(e + 1) % 3].max(m[(e + 2) % 3]);
     // The transition sides' bound at β = λ a: λ = 1/2 (a dyadic driver's coarser edge is at
-    // most half the inner level), λ = 1 (an integer driver's may be just below it).
+    // most half the inner level; the snapped integer levels leave the rest to step 2), λ = 1
+    // (the tessellator's integer levels: a coarser edge may be just below the inner level).
     let lambda = if rounding == Rounding::Integer {
         1.0
     } else {
