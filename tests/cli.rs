@@ -3186,6 +3186,25 @@ fn pixel_error_draws_adaptively_with_the_pattern_driver() {
     );
     assert_eq!(int_mesh.stats().inconsistently_oriented_edges, 0);
     assert!(int_mesh.triangles.len() < mesh.triangles.len());
+    // The integer patterns grow with the cube of the largest level: past 128, one sentence.
+    expect_error(
+        &[
+            "export",
+            spot,
+            "-o",
+            p(&int_obj),
+            "--pixel-error",
+            "2",
+            "--geomorph",
+            "off",
+            "--max-level",
+            "256",
+        ],
+        &[
+            "at most up to level 128, not 256",
+            "--geomorph on or --max-level 128",
+        ],
+    );
     // Wound like the coarse triangles on a sphere, closed, at both roundings.
     let sphere = model_path("uvsphere12.obj");
     for geomorph in ["on", "off"] {

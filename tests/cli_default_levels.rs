@@ -121,7 +121,7 @@ fn the_static_driver_draws_adaptively_on_the_cpu() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{stderr}");
     assert!(
-        stderr.contains("--max-level 12 is not a power of two: the static driver"),
+        stderr.contains("--max-level 12 is not a power of two, as the static driver"),
         "{stderr}"
     );
 

@@ -33,13 +33,7 @@ fn compare(h: &mut Headless, scene: &mut Scene, st: DrawConfig, view: &LevelView
     let levels = scene.static_levels(&st).expect("levels chosen").to_vec();
     let records = scene.records(st.surface).to_vec();
     let mirror = scene.mirror(&st, max).unwrap();
-    let refined = refine_adaptive(
-        &st,
-        &records,
-        drawn(&levels, max, st.dyadic_levels()),
-        &mirror,
-        false,
-    );
+    let refined = refine_adaptive(&st, &records, drawn(&levels, max), &mirror, false);
     let vbo = scene.static_vbo.as_ref().expect("the static buffer");
     assert!(vbo.adaptive.is_some(), "the static buffer is not adaptive");
     assert_eq!(vbo.vertex_count as usize, refined.vertices.len());
@@ -63,7 +57,7 @@ fn compare(h: &mut Headless, scene: &mut Scene, st: DrawConfig, view: &LevelView
     let (mut at, mut elements) = (0, 0);
     for ((t, l), (_, slots)) in levels.iter().enumerate().zip(cap.adaptive_elements()) {
         let (first, end) = (refined.first[t], refined.first[t + 1]);
-        let Some(e) = adaptive_element(l, max, st.dyadic_levels()) else {
+        let Some(e) = adaptive_element(l, max, false) else {
             assert_eq!(first, end, "{what}: culled element {t} has triangles");
             continue;
         };
@@ -207,10 +201,8 @@ fn static_adaptive_is_watertight() {
     {
         let mut cfg = DrawConfig::new(Driver::Static, max).with_surface(surface, displace);
         cfg.params = SurfaceParams::for_radius(r);
-        // Integer levels, then the powers of two the geomorphing pattern driver draws.
-        cfg.geomorph = k % 2 == 1;
         let levels = random_levels(&corners, max, 0.0, 11 + k as u32);
-        let d = drawn(&levels, max, cfg.dyadic_levels());
+        let d = drawn(&levels, max);
         let snapped = d
             .iter()
             .flatten()

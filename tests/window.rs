@@ -211,10 +211,16 @@ struct Demo<'a> {
 
 impl<'a> Demo<'a> {
     fn start(x: &'a Xvfb, args: &[&str]) -> Self {
+        Self::start_with(x, args, &[])
+    }
+
+    /// [`Demo::start`] with environment variables `env` set for the demo.
+    fn start_with(x: &'a Xvfb, args: &[&str], env: &[(&str, &str)]) -> Self {
         let child = Command::new(env!("CARGO_BIN_EXE_meshrefine"))
             .args(["--validate", "view"])
             .args(args)
             .env("DISPLAY", &x.display)
+            .envs(env.iter().copied())
             .stdout(Stdio::null())
             .stderr(Stdio::piped())
             .spawn()
@@ -463,7 +469,13 @@ fn keys_switch_driver_level_and_views() {
     // Typed keys reach the demo and change what it draws; the title (the HUD) reports it.
     let _guard = common::gpu_lock();
     let x = Xvfb::start();
-    let demo = Demo::start(&x, &["--level", "8"]);
+    // Mesa's on-disk shader cache would make the tessellator's first draw quick where an
+    // earlier run compiled the same shaders, and the title's compiling note too brief to see.
+    let demo = Demo::start_with(
+        &x,
+        &["--level", "8"],
+        &[("MESA_SHADER_CACHE_DISABLE", "true")],
+    );
     let wait_title = |want: &str| {
         let t0 = Instant::now();
         loop {

@@ -30,7 +30,8 @@ uint snap_sample(uint a, uint m, uint n) {
 // The weights the integer patterns draw lattice point ij of inner level n.w at: on stored
 // edge k (edge 0: j = 0, from corner 0; edge 1: i + j = n, from corner 1; edge 2: i = 0, from
 // corner 2) the sample s of the edge's level m it snaps to, (m - s)/m and s/m for corners k
-// and k + 1, divided as written (both elements sharing the edge divide the same integers);
+// and k + 1, divided as written (both elements sharing the edge divide the same integers;
+// the corners exactly 1 and 0);
 // inside, the pattern's own weights `inside`. Mirror: adaptive::integer_bary.
 vec3 integer_weights(uvec2 ij, uvec4 n, vec3 inside) {
     uint k, a;
@@ -49,8 +50,10 @@ vec3 integer_weights(uvec2 ij, uvec4 n, vec3 inside) {
     uint m = n[k];
     uint s = snap_sample(a, m, n.w);
     vec3 b = vec3(0.0);
-    b[k] = float(m - s) / float(m);
-    b[(k + 1u) % 3u] = float(s) / float(m);
+    // The corners exactly (a device may divide m by m inexactly, and a corner's edges have
+    // different levels in different elements).
+    b[k] = s == 0u ? 1.0 : (s == m ? 0.0 : float(m - s) / float(m));
+    b[(k + 1u) % 3u] = s == 0u ? 0.0 : (s == m ? 1.0 : float(s) / float(m));
     return b;
 }
 

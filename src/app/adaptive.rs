@@ -84,9 +84,9 @@ impl State {
     }
 
     /// The largest level adaptive mode asks of `driver`: the panel's, a power of two unless
-    /// its levels are integers ([`DriverKind::integer_levels`](crate::render::DriverKind):
-    /// the pattern driver's hierarchical patterns split 1 to 4, the static one refines with
-    /// their construction).
+    /// its levels are the tessellator's ([`DriverKind::integer_levels`](crate::render::DriverKind):
+    /// the pattern driver's geomorphing patterns split 1 to 4, the static one takes its
+    /// levels).
     pub(super) fn adaptive_max(&self, driver: crate::render::Driver) -> u32 {
         let max = self.controls.max_level.max(1);
         if driver.kind().integer_levels() {

@@ -271,8 +271,8 @@ impl AdaptiveSummary {
     }
 }
 
-/// Elements per level in power-of-two ranges, ascending (`1:20 2:31 3-4:120 8:40`): the
-/// dyadic levels one by one, the tessellator's integer levels compactly.
+/// Elements per level in power-of-two ranges, ascending (`1:20 2:31 3-4:120 8:40`): powers of
+/// two one by one, integer levels compactly.
 fn compact_histogram(histogram: &std::collections::BTreeMap<u32, u64>) -> String {
     // Per range's top: elements, and whether any level in it is not the top.
     let mut bins: std::collections::BTreeMap<u32, (u64, bool)> = Default::default();

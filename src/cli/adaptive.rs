@@ -228,13 +228,13 @@ pub fn check_max_level(device: &DeviceInfo, l: u32, driver: Driver) -> Result<()
     check_max_level_rounding(l, driver)
 }
 
-/// `--max-level l` for a driver whose adaptive levels are powers of two (the pattern and static
-/// drivers, 1-to-4 splits) must be one.
+/// `--max-level l` for the pattern and static drivers must be a power of two (the pattern
+/// driver's geomorphing patterns are 1-to-4 splits; the static driver takes its levels).
 pub fn check_max_level_rounding(l: u32, driver: Driver) -> Result<()> {
     if !driver.kind().integer_levels() && !l.is_power_of_two() {
         let lower = 1u32 << l.ilog2();
         bail!(
-            "--max-level {l} is not a power of two: the {} driver's adaptive patterns are 1-to-4 splits; use {lower} or {}",
+            "--max-level {l} is not a power of two, as the {} driver's largest level must be (the pattern driver's geomorphing patterns are 1-to-4 splits, and static takes its levels); use {lower} or {}",
             driver.name(),
             lower * 2
         );

@@ -468,7 +468,7 @@ pub struct AdaptiveOpts {
     #[arg(long, value_parser = typed_f32, allow_hyphen_values = true)]
     pub pixel_error: Option<TypedF32>,
     /// The largest level any element gets (when drawing adaptively: with --pixel-error, or in
-    /// render and view without --level; default: 64 for the pattern and static drivers, whose levels are powers of two, and the tessellator's limit for tess;
+    /// render and view without --level; default: 64 for the pattern and static drivers, whose largest level is a power of two, and the tessellator's limit for tess;
     /// both at most what the device draws).
     #[arg(long, allow_hyphen_values = true, value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub max_level: Option<u32>,

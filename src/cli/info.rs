@@ -234,8 +234,8 @@ fn print_levels(a: &InfoArgs, mut input: Input) -> Result<()> {
         stpn::check(mesh, &tags).map_err(anyhow::Error::msg)?;
     }
     let heightmap = input.heightmap.take().unwrap_or_else(Heightmap::generated);
-    // Rounded as the driver draws them: powers of two for pattern and static, and for tess
-    // while it glides.
+    // Rounded as the driver draws them: powers of two for pattern and tess while they glide,
+    // integers otherwise and for static.
     let rounding = meshrefine::render::DrawConfig {
         geomorph: a.geomorph.unwrap_or(true),
         ..meshrefine::render::DrawConfig::new(a.driver, a.max_level)

@@ -63,7 +63,7 @@ pub fn snap_sample(a: u32, m: u32, n: u32) -> u32 {
 /// `d.inner` at: on stored edge `k` (as [`edge_of`] classifies it), the sample of the edge's
 /// level `d.edges[k]` it snaps to ([`snap_sample`]), `(m − s)/m` for corner `k` and `s/m` for
 /// corner `k + 1`, each divided as written (the two elements sharing the edge divide the same
-/// integers); inside, the uniform pattern's `(n − i − j)/n, i/n, j/n`. Mirror of
+/// integers; a corner exactly 1 and 0); inside, the uniform pattern's `(n − i − j)/n, i/n, j/n`. Mirror of
 /// `integer_weights` in glsl/pattern/adaptive.glsl.
 pub fn integer_bary(i: u32, j: u32, d: &DrawnLevels) -> [f32; 3] {
     let n = d.inner;
@@ -75,8 +75,13 @@ pub fn integer_bary(i: u32, j: u32, d: &DrawnLevels) -> [f32; 3] {
     let m = d.edges[k];
     let s = snap_sample(a, m, n);
     let mut b = [0.0f32; 3];
-    b[k] = (m - s) as f32 / m as f32;
-    b[(k + 1) % 3] = s as f32 / m as f32;
+    // The corners exactly (a device may divide m by m inexactly, and a corner's edges
+    // have different levels in different elements).
+    (b[k], b[(k + 1) % 3]) = match s {
+        0 => (1.0, 0.0),
+        s if s == m => (0.0, 1.0),
+        s => ((m - s) as f32 / m as f32, s as f32 / m as f32),
+    };
     b
 }
 

@@ -170,10 +170,11 @@ pub trait DriverKind: Sync {
         None
     }
 
-    /// Whether its adaptive levels are any integers (the tessellator's) rather than powers of
-    /// two (the pattern driver's hierarchical patterns split 1 to 4; the static driver refines
-    /// with their construction): its largest adaptive level need not be a power of two, and
-    /// it rounds its levels to powers of two only while it glides ([`DrawConfig::glides`]).
+    /// Whether it is the tessellator, whose levels are any integers under any largest level,
+    /// rounded to powers of two only while it glides ([`DrawConfig::glides`]), rather than a
+    /// driver with patterns (pattern, and static, which refines with their construction),
+    /// whose largest adaptive level is a power of two and whose boundary is snapped
+    /// ([`DrawConfig::rounding`]).
     fn integer_levels(&self) -> bool {
         false
     }

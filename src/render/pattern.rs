@@ -265,14 +265,15 @@ fn adaptive_of<'a>(work: &FrameWork<'a>) -> &'a AdaptivePattern {
 }
 
 /// Whether the pattern driver can draw `cfg` adaptively (`FrameWork::adaptive`): the
-/// hierarchical patterns need the largest level to be a power of two. One sentence otherwise.
+/// hierarchical patterns need the largest level to be a power of two (the integer patterns
+/// take the same largest level). One sentence otherwise.
 pub fn check_adaptive_level(cfg: &DrawConfig) -> Result<(), RenderError> {
     if cfg.driver.submit().is_none() {
         return Ok(());
     }
     check_dyadic(
         cfg.level,
-        "the pattern driver needs the largest level to be a power of two (its patterns are 1-to-4 splits)",
+        "the pattern driver needs the largest level to be a power of two (its geomorphing patterns are 1-to-4 splits)",
         "--level ",
     )
 }

@@ -5,16 +5,16 @@
 //! inner level's lattice, boundary vertices snapped onto their edge's level, the same
 //! triangles), evaluated with the surfaces' mirrors and uploaded as one vertex and index buffer;
 //! the draws then read each element's index range. Triangles that snapping made degenerate are
-//! not stored. Vertices do not glide (gliding would re-upload every frame), but the levels are
-//! those the pattern driver draws: powers of two with `DrawConfig::geomorph`, any integer
-//! without. docs/adaptivity.md, "The static baseline".
+//! not stored. Vertices do not glide (gliding would re-upload every frame), so the levels are
+//! those the pattern driver draws without geomorphing: any integer. docs/adaptivity.md, "The
+//! static baseline".
 
 use super::bindings::SET_MESH;
 use super::static_vbo::{static_vertex, ElementVertex, StaticVbo, StaticVertex};
 use super::{DrawConfig, GpuMesh, RenderError, Renderer, Scene, PUSH_DRAW_OFFSET, PUSH_STAGES};
 use crate::gpu::{vk, Buffer, Cmd, CommandPool, Context};
 use crate::lod::levels::ElementLevels;
-use crate::pattern::adaptive::{bary, drawn_levels, integer_bary, snap, DrawnLevels};
+use crate::pattern::adaptive::{drawn_levels, integer_bary, DrawnLevels};
 use crate::pattern::Pattern;
 use crate::surface::{ElementRecord, Mirror};
 use std::sync::Arc;
@@ -35,22 +35,18 @@ pub struct AdaptiveRefined {
     pub drawn: Vec<Option<DrawnLevels>>,
 }
 
-/// The drawn levels of `levels` at largest level `max` (a power of two), as the pattern driver
-/// draws them (powers of two where `dyadic`).
-pub fn drawn(levels: &[ElementLevels], max: u32, dyadic: bool) -> Vec<Option<DrawnLevels>> {
-    levels
-        .iter()
-        .map(|l| drawn_levels(l, max, dyadic))
-        .collect()
+/// The drawn levels of `levels` at largest level `max`, as the pattern driver draws them
+/// without geomorphing (integers).
+pub fn drawn(levels: &[ElementLevels], max: u32) -> Vec<Option<DrawnLevels>> {
+    levels.iter().map(|l| drawn_levels(l, max, false)).collect()
 }
 
 /// Every element of `records` refined on the CPU at its drawn levels `drawn` (from [`drawn`]) at
-/// largest level `cfg.level` (a power of two), with `cfg`'s surface, displacement and
-/// parameters (`mirror`: the surface and displacement with their inputs): element `t`'s
-/// vertices are the pattern driver's adaptive vertices (`pattern::adaptive::adaptive_element`,
-/// snapped weights included; dyadic or integer levels as `drawn` holds them, as
-/// `cfg.dyadic_levels()` says) in the inner level's pattern order, its triangles that
-/// pattern's, less those snapping made degenerate.
+/// largest level `cfg.level`, with `cfg`'s surface, displacement and parameters (`mirror`: the
+/// surface and displacement with their inputs): element `t`'s vertices are the pattern
+/// driver's adaptive vertices without geomorphing (`pattern::adaptive::integer_element`,
+/// snapped weights included) in the inner level's pattern order, its triangles that pattern's,
+/// less those snapping made degenerate.
 /// `samples`: also each vertex's sample, for the per-fragment normal field.
 pub fn refine_adaptive(
     cfg: &DrawConfig,
@@ -60,12 +56,10 @@ pub fn refine_adaptive(
     samples: bool,
 ) -> AdaptiveRefined {
     let f = cfg.level;
-    assert!(f.is_power_of_two(), "adaptive levels are dyadic");
     let mut out = AdaptiveRefined {
         first: Vec::with_capacity(records.len() + 1),
         ..AdaptiveRefined::default()
     };
-    let dyadic = cfg.dyadic_levels();
     // The uniform patterns by level (up to f).
     let mut patterns: Vec<Option<Pattern>> = vec![None; f as usize + 1];
     // Each vertex's weights: equal weights, the same point.
@@ -74,16 +68,10 @@ pub fn refine_adaptive(
         out.first.push(out.indices.len() as u32);
         let Some(d) = drawn[t] else { continue };
         let pattern = patterns[d.inner as usize].get_or_insert_with(|| Pattern::uniform(d.inner));
-        let s = f / d.inner;
         let base = out.vertices.len() as u32;
         points.clear();
         for (i, j) in pattern.lattice() {
-            let b = if dyadic {
-                let p = snap(i * s, j * s, &d, f);
-                bary(p.0, p.1, f)
-            } else {
-                integer_bary(i, j, &d)
-            };
+            let b = integer_bary(i, j, &d);
             out.vertices
                 .push(static_vertex(&mirror.eval(&cfg.params, t, rec, b)));
             if samples {
@@ -127,17 +115,26 @@ pub(super) struct StaticLevels {
 impl StaticLevels {
     pub(super) fn new(cfg: &DrawConfig, generation: u64, levels: Vec<ElementLevels>) -> Self {
         Self {
-            cfg: *cfg,
+            cfg: key(cfg),
             generation,
             levels,
         }
     }
 }
 
+/// What refined vertices depend on: the configuration less gliding, which the static driver
+/// never does.
+fn key(cfg: &DrawConfig) -> DrawConfig {
+    DrawConfig {
+        geomorph: false,
+        ..*cfg
+    }
+}
+
 /// The levels chosen for `cfg` in `scene`, if any.
 fn levels_for<'a>(scene: &'a Scene, cfg: &DrawConfig) -> Option<&'a [ElementLevels]> {
     (scene.static_levels.as_ref())
-        .filter(|l| l.cfg == *cfg && l.generation == scene.generation)
+        .filter(|l| l.cfg == key(cfg) && l.generation == scene.generation)
         .map(|l| &l.levels[..])
 }
 
@@ -165,7 +162,7 @@ pub(super) fn prepare(
         scene.static_vbo = None;
         return Ok(());
     };
-    let want = drawn(levels, cfg.level, cfg.dyadic_levels());
+    let want = drawn(levels, cfg.level);
     let current = scene
         .static_vbo
         .as_ref()
@@ -252,7 +249,7 @@ fn upload(
 pub(super) fn check(cfg: &DrawConfig) -> Result<(), RenderError> {
     super::pattern::check_dyadic(
         cfg.level,
-        "the static driver refines with the pattern driver's 1-to-4 splits: the largest level must be a power of two",
+        "the static driver takes the pattern driver's largest levels: a power of two",
         "",
     )
 }
@@ -319,7 +316,7 @@ mod tests {
             &crate::surface::Sources::default(),
         )
         .unwrap();
-        let r = refine_adaptive(&cfg, &records[..2], drawn(&culled, 8, false), &mirror, true);
+        let r = refine_adaptive(&cfg, &records[..2], drawn(&culled, 8), &mirror, true);
         let e = adaptive_element(&levels, 8, false).unwrap();
         assert_eq!(r.vertices.len(), e.bary.len());
         assert_eq!(
@@ -340,7 +337,7 @@ mod tests {
             "{} of {all_tris}",
             r.indices.len()
         );
-        let both = refine_adaptive(&cfg, &records[..2], drawn(&all, 8, false), &mirror, false);
+        let both = refine_adaptive(&cfg, &records[..2], drawn(&all, 8), &mirror, false);
         assert_eq!(both.indices.len(), 2 * r.indices.len());
         assert!(both.samples.is_empty());
     }

@@ -34,6 +34,11 @@ pub fn check_adaptive_fits(
     } else {
         (range, "maxStorageBufferRange")
     };
+    if !dyadic && level > INTEGER_MAX_LEVEL {
+        return Err(RenderError::Incompatible(format!(
+            "drawing integer levels without geomorphing takes one pattern per level, at most up to level {INTEGER_MAX_LEVEL}, not {level}: use --geomorph on or --max-level {INTEGER_MAX_LEVEL} or lower"
+        )));
+    }
     let (commands, lists) = adaptive_bytes(elements, chunk, level, dyadic);
     let needed = commands.max(lists);
     if needed > max {
@@ -56,6 +61,11 @@ pub fn check_adaptive_fits(
     }
     Ok(())
 }
+
+/// The largest level of the integer patterns: they hold every level's vertices and triangles,
+/// growing with the cube of the largest (at 128, 4.4 MB of vertices and 8.4 MB of indices; at
+/// 1024, over 2 GiB of vertices and 4 GiB of indices).
+pub const INTEGER_MAX_LEVEL: u32 = 128;
 
 /// The levels an adaptive draw bins by at largest level `level`: the hierarchy's `2^l`,
 /// `l = 0..=L` where `dyadic`, else every level `1..=level`.
