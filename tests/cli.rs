@@ -3161,7 +3161,7 @@ fn pixel_error_draws_adaptively_with_the_pattern_driver() {
     // Without geomorphing: integer levels from the integer patterns, closed too, and fewer
     // triangles than at powers of two.
     let int_obj = tmp("adaptive-pattern-integer.obj");
-    ok(&[
+    let int_args = [
         "export",
         spot,
         "-o",
@@ -3170,7 +3170,8 @@ fn pixel_error_draws_adaptively_with_the_pattern_driver() {
         "2",
         "--geomorph",
         "off",
-    ]);
+    ];
+    ok(&int_args);
     let int_text = std::fs::read_to_string(&int_obj).unwrap();
     let (_, int_levels) = adaptive_header(&int_text);
     assert_eq!(int_levels.iter().map(|l| l.1).sum::<u64>(), 372);
@@ -3188,18 +3189,7 @@ fn pixel_error_draws_adaptively_with_the_pattern_driver() {
     assert!(int_mesh.triangles.len() < mesh.triangles.len());
     // The integer patterns grow with the cube of the largest level: past 128, one sentence.
     expect_error(
-        &[
-            "export",
-            spot,
-            "-o",
-            p(&int_obj),
-            "--pixel-error",
-            "2",
-            "--geomorph",
-            "off",
-            "--max-level",
-            "256",
-        ],
+        &[&int_args[..], &["--max-level", "256"]].concat(),
         &[
             "at most up to level 128, not 256",
             "--geomorph on or --max-level 128",
