@@ -64,8 +64,8 @@
 //!    (`k` the kink terms; snapped: `max(M_e, M_e/4 + λ/2 T_e + λ² max(M_{e+1}, M_{e+2}))`,
 //!    no corners; snapped integer: `max(M_c, M_e/4 + λ/2 T_e + λ² max(M_{e+1}, M_{e+2}))`, as
 //!    `M_c >= M_e` covers the bases) meets that element's tolerance ([`strip_need`]). So the
-//!    bases, the corners and the kink terms at `a_e + β` fit in `τ` whatever `n`, and so does
-//!    `S_e` whenever `β <= λ a_e`. A dyadic driver takes `λ = 1/2` (a coarser edge is at most
+//!    bases and the corners fit in `τ` whatever `n`, and the kink terms at `a_e + β` and `S_e`
+//!    whenever `β <= λ a_e` (beyond, step 2's quadratics hold both). A dyadic driver takes `λ = 1/2` (a coarser edge is at most
 //!    half the inner level, so it rarely needs step 2), the tessellator's integer levels
 //!    `λ = 1` (no raise is needed then; step 2 only serves where a level is capped or a bound
 //!    changes between the two), the snapped integer levels `λ = 1/2` too (step 2 raises the
