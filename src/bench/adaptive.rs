@@ -98,7 +98,11 @@ fn variant(
     };
     let mut first = timed(ctx, h, m, adaptive_cfg, true, "view".into(), a)?;
     if first.drawn {
-        if let Err(e) = cfg.driver.kind().check_adaptive(ctx, &m.scene, &cfg) {
+        if let Err(e) = cfg
+            .driver
+            .kind()
+            .check_adaptive(ctx, &m.scene, &adaptive_cfg)
+        {
             first.row.note = format!("not drawn: {e}");
             first.drawn = false;
         }
