@@ -62,8 +62,8 @@ bool edge_plan(uvec2 q, uvec4 n, vec4 lv, uint f, out uvec2 qs, out uvec2 a, out
 }
 
 // Where the geomorphing driver draws finest-lattice point raw (before snapping; its snapped
-// sample's true position p). A boundary point is its snapped sample, morphing with its edge's level when that
-// level adds it; an inside point new at the inner level morphs between its parents' drawn
+// sample's true position p). A boundary point is its snapped sample, morphing with its edge's
+// level when that level adds it; an inside point new at the inner level morphs between its parents' drawn
 // positions (a boundary parent snapped and morphing with its edge). The surface is evaluated at
 // one call site in a loop whose trip count depends on the vertex, so that a costly surface
 // (loop's table sums) is compiled once rather than inlined up to six times; the loop runs over

@@ -40,11 +40,11 @@
 //!   `|Q| <= S_e = h² a_e² M_e + h a_e β T_e + β² max(M_{e+1}, M_{e+2})`, texel extent
 //!   `<= a_e + β`;
 //! - at a corner between edges `e` and `f`, where a vertex beside the corner moves away from
-//!   it, to at most `a_e` (not [`Rounding::Snapped`]: there the only triangles with vertices on two edges are
-//!   the corner's two lattice triangles, whose vertices beside the corner either stay or move
-//!   onto it, leaving lattice sides and sides of the second kind; at `n = 2`, where every
-//!   vertex is on the boundary, a midpoint moved onto the far corner leaves a whole edge, a
-//!   base, and sides of the second kind with `α = a_e`), sides `y d_e + z d_f` with
+//!   it, to at most `a_e` (not [`Rounding::Snapped`]: there the only triangles with vertices
+//!   on two edges are the corner's two lattice triangles, whose vertices beside the corner
+//!   either stay or move onto it, leaving lattice sides and sides of the second kind; at
+//!   `n = 2`, where every vertex is on the boundary, a midpoint moved onto the far corner
+//!   leaves a whole edge, a base, and sides of the second kind with `α = a_e`), sides `y d_e + z d_f` with
 //!   `0 <= y <= a_e`, `0 <= z <= a_f`: with `m = min(y, z)`, `r = |y − z|`,
 //!   `y d_e + z d_f = −m d_g + r d_j` (`g` the third direction, `j` one of `e`, `f`), so
 //!   `|Q| <= m² M_g + r² M_j + 2 m r B_x`, `B_x = max_k B_k`, and with
@@ -65,8 +65,9 @@
 //!    no corners; snapped integer: `max(M_c, M_e/4 + λ/2 T_e + λ² max(M_{e+1}, M_{e+2}))`, as
 //!    `M_c >= M_e` covers the bases) meets that element's tolerance ([`strip_need`]). So the
 //!    bases and the corners fit in `τ` whatever `n`, and the kink terms at `a_e + β` and `S_e`
-//!    whenever `β <= λ a_e` (beyond, step 2's quadratics hold both). A dyadic driver takes `λ = 1/2` (a coarser edge is at most
-//!    half the inner level, so it rarely needs step 2), the tessellator's integer levels
+//!    whenever `β <= λ a_e` (beyond, step 2's quadratics hold both). A dyadic driver takes
+//!    `λ = 1/2` (a coarser edge is at most half the inner level, so it rarely needs step 2),
+//!    the tessellator's integer levels
 //!    `λ = 1` (no raise is needed then; step 2 only serves where a level is capped or a bound
 //!    changes between the two), the snapped integer levels `λ = 1/2` too (step 2 raises the
 //!    inner level where a coarser edge is finer than half of it and its sides do not fit). On
@@ -124,12 +125,9 @@ pub fn strip_need(b: &Bounds, e: usize, rounding: Rounding) -> Chord {
     let mx = m[0].max(m[1]).max(m[2]);
     let bx = mixed[0].max(mixed[1]).max(mixed[2]);
     let mc = mx.max(0.5 * mx + 0.5 * bx);
-    // Sides after a move of at most half a sample (snapped) or a whole one.
-    let sides = if rounding.snapped() {
-        0.25 * m[e] + 0.5 * lambda * twist + lambda * lambda * mb
-    } else {
-        m[e] + lambda * twist + lambda * lambda * mb
-    };
+    // Sides after a move of at most `h` samples: half of one snapped, a whole one else.
+    let h = if rounding.snapped() { 0.5 } else { 1.0 };
+    let sides = h * h * m[e] + h * lambda * twist + lambda * lambda * mb;
     let q = match rounding {
         // No corner triangles: the bases' `M_e` or the sides'.
         Rounding::Snapped => m[e].max(sides),
