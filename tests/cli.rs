@@ -191,19 +191,21 @@ fn device_limits_and_options_are_checked() {
         ],
         &["level 1024 is beyond this device's maxTessellationGenerationLevel (64)"],
     );
-    expect_error(
-        &[
-            "render",
-            p(&model_path("spot_tri.obj")),
-            "--driver",
-            "static",
-            "--level",
-            "512",
-            "-o",
-            p(&out),
-        ],
-        &["maxMemoryAllocationSize", "level 512"],
-    );
+    let spot_tri = model_path("spot_tri.obj");
+    let too_big = [
+        "render",
+        p(&spot_tri),
+        "--driver",
+        "static",
+        "--level",
+        "512",
+        "-o",
+        p(&out),
+    ];
+    expect_error(&too_big, &["maxMemoryAllocationSize", "level 512"]);
+    // Refused before the warning that such frames would be slow: one sentence.
+    let stderr = String::from_utf8_lossy(&meshrefine(&too_big).stderr).into_owned();
+    assert!(!stderr.contains("warning"), "{stderr}");
     expect_error(
         &["render", "--device", "no-such-gpu-anywhere", "-o", p(&out)],
         &["no-such-gpu-anywhere", "available"],
@@ -1203,6 +1205,12 @@ fn surface_parameters_out_of_range_are_errors() {
         (&["--bias", "-inf"], "--bias -inf is not a finite number"),
         (&["--octaves", "0"], "--octaves 0 is not within [1, 8]"),
         (&["--octaves", "9"], "--octaves 9"),
+        // Negative and past u32 too: the range's sentence, not the parser's.
+        (&["--octaves", "-1"], "--octaves -1 is not within [1, 8]"),
+        (
+            &["--octaves", "99999999999"],
+            "--octaves 99999999999 is not within [1, 8]",
+        ),
         (
             &["--amplitude", "inf"],
             "--amplitude inf is not a finite number",
@@ -1700,7 +1708,7 @@ fn bench_min_total_ms_is_checked() {
                 "--frames",
                 "1",
             ],
-            &["--min-total-ms", "is not a finite number >= 0"],
+            &[&format!("--min-total-ms {v} is not a finite number >= 0")],
         );
     }
 }
@@ -3187,9 +3195,22 @@ fn pixel_error_draws_adaptively_with_the_pattern_driver() {
     );
     assert_eq!(int_mesh.stats().inconsistently_oriented_edges, 0);
     assert!(int_mesh.triangles.len() < mesh.triangles.len());
-    // The integer patterns grow with the cube of the largest level: past 128, one sentence.
+    // The integer patterns grow with the cube of the largest level: a largest level past 128
+    // is drawn up to the largest level chosen where those fit (the same vertices), and
+    // refused in one sentence where they do not.
+    let high_obj = tmp("adaptive-pattern-integer-256.obj");
+    let high = |px| {
+        let out = p(&high_obj);
+        let args = ["--geomorph", "off", "--max-level", "256"];
+        [&["export", spot, "-o", out, "--pixel-error", px][..], &args].concat()
+    };
+    ok(&high("2"));
+    let high_text = std::fs::read_to_string(&high_obj).unwrap();
+    assert!(high_text.contains("max level 256"), "{high_text:.400}");
+    let after_first = |t: &str| t.split_once('\n').unwrap().1.to_string();
+    assert!(after_first(&high_text) == after_first(&int_text));
     expect_error(
-        &[&int_args[..], &["--max-level", "256"]].concat(),
+        &high("0.02"),
         &[
             "at most up to level 128, not 256",
             "--geomorph on or --max-level 128",

@@ -308,6 +308,34 @@ impl Adaptive<'_> {
         }
     }
 
+    /// Where the draws up to `cfg`'s largest level do not fit the device (millions of
+    /// elements, or integer levels past their patterns' cap), those up to the largest level
+    /// `report` chose may: the same levels, set again for `camera` and an image of `size` with
+    /// `cfg` lowered to them (returned with them). `None`: `cfg` fits, or lowering does not help.
+    #[allow(clippy::too_many_arguments)]
+    pub fn lower_to_fit(
+        &self,
+        h: &mut Headless,
+        scene: &mut Scene,
+        cfg: &DrawConfig,
+        capture: Capture,
+        camera: Camera,
+        size: (u32, u32),
+        report: &ChosenLevels,
+    ) -> Result<Option<(DrawConfig, ChosenLevels)>> {
+        if cannot_adapt(h, scene, cfg, capture)?.is_none() {
+            return Ok(None);
+        }
+        let Some(lowered) = chosen_max(cfg, report) else {
+            return Ok(None);
+        };
+        if cannot_adapt(h, scene, &lowered, capture)?.is_some() {
+            return Ok(None);
+        }
+        let report = scene.set_levels(&lowered, &self.level_view(camera, size))?;
+        Ok(Some((lowered, report)))
+    }
+
     /// Says on standard error where the pixel error is not met: elements with no finite error
     /// bound, and elements whose bound needs a level above the largest (`cfg.level`).
     pub fn note_unmet(&self, cfg: &DrawConfig, report: &LevelReport) {
@@ -379,4 +407,34 @@ impl ViewpointOpts {
             anyhow::anyhow!("{}", no_direction(e, t))
         })
     }
+}
+
+/// Why `cfg`, its levels chosen, cannot be drawn adaptively in `scene` (prepared here for
+/// `capture`), if it cannot (`DriverKind::check_adaptive`).
+pub fn cannot_adapt(
+    h: &mut Headless,
+    scene: &mut Scene,
+    cfg: &DrawConfig,
+    capture: Capture,
+) -> Result<Option<String>> {
+    h.prepared_elements(scene, cfg, capture)?;
+    let refusal = cfg.driver.kind().check_adaptive(&h.ctx, scene, cfg).err();
+    Ok(refusal.map(|e| e.to_string()))
+}
+
+/// `cfg` at the largest level drawn among the levels of `report` (a power of two where the
+/// driver's levels are), where that is below `cfg.level` and draws the same: not for the height
+/// map, whose mip level follows the largest level, nor where the normal field would move
+/// between fragments and vertices (`loop` from level 16).
+fn chosen_max(cfg: &DrawConfig, report: &ChosenLevels) -> Option<DrawConfig> {
+    let drawn = *report.report().histogram.keys().max()?;
+    let level = if cfg.power_of_two_max() {
+        drawn.next_power_of_two()
+    } else {
+        drawn
+    };
+    let lowered = DrawConfig { level, ..*cfg };
+    let same = cfg.displace != meshrefine::surface::Displace::Heightmap
+        && lowered.fragment_normal_field() == cfg.fragment_normal_field();
+    (level < cfg.level && same).then_some(lowered)
 }

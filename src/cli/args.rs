@@ -60,9 +60,9 @@ pub struct ParamOpts {
     /// Displacement frequency per mesh unit (default: 24 / bounding radius).
     #[arg(long, value_parser = typed_f32, allow_hyphen_values = true)]
     pub frequency: Option<TypedF32>,
-    /// Octaves of the noise displacement.
+    /// Octaves of the noise displacement (1 to 8).
     #[arg(long, allow_hyphen_values = true, default_value_t = 1)]
-    pub octaves: u32,
+    pub octaves: i64,
     /// PN and Phong geometry at split normals (a position with several vn): `closed` is
     /// crack-free, `open` is the papers' behaviour (cracks).
     #[arg(long, value_parser = choices::seams(), default_value = "closed")]
@@ -99,12 +99,23 @@ impl ParamOpts {
             f.check("frequency", Some((0.0, f32::MAX, "a finite number >= 0")))?;
         }
         self.bias.check("bias", None)?;
+        // Read wide, so that a negative or huge count gets the range's sentence too.
+        let octaves = u32::try_from(self.octaves)
+            .ok()
+            .filter(|o| (1..=SurfaceParams::MAX_OCTAVES).contains(o))
+            .ok_or_else(|| {
+                format!(
+                    "--octaves {} is not within [1, {}]",
+                    self.octaves,
+                    SurfaceParams::MAX_OCTAVES
+                )
+            })?;
         let d = SurfaceParams::for_radius(radius);
         let p = SurfaceParams {
             alpha: self.alpha.value,
             amplitude: self.amplitude.as_ref().map_or(d.amplitude, |a| a.value),
             frequency: self.frequency.as_ref().map_or(d.frequency, |f| f.value),
-            octaves: self.octaves,
+            octaves,
             origin: d.origin,
             bias: self.bias.value,
         };
@@ -515,11 +526,13 @@ pub struct BenchArgs {
     /// (at most 20 x --frames frames): more samples for short frames, whose timestamps jitter.
     #[arg(
         long,
-        default_value_t = 0.0,
+        value_name = "MS",
+        value_parser = typed_f32,
+        default_value = "0",
         allow_hyphen_values = true,
         help_heading = "Measurement"
     )]
-    pub min_total_ms: f64,
+    pub min_total_ms: TypedF32,
     /// The offscreen image's width in pixels.
     #[arg(long, allow_hyphen_values = true, default_value_t = 1280, value_parser = image_side(), help_heading = "Measurement")]
     pub width: u32,

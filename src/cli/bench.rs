@@ -21,12 +21,12 @@ pub fn run(a: &BenchArgs, desc: &ContextDesc, levels_given: bool) -> Result<()> 
         dedup(&a.surfaces),
         dedup(&a.displacements),
     );
-    if !(a.min_total_ms.is_finite() && a.min_total_ms >= 0.0) {
-        bail!(
-            "--min-total-ms {} is not a finite number >= 0",
-            a.min_total_ms
-        );
-    }
+    (a.min_total_ms)
+        .check(
+            "min-total-ms",
+            Some((0.0, f32::MAX, "a finite number >= 0")),
+        )
+        .map_err(anyhow::Error::msg)?;
     let every_face = surfaces.iter().any(|s| s.facts().needs_every_face);
     let mut input = load_mesh(a.mesh.as_deref(), every_face)?;
     if surfaces.iter().any(|s| s.facts().tags) {
@@ -61,7 +61,7 @@ pub fn run(a: &BenchArgs, desc: &ContextDesc, levels_given: bool) -> Result<()> 
                 all || a.drivers.iter().any(|d| d.same_kind(*v))
             })
             .collect(),
-        min_total_ms: a.min_total_ms,
+        min_total_ms: a.min_total_ms.value as f64,
         camera: BenchCamera::default(),
         adaptive: None,
         view: a.view,

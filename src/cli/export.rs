@@ -78,17 +78,30 @@ fn export(
     // Drawn as render draws it, centred and at unit size (the camera and levels are render's,
     // single-precision view maths keeps the mesh far from the origin), written back in the
     // mesh's coordinates.
-    let (mesh, viewed) = for_viewing(&input.mesh, cfg);
+    let (mesh, mut viewed) = for_viewing(&input.mesh, cfg);
     let (centre, scale) = input.mesh.viewing_transform();
     let frame = Frame { centre, scale };
-    let cfg = &viewed;
-    let mut scene = h.scene(mesh, cfg.level)?;
+    let mut scene = h.scene(mesh, viewed.level)?;
     apply_surface_inputs(&h, &mut scene, &input)?;
-    let adaptive_camera =
-        adaptive_camera(&mut h, &mut scene, cfg, adaptive.as_ref(), size, &frame)?;
-    if let Some((a, (_, chosen))) = adaptive.as_ref().zip(adaptive_camera.as_ref()) {
-        progress.set_size(check_adaptive(a, cfg, chosen)?);
+    let mut adaptive_camera =
+        adaptive_camera(&mut h, &mut scene, &viewed, adaptive.as_ref(), size, &frame)?;
+    // The header names the largest level allowed, whichever the draws were set up to.
+    let allowed = viewed;
+    if let Some((a, (camera, chosen))) = adaptive.as_ref().zip(adaptive_camera.as_mut()) {
+        // As render does: drawn up to the largest level chosen where the largest allowed does
+        // not fit (the same levels, so the same vertices).
+        let capture = viewed
+            .driver
+            .kind()
+            .export_capture()
+            .unwrap_or(Capture::None);
+        let fits = a.lower_to_fit(&mut h, &mut scene, &viewed, capture, *camera, size, chosen)?;
+        if let Some(fits) = fits {
+            (viewed, *chosen) = fits;
+        }
+        progress.set_size(check_adaptive(a, &viewed, chosen)?);
     }
+    let cfg = &viewed;
     let adaptive_camera = adaptive_camera.map(|(camera, _)| camera);
     let camera = adaptive_camera.unwrap_or_else(|| {
         let (c, r) = scene.bounding_sphere();
@@ -111,7 +124,7 @@ fn export(
         let (_, report) = scene.drawn_levels(cfg);
         a.header(&cam, &frame, size, &report)
     });
-    let header = header(&name, cfg, &device, &refined, levels);
+    let header = header(&name, &allowed, &device, &refined, levels);
     h.capture_progress = None;
     let passes = passes.load(Ordering::Relaxed);
     let written = write_obj(output, &refined, &header, |(done, total)| {

@@ -1,7 +1,7 @@
 //! `meshrefine render`: one frame of a mesh, drawn headlessly, to a PNG.
 #![forbid(unsafe_code)]
 
-use super::adaptive::{Adaptive, Frame};
+use super::adaptive::{cannot_adapt, Adaptive, Frame};
 use super::args::{RenderArgs, ViewpointOpts};
 use super::input::{
     apply_surface_inputs, attach_surface_inputs, draw_config, for_viewing, load_mesh, Input,
@@ -11,9 +11,7 @@ use crate::note;
 use anyhow::{bail, Context as _, Result};
 use meshrefine::gpu::{sample_count, Context, ContextDesc};
 use meshrefine::render::cage::Wireframe;
-use meshrefine::render::{
-    covered_pixels_on, Background, Capture, DrawConfig, Headless, Scene, View,
-};
+use meshrefine::render::{covered_pixels_on, Background, Capture, DrawConfig, Headless, View};
 use std::io::Write as _;
 use std::path::Path;
 use std::sync::Arc;
@@ -51,31 +49,6 @@ fn levels_line(a: &Adaptive, max: u32, report: &meshrefine::lod::LevelReport) ->
         report.histogram_line(),
         report.culled
     )
-}
-
-/// Why `cfg`, its levels chosen, cannot be drawn adaptively in `scene` (prepared here), if it
-/// cannot (`DriverKind::check_adaptive`).
-fn cannot_adapt(h: &mut Headless, scene: &mut Scene, cfg: &DrawConfig) -> Result<Option<String>> {
-    h.prepared_elements(scene, cfg, Capture::None)?;
-    let refusal = cfg.driver.kind().check_adaptive(&h.ctx, scene, cfg).err();
-    Ok(refusal.map(|e| e.to_string()))
-}
-
-/// `cfg` at the largest level drawn among the levels of `report` (a power of two where the
-/// driver's levels are), where that is below `cfg.level` and draws the same image: not for
-/// the height map, whose mip level follows the largest level, nor where the normal field
-/// would move between fragments and vertices (`loop` from level 16).
-fn chosen_max(cfg: &DrawConfig, report: &meshrefine::render::ChosenLevels) -> Option<DrawConfig> {
-    let drawn = *report.report().histogram.keys().max()?;
-    let level = if cfg.power_of_two_max() {
-        drawn.next_power_of_two()
-    } else {
-        drawn
-    };
-    let lowered = DrawConfig { level, ..*cfg };
-    let same = cfg.displace != meshrefine::surface::Displace::Heightmap
-        && lowered.fragment_normal_field() == cfg.fragment_normal_field();
-    (level < cfg.level && same).then_some(lowered)
 }
 
 /// The note that an image drawn adaptively by default is drawn at `level` instead, and why.
@@ -163,15 +136,16 @@ pub fn render_png(
             let (cam, mut report) =
                 a.set_up(&mut h, &mut scene, &viewed, Capture::None, size, &frame)?;
             camera = cam;
-            // Where the draws up to the largest level do not fit the device (millions of
-            // elements), those up to the largest level chosen may: the same levels.
-            if cannot_adapt(&mut h, &mut scene, &viewed)?.is_some() {
-                if let Some(lowered) = chosen_max(&viewed, &report) {
-                    if cannot_adapt(&mut h, &mut scene, &lowered)?.is_none() {
-                        report = scene.set_levels(&lowered, &a.level_view(camera, size))?;
-                        viewed = lowered;
-                    }
-                }
+            if let Some(fits) = a.lower_to_fit(
+                &mut h,
+                &mut scene,
+                &viewed,
+                Capture::None,
+                camera,
+                size,
+                &report,
+            )? {
+                (viewed, report) = fits;
             }
             line = Some(levels_line(a, cfg.level, &report));
             let drawn = report
@@ -182,7 +156,7 @@ pub fn render_png(
             culled_some = report.culled > 0;
         }
         if let Some(why) = (adaptive.filter(|a| a.by_default))
-            .map(|_| cannot_adapt(&mut h, &mut scene, &viewed))
+            .map(|_| cannot_adapt(&mut h, &mut scene, &viewed, Capture::None))
             .transpose()?
             .flatten()
         {

@@ -237,6 +237,18 @@ pub trait DriverKind: Sync {
     ) {
     }
 
+    /// Whether what [`DriverKind::prepare`] builds for `cfg` fits this device: checked by
+    /// [`Scene::prepare`] before it warns that frames will be slow (and before any slow work).
+    /// Nothing by default.
+    fn check_fits(
+        &self,
+        _scene: &Scene,
+        _ctx: &Context,
+        _cfg: &DrawConfig,
+    ) -> Result<(), RenderError> {
+        Ok(())
+    }
+
     /// Build what drawing `cfg` needs besides the pipelines (after the scene's checks).
     fn prepare(
         &self,

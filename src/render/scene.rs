@@ -235,6 +235,7 @@ impl Scene {
                 "the static driver evaluates on the CPU: there is nothing to capture (use pattern or tess)",
             ));
         }
+        kind.check_fits(self, ctx, cfg)?;
         renderer.prepare(cfg, capture, wire)?;
         // An adaptive frame's elements are not all at the configuration's (largest) level: it
         // warns from the levels chosen instead ([`Scene::warn_once_if_slow`]).

@@ -91,6 +91,28 @@ pub(super) fn check_allocation(
     Ok(())
 }
 
+/// Whether the refined mesh of `elements` elements at `pattern`'s level fits one allocation
+/// on this device (one sentence where not).
+fn check_uniform_size(
+    ctx: &Context,
+    elements: usize,
+    pattern: &Pattern,
+) -> Result<(), RenderError> {
+    let bytes =
+        elements as u64 * pattern.bary.len() as u64 * std::mem::size_of::<StaticVertex>() as u64;
+    check_allocation(
+        ctx,
+        bytes,
+        || {
+            format!(
+                "the static driver's refined mesh at level {}",
+                pattern.level
+            )
+        },
+        "use a lower level or the pattern driver",
+    )
+}
+
 impl StaticVbo {
     pub fn new(
         ctx: &Arc<Context>,
@@ -101,20 +123,7 @@ impl StaticVbo {
         mirror: &Mirror,
     ) -> Result<Self, RenderError> {
         // Check the size before refining: the CPU would hold the same bytes.
-        let bytes = records.len() as u64
-            * pattern.bary.len() as u64
-            * std::mem::size_of::<StaticVertex>() as u64;
-        check_allocation(
-            ctx,
-            bytes,
-            || {
-                format!(
-                    "the static driver's refined mesh at level {}",
-                    pattern.level
-                )
-            },
-            "use a lower level or the pattern driver",
-        )?;
+        check_uniform_size(ctx, records.len(), pattern)?;
         let (v, i) = refine_on_cpu(cfg, records, pattern, mirror);
         let vertices = Buffer::new_with_data(
             ctx,
@@ -269,6 +278,22 @@ impl DriverKind for StaticDriver {
                 (3, 1, vk::Format::R32_UINT, 12),
             ]);
         }
+    }
+
+    /// The uniform refined mesh's size, before the slow-frame warning and the refinement
+    /// (adaptive frames check theirs when their levels are chosen).
+    fn check_fits(
+        &self,
+        scene: &Scene,
+        ctx: &Context,
+        cfg: &DrawConfig,
+    ) -> Result<(), RenderError> {
+        if scene.adaptive_frames {
+            return Ok(());
+        }
+        let idx = scene.patterns.find(cfg.level).unwrap();
+        let elements = scene.records(cfg.surface).len();
+        check_uniform_size(ctx, elements, &scene.patterns.patterns[idx])
     }
 
     /// Refine the mesh on the CPU unless the buffer already holds `cfg`'s surface at its level;
