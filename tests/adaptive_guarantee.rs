@@ -212,12 +212,14 @@ fn draw_and_measure_at(
         if p[0] == p[1] || p[1] == p[2] || p[2] == p[0] {
             continue; // welded by snapping: not drawn
         }
-        for c in 0..=4u32 {
-            for a in 0..=4 - c {
-                if [a, c, 4 - a - c].contains(&4) {
+        // Samples in sixths: the centroid among them, where a quadratic's chord error may peak.
+        const S: u32 = 6;
+        for c in 0..=S {
+            for a in 0..=S - c {
+                if [a, c, S - a - c].contains(&S) {
                     continue; // a corner
                 }
-                let w = [(4 - a - c) as f32, a as f32, c as f32].map(|x| x / 4.0);
+                let w = [(S - a - c) as f32, a as f32, c as f32].map(|x| x / S as f32);
                 let bary: [f32; 3] =
                     std::array::from_fn(|k| b[0][k] * w[0] + b[1][k] * w[1] + b[2][k] * w[2]);
                 let s = mirror.eval(&cfg.params, t, &records[t], bary).position;
@@ -252,7 +254,7 @@ fn check_geomorph(h: &mut Headless, scene: &mut Scene, cfg: &DrawConfig) {
     let mut cfg = *cfg;
     cfg.geomorph = true;
     assert!(cfg.glides());
-    let (mut morphing, mut worst) = (0, 0.0f32);
+    let (mut morphing, mut checked, mut worst) = (0, 0, 0.0f32);
     for dist in [1.6, 1.75, 1.9, 2.1] {
         let camera = camera_at(scene, dist);
         let f = draw_and_measure_at(h, scene, &cfg, &camera, 1.0, 1.0);
@@ -267,10 +269,17 @@ fn check_geomorph(h: &mut Headless, scene: &mut Scene, cfg: &DrawConfig) {
         assert!(f.checked > 50, "only {} elements checked", f.checked);
         assert!(f.worst <= tol, "geomorphing: worst {} px", f.worst);
         morphing += f.morphing;
+        checked += f.checked;
         worst = worst.max(f.worst);
     }
-    assert!(morphing > 400, "only {morphing} elements mid-morph");
-    assert!(worst > 0.05, "worst {worst} px");
+    // Nearly every element is caught mid-morph at these distances (docs/adaptivity.md).
+    assert!(
+        morphing * 10 >= checked * 9,
+        "only {morphing} of {checked} elements mid-morph"
+    );
+    // Not vacuous, nor refined far past the bound: a worst sample under a fifth of a pixel
+    // would mean levels about twice what 1 px needs.
+    assert!(worst > 0.2, "worst {worst} px");
     let coarser = draw_and_measure(h, scene, &cfg, 8.0, 1.0);
     eprintln!(
         "{} geomorphing: levels for 8 px, checked at 1 px: worst {} px",
@@ -297,8 +306,9 @@ fn check_driver(h: &mut Headless, scene: &mut Scene, cfg: &DrawConfig) {
     assert!(at_1.checked > 50, "only {} elements checked", at_1.checked);
     assert!(at_1.worst <= tol, "worst {} px", at_1.worst);
     // Not vacuous: the worst sample comes near the bound (powers of two can leave up to a
-    // factor four), finer levels pass, coarser ones fail.
-    assert!(at_1.worst > 0.05, "worst {} px", at_1.worst);
+    // factor four; a worst under a fifth of a pixel would mean levels about twice what 1 px
+    // needs), finer levels pass, coarser ones fail.
+    assert!(at_1.worst > 0.2, "worst {} px", at_1.worst);
     let finer = draw_and_measure(h, scene, cfg, 0.5, 1.0);
     assert!(finer.worst <= 0.5 * tol, "worst {} px", finer.worst);
     // The bound is conservative (curvature bounds over whole elements; powers of two for the

@@ -87,12 +87,15 @@ fn info_bench_render_and_export_choose_the_same_levels() {
     // A plain surface, displaced ones (the camera fits the displaced surface; the height map
     // read at the mesh's texture coordinates), a field of view (the camera is fitted at it)
     // and a lone eye (completed from the fitted camera).
-    let cases: [(&PathBuf, &[&str]); 5] = [
+    // And the other roundings: the tessellator's, the pattern driver's integer levels.
+    let cases: [(&PathBuf, &[&str]); 7] = [
         (&spot, &["--pixel-error", "1"]),
         (&torus, &["--pixel-error", "1", "--displace", "sine"]),
         (&grid, &["--pixel-error", "0.5", "--displace", "heightmap"]),
         (&spot, &["--pixel-error", "2", "--fov", "70"]),
         (&torus, &["--pixel-error", "1", "--eye", "0.5,2,3"]),
+        (&spot, &["--pixel-error", "1", "--driver", "tess"]),
+        (&torus, &["--pixel-error", "1", "--geomorph", "off"]),
     ];
     for (i, (mesh, options)) in cases.into_iter().enumerate() {
         let mesh = mesh.to_str().unwrap();
@@ -140,9 +143,14 @@ fn info_bench_render_and_export_choose_the_same_levels() {
             ],
         );
         let mut bench = bench;
-        // bench names its surfaces and displacements in the plural.
+        // bench names its surfaces, displacements and drivers in the plural.
         if let Some(d) = bench.iter().position(|a| a == "--displace") {
             bench[d] = "--displacements".into();
+        }
+        if let Some(d) = bench.iter().position(|a| a == "--driver") {
+            let pattern = bench.iter().position(|a| a == "--drivers").unwrap();
+            bench.drain(pattern..pattern + 2);
+            bench[d] = "--drivers".into();
         }
         run(bench);
         let rows = bench_histograms(&format!("{prefix}.csv"));

@@ -227,8 +227,13 @@ fn geomorphing_removes_popping() {
     eprintln!(
         "popping over {changes} level changes: geomorph on {on} px ({n_on} vertices compared), off {off} px ({n_off})"
     );
-    assert!(changes > 100, "only {changes} level changes");
-    assert!(n_on > 100_000 && n_off > 100_000);
+    // The sweep's extent as docs/adaptivity.md gives it (927 changes; 0.94 and 0.80 million
+    // vertex steps).
+    assert!(changes > 800, "only {changes} level changes");
+    assert!(
+        n_on > 800_000 && n_off > 700_000,
+        "{n_on} and {n_off} vertex steps"
+    );
     assert!(on <= 0.2, "geomorphing pops by {on} px");
     // Without geomorphing a level change moves the surface by a good part of the pixel error
     // (docs/adaptivity.md, "The popping test", gives the figures).

@@ -27,8 +27,10 @@ fn local_surface_bounds_hold_and_are_useful() {
         };
         let what = surface.name();
         let (_, m) = case.check(&every(&recs, 4), &[1, 2, 3, 5, 8], r, what);
+        // Useful, not only safe: docs/adaptivity.md gives phong 1.8, pn and stpn 2.3 to 3.6
+        // (a bound several times looser would refine several times too much).
         if surface != Surface::Flat {
-            assert!(m <= 20.0, "{what} on spot: median bound / truth {m}");
+            assert!(m <= 5.0, "{what} on spot: median bound / truth {m}");
         }
         let plain = Case {
             inputs: Sources::default(),
@@ -36,7 +38,7 @@ fn local_surface_bounds_hold_and_are_useful() {
         };
         let (_, m) = plain.check(&random, &[1, 2, 4, 7], 2.0, what);
         if surface != Surface::Flat {
-            assert!(m <= 20.0, "{what} random: median bound / truth {m}");
+            assert!(m <= 5.0, "{what} random: median bound / truth {m}");
         }
         // Hard edges: flagged seams, and crease tags for stpn.
         let hard = Case {

@@ -60,6 +60,18 @@ impl Case<'_> {
         Mirror::new(self.surface, self.displace, &build, &self.inputs).unwrap()
     }
 
+    /// The case for element `t` alone: its own texture coordinates, where every element's are
+    /// given (they are then the ones evaluated, as element 0's).
+    fn element(&self, t: usize) -> Case<'_> {
+        Case {
+            inputs: Sources {
+                uvs: (self.inputs.uvs).map(|u| std::slice::from_ref(&u[t])),
+                ..self.inputs
+            },
+            ..*self
+        }
+    }
+
     fn point(&self, rec: &ElementRecord, b: [f32; 3]) -> SurfacePoint {
         self.mirror().eval(&self.params, 0, rec, b)
     }

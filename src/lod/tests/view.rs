@@ -234,6 +234,8 @@ fn end_to_end(
         }
         drawn += 1;
         let idx = corner_indices(&lod, rec);
+        // Evaluated with the element's own inputs (its texture coordinates).
+        let case = &case.element(ix);
         let what = || {
             format!(
                 "{} + {} at level {n}, edges {ne:?}{}",
@@ -245,9 +247,11 @@ fn end_to_end(
         for t in lattice_triangles(n) {
             let bb = t.map(|(i, j)| snapped(n, i, j, ne, idx, rounding));
             let p = bb.map(|x| case.at(rec, x));
-            for c in 0..=4u32 {
-                for a in 0..=4 - c {
-                    let w = [(4 - a - c) as f32, a as f32, c as f32].map(|x| x / 4.0);
+            // Samples `a/R, c/R`: the centroid among them, where a quadratic's chord error
+            // may peak.
+            for c in 0..=R {
+                for a in 0..=R - c {
+                    let w = [(R - a - c) as f32, a as f32, c as f32].map(|x| x / R as f32);
                     let lin = p[0] * w[0] + p[1] * w[1] + p[2] * w[2];
                     worst = worst.max(screen.check(case.at(rec, mix(bb, w)), lin, &what));
                 }
@@ -362,6 +366,114 @@ fn pixel_error_holds_end_to_end() {
                     "{what}: {tris} triangles against {plain}"
                 );
             }
+        }
+    }
+}
+
+/// The uniform level the adaptive frames are compared with (`info`, `bench`): the smallest
+/// that meets the bound everywhere in view, found here from each visible element's own levels
+/// (`View::levels`, not the level pass's mirror that `uniform_level` reads); drawn uniformly,
+/// it meets the pixel error at dense samples of the visible elements.
+#[test]
+fn uniform_level_is_the_smallest_meeting_the_bound() {
+    use crate::lod::frame::{frame_levels, lod_records, uniform_level, LodView};
+    let (spot, recs) = corner_records("spot_control_tri_vn.obj");
+    let screen = Screen::new(&spot, 1.0);
+    let case = Case {
+        surface: Surface::Pn,
+        field: NormalField::default(),
+        displace: Displace::None,
+        params: SurfaceParams::for_radius(spot.bounding_radius()),
+        inputs: Sources::default(),
+    };
+    let lod = case.lod();
+    let lr = lod_records(&lod, &recs);
+    let count = recs.len() as u32;
+    let lv = LodView::new(
+        &screen.view,
+        Some(&screen.frustum),
+        false,
+        Rounding::Integer,
+        count,
+    );
+    let levels = frame_levels(&lv, &lr);
+    let uniform = uniform_level(&lv, &lr, &levels);
+    let visible: Vec<usize> = (0..recs.len()).filter(|&i| !levels[i].culled()).collect();
+    let need = (visible.iter())
+        .map(|&i| {
+            let edges = [0, 1, 2].map(|e| lod.edge(&recs[i], e));
+            screen.view.levels(&lod.element(&recs[i]), &edges).1.ceil() as u32
+        })
+        .max()
+        .unwrap();
+    assert_eq!(uniform, need);
+    assert!(
+        (8..screen.view.max_level).contains(&uniform),
+        "uniform level {uniform}"
+    );
+    let mut worst = 0.0f32;
+    for &i in visible.iter().step_by(2) {
+        let what = || format!("element {i} at uniform level {uniform}");
+        for t in lattice_triangles(uniform) {
+            let b = t.map(|(i, j)| lattice_bary(uniform, i, j));
+            let p = b.map(|x| case.at(&recs[i], x));
+            for c in 0..=R {
+                for a in 0..=R - c {
+                    let w = [(R - a - c) as f32, a as f32, c as f32].map(|x| x / R as f32);
+                    let lin = p[0] * w[0] + p[1] * w[1] + p[2] * w[2];
+                    worst = worst.max(screen.check(case.at(&recs[i], mix(b, w)), lin, &what));
+                }
+            }
+        }
+    }
+    eprintln!(
+        "uniform level {uniform}: {} elements in view, worst {worst} px",
+        visible.len()
+    );
+    assert!(worst > 0.1, "worst {worst} px");
+}
+
+/// The height map end to end, as `pixel_error_holds_end_to_end` checks the other
+/// displacements: its bounds carry kink terms (bilinear texels, `c1/N` in the chord bound and
+/// `h·c1` in the transitions' needs) that no other displacement has. The grid with texture
+/// coordinates, displaced by 1% of its radius, seen for a 2 px bound, at the pyramid level the renderer reads at
+/// the largest level, every rounding.
+#[test]
+fn height_map_pixel_error_holds_end_to_end() {
+    let (grid, _) = load_model("grid_uv_8x8.obj");
+    let data = crate::render::MeshData::new(grid.clone(), RecordKind::Corners, Seams::Closed);
+    let uvs = data
+        .uvs
+        .as_deref()
+        .expect("the grid has texture coordinates");
+    let map = Heightmap::generated();
+    let screen = Screen::new(&grid, 2.0);
+    let lod = map.lod_for(1.0 / 8.0, screen.view.max_level);
+    for surface in [Surface::Pn, Surface::Flat] {
+        let case = Case {
+            surface,
+            field: NormalField::default(),
+            displace: Displace::Heightmap,
+            params: SurfaceParams {
+                amplitude: 0.01 * grid.bounding_radius(),
+                bias: 0.5,
+                ..SurfaceParams::for_radius(grid.bounding_radius())
+            },
+            inputs: Sources {
+                uvs: Some(uvs),
+                heightmap: Some(&map),
+                lod,
+                ..Default::default()
+            },
+        };
+        for rounding in Rounding::ALL {
+            let (drawn, capped, worst, _) = end_to_end(&case, &data.records, &screen, rounding);
+            let what = format!("{} + heightmap{}", surface.name(), rounding_name(rounding));
+            eprintln!("{what}: {drawn} elements checked, {capped} capped, worst {worst} px");
+            assert!(drawn > 50, "{what}: only {drawn} elements in view");
+            assert!(capped * 20 <= drawn, "{what}: {capped} of {drawn} capped");
+            // The height map's bound is the loosest (docs/adaptivity.md, "How it is checked").
+            assert!(worst > 2.0 / 40.0, "{what}: worst {worst} px");
         }
     }
 }
