@@ -475,9 +475,9 @@ fn headless_view_warns_of_what_its_image_ignores() {
         warnings(&out),
         [
             "warning: --alpha applies only to --surface phong, not to --surface pn: it is ignored",
-            "warning: --max-level applies only with --pixel-error: it is ignored",
-            "warning: --cull applies only with --pixel-error: it is ignored",
-            "warning: --geomorph applies only with --pixel-error: it is ignored",
+            "warning: --max-level applies only when drawing adaptively (with --pixel-error, or by default without --level): it is ignored",
+            "warning: --cull applies only when drawing adaptively (with --pixel-error, or by default without --level): it is ignored",
+            "warning: --geomorph applies only when drawing adaptively (with --pixel-error, or by default without --level): it is ignored",
         ]
     );
 }
@@ -1925,18 +1925,24 @@ fn adaptive_options_nothing_reads_warn() {
     let png = tmp("geomorph-unread.png");
     let small = ["--width", "48", "--height", "32", "-o", p(&png)];
     let render = |extra: &[&str]| warnings_of(&[&["render"], &small[..], extra].concat());
-    assert_eq!(
-        render(&["--driver", "static", "--geomorph", "on"]),
-        ["warning: --geomorph applies only to the pattern and tess drivers, not to the static driver: it is ignored"]
-    );
-    assert_eq!(
-        render(&["--driver", "tess", "--max-level", "12", "--geomorph", "on"]),
-        ["warning: --geomorph on: the tess driver glides only under a --max-level that is a power of two; at --max-level 12 it draws integer levels without gliding"]
-    );
-    // Where it glides, or is off, no word.
-    assert!(render(&["--driver", "tess", "--max-level", "16", "--geomorph", "on"]).is_empty());
-    assert!(render(&["--driver", "tess", "--max-level", "12", "--geomorph", "off"]).is_empty());
-    assert!(render(&["--driver", "pattern", "--geomorph", "off"]).is_empty());
+    // info reports levels as render draws them: the same words.
+    let info = |extra: &[&str]| warnings_of(&[&["info", "--pixel-error", "1"][..], extra].concat());
+    type Warned<'a> = &'a dyn Fn(&[&str]) -> Vec<String>;
+    let commands: [Warned; 2] = [&render, &info];
+    for run in commands {
+        assert_eq!(
+            run(&["--driver", "static", "--geomorph", "on"]),
+            ["warning: --geomorph applies only to the pattern and tess drivers, not to the static driver: it is ignored"]
+        );
+        assert_eq!(
+            run(&["--driver", "tess", "--max-level", "12", "--geomorph", "on"]),
+            ["warning: --geomorph on: the tess driver glides only under a --max-level that is a power of two; at --max-level 12 it draws integer levels without gliding"]
+        );
+        // Where it glides, or is off, no word.
+        assert!(run(&["--driver", "tess", "--max-level", "16", "--geomorph", "on"]).is_empty());
+        assert!(run(&["--driver", "tess", "--max-level", "12", "--geomorph", "off"]).is_empty());
+        assert!(run(&["--driver", "pattern", "--geomorph", "off"]).is_empty());
+    }
     let bench = [
         "bench",
         "--levels",
@@ -2714,6 +2720,91 @@ fn info_reports_adaptive_levels_for_a_camera() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("--fov applies only with --pixel-error"));
 }
 
+/// An adaptive variant the device cannot draw (tess past its level limit, beside static,
+/// which can) reports no triangles, and its uniform rows at the levels asked for are still
+/// timed; one capped by --max-level says its bound's uniform level falls short too.
+#[test]
+fn bench_times_uniform_rows_of_a_variant_not_drawn_adaptively() {
+    let prefix = tmp("bench-adaptive-not-drawn");
+    let p = prefix.display().to_string();
+    #[rustfmt::skip]
+    ok(&[
+        "bench", "--drivers", "tess,static", "--pixel-error", "2", "--max-level", "128",
+        "--levels", "2", "--frames", "1", "--width", "32", "--height", "32", "--out", &p,
+    ]);
+    let csv = std::fs::read_to_string(prefix.with_extension("csv")).unwrap();
+    let mut lines = csv.lines();
+    let keys = common::csv_fields(lines.next().unwrap());
+    let rows: Vec<Vec<String>> = lines.map(common::csv_fields).collect();
+    let get = |r: &Vec<String>, key: &str| r[keys.iter().position(|k| k == key).unwrap()].clone();
+    let tess: Vec<_> = rows
+        .iter()
+        .filter(|r| get(r, "variant") == "tess")
+        .collect();
+    assert_eq!(tess.len(), 2, "{csv}");
+    assert_eq!(get(tess[0], "adaptive"), "true");
+    assert_eq!(get(tess[0], "refined_triangles"), "", "{csv}");
+    assert!(get(tess[0], "note").contains("not drawn"), "{csv}");
+    assert_eq!(
+        (get(tess[1], "adaptive"), get(tess[1], "level")),
+        ("false".into(), "2".into())
+    );
+    assert!(
+        get(tess[1], "gpu_ms_median").parse::<f64>().is_ok(),
+        "{csv}"
+    );
+    // Where --max-level keeps the bound from being met, the adaptive row says that the bound's
+    // uniform level (the largest) does not meet it either.
+    #[rustfmt::skip]
+    let capped = ok(&[
+        "bench", "--drivers", "static", "--surfaces", "pn", "--pixel-error", "1", "--max-level",
+        "1", "--levels", "2", "--frames", "1", "--width", "32", "--height", "32",
+    ]);
+    assert!(
+        capped.contains("the bound is not met on every element up to --max-level 1"),
+        "{capped}"
+    );
+}
+
+/// Where the pixel error is not met, elements are counted by their own bounds: those drawn at
+/// the largest level only because a neighbour holds the eye meet it there (neither `near` nor
+/// `capped`), and those no uniform level meets are the same whichever driver's transitions
+/// raise the others.
+#[test]
+fn info_counts_unmet_elements_by_their_own_bounds() {
+    let ico = model_path("icosahedron.obj");
+    #[rustfmt::skip]
+    let out = ok(&[
+        "info", p(&ico), "--eye", "-0.525731112,0.850650808,0", "--look-at", "0,0,0",
+        "--pixel-error", "1e6", "--max-level", "1024",
+    ]);
+    assert!(
+        out.contains("levels (level:coarse triangles): 1:10 1024:10"),
+        "{out}"
+    );
+    assert!(out.contains("near: 5 element(s) hold the eye"), "{out}");
+    assert!(!out.contains("capped"), "{out}");
+    let beyond = |driver: &str| -> (u64, u64) {
+        #[rustfmt::skip]
+        let out = ok(&[
+            "info", "--pixel-error", "1", "--eye", "0.3,0.2,0.6", "--look-at", "0,0.1,0.3",
+            "--max-level", "16", "--driver", driver,
+        ]);
+        let line = out
+            .lines()
+            .find_map(|l| l.trim().strip_prefix("capped: "))
+            .unwrap();
+        let capped = line.split_whitespace().next().unwrap().parse().unwrap();
+        let of = line.split_once("nor on ").map_or(capped, |(_, r)| {
+            r.split_whitespace().next().unwrap().parse().unwrap()
+        });
+        (capped, of)
+    };
+    let (pattern, tess, fixed) = (beyond("pattern"), beyond("tess"), beyond("static"));
+    assert!(tess.0 > tess.1, "{tess:?}");
+    assert_eq!((pattern.1, fixed.1), (tess.1, tess.1));
+}
+
 /// `bench --pixel-error` with `--levels`: per driver an adaptive row (each element at its own
 /// levels; its triangles the histogram's at the inner levels, culled elements excluded), then uniform rows at the
 /// levels asked for, at the smallest level meeting the same bound (`info`'s uniform level for the
@@ -2928,7 +3019,7 @@ fn adaptive_options_refuse_bad_values() {
     assert!(!stderr.contains("--fov applies"), "{stderr}");
     assert!(!stderr.contains("--eye applies"), "{stderr}");
     assert!(
-        stderr.contains("--cull applies only with --pixel-error"),
+        stderr.contains("--cull applies only when drawing adaptively (with --pixel-error, or by default without --level)"),
         "{stderr}"
     );
     assert!(run(args(&framed, &[])).status.success());
@@ -3216,6 +3307,16 @@ fn pixel_error_draws_adaptively_with_the_pattern_driver() {
             "--geomorph on or --max-level 128",
         ],
     );
+    // render refuses the same in one sentence, with no warning of slow frames before it.
+    let high_png = tmp("adaptive-pattern-integer-256.png");
+    #[rustfmt::skip]
+    let render = [
+        "render", spot, "-o", p(&high_png), "--pixel-error", "0.02", "--geomorph", "off",
+        "--max-level", "256",
+    ];
+    expect_error(&render, &["at most up to level 128, not 256"]);
+    let stderr = String::from_utf8_lossy(&meshrefine(&render).stderr).into_owned();
+    assert!(!stderr.contains("warning"), "{stderr}");
     // Wound like the coarse triangles on a sphere, closed, at both roundings.
     let sphere = model_path("uvsphere12.obj");
     for geomorph in ["on", "off"] {

@@ -48,7 +48,7 @@ fn render_and_headless_view_are_adaptive_unless_level_is_given() {
     assert!(!stdout.contains("adaptive at"), "{stdout}");
     assert!(!stderr.contains("--fov applies"), "{stderr}");
     assert!(
-        stderr.contains("--max-level applies only with --pixel-error"),
+        stderr.contains("--max-level applies only when drawing adaptively (with --pixel-error, or by default without --level)"),
         "{stderr}"
     );
     // The camera options apply by default, so they are checked then too.

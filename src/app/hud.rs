@@ -211,7 +211,7 @@ impl AdaptiveSummary {
             format!("adaptive draws {:.1}x more", 1.0 / r)
         };
         // Where no level meets the bound everywhere, the uniform level is the cap.
-        if self.unmet.any() {
+        if self.unmet.uniform_unmet() {
             format!("{than}; the uniform level does not meet the bound either")
         } else {
             than

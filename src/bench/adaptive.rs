@@ -107,9 +107,6 @@ fn variant(
             first.drawn = false;
         }
     }
-    if !first.drawn {
-        return Ok(vec![first.row]);
-    }
     let cameras = if a.cameras.is_empty() {
         vec![m.camera(&cfg, opts)?]
     } else {
@@ -117,10 +114,25 @@ fn variant(
     };
     let cameras = &cameras[..];
     // The smallest uniform level meeting the bound on every camera (any integer: a uniform
-    // frame has no transitions to round for).
-    let mut bound = 1;
-    for &c in cameras {
-        bound = bound.max(m.scene.set_levels(&cfg, &view(c))?.uniform_level);
+    // frame has no transitions to round for); none where the adaptive frame cannot be drawn
+    // (its levels are not chosen): then only the levels asked for are timed.
+    let mut bound = first.drawn.then_some(1);
+    // Whether the largest level keeps some element's own bounds from being met: the bound's
+    // uniform level is then the largest, which does not meet it either.
+    let mut capped = false;
+    if let Some(b) = &mut bound {
+        for &c in cameras {
+            let chosen = m.scene.set_levels(&cfg, &view(c))?;
+            *b = (*b).max(chosen.uniform_level);
+            capped |= chosen.report().unmet.uniform_unmet();
+        }
+    }
+    if capped {
+        first.row.note = format!(
+            "the bound is not met on every element up to --max-level {}: uniform {} (bound) does not meet it either",
+            cfg.level,
+            bound.unwrap_or(cfg.level)
+        );
     }
     let mut list = vec![first];
     for (level, from) in uniform_levels(opts, a, bound) {
@@ -160,7 +172,7 @@ fn variant(
 fn uniform_levels(
     opts: &BenchOptions,
     a: &BenchAdaptive,
-    bound: u32,
+    bound: Option<u32>,
 ) -> Vec<(u32, Vec<&'static str>)> {
     let mut uniform: Vec<(u32, Vec<&str>)> = Vec::new();
     let mut add = |level: u32, from: &'static str| match uniform.iter_mut().find(|u| u.0 == level) {
@@ -170,7 +182,7 @@ fn uniform_levels(
     for &l in &opts.levels {
         add(l, "levels");
     }
-    if a.bound_levels {
+    if let Some(bound) = bound.filter(|_| a.bound_levels) {
         add(bound, "bound");
         add(bound.next_power_of_two(), "pow2");
     }

@@ -86,7 +86,7 @@ pub static COLUMNS: &[Column] = &[
         Some("refined tris"),
         Some("refined tris"),
         Right,
-        |_, r| Cell::Count(Some(r.refined_triangles)),
+        |_, r| Cell::Count(r.shown_triangles()),
     ),
     col(
         "gpu_ms_median",

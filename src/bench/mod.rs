@@ -197,6 +197,13 @@ pub struct Row {
 }
 
 impl Row {
+    /// The refined triangles the row reports: none for an adaptive row that was not drawn
+    /// (no levels were chosen); a uniform row's are its level's, drawn or not.
+    pub fn shown_triangles(&self) -> Option<u64> {
+        let adaptive = self.adaptive.as_ref().is_some_and(|a| a.adaptive);
+        (!adaptive || self.gpu_ms.is_some()).then_some(self.refined_triangles)
+    }
+
     /// Median GPU time per refined triangle, in nanoseconds: the per-triangle cost (none when
     /// no triangle was drawn: every element culled).
     pub fn ns_per_triangle(&self) -> Option<f64> {

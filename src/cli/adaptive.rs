@@ -169,6 +169,11 @@ pub struct Adaptive<'a> {
 }
 
 impl AdaptiveOpts {
+    /// `--geomorph` and `--max-level` as given.
+    pub fn geomorph_asked(&self) -> (Option<bool>, Option<u32>) {
+        (self.geomorph, self.max_level)
+    }
+
     /// Adaptive drawing when `--pixel-error` was given, culling as `--cull` says or else
     /// `cull_default`.
     pub fn enabled(&self, cull_default: bool) -> Option<Adaptive<'_>> {
@@ -229,12 +234,13 @@ pub fn check_max_level(device: &DeviceInfo, l: u32, driver: Driver) -> Result<()
 }
 
 /// `--max-level l` for the pattern and static drivers must be a power of two (the pattern
-/// driver's geomorphing patterns are 1-to-4 splits; the static driver takes its levels).
+/// driver's adaptive patterns, its hierarchy of 1-to-4 splits and its integer patterns beside
+/// it, are built up to one; the static driver takes its levels), with or without geomorphing.
 pub fn check_max_level_rounding(l: u32, driver: Driver) -> Result<()> {
     if !driver.kind().integer_levels() && !l.is_power_of_two() {
         let lower = 1u32 << l.ilog2();
         bail!(
-            "--max-level {l} is not a power of two, as the {} driver's largest level must be (the pattern driver's geomorphing patterns are 1-to-4 splits, and static takes its levels); use {lower} or {}",
+            "--max-level {l} is not a power of two, as the {} driver's largest level must be (the pattern driver's adaptive patterns are built up to one, with or without --geomorph, and static takes its levels); use {lower} or {}",
             driver.name(),
             lower * 2
         );

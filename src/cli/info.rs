@@ -343,8 +343,15 @@ fn print_levels(a: &InfoArgs, mut input: Input) -> Result<()> {
         );
     }
     if u.capped > 0 {
+        // Some may need it only for their transitions to coarser neighbours, which a
+        // uniform frame does not draw.
+        let uniform = match u.beyond_uniform {
+            b if b == u.capped => ", nor by any uniform level up to it".to_string(),
+            0 => format!(" as drawn (for their transitions to coarser neighbours: uniform level {} meets it on them)", a.max_level),
+            b => format!(" as drawn, nor on {b} of them by any uniform level up to it (the others need it for their transitions to coarser neighbours)"),
+        };
         out!(
-            "  capped: {} element(s) need a level above --max-level {}: the bound is not met on them, nor by any uniform level up to it",
+            "  capped: {} element(s) need a level above --max-level {}: the bound is not met on them{uniform}",
             u.capped,
             a.max_level
         );
@@ -357,7 +364,7 @@ fn print_levels(a: &InfoArgs, mut input: Input) -> Result<()> {
     let (adaptive, uniform) = report.triangles_on(|l| a.driver.refined_per_element(l));
     // Where the bound is not met on some elements (above --max-level, or met by no level),
     // the uniform level is the cap, which does not meet it either.
-    let capped = if u.any() {
+    let capped = if u.uniform_unmet() {
         "; the largest level, which does not meet the bound either"
     } else {
         ""

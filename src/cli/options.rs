@@ -172,11 +172,16 @@ const INFO_ADAPTIVE: &[&str] = &[
 
 /// One warning line for each of `ids` given without `--pixel-error` (`adaptive` false).
 fn adaptive_only(given: &Given, adaptive: bool, ids: &[&str]) -> Vec<String> {
+    unread_unless(given, adaptive, ids, "with --pixel-error")
+}
+
+/// One warning line for each of `ids` given where `read` is false: "applies only `when`".
+fn unread_unless(given: &Given, read: bool, ids: &[&str], when: &str) -> Vec<String> {
     (ids.iter())
-        .filter(|id| given.has(id) && !adaptive)
+        .filter(|id| given.has(id) && !read)
         .map(|id| {
             format!(
-                "--{} applies only with --pixel-error: it is ignored",
+                "--{} applies only {when}: it is ignored",
                 id.replace('_', "-")
             )
         })
@@ -188,10 +193,9 @@ fn adaptive_only(given: &Given, adaptive: bool, ids: &[&str]) -> Vec<String> {
 fn geomorph_unread(
     given: &Given,
     adaptive: bool,
-    opts: &AdaptiveOpts,
+    (geomorph, max_level): (Option<bool>, Option<u32>),
     drivers: &[Driver],
 ) -> Vec<String> {
-    let (geomorph, max_level) = (opts.geomorph, opts.max_level);
     if !adaptive || !given.has("geomorph") {
         return Vec::new();
     }
@@ -244,8 +248,10 @@ pub fn drawn_image(
     let d = technique.driver;
     let mut out = inapplicable(given, &single(&technique.surface, d));
     let on = adaptive.pixel_error.is_some() || !uniform;
-    out.extend(adaptive_only(given, on, ADAPTIVE));
-    out.extend(geomorph_unread(given, on, adaptive, &[d]));
+    // Adaptive by default: only a uniform level makes them unread.
+    let when = "when drawing adaptively (with --pixel-error, or by default without --level)";
+    out.extend(unread_unless(given, on, ADAPTIVE, when));
+    out.extend(geomorph_unread(given, on, adaptive.geomorph_asked(), &[d]));
     out
 }
 
@@ -265,7 +271,12 @@ pub fn warnings(cli: &Cli, given: &Given) -> Vec<String> {
             out.extend(adaptive_only(given, adaptive, ADAPTIVE));
             out.extend(adaptive_only(given, adaptive, CAMERA));
             out.extend(adaptive_only(given, adaptive, &["width", "height"]));
-            out.extend(geomorph_unread(given, adaptive, &a.adaptive, &[d]));
+            out.extend(geomorph_unread(
+                given,
+                adaptive,
+                a.adaptive.geomorph_asked(),
+                &[d],
+            ));
             out
         }
         Command::Bench(a) => {
@@ -285,7 +296,12 @@ pub fn warnings(cli: &Cli, given: &Given) -> Vec<String> {
             } else {
                 a.drivers.clone()
             };
-            out.extend(geomorph_unread(given, adaptive, &a.adaptive, &drivers));
+            out.extend(geomorph_unread(
+                given,
+                adaptive,
+                a.adaptive.geomorph_asked(),
+                &drivers,
+            ));
             out
         }
         Command::Info(a) => {
@@ -297,6 +313,8 @@ pub fn warnings(cli: &Cli, given: &Given) -> Vec<String> {
             };
             let mut out = Vec::new();
             out.extend(adaptive_only(given, adaptive, INFO_ADAPTIVE));
+            let asked = (a.geomorph, Some(a.max_level));
+            out.extend(geomorph_unread(given, adaptive, asked, &[a.driver]));
             // Each is said once: without --pixel-error, that it applies only with it.
             let given = &Given(
                 (given.0.iter())

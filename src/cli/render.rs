@@ -155,11 +155,18 @@ pub fn render_png(
             culled_all = report.histogram.is_empty().then_some(report.culled);
             culled_some = report.culled > 0;
         }
-        if let Some(why) = (adaptive.filter(|a| a.by_default))
+        let refusal = (adaptive)
             .map(|_| cannot_adapt(&mut h, &mut scene, &viewed, Capture::None))
             .transpose()?
-            .flatten()
+            .flatten();
+        if let Some(why) = refusal
+            .as_ref()
+            .filter(|_| adaptive.is_some_and(|a| !a.by_default))
         {
+            // Asked for: refused in one sentence, before any warning that frames are slow.
+            bail!("{why}");
+        }
+        if let Some(why) = refusal {
             uniform_instead(uniform_level, &why);
             h.adaptive = false;
             line = None;

@@ -441,13 +441,22 @@ pub struct Unmet {
     pub unbounded: u64,
     /// Elements whose bound needs a level above the largest.
     pub capped: u64,
+    /// Of the `capped`, those whose own bounds need a level above the largest (the others
+    /// need it only for their transitions to coarser neighbours, which a uniform frame does
+    /// not draw).
+    pub beyond_uniform: u64,
 }
 
 impl Unmet {
-    /// Whether the pixel error is not met on some element (then no uniform level up to the
-    /// largest meets it either).
+    /// Whether the pixel error is not met on some element.
     pub fn any(&self) -> bool {
         self.near + self.unbounded + self.capped > 0
+    }
+
+    /// Whether no uniform level up to the largest meets the pixel error either (the uniform
+    /// level is then the largest).
+    pub fn uniform_unmet(&self) -> bool {
+        self.near + self.unbounded + self.beyond_uniform > 0
     }
 }
 
@@ -458,6 +467,15 @@ pub fn unmet(view: &LodView, records: &[LodRecord], levels: &[ElementLevels]) ->
     let free = LodView {
         max_level: UNCAPPED,
         ..*view
+    };
+    // Whether an element's own bounds (its chord and its edges' curves, without transitions)
+    // need a level above the largest.
+    let own_beyond = |r: &LodRecord| {
+        let own = level(&free, [r.chord[0], r.chord[1]], r.sphere);
+        let need = (r.edges.iter())
+            .map(|e| curve_level(&free, e))
+            .fold(own, f32::max);
+        drawn_level(need, false, UNCAPPED) > max
     };
     let mut u = Unmet::default();
     for (r, l) in records.iter().zip(levels) {
@@ -476,11 +494,17 @@ pub fn unmet(view: &LodView, records: &[LodRecord], levels: &[ElementLevels]) ->
                     u.unbounded += 1;
                 } else if holds_eye(&r.sphere) || r.edges.iter().any(|e| holds_eye(&e.sphere)) {
                     u.near += 1;
-                } else {
+                } else if own_beyond(r) {
+                    // Else raised by a neighbour that holds the eye (their shared edge takes
+                    // its transitions' need): met at the largest level.
                     u.capped += 1;
+                    u.beyond_uniform += 1;
                 }
             }
-            n if n > max => u.capped += 1,
+            n if n > max => {
+                u.capped += 1;
+                u.beyond_uniform += own_beyond(r) as u64;
+            }
             _ => {}
         }
     }

@@ -163,6 +163,7 @@ mod notes_tests {
                 near,
                 unbounded,
                 capped,
+                beyond_uniform: capped,
             };
             let notes = unmet.notes(1.0, 8, false).join("\n");
             for w in wanted {
