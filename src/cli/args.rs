@@ -476,7 +476,7 @@ pub struct AdaptiveOpts {
     /// Draw adaptively: each element at the level that keeps the surface within this many
     /// pixels of the drawn mesh, seen by the camera below (a distance d at point p counts
     /// d * K / |p - eye| pixels, K = height / (2 tan(fov / 2)): off the view axis the screen
-    /// can show up to 1/cos² of the angle more; every driver; not with --level; render and
+    /// can show up to 1/cos² of the angle more; not with --level; render and
     /// view: 1 by default unless --level, or for view --lod, is given).
     #[arg(long, value_parser = typed_f32, allow_hyphen_values = true)]
     pub pixel_error: Option<TypedF32>,

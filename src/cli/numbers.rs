@@ -66,6 +66,35 @@ pub fn parse_vec3(s: &str) -> Result<[f32; 3], String> {
     let numbers: Vec<f32> = parts.iter().filter_map(|p| p.parse().ok()).collect();
     match numbers[..] {
         [x, y, z] if parts.len() == 3 && numbers.iter().all(|v| v.is_finite()) => Ok([x, y, z]),
+        // Finite as typed, not in single precision: say so, as a single number's check does.
+        _ if parts.len() == 3
+            && (parts.iter()).all(|p| p.parse::<f64>().is_ok_and(f64::is_finite)) =>
+        {
+            Err(format!(
+                "'{s}' is not three finite numbers X,Y,Z in single precision (one is beyond f32's largest, about 3.4e38)"
+            ))
+        }
         _ => Err(format!("'{s}' is not three finite numbers X,Y,Z")),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::parse_vec3;
+
+    /// Three finite numbers, else one sentence naming the text; a number finite as typed but
+    /// beyond single precision says so.
+    #[test]
+    fn points_are_three_finite_numbers() {
+        assert_eq!(parse_vec3(" 1, -2.5,3e2"), Ok([1.0, -2.5, 300.0]));
+        for bad in ["1,2", "1,2,3,4", "nan,0,0", "1,inf,0", "a,b,c", ""] {
+            let e = parse_vec3(bad).unwrap_err();
+            assert_eq!(e, format!("'{bad}' is not three finite numbers X,Y,Z"));
+        }
+        let e = parse_vec3("1e39,0,0").unwrap_err();
+        assert!(
+            e.contains("in single precision (one is beyond f32's largest"),
+            "{e}"
+        );
     }
 }
