@@ -475,9 +475,9 @@ fn headless_view_warns_of_what_its_image_ignores() {
         warnings(&out),
         [
             "warning: --alpha applies only to --surface phong, not to --surface pn: it is ignored",
-            "warning: --max-level applies only when drawing adaptively (with --pixel-error, or by default without --level): it is ignored",
-            "warning: --cull applies only when drawing adaptively (with --pixel-error, or by default without --level): it is ignored",
-            "warning: --geomorph applies only when drawing adaptively (with --pixel-error, or by default without --level): it is ignored",
+            "warning: --max-level applies only when drawing adaptively (with --pixel-error, or by default without --level or --lod): it is ignored",
+            "warning: --cull applies only when drawing adaptively (with --pixel-error, or by default without --level or --lod): it is ignored",
+            "warning: --geomorph applies only when drawing adaptively (with --pixel-error, or by default without --level or --lod): it is ignored",
         ]
     );
 }
@@ -1208,8 +1208,8 @@ fn surface_parameters_out_of_range_are_errors() {
         // Negative and past u32 too: the range's sentence, not the parser's.
         (&["--octaves", "-1"], "--octaves -1 is not within [1, 8]"),
         (
-            &["--octaves", "99999999999"],
-            "--octaves 99999999999 is not within [1, 8]",
+            &["--octaves", "99999999999999999999"],
+            "--octaves 99999999999999999999 is not within [1, 8]",
         ),
         (
             &["--amplitude", "inf"],
@@ -2646,7 +2646,8 @@ fn info_reports_adaptive_levels_for_a_camera() {
         .find_map(|l| l.trim().strip_prefix("capped: "))
         .and_then(|l| l.split_whitespace().next()?.parse().ok())
         .expect("a capped line");
-    // Exactly the elements the pattern driver draws above 8 at --max-level 64.
+    // The elements the pattern driver draws above 8 at --max-level 64, but for a few drawn
+    // there only for a capped neighbour's need on their shared edge (met at 8).
     let above: u64 = (pattern.lines().find(|l| l.contains("levels (")).unwrap())
         .split_whitespace()
         .skip(3)
@@ -2654,7 +2655,7 @@ fn info_reports_adaptive_levels_for_a_camera() {
         .filter(|(l, _)| l.parse::<u32>().unwrap() > 8)
         .map(|(_, n)| n.parse::<u64>().unwrap())
         .sum();
-    assert_eq!(capped, above, "{low}");
+    assert!(capped <= above && above - capped <= above / 5, "{low}");
     // The uniform level compared with is the cap, which does not meet the bound either.
     assert!(
         low.contains("at uniform level 8 (")
@@ -2795,14 +2796,25 @@ fn info_counts_unmet_elements_by_their_own_bounds() {
             .find_map(|l| l.trim().strip_prefix("capped: "))
             .unwrap();
         let capped = line.split_whitespace().next().unwrap().parse().unwrap();
-        let of = line.split_once("nor on ").map_or(capped, |(_, r)| {
+        // Of them, those no uniform level meets: all, some ("nor on B of them") or none.
+        let of = if let Some((_, r)) = line.split_once("nor on ") {
             r.split_whitespace().next().unwrap().parse().unwrap()
-        });
+        } else if line.contains("nor by any uniform level up to it") {
+            capped
+        } else {
+            assert!(line.contains("uniform level 16 meets it on them"), "{line}");
+            0
+        };
         (capped, of)
     };
     let (pattern, tess, fixed) = (beyond("pattern"), beyond("tess"), beyond("static"));
-    assert!(tess.0 > tess.1, "{tess:?}");
-    assert_eq!((pattern.1, fixed.1), (tess.1, tess.1));
+    assert!(
+        pattern.1 > 0 && (pattern.1, fixed.1) == (tess.1, tess.1),
+        "{pattern:?} {tess:?} {fixed:?}"
+    );
+    // At integer levels a transition's corner triangles span two edges' samples: some elements
+    // need more than the largest level for their transitions alone.
+    assert!(fixed.0 > fixed.1, "{fixed:?}");
 }
 
 /// `bench --pixel-error` with `--levels`: per driver an adaptive row (each element at its own
@@ -3299,7 +3311,10 @@ fn pixel_error_draws_adaptively_with_the_pattern_driver() {
     let high_text = std::fs::read_to_string(&high_obj).unwrap();
     assert!(high_text.contains("max level 256"), "{high_text:.400}");
     let after_first = |t: &str| t.split_once('\n').unwrap().1.to_string();
-    assert!(after_first(&high_text) == after_first(&int_text));
+    assert!(
+        after_first(&high_text) == after_first(&int_text),
+        "--max-level 256 wrote other vertices than the default largest level"
+    );
     expect_error(
         &high("0.02"),
         &[
@@ -4175,10 +4190,11 @@ fn render_and_export_say_where_the_pixel_error_is_not_met() {
         capped_err.contains(&format!("note: the 1 px bound is not met on {capped} elements: they need a level above the largest, 8 (--max-level)")),
         "{capped_err}"
     );
-    // Every element needing more than 8 is drawn above 8 with the larger cap.
-    assert_eq!(
-        capped + near(&capped_err),
-        above(&free_out, 8),
+    // Every element needing more than 8 is drawn above 8 with the larger cap; a few more are
+    // drawn there only for a capped neighbour's need on their shared edge, met at 8.
+    let (unmet, drawn_above) = (capped + near(&capped_err), above(&free_out, 8));
+    assert!(
+        unmet <= drawn_above && drawn_above - unmet <= drawn_above / 5,
         "{capped_err}\n{free_out}"
     );
     assert_eq!(

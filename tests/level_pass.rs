@@ -228,7 +228,9 @@ fn gpu_levels_match_the_cpu() {
                             assert!(
                                 le.iter().zip(&ge).all(|(l, g)| l <= g)
                                     && ge.iter().zip(&se).all(|(g, s)| g <= s)
-                                    && (li..=si).contains(&gi),
+                                    // The raise for transitions is not monotone in the
+                                    // pixel error: the inner level between the two, either way.
+                                    && (li.min(si)..=li.max(si)).contains(&gi),
                                 "{what}: element {i}: GPU draws {:?} between {:?} and {:?}",
                                 (ge, gi),
                                 (le, li),

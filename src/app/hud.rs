@@ -335,6 +335,15 @@ mod tests {
             "adaptive draws 4.2x fewer; the uniform level does not meet the bound either"
         );
         a.unmet.near = 0;
+        // Capped for transitions alone: the uniform level (no transitions) meets the bound.
+        a.unmet.capped = 3;
+        assert_eq!(a.ratio(), "adaptive draws 4.2x fewer");
+        a.unmet.beyond_uniform = 1;
+        assert_eq!(
+            a.ratio(),
+            "adaptive draws 4.2x fewer; the uniform level does not meet the bound either"
+        );
+        a.unmet = crate::lod::frame::Unmet::default();
         a.uniform_triangles = 520;
         assert_eq!(a.ratio(), "adaptive draws 1.9x more");
         a.uniform_triangles = 990;

@@ -128,10 +128,14 @@ fn variant(
         }
     }
     if capped {
+        // The bound's row is in the table unless --no-bound-levels.
+        let (level, row) = (
+            bound.unwrap_or(cfg.level),
+            if a.bound_levels { " (bound)" } else { "" },
+        );
         first.row.note = format!(
-            "the bound is not met on every element up to --max-level {}: uniform {} (bound) does not meet it either",
-            cfg.level,
-            bound.unwrap_or(cfg.level)
+            "the bound is not met on every element up to --max-level {}: uniform {level}{row} does not meet it either",
+            cfg.level
         );
     }
     let mut list = vec![first];
@@ -329,10 +333,16 @@ fn into_rows(list: Vec<Timed>, cameras: usize, frames: usize) -> Vec<Row> {
         row.wall_ms = over_cameras(&t.wall);
         let most = t.gpu.iter().map(Vec::len).max().unwrap_or(0);
         if most > frames {
-            row.note = match cameras {
+            let timed = match cameras {
                 1 => format!("{most} timed frames"),
                 _ => format!("up to {most} timed frames per camera"),
             };
+            // After what the row already says (the adaptive row's capped bound).
+            row.note = [std::mem::take(&mut row.note), timed]
+                .into_iter()
+                .filter(|n| !n.is_empty())
+                .collect::<Vec<_>>()
+                .join("; ");
         }
         let cells = row
             .adaptive

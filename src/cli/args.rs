@@ -61,8 +61,8 @@ pub struct ParamOpts {
     #[arg(long, value_parser = typed_f32, allow_hyphen_values = true)]
     pub frequency: Option<TypedF32>,
     /// Octaves of the noise displacement (1 to 8).
-    #[arg(long, allow_hyphen_values = true, default_value_t = 1)]
-    pub octaves: i64,
+    #[arg(long, allow_hyphen_values = true, default_value = "1")]
+    pub octaves: String,
     /// PN and Phong geometry at split normals (a position with several vn): `closed` is
     /// crack-free, `open` is the papers' behaviour (cracks).
     #[arg(long, value_parser = choices::seams(), default_value = "closed")]
@@ -99,9 +99,8 @@ impl ParamOpts {
             f.check("frequency", Some((0.0, f32::MAX, "a finite number >= 0")))?;
         }
         self.bias.check("bias", None)?;
-        // Read wide, so that a negative or huge count gets the range's sentence too.
-        let octaves = u32::try_from(self.octaves)
-            .ok()
+        // Read as typed, so that a negative or huge count gets the range's sentence too.
+        let octaves = (self.octaves.trim().parse::<u32>().ok())
             .filter(|o| (1..=SurfaceParams::MAX_OCTAVES).contains(o))
             .ok_or_else(|| {
                 format!(

@@ -236,21 +236,22 @@ fn single(s: &SurfaceOpts, driver: Driver) -> Chosen<'_> {
 }
 
 /// The warnings (without "warning: ") for the options one image drawn with `technique` and
-/// `adaptive` ignores, drawn uniformly at `--level` where `uniform` says so (else adaptively,
-/// at `--pixel-error` or by default): `render`'s, and the headless `view`'s, which has no panel
+/// `adaptive` ignores, drawn uniformly at `--level` where `uniform` says so (the options that
+/// ask for it named in `uniform_by`; else adaptively, at `--pixel-error` or by default): `render`'s, and the headless `view`'s, which has no panel
 /// to switch to what they apply to.
 pub fn drawn_image(
     given: &Given,
     technique: &Technique,
     adaptive: &AdaptiveOpts,
-    uniform: bool,
+    (uniform, uniform_by): (bool, &str),
 ) -> Vec<String> {
     let d = technique.driver;
     let mut out = inapplicable(given, &single(&technique.surface, d));
     let on = adaptive.pixel_error.is_some() || !uniform;
-    // Adaptive by default: only a uniform level makes them unread.
-    let when = "when drawing adaptively (with --pixel-error, or by default without --level)";
-    out.extend(unread_unless(given, on, ADAPTIVE, when));
+    // Adaptive by default: only the options that ask for uniform levels make them unread.
+    let when =
+        format!("when drawing adaptively (with --pixel-error, or by default without {uniform_by})");
+    out.extend(unread_unless(given, on, ADAPTIVE, &when));
     out.extend(geomorph_unread(given, on, adaptive.geomorph_asked(), &[d]));
     out
 }
@@ -263,7 +264,10 @@ pub fn warnings(cli: &Cli, given: &Given) -> Vec<String> {
         // The window's panel can switch to whatever an option applies to.
         Command::View(_) | Command::Devices => Vec::new(),
         // Adaptive by default: only --level draws uniformly.
-        Command::Render(a) => drawn_image(given, &a.technique, &a.adaptive, given.has("level")),
+        Command::Render(a) => {
+            let uniform = (given.has("level"), "--level");
+            drawn_image(given, &a.technique, &a.adaptive, uniform)
+        }
         Command::Export(a) => {
             let d = a.driver.driver();
             let mut out = check(&single(&a.surface, d));

@@ -131,7 +131,8 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc, given: &Given) -> Result<()> {
         ));
     }
     // No panel switches to what an option applies to: warned about as render warns.
-    for w in super::options::drawn_image(given, &a.technique, &a.adaptive, uniform) {
+    let asked = (uniform, "--level or --lod");
+    for w in super::options::drawn_image(given, &a.technique, &a.adaptive, asked) {
         crate::note(format_args!("warning: {w}"));
     }
     let image = super::render::ImageOptions {

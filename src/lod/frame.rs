@@ -460,55 +460,63 @@ impl Unmet {
     }
 }
 
-/// Where the levels `levels`, chosen by `view` for `records`, do not meet the pixel error: each
-/// visible element drawn at `view.max_level` is chosen again without that cap.
+/// Where the levels `levels`, chosen by `view` for `records`, do not meet the pixel error
+/// ([`element_unmet`] summed over the elements).
 pub fn unmet(view: &LodView, records: &[LodRecord], levels: &[ElementLevels]) -> Unmet {
+    let mut u = Unmet::default();
+    for (r, l) in records.iter().zip(levels) {
+        if let Some(e) = element_unmet(view, r, l) {
+            u.near += e.near;
+            u.unbounded += e.unbounded;
+            u.capped += e.capped;
+            u.beyond_uniform += e.beyond_uniform;
+        }
+    }
+    u
+}
+
+/// Why a visible element drawn at the largest level (its levels `l` as `view` chose them) does
+/// not meet the pixel error, as one count of [`Unmet`]; `None` where it does (or is culled, or
+/// drawn below the largest level). Chosen again without the cap: no finite bound, or a sphere
+/// holding the eye, else its own bounds (chord and edge curves) or its transitions to coarser
+/// edges need a level above the largest; else it is met there, raised to it only by a
+/// neighbour's need on a shared edge (then at the largest level too, with no transition on it).
+pub fn element_unmet(view: &LodView, r: &LodRecord, l: &ElementLevels) -> Option<Unmet> {
     let (dyadic, max) = (view.dyadic(), view.max_level);
+    if l.culled() || drawn_level(l.inner, dyadic, max) < max {
+        return None;
+    }
     let free = LodView {
         max_level: UNCAPPED,
         ..*view
     };
-    // Whether an element's own bounds (its chord and its edges' curves, without transitions)
-    // need a level above the largest.
-    let own_beyond = |r: &LodRecord| {
-        let own = level(&free, [r.chord[0], r.chord[1]], r.sphere);
-        let need = (r.edges.iter())
-            .map(|e| curve_level(&free, e))
-            .fold(own, f32::max);
-        drawn_level(need, false, UNCAPPED) > max
+    let n = drawn_level(element_levels(&free, r).inner, dyadic, UNCAPPED);
+    let huge = |c: &[f32; 4]| c[0] >= HUGE || c[1] >= HUGE;
+    // The metric's tolerance is zero where a sphere holds the eye (`View::tolerance`).
+    let holds_eye = |s: &[f32; 4]| {
+        let s = Vec4::from(*s);
+        (s.truncate() - view.eye()).length() <= s.w
     };
+    // Its own bounds' need, without transitions (what a uniform frame draws).
+    let own = level(&free, [r.chord[0], r.chord[1]], r.sphere);
+    let own = (r.edges.iter())
+        .map(|e| curve_level(&free, e))
+        .fold(own, f32::max);
     let mut u = Unmet::default();
-    for (r, l) in records.iter().zip(levels) {
-        if l.culled() || drawn_level(l.inner, dyadic, max) < max {
-            continue;
-        }
-        match drawn_level(element_levels(&free, r).inner, dyadic, UNCAPPED) {
-            n if n >= UNCAPPED => {
-                let huge = |c: &[f32; 4]| c[0] >= HUGE || c[1] >= HUGE;
-                // The metric's tolerance is zero where a sphere holds the eye (`View::tolerance`).
-                let holds_eye = |s: &[f32; 4]| {
-                    let s = Vec4::from(*s);
-                    (s.truncate() - view.eye()).length() <= s.w
-                };
-                if huge(&r.chord) || r.edges.iter().any(|e| huge(&e.curve)) {
-                    u.unbounded += 1;
-                } else if holds_eye(&r.sphere) || r.edges.iter().any(|e| holds_eye(&e.sphere)) {
-                    u.near += 1;
-                } else if own_beyond(r) {
-                    // Else raised by a neighbour that holds the eye (their shared edge takes
-                    // its transitions' need): met at the largest level.
-                    u.capped += 1;
-                    u.beyond_uniform += 1;
-                }
-            }
-            n if n > max => {
-                u.capped += 1;
-                u.beyond_uniform += own_beyond(r) as u64;
-            }
-            _ => {}
-        }
+    if n >= UNCAPPED && (huge(&r.chord) || r.edges.iter().any(|e| huge(&e.curve))) {
+        u.unbounded = 1;
+    } else if n >= UNCAPPED
+        && (holds_eye(&r.sphere) || r.edges.iter().any(|e| holds_eye(&e.sphere)))
+    {
+        u.near = 1;
+    } else if drawn_level(own, false, UNCAPPED) > max {
+        (u.capped, u.beyond_uniform) = (1, 1);
+    } else if transitions::transitions_beyond(view, r, &l.edges) {
+        u.capped = 1;
+    } else {
+        return None;
     }
-    u
+    Some(u)
 }
 
 /// What one frame's levels draw: for `info`, the benchmark and the window.

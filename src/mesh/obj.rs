@@ -90,6 +90,16 @@ fn read_obj_bytes(shown: &str, path: &Path) -> Result<Vec<u8>, MeshError> {
             Err(e) => return Err(io(e)),
         };
         let chunk = &chunk[..n];
+        // UTF-16 text (Notepad's "Unicode") holds NUL bytes: named as what it is.
+        if bytes.is_empty()
+            && (chunk.starts_with(&[0xff, 0xfe]) || chunk.starts_with(&[0xfe, 0xff]))
+        {
+            return Err(parse_error(
+                shown,
+                Some(1),
+                "is UTF-16 text (it starts with a UTF-16 byte-order mark): save it as UTF-8, which Wavefront OBJ files are".into(),
+            ));
+        }
         if let Some(at) = chunk.iter().position(|&b| b == 0) {
             let newlines = |b: &[u8]| b.iter().filter(|&&c| c == b'\n').count();
             let line = newlines(&bytes) + newlines(&chunk[..at]) + 1;
@@ -176,19 +186,24 @@ impl Head {
             let raw = &bytes[self.checked..self.checked + len];
             self.checked += len + 1;
             self.lines += 1;
-            let Ok(line) = std::str::from_utf8(raw) else {
-                return Err(not_obj(self.lines, "is not UTF-8 text".into()));
-            };
-            let line = if self.lines == 1 {
-                line.strip_prefix(BOM).unwrap_or(line)
+            let raw = if self.lines == 1 {
+                raw.strip_prefix(BOM.as_bytes()).unwrap_or(raw)
             } else {
-                line
+                raw
             };
-            let line = line.trim();
-            if line.is_empty() || line.starts_with('#') {
+            // Comments and statements are read whatever bytes follow their first word (a
+            // comment in Latin-1, `o café` in CP1252), as they are further down the file.
+            let line = raw.trim_ascii();
+            if line.is_empty() || line.starts_with(b"#") {
                 continue;
             }
-            let word = line.split_whitespace().next().unwrap_or("");
+            let word = line.split(u8::is_ascii_whitespace).next().unwrap_or(b"");
+            let Ok(word) = std::str::from_utf8(word) else {
+                return Err(not_obj(
+                    self.lines,
+                    "starts with bytes that are not UTF-8 text".into(),
+                ));
+            };
             if OBJ_KEYWORDS.contains(&word) {
                 return Ok(true);
             }

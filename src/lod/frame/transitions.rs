@@ -197,6 +197,22 @@ fn strip_level(v: &LodView, r: &LodRecord, e: usize, a: f32, tol: f32) -> f32 {
     sides.max(bases)
 }
 
+/// Whether element `r`, drawn at the largest level with its edges at `edges` (continuous, as
+/// `v` chose them), leaves the transition triangles along a coarser edge short of its
+/// tolerance: [`raise_for_transitions`] would go past the largest level.
+pub fn transitions_beyond(v: &LodView, r: &LodRecord, edges: &[f32; 3]) -> bool {
+    let (dyadic, max) = (v.dyadic(), v.max_level);
+    let tol = tolerance(v, r.sphere);
+    let free = LodView {
+        max_level: super::UNCAPPED,
+        ..*v
+    };
+    edges.iter().enumerate().any(|(e, &l)| {
+        let ne = drawn_level(l, dyadic, max);
+        ne < max && strip_level(&free, r, e, 1.0 / ne as f32, tol) > max as f32
+    })
+}
+
 /// The inner level raised until every transition triangle meets the element's tolerance
 /// (module notes, step 2): unchanged where no edge is drawn coarser than the inside or the
 /// triangles already fit, else the drawn level that fits (an exact integer). Mirror:

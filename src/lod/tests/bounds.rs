@@ -4,7 +4,7 @@
 use super::*;
 
 /// Undisplaced local surfaces on spot, on a mesh with hard edges (flagged seams), and on random
-/// elements: never below the truth, and within 20x of it on typical elements.
+/// elements: never below the truth, and within 5x of it on typical elements (median).
 #[test]
 fn local_surface_bounds_hold_and_are_useful() {
     let (spot, recs) = corner_records("spot_control_tri_vn.obj");
