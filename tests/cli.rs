@@ -1292,16 +1292,39 @@ fn text_that_is_not_obj_stops_at_its_first_line() {
     );
     let latin1 = write("latin1.obj", b"\xe9t\xe9\nv 0 0 0\n");
     expect_error(&["info", p(&latin1)], &["line 1", "not UTF-8 text"]);
-    let ok = write(
-        "comments-first.obj",
-        b"# made by hand\n\n  mtllib x.mtl\no tri\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+    // UTF-16 (Notepad's "Unicode"): named as such, not as binary data.
+    let utf16: Vec<u8> = [0xfeff_u16]
+        .into_iter()
+        .chain("v 0 0 0\r\n".encode_utf16())
+        .flat_map(u16::to_le_bytes)
+        .collect();
+    let utf16 = write("utf16.obj", &utf16);
+    expect_error(
+        &["info", p(&utf16)],
+        &["line 1", "is UTF-16 text", "save it as UTF-8"],
     );
-    let out = meshrefine(&["info", p(&ok)]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    // Comments and names in Latin-1 / CP1252 before the first statement load, as they do
+    // further down.
+    let tri = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    for (name, head) in [
+        (
+            "comments-first.obj",
+            &b"# made by hand\n\n  mtllib x.mtl\no tri\n"[..],
+        ),
+        (
+            "latin1-comment.obj",
+            b"# Cr\xe9\xe9 par 3ds Max\nmtllib x.mtl\n",
+        ),
+        ("cp1252-name.obj", b"o caf\xe9\n"),
+    ] {
+        let ok = write(name, &[head, &tri[..]].concat());
+        let out = meshrefine(&["info", p(&ok)]);
+        assert!(
+            out.status.success(),
+            "{name}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
 }
 
 /// The height map: a grayscale PNG (or the generated default) on a mesh with texture
