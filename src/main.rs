@@ -32,7 +32,23 @@ macro_rules! out {
 
 /// A line on standard error (warnings, validation messages); a failed write is ignored.
 pub fn note(line: std::fmt::Arguments) {
-    let _ = writeln!(std::io::stderr().lock(), "{line}");
+    let line = line.to_string();
+    let _ = writeln!(std::io::stderr().lock(), "{}", printable(&line));
+}
+
+/// `text` with its control characters escaped (`\u{1b}`, `\n`): a warning or error stays one
+/// line and writes nothing a terminal would act on, whatever a file or a path held.
+pub fn printable(text: &str) -> std::borrow::Cow<'_, str> {
+    if !text.chars().any(char::is_control) {
+        return text.into();
+    }
+    (text.chars())
+        .map(|c| match c.is_control() {
+            true => c.escape_default().to_string(),
+            false => c.to_string(),
+        })
+        .collect::<String>()
+        .into()
 }
 
 mod cli;
@@ -44,8 +60,12 @@ fn main() -> ExitCode {
         .format(|buf, record| {
             let own = record.target().starts_with("meshrefine");
             match record.level() {
-                log::Level::Warn if own => writeln!(buf, "warning: {}", record.args()),
-                log::Level::Error if own => writeln!(buf, "error: {}", record.args()),
+                log::Level::Warn if own => {
+                    writeln!(buf, "warning: {}", printable(&record.args().to_string()))
+                }
+                log::Level::Error if own => {
+                    writeln!(buf, "error: {}", printable(&record.args().to_string()))
+                }
                 level => writeln!(buf, "[{level} {}] {}", record.target(), record.args()),
             }
         })

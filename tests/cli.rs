@@ -2126,8 +2126,36 @@ fn tags_file_errors_name_the_line() {
             format!("{at} 0.5\n{at} 0 1 0 1 0 0\n"),
             "twice.tags' line 2: the vertex at",
         ),
+        // Not text: named with its line, as OBJ files are.
+        (
+            "nul.tags",
+            format!("{at} 0.5\n\0\0"),
+            "nul.tags' line 2: contains a NUL byte, so this is binary data, not a tags file",
+        ),
+        (
+            "latin1.tags",
+            format!("{at} 0.5\n# caf\u{e9}\n"),
+            "latin1.tags' line 2: is not UTF-8 text",
+        ),
+        // A long word is quoted short; control characters are escaped, never written raw.
+        (
+            "long.tags",
+            format!("{at} {}\n", "9".repeat(100_000) + "x"),
+            "long.tags' line 1: '9999999999999999999999999999999999999999… (100001 characters)' is not a finite number",
+        ),
+        (
+            "escape.tags",
+            format!("{at} 0.5\n\u{1b}[31mRED\n"),
+            "escape.tags' line 2: '\\u{1b}[31mRED' is not a tag line",
+        ),
     ] {
-        let path = write(name, text.as_bytes());
+        let mut bytes = text.into_bytes();
+        if name == "latin1.tags" {
+            // The é as Latin-1's one byte, not UTF-8's two.
+            let at = bytes.windows(2).position(|w| w == "é".as_bytes()).unwrap();
+            bytes.splice(at..at + 2, [0xe9]);
+        }
+        let path = write(name, &bytes);
         expect_error(
             &[
                 "render",
@@ -2142,6 +2170,40 @@ fn tags_file_errors_name_the_line() {
             &[needle],
         );
     }
+    // The whole sentence stays one short line.
+    let long = write(
+        "long-coordinate.obj",
+        format!("v 0 0 {}x\n", "9".repeat(1 << 20)).as_bytes(),
+    );
+    let out = meshrefine(&["info", p(&long)]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.len() < 300 && stderr.lines().count() == 1,
+        "{stderr:.400}"
+    );
+}
+
+/// A file name holding a newline stays one header comment in an export (the file reloads),
+/// and one line in a message.
+#[test]
+fn control_characters_in_names_are_escaped() {
+    let tet = std::fs::read(model_path("tetrahedron.obj")).unwrap();
+    let odd = write("a\nf 1 2 999.obj", &tet);
+    let obj = tmp("escaped-name.obj");
+    ok(&["export", p(&odd), "-o", p(&obj), "--level", "1"]);
+    let text = std::fs::read_to_string(&obj).unwrap();
+    assert!(
+        text.starts_with("# meshrefine export of 'a\\nf 1 2 999'"),
+        "{text:.200}"
+    );
+    ok(&["info", p(&obj)]);
+    let missing = tmp("no\u{1b}[31mfile.obj");
+    let out = meshrefine(&["info", p(&missing)]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !stderr.contains('\u{1b}') && stderr.contains("no\\u{1b}[31mfile.obj"),
+        "{stderr}"
+    );
 }
 
 /// One rule for every output path: its folder must exist (never created), a directory is

@@ -265,7 +265,9 @@ fn header(
 ) -> Vec<String> {
     let mut header = vec![
         format!(
-            "meshrefine export of '{name}': surface {}, displacement {}, driver {}, {} {}",
+            "meshrefine export of '{}': surface {}, displacement {}, driver {}, {} {}",
+            // One comment line whatever the name holds.
+            crate::printable(name),
             cfg.surface.name(),
             cfg.displace.name(),
             cfg.label(),

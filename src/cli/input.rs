@@ -320,12 +320,26 @@ impl SurfaceOpts {
                 meta.len()
             ));
         }
-        let mut text = String::new();
+        let mut bytes = Vec::new();
         use std::io::Read as _;
         file.take(MAX_TAGS_BYTES)
-            .read_to_string(&mut text)
+            .read_to_end(&mut bytes)
             .map_err(|e| format!("cannot read tags file '{shown_tags}': {e}"))?;
-        let tags = stpn::parse(&shown_tags, &text, mesh, &base)?;
+        // Text, or the line where it stops being text.
+        let line_of = |at: usize| bytes[..at].iter().filter(|&&b| b == b'\n').count() + 1;
+        if let Some(at) = bytes.iter().position(|&b| b == 0) {
+            return Err(format!(
+                "tags file '{shown_tags}' line {}: contains a NUL byte, so this is binary data, not a tags file",
+                line_of(at)
+            ));
+        }
+        let text = std::str::from_utf8(&bytes).map_err(|e| {
+            format!(
+                "tags file '{shown_tags}' line {}: is not UTF-8 text",
+                line_of(e.valid_up_to())
+            )
+        })?;
+        let tags = stpn::parse(&shown_tags, text, mesh, &base)?;
         check(&tags, &format!("tags file '{shown_tags}'"))?;
         Ok(Some(tags))
     }

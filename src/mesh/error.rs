@@ -156,9 +156,33 @@ fn index_message(path: &str, line: &Option<usize>, index: i64, count: usize) -> 
     }
 }
 
+/// A word of a file as a message quotes it: its first 40 characters, then "…" and how many
+/// there are in all, so that one sentence stays one short line whatever the file holds.
+pub fn shown_word(word: &str) -> String {
+    const SHOWN: usize = 40;
+    match word.char_indices().nth(SHOWN) {
+        None => word.to_string(),
+        Some((at, _)) => format!("{}… ({} characters)", &word[..at], word.chars().count()),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn long_words_are_shortened() {
+        assert_eq!(shown_word("1.5x"), "1.5x");
+        let long = "9".repeat(5000);
+        assert_eq!(
+            shown_word(&long),
+            format!("{}… (5000 characters)", &long[..40])
+        );
+        assert_eq!(
+            shown_word(&"é".repeat(41)),
+            format!("{}… (41 characters)", "é".repeat(40))
+        );
+    }
 
     #[test]
     fn messages_are_single_lower_case_sentences() {

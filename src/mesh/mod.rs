@@ -58,7 +58,7 @@ use std::path::Path;
 
 use glam::{Vec2, Vec3};
 
-pub use error::{MeshError, MAX_INDICES, MAX_OBJ_BYTES};
+pub use error::{shown_word, MeshError, MAX_INDICES, MAX_OBJ_BYTES};
 pub use normals::{compute_area_weighted_normals, FALLBACK_NORMAL};
 pub use topology::{mesh_stats, pieces};
 

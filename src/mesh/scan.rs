@@ -305,8 +305,10 @@ impl Scanner<'_> {
     }
 
     fn float(&self, line: usize, word: &str, what: &str) -> Result<f32, MeshError> {
-        word.parse()
-            .map_err(|_| self.err(line, format!("{what} '{word}' is not a number")))
+        word.parse().map_err(|_| {
+            let word = super::shown_word(word);
+            self.err(line, format!("{what} '{word}' is not a number"))
+        })
     }
 
     /// `v x y z`, `v x y z w` (divided by w) or `v x y z r g b` (colours ignored).
@@ -455,6 +457,8 @@ impl Scanner<'_> {
     /// normal indices as written.
     fn corner(&self, ln: usize, word: &str) -> Result<(i64, Option<i64>, Option<i64>), MeshError> {
         let parts: Vec<&str> = word.split('/').collect();
+        // Quoted short, whatever the file holds.
+        let word = &super::shown_word(word);
         if parts.len() > 3 {
             return Err(self.err(
                 ln,

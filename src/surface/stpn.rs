@@ -324,7 +324,7 @@ fn tag_numbers(line: &str) -> Result<Option<Vec<f32>>, String> {
     if words[0] != "t" {
         return Err(format!(
             "'{}' is not a tag line (expected `t X Y Z TENSION [SHARPNESS BIAS DX DY DZ]`)",
-            words[0]
+            crate::mesh::shown_word(words[0])
         ));
     }
     if words.len() != 5 && words.len() != 10 {
@@ -337,7 +337,10 @@ fn tag_numbers(line: &str) -> Result<Option<Vec<f32>>, String> {
     for w in &words[1..] {
         match w.parse::<f32>() {
             Ok(x) if x.is_finite() => v.push(x),
-            _ => return Err(format!("'{w}' is not a finite number")),
+            _ => {
+                let w = crate::mesh::shown_word(w);
+                return Err(format!("'{w}' is not a finite number"));
+            }
         }
     }
     Ok(Some(v))
