@@ -114,7 +114,7 @@ impl Heightmap {
         decoder.set_transformations(png::Transformations::IDENTITY);
         let mut reader = decoder
             .read_info()
-            .map_err(|e| format!("height map '{shown}' is not a readable PNG image: {e}"))?;
+            .map_err(|e| png_problem(&shown.to_string(), e))?;
         let info = reader.info();
         let (w, h) = (info.width, info.height);
         if w == 0 || h == 0 || w > MAX_SIDE || h > MAX_SIDE {
@@ -153,7 +153,7 @@ impl Heightmap {
         let mut buf = vec![0u8; reader.output_buffer_size()];
         let frame = reader
             .next_frame(&mut buf)
-            .map_err(|e| format!("height map '{shown}' is not a readable PNG image: {e}"))?;
+            .map_err(|e| png_problem(&shown.to_string(), e))?;
         let bytes = &buf[..frame.buffer_size()];
         let row = frame.line_size;
         let mut t = Vec::with_capacity((w * h) as usize);
@@ -292,6 +292,31 @@ impl MapLevel {
     }
 }
 
+/// One sentence for a PNG the decoder cannot read: what is wrong in words, not the decoder's
+/// internals (its chunk structures, its closing full stop).
+fn png_problem(shown: &str, e: png::DecodingError) -> String {
+    let why = match e {
+        png::DecodingError::IoError(e) => return format!("cannot read height map '{shown}': {e}"),
+        png::DecodingError::LimitsExceeded => format!(
+            "its header claims an image too large to decode (each side must be within 1 to {MAX_SIDE})"
+        ),
+        png::DecodingError::Format(f) => {
+            let text = f.to_string();
+            if text.contains("signature") {
+                "it does not start with the PNG signature".to_string()
+            } else if text.contains("CRC") {
+                "a chunk's checksum is wrong: the file is damaged".to_string()
+            } else {
+                // The decoder's words up to its chunk details.
+                let text = text.split(" while decoding").next().unwrap_or(&text);
+                format!("its data is damaged ({})", text.trim_end_matches('.'))
+            }
+        }
+        png::DecodingError::Parameter(p) => p.to_string().trim_end_matches('.').to_string(),
+    };
+    format!("height map '{shown}' is not a readable PNG image: {why}")
+}
+
 /// The height map's bound (src/lod/mod.rs has the chord error's form): `h = a·(t − b)` with `t`
 /// bilinear in the texels of the two pyramid levels read, so `|h| <= |a| max(|b|, |1 − b|)`,
 /// the slope along a lattice direction is at most `|a|` times the largest texel difference per
@@ -419,7 +444,38 @@ mod tests {
         std::fs::write(&text, "not a png").unwrap();
         assert!(Heightmap::load_png(&text)
             .unwrap_err()
-            .contains("is not a readable PNG image"));
+            .ends_with("is not a readable PNG image: it does not start with the PNG signature"));
+        // A damaged checksum and a header claiming 2³¹ − 1 pixels a side: said in words.
+        let gray = dir.join("gray.png");
+        {
+            let mut e = png::Encoder::new(std::fs::File::create(&gray).unwrap(), 2, 1);
+            e.set_color(png::ColorType::Grayscale);
+            e.write_header().unwrap().write_image_data(&[0, 9]).unwrap();
+        }
+        let mut bytes = std::fs::read(&gray).unwrap();
+        bytes[29] ^= 0xff; // IHDR's CRC (8 signature + 8 length/type + 13 data)
+        let damaged = dir.join("damaged.png");
+        std::fs::write(&damaged, &bytes).unwrap();
+        let e = Heightmap::load_png(&damaged).unwrap_err();
+        assert!(
+            e.ends_with("a chunk's checksum is wrong: the file is damaged"),
+            "{e}"
+        );
+        let huge = dir.join("huge.png");
+        {
+            let mut e = png::Encoder::new(
+                std::fs::File::create(&huge).unwrap(),
+                i32::MAX as u32,
+                i32::MAX as u32,
+            );
+            e.set_color(png::ColorType::Grayscale);
+            drop(e.write_header().unwrap());
+        }
+        let e = Heightmap::load_png(&huge).unwrap_err();
+        assert!(
+            e.contains("huge.png") && !e.contains("ChunkType") && !e.ends_with('.'),
+            "{e}"
+        );
         // An RGB image is refused; a 16-bit grayscale one loads.
         let write = |name: &str, color, depth, data: &[u8]| {
             let p = dir.join(name);
