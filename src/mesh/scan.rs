@@ -357,9 +357,10 @@ impl Scanner<'_> {
         Ok(())
     }
 
-    /// `vn x y z`. Zero or non-finite normals are only an error if used.
+    /// `vn x y z`, exactly three numbers (as `vt` takes at most three). Zero or non-finite
+    /// normals are only an error if used.
     fn normal(&mut self, ln: usize, words: &[&str]) -> Result<(), MeshError> {
-        if words.len() < 3 {
+        if words.len() != 3 {
             return Err(self.err(
                 ln,
                 format!("normal has {} component(s) but 3 are needed", words.len()),
@@ -819,6 +820,10 @@ mod tests {
         assert_eq!(
             err(&format!("{TRI}vn 0 0\nf 1 2 3\n")),
             "'x.obj' line 4: normal has 2 component(s) but 3 are needed"
+        );
+        assert_eq!(
+            err(&format!("{TRI}vn 0 0 1 5\nf 1 2 3\n")),
+            "'x.obj' line 4: normal has 4 component(s) but 3 are needed"
         );
         assert_eq!(
             err(&format!("{TRI}vn 0 0 z\nf 1 2 3\n")),
