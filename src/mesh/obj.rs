@@ -192,22 +192,24 @@ impl Head {
                 raw
             };
             // Comments and statements are read whatever bytes follow their first word (a
-            // comment in Latin-1, `o café` in CP1252), as they are further down the file.
-            let line = raw.trim_ascii();
-            if line.is_empty() || line.starts_with(b"#") {
+            // comment in Latin-1, `o café` in CP1252), and split as further down the file (any
+            // Unicode whitespace): bytes that are not UTF-8 read as U+FFFD, never a keyword.
+            let text = String::from_utf8_lossy(raw);
+            let line = text.trim();
+            if line.is_empty() || line.starts_with('#') {
                 continue;
             }
-            let word = line.split(u8::is_ascii_whitespace).next().unwrap_or(b"");
-            let Ok(word) = std::str::from_utf8(word) else {
+            let word = line.split_whitespace().next().unwrap_or("");
+            if word.contains('\u{fffd}') {
                 return Err(not_obj(
                     self.lines,
                     "starts with bytes that are not UTF-8 text".into(),
                 ));
-            };
+            }
             if OBJ_KEYWORDS.contains(&word) {
                 return Ok(true);
             }
-            let shown_word: String = word.chars().take(40).collect();
+            let shown_word = super::shown_word(word);
             return Err(not_obj(
                 self.lines,
                 format!("starts with '{shown_word}', which is no OBJ statement"),

@@ -210,7 +210,7 @@ impl Scan {
                 Some("f") => s.face(ln, &words)?,
                 Some(k) if !super::obj::OBJ_KEYWORDS.contains(&k) => {
                     unknown += 1;
-                    first_unknown.get_or_insert((ln, k.chars().take(40).collect::<String>()));
+                    first_unknown.get_or_insert((ln, super::shown_word(k)));
                 }
                 _ => {}
             }
@@ -458,12 +458,15 @@ impl Scanner<'_> {
     /// normal indices as written.
     fn corner(&self, ln: usize, word: &str) -> Result<(i64, Option<i64>, Option<i64>), MeshError> {
         let parts: Vec<&str> = word.split('/').collect();
-        // Quoted short, whatever the file holds.
-        let word = &super::shown_word(word);
+        // Quoted short, whatever the file holds (only where a message quotes it).
+        let shown = || super::shown_word(word);
         if parts.len() > 3 {
             return Err(self.err(
                 ln,
-                format!("face vertex '{word}' has more than three '/'-separated indices"),
+                format!(
+                    "face vertex '{}' has more than three '/'-separated indices",
+                    shown()
+                ),
             ));
         }
         let index = |s: &str, what: &str| -> Result<Option<i64>, MeshError> {
@@ -473,12 +476,16 @@ impl Scanner<'_> {
             s.parse().map(Some).map_err(|_| {
                 self.err(
                     ln,
-                    format!("face vertex '{word}' has an invalid {what} index"),
+                    format!("face vertex '{}' has an invalid {what} index", shown()),
                 )
             })
         };
-        let v = index(parts[0], "position")?
-            .ok_or_else(|| self.err(ln, format!("face vertex '{word}' has no position index")))?;
+        let v = index(parts[0], "position")?.ok_or_else(|| {
+            self.err(
+                ln,
+                format!("face vertex '{}' has no position index", shown()),
+            )
+        })?;
         let t = match parts.get(1) {
             Some(s) => index(s, "texture coordinate")?,
             None => None,

@@ -296,20 +296,26 @@ impl MapLevel {
 /// internals (its chunk structures, its closing full stop).
 fn png_problem(shown: &str, e: png::DecodingError) -> String {
     let why = match e {
+        png::DecodingError::IoError(e) if e.kind() == std::io::ErrorKind::UnexpectedEof => {
+            "it ends early (the file is truncated)".to_string()
+        }
         png::DecodingError::IoError(e) => return format!("cannot read height map '{shown}': {e}"),
-        png::DecodingError::LimitsExceeded => format!(
-            "its header claims an image too large to decode (each side must be within 1 to {MAX_SIDE})"
-        ),
+        png::DecodingError::LimitsExceeded => {
+            "decoding it needs more memory than the decoder allows (an image or a chunk too large)"
+                .to_string()
+        }
         png::DecodingError::Format(f) => {
             let text = f.to_string();
             if text.contains("signature") {
                 "it does not start with the PNG signature".to_string()
             } else if text.contains("CRC") {
                 "a chunk's checksum is wrong: the file is damaged".to_string()
+            } else if text.contains("deflate") || text.contains("Zlib") {
+                "its compressed image data is damaged".to_string()
+            } else if text.contains("IDAT") {
+                "it holds no image data".to_string()
             } else {
-                // The decoder's words up to its chunk details.
-                let text = text.split(" while decoding").next().unwrap_or(&text);
-                format!("its data is damaged ({})", text.trim_end_matches('.'))
+                "its structure is damaged".to_string()
             }
         }
         png::DecodingError::Parameter(p) => p.to_string().trim_end_matches('.').to_string(),
@@ -473,9 +479,14 @@ mod tests {
         }
         let e = Heightmap::load_png(&huge).unwrap_err();
         assert!(
-            e.contains("huge.png") && !e.contains("ChunkType") && !e.ends_with('.'),
+            e.ends_with("huge.png' is not a readable PNG image: it holds no image data"),
             "{e}"
         );
+        // Cut short: truncated, not an I/O failure.
+        let cut = dir.join("cut.png");
+        std::fs::write(&cut, &std::fs::read(&gray).unwrap()[..40]).unwrap();
+        let e = Heightmap::load_png(&cut).unwrap_err();
+        assert!(e.ends_with("it ends early (the file is truncated)"), "{e}");
         // An RGB image is refused; a 16-bit grayscale one loads.
         let write = |name: &str, color, depth, data: &[u8]| {
             let p = dir.join(name);
