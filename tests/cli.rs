@@ -480,6 +480,30 @@ fn headless_view_warns_of_what_its_image_ignores() {
             "warning: --geomorph applies only when drawing adaptively (with --pixel-error, or by default without --level or --lod): it is ignored",
         ]
     );
+    // An empty DISPLAY names no display, as an unset one: headless, said so.
+    let _guard = common::gpu_lock();
+    let out = bin()
+        .args([
+            "view",
+            "--headless-output",
+            p(&with),
+            "--width",
+            "32",
+            "--height",
+            "24",
+        ])
+        .args(["--level", "2"])
+        .env("DISPLAY", "")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success()
+            && stdout.contains("no display found (DISPLAY and WAYLAND_DISPLAY are unset or empty)"),
+        "{stdout}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 }
 
 #[test]

@@ -33,8 +33,14 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc, given: &Given) -> Result<()> {
     // The window is adaptive by default: it glides vertices unless --geomorph off.
     cfg.geomorph = a.adaptive.geomorph.unwrap_or(true);
     attach_surface_inputs(&mut input, &a.technique.surface, true)?;
-    let has_display =
-        std::env::var_os("DISPLAY").is_some() || std::env::var_os("WAYLAND_DISPLAY").is_some();
+    // An empty variable names no display, as an unset one.
+    let vars = ["DISPLAY", "WAYLAND_DISPLAY"].map(std::env::var_os);
+    let has_display = vars.iter().flatten().any(|v| !v.is_empty());
+    let unset = if vars.iter().any(Option::is_some) {
+        "unset or empty"
+    } else {
+        "unset"
+    };
     let why_headless = if has_display {
         // Only the window reads it: without a display it is ignored with the others below.
         if let Some(dir) = &a.screenshot_dir {
@@ -97,7 +103,7 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc, given: &Given) -> Result<()> {
             },
         }
     } else {
-        "no display found (DISPLAY and WAYLAND_DISPLAY are unset)".to_string()
+        format!("no display found (DISPLAY and WAYLAND_DISPLAY are {unset})")
     };
     // What only a window reads: one warning naming them.
     let window_only: Vec<&str> = [

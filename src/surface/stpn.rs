@@ -356,7 +356,7 @@ fn tagged_vertex(
     let p = Vec3::new(v[0], v[1], v[2]) + Vec3::ZERO;
     let Some(&vi) = index.get(&p.to_array().map(f32::to_bits)) else {
         return Err(format!(
-            "no vertex of the mesh is at ({}, {}, {})",
+            "no vertex of the mesh's faces is at ({}, {}, {})",
             v[0], v[1], v[2]
         ));
     };
@@ -666,7 +666,7 @@ mod tests {
             ("\nt 1 2\n".to_string(), "line 2: 2 numbers"),
             (
                 "t 9 9 9 0\n".to_string(),
-                "no vertex of the mesh is at (9, 9, 9)",
+                "no vertex of the mesh's faces is at (9, 9, 9)",
             ),
             (
                 format!("t {} {} {} 2\n", p.x, p.y, p.z),

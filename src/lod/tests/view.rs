@@ -414,7 +414,10 @@ fn elements_met_at_the_cap_are_within_the_pixel_error() {
             drawn > 50 && capped > 50,
             "{what}: {drawn} checked, {capped} unmet"
         );
-        assert!(at_cap > 0, "{what}: no element raised to the cap by a neighbour checked");
+        assert!(
+            at_cap > 0,
+            "{what}: no element raised to the cap by a neighbour checked"
+        );
     }
 }
 
