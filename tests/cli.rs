@@ -2197,6 +2197,17 @@ fn tags_file_errors_name_the_line() {
             &[needle],
         );
     }
+    // A tags file of comments alone tags nothing: said once.
+    let empty = write("empty.tags", b"# nothing yet\n\n");
+    #[rustfmt::skip]
+    let w = warnings_of(&[
+        "render", p(&tet), "-o", p(&png), "--surface", "stpn", "--tags", p(&empty), "--width",
+        "32", "--height", "32", "--level", "2",
+    ]);
+    assert_eq!(
+        w,
+        [format!("warning: tags file '{}' tags no vertex (no line but comments): every vertex keeps its derived tags", p(&empty))]
+    );
     // The whole sentence stays one short line.
     let long = write(
         "long-coordinate.obj",

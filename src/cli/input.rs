@@ -340,6 +340,13 @@ impl SurfaceOpts {
             )
         })?;
         let tags = stpn::parse(&shown_tags, text, mesh, &base)?;
+        let tag_lines =
+            (text.lines()).filter(|l| !l.split('#').next().unwrap_or("").trim().is_empty());
+        if tag_lines.count() == 0 {
+            crate::note(format_args!(
+                "warning: tags file '{shown_tags}' tags no vertex (no line but comments): every vertex keeps its derived tags"
+            ));
+        }
         check(&tags, &format!("tags file '{shown_tags}'"))?;
         Ok(Some(tags))
     }
