@@ -2164,6 +2164,11 @@ fn tags_file_errors_name_the_line() {
             format!("{at} 0.5\n# caf\u{e9}\n"),
             "latin1.tags' line 2: is not UTF-8 text",
         ),
+        (
+            "utf16.tags",
+            "\u{fffe}".to_string(),
+            "utf16.tags' line 1: is UTF-16 text (it starts with a UTF-16 byte-order mark): save it as UTF-8",
+        ),
         // A long word is quoted short; control characters are escaped, never written raw.
         (
             "long.tags",
@@ -2177,6 +2182,10 @@ fn tags_file_errors_name_the_line() {
         ),
     ] {
         let mut bytes = text.into_bytes();
+        if name == "utf16.tags" {
+            // A UTF-16 (little-endian) byte-order mark, then "t" in UTF-16.
+            bytes = vec![0xff, 0xfe, b't', 0];
+        }
         if name == "latin1.tags" {
             // The é as Latin-1's one byte, not UTF-8's two.
             let at = bytes.windows(2).position(|w| w == "é".as_bytes()).unwrap();

@@ -327,6 +327,11 @@ impl SurfaceOpts {
             .map_err(|e| format!("cannot read tags file '{shown_tags}': {e}"))?;
         // Text, or the line where it stops being text.
         let line_of = |at: usize| bytes[..at].iter().filter(|&&b| b == b'\n').count() + 1;
+        if bytes.starts_with(&[0xff, 0xfe]) || bytes.starts_with(&[0xfe, 0xff]) {
+            return Err(format!(
+                "tags file '{shown_tags}' line 1: is UTF-16 text (it starts with a UTF-16 byte-order mark): save it as UTF-8"
+            ));
+        }
         if let Some(at) = bytes.iter().position(|&b| b == 0) {
             return Err(format!(
                 "tags file '{shown_tags}' line {}: contains a NUL byte, so this is binary data, not a tags file",
