@@ -409,15 +409,18 @@ pub fn uniform_level(view: &LodView, records: &[LodRecord], levels: &[ElementLev
     let max = view.max_level;
     (records.iter().zip(levels))
         .filter(|(_, l)| !l.culled())
-        .map(|(r, _)| {
-            let own = level(view, [r.chord[0], r.chord[1]], r.sphere);
-            let need = (r.edges.iter())
-                .map(|e| curve_level(view, e))
-                .fold(own, f32::max);
-            drawn_level(need, false, max)
-        })
+        .map(|(r, _)| drawn_level(own_need(view, r), false, max))
         .max()
         .unwrap_or(1)
+}
+
+/// The level element `r`'s own bounds need, its chord's and its edges' curves', without the
+/// transitions to coarser edges (what a uniform frame draws).
+fn own_need(view: &LodView, r: &LodRecord) -> f32 {
+    let own = level(view, [r.chord[0], r.chord[1]], r.sphere);
+    (r.edges.iter())
+        .map(|e| curve_level(view, e))
+        .fold(own, f32::max)
 }
 
 /// Every element's levels for `view`: the mirror of the level pass.
@@ -497,11 +500,7 @@ pub fn element_unmet(view: &LodView, r: &LodRecord, l: &ElementLevels) -> Option
         let s = Vec4::from(*s);
         (s.truncate() - view.eye()).length() <= s.w
     };
-    // Its own bounds' need, without transitions (what a uniform frame draws).
-    let own = level(&free, [r.chord[0], r.chord[1]], r.sphere);
-    let own = (r.edges.iter())
-        .map(|e| curve_level(&free, e))
-        .fold(own, f32::max);
+    let own = own_need(&free, r);
     let mut u = Unmet::default();
     if n >= UNCAPPED && (huge(&r.chord) || r.edges.iter().any(|e| huge(&e.curve))) {
         u.unbounded = 1;
