@@ -8,7 +8,6 @@
 pub use super::net::Net;
 use super::{Chord, Sphere, EDGE_FACTOR, EDGE_KINK_FACTOR, ELEMENT_FACTOR, KINK_FACTOR};
 use crate::surface::bounds::{DisplaceBound, Patch, SurfaceBound};
-use crate::surface::heightmap::MapLevel;
 use crate::surface::{
     canonical, edge_of, stpn, CornerRecord, Corners, Displace, DisplaceInputs, ElementRecord,
     Mirror, Surface, SurfaceInputs, SurfaceParams,
@@ -84,7 +83,7 @@ pub struct Lod<'a> {
     /// element by `lod::frame::lod_records`, the first element's to begin with).
     pub uv: Option<&'a [[f32; 2]; 3]>,
     /// The two pyramid levels the height map reads (the same level twice when it reads one).
-    pub map_levels: Option<[MapLevel; 2]>,
+    pub map_levels: Option<[usize; 2]>,
 }
 
 impl<'a> Lod<'a> {
@@ -276,7 +275,7 @@ impl<'a> Lod<'a> {
         let mut extra = vec![0.0f32; dirs.len()];
         let mut kink = Chord::ZERO;
         let bound = self.displace.facts().bound;
-        let max_h = bound.max_height(p, sphere);
+        let mut max_h = bound.max_height(p, sphere);
         // Height derivative bounds per direction: |h'| and the smooth part of |h''|.
         let mut h1 = vec![0.0f32; dirs.len()];
         let mut h2 = vec![0.0f32; dirs.len()];
@@ -286,7 +285,10 @@ impl<'a> Lod<'a> {
                     .uv
                     .map(|x| c.order.map(|i| Vec2::from(x[i])))
                     .unwrap_or([Vec2::ZERO; 3]);
-                let Some(levels) = self.map_levels.filter(|_| self.uv.is_some()) else {
+                let (Some(levels), DisplaceInputs::Heightmap(h)) = (
+                    self.map_levels.filter(|_| self.uv.is_some()),
+                    self.mirror.displace,
+                ) else {
                     // No map or no coordinates: the displacement is the constant a·(0 − b)... but
                     // the evaluation reads h = 0 then: a constant offset along the normal.
                     return self.smooth_only(&dirs, &nets, edge, max_h);
@@ -296,7 +298,7 @@ impl<'a> Lod<'a> {
                 } else {
                     KINK_FACTOR
                 };
-                (h1, kink) = (t.slopes)(p, &levels, uv, &dirs, f);
+                (h1, kink, max_h) = (t.slopes)(p, h.map, levels, uv, &dirs, f);
             }
             DisplaceBound::OfPoint(height) => {
                 let hb = height(p, sphere);

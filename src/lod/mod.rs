@@ -21,9 +21,15 @@
 //!
 //! *One dimension.* For `g: [0, 1] → R³` and its chord `L`,
 //! `g(t) − L(t) = −∫ G(t, τ) g''(τ) dτ` with `G >= 0`, `∫ G dτ = t(1 − t)/2` and `G <= t(1−t)`;
-//! so `|g − L| <= t(1 − t)/2 · sup|g''| <= sup|g''| / 8`, and `<= t(1−t) · TV(g')` when `g'` only has
-//! bounded variation (kinks). On an edge of `N` segments: `error <= M_e / (8 N²)`, `M_e` the
-//! supremum of the edge curve's second derivative per unit edge parameter.
+//! so `|g − L| <= t(1 − t)/2 · sup|g''| <= sup|g''| / 8`. When `g'` only has bounded variation
+//! (kinks), `|g − L| <= ∫ G |dg'|`: a jump `J` at `τ` weighs `G(t, τ) <= t(1 − t)`, and jumps
+//! at most `J` at evenly spaced points, `L` per unit `τ`, weigh together at most
+//! `J (t(1 − t) + L ∫ G dτ) = J t(1 − t) (1 + L/2)` (`G(t, ·)` rises to its peak at `τ = t` and
+//! falls: each point but the two around the peak is outweighed by the integral over the
+//! spacing beside it, the lower of those two by the spacing between them, the higher by the
+//! peak), so the jumps count once at the peak weight and the rest at the mean weight, half of it
+//! ([`KINK_FACTOR`]). On an edge of `N` segments: `error <= M_e / (8 N²)`, `M_e` the supremum of
+//! the edge curve's second derivative per unit edge parameter.
 //!
 //! *A lattice triangle.* Let `M_k >= sup |D²P[d_k, d_k]|` over the element ([`Bounds::second`]).
 //! Take `x` in a lattice triangle `x0 x1 x2`, on the segment from `x0` to the point `q` of the
@@ -35,8 +41,9 @@
 //! identity), so `|Q(v)| <= (1 − s) M01 + s M02 + s(1 − s) M12`. With every `M <= M = max_k M_k / N²`,
 //! `error <= M · [t(1 − t)(1 + s(1 − s))/2 + t s(1 − s)/2] <= M · max_t (5/8 t(1 − t) + t/8) =
 //! 9/40 · M` (at `t = 3/5`). So an element at level `N` is within `c2 = 9/40 · max_k M_k` over `N²`
-//! ([`ELEMENT_FACTOR`]); for a kink measure the same steps give `25/64` times the total variation
-//! along a lattice segment ([`KINK_FACTOR`]).
+//! ([`ELEMENT_FACTOR`]); for kinks the same steps give `25/64` times a lattice segment's
+//! weighted jumps, `J (1 + L/2)` summed over the families of lines it crosses
+//! ([`KINK_FACTOR`]).
 //!
 //! # Per surface and displacement
 //! Each surface and displacement declares how its chord error is bounded
@@ -59,9 +66,10 @@
 //!   (`sine`: src/surface/displace.rs; `noise`: src/surface/noise.rs),
 //!   `|h''| <= H |P'|² + G |P''|` with `G`, `H` bounds of `η`'s gradient and Hessian over the
 //!   patch's sphere ([`crate::surface::bounds::Height`]). The height map's `h`
-//!   (src/surface/heightmap.rs, `BOUND`) is bilinear in texels (kinks at texel lines): its slope
-//!   jumps by at most the map's second difference per texel line crossed, which gives the
-//!   `c1 / N` term.
+//!   (src/surface/heightmap_bound.rs, `BOUND`) is bilinear in texels (kinks at texel lines):
+//!   its slope jumps by at most the second difference of the texels under the patch per texel
+//!   line crossed, one jump at the peak weight, which gives the `c1 / N` term, the rest in
+//!   `c2 / N²` (above).
 //!
 //! Edges: an edge's bound, sphere and level come from its own data only (its corners in
 //! canonical order, src/surface/mod.rs, with the third weight zero, exactly as the surfaces
@@ -123,7 +131,8 @@ use glam::Vec3;
 pub const ELEMENT_FACTOR: f32 = 9.0 / 40.0;
 /// `c2` of an edge from its curve's second-derivative bound: `M_e / 8`.
 pub const EDGE_FACTOR: f32 = 1.0 / 8.0;
-/// The factor of a kink measure's total variation along one lattice segment, in a triangle.
+/// The factor of a lattice segment's weighted kinks (one jump of each family of lines at the
+/// peak weight, the rest at half of it: module notes), in a triangle.
 pub const KINK_FACTOR: f32 = 25.0 / 64.0;
 /// The same on an edge: `max t(1 − t) = 1/4`.
 pub const EDGE_KINK_FACTOR: f32 = 0.25;

@@ -2,11 +2,10 @@
 //! error is bounded. Each surface's `FACTS.bound` ([`SurfaceBound`]) and each displacement's
 //! `facts().bound` ([`DisplaceBound`]) name its own functions, written beside it
 //! (`flat.rs`, `phong.rs`, `pn.rs`, `stpn.rs`, `loop_bound.rs`; `displace.rs`, `noise.rs`,
-//! `heightmap.rs`) with their proofs; src/lod asks these instead of naming surfaces, and keeps
+//! `heightmap_bound.rs`) with their proofs; src/lod asks these instead of naming surfaces, and keeps
 //! what is common to all of them (nets' differences and hulls, the displacement's chain rule,
 //! the metric, levels).
 
-use super::heightmap::MapLevel;
 use super::stpn::VertexTag;
 use super::{Corners, ElementRecord, Heightmap, NormalField, SurfaceParams};
 use crate::lod::{Bounds, Chord, Lod, Net, Sphere};
@@ -68,15 +67,19 @@ pub enum DisplaceBound {
 pub struct TextureBound {
     /// `|h| <=` this.
     pub max: fn(&SurfaceParams) -> f32,
-    /// The facts of the pyramid levels read at level of detail `lod` (once per mesh).
-    pub levels: fn(&Heightmap, f32) -> [MapLevel; 2],
+    /// The pyramid levels read at level of detail `lod` (once per mesh; the same level twice
+    /// where one is read).
+    pub levels: fn(&Heightmap, f32) -> [usize; 2],
     /// `|h'|` per lattice direction `dirs` (corner `k` to `k + 1`, texture coordinates `uv` in
-    /// canonical order) and the kink terms, `kink_factor` times the slope's total variation.
+    /// canonical order), the kink terms, `kink_factor` times the slope's weighted jumps along a
+    /// lattice segment of unit size (src/lod/mod.rs, "One dimension"), and `|h|`, over the
+    /// texels the patch reads.
     pub slopes: Slopes,
 }
 
 /// [`TextureBound::slopes`].
-pub type Slopes = fn(&SurfaceParams, &[MapLevel; 2], [Vec2; 3], &[usize], f32) -> (Vec<f32>, Chord);
+pub type Slopes =
+    fn(&SurfaceParams, &Heightmap, [usize; 2], [Vec2; 3], &[usize], f32) -> (Vec<f32>, Chord, f32);
 
 impl DisplaceBound {
     /// The largest distance the displacement moves a point of a patch inside `s`.

@@ -10,6 +10,8 @@
 //! blurred map instead of aliasing (the 2005 paper's complaint about unfiltered vertex-texture
 //! reads).
 
+use super::heightmap_bound::FactsCache;
+pub use super::heightmap_bound::{MapLevel, BOUND};
 use glam::Vec2;
 use std::path::Path;
 
@@ -44,6 +46,8 @@ pub struct Heightmap {
     /// Where it came from, for messages (a path, or "generated").
     pub source: String,
     pub levels: Vec<Level>,
+    /// Each level's texel facts for the bounds, made when first asked for.
+    pub(crate) facts: FactsCache,
 }
 
 impl Heightmap {
@@ -81,6 +85,7 @@ impl Heightmap {
         }
         Self {
             source: source.to_string(),
+            facts: FactsCache::new(levels.len()),
             levels,
         }
     }
@@ -251,47 +256,6 @@ impl Heightmap {
     }
 }
 
-/// The largest texel differences of one pyramid level (coordinates repeat, so the differences
-/// wrap around too).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct MapLevel {
-    pub size: Vec2,
-    /// Largest `|t(x+1) − t(x)|` along x and along y.
-    pub first: Vec2,
-    /// Largest `|t(x+1) − 2 t(x) + t(x−1)|` along x and along y.
-    pub second: Vec2,
-    /// Largest `|t00 − t10 − t01 + t11|`.
-    pub mixed: f32,
-}
-
-impl MapLevel {
-    pub fn of(map: &Heightmap, l: usize) -> MapLevel {
-        let lv = &map.levels[l];
-        let (w, h) = (lv.w as i64, lv.h as i64);
-        let t = |x: i64, y: i64| lv.texels[(y.rem_euclid(h) * w + x.rem_euclid(w)) as usize];
-        let (mut first, mut second, mut mixed) = (Vec2::ZERO, Vec2::ZERO, 0.0f32);
-        for y in 0..h {
-            for x in 0..w {
-                let c = t(x, y);
-                first = first.max(Vec2::new((t(x + 1, y) - c).abs(), (t(x, y + 1) - c).abs()));
-                second = second.max(Vec2::new(
-                    (t(x + 1, y) + t(x - 1, y) - 2.0 * c).abs(),
-                    (t(x, y + 1) + t(x, y - 1) - 2.0 * c).abs(),
-                ));
-                mixed = mixed.max((c - t(x + 1, y) - t(x, y + 1) + t(x + 1, y + 1)).abs());
-            }
-        }
-        // Room for the rounding of the f32 sums above.
-        let pad = 8.0 * f32::EPSILON;
-        MapLevel {
-            size: Vec2::new(lv.w as f32, lv.h as f32),
-            first: first + pad,
-            second: second + pad,
-            mixed: mixed + pad,
-        }
-    }
-}
-
 /// One sentence for a PNG the decoder cannot read: what is wrong in words, not the decoder's
 /// internals (its chunk structures, its closing full stop).
 fn png_problem(shown: &str, e: png::DecodingError) -> String {
@@ -321,61 +285,6 @@ fn png_problem(shown: &str, e: png::DecodingError) -> String {
         png::DecodingError::Parameter(p) => p.to_string().trim_end_matches('.').to_string(),
     };
     format!("height map '{shown}' is not a readable PNG image: {why}")
-}
-
-/// The height map's bound (src/lod/mod.rs has the chord error's form): `h = a·(t − b)` with `t`
-/// bilinear in the texels of the two pyramid levels read, so `|h| <= |a| max(|b|, |1 − b|)`,
-/// the slope along a lattice direction is at most `|a|` times the largest texel difference per
-/// texel crossed, and the slope jumps at texel lines by at most the second differences: kinks,
-/// the `c1 / N` term.
-pub const BOUND: crate::surface::bounds::TextureBound = crate::surface::bounds::TextureBound {
-    max: bound_max,
-    levels: bound_levels,
-    slopes: bound_slopes,
-};
-
-fn bound_max(p: &crate::surface::SurfaceParams) -> f32 {
-    let a = p.amplitude.abs();
-    a * p.bias.abs().max((1.0 - p.bias).abs())
-}
-
-/// The levels [`Heightmap::sample`] reads at level of detail `lod`.
-fn bound_levels(map: &Heightmap, lod: f32) -> [MapLevel; 2] {
-    let last = map.levels.len() - 1;
-    let l0 = (lod.max(0.0).floor() as usize).min(last);
-    let l1 = (l0 + 1).min(last);
-    [MapLevel::of(map, l0), MapLevel::of(map, l1)]
-}
-
-/// `|h'|` per lattice direction of `dirs` and the kink terms (`f` times the slope's total
-/// variation along a lattice segment of unit size), over both levels read.
-fn bound_slopes(
-    p: &crate::surface::SurfaceParams,
-    levels: &[MapLevel; 2],
-    uv: [Vec2; 3],
-    dirs: &[usize],
-    f: f32,
-) -> (Vec<f32>, crate::lod::Chord) {
-    let a = p.amplitude.abs();
-    let mut h1 = vec![0.0f32; dirs.len()];
-    let mut kink = crate::lod::Chord::ZERO;
-    for lv in levels {
-        let speed: Vec<Vec2> = dirs
-            .iter()
-            .map(|&k| ((uv[(k + 1) % 3] - uv[k]) * lv.size).abs())
-            .collect();
-        let s = speed.iter().fold(Vec2::ZERO, |m, &v| m.max(v));
-        for (i, v) in speed.iter().enumerate() {
-            h1[i] = h1[i].max(a * (lv.first.x * v.x + lv.first.y * v.y));
-        }
-        kink = kink.max(crate::lod::Chord {
-            c1: f * a * (lv.second.x * s.x + lv.second.y * s.y),
-            c2: f
-                * a
-                * (lv.second.x * s.x * s.x + lv.second.y * s.y * s.y + 2.0 * lv.mixed * s.x * s.y),
-        });
-    }
-    (h1, kink)
 }
 
 #[cfg(test)]

@@ -21,6 +21,7 @@ pub mod displace;
 pub mod facts;
 pub mod flat;
 pub mod heightmap;
+mod heightmap_bound;
 mod inputs;
 #[path = "loop.rs"]
 pub mod loop_;
