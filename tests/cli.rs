@@ -1122,10 +1122,12 @@ fn meaningless_requests_are_refused() {
         stderr.trim(),
         "error: --screenshot-dir 'no/such/dir' is not a directory (the screenshot key writes meshrefine-<n>.png there)"
     );
-    // Zero frames: clap refuses the value (usage error, status 2); a negative number is a value
+    // Zero frames, or more than bench keeps times for (100000): clap refuses the value (usage
+    // error, status 2); a negative number is a value
     // clap's range refuses as such, not an unexpected argument.
     for (args, value) in [
         (vec!["bench", "--frames", "0"], "'0'"),
+        (vec!["bench", "--frames", "4000000000"], "1..=100000"),
         (vec!["view", "--frames", "0"], "'0'"),
         (
             vec!["info", "--level", "-3"],
@@ -1234,6 +1236,14 @@ fn surface_parameters_out_of_range_are_errors() {
         (
             &["--octaves", "99999999999999999999"],
             "--octaves 99999999999999999999 is not within [1, 8]",
+        ),
+        (
+            &["--octaves", "abc"],
+            "--octaves abc is not a whole number within [1, 8]",
+        ),
+        (
+            &["--octaves", "2.5"],
+            "--octaves 2.5 is not a whole number within [1, 8]",
         ),
         (
             &["--amplitude", "inf"],

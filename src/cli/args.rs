@@ -99,13 +99,18 @@ impl ParamOpts {
             f.check("frequency", Some((0.0, f32::MAX, "a finite number >= 0")))?;
         }
         self.bias.check("bias", None)?;
-        // Read as typed, so that a negative or huge count gets the range's sentence too.
-        let octaves = (self.octaves.trim().parse::<u32>().ok())
+        // Read as typed, so that a negative or huge count gets the range's sentence too, and
+        // what is no whole number says so.
+        let typed = self.octaves.trim();
+        let digits = typed.strip_prefix(['-', '+']).unwrap_or(typed);
+        let octaves = (typed.parse::<u32>().ok())
             .filter(|o| (1..=SurfaceParams::MAX_OCTAVES).contains(o))
             .ok_or_else(|| {
+                let whole = !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit());
                 format!(
-                    "--octaves {} is not within [1, {}]",
-                    self.octaves,
+                    "--octaves {} is not {}within [1, {}]",
+                    meshrefine::mesh::shown_word(&self.octaves),
+                    if whole { "" } else { "a whole number " },
                     SurfaceParams::MAX_OCTAVES
                 )
             })?;
@@ -520,8 +525,8 @@ pub struct BenchArgs {
     /// Also write the results to PREFIX.md (with this command line), PREFIX.csv and PREFIX.json.
     #[arg(long, value_name = "PREFIX", help_heading = "Measurement")]
     pub out: Option<PathBuf>,
-    /// Timed frames per variant (after one warm-up frame; at least 1).
-    #[arg(long, allow_hyphen_values = true, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..), help_heading = "Measurement")]
+    /// Timed frames per variant (after one warm-up frame; 1 to 100000).
+    #[arg(long, allow_hyphen_values = true, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..=100_000), help_heading = "Measurement")]
     pub frames: u32,
     /// Keep timing past --frames until every variant has this many GPU milliseconds in total
     /// (at most 20 x --frames frames): more samples for short frames, whose timestamps jitter.
