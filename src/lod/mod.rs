@@ -42,7 +42,8 @@
 //! `error <= M · [t(1 − t)(1 + s(1 − s))/2 + t s(1 − s)/2] <= M · max_t (5/8 t(1 − t) + t/8) =
 //! 9/40 · M` (at `t = 3/5`). So an element at level `N` is within `c2 = 9/40 · max_k M_k` over `N²`
 //! ([`ELEMENT_FACTOR`]); for kinks the same steps give `25/64` times a lattice segment's
-//! weighted jumps, `J (1 + L/2)` summed over the families of lines it crosses
+//! weighted jumps, `J (1 + L/2)` summed over the families of lines it crosses, a smooth part
+//! between the lines (a bilinear cell's twist) counting at half its supremum as above
 //! ([`KINK_FACTOR`]).
 //!
 //! # Per surface and displacement

@@ -46,10 +46,11 @@ impl MapLevel {
 }
 
 /// The texels `floor(u n − 1/2) − 1 ..= floor(u n − 1/2) + 2` for `u` in `lo..=hi`, or `None`
-/// where that is not finite or spans every texel.
+/// where that is not finite, spans every texel, or lies so far out (past `2^21` texels) that
+/// the sampler's `f32` coordinate may round by more than the texel to spare.
 fn texels(lo: f32, hi: f32, n: u32) -> Option<[i64; 2]> {
     let (a, b) = (lo as f64 * n as f64 - 0.5, hi as f64 * n as f64 - 0.5);
-    let within = |x: f64| x.is_finite() && x.abs() < (1u64 << 40) as f64;
+    let within = |x: f64| x.is_finite() && x.abs() < (1u64 << 21) as f64;
     if !(within(a) && within(b)) || b - a + 4.0 >= n as f64 {
         return None;
     }
@@ -379,6 +380,9 @@ mod tests {
         assert_eq!(near(0.0, 1.0), whole);
         assert_eq!(near(f32::NAN, 0.5), whole);
         assert_eq!(near(-1e30, 1e30), whole);
+        // Far out, where the sampler's f32 coordinate rounds by whole texels: the whole map.
+        assert_eq!(near(1e6, 1e6), whole);
+        assert_ne!(near(1e3, 1e3), whole);
         assert!(near(0.3, 0.32).high - near(0.3, 0.32).low < whole.high - whole.low);
     }
 }
