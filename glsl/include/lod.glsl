@@ -403,7 +403,7 @@ LodBounds lod_local(uint surface, uint field, uint d, vec4 params, vec3 origin, 
             float v = lod_first(net, k, edge), mk = lod_second(net, k, edge);
             float h1 = h.y * v, h2 = h.z * v * v + h.y * mk;
             float n1 = lod_first(dn, k, edge), n2 = lod_second(dn, k, edge);
-            m[k] += rho > 0.0 ? h2 + 2.0 * h1 * n1 / rho + h.x * (2.0 * n2 / rho + 3.0 * n1 * n1 / (rho * rho))
+            m[k] += rho > 0.0 ? h2 + 2.0 * h1 * n1 / rho + h.x * (n2 / rho + 2.0 * n1 * n1 / (rho * rho))
                               : LOD_HUGE;
         }
         grow = h.x;

@@ -314,13 +314,7 @@ impl<'a> Lod<'a> {
             let rho = dn.min_length(edge);
             for (i, &k) in dirs.iter().enumerate() {
                 let (n1, n2) = (dn.first(k, edge), dn.second(k, edge));
-                let e = if rho > 0.0 {
-                    h2[i]
-                        + 2.0 * h1[i] * n1 / rho
-                        + max_h * (2.0 * n2 / rho + 3.0 * n1 * n1 / (rho * rho))
-                } else {
-                    f32::INFINITY
-                };
+                let e = moved_second(h1[i], h2[i], max_h, n1, n2, rho);
                 extra[i] = extra[i].max(e);
             }
         }
@@ -341,11 +335,7 @@ impl<'a> Lod<'a> {
             let rho = dn.min_length(edge);
             for (i, &k) in dirs.iter().enumerate() {
                 let (n1, n2) = (dn.first(k, edge), dn.second(k, edge));
-                let e = if rho > 0.0 {
-                    max_h * (2.0 * n2 / rho + 3.0 * n1 * n1 / (rho * rho))
-                } else {
-                    f32::INFINITY
-                };
+                let e = moved_second(0.0, 0.0, max_h, n1, n2, rho);
                 extra[i] = extra[i].max(e);
             }
         }
@@ -357,4 +347,16 @@ impl<'a> Lod<'a> {
 /// orientation of the parametrization).
 fn odd_permutation(o: [usize; 3]) -> bool {
     !matches!(o, [0, 1, 2] | [1, 2, 0] | [2, 0, 1])
+}
+
+/// `|(hN)''| <= |h''| + 2|h'||N'| + |h||N''|` along a lattice direction, from bounds of `|h'|`,
+/// `|h''|`, `|h|`, the direction polynomial's `|n'|`, `|n''|` and its least length `ρ`
+/// (src/lod/mod.rs): `|N'| <= |n'|/ρ`, `|N''| <= |n''|/ρ + 2|n'|²/ρ²`; infinite where `ρ` is not
+/// positive. Mirror: the displacement term of `lod_local` in glsl/include/lod.glsl.
+pub(crate) fn moved_second(h1: f32, h2: f32, h: f32, n1: f32, n2: f32, rho: f32) -> f32 {
+    if rho > 0.0 {
+        h2 + 2.0 * h1 * n1 / rho + h * (n2 / rho + 2.0 * n1 * n1 / (rho * rho))
+    } else {
+        f32::INFINITY
+    }
 }

@@ -63,7 +63,9 @@
 //!   mean; each surface's `direction` nets: for `pn` and `stpn` the chosen normal field,
 //!   `--normal-field`: quadratic for `paper` and `vlachos`, whose control normals differ, linear
 //!   for `linear`): `|(hN)''| <= |h''| + 2|h'||N'| + |h||N''|`, with `|N'| <= |n'|/ρ` and
-//!   `|N''| <= 2|n''|/ρ + 3|n'|²/ρ²` (src/lod/bound.rs). For a height `h = η(P)` of the point
+//!   `|N''| <= |n''|/ρ + 2|n'|²/ρ²` (src/lod/bound.rs `moved_second`: with `r = |n|`, `N' = n'⊥/r`
+//!   for `n'⊥` the part of `n'` across `N`; `N''`'s part along `N` is `−|N'|² N`, and across it
+//!   `n''⊥/r − 2 n'⊥ (N·n')/r²`, where `2|n'⊥||N·n'| <= |n'|²`). For a height `h = η(P)` of the point
 //!   (`sine`: src/surface/displace.rs; `noise`: src/surface/noise.rs),
 //!   `|h''| <= H |P'|² + G |P''|` with `G`, `H` bounds of `η`'s gradient and Hessian over the
 //!   patch's sphere ([`crate::surface::bounds::Height`]). The height map's `h`

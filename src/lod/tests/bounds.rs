@@ -98,7 +98,7 @@ fn halved_bounds_are_caught() {
 /// is still approached: `noise` (its curvature bound is its largest anywhere, and a small patch
 /// sees a fraction of it: median about 100-300x, tightest about 15-25x) and `sine` over `pn`
 /// with the paper's normal field (its control normals are far from its values, so the moving
-/// direction's derivative bounds are large: median about 50x, tightest about 7x). The other
+/// direction's derivative bounds are large: median about 30x, tightest about 6.5x). The other
 /// normal fields: `displaced_bounds_hold_for_every_normal_field`.
 #[test]
 fn displaced_bounds_hold() {
@@ -585,4 +585,58 @@ fn height_map_bounds_are_local() {
     }
     assert!(flat > 0.0 && rough.is_finite());
     assert!(1000.0 * flat < rough, "flat {flat}, rough band {rough}");
+}
+
+/// The moving direction's second derivative: `|N''| <= |n''|/ρ + 2|n'|²/ρ²` for `N = n/|n|`
+/// (`bound::moved_second` with a unit height and no height derivatives) against `N''` by
+/// finite differences (in f64) of random quadratic `n`, at random points: never above, and
+/// within 2% of it somewhere (half of either term would be caught).
+#[test]
+fn unit_direction_bound_is_tight() {
+    let mut s = 3u64;
+    let mut rnd = move || {
+        s = s
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (s >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    };
+    let mut tightest = 0.0f64;
+    for _ in 0..20000 {
+        let c: [[f64; 3]; 3] = std::array::from_fn(|k| {
+            let scale = 0.1 + 3.0 * (rnd() + 1.0) / 2.0 / (k + 1) as f64;
+            std::array::from_fn(|_| rnd() * scale)
+        });
+        let n =
+            |t: f64| std::array::from_fn::<f64, 3, _>(|i| c[0][i] + c[1][i] * t + c[2][i] * t * t);
+        let len = |v: [f64; 3]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let unit = |t: f64| {
+            let v = n(t);
+            v.map(|x| x / len(v))
+        };
+        let t = rnd();
+        let (r, n1, n2) = (
+            len(n(t)),
+            len(std::array::from_fn(|i| c[1][i] + 2.0 * c[2][i] * t)),
+            len(c[2].map(|x| 2.0 * x)),
+        );
+        if r < 0.05 || n1 / r > 20.0 {
+            continue;
+        }
+        let h = 1e-4;
+        let (a, b, m) = (unit(t + h), unit(t - h), unit(t));
+        let second = len(std::array::from_fn(|i| {
+            (a[i] + b[i] - 2.0 * m[i]) / (h * h)
+        }));
+        let bound = crate::lod::bound::moved_second(0.0, 0.0, 1.0, n1 as f32, n2 as f32, r as f32);
+        assert!(
+            second <= bound as f64 * (1.0 + 1e-4) + 1e-3,
+            "|N''| {second} above {bound} (|n| {r}, |n'| {n1}, |n''| {n2})"
+        );
+        tightest = tightest.max(second / bound as f64);
+    }
+    assert!(
+        tightest > 0.98,
+        "the bound is at least {}x |N''|",
+        1.0 / tightest
+    );
 }
