@@ -34,31 +34,39 @@ impl MapLevel {
 
     /// Level `l`'s facts over the texels that bilinear samples at texture coordinates in the
     /// box `lo..=hi` read (with a texel to spare on each side for the rounding of `f32`
-    /// coordinates); the whole map where the box is not finite or spans it.
-    pub fn over(map: &Heightmap, l: usize, lo: Vec2, hi: Vec2) -> MapLevel {
+    /// coordinates); the whole map where the box spans it. `None` where the box is not finite
+    /// or lies past `FAR` (`2^21`) texels: there the sampler's `f32` coordinate keeps less than two
+    /// bits below the texel, its heights step from texel to texel, and no slope bounds them.
+    pub fn over(map: &Heightmap, l: usize, lo: Vec2, hi: Vec2) -> Option<MapLevel> {
         let facts = map.facts.level(map, l);
         let lv = &map.levels[l];
-        match (texels(lo.x, hi.x, lv.w), texels(lo.y, hi.y, lv.h)) {
-            (Some(x), Some(y)) => facts.over(x, y),
-            _ => facts.whole(),
+        match (texels(lo.x, hi.x, lv.w)?, texels(lo.y, hi.y, lv.h)?) {
+            (Some(x), Some(y)) => Some(facts.over(x, y)),
+            _ => Some(facts.whole()),
         }
     }
 }
 
-/// The texels `floor(u n − 1/2) − 1 ..= floor(u n − 1/2) + 2` for `u` in `lo..=hi`, or `None`
-/// where that is not finite, spans every texel, or lies so far out (past `2^21` texels) that
-/// the sampler's `f32` coordinate may round by more than the texel to spare.
-fn texels(lo: f32, hi: f32, n: u32) -> Option<[i64; 2]> {
+/// Texture coordinates times the map's side past which the sampler steps (see
+/// [`MapLevel::over`]): `2^21`.
+pub const FAR: f64 = (1u64 << 21) as f64;
+
+/// The texels `floor(u n − 1/2) − 1 ..= floor(u n − 1/2) + 2` for `u` in `lo..=hi` (`Some(None)`
+/// where that spans every texel), or `None` where that is not finite or lies past [`FAR`].
+fn texels(lo: f32, hi: f32, n: u32) -> Option<Option<[i64; 2]>> {
     let (a, b) = (lo as f64 * n as f64 - 0.5, hi as f64 * n as f64 - 0.5);
-    let within = |x: f64| x.is_finite() && x.abs() < (1u64 << 21) as f64;
-    if !(within(a) && within(b)) || b - a + 4.0 >= n as f64 {
+    let within = |x: f64| x.is_finite() && x.abs() < FAR;
+    if !(within(a) && within(b)) {
         return None;
     }
-    Some([a.floor() as i64 - 1, b.floor() as i64 + 2])
+    Some((b - a + 4.0 < n as f64).then(|| [a.floor() as i64 - 1, b.floor() as i64 + 2]))
 }
 
 /// Texels in a block of the finest block grid: `2^BLOCK_SHIFT` a side.
 const BLOCK_SHIFT: u32 = 3;
+
+/// The most blocks one rectangle reads: the finest grid with no more than these over it.
+const MAX_BLOCKS: u32 = 289;
 
 /// A region's facts: largest `first.x`, `first.y`, `second.x`, `second.y`, `mixed`, then the
 /// smallest and the largest height.
@@ -111,11 +119,16 @@ impl LevelFacts {
             for x in 0..w {
                 let c = t(x, y);
                 let cell = Cell([
-                    (t(x + 1, y) - c).abs(),
-                    (t(x, y + 1) - c).abs(),
-                    (t(x + 1, y) + t(x - 1, y) - 2.0 * c).abs(),
-                    (t(x, y + 1) + t(x, y - 1) - 2.0 * c).abs(),
-                    (c - t(x + 1, y) - t(x, y + 1) + t(x + 1, y + 1)).abs(),
+                    difference(&[(1.0, t(x + 1, y)), (-1.0, c)]),
+                    difference(&[(1.0, t(x, y + 1)), (-1.0, c)]),
+                    difference(&[(1.0, t(x + 1, y)), (1.0, t(x - 1, y)), (-2.0, c)]),
+                    difference(&[(1.0, t(x, y + 1)), (1.0, t(x, y - 1)), (-2.0, c)]),
+                    difference(&[
+                        (1.0, c),
+                        (-1.0, t(x + 1, y)),
+                        (-1.0, t(x, y + 1)),
+                        (1.0, t(x + 1, y + 1)),
+                    ]),
                     c,
                     c,
                 ]);
@@ -168,12 +181,13 @@ impl LevelFacts {
     }
 
     /// The facts over a rectangle inside the map, from the finest grid whose blocks cover it
-    /// with at most four a side.
+    /// with at most [`MAX_BLOCKS`] (a footprint of up to 128 × 128 texels reads blocks of 8).
     fn rect(&self, x: [u32; 2], y: [u32; 2]) -> Cell {
         let mut k = 0;
         while k + 1 < self.grids.len() {
             let s = BLOCK_SHIFT + k as u32;
-            if (x[1] >> s) - (x[0] >> s) < 4 && (y[1] >> s) - (y[0] >> s) < 4 {
+            let blocks = ((x[1] >> s) - (x[0] >> s) + 1) * ((y[1] >> s) - (y[0] >> s) + 1);
+            if blocks <= MAX_BLOCKS {
                 break;
             }
             k += 1;
@@ -189,17 +203,34 @@ impl LevelFacts {
     }
 
     fn level(&self, c: Cell) -> MapLevel {
-        // Room for the rounding of the f32 sums above.
-        let pad = 8.0 * f32::EPSILON;
         let c = c.0;
         MapLevel {
             size: self.size,
-            first: Vec2::new(c[0], c[1]) + pad,
-            second: Vec2::new(c[2], c[3]) + pad,
-            mixed: c[4] + pad,
+            first: Vec2::new(c[0], c[1]),
+            second: Vec2::new(c[2], c[3]),
+            mixed: c[4],
             low: c[5],
             high: c[6],
         }
+    }
+}
+
+/// `|Σ w_i t_i|` for texel heights `t_i` in `[0, 1]` and weights of 1 or 2, never below the
+/// exact value: summed in `f64`, exactly where every height is 0 or at least `2^-26` (their bits
+/// then span at most 52 places), with room for the rounding where not, and rounded up to
+/// `f32`. So a flat region's differences are exactly 0 (a bound with no curvature there).
+fn difference(terms: &[(f64, f32)]) -> f32 {
+    let tiny = terms
+        .iter()
+        .any(|&(_, t)| t != 0.0 && t.abs() < 1.0 / (1u32 << 26) as f32);
+    let sum: f64 = terms.iter().map(|&(w, t)| w * t as f64).sum();
+    let x = sum.abs() + if tiny { f64::EPSILON } else { 0.0 };
+    let f = x as f32;
+    if (f as f64) < x {
+        // The next f32 up (f is finite and at least 0 here).
+        f32::from_bits(f.to_bits() + 1)
+    } else {
+        f
     }
 }
 
@@ -291,7 +322,7 @@ fn bound_slopes(
     let (lo, hi) = corners.fold((Vec2::INFINITY, Vec2::NEG_INFINITY), |(lo, hi), c| {
         (lo.min(c), hi.max(c))
     });
-    // Coordinates that are not numbers read no region we can name: the whole map.
+    // Coordinates that are not numbers read no region (the loader refuses them in a file).
     let (lo, hi) = if uv.iter().all(|c| c.is_finite()) {
         (lo, hi)
     } else {
@@ -305,7 +336,19 @@ fn bound_slopes(
         &levels[..]
     };
     for &l in read {
-        let lv = MapLevel::over(map, l, lo, hi);
+        let lv = match MapLevel::over(map, l, lo, hi) {
+            Some(lv) => lv,
+            // Heights that step: bounded only where they are all one.
+            None => {
+                let whole = MapLevel::of(map, l);
+                if whole.high > whole.low {
+                    let inf = f32::INFINITY;
+                    let kink = Chord { c1: inf, c2: inf };
+                    return (vec![inf; dirs.len()], kink, bound_max(p));
+                }
+                whole
+            }
+        };
         let speed: Vec<Vec2> = dirs
             .iter()
             .map(|&k| ((uv[(k + 1) % 3] - uv[k]) * lv.size).abs())
@@ -348,8 +391,9 @@ mod tests {
         let texels: Vec<f32> = (0..w * h).map(|_| rnd(1000) as f32 / 999.0).collect();
         let map = Heightmap::from_heights("random", w, h, texels.clone());
         let facts = LevelFacts::of(&map.levels[0]);
+        // In f64: exact for these heights, so the facts must be at least these.
         let t = |x: i64, y: i64| {
-            texels[(y.rem_euclid(h as i64) * w as i64 + x.rem_euclid(w as i64)) as usize]
+            texels[(y.rem_euclid(h as i64) * w as i64 + x.rem_euclid(w as i64)) as usize] as f64
         };
         for _ in 0..300 {
             let x0 = rnd(3 * w as u64) as i64 - w as i64;
@@ -360,29 +404,39 @@ mod tests {
             for ty in y[0]..=y[1] {
                 for tx in x[0]..=x[1] {
                     let c = t(tx, ty);
-                    assert!(got.first.x >= (t(tx + 1, ty) - c).abs());
-                    assert!(got.first.y >= (t(tx, ty + 1) - c).abs());
-                    assert!(got.second.x >= (t(tx + 1, ty) + t(tx - 1, ty) - 2.0 * c).abs());
-                    assert!(got.second.y >= (t(tx, ty + 1) + t(tx, ty - 1) - 2.0 * c).abs());
+                    assert!(got.first.x as f64 >= (t(tx + 1, ty) - c).abs());
+                    assert!(got.first.y as f64 >= (t(tx, ty + 1) - c).abs());
+                    let sx = t(tx + 1, ty) + t(tx - 1, ty) - 2.0 * c;
+                    assert!(got.second.x as f64 >= sx.abs());
+                    let sy = t(tx, ty + 1) + t(tx, ty - 1) - 2.0 * c;
+                    assert!(got.second.y as f64 >= sy.abs());
                     let m = c - t(tx + 1, ty) - t(tx, ty + 1) + t(tx + 1, ty + 1);
-                    assert!(got.mixed >= m.abs());
-                    assert!(got.low <= c && got.high >= c);
+                    assert!(got.mixed as f64 >= m.abs());
+                    assert!(got.low as f64 <= c && got.high as f64 >= c);
                 }
             }
         }
         let whole = MapLevel::of(&map, 0);
         assert_eq!(facts.over([-3, w as i64 - 4], [5, 4 + h as i64]), whole);
         assert_eq!(whole.low, texels.iter().copied().fold(1.0, f32::min));
+        // A flat map has no differences at all, wherever it is read.
+        let flat = Heightmap::from_heights("flat", 5, 3, vec![0.3; 15]);
+        let m = MapLevel::over(&flat, 0, Vec2::splat(0.2), Vec2::splat(0.4)).unwrap();
+        assert_eq!((m.first, m.second, m.mixed), (Vec2::ZERO, Vec2::ZERO, 0.0));
+        assert_eq!(MapLevel::of(&flat, 0).second, Vec2::ZERO);
         // Regions the texture coordinates name: the whole map for a box that spans it or is
         // not finite, and a part of it (a smaller range of heights) for a small box.
         let near =
             |lo: f32, hi: f32| MapLevel::over(&map, 0, Vec2::new(lo, 0.1), Vec2::new(hi, 0.2));
-        assert_eq!(near(0.0, 1.0), whole);
-        assert_eq!(near(f32::NAN, 0.5), whole);
-        assert_eq!(near(-1e30, 1e30), whole);
-        // Far out, where the sampler's f32 coordinate rounds by whole texels: the whole map.
-        assert_eq!(near(1e6, 1e6), whole);
-        assert_ne!(near(1e3, 1e3), whole);
-        assert!(near(0.3, 0.32).high - near(0.3, 0.32).low < whole.high - whole.low);
+        assert_eq!(near(0.0, 1.0), Some(whole));
+        assert_eq!(near(-100.0, 100.0), Some(whole));
+        // Not numbers, or far out where the sampler's f32 coordinate steps from texel to
+        // texel: no region.
+        assert_eq!(near(f32::NAN, 0.5), None);
+        assert_eq!(near(-1e30, 1e30), None);
+        assert_eq!(near(1e6, 1e6), None);
+        assert_ne!(near(1e3, 1e3), Some(whole));
+        let small = near(0.3, 0.32).unwrap();
+        assert!(small.high - small.low < whole.high - whole.low);
     }
 }

@@ -527,64 +527,53 @@ fn height_map_kink_bounds_are_tight() {
     );
 }
 
-/// An element's height-map bound reads the texels under it: on a map rough in a band across
-/// its middle (texel columns 24 to 39) and flat elsewhere, the elements over the flat parts get
-/// bounds that are a small fraction of the band's (no kinks, no height), and every bound holds
-/// against dense sampling, the elements and edges across the band's borders included.
+/// An element's height-map bound reads the texels under it: on a 256 × 256 map flat but for a
+/// rough 2 × 2 patch of texels (175 and 176 both ways, inside the grid's quad 5, 5, which
+/// covers texels 160 to 191), the two elements of that quad get kink terms and the others none
+/// (and no height: their spheres are the undisplaced patch's), and every bound holds against
+/// dense sampling, the patch's elements and their edges included.
 #[test]
 fn height_map_bounds_are_local() {
     let (grid, recs, uvs) = uv_grid();
-    let mut s = 5u64;
-    let texels = (0..64 * 64)
-        .map(|i| {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            let rough = (s >> 40) as f32 / (1u64 << 24) as f32;
-            if (24..40).contains(&(i % 64)) {
-                rough
-            } else {
-                0.5
-            }
+    let rough = [0.05, 0.9, 0.7, 0.0];
+    let texels = (0..256 * 256)
+        .map(|i| match (i % 256, i / 256) {
+            (x @ 175..=176, y @ 175..=176) => rough[(x - 175) + 2 * (y - 175)],
+            _ => 0.5,
         })
         .collect();
-    let map = Heightmap::from_heights("rough band", 64, 64, texels);
+    let map = Heightmap::from_heights("rough patch", 256, 256, texels);
     let (r, levels) = (grid.bounding_radius(), [1, 3, 8]);
-    let (mut flat, mut rough) = (0.0f32, f32::INFINITY);
-    for t in 0..recs.len() {
+    let mut kinked = Vec::new();
+    for (t, rec) in recs.iter().enumerate() {
         let case = grid_case(&grid, &uvs, &map, t);
-        case.check(std::slice::from_ref(&recs[t]), &levels, r, "rough band");
-        let b = case.lod().element(&recs[t]);
-        let u = uvs[t].map(|c| c[0]);
-        let error = b.chord.error(4.0);
-        // Bilinear samples at `u` read texels `floor(64 u − 1/2)` and the next (repeating);
-        // the bound takes them with one to spare each side, in blocks of 8 whose differences
-        // reach a texel past them: of the grid's columns of elements, 8 texels wide, the first
-        // and the last see none of the band.
-        let column = |lo: f32, hi: f32| u.iter().all(|&x| (lo..=hi).contains(&(x * 64.0)));
-        if column(0.0, 8.0) || column(56.0, 64.0) {
-            flat = flat.max(error);
-            assert!(
-                b.kink.c1 < 1e-5 && b.kink.c2 < 1e-5,
-                "element {t}: {:?}",
-                b.kink
-            );
-            // Nothing moves there: the sphere is the undisplaced patch's.
-            let still = Case {
-                displace: Displace::None,
-                ..grid_case(&grid, &uvs, &map, t)
-            };
-            let r0 = still.lod().element(&recs[t]).sphere.radius;
-            assert!(
-                b.sphere.radius <= r0 * (1.0 + 1e-6),
-                "element {t}: sphere {b:?}"
-            );
-        } else if column(24.0, 40.0) {
-            rough = rough.min(error);
+        case.check(std::slice::from_ref(rec), &levels, r, "rough patch");
+        let b = case.lod().element(rec);
+        if b.kink.c1 > 1e-5 || b.kink.c2 > 1e-5 {
+            kinked.push(t);
+            continue;
         }
+        // Nothing moves there: the sphere is the undisplaced patch's.
+        let still = Case {
+            displace: Displace::None,
+            ..grid_case(&grid, &uvs, &map, t)
+        };
+        let r0 = still.lod().element(rec).sphere.radius;
+        assert!(
+            b.sphere.radius <= r0 * (1.0 + 1e-6),
+            "element {t}: sphere {b:?}"
+        );
     }
-    assert!(flat > 0.0 && rough.is_finite());
-    assert!(1000.0 * flat < rough, "flat {flat}, rough band {rough}");
+    let quad = |t: &usize| {
+        uvs[*t]
+            .iter()
+            .all(|c| c.iter().all(|&u| (0.625..=0.75).contains(&u)))
+    };
+    assert_eq!(kinked.len(), 2, "elements with kink terms: {kinked:?}");
+    assert!(
+        kinked.iter().all(quad),
+        "elements with kink terms: {kinked:?}"
+    );
 }
 
 /// The moving direction's second derivative: `|N''| <= |n''|/ρ + 2|n'|²/ρ²` for `N = n/|n|`
@@ -639,4 +628,26 @@ fn unit_direction_bound_is_tight() {
         "the bound is at least {}x |N''|",
         1.0 / tightest
     );
+}
+
+/// Texture coordinates past `2^21` texels of the level read (the grid's shifted by 10^4 map
+/// widths, 2.56 M texels of a 256-texel map): the sampler's heights step from texel to texel,
+/// so a map with any relief gives no finite bound, and a flat one the undisplaced patch's.
+#[test]
+fn height_map_far_out_is_unbounded_unless_flat() {
+    let (grid, recs, uvs) = uv_grid();
+    let far: Vec<[[f32; 2]; 3]> = uvs.iter().map(|t| t.map(|c| c.map(|u| u + 1e4))).collect();
+    let bumps = Heightmap::generated();
+    let flat = Heightmap::from_heights("flat", 256, 256, vec![0.25; 256 * 256]);
+    for t in [0, 37, 127] {
+        let near = grid_case(&grid, &uvs, &bumps, t).lod().element(&recs[t]);
+        assert!(near.chord.c2.is_finite(), "element {t}: {near:?}");
+        let b = grid_case(&grid, &far, &bumps, t).lod().element(&recs[t]);
+        assert!(b.chord.c2.is_infinite(), "element {t}: {b:?}");
+        let b = grid_case(&grid, &far, &flat, t).lod().element(&recs[t]);
+        assert!(
+            b.kink == Chord::ZERO && b.chord.c2.is_finite(),
+            "element {t}: {b:?}"
+        );
+    }
 }
