@@ -142,6 +142,7 @@ fn jobs(
                     geomorph,
                 }),
                 view: View::Shaded,
+                heightmap: None,
             };
             jobs.push((vec![(*mesh).clone()], opts));
         }

@@ -45,6 +45,7 @@ fn main() {
         camera: meshrefine::bench::BenchCamera::Framing,
         adaptive: None,
         view: View::Shaded,
+        heightmap: None,
     };
     h.run("fig7", &meshes, &opts);
 }

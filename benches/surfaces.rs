@@ -40,6 +40,7 @@ fn main() {
         camera: meshrefine::bench::BenchCamera::Framing,
         adaptive: None,
         view: View::Shaded,
+        heightmap: None,
     };
     h.run("surfaces", &[mesh], &opts);
 }

@@ -61,6 +61,7 @@ fn main() {
         camera: meshrefine::bench::BenchCamera::Framing,
         adaptive: None,
         view: View::Shaded,
+        heightmap: None,
     };
     h.run("table1", &meshes, &opts);
     let fig8 = BenchOptions {

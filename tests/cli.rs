@@ -1446,6 +1446,19 @@ fn heightmap_displacement_and_its_errors() {
         args.extend(extra);
         expect_error(&args, &[needle]);
     }
+    // info refuses a map it cannot read before printing anything, as render refuses it before
+    // drawing.
+    #[rustfmt::skip]
+    let out = meshrefine(&["info", p(&grid), "--pixel-error", "1", "--displace", "heightmap",
+        "--heightmap", p(&text)]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(
+        out.stdout.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&out.stdout)
+    );
+    assert!(stderr.contains("is not a readable PNG image"), "{stderr}");
 }
 
 /// Scalar-tagged PN: renders with tags derived from hard edges or from a tags file; bad tag
@@ -4196,6 +4209,51 @@ fn a_blank_image_of_culled_elements_blames_culling() {
     let below = ok(&["render", p(&grid), "-o", p(&png), "--pixel-error", "1", "--cull", "on",
         "--width", "160", "--height", "100"]);
     assert!(below.contains("culled 0"), "{below}");
+}
+
+/// `bench --heightmap FILE.png` times the map it names: on the textured grid at 1 px a flat
+/// map draws far fewer triangles adaptively than the generated bumps; a file it cannot read is
+/// one sentence naming it, exit 1.
+#[test]
+fn bench_reads_a_height_map_file() {
+    let grid = model_path("grid_uv_8x8.obj");
+    let flat = gray_png("bench-flat.png", 8, 8, &[128; 64]);
+    let triangles = |extra: &[&str]| {
+        let prefix = tmp(&format!("bench-hm-{}", extra.len()));
+        #[rustfmt::skip]
+        let mut args = vec![
+            "bench", p(&grid), "--frames", "1", "--width", "160", "--height", "90",
+            "--pixel-error", "1", "--surfaces", "flat", "--displacements", "heightmap",
+            "--drivers", "static", "--levels", "2", "--out", p(&prefix),
+        ];
+        args.extend(extra);
+        ok(&args);
+        let csv = std::fs::read_to_string(format!("{}.csv", p(&prefix))).unwrap();
+        let mut lines = csv.lines();
+        let keys = common::csv_fields(lines.next().unwrap());
+        let col = |key: &str| keys.iter().position(|k| k == key).unwrap();
+        let row = (lines.map(common::csv_fields))
+            .find(|r| r[col("adaptive")] == "true")
+            .unwrap_or_else(|| panic!("no adaptive row: {csv}"));
+        row[col("refined_triangles")].parse::<u64>().unwrap()
+    };
+    let bumps = triangles(&[]);
+    let level = triangles(&["--heightmap", p(&flat)]);
+    assert!(
+        level * 4 < bumps,
+        "flat map {level}, generated bumps {bumps}"
+    );
+    expect_error(
+        &[
+            "bench",
+            p(&grid),
+            "--displacements",
+            "heightmap",
+            "--heightmap",
+            "no-such-map.png",
+        ],
+        &["cannot read height map 'no-such-map.png'"],
+    );
 }
 
 /// A benchmark row whose every element was culled draws no triangle: no time per triangle, and

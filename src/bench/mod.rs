@@ -61,6 +61,8 @@ pub struct BenchOptions {
     pub adaptive: Option<BenchAdaptive>,
     /// What the frames show: [`View::Plain`] times the refined triangles without shading them.
     pub view: View,
+    /// The `heightmap` displacement's map (`None`: the generated one).
+    pub heightmap: Option<crate::surface::Heightmap>,
 }
 
 /// The camera of a benchmark's frames ([`BenchOptions::camera`]).
@@ -287,6 +289,9 @@ impl MeshSetup {
             mesh.clone(),
             PatternSet::from_levels(&opts.levels),
         )?;
+        if let Some(map) = &opts.heightmap {
+            scene.set_heightmap(&h.ctx, &h.pool, &h.renderer, map.clone())?;
+        }
         let (_, r) = scene.bounding_sphere();
         let coarse = scene.gpu.element_count;
         let params = opts.params.unwrap_or_else(|| SurfaceParams::for_radius(r));

@@ -539,6 +539,10 @@ pub struct BenchArgs {
         help_heading = "Measurement"
     )]
     pub min_total_ms: TypedF32,
+    /// Grayscale PNG (8 or 16 bits) for --displacements heightmap, sampled at the mesh's
+    /// texture coordinates (default: a generated map of smooth bumps).
+    #[arg(long, value_name = "FILE.png", help_heading = "Measurement")]
+    pub heightmap: Option<PathBuf>,
     /// The offscreen image's width in pixels.
     #[arg(long, allow_hyphen_values = true, default_value_t = 1280, value_parser = image_side(), help_heading = "Measurement")]
     pub width: u32,

@@ -10,6 +10,7 @@ use anyhow::{bail, Context as _, Result};
 use meshrefine::bench::BenchCamera;
 use meshrefine::gpu::ContextDesc;
 use meshrefine::render::{DrawConfig, Driver};
+use meshrefine::surface::{Displace, Heightmap};
 use std::io::Write as _;
 
 /// Runs `meshrefine bench` with `a` (`levels_given`: `--levels` was on the command line; with
@@ -65,6 +66,12 @@ pub fn run(a: &BenchArgs, desc: &ContextDesc, levels_given: bool) -> Result<()> 
         camera: BenchCamera::default(),
         adaptive: None,
         view: a.view,
+        heightmap: match &a.heightmap {
+            Some(path) if displacements.contains(&Displace::Heightmap) => {
+                Some(Heightmap::load_png(path).map_err(anyhow::Error::msg)?)
+            }
+            _ => None,
+        },
     };
     let adaptive = a.adaptive.enabled(true);
     // Drawn centred and at unit size, like `render`: the timings do not change.

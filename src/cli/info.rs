@@ -47,7 +47,28 @@ pub fn run(a: &InfoArgs, desc: &ContextDesc) -> Result<()> {
     for w in load_warnings(path, &report) {
         note(format_args!("{w}"));
     }
-    print_stats(path, &mesh, &report)?;
+    let mut input = Input {
+        mesh,
+        shown: shown.clone(),
+        heightmap: None,
+        tags: None,
+        loop_refusal: None,
+        report,
+    };
+    if a.pixel_error.is_some() {
+        // The files the levels read and the parameters are refused before anything is
+        // printed, as render refuses them before drawing.
+        let so = a.surface_opts();
+        input.heightmap = so.heightmap(false).map_err(anyhow::Error::msg)?;
+        let lines = &input.report.triangle_lines;
+        input.tags =
+            (so.tags(&input.mesh, &input.shown, lines, false)).map_err(anyhow::Error::msg)?;
+        (so.drawn.params)
+            .params_for(&input.mesh, &[so.drawn.displace])
+            .map_err(anyhow::Error::msg)?;
+    }
+    let (mesh, report) = (&input.mesh, &input.report);
+    print_stats(path, mesh, report)?;
     if let Some(level) = a.level {
         // Loop's drivers draw the faces of one Loop step, four to a coarse triangle.
         let elements = mesh.triangles.len() as u64 * if for_loop { 4 } else { 1 };
@@ -56,16 +77,8 @@ pub fn run(a: &InfoArgs, desc: &ContextDesc) -> Result<()> {
     // With --pixel-error the levels build Loop's data on the mesh as drawn and print these
     // lines from it (the same topology, so the same tables): built once.
     if for_loop && a.pixel_error.is_none() {
-        print_loop(a, &loop_data(a, path, &mesh)?)?;
+        print_loop(a, &loop_data(a, path, mesh)?)?;
     }
-    let input = Input {
-        mesh,
-        shown: shown.clone(),
-        heightmap: None,
-        tags: None,
-        loop_refusal: None,
-        report,
-    };
     print_levels(a, input)?;
     Ok(())
 }

@@ -153,13 +153,19 @@ pub fn check_crease_angle(a: &super::numbers::TypedF32) -> Result<(), String> {
     }
 }
 
-/// Loads what `--heightmap` and `--tags` name for `input`'s mesh; with `--surface stpn` and no
-/// tags file, says where derived tags cannot keep a crease.
+/// Loads what `--heightmap` and `--tags` name for `input`'s mesh (keeping a map or tags
+/// `input` carries already); with `--surface stpn` and no tags file, says where derived tags
+/// cannot keep a crease.
 /// `any` for the window, whose panel can switch to the surface or displacement they apply to.
 pub fn attach_surface_inputs(input: &mut Input, s: &SurfaceOpts, any: bool) -> Result<()> {
-    input.heightmap = s.heightmap(any).map_err(anyhow::Error::msg)?;
-    let lines = &input.report.triangle_lines;
-    input.tags = (s.tags(&input.mesh, &input.shown, lines, any)).map_err(anyhow::Error::msg)?;
+    // Read once: a caller that refused bad files early has them already.
+    if input.heightmap.is_none() {
+        input.heightmap = s.heightmap(any).map_err(anyhow::Error::msg)?;
+    }
+    if input.tags.is_none() {
+        let lines = &input.report.triangle_lines;
+        input.tags = (s.tags(&input.mesh, &input.shown, lines, any)).map_err(anyhow::Error::msg)?;
+    }
     if s.surface.facts().tags && s.drawn.tags.is_none() {
         split_three_creases(input, s.drawn.crease_angle.as_ref().map(|a| a.value))?;
         let (_, corners) = meshrefine::surface::stpn::derive_with_angle(
