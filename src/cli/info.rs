@@ -5,7 +5,7 @@
 use super::adaptive::{check_distance, check_view, Frame};
 use super::args::InfoArgs;
 use super::choices::boundary_name;
-use super::input::{attach_surface_inputs, load_warnings, Input};
+use super::input::{attach_surface_inputs, load_warnings, read_surface_files, Input};
 use super::loop_check::loop_refusal;
 use crate::note;
 use anyhow::{bail, Result};
@@ -59,10 +59,7 @@ pub fn run(a: &InfoArgs, desc: &ContextDesc) -> Result<()> {
         // The files the levels read and the parameters are refused before anything is
         // printed, as render refuses them before drawing.
         let so = a.surface_opts();
-        input.heightmap = so.heightmap(false).map_err(anyhow::Error::msg)?;
-        let lines = &input.report.triangle_lines;
-        input.tags =
-            (so.tags(&input.mesh, &input.shown, lines, false)).map_err(anyhow::Error::msg)?;
+        read_surface_files(&mut input, &so, false)?;
         (so.drawn.params)
             .params_for(&input.mesh, &[so.drawn.displace])
             .map_err(anyhow::Error::msg)?;

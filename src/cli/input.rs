@@ -153,12 +153,10 @@ pub fn check_crease_angle(a: &super::numbers::TypedF32) -> Result<(), String> {
     }
 }
 
-/// Loads what `--heightmap` and `--tags` name for `input`'s mesh (keeping a map or tags
-/// `input` carries already); with `--surface stpn` and no tags file, says where derived tags
-/// cannot keep a crease.
-/// `any` for the window, whose panel can switch to the surface or displacement they apply to.
-pub fn attach_surface_inputs(input: &mut Input, s: &SurfaceOpts, any: bool) -> Result<()> {
-    // Read once: a caller that refused bad files early has them already.
+/// Reads what `--heightmap` and `--tags` name for `input`'s mesh, unless `input` carries them
+/// already. `any` for the window, whose panel can switch to the surface or displacement they
+/// apply to.
+pub fn read_surface_files(input: &mut Input, s: &SurfaceOpts, any: bool) -> Result<()> {
     if input.heightmap.is_none() {
         input.heightmap = s.heightmap(any).map_err(anyhow::Error::msg)?;
     }
@@ -166,6 +164,13 @@ pub fn attach_surface_inputs(input: &mut Input, s: &SurfaceOpts, any: bool) -> R
         let lines = &input.report.triangle_lines;
         input.tags = (s.tags(&input.mesh, &input.shown, lines, any)).map_err(anyhow::Error::msg)?;
     }
+    Ok(())
+}
+
+/// [`read_surface_files`]; then with `--surface stpn` and no tags file, says where derived
+/// tags cannot keep a crease.
+pub fn attach_surface_inputs(input: &mut Input, s: &SurfaceOpts, any: bool) -> Result<()> {
+    read_surface_files(input, s, any)?;
     if s.surface.facts().tags && s.drawn.tags.is_none() {
         split_three_creases(input, s.drawn.crease_angle.as_ref().map(|a| a.value))?;
         let (_, corners) = meshrefine::surface::stpn::derive_with_angle(

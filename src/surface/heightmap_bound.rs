@@ -35,8 +35,7 @@ impl MapLevel {
     /// Level `l`'s facts over the texels that bilinear samples at texture coordinates in the
     /// box `lo..=hi` read (with a texel to spare on each side for the rounding of `f32`
     /// coordinates); the whole map where the box spans it. `None` where the box is not finite
-    /// or lies past `FAR` (`2^21`) texels: there the sampler's `f32` coordinate keeps less than two
-    /// bits below the texel, its heights step from texel to texel, and no slope bounds them.
+    /// or lies past `FAR` texels (`2^18`: `FAR`'s notes say why).
     pub fn over(map: &Heightmap, l: usize, lo: Vec2, hi: Vec2) -> Option<MapLevel> {
         let facts = map.facts.level(map, l);
         let lv = &map.levels[l];
@@ -47,9 +46,14 @@ impl MapLevel {
     }
 }
 
-/// Texture coordinates times the map's side past which the sampler steps (see
-/// [`MapLevel::over`]): `2^21`.
-pub const FAR: f64 = (1u64 << 21) as f64;
+/// Texel coordinates (texture coordinates times the level's side) past which the bound gives
+/// up: `2^18`. The sampler's `f32` coordinate `u w − 1/2` is rounded to `2^-23` of its size, so
+/// its heights step in fractions of a texel, up to `1/32` of one below this; the bound is for the
+/// bilinear map at exact coordinates and leaves that rounding out, as it leaves out the rest of
+/// the `f32` evaluation's. Past it the steps grow to a quarter of a texel and more (whole texels
+/// past `2^23`), and no slope bounds them: no finite bound unless the level read is one height
+/// throughout.
+pub const FAR: f64 = (1u64 << 18) as f64;
 
 /// The texels `floor(u n − 1/2) − 1 ..= floor(u n − 1/2) + 2` for `u` in `lo..=hi` (`Some(None)`
 /// where that spans every texel), or `None` where that is not finite or lies past [`FAR`].
@@ -65,7 +69,8 @@ fn texels(lo: f32, hi: f32, n: u32) -> Option<Option<[i64; 2]>> {
 /// Texels in a block of the finest block grid: `2^BLOCK_SHIFT` a side.
 const BLOCK_SHIFT: u32 = 3;
 
-/// The most blocks one rectangle reads: the finest grid with no more than these over it.
+/// The most blocks one rectangle reads: the finest grid with no more than these over it (so a
+/// rectangle of up to 128 texels a side, spare texels included, reads blocks of 8).
 const MAX_BLOCKS: u32 = 289;
 
 /// A region's facts: largest `first.x`, `first.y`, `second.x`, `second.y`, `mixed`, then the
@@ -181,7 +186,7 @@ impl LevelFacts {
     }
 
     /// The facts over a rectangle inside the map, from the finest grid whose blocks cover it
-    /// with at most [`MAX_BLOCKS`] (a footprint of up to 128 × 128 texels reads blocks of 8).
+    /// with at most [`MAX_BLOCKS`].
     fn rect(&self, x: [u32; 2], y: [u32; 2]) -> Cell {
         let mut k = 0;
         while k + 1 < self.grids.len() {
@@ -215,16 +220,17 @@ impl LevelFacts {
     }
 }
 
-/// `|Σ w_i t_i|` for texel heights `t_i` in `[0, 1]` and weights of 1 or 2, never below the
-/// exact value: summed in `f64`, exactly where every height is 0 or at least `2^-26` (their bits
-/// then span at most 52 places), with room for the rounding where not, and rounded up to
-/// `f32`. So a flat region's differences are exactly 0 (a bound with no curvature there).
+/// `|Σ w_i t_i|` for up to four texel heights `t_i` in `[0, 1]` and weights of 1 or 2, never
+/// below the exact value: summed in `f64`, exactly where every height is 0 or at least `2^-26`
+/// (their bits then span at most 52 places), with room for the rounding where not (three
+/// additions of partial sums at most 4, each off by at most `2^-51`), and rounded up to `f32`.
+/// So a flat region's differences are exactly 0 (a bound with no curvature there).
 fn difference(terms: &[(f64, f32)]) -> f32 {
     let tiny = terms
         .iter()
         .any(|&(_, t)| t != 0.0 && t.abs() < 1.0 / (1u32 << 26) as f32);
     let sum: f64 = terms.iter().map(|&(w, t)| w * t as f64).sum();
-    let x = sum.abs() + if tiny { f64::EPSILON } else { 0.0 };
+    let x = sum.abs() + if tiny { 2.0 * f64::EPSILON } else { 0.0 };
     let f = x as f32;
     if (f as f64) < x {
         // The next f32 up (f is finite and at least 0 here).
@@ -375,66 +381,99 @@ fn bound_slopes(
 mod tests {
     use super::*;
 
-    /// Facts over random repeating rectangles (odd map sizes, spans crossing the border, up to
-    /// the whole map) cover each texel's own facts in the rectangle, and are the whole map's
-    /// where the rectangle is.
-    #[test]
-    fn regions_cover_their_texels() {
-        let (w, h) = (37u32, 20u32);
-        let mut s = 11u64;
-        let mut rnd = move |n: u64| {
+    fn lcg(seed: u64) -> impl FnMut(u64) -> u64 {
+        let mut s = seed;
+        move |n: u64| {
             s = s
                 .wrapping_mul(6364136223846793005)
                 .wrapping_add(1442695040888963407);
             (s >> 33) % n
-        };
-        let texels: Vec<f32> = (0..w * h).map(|_| rnd(1000) as f32 / 999.0).collect();
-        let map = Heightmap::from_heights("random", w, h, texels.clone());
-        let facts = LevelFacts::of(&map.levels[0]);
-        // In f64: exact for these heights, so the facts must be at least these.
-        let t = |x: i64, y: i64| {
-            texels[(y.rem_euclid(h as i64) * w as i64 + x.rem_euclid(w as i64)) as usize] as f64
-        };
-        for _ in 0..300 {
-            let x0 = rnd(3 * w as u64) as i64 - w as i64;
-            let y0 = rnd(3 * h as u64) as i64 - h as i64;
-            let x = [x0, x0 + rnd(w as u64) as i64];
-            let y = [y0, y0 + rnd(h as u64) as i64];
-            let got = facts.over(x, y);
-            for ty in y[0]..=y[1] {
-                for tx in x[0]..=x[1] {
-                    let c = t(tx, ty);
-                    assert!(got.first.x as f64 >= (t(tx + 1, ty) - c).abs());
-                    assert!(got.first.y as f64 >= (t(tx, ty + 1) - c).abs());
-                    let sx = t(tx + 1, ty) + t(tx - 1, ty) - 2.0 * c;
-                    assert!(got.second.x as f64 >= sx.abs());
-                    let sy = t(tx, ty + 1) + t(tx, ty - 1) - 2.0 * c;
-                    assert!(got.second.y as f64 >= sy.abs());
-                    let m = c - t(tx + 1, ty) - t(tx, ty + 1) + t(tx + 1, ty + 1);
-                    assert!(got.mixed as f64 >= m.abs());
-                    assert!(got.low as f64 <= c && got.high as f64 >= c);
-                }
+        }
+    }
+
+    /// Facts over random repeating rectangles cover each texel's own facts in the rectangle:
+    /// on an odd-sized map (spans crossing the border, up to the whole map) and on a larger
+    /// one with rectangles of 140 to 250 texels a side, which read the coarser block grids.
+    #[test]
+    fn regions_cover_their_texels() {
+        for (w, h, sides, seed) in [(37u32, 20u32, 1..=37u64, 11u64), (300, 260, 140..=250, 5)] {
+            let mut rnd = lcg(seed);
+            let texels: Vec<f32> = (0..w * h).map(|_| rnd(1000) as f32 / 999.0).collect();
+            let map = Heightmap::from_heights("random", w, h, texels.clone());
+            let facts = LevelFacts::of(&map.levels[0]);
+            let side = |rnd: &mut dyn FnMut(u64) -> u64, n: u32| {
+                let (lo, hi) = (*sides.start(), (*sides.end()).min(n as u64));
+                (lo + rnd(hi - lo + 1)) as i64 - 1
+            };
+            for _ in 0..60 {
+                let x0 = rnd(3 * w as u64) as i64 - w as i64;
+                let y0 = rnd(3 * h as u64) as i64 - h as i64;
+                let x = [x0, x0 + side(&mut rnd, w)];
+                let y = [y0, y0 + side(&mut rnd, h)];
+                covers(&facts.over(x, y), &texels, (w, h), x, y);
             }
         }
-        let whole = MapLevel::of(&map, 0);
-        assert_eq!(facts.over([-3, w as i64 - 4], [5, 4 + h as i64]), whole);
-        assert_eq!(whole.low, texels.iter().copied().fold(1.0, f32::min));
-        // A flat map has no differences at all, wherever it is read.
+    }
+
+    /// `got` is at least every texel's own facts over texels `x` × `y` (repeating) of a `size`
+    /// map, computed in f64 (exact for these heights).
+    fn covers(got: &MapLevel, texels: &[f32], size: (u32, u32), x: [i64; 2], y: [i64; 2]) {
+        let (w, h) = (size.0 as i64, size.1 as i64);
+        let t = |x: i64, y: i64| texels[(y.rem_euclid(h) * w + x.rem_euclid(w)) as usize] as f64;
+        for ty in y[0]..=y[1] {
+            for tx in x[0]..=x[1] {
+                let c = t(tx, ty);
+                assert!(got.first.x as f64 >= (t(tx + 1, ty) - c).abs());
+                assert!(got.first.y as f64 >= (t(tx, ty + 1) - c).abs());
+                let sx = t(tx + 1, ty) + t(tx - 1, ty) - 2.0 * c;
+                assert!(got.second.x as f64 >= sx.abs());
+                let sy = t(tx, ty + 1) + t(tx, ty - 1) - 2.0 * c;
+                assert!(got.second.y as f64 >= sy.abs());
+                let m = c - t(tx + 1, ty) - t(tx, ty + 1) + t(tx + 1, ty + 1);
+                assert!(got.mixed as f64 >= m.abs());
+                assert!(got.low as f64 <= c && got.high as f64 >= c);
+            }
+        }
+    }
+
+    /// The rounding allowance where a height is tiny: `c − t10 − t01 + t11` is `1 + 2^-54`
+    /// exactly for these, which f64 rounds to 1; and a flat map has no differences at all.
+    #[test]
+    fn differences_are_never_below_the_exact_ones() {
+        let bits = [0x2963_5000u32, 0x3f7f_fffe, 0x3400_0004, 0x27e3_8000].map(f32::from_bits);
+        let m = difference(&[
+            (1.0, bits[0]),
+            (-1.0, bits[1]),
+            (-1.0, bits[2]),
+            (1.0, bits[3]),
+        ]);
+        assert!(m > 1.0, "{m}");
         let flat = Heightmap::from_heights("flat", 5, 3, vec![0.3; 15]);
         let m = MapLevel::over(&flat, 0, Vec2::splat(0.2), Vec2::splat(0.4)).unwrap();
         assert_eq!((m.first, m.second, m.mixed), (Vec2::ZERO, Vec2::ZERO, 0.0));
         assert_eq!(MapLevel::of(&flat, 0).second, Vec2::ZERO);
-        // Regions the texture coordinates name: the whole map for a box that spans it or is
-        // not finite, and a part of it (a smaller range of heights) for a small box.
+    }
+
+    /// The whole map's facts where a rectangle or a box of texture coordinates spans it, none
+    /// where the coordinates are not numbers or lie far out, a part of it for a small box.
+    #[test]
+    fn regions_named_by_texture_coordinates() {
+        let (w, h) = (37u32, 20u32);
+        let mut rnd = lcg(11);
+        let texels: Vec<f32> = (0..w * h).map(|_| rnd(1000) as f32 / 999.0).collect();
+        let map = Heightmap::from_heights("random", w, h, texels.clone());
+        let facts = LevelFacts::of(&map.levels[0]);
+        let whole = MapLevel::of(&map, 0);
+        assert_eq!(facts.over([-3, w as i64 - 4], [5, 4 + h as i64]), whole);
+        assert_eq!(whole.low, texels.iter().copied().fold(1.0, f32::min));
         let near =
             |lo: f32, hi: f32| MapLevel::over(&map, 0, Vec2::new(lo, 0.1), Vec2::new(hi, 0.2));
         assert_eq!(near(0.0, 1.0), Some(whole));
         assert_eq!(near(-100.0, 100.0), Some(whole));
-        // Not numbers, or far out where the sampler's f32 coordinate steps from texel to
-        // texel: no region.
+        // Not numbers, or far out (past `FAR` texels): no region.
         assert_eq!(near(f32::NAN, 0.5), None);
         assert_eq!(near(-1e30, 1e30), None);
-        assert_eq!(near(1e6, 1e6), None);
+        assert_eq!(near(1e4, 1e4), None);
         assert_ne!(near(1e3, 1e3), Some(whole));
         let small = near(0.3, 0.32).unwrap();
         assert!(small.high - small.low < whole.high - whole.low);

@@ -630,9 +630,10 @@ fn unit_direction_bound_is_tight() {
     );
 }
 
-/// Texture coordinates past `2^21` texels of the level read (the grid's shifted by 10^4 map
-/// widths, 2.56 M texels of a 256-texel map): the sampler's heights step from texel to texel,
-/// so a map with any relief gives no finite bound, and a flat one the undisplaced patch's.
+/// Texture coordinates past `2^18` texels of the level read (the grid's shifted by 10^4 map
+/// widths, 2.56 M texels of a 256-texel map): the sampler's heights step by fractions of a
+/// texel and more, so a map with any relief gives no finite bound, and a flat one the
+/// undisplaced patch's.
 #[test]
 fn height_map_far_out_is_unbounded_unless_flat() {
     let (grid, recs, uvs) = uv_grid();
