@@ -4256,6 +4256,32 @@ fn bench_reads_a_height_map_file() {
     );
 }
 
+/// A bench row's pixel error is the one given, however small: `1e-6` in the summary, the
+/// markdown, the CSV and the JSON (a number there), not rounded to 0.
+#[test]
+fn bench_keeps_the_pixel_error_given() {
+    let prefix = tmp("bench-tiny-px");
+    let prefix = p(&prefix);
+    let tet = model_path("tetrahedron.obj");
+    #[rustfmt::skip]
+    let out = ok(&[
+        "bench", p(&tet), "--frames", "1", "--width", "32", "--height", "32", "--levels", "1",
+        "--pixel-error", "1e-6", "--max-level", "2", "--drivers", "tess", "--out", prefix,
+    ]);
+    let csv = std::fs::read_to_string(format!("{prefix}.csv")).unwrap();
+    let mut lines = csv.lines();
+    let keys = common::csv_fields(lines.next().unwrap());
+    let col = keys.iter().position(|k| k == "pixel_error").unwrap();
+    let rows: Vec<Vec<String>> = lines.map(common::csv_fields).collect();
+    assert!(rows.iter().any(|r| r[col] == "1e-6"), "{csv}");
+    let json = std::fs::read_to_string(format!("{prefix}.json")).unwrap();
+    assert!(json.contains("\"pixel_error\":1e-6"), "{json}");
+    let md = std::fs::read_to_string(format!("{prefix}.md")).unwrap();
+    assert!(md.contains("| 1e-6 |"), "{md}");
+    // The summary names what every row shares once.
+    assert!(out.contains(", px 1e-6."), "{out}");
+}
+
 /// A benchmark row whose every element was culled draws no triangle: no time per triangle, and
 /// its note says why.
 #[test]

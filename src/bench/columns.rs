@@ -184,7 +184,7 @@ pub static COLUMNS: &[Column] = &[
         Some("pixel error"),
         Some("px"),
         Right,
-        |_, r| Cell::Real(adaptive(r).map(|a| a.pixel_error.into()), 2),
+        |_, r| Cell::Given(adaptive(r).map(|a| a.pixel_error)),
     ),
     col(
         "level_from",

@@ -52,6 +52,9 @@ pub enum Cell {
     Real(Option<f64>, usize),
     /// A timing: CSV, JSON and the summary give its median, markdown `median (min–max)`.
     Spread(Option<Stat>),
+    /// A value given on the command line (a pixel error): written everywhere as
+    /// [`crate::lod::px`] writes it, every digit of it (however small), a number in CSV and JSON.
+    Given(Option<f32>),
 }
 
 impl Cell {
@@ -63,6 +66,7 @@ impl Cell {
             Cell::Count(v) => v.map(|v| v.to_string()).unwrap_or_default(),
             Cell::Real(v, _) => v.map(|v| format!("{v:.4}")).unwrap_or_default(),
             Cell::Spread(s) => s.map(|s| format!("{:.4}", s.median)).unwrap_or_default(),
+            Cell::Given(v) => v.map(crate::lod::px).unwrap_or_default(),
         }
     }
 
@@ -76,6 +80,8 @@ impl Cell {
             Cell::Count(v) => v.map(|v| v.to_string()).unwrap_or_else(|| "null".into()),
             Cell::Real(v, _) => real(*v),
             Cell::Spread(s) => real(s.map(|s| s.median)),
+            Cell::Given(Some(v)) if v.is_finite() => crate::lod::px(*v),
+            Cell::Given(_) => "null".into(),
         }
     }
 
@@ -94,7 +100,10 @@ impl Cell {
             Cell::Count(Some(v)) => v.to_string(),
             Cell::Real(Some(v), digits) => format!("{v:.digits$}"),
             Cell::Spread(Some(s)) => format!("{:.2}", s.median),
-            Cell::Count(None) | Cell::Real(None, _) | Cell::Spread(None) => "–".into(),
+            Cell::Given(Some(v)) => crate::lod::px(*v),
+            Cell::Count(None) | Cell::Real(None, _) | Cell::Spread(None) | Cell::Given(None) => {
+                "–".into()
+            }
         }
     }
 }
@@ -557,6 +566,7 @@ mod tests {
             Cell::Count(v) => v.map(|v| v as f64),
             Cell::Real(v, _) => v,
             Cell::Spread(s) => s.map(|s| s.median),
+            Cell::Given(v) => v.map(f64::from),
             Cell::Name(_) | Cell::Prose(_) => None,
         }
     }

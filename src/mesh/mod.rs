@@ -133,6 +133,12 @@ impl LoadReport {
 /// [`DegenerateFace::reason`] of a triangle on the same three vertices as an earlier one.
 pub const DUPLICATE_FACE: &str = "repeats the three vertices of an earlier face";
 
+/// Why a face whose corners are distinct vertices of the file but lie at one point (equal
+/// coordinates, welded into one vertex) is dropped; far from the origin, coordinates a little
+/// apart in the file can be one single-precision number.
+pub const COINCIDENT_CORNERS: &str =
+    "has two corners at one point (their coordinates are equal in single precision)";
+
 /// A triangle dropped because it is degenerate. A polygon's fan triangles share its `face`.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct DegenerateFace {
@@ -140,7 +146,8 @@ pub struct DegenerateFace {
     pub face: usize,
     /// 1-based line of the face in the OBJ text.
     pub line: Option<usize>,
-    /// "repeats a vertex index", "has zero area", or that its area is not representable in
+    /// "repeats a vertex index", [`COINCIDENT_CORNERS`], "has zero area", or that its area is
+    /// not representable in
     /// `f32` ("has an area too small for f32 (it underflows)", "has an area or edge too large
     /// for f32 (it overflows)"), or "repeats the three vertices of an earlier face" (an exact
     /// duplicate in any rotation or orientation).

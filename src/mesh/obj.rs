@@ -632,6 +632,18 @@ mod tests {
         assert_eq!(m.stats().boundary_edges, 4);
     }
 
+    /// Far from the origin, vertices 0.005 apart in the file are one f32 point: the face
+    /// through both is dropped as having two corners at one point, not as repeating an index.
+    #[test]
+    fn corners_single_precision_merges_are_named() {
+        let text =
+            "v 1000000 0 0\nv 1000000.005 0 0\nv 1000000 1 0\nv 1000001 0 0\nf 1 2 3\nf 1 4 3\n";
+        let (m, report) = load(text).unwrap();
+        assert_eq!(m.positions.len(), 3);
+        let reasons: Vec<_> = report.dropped_degenerate.iter().map(|d| d.reason).collect();
+        assert_eq!(reasons, [crate::mesh::COINCIDENT_CORNERS]);
+    }
+
     #[test]
     fn degenerate_faces_are_dropped_and_reported() {
         let (mesh, report) = load_model("degenerate_faces.obj");

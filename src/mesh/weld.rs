@@ -51,8 +51,13 @@ pub(crate) fn assemble(raw: RawMesh) -> Result<(Mesh, LoadReport), MeshError> {
     let mut seen: HashSet<[u32; 3]> = HashSet::with_capacity(raw.triangles.len());
     for t in &raw.triangles {
         let p = t.p.map(|i| remap[i as usize]);
-        let reason = if p[0] == p[1] || p[1] == p[2] || p[2] == p[0] {
+        let repeats = |q: [u32; 3]| q[0] == q[1] || q[1] == q[2] || q[2] == q[0];
+        let reason = if repeats(t.p) {
             Some("repeats a vertex index")
+        } else if repeats(p) {
+            // Distinct vertices of the file at one point: equal coordinates, or ones that only
+            // single precision makes equal (a mesh far from the origin).
+            Some(super::COINCIDENT_CORNERS)
         } else {
             match corners(&positions, p) {
                 Some([a, b, c]) => degenerate_reason(a, b, c),
@@ -292,7 +297,7 @@ mod tests {
 
     #[test]
     fn welding_can_make_a_face_degenerate() {
-        // Vertices 1 and 3 coincide, so face 1 repeats an index after welding.
+        // Vertices 1 and 3 coincide, so face 1 has two corners at one point after welding.
         let p = vec![Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::X, Vec3::Z];
         let (mesh, report) = assemble(raw(p, &[[0, 1, 2], [0, 1, 3], [0, 2, 4]])).unwrap();
         assert_eq!(mesh.positions.len(), 4);
@@ -302,7 +307,7 @@ mod tests {
             vec![DegenerateFace {
                 face: 1,
                 line: None,
-                reason: "repeats a vertex index"
+                reason: crate::mesh::COINCIDENT_CORNERS
             }]
         );
         assert!(report.normals_computed);
