@@ -214,6 +214,12 @@ pub fn render_png(
             ),
             None => camera,
         };
+        // A few pixels' samples can all miss a mesh that covers most of them.
+        let why = if width.min(height) <= 4 && samples.as_raw() > 1 {
+            format!("{why}; or its {} samples per pixel all miss the mesh: --msaa 1 samples each pixel's centre", samples.as_raw())
+        } else {
+            why
+        };
         bail!(
             "'{}' is blank: no pixel of the {width}x{height} image shows any of the {triangles} triangle(s) of '{}' ({why})",
             out.display(),
