@@ -951,11 +951,23 @@ fn meshes_of_any_f32_scale_are_framed_and_blank_images_are_errors() {
     // A single pixel: the fan covers its centre, which the default multisampling's four
     // samples can miss; the message says so, and one sample draws it.
     let fan = model_path("fan24_open.obj");
-    let one = ["render", p(&fan), "-o", p(&png), "--width", "1", "--height", "1"];
+    let one = [
+        "render",
+        p(&fan),
+        "-o",
+        p(&png),
+        "--width",
+        "1",
+        "--height",
+        "1",
+    ];
     let out = meshrefine(&one);
     if !out.status.success() {
         let stderr = String::from_utf8_lossy(&out.stderr);
-        assert!(stderr.contains("--msaa 1 samples each pixel's centre"), "{stderr}");
+        assert!(
+            stderr.contains("--msaa 1 samples each pixel's centre"),
+            "{stderr}"
+        );
     }
     let mut single = one.to_vec();
     single.extend(["--msaa", "1"]);
