@@ -207,5 +207,6 @@ fn every(v: &[ElementRecord], step: usize) -> Vec<ElementRecord> {
 }
 
 mod bounds;
+mod heightmap;
 mod levels;
 mod view;
