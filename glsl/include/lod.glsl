@@ -11,10 +11,11 @@
 #include "lod_metric.glsl"
 
 const float LOD_EDGE_FACTOR = 1.0 / 8.0;
-// Improved noise: largest value, gradient and Hessian norm (src/lod/displace.rs).
+// Improved noise: largest value, derivative and second derivative along a direction
+// (src/surface/noise.rs).
 const float LOD_NOISE_MAX = 1.07;
-const float LOD_NOISE_GRAD = 3.87 * 1.732051;
-const float LOD_NOISE_HESS = 1.03 * (12.034 + 2.0 * 10.799);
+const float LOD_NOISE_GRAD = 3.87;
+const float LOD_NOISE_HESS = 14.9;
 
 // ---- Bézier nets (src/lod/bound.rs `Net`) ----
 

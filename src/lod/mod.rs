@@ -67,7 +67,8 @@
 //!   for `n'⊥` the part of `n'` across `N`; `N''`'s part along `N` is `−|N'|² N`, and across it
 //!   `n''⊥/r − 2 n'⊥ (N·n')/r²`, where `2|n'⊥||N·n'| <= |n'|²`). For a height `h = η(P)` of the point
 //!   (`sine`: src/surface/displace.rs; `noise`: src/surface/noise.rs),
-//!   `|h''| <= H |P'|² + G |P''|` with `G`, `H` bounds of `η`'s gradient and Hessian over the
+//!   `|h''| <= H |P'|² + G |P''|` (`h'' = ∇²η[P', P'] + ∇η · P''`) with `G` a bound of `η`'s
+//!   gradient length and `H` of its second derivative along any unit direction over the
 //!   patch's sphere ([`crate::surface::bounds::Height`]). The height map's `h`
 //!   (src/surface/heightmap_bound.rs, `BOUND`) is bilinear in texels (kinks at texel lines):
 //!   its slope jumps by at most the second difference of the texels under the patch per texel

@@ -43,7 +43,8 @@ pub enum SurfaceBound {
 }
 
 /// Bounds of a height `η(p)` of the point over a sphere: `|η| <= max`, `|∇η| <= grad`,
-/// `‖∇²η‖ <= hess`.
+/// `|∇²η[u, u]| <= hess` for every unit `u` (what `|h''| <= hess |P'|² + grad |P''|` along a
+/// curve `P` needs).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Height {
     pub max: f32,

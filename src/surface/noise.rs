@@ -120,21 +120,25 @@ pub fn noise_grad(p: Vec3) -> (f32, Vec3) {
 }
 
 /// `|noise| <=` this. The noise constants are the exact largest values over every choice of
-/// the cells' corner gradients ([`noise_scan`]: each quantity is linear in each corner's
-/// gradient, so the worst choice is found corner by corner), at a fine grid of the cell
-/// (converged to four digits between 48³ and 128³ points), with 3% added; a unit test
+/// the cells' corner gradients ([`noise_scan`], [`noise_scan_along`]: each quantity is linear in
+/// each corner's gradient, so the worst choice is found corner by corner), at a fine grid of the
+/// cell (converged to three digits between 24³ and 64³ points), with 3% added; a unit test
 /// recomputes them. Improved noise reaches 1.036.
 pub const NOISE_MAX: f32 = 1.07;
-/// `|∇noise| <= √3 ·` the largest gradient component (3.75, reached).
-pub const NOISE_GRAD: f32 = 3.87 * 1.732_051;
-/// `‖∇²noise‖ <=` the largest row sum of the Hessian: diagonal entries at most 12.03,
-/// off-diagonal 10.80.
-pub const NOISE_HESS: f32 = 1.03 * (12.034 + 2.0 * 10.799);
+/// `|∇noise| <=` this: the largest derivative along any unit direction (3.75, along an axis),
+/// which is the largest gradient length.
+pub const NOISE_GRAD: f32 = 3.87;
+/// `|∇²noise[u, u]| <=` this for every unit direction `u`: the largest second derivative along
+/// any direction (14.47, near the diagonal `(1, 1, 1)/√3`). A bound of the Hessian's entries
+/// (diagonal at most 12.03, off-diagonal 10.80) would give 33.6, as those maxima are not reached
+/// together.
+pub const NOISE_HESS: f32 = 14.9;
 
 /// The noise displacement's height bound over sphere `s` (octave `o` adds
 /// `a/2^o · noise(2^o f p)`): `|η| <= |a| · NOISE_MAX · Σ 2^−o`, `|∇η| <= |a| f · octaves ·
-/// NOISE_GRAD`, `‖∇²η‖ <= |a| f² (2^octaves − 1) · NOISE_HESS`, from the noise's largest value,
-/// gradient and Hessian over every choice of corner gradients ([`noise_scan`]).
+/// NOISE_GRAD`, `|∇²η[u, u]| <= |a| f² (2^octaves − 1) · NOISE_HESS` along every unit `u`, from
+/// the noise's largest value and derivatives over every choice of corner gradients
+/// ([`noise_scan`], [`noise_scan_along`]).
 pub fn bound(params: &crate::surface::SurfaceParams, _: &crate::lod::Sphere) -> Height {
     let (a, f) = (params.amplitude.abs(), params.frequency);
     let o = params.octaves.max(1);
@@ -146,61 +150,111 @@ pub fn bound(params: &crate::surface::SurfaceParams, _: &crate::lod::Sphere) -> 
     }
 }
 
-/// Perlin's gradients (the 12 distinct ones of the 16-entry table).
-fn noise_gradients() -> Vec<Vec3> {
-    let mut g: Vec<Vec3> = (0..16).map(gradient).collect();
-    g.sort_by(|a, b| a.to_array().partial_cmp(&b.to_array()).unwrap());
-    g.dedup();
-    g
+/// The corner weight along one axis (`bit` the corner's coordinate there) at `t`, and its
+/// first two derivatives: the fade or one minus it.
+fn axis_weight(bit: usize, t: f32) -> [f32; 3] {
+    let d2 = 60.0 * t - 180.0 * t * t + 120.0 * t * t * t;
+    if bit == 1 {
+        [fade(t), dfade(t), d2]
+    } else {
+        [1.0 - fade(t), -dfade(t), -d2]
+    }
 }
 
-/// The largest improved-noise value, gradient component, Hessian diagonal and off-diagonal
-/// entry over every choice of corner gradients, at the points of a `steps³` grid of the cell.
-/// Each quantity is `Σ_c g_c · a_c(p)` with the corner gradients `g_c` chosen independently
-/// from a set closed under negation, so its largest magnitude at `p` is exactly
-/// `Σ_c max_g g · a_c(p)`.
-pub fn noise_scan(steps: u32) -> (f32, f32, f32, f32) {
-    let gs = noise_gradients();
-    let best = |a: Vec3| gs.iter().map(|g| g.dot(a)).fold(f32::MIN, f32::max);
-    let fade = |t: f32| t * t * t * (t * (t * 6.0 - 15.0) + 10.0);
-    let d1 = |t: f32| 30.0 * t * t * (t * (t - 2.0) + 1.0);
-    let d2 = |t: f32| 60.0 * t - 180.0 * t * t + 120.0 * t * t * t;
-    // Per axis and corner bit: the weight and its first two derivatives.
-    let w = |bit: usize, t: f32| {
-        if bit == 1 {
-            [fade(t), d1(t), d2(t)]
-        } else {
-            [1.0 - fade(t), -d1(t), -d2(t)]
+/// The largest improved-noise value and gradient component over every choice of corner
+/// gradients, at the points of a `steps³` grid of the cell. Each quantity is `Σ_c g_c · a_c(p)`
+/// with the corner gradients `g_c` chosen independently from a set closed under negation, so
+/// its largest magnitude at `p` is exactly `Σ_c max_g g · a_c(p)`.
+pub fn noise_scan(steps: u32) -> (f32, f32) {
+    let (mut mv, mut mg) = (0.0f32, 0.0f32);
+    scan_cell(steps, |corners| {
+        let (mut v, mut g) = (0.0, 0.0);
+        for (off, [x, y, z]) in corners {
+            let wc = x[0] * y[0] * z[0];
+            v += best_gradient(off * wc);
+            g += best_gradient(off * (x[1] * y[0] * z[0]) + Vec3::X * wc);
         }
-    };
-    let (mut mv, mut mg, mut md, mut mo) = (0.0f32, 0.0f32, 0.0f32, 0.0f32);
+        mv = mv.max(v);
+        mg = mg.max(g);
+    });
+    (mv, mg)
+}
+
+/// The largest `g · a` over Perlin's gradients `g` (a set closed under negation).
+fn best_gradient(a: Vec3) -> f32 {
+    (0..16).map(|h| gradient(h).dot(a)).fold(f32::MIN, f32::max)
+}
+
+/// What a scan sees of one corner at a point: the offset `p − c` and the corner's per-axis
+/// weights with their first two derivatives ([`axis_weight`]).
+type CornerAt = (Vec3, [[f32; 3]; 3]);
+
+/// Calls `visit(corners)` at every point of a `steps³` grid of the cell.
+fn scan_cell(steps: u32, mut visit: impl FnMut([CornerAt; 8])) {
     for ix in 0..=steps {
         for iy in 0..=steps {
             for iz in 0..=steps {
                 let f = Vec3::new(ix as f32, iy as f32, iz as f32) / steps as f32;
-                let (mut v, mut g, mut d, mut o) = (0.0, 0.0, 0.0, 0.0);
-                for c in 0..8usize {
+                let corners = std::array::from_fn(|c| {
                     let bits = [c & 1, (c >> 1) & 1, (c >> 2) & 1];
                     let off = f - Vec3::new(bits[0] as f32, bits[1] as f32, bits[2] as f32);
-                    let (x, y, z) = (w(bits[0], f.x), w(bits[1], f.y), w(bits[2], f.z));
-                    let wc = x[0] * y[0] * z[0];
-                    v += best(off * wc);
-                    g += best(off * (x[1] * y[0] * z[0]) + Vec3::X * wc);
-                    d += best(off * (x[2] * y[0] * z[0]) + Vec3::X * (2.0 * x[1] * y[0] * z[0]));
-                    o += best(
-                        off * (x[1] * y[1] * z[0])
-                            + Vec3::Y * (x[1] * y[0] * z[0])
-                            + Vec3::X * (x[0] * y[1] * z[0]),
-                    );
-                }
-                mv = mv.max(v);
-                mg = mg.max(g);
-                md = md.max(d);
-                mo = mo.max(o);
+                    let w = [0, 1, 2].map(|a| axis_weight(bits[a], f[a]));
+                    (off, w)
+                });
+                visit(corners);
             }
         }
     }
-    (mv, mg, md, mo)
+}
+
+/// Unit directions `(1, a, ab)/|·|` for `a`, `b` in `0, 1/n, …, 1`: every direction with
+/// `x >= y >= z >= 0`. The cell, its corner weights and Perlin's twelve gradients are unchanged
+/// by permuting the axes and by reflecting one (`x → 1 − x` with the corners swapped; the
+/// gradient set is closed under each), and a derivative along `−u` is one along `u` negated (or
+/// the same, for the second): so the largest derivatives along these directions, over the whole
+/// cell, are the largest along any.
+pub fn noise_directions(n: u32) -> Vec<Vec3> {
+    let mut out = Vec::new();
+    for i in 0..=n {
+        for j in 0..=n {
+            let (a, b) = (i as f32 / n as f32, j as f32 / n as f32);
+            out.push(Vec3::new(1.0, a, a * b).normalize());
+        }
+    }
+    out
+}
+
+/// The largest first and second derivatives of improved noise along unit direction `u`, over
+/// every choice of corner gradients, at the points of a `steps³` grid of the cell (as
+/// [`noise_scan`]): corner `c` contributes `g_c · (w_c (p − c))'`, whose derivatives along `u`
+/// are `(∇w_c · u)(p − c) + w_c u` and `(uᵀ ∇²w_c u)(p − c) + 2 (∇w_c · u) u`.
+pub fn noise_scan_along(steps: u32, u: Vec3) -> (f32, f32) {
+    let (mut m1, mut m2) = (0.0f32, 0.0f32);
+    scan_cell(steps, |corners| {
+        let (mut s1, mut s2) = (0.0f32, 0.0f32);
+        for (off, ws) in corners {
+            // The weight's derivatives: ∂_a w = w_a' Π others, ∂_a∂_b likewise.
+            let part = |a: usize, da: usize, b: usize, db: usize| {
+                let mut order = [0usize; 3];
+                order[a] += da;
+                order[b] += db;
+                ws[0][order[0]] * ws[1][order[1]] * ws[2][order[2]]
+            };
+            let grad = Vec3::new(part(0, 1, 0, 0), part(1, 1, 1, 0), part(2, 1, 2, 0));
+            let mut huu = 0.0f32;
+            for a in 0..3 {
+                for b in 0..3 {
+                    huu += u[a] * u[b] * part(a, 1, b, 1);
+                }
+            }
+            let gu = grad.dot(u);
+            s1 += best_gradient(off * gu + u * part(0, 0, 0, 0));
+            s2 += best_gradient(off * huu + u * (2.0 * gu));
+        }
+        m1 = m1.max(s1);
+        m2 = m2.max(s2);
+    });
+    (m1, m2)
 }
 
 #[cfg(test)]
