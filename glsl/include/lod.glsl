@@ -108,32 +108,49 @@ vec3 lod_eval(LodNet net, vec3 w) {
          + net.b[4] * (6.0 * x * y * z);
 }
 
-// min |P| on a lattice of g segments per side, less what P changes within a cell.
+// A lower bound of |P| over one lattice cell with corners a, b, c (a segment: c = b) summing
+// to s, the better of the largest corner length less `step` and the corners' least projection
+// on their sum's direction less the interpolation error `e`. Mirror: `Net::sampled_min_length`.
+float lod_cell_min_length(vec3 a, vec3 b, vec3 c, vec3 s, float step, float e) {
+    float first = max(length(a), max(length(b), length(c))) - step;
+    float l2 = dot(s, s);
+    vec3 u = l2 > 0.0 ? s / sqrt(l2) : vec3(0.0);
+    float second = min(dot3(a, u), min(dot3(b, u), dot3(c, u))) - e;
+    return max(first, second);
+}
+
+// A lower bound of |P| on a lattice of g segments per side, cell by cell. Mirror:
+// `Net::sampled_min_length`.
 float lod_sampled_min_length(LodNet net, int edge, int g) {
     float fg = float(g);
+    float h2 = 1.0 / (fg * fg);
     float m = 3.0e38;
     if (edge >= 0) {
         float step = lod_first(net, edge, edge) / fg;
+        float e = LOD_EDGE_FACTOR * lod_second(net, edge, edge) * h2;
         for (int t = 0; t < g; ++t) {
             vec3 w0 = vec3(0.0), w1 = vec3(0.0);
             w0[edge] = float(g - t) / fg;
             w0[(edge + 1) % 3] = float(t) / fg;
             w1[edge] = float(g - t - 1) / fg;
             w1[(edge + 1) % 3] = float(t + 1) / fg;
-            m = min(m, max(length(lod_eval(net, w0)), length(lod_eval(net, w1))) - step);
+            vec3 p0 = lod_eval(net, w0), p1 = lod_eval(net, w1);
+            m = min(m, lod_cell_min_length(p0, p1, p1, p0 + p1, step, e));
         }
         return m;
     }
     float step = max(lod_first(net, 0, -1), max(lod_first(net, 1, -1), lod_first(net, 2, -1))) / fg;
+    float worst = max(lod_second(net, 0, -1), max(lod_second(net, 1, -1), lod_second(net, 2, -1)));
+    float e = LOD_ELEMENT_FACTOR * worst * h2;
     for (int j = 0; j < g; ++j) {
         for (int i = 0; i < g - j; ++i) {
-            float a = length(lod_eval(net, vec3(float(g - i - j), float(i), float(j)) / fg));
-            float b = length(lod_eval(net, vec3(float(g - i - 1 - j), float(i + 1), float(j)) / fg));
-            float c = length(lod_eval(net, vec3(float(g - i - j - 1), float(i), float(j + 1)) / fg));
-            m = min(m, max(a, max(b, c)) - step);
+            vec3 a = lod_eval(net, vec3(float(g - i - j), float(i), float(j)) / fg);
+            vec3 b = lod_eval(net, vec3(float(g - i - 1 - j), float(i + 1), float(j)) / fg);
+            vec3 c = lod_eval(net, vec3(float(g - i - j - 1), float(i), float(j + 1)) / fg);
+            m = min(m, lod_cell_min_length(a, b, c, a + b + c, step, e));
             if (i + j + 1 < g) {
-                float d = length(lod_eval(net, vec3(float(g - i - j - 2), float(i + 1), float(j + 1)) / fg));
-                m = min(m, max(b, max(d, c)) - step);
+                vec3 d = lod_eval(net, vec3(float(g - i - j - 2), float(i + 1), float(j + 1)) / fg);
+                m = min(m, lod_cell_min_length(b, d, c, b + d + c, step, e));
             }
         }
     }
