@@ -169,6 +169,9 @@ struct Head {
     /// Bytes of complete lines already checked, and their count.
     checked: usize,
     lines: usize,
+    /// Bytes past `checked` already searched for a line end (none there): each chunk is
+    /// searched once, so a long first line costs its length, not its length squared.
+    searched: usize,
 }
 
 impl Head {
@@ -182,9 +185,15 @@ impl Head {
                 format!("{what}: this is not a Wavefront OBJ file"),
             )
         };
-        while let Some(len) = bytes[self.checked..].iter().position(|&b| b == b'\n') {
-            let raw = &bytes[self.checked..self.checked + len];
-            self.checked += len + 1;
+        loop {
+            let from = self.searched.max(self.checked);
+            let Some(at) = bytes[from..].iter().position(|&b| b == b'\n') else {
+                self.searched = bytes.len();
+                return Ok(false);
+            };
+            let end = from + at;
+            let raw = &bytes[self.checked..end];
+            self.checked = end + 1;
             self.lines += 1;
             let raw = if self.lines == 1 {
                 raw.strip_prefix(BOM.as_bytes()).unwrap_or(raw)
@@ -215,7 +224,6 @@ impl Head {
                 format!("starts with '{shown_word}', which is no OBJ statement"),
             ));
         }
-        Ok(false)
     }
 }
 
@@ -377,6 +385,24 @@ mod tests {
     use super::*;
     use crate::mesh::test_support::{err, load, load_model, model_path, TRI};
     use crate::mesh::{DegenerateFace, MAX_OBJ_BYTES};
+
+    /// The first-statement check searches each chunk once: a first line longer than many
+    /// chunks (or a file with lone-CR line ends, which has no `\n` at all) is read in time
+    /// proportional to its length, then checked whole.
+    #[test]
+    fn first_line_check_searches_each_byte_once() {
+        let mut h = Head::default();
+        let mut bytes = b"# ".to_vec();
+        for _ in 0..4 {
+            bytes.extend(std::iter::repeat_n(b'y', 1 << 16));
+            assert!(!h.check("x", &bytes).unwrap());
+            // Nothing before `searched` is searched again.
+            assert_eq!((h.checked, h.searched), (0, bytes.len()));
+        }
+        bytes.extend_from_slice(b"\nv 0 0 0\n");
+        assert!(h.check("x", &bytes).unwrap());
+        assert_eq!(h.lines, 2);
+    }
 
     #[test]
     fn loads_a_triangle() {
