@@ -125,8 +125,9 @@ fn gpu_bounds_match_the_cpu() {
             .into_iter()
             .chain(NormalField::ALL.map(|f| (Surface::Pn, f)));
         for (surface, field) in cases {
-            // A sine of frequency zero displaces nothing: bounds as undisplaced, on both sides.
-            // Nor does any displacement of amplitude zero: both keep the undisplaced cones.
+            // A sine or noise of frequency zero displaces nothing (`sin 0`, `noise(0)`): bounds
+            // as undisplaced, on both sides, whatever the direction field's least length. Nor
+            // does any displacement of amplitude zero: all keep the undisplaced cones.
             let flat_sine = SurfaceParams {
                 frequency: 0.0,
                 ..params
@@ -140,6 +141,7 @@ fn gpu_bounds_match_the_cpu() {
                 (Displace::Sine, params),
                 (Displace::Noise, params),
                 (Displace::Sine, flat_sine),
+                (Displace::Noise, flat_sine),
                 (Displace::Noise, still),
             ] {
                 let mut f = FrameUniforms::zeroed();
@@ -229,7 +231,7 @@ fn gpu_bounds_match_the_cpu() {
                 }
             }
         }
-        assert_eq!(compared, 20 * 5 * n);
+        assert_eq!(compared, 20 * 6 * n);
         assert!(cones > n, "{cones} cones");
         // Displacement that moves nothing keeps the cones (facing-away culling stays on).
         assert!(

@@ -323,14 +323,15 @@ LodNet lod_direction_net(uint surface, uint field, Corners c) {
 // Whether displacement d (1 sine, 2 noise) moves any point: not without amplitude, nor a sine
 // without frequency. Mirror: src/surface/params.rs `SurfaceParams::moves`.
 bool lod_moves(uint d, vec4 params) {
-    return d != 0u && params.y != 0.0 && !(d == 1u && params.z == 0.0);
+    return d != 0u && params.y != 0.0 && !((d == 1u || d == 2u) && params.z == 0.0);
 }
 
 // Height bounds (max, gradient, Hessian) of displacement d (1 sine, 2 noise) over sphere s.
-// params: (alpha, amplitude, frequency, octaves). Mirror: src/lod/displace.rs `height`.
+// params: (alpha, amplitude, frequency, octaves). Mirror: `sine_bound` in
+// src/surface/displace.rs, `bound` in src/surface/noise.rs.
 vec3 lod_height(uint d, vec4 params, vec3 origin, vec4 s) {
     float a = abs(params.y), f = params.z;
-    if (d == 1u && !lod_moves(d, params)) {
+    if (!lod_moves(d, params)) {
         return vec3(0.0); // no displacement at all
     }
     if (d == 1u) {
@@ -421,8 +422,10 @@ LodBounds lod_local(uint surface, uint field, uint d, vec4 params, vec3 origin, 
             float v = lod_first(net, k, edge), mk = lod_second(net, k, edge);
             float h1 = h.y * v, h2 = h.z * v * v + h.y * mk;
             float n1 = lod_first(dn, k, edge), n2 = lod_second(dn, k, edge);
-            m[k] += rho > 0.0 ? h2 + 2.0 * h1 * n1 / rho + h.x * (n2 / rho + 2.0 * n1 * n1 / (rho * rho))
-                              : LOD_HUGE;
+            // Nothing moves (all three zero): nothing added, whatever the direction field.
+            m[k] += h == vec3(0.0) ? 0.0
+                  : rho > 0.0 ? h2 + 2.0 * h1 * n1 / rho + h.x * (n2 / rho + 2.0 * n1 * n1 / (rho * rho))
+                  : LOD_HUGE;
         }
         grow = h.x;
     }

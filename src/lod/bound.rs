@@ -351,10 +351,14 @@ fn odd_permutation(o: [usize; 3]) -> bool {
 
 /// `|(hN)''| <= |h''| + 2|h'||N'| + |h||N''|` along a lattice direction, from bounds of `|h'|`,
 /// `|h''|`, `|h|`, the direction polynomial's `|n'|`, `|n''|` and its least length `ρ`
-/// (src/lod/mod.rs): `|N'| <= |n'|/ρ`, `|N''| <= |n''|/ρ + 2|n'|²/ρ²`; infinite where `ρ` is not
-/// positive. Mirror: the displacement term of `lod_local` in glsl/include/lod.glsl.
+/// (src/lod/mod.rs): `|N'| <= |n'|/ρ`, `|N''| <= |n''|/ρ + 2|n'|²/ρ²`; zero where the height and
+/// its derivatives are (nothing moves), else infinite where `ρ` is not positive. Mirror: the
+/// displacement term of `lod_local` in glsl/include/lod.glsl.
 pub(crate) fn moved_second(h1: f32, h2: f32, h: f32, n1: f32, n2: f32, rho: f32) -> f32 {
-    if rho > 0.0 {
+    if h == 0.0 && h1 == 0.0 && h2 == 0.0 {
+        // Nothing moves: nothing added, whatever the direction field.
+        0.0
+    } else if rho > 0.0 {
         h2 + 2.0 * h1 * n1 / rho + h * (n2 / rho + 2.0 * n1 * n1 / (rho * rho))
     } else {
         f32::INFINITY

@@ -140,6 +140,14 @@ pub const NOISE_HESS: f32 = 14.9;
 /// the noise's largest value and derivatives over every choice of corner gradients
 /// ([`noise_scan`], [`noise_scan_along`]).
 pub fn bound(params: &crate::surface::SurfaceParams, _: &crate::lod::Sphere) -> Height {
+    // Noise of frequency zero is `noise(0) = 0` everywhere (zero on the integer lattice).
+    if !params.moves(super::Displace::Noise) {
+        return Height {
+            max: 0.0,
+            grad: 0.0,
+            hess: 0.0,
+        };
+    }
     let (a, f) = (params.amplitude.abs(), params.frequency);
     let o = params.octaves.max(1);
     let amp_sum = 2.0 - 1.0 / (1u32 << (o - 1)) as f32;

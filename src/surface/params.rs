@@ -112,13 +112,14 @@ impl SurfaceParams {
         Ok(())
     }
 
-    /// Whether displacement `d` moves any point: not without amplitude, nor a sine without
-    /// frequency (`a sin(0)`), which draw the undisplaced surface bit for bit (`P + 0`).
+    /// Whether displacement `d` moves any point: not without amplitude, nor a sine or noise
+    /// without frequency (`a sin(0)`, `a noise(0)`: zero), which draw the undisplaced surface's
+    /// positions bit for bit (`P + 0`).
     /// Mirror: `lod_moves` in glsl/include/lod.glsl.
     pub fn moves(&self, d: Displace) -> bool {
         d != Displace::None
             && self.amplitude != 0.0
-            && !(d == Displace::Sine && self.frequency == 0.0)
+            && !(matches!(d, Displace::Sine | Displace::Noise) && self.frequency == 0.0)
     }
 
     /// How far displacement `d` can move a point, in the mesh's units: |a| times the largest
