@@ -86,17 +86,27 @@ bool lod_outside(vec4 planes[6], vec4 s) {
 }
 
 // Whether every triangle drawn inside sphere s with a normal in cone (xyz axis, w cosine of
-// the half-angle; w <= 0: no cone) faces away from eye. Mirror: `NormalCone::back_facing`.
+// the half-angle; w <= 0: no cone) faces away from eye: the angles β (eye to axis), γ (the
+// sphere's angular radius) and θ (the cone's) sum to below 90° less 1e-4, written with cosines
+// and sines (a GPU's acos is not accurate enough to agree with the CPU). Mirror:
+// `NormalCone::back_facing`.
+const float LOD_BACK_FACING_MARGIN = 1e-4;
+
 bool lod_back_facing(vec4 cone, vec4 s, vec3 eye) {
     vec3 v = s.xyz - eye;
     float d = length(v);
     if (cone.w <= 0.0 || d <= s.w) {
         return false;
     }
-    float beta = acos(clamp(dot(v, cone.xyz) / d, -1.0, 1.0));
-    float gamma = asin(s.w / d);
-    float theta = acos(clamp(cone.w, -1.0, 1.0));
-    return beta + gamma + theta < 1.5707963 - 1e-4;
+    float cb = clamp(dot(v, cone.xyz) / d, -1.0, 1.0);
+    float sg = s.w / d;
+    float ct = clamp(cone.w, -1.0, 1.0);
+    float sb = sqrt(max(1.0 - cb * cb, 0.0));
+    float cg = sqrt(max(1.0 - sg * sg, 0.0));
+    float st = sqrt(max(1.0 - ct * ct, 0.0));
+    float cp = cg * ct - sg * st;
+    float sp = sg * ct + cg * st;
+    return cb > 0.0 && cp > 0.0 && cb * cp - sb * sp > LOD_BACK_FACING_MARGIN;
 }
 
 #endif

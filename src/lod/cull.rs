@@ -87,20 +87,34 @@ pub fn normal_cone(net: &Net, flip: bool) -> Option<NormalCone> {
 
 impl NormalCone {
     /// Whether every triangle drawn inside sphere `s` with a normal in this cone faces away from
-    /// `eye` (`(p − eye)·n > 0`): the angle between the eye's direction to the sphere's centre and
-    /// the axis, plus the sphere's angular radius, plus the cone's half-angle, is below 90°.
+    /// `eye` (`(p − eye)·n > 0`): the angle `β` between the eye's direction to the sphere's
+    /// centre and the axis, plus the sphere's angular radius `γ`, plus the cone's half-angle
+    /// `θ`, is below 90° less `1e-4`. Written with cosines and sines, not inverse functions (a
+    /// GPU's `acos` may be off by a thousandth of a radian, which would make the level pass and
+    /// this mirror disagree on elements near the threshold, on every silhouette): with `β` and
+    /// `φ = γ + θ` both below 90°, `β + φ < 90° − ε` exactly when `cos(β + φ) > sin ε`.
+    /// Mirror: `lod_back_facing` in glsl/include/lod_metric.glsl.
     pub fn back_facing(&self, s: &Sphere, eye: Vec3) -> bool {
         let v = s.centre - eye;
         let d = v.length();
         if d <= s.radius {
             return false;
         }
-        let beta = (v.dot(self.axis) / d).clamp(-1.0, 1.0).acos();
-        let gamma = (s.radius / d).asin();
-        let theta = self.cos.clamp(-1.0, 1.0).acos();
-        beta + gamma + theta < std::f32::consts::FRAC_PI_2 - 1e-4
+        let sine = |c: f32| (1.0 - c * c).max(0.0).sqrt();
+        let cb = (v.dot(self.axis) / d).clamp(-1.0, 1.0);
+        let sg = s.radius / d;
+        let ct = self.cos.clamp(-1.0, 1.0);
+        let (sb, cg, st) = (sine(cb), sine(sg), sine(ct));
+        // φ = γ + θ.
+        let cp = cg * ct - sg * st;
+        let sp = sg * ct + cg * st;
+        cb > 0.0 && cp > 0.0 && cb * cp - sb * sp > BACK_FACING_MARGIN
     }
 }
+
+/// `cos(90° − 1e-4 rad) = sin(1e-4)`, which is 1e-4 in `f32`: how far inside 90° a
+/// facing-away patch's angles must stay (room for rounding). Mirror: `LOD_BACK_FACING_MARGIN`.
+pub const BACK_FACING_MARGIN: f32 = 1e-4;
 
 /// Whether `eye` sees a closed mesh wound outwards ([`Mesh::closed_outward`]) from outside, so
 /// that its faces facing away are hidden behind its own front and may be culled: the eye lies
@@ -118,4 +132,64 @@ pub fn eye_outside(eye: Vec3, records: &[super::frame::LodRecord], mesh: &Mesh) 
         (s.truncate() - eye).length() > s.w
     });
     clear && mesh.winding_number(eye).abs() < 0.5
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The facing-away test written with cosines decides as the angle sum `β + γ + θ < 90° −
+    /// 1e-4` computed in double precision, for random eyes, spheres and cones, except within
+    /// 1e-6 radians of the threshold.
+    #[test]
+    fn back_facing_is_the_angle_sum() {
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 40) as f64 / (1u64 << 24) as f64
+        };
+        let (mut culled, mut kept, mut near) = (0, 0, 0);
+        for _ in 0..200_000 {
+            let unit = |x: f64, y: f64, z: f64| glam::DVec3::new(x, y, z).normalize();
+            let axis = unit(next() - 0.5, next() - 0.5, next() - 0.5);
+            let to_eye = unit(next() - 0.5, next() - 0.5, next() - 0.5);
+            let d = 0.5 + 4.0 * next();
+            let radius = 0.3 * next() * next();
+            let cos = 0.05 + 0.95 * next();
+            let centre = glam::DVec3::new(next(), next(), next());
+            let eye = centre + to_eye * d;
+            let s = Sphere {
+                centre: centre.as_vec3(),
+                radius: radius as f32,
+            };
+            let cone = NormalCone {
+                axis: axis.as_vec3(),
+                cos: cos as f32,
+            };
+            // The reference, in double precision from the same single-precision inputs.
+            let v = s.centre.as_dvec3() - eye.as_vec3().as_dvec3();
+            let dist = v.length();
+            let sum = (v.dot(cone.axis.as_dvec3()) / dist).clamp(-1.0, 1.0).acos()
+                + (s.radius as f64 / dist).asin()
+                + (cone.cos as f64).acos();
+            let margin = sum - (std::f64::consts::FRAC_PI_2 - 1e-4);
+            let got = cone.back_facing(&s, eye.as_vec3());
+            if margin.abs() <= 1e-6 {
+                near += 1;
+                continue;
+            }
+            assert_eq!(got, margin < 0.0, "margin {margin}");
+            if got {
+                culled += 1;
+            } else {
+                kept += 1;
+            }
+        }
+        assert!(
+            culled > 10_000 && kept > 10_000 && near < 100,
+            "{culled} {kept} {near}"
+        );
+    }
 }

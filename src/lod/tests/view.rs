@@ -529,63 +529,6 @@ fn height_map_pixel_error_holds_end_to_end() {
     }
 }
 
-/// The noise constants cover the scans of every corner-gradient choice, with at most 10% room:
-/// the value on a fine grid, the derivatives along every direction of the symmetry's
-/// fundamental domain on a coarser grid, then along the worst of them on a fine one.
-#[test]
-fn noise_constants_cover_the_scan() {
-    use crate::surface::noise::{
-        noise_directions, noise_scan, noise_scan_along, NOISE_GRAD, NOISE_HESS, NOISE_MAX,
-    };
-    let (v, g) = noise_scan(64);
-    assert!(NOISE_MAX >= v && NOISE_MAX <= 1.1 * v, "value {v}");
-    let (mut first, mut second) = ((0.0f32, Vec3::X), (0.0f32, Vec3::X));
-    for u in noise_directions(8) {
-        let (d1, d2) = noise_scan_along(16, u);
-        if d1 > first.0 {
-            first = (d1, u);
-        }
-        if d2 > second.0 {
-            second = (d2, u);
-        }
-    }
-    let (d1, _) = noise_scan_along(48, first.1);
-    let (_, d2) = noise_scan_along(48, second.1);
-    eprintln!(
-        "noise: value {v}, along {}: {d1}, along {}: {d2}",
-        first.1, second.1
-    );
-    assert!(NOISE_GRAD >= d1 && NOISE_GRAD <= 1.1 * d1, "gradient {d1}");
-    assert!(
-        NOISE_HESS >= d2 && NOISE_HESS <= 1.1 * d2,
-        "second derivative {d2}"
-    );
-    // The largest derivative along a direction is the largest gradient component: the scans
-    // agree with each other.
-    assert!((d1 - g).abs() <= 1e-3 * g, "{d1} vs {g}");
-    // The scan finds what sampling the real noise finds (its largest gradient component is
-    // reached), so it is the noise's, not another function's.
-    let (mut worst, mut worst2) = (0.0f32, 0.0f32);
-    let (u, h) = (second.1, 1e-3f32);
-    for i in 0..20000 {
-        let p = Vec3::new(
-            i as f32 * 0.0137,
-            i as f32 * 0.0291 + 0.3,
-            i as f32 * 0.0077 + 0.6,
-        );
-        let (n, grad) = crate::surface::noise::noise_grad(p);
-        assert!(n.abs() <= v && grad.abs().max_element() <= g);
-        worst = worst.max(grad.abs().max_element());
-        // The second derivative along the worst direction, by differences of the gradient.
-        let along = |q: Vec3| crate::surface::noise::noise_grad(q).1.dot(u);
-        let d = (along(p + u * h) - along(p - u * h)) / (2.0 * h);
-        assert!(d.abs() <= 1.01 * d2, "{d} at {p}");
-        worst2 = worst2.max(d.abs());
-    }
-    assert!(worst > 0.5 * g, "{worst}");
-    assert!(worst2 > 0.5 * d2, "{worst2}");
-}
-
 /// Faces facing away are culled only for an eye outside the surface: not from inside spot, not
 /// from just outside its cage (inside an element's sphere, where the curved surface may bulge
 /// past the eye), and again from the close camera and from far away.
