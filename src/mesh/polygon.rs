@@ -1,6 +1,7 @@
 //! Triangulating an OBJ polygon (a face of more than three corners): a convex polygon as a fan
 //! from its first corner (`0 1 2`, `0 2 3`, ...: what `tobj` makes, and what a reader of the file
-//! expects), a concave one by ear clipping in its plane, so that its triangles cover it exactly,
+//! expects; from another corner where that fan would hold a triangle of zero area, which the
+//! loader would drop, opening a hole), a concave one by ear clipping in its plane, so that its triangles cover it exactly,
 //! without overlapping or turning over where a fan would. A polygon that crosses itself, or
 //! touches itself at a corner it lists twice, has no such triangulation: it gets triangles for
 //! every corner but two all the same, which may overlap, and [`triangulate`] says so (the
@@ -53,7 +54,7 @@ pub fn triangulate(corners: &[Vec3]) -> (Vec<[usize; 3]>, bool) {
     let flat = Plane { p, slack };
     if (0..n).all(|i| turn(&flat, (i + n - 1) % n, i, (i + 1) % n) >= 0) {
         // Convex where it turns once round; a pentagram's fan overlaps.
-        return (fan(), turns_once(&flat));
+        return (convex(&flat), turns_once(&flat));
     }
     if n > MAX_CLIPPED_CORNERS {
         return (fan(), false);
@@ -61,6 +62,29 @@ pub fn triangulate(corners: &[Vec3]) -> (Vec<[usize; 3]>, bool) {
     let triangles = clip_ears(&flat);
     let covers = triangles.iter().all(|&[a, b, c]| turn(&flat, a, b, c) >= 0) && simple(&flat);
     (triangles, covers)
+}
+
+/// A convex polygon's triangles: the fan from its first corner, unless a side on a line with
+/// that corner (beside a corner on a line with its neighbours, as at a T-junction) would make a
+/// triangle of zero area, which the loader would drop, opening a hole: then the fan from the
+/// first corner that makes none, else (several corners in a line on more than one side) its
+/// ears clipped, which take turning corners first. Where every choice leaves a flat triangle,
+/// or the polygon has more corners than [`MAX_CLIPPED_CORNERS`], the first corner's fan.
+fn convex(plane: &Plane) -> Vec<[usize; 3]> {
+    let n = plane.p.len();
+    let fan = |c: usize| -> Vec<[usize; 3]> {
+        (2..n).map(|k| [c, (c + k - 1) % n, (c + k) % n]).collect()
+    };
+    let flat = |t: &[[usize; 3]]| t.iter().any(|&[a, b, c]| turn(plane, a, b, c) == 0);
+    let first = fan(0);
+    if !flat(&first) || n > MAX_CLIPPED_CORNERS {
+        return first;
+    }
+    (1..n)
+        .map(fan)
+        .find(|t| !flat(t))
+        .or_else(|| Some(clip_ears(plane)).filter(|t| !flat(t)))
+        .unwrap_or(first)
 }
 
 /// Whether the polygon turns once round (its exterior angles sum to one turn, not two or more
@@ -222,6 +246,53 @@ mod tests {
             .sum()
     }
 
+    /// A convex polygon whose first corner lies on a line with a side (a T-junction's corner
+    /// beside it) is fanned from a corner that makes no flat triangle, or ear-clipped where no
+    /// fan does: every triangle has area and together they cover it. Where the first corner's
+    /// fan has none flat, it is kept, straight corners and all.
+    #[test]
+    fn convex_polygons_with_straight_corners_get_no_flat_triangles() {
+        let at = |c: &[(f32, f32)]| -> Vec<Vec3> {
+            c.iter().map(|&(x, y)| Vec3::new(x, y, 0.0)).collect()
+        };
+        let t_junction = at(&[(0.0, 0.0), (1.0, 0.0), (2.0, 0.0), (2.0, 1.0), (0.0, 1.0)]);
+        let quad = at(&[(0.0, 0.0), (1.0, 0.0), (2.0, 0.0), (1.0, 1.0)]);
+        // Two corners on a line inside each side of a triangle: no fan avoids a flat triangle.
+        let sides = at(&[
+            (0.0, 0.0),
+            (1.0, 0.0),
+            (2.0, 0.0),
+            (3.0, 0.0),
+            (2.0, 1.0),
+            (1.0, 2.0),
+            (0.0, 3.0),
+            (0.0, 2.0),
+            (0.0, 1.0),
+        ]);
+        for (name, p) in [
+            ("T-junction", &t_junction),
+            ("quad", &quad),
+            ("sides", &sides),
+        ] {
+            let (t, covers) = triangulate(p);
+            assert!(covers, "{name}");
+            assert_eq!(t.len(), p.len() - 2, "{name}");
+            assert!(t.iter().all(|&x| area(p, x) > 1e-6), "{name}: {t:?}");
+            let total: f64 = t.iter().map(|&x| area(p, x)).sum();
+            assert!((total - polygon_area(p)).abs() < 1e-9, "{name}: {total}");
+        }
+        assert_eq!(
+            triangulate(&t_junction).0,
+            [[1, 2, 3], [1, 3, 4], [1, 4, 0]]
+        );
+        // Straight corners on a side away from the first corner: its fan as before.
+        let square = at(&[(0.0, 0.0), (2.0, 0.0), (2.0, 2.0), (1.0, 2.0), (0.0, 2.0)]);
+        assert_eq!(
+            triangulate(&square),
+            (vec![[0, 1, 2], [0, 2, 3], [0, 3, 4]], true)
+        );
+    }
+
     #[test]
     fn convex_polygons_are_fans() {
         let hexagon: Vec<Vec3> = (0..6)
@@ -234,14 +305,15 @@ mod tests {
             triangulate(&hexagon),
             (vec![[0, 1, 2], [0, 2, 3], [0, 3, 4], [0, 4, 5]], true)
         );
-        // A quad with a corner on the line of its neighbours is still a fan.
+        // A quad with a corner on the line of its neighbours is still a fan, from that corner
+        // (from the first, the fan's first triangle would be flat).
         let quad = [
             Vec3::ZERO,
             Vec3::X,
             Vec3::new(2.0, 0.0, 0.0),
             Vec3::new(1.0, 1.0, 0.0),
         ];
-        assert_eq!(triangulate(&quad), (vec![[0, 1, 2], [0, 2, 3]], true));
+        assert_eq!(triangulate(&quad), (vec![[1, 2, 3], [1, 3, 0]], true));
         // Past MAX_CLIPPED_CORNERS a convex polygon is still a fan that covers it.
         let round: Vec<Vec3> = (0..1000)
             .map(|k| {
@@ -298,7 +370,8 @@ mod tests {
 
     /// A rectangle with its sides' midpoints as corners (T-junctions), placed in random planes:
     /// its midpoints are on a line with their neighbours up to rounding, and it is fanned as a
-    /// convex polygon every time (as it was before ear clipping existed).
+    /// convex polygon every time, from its first midpoint (the first corner's fan would hold
+    /// the flat triangle of its first side's three corners).
     #[test]
     fn corners_on_a_line_keep_the_fan() {
         let rect = [
@@ -309,7 +382,7 @@ mod tests {
             Vec3::new(1.5, 1.0, 0.0),
             Vec3::new(0.0, 1.0, 0.0),
         ];
-        let fan: Vec<[usize; 3]> = (2..6).map(|k| [0, k - 1, k]).collect();
+        let fan: Vec<[usize; 3]> = (2..6).map(|k| [1, k, (k + 1) % 6]).collect();
         for k in 0..300 {
             let a = k as f32 * 0.731;
             let q = glam::Quat::from_rotation_x(a) * glam::Quat::from_rotation_z(1.3 * a);
