@@ -23,10 +23,18 @@ impl std::fmt::Display for StdoutError {
 
 impl std::error::Error for StdoutError {}
 
-/// `println!` that returns a [`StdoutError`] from the enclosing function instead of panicking.
+/// `println!` that returns a [`StdoutError`] from the enclosing function instead of panicking,
+/// with every control character but the line ends it writes escaped ([`printable_lines`]): a
+/// name or path printed cannot drive the terminal. A path that must stay on its line is
+/// passed through [`printable`] too.
 macro_rules! out {
     ($($arg:tt)*) => {
-        writeln!(std::io::stdout().lock(), $($arg)*).map_err($crate::StdoutError)?
+        writeln!(
+            std::io::stdout().lock(),
+            "{}",
+            $crate::printable_lines(&format!($($arg)*))
+        )
+        .map_err($crate::StdoutError)?
     };
 }
 
@@ -48,6 +56,19 @@ pub fn printable(text: &str) -> std::borrow::Cow<'_, str> {
             false => c.to_string(),
         })
         .collect::<String>()
+        .into()
+}
+
+/// [`printable`] line by line: the line ends of a text of several lines (a benchmark's table)
+/// kept, every other control character escaped.
+pub fn printable_lines(text: &str) -> std::borrow::Cow<'_, str> {
+    if !text.chars().any(|c| c.is_control() && c != '\n') {
+        return text.into();
+    }
+    text.split('\n')
+        .map(printable)
+        .collect::<Vec<_>>()
+        .join("\n")
         .into()
 }
 

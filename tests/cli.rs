@@ -2299,6 +2299,43 @@ fn control_characters_in_names_are_escaped() {
         !stderr.contains('\u{1b}') && stderr.contains("no\\u{1b}[31mfile.obj"),
         "{stderr}"
     );
+    // Standard output too: the mesh's path, the files written, the benchmark's mesh name.
+    let clears = write("v\u{1b}[2Jx.obj", &tet);
+    let (png, obj) = (tmp("w\nx.png"), tmp("e\u{1b}[2J.obj"));
+    let runs = [
+        (vec!["info", p(&clears)], "mesh: "),
+        (
+            vec!["export", p(&clears), "--level", "1", "-o", p(&obj)],
+            "e\\u{1b}[2J.obj",
+        ),
+        (
+            vec!["render", p(&clears), "--level", "1", "-o", p(&png)],
+            "w\\nx.png",
+        ),
+        (
+            vec![
+                "bench",
+                p(&clears),
+                "--levels",
+                "1",
+                "--frames",
+                "1",
+                "--drivers",
+                "pattern",
+            ],
+            "Every row: mesh v\\u{1b}[2Jx",
+        ),
+    ];
+    for (args, needle) in runs {
+        let out = meshrefine(&args);
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        assert!(out.status.success(), "{args:?}: {stdout}");
+        assert!(!stdout.contains('\u{1b}'), "{args:?}: {stdout}");
+        assert!(stdout.contains(needle), "{args:?}: {needle} in {stdout}");
+        if args[0] == "info" {
+            assert!(stdout.contains("v\\u{1b}[2Jx.obj"), "{stdout}");
+        }
+    }
 }
 
 /// One rule for every output path: its folder must exist (never created), a directory is

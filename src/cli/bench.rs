@@ -132,7 +132,10 @@ pub fn run(a: &BenchArgs, desc: &ContextDesc, levels_given: bool) -> Result<()> 
     }
     out!("{}", report.summary(a.out.as_deref()));
     if let Some(prefix) = &a.out {
-        out!("wrote {}.{{md,csv,json}}", prefix.display());
+        out!(
+            "wrote {}.{{md,csv,json}}",
+            crate::printable(&prefix.display().to_string())
+        );
     }
     // A run that timed nothing measured nothing: its rows say why, and it fails.
     let timed = report

@@ -56,7 +56,10 @@ pub fn run(a: &ExportArgs, desc: &ContextDesc) -> Result<()> {
         .with_context(|| format!("cannot export '{shown}'"))
     })?;
     out!("{counts}");
-    out!("wrote {}", a.output.display());
+    out!(
+        "wrote {}",
+        crate::printable(&a.output.display().to_string())
+    );
     Ok(())
 }
 

@@ -83,7 +83,7 @@ pub fn run(a: &InfoArgs, desc: &ContextDesc) -> Result<()> {
 /// The mesh's statistics and what loading did.
 fn print_stats(path: &str, mesh: &Mesh, report: &LoadReport) -> Result<()> {
     let s = mesh.stats();
-    out!("mesh: {}", path);
+    out!("mesh: {}", crate::printable(path));
     out!("vertices: {}", s.vertices);
     out!("triangles: {}", s.triangles);
     out!("boundary edges: {}", s.boundary_edges);

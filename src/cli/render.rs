@@ -37,7 +37,10 @@ pub fn run(a: &RenderArgs, desc: &ContextDesc, level_given: bool) -> Result<()> 
     if let Some(line) = report {
         out!("{line}");
     }
-    out!("wrote {}", a.output.display());
+    out!(
+        "wrote {}",
+        crate::printable(&a.output.display().to_string())
+    );
     Ok(())
 }
 

@@ -160,7 +160,7 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc, given: &Given) -> Result<()> {
     let shown = std::fs::canonicalize(&a.headless_output).unwrap_or(a.headless_output.clone());
     out!(
         "{why_headless}: rendered the scene headlessly to {}",
-        shown.display()
+        crate::printable(&shown.display().to_string())
     );
     // The last frame asked for: the one frame drawn.
     if let Some(shot) = &a.screenshot {
@@ -170,7 +170,10 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc, given: &Given) -> Result<()> {
             std::fs::copy(&a.headless_output, shot)
                 .with_context(|| format!("cannot write the screenshot '{}'", shot.display()))?;
         }
-        out!("wrote the screenshot {}", shot.display());
+        out!(
+            "wrote the screenshot {}",
+            crate::printable(&shot.display().to_string())
+        );
     }
     Ok(())
 }
