@@ -3549,6 +3549,13 @@ fn pixel_error_draws_adaptively_with_the_pattern_driver() {
     expect_error(&render, &["at most up to level 128, not 256"]);
     let stderr = String::from_utf8_lossy(&meshrefine(&render).stderr).into_owned();
     assert!(!stderr.contains("warning"), "{stderr}");
+    // So does info, which chooses the same levels; and where they fit, it prints them.
+    let mut info: Vec<&str> = render.to_vec();
+    info.splice(0..4, ["info", spot]);
+    expect_error(&info, &["at most up to level 128, not 256"]);
+    info[3] = "2";
+    let fits = ok(&info);
+    assert!(fits.contains("max level 256"), "{fits}");
     // Wound like the coarse triangles on a sphere, closed, at both roundings.
     let sphere = model_path("uvsphere12.obj");
     for geomorph in ["on", "off"] {

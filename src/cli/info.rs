@@ -308,6 +308,18 @@ fn print_levels(a: &InfoArgs, mut input: Input) -> Result<()> {
         culled: stats.culled,
         unmet,
     };
+    // Render draws up to the largest level chosen, and refuses the pattern driver's integer
+    // levels past its integer patterns (naming --max-level, as lowering to the levels chosen
+    // does not help then): refused here in the same sentence.
+    if let (meshrefine::render::Driver::Pattern(_), Some(&top)) =
+        (a.driver, report.histogram.keys().max())
+    {
+        use meshrefine::render::pattern::check_integer_levels;
+        if check_integer_levels(top, dyadic).is_err() {
+            check_integer_levels(a.max_level, dyadic)
+                .map_err(|e| anyhow::anyhow!("cannot render '{path}': {e}"))?;
+        }
+    }
     // As given, or where the framing camera is, in the mesh's coordinates.
     let [ex, ey, ez] = v.eye.unwrap_or(frame.mesh(eye).to_array());
     let [tx, ty, tz] = v.look_at.unwrap_or(frame.mesh(camera.target).to_array());

@@ -21,7 +21,7 @@ use crate::surface::{ElementRecord, RECORD_BYTES};
 use std::sync::Arc;
 
 mod bins;
-pub use bins::{check_adaptive_fits, AdaptivePattern};
+pub use bins::{check_adaptive_fits, check_integer_levels, AdaptivePattern};
 
 /// Record the draws of the elements `range` of `mesh` with `pattern` in submission mode
 /// `submit`, chunk by chunk ([`GpuMesh::chunks`]). `records` is the CPU copy of the element

@@ -34,11 +34,7 @@ pub fn check_adaptive_fits(
     } else {
         (range, "maxStorageBufferRange")
     };
-    if !dyadic && level > INTEGER_MAX_LEVEL {
-        return Err(RenderError::Incompatible(format!(
-            "drawing integer levels without geomorphing takes one pattern per level, at most up to level {INTEGER_MAX_LEVEL}, not {level}: use --geomorph on or --max-level {INTEGER_MAX_LEVEL} or lower"
-        )));
-    }
+    check_integer_levels(level, dyadic)?;
     let (commands, lists) = adaptive_bytes(elements, chunk, level, dyadic);
     let needed = commands.max(lists);
     if needed > max {
@@ -58,6 +54,17 @@ pub fn check_adaptive_fits(
                 "draw at most about {fits} elements adaptively{glide}, or draw uniformly"
             ),
         });
+    }
+    Ok(())
+}
+
+/// Whether the pattern driver can draw integer levels (`dyadic` false) up to `level`, the
+/// largest an element is drawn at: [`INTEGER_MAX_LEVEL`] at most (`info` asks as render does).
+pub fn check_integer_levels(level: u32, dyadic: bool) -> Result<(), RenderError> {
+    if !dyadic && level > INTEGER_MAX_LEVEL {
+        return Err(RenderError::Incompatible(format!(
+            "drawing integer levels without geomorphing takes one pattern per level, at most up to level {INTEGER_MAX_LEVEL}, not {level}: use --geomorph on or --max-level {INTEGER_MAX_LEVEL} or lower"
+        )));
     }
     Ok(())
 }
