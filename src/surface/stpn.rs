@@ -123,21 +123,29 @@ fn crease_tag(a: Vec3, b: Vec3) -> Option<VertexTag> {
 /// normal, the faces around it are grouped across the edges whose dihedral angle is at most
 /// `crease_angle`; exactly two groups make a crease through it, N_a and N_b being the groups'
 /// area-weighted face normals.
+/// A position counts once among the corners that stay smooth, whichever finds it (a mesh with
+/// split normals whose corners the dihedral angles find again), and not where the normals
+/// give it a crease.
 pub fn derive_with_angle(mesh: &Mesh, crease_angle: Option<f32>) -> (Vec<VertexTag>, usize) {
     let (mut tags, mut corners) = derive_from_normals(mesh);
     if let Some(angle) = crease_angle {
         let (more, more_corners) = derive_from_dihedrals(mesh, angle.to_radians());
-        for (t, m) in tags.iter_mut().zip(more) {
+        for ((t, m), (c, mc)) in tags
+            .iter_mut()
+            .zip(more)
+            .zip(corners.iter_mut().zip(more_corners))
+        {
             if !t.crease() {
                 *t = m;
+                *c = *c || mc;
             }
         }
-        corners += more_corners;
     }
-    (tags, corners)
+    (tags, corners.iter().filter(|&&c| c).count())
 }
 
-fn derive_from_dihedrals(mesh: &Mesh, angle: f32) -> (Vec<VertexTag>, usize) {
+/// Tags from dihedral angles, and which positions are corners that stay smooth.
+fn derive_from_dihedrals(mesh: &Mesh, angle: f32) -> (Vec<VertexTag>, Vec<bool>) {
     let face_normal = |t: &crate::mesh::Triangle| {
         let [a, b, c] = t.p.map(|i| mesh.positions[i as usize]);
         (b - a).cross(c - a) // area-weighted
@@ -158,7 +166,7 @@ fn derive_from_dihedrals(mesh: &Mesh, angle: f32) -> (Vec<VertexTag>, usize) {
             around[p as usize].push(f);
         }
     }
-    let mut corners = 0;
+    let mut corners = vec![false; around.len()];
     let tags = around
         .iter()
         .enumerate()
@@ -169,7 +177,7 @@ fn derive_from_dihedrals(mesh: &Mesh, angle: f32) -> (Vec<VertexTag>, usize) {
                     crease_tag(a.normalize_or_zero(), b.normalize_or_zero()).unwrap_or_default()
                 }
                 s if s.len() > 2 => {
-                    corners += 1;
+                    corners[v] = true;
                     VertexTag::default()
                 }
                 _ => VertexTag::default(),
@@ -238,7 +246,8 @@ fn smooth_groups(
     sums
 }
 
-fn derive_from_normals(mesh: &Mesh) -> (Vec<VertexTag>, usize) {
+/// Tags from split normals, and which positions are corners that stay smooth.
+fn derive_from_normals(mesh: &Mesh) -> (Vec<VertexTag>, Vec<bool>) {
     let mut groups: Vec<Vec<Vec3>> = vec![Vec::new(); mesh.positions.len()];
     for t in &mesh.triangles {
         for k in 0..3 {
@@ -252,15 +261,11 @@ fn derive_from_normals(mesh: &Mesh) -> (Vec<VertexTag>, usize) {
             }
         }
     }
-    let mut corners = 0;
+    let corners: Vec<bool> = groups.iter().map(|g| g.len() > 2).collect();
     let tags = groups
         .iter()
         .map(|g| match g.as_slice() {
             [a, b] => crease_tag(*a, *b).unwrap_or_default(),
-            g if g.len() > 2 => {
-                corners += 1;
-                VertexTag::default()
-            }
             _ => VertexTag::default(),
         })
         .collect();
@@ -615,6 +620,23 @@ mod tests {
         let want: Vec<bool> = expected.iter().map(VertexTag::crease).collect();
         assert_eq!(creases, want);
         check(&mesh, &tags).unwrap();
+    }
+
+    /// A cube's corners stay smooth (three hard edges meet at each), counted once each whether
+    /// its split normals find them, its dihedral angles, or both.
+    #[test]
+    fn corners_found_twice_count_once() {
+        let (split, _) = load_model("cube_face_normals.obj");
+        let (one, _) = Mesh::from_parts(
+            "cube",
+            split.positions.clone(),
+            None,
+            split.position_indices(),
+        )
+        .unwrap();
+        assert_eq!(derive(&split).1, 8);
+        assert_eq!(derive_with_angle(&split, Some(30.0)).1, 8);
+        assert_eq!(derive_with_angle(&one, Some(30.0)).1, 8);
     }
 
     /// Tags derived from the cylinder's hard rims: its rim vertices become creases whose sharp
