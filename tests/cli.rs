@@ -3269,6 +3269,11 @@ fn adaptive_options_refuse_bad_values() {
         &["render", "-o", p(&png), "--fov", "NaN"],
         &["--fov NaN is not within [0.01, 180) degrees"],
     );
+    // A value inside the range that single precision rounds onto its open end says so.
+    expect_error(
+        &["render", "-o", p(&png), "--fov", "179.999999"],
+        &["--fov 179.999999 is not within [0.01, 180) degrees in single precision (it reads as 180)"],
+    );
 }
 
 /// The two header lines of an adaptive export: the camera's numbers and `L:n` pairs.

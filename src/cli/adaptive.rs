@@ -43,9 +43,11 @@ pub const MIN_FOV: f32 = 0.01;
 pub fn check_camera(v: &ViewpointOpts) -> Result<()> {
     let fov = v.fov.value;
     if !(fov.is_finite() && (MIN_FOV..180.0).contains(&fov)) {
+        let inside = |x: f64| (MIN_FOV as f64..180.0).contains(&x);
         bail!(
-            "--fov {} is not within [{MIN_FOV}, 180) degrees",
-            v.fov.text
+            "--fov {} is not within [{MIN_FOV}, 180) degrees{}",
+            v.fov.text,
+            v.fov.in_f32_range(inside)
         );
     }
     if let (Some(eye), Some(target)) = (v.eye, v.look_at) {

@@ -146,9 +146,11 @@ pub fn check_crease_angle(a: &super::numbers::TypedF32) -> Result<(), String> {
     if a.value.is_finite() && a.value > 0.0 && a.value < 180.0 {
         Ok(())
     } else {
+        let inside = |x: f64| x > 0.0 && x < 180.0;
         Err(format!(
-            "--crease-angle {} is not within (0, 180) degrees",
-            a.text
+            "--crease-angle {} is not within (0, 180) degrees{}",
+            a.text,
+            a.in_f32_range(inside)
         ))
     }
 }

@@ -41,6 +41,19 @@ impl TypedF32 {
     }
 }
 
+impl TypedF32 {
+    /// Where the number typed lies `inside` a range that its single-precision value does not
+    /// (`179.999999` reads as 180), the clause a sentence refusing it adds ("" otherwise).
+    pub fn in_f32_range(&self, inside: impl Fn(f64) -> bool) -> String {
+        match self.text.trim().parse::<f64>() {
+            Ok(x) if inside(x) && !inside(self.value as f64) => {
+                format!(" in single precision (it reads as {})", self.value)
+            }
+            _ => String::new(),
+        }
+    }
+}
+
 impl From<f32> for TypedF32 {
     /// A value given by the program (a default), named as a pixel error is printed.
     fn from(value: f32) -> Self {
