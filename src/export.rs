@@ -474,13 +474,14 @@ pub fn check_size(
 /// `histogram` holds the visible elements per drawn level (`LevelReport::histogram`), each
 /// counted at `per_element(N)` triangles, the driver's at a uniform level (an upper bound:
 /// transition triangles along coarser edges make a few less). One clause naming the count, the estimated memory and file, and the remedy: a
-/// larger `--pixel-error` (named `pixel_error`, as given), or the largest `--max-level` below
-/// `max_level` that fits (a power of two where `power_of_two`, the pattern driver's). Returns
-/// the refined triangle count.
+/// larger `--pixel-error` (named `pixel_error`, as given; not where the `fixed` elements, drawn
+/// at `max_level` whatever the pixel error, with no finite bound or holding the eye, make more
+/// than fit by themselves), or the largest `--max-level` below `max_level` that fits (a power
+/// of two where `power_of_two`, the pattern driver's). Returns the refined triangle count.
 pub fn check_adaptive_size(
     histogram: &std::collections::BTreeMap<u32, u64>,
     pixel_error: &str,
-    max_level: u32,
+    (max_level, fixed): (u32, u64),
     power_of_two: bool,
     per_element: impl Fn(u32) -> u32,
 ) -> Result<u64, String> {
@@ -500,11 +501,17 @@ pub fn check_adaptive_size(
         .rev()
         .filter(|m| !power_of_two || m.is_power_of_two())
         .find(|&m| capped(m) <= MAX_EXPORT_TRIANGLES);
+    let larger = if fixed.saturating_mul(per_element(max_level) as u64) > MAX_EXPORT_TRIANGLES {
+        // Those elements alone are too many at the largest level: only --max-level helps.
+        ""
+    } else {
+        "a larger --pixel-error, or "
+    };
     let remedy = match lower {
         Some(m) if power_of_two => {
-            format!("use a larger --pixel-error, or --max-level {m} or a smaller power of two")
+            format!("use {larger}--max-level {m} or a smaller power of two")
         }
-        Some(m) => format!("use a larger --pixel-error, or --max-level {m} or lower"),
+        Some(m) => format!("use {larger}--max-level {m} or lower"),
         None => format!(
             "its {elements} elements drawn are too many to export even at level 1 (a camera that sees fewer of them exports fewer)"
         ),
@@ -732,7 +739,7 @@ mod tests {
         assert!(check_size(5856, 43, tess_triangle_count).is_ok());
         assert!(check_size(5856, 44, tess_triangle_count).is_err());
         let over = std::collections::BTreeMap::from([(64, 4096)]);
-        let e = check_adaptive_size(&over, "1", 64, true, tess_triangle_count).unwrap_err();
+        let e = check_adaptive_size(&over, "1", (64, 0), true, tess_triangle_count).unwrap_err();
         assert!(
             e.ends_with("--max-level 32 or a smaller power of two"),
             "{e}"
@@ -751,7 +758,7 @@ mod tests {
     fn adaptive_exports_are_refused_on_the_levels_drawn() {
         use std::collections::BTreeMap;
         let check_adaptive_size =
-            |h, px, max, pow2| super::check_adaptive_size(h, px, max, pow2, n2);
+            |h, px, max, pow2| super::check_adaptive_size(h, px, (max, 0), pow2, n2);
         // 4096 elements at level 64 are exactly 2^24 triangles; more at level 1 are too many.
         let fits = BTreeMap::from([(64, 4096)]);
         assert_eq!(check_adaptive_size(&fits, "1", 64, true), Ok(1 << 24));
@@ -769,5 +776,18 @@ mod tests {
         let crowd = BTreeMap::from([(1, (1 << 24) + 1), (2, 1)]);
         let e = check_adaptive_size(&crowd, "0.5", 64, true).unwrap_err();
         assert!(e.contains("too many to export even at level 1"), "{e}");
+        // Elements drawn at the largest level whatever the pixel error (no finite bound), too
+        // many by themselves: only --max-level is advised.
+        let unbounded = BTreeMap::from([(64, 5000)]);
+        let e = super::check_adaptive_size(&unbounded, "1", (64, 5000), true, n2).unwrap_err();
+        assert!(
+            e.ends_with("use --max-level 32 or a smaller power of two"),
+            "{e}"
+        );
+        let e = super::check_adaptive_size(&unbounded, "1", (64, 100), true, n2).unwrap_err();
+        assert!(
+            e.contains("use a larger --pixel-error, or --max-level 32"),
+            "{e}"
+        );
     }
 }

@@ -179,10 +179,12 @@ fn check_adaptive(a: &Adaptive, cfg: &DrawConfig, chosen: &ChosenLevels) -> Resu
     let named = (a.opts.pixel_error.as_ref())
         .map_or_else(|| super::adaptive::px(a.pixel_error), |t| t.text.clone());
     let per_element = |l| cfg.driver.refined_per_element(l);
+    // Drawn at the largest level whatever the pixel error.
+    let fixed = chosen.unmet.unbounded + chosen.unmet.near;
     meshrefine::export::check_adaptive_size(
         &chosen.histogram,
         &named,
-        cfg.level,
+        (cfg.level, fixed),
         power_of_two,
         per_element,
     )
