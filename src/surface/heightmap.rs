@@ -50,6 +50,19 @@ pub struct Heightmap {
     pub(crate) facts: FactsCache,
 }
 
+/// The width and height a PNG file's header (its signature and `IHDR` chunk) gives, if it has
+/// one; the file is left at its start either way.
+fn png_sides(file: &mut std::fs::File) -> Option<(u32, u32)> {
+    use std::io::{Read, Seek};
+    let mut head = [0u8; 24];
+    let read = file.read_exact(&mut head);
+    file.seek(std::io::SeekFrom::Start(0)).ok()?;
+    read.ok()?;
+    let be = |i: usize| u32::from_be_bytes([head[i], head[i + 1], head[i + 2], head[i + 3]]);
+    (head[..8] == [0x89, b'P', b'N', b'G', 0x0d, 0x0a, 0x1a, 0x0a] && &head[12..16] == b"IHDR")
+        .then(|| (be(16), be(20)))
+}
+
 impl Heightmap {
     /// From heights (row-major `w` × `h`, each in [0, 1]).
     pub fn from_heights(source: &str, w: u32, h: u32, texels: Vec<f32>) -> Self {
@@ -114,7 +127,20 @@ impl Heightmap {
     pub fn load_png(path: &Path) -> Result<Self, String> {
         let shown = path.display();
         // Checked before opening: opening a FIFO would block (crate::paths).
-        let (file, _) = crate::paths::open_input(path, "height map")?;
+        let (mut file, _) = crate::paths::open_input(path, "height map")?;
+        let sides = |w: u32, h: u32| {
+            if w == 0 || h == 0 || w > MAX_SIDE || h > MAX_SIDE {
+                return Err(format!(
+                    "height map '{shown}' is {w} x {h} pixels: each side must be within 1 to {MAX_SIDE}"
+                ));
+            }
+            Ok(())
+        };
+        // The sides from the header first: the decoder refuses an image too large for its
+        // memory limit before saying how large it is.
+        if let Some((w, h)) = png_sides(&mut file) {
+            sides(w, h)?;
+        }
         let mut decoder = png::Decoder::new(std::io::BufReader::new(file));
         decoder.set_transformations(png::Transformations::IDENTITY);
         let mut reader = decoder
@@ -122,11 +148,7 @@ impl Heightmap {
             .map_err(|e| png_problem(&shown.to_string(), e))?;
         let info = reader.info();
         let (w, h) = (info.width, info.height);
-        if w == 0 || h == 0 || w > MAX_SIDE || h > MAX_SIDE {
-            return Err(format!(
-                "height map '{shown}' is {w} x {h} pixels: each side must be within 1 to {MAX_SIDE}"
-            ));
-        }
+        sides(w, h)?;
         let (color, depth) = (info.color_type, info.bit_depth);
         let channels = match color {
             png::ColorType::Grayscale => 1,
@@ -388,7 +410,21 @@ mod tests {
         }
         let e = Heightmap::load_png(&huge).unwrap_err();
         assert!(
-            e.ends_with("huge.png' is not a readable PNG image: it holds no image data"),
+            e.ends_with(
+                "huge.png' is 2147483647 x 2147483647 pixels: each side must be within 1 to 8192"
+            ),
+            "{e}"
+        );
+        // A header and no pixels.
+        let bare = dir.join("bare.png");
+        {
+            let mut e = png::Encoder::new(std::fs::File::create(&bare).unwrap(), 4, 4);
+            e.set_color(png::ColorType::Grayscale);
+            drop(e.write_header().unwrap());
+        }
+        let e = Heightmap::load_png(&bare).unwrap_err();
+        assert!(
+            e.ends_with("bare.png' is not a readable PNG image: it holds no image data"),
             "{e}"
         );
         // Cut short: truncated, not an I/O failure.
@@ -474,5 +510,44 @@ mod tests {
             e.ends_with("is 8193 x 1 pixels: each side must be within 1 to 8192"),
             "{e}"
         );
+        // So is one whose header claims more than the decoder's memory limit allows: the
+        // header of a 16 x 16 image with its width made 2^31 − 1 (its checksum made again).
+        let small = dir.join("small.png");
+        {
+            let mut e = png::Encoder::new(std::fs::File::create(&small).unwrap(), 16, 16);
+            e.set_color(png::ColorType::Grayscale);
+            e.set_depth(png::BitDepth::Eight);
+            e.write_header()
+                .unwrap()
+                .write_image_data(&[0; 256])
+                .unwrap();
+        }
+        let mut bytes = std::fs::read(&small).unwrap();
+        bytes[16..20].copy_from_slice(&(i32::MAX as u32).to_be_bytes());
+        let crc = crc32(&bytes[12..29]);
+        bytes[29..33].copy_from_slice(&crc.to_be_bytes());
+        let huge = dir.join("huge-claim.png");
+        std::fs::write(&huge, &bytes).unwrap();
+        let e = Heightmap::load_png(&huge).unwrap_err();
+        assert!(
+            e.ends_with("is 2147483647 x 16 pixels: each side must be within 1 to 8192"),
+            "{e}"
+        );
+    }
+
+    /// The CRC-32 a PNG chunk ends with (of its type and data).
+    fn crc32(bytes: &[u8]) -> u32 {
+        let mut c = !0u32;
+        for &b in bytes {
+            c ^= b as u32;
+            for _ in 0..8 {
+                c = if c & 1 != 0 {
+                    0xedb8_8320 ^ (c >> 1)
+                } else {
+                    c >> 1
+                };
+            }
+        }
+        !c
     }
 }
