@@ -906,6 +906,19 @@ fn meshes_of_any_f32_scale_are_framed_and_blank_images_are_errors() {
             );
         }
     }
+    // A sine displacement far from the origin reaches phases f32 cannot resolve: refused,
+    // naming the frequency as typed, or as the mesh's default where none was given.
+    let far = write("offset-1e7-sine.obj", tetrahedron(1.0, 1e7).as_bytes());
+    let far_png = tmp("far.png");
+    let sine = ["render", p(&far), "-o", p(&far_png), "--displace", "sine"];
+    expect_error(
+        &sine,
+        &["at the default --frequency 13.856407 (24 over the mesh's bounding radius) reaches phases"],
+    );
+    expect_error(
+        &[&sine[..], &["--frequency", "13"]].concat(),
+        &["--displace sine at --frequency 13 reaches phases"],
+    );
     // What f32 cannot draw is dropped as degenerate, and a mesh of only that is refused.
     let subnormal = write("subnormal.obj", tetrahedron(1e-45, 0.0).as_bytes());
     expect_error(

@@ -152,7 +152,21 @@ impl ParamOpts {
         let (lo, hi) = mesh.bounds();
         let extent = lo.abs().max(hi.abs()).length();
         for &d in displaces {
-            p.check_displacement(d, radius, extent)?;
+            p.check_displacement(d, radius, extent).map_err(|e| {
+                // A frequency not given is the mesh's default: named as such, not as typed.
+                let typed = format!(
+                    "--frequency {}",
+                    meshrefine::surface::shown_number(p.frequency)
+                );
+                match self.frequency {
+                    None => e.replacen(
+                        &typed,
+                        &format!("the default {typed} (24 over the mesh's bounding radius)"),
+                        1,
+                    ),
+                    Some(_) => e,
+                }
+            })?;
         }
         Ok(p)
     }
