@@ -91,9 +91,15 @@ pub fn check_output(path: &Path, option: &str, kind: Output) -> Result<(), Strin
             "name a prefix inside it (PREFIX gives PREFIX.md, PREFIX.csv and PREFIX.json)"
         }
     };
-    if text.ends_with('/') || path.is_dir() {
+    if path.is_dir() {
         return Err(format!(
             "{option} '{shown}' is a directory, not a file: {name_it}"
+        ));
+    }
+    if text.ends_with('/') {
+        return Err(format!(
+            "{option} '{shown}' ends with '/', which names a directory, not a file: {}",
+            name_it.replace(" inside it", "")
         ));
     }
     let parent = match path.parent() {
@@ -179,6 +185,9 @@ mod tests {
             let e = check_output(&d, "-o", kind).unwrap_err();
             assert!(e.contains("is a directory, not a file"), "{e}");
             let slash = format!("{}/", d.join("sub").display());
+            let e = check_output(Path::new(&slash), "--out", kind).unwrap_err();
+            assert!(e.contains("ends with '/', which names a directory"), "{e}");
+            let slash = format!("{}/", d.display());
             let e = check_output(Path::new(&slash), "--out", kind).unwrap_err();
             assert!(e.contains("is a directory, not a file"), "{e}");
             let e = check_output(&d.join("nodir/x"), "-o", kind).unwrap_err();
