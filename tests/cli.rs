@@ -133,6 +133,33 @@ fn bad_meshes_give_one_clear_sentence() {
     expect_error(&["info", p(&lines_only)], &["lines.obj"]);
 }
 
+/// No Vulkan driver at all: one sentence and a failure, validating or not (the loader's own
+/// messages while the instance is not created are not printed beside it).
+#[test]
+fn a_missing_vulkan_driver_is_one_sentence() {
+    let env = [("VK_DRIVER_FILES", "/nonexistent/no-driver.json")];
+    for validate in [false, true] {
+        let mut args = vec![
+            "render",
+            "--level",
+            "1",
+            "-o",
+            "/tmp/meshrefine-no-driver.png",
+        ];
+        if validate {
+            args.insert(0, "--validate");
+        }
+        let out = meshrefine_env(&args, &env);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "{stderr}");
+        let lines: Vec<&str> = stderr.lines().collect();
+        assert!(
+            lines.len() == 1 && lines[0].starts_with("error: ") && stderr.contains("Vulkan driver"),
+            "{stderr}"
+        );
+    }
+}
+
 #[test]
 fn device_limits_and_options_are_checked() {
     let out = tmp("limits.png");

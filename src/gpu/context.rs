@@ -54,6 +54,9 @@ impl<T> VkResultExt<T> for Result<T, vk::Result> {
 #[derive(Default, Debug)]
 pub struct Messages {
     list: Mutex<Vec<String>>,
+    /// While set (during `vkCreateInstance`), warnings and errors are collected without being
+    /// logged: [`Messages::release`] logs them once the call's outcome is known.
+    held: std::sync::atomic::AtomicBool,
 }
 
 impl Messages {
@@ -62,6 +65,32 @@ impl Messages {
     }
     pub fn take(&self) -> Vec<String> {
         std::mem::take(&mut *self.list.lock().unwrap())
+    }
+
+    fn holding(&self) -> bool {
+        self.held.load(std::sync::atomic::Ordering::Relaxed)
+    }
+
+    /// Hold the messages from now on (not logged until [`Messages::release`]).
+    fn hold(&self) {
+        self.held.store(true, std::sync::atomic::Ordering::Relaxed);
+    }
+
+    /// Stop holding: the messages collected are logged as errors where the call they came
+    /// from succeeded (`created`); where it failed, its own error is the one sentence said and
+    /// they are logged at debug level (the loader's "Found no drivers!" beside "Unable to find
+    /// a Vulkan driver"), and dropped from the list.
+    fn release(&self, created: bool) {
+        self.held.store(false, std::sync::atomic::Ordering::Relaxed);
+        if created {
+            for m in self.list.lock().unwrap().iter() {
+                log::error!("vulkan validation: {m}");
+            }
+        } else {
+            for m in self.take() {
+                log::debug!("vulkan validation (instance not created): {m}");
+            }
+        }
     }
 }
 
@@ -109,10 +138,12 @@ unsafe extern "system" fn debug_callback(
     if severity.contains(vk::DebugUtilsMessageSeverityFlagsEXT::ERROR)
         || severity.contains(vk::DebugUtilsMessageSeverityFlagsEXT::WARNING)
     {
-        log::error!("vulkan validation: {text}");
         // SAFETY: `user` points at the Context's Arc<Messages> contents, alive until after the
         // messenger and the instance are destroyed.
         let messages = unsafe { &*(user as *const Messages) };
+        if !messages.holding() {
+            log::error!("vulkan validation: {text}");
+        }
         messages.push(text);
     } else if severity.contains(vk::DebugUtilsMessageSeverityFlagsEXT::INFO) {
         log::debug!("vulkan: {text}");
@@ -200,8 +231,10 @@ impl InstanceParts {
                 .push_next(&mut validation_features);
         }
         // SAFETY: all pointers in the create info outlive the call.
-        let instance =
-            unsafe { entry.create_instance(&instance_info, None) }.call("vkCreateInstance")?;
+        messages.hold();
+        let instance = unsafe { entry.create_instance(&instance_info, None) };
+        messages.release(instance.is_ok());
+        let instance = instance.call("vkCreateInstance")?;
 
         let (debug_instance, messenger) = if desc.validate {
             let di = ash::ext::debug_utils::Instance::new(&entry, &instance);
