@@ -501,8 +501,13 @@ pub fn check_adaptive_size(
         .rev()
         .filter(|m| !power_of_two || m.is_power_of_two())
         .find(|&m| capped(m) <= MAX_EXPORT_TRIANGLES);
-    let larger = if fixed.saturating_mul(per_element(max_level) as u64) > MAX_EXPORT_TRIANGLES {
-        // Those elements alone are too many at the largest level: only --max-level helps.
+    // The least a larger pixel error can make: the fixed elements at the largest level, the
+    // others at level 1.
+    let floor = fixed
+        .saturating_mul(per_element(max_level) as u64)
+        .saturating_add((elements.saturating_sub(fixed)).saturating_mul(per_element(1) as u64));
+    let larger = if floor > MAX_EXPORT_TRIANGLES {
+        // Too many whatever the pixel error: only --max-level helps.
         ""
     } else {
         "a larger --pixel-error, or "

@@ -3601,6 +3601,19 @@ fn pixel_error_draws_adaptively_with_the_pattern_driver() {
     info[3] = "2";
     let fits = ok(&info);
     assert!(fits.contains("max level 256"), "{fits}");
+    // The height map's mip level follows the largest level: render does not lower it to the
+    // levels chosen, and info refuses alike.
+    let grid = model_path("grid_uv_8x8.obj");
+    #[rustfmt::skip]
+    let mapped = ["--displace", "heightmap", "--geomorph", "off", "--max-level", "256", "--pixel-error", "4"];
+    expect_error(
+        &[&["info", p(&grid)][..], &mapped].concat(),
+        &["at most up to level 128, not 256"],
+    );
+    expect_error(
+        &[&["render", p(&grid), "-o", p(&high_png)][..], &mapped].concat(),
+        &["at most up to level 128, not 256"],
+    );
     // Wound like the coarse triangles on a sphere, closed, at both roundings.
     let sphere = model_path("uvsphere12.obj");
     for geomorph in ["on", "off"] {

@@ -10,7 +10,7 @@
 //! across a rounding threshold (an integer, a power of two, the inner level's raise for its
 //! transition triangles) the drawn levels may differ, which must be rare (at most 1% of the
 //! elements, counted); culling agrees except for spheres within 1e-5 of the mesh's radius of a
-//! plane or cones within 1e-6 radians of facing away (the facing-away test is written without
+//! plane or cones within 1e-5 radians of facing away (the facing-away test is written without
 //! inverse trigonometric functions, which GPUs evaluate loosely). Every edge two elements share has
 //! bit-identical levels in both on the GPU.
 
@@ -189,7 +189,7 @@ fn gpu_levels_match_the_cpu() {
                             let (plane, cone) = cull_margins(&view, &bounds[i]);
                             assert!(
                                 plane <= 1e-5 * r
-                                    || (view.flags & CULL_BACK_FACES != 0 && cone <= 1e-6),
+                                    || (view.flags & CULL_BACK_FACES != 0 && cone <= 1e-5),
                                 "{what}: element {i} culled {} on the GPU, {} on the CPU \
                                  (margins {plane}, {cone})",
                                 g.culled(),

@@ -435,7 +435,13 @@ pub fn cannot_adapt(
 /// map, whose mip level follows the largest level, nor where the normal field would move
 /// between fragments and vertices (`loop` from level 16).
 fn chosen_max(cfg: &DrawConfig, report: &ChosenLevels) -> Option<DrawConfig> {
-    let drawn = *report.report().histogram.keys().max()?;
+    lowered_to(cfg, *report.report().histogram.keys().max()?)
+}
+
+/// `cfg` at `drawn`, the largest level drawn (a power of two at or above it where the driver's
+/// levels are), where that is below `cfg.level` and draws the same ([`chosen_max`]; `info`
+/// asks it as render does).
+pub fn lowered_to(cfg: &DrawConfig, drawn: u32) -> Option<DrawConfig> {
     let level = if cfg.power_of_two_max() {
         drawn.next_power_of_two()
     } else {

@@ -308,14 +308,20 @@ fn print_levels(a: &InfoArgs, mut input: Input) -> Result<()> {
         culled: stats.culled,
         unmet,
     };
-    // Render draws up to the largest level chosen, and refuses the pattern driver's integer
-    // levels past its integer patterns (naming --max-level, as lowering to the levels chosen
-    // does not help then): refused here in the same sentence.
+    // Render draws up to the largest level chosen where that draws the same (not the height
+    // map, whose mip level follows the largest level), and refuses the pattern driver's integer
+    // levels past its integer patterns, naming --max-level: refused here in the same sentence.
     if let (meshrefine::render::Driver::Pattern(_), Some(&top)) =
         (a.driver, report.histogram.keys().max())
     {
         use meshrefine::render::pattern::check_integer_levels;
-        if check_integer_levels(top, dyadic).is_err() {
+        let cfg = meshrefine::render::DrawConfig {
+            geomorph: a.geomorph.unwrap_or(true),
+            ..meshrefine::render::DrawConfig::new(a.driver, a.max_level)
+        }
+        .with_surface(surface, displace);
+        let drawn = super::adaptive::lowered_to(&cfg, top).map_or(cfg.level, |c| c.level);
+        if check_integer_levels(drawn, dyadic).is_err() {
             check_integer_levels(a.max_level, dyadic)
                 .map_err(|e| anyhow::anyhow!("cannot render '{path}': {e}"))?;
         }

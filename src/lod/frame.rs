@@ -369,19 +369,18 @@ fn outside(v: &LodView, s: [f32; 4]) -> bool {
         .any(|p| Vec4::from(*p).truncate().dot(c) + p[3] < -s[3])
 }
 
-/// Whether the element's cone faces away from the eye everywhere in its sphere. Mirror:
-/// `lod_back_facing` (and [`super::NormalCone::back_facing`]).
+/// Whether the element's cone faces away from the eye everywhere in its sphere
+/// ([`super::NormalCone::back_facing`]; a cosine of 0 is no cone). Mirror: `lod_back_facing`.
 fn back_facing(v: &LodView, cone: [f32; 4], s: [f32; 4]) -> bool {
-    let d3 = Vec4::from(s).truncate() - v.eye();
-    let d = d3.length();
-    if cone[3] <= 0.0 || d <= s[3] {
-        return false;
-    }
-    let axis = Vec4::from(cone).truncate();
-    let beta = (d3.dot(axis) / d).clamp(-1.0, 1.0).acos();
-    let gamma = (s[3] / d).asin();
-    let theta = cone[3].clamp(-1.0, 1.0).acos();
-    beta + gamma + theta < std::f32::consts::FRAC_PI_2 - 1e-4
+    let sphere = super::Sphere {
+        centre: Vec4::from(s).truncate(),
+        radius: s[3],
+    };
+    let cone = super::NormalCone {
+        axis: Vec4::from(cone).truncate(),
+        cos: cone[3],
+    };
+    cone.cos > 0.0 && cone.back_facing(&sphere, v.eye())
 }
 
 /// One element's levels. Mirror: glsl/lod/levels.comp's `main`.

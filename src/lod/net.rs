@@ -178,12 +178,24 @@ impl Net {
     /// the corners, so `|P| >= P · u >= min_c P(x_c) · u − E`. The second is what a turning
     /// field needs: its length changes far less within a cell than the field itself.
     fn sampled_min_length(&self, edge: Option<usize>, g: u32) -> f32 {
+        self.lattice_min_length(edge, g, true)
+    }
+
+    /// [`Net::sampled_min_length`], with the second-order cell bound or (`second_order` false,
+    /// for the tests) without it.
+    fn lattice_min_length(&self, edge: Option<usize>, g: u32, second_order: bool) -> f32 {
         let at = |w: [u32; 3]| self.eval(w.map(|x| x as f32 / g as f32));
         let h2 = 1.0 / (g * g) as f32;
         // The cell with corners `p`: first order with `step`, second with error `e`.
         let cell = |p: &[Vec3], step: f32, e: f32| {
             let first = p.iter().map(|x| x.length()).fold(0.0, f32::max) - step;
-            let u = p.iter().fold(Vec3::ZERO, |s, &x| s + x).normalize_or_zero();
+            if !second_order {
+                return first;
+            }
+            // As the GLSL twin divides: s / sqrt(s · s).
+            let s = p.iter().fold(Vec3::ZERO, |s, &x| s + x);
+            let l2 = s.dot(s);
+            let u = if l2 > 0.0 { s / l2.sqrt() } else { Vec3::ZERO };
             let second = p.iter().map(|&x| dot3(x, u)).fold(f32::INFINITY, f32::min) - e;
             first.max(second)
         };
@@ -312,16 +324,10 @@ mod tests {
                 }
                 if spread <= 0.6 {
                     near = near.min(rho / truth);
-                    // The first-order bound alone on the coarsest lattice (at most what it
-                    // gives cell by cell: the least corner, not the largest, less the step),
-                    // where a bound above half the corners' length stops sampling.
-                    let g = RHO_GRIDS[0];
-                    let step = match edge {
-                        Some(k) => net.first(k, edge),
-                        None => (0..3).map(|k| net.first(k, None)).fold(0.0, f32::max),
-                    };
-                    let coarse = sampled(&net, edge, g) - step / g as f32;
-                    first_order = first_order.min(coarse / truth);
+                    // The first-order bound alone on the coarsest lattice, where a bound
+                    // above half the corners' length stops sampling.
+                    first_order =
+                        first_order.min(net.lattice_min_length(edge, RHO_GRIDS[0], false) / truth);
                 } else {
                     far = far.min(rho / truth);
                 }

@@ -75,7 +75,7 @@ fn convex(plane: &Plane) -> Vec<[usize; 3]> {
     let fan = |c: usize| -> Vec<[usize; 3]> {
         (2..n).map(|k| [c, (c + k - 1) % n, (c + k) % n]).collect()
     };
-    let flat = |t: &[[usize; 3]]| t.iter().any(|&[a, b, c]| turn(plane, a, b, c) == 0);
+    let flat = |t: &[[usize; 3]]| t.iter().any(|&[a, b, c]| turn(plane, a, b, c) <= 0);
     let first = fan(0);
     if !flat(&first) || n > MAX_CLIPPED_CORNERS {
         return first;

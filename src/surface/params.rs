@@ -114,7 +114,7 @@ impl SurfaceParams {
 
     /// Whether displacement `d` moves any point: not without amplitude, nor a sine or noise
     /// without frequency (`a sin(0)`, `a noise(0)`: zero), which draw the undisplaced surface's
-    /// positions bit for bit (`P + 0`).
+    /// positions (`P + 0`: the same values, a coordinate `−0` made `+0`).
     /// Mirror: `lod_moves` in glsl/include/lod.glsl.
     pub fn moves(&self, d: Displace) -> bool {
         d != Displace::None

@@ -136,8 +136,9 @@ pub fn derive_with_angle(mesh: &Mesh, crease_angle: Option<f32>) -> (Vec<VertexT
             .zip(corners.iter_mut().zip(more_corners))
         {
             if !t.crease() {
+                // A crease the dihedral angles find keeps the position from staying smooth.
+                *c = !m.crease() && (*c || mc);
                 *t = m;
-                *c = *c || mc;
             }
         }
     }

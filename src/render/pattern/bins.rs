@@ -59,7 +59,8 @@ pub fn check_adaptive_fits(
 }
 
 /// Whether the pattern driver can draw integer levels (`dyadic` false) up to `level`, the
-/// largest an element is drawn at: [`INTEGER_MAX_LEVEL`] at most (`info` asks as render does).
+/// largest an element is drawn at: `INTEGER_MAX_LEVEL` (128) at most (`info` asks as render
+/// does).
 pub fn check_integer_levels(level: u32, dyadic: bool) -> Result<(), RenderError> {
     if !dyadic && level > INTEGER_MAX_LEVEL {
         return Err(RenderError::Incompatible(format!(
