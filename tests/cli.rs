@@ -2376,6 +2376,23 @@ fn control_characters_in_names_are_escaped() {
             assert!(stdout.contains("v\\u{1b}[2Jx.obj"), "{stdout}");
         }
     }
+    // A benchmark's --out with a newline: escaped where the summary names the table, and in
+    // the table's Command line.
+    let prefix = tmp("b\nout");
+    #[rustfmt::skip]
+    let out = ok(&[
+        "bench", p(&clears), "--levels", "1", "--frames", "1", "--drivers", "static", "--out",
+        p(&prefix),
+    ]);
+    assert!(
+        out.contains("b\\nout.md\n") && out.contains("wrote "),
+        "{out}"
+    );
+    let md = std::fs::read_to_string(prefix.with_file_name("b\nout.md")).unwrap();
+    assert!(
+        md.lines().next().unwrap().ends_with("b\\nout`"),
+        "{md:.300}"
+    );
 }
 
 /// One rule for every output path: its folder must exist (never created), a directory is
@@ -3021,6 +3038,21 @@ fn bench_times_uniform_rows_of_a_variant_not_drawn_adaptively() {
     assert!(
         capped.contains("the bound is not met on every element up to --max-level 1"),
         "{capped}"
+    );
+    // Where elements hold the eye in their bounds, no --max-level helps, and the note says so.
+    #[rustfmt::skip]
+    let near = ok(&[
+        "bench", "--drivers", "static", "--surfaces", "pn", "--pixel-error", "2", "--eye",
+        "0.3,0.2,0.6", "--look-at", "0,0.1,0.3", "--levels", "1", "--frames", "1", "--width",
+        "32", "--height", "32", "--no-bound-levels",
+    ]);
+    // The summary wraps its notes: compared with single spaces.
+    let near = near.split_whitespace().collect::<Vec<_>>().join(" ");
+    assert!(
+        near.contains(
+            "the bound is not met on every element (elements holding the eye in their bounds, at any level)"
+        ) && !near.contains("up to --max-level"),
+        "{near}"
     );
 }
 

@@ -31,7 +31,10 @@ impl State {
 
     /// Lay out the overlay panel for this frame, with the last frame's statistics.
     pub(super) fn run_ui(&mut self) -> ui::UiFrame {
-        let levels: Vec<u32> = self.scene.patterns.levels().collect();
+        // The levels the chosen driver draws on this device, as `+` steps through them.
+        let limit = (self.controls.cfg.driver.kind().level_limit(&self.ctx.info)).map(|(m, _)| m);
+        let all: Vec<u32> = self.scene.patterns.levels().collect();
+        let levels = super::input::usable_levels(&all, limit);
         let device = self.ctx.info.describe();
         let d = self.drawn;
         let coarse = self.scene.elements(d.surface).element_count as u64;

@@ -231,13 +231,19 @@ fn next_displacement(from: Displace, take: impl Fn(Displace) -> bool) -> Displac
     d
 }
 
+/// The window's levels the driver draws on this device (`limit`: its largest, if it has one):
+/// what `+` and `-` step through and the panel offers.
+pub(super) fn usable_levels(levels: &[u32], limit: Option<u32>) -> Vec<u32> {
+    (levels.iter().copied())
+        .filter(|&l| limit.is_none_or(|max| l <= max))
+        .collect()
+}
+
 /// The window's level after `current` (`up`) or before it among `levels` (ascending), up to
 /// the driver's `limit`: `+` stops at the finest level the driver draws (rather than counting
 /// on past it with nothing changing on screen), and a level beyond it steps down from there.
 fn step_level(levels: &[u32], limit: Option<u32>, current: u32, up: bool) -> u32 {
-    let usable: Vec<u32> = (levels.iter().copied())
-        .filter(|&l| limit.is_none_or(|max| l <= max))
-        .collect();
+    let usable = usable_levels(levels, limit);
     let Some(&last) = usable.last() else {
         return current;
     };

@@ -119,23 +119,26 @@ fn variant(
     let mut bound = first.drawn.then_some(1);
     // Whether the largest level keeps some element's own bounds from being met: the bound's
     // uniform level is then the largest, which does not meet it either.
-    let mut capped = false;
+    let mut unmet = crate::lod::frame::Unmet::default();
     if let Some(b) = &mut bound {
         for &c in cameras {
             let chosen = m.scene.set_levels(&cfg, &view(c))?;
             *b = (*b).max(chosen.uniform_level);
-            capped |= chosen.report().unmet.uniform_unmet();
+            let u = &chosen.report().unmet;
+            unmet.near += u.near;
+            unmet.unbounded += u.unbounded;
+            unmet.beyond_uniform += u.beyond_uniform;
         }
     }
-    if capped {
+    if unmet.uniform_unmet() {
         // The bound's row is in the table unless --no-bound-levels.
         let (level, row) = (
             bound.unwrap_or(cfg.level),
             if a.bound_levels { " (bound)" } else { "" },
         );
         first.row.note = format!(
-            "the bound is not met on every element up to --max-level {}: uniform {level}{row} does not meet it either",
-            cfg.level
+            "the bound is not met on every element{}: uniform {level}{row} does not meet it either",
+            why_unmet(&unmet, cfg.level)
         );
     }
     let mut list = vec![first];
@@ -169,6 +172,38 @@ fn variant(
     }
     h.adaptive = false;
     Ok(into_rows(list, cameras.len(), frames))
+}
+
+/// A ratio with two decimals, or two significant digits below 0.01 (0.00016, not 0.00).
+fn ratio(x: f64) -> String {
+    if x > 0.0 && x < 0.01 {
+        let digits = (1 - x.log10().floor() as i32) as usize;
+        format!("{x:.digits$}")
+    } else {
+        format!("{x:.2}")
+    }
+}
+
+/// Why no level up to `max` meets the bound on every element: what the note of an adaptive row
+/// says after "the bound is not met on every element" (" up to --max-level 64", then which
+/// elements no level helps, in parentheses).
+fn why_unmet(u: &crate::lod::frame::Unmet, max: u32) -> String {
+    let mut fixed = Vec::new();
+    if u.near > 0 {
+        fixed.push("elements holding the eye in their bounds");
+    }
+    if u.unbounded > 0 {
+        fixed.push("elements with no finite bound");
+    }
+    let capped = if u.beyond_uniform > 0 {
+        format!(" up to --max-level {max}")
+    } else {
+        String::new()
+    };
+    match fixed.is_empty() {
+        true => capped,
+        false => format!("{capped} ({}, at any level)", fixed.join(" and ")),
+    }
 }
 
 /// The uniform levels timed beside the adaptive frame, each with what asked for it: the
@@ -406,11 +441,26 @@ fn into_rows(list: Vec<Timed>, cameras: usize, frames: usize) -> Vec<Row> {
             let time = gpu.median / uniform.median;
             let tris = first.refined_triangles as f64 / u.refined_triangles.max(1) as f64;
             notes.push(format!(
-                "{tris:.2}x the triangles, {time:.2}x the GPU time of uniform {} ({from})",
+                "{}x the triangles, {}x the GPU time of uniform {} ({from})",
+                ratio(tris),
+                ratio(time),
                 u.level
             ));
         }
         first.note = notes.join("; ");
     }
     rows
+}
+
+#[cfg(test)]
+mod tests {
+    /// Ratios keep two decimals, and two significant digits where those would show 0.00.
+    #[test]
+    fn small_ratios_keep_two_significant_digits() {
+        assert_eq!(super::ratio(0.35), "0.35");
+        assert_eq!(super::ratio(12.345), "12.35");
+        assert_eq!(super::ratio(0.0095), "0.0095");
+        assert_eq!(super::ratio(372.0 / 2_285_568.0), "0.00016");
+        assert_eq!(super::ratio(0.0), "0.00");
+    }
 }

@@ -128,6 +128,17 @@ pub fn csv_fields(line: &str) -> Vec<String> {
     fields
 }
 
+/// `s` with its control characters escaped (`\n`, `\u{1b}`): a path or command stays on its
+/// line and drives no terminal.
+fn escaped(s: &str) -> String {
+    s.chars()
+        .map(|c| match c.is_control() {
+            true => c.escape_default().to_string(),
+            false => c.to_string(),
+        })
+        .collect()
+}
+
 fn quoted(s: &str) -> String {
     format!("\"{}\"", s.replace('"', "\"\""))
 }
@@ -233,7 +244,10 @@ impl Report {
     /// The folder must exist: outputs never create folders (the command line checks the prefix up front, `meshrefine::paths`).
     pub fn write_files(&self, prefix: &Path, command: &str) -> std::io::Result<()> {
         let files = [
-            ("md", format!("Command: `{command}`\n\n{}", self.markdown())),
+            (
+                "md",
+                format!("Command: `{}`\n\n{}", escaped(command), self.markdown()),
+            ),
             ("csv", self.csv()),
             ("json", self.json()),
         ];
@@ -297,7 +311,8 @@ impl Report {
                     &format!("{WHAT}, with its .csv and .json beside it:"),
                     "",
                 );
-                let _ = writeln!(s, "{}", with_extension(prefix, "md").display());
+                let path = with_extension(prefix, "md").display().to_string();
+                let _ = writeln!(s, "{}", escaped(&path));
             }
             None => wrap(
                 &mut s,

@@ -292,6 +292,9 @@ impl Scene {
     /// coarse records (the local surfaces), or M0's positions (loop): the last two independent
     /// of the level.
     pub fn upload_bytes(&self, cfg: &super::DrawConfig) -> u64 {
+        if let Some(bytes) = self.static_adaptive_bytes(cfg) {
+            return bytes;
+        }
         if cfg.driver.kind().refines_on_cpu() {
             return cfg.geometry_bytes(self.elements(cfg.surface).element_count as u64);
         }
@@ -361,8 +364,21 @@ impl Scene {
     /// GPU bytes of geometry `cfg` draws from: the driver's own ([`super::DrawConfig::geometry_bytes`]
     /// of the elements) and, for loop, M1, its passes' data and the tables.
     pub fn geometry_bytes(&self, cfg: &super::DrawConfig) -> u64 {
+        if let Some(bytes) = self.static_adaptive_bytes(cfg) {
+            return bytes;
+        }
         let elements = self.elements(cfg.surface).element_count as u64;
         cfg.geometry_bytes(elements) + self.pre_pass(cfg).map_or(0, |p| p.gpu_bytes())
+    }
+
+    /// The bytes of the static buffer refined adaptively for `cfg` (each element at its own
+    /// level, not `cfg.level`), when that is what the scene holds.
+    fn static_adaptive_bytes(&self, cfg: &super::DrawConfig) -> Option<u64> {
+        let vbo = self.static_vbo.as_ref()?;
+        let same = cfg.driver.kind().refines_on_cpu()
+            && (vbo.cfg.surface, vbo.cfg.displace, vbo.cfg.level)
+                == (cfg.surface, cfg.displace, cfg.level);
+        same.then_some(vbo.adaptive.as_ref()?.upload_bytes)
     }
 
     /// The passes `cfg` runs before drawing (Loop's M0 -> M1 on the GPU drivers; `static`
