@@ -2458,6 +2458,27 @@ fn outputs_follow_one_rule() {
             "/dev/full.{ext} was created"
         );
     }
+    // A folder that exists but takes no files is found out before anything is timed: no
+    // summary on standard output.
+    let out = meshrefine(&[
+        "bench",
+        p(&cube),
+        "--levels",
+        "1",
+        "--out",
+        "/proc/self/results",
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("cannot write the results to /proc/self/results.{md,csv,json}"),
+        "{stderr}"
+    );
+    assert!(
+        out.stdout.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&out.stdout)
+    );
 }
 
 /// Coincident triangles are dropped with the degenerate ones' one-line warning; Loop, which
