@@ -44,20 +44,7 @@ pub fn note(line: std::fmt::Arguments) {
     let _ = writeln!(std::io::stderr().lock(), "{}", printable(&line));
 }
 
-/// `text` with its control characters escaped (`\u{1b}`, `\n`): a warning or error stays one
-/// line and writes nothing a terminal would act on, whatever a file or a path held.
-pub fn printable(text: &str) -> std::borrow::Cow<'_, str> {
-    if !text.chars().any(char::is_control) {
-        return text.into();
-    }
-    (text.chars())
-        .map(|c| match c.is_control() {
-            true => c.escape_default().to_string(),
-            false => c.to_string(),
-        })
-        .collect::<String>()
-        .into()
-}
+pub use meshrefine::paths::printable;
 
 /// [`printable`] line by line: the line ends of a text of several lines (a benchmark's table)
 /// kept, every other control character escaped.

@@ -148,6 +148,21 @@ pub fn check_output(path: &Path, option: &str, kind: Output) -> Result<(), Strin
     Ok(())
 }
 
+/// `text` with its control characters escaped (`\u{1b}`, `\n`): a warning or error stays one
+/// line and writes nothing a terminal would act on, whatever a file or a path held.
+pub fn printable(text: &str) -> std::borrow::Cow<'_, str> {
+    if !text.chars().any(char::is_control) {
+        return text.into();
+    }
+    (text.chars())
+        .map(|c| match c.is_control() {
+            true => c.escape_default().to_string(),
+            false => c.to_string(),
+        })
+        .collect::<String>()
+        .into()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -128,17 +128,6 @@ pub fn csv_fields(line: &str) -> Vec<String> {
     fields
 }
 
-/// `s` with its control characters escaped (`\n`, `\u{1b}`): a path or command stays on its
-/// line and drives no terminal.
-fn escaped(s: &str) -> String {
-    s.chars()
-        .map(|c| match c.is_control() {
-            true => c.escape_default().to_string(),
-            false => c.to_string(),
-        })
-        .collect()
-}
-
 fn quoted(s: &str) -> String {
     format!("\"{}\"", s.replace('"', "\"\""))
 }
@@ -246,7 +235,11 @@ impl Report {
         let files = [
             (
                 "md",
-                format!("Command: `{}`\n\n{}", escaped(command), self.markdown()),
+                format!(
+                    "Command: `{}`\n\n{}",
+                    crate::paths::printable(command),
+                    self.markdown()
+                ),
             ),
             ("csv", self.csv()),
             ("json", self.json()),
@@ -312,7 +305,7 @@ impl Report {
                     "",
                 );
                 let path = with_extension(prefix, "md").display().to_string();
-                let _ = writeln!(s, "{}", escaped(&path));
+                let _ = writeln!(s, "{}", crate::paths::printable(&path));
             }
             None => wrap(
                 &mut s,
