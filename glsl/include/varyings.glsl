@@ -5,8 +5,14 @@
 #define VARYINGS_GLSL
 #ifdef FRAGMENT_STAGE
 #define VARYING in
+// Multisampled, a pixel's fragment runs where it is covered (centroid), never at a pixel centre
+// outside a sliver triangle that covers only some of its samples: there the interpolated sample
+// (v_bary) lies outside its element, and a normal field evaluated from it (loop's tables near a
+// vertex of high valence, above all) is extrapolated into speckles.
+#define SMOOTH centroid in
 #else
 #define VARYING out
+#define SMOOTH out
 #endif
 #ifdef XFB
 // Transform-feedback variant: each output vertex is captured as (position, element, normal,
@@ -20,9 +26,9 @@ layout(location = 3, xfb_buffer = 0, xfb_offset = 28) VARYING vec3 v_bary;
 // The element among all elements (v_element counts within the bound chunk).
 layout(location = 4, xfb_buffer = 0, xfb_offset = 12) flat VARYING uint v_xfb_element;
 #else
-layout(location = 0) VARYING vec3 v_position;  // world position
-layout(location = 1) VARYING vec3 v_normal;    // world normal (unnormalized after interpolation)
+layout(location = 0) SMOOTH vec3 v_position;  // world position
+layout(location = 1) SMOOTH vec3 v_normal;    // world normal (unnormalized after interpolation)
 layout(location = 2) flat VARYING uint v_element; // the element sampled, within the bound chunk
-layout(location = 3) VARYING vec3 v_bary;         // the sample's (w, u, v) in that element
+layout(location = 3) SMOOTH vec3 v_bary;         // the sample's (w, u, v) in that element
 #endif
 #endif
