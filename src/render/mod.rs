@@ -135,10 +135,10 @@ impl DrawConfig {
         self.build.seams == crate::surface::Seams::Closed || self.surface == Surface::Flat
     }
 
-    /// The loop surface with displacement: no finite error bound on any element
+    /// The loop surface with a displacement that moves it: no finite error bound on any element
     /// (docs/adaptivity.md).
     pub fn loop_displaced(&self) -> bool {
-        self.surface.uses_loop_faces() && self.displace != crate::surface::Displace::None
+        self.surface.uses_loop_faces() && self.params.moves(self.displace)
     }
 
     /// Whether adaptive levels are rounded to powers of two: while the pattern or tess driver

@@ -14,7 +14,8 @@
 //! pure differences along `d_k`, `β²` along `d_{k+1}` and `2αβ` mixed ones, as the quadratic form
 //! is; never above polarization's `Σ/2`. Every drawn point lies in the convex hull of the lattice
 //! points, whose sphere is the patch's. Displacement over `loop` has no bound here: such elements
-//! get the maximum level.
+//! get the maximum level (one that moves nothing, [`crate::surface::SurfaceParams::moves`],
+//! is bounded as none).
 
 use crate::lod::{Bounds, Chord, Lod, Sphere, EDGE_FACTOR, ELEMENT_FACTOR};
 use crate::pattern::weight;
@@ -56,8 +57,11 @@ fn mixed2(a: Vec3, b: Vec3, c: Vec3, d: Vec3) -> f32 {
 fn finish(lod: &Lod, m: [f32; 3], b: Option<[f32; 3]>, factor: f32, points: &[Vec3]) -> Bounds {
     let sphere = Sphere::around(points);
     let worst = m.iter().fold(0.0f32, |a, &b| a.max(b));
+    // A displacement that moves nothing (zero amplitude, or a sine or noise of frequency zero)
+    // leaves the limit surface as it is, and its bound.
     let (c2, grow) = match lod.displace.facts().bound {
         DisplaceBound::Zero => (factor * worst, 0.0),
+        _ if !lod.params.moves(lod.displace) => (factor * worst, 0.0),
         d => (f32::INFINITY, d.max_height(&lod.params, &sphere)),
     };
     Bounds {

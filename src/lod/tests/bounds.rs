@@ -347,6 +347,55 @@ fn loop_bounds_hold() {
         }
     }
     assert!(tighter > 10, "only {tighter} pairs below Σ/2");
+    // A displacement that moves nothing (zero amplitude, a sine or noise of frequency zero)
+    // keeps the limit surface's bounds, edges and elements alike; one that moves has none.
+    let r = mesh.bounding_radius();
+    let moving = SurfaceParams::for_radius(r);
+    let still = [
+        (
+            Displace::Sine,
+            SurfaceParams {
+                amplitude: 0.0,
+                ..moving
+            },
+        ),
+        (
+            Displace::Sine,
+            SurfaceParams {
+                frequency: 0.0,
+                ..moving
+            },
+        ),
+        (
+            Displace::Noise,
+            SurfaceParams {
+                frequency: 0.0,
+                ..moving
+            },
+        ),
+    ];
+    let with = |displace, params| Case {
+        surface: Surface::Loop,
+        field: NormalField::default(),
+        displace,
+        params,
+        inputs: Sources {
+            loop_: Some((&data, &frame)),
+            ..Default::default()
+        },
+    };
+    for rec in every(&data.records, 29) {
+        for (displace, params) in still {
+            let c = with(displace, params);
+            let what = format!("{} {params:?}", displace.name());
+            assert_eq!(c.lod().element(&rec), lod.element(&rec), "{what}");
+            for e in 0..3 {
+                assert_eq!(c.lod().edge(&rec, e), lod.edge(&rec, e), "{what}");
+            }
+        }
+        let b = with(Displace::Sine, moving).lod().element(&rec);
+        assert_eq!(b.chord.c2, f32::INFINITY);
+    }
 }
 
 /// The largest `|D²P[d_k, d_{k+1}]|` sampled on lattice parallelograms of `g` segments per side:
