@@ -274,7 +274,8 @@ fn tess_sweep(h: &mut Headless, scene: &mut Scene, geomorph: bool) -> (f32, usiz
 /// Geomorphing removes popping on the tessellator: with it every drawn vertex moves on screen
 /// at most 0.08 px more than its surface point does between frames, measured against the mesh
 /// the GPU drew the frame before (measured 0.065 px, where an edge four times coarser than the
-/// inside doubles: ring 1 does not glide, docs/adaptivity.md "What remains"); without, the
+/// inside doubles: ring 1's snapped parent on the edge switches samples, docs/adaptivity.md
+/// "What remains"); without, the
 /// integer levels' changes move vertices by 0.13 px.
 #[test]
 fn tess_geomorphing_removes_popping() {
