@@ -347,8 +347,9 @@ impl Report {
             .collect();
         // Columns no row has a value in (an adaptive benchmark's, on other rows) are left out.
         columns.retain(|(_, cells)| cells.iter().any(|c| !c.is_empty() && c != "–"));
-        // Columns with one value on every row are said once, above the table.
-        if self.rows.len() > 1 {
+        // Columns with one value on every row are said once, above the table (a single row's
+        // every column: no table is left then).
+        if !self.rows.is_empty() {
             let same: Vec<String> = columns
                 .iter()
                 .filter(|(_, cells)| cells.iter().all(|c| *c == cells[0]))
@@ -361,6 +362,11 @@ impl Report {
         }
         s.push('\n');
         let widths = fit_widths(&columns);
+        let table = if columns.is_empty() {
+            0
+        } else {
+            self.rows.len()
+        };
         let line = |cells: Vec<String>| {
             let padded: Vec<String> = cells
                 .iter()
@@ -370,11 +376,13 @@ impl Report {
                 .collect();
             padded.join("  ").trim_end().to_owned()
         };
-        let headers = columns.iter().map(|(c, _)| c.summary.unwrap().to_owned());
-        let _ = writeln!(s, "{}", line(headers.collect()));
-        let rule: Vec<String> = widths.iter().map(|&w| "-".repeat(w)).collect();
-        let _ = writeln!(s, "{}", rule.join("  "));
-        for i in 0..self.rows.len() {
+        if table > 0 {
+            let headers = columns.iter().map(|(c, _)| c.summary.unwrap().to_owned());
+            let _ = writeln!(s, "{}", line(headers.collect()));
+            let rule: Vec<String> = widths.iter().map(|&w| "-".repeat(w)).collect();
+            let _ = writeln!(s, "{}", rule.join("  "));
+        }
+        for i in 0..table {
             let _ = writeln!(
                 s,
                 "{}",
@@ -382,8 +390,11 @@ impl Report {
             );
         }
         let noted: Vec<&Row> = self.rows.iter().filter(|r| !r.note.is_empty()).collect();
-        if !noted.is_empty() {
-            s.push('\n');
+        let noted_any = !noted.is_empty();
+        if noted_any {
+            if table > 0 {
+                s.push('\n');
+            }
             for r in noted {
                 let what = format!(
                     "- {} level {} {} + {} {}: {}",
@@ -397,7 +408,9 @@ impl Report {
                 wrap(&mut s, &what, "  ");
             }
         }
-        s.push('\n');
+        if table > 0 || noted_any {
+            s.push('\n');
+        }
         s
     }
 }
@@ -761,6 +774,28 @@ mod tests {
         let static_row = s.lines().find(|l| l.starts_with("static ")).expect(&s);
         let cells: Vec<&str> = static_row.split_whitespace().collect();
         assert_eq!(cells, ["static", "12.35", "8.10", "0.99", "1.50"], "{s}");
+    }
+
+    /// A single row is said whole above where the table would be, every column with its value
+    /// (its mesh's name in full), and no table follows.
+    #[test]
+    fn a_single_row_is_said_in_one_paragraph() {
+        let r = report(vec![row(
+            "a_mesh_with_a_long_name_indeed",
+            2,
+            "static",
+            true,
+        )]);
+        let s = r.summary(None);
+        let said = s.replace('\n', " ");
+        assert!(
+            said.contains("Every row: mesh a_mesh_with_a_long_name_indeed, level 2, surface loop,"),
+            "{s}"
+        );
+        assert!(said.contains("variant static,"), "{s}");
+        assert!(said.contains("GPU ms 12.35,"), "{s}");
+        assert!(!s.lines().any(|l| l.starts_with("--")), "{s}");
+        assert!(s.lines().all(|l| width(l) <= SUMMARY_WIDTH), "{s}");
     }
 
     /// The paragraph above the table says what the rows' ratios compare: `static` and `flat`

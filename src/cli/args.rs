@@ -219,8 +219,9 @@ pub struct Technique {
     /// instanced]. Only for --driver pattern (`view` may switch to it).
     #[arg(long, value_parser = choices::submit(), help_heading = "Driver and level")]
     pub submit: Option<Submit>,
-    /// Refinement level N: N segments per coarse edge, N² triangles per coarse triangle, every
-    /// element at it (render and view: given, it replaces adaptive drawing at 1 px).
+    /// Refinement level N: N segments per coarse edge, N² triangles per coarse triangle (the tess
+    /// driver's rings about 1.5 N²), every element at it (render and view: given, it replaces
+    /// adaptive drawing at 1 px).
     #[arg(long, allow_hyphen_values = true, default_value_t = 16, value_parser = clap::value_parser!(u32).range(1..=1024), help_heading = "Driver and level")]
     pub level: u32,
 }

@@ -160,7 +160,7 @@ fn boundary_help(b: Boundary) -> &'static str {
 pub fn wireframe() -> impl TypedValueParser<Value = Wireframe> {
     parser(&Wireframe::ALL, Wireframe::name, |w| match w {
         Wireframe::Refined => "the refined triangles' edges, darker than the surface",
-        Wireframe::Cage => "the coarse mesh's edges (Loop's control mesh) in a bright colour",
+        Wireframe::Cage => "the coarse mesh's edges (Loop's control mesh) in light cyan",
         Wireframe::Both => "both",
     })
 }

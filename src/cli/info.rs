@@ -129,8 +129,15 @@ fn print_geometry(level: u32, elements: u64, m1_faces: bool) -> Result<()> {
         meshrefine::pattern::triangle_count(level)
     );
     for d in Driver::ALL {
+        // The tessellator's rings make more triangles than the level's lattice (about 1.5 N²).
+        let own = d.refined_per_element(level);
+        let made = if own == meshrefine::pattern::triangle_count(level) {
+            String::new()
+        } else {
+            format!(", {} refined triangles ({own} per element)", t * own as u64)
+        };
         out!(
-            "  {:8} {:>14} bytes of GPU geometry",
+            "  {:8} {:>14} bytes of GPU geometry{made}",
             d.name(),
             d.geometry_bytes(level, t)
         );

@@ -262,7 +262,12 @@ pub fn warnings(cli: &Cli, given: &Given) -> Vec<String> {
     let check = |c: &Chosen| inapplicable(given, c);
     match &cli.command {
         // The window's panel can switch to whatever an option applies to.
-        Command::View(_) | Command::Devices => Vec::new(),
+        Command::View(_) => Vec::new(),
+        Command::Devices if given.has("device") => vec![
+            "--device picks the device the other commands draw on; devices lists every device: it is ignored"
+                .to_string(),
+        ],
+        Command::Devices => Vec::new(),
         // Adaptive by default: only --level draws uniformly.
         Command::Render(a) => {
             let uniform = (given.has("level"), "--level");

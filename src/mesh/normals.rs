@@ -68,14 +68,24 @@ pub(crate) fn is_zero_area(a: Vec3, b: Vec3, c: Vec3) -> bool {
     face_cross(a, b, c).length() <= 1e-12 * longest_sq
 }
 
-/// Why the triangle `a, b, c` cannot be drawn, or `None`: it has zero area ([`is_zero_area`]),
+/// Why a triangle whose area is not zero is dropped as if it were ([`is_zero_area`]): a needle
+/// whose normal and shading are at the mercy of rounding.
+pub(crate) const SLIVER: &str =
+    "is a sliver too thin to draw (twice its area is under 1e-12 of its longest edge squared)";
+
+/// Why the triangle `a, b, c` cannot be drawn, or `None`: it has zero area ([`is_zero_area`]:
+/// exactly, or a [`SLIVER`]),
 /// or its area or an edge is not representable as a normal `f32` (twice the area below
 /// `f32::MIN_POSITIVE`, which underflows to a subnormal or zero where the GPU or a surface
 /// computes it in single precision, or an edge or twice the area above `f32::MAX`, which
 /// overflows to infinity).
 pub(crate) fn degenerate_reason(a: Vec3, b: Vec3, c: Vec3) -> Option<&'static str> {
     if is_zero_area(a, b, c) {
-        return Some("has zero area");
+        return Some(if face_cross(a, b, c) == DVec3::ZERO {
+            "has zero area"
+        } else {
+            SLIVER
+        });
     }
     let (da, db, dc) = (a.as_dvec3(), b.as_dvec3(), c.as_dvec3());
     let longest = (db - da)
@@ -169,6 +179,14 @@ mod tests {
         assert!(!is_zero_area(a, b, Vec3::new(0.5, 1e-5, 0.0)));
         // Scale invariant.
         assert!(!is_zero_area(a, b * 1e-20, Vec3::Y * 1e-20));
+        // Collinear corners have zero area; a needle whose area only rounding could tell from
+        // zero is named a sliver (its area is 7e14, its longest edge 1e15).
+        assert_eq!(
+            degenerate_reason(a, b, Vec3::new(2.0, 0.0, 0.0)),
+            Some("has zero area")
+        );
+        let needle = degenerate_reason(Vec3::new(0.0, 0.0, 1e15), Vec3::X, Vec3::Y);
+        assert_eq!(needle, Some(SLIVER));
     }
 
     #[test]

@@ -17,7 +17,7 @@ pub enum Wireframe {
     /// The refined triangles' edges, darker than the surface.
     #[default]
     Refined,
-    /// The coarse mesh's edges (Loop's control mesh) in a bright colour.
+    /// The coarse mesh's edges (Loop's control mesh) in light cyan (glsl/cage/cage.frag).
     Cage,
     /// Both.
     Both,

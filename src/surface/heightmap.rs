@@ -299,7 +299,9 @@ fn png_problem(shown: &str, e: png::DecodingError) -> String {
             } else if text.contains("deflate") || text.contains("Zlib") {
                 "its compressed image data is damaged".to_string()
             } else if text.contains("IDAT") {
-                "it holds no image data".to_string()
+                // No IDAT chunk at all, or too few bytes in them for the sides the header
+                // declares: the decoder runs out of them either way.
+                "it holds no image data, or less than its header's sides declare".to_string()
             } else {
                 "its structure is damaged".to_string()
             }
@@ -424,7 +426,9 @@ mod tests {
         }
         let e = Heightmap::load_png(&bare).unwrap_err();
         assert!(
-            e.ends_with("bare.png' is not a readable PNG image: it holds no image data"),
+            e.ends_with(
+                "bare.png' is not a readable PNG image: it holds no image data, or less than its header's sides declare"
+            ),
             "{e}"
         );
         // Cut short: truncated, not an I/O failure.

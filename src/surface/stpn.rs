@@ -33,7 +33,7 @@ use glam::Vec3;
 /// What `stpn` declares about itself (docs/architecture.md, "Surfaces as plug-ins").
 pub const FACTS: SurfaceFacts = SurfaceFacts {
     name: "stpn",
-    help: "Scalar-tagged PN triangles (Boubekeur, Reuter & Schlick 2005): PN with per-vertex tension, sharpness, bias and crease direction (--tags, or derived from the mesh's hard edges)",
+    help: "Scalar-tagged PN triangles (Boubekeur, Reuter & Schlick 2005): PN with per-vertex tension, sharpness, bias and crease direction (from --tags where the command takes it, else derived from the mesh's hard edges)",
     elements: Elements::CoarseTriangles,
     pre_pass: None,
     options: &["pn_seams", "normal_field", "tags", "crease_angle"],
