@@ -3772,7 +3772,7 @@ fn devices_lists_lavapipe_with_its_features() {
     assert_eq!(String::from_utf8_lossy(&o.stdout), s);
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert!(
-        stderr.contains("warning: --device picks the device the other commands draw on; devices lists every device: it is ignored"),
+        stderr.contains("warning: --device applies only to the commands that draw, not to devices (which lists every device): it is ignored"),
         "{stderr}"
     );
 }

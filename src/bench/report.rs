@@ -356,7 +356,13 @@ impl Report {
                 .map(|(c, cells)| format!("{} {}", c.summary.unwrap(), cells[0]))
                 .collect();
             if !same.is_empty() {
-                wrap(&mut s, &format!("Every row: {}.", same.join(", ")), "");
+                let rows = if self.rows.len() == 1 {
+                    "The row"
+                } else {
+                    "Every row"
+                };
+                let text = format!("{rows}: {}.", same.join(", "));
+                wrap_on(&mut s, &text, "", ", ");
             }
             columns.retain(|(_, cells)| cells.iter().any(|c| *c != cells[0]));
         }
@@ -477,8 +483,22 @@ fn pad(s: &str, w: usize, align: Align) -> String {
 /// Appends `text` as lines of at most [`SUMMARY_WIDTH`] characters, broken at spaces; lines
 /// after the first start with `indent`.
 fn wrap(out: &mut String, text: &str, indent: &str) {
+    wrap_on(out, text, indent, " ");
+}
+
+/// [`wrap`], breaking lines only between the pieces of `text` that `sep` separates (`", "`: a
+/// list whose items stay whole), each line but the last ending in `sep` without its spaces.
+fn wrap_on(out: &mut String, text: &str, indent: &str, sep: &str) {
     let mut line = String::new();
-    for word in text.split(' ') {
+    let pieces: Vec<&str> = text.split(sep).collect();
+    let last = pieces.len() - 1;
+    for (i, piece) in pieces.into_iter().enumerate() {
+        let word = if i < last {
+            format!("{piece}{}", sep.trim_end())
+        } else {
+            piece.to_owned()
+        };
+        let word = word.as_str();
         let fresh = line.is_empty() || line == indent;
         // A word longer than a whole line is shortened where it stands.
         let fits_alone = width(indent) + width(word) <= SUMMARY_WIDTH;
@@ -789,11 +809,21 @@ mod tests {
         let s = r.summary(None);
         let said = s.replace('\n', " ");
         assert!(
-            said.contains("Every row: mesh a_mesh_with_a_long_name_indeed, level 2, surface loop,"),
+            said.contains("The row: mesh a_mesh_with_a_long_name_indeed, level 2, surface loop,"),
             "{s}"
         );
-        assert!(said.contains("variant static,"), "{s}");
-        assert!(said.contains("GPU ms 12.35,"), "{s}");
+        // Broken only between items: every line but the last ends with a comma.
+        let lines: Vec<&str> = s
+            .lines()
+            .skip_while(|l| !l.starts_with("The row"))
+            .collect();
+        let end = lines.iter().position(|l| l.ends_with('.')).expect(&s);
+        assert!(
+            end > 0 && lines[..end].iter().all(|l| l.ends_with(',')),
+            "{s}"
+        );
+        assert!(said.contains(", variant static,"), "{s}");
+        assert!(said.contains(", GPU ms 12.35,"), "{s}");
         assert!(!s.lines().any(|l| l.starts_with("--")), "{s}");
         assert!(s.lines().all(|l| width(l) <= SUMMARY_WIDTH), "{s}");
     }

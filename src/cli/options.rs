@@ -264,7 +264,7 @@ pub fn warnings(cli: &Cli, given: &Given) -> Vec<String> {
         // The window's panel can switch to whatever an option applies to.
         Command::View(_) => Vec::new(),
         Command::Devices if given.has("device") => vec![
-            "--device picks the device the other commands draw on; devices lists every device: it is ignored"
+            "--device applies only to the commands that draw, not to devices (which lists every device): it is ignored"
                 .to_string(),
         ],
         Command::Devices => Vec::new(),

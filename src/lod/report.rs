@@ -60,7 +60,7 @@ impl LevelReport {
 impl super::frame::Unmet {
     /// One `note:` sentence for each kind of element on which `pixel_error` is not met, drawn
     /// at largest level `max`: those holding the eye in their bounds, those with no finite
-    /// bound (`loop_displaced`: the loop surface with displacement, which has none), those
+    /// bound (`loop_displaced`: the loop surface with a displacement that moves it, which has none), those
     /// needing a level above `max`. What `render`, `view` and `export` print on standard
     /// error, and the window when they change.
     pub fn notes(&self, pixel_error: f32, max: u32, loop_displaced: bool) -> Vec<String> {

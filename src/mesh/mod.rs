@@ -147,7 +147,7 @@ pub struct DegenerateFace {
     /// 1-based line of the face in the OBJ text.
     pub line: Option<usize>,
     /// "repeats a vertex index", [`COINCIDENT_CORNERS`], "has zero area" (or is a sliver too
-    /// thin to draw, its area under `1e-12` of its longest edge squared), or that its area is
+    /// thin to draw: twice its area at most `1e-12` of its longest edge squared), or that its area is
     /// not representable in `f32` ("has an area too small for f32 (it underflows)", "has an
     /// area or edge too large for f32 (it overflows)"), or "repeats the three vertices of an
     /// earlier face" (an exact duplicate in any rotation or orientation).

@@ -71,7 +71,7 @@ pub(crate) fn is_zero_area(a: Vec3, b: Vec3, c: Vec3) -> bool {
 /// Why a triangle whose area is not zero is dropped as if it were ([`is_zero_area`]): a needle
 /// whose normal and shading are at the mercy of rounding.
 pub(crate) const SLIVER: &str =
-    "is a sliver too thin to draw (twice its area is under 1e-12 of its longest edge squared)";
+    "is a sliver too thin to draw (twice its area is at most 1e-12 of its longest edge squared)";
 
 /// Why the triangle `a, b, c` cannot be drawn, or `None`: it has zero area ([`is_zero_area`]:
 /// exactly, or a [`SLIVER`]),
@@ -179,8 +179,8 @@ mod tests {
         assert!(!is_zero_area(a, b, Vec3::new(0.5, 1e-5, 0.0)));
         // Scale invariant.
         assert!(!is_zero_area(a, b * 1e-20, Vec3::Y * 1e-20));
-        // Collinear corners have zero area; a needle whose area only rounding could tell from
-        // zero is named a sliver (its area is 7e14, its longest edge 1e15).
+        // Collinear corners have zero area; a needle far thinner than f32 resolves at its size
+        // is named a sliver (its area is 7e14, its longest edge 1e15).
         assert_eq!(
             degenerate_reason(a, b, Vec3::new(2.0, 0.0, 0.0)),
             Some("has zero area")

@@ -298,10 +298,10 @@ fn png_problem(shown: &str, e: png::DecodingError) -> String {
                 "a chunk's checksum is wrong: the file is damaged".to_string()
             } else if text.contains("deflate") || text.contains("Zlib") {
                 "its compressed image data is damaged".to_string()
-            } else if text.contains("IDAT") {
-                // No IDAT chunk at all, or too few bytes in them for the sides the header
-                // declares: the decoder runs out of them either way.
-                "it holds no image data, or less than its header's sides declare".to_string()
+            } else if text.contains("is missing") {
+                "it holds no image data".to_string()
+            } else if text.contains("not have enough data") {
+                "it holds less image data than its header's sides declare".to_string()
             } else {
                 "its structure is damaged".to_string()
             }
@@ -426,9 +426,39 @@ mod tests {
         }
         let e = Heightmap::load_png(&bare).unwrap_err();
         assert!(
-            e.ends_with(
-                "bare.png' is not a readable PNG image: it holds no image data, or less than its header's sides declare"
-            ),
+            e.ends_with("bare.png' is not a readable PNG image: it holds no image data"),
+            "{e}"
+        );
+        // A 4x4 image's data under a header that says 4x64 (its checksum mended): short data.
+        let mut bytes = Vec::new();
+        {
+            let mut e = png::Encoder::new(&mut bytes, 4, 4);
+            e.set_color(png::ColorType::Grayscale);
+            let mut w = e.write_header().unwrap();
+            w.write_image_data(&[7u8; 16]).unwrap();
+        }
+        bytes[20..24].copy_from_slice(&64u32.to_be_bytes());
+        let crc = |data: &[u8]| {
+            let mut c = !0u32;
+            for &b in data {
+                c ^= b as u32;
+                for _ in 0..8 {
+                    c = if c & 1 != 0 {
+                        (c >> 1) ^ 0xEDB8_8320
+                    } else {
+                        c >> 1
+                    };
+                }
+            }
+            !c
+        };
+        let sum = crc(&bytes[12..29]);
+        bytes[29..33].copy_from_slice(&sum.to_be_bytes());
+        let short = dir.join("short.png");
+        std::fs::write(&short, &bytes).unwrap();
+        let e = Heightmap::load_png(&short).unwrap_err();
+        assert!(
+            e.ends_with("it holds less image data than its header's sides declare"),
             "{e}"
         );
         // Cut short: truncated, not an I/O failure.
