@@ -20,7 +20,13 @@
 //!   format's extension);
 //! - a prefix output (`bench --out PREFIX` writes `PREFIX.md`, `.csv`, `.json`) must not name
 //!   an existing file that is not a regular file: the files would be created beside it
-//!   (`/dev/full.md`), which nobody means.
+//!   (`/dev/full.md`), which nobody means;
+//! - a single-file output that is (or will be) a regular file must be replaceable: not a
+//!   read-only file, and its folder must take a new file (one is made there and removed).
+//!
+//! A regular file is written whole beside its path and renamed over it only once complete
+//! ([`write_output`]): a write that fails (a full disk) leaves what was there before, and an
+//! output that names the input replaces it only with a finished file.
 #![forbid(unsafe_code)]
 
 use std::fs::{File, FileType, Metadata};
@@ -29,7 +35,9 @@ use std::path::Path;
 /// What a file that is not a regular file is, for messages ("a directory").
 pub fn file_kind(t: FileType) -> &'static str {
     use std::os::unix::fs::FileTypeExt as _;
-    if t.is_dir() {
+    if t.is_file() {
+        "a regular file"
+    } else if t.is_dir() {
         "a directory"
     } else if t.is_fifo() {
         "a FIFO (named pipe)"
@@ -122,6 +130,9 @@ pub fn check_output(path: &Path, option: &str, kind: Output) -> Result<(), Strin
             ))
         }
     }
+    if kind == Output::File {
+        return check_replaceable(path, option);
+    }
     if kind == Output::Prefix {
         if let Ok(m) = std::fs::metadata(path) {
             if !m.is_file() {
@@ -148,6 +159,85 @@ pub fn check_output(path: &Path, option: &str, kind: Output) -> Result<(), Strin
     Ok(())
 }
 
+/// Where a regular-file output is really written: the file a symbolic link names (the link is
+/// kept), else `path` itself; `None` for a device or FIFO, written as it is.
+fn regular_target(path: &Path) -> Option<std::path::PathBuf> {
+    match std::fs::metadata(path) {
+        Ok(m) if !m.is_file() => None,
+        // An existing file (through any links) or none yet (a dangling link is replaced).
+        Ok(_) => Some(std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf())),
+        Err(_) => Some(path.to_path_buf()),
+    }
+}
+
+/// The temporary file beside `target` that [`write_output`] writes before renaming it.
+fn temporary_beside(target: &Path) -> std::path::PathBuf {
+    let name = target
+        .file_name()
+        .map_or("output".into(), |n| n.to_string_lossy());
+    target.with_file_name(format!(".{name}.meshrefine-{}.tmp", std::process::id()))
+}
+
+/// Whether the single-file output `path` can be replaced (module notes): one sentence if not.
+fn check_replaceable(path: &Path, option: &str) -> Result<(), String> {
+    let Some(target) = regular_target(path) else {
+        return Ok(());
+    };
+    let shown = path.display();
+    if std::fs::metadata(&target).is_ok_and(|m| m.permissions().readonly()) {
+        return Err(format!(
+            "{option} '{shown}' is a read-only file: it would not be replaced"
+        ));
+    }
+    let probe = temporary_beside(&target);
+    match File::options().write(true).create_new(true).open(&probe) {
+        Ok(_) => {
+            let _ = std::fs::remove_file(&probe);
+            Ok(())
+        }
+        // Left over from a run that was stopped (the same process id): the folder takes files.
+        Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => Ok(()),
+        Err(e) => Err(format!("{option} '{shown}': cannot write there: {e}")),
+    }
+}
+
+/// Writes the output file `path` with `write` (module notes): a regular file (or none yet) is
+/// written to a temporary file beside it, flushed to the disk and renamed over it only once
+/// whole, keeping its permissions; on any error the temporary file is removed and what `path`
+/// held stays. A device or FIFO is written directly.
+pub fn write_output(
+    path: &Path,
+    write: impl FnOnce(&mut dyn std::io::Write) -> std::io::Result<()>,
+) -> std::io::Result<()> {
+    use std::io::Write as _;
+    let Some(target) = regular_target(path) else {
+        let mut w = std::io::BufWriter::with_capacity(1 << 20, File::create(path)?);
+        write(&mut w)?;
+        return w.flush();
+    };
+    let tmp = temporary_beside(&target);
+    let written = (|| {
+        let file = File::options()
+            .write(true)
+            .create(true)
+            .truncate(true)
+            .open(&tmp)?;
+        if let Ok(m) = std::fs::metadata(&target) {
+            file.set_permissions(m.permissions())?;
+        }
+        let mut w = std::io::BufWriter::with_capacity(1 << 20, file);
+        write(&mut w)?;
+        let file = w.into_inner().map_err(|e| e.into_error())?;
+        // A full disk may only say so when the data reaches it.
+        file.sync_all()?;
+        std::fs::rename(&tmp, &target)
+    })();
+    if written.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    written
+}
+
 /// `text` with its control characters escaped (`\u{1b}`, `\n`): a warning or error stays one
 /// line and writes nothing a terminal would act on, whatever a file or a path held.
 pub fn printable(text: &str) -> std::borrow::Cow<'_, str> {
@@ -166,6 +256,61 @@ pub fn printable(text: &str) -> std::borrow::Cow<'_, str> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A write that fails part way leaves the file as it was and no temporary file; one that
+    /// ends replaces it whole, through a symbolic link (the link kept), with its permissions; a
+    /// read-only file and a file where a folder should be are refused up front.
+    #[test]
+    fn outputs_are_replaced_whole_or_not_at_all() {
+        use std::os::unix::fs::PermissionsExt as _;
+        let d = dir().join("write-output");
+        let _ = std::fs::remove_dir_all(&d);
+        std::fs::create_dir_all(&d).unwrap();
+        let out = d.join("out.obj");
+        std::fs::write(&out, "precious").unwrap();
+        std::fs::set_permissions(&out, std::fs::Permissions::from_mode(0o640)).unwrap();
+        let e = write_output(&out, |w| {
+            w.write_all(b"half a mesh")?;
+            Err(std::io::Error::other("no space left"))
+        })
+        .unwrap_err();
+        assert_eq!(e.to_string(), "no space left");
+        assert_eq!(std::fs::read_to_string(&out).unwrap(), "precious");
+        let names = |d: &Path| -> Vec<String> {
+            let mut v: Vec<String> = std::fs::read_dir(d)
+                .unwrap()
+                .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+                .collect();
+            v.sort();
+            v
+        };
+        assert_eq!(names(&d), ["out.obj"]);
+        write_output(&out, |w| w.write_all(b"whole")).unwrap();
+        assert_eq!(std::fs::read_to_string(&out).unwrap(), "whole");
+        let mode = std::fs::metadata(&out).unwrap().permissions().mode();
+        assert_eq!(mode & 0o777, 0o640);
+        let link = d.join("link.obj");
+        std::os::unix::fs::symlink(&out, &link).unwrap();
+        check_output(&link, "-o", Output::File).unwrap();
+        write_output(&link, |w| w.write_all(b"through")).unwrap();
+        assert!(std::fs::symlink_metadata(&link).unwrap().is_symlink());
+        assert_eq!(std::fs::read_to_string(&out).unwrap(), "through");
+        assert_eq!(names(&d), ["link.obj", "out.obj"]);
+        // A device is written as it is.
+        write_output(Path::new("/dev/null"), |w| w.write_all(b"x")).unwrap();
+        std::fs::set_permissions(&out, std::fs::Permissions::from_mode(0o440)).unwrap();
+        let e = check_output(&out, "-o", Output::File).unwrap_err();
+        assert!(
+            e.ends_with("is a read-only file: it would not be replaced"),
+            "{e}"
+        );
+        let e = check_output(&out.join("x.obj"), "-o", Output::File).unwrap_err();
+        assert!(
+            e.ends_with("out.obj' is a regular file, not a folder"),
+            "{e}"
+        );
+        std::fs::remove_dir_all(&d).unwrap();
+    }
 
     fn dir() -> std::path::PathBuf {
         let d = std::env::temp_dir().join("meshrefine-paths-test");

@@ -179,6 +179,20 @@ fn export_header_names_mesh_technique_and_device() {
     );
     // The tessellator's rings at level 3: 13 triangles a patch, 4 patches.
     assert_eq!(count("f "), 52);
+    // Last, the command line that made it, options and all.
+    let command = text
+        .lines()
+        .take_while(|l| l.starts_with('#'))
+        .last()
+        .unwrap();
+    assert!(
+        command.starts_with("# command: meshrefine export "),
+        "{command}"
+    );
+    assert!(
+        command.ends_with(&format!("--level 3 -o {obj}")),
+        "{command}"
+    );
     ok(&[
         "export",
         &model("tetrahedron.obj"),

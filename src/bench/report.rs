@@ -246,7 +246,7 @@ impl Report {
         ];
         for (ext, text) in files {
             let path = with_extension(prefix, ext);
-            std::fs::write(&path, text)
+            crate::paths::write_output(&path, |w| w.write_all(text.as_bytes()))
                 .map_err(|e| std::io::Error::new(e.kind(), format!("'{}': {e}", path.display())))?;
         }
         Ok(())

@@ -143,8 +143,7 @@ pub fn run(a: &BenchArgs, desc: &ContextDesc, levels_given: bool) -> Result<()> 
             .with_context(|| format!("cannot benchmark '{}'", input.shown))
     })?;
     if let Some(prefix) = &a.out {
-        let args: Vec<String> = std::env::args().skip(1).collect();
-        let command = format!("meshrefine {}", args.join(" "));
+        let command = super::command_line();
         if let Err(e) = report.write_files(prefix, &command) {
             // The measurements are not lost: the summary first, then why the files are not.
             out!("{}", report.summary(None));

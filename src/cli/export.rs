@@ -297,19 +297,22 @@ fn header(
         ),
     ];
     header.extend(levels.into_iter().flatten());
+    // What made it, options and all (the lines above name only the technique).
+    header.push(format!("command: {}", super::command_line()));
     header
 }
 
-/// Write `refined` with `header` to `output` as OBJ, streamed through a buffer.
+/// Write `refined` with `header` to `output` as OBJ, streamed through a buffer, replacing what
+/// was there only once the whole file is written (`meshrefine::paths::write_output`).
 fn write_obj(
     output: &Path,
     refined: &meshrefine::export::RefinedMesh,
     header: &[String],
     progress: impl FnMut((usize, usize)),
 ) -> std::io::Result<()> {
-    let mut file = std::io::BufWriter::with_capacity(1 << 20, std::fs::File::create(output)?);
-    meshrefine::export::write_obj(refined, header, &mut file, progress)?;
-    file.flush()
+    meshrefine::paths::write_output(output, |mut w| {
+        meshrefine::export::write_obj(refined, header, &mut w, progress)
+    })
 }
 
 /// The environment variable that caps a capture pass's buffer, in bytes (a test's knob: a

@@ -33,6 +33,17 @@ use std::io::Write as _;
 use std::path::Path;
 use std::sync::Arc;
 
+/// The command line as it was run, for records (an export's header, bench's tables):
+/// `meshrefine` and the arguments, each read lossily (a path need not be UTF-8) with its control
+/// characters escaped, so that it stays one line.
+pub fn command_line() -> String {
+    let args: Vec<String> = std::env::args_os()
+        .skip(1)
+        .map(|a| crate::printable(&a.to_string_lossy()).into_owned())
+        .collect();
+    format!("meshrefine {}", args.join(" "))
+}
+
 /// Runs `cli`'s command (`given`: the options given on the command line).
 pub fn run(cli: Cli, given: &options::Given) -> Result<()> {
     let desc = context_desc(&cli);

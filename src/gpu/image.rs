@@ -194,9 +194,13 @@ pub struct Readback {
 }
 
 impl Readback {
-    /// Write as a PNG file.
+    /// Write as a PNG file, replacing what was there only once the whole image is written
+    /// ([`crate::paths::write_output`]).
     pub fn save_png(&self, path: &std::path::Path) -> std::io::Result<()> {
-        let file = std::io::BufWriter::new(std::fs::File::create(path)?);
+        crate::paths::write_output(path, |file| self.encode_png(file))
+    }
+
+    fn encode_png(&self, file: &mut dyn std::io::Write) -> std::io::Result<()> {
         let mut enc = png::Encoder::new(file, self.width, self.height);
         enc.set_color(png::ColorType::Rgba);
         enc.set_depth(png::BitDepth::Eight);

@@ -91,6 +91,18 @@ impl Headless {
             cap,
         );
         if self.ctx.info.transform_feedback && per_element > limit {
+            // The largest level whose element fits: --level drawing uniformly, --max-level
+            // adaptively (the passes are sized at it; a power of two where the draw glides).
+            let fits = |l: u32| tess_triangle_count(l) as u64 * 3 * XFB_VERTEX_BYTES <= limit;
+            let fitting = (1..cfg.level)
+                .rev()
+                .filter(|&l| !cfg.glides() || !self.adaptive || l.is_power_of_two())
+                .find(|&l| fits(l));
+            let remedy = match (fitting, self.adaptive) {
+                (Some(l), false) => format!("use --level {l} or lower"),
+                (Some(l), true) => format!("use --max-level {l} or lower"),
+                (None, _) => "use a lower level".into(),
+            };
             return Err(RenderError::OverLimit {
                 what: format!(
                     "reading back the {} tessellated triangles of one element",
@@ -100,7 +112,7 @@ impl Headless {
                 unit: "bytes",
                 limit: limit_name,
                 max: limit,
-                remedy: "use a lower level".into(),
+                remedy,
             });
         }
         let n = self.prepared_elements(scene, cfg, Capture::Triangles)?;
