@@ -464,6 +464,47 @@ fn switching_to_stpn_with_three_crease_corners_names_the_file() {
     );
 }
 
+/// The title names the surface and displacement (and geomorphing where it is off); `S` onto
+/// `loop`, which cannot take the height map, switches the displacement off with a warning,
+/// and the next surface that takes it shows it again.
+#[test]
+fn surfaces_that_cannot_take_the_height_map_drop_it_until_one_can() {
+    let _guard = common::gpu_lock();
+    let x = Xvfb::start();
+    let grid = common::model_path("grid_uv_8x8.obj");
+    let args = [grid.to_str().unwrap(), "--displace", "heightmap"];
+    let demo = Demo::start(&x, &[&args[..], &["--geomorph", "off"]].concat());
+    let wait_title = |want: &str| {
+        let t0 = Instant::now();
+        loop {
+            let title = demo.xdotool(&["getwindowname", &demo.window]);
+            if title.contains(want) {
+                return title;
+            }
+            assert!(
+                t0.elapsed() < Duration::from_secs(60),
+                "title never showed {want:?}: {title}"
+            );
+            std::thread::sleep(Duration::from_millis(100));
+        }
+    };
+    let title = wait_title("| pn + heightmap |");
+    assert!(title.contains("geomorph off"), "{title}");
+    for want in ["stpn + heightmap", "loop + none", "flat + heightmap"] {
+        demo.xdotool(&["key", "s"]);
+        wait_title(&format!("| {want} |"));
+    }
+    let stderr = demo.quit();
+    assert!(
+        stderr.contains("the loop surface has no texture coordinates")
+            && stderr
+                .contains("the heightmap displacement comes back with a surface that takes it")
+            && stderr
+                .contains("the flat surface takes the heightmap displacement: showing it again"),
+        "{stderr}"
+    );
+}
+
 #[test]
 fn keys_switch_driver_level_and_views() {
     // Typed keys reach the demo and change what it draws; the title (the HUD) reports it.

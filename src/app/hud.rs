@@ -75,6 +75,11 @@ impl State {
         let (t0, n0) = self.fps_window;
         let dt = t0.elapsed().as_secs_f64();
         if dt < 0.5 {
+            // Until the first half second is measured, the frames so far (a scripted run of a
+            // few slow frames ends before it).
+            if self.fps == 0.0 && self.frames > n0 && dt > 0.0 {
+                self.fps = (self.frames - n0) as f64 / dt;
+            }
             return;
         }
         self.fps = (self.frames - n0) as f64 / dt;
@@ -89,12 +94,16 @@ impl State {
             if c.cage { " cage" } else { "" },
             if c.animate { " animated" } else { "" },
         );
+        let surface = format!("{} + {}", cfg.surface.name(), cfg.displace.name());
         let camera = camera::camera_args(&self.camera, self.viewing);
         if let Some(a) = self.adaptive_summary(cfg) {
+            // Gliding is the default: only its absence is said (static never glides).
+            let still = !cfg.geomorph && !cfg.driver.kind().refines_on_cpu();
             self.window.set_title(&format!(
-                "meshrefine | {} {}{flags} | {:.0} fps | GPU {:.2} ms | {coarse} -> {} | {:.2} MB geometry | {camera}",
+                "meshrefine | {} {}{}{flags} | {surface} | {:.0} fps | GPU {:.2} ms | {coarse} -> {} | {:.2} MB geometry | {camera}",
                 cfg.label(),
                 a.mode(),
+                if still { " geomorph off" } else { "" },
                 self.fps,
                 self.gpu_ms,
                 a.counts(),
@@ -103,7 +112,7 @@ impl State {
             return;
         }
         self.window.set_title(&format!(
-            "meshrefine | {} level {}{}{}{flags} | {:.0} fps | GPU {:.2} ms | {} -> {} triangles | {:.2} MB geometry | max level {} | {camera}",
+            "meshrefine | {} level {}{}{}{flags} | {surface} | {:.0} fps | GPU {:.2} ms | {} -> {} triangles | {:.2} MB geometry | driver's largest level {} | {camera}",
             cfg.label(),
             cfg.level,
             if c.lod && !c.adaptive { " (LOD)" } else { "" },

@@ -134,9 +134,40 @@ impl State {
         cfg.params.check_displacement(d, radius, extent).err()
     }
 
+    /// A displacement the surface cannot take (`S` or a panel click onto `loop` with the height
+    /// map) is switched off and remembered, said once; it comes back with the next surface that
+    /// takes it, unless another displacement was chosen meanwhile.
+    fn settle_displacement(&mut self, source: &str) {
+        let uvs = self.scene.data.uvs.is_some();
+        let c = &mut self.controls;
+        let (surface, displace) = (c.cfg.surface, c.cfg.displace);
+        if let Some(why) = surface.incompatibility(displace, uvs) {
+            log::warn!(
+                "'{source}': {why}: showing no displacement; the {} displacement comes back with a surface that takes it",
+                displace.name()
+            );
+            c.dropped = Some(displace);
+            c.cfg.displace = Displace::None;
+        } else if let Some(d) = c.dropped {
+            if displace != Displace::None {
+                c.dropped = None;
+            } else if surface.incompatibility(d, uvs).is_none() {
+                log::warn!(
+                    "'{source}': the {} surface takes the {} displacement: showing it again",
+                    surface.name(),
+                    d.name()
+                );
+                c.cfg.displace = d;
+                c.dropped = None;
+            }
+        }
+    }
+
     /// `cfg` without a displacement the mesh cannot take (the panel's buttons and sliders can
-    /// choose one), said once per refusal.
+    /// choose one), said once per refusal; one its surface cannot take is settled first.
     pub(super) fn limit_displacement(&mut self, cfg: &mut DrawConfig, source: &str) {
+        self.settle_displacement(source);
+        cfg.displace = self.controls.cfg.displace;
         let Some(why) = self.displacement_refusal(cfg, cfg.displace) else {
             return;
         };
@@ -166,12 +197,10 @@ impl State {
                 "1" | "2" | "3" => c.set_driver(Driver::ALL[(ch.as_bytes()[0] - b'1') as usize]),
                 "s" | "S" => {
                     let from = c.refused.take().unwrap_or(c.cfg.surface);
-                    c.cfg.surface = next(&Surface::ALL, from);
                     // A displacement the new surface cannot take (Loop's M1 has no texture
-                    // coordinates for the height map) is switched off.
-                    if c.cfg.surface.incompatibility(c.cfg.displace, uvs).is_some() {
-                        c.cfg.displace = Displace::default();
-                    }
+                    // coordinates for the height map) is switched off until one that takes it
+                    // (`settle_displacement`).
+                    c.cfg.surface = next(&Surface::ALL, from);
                 }
                 "d" | "D" => {
                     // Skip the displacements this surface and mesh cannot take (no displacement

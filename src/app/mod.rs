@@ -349,6 +349,7 @@ impl App {
                 lod: self.opts.lod,
                 lod_max: cfg.level,
                 refused: None,
+                dropped: None,
                 view: View::Shaded,
                 initial: cfg.params,
                 submit: cfg.driver.submit().unwrap_or_default(),

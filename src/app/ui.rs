@@ -26,6 +26,9 @@ pub struct Controls {
     /// The surface last asked for that the mesh refused (its fallback is shown): `S` goes on
     /// from it, not from the fallback.
     pub refused: Option<Surface>,
+    /// The displacement switched off for a surface that cannot take it, shown again with the
+    /// next surface that takes it (none chosen meanwhile).
+    pub dropped: Option<Displace>,
     /// What the fragment stage shows.
     pub view: View,
     /// The parameters the demo started with: the sliders' ranges are scaled to them.
@@ -234,7 +237,19 @@ impl Ui {
 
 /// The panel: the device, the last frame's statistics, then the switches by section.
 fn panel(ctx: &egui::Context, c: &mut Controls, info: &PanelInfo) {
+    // A window that grows back after shrinking: egui keeps a panel's shrunk (scrolled) height,
+    // so the panel is measured afresh, as a new one (its collapsed state with it), each time
+    // the window grows taller than it has been since.
+    let height = ctx.screen_rect().height();
+    let key = egui::Id::new("meshrefine panel: (screen height, generation)");
+    let generation = ctx.data_mut(|d| {
+        let (before, generation): (f32, u32) = d.get_temp(key).unwrap_or((height, 0));
+        let generation = generation + u32::from(height > before);
+        d.insert_temp(key, (height, generation));
+        generation
+    });
     egui::Window::new("meshrefine")
+        .id(egui::Id::new(("meshrefine panel", generation)))
         .anchor(Align2::LEFT_TOP, [10.0, 10.0])
         .default_width(250.0)
         .resizable(false)

@@ -53,6 +53,17 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc, given: &Given) -> Result<()> {
         }
         let (mesh, viewed) = for_viewing(&input.mesh, &cfg);
         let (centre, scale) = input.mesh.viewing_transform();
+        // The window's pattern and static drivers draw adaptively up to a power of two (render
+        // refuses another); the panel can switch to tess, which takes the level as given.
+        if let Some(m) = a.adaptive.max_level.filter(|m| !m.is_power_of_two()) {
+            if !cfg.driver.kind().integer_levels() {
+                crate::note(format_args!(
+                    "warning: --max-level {m} is not a power of two: the {} driver draws adaptively up to {} (tess takes {m})",
+                    cfg.driver.name(),
+                    1u32 << m.ilog2()
+                ));
+            }
+        }
         let opts = meshrefine::app::ViewOptions {
             cfg: viewed,
             frames: a.frames,

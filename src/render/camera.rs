@@ -254,10 +254,22 @@ impl Camera {
         self.pitch = (self.pitch + dy).clamp(-1.5, 1.5);
     }
 
+    /// Moves the eye toward (`factor < 1`) or away from the target: never closer than a
+    /// hundredth of the framed radius, nor farther than [`MAX_ZOOM_RADII`] radii (where the
+    /// mesh is a few pixels across) unless it already is (a camera given so stays).
     pub fn zoom(&mut self, factor: f32) {
-        self.distance = (self.distance * factor).max(self.radius * 1e-2);
+        let d = self.distance * factor;
+        self.distance = if factor > 1.0 {
+            d.min((self.radius * MAX_ZOOM_RADII).max(self.distance))
+        } else {
+            d.max(self.radius * 1e-2)
+        };
     }
 }
+
+/// How far zooming out takes the eye at most, in framed radii: at 45 degrees the mesh is then
+/// about a hundredth of the view's height.
+pub const MAX_ZOOM_RADII: f32 = 100.0;
 
 /// A viewpoint asked for (the command line's `--eye`, `--look-at` and `--fov`), in the drawn
 /// coordinates: what is not given comes from the camera fitted to the surface as drawn
@@ -328,6 +340,26 @@ impl Viewpoint {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Zooming out stops at MAX_ZOOM_RADII radii (80 wheel clicks went to 10⁵ radii, an empty
+    /// view), zooming in at a hundredth of one; an eye placed farther stays where it is.
+    #[test]
+    fn zoom_stays_within_sight_of_the_mesh() {
+        let mut cam = Camera::framing(Vec3::ZERO, 2.0);
+        for _ in 0..80 {
+            cam.zoom(1.0 / 0.9);
+        }
+        assert_eq!(cam.distance, 2.0 * MAX_ZOOM_RADII);
+        for _ in 0..200 {
+            cam.zoom(0.9);
+        }
+        assert_eq!(cam.distance, 2.0 * 1e-2);
+        cam.distance = 1e4;
+        cam.zoom(1.0 / 0.9);
+        assert_eq!(cam.distance, 1e4);
+        cam.zoom(0.9);
+        assert!(cam.distance < 1e4);
+    }
 
     #[test]
     fn the_framed_sphere_is_inside_the_depth_range_at_any_scale() {
