@@ -246,6 +246,22 @@ impl<'a> Demo<'a> {
         xdotool(&self.x.display, args)
     }
 
+    /// The window's title once it contains `want` (the title is the HUD), within a minute.
+    fn wait_title(&self, want: &str) -> String {
+        let t0 = Instant::now();
+        loop {
+            let title = self.xdotool(&["getwindowname", &self.window]);
+            if title.contains(want) {
+                return title;
+            }
+            assert!(
+                t0.elapsed() < Duration::from_secs(60),
+                "title never showed {want:?}: {title}"
+            );
+            std::thread::sleep(Duration::from_millis(100));
+        }
+    }
+
     /// Press Esc and expect a clean exit: status 0, no validation message. Returns stderr.
     fn quit(mut self) -> String {
         self.xdotool(&["key", "Escape"]);
@@ -474,25 +490,11 @@ fn surfaces_that_cannot_take_the_height_map_drop_it_until_one_can() {
     let grid = common::model_path("grid_uv_8x8.obj");
     let args = [grid.to_str().unwrap(), "--displace", "heightmap"];
     let demo = Demo::start(&x, &[&args[..], &["--geomorph", "off"]].concat());
-    let wait_title = |want: &str| {
-        let t0 = Instant::now();
-        loop {
-            let title = demo.xdotool(&["getwindowname", &demo.window]);
-            if title.contains(want) {
-                return title;
-            }
-            assert!(
-                t0.elapsed() < Duration::from_secs(60),
-                "title never showed {want:?}: {title}"
-            );
-            std::thread::sleep(Duration::from_millis(100));
-        }
-    };
-    let title = wait_title("| pn + heightmap |");
+    let title = demo.wait_title("| pn + heightmap |");
     assert!(title.contains("geomorph off"), "{title}");
     for want in ["stpn + heightmap", "loop + none", "flat + heightmap"] {
         demo.xdotool(&["key", "s"]);
-        wait_title(&format!("| {want} |"));
+        demo.wait_title(&format!("| {want} |"));
     }
     let stderr = demo.quit();
     assert!(
@@ -517,21 +519,7 @@ fn keys_switch_driver_level_and_views() {
         &["--level", "8"],
         &[("MESA_SHADER_CACHE_DISABLE", "true")],
     );
-    let wait_title = |want: &str| {
-        let t0 = Instant::now();
-        loop {
-            let title = demo.xdotool(&["getwindowname", &demo.window]);
-            if title.contains(want) {
-                return title;
-            }
-            assert!(
-                t0.elapsed() < Duration::from_secs(60),
-                "title never showed {want:?}: {title}"
-            );
-            std::thread::sleep(Duration::from_millis(100));
-        }
-    };
-    wait_title("pattern/instanced level 8");
+    demo.wait_title("pattern/instanced level 8");
     // The camera, reported last in the title as `--eye X,Y,Z --look-at X,Y,Z`: a right drag
     // pans (the look-at moves), R returns to the start, the wheel zooms and a middle drag pans,
     // Z frames the mesh again (from the start's direction: the start framing), and after an
@@ -586,7 +574,7 @@ fn keys_switch_driver_level_and_views() {
     // The tessellator's pipelines are new here: while the frame waits for them (compiled at
     // their first draw on lavapipe) the title says so.
     demo.xdotool(&["key", "3"]);
-    wait_title("compiling this frame's new pipelines");
+    demo.wait_title("compiling this frame's new pipelines");
     for (key, want) in [
         ("3", "tess level 8"),
         // Beyond the level the demo started at.
@@ -601,7 +589,7 @@ fn keys_switch_driver_level_and_views() {
     ] {
         let title = {
             demo.xdotool(&["key", key]);
-            wait_title(want)
+            demo.wait_title(want)
         };
         if want == "(LOD)" {
             // LOD chooses among the levels up to the one it was turned on at (4).
@@ -616,7 +604,7 @@ fn keys_switch_driver_level_and_views() {
     demo.xdotool(&["key", "c"]);
     demo.xdotool(&["key", "f"]);
     demo.xdotool(&["key", "m"]);
-    let title = wait_title("adaptive");
+    let title = demo.wait_title("adaptive");
     assert!(
         title.contains("cull on") && !title.contains("frozen"),
         "{title}"
