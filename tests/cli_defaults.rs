@@ -260,3 +260,38 @@ fn displacement_and_phong_defaults_are_the_documented_ones() {
     );
     assert!(largest_difference(&defaults, &other) > 1e-3 * r);
 }
+
+/// An export is evaluated in the drawn frame (centred, unit radius, `f32`) and mapped back: at
+/// level 1 of `flat` every written vertex is an input vertex within 4e-7 of the bounding radius
+/// (docs/cli.md), not bit for bit.
+#[test]
+fn exported_corners_come_back_within_rounding_of_the_input() {
+    for name in ["terrain_16x16.obj", "halfdisc17_open.obj"] {
+        let obj = tmp(&format!("corners-{name}"));
+        ok(&[
+            "export",
+            &model(name),
+            "--surface",
+            "flat",
+            "--level",
+            "1",
+            "-o",
+            &obj,
+        ]);
+        let input = positions(&model(name));
+        let r = common::model(name).bounding_radius() as f64;
+        let written = positions(&obj);
+        assert_eq!(written.len(), input.len(), "{name}");
+        let mut worst = 0.0f64;
+        for w in &written {
+            let d = (input.iter())
+                .map(|p| (0..3).map(|k| (p[k] - w[k]).abs()).fold(0.0, f64::max))
+                .fold(f64::INFINITY, f64::min);
+            worst = worst.max(d);
+        }
+        assert!(
+            worst <= 4e-7 * r,
+            "{name}: {worst} from the input (radius {r})"
+        );
+    }
+}
