@@ -21,8 +21,9 @@
 //! - a prefix output (`bench --out PREFIX` writes `PREFIX.md`, `.csv`, `.json`) must not name
 //!   an existing file that is not a regular file: the files would be created beside it
 //!   (`/dev/full.md`), which nobody means;
-//! - a single-file output that is (or will be) a regular file must be replaceable: not a
-//!   read-only file, and its folder must take a new file (one is made there and removed).
+//! - a single-file output that is (or will be) a regular file must be writable: an existing
+//!   file this user may not write is refused, and so is a folder that takes no new file (one
+//!   is made there and removed).
 //!
 //! A regular file is written whole beside its path and renamed over it only once complete
 //! ([`write_output`]): a write that fails (a full disk) leaves what was there before, and an
@@ -83,6 +84,9 @@ pub enum Output {
     File,
     /// The path is a prefix: files named PREFIX + extension are written beside it.
     Prefix,
+    /// A file written only in some runs (the headless `view`'s image, where no window opens):
+    /// the rules on the path, not whether it can be written now.
+    Fallback,
 }
 
 /// Checks the output path that option `option` ("-o", "--out") names, before any work (see the
@@ -94,7 +98,7 @@ pub fn check_output(path: &Path, option: &str, kind: Output) -> Result<(), Strin
         return Err(format!("{option} is empty: name a file"));
     }
     let name_it = match kind {
-        Output::File => "name a file inside it",
+        Output::File | Output::Fallback => "name a file inside it",
         Output::Prefix => {
             "name a prefix inside it (PREFIX gives PREFIX.md, PREFIX.csv and PREFIX.json)"
         }
@@ -153,89 +157,122 @@ pub fn check_output(path: &Path, option: &str, kind: Output) -> Result<(), Strin
                         file_kind(m.file_type())
                     ));
                 }
+                check_replaceable(&file, option)?;
             }
         }
     }
     Ok(())
 }
 
-/// Where a regular-file output is really written: the file a symbolic link names (the link is
-/// kept), else `path` itself; `None` for a device or FIFO, written as it is.
+/// Where a regular-file output is really written: the name a chain of symbolic links ends at
+/// (the links are kept; a dangling one's file is created), else `path` itself; `None` for a
+/// device or FIFO, written as it is.
 fn regular_target(path: &Path) -> Option<std::path::PathBuf> {
-    match std::fs::metadata(path) {
-        Ok(m) if !m.is_file() => None,
-        // An existing file (through any links) or none yet (a dangling link is replaced).
-        Ok(_) => Some(std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf())),
-        Err(_) => Some(path.to_path_buf()),
+    if std::fs::metadata(path).is_ok_and(|m| !m.is_file()) {
+        return None;
+    }
+    let mut target = path.to_path_buf();
+    // As many links as the kernel follows (ELOOP past 40).
+    for _ in 0..40 {
+        match std::fs::read_link(&target) {
+            Ok(to) => target = target.parent().unwrap_or(Path::new(".")).join(to),
+            Err(_) => break,
+        }
+    }
+    Some(target)
+}
+
+/// A new temporary file beside `target`, made exclusively (never through a link another user
+/// left there), with a short name whatever `target`'s length.
+fn temporary_beside(target: &Path) -> std::io::Result<(std::path::PathBuf, File)> {
+    use std::hash::{BuildHasher as _, Hasher as _};
+    let folder = match target.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    let mut last = None;
+    for attempt in 0..16u64 {
+        let mut h = std::collections::hash_map::RandomState::new().build_hasher();
+        h.write_u64(attempt);
+        let name = format!(
+            ".meshrefine-{}-{:08x}.tmp",
+            std::process::id(),
+            h.finish() as u32
+        );
+        let tmp = folder.join(name);
+        match File::options().write(true).create_new(true).open(&tmp) {
+            Ok(file) => return Ok((tmp, file)),
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => last = Some(e),
+            Err(e) => return Err(e),
+        }
+    }
+    Err(last.unwrap_or_else(|| std::io::Error::other("no temporary file name was free")))
+}
+
+/// Removes the temporary file when dropped (an error or a panic on the way), unless kept.
+struct Temporary(Option<std::path::PathBuf>);
+
+impl Drop for Temporary {
+    fn drop(&mut self) {
+        if let Some(p) = self.0.take() {
+            let _ = std::fs::remove_file(p);
+        }
     }
 }
 
-/// The temporary file beside `target` that [`write_output`] writes before renaming it.
-fn temporary_beside(target: &Path) -> std::path::PathBuf {
-    let name = target
-        .file_name()
-        .map_or("output".into(), |n| n.to_string_lossy());
-    target.with_file_name(format!(".{name}.meshrefine-{}.tmp", std::process::id()))
-}
-
-/// Whether the single-file output `path` can be replaced (module notes): one sentence if not.
+/// Whether the single-file output `path` can be written (module notes): one sentence if not.
 fn check_replaceable(path: &Path, option: &str) -> Result<(), String> {
     let Some(target) = regular_target(path) else {
         return Ok(());
     };
-    let shown = path.display();
-    if std::fs::metadata(&target).is_ok_and(|m| m.permissions().readonly()) {
-        return Err(format!(
-            "{option} '{shown}' is a read-only file: it would not be replaced"
-        ));
+    let cannot =
+        |e: std::io::Error| format!("{option} '{}': cannot write there: {e}", path.display());
+    // An existing file this user may not write (opened for writing, nothing truncated).
+    if target.exists() {
+        File::options().write(true).open(&target).map_err(cannot)?;
     }
-    let probe = temporary_beside(&target);
-    match File::options().write(true).create_new(true).open(&probe) {
-        Ok(_) => {
-            let _ = std::fs::remove_file(&probe);
-            Ok(())
-        }
-        // Left over from a run that was stopped (the same process id): the folder takes files.
-        Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => Ok(()),
-        Err(e) => Err(format!("{option} '{shown}': cannot write there: {e}")),
-    }
+    let (tmp, _) = temporary_beside(&target).map_err(cannot)?;
+    let _ = std::fs::remove_file(tmp);
+    Ok(())
 }
 
-/// Writes the output file `path` with `write` (module notes): a regular file (or none yet) is
-/// written to a temporary file beside it, flushed to the disk and renamed over it only once
-/// whole, keeping its permissions; on any error the temporary file is removed and what `path`
-/// held stays. A device or FIFO is written directly.
+/// Writes the output file `path` with `write` (module notes). A regular file (or none yet) is
+/// written to a new temporary file beside it, flushed to the disk and renamed over it only once
+/// whole, with the old file's permissions; on any error (or a panic) the temporary file is
+/// removed and what `path` held stays. Where a rename would change more than the contents (the
+/// old file is another user's, or has other hard links) or cannot be done (a file mounted on
+/// its own), the finished file is copied into the old one instead. A device or FIFO is written
+/// directly.
 pub fn write_output(
     path: &Path,
     write: impl FnOnce(&mut dyn std::io::Write) -> std::io::Result<()>,
 ) -> std::io::Result<()> {
     use std::io::Write as _;
+    use std::os::unix::fs::MetadataExt as _;
     let Some(target) = regular_target(path) else {
         let mut w = std::io::BufWriter::with_capacity(1 << 20, File::create(path)?);
         write(&mut w)?;
         return w.flush();
     };
-    let tmp = temporary_beside(&target);
-    let written = (|| {
-        let file = File::options()
-            .write(true)
-            .create(true)
-            .truncate(true)
-            .open(&tmp)?;
-        if let Ok(m) = std::fs::metadata(&target) {
-            file.set_permissions(m.permissions())?;
-        }
-        let mut w = std::io::BufWriter::with_capacity(1 << 20, file);
-        write(&mut w)?;
-        let file = w.into_inner().map_err(|e| e.into_error())?;
-        // A full disk may only say so when the data reaches it.
-        file.sync_all()?;
-        std::fs::rename(&tmp, &target)
-    })();
-    if written.is_err() {
-        let _ = std::fs::remove_file(&tmp);
+    let (tmp, file) = temporary_beside(&target)?;
+    let mut guard = Temporary(Some(tmp.clone()));
+    let old = std::fs::metadata(&target).ok();
+    if let Some(m) = &old {
+        file.set_permissions(m.permissions())?;
     }
-    written
+    let mut w = std::io::BufWriter::with_capacity(1 << 20, file);
+    write(&mut w)?;
+    let file = w.into_inner().map_err(|e| e.into_error())?;
+    // A full disk may only say so when the data reaches it.
+    file.sync_all()?;
+    let mine = file.metadata()?.uid();
+    let in_place = old.is_some_and(|m| m.uid() != mine || m.nlink() > 1);
+    if in_place || std::fs::rename(&tmp, &target).is_err() {
+        std::fs::copy(&tmp, &target)?;
+        return Ok(());
+    }
+    guard.0 = None;
+    Ok(())
 }
 
 /// `text` with its control characters escaped (`\u{1b}`, `\n`): a warning or error stays one
@@ -257,15 +294,24 @@ pub fn printable(text: &str) -> std::borrow::Cow<'_, str> {
 mod tests {
     use super::*;
 
-    /// A write that fails part way leaves the file as it was and no temporary file; one that
-    /// ends replaces it whole, through a symbolic link (the link kept), with its permissions; a
-    /// read-only file and a file where a folder should be are refused up front.
+    /// A write that fails part way, or panics, leaves the file as it was and no temporary file;
+    /// one that ends replaces it whole, with its permissions, through a symbolic link (the
+    /// link kept), and a dangling link gets the file it names; a path through a regular file is
+    /// refused up front.
     #[test]
     fn outputs_are_replaced_whole_or_not_at_all() {
         use std::os::unix::fs::PermissionsExt as _;
         let d = dir().join("write-output");
         let _ = std::fs::remove_dir_all(&d);
-        std::fs::create_dir_all(&d).unwrap();
+        std::fs::create_dir_all(d.join("sub")).unwrap();
+        let names = |d: &Path| -> Vec<String> {
+            let mut v: Vec<String> = std::fs::read_dir(d)
+                .unwrap()
+                .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+                .collect();
+            v.sort();
+            v
+        };
         let out = d.join("out.obj");
         std::fs::write(&out, "precious").unwrap();
         std::fs::set_permissions(&out, std::fs::Permissions::from_mode(0o640)).unwrap();
@@ -276,34 +322,36 @@ mod tests {
         .unwrap_err();
         assert_eq!(e.to_string(), "no space left");
         assert_eq!(std::fs::read_to_string(&out).unwrap(), "precious");
-        let names = |d: &Path| -> Vec<String> {
-            let mut v: Vec<String> = std::fs::read_dir(d)
-                .unwrap()
-                .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-                .collect();
-            v.sort();
-            v
-        };
-        assert_eq!(names(&d), ["out.obj"]);
+        let panicked = std::panic::catch_unwind(|| {
+            let _ = write_output(&out, |w| {
+                w.write_all(b"half a mesh")?;
+                panic!("a bug in the writer")
+            });
+        });
+        assert!(panicked.is_err());
+        assert_eq!(std::fs::read_to_string(&out).unwrap(), "precious");
+        assert_eq!(names(&d), ["out.obj", "sub"]);
         write_output(&out, |w| w.write_all(b"whole")).unwrap();
         assert_eq!(std::fs::read_to_string(&out).unwrap(), "whole");
         let mode = std::fs::metadata(&out).unwrap().permissions().mode();
         assert_eq!(mode & 0o777, 0o640);
         let link = d.join("link.obj");
-        std::os::unix::fs::symlink(&out, &link).unwrap();
+        std::os::unix::fs::symlink("out.obj", &link).unwrap();
         check_output(&link, "-o", Output::File).unwrap();
         write_output(&link, |w| w.write_all(b"through")).unwrap();
         assert!(std::fs::symlink_metadata(&link).unwrap().is_symlink());
         assert_eq!(std::fs::read_to_string(&out).unwrap(), "through");
-        assert_eq!(names(&d), ["link.obj", "out.obj"]);
+        let dangling = d.join("dangling.obj");
+        std::os::unix::fs::symlink("sub/made.obj", &dangling).unwrap();
+        write_output(&dangling, |w| w.write_all(b"new")).unwrap();
+        assert!(std::fs::symlink_metadata(&dangling).unwrap().is_symlink());
+        assert_eq!(
+            std::fs::read_to_string(d.join("sub/made.obj")).unwrap(),
+            "new"
+        );
+        assert_eq!(names(&d), ["dangling.obj", "link.obj", "out.obj", "sub"]);
         // A device is written as it is.
         write_output(Path::new("/dev/null"), |w| w.write_all(b"x")).unwrap();
-        std::fs::set_permissions(&out, std::fs::Permissions::from_mode(0o440)).unwrap();
-        let e = check_output(&out, "-o", Output::File).unwrap_err();
-        assert!(
-            e.ends_with("is a read-only file: it would not be replaced"),
-            "{e}"
-        );
         let e = check_output(&out.join("x.obj"), "-o", Output::File).unwrap_err();
         assert!(
             e.ends_with("out.obj' is a regular file, not a folder"),

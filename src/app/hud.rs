@@ -97,8 +97,9 @@ impl State {
         let surface = format!("{} + {}", cfg.surface.name(), cfg.displace.name());
         let camera = camera::camera_args(&self.camera, self.viewing);
         if let Some(a) = self.adaptive_summary(cfg) {
-            // Gliding is the default: only its absence is said (static never glides).
-            let still = !cfg.geomorph && !cfg.driver.kind().refines_on_cpu();
+            // Gliding is the default: only its absence is said (static never glides; tess
+            // under a largest level that is not a power of two draws integer levels).
+            let still = !cfg.glides() && !cfg.driver.kind().refines_on_cpu();
             self.window.set_title(&format!(
                 "meshrefine | {} {}{}{flags} | {surface} | {:.0} fps | GPU {:.2} ms | {coarse} -> {} | {:.2} MB geometry | {camera}",
                 cfg.label(),

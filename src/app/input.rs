@@ -137,10 +137,18 @@ impl State {
     /// A displacement the surface cannot take (`S` or a panel click onto `loop` with the height
     /// map) is switched off and remembered, said once; it comes back with the next surface that
     /// takes it, unless another displacement was chosen meanwhile.
-    fn settle_displacement(&mut self, source: &str) {
+    fn settle_displacement(&mut self, opts: &ViewOptions) {
+        let source = &opts.source;
         let uvs = self.scene.data.uvs.is_some();
         let c = &mut self.controls;
-        let (surface, displace) = (c.cfg.surface, c.cfg.displace);
+        // A surface the mesh refuses (Loop on a mesh it cannot subdivide) shows the fallback.
+        let refused = opts.loop_refusal.is_some() && c.cfg.surface.facts().needs_every_face;
+        let surface = if refused {
+            Surface::FALLBACK
+        } else {
+            c.cfg.surface
+        };
+        let displace = c.cfg.displace;
         if let Some(why) = surface.incompatibility(displace, uvs) {
             log::warn!(
                 "'{source}': {why}: showing no displacement; the {} displacement comes back with a surface that takes it",
@@ -165,8 +173,9 @@ impl State {
 
     /// `cfg` without a displacement the mesh cannot take (the panel's buttons and sliders can
     /// choose one), said once per refusal; one its surface cannot take is settled first.
-    pub(super) fn limit_displacement(&mut self, cfg: &mut DrawConfig, source: &str) {
-        self.settle_displacement(source);
+    pub(super) fn limit_displacement(&mut self, cfg: &mut DrawConfig, opts: &ViewOptions) {
+        let source = &opts.source;
+        self.settle_displacement(opts);
         cfg.displace = self.controls.cfg.displace;
         let Some(why) = self.displacement_refusal(cfg, cfg.displace) else {
             return;

@@ -518,7 +518,7 @@ impl State {
         adaptive_level: Option<u32>,
     ) -> Result<DrawConfig> {
         let mut cfg = self.controls.cfg;
-        self.limit_displacement(&mut cfg, &opts.source);
+        self.limit_displacement(&mut cfg, opts);
         if let Some(l) = adaptive_level {
             cfg.level = l;
         }

@@ -238,14 +238,16 @@ impl Ui {
 /// The panel: the device, the last frame's statistics, then the switches by section.
 fn panel(ctx: &egui::Context, c: &mut Controls, info: &PanelInfo) {
     // A window that grows back after shrinking: egui keeps a panel's shrunk (scrolled) height,
-    // so the panel is measured afresh, as a new one (its collapsed state with it), each time
-    // the window grows taller than it has been since.
+    // so the panel is measured afresh, as a new one (expanded), each time the window grows
+    // after it has shrunk below the tallest it has been (not when it only grows: F11).
     let height = ctx.screen_rect().height();
-    let key = egui::Id::new("meshrefine panel: (screen height, generation)");
+    let key = egui::Id::new("meshrefine panel: (screen height, tallest, generation)");
     let generation = ctx.data_mut(|d| {
-        let (before, generation): (f32, u32) = d.get_temp(key).unwrap_or((height, 0));
-        let generation = generation + u32::from(height > before);
-        d.insert_temp(key, (height, generation));
+        let (before, tallest, generation): (f32, f32, u32) =
+            d.get_temp(key).unwrap_or((height, height, 0));
+        let regrew = height > before && before < tallest;
+        let generation = generation + u32::from(regrew);
+        d.insert_temp(key, (height, tallest.max(height), generation));
         generation
     });
     egui::Window::new("meshrefine")
@@ -393,8 +395,12 @@ fn surface_choice(ui: &mut egui::Ui, c: &mut Controls, info: &PanelInfo) {
         for d in Displace::ALL {
             let why_not = c.cfg.surface.incompatibility(d, info.has_texcoords);
             ui.add_enabled_ui(why_not.is_none(), |ui| {
-                ui.selectable_value(&mut c.cfg.displace, d, d.name())
-                    .on_disabled_hover_text(why_not.unwrap_or_default());
+                let chose = ui.selectable_value(&mut c.cfg.displace, d, d.name());
+                // Chosen: a displacement switched off for another surface stays off.
+                if chose.clicked() {
+                    c.dropped = None;
+                }
+                chose.on_disabled_hover_text(why_not.unwrap_or_default());
             });
         }
     });

@@ -35,11 +35,20 @@ use std::sync::Arc;
 
 /// The command line as it was run, for records (an export's header, bench's tables):
 /// `meshrefine` and the arguments, each read lossily (a path need not be UTF-8) with its control
-/// characters escaped, so that it stays one line.
+/// characters escaped, so that it stays one line, and single-quoted for a POSIX shell where it
+/// holds anything but letters, digits and `-_./,=:+@%` (a path with a space runs again as given).
 pub fn command_line() -> String {
+    let plain = |c: char| c.is_alphanumeric() || "-_./,=:+@%".contains(c);
     let args: Vec<String> = std::env::args_os()
         .skip(1)
-        .map(|a| crate::printable(&a.to_string_lossy()).into_owned())
+        .map(|a| {
+            let a = crate::printable(&a.to_string_lossy()).into_owned();
+            if !a.is_empty() && a.chars().all(plain) {
+                a
+            } else {
+                format!("'{}'", a.replace('\'', "'\\''"))
+            }
+        })
         .collect();
     format!("meshrefine {}", args.join(" "))
 }

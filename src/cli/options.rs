@@ -399,7 +399,8 @@ pub fn check_outputs(cli: &Cli) -> Result<(), String> {
             if let Some(shot) = &a.screenshot {
                 check_output(shot, "--screenshot", Output::File)?;
             }
-            check_output(&a.headless_output, "--headless-output", Output::File)
+            // Written only where no window opens (then as render writes it).
+            check_output(&a.headless_output, "--headless-output", Output::Fallback)
         }
         Command::Bench(a) => match &a.out {
             Some(prefix) => check_output(prefix, "--out", Output::Prefix),

@@ -54,15 +54,13 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc, given: &Given) -> Result<()> {
         let (mesh, viewed) = for_viewing(&input.mesh, &cfg);
         let (centre, scale) = input.mesh.viewing_transform();
         // The window's pattern and static drivers draw adaptively up to a power of two (render
-        // refuses another); the panel can switch to tess, which takes the level as given.
+        // refuses another), tess the level as given but without gliding: said whichever the
+        // window starts with, as the keys switch drivers.
         if let Some(m) = a.adaptive.max_level.filter(|m| !m.is_power_of_two()) {
-            if !cfg.driver.kind().integer_levels() {
-                crate::note(format_args!(
-                    "warning: --max-level {m} is not a power of two: the {} driver draws adaptively up to {} (tess takes {m})",
-                    cfg.driver.name(),
-                    1u32 << m.ilog2()
-                ));
-            }
+            crate::note(format_args!(
+                "warning: --max-level {m} is not a power of two: the pattern and static drivers draw adaptively up to {}, tess up to {m} without geomorphing",
+                1u32 << m.ilog2()
+            ));
         }
         let opts = meshrefine::app::ViewOptions {
             cfg: viewed,

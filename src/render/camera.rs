@@ -255,7 +255,7 @@ impl Camera {
     }
 
     /// Moves the eye toward (`factor < 1`) or away from the target: never closer than a
-    /// hundredth of the framed radius, nor farther than [`MAX_ZOOM_RADII`] radii (where the
+    /// hundredth of the framed radius, nor farther than `MAX_ZOOM_RADII` radii (where the
     /// mesh is a few pixels across) unless it already is (a camera given so stays).
     pub fn zoom(&mut self, factor: f32) {
         let d = self.distance * factor;
