@@ -166,20 +166,20 @@ pub fn check_output(path: &Path, option: &str, kind: Output) -> Result<(), Strin
 
 /// Where a regular-file output is really written: the name a chain of symbolic links ends at
 /// (the links are kept; a dangling one's file is created), else `path` itself; `None` for a
-/// device or FIFO, written as it is.
-fn regular_target(path: &Path) -> Option<std::path::PathBuf> {
+/// device or FIFO, written as it is. A chain that loops (or runs past 40 links, as the kernel
+/// counts) is an error, as opening it would be.
+fn regular_target(path: &Path) -> std::io::Result<Option<std::path::PathBuf>> {
     if std::fs::metadata(path).is_ok_and(|m| !m.is_file()) {
-        return None;
+        return Ok(None);
     }
     let mut target = path.to_path_buf();
-    // As many links as the kernel follows (ELOOP past 40).
     for _ in 0..40 {
         match std::fs::read_link(&target) {
             Ok(to) => target = target.parent().unwrap_or(Path::new(".")).join(to),
-            Err(_) => break,
+            Err(_) => return Ok(Some(target)),
         }
     }
-    Some(target)
+    Err(std::io::Error::other("too many levels of symbolic links"))
 }
 
 /// A new temporary file beside `target`, made exclusively (never through a link another user
@@ -200,7 +200,12 @@ fn temporary_beside(target: &Path) -> std::io::Result<(std::path::PathBuf, File)
             h.finish() as u32
         );
         let tmp = folder.join(name);
-        match File::options().write(true).create_new(true).open(&tmp) {
+        match File::options()
+            .read(true)
+            .write(true)
+            .create_new(true)
+            .open(&tmp)
+        {
             Ok(file) => return Ok((tmp, file)),
             Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => last = Some(e),
             Err(e) => return Err(e),
@@ -220,59 +225,100 @@ impl Drop for Temporary {
     }
 }
 
+/// Whether an existing output `old` is written in place rather than replaced by a rename
+/// ([`write_output`]): another user's file (a rename would make it ours) or one with other
+/// hard links (a rename would part them); `mine` is the owner of a file this process made.
+fn written_in_place(old: &std::fs::Metadata, mine: u32) -> bool {
+    use std::os::unix::fs::MetadataExt as _;
+    old.uid() != mine || old.nlink() > 1
+}
+
 /// Whether the single-file output `path` can be written (module notes): one sentence if not.
+/// The folder must take a new file (one is made and removed); an existing file that will be
+/// written in place must open for writing (only then: opening a file for writing tells the
+/// programs that watch it that it changed).
 fn check_replaceable(path: &Path, option: &str) -> Result<(), String> {
-    let Some(target) = regular_target(path) else {
+    let shown = path.display();
+    let cannot = |e: std::io::Error| format!("{option} '{shown}': cannot write there: {e}");
+    let Some(target) = regular_target(path).map_err(cannot)? else {
         return Ok(());
     };
-    let cannot =
-        |e: std::io::Error| format!("{option} '{}': cannot write there: {e}", path.display());
-    // An existing file this user may not write (opened for writing, nothing truncated).
-    if target.exists() {
-        File::options().write(true).open(&target).map_err(cannot)?;
+    let (tmp, probe) = temporary_beside(&target).map_err(cannot)?;
+    let _guard = Temporary(Some(tmp));
+    let mine = std::os::unix::fs::MetadataExt::uid(&probe.metadata().map_err(cannot)?);
+    if let Ok(old) = std::fs::metadata(&target) {
+        // A read-only file is not replaced, as it would not be written (root's excepted).
+        if old.permissions().readonly() && mine != 0 {
+            return Err(format!("{option} '{shown}' is a read-only file"));
+        }
+        if written_in_place(&old, mine) {
+            File::options().write(true).open(&target).map_err(|e| {
+                format!("{option} '{shown}' is a file this user may not write: {e}")
+            })?;
+        }
     }
-    let (tmp, _) = temporary_beside(&target).map_err(cannot)?;
-    let _ = std::fs::remove_file(tmp);
     Ok(())
 }
 
 /// Writes the output file `path` with `write` (module notes). A regular file (or none yet) is
 /// written to a new temporary file beside it, flushed to the disk and renamed over it only once
-/// whole, with the old file's permissions; on any error (or a panic) the temporary file is
-/// removed and what `path` held stays. Where a rename would change more than the contents (the
-/// old file is another user's, or has other hard links) or cannot be done (a file mounted on
-/// its own), the finished file is copied into the old one instead. A device or FIFO is written
-/// directly.
+/// whole, with the old file's permissions (less set-user and set-group ID); on any error (or a
+/// panic) the temporary file is removed and what `path` held stays. Where a rename would change
+/// more than the contents (the old file is another user's, or has other hard links) or cannot
+/// be done (across file systems, a file mounted on its own), the finished file is copied into
+/// the old one, which is not atomic: a failure while copying leaves it partly written. A device
+/// or FIFO is written directly.
 pub fn write_output(
     path: &Path,
     write: impl FnOnce(&mut dyn std::io::Write) -> std::io::Result<()>,
 ) -> std::io::Result<()> {
     use std::io::Write as _;
-    use std::os::unix::fs::MetadataExt as _;
-    let Some(target) = regular_target(path) else {
+    use std::os::unix::fs::{MetadataExt as _, PermissionsExt as _};
+    let Some(target) = regular_target(path)? else {
         let mut w = std::io::BufWriter::with_capacity(1 << 20, File::create(path)?);
         write(&mut w)?;
         return w.flush();
     };
     let (tmp, file) = temporary_beside(&target)?;
     let mut guard = Temporary(Some(tmp.clone()));
-    let old = std::fs::metadata(&target).ok();
-    if let Some(m) = &old {
-        file.set_permissions(m.permissions())?;
-    }
     let mut w = std::io::BufWriter::with_capacity(1 << 20, file);
     write(&mut w)?;
-    let file = w.into_inner().map_err(|e| e.into_error())?;
+    let mut file = w.into_inner().map_err(|e| e.into_error())?;
     // A full disk may only say so when the data reaches it.
     file.sync_all()?;
+    let old = std::fs::metadata(&target).ok();
     let mine = file.metadata()?.uid();
-    let in_place = old.is_some_and(|m| m.uid() != mine || m.nlink() > 1);
-    if in_place || std::fs::rename(&tmp, &target).is_err() {
-        std::fs::copy(&tmp, &target)?;
-        return Ok(());
+    if old.as_ref().is_some_and(|m| written_in_place(m, mine)) {
+        return copy_into(&mut file, &target);
     }
-    guard.0 = None;
-    Ok(())
+    if let Some(m) = &old {
+        let mode = m.permissions().mode() & !0o6000;
+        file.set_permissions(std::fs::Permissions::from_mode(mode))?;
+    }
+    match std::fs::rename(&tmp, &target) {
+        Ok(()) => {
+            guard.0 = None;
+            Ok(())
+        }
+        // EBUSY (a file mounted on its own), EXDEV (another file system).
+        Err(e) if matches!(e.raw_os_error(), Some(16 | 18)) => copy_into(&mut file, &target),
+        Err(e) => Err(e),
+    }
+}
+
+/// Copies `from` (read from its start) into the existing or new file `target` without
+/// truncating it first: written, cut to length, flushed to the disk.
+fn copy_into(from: &mut File, target: &Path) -> std::io::Result<()> {
+    use std::io::Seek as _;
+    from.rewind()?;
+    let mut to = File::options()
+        .write(true)
+        .create(true)
+        .truncate(false)
+        .open(target)?;
+    let written = std::io::copy(from, &mut to)?;
+    to.set_len(written)?;
+    to.sync_all()
 }
 
 /// `text` with its control characters escaped (`\u{1b}`, `\n`): a warning or error stays one

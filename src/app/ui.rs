@@ -237,20 +237,16 @@ impl Ui {
 
 /// The panel: the device, the last frame's statistics, then the switches by section.
 fn panel(ctx: &egui::Context, c: &mut Controls, info: &PanelInfo) {
-    // A window that grows back after shrinking: egui keeps a panel's shrunk (scrolled) height,
-    // so the panel is measured afresh, as a new one (expanded), each time the window grows
-    // after it has shrunk below the tallest it has been (not when it only grows: F11).
+    // A window that grows after the panel was cut to its height: egui keeps the panel's
+    // shrunk (scrolled) height, so the panel is measured afresh, as a new one (expanded), when
+    // the window grows while the panel reaches its bottom; otherwise (F11 over a panel that
+    // fits, a collapsed panel) it stays as it is.
     let height = ctx.screen_rect().height();
-    let key = egui::Id::new("meshrefine panel: (screen height, tallest, generation)");
-    let generation = ctx.data_mut(|d| {
-        let (before, tallest, generation): (f32, f32, u32) =
-            d.get_temp(key).unwrap_or((height, height, 0));
-        let regrew = height > before && before < tallest;
-        let generation = generation + u32::from(regrew);
-        d.insert_temp(key, (height, tallest.max(height), generation));
-        generation
-    });
-    egui::Window::new("meshrefine")
+    let key = egui::Id::new("meshrefine panel: (screen height, cut, generation)");
+    let (before, cut, generation): (f32, bool, u32) =
+        ctx.data_mut(|d| d.get_temp(key).unwrap_or((height, false, 0)));
+    let generation = generation + u32::from(height > before && cut);
+    let shown = egui::Window::new("meshrefine")
         .id(egui::Id::new(("meshrefine panel", generation)))
         .anchor(Align2::LEFT_TOP, [10.0, 10.0])
         .default_width(250.0)
@@ -270,6 +266,10 @@ fn panel(ctx: &egui::Context, c: &mut Controls, info: &PanelInfo) {
             parameters(ui, c);
             display(ui, c, info);
         });
+    // Anchored 10 px down and at most 20 px shorter than the window: cut where it reaches
+    // within a few pixels of the bottom.
+    let cut = shown.is_some_and(|r| r.response.rect.bottom() >= height - 15.0);
+    ctx.data_mut(|d| d.insert_temp(key, (height, cut, generation)));
 }
 
 /// The last frame's statistics, a name and a value a row.

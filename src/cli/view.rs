@@ -160,6 +160,10 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc, given: &Given) -> Result<()> {
         adaptive: (a.adaptive).or_default(uniform),
         viewpoint: &a.adaptive.viewpoint,
     };
+    // No window: the image will be written, so it must be writable before anything is drawn.
+    let output = meshrefine::paths::Output::File;
+    meshrefine::paths::check_output(&a.headless_output, "--headless-output", output)
+        .map_err(anyhow::Error::msg)?;
     let line = with_context(desc, |ctx| {
         render_png(ctx, input, &cfg, &image, &a.headless_output)
     })?;
@@ -176,7 +180,8 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc, given: &Given) -> Result<()> {
         // Not onto itself: copying a file to its own path empties it.
         let same = std::fs::canonicalize(shot).is_ok_and(|s| s == shown);
         if !same {
-            std::fs::copy(&a.headless_output, shot)
+            let image = std::fs::read(&a.headless_output)?;
+            meshrefine::paths::write_output(shot, |w| w.write_all(&image))
                 .with_context(|| format!("cannot write the screenshot '{}'", shot.display()))?;
         }
         out!(
