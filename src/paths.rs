@@ -146,7 +146,9 @@ pub fn check_output(path: &Path, option: &str, kind: Output) -> Result<(), Strin
                 ));
             }
         }
-        // The files it writes: any that exists must be a file to replace.
+        // The files it writes: any that exists must be a file to replace, and each must be
+        // writable as a single file is (a folder that takes no files, as /proc/self, fails here
+        // rather than after the run).
         for ext in ["md", "csv", "json"] {
             let file = std::path::PathBuf::from(format!("{text}.{ext}"));
             if let Ok(m) = std::fs::metadata(&file) {
@@ -157,8 +159,8 @@ pub fn check_output(path: &Path, option: &str, kind: Output) -> Result<(), Strin
                         file_kind(m.file_type())
                     ));
                 }
-                check_replaceable(&file, option)?;
             }
+            check_replaceable(&file, option)?;
         }
     }
     Ok(())

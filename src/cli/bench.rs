@@ -15,29 +15,6 @@ use std::io::Write as _;
 
 /// Runs `meshrefine bench` with `a` (`levels_given`: `--levels` was on the command line; with
 /// `--pixel-error` only those uniform levels are timed beside the adaptive rows).
-/// Whether files can be made beside `prefix`, before anything is timed: a file is created there
-/// and removed (a folder that exists but takes no files, as `/proc/self`, fails here rather
-/// than after the run).
-fn check_writable(prefix: &std::path::Path) -> Result<()> {
-    let probe = std::path::PathBuf::from(format!("{}.meshrefine-write-check", prefix.display()));
-    match std::fs::OpenOptions::new()
-        .write(true)
-        .create_new(true)
-        .open(&probe)
-    {
-        Ok(_) => {
-            let _ = std::fs::remove_file(&probe);
-            Ok(())
-        }
-        // Left over from a run that was stopped: writable.
-        Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => Ok(()),
-        Err(e) => Err(anyhow::anyhow!(
-            "cannot write the results to {}.{{md,csv,json}}: {e}",
-            crate::printable(&prefix.display().to_string())
-        )),
-    }
-}
-
 pub fn run(a: &BenchArgs, desc: &ContextDesc, levels_given: bool) -> Result<()> {
     // A value given twice in a list is timed once (as drivers are).
     let (levels, surfaces, displacements) = (
@@ -51,9 +28,6 @@ pub fn run(a: &BenchArgs, desc: &ContextDesc, levels_given: bool) -> Result<()> 
             Some((0.0, f32::MAX, "a finite number >= 0")),
         )
         .map_err(anyhow::Error::msg)?;
-    if let Some(prefix) = &a.out {
-        check_writable(prefix)?;
-    }
     let every_face = surfaces.iter().any(|s| s.facts().needs_every_face);
     let mut input = load_mesh(a.mesh.as_deref(), every_face)?;
     if surfaces.iter().any(|s| s.facts().tags) {
