@@ -5,6 +5,8 @@
 #define LOD_METRIC_GLSL
 
 const float LOD_ELEMENT_FACTOR = 9.0 / 40.0;
+// The tessellator's ring diagonals, (2/3)^2. Mirror: src/lod/mod.rs `RING_DIAGONAL`.
+const float LOD_RING_DIAGONAL = 4.0 / 9.0;
 
 // "No finite bound": src/lod uses infinity; shader compilers may assume there are no
 // infinities, so the mirror uses the largest float it keeps finite instead.

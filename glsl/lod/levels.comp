@@ -63,6 +63,30 @@ float level(vec2 c, vec4 s) {
     return lod_level(metric(), c, s);
 }
 
+// Mirror: src/lod/bound.rs `second_along`.
+float second_along(vec3 m, vec3 b, vec2 e) {
+    float x = e.x, y = e.y;
+    float w = x + y;
+    float p = x * x * m[0] + y * y * m[2] + 2.0 * abs(x * y) * b[2];
+    float q = w * w * m[0] + y * y * m[1] + 2.0 * abs(w * y) * b[0];
+    float c = x * x * m[1] + w * w * m[2] + 2.0 * abs(x * w) * b[1];
+    return min(min(p, q), c);
+}
+
+// Mirror: `own_chord` (the tessellator's ring diagonals, src/lod/mod.rs).
+vec2 own_chord(LodRecord r) {
+    vec2 c = r.chord.xy;
+    vec3 m = r.second.xyz;
+    float mx = max(m.x, max(m.y, m.z));
+    if ((view.flags & SNAPPED) != 0u || c.x >= LOD_HUGE || c.y >= LOD_HUGE || mx >= LOD_HUGE) {
+        return c;
+    }
+    vec3 b = r.mixed.xyz;
+    float ring = max(max(second_along(m, b, vec2(1.0, 1.0)), second_along(m, b, vec2(2.0, -1.0))),
+                     second_along(m, b, vec2(-1.0, 2.0))) * LOD_RING_DIAGONAL;
+    return vec2(c.x, c.y + LOD_ELEMENT_FACTOR * max(ring - mx, 0.0));
+}
+
 // Mirror: `edge_level`.
 float edge_level(LodEdge e) {
     uint kind = view.flags & (DYADIC | SNAPPED);
@@ -176,7 +200,7 @@ void main() {
             && lod_back_facing(r.cone, r.sphere, view.eye_k.xyz));
     float inner = 0.0;
     if (!culled) {
-        float own = level(r.chord.xy, r.sphere);
+        float own = level(own_chord(r), r.sphere);
         inner = max(max(own, edges.x), max(edges.y, edges.z));
         inner = raise_for_transitions(r, edges, inner);
     }

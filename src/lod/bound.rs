@@ -43,15 +43,7 @@ impl Bounds {
     /// `a`, `b` whose sum or difference is the third, so `|Q(e)| <= α² M_a + β² M_b + 2|αβ|
     /// B_ab` ([`Bounds::mixed`], at most `ΣM/2`); the least of the three choices.
     pub fn second_along(&self, e: [f32; 2]) -> f32 {
-        let [m0, m1, m2] = self.second;
-        let [b0, b1, b2] = self.mixed;
-        let (x, y) = (e[0], e[1]);
-        let w = x + y;
-        // e = x d0 − y d2 (B_2), e = (x + y) d0 + y d1 (B_0), e = −x d1 − (x + y) d2 (B_1).
-        let a = x * x * m0 + y * y * m2 + 2.0 * (x * y).abs() * b2;
-        let b = w * w * m0 + y * y * m1 + 2.0 * (w * y).abs() * b0;
-        let c = x * x * m1 + w * w * m2 + 2.0 * (x * w).abs() * b1;
-        a.min(b).min(c)
+        second_along(self.second, self.mixed, e)
     }
 
     /// The chord error of any triangle of an element's parameter domain, corners `(u, v)` (the
@@ -69,6 +61,20 @@ impl Bounds {
         }
         ELEMENT_FACTOR * q + (self.kink.c1 + self.kink.c2 * h) * h
     }
+}
+
+/// [`Bounds::second_along`] from the directional bounds `m` (`M_k`) and the mixed ones `b`
+/// (`B_k`). Mirror: `second_along` in glsl/lod/levels.comp.
+pub fn second_along(m: [f32; 3], b: [f32; 3], e: [f32; 2]) -> f32 {
+    let [m0, m1, m2] = m;
+    let [b0, b1, b2] = b;
+    let (x, y) = (e[0], e[1]);
+    let w = x + y;
+    // e = x d0 − y d2 (B_2), e = (x + y) d0 + y d1 (B_0), e = −x d1 − (x + y) d2 (B_1).
+    let a = x * x * m0 + y * y * m2 + 2.0 * (x * y).abs() * b2;
+    let b = w * w * m0 + y * y * m1 + 2.0 * (w * y).abs() * b0;
+    let c = x * x * m1 + w * w * m2 + 2.0 * (x * w).abs() * b1;
+    a.min(b).min(c)
 }
 
 /// What bounds need besides the records, built once per mesh and parameters.

@@ -18,9 +18,10 @@
 //! depends on how the driver rounds levels and snaps its boundary ([`Rounding`]).
 #![forbid(unsafe_code)]
 
+use super::bound::second_along;
 use super::bound::Lod;
 use super::levels::{drawn_level, ElementLevels};
-use super::{Bounds, Chord, Frustum, Sphere, View};
+use super::{Bounds, Chord, Frustum, Sphere, View, ELEMENT_FACTOR, RING_DIAGONAL};
 use crate::subdiv::bft::{progress_line, Progress};
 use crate::surface::ElementRecord;
 use bytemuck::{Pod, Zeroable};
@@ -391,13 +392,41 @@ pub fn element_levels(v: &LodView, r: &LodRecord) -> ElementLevels {
     if culled {
         return ElementLevels { edges, inner: 0.0 };
     }
-    let own = level(v, [r.chord[0], r.chord[1]], r.sphere);
+    let own = level(v, own_chord(v, r), r.sphere);
     let inner = own.max(edges[0]).max(edges[1]).max(edges[2]);
     ElementLevels {
         edges,
         inner: raise_for_transitions(v, r, &edges, inner),
     }
 }
+
+/// Element `r`'s own chord bound `(c1, c2)` as `v`'s driver draws its inside: the lattice
+/// triangles' (`LodRecord::chord`) for the pattern and static drivers; for the tessellator,
+/// whose rings' triangles have sides `(2/3)(d_a − d_b)/N` besides the lattice's
+/// ([`super::RING_DIAGONAL`]), `c2` takes the largest of those sides' second-derivative bounds
+/// where it exceeds the directions' own. Mirror: `own_chord` in glsl/lod/levels.comp.
+pub fn own_chord(v: &LodView, r: &LodRecord) -> [f32; 2] {
+    let [c1, c2] = [r.chord[0], r.chord[1]];
+    if v.rounding().snapped() || c1 >= HUGE || c2 >= HUGE {
+        return [c1, c2];
+    }
+    let m = [r.second[0], r.second[1], r.second[2]];
+    let b = [r.mixed[0], r.mixed[1], r.mixed[2]];
+    let mx = m[0].max(m[1]).max(m[2]);
+    if mx >= HUGE {
+        return [c1, c2];
+    }
+    let ring = RING_SIDES
+        .iter()
+        .map(|&e| second_along(m, b, e))
+        .fold(0.0f32, f32::max)
+        * RING_DIAGONAL;
+    [c1, c2 + ELEMENT_FACTOR * (ring - mx).max(0.0)]
+}
+
+/// The tessellator's ring diagonals `d_a − d_b` as `(du, dv)`, before [`RING_DIAGONAL`]'s
+/// scale: `d0 − d2`, `d0 − d1`, `d1 − d2`.
+const RING_SIDES: [[f32; 2]; 3] = [[1.0, 1.0], [2.0, -1.0], [-1.0, 2.0]];
 
 /// The smallest level that, given to every element, meets `view`'s pixel error on every
 /// element `levels` draws (up to the largest level): each element's own need and its edges'
@@ -416,7 +445,7 @@ pub fn uniform_level(view: &LodView, records: &[LodRecord], levels: &[ElementLev
 /// The level element `r`'s own bounds need, its chord's and its edges' curves', without the
 /// transitions to coarser edges (what a uniform frame draws).
 fn own_need(view: &LodView, r: &LodRecord) -> f32 {
-    let own = level(view, [r.chord[0], r.chord[1]], r.sphere);
+    let own = level(view, own_chord(view, r), r.sphere);
     (r.edges.iter())
         .map(|e| curve_level(view, e))
         .fold(own, f32::max)

@@ -46,6 +46,21 @@
 //! between the lines (a bilinear cell's twist) counting at half its supremum as above
 //! ([`KINK_FACTOR`]).
 //!
+//! *The tessellator's inside.* The tess driver's inside is the tessellator's, not the lattice:
+//! with equal spacing at level `N`, concentric rings of `N, N − 2, ...` segments a side
+//! (src/render/tess.rs), each vertex at barycentric coordinates `K/(3N)` with integers `K`.
+//! Its triangles' sides are lattice sides `d_k / N` along the rings and, between two rings, the
+//! sides of parallelograms and corner triangles: `(d_a − d_b)/(3N)` across and the diagonals
+//! `2(d_a − d_b)/(3N)` (which diagonal a parallelogram takes, and whether a ring's corner joins
+//! the next ring's corner, the specification leaves to the implementation: both are allowed
+//! for). A diagonal's `|Q|` can exceed every lattice side's: `Q(d_0 − d_2) = 2Q(d_0) + 2Q(d_2)
+//! − Q(d_1)`, up to `5M` (a saddle with `Q(d_0) = Q(d_2) = M`, `Q(d_1) = −M`), and
+//! `(2/3)² · 5 = 20/9`; on that saddle a corner triangle deviates `0.278 M/N²`, above the
+//! lattice's `9/40 M/N²`. So a tess element's `c2` takes `9/40 · max(max_k M_k, R)`,
+//! `R = 4/9 · max` over the three pairs of [`Bounds::second_along`]`(d_a − d_b)`
+//! ([`RING_DIAGONAL`], `lod::frame::own_chord`); the level pass applies it for the tessellator's
+//! roundings. The kink terms' extents are within the lattice's (`|du| + |dv| <= 2`).
+//!
 //! # Per surface and displacement
 //! Each surface and displacement declares how its chord error is bounded
 //! (`FACTS.bound`, src/surface/bounds.rs), with the proof beside its code; src/lod/bound.rs
@@ -139,6 +154,9 @@ use glam::Vec3;
 
 /// `c2` of an element from its per-direction second-derivative bounds: `9/40 · max_k M_k`.
 pub const ELEMENT_FACTOR: f32 = 9.0 / 40.0;
+/// The scale of the tessellator's ring diagonals `(2/3)(d_a − d_b)` in `|Q|`: `(2/3)²` (module
+/// notes, "The tessellator's inside"). Mirror: `LOD_RING_DIAGONAL`.
+pub const RING_DIAGONAL: f32 = 4.0 / 9.0;
 /// `c2` of an edge from its curve's second-derivative bound: `M_e / 8`.
 pub const EDGE_FACTOR: f32 = 1.0 / 8.0;
 /// The factor of a lattice segment's weighted kinks (one jump of each family of lines at the

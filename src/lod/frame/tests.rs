@@ -350,3 +350,156 @@ fn huge_pixel_errors_draw_level_one() {
         assert_eq!(chord.level_for(tol), 1.0, "{tol}");
     }
 }
+
+/// The tessellator's triangles at every level `n` (equal spacing), as integer weights `K/(3n)`:
+/// its rings (`n, n − 2, ...` segments a side), each strip between two rings cut into
+/// parallelograms and corner regions, each split along either diagonal (`diagonal`: the one
+/// from the outer ring's earlier vertex; the specification leaves the choice to the
+/// implementation), the centre's fan (even `n`) or the last triangle (odd `n`).
+fn tessellator_triangles(n: i32, diagonal: bool) -> Vec<[[i32; 3]; 3]> {
+    let s = 3 * n;
+    // Ring `r`'s vertex `j` (of `3m`, from corner 0's), `m = n − 2r` segments a side.
+    let ring = |r: i32, j: i32| {
+        let m = n - 2 * r;
+        let (c, j) = ((j / m) % 3, j % m);
+        let (a, b) = (((c + 2) % 3) as usize, ((c + 1) % 3) as usize);
+        let mut k = [0; 3];
+        k[a] = 2 * r;
+        k[b] = 2 * r + 3 * j;
+        k[c as usize] = s - k[a] - k[b];
+        k
+    };
+    let mut out = vec![];
+    let split = |out: &mut Vec<[[i32; 3]; 3]>, p0, p1, q0, q1| {
+        // The quadrilateral p0 p1 q1 q0 (outer p, inner q).
+        if diagonal {
+            out.push([p0, p1, q1]);
+            out.push([p0, q1, q0]);
+        } else {
+            out.push([p0, p1, q0]);
+            out.push([p1, q1, q0]);
+        }
+    };
+    let mut r = 0;
+    while n - 2 * r >= 2 {
+        let m = n - 2 * r;
+        if m == 2 {
+            let centre = [n; 3];
+            for j in 0..6 {
+                out.push([ring(r, j), ring(r, (j + 1) % 6), centre]);
+            }
+            break;
+        }
+        let mi = m - 2;
+        for c in 0..3 {
+            // The corner region: the outer corner, its neighbours, the inner corner.
+            let (prev, corner, next) = (
+                ring(r, (c * m + 3 * m - 1) % (3 * m)),
+                ring(r, c * m),
+                ring(r, c * m + 1),
+            );
+            split(&mut out, prev, corner, ring(r + 1, c * mi), next);
+            // The side's parallelograms.
+            for j in 0..mi {
+                let (p0, p1) = (ring(r, c * m + 1 + j), ring(r, c * m + 2 + j));
+                let (q0, q1) = (
+                    ring(r + 1, c * mi + j),
+                    ring(r + 1, (c * mi + j + 1) % (3 * mi)),
+                );
+                split(&mut out, p0, p1, q0, q1);
+            }
+        }
+        r += 1;
+    }
+    if n - 2 * r == 1 {
+        out.push([ring(r, 0), ring(r, 1), ring(r, 2)]);
+    }
+    out
+}
+
+/// The tess driver's own chord (`own_chord`: the ring diagonals) bounds every triangle the
+/// tessellator may draw, sampled densely on quadratic surfaces (whose second derivative is a
+/// constant form, so the bounds are exact), and is needed: on a saddle the lattice's bound
+/// alone is exceeded by the tessellator's diagonals. The patterns' own chord stays the lattice's.
+#[test]
+fn tessellator_rings_meet_their_own_chord() {
+    // A quadratic surface P(x) = Q(x)/2 per coordinate, x = (u, v).
+    type Forms = [[f32; 3]; 3];
+    let q = |f: &Forms, a: [f32; 2], b: [f32; 2]| {
+        Vec3::from(f.map(|[xx, xy, yy]| {
+            a[0] * b[0] * xx + (a[0] * b[1] + a[1] * b[0]) * xy + a[1] * b[1] * yy
+        }))
+    };
+    let dirs = [[1.0, 0.0], [-1.0, 1.0], [0.0, -1.0]];
+    let mut seed = 0x2545_f491u32;
+    let mut rand = || {
+        seed ^= seed << 13;
+        seed ^= seed >> 17;
+        seed ^= seed << 5;
+        seed as f32 / u32::MAX as f32 * 2.0 - 1.0
+    };
+    // The saddle: Q(d0) = Q(d2) = 1, Q(d1) = −1 in one coordinate.
+    let saddle: Forms = [[1.0, 1.5, 1.0], [0.0; 3], [0.0; 3]];
+    let mut forms = vec![saddle];
+    forms.extend((0..40).map(|_| {
+        [
+            [rand(), rand(), rand()],
+            [rand(), rand(), rand()],
+            [rand(), rand(), rand()],
+        ]
+    }));
+    for (i, f) in forms.iter().enumerate() {
+        let m = dirs.map(|d| q(f, d, d).length());
+        let b = [0, 1, 2].map(|k| q(f, dirs[k], dirs[(k + 1) % 3]).length());
+        let mx = m[0].max(m[1]).max(m[2]);
+        let mut rec = LodRecord::zeroed();
+        rec.chord = [0.0, ELEMENT_FACTOR * mx, 0.0, 0.0];
+        rec.second = [m[0], m[1], m[2], 0.0];
+        rec.mixed = [b[0], b[1], b[2], 0.0];
+        let view = View::new(Vec3::ZERO, 0.8, 720, 1.0, 64);
+        let lv = |rounding| LodView::new(&view, None, false, rounding, 1);
+        let lattice = own_chord(&lv(Rounding::Snapped), &rec)[1];
+        assert_eq!(lattice, rec.chord[1]);
+        assert_eq!(own_chord(&lv(Rounding::SnappedInteger), &rec)[1], lattice);
+        let tess = own_chord(&lv(Rounding::Dyadic), &rec)[1];
+        assert_eq!(own_chord(&lv(Rounding::Integer), &rec)[1], tess);
+        for n in [5, 6, 8] {
+            let mut worst = 0.0f32;
+            for diagonal in [false, true] {
+                let tris = tessellator_triangles(n, diagonal);
+                assert_eq!(
+                    tris.len() as u32,
+                    crate::render::tess::tess_triangle_count(n as u32)
+                );
+                for t in tris {
+                    let x = t.map(|k| [k[1] as f32 / (3 * n) as f32, k[2] as f32 / (3 * n) as f32]);
+                    let p = |x: [f32; 2]| 0.5 * q(f, x, x);
+                    const S: u32 = 24;
+                    for a in 0..=S {
+                        for c in 0..=S - a {
+                            let w = [(S - a - c) as f32, a as f32, c as f32].map(|w| w / S as f32);
+                            let y =
+                                [0, 1].map(|k| w[0] * x[0][k] + w[1] * x[1][k] + w[2] * x[2][k]);
+                            let lin = p(x[0]) * w[0] + p(x[1]) * w[1] + p(x[2]) * w[2];
+                            worst = worst.max((p(y) - lin).length());
+                        }
+                    }
+                }
+            }
+            let n2 = (n * n) as f32;
+            assert!(
+                worst <= tess / n2 * (1.0 + 1e-4),
+                "form {i}, level {n}: {worst} > {}",
+                tess / n2
+            );
+            if i == 0 {
+                // The saddle: the lattice's bound alone does not hold on the tessellator.
+                assert!(
+                    worst > lattice / n2 * 1.2,
+                    "saddle, level {n}: {worst} <= {}",
+                    lattice / n2
+                );
+            }
+        }
+    }
+}
