@@ -218,7 +218,7 @@ pub fn weld_adaptive_with(
 }
 
 /// Weld the triangles transform feedback captured from the `tess` driver (corners in the order
-/// the tessellator emitted them).
+/// the tessellator emitted them), those whose corners weld together (degenerate) dropped.
 pub fn weld_triangles(triangles: &[[XfbVertex; 3]]) -> RefinedMesh {
     let mut w = TriangleWelder::default();
     w.add(triangles);
@@ -254,6 +254,11 @@ impl<'a> TriangleWelder<'a> {
         w.out.triangles.reserve(triangles.len());
         for t in triangles {
             let tri = t.map(|v| w.add(Vec3::from(v.position), Vec3::from(v.normal)));
+            if tri[0].0 == tri[1].0 || tri[1].0 == tri[2].0 || tri[2].0 == tri[0].0 {
+                // Corners welded together (the geomorphing tess driver's outer ring snapped
+                // onto a coarser edge's sample): no area, dropped as the pattern's are.
+                continue;
+            }
             w.out.triangles.push(tri);
             if let Some(uv) = self.uv {
                 let tri = t.map(|v| w.add_texcoord(uv(&v)));

@@ -78,7 +78,7 @@ fn drawn_triangles(
             // A geomorphing vertex stands for its blended parameter (`morph::geomorph_weights`).
             let b = if cfg.glides() {
                 let (outer, inner) = morph::morph_levels(&levels[t], MAX).expect("drawn");
-                let w = tess_weights_levels(tc, outer, inner);
+                let w = morph::morph_weights(tc, outer, inner);
                 morph::geomorph_weights(tc, w, outer, inner, &levels[t])
             } else {
                 let (outer, inner) = outer_levels(&levels[t], MAX).expect("a drawn element");

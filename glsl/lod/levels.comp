@@ -131,6 +131,11 @@ float quadratic_level(float p, float q, float c, float tol, float mx) {
     return clamp((1.0 + 1.0 / 65536.0) / beta, 1.0, mx);
 }
 
+// Mirror: `tess_side_coefficients`.
+vec3 tess_side_coefficients(float me, float t, float mb) {
+    return vec3(0.25 * me, (2.0 / 3.0) * me + t / 3.0, (4.0 / 9.0) * (me + t + mb));
+}
+
 // Mirror: `strip_level`.
 float strip_level(LodRecord r, int e, float a, float tol) {
     vec3 m = r.second.xyz;
@@ -138,12 +143,22 @@ float strip_level(LodRecord r, int e, float a, float tol) {
     float t = twist(r.mixed.xyz, e);
     float mb = max(m[(e + 1) % 3], m[(e + 2) % 3]);
     float mx = float(view.max_level);
-    float h = (view.flags & SNAPPED) != 0u ? 0.5 : 1.0;
-    float p = LOD_ELEMENT_FACTOR * mb + k2;
-    float q = LOD_ELEMENT_FACTOR * h * a * t + k1 + 2.0 * k2 * a;
-    float c = (LOD_ELEMENT_FACTOR * h * h * a * m[e] + k1 + k2 * a) * a;
+    uint kind = view.flags & (DYADIC | SNAPPED);
+    float p, q, c;
+    if (kind == DYADIC) {
+        // The tessellator's first ring beside a snapped outer ring.
+        vec3 s = tess_side_coefficients(m[e], t, mb);
+        p = LOD_ELEMENT_FACTOR * s.z + k2;
+        q = LOD_ELEMENT_FACTOR * s.y * a + k1 + 2.0 * k2 * a;
+        c = (LOD_ELEMENT_FACTOR * s.x * a + k1 + k2 * a) * a;
+    } else {
+        float h = kind == 0u ? 1.0 : 0.5;
+        p = LOD_ELEMENT_FACTOR * mb + k2;
+        q = LOD_ELEMENT_FACTOR * h * a * t + k1 + 2.0 * k2 * a;
+        c = (LOD_ELEMENT_FACTOR * h * h * a * m[e] + k1 + k2 * a) * a;
+    }
     float sides = quadratic_level(p, q, c, tol, mx);
-    if (h == 1.0) {
+    if (kind == 0u) {
         return sides;
     }
     float bases = quadratic_level(k2, k1 + 2.0 * k2 * a,

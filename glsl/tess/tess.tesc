@@ -6,12 +6,17 @@
 // gl_TessCoord[i] == 0, i.e. between patch vertices i + 1 and i + 2: stored edge (i + 1) mod 3
 // (stored edge k joins corners k and k + 1). An inner level of 0 (culled) discards the patch.
 // Geomorphing (GEOMORPH, docs/adaptivity.md): the pattern driver's dyadic levels at the largest
-// power of two at most N (mirror: src/render/tess/morph.rs `morph_levels`).
+// power of two at most N (mirror: src/render/tess/morph.rs `morph_levels`); the tessellator
+// draws every side at the inner level, and the evaluation stage snaps the outer ring onto each
+// edge's own samples (tess_edges), as the pattern driver's boundary.
 #include "records.glsl"
 #include "levels.glsl"
 #include "../pattern/adaptive.glsl"
 
 layout(vertices = 3) out;
+
+// The stored edges' drawn levels in gl_TessLevelOuter order (what the outer ring's samples are).
+layout(location = 0) patch out uvec3 tess_edges;
 
 layout(constant_id = SPEC_GEOMORPH) const uint GEOMORPH = 0;
 
@@ -23,10 +28,12 @@ void main() {
             uint inner = drawn_level(l.w, false, max_level);
             uvec3 outer = uvec3(drawn_level(l.y, false, max_level), drawn_level(l.z, false, max_level),
                                 drawn_level(l.x, false, max_level));
+            tess_edges = outer;
             if (GEOMORPH != 0u) {
                 uvec4 d = adaptive_levels(l, 1u << findMSB(max(max_level, 1u)), true);
                 inner = d.w;
-                outer = d.yzx;
+                tess_edges = d.yzx;
+                outer = uvec3(inner);
             }
             if (inner == 0u) {
                 gl_TessLevelOuter[0] = 0.0;
@@ -40,6 +47,7 @@ void main() {
                 gl_TessLevelInner[0] = float(inner);
             }
         } else {
+            tess_edges = uvec3(pc.draw.x);
             float level = float(pc.draw.x);
             gl_TessLevelOuter[0] = level;
             gl_TessLevelOuter[1] = level;

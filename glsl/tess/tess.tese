@@ -25,25 +25,33 @@ layout(constant_id = SPEC_GEOMORPH) const uint GEOMORPH = 0;
 // (counter-clockwise P0 P1 P2), as the export test checks against the normals.
 layout(triangles, equal_spacing, cw) in;
 
+// The stored edges' drawn levels in gl_TessLevelOuter order (tess.tesc): geomorphing, the
+// tessellator draws every side at the inner level and the outer ring snaps onto these.
+layout(location = 0) patch in uvec3 tess_edges;
+
 void main() {
     uint n = pc.draw.x;
     uint local = pc.draw.w + uint(gl_PrimitiveID);
     uint element = pc.draw.y + local;
     // gl_TessCoord (x, y, z) weighs patch vertices (0, 1, 2), i.e. (w, u, v).
     vec3 bary;
+    uint inner = uint(gl_TessLevelInner[0]);
+    // The edges' levels: the control stage's outer levels, or geomorphing its tess_edges.
+    uvec3 outer = GEOMORPH != 0u
+        ? tess_edges
+        : uvec3(gl_TessLevelOuter[0], gl_TessLevelOuter[1], gl_TessLevelOuter[2]);
     if (pc.draw.z != 0u) {
         // Adaptive: the levels the control stage set (integers, at most N).
-        uvec3 outer = uvec3(gl_TessLevelOuter[0], gl_TessLevelOuter[1], gl_TessLevelOuter[2]);
-        bary = tess_weights_levels(gl_TessCoord, outer, uint(gl_TessLevelInner[0]));
+        vec3 tc = GEOMORPH != 0u ? tess_snap(gl_TessCoord, outer, inner) : gl_TessCoord;
+        bary = tess_weights_levels(tc, outer, inner);
     } else {
         bary = tess_weights(gl_TessCoord, n);
     }
     SurfacePoint sp = evaluate(records[local], Sample(local, bary));
     if (GEOMORPH != 0u && pc.draw.z != 0u) {
         // The normal stays the true point's (docs/adaptivity.md, "Geomorphing").
-        uvec3 outer = uvec3(gl_TessLevelOuter[0], gl_TessLevelOuter[1], gl_TessLevelOuter[2]);
         sp.position = tess_geomorph_position(records[local], local, gl_TessCoord, bary, sp.position, outer,
-                                             uint(gl_TessLevelInner[0]), element_levels[local]);
+                                             inner, element_levels[local]);
     }
     v_position = sp.position;
     v_normal = sp.normal;

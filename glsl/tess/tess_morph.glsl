@@ -5,6 +5,25 @@
 // level adds glide from their parents' midpoint. Needs surface.glsl, levels.glsl.
 #include "../pattern/adaptive.glsl"
 
+// Where the geomorphing tess driver's tessellator vertex tc lies: a vertex of the outer ring
+// (every side drawn at the inner level n) moved onto its edge's own samples (outer: the edges'
+// levels) as the pattern driver's boundary is (snap_edge: the nearest, a tie toward the stored
+// edge's first corner's side), the rest as the tessellator made them. Mirror:
+// tess::morph::snap_ring.
+vec3 tess_snap(vec3 tc, uvec3 outer, uint n) {
+    float half_step = 0.5 / float(n);
+    int edge = tc.x < half_step ? 0 : (tc.y < half_step ? 1 : (tc.z < half_step ? 2 : -1));
+    if (edge < 0) {
+        return tc;
+    }
+    uint a = uint(edge + 1) % 3u, b = uint(edge + 2) % 3u;
+    uint s = snap_edge(uint(round(tc[b] * float(n))), outer[edge], n);
+    vec3 r = vec3(0.0);
+    r[a] = float(n - s) / float(n);
+    r[b] = float(s) / float(n);
+    return r;
+}
+
 // A point on patch edge `edge` at weights w (multiples of 1/ne): whether it is new at the edge's
 // level and not yet in place; then its parents on the edge and its factor (continuous level
 // lambda of the edge). Mirror: tess::morph::edge_parents.

@@ -80,10 +80,13 @@ pub const SNAPPED: u32 = 8;
 /// the level pass bounds the transition triangles for ([`transitions`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Rounding {
-    /// Any integer level, the tessellator's transitions (the tess driver without geomorphing).
+    /// Any integer level, the tessellator's transitions (the tess driver without geomorphing):
+    /// its outer edges at their own levels, the tessellator joining them to its first ring.
     Integer,
-    /// Powers of two, the tessellator's transitions (the tess driver while it glides).
-    Dyadic,
+    /// Powers of two, the tessellator drawing every side at the inner level and its outer ring's
+    /// vertices snapped as [`Rounding::Snapped`]'s (the tess driver while it glides): the
+    /// pattern driver's boundary beside the tessellator's first ring.
+    TessSnapped,
     /// Powers of two, every boundary vertex snapped to the nearest sample of its edge, a tie
     /// toward the nearer corner (the pattern driver, and the static baseline built as it draws).
     Snapped,
@@ -94,7 +97,7 @@ pub enum Rounding {
 
 impl Rounding {
     pub const ALL: [Rounding; 4] = [
-        Rounding::Dyadic,
+        Rounding::TessSnapped,
         Rounding::Integer,
         Rounding::Snapped,
         Rounding::SnappedInteger,
@@ -102,19 +105,24 @@ impl Rounding {
 
     /// Whether levels are rounded to powers of two.
     pub fn dyadic(self) -> bool {
-        matches!(self, Rounding::Dyadic | Rounding::Snapped)
+        matches!(self, Rounding::TessSnapped | Rounding::Snapped)
     }
 
     /// Whether boundary vertices move onto the nearest sample of their edge (at most half a
-    /// sample), rather than anywhere within a sample (the tessellator's transitions).
+    /// sample), rather than anywhere within a sample (the tessellator's own transitions).
     pub fn snapped(self) -> bool {
-        matches!(self, Rounding::Snapped | Rounding::SnappedInteger)
+        !matches!(self, Rounding::Integer)
+    }
+
+    /// Whether the inside is the tessellator's rings rather than the lattice (the tess driver).
+    pub fn tessellator(self) -> bool {
+        matches!(self, Rounding::Integer | Rounding::TessSnapped)
     }
 
     /// Where its transition needs are in [`LodEdge::needs`] (the order of [`Rounding::ALL`]).
     pub fn index(self) -> usize {
         match self {
-            Rounding::Dyadic => 0,
+            Rounding::TessSnapped => 0,
             Rounding::Integer => 1,
             Rounding::Snapped => 2,
             Rounding::SnappedInteger => 3,
@@ -155,7 +163,7 @@ impl LodView {
             | if back_faces { CULL_BACK_FACES } else { 0 }
             | match rounding {
                 Rounding::Integer => 0,
-                Rounding::Dyadic => DYADIC,
+                Rounding::TessSnapped => DYADIC,
                 Rounding::Snapped => DYADIC | SNAPPED,
                 Rounding::SnappedInteger => SNAPPED,
             };
@@ -177,7 +185,7 @@ impl LodView {
         match (self.flags & DYADIC != 0, self.flags & SNAPPED != 0) {
             (false, false) => Rounding::Integer,
             (false, true) => Rounding::SnappedInteger,
-            (true, false) => Rounding::Dyadic,
+            (true, false) => Rounding::TessSnapped,
             (true, true) => Rounding::Snapped,
         }
     }
@@ -407,7 +415,7 @@ pub fn element_levels(v: &LodView, r: &LodRecord) -> ElementLevels {
 /// where it exceeds the directions' own. Mirror: `own_chord` in glsl/lod/levels.comp.
 pub fn own_chord(v: &LodView, r: &LodRecord) -> [f32; 2] {
     let [c1, c2] = [r.chord[0], r.chord[1]];
-    if v.rounding().snapped() || c1 >= HUGE || c2 >= HUGE {
+    if !v.rounding().tessellator() || c1 >= HUGE || c2 >= HUGE {
         return [c1, c2];
     }
     let m = [r.second[0], r.second[1], r.second[2]];

@@ -149,9 +149,11 @@ impl DrawConfig {
     }
 
     /// How the driver rounds adaptive levels and meets a coarser edge, as the level pass
-    /// bounds it: the tessellator's own transitions for tess (dyadic while it glides), the
-    /// pattern's boundary snapped to the nearest edge sample for pattern and static (dyadic
-    /// while the pattern driver glides: its hierarchical patterns; else integer).
+    /// bounds it: for tess while it glides, dyadic levels with its outer ring drawn at the
+    /// inner level and snapped onto the edges' samples, else the tessellator's own transitions
+    /// at integer levels; the pattern's boundary snapped to the nearest edge sample for pattern
+    /// and static (dyadic while the pattern driver glides: its hierarchical patterns; else
+    /// integer).
     pub fn rounding(&self) -> crate::lod::frame::Rounding {
         use crate::lod::frame::Rounding;
         if !self.driver.kind().integer_levels() {
@@ -161,7 +163,7 @@ impl DrawConfig {
                 Rounding::SnappedInteger
             }
         } else if self.glides() {
-            Rounding::Dyadic
+            Rounding::TessSnapped
         } else {
             Rounding::Integer
         }

@@ -1,6 +1,8 @@
 //! `tess` driver: Vulkan tessellation shaders. Each coarse triangle is a 3-vertex patch; the
 //! control stage sets every level to N (adaptively: each outer level from its edge's level, the
-//! inner level from the element's, [`outer_levels`]), the evaluation stage evaluates the surface.
+//! inner level from the element's, [`outer_levels`]; geomorphing, every level the inner one and
+//! the outer ring snapped onto the edges' samples, [`morph`]), the evaluation stage evaluates the
+//! surface.
 //!
 //! lavapipe workaround (docs/platform.md): a tessellated draw whose evaluation stage emits more than
 //! 65,536 vertices renders garbage there, so on lavapipe the patches are split into draws of at

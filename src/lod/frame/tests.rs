@@ -461,7 +461,7 @@ fn tessellator_rings_meet_their_own_chord() {
         let lattice = own_chord(&lv(Rounding::Snapped), &rec)[1];
         assert_eq!(lattice, rec.chord[1]);
         assert_eq!(own_chord(&lv(Rounding::SnappedInteger), &rec)[1], lattice);
-        let tess = own_chord(&lv(Rounding::Dyadic), &rec)[1];
+        let tess = own_chord(&lv(Rounding::TessSnapped), &rec)[1];
         assert_eq!(own_chord(&lv(Rounding::Integer), &rec)[1], tess);
         for n in [5, 6, 8] {
             let mut worst = 0.0f32;

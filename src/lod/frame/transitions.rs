@@ -6,8 +6,8 @@
 //! on the edges' own samples: a vertex on edge `e` at lattice parameter `k/n` moves to a sample
 //! of the edge's level `n_e <= n` (`a_e = 1/n_e`). When `n_e = n` nothing moves. How far a
 //! vertex moves, and where, depends on the driver ([`Rounding`]):
-//! - [`Rounding::Integer`] and [`Rounding::Dyadic`] (the tessellator, whose transitions are its
-//!   own): less than `a_e` (as a floor in the edge's canonical direction would), anywhere;
+//! - [`Rounding::Integer`] (the tessellator's integer levels, whose transitions are its own):
+//!   less than `a_e` (as a floor in the edge's canonical direction would), anywhere;
 //! - [`Rounding::Snapped`] (the pattern driver while it glides, dyadic): onto the nearest
 //!   sample, a tie toward the nearer corner, so at most `a_e/2`; and as a coarser edge is at
 //!   most half the inner level (`β <= a_e/2`), the vertex beside a corner moves onto that
@@ -18,6 +18,10 @@
 //!   finer than half the inner level (`a_e/2 < β < a_e`), and then the vertex beside a corner
 //!   moves onto the edge's first sample, `a_e` from the corner: corner triangles as for the
 //!   tessellator (below).
+//!
+//! - [`Rounding::TessSnapped`] (the tessellator while it glides): every side drawn at the inner
+//!   level, the outer ring's vertices snapped as [`Rounding::Snapped`]'s (at most `a_e/2`,
+//!   the vertices beside a corner onto it), joined by the tessellator to its first ring (below).
 //!
 //! The drawn triangles touching the edge are then of three kinds. Their sides are bounded, in
 //! the element's lattice directions `d_k` (src/lod/mod.rs), from its second-derivative bounds
@@ -51,6 +55,18 @@
 //!   `m + r <= A = max(a_e, a_f)`: `M_x (m + r)² + m r (2 B_x − 2 M_x)`, largest at `m r = 0`
 //!   or `m = r = A/2`, so `|Q| <= A² M_c`, `M_c = max(M_x, M_x/2 + B_x/2)`, `M_x = max_k M_k`.
 //!
+//! - beside the tessellator's first ring ([`Rounding::TessSnapped`]): ring 1 lies `2β/3` deep
+//!   (its vertices at weights `K/(3n)`, src/lod/mod.rs, "The tessellator's inside"), and a side
+//!   from the outer ring (`n` segments) to it is `α d_e + (2β/3) d_{e+1}` with `α` between
+//!   `−2β/3` and `4β/3` before the move (the strip's parallelograms and corners: the only
+//!   sides `tests/tess_rings.rs` finds on the device), `α − δ` after a move `|δ| <= a_e/2`:
+//!   expanded on `(d_e, d_{e+1})` for `α <= 2β/3` and on `(d_e, d_{e+2})` beyond, the
+//!   coefficient of `d_e` is at most `a_e/2 + 2β/3` either way, so
+//!   `|Q| <= (a_e/2 + 2β/3)² M_e + (a_e/2 + 2β/3)(2β/3) T_e + (4/9) β² max(M_{e+1}, M_{e+2})`
+//!   (`tess_side_coefficients`), texel extent `<= a_e/2 + 2β <= a_e + β` (`β <= a_e/2`). The
+//!   ring's corners, where snapping merged the corner's neighbours into it, leave ring
+//!   diagonals (the element's own chord, [`super::own_chord`]) and sides of this kind.
+//!
 //! With `B_k = Σ/2` these are the bounds written with `Σ` alone; a surface's own mixed bound
 //! makes them smaller wherever its twist across the edge is smaller than polarization allows
 //! (on a nearly spherical patch of an equilateral element, `|Q(d_e, d_{e+1})|` is about a third
@@ -63,9 +79,11 @@
 //!    `((1 + λ) k_1, 9/40 · max(M_c, M_e + λ T_e + λ² max(M_{e+1}, M_{e+2})) + (1 + λ)² k_2)`
 //!    (`k` the kink terms; snapped: `max(M_e, M_e/4 + λ/2 T_e + λ² max(M_{e+1}, M_{e+2}))`,
 //!    no corners; snapped integer: `max(M_c, M_e/4 + λ/2 T_e + λ² max(M_{e+1}, M_{e+2}))`, as
-//!    `M_c >= M_e` covers the bases) meets that element's tolerance ([`strip_need`]). So the
+//!    `M_c >= M_e` covers the bases; beside the tessellator's first ring, `max(M_e, S_e/a_e²)`
+//!    with the sides above at `β = λ a_e`, no corners) meets that element's tolerance
+//!    ([`strip_need`]). So the
 //!    bases and the corners fit in `τ` whatever `n`, and the kink terms at `a_e + β` and `S_e`
-//!    whenever `β <= λ a_e` (beyond, step 2's quadratics hold both). A dyadic driver takes
+//!    whenever `β <= λ a_e` (beyond, step 2's quadratics hold both). The dyadic drivers take
 //!    `λ = 1/2` (a coarser edge is at most half the inner level, so it rarely needs step 2),
 //!    the tessellator's integer levels
 //!    `λ = 1` (no raise is needed then; step 2 only serves where a level is capped or a bound
@@ -89,8 +107,9 @@
 //! along them (`M_e`), where a floor's corners need it across the whole element (`M_c`) and its
 //! sides twice the move. On Spot as `pn` close up at 1 px (the test
 //! `pixel_error_holds_end_to_end`) the transitions then cost about a tenth more triangles than
-//! levels that ignore them, against 2.6 (dyadic) and 3.6 (integer) times as many with the
-//! tessellator's bound.
+//! levels that ignore them on the pattern driver, half as many again beside the tessellator's
+//! first ring (whose vertices sit between the lattice's), and 3.6 times as many with the
+//! tessellator's own transitions at integer levels.
 //!
 //! Interior lattice triangles meet `τ` at the element's own level. Where a level is capped at
 //! the maximum, or a bound is infinite, nothing is promised (as for the levels themselves).
@@ -125,20 +144,39 @@ pub fn strip_need(b: &Bounds, e: usize, rounding: Rounding) -> Chord {
     let mx = m[0].max(m[1]).max(m[2]);
     let bx = mixed[0].max(mixed[1]).max(mixed[2]);
     let mc = mx.max(0.5 * mx + 0.5 * bx);
-    // Sides after a move of at most `h` samples: half of one snapped, a whole one else.
-    let h = if rounding.snapped() { 0.5 } else { 1.0 };
-    let sides = h * h * m[e] + h * lambda * twist + lambda * lambda * mb;
+    // The sides' S_e at β = λ a, over a².
+    let sides = if rounding == Rounding::TessSnapped {
+        let [caa, cab, cbb] = tess_side_coefficients(m[e], twist, mb);
+        caa + cab * lambda + cbb * lambda * lambda
+    } else {
+        // After a move of at most `h` samples: half of one snapped, a whole one else.
+        let h = if rounding.snapped() { 0.5 } else { 1.0 };
+        h * h * m[e] + h * lambda * twist + lambda * lambda * mb
+    };
     let q = match rounding {
         // No corner triangles: the bases' `M_e` or the sides'.
-        Rounding::Snapped => m[e].max(sides),
+        Rounding::Snapped | Rounding::TessSnapped => m[e].max(sides),
         // Corner triangles (`M_c >= M_e` covers the bases).
-        Rounding::SnappedInteger | Rounding::Dyadic | Rounding::Integer => mc.max(sides),
+        Rounding::SnappedInteger | Rounding::Integer => mc.max(sides),
     };
     let h = 1.0 + lambda;
     Chord {
         c1: h * b.kink.c1,
         c2: ELEMENT_FACTOR * q + h * h * b.kink.c2,
     }
+}
+
+/// The transition sides' bound beside the tessellator's first ring ([`Rounding::TessSnapped`],
+/// module notes), `S_e = c_aa a² + c_ab a β + c_bb β²` along an edge drawn at `a = 1/n_e` beside
+/// an inside at `β = 1/n`, as `[c_aa, c_ab, c_bb] = [M_e/4, 2/3 M_e + T_e/3, 4/9 (M_e + T_e +
+/// mb)]`, from the edge direction's `M_e`, the twist `T_e` across it and `mb`, the larger of
+/// `M_{e+1}` and `M_{e+2}`. Mirror: `tess_side_coefficients` in glsl/lod/levels.comp.
+fn tess_side_coefficients(me: f32, twist: f32, mb: f32) -> [f32; 3] {
+    [
+        0.25 * me,
+        (2.0 / 3.0) * me + twist / 3.0,
+        (4.0 / 9.0) * (me + twist + mb),
+    ]
 }
 
 /// `T_e = 2 max(B_e, B_{e+2})`: what bounds the cross term of a transition side along stored
@@ -177,13 +215,26 @@ fn strip_level(v: &LodView, r: &LodRecord, e: usize, a: f32, tol: f32) -> f32 {
     let t = twist(&r.mixed, e);
     let mb = m[(e + 1) % 3].max(m[(e + 2) % 3]);
     let max = v.max_level as f32;
-    // The kink terms at a + β, then the sides' S_e (a move of at most h a).
-    let h = if v.rounding().snapped() { 0.5 } else { 1.0 };
-    let p = ELEMENT_FACTOR * mb + k2;
-    let q = ELEMENT_FACTOR * h * a * t + k1 + 2.0 * k2 * a;
-    let c = (ELEMENT_FACTOR * h * h * a * m[e] + k1 + k2 * a) * a;
+    // The kink terms at a + β, then the sides' S_e (a move of at most h a; beside the
+    // tessellator's first ring, its own coefficients).
+    let rounding = v.rounding();
+    let (p, q, c) = if rounding == Rounding::TessSnapped {
+        let [caa, cab, cbb] = tess_side_coefficients(m[e], t, mb);
+        (
+            ELEMENT_FACTOR * cbb + k2,
+            ELEMENT_FACTOR * cab * a + k1 + 2.0 * k2 * a,
+            (ELEMENT_FACTOR * caa * a + k1 + k2 * a) * a,
+        )
+    } else {
+        let h = if rounding.snapped() { 0.5 } else { 1.0 };
+        (
+            ELEMENT_FACTOR * mb + k2,
+            ELEMENT_FACTOR * h * a * t + k1 + 2.0 * k2 * a,
+            (ELEMENT_FACTOR * h * h * a * m[e] + k1 + k2 * a) * a,
+        )
+    };
     let sides = quadratic_level(p, q, c, tol, max);
-    if h == 1.0 {
+    if !rounding.snapped() {
         // The bases' a² M_e is S_e's own first term.
         return sides;
     }

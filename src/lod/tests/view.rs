@@ -190,7 +190,7 @@ fn snapped(n: u32, i: u32, j: u32, ne: [u32; 3], idx: [u32; 3], rounding: Roundi
 fn rounding_name(r: Rounding) -> &'static str {
     match r {
         Rounding::Integer => "",
-        Rounding::Dyadic => " (dyadic)",
+        Rounding::TessSnapped => " (tess snapped)",
         Rounding::Snapped => " (snapped)",
         Rounding::SnappedInteger => " (snapped integer)",
     }
@@ -374,9 +374,11 @@ fn pixel_error_holds_end_to_end() {
                     "{what}: {tris} triangles against {plain}"
                 );
             }
-            if rounding == Rounding::Dyadic && surface == Surface::Pn {
+            // Beside the tessellator's first ring the snapped transitions cost more (its
+            // vertices sit between the lattice's), about half as many again on pn.
+            if rounding == Rounding::TessSnapped && surface == Surface::Pn {
                 assert!(
-                    tris >= 2 * plain,
+                    5 * tris <= 8 * plain,
                     "{what}: {tris} triangles against {plain}"
                 );
             }

@@ -5,10 +5,13 @@
 //! ([`morph_levels`]), so that every level's vertices are a subset of the next finer one's, and
 //! glides the vertices the finest drawn level adds from their parents' midpoint:
 //!
-//! - On a patch edge (outer level `n_e`, samples `k/n_e`), a sample with `k` odd is new; its
-//!   parents are the samples `k ± 1` and it morphs with its edge's continuous level, from exact
-//!   dyadic weights, so the two elements sharing the edge draw the same bits (as the pattern's
-//!   edges do).
+//! - The tessellator draws every side at the inner level `n`, and the vertices of its outer
+//!   ring move onto their edge's own samples `k/n_e` ([`snap_ring`]: the pattern driver's
+//!   snapping, so the transition triangles are bounded as the pattern's, src/lod/frame/
+//!   transitions.rs, `Rounding::TessSnapped`). A sample with `k` odd is new; its parents are
+//!   the samples `k ± 1` and it morphs with its edge's continuous level, from exact dyadic
+//!   weights, so the two elements sharing the edge draw the same bits (as the pattern's edges
+//!   do).
 //! - Inside, with equal spacing at an even inner level `n` the tessellator makes concentric
 //!   rings: ring `r` is the outer triangle scaled about the centre by `(n − 2r)/n`, cut into
 //!   `n − 2r` equal segments a side, so every vertex has barycentric coordinates `K/(3n)` with
@@ -35,14 +38,40 @@ use crate::lod::levels::ElementLevels;
 use crate::pattern::adaptive::{drawn_levels, morph, morph_factor, snap_edge};
 use glam::Vec3;
 
-/// The levels a geomorphing tess draw sets for an element with continuous `levels` and largest
+/// The levels a geomorphing tess draw gives an element with continuous `levels` and largest
 /// level `max`: the pattern driver's dyadic levels at the largest power of two at most `max`,
-/// as `(outer, inner)` in `gl_TessLevelOuter` order (outer `i` is stored edge `i + 1`); `None`:
-/// culled. Mirror of glsl/tess/tess.tesc with `GEOMORPH`.
+/// as `(outer, inner)`, `outer` the edges' in `gl_TessLevelOuter` order (outer `i` is stored
+/// edge `i + 1`); `None`: culled. The tessellator itself draws every side at `inner`, and the
+/// outer ring's vertices move onto the edges' own samples ([`snap_ring`]). Mirror of
+/// glsl/tess/tess.tesc with `GEOMORPH` (its `tess_edges` and inner level).
 pub fn morph_levels(levels: &ElementLevels, max: u32) -> Option<([u32; 3], u32)> {
     let f = 1u32 << (31 - max.max(1).leading_zeros());
     let d = drawn_levels(levels, f, true)?;
     Some(([d.edges[1], d.edges[2], d.edges[0]], d.inner))
+}
+
+/// Where a geomorphing tess draw puts the tessellator's vertex `tc` (every side at level
+/// `inner`): a vertex of the outer ring on its edge's own samples (`outer`, [`morph_levels`]),
+/// the nearest, a tie toward the stored edge's first corner (`snap_edge`, as the pattern
+/// driver's boundary), the rest where the tessellator made them. Mirror of `tess_snap`.
+pub fn snap_ring(tc: [f32; 3], outer: [u32; 3], inner: u32) -> [f32; 3] {
+    let n = inner;
+    let half_step = 0.5 / n as f32;
+    let Some(edge) = tc.iter().position(|&c| c < half_step) else {
+        return tc;
+    };
+    let (a, b) = ((edge + 1) % 3, (edge + 2) % 3);
+    let s = snap_edge((tc[b] * n as f32).round() as u32, outer[edge], n);
+    let mut r = [0.0; 3];
+    r[a] = (n - s) as f32 / n as f32;
+    r[b] = s as f32 / n as f32;
+    r
+}
+
+/// The weights a geomorphing tess draw evaluates its vertex `tc` at before morphing: [`snap_ring`],
+/// then the edge's integer weights (`tess_weights_levels`), as glsl/tess/tess.tese does.
+pub fn morph_weights(tc: [f32; 3], outer: [u32; 3], inner: u32) -> [f32; 3] {
+    super::tess_weights_levels(snap_ring(tc, outer, inner), outer, inner)
 }
 
 /// The continuous level of patch edge `i` (stored edge `i + 1`).
@@ -98,7 +127,7 @@ pub fn edge_parents(
     Some((at(kb - 1), at(kb + 1), m))
 }
 
-/// How the vertex at `tc = gl_TessCoord` (weights `w` after `tess_weights_levels`) of an
+/// How the vertex at `tc = gl_TessCoord` (weights `w`, [`morph_weights`]) of an
 /// element drawn geomorphing at `(outer, inner)` ([`morph_levels`]) with continuous `levels`
 /// morphs. Mirror of `tess_morph_classify`.
 pub fn classify(
@@ -323,6 +352,52 @@ mod tests {
         }
     }
 
+    /// The outer ring, drawn at the inner level, lands on each edge's own samples: every
+    /// sample of the edge reached, none between them, no vertex moved by more than half a
+    /// sample, the vertices beside a corner onto it where the edge is at most half the inner
+    /// level (but at level 2); the inside stays where the tessellator made it.
+    #[test]
+    fn snap_ring_puts_the_outer_ring_on_the_edges_samples() {
+        for n in [2u32, 4, 8, 16] {
+            for outer in [[n; 3], [n / 2, n, 1], [1, (n / 4).max(1), n / 2]] {
+                let mut reached = [(); 3].map(|_| std::collections::BTreeSet::new());
+                for k in rings(n) {
+                    let tc = weights(k, n);
+                    let r = snap_ring(tc, outer, n);
+                    let Some(edge) = k.iter().position(|&x| x == 0) else {
+                        assert_eq!(r, tc);
+                        continue;
+                    };
+                    let (a, b) = ((edge + 1) % 3, (edge + 2) % 3);
+                    let ne = outer[edge];
+                    let s = r[b] * ne as f32;
+                    assert_eq!(s, s.round(), "{n} {outer:?}: {k:?} -> {r:?}");
+                    assert_eq!(r[a] + r[b], 1.0);
+                    assert!((r[b] - tc[b]).abs() <= 0.5 / ne as f32 + 1e-6, "{k:?}");
+                    let beside = k[b] == 3 || k[a] == 3;
+                    if beside && n >= 4 && 2 * ne <= n {
+                        assert!(r[a] == 1.0 || r[b] == 1.0, "{n} {outer:?}: {k:?} -> {r:?}");
+                    }
+                    reached[edge].insert(s as u32);
+                }
+                for e in 0..3 {
+                    // The corner where two edges meet is found on the first of them.
+                    let want: Vec<u32> = (0..=outer[e]).collect();
+                    let got: Vec<u32> = reached[e].iter().copied().collect();
+                    let inner: Vec<u32> = want[1..want.len() - 1].to_vec();
+                    assert!(
+                        inner.iter().all(|x| got.contains(x)),
+                        "{n} {outer:?} edge {e}: {got:?}"
+                    );
+                    assert!(
+                        got.iter().all(|x| want.contains(x)),
+                        "{n} {outer:?} edge {e}: {got:?}"
+                    );
+                }
+            }
+        }
+    }
+
     /// At whole levels nothing moves; just past half a level new vertices sit at their
     /// parents' midpoint.
     #[test]
@@ -333,7 +408,7 @@ mod tests {
             let tc = weights(k, n);
             let l = ElementLevels::uniform(8.0);
             let (outer, inner) = morph_levels(&l, 64).unwrap();
-            let w = super::super::tess_weights_levels(tc, outer, inner);
+            let w = morph_weights(tc, outer, inner);
             let p = eval(w);
             assert_eq!(geomorph_position(tc, w, p, outer, inner, &l, &eval), p);
             assert_eq!(geomorph_weights(tc, w, outer, inner, &l), w);
