@@ -503,3 +503,105 @@ fn tessellator_rings_meet_their_own_chord() {
         }
     }
 }
+
+/// The gliding tess driver's transition triangles (`Rounding::TessSnapped`): the tessellator's
+/// triangles at level `n` (either diagonal), its outer ring snapped onto coarser edges' samples
+/// (`render::tess::morph::snap_ring`, what the evaluation stage does), sampled densely on a
+/// saddle and 40 random quadratic surfaces: every triangle within `9/40` of the largest of the
+/// element's own `max(M, R) β²` and, for each coarser edge, its bases' `a² M_e` and the sides'
+/// `S_e` (`transitions::tess_side_coefficients`), the bound the level pass solves.
+#[test]
+fn tess_snapped_transitions_meet_their_bound() {
+    use crate::render::tess::morph::snap_ring;
+    type Forms = [[f32; 3]; 3];
+    let q = |f: &Forms, a: [f32; 2], b: [f32; 2]| {
+        Vec3::from(f.map(|[xx, xy, yy]| {
+            a[0] * b[0] * xx + (a[0] * b[1] + a[1] * b[0]) * xy + a[1] * b[1] * yy
+        }))
+    };
+    let dirs = [[1.0, 0.0], [-1.0, 1.0], [0.0, -1.0]];
+    let mut seed = 0x9e37_79b9u32;
+    let mut rand = || {
+        seed ^= seed << 13;
+        seed ^= seed >> 17;
+        seed ^= seed << 5;
+        seed as f32 / u32::MAX as f32 * 2.0 - 1.0
+    };
+    // A saddle, and surfaces flat along two lattice directions but twisted between them,
+    // where the transition sides' twist term is all that bounds a long thin triangle.
+    let mut forms: Vec<Forms> = vec![
+        [[1.0, 1.5, 1.0], [0.0; 3], [0.0; 3]],
+        [[0.0, 1.0, 2.0], [0.0; 3], [0.0; 3]],
+        [[2.0, 1.0, 0.0], [0.0; 3], [0.0; 3]],
+        [[0.0, 1.0, 0.0], [0.0; 3], [0.0; 3]],
+    ];
+    forms.extend((0..40).map(|_| {
+        [
+            [rand(), rand(), rand()],
+            [rand(), rand(), rand()],
+            [rand(), rand(), rand()],
+        ]
+    }));
+    let mut checked = 0;
+    for f in &forms {
+        let m = dirs.map(|d| q(f, d, d).length());
+        let b = [0, 1, 2].map(|k| q(f, dirs[k], dirs[(k + 1) % 3]).length());
+        let mx = m[0].max(m[1]).max(m[2]);
+        let mut rec = LodRecord::zeroed();
+        rec.chord = [0.0, ELEMENT_FACTOR * mx, 0.0, 0.0];
+        rec.second = [m[0], m[1], m[2], 0.0];
+        rec.mixed = [b[0], b[1], b[2], 0.0];
+        let view = View::new(Vec3::ZERO, 0.8, 720, 1.0, 64);
+        let own = own_chord(
+            &LodView::new(&view, None, false, Rounding::TessSnapped, 1),
+            &rec,
+        )[1];
+        for n in [4u32, 8, 16] {
+            for outer in [[n / 2, n, n / 4], [1, n / 2, n], [n / 4, n / 4, n / 2]] {
+                let beta = 1.0 / n as f32;
+                // The bound: the inside's, then each coarser edge's (patch edge i is stored
+                // edge i + 1, direction d_{i+1}).
+                let mut bound = own * beta * beta;
+                for (i, &ne) in outer.iter().enumerate() {
+                    if ne < n {
+                        let e = (i + 1) % 3;
+                        let a = 1.0 / ne as f32;
+                        let twist = 2.0 * b[e].max(b[(e + 2) % 3]);
+                        let mb = m[(e + 1) % 3].max(m[(e + 2) % 3]);
+                        let [caa, cab, cbb] = transitions::tess_side_coefficients(m[e], twist, mb);
+                        let sides = caa * a * a + cab * a * beta + cbb * beta * beta;
+                        bound = bound.max(ELEMENT_FACTOR * (a * a * m[e]).max(sides));
+                    }
+                }
+                let mut worst = 0.0f32;
+                for diagonal in [false, true] {
+                    for t in tessellator_triangles(n as i32, diagonal) {
+                        let w = t.map(|k| {
+                            let tc = k.map(|x| x as f32 / (3 * n) as f32);
+                            snap_ring(tc, outer, n)
+                        });
+                        let x = w.map(|w| [w[1], w[2]]);
+                        let p = |x: [f32; 2]| 0.5 * q(f, x, x);
+                        const S: u32 = 12;
+                        for a in 0..=S {
+                            for c in 0..=S - a {
+                                let l =
+                                    [(S - a - c) as f32, a as f32, c as f32].map(|v| v / S as f32);
+                                let y = [0, 1]
+                                    .map(|k| l[0] * x[0][k] + l[1] * x[1][k] + l[2] * x[2][k]);
+                                let lin = p(x[0]) * l[0] + p(x[1]) * l[1] + p(x[2]) * l[2];
+                                worst = worst.max((p(y) - lin).length());
+                            }
+                        }
+                    }
+                }
+                assert!(
+                    worst <= bound * (1.0 + 1e-4),
+                    "level {n}, edges {outer:?}: {worst} > {bound} ({f:?})"
+                );
+                checked += 1;
+            }
+        }
+    }
+    assert_eq!(checked, forms.len() * 9);
+}

@@ -171,7 +171,7 @@ pub fn strip_need(b: &Bounds, e: usize, rounding: Rounding) -> Chord {
 /// an inside at `β = 1/n`, as `[c_aa, c_ab, c_bb] = [M_e/4, 2/3 M_e + T_e/3, 4/9 (M_e + T_e +
 /// mb)]`, from the edge direction's `M_e`, the twist `T_e` across it and `mb`, the larger of
 /// `M_{e+1}` and `M_{e+2}`. Mirror: `tess_side_coefficients` in glsl/lod/levels.comp.
-fn tess_side_coefficients(me: f32, twist: f32, mb: f32) -> [f32; 3] {
+pub(crate) fn tess_side_coefficients(me: f32, twist: f32, mb: f32) -> [f32; 3] {
     [
         0.25 * me,
         (2.0 / 3.0) * me + twist / 3.0,
