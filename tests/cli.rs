@@ -3100,8 +3100,9 @@ fn bench_times_uniform_rows_of_a_variant_not_drawn_adaptively() {
 
 /// Where the pixel error is not met, elements are counted by their own bounds: those drawn at
 /// the largest level only because a neighbour holds the eye meet it there (neither `near` nor
-/// `capped`), and those no uniform level meets are the same whichever driver's transitions
-/// raise the others.
+/// `capped`), and those no uniform level meets are the same whichever lattice driver's
+/// transitions raise the others (the tessellator's, whose rings' diagonals bend more, at least
+/// as many).
 #[test]
 fn info_counts_unmet_elements_by_their_own_bounds() {
     let ico = model_path("icosahedron.obj");
@@ -3140,7 +3141,7 @@ fn info_counts_unmet_elements_by_their_own_bounds() {
     };
     let (pattern, tess, fixed) = (beyond("pattern"), beyond("tess"), beyond("static"));
     assert!(
-        pattern.1 > 0 && (pattern.1, fixed.1) == (tess.1, tess.1),
+        pattern.1 > 0 && pattern.1 == fixed.1 && tess.1 >= pattern.1,
         "{pattern:?} {tess:?} {fixed:?}"
     );
     // At integer levels a transition's corner triangles span two edges' samples: some elements

@@ -11,12 +11,12 @@ layout(local_size_x = 64) in;
 const uint CULL_FRUSTUM = 1u;
 const uint CULL_BACK_FACES = 2u;
 const uint DYADIC = 4u;
-const uint SNAPPED = 8u;
+const uint LATTICE = 8u;
 
 struct LodEdge {
     vec4 curve;    // (c1, c2) of the edge curve
-    vec4 needs[4]; // (c1, c2) of each element's transition need: dyadic, integer, snapped,
-                   // snapped integer
+    vec4 needs[4]; // (c1, c2) of each element's transition need: tess snapped, integer,
+                   // snapped, snapped integer (src/lod/frame.rs Rounding::ALL)
     vec4 sphere;
     vec4 sphere_a;
     vec4 sphere_b;
@@ -78,19 +78,20 @@ vec2 own_chord(LodRecord r) {
     vec2 c = r.chord.xy;
     vec3 m = r.second.xyz;
     float mx = max(m.x, max(m.y, m.z));
-    if ((view.flags & SNAPPED) != 0u || c.x >= LOD_HUGE || c.y >= LOD_HUGE || mx >= LOD_HUGE) {
+    if ((view.flags & LATTICE) != 0u || c.x >= LOD_HUGE || c.y >= LOD_HUGE || mx >= LOD_HUGE) {
         return c;
     }
     vec3 b = r.mixed.xyz;
     float ring = max(max(second_along(m, b, vec2(1.0, 1.0)), second_along(m, b, vec2(2.0, -1.0))),
                      second_along(m, b, vec2(-1.0, 2.0))) * LOD_RING_DIAGONAL;
-    return vec2(c.x, c.y + LOD_ELEMENT_FACTOR * max(ring - mx, 0.0));
+    float k1 = r.chord.z, k2 = r.chord.w;
+    return vec2(c.x + k1 / 3.0, c.y + LOD_ELEMENT_FACTOR * max(ring - mx, 0.0) + (7.0 / 9.0) * k2);
 }
 
 // Mirror: `edge_level`.
 float edge_level(LodEdge e) {
-    uint kind = view.flags & (DYADIC | SNAPPED);
-    vec4 needs = e.needs[kind == 0u ? 1 : (kind == DYADIC ? 0 : (kind == SNAPPED ? 3 : 2))];
+    uint kind = view.flags & (DYADIC | LATTICE);
+    vec4 needs = e.needs[kind == 0u ? 1 : (kind == DYADIC ? 0 : (kind == LATTICE ? 3 : 2))];
     float own = level(e.curve.xy, e.sphere);
     float a = level(needs.xy, e.sphere_a);
     float b = level(needs.zw, e.sphere_b);
@@ -143,7 +144,7 @@ float strip_level(LodRecord r, int e, float a, float tol) {
     float t = twist(r.mixed.xyz, e);
     float mb = max(m[(e + 1) % 3], m[(e + 2) % 3]);
     float mx = float(view.max_level);
-    uint kind = view.flags & (DYADIC | SNAPPED);
+    uint kind = view.flags & (DYADIC | LATTICE);
     float p, q, c;
     if (kind == DYADIC) {
         // The tessellator's first ring beside a snapped outer ring.

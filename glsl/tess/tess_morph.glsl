@@ -7,9 +7,9 @@
 
 // Where the geomorphing tess driver's tessellator vertex tc lies: a vertex of the outer ring
 // (every side drawn at the inner level n) moved onto its edge's own samples (outer: the edges'
-// levels) as the pattern driver's boundary is (snap_edge: the nearest, a tie toward the stored
-// edge's first corner's side), the rest as the tessellator made them. Mirror:
-// tess::morph::snap_ring.
+// levels) as the pattern driver's boundary is (snap_edge: the nearest, a tie toward the nearer
+// corner, at the edge's middle toward the stored edge's first corner), the rest as the
+// tessellator made them. Mirror: tess::morph::snap_ring.
 vec3 tess_snap(vec3 tc, uvec3 outer, uint n) {
     float half_step = 0.5 / float(n);
     int edge = tc.x < half_step ? 0 : (tc.y < half_step ? 1 : (tc.z < half_step ? 2 : -1));

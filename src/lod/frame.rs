@@ -72,9 +72,11 @@ pub const CULL_FRUSTUM: u32 = 1;
 pub const CULL_BACK_FACES: u32 = 2;
 /// The driver rounds levels to powers of two ([`drawn_level`]).
 pub const DYADIC: u32 = 4;
-/// The driver snaps its boundary vertices to the nearest sample of their edge
-/// ([`Rounding::Snapped`] with [`DYADIC`], [`Rounding::SnappedInteger`] without).
-pub const SNAPPED: u32 = 8;
+/// The driver draws the lattice inside its boundary (the pattern and static drivers:
+/// [`Rounding::Snapped`] with [`DYADIC`], [`Rounding::SnappedInteger`] without); without it, the
+/// tessellator's rings ([`Rounding::TessSnapped`] with [`DYADIC`], [`Rounding::Integer`]
+/// without).
+pub const LATTICE: u32 = 8;
 
 /// How a driver rounds an element's levels and draws its boundary along a coarser edge: what
 /// the level pass bounds the transition triangles for ([`transitions`]).
@@ -140,7 +142,7 @@ pub struct LodView {
     pub eye_k: [f32; 4],
     pub pixel_error: f32,
     pub max_level: u32,
-    /// [`CULL_FRUSTUM`], [`CULL_BACK_FACES`], [`DYADIC`], [`SNAPPED`].
+    /// [`CULL_FRUSTUM`], [`CULL_BACK_FACES`], [`DYADIC`], [`LATTICE`].
     pub flags: u32,
     /// Elements.
     pub count: u32,
@@ -164,8 +166,8 @@ impl LodView {
             | match rounding {
                 Rounding::Integer => 0,
                 Rounding::TessSnapped => DYADIC,
-                Rounding::Snapped => DYADIC | SNAPPED,
-                Rounding::SnappedInteger => SNAPPED,
+                Rounding::Snapped => DYADIC | LATTICE,
+                Rounding::SnappedInteger => LATTICE,
             };
         Self {
             planes,
@@ -182,7 +184,7 @@ impl LodView {
     }
 
     pub fn rounding(&self) -> Rounding {
-        match (self.flags & DYADIC != 0, self.flags & SNAPPED != 0) {
+        match (self.flags & DYADIC != 0, self.flags & LATTICE != 0) {
             (false, false) => Rounding::Integer,
             (false, true) => Rounding::SnappedInteger,
             (true, false) => Rounding::TessSnapped,
@@ -412,7 +414,9 @@ pub fn element_levels(v: &LodView, r: &LodRecord) -> ElementLevels {
 /// triangles' (`LodRecord::chord`) for the pattern and static drivers; for the tessellator,
 /// whose rings' triangles have sides `(2/3)(d_a − d_b)/N` besides the lattice's
 /// ([`super::RING_DIAGONAL`]), `c2` takes the largest of those sides' second-derivative bounds
-/// where it exceeds the directions' own. Mirror: `own_chord` in glsl/lod/levels.comp.
+/// where it exceeds the directions' own, and the height map's kink terms count at those sides'
+/// texel extent (up to 4/3 of a lattice side's in each family of texel lines). Mirror:
+/// `own_chord` in glsl/lod/levels.comp.
 pub fn own_chord(v: &LodView, r: &LodRecord) -> [f32; 2] {
     let [c1, c2] = [r.chord[0], r.chord[1]];
     if !v.rounding().tessellator() || c1 >= HUGE || c2 >= HUGE {
@@ -429,7 +433,13 @@ pub fn own_chord(v: &LodView, r: &LodRecord) -> [f32; 2] {
         .map(|&e| second_along(m, b, e))
         .fold(0.0f32, f32::max)
         * RING_DIAGONAL;
-    [c1, c2 + ELEMENT_FACTOR * (ring - mx).max(0.0)]
+    // The kink terms (`chord[2..]`, per unit segment) at the diagonals' texel extent, 4/3 of a
+    // lattice side's: `c1` takes a third more of `k1`, `c2` 7/9 more of `k2`.
+    let (k1, k2) = (r.chord[2], r.chord[3]);
+    [
+        c1 + k1 / 3.0,
+        c2 + ELEMENT_FACTOR * (ring - mx).max(0.0) + (7.0 / 9.0) * k2,
+    ]
 }
 
 /// The tessellator's ring diagonals `d_a − d_b` as `(du, dv)`, before [`RING_DIAGONAL`]'s

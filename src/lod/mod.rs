@@ -59,7 +59,10 @@
 //! lattice's `9/40 M/N²`. So a tess element's `c2` takes `9/40 · max(max_k M_k, R)`,
 //! `R = 4/9 · max` over the three pairs of [`Bounds::second_along`]`(d_a − d_b)`
 //! ([`RING_DIAGONAL`], `lod::frame::own_chord`); the level pass applies it for the tessellator's
-//! roundings. The kink terms' extents are within the lattice's (`|du| + |dv| <= 2`).
+//! roundings. The height map's kink terms count at a side's extent across each family of texel
+//! lines: a lattice side spans at most `s` (the lattice directions' largest), a diagonal
+//! `(2/3)(|d_a| + |d_b|) <= 4/3 s`, so the tessellator's `c1` takes a third more of the
+//! element's `k1` and its `c2` 7/9 more of `k2` (`(4/3)² − 1`).
 //!
 //! # Per surface and displacement
 //! Each surface and displacement declares how its chord error is bounded

@@ -274,6 +274,75 @@ pub const fn tess_triangle_count(n: u32) -> u32 {
     t
 }
 
+/// The tessellator's triangles with every level `n` (equal spacing), as integers `K` of their
+/// corners' weights `K/(3n)`: its rings (`n, n − 2, ...` segments a side), each strip between two
+/// rings cut into parallelograms and corner regions, each split along either diagonal
+/// (`diagonal`: the one from the outer ring's earlier vertex; the specification leaves the
+/// choice to the implementation), the centre's fan (even `n`) or the last triangle (odd `n`).
+/// The model the tess driver's bounds assume (src/lod/mod.rs, "The tessellator's inside";
+/// `tests/tess_rings.rs` checks its sides against what the device draws).
+pub fn ring_triangles(n: u32, diagonal: bool) -> Vec<[[i32; 3]; 3]> {
+    let n = n as i32;
+    let s = 3 * n;
+    // Ring `r`'s vertex `j` (of `3m`, from corner 0's), `m = n − 2r` segments a side.
+    let ring = |r: i32, j: i32| {
+        let m = n - 2 * r;
+        let (c, j) = ((j / m) % 3, j % m);
+        let (a, b) = (((c + 2) % 3) as usize, ((c + 1) % 3) as usize);
+        let mut k = [0; 3];
+        k[a] = 2 * r;
+        k[b] = 2 * r + 3 * j;
+        k[c as usize] = s - k[a] - k[b];
+        k
+    };
+    let mut out = vec![];
+    let split = |out: &mut Vec<[[i32; 3]; 3]>, p0, p1, q0, q1| {
+        // The quadrilateral p0 p1 q1 q0 (outer p, inner q).
+        if diagonal {
+            out.push([p0, p1, q1]);
+            out.push([p0, q1, q0]);
+        } else {
+            out.push([p0, p1, q0]);
+            out.push([p1, q1, q0]);
+        }
+    };
+    let mut r = 0;
+    while n - 2 * r >= 2 {
+        let m = n - 2 * r;
+        if m == 2 {
+            let centre = [n; 3];
+            for j in 0..6 {
+                out.push([ring(r, j), ring(r, (j + 1) % 6), centre]);
+            }
+            break;
+        }
+        let mi = m - 2;
+        for c in 0..3 {
+            // The corner region: the outer corner, its neighbours, the inner corner.
+            let (prev, corner, next) = (
+                ring(r, (c * m + 3 * m - 1) % (3 * m)),
+                ring(r, c * m),
+                ring(r, c * m + 1),
+            );
+            split(&mut out, prev, corner, ring(r + 1, c * mi), next);
+            // The side's parallelograms.
+            for j in 0..mi {
+                let (p0, p1) = (ring(r, c * m + 1 + j), ring(r, c * m + 2 + j));
+                let (q0, q1) = (
+                    ring(r + 1, c * mi + j),
+                    ring(r + 1, (c * mi + j + 1) % (3 * mi)),
+                );
+                split(&mut out, p0, p1, q0, q1);
+            }
+        }
+        r += 1;
+    }
+    if n - 2 * r == 1 {
+        out.push([ring(r, 0), ring(r, 1), ring(r, 2)]);
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

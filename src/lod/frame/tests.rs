@@ -228,14 +228,20 @@ fn inner_levels_cover_own_bound_and_transitions() {
                     let twist = 2.0 * bm[e].max(bm[(e + 2) % 3]);
                     let mb = m[(e + 1) % 3].max(m[(e + 2) % 3]);
                     let base = a * a * m[e];
-                    // Moves of up to a sample, or half of one where snapped.
-                    let h = if rounding.snapped() { 0.5 } else { 1.0 };
-                    let s =
-                        (h * h * a * a * m[e] + h * a * beta * twist + beta * beta * mb).max(base);
+                    // Moves of up to a sample, or half of one where snapped; beside the
+                    // tessellator's first ring a third of a row further (transitions.rs).
+                    let s = if rounding == Rounding::TessSnapped {
+                        let c = a / 2.0 + 2.0 * beta / 3.0;
+                        c * c * m[e] + c * (2.0 * beta / 3.0) * twist + 4.0 / 9.0 * beta * beta * mb
+                    } else {
+                        let h = if rounding.snapped() { 0.5 } else { 1.0 };
+                        h * h * a * a * m[e] + h * a * beta * twist + beta * beta * mb
+                    }
+                    .max(base);
                     // The corners fit: `M_c <= 1.25 max_k M_k` whatever `B_k` (`2 B_k <= Σ`);
-                    // snapped, there are none, and the bases fit.
+                    // snapped at powers of two, there are none, and the bases fit.
                     let corner = match rounding {
-                        Rounding::Snapped => base,
+                        Rounding::Snapped | Rounding::TessSnapped => base,
                         _ => 1.25 * a * a * m[0].max(m[1]).max(m[2]),
                     };
                     if step1 || ELEMENT_FACTOR * corner <= tol {
@@ -351,72 +357,6 @@ fn huge_pixel_errors_draw_level_one() {
     }
 }
 
-/// The tessellator's triangles at every level `n` (equal spacing), as integer weights `K/(3n)`:
-/// its rings (`n, n − 2, ...` segments a side), each strip between two rings cut into
-/// parallelograms and corner regions, each split along either diagonal (`diagonal`: the one
-/// from the outer ring's earlier vertex; the specification leaves the choice to the
-/// implementation), the centre's fan (even `n`) or the last triangle (odd `n`).
-fn tessellator_triangles(n: i32, diagonal: bool) -> Vec<[[i32; 3]; 3]> {
-    let s = 3 * n;
-    // Ring `r`'s vertex `j` (of `3m`, from corner 0's), `m = n − 2r` segments a side.
-    let ring = |r: i32, j: i32| {
-        let m = n - 2 * r;
-        let (c, j) = ((j / m) % 3, j % m);
-        let (a, b) = (((c + 2) % 3) as usize, ((c + 1) % 3) as usize);
-        let mut k = [0; 3];
-        k[a] = 2 * r;
-        k[b] = 2 * r + 3 * j;
-        k[c as usize] = s - k[a] - k[b];
-        k
-    };
-    let mut out = vec![];
-    let split = |out: &mut Vec<[[i32; 3]; 3]>, p0, p1, q0, q1| {
-        // The quadrilateral p0 p1 q1 q0 (outer p, inner q).
-        if diagonal {
-            out.push([p0, p1, q1]);
-            out.push([p0, q1, q0]);
-        } else {
-            out.push([p0, p1, q0]);
-            out.push([p1, q1, q0]);
-        }
-    };
-    let mut r = 0;
-    while n - 2 * r >= 2 {
-        let m = n - 2 * r;
-        if m == 2 {
-            let centre = [n; 3];
-            for j in 0..6 {
-                out.push([ring(r, j), ring(r, (j + 1) % 6), centre]);
-            }
-            break;
-        }
-        let mi = m - 2;
-        for c in 0..3 {
-            // The corner region: the outer corner, its neighbours, the inner corner.
-            let (prev, corner, next) = (
-                ring(r, (c * m + 3 * m - 1) % (3 * m)),
-                ring(r, c * m),
-                ring(r, c * m + 1),
-            );
-            split(&mut out, prev, corner, ring(r + 1, c * mi), next);
-            // The side's parallelograms.
-            for j in 0..mi {
-                let (p0, p1) = (ring(r, c * m + 1 + j), ring(r, c * m + 2 + j));
-                let (q0, q1) = (
-                    ring(r + 1, c * mi + j),
-                    ring(r + 1, (c * mi + j + 1) % (3 * mi)),
-                );
-                split(&mut out, p0, p1, q0, q1);
-            }
-        }
-        r += 1;
-    }
-    if n - 2 * r == 1 {
-        out.push([ring(r, 0), ring(r, 1), ring(r, 2)]);
-    }
-    out
-}
-
 /// The tess driver's own chord (`own_chord`: the ring diagonals) bounds every triangle the
 /// tessellator may draw, sampled densely on quadratic surfaces (whose second derivative is a
 /// constant form, so the bounds are exact), and is needed: on a saddle the lattice's bound
@@ -466,10 +406,10 @@ fn tessellator_rings_meet_their_own_chord() {
         for n in [5, 6, 8] {
             let mut worst = 0.0f32;
             for diagonal in [false, true] {
-                let tris = tessellator_triangles(n, diagonal);
+                let tris = crate::render::tess::ring_triangles(n, diagonal);
                 assert_eq!(
                     tris.len() as u32,
-                    crate::render::tess::tess_triangle_count(n as u32)
+                    crate::render::tess::tess_triangle_count(n)
                 );
                 for t in tris {
                     let x = t.map(|k| [k[1] as f32 / (3 * n) as f32, k[2] as f32 / (3 * n) as f32]);
@@ -575,7 +515,7 @@ fn tess_snapped_transitions_meet_their_bound() {
                 }
                 let mut worst = 0.0f32;
                 for diagonal in [false, true] {
-                    for t in tessellator_triangles(n as i32, diagonal) {
+                    for t in crate::render::tess::ring_triangles(n, diagonal) {
                         let w = t.map(|k| {
                             let tc = k.map(|x| x as f32 / (3 * n) as f32);
                             snap_ring(tc, outer, n)

@@ -2,6 +2,7 @@
 
 use super::*;
 use crate::lod::frame::Rounding;
+use crate::render::tess::morph::snap_ring;
 
 /// A camera close to spot, looking past part of it.
 fn close_camera(spot: &Mesh) -> (Vec3, Mat4, f32, f32) {
@@ -156,8 +157,9 @@ impl Screen {
 
 /// Where a driver draws lattice vertex `(i, j)` of level `n`: on a stored edge `k` whose drawn
 /// level `ne[k]` is coarser, snapped as the pattern driver does for [`Rounding::Snapped`]
-/// (`snap_edge`), else floored onto the edge's samples in its canonical direction (from the
-/// corner with the lower global index, `idx`): the moves the tessellator's bound allows.
+/// (`snap_edge`) and [`Rounding::SnappedInteger`] (`snap_sample`), else floored onto the edge's
+/// samples in its canonical direction (from the corner with the lower global index, `idx`): the
+/// moves the bound of the tessellator's own transitions ([`Rounding::Integer`]) allows.
 fn snapped(n: u32, i: u32, j: u32, ne: [u32; 3], idx: [u32; 3], rounding: Rounding) -> [f32; 3] {
     // The edge the vertex is on (corners are on two and never move) and its step from corner k.
     let on = if j == 0 && i > 0 && i < n {
@@ -258,8 +260,24 @@ fn end_to_end(
                 rounding_name(rounding)
             )
         };
-        for t in lattice_triangles(n) {
-            let bb = t.map(|(i, j)| snapped(n, i, j, ne, idx, rounding));
+        // The triangles the driver draws, as their corners' weights: the gliding tessellator's
+        // rings (either diagonal) with its outer ring snapped onto the edges' samples, else the
+        // lattice with its boundary moved as `snapped` says.
+        let drawn: Vec<[[f32; 3]; 3]> = if rounding == Rounding::TessSnapped {
+            // Patch edge i is stored edge i + 1.
+            let outer = [ne[1], ne[2], ne[0]];
+            let tc = |k: [i32; 3]| k.map(|x| x as f32 / (3 * n) as f32);
+            [false, true]
+                .into_iter()
+                .flat_map(|d| crate::render::tess::ring_triangles(n, d))
+                .map(|t| t.map(|k| snap_ring(tc(k), outer, n)))
+                .collect()
+        } else {
+            (lattice_triangles(n).into_iter())
+                .map(|t| t.map(|(i, j)| snapped(n, i, j, ne, idx, rounding)))
+                .collect()
+        };
+        for bb in drawn {
             let p = bb.map(|x| case.at(rec, x));
             // Samples `a/R, c/R`: the centroid among them, where a quadratic's chord error
             // may peak.

@@ -52,8 +52,9 @@ pub fn morph_levels(levels: &ElementLevels, max: u32) -> Option<([u32; 3], u32)>
 
 /// Where a geomorphing tess draw puts the tessellator's vertex `tc` (every side at level
 /// `inner`): a vertex of the outer ring on its edge's own samples (`outer`, [`morph_levels`]),
-/// the nearest, a tie toward the stored edge's first corner (`snap_edge`, as the pattern
-/// driver's boundary), the rest where the tessellator made them. Mirror of `tess_snap`.
+/// the nearest, a tie toward the nearer corner (at an edge's middle toward the stored edge's
+/// first corner: `snap_edge`, as the pattern driver's boundary), the rest where the tessellator
+/// made them. Mirror of `tess_snap`.
 pub fn snap_ring(tc: [f32; 3], outer: [u32; 3], inner: u32) -> [f32; 3] {
     let n = inner;
     let half_step = 0.5 / n as f32;
