@@ -197,7 +197,7 @@ fn device_limits_and_options_are_checked() {
             "65",
             "maxTessellationGenerationLevel",
             // The one level policy's sentence (`driver::check_level`), as for --max-level.
-            "level 65 is beyond this device's maxTessellationGenerationLevel (64): the tess driver cannot draw it (use --driver pattern)",
+            "level 65 is beyond this device's maxTessellationGenerationLevel (64): the tess driver cannot draw it (use a level up to 64, or --driver pattern, whose largest level while adaptive is a power of two)",
         ],
     );
     // A benchmark that can draw none of its variants fails, saying why.
@@ -3325,7 +3325,7 @@ fn adaptive_options_refuse_bad_values() {
             "--max-level 100",
             "maxTessellationGenerationLevel",
             // The same sentence as a uniform level past the limit (`driver::check_level`).
-            "--max-level 100: level 100 is beyond this device's maxTessellationGenerationLevel (64): the tess driver cannot draw it (use --driver pattern)",
+            "--max-level 100: level 100 is beyond this device's maxTessellationGenerationLevel (64): the tess driver cannot draw it (use a level up to 64, or --driver pattern, whose largest level while adaptive is a power of two)",
         ],
     );
     // export's refusals name the mesh as render's do; info, which draws nothing, refuses the

@@ -289,6 +289,10 @@ impl MeshSetup {
             mesh.clone(),
             PatternSet::from_levels(&opts.levels),
         )?;
+        // bench has no --level: its uniform rows are --levels' and, with --pixel-error, the
+        // bound's own uniform levels.
+        scene.uniform_advice =
+            "lower --levels (and, with --pixel-error, --no-bound-levels or a larger --pixel-error) draw faster";
         if let Some(map) = &opts.heightmap {
             scene.set_heightmap(&h.ctx, &h.pool, &h.renderer, map.clone())?;
         }

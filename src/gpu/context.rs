@@ -329,6 +329,7 @@ fn query_capabilities(
     info.pipeline_statistics = available.pipeline_statistics_query == vk::TRUE;
     info.vertex_stores = available.vertex_pipeline_stores_and_atomics == vk::TRUE;
     info.fill_mode_non_solid = available.fill_mode_non_solid == vk::TRUE;
+    info.depth_bias_clamp = available.depth_bias_clamp == vk::TRUE;
     info.transform_feedback = transform_feedback;
     info.max_transform_feedback_buffer_size = xfb_props.max_transform_feedback_buffer_size;
     if !info.transform_feedback {
@@ -370,7 +371,8 @@ fn open_device(
         .tessellation_shader(true)
         .pipeline_statistics_query(info.pipeline_statistics)
         .vertex_pipeline_stores_and_atomics(info.vertex_stores)
-        .fill_mode_non_solid(info.fill_mode_non_solid);
+        .fill_mode_non_solid(info.fill_mode_non_solid)
+        .depth_bias_clamp(info.depth_bias_clamp);
     // maintenance4: every Vulkan 1.3 device has it, and SPIR-V for 1.3 may state compute
     // workgroup sizes with LocalSizeId, which needs it enabled.
     let mut enable13 = vk::PhysicalDeviceVulkan13Features::default()

@@ -20,6 +20,9 @@ pub struct DeviceInfo {
     pub pipeline_statistics: bool,
     pub vertex_stores: bool,
     pub fill_mode_non_solid: bool,
+    /// `depthBiasClamp`: the wireframe's depth offset is clamped (else its lines may show
+    /// through the surface from zero-area triangles, whose depth slope is unbounded).
+    pub depth_bias_clamp: bool,
     /// Largest single allocation (Vulkan 1.1 maxMemoryAllocationSize).
     pub max_memory_allocation_size: u64,
     /// VK_EXT_transform_feedback (reads back the tessellator's triangles for export).
@@ -95,6 +98,7 @@ pub(crate) fn candidates(
             pipeline_statistics: false,
             vertex_stores: false,
             fill_mode_non_solid: false,
+            depth_bias_clamp: false,
             max_memory_allocation_size: p11.max_memory_allocation_size,
             transform_feedback: false,
             max_transform_feedback_buffer_size: 0,

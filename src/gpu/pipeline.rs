@@ -252,8 +252,9 @@ pub struct GraphicsPipelineDesc {
     pub color_format: vk::Format,
     pub depth_format: vk::Format,
     pub polygon_mode: vk::PolygonMode,
-    /// (constant factor, slope factor)
-    pub depth_bias: Option<(f32, f32)>,
+    /// (constant factor, slope factor, clamp): the clamp (0: none; needs the device's
+    /// `depthBiasClamp`) bounds the offset where the slope is unbounded (a zero-area triangle).
+    pub depth_bias: Option<(f32, f32, f32)>,
     /// Whether fragments write depth (overlays such as wireframes only test it).
     pub depth_write: bool,
     /// Samples per pixel of the attachments drawn into.
@@ -428,6 +429,7 @@ impl FixedStates {
                 .depth_bias_enable(desc.depth_bias.is_some())
                 .depth_bias_constant_factor(desc.depth_bias.map_or(0.0, |b| b.0))
                 .depth_bias_slope_factor(desc.depth_bias.map_or(0.0, |b| b.1))
+                .depth_bias_clamp(desc.depth_bias.map_or(0.0, |b| b.2))
                 .cull_mode(vk::CullModeFlags::NONE)
                 .front_face(vk::FrontFace::COUNTER_CLOCKWISE)
                 .line_width(1.0),

@@ -37,6 +37,13 @@ pub const PUSH_STAGES: vk::ShaderStageFlags = GEOMETRY_STAGES;
 /// Every stage of every driver.
 const ALL_STAGES: vk::ShaderStageFlags = stages(&[GEOMETRY_STAGES, vk::ShaderStageFlags::FRAGMENT]);
 
+/// The largest depth offset of a wireframe line in front of its fill (depth units, `[0, 1]`):
+/// well above what the slope-scaled offset gives a real triangle seen at a grazing angle, well
+/// below the depth between a mesh's front and back (the depth range hugs the bounding sphere,
+/// `Camera::depth_range`). `-1e-3` still let lines of the far side through where Spot's legs
+/// are close together; `-1e-4` none.
+const WIRE_BIAS_CLAMP: f32 = -1e-4;
+
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 struct PipelineKey {
     driver: Driver,
@@ -345,8 +352,19 @@ impl Renderer {
             } else {
                 vk::PolygonMode::FILL
             },
-            // Pull the lines towards the camera so they win the depth test against their fill.
-            depth_bias: key.wire.then_some((-1.0, -1.0)),
+            // Pull the lines towards the camera so they win the depth test against their fill,
+            // by at most WIRE_BIAS_CLAMP of the depth range where the device clamps: steep
+            // triangles, and the zero-area ones that snapping makes (an unbounded depth slope),
+            // would otherwise pull lines of the far side through the surface.
+            depth_bias: key.wire.then_some((
+                -1.0,
+                -1.0,
+                if self.ctx.info.depth_bias_clamp {
+                    WIRE_BIAS_CLAMP
+                } else {
+                    0.0
+                },
+            )),
             // The wireframe lines test depth against their surface but do not write it, so the
             // cage overlay drawn after them is tested against the surface alone.
             depth_write: !key.wire,

@@ -55,6 +55,8 @@ pub struct Scene {
     /// which does not read them, uploads M0 only); the next other surface uploads them.
     records_stale: bool,
     warned_slow: bool,
+    /// What the slow-frame warning of a uniform frame advises (the command's own option).
+    pub uniform_advice: &'static str,
     /// Counts changes of the coarse data the level pass's bounds are made from
     /// ([`Scene::update_mesh`], the height map, the tags).
     pub(super) generation: u64,
@@ -158,6 +160,7 @@ impl Scene {
             cage: None,
             records_stale: false,
             warned_slow: false,
+            uniform_advice: "a lower --level draws faster",
             generation: 0,
             levels: None,
             ctx: ctx.clone(),
@@ -242,7 +245,7 @@ impl Scene {
         if !self.adaptive_frames {
             let refined =
                 self.elements(cfg.surface).element_count as u64 * cfg.refined_per_element() as u64;
-            self.warn_once_if_slow(refined, "a lower --level draws faster");
+            self.warn_once_if_slow(refined, self.uniform_advice);
         }
         kind.prepare(self, ctx, pool, cfg)?;
         Ok(())
