@@ -157,6 +157,10 @@ fn devices(desc: &meshrefine::gpu::ContextDesc) -> Result<()> {
                     yes(info.fill_mode_non_solid)
                 );
                 out!(
+                    "  wireframe kept off the far side (depthBiasClamp): {}",
+                    yes(info.depth_bias_clamp)
+                );
+                out!(
                     "  vertex statistics (pipelineStatisticsQuery): {}",
                     yes(info.pipeline_statistics)
                 );

@@ -344,6 +344,12 @@ fn query_capabilities(
             info.name
         );
     }
+    if info.fill_mode_non_solid && !info.depth_bias_clamp {
+        log::info!(
+            "{}: no depthBiasClamp, wireframe lines of steep triangles may show through the surface",
+            info.name
+        );
+    }
     if !info.pipeline_statistics {
         log::warn!(
             "{}: no pipelineStatisticsQuery, statistics are off",

@@ -38,10 +38,9 @@ pub const PUSH_STAGES: vk::ShaderStageFlags = GEOMETRY_STAGES;
 const ALL_STAGES: vk::ShaderStageFlags = stages(&[GEOMETRY_STAGES, vk::ShaderStageFlags::FRAGMENT]);
 
 /// The largest depth offset of a wireframe line in front of its fill (depth units, `[0, 1]`):
-/// well above what the slope-scaled offset gives a real triangle seen at a grazing angle, well
-/// below the depth between a mesh's front and back (the depth range hugs the bounding sphere,
-/// `Camera::depth_range`). `-1e-3` still let lines of the far side through where Spot's legs
-/// are close together; `-1e-4` none.
+/// enough for the slope-scaled offset of a triangle seen at a grazing angle, small against the
+/// depth between sheets of a mesh close together (the depth range hugs the bounding sphere,
+/// `Camera::depth_range`); `tests/images.rs` checks that no line of the far side shows.
 const WIRE_BIAS_CLAMP: f32 = -1e-4;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
