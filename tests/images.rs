@@ -588,7 +588,7 @@ fn cage_overlay_draws_the_coarse_edges() {
 /// in front of the surface. Spot close up (`pn`, 2 px, geomorphing, 640x360), the normals view:
 /// each line pixel's normal (the line's colour, 0.6 of the fill's) against the fill's there; a
 /// line of the far side faces away from it. A few pixels on silhouettes, where a line's
-/// half-pixel width overhangs another surface, may disagree (measured: 6 on the pattern driver
+/// half-pixel width overhangs another surface, may disagree (measured: 7 on the pattern driver
 /// and 14 on tess with the offset clamped, 810 on the pattern driver without).
 #[test]
 fn wireframe_lines_stay_on_the_visible_surface() {

@@ -20,8 +20,8 @@ pub struct DeviceInfo {
     pub pipeline_statistics: bool,
     pub vertex_stores: bool,
     pub fill_mode_non_solid: bool,
-    /// `depthBiasClamp`: the wireframe's depth offset is clamped (else its lines may show
-    /// through the surface from zero-area triangles, whose depth slope is unbounded).
+    /// `depthBiasClamp`: the wireframe's depth offset is clamped (else lines of steep and
+    /// zero-area triangles, whose depth slope is unbounded, show through the surface).
     pub depth_bias_clamp: bool,
     /// Largest single allocation (Vulkan 1.1 maxMemoryAllocationSize).
     pub max_memory_allocation_size: u64,
