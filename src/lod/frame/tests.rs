@@ -357,52 +357,84 @@ fn huge_pixel_errors_draw_level_one() {
     }
 }
 
-/// The tess driver's own chord (`own_chord`: the ring diagonals) bounds every triangle the
-/// tessellator may draw, sampled densely on quadratic surfaces (whose second derivative is a
-/// constant form, so the bounds are exact), and is needed: on a saddle the lattice's bound
-/// alone is exceeded by the tessellator's diagonals. The patterns' own chord stays the lattice's.
-#[test]
-fn tessellator_rings_meet_their_own_chord() {
-    // A quadratic surface P(x) = Q(x)/2 per coordinate, x = (u, v).
-    type Forms = [[f32; 3]; 3];
-    let q = |f: &Forms, a: [f32; 2], b: [f32; 2]| {
-        Vec3::from(f.map(|[xx, xy, yy]| {
+/// A quadratic surface `P(x) = Q(x)/2`, one symmetric form `[xx, xy, yy]` per coordinate,
+/// `x = (u, v)`: its second derivative is the constant form, so its bounds are exact.
+type Forms = [[f32; 3]; 3];
+
+/// The lattice directions `d0`, `d1`, `d2` in `(u, v)`.
+const DIRS: [[f32; 2]; 3] = [[1.0, 0.0], [-1.0, 1.0], [0.0, -1.0]];
+
+/// `Q(a, b)`, one value per coordinate.
+fn form(f: &Forms, a: [f32; 2], b: [f32; 2]) -> Vec3 {
+    Vec3::from(
+        f.map(|[xx, xy, yy]| {
             a[0] * b[0] * xx + (a[0] * b[1] + a[1] * b[0]) * xy + a[1] * b[1] * yy
-        }))
-    };
-    let dirs = [[1.0, 0.0], [-1.0, 1.0], [0.0, -1.0]];
-    let mut seed = 0x2545_f491u32;
+        }),
+    )
+}
+
+/// `forms` followed by `n` random ones (xorshift from `seed`, entries in `[-1, 1]`).
+fn with_random_forms(mut forms: Vec<Forms>, seed: u32, n: usize) -> Vec<Forms> {
+    let mut seed = seed;
     let mut rand = || {
         seed ^= seed << 13;
         seed ^= seed >> 17;
         seed ^= seed << 5;
         seed as f32 / u32::MAX as f32 * 2.0 - 1.0
     };
+    forms.extend((0..n).map(|_| [(); 3].map(|_| [rand(), rand(), rand()])));
+    forms
+}
+
+/// The level pass's record of quadratic `f`, its exact bounds: `M_k = |Q(d_k)|`,
+/// `B_k = |Q(d_k, d_{k+1})|`, the lattice's chord `9/40 max_k M_k`, no kinks.
+fn form_record(f: &Forms) -> LodRecord {
+    let m = DIRS.map(|d| form(f, d, d).length());
+    let b = [0, 1, 2].map(|k| form(f, DIRS[k], DIRS[(k + 1) % 3]).length());
+    let mut rec = LodRecord::zeroed();
+    rec.chord = [0.0, ELEMENT_FACTOR * m[0].max(m[1]).max(m[2]), 0.0, 0.0];
+    rec.second = [m[0], m[1], m[2], 0.0];
+    rec.mixed = [b[0], b[1], b[2], 0.0];
+    rec
+}
+
+/// `own_chord`'s `c2` for record `rec` as a driver rounding as `rounding` draws it.
+fn own_c2(rec: &LodRecord, rounding: Rounding) -> f32 {
+    let view = View::new(Vec3::ZERO, 0.8, 720, 1.0, 64);
+    own_chord(&LodView::new(&view, None, false, rounding, 1), rec)[1]
+}
+
+/// The largest distance between quadratic `f` and its linear interpolation over the triangle
+/// with corners `x` (`(u, v)`), sampled at `s` steps a side.
+fn sampled_error(f: &Forms, x: [[f32; 2]; 3], s: u32) -> f32 {
+    let p = |x: [f32; 2]| 0.5 * form(f, x, x);
+    let mut worst = 0.0f32;
+    for a in 0..=s {
+        for c in 0..=s - a {
+            let w = [(s - a - c) as f32, a as f32, c as f32].map(|w| w / s as f32);
+            let y = [0, 1].map(|k| w[0] * x[0][k] + w[1] * x[1][k] + w[2] * x[2][k]);
+            let lin = p(x[0]) * w[0] + p(x[1]) * w[1] + p(x[2]) * w[2];
+            worst = worst.max((p(y) - lin).length());
+        }
+    }
+    worst
+}
+
+/// The tess driver's own chord (`own_chord`: the ring diagonals) bounds every triangle the
+/// tessellator may draw, sampled densely on quadratic surfaces, and is needed: on a saddle the
+/// lattice's bound alone is exceeded by the tessellator's diagonals. The patterns' own chord
+/// stays the lattice's.
+#[test]
+fn tessellator_rings_meet_their_own_chord() {
     // The saddle: Q(d0) = Q(d2) = 1, Q(d1) = −1 in one coordinate.
-    let saddle: Forms = [[1.0, 1.5, 1.0], [0.0; 3], [0.0; 3]];
-    let mut forms = vec![saddle];
-    forms.extend((0..40).map(|_| {
-        [
-            [rand(), rand(), rand()],
-            [rand(), rand(), rand()],
-            [rand(), rand(), rand()],
-        ]
-    }));
+    let forms = with_random_forms(vec![[[1.0, 1.5, 1.0], [0.0; 3], [0.0; 3]]], 0x2545_f491, 40);
     for (i, f) in forms.iter().enumerate() {
-        let m = dirs.map(|d| q(f, d, d).length());
-        let b = [0, 1, 2].map(|k| q(f, dirs[k], dirs[(k + 1) % 3]).length());
-        let mx = m[0].max(m[1]).max(m[2]);
-        let mut rec = LodRecord::zeroed();
-        rec.chord = [0.0, ELEMENT_FACTOR * mx, 0.0, 0.0];
-        rec.second = [m[0], m[1], m[2], 0.0];
-        rec.mixed = [b[0], b[1], b[2], 0.0];
-        let view = View::new(Vec3::ZERO, 0.8, 720, 1.0, 64);
-        let lv = |rounding| LodView::new(&view, None, false, rounding, 1);
-        let lattice = own_chord(&lv(Rounding::Snapped), &rec)[1];
+        let rec = form_record(f);
+        let lattice = own_c2(&rec, Rounding::Snapped);
         assert_eq!(lattice, rec.chord[1]);
-        assert_eq!(own_chord(&lv(Rounding::SnappedInteger), &rec)[1], lattice);
-        let tess = own_chord(&lv(Rounding::TessSnapped), &rec)[1];
-        assert_eq!(own_chord(&lv(Rounding::Integer), &rec)[1], tess);
+        assert_eq!(own_c2(&rec, Rounding::SnappedInteger), lattice);
+        let tess = own_c2(&rec, Rounding::TessSnapped);
+        assert_eq!(own_c2(&rec, Rounding::Integer), tess);
         for n in [5, 6, 8] {
             let mut worst = 0.0f32;
             for diagonal in [false, true] {
@@ -413,17 +445,7 @@ fn tessellator_rings_meet_their_own_chord() {
                 );
                 for t in tris {
                     let x = t.map(|k| [k[1] as f32 / (3 * n) as f32, k[2] as f32 / (3 * n) as f32]);
-                    let p = |x: [f32; 2]| 0.5 * q(f, x, x);
-                    const S: u32 = 24;
-                    for a in 0..=S {
-                        for c in 0..=S - a {
-                            let w = [(S - a - c) as f32, a as f32, c as f32].map(|w| w / S as f32);
-                            let y =
-                                [0, 1].map(|k| w[0] * x[0][k] + w[1] * x[1][k] + w[2] * x[2][k]);
-                            let lin = p(x[0]) * w[0] + p(x[1]) * w[1] + p(x[2]) * w[2];
-                            worst = worst.max((p(y) - lin).length());
-                        }
-                    }
+                    worst = worst.max(sampled_error(f, x, 24));
                 }
             }
             let n2 = (n * n) as f32;
@@ -453,49 +475,24 @@ fn tessellator_rings_meet_their_own_chord() {
 #[test]
 fn tess_snapped_transitions_meet_their_bound() {
     use crate::render::tess::morph::snap_ring;
-    type Forms = [[f32; 3]; 3];
-    let q = |f: &Forms, a: [f32; 2], b: [f32; 2]| {
-        Vec3::from(f.map(|[xx, xy, yy]| {
-            a[0] * b[0] * xx + (a[0] * b[1] + a[1] * b[0]) * xy + a[1] * b[1] * yy
-        }))
-    };
-    let dirs = [[1.0, 0.0], [-1.0, 1.0], [0.0, -1.0]];
-    let mut seed = 0x9e37_79b9u32;
-    let mut rand = || {
-        seed ^= seed << 13;
-        seed ^= seed >> 17;
-        seed ^= seed << 5;
-        seed as f32 / u32::MAX as f32 * 2.0 - 1.0
-    };
     // A saddle, and surfaces flat along two lattice directions but twisted between them,
     // where the transition sides' twist term is all that bounds a long thin triangle.
-    let mut forms: Vec<Forms> = vec![
-        [[1.0, 1.5, 1.0], [0.0; 3], [0.0; 3]],
-        [[0.0, 1.0, 2.0], [0.0; 3], [0.0; 3]],
-        [[2.0, 1.0, 0.0], [0.0; 3], [0.0; 3]],
-        [[0.0, 1.0, 0.0], [0.0; 3], [0.0; 3]],
+    let special = [
+        [1.0, 1.5, 1.0],
+        [0.0, 1.0, 2.0],
+        [2.0, 1.0, 0.0],
+        [0.0, 1.0, 0.0],
     ];
-    forms.extend((0..40).map(|_| {
-        [
-            [rand(), rand(), rand()],
-            [rand(), rand(), rand()],
-            [rand(), rand(), rand()],
-        ]
-    }));
+    let forms = with_random_forms(
+        special.map(|q| [q, [0.0; 3], [0.0; 3]]).to_vec(),
+        0x9e37_79b9,
+        40,
+    );
     let mut checked = 0;
     for f in &forms {
-        let m = dirs.map(|d| q(f, d, d).length());
-        let b = [0, 1, 2].map(|k| q(f, dirs[k], dirs[(k + 1) % 3]).length());
-        let mx = m[0].max(m[1]).max(m[2]);
-        let mut rec = LodRecord::zeroed();
-        rec.chord = [0.0, ELEMENT_FACTOR * mx, 0.0, 0.0];
-        rec.second = [m[0], m[1], m[2], 0.0];
-        rec.mixed = [b[0], b[1], b[2], 0.0];
-        let view = View::new(Vec3::ZERO, 0.8, 720, 1.0, 64);
-        let own = own_chord(
-            &LodView::new(&view, None, false, Rounding::TessSnapped, 1),
-            &rec,
-        )[1];
+        let rec = form_record(f);
+        let (m, b) = (rec.second, rec.mixed);
+        let own = own_c2(&rec, Rounding::TessSnapped);
         for n in [4u32, 8, 16] {
             for outer in [[n / 2, n, n / 4], [1, n / 2, n], [n / 4, n / 4, n / 2]] {
                 let beta = 1.0 / n as f32;
@@ -516,23 +513,9 @@ fn tess_snapped_transitions_meet_their_bound() {
                 let mut worst = 0.0f32;
                 for diagonal in [false, true] {
                     for t in crate::render::tess::ring_triangles(n, diagonal) {
-                        let w = t.map(|k| {
-                            let tc = k.map(|x| x as f32 / (3 * n) as f32);
-                            snap_ring(tc, outer, n)
-                        });
-                        let x = w.map(|w| [w[1], w[2]]);
-                        let p = |x: [f32; 2]| 0.5 * q(f, x, x);
-                        const S: u32 = 12;
-                        for a in 0..=S {
-                            for c in 0..=S - a {
-                                let l =
-                                    [(S - a - c) as f32, a as f32, c as f32].map(|v| v / S as f32);
-                                let y = [0, 1]
-                                    .map(|k| l[0] * x[0][k] + l[1] * x[1][k] + l[2] * x[2][k]);
-                                let lin = p(x[0]) * l[0] + p(x[1]) * l[1] + p(x[2]) * l[2];
-                                worst = worst.max((p(y) - lin).length());
-                            }
-                        }
+                        let w =
+                            t.map(|k| snap_ring(k.map(|x| x as f32 / (3 * n) as f32), outer, n));
+                        worst = worst.max(sampled_error(f, w.map(|w| [w[1], w[2]]), 12));
                     }
                 }
                 assert!(
