@@ -582,29 +582,32 @@ fn cage_overlay_draws_the_coarse_edges() {
     });
 }
 
-/// The wireframe's lines lie on the surface they are drawn over, never on the far side seen
-/// through it: the lines' slope-scaled depth offset, unclamped, pulled lines of steep and
-/// zero-area triangles (snapping makes those, adaptive drawing on both drivers) of the far side
-/// in front of the surface. Spot close up (`pn`, 2 px, geomorphing, 640x360), the normals view:
-/// each line pixel's normal (the line's colour, 0.6 of the fill's) against the fill's there; a
-/// line of the far side faces away from it. A few pixels on silhouettes, where a line's
-/// half-pixel width overhangs another surface, may disagree (measured: 7 on the pattern driver
-/// and 14 on tess with the offset clamped, 810 on the pattern driver without).
+/// The wireframe's lines lie on the surface they are drawn over, never on a sheet behind it
+/// seen through it. Two causes are excluded: the lines' slope-scaled depth offset, unclamped,
+/// pulled lines of steep and zero-area triangles (snapping makes those: adaptive drawing on
+/// every driver) of the far side in front of the surface; and within the clamped offset, lines
+/// of sheets just behind the surface (snapped slivers folded under their neighbours, the inside
+/// of the ears beyond their rims) showed unless the lines of faces turned away are culled where
+/// only front faces can be seen. Spot close up (the benchmark's camera, `pn`, 640x360,
+/// geomorphing where the driver glides), the normals view, at 2 and 8 px: each line pixel's
+/// normal (the line's colour, 0.6 of the fill's) against the fill's there; a line of a sheet
+/// behind the surface faces away from it. Pixels on silhouettes, where a line's half-pixel
+/// width overhangs another surface, may disagree (measured: 35 to 84 of each frame's 22,000 to
+/// 70,000 line pixels; on the pattern and tess drivers 676 to 852 without the culling, 945 to
+/// 1,105 without the culling and the clamp).
 #[test]
 fn wireframe_lines_stay_on_the_visible_surface() {
     use meshrefine::render::LevelView;
     let (w, h_px) = (640u32, 360u32);
     with_gpu(w, h_px, |h| {
         let mut scene = h.scene(default_mesh(), 64).unwrap();
-        let (c, r) = scene.bounding_sphere();
-        let eye = c + glam::Vec3::new(0.3, 0.25, -1.0).normalize() * (1.3 * r);
-        let camera = Camera::looking(
-            eye,
-            c + glam::Vec3::new(-0.2 * r, 0.0, 0.0),
-            50f32.to_radians(),
-            r,
-        )
-        .unwrap();
+        let (_, r) = scene.bounding_sphere();
+        // The benchmark's close-up (docs/benchmarks.md), in Spot's coordinates.
+        let (eye, target) = (
+            glam::Vec3::new(0.35, 0.65, -1.3),
+            glam::Vec3::new(0.0, 0.5, -0.5),
+        );
+        let camera = Camera::looking(eye, target, 45f32.to_radians(), r).unwrap();
         let decode = |img: &Readback, i: usize, scale: f32| {
             let lin = |b: u8| {
                 let x = b as f32 / 255.0;
@@ -621,7 +624,12 @@ fn wireframe_lines_stay_on_the_visible_surface() {
         let background = meshrefine::render::clear_color_srgb8();
         h.view = View::Normals;
         h.adaptive = true;
-        for driver in [Driver::Pattern(Submit::Instanced), Driver::Tess] {
+        let drivers = [
+            Driver::Pattern(Submit::Instanced),
+            Driver::Tess,
+            Driver::Static,
+        ];
+        for (driver, pixel_error) in drivers.into_iter().flat_map(|d| [(d, 2.0), (d, 8.0)]) {
             let mut cfg = DrawConfig::new(driver, 64).with_surface(Surface::Pn, Displace::None);
             cfg.params = meshrefine::surface::SurfaceParams::for_radius(r);
             cfg.geomorph = true;
@@ -629,7 +637,7 @@ fn wireframe_lines_stay_on_the_visible_surface() {
                 camera,
                 width: w,
                 height: h_px,
-                pixel_error: 2.0,
+                pixel_error,
                 cull: true,
             };
             scene.set_levels(&cfg, &view).unwrap();
@@ -647,16 +655,12 @@ fn wireframe_lines_stay_on_the_visible_surface() {
                 let (n_fill, n_line) = (decode(&fill, i, 1.0), decode(&wire, i, 0.6));
                 through += usize::from(n_fill.dot(n_line) < 0.0);
             }
-            eprintln!(
-                "{}: {lines} line pixels, {through} facing away from the fill, {}",
-                cfg.label(),
-                wire.rgba.iter().map(|&x| x as u64).sum::<u64>()
-            );
-            assert!(lines > 3000, "{}: only {lines} line pixels", cfg.label());
+            let name = format!("{} at {pixel_error} px", cfg.label());
+            eprintln!("{name}: {lines} line pixels, {through} facing away from the fill");
+            assert!(lines > 3000, "{name}: only {lines} line pixels");
             assert!(
-                through <= 40,
-                "{}: {through} line pixels of the far side",
-                cfg.label()
+                through <= 150,
+                "{name}: {through} line pixels behind the surface"
             );
         }
         h.wireframe = false;

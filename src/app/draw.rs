@@ -60,8 +60,11 @@ impl State {
                 vk::ImageLayout::PRESENT_SRC_KHR
             },
         };
+        let wire_front_only =
+            self.controls.wireframe && self.scene.front_only(cfg, self.camera.eye())?;
         let work = FrameWork {
             wireframe: self.controls.wireframe,
+            wire_front_only,
             adaptive,
             cage: self.scene.cage.as_ref().filter(|_| self.controls.cage),
             level_pass: self.scene.level_pass(cfg).filter(|_| adaptive),

@@ -257,6 +257,9 @@ pub struct GraphicsPipelineDesc {
     pub depth_bias: Option<(f32, f32, f32)>,
     /// Whether fragments write depth (overlays such as wireframes only test it).
     pub depth_write: bool,
+    /// Whether the cull mode is set when drawing (`vkCmdSetCullMode`, core in Vulkan 1.3)
+    /// rather than fixed at none.
+    pub dynamic_cull: bool,
     /// Samples per pixel of the attachments drawn into.
     pub samples: vk::SampleCountFlags,
 }
@@ -456,8 +459,14 @@ fn create_graphics(
     let blend_attachments = [vk::PipelineColorBlendAttachmentState::default()
         .color_write_mask(vk::ColorComponentFlags::RGBA)];
     let blend = vk::PipelineColorBlendStateCreateInfo::default().attachments(&blend_attachments);
-    let dynamic_states = [vk::DynamicState::VIEWPORT, vk::DynamicState::SCISSOR];
-    let dynamic = vk::PipelineDynamicStateCreateInfo::default().dynamic_states(&dynamic_states);
+    let dynamic_states = [
+        vk::DynamicState::VIEWPORT,
+        vk::DynamicState::SCISSOR,
+        vk::DynamicState::CULL_MODE,
+    ];
+    let dynamic_count = if desc.dynamic_cull { 3 } else { 2 };
+    let dynamic = vk::PipelineDynamicStateCreateInfo::default()
+        .dynamic_states(&dynamic_states[..dynamic_count]);
     let color_formats = [desc.color_format];
     let mut rendering = vk::PipelineRenderingCreateInfo::default()
         .color_attachment_formats(&color_formats)

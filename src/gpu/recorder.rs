@@ -32,6 +32,12 @@ impl<'a> Cmd<'a> {
         };
     }
 
+    /// Set the cull mode of a pipeline created with `dynamic_cull`.
+    pub fn set_cull_mode(&self, mode: vk::CullModeFlags) {
+        // SAFETY: see `bind_graphics_pipeline`.
+        unsafe { self.ctx.device.cmd_set_cull_mode(self.raw, mode) };
+    }
+
     pub fn bind_descriptor_set(
         &self,
         layout: vk::PipelineLayout,

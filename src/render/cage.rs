@@ -134,6 +134,7 @@ pub fn pipeline(
         polygon_mode: vk::PolygonMode::FILL,
         depth_bias: None,
         depth_write: false,
+        dynamic_cull: false,
         samples,
     };
     Pipeline::new_graphics(ctx, layout, &desc, "cage lines")

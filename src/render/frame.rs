@@ -76,6 +76,9 @@ pub struct FrameWork<'a> {
     pub xfb_counter: Option<&'a Buffer>,
     /// Draw the refined triangles' edges in a second pass (if the device supports it).
     pub wireframe: bool,
+    /// Cull the wireframe's lines of faces turned away from the eye: set where only front
+    /// faces can be seen ([`Scene::front_only`](super::Scene::front_only)).
+    pub wire_front_only: bool,
     /// Draw each element at its own levels from the mesh's levels buffer
     /// ([`GpuMesh::levels`], src/lod/levels.rs), `cfg.level` being the largest; otherwise every
     /// element at `cfg.level`.
@@ -104,6 +107,7 @@ impl<'a> FrameWork<'a> {
             xfb: None,
             xfb_counter: None,
             wireframe: false,
+            wire_front_only: false,
             adaptive: false,
             cage: None,
             elements: 0..mesh.element_count,
@@ -178,6 +182,11 @@ pub fn cmd_render(
     }
     if work.wireframe && r.wireframe_supported() {
         cmd.bind_graphics_pipeline(r.pipeline(&work.cfg, Capture::None, true, work.adaptive));
+        cmd.set_cull_mode(if work.wire_front_only {
+            vk::CullModeFlags::BACK
+        } else {
+            vk::CullModeFlags::NONE
+        });
         cmd_draw_driver(cmd, r, work);
     }
     if let Some(cage) = work.cage {

@@ -359,8 +359,10 @@ impl Headless {
         let uniforms = self.frame_uniforms(camera, cfg, scene);
         self.renderer.set_frame(&uniforms);
         let view = self.view();
+        let wire_front_only = self.wireframe && scene.front_only(cfg, camera.eye())?;
         let work = FrameWork {
             capture,
+            wire_front_only,
             xfb: xfb.map(|x| x.0),
             xfb_counter: xfb.map(|x| x.1),
             wireframe: self.wireframe,

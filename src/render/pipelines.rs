@@ -370,6 +370,10 @@ impl Renderer {
             // The wireframe lines test depth against their surface but do not write it, so the
             // cage overlay drawn after them is tested against the surface alone.
             depth_write: !key.wire,
+            // The lines of faces turned away are culled where only front faces can be seen
+            // (`FrameWork::wire_front_only`): a sheet just behind the surface (a snapped sliver
+            // folded under its neighbours) would otherwise show through within the offset.
+            dynamic_cull: key.wire,
             samples: self.samples,
         };
         let kind = key.driver.kind();

@@ -140,24 +140,9 @@ impl Scene {
         let count = self.elements(cfg.surface).element_count;
         let on_cpu = cfg.driver.kind().refines_on_cpu();
         let on_gpu = self.update_bounds(cfg, !on_cpu)?;
+        let back_faces = view.cull && self.front_only(cfg, eye)?;
         let l = self.levels.as_mut().expect("update_bounds leaves bounds");
         let records = l.records.clone();
-        // Faces facing away only on a closed surface seen from outside: an open one shows its
-        // back side (so does one with open seams, through their cracks, and a `flat` one that
-        // folds through itself), and from inside the visible faces face away.
-        let back_faces = view.cull
-            && self.closed
-            && cfg.closed_surface()
-            && !(cfg.surface == Surface::Flat
-                && *(self.self_intersecting).get_or_init(|| self.data.mesh.self_intersects()))
-            && match l.outside {
-                Some((e, outside)) if e == eye => outside,
-                _ => {
-                    let outside = eye_outside(eye, &records, &self.data.mesh);
-                    l.outside = Some((eye, outside));
-                    outside
-                }
-            };
         let lod_view = LodView::new(
             &metric,
             view.cull.then_some(&frustum),
@@ -192,6 +177,31 @@ impl Scene {
                 let levels = frame_levels(&lod_view, &records);
                 self.elements_mut(cfg.surface).upload_levels(&levels);
                 ChosenLevels::tallied(&lod_view, &records, &levels)
+            }
+        })
+    }
+
+    /// Whether only the front faces of `cfg`'s surface can be seen from `eye`: a closed surface
+    /// seen from outside (outside the mesh and every element's bounds). An open one shows its
+    /// back side (so does one with open seams, through their cracks, and a `flat` one that folds
+    /// through itself), and from inside the visible faces face away. The level pass culls the
+    /// elements facing away only then, and the wireframe the lines of faces turned away.
+    pub fn front_only(&mut self, cfg: &DrawConfig, eye: glam::Vec3) -> Result<bool, RenderError> {
+        if !(self.closed && cfg.closed_surface())
+            || (cfg.surface == Surface::Flat
+                && *(self.self_intersecting).get_or_init(|| self.data.mesh.self_intersects()))
+        {
+            return Ok(false);
+        }
+        // Computing the bounds, not uploading them, fails only as `Scene::prepare` would.
+        self.update_bounds(cfg, false)??;
+        let l = self.levels.as_mut().expect("update_bounds leaves bounds");
+        Ok(match l.outside {
+            Some((e, outside)) if e == eye => outside,
+            _ => {
+                let outside = eye_outside(eye, &l.records, &self.data.mesh);
+                l.outside = Some((eye, outside));
+                outside
             }
         })
     }
