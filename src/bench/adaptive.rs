@@ -141,6 +141,18 @@ fn variant(
             why_unmet(&unmet, cfg.level)
         );
     }
+    if let Some(b) = bound.filter(|b| a.bound_levels && b.next_power_of_two() > a.max_level) {
+        let note = format!(
+            "uniform {} (pow2, the power of two at or above the bound's {b}) is above --max-level {}: not timed",
+            b.next_power_of_two(),
+            a.max_level
+        );
+        first.row.note = [std::mem::take(&mut first.row.note), note]
+            .into_iter()
+            .filter(|n| !n.is_empty())
+            .collect::<Vec<_>>()
+            .join("; ");
+    }
     let mut list = vec![first];
     for (level, from) in uniform_levels(opts, a, bound) {
         let cfg = DrawConfig { level, ..cfg };
@@ -207,7 +219,8 @@ fn why_unmet(u: &crate::lod::frame::Unmet, max: u32) -> String {
 }
 
 /// The uniform levels timed beside the adaptive frame, each with what asked for it: the
-/// `--levels` given, and the bound's level and its power of two.
+/// `--levels` given, and the bound's level and its power of two (unless above the largest
+/// level: the adaptive row's note says so).
 fn uniform_levels(
     opts: &BenchOptions,
     a: &BenchAdaptive,
@@ -223,7 +236,9 @@ fn uniform_levels(
     }
     if let Some(bound) = bound.filter(|_| a.bound_levels) {
         add(bound, "bound");
-        add(bound.next_power_of_two(), "pow2");
+        if bound.next_power_of_two() <= a.max_level {
+            add(bound.next_power_of_two(), "pow2");
+        }
     }
     uniform
 }
