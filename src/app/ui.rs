@@ -352,13 +352,28 @@ fn drawing(ui: &mut egui::Ui, c: &mut Controls, info: &PanelInfo) {
         return;
     }
     ui.add_enabled_ui(!c.lod, |ui| {
-        ui.horizontal_wrapped(|ui| {
-            ui.label("level [+ -]");
-            for &l in info.levels {
-                ui.selectable_value(&mut c.cfg.level, l, l.to_string());
-            }
-        });
+        level_row(ui, "level [+ -]", &mut c.cfg.level, info.levels)
     });
+}
+
+/// A row of the levels the driver draws, the one drawn selected: `current`, or the largest
+/// listed where `current` lies beyond the driver's limit (the tessellator draws up to it).
+fn level_row(ui: &mut egui::Ui, label: &str, current: &mut u32, levels: &[u32]) {
+    ui.horizontal_wrapped(|ui| {
+        ui.label(label);
+        let drawn = shown_level(*current, levels);
+        for &l in levels {
+            if ui.selectable_label(drawn == l, l.to_string()).clicked() {
+                *current = l;
+            }
+        }
+    });
+}
+
+/// The level a row shows selected for `current` among `levels` (ascending): `current`, at most
+/// the last.
+fn shown_level(current: u32, levels: &[u32]) -> u32 {
+    levels.last().map_or(current, |&last| current.min(last))
 }
 
 /// Adaptive mode's controls: the pixel error (log scale), the largest level, culling, frozen
@@ -370,12 +385,7 @@ fn adaptive(ui: &mut egui::Ui, c: &mut Controls, info: &PanelInfo) {
             .suffix(" px")
             .text("pixel error [ ]"),
     );
-    ui.horizontal_wrapped(|ui| {
-        ui.label("max level [+ -]");
-        for &l in info.levels {
-            ui.selectable_value(&mut c.max_level, l, l.to_string());
-        }
-    });
+    level_row(ui, "max level [+ -]", &mut c.max_level, info.levels);
     ui.horizontal(|ui| {
         ui.checkbox(&mut c.cull, "cull [C]");
         ui.checkbox(&mut c.freeze, "freeze levels [F]");
@@ -499,5 +509,15 @@ mod tests {
         assert_eq!(slider_pixel_error(0.1), 0.25);
         assert_eq!(slider_pixel_error(1.5), 1.5);
         assert_eq!(slider_pixel_error(16.0), 16.0);
+    }
+
+    /// A level beyond what the driver draws (128 after switching to a tessellator limited to
+    /// 64) shows the level drawn selected, not none.
+    #[test]
+    fn the_level_row_selects_the_level_drawn() {
+        let levels = [1, 2, 4, 8, 16, 32, 64];
+        assert_eq!(shown_level(128, &levels), 64);
+        assert_eq!(shown_level(16, &levels), 16);
+        assert_eq!(shown_level(40, &[1, 2, 4, 8, 16, 32, 40, 64]), 40);
     }
 }
