@@ -5,13 +5,17 @@
 //! `tess`); `app` is the window demo; `export` writes what the GPU evaluated.
 //!
 //! Design: docs/architecture.md. Lints: the `[lints]` table of Cargo.toml (`unsafe_code` is
-//! denied everywhere but `gpu`).
+//! denied everywhere but `gpu` and `interrupt`, the
+//! signal handler that removes an interrupted output's temporary file).
 
 pub mod app;
 pub mod bench;
 pub mod export;
 #[allow(unsafe_code)]
 pub mod gpu;
+// Signal handlers, through libc (the module's notes say why each call is safe).
+#[allow(unsafe_code)]
+pub mod interrupt;
 pub mod lod;
 pub mod mesh;
 pub mod paths;

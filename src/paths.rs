@@ -26,8 +26,9 @@
 //!   is made there and removed).
 //!
 //! A regular file is written whole beside its path and renamed over it only once complete
-//! ([`write_output`]): a write that fails (a full disk) leaves what was there before, and an
-//! output that names the input replaces it only with a finished file.
+//! ([`write_output`]): a write that fails (a full disk) or is interrupted (Ctrl-C,
+//! [`crate::interrupt`]) leaves what was there before and no temporary file, and an output that
+//! names the input replaces it only with a finished file.
 #![forbid(unsafe_code)]
 
 use std::fs::{File, FileType, Metadata};
@@ -216,11 +217,20 @@ fn temporary_beside(target: &Path) -> std::io::Result<(std::path::PathBuf, File)
     Err(last.unwrap_or_else(|| std::io::Error::other("no temporary file name was free")))
 }
 
-/// Removes the temporary file when dropped (an error or a panic on the way), unless kept.
+/// Removes the temporary file when dropped (an error or a panic on the way), unless kept; an
+/// interrupting signal removes it meanwhile ([`crate::interrupt`]).
 struct Temporary(Option<std::path::PathBuf>);
+
+impl Temporary {
+    fn new(tmp: &Path) -> Self {
+        crate::interrupt::register(tmp);
+        Self(Some(tmp.to_path_buf()))
+    }
+}
 
 impl Drop for Temporary {
     fn drop(&mut self) {
+        crate::interrupt::clear();
         if let Some(p) = self.0.take() {
             let _ = std::fs::remove_file(p);
         }
@@ -282,7 +292,7 @@ pub fn write_output(
         return w.flush();
     };
     let (tmp, file) = temporary_beside(&target)?;
-    let mut guard = Temporary(Some(tmp.clone()));
+    let mut guard = Temporary::new(&tmp);
     let mut w = std::io::BufWriter::with_capacity(1 << 20, file);
     write(&mut w)?;
     let mut file = w.into_inner().map_err(|e| e.into_error())?;
