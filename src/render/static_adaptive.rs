@@ -171,6 +171,9 @@ pub(super) fn prepare(
         return Ok(());
     }
     scene.static_vbo = None;
+    // Refused before any work where even a lower bound of the buffers' size is too large (the
+    // refinement itself would take minutes and more memory than the machine has).
+    check_size(ctx, cfg, least_bytes(&want, cfg.fragment_normal_field()))?;
     let start = Instant::now();
     let refined = refine_adaptive(
         cfg,
@@ -196,17 +199,7 @@ fn upload(
     let upload_bytes = bytes(r.vertices.len(), std::mem::size_of::<StaticVertex>())
         + bytes(r.samples.len(), std::mem::size_of::<ElementVertex>())
         + bytes(r.indices.len(), 4);
-    super::static_vbo::check_allocation(
-        ctx,
-        upload_bytes,
-        || {
-            format!(
-                "the static driver's adaptively refined mesh (largest level {})",
-                cfg.level
-            )
-        },
-        "use a larger pixel error, a lower --max-level or the pattern driver",
-    )?;
+    check_size(ctx, cfg, upload_bytes)?;
     let (vertex_count, index_count) = (r.vertices.len() as u32, r.indices.len() as u32);
     if r.vertices.is_empty() {
         r.vertices.push([0.0; 6]);
@@ -242,6 +235,41 @@ fn upload(
         pattern_vertex_count: 0,
         pattern_index_count: 0,
     })
+}
+
+/// Whether the refined mesh's buffers, `bytes` in all, fit one allocation on this device (one
+/// sentence where not).
+fn check_size(ctx: &Context, cfg: &DrawConfig, bytes: u64) -> Result<(), RenderError> {
+    super::static_vbo::check_allocation(
+        ctx,
+        bytes,
+        || {
+            format!(
+                "the static driver's adaptively refined mesh (largest level {})",
+                cfg.level
+            )
+        },
+        "use a larger pixel error, a lower --max-level or the pattern driver",
+    )
+}
+
+/// A lower bound of the bytes [`refine_adaptive`] makes for `drawn` (`samples`: with each
+/// vertex's sample): every element's lattice vertices, exactly, and the triangles of its
+/// lattice that touch no boundary vertex (`(n − 3)²` at inner level `n`), which snapping never
+/// makes degenerate.
+pub fn least_bytes(drawn: &[Option<DrawnLevels>], samples: bool) -> u64 {
+    let vertex = (std::mem::size_of::<StaticVertex>()
+        + if samples {
+            std::mem::size_of::<ElementVertex>()
+        } else {
+            0
+        }) as u64;
+    (drawn.iter().flatten())
+        .map(|d| {
+            let n = d.inner as u64;
+            (n + 1) * (n + 2) / 2 * vertex + 3 * 4 * n.saturating_sub(3).pow(2)
+        })
+        .sum()
 }
 
 /// Whether `cfg` can be drawn adaptively: a power-of-two largest level (its elements are drawn
@@ -340,5 +368,13 @@ mod tests {
         let both = refine_adaptive(&cfg, &records[..2], drawn(&all, 8), &mirror, false);
         assert_eq!(both.indices.len(), 2 * r.indices.len());
         assert!(both.samples.is_empty());
+        // The size checked before refining is at most what is made (vertices exactly): 45
+        // vertices of 24 bytes (and samples of 16), 25 of its 64 triangles never degenerate.
+        let made = |r: &AdaptiveRefined| {
+            (24 * r.vertices.len() + 16 * r.samples.len() + 4 * r.indices.len()) as u64
+        };
+        assert_eq!(least_bytes(&drawn(&culled, 8), true), 45 * 40 + 25 * 12);
+        assert!(least_bytes(&drawn(&culled, 8), true) <= made(&r));
+        assert!(least_bytes(&drawn(&all, 8), false) <= made(&both));
     }
 }
