@@ -3663,7 +3663,7 @@ fn pixel_error_draws_adaptively_with_the_pattern_driver() {
         &high("0.02"),
         &[
             "at most up to level 128, not 256",
-            "--geomorph on or --max-level 128",
+            "--geomorph on, or --max-level 128 or a smaller power of two",
         ],
     );
     // render refuses the same in one sentence, with no warning of slow frames before it.
@@ -3679,7 +3679,13 @@ fn pixel_error_draws_adaptively_with_the_pattern_driver() {
     // So does info, which chooses the same levels; and where they fit, it prints them.
     let mut info: Vec<&str> = render.to_vec();
     info.splice(0..4, ["info", spot]);
-    expect_error(&info, &["at most up to level 128, not 256"]);
+    // (info draws nothing: the sentence names the option, not "cannot render".)
+    expect_error(
+        &info,
+        &["error: --max-level 256: drawing integer levels", "not 256"],
+    );
+    let said = String::from_utf8_lossy(&meshrefine(&info).stderr).into_owned();
+    assert!(!said.contains("cannot render"), "{said}");
     info[3] = "2";
     let fits = ok(&info);
     assert!(fits.contains("max level 256"), "{fits}");
@@ -4326,7 +4332,8 @@ fn adaptive_pattern_exports_hold_only_the_levels_drawn() {
         stderr.contains("cannot export '")
             && stderr.contains("of one element drawn at level")
             && stderr.contains("over the capture cap MESHREFINE_MAX_CAPTURE_BYTES (640)")
-            && stderr.contains("use a larger --pixel-error, or --max-level 2 or lower"),
+            && stderr
+                .contains("use a larger --pixel-error, or --max-level 2 or a smaller power of two"),
         "{stderr}"
     );
     assert!(!obj.exists());

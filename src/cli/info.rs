@@ -330,7 +330,7 @@ fn print_levels(a: &InfoArgs, mut input: Input) -> Result<()> {
         let drawn = super::adaptive::lowered_to(&cfg, top).map_or(cfg.level, |c| c.level);
         if check_integer_levels(drawn, dyadic).is_err() {
             check_integer_levels(a.max_level, dyadic)
-                .map_err(|e| anyhow::anyhow!("cannot render '{path}': {e}"))?;
+                .map_err(|e| anyhow::anyhow!("--max-level {}: {e}", a.max_level))?;
         }
     }
     // As given, or where the framing camera is, in the mesh's coordinates.

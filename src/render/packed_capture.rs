@@ -70,7 +70,9 @@ impl Headless {
                 .map(|k| 1u32 << k)
                 .find(|&l| vertex_count(l) as u64 * VERTEX_BYTES <= limit);
             match fits {
-                Some(l) => format!("use a larger --pixel-error, or --max-level {l} or lower"),
+                Some(l) => format!(
+                    "use a larger --pixel-error, or --max-level {l} or a smaller power of two"
+                ),
                 None => "use a larger --pixel-error".to_string(),
             }
         };

@@ -64,7 +64,7 @@ pub fn check_adaptive_fits(
 pub fn check_integer_levels(level: u32, dyadic: bool) -> Result<(), RenderError> {
     if !dyadic && level > INTEGER_MAX_LEVEL {
         return Err(RenderError::Incompatible(format!(
-            "drawing integer levels without geomorphing takes one pattern per level, at most up to level {INTEGER_MAX_LEVEL}, not {level}: use --geomorph on or --max-level {INTEGER_MAX_LEVEL} or lower"
+            "drawing integer levels without geomorphing takes one pattern per level, at most up to level {INTEGER_MAX_LEVEL}, not {level}: use --geomorph on, or --max-level {INTEGER_MAX_LEVEL} or a smaller power of two"
         )));
     }
     Ok(())
