@@ -495,17 +495,15 @@ pub struct AdaptiveOpts {
     /// Draw adaptively: each element at the level that keeps the surface within this many
     /// pixels of the drawn mesh, seen by the camera below (a distance d at point p counts
     /// d * K / |p - eye| pixels, K = height / (2 tan(fov / 2)): off the view axis the screen
-    /// can show up to 1/cos² of the angle more; not with --level; render and
-    /// view: 1 by default unless --level, or for view --lod, is given).
+    /// can show up to 1/cos² of the angle more).
+    // Each command's default ends these options' help (`options::command`).
     #[arg(long, value_parser = typed_f32, allow_hyphen_values = true)]
     pub pixel_error: Option<TypedF32>,
-    /// The largest level any element gets (when drawing adaptively: with --pixel-error, or in
-    /// render and view without --level; default: 64 for the pattern and static drivers, whose largest level is a power of two, and the tessellator's limit for tess;
-    /// both at most what the device draws).
+    /// The largest level any element gets when drawing adaptively, at most what the device
+    /// draws.
     #[arg(long, allow_hyphen_values = true, value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub max_level: Option<u32>,
-    /// Draw nothing of the elements outside the view or facing away (when drawing adaptively;
-    /// default: on, off for export).
+    /// Draw nothing of the elements outside the view or facing away (when drawing adaptively).
     #[arg(long, value_parser = choices::cull())]
     pub cull: Option<bool>,
     /// Glide the vertices a finer level adds from their coarser neighbours' midpoint to the

@@ -30,9 +30,54 @@ impl Given {
     }
 }
 
+/// The command line's definition: [`Cli`]'s, with the help of the adaptive options
+/// ([`AdaptiveOpts`], one struct in four commands) ending in what each command does by default.
+pub fn command() -> clap::Command {
+    let tess = "the tessellator's limit for tess";
+    let mut command = Cli::command();
+    for (name, pixel_error, max_level, cull) in [
+        (
+            "render",
+            "Not with --level; default: 1, unless --level is given.".to_string(),
+            format!("Default: 64 for the pattern and static drivers, whose largest level is a power of two, and {tess}."),
+            "Default: on.",
+        ),
+        (
+            "view",
+            "Not with --level; default: 1, unless --level or --lod is given.".to_string(),
+            format!("Default: 64 for the pattern and static drivers, whose largest level is a power of two, and {tess}."),
+            "Default: on.",
+        ),
+        (
+            "export",
+            "Not with --level; without it the export is uniform, at --level.".to_string(),
+            format!("With --pixel-error; default: 64 for the pattern driver, whose largest level is a power of two, and {tess}."),
+            "Default: off: every element is written.",
+        ),
+        (
+            "bench",
+            "Without it every variant is timed uniformly, at each of --levels.".to_string(),
+            format!("With --pixel-error; default: 64 for the pattern and static drivers, whose largest level is a power of two, and {tess}."),
+            "Default: on.",
+        ),
+    ] {
+        let add = |a: clap::Arg, tail: &str| {
+            let help = a.get_help().map(|h| h.to_string()).unwrap_or_default();
+            // Clap drops a one-paragraph doc comment's final full stop.
+            a.help(format!("{help}. {tail}"))
+        };
+        command = command.mut_subcommand(name, |c| {
+            c.mut_arg("pixel_error", |a| add(a, &pixel_error))
+                .mut_arg("max_level", |a| add(a, &max_level))
+                .mut_arg("cull", |a| add(a, cull))
+        });
+    }
+    command
+}
+
 /// Parses the command line like `Cli::try_parse`, and says which options were given.
 pub fn parse() -> Result<(Cli, Given), clap::Error> {
-    let mut command = Cli::command();
+    let mut command = command();
     let matches = command.try_get_matches_from_mut(std::env::args_os())?;
     let cli = Cli::from_arg_matches(&matches).map_err(|e| e.format(&mut command))?;
     let given = matches
@@ -413,6 +458,43 @@ pub fn check_outputs(cli: &Cli) -> Result<(), String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The adaptive options' help names each command's own default, and no option the command
+    /// lacks (bench has --levels, not --level; only export writes every element by default).
+    #[test]
+    fn adaptive_help_is_each_commands_own() {
+        let command = command();
+        let help = |sub: &str, arg: &str| {
+            let c = command.find_subcommand(sub).unwrap();
+            let a = c.get_arguments().find(|a| a.get_id() == arg).unwrap();
+            a.get_help().unwrap().to_string()
+        };
+        for sub in ["render", "view", "export", "bench"] {
+            let has_level = sub != "bench";
+            let pixel_error = help(sub, "pixel_error");
+            assert_eq!(
+                pixel_error.contains("Not with --level"),
+                has_level,
+                "{pixel_error}"
+            );
+            assert_eq!(
+                pixel_error.contains("default: 1"),
+                sub == "render" || sub == "view"
+            );
+            assert_eq!(
+                pixel_error.contains("--lod"),
+                sub == "view",
+                "{pixel_error}"
+            );
+            let cull = help(sub, "cull");
+            let off = "Default: off: every element is written.";
+            let default = if sub == "export" { off } else { "Default: on." };
+            assert!(cull.ends_with(default), "{cull}");
+            let max_level = help(sub, "max_level");
+            assert_eq!(max_level.contains("static"), sub != "export", "{max_level}");
+            assert!(!max_level.contains("render and view"), "{max_level}");
+        }
+    }
 
     fn given(ids: &[&str]) -> Given {
         Given(ids.iter().map(|s| s.to_string()).collect())
