@@ -183,11 +183,17 @@ impl Scene {
 
     /// Whether only the front faces of `cfg`'s surface can be seen from `eye`: a closed surface
     /// seen from outside (outside the mesh and every element's bounds). An open one shows its
-    /// back side (so does one with open seams, through their cracks, and a `flat` one that folds
-    /// through itself), and from inside the visible faces face away. The level pass culls the
-    /// elements facing away only then, and the wireframe the lines of faces turned away.
+    /// back side (so does one with open seams, through their cracks, a `flat` one that folds
+    /// through itself, and a displaced one, which may fold), and from inside the visible faces
+    /// face away. Never for `loop`, whose limit surface the coarse mesh and its elements'
+    /// bounds (around the limit surface) do not enclose between them: an eye outside both may
+    /// be inside the surface. The level pass culls the elements facing away only then (those
+    /// with a normal cone: none displaced, none of `loop`), and the wireframe the lines of
+    /// faces turned away.
     pub fn front_only(&mut self, cfg: &DrawConfig, eye: glam::Vec3) -> Result<bool, RenderError> {
         if !(self.closed && cfg.closed_surface())
+            || cfg.surface.uses_loop_faces()
+            || cfg.params.moves(cfg.displace)
             || (cfg.surface == Surface::Flat
                 && *(self.self_intersecting).get_or_init(|| self.data.mesh.self_intersects()))
         {
