@@ -2,10 +2,17 @@
 //! written beside its path ([`crate::paths::write_output`]), the temporary file is registered
 //! here, and `SIGINT`, `SIGTERM` or `SIGHUP` (Ctrl-C, `kill`, a closed terminal) removes it
 //! before the process ends as the signal says (its default action, re-raised: the shell still
-//! sees the signal). What the path held before stays, as after any other failure.
+//! sees the signal). What the path held before stays, unless the interruption comes while a
+//! finished file is copied into it in place (another user's file, one with other hard links:
+//! [`crate::paths::write_output`]).
 //!
-//! The handler does only what is safe in a signal handler: it reads one atomic pointer, calls
-//! `unlink` on the C string it points to, and restores and re-raises the signal. Registered
+//! Handlers are installed only for signals whose action is the default: a signal the process
+//! ignores (`nohup`, a background job) stays ignored, and a handler someone else installed
+//! stays. One temporary file is registered at a time (the commands write their outputs one
+//! after the other); a second registration replaces the first.
+//!
+//! The handler does only what is safe in a signal handler: it swaps one atomic pointer, calls
+//! `unlink` on the C string it pointed to, and restores and re-raises the signal. Registered
 //! names are never freed (a few bytes per output written), so the handler never reads freed
 //! memory whatever the thread it runs on.
 
@@ -33,29 +40,60 @@ extern "C" fn on_signal(signal: libc::c_int) {
     }
 }
 
-/// Registers `tmp` as the temporary file to remove if the process is interrupted, installing
-/// the handlers on first use (not over a signal the process ignores, as `nohup` asks).
-pub fn register(tmp: &Path) {
+/// Installs the handler for each of the signals whose action is the default (module notes),
+/// once; before a temporary file is made, so that none is made unguarded.
+pub fn install() {
     static INSTALL: Once = Once::new();
     INSTALL.call_once(|| {
         for s in SIGNALS {
-            // SAFETY: `on_signal` is async-signal-safe (module notes); installing a handler
-            // has no other effect on the program.
+            // SAFETY: `sigaction` reads and writes only the structures passed; `on_signal` is
+            // async-signal-safe (module notes). Zeroed `sigaction` structures are valid (no
+            // flags, an empty mask).
             unsafe {
-                let previous = libc::signal(s, on_signal as *const () as libc::sighandler_t);
-                if previous == libc::SIG_IGN {
-                    libc::signal(s, libc::SIG_IGN);
+                let mut old: libc::sigaction = std::mem::zeroed();
+                if libc::sigaction(s, std::ptr::null(), &mut old) != 0
+                    || old.sa_sigaction != libc::SIG_DFL
+                {
+                    continue;
                 }
+                let mut new: libc::sigaction = std::mem::zeroed();
+                new.sa_sigaction = on_signal as *const () as libc::sighandler_t;
+                libc::sigemptyset(&mut new.sa_mask);
+                libc::sigaction(s, &new, std::ptr::null_mut());
             }
         }
     });
-    use std::os::unix::ffi::OsStrExt as _;
-    if let Ok(name) = CString::new(tmp.as_os_str().as_bytes()) {
-        PENDING.store(name.into_raw(), Ordering::SeqCst);
+}
+
+/// A registered temporary file ([`register`]); [`Registered::clear`] forgets it.
+#[derive(Debug)]
+pub struct Registered(*mut c_char);
+
+impl Registered {
+    /// Forgets the registration if it is still the pending one (the file was renamed into
+    /// place or removed).
+    pub fn clear(&self) {
+        let _ = PENDING.compare_exchange(
+            self.0,
+            std::ptr::null_mut(),
+            Ordering::SeqCst,
+            Ordering::SeqCst,
+        );
     }
 }
 
-/// Forgets the registered temporary file (renamed into place or removed).
-pub fn clear() {
-    PENDING.store(std::ptr::null_mut(), Ordering::SeqCst);
+/// Registers `tmp`, just made, as the temporary file to remove if the process is interrupted
+/// (the handlers installed first, [`install`]).
+pub fn register(tmp: &Path) -> Registered {
+    install();
+    use std::os::unix::ffi::OsStrExt as _;
+    match CString::new(tmp.as_os_str().as_bytes()) {
+        Ok(name) => {
+            let raw = name.into_raw();
+            PENDING.store(raw, Ordering::SeqCst);
+            Registered(raw)
+        }
+        // A path with a NUL byte cannot have been made.
+        Err(_) => Registered(std::ptr::null_mut()),
+    }
 }

@@ -27,8 +27,9 @@
 //!
 //! A regular file is written whole beside its path and renamed over it only once complete
 //! ([`write_output`]): a write that fails (a full disk) or is interrupted (Ctrl-C,
-//! [`crate::interrupt`]) leaves what was there before and no temporary file, and an output that
-//! names the input replaces it only with a finished file.
+//! [`crate::interrupt`]) leaves what was there before and no temporary file (but for a file
+//! that must be written in place, as [`write_output`] says), and an output that names the input
+//! replaces it only with a finished file.
 #![forbid(unsafe_code)]
 
 use std::fs::{File, FileType, Metadata};
@@ -217,20 +218,19 @@ fn temporary_beside(target: &Path) -> std::io::Result<(std::path::PathBuf, File)
     Err(last.unwrap_or_else(|| std::io::Error::other("no temporary file name was free")))
 }
 
-/// Removes the temporary file when dropped (an error or a panic on the way), unless kept; an
-/// interrupting signal removes it meanwhile ([`crate::interrupt`]).
-struct Temporary(Option<std::path::PathBuf>);
+/// Removes the temporary file when dropped (an error or a panic on the way), unless kept (the
+/// path taken); an interrupting signal removes it meanwhile ([`crate::interrupt`]).
+struct Temporary(Option<std::path::PathBuf>, crate::interrupt::Registered);
 
 impl Temporary {
     fn new(tmp: &Path) -> Self {
-        crate::interrupt::register(tmp);
-        Self(Some(tmp.to_path_buf()))
+        Self(Some(tmp.to_path_buf()), crate::interrupt::register(tmp))
     }
 }
 
 impl Drop for Temporary {
     fn drop(&mut self) {
-        crate::interrupt::clear();
+        self.1.clear();
         if let Some(p) = self.0.take() {
             let _ = std::fs::remove_file(p);
         }
@@ -255,8 +255,9 @@ fn check_replaceable(path: &Path, option: &str) -> Result<(), String> {
     let Some(target) = regular_target(path).map_err(cannot)? else {
         return Ok(());
     };
+    crate::interrupt::install();
     let (tmp, probe) = temporary_beside(&target).map_err(cannot)?;
-    let _guard = Temporary(Some(tmp));
+    let _guard = Temporary::new(&tmp);
     let mine = std::os::unix::fs::MetadataExt::uid(&probe.metadata().map_err(cannot)?);
     if let Ok(old) = std::fs::metadata(&target) {
         // A read-only file is not replaced, as it would not be written (root's excepted).
@@ -291,6 +292,7 @@ pub fn write_output(
         write(&mut w)?;
         return w.flush();
     };
+    crate::interrupt::install();
     let (tmp, file) = temporary_beside(&target)?;
     let mut guard = Temporary::new(&tmp);
     let mut w = std::io::BufWriter::with_capacity(1 << 20, file);

@@ -3208,6 +3208,10 @@ fn bench_with_pixel_error_times_adaptive_and_uniform_rows() {
     // One row per level, naming every reason it is timed; the power of two only up to the
     // largest level (its absence noted on the adaptive row).
     let pow2 = bound.next_power_of_two();
+    assert!(
+        pow2 > 12,
+        "the bound {bound} is no longer under a power of two above --max-level 12"
+    );
     let mut expected: Vec<(u64, String)> = Vec::new();
     let reasons = [(2, "levels"), (bound, "bound"), (pow2, "pow2")];
     for (level, from) in reasons.into_iter().filter(|r| r.0 <= 12) {

@@ -173,7 +173,12 @@ pub(super) fn prepare(
     scene.static_vbo = None;
     // Refused before any work where even a lower bound of the buffers' size is too large (the
     // refinement itself would take minutes and more memory than the machine has).
-    check_size(ctx, cfg, least_bytes(&want, cfg.fragment_normal_field()))?;
+    check_size(
+        ctx,
+        cfg,
+        least_bytes(&want, cfg.fragment_normal_field()),
+        true,
+    )?;
     let start = Instant::now();
     let refined = refine_adaptive(
         cfg,
@@ -199,7 +204,7 @@ fn upload(
     let upload_bytes = bytes(r.vertices.len(), std::mem::size_of::<StaticVertex>())
         + bytes(r.samples.len(), std::mem::size_of::<ElementVertex>())
         + bytes(r.indices.len(), 4);
-    check_size(ctx, cfg, upload_bytes)?;
+    check_size(ctx, cfg, upload_bytes, false)?;
     let (vertex_count, index_count) = (r.vertices.len() as u32, r.indices.len() as u32);
     if r.vertices.is_empty() {
         r.vertices.push([0.0; 6]);
@@ -237,10 +242,15 @@ fn upload(
     })
 }
 
-/// Whether the refined mesh's buffers, `bytes` in all, fit one allocation on this device (one
-/// sentence where not).
-fn check_size(ctx: &Context, cfg: &DrawConfig, bytes: u64) -> Result<(), RenderError> {
-    super::static_vbo::check_allocation(
+/// Whether the refined mesh's buffers, `bytes` in all (`at_least`: a lower bound of them),
+/// fit one allocation on this device (one sentence where not).
+fn check_size(
+    ctx: &Context,
+    cfg: &DrawConfig,
+    bytes: u64,
+    at_least: bool,
+) -> Result<(), RenderError> {
+    let checked = super::static_vbo::check_allocation(
         ctx,
         bytes,
         || {
@@ -250,7 +260,25 @@ fn check_size(ctx: &Context, cfg: &DrawConfig, bytes: u64) -> Result<(), RenderE
             )
         },
         "use a larger pixel error, a lower --max-level or the pattern driver",
-    )
+    );
+    match checked {
+        Err(RenderError::OverLimit {
+            what,
+            needed,
+            limit,
+            max,
+            remedy,
+            ..
+        }) if at_least => Err(RenderError::OverLimit {
+            what,
+            needed,
+            unit: "bytes or more",
+            limit,
+            max,
+            remedy,
+        }),
+        other => other,
+    }
 }
 
 /// A lower bound of the bytes [`refine_adaptive`] makes for `drawn` (`samples`: with each
