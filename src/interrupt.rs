@@ -6,17 +6,17 @@
 //! finished file is copied into it in place (another user's file, one with other hard links:
 //! [`crate::paths::write_output`]).
 //!
-//! Handlers are installed only for signals whose action is the default: a signal the process
-//! ignores (`nohup`, a background job) stays ignored, and a handler someone else installed
-//! stays. One temporary file is registered at a time (the commands write their outputs one
-//! after the other); a second registration replaces the first.
+//! Handlers are installed only for signals whose action is the default, so a signal the
+//! process ignores (`nohup`, a background job) stays ignored. One temporary file is registered
+//! at a time (the commands write their outputs one after the other), as soon as it is made; a
+//! second registration replaces the first.
 //!
 //! The handler does only what is safe in a signal handler: it swaps one atomic pointer, calls
 //! `unlink` on the C string it pointed to, and restores and re-raises the signal. Registered
 //! names are never freed (a few bytes per output written), so the handler never reads freed
 //! memory whatever the thread it runs on.
 
-use std::ffi::{c_char, CString};
+use std::ffi::{c_char, CStr, CString};
 use std::path::Path;
 use std::sync::atomic::{AtomicPtr, Ordering};
 use std::sync::Once;
@@ -41,7 +41,7 @@ extern "C" fn on_signal(signal: libc::c_int) {
 }
 
 /// Installs the handler for each of the signals whose action is the default (module notes),
-/// once; before a temporary file is made, so that none is made unguarded.
+/// once.
 pub fn install() {
     static INSTALL: Once = Once::new();
     INSTALL.call_once(|| {
@@ -67,33 +67,37 @@ pub fn install() {
 
 /// A registered temporary file ([`register`]); [`Registered::clear`] forgets it.
 #[derive(Debug)]
-pub struct Registered(*mut c_char);
+pub struct Registered(Option<&'static CStr>);
 
 impl Registered {
     /// Forgets the registration if it is still the pending one (the file was renamed into
     /// place or removed).
     pub fn clear(&self) {
-        let _ = PENDING.compare_exchange(
-            self.0,
-            std::ptr::null_mut(),
-            Ordering::SeqCst,
-            Ordering::SeqCst,
-        );
+        if let Some(name) = self.0 {
+            let _ = PENDING.compare_exchange(
+                name.as_ptr().cast_mut(),
+                std::ptr::null_mut(),
+                Ordering::SeqCst,
+                Ordering::SeqCst,
+            );
+        }
     }
 }
 
 /// Registers `tmp`, just made, as the temporary file to remove if the process is interrupted
-/// (the handlers installed first, [`install`]).
+/// (the handlers installed first, [`install`]), until [`Registered::clear`].
+#[must_use]
 pub fn register(tmp: &Path) -> Registered {
     install();
     use std::os::unix::ffi::OsStrExt as _;
     match CString::new(tmp.as_os_str().as_bytes()) {
         Ok(name) => {
-            let raw = name.into_raw();
-            PENDING.store(raw, Ordering::SeqCst);
-            Registered(raw)
+            // Never freed (module notes).
+            let name: &'static CStr = Box::leak(name.into_boxed_c_str());
+            PENDING.store(name.as_ptr().cast_mut(), Ordering::SeqCst);
+            Registered(Some(name))
         }
         // A path with a NUL byte cannot have been made.
-        Err(_) => Registered(std::ptr::null_mut()),
+        Err(_) => Registered(None),
     }
 }

@@ -230,10 +230,11 @@ impl Temporary {
 
 impl Drop for Temporary {
     fn drop(&mut self) {
-        self.1.clear();
+        // Removed first, then forgotten: a signal in between unlinks a name already gone.
         if let Some(p) = self.0.take() {
             let _ = std::fs::remove_file(p);
         }
+        self.1.clear();
     }
 }
 

@@ -81,7 +81,7 @@ fn send(child: &Child, signal: libc::c_int) {
     assert!(sent.success());
 }
 
-/// SIGINT, then SIGTERM, reach the export as soon as its temporary file holds data. An export
+/// SIGINT, SIGTERM, then SIGHUP reach the export as soon as its temporary file holds data. An export
 /// that finished writing before the signal reached it (renamed its file: a fast disk) is run
 /// again, up to three times; each signal must once have interrupted it. Then SIGHUP, ignored
 /// as under `nohup`, lets the export finish.
@@ -92,7 +92,7 @@ fn an_interrupted_export_leaves_no_temporary_file() {
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     let out = dir.join("spot.obj");
-    for signal in [libc::SIGINT, libc::SIGTERM] {
+    for signal in [libc::SIGINT, libc::SIGTERM, libc::SIGHUP] {
         let mut interrupted = false;
         for _attempt in 0..3 {
             std::fs::write(&out, OLD).unwrap();
@@ -117,9 +117,11 @@ fn an_interrupted_export_leaves_no_temporary_file() {
     }
     std::fs::write(&out, OLD).unwrap();
     let mut child = spawn(&out, Some(libc::SIGHUP));
-    if wait_for_writing(&mut child, &dir) {
-        send(&child, libc::SIGHUP);
-    }
+    assert!(
+        wait_for_writing(&mut child, &dir),
+        "no temporary file was written"
+    );
+    send(&child, libc::SIGHUP);
     let status = child.wait().unwrap();
     assert!(status.success(), "{status}");
     assert!(std::fs::metadata(&out).unwrap().len() > 1_000_000);

@@ -582,6 +582,37 @@ fn cage_overlay_draws_the_coarse_edges() {
     });
 }
 
+/// Only front faces are taken to be visible (the level pass culls elements facing away, the
+/// wireframe the lines of faces turned away) on a closed, undisplaced, non-loop surface seen
+/// from outside: Spot as `pn` from the benchmark's close-up, not from inside its head, not
+/// with open seams, not as `loop` (its elements' bounds do not hold the coarse mesh) nor
+/// displaced by a sine (it may fold).
+#[test]
+fn only_front_faces_show_on_closed_undisplaced_surfaces_from_outside() {
+    with_gpu(64, 64, |h| {
+        let mut scene = h.scene(default_mesh(), 16).unwrap();
+        let (c, r) = scene.bounding_sphere();
+        let outside = glam::Vec3::new(0.35, 0.65, -1.3);
+        let cfg = |surface, displace| {
+            let mut cfg = DrawConfig::new(Driver::Pattern(Submit::Instanced), 16)
+                .with_surface(surface, displace);
+            cfg.params = meshrefine::surface::SurfaceParams::for_radius(r);
+            cfg
+        };
+        let pn = cfg(Surface::Pn, Displace::None);
+        assert!(scene.front_only(&pn, outside).unwrap());
+        assert!(!scene.front_only(&pn, c).unwrap(), "from inside");
+        let mut open = pn;
+        open.build.seams = meshrefine::surface::Seams::Open;
+        assert!(!scene.front_only(&open, outside).unwrap(), "open seams");
+        let looped = cfg(Surface::Loop, Displace::None);
+        assert!(!scene.front_only(&looped, outside).unwrap(), "loop");
+        let sine = cfg(Surface::Pn, Displace::Sine);
+        assert!(sine.params.moves(Displace::Sine));
+        assert!(!scene.front_only(&sine, outside).unwrap(), "displaced");
+    });
+}
+
 /// The wireframe's lines lie on the surface they are drawn over, never on a sheet behind it
 /// seen through it. Two causes are excluded: the lines' slope-scaled depth offset, unclamped,
 /// pulled lines of steep and zero-area triangles (snapping makes those: adaptive drawing on

@@ -288,13 +288,15 @@ fn print_levels(a: &InfoArgs, mut input: Input) -> Result<()> {
     let (eye, fov) = (camera.eye(), camera.fov_y);
     let view = View::new(eye, fov, c.height, px, a.max_level);
     let frustum = Frustum::from_view_proj(camera.view_proj(aspect));
-    // As render culls: outside the view, and facing away only on a closed surface (closed
-    // seams; for flat, a mesh that does not fold through itself) wound outwards, seen from
-    // outside.
+    // As render culls (`Scene::front_only`): outside the view, and facing away only on a
+    // closed surface (closed seams; for flat, a mesh that does not fold through itself; not
+    // loop, not displaced) wound outwards, seen from outside.
     let cull = a.cull.unwrap_or(true);
     let bounds = lod_records(&Lod::new(&mirror, &params), records);
     let flat = surface == meshrefine::surface::Surface::Flat;
     let shows_back = (build.seams == meshrefine::surface::Seams::Open && !flat)
+        || surface.uses_loop_faces()
+        || params.moves(displace)
         || (flat && mesh.self_intersects());
     let back_faces =
         cull && !shows_back && mesh.closed_outward() && eye_outside(eye, &bounds, mesh);
