@@ -288,16 +288,17 @@ fn print_levels(a: &InfoArgs, mut input: Input) -> Result<()> {
     let (eye, fov) = (camera.eye(), camera.fov_y);
     let view = View::new(eye, fov, c.height, px, a.max_level);
     let frustum = Frustum::from_view_proj(camera.view_proj(aspect));
-    // As render culls (`Scene::front_only`): outside the view, and facing away only on a
-    // closed surface (closed seams; for flat, a mesh that does not fold through itself; not
-    // loop, not displaced) wound outwards, seen from outside.
+    // As render culls (`Scene::front_only`): outside the view, and facing away only where the
+    // surface shows no face turned away (`DrawConfig::may_show_back_faces`) on a mesh wound
+    // outwards, seen from outside.
     let cull = a.cull.unwrap_or(true);
     let bounds = lod_records(&Lod::new(&mirror, &params), records);
-    let flat = surface == meshrefine::surface::Surface::Flat;
-    let shows_back = (build.seams == meshrefine::surface::Seams::Open && !flat)
-        || surface.uses_loop_faces()
-        || params.moves(displace)
-        || (flat && mesh.self_intersects());
+    let drawn = meshrefine::render::DrawConfig {
+        params,
+        build,
+        ..meshrefine::render::DrawConfig::new(a.driver, a.max_level).with_surface(surface, displace)
+    };
+    let shows_back = drawn.may_show_back_faces(|| mesh.self_intersects());
     let back_faces =
         cull && !shows_back && mesh.closed_outward() && eye_outside(eye, &bounds, mesh);
     let lod_view = LodView::new(

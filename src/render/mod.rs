@@ -135,6 +135,19 @@ impl DrawConfig {
         self.build.seams == crate::surface::Seams::Closed || self.surface == Surface::Flat
     }
 
+    /// Whether the surface drawn from a closed mesh wound outwards may show faces turned away
+    /// from an eye outside it and its elements' bounds: open seams (cracks), `loop` (its
+    /// elements' bounds hold the limit patch, not the coarse triangle), a displacement that
+    /// moves it (it may fold), `flat` on a mesh that intersects itself (`self_intersects`,
+    /// asked only then). Where not, the level pass culls elements facing away and the wireframe
+    /// the lines of faces turned away (`Scene::front_only`, and `info` alike).
+    pub fn may_show_back_faces(&self, self_intersects: impl FnOnce() -> bool) -> bool {
+        !self.closed_surface()
+            || self.surface.uses_loop_faces()
+            || self.params.moves(self.displace)
+            || (self.surface == Surface::Flat && self_intersects())
+    }
+
     /// The loop surface with a displacement that moves it: no finite error bound on any element
     /// (docs/adaptivity.md).
     pub fn loop_displaced(&self) -> bool {

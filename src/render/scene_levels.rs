@@ -191,11 +191,8 @@ impl Scene {
     /// with a normal cone: none displaced, none of `loop`), and the wireframe the lines of
     /// faces turned away.
     pub fn front_only(&mut self, cfg: &DrawConfig, eye: glam::Vec3) -> Result<bool, RenderError> {
-        if !(self.closed && cfg.closed_surface())
-            || cfg.surface.uses_loop_faces()
-            || cfg.params.moves(cfg.displace)
-            || (cfg.surface == Surface::Flat
-                && *(self.self_intersecting).get_or_init(|| self.data.mesh.self_intersects()))
+        let (mesh, cell) = (&self.data.mesh, &self.self_intersecting);
+        if !self.closed || cfg.may_show_back_faces(|| *cell.get_or_init(|| mesh.self_intersects()))
         {
             return Ok(false);
         }
