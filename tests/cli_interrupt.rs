@@ -32,16 +32,18 @@ fn temporaries(dir: &Path) -> Vec<String> {
         .collect()
 }
 
-/// Spot exported at level 64 (1.5 M triangles, about 125 MB of OBJ) into `out`, with the three
-/// signals at their default action, or `ignored` ignored, whatever the test runner inherited.
+/// Spot exported at level 64 (1.5 M triangles, about 125 MB of OBJ) into `out`, validated, with
+/// the three signals at their default action, or `ignored` ignored, whatever the test runner
+/// inherited.
 fn spawn(out: &Path, ignored: Option<libc::c_int>) -> Child {
     let spot = common::model_path("spot_control_tri.obj");
     let mut command = Command::new(env!("CARGO_BIN_EXE_meshrefine"));
     command
         .args(["export", spot.to_str().unwrap(), "--level", "64", "-o"])
         .arg(out)
+        .env("MESHREFINE_VALIDATE", "1")
         .stdout(Stdio::null())
-        .stderr(Stdio::null());
+        .stderr(Stdio::piped());
     // SAFETY: `signal` is async-signal-safe, as a `pre_exec` closure must be.
     unsafe {
         command.pre_exec(move || {
@@ -73,6 +75,14 @@ fn wait_for_writing(child: &mut Child, dir: &Path) -> bool {
     }
 }
 
+/// Waits for `child`'s end; its standard error must hold no validation message.
+fn finish(child: Child) -> std::process::ExitStatus {
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("validation"), "{stderr}");
+    out.status
+}
+
 fn send(child: &Child, signal: libc::c_int) {
     let sent = Command::new("kill")
         .args([format!("-{signal}"), child.id().to_string()])
@@ -102,7 +112,7 @@ fn an_interrupted_export_leaves_no_temporary_file() {
                 "no temporary file was written"
             );
             send(&child, signal);
-            let status = child.wait().unwrap();
+            let status = finish(child);
             let left = temporaries(&dir);
             assert!(left.is_empty(), "left behind: {left:?} ({status})");
             if std::fs::read_to_string(&out).is_ok_and(|t| t == OLD) {
@@ -122,7 +132,7 @@ fn an_interrupted_export_leaves_no_temporary_file() {
         "no temporary file was written"
     );
     send(&child, libc::SIGHUP);
-    let status = child.wait().unwrap();
+    let status = finish(child);
     assert!(status.success(), "{status}");
     assert!(std::fs::metadata(&out).unwrap().len() > 1_000_000);
     assert!(temporaries(&dir).is_empty());
