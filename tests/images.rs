@@ -501,6 +501,48 @@ fn levels_view_colours_by_level() {
     });
 }
 
+/// Drawn adaptively, the static driver's levels view colours each element by its own level, as
+/// the pattern driver does at the same integer levels (`--geomorph off`): the CPU's levels reach
+/// the fragment stage, with or without the vertices' element attributes (`pn` evaluates its
+/// normal field per fragment, `phong` does not). Spot at 1 px: the images differ only where the
+/// two evaluations round differently; a static image coloured by the largest level differs on
+/// most of the mesh.
+#[test]
+fn levels_view_shows_the_static_drivers_own_levels() {
+    use meshrefine::render::LevelView;
+    let (w, h_px) = (320u32, 180u32);
+    with_gpu(w, h_px, |h| {
+        let mut scene = h.scene(default_mesh(), 64).unwrap();
+        let (c, r) = scene.bounding_sphere();
+        let camera = Camera::framing(c, r);
+        h.view = View::Levels;
+        h.adaptive = true;
+        for surface in [Surface::Phong, Surface::Pn] {
+            let mut render = |driver| {
+                let mut cfg = DrawConfig::new(driver, 64).with_surface(surface, Displace::None);
+                cfg.geomorph = false;
+                let view = LevelView {
+                    camera,
+                    width: w,
+                    height: h_px,
+                    pixel_error: 1.0,
+                    cull: true,
+                };
+                let chosen = scene.set_levels(&cfg, &view).unwrap();
+                let levels = chosen.report().histogram.len();
+                assert!(levels > 3, "{surface:?}: only {levels} distinct levels");
+                h.render(&mut scene, &cfg, &camera).unwrap()
+            };
+            let pattern = render(Driver::Pattern(Submit::Instanced));
+            let stat = render(Driver::Static);
+            let name = format!("levels-view-static-{}", surface.name());
+            check(&name, &pattern, &stat, (w * h_px / 400) as usize);
+        }
+        h.view = View::Shaded;
+        h.adaptive = false;
+    });
+}
+
 /// The `plain` view writes one colour wherever the surface is and nothing else: every pixel is
 /// the background or that one colour (one sample per pixel), the same for every driver and
 /// surface, and it covers exactly the pixels the shaded image covers (same triangles, same depth

@@ -6,7 +6,7 @@
 use super::{ui, State};
 use crate::gpu::{vk, Buffer, BufferDesc, Cmd, SwapchainFrame};
 use crate::render::frame::{cmd_render, FrameWork, TargetView};
-use crate::render::{DrawConfig, FrameUniforms};
+use crate::render::{DrawConfig, FrameUniforms, View};
 use anyhow::{Context as _, Result};
 use std::io::Write as _;
 
@@ -66,6 +66,7 @@ impl State {
             wireframe: self.controls.wireframe,
             wire_front_only,
             adaptive,
+            element_draws: self.controls.view == View::Levels,
             cage: self.scene.cage.as_ref().filter(|_| self.controls.cage),
             level_pass: self.scene.level_pass(cfg).filter(|_| adaptive),
             clear: self.controls.background.color(),

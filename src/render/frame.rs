@@ -83,6 +83,11 @@ pub struct FrameWork<'a> {
     /// ([`GpuMesh::levels`], src/lod/levels.rs), `cfg.level` being the largest; otherwise every
     /// element at `cfg.level`.
     pub adaptive: bool,
+    /// Draw the static driver's adaptive mesh element by element, each draw naming its element
+    /// (the `levels` view colours each element by its level; the vertices of the static driver
+    /// carry no element unless the normal field is evaluated per fragment). Other drivers name
+    /// their elements anyway.
+    pub element_draws: bool,
     /// Draw the coarse mesh's edges over the surface (the cage overlay, src/render/cage.rs).
     pub cage: Option<&'a super::cage::Cage>,
     /// The elements to draw (all of them for an image; capture passes draw a part).
@@ -109,6 +114,7 @@ impl<'a> FrameWork<'a> {
             wireframe: false,
             wire_front_only: false,
             adaptive: false,
+            element_draws: false,
             cage: None,
             elements: 0..mesh.element_count,
             clear: CLEAR_COLOR,

@@ -225,9 +225,8 @@ impl Headless {
             scene,
             self.view,
         );
-        // Adaptive frames: each element's own level (the levels view reads it; the static
-        // driver's vertices carry no element without the per-fragment normal field).
-        if self.adaptive && !cfg.driver.kind().refines_on_cpu() {
+        // Adaptive frames: each element's own level (the levels view reads it).
+        if self.adaptive {
             u.adaptive()
         } else {
             u
@@ -367,6 +366,7 @@ impl Headless {
             xfb_counter: xfb.map(|x| x.1),
             wireframe: self.wireframe,
             adaptive: self.adaptive,
+            element_draws: self.view == View::Levels,
             cage: scene.cage.as_ref().filter(|_| cage),
             clear: self.background.color(),
             level_pass: (scene.level_pass(cfg)).filter(|_| self.adaptive && !self.passes_reuse),

@@ -155,6 +155,8 @@ impl Scene {
             l.view = None;
             let levels = frame_levels(&lod_view, &records);
             let chosen = ChosenLevels::tallied(&lod_view, &records, &levels);
+            // The levels view reads them, as it reads the pass's on the other drivers.
+            self.elements_mut(cfg.surface).upload_levels(&levels);
             let g = self.generation;
             self.static_levels = Some(StaticLevels::new(cfg, g, levels));
             return Ok(chosen);

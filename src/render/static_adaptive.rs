@@ -311,7 +311,9 @@ pub(super) fn check(cfg: &DrawConfig) -> Result<(), RenderError> {
 }
 
 /// The draws of the elements `range`: one indexed draw per chunk of records over its elements'
-/// index ranges.
+/// index ranges, or with `per_element` one per element, its index within the chunk in the push
+/// constants' `draw.w` (the vertex stage passes it to the fragment stage, which reads the
+/// element's levels for the `levels` view).
 pub(super) fn cmd_draw(
     cmd: &Cmd<'_>,
     r: &Renderer,
@@ -319,6 +321,7 @@ pub(super) fn cmd_draw(
     level: u32,
     a: &AdaptiveIndex,
     range: std::ops::Range<u32>,
+    per_element: bool,
 ) {
     for c in mesh.chunks(range) {
         let (start, end) = (
@@ -329,14 +332,27 @@ pub(super) fn cmd_draw(
             continue;
         }
         cmd.bind_descriptor_set(r.layout.raw, SET_MESH, c.set, &[0]);
-        let draw = [level, c.base, 0, 0];
-        cmd.push_constants(
-            r.layout.raw,
-            PUSH_STAGES,
-            PUSH_DRAW_OFFSET,
-            bytemuck::cast_slice(&draw),
-        );
-        cmd.draw_indexed(end - start, 1, start, 0, 0);
+        let push = |element: u32| {
+            let draw = [level, c.base, 0, element];
+            cmd.push_constants(
+                r.layout.raw,
+                PUSH_STAGES,
+                PUSH_DRAW_OFFSET,
+                bytemuck::cast_slice(&draw),
+            );
+        };
+        if !per_element {
+            push(0);
+            cmd.draw_indexed(end - start, 1, start, 0, 0);
+            continue;
+        }
+        for e in c.first..c.first + c.count {
+            let (start, end) = (a.first[e as usize], a.first[e as usize + 1]);
+            if start < end {
+                push(e - c.base);
+                cmd.draw_indexed(end - start, 1, start, 0, 0);
+            }
+        }
     }
 }
 

@@ -175,13 +175,15 @@ impl StaticVbo {
 
 /// Record the static driver's draws of the elements `range`: one indexed draw per chunk of
 /// records ([`GpuMesh::chunks`]; the fragment stage reads records of the bound chunk), a single
-/// draw for every mesh that fits one.
+/// draw for every mesh that fits one; an adaptive mesh with `per_element`, one draw per element
+/// ([`FrameWork::element_draws`](super::frame::FrameWork::element_draws)).
 pub fn cmd_draw(
     cmd: &Cmd<'_>,
     r: &Renderer,
     mesh: &GpuMesh,
     vbo: &StaticVbo,
     range: std::ops::Range<u32>,
+    per_element: bool,
 ) {
     cmd.bind_vertex_buffer(0, &vbo.vertices);
     if let Some(e) = &vbo.elements {
@@ -189,7 +191,7 @@ pub fn cmd_draw(
     }
     cmd.bind_index_buffer_u32(&vbo.indices);
     if let Some(a) = &vbo.adaptive {
-        super::static_adaptive::cmd_draw(cmd, r, mesh, vbo.level, a, range);
+        super::static_adaptive::cmd_draw(cmd, r, mesh, vbo.level, a, range, per_element);
         return;
     }
     for c in mesh.chunks(range) {
@@ -349,6 +351,13 @@ impl DriverKind for StaticDriver {
             assert!(work.adaptive, "static driver needs its vertex buffer");
             return;
         };
-        cmd_draw(cmd, r, work.mesh, vbo, work.elements.clone());
+        cmd_draw(
+            cmd,
+            r,
+            work.mesh,
+            vbo,
+            work.elements.clone(),
+            work.element_draws,
+        );
     }
 }
