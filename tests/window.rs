@@ -658,9 +658,10 @@ fn title_triangles(title: &str) -> u64 {
 
 #[test]
 fn the_demo_starts_adaptive_and_keys_change_its_controls() {
-    // Without --level the demo draws adaptively (pattern driver, 1 px, culling on); M, [ ], C, F
-    // and + - change the mode, pixel error, culling, frozen levels and largest level, and the
-    // title reports each. Frozen levels stay when the camera zooms in; unfrozen, they follow.
+    // Without --level the demo draws adaptively (pattern driver, 1 px, culling on); M, [ ], C, G,
+    // F and + - change the mode, pixel error, culling, geomorphing, frozen levels and largest
+    // level, and the title reports each. Frozen levels stay when the camera zooms in; unfrozen,
+    // they follow.
     let _guard = common::gpu_lock();
     let x = Xvfb::start();
     let shot = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("window/adaptive-keys.png");
@@ -691,20 +692,29 @@ fn the_demo_starts_adaptive_and_keys_change_its_controls() {
         first.contains("uniform level") && first.contains("| levels ") && first.contains("culled"),
         "{first}"
     );
+    // The level pass's GPU time, from the frame before's timestamps.
+    wait_title("| level pass ", "level pass none");
     for (key, want, unwanted) in [
         ("bracketright", "adaptive 2 px", ""),
         ("bracketleft", "adaptive 1 px", ""),
         ("bracketleft", "adaptive 0.5 px", ""),
         ("c", "0.5 px max level 64 cull off", ""),
         ("c", "cull on", ""),
+        // Geomorphing off and on again (the title says only its absence).
+        ("g", "cull on geomorph off", ""),
+        ("g", "cull on", "geomorph off"),
         ("minus", "max level 32", ""),
         // The static driver refines adaptively on the CPU (the CPU baseline).
         ("1", "static adaptive 0.5 px max level 32", ""),
+        // The static driver chooses its levels on the CPU: no level pass (no key pressed).
+        ("", "level pass none", ""),
         ("3", "tess adaptive 0.5 px max level 32", ""),
         ("m", "tess level 16", "adaptive"),
         ("m", "tess adaptive", ""),
     ] {
-        demo.xdotool(&["key", key]);
+        if !key.is_empty() {
+            demo.xdotool(&["key", key]);
+        }
         wait_title(want, unwanted);
     }
     // Frozen: zooming out changes nothing the levels chose; unfrozen, fewer triangles (the

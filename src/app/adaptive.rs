@@ -134,7 +134,7 @@ impl State {
                 report = self.scene.set_levels(&cfg, &view)?;
             }
         }
-        self.level_ms = seconds * 1e3;
+        self.level_cost.cpu_ms = seconds * 1e3;
         self.levels = Some(report);
         self.adaptive_level = Some(cfg.level);
         Ok(cfg)

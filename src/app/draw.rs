@@ -62,13 +62,16 @@ impl State {
         };
         let wire_front_only =
             self.controls.wireframe && self.scene.front_only(cfg, self.camera.eye())?;
+        let level_pass = self.scene.level_pass(cfg).filter(|_| adaptive);
+        self.level_cost.timed = level_pass.is_some();
         let work = FrameWork {
             wireframe: self.controls.wireframe,
             wire_front_only,
             adaptive,
             element_draws: self.controls.view == View::Levels,
             cage: self.scene.cage.as_ref().filter(|_| self.controls.cage),
-            level_pass: self.scene.level_pass(cfg).filter(|_| adaptive),
+            level_pass,
+            level_pass_timer: Some((&self.queries, 1)),
             clear: self.controls.background.color(),
             ..FrameWork::new(&self.scene, *cfg)
         };

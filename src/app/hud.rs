@@ -50,7 +50,7 @@ impl State {
             drawn: d,
             coarse,
             refined: if shown { self.refined(&d, coarse) } else { 0 },
-            geometry_bytes: self.scene.geometry_bytes(&d),
+            geometry_bytes: self.scene.geometry_bytes(&d, self.levels.is_some()),
             upload_bytes: self.scene.upload_bytes(&d),
             table_bytes: self
                 .scene
@@ -85,7 +85,7 @@ impl State {
         self.fps = (self.frames - n0) as f64 / dt;
         self.fps_window = (Instant::now(), self.frames);
         let coarse = self.scene.elements(cfg.surface).element_count as u64;
-        let bytes = self.scene.geometry_bytes(cfg);
+        let bytes = self.scene.geometry_bytes(cfg, self.levels.is_some());
         self.say_unmet(cfg);
         let c = &self.controls;
         let flags = format!(
@@ -155,6 +155,14 @@ impl State {
         }
     }
 
+    /// The finished frame's GPU time and its level pass's (where it recorded one).
+    pub(super) fn read_frame_times(&mut self) -> anyhow::Result<()> {
+        self.gpu_ms = self.queries.gpu_ms(0)?;
+        let timed = self.level_cost.timed;
+        self.level_cost.gpu_ms = timed.then(|| self.queries.gpu_ms(1)).transpose()?;
+        Ok(())
+    }
+
     /// What the last adaptive frame (drawing `cfg`) chose; None when it
     /// drew uniformly.
     fn adaptive_summary(&self, cfg: &DrawConfig) -> Option<AdaptiveSummary> {
@@ -171,7 +179,7 @@ impl State {
             histogram: compact_histogram(&r.histogram),
             culled: r.culled,
             unmet: r.unmet,
-            level_ms: self.level_ms,
+            cost: self.level_cost,
         })
     }
 }
@@ -192,8 +200,32 @@ struct AdaptiveSummary {
     culled: u64,
     /// Where the pixel error is not met.
     unmet: crate::lod::frame::Unmet,
-    /// CPU time of choosing the levels (`Scene::set_levels`).
-    level_ms: f64,
+    /// What choosing the levels cost.
+    cost: LevelCost,
+}
+
+/// What choosing an adaptive frame's levels cost.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct LevelCost {
+    /// CPU milliseconds choosing them (`Scene::set_levels`: the bounds where they changed, and
+    /// the tally of the level pass's CPU mirror the panel shows).
+    pub cpu_ms: f64,
+    /// GPU milliseconds of the level pass the frame recorded (timestamps around it); `None`
+    /// where it recorded none (`static` and levels uploaded from the CPU need none).
+    pub gpu_ms: Option<f64>,
+    /// Whether the frame in flight records the level pass (its timestamps are read when it is
+    /// done).
+    pub timed: bool,
+}
+
+impl LevelCost {
+    /// `level pass 0.05 ms GPU, choosing 0.10 ms CPU` (`none` for the pass where it ran none).
+    fn describe(&self) -> String {
+        let gpu = self
+            .gpu_ms
+            .map_or("none".to_string(), |ms| format!("{ms:.2} ms GPU"));
+        format!("{gpu}, choosing {:.2} ms CPU", self.cpu_ms)
+    }
 }
 
 impl AdaptiveSummary {
@@ -234,14 +266,14 @@ impl AdaptiveSummary {
     /// The title's counts: triangles against the uniform level, levels, culling, cost.
     fn counts(&self) -> String {
         format!(
-            "{} triangles, uniform level {} {} ({}) | levels {} | culled {} | levels on the GPU, CPU mirror {:.1} ms",
+            "{} triangles, uniform level {} {} ({}) | levels {} | culled {} | level pass {}",
             self.triangles,
             self.uniform_level,
             self.uniform_triangles,
             self.ratio(),
             self.histogram,
             self.culled,
-            self.level_ms,
+            self.cost.describe(),
         )
     }
 
@@ -273,7 +305,7 @@ impl AdaptiveSummary {
         if !unmet.is_empty() {
             rows.push(("pixel error not met", unmet.join(", ")));
         }
-        rows.extend([("choosing levels", format!("{:.2} ms (CPU)", self.level_ms))]);
+        rows.push(("level pass", self.cost.describe()));
         if self.frozen {
             rows.push((
                 "levels",
@@ -339,7 +371,7 @@ mod tests {
             histogram: "8:10".into(),
             culled: 0,
             unmet: crate::lod::frame::Unmet::default(),
-            level_ms: 0.0,
+            cost: LevelCost::default(),
         };
         assert_eq!(a.ratio(), "adaptive draws 4.2x fewer");
         a.unmet.near = 1;

@@ -228,6 +228,7 @@ impl State {
                 "-" | "_" => c.set_level(step_level(&levels, limit, c.level(), false)),
                 "m" | "M" => c.adaptive = !c.adaptive,
                 "c" | "C" if c.adaptive => c.cull = !c.cull,
+                "g" | "G" if c.adaptive => c.cfg.geomorph = !c.cfg.geomorph,
                 "f" | "F" if c.adaptive => c.freeze = !c.freeze,
                 "[" if c.adaptive => {
                     c.pixel_error = (c.pixel_error * 0.5).max(*PIXEL_ERRORS.start())
@@ -235,7 +236,7 @@ impl State {
                 "]" if c.adaptive => c.pixel_error = (c.pixel_error * 2.0).min(*PIXEL_ERRORS.end()),
                 // Each mode's own keys change nothing in the other (it would show up unasked
                 // on switching back), and say so.
-                "c" | "C" | "f" | "F" | "[" | "]" => {
+                "c" | "C" | "g" | "G" | "f" | "F" | "[" | "]" => {
                     log::warn!("'{ch}' acts in adaptive mode only (M switches to it)")
                 }
                 "l" | "L" if c.adaptive => {

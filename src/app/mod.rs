@@ -98,7 +98,7 @@ pub const KEY_HELP: &str = "keys: left drag = orbit, right or middle drag = pan,
 R = reset camera, Z or Home = fit view, 1/2/3 = static/pattern/tess, \
 P/U/I = push/ubo/instanced, S = next surface, D = next displacement, N = next view, \
 +/- = level (max level when adaptive), M = adaptive/uniform, [/] = pixel error halve/double, \
-C = culling, F = freeze levels, L = LOD by distance, W = wireframe, K = cage, A = animate, \
+C = culling, G = geomorph, F = freeze levels, L = LOD by distance, W = wireframe, K = cage, A = animate, \
 B = background, F11 = fullscreen, F12 = screenshot, H = panel, Esc = quit";
 
 /// The value after `v` in `all`, wrapping around.
@@ -224,8 +224,8 @@ struct State {
     mode_note: Option<String>,
     /// The levels the last frame drew with, when it drew adaptively.
     levels: Option<crate::render::ChosenLevels>,
-    /// CPU time of choosing the last adaptive frame's levels, in milliseconds.
-    level_ms: f64,
+    /// What choosing the last adaptive frame's levels cost.
+    level_cost: hud::LevelCost,
     /// The kinds of unmet pixel error last said on standard error (`hud.rs`), to say them
     /// again only when they change.
     unmet_said: Option<hud::UnmetKinds>,
@@ -313,7 +313,7 @@ impl App {
         let mut state = State {
             base_mesh: mesh,
             scene,
-            queries: QueryPools::new(&ctx, 1)?,
+            queries: QueryPools::new(&ctx, 2)?,
             screenshot_buffer: None,
             cmd,
             fence: Fence::new(&ctx, true, "frame fence")?,
@@ -334,7 +334,7 @@ impl App {
             screenshot_note: None,
             mode_note: None,
             levels: None,
-            level_ms: 0.0,
+            level_cost: Default::default(),
             unmet_said: None,
             adaptive_level: None,
             frozen: None,
@@ -473,7 +473,7 @@ impl State {
     fn finish_previous_frame(&mut self, size: (u32, u32)) -> Result<()> {
         self.fence.wait()?;
         if self.recorded_once {
-            self.gpu_ms = self.queries.gpu_ms(0)?;
+            self.read_frame_times()?;
             self.measure_rate();
         }
         if self.resize {

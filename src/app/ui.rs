@@ -242,10 +242,14 @@ fn panel(ctx: &egui::Context, c: &mut Controls, info: &PanelInfo) {
     // the window grows while the panel reaches its bottom; otherwise (F11 over a panel that
     // fits, a collapsed panel) it stays as it is.
     let height = ctx.screen_rect().height();
-    let key = egui::Id::new("meshrefine panel: (screen height, cut, generation)");
-    let (before, cut, generation): (f32, bool, u32) =
-        ctx.data_mut(|d| d.get_temp(key).unwrap_or((height, false, 0)));
+    let key = egui::Id::new("meshrefine panel: (screen height, cut, generation, content)");
+    let (before, cut, generation, content): (f32, bool, u32, f32) =
+        ctx.data_mut(|d| d.get_temp(key).unwrap_or((height, false, 0, f32::INFINITY)));
     let generation = generation + u32::from(height > before && cut);
+    // A scrolled window is as tall as it is told, whatever its contents (egui 0.31): its rows'
+    // height as the last frame measured it (all of the window's height less the title bar at
+    // first), at most the window's.
+    let tall = content.min(height - 60.0).max(60.0);
     let shown = egui::Window::new("meshrefine")
         .id(egui::Id::new(("meshrefine panel", generation)))
         .anchor(Align2::LEFT_TOP, [10.0, 10.0])
@@ -255,7 +259,8 @@ fn panel(ctx: &egui::Context, c: &mut Controls, info: &PanelInfo) {
         // Taller than the window (a small window, the default size in adaptive mode): the
         // panel scrolls instead of losing its last rows.
         .vscroll(true)
-        .max_height((ctx.screen_rect().height() - 20.0).max(60.0))
+        .min_height(tall)
+        .max_height(tall)
         .show(ctx, |ui| {
             ui.add(egui::Label::new(info.device).wrap());
             ui.separator();
@@ -265,11 +270,13 @@ fn panel(ctx: &egui::Context, c: &mut Controls, info: &PanelInfo) {
             surface_choice(ui, c, info);
             parameters(ui, c);
             display(ui, c, info);
+            ui.min_rect().height()
         });
     // Anchored 10 px down and at most 20 px shorter than the window: cut where it reaches
     // within a few pixels of the bottom.
-    let cut = shown.is_some_and(|r| r.response.rect.bottom() >= height - 15.0);
-    ctx.data_mut(|d| d.insert_temp(key, (height, cut, generation)));
+    let cut = (shown.as_ref()).is_some_and(|r| r.response.rect.bottom() >= height - 15.0);
+    let content = shown.and_then(|r| r.inner).unwrap_or(content);
+    ctx.data_mut(|d| d.insert_temp(key, (height, cut, generation, content)));
 }
 
 /// The last frame's statistics, a name and a value a row.
@@ -388,6 +395,7 @@ fn adaptive(ui: &mut egui::Ui, c: &mut Controls, info: &PanelInfo) {
     level_row(ui, "max level [+ -]", &mut c.max_level, info.levels);
     ui.horizontal(|ui| {
         ui.checkbox(&mut c.cull, "cull [C]");
+        ui.checkbox(&mut c.cfg.geomorph, "geomorph [G]");
         ui.checkbox(&mut c.freeze, "freeze levels [F]");
     });
 }
@@ -519,5 +527,85 @@ mod tests {
         assert_eq!(shown_level(128, &levels), 64);
         assert_eq!(shown_level(16, &levels), 16);
         assert_eq!(shown_level(40, &[1, 2, 4, 8, 16, 32, 40, 64]), 40);
+    }
+
+    /// The panel is as tall as its rows where the window has room for them, and scrolls within
+    /// the window where it has not (egui sizes a scrolled window by its default height, not its
+    /// contents: the panel showed its first rows only, half the window's height).
+    #[test]
+    fn the_panel_shows_every_row_where_the_window_has_room() {
+        let mut c = Controls {
+            cfg: DrawConfig::new(Driver::Pattern(Submit::Instanced), 8),
+            wireframe: false,
+            cage: false,
+            animate: false,
+            lod: false,
+            lod_max: 8,
+            refused: None,
+            dropped: None,
+            view: View::Shaded,
+            initial: SurfaceParams::default(),
+            submit: Submit::Instanced,
+            adaptive: true,
+            pixel_error: 1.0,
+            max_level: 64,
+            cull: true,
+            freeze: false,
+            background: Background::Dark,
+            fullscreen: false,
+            asked: Asked::default(),
+        };
+        let info = PanelInfo {
+            device: "a device",
+            levels: &[1, 2, 4, 8, 16, 32, 64],
+            wireframe_supported: true,
+            fps: 60.0,
+            gpu_ms: 1.0,
+            drawn: c.cfg,
+            coarse: 372,
+            refined: 40000,
+            geometry_bytes: 1000,
+            upload_bytes: 0,
+            animating: false,
+            table_bytes: None,
+            has_texcoords: false,
+            note: None,
+            mode_note: None,
+            adaptive_rows: vec![("uniform level", "16".into()), ("culled", "30".into())],
+            camera: "--eye 1,2,3 --look-at 0,0,0",
+            screenshot_note: None,
+        };
+        // The panel's height after a few frames on a screen `height` points high.
+        let panel_height = |c: &mut Controls, height: f32| {
+            let ctx = egui::Context::default();
+            let input = || egui::RawInput {
+                screen_rect: Some(egui::Rect::from_min_size(
+                    egui::Pos2::ZERO,
+                    egui::vec2(1000.0, height),
+                )),
+                ..Default::default()
+            };
+            for _ in 0..4 {
+                let _ = ctx.run(input(), |ctx| panel(ctx, c, &info));
+            }
+            let id = egui::Id::new(("meshrefine panel", 0u32));
+            ctx.memory(|m| m.area_rect(id))
+                .expect("the panel is shown")
+                .height()
+        };
+        let tall = panel_height(&mut c, 2000.0);
+        assert!(
+            tall > 700.0,
+            "the panel is {tall} points tall on a tall screen"
+        );
+        assert!(
+            tall < 1500.0,
+            "the panel is {tall} points tall, more than its rows"
+        );
+        let short = panel_height(&mut c, 500.0);
+        assert!(
+            short <= 490.0,
+            "the panel is {short} points tall on a 500-point screen"
+        );
     }
 }

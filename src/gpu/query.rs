@@ -123,6 +123,37 @@ impl QueryPools {
         }
     }
 
+    /// Reset the slot's timestamps and write its start, without statistics: a span inside
+    /// another slot's [`QueryPools::cmd_begin`]..[`QueryPools::cmd_end`] (statistics queries
+    /// cannot nest). Outside a render pass instance.
+    pub fn cmd_begin_time(&self, cmd: &Cmd<'_>, slot: u32) {
+        assert!(slot < self.slots);
+        let d = &self.ctx.device;
+        // SAFETY: recording command buffer, queries in range, outside a render pass instance.
+        unsafe {
+            d.cmd_reset_query_pool(cmd.raw, self.timestamps, 2 * slot, 2);
+            d.cmd_write_timestamp(
+                cmd.raw,
+                vk::PipelineStageFlags::TOP_OF_PIPE,
+                self.timestamps,
+                2 * slot,
+            );
+        }
+    }
+
+    /// Write the end timestamp of a span begun by [`QueryPools::cmd_begin_time`].
+    pub fn cmd_end_time(&self, cmd: &Cmd<'_>, slot: u32) {
+        // SAFETY: matching cmd_begin_time recorded earlier in this command buffer.
+        unsafe {
+            self.ctx.device.cmd_write_timestamp(
+                cmd.raw,
+                vk::PipelineStageFlags::BOTTOM_OF_PIPE,
+                self.timestamps,
+                2 * slot + 1,
+            );
+        }
+    }
+
     /// GPU time of the slot in milliseconds; waits for the results. Call after the work completed.
     pub fn gpu_ms(&self, slot: u32) -> Result<f64, GpuError> {
         let mut t = [0u64; 2];

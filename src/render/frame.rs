@@ -68,6 +68,9 @@ pub struct FrameWork<'a> {
     /// The level pass and its camera, run after `pre_pass` to write the mesh's levels for an
     /// adaptive frame (src/render/level_pass.rs); `None` keeps the levels as they are.
     pub level_pass: Option<(&'a super::LevelPass, crate::lod::frame::LodView)>,
+    /// Time the level pass alone in this slot ([`QueryPools::cmd_begin_time`]: the window's
+    /// panel shows it), inside the frame's own span.
+    pub level_pass_timer: Option<(&'a QueryPools, u32)>,
     pub cfg: DrawConfig,
     pub capture: Capture,
     /// Transform-feedback output (with `Capture::Triangles`).
@@ -107,6 +110,7 @@ impl<'a> FrameWork<'a> {
             static_vbo: scene.static_vbo.as_ref(),
             pre_pass: scene.pre_pass(&cfg),
             level_pass: None,
+            level_pass_timer: None,
             cfg,
             capture: Capture::None,
             xfb: None,
@@ -164,7 +168,13 @@ pub fn cmd_render(
     // The levels first (the level pass), then what the driver builds from them (the pattern
     // driver's bins).
     if let Some((pass, view)) = &work.level_pass {
+        if let Some((q, slot)) = work.level_pass_timer {
+            q.cmd_begin_time(cmd, slot);
+        }
         pass.cmd_record(cmd, work.mesh, view);
+        if let Some((q, slot)) = work.level_pass_timer {
+            q.cmd_end_time(cmd, slot);
+        }
     }
     work.cfg.driver.kind().cmd_before_rendering(cmd, r, work);
     cmd.begin_rendering_resolved(
