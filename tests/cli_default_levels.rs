@@ -159,6 +159,48 @@ fn the_static_driver_draws_adaptively_on_the_cpu() {
     assert_eq!(get(uniform, "upload_bytes"), "");
 }
 
+/// The pattern driver's adaptive rows count the patterns they draw from: up to level 16 the
+/// finest pattern's 153 vertices and the hierarchy's 1,023 indices while geomorphing, every
+/// integer level's 968 vertices and 4,488 indices without; the uniform row its own level's
+/// pattern. Each with the records in `geometry_bytes`.
+#[test]
+fn bench_counts_the_patterns_adaptive_pattern_rows_draw_from() {
+    use meshrefine::pattern::{index_count, vertex_count};
+    for (geomorph, stored) in [("on", (153, 1023)), ("off", (968, 4488))] {
+        let prefix = tmp(&format!("bench-pattern-{geomorph}"));
+        #[rustfmt::skip]
+        ok(&[
+            "bench", "--surfaces", "pn", "--drivers", "pattern", "--pixel-error", "2", "--max-level", "16", "--geomorph", geomorph, "--levels", "2",
+            "--no-bound-levels", "--frames", "1", "--width", "96", "--height", "64", "--out",
+            &prefix,
+        ]);
+        let csv = std::fs::read_to_string(format!("{prefix}.csv")).unwrap();
+        let mut lines = csv.lines();
+        let keys = common::csv_fields(lines.next().unwrap());
+        let rows: Vec<Vec<String>> = lines.map(common::csv_fields).collect();
+        let field =
+            |r: &Vec<String>, key: &str| r[keys.iter().position(|k| k == key).unwrap()].clone();
+        let get = |r: &Vec<String>, key: &str| -> u64 { field(r, key).parse().unwrap() };
+        // Each submission mode adaptively and at level 2.
+        assert_eq!(rows.len(), 6, "{csv}");
+        let uniform = (vertex_count(2) as u64, index_count(2) as u64);
+        for row in &rows {
+            let (v, i) = match field(row, "adaptive").as_str() {
+                "true" => stored,
+                _ => uniform,
+            };
+            let counted = (get(row, "stored_vertices"), get(row, "stored_indices"));
+            assert_eq!(counted, (v, i), "geomorph {geomorph}: {csv}");
+            let records = get(row, "elements") * meshrefine::surface::RECORD_BYTES as u64;
+            assert_eq!(
+                get(row, "geometry_bytes"),
+                v * 12 + i * 4 + records,
+                "{csv}"
+            );
+        }
+    }
+}
+
 /// An adaptive `static` frame too large for one allocation is refused before the CPU refines
 /// it: Spot's 5,856 triangles at 1e-5 px up to level 1024 would make about 1.2 billion
 /// triangles (tens of gigabytes). Run with 12 GB of data memory (`ulimit -d`: the heap and

@@ -163,9 +163,9 @@ fn static_adaptive_uploads_when_the_levels_change() {
         assert!(cost.upload_bytes > 0);
         // What the panel reports: the buffer refined at the levels chosen, not every element
         // at the largest level.
-        assert_eq!(scene.geometry_bytes(&st), cost.upload_bytes);
+        assert_eq!(scene.geometry_bytes(&st, true), cost.upload_bytes);
         assert_eq!(scene.upload_bytes(&st), cost.upload_bytes);
-        assert!(cost.upload_bytes < st.geometry_bytes(20));
+        assert!(cost.upload_bytes < st.geometry_bytes(20, false));
         scene.set_levels(&st, &view(far, 4.0)).unwrap();
         h.render(&mut scene, &st, &far).unwrap();
         assert_eq!(

@@ -428,8 +428,12 @@ fn new_row(
         // Not drawn; loop's M1 is there once another driver drew it.
         scene.elements(surface).element_count
     };
-    let (stored_vertices, stored_indices) = cfg.driver.kind().stored(cfg.level, t as u64);
-    let geometry_bytes = scene.geometry_bytes(cfg);
+    let (kind, elements) = (cfg.driver.kind(), t as u64);
+    let (stored_vertices, stored_indices) = match h.adaptive {
+        true => kind.stored_adaptive(cfg.level, elements, cfg.dyadic_levels()),
+        false => kind.stored(cfg.level, elements),
+    };
+    let geometry_bytes = scene.geometry_bytes(cfg, h.adaptive);
     let loop_scene = scene.loop_.as_ref().filter(|_| surface.uses_loop_faces());
     let row = Row {
         mesh: m.name.clone(),

@@ -123,6 +123,25 @@ impl IntegerPatterns {
     }
 }
 
+/// Vertices and indices the adaptive draws up to `f` store: at powers of two (`dyadic`) the
+/// finest uniform pattern's vertices and the [`Hierarchy`]'s index ranges, else every integer
+/// level's pattern ([`IntegerPatterns`]).
+pub const fn adaptive_stored(f: u32, dyadic: bool) -> (u64, u64) {
+    if dyadic {
+        let levels = f.trailing_zeros() + 1;
+        (
+            super::vertex_count(f) as u64,
+            Hierarchy::first_index(levels) as u64,
+        )
+    } else {
+        let next = f + 1;
+        (
+            IntegerPatterns::base_vertex(next) as u64,
+            IntegerPatterns::first_index(next) as u64,
+        )
+    }
+}
+
 /// Lattice point `(i, j)` of the finest level `f` moved onto its edge's samples where it lies on
 /// a stored edge (edge 0: `j = 0`, measured from corner 0; edge 1: `i + j = f`, from corner 1;
 /// edge 2: `i = 0`, from corner 2); interior points stay. Mirror of `adaptive_snap`.
@@ -427,6 +446,21 @@ pub fn geomorph_weights(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// What the adaptive draws store is what the hierarchy and the integer patterns hold.
+    #[test]
+    fn adaptive_stored_counts_what_the_patterns_hold() {
+        for f in [1, 2, 8, 64] {
+            let h = Hierarchy::new(f);
+            let fine = Pattern::uniform(f);
+            let dyadic = (fine.bary.len() as u64, h.indices.len() as u64);
+            assert_eq!(adaptive_stored(f, true), dyadic, "hierarchy up to {f}");
+            let p = IntegerPatterns::new(f);
+            let integer = (p.bary.len() as u64, p.indices.len() as u64);
+            assert_eq!(adaptive_stored(f, false), integer, "integer up to {f}");
+        }
+        assert_eq!(adaptive_stored(64, false), (47_904, 268_320));
+    }
 
     #[test]
     fn hierarchy_levels_are_the_uniform_patterns() {

@@ -150,6 +150,24 @@ pub trait DriverKind: Sync {
     /// normal field, so every refined vertex the CPU stored also carries its sample.
     fn geometry_bytes(&self, level: u32, elements: u64, fragment_field: bool) -> u64;
 
+    /// Refined vertices and indices stored on the GPU to draw `elements` elements adaptively
+    /// up to `level`, at powers of two where `dyadic`: by default what `level` stores.
+    fn stored_adaptive(&self, level: u32, elements: u64, _dyadic: bool) -> (u64, u64) {
+        self.stored(level, elements)
+    }
+
+    /// [`DriverKind::geometry_bytes`] of an adaptive frame up to `level` (`dyadic`: at powers
+    /// of two): by default a uniform frame's at `level`.
+    fn adaptive_geometry_bytes(
+        &self,
+        level: u32,
+        elements: u64,
+        _dyadic: bool,
+        fragment_field: bool,
+    ) -> u64 {
+        self.geometry_bytes(level, elements, fragment_field)
+    }
+
     /// Room a vertex capture needs per element at `level`; `None` where nothing runs on the
     /// GPU to capture.
     fn capture_per_element(&self, level: u32) -> Option<u32>;

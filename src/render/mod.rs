@@ -210,11 +210,16 @@ impl DrawConfig {
     }
 
     /// GPU bytes of geometry for `elements` elements ([`Driver::geometry_bytes`], plus the
-    /// static buffer's element attributes when the normal field is evaluated per fragment).
-    pub fn geometry_bytes(&self, elements: u64) -> u64 {
-        self.driver
-            .kind()
-            .geometry_bytes(self.level, elements, self.fragment_normal_field())
+    /// static buffer's element attributes when the normal field is evaluated per fragment);
+    /// with `adaptive`, of an adaptive frame up to `self.level`
+    /// ([`DriverKind::adaptive_geometry_bytes`]).
+    pub fn geometry_bytes(&self, elements: u64, adaptive: bool) -> u64 {
+        let (kind, field) = (self.driver.kind(), self.fragment_normal_field());
+        if adaptive {
+            kind.adaptive_geometry_bytes(self.level, elements, self.dyadic_levels(), field)
+        } else {
+            kind.geometry_bytes(self.level, elements, field)
+        }
     }
 }
 

@@ -116,8 +116,23 @@ impl DriverKind for PatternDriver {
 
     /// The pattern (12 bytes a vertex, 4 an index) and the records.
     fn geometry_bytes(&self, level: u32, elements: u64, _fragment_field: bool) -> u64 {
-        let (vertices, indices) = self.stored(level, elements);
-        vertices * 12 + indices * 4 + elements * RECORD_BYTES as u64
+        pattern_bytes(self.stored(level, elements), elements)
+    }
+
+    /// The hierarchical patterns, or every integer level's
+    /// ([`adaptive_stored`](crate::pattern::adaptive::adaptive_stored)).
+    fn stored_adaptive(&self, level: u32, _elements: u64, dyadic: bool) -> (u64, u64) {
+        crate::pattern::adaptive::adaptive_stored(level, dyadic)
+    }
+
+    fn adaptive_geometry_bytes(
+        &self,
+        level: u32,
+        elements: u64,
+        dyadic: bool,
+        _fragment_field: bool,
+    ) -> u64 {
+        pattern_bytes(self.stored_adaptive(level, elements, dyadic), elements)
     }
 
     fn capture_per_element(&self, level: u32) -> Option<u32> {
@@ -252,6 +267,12 @@ impl DriverKind for PatternDriver {
             work.elements.clone(),
         );
     }
+}
+
+/// Bytes of patterns storing `(vertices, indices)` (12 bytes a vertex, 4 an index) and
+/// `elements` records.
+fn pattern_bytes((vertices, indices): (u64, u64), elements: u64) -> u64 {
+    vertices * 12 + indices * 4 + elements * RECORD_BYTES as u64
 }
 
 /// The adaptive draws `work` needs (built by `prepare`, checked by

@@ -299,7 +299,7 @@ impl Scene {
             return bytes;
         }
         if cfg.driver.kind().refines_on_cpu() {
-            return cfg.geometry_bytes(self.elements(cfg.surface).element_count as u64);
+            return cfg.geometry_bytes(self.elements(cfg.surface).element_count as u64, false);
         }
         match self.pre_pass(cfg) {
             Some(pass) => pass.upload_bytes(),
@@ -364,14 +364,15 @@ impl Scene {
         }
     }
 
-    /// GPU bytes of geometry `cfg` draws from: the driver's own ([`super::DrawConfig::geometry_bytes`]
-    /// of the elements) and, for loop, M1, its passes' data and the tables.
-    pub fn geometry_bytes(&self, cfg: &super::DrawConfig) -> u64 {
+    /// GPU bytes of geometry `cfg` draws from, uniformly or (`adaptive`) adaptively: the
+    /// driver's own ([`super::DrawConfig::geometry_bytes`] of the elements) and, for loop, M1,
+    /// its passes' data and the tables.
+    pub fn geometry_bytes(&self, cfg: &super::DrawConfig, adaptive: bool) -> u64 {
         if let Some(bytes) = self.static_adaptive_bytes(cfg) {
             return bytes;
         }
         let elements = self.elements(cfg.surface).element_count as u64;
-        cfg.geometry_bytes(elements) + self.pre_pass(cfg).map_or(0, |p| p.gpu_bytes())
+        cfg.geometry_bytes(elements, adaptive) + self.pre_pass(cfg).map_or(0, |p| p.gpu_bytes())
     }
 
     /// The bytes of the static buffer refined adaptively for `cfg` (each element at its own
