@@ -197,7 +197,7 @@ fn device_limits_and_options_are_checked() {
             "65",
             "maxTessellationGenerationLevel",
             // The one level policy's sentence (`driver::check_level`), as for --max-level.
-            "level 65 is beyond this device's maxTessellationGenerationLevel (64): the tess driver cannot draw it (use a level up to 64, or --driver pattern, whose largest level while adaptive is a power of two)",
+            "level 65 is beyond this device's maxTessellationGenerationLevel (64): the tess driver cannot draw it (use a level up to 64, or the pattern driver, which this limit does not bind)",
         ],
     );
     // A benchmark that can draw none of its variants fails, saying why.
@@ -3331,7 +3331,7 @@ fn adaptive_options_refuse_bad_values() {
             "--max-level 100",
             "maxTessellationGenerationLevel",
             // The same sentence as a uniform level past the limit (`driver::check_level`).
-            "--max-level 100: level 100 is beyond this device's maxTessellationGenerationLevel (64): the tess driver cannot draw it (use a level up to 64, or --driver pattern, whose largest level while adaptive is a power of two)",
+            "--max-level 100: level 100 is beyond this device's maxTessellationGenerationLevel (64): the tess driver cannot draw it (use a level up to 64, or the pattern driver, which this limit does not bind)",
         ],
     );
     // export's refusals name the mesh as render's do; info, which draws nothing, refuses the
@@ -4233,6 +4233,26 @@ fn adaptive_exports_are_sized_by_the_levels_chosen() {
             "at most 16777216 (2^24)",
             "use a larger --pixel-error, or --max-level 32 or a smaller power of two",
         ],
+    );
+    // The tessellator glides at powers of two (another largest level draws integer levels,
+    // which make more triangles): a power of two is advised, any level without gliding.
+    let tess = [
+        "--driver",
+        "tess",
+        "--pixel-error",
+        "1e-4",
+        "--width",
+        "160",
+        "--height",
+        "90",
+    ];
+    let advice = "use a larger --pixel-error, or --max-level 32 or a smaller power of two";
+    run(&tess, &[advice]);
+    let mut integer = tess.to_vec();
+    integer.extend(["--geomorph", "off"]);
+    run(
+        &integer,
+        &["use a larger --pixel-error, or --max-level 43 or lower"],
     );
 }
 

@@ -253,7 +253,9 @@ fn panel(ctx: &egui::Context, c: &mut Controls, info: &PanelInfo) {
     let shown = egui::Window::new("meshrefine")
         .id(egui::Id::new(("meshrefine panel", generation)))
         .anchor(Align2::LEFT_TOP, [10.0, 10.0])
-        .default_width(250.0)
+        .default_width(360.0)
+        // At most 480 points wide (or the window's width): long rows wrap.
+        .max_width((ctx.screen_rect().width() - 20.0).clamp(60.0, 480.0))
         .resizable(false)
         .collapsible(true)
         // Taller than the window (a small window, the default size in adaptive mode): the
@@ -317,7 +319,8 @@ fn statistics(ui: &mut egui::Ui, info: &PanelInfo) {
         rows.extend(info.adaptive_rows.iter().cloned());
         for (name, value) in rows {
             ui.label(name);
-            ui.label(RichText::new(value).monospace());
+            // Long values (the uniform comparison, a wide histogram) wrap within the panel.
+            ui.add(egui::Label::new(RichText::new(value).monospace()).wrap());
             ui.end_row();
         }
     });

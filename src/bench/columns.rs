@@ -177,7 +177,7 @@ pub static COLUMNS: &[Column] = &[
         Cell::Name(adaptive(r).map_or(String::new(), |a| a.scene.clone()))
     }),
     col("adaptive", Some("adaptive"), None, Left, |_, r| {
-        Cell::Name(adaptive(r).map_or(String::new(), |a| a.adaptive.to_string()))
+        Cell::Flag(adaptive(r).map(|a| a.adaptive))
     }),
     col(
         "pixel_error",

@@ -55,6 +55,8 @@ pub enum Cell {
     /// A value given on the command line (a pixel error): written everywhere as
     /// [`crate::lod::px`] writes it, every digit of it (however small), a number in CSV and JSON.
     Given(Option<f32>),
+    /// Yes or no: `true`/`false` (a JSON boolean), empty where it does not apply (JSON `null`).
+    Flag(Option<bool>),
 }
 
 impl Cell {
@@ -67,6 +69,7 @@ impl Cell {
             Cell::Real(v, _) => v.map(|v| format!("{v:.4}")).unwrap_or_default(),
             Cell::Spread(s) => s.map(|s| format!("{:.4}", s.median)).unwrap_or_default(),
             Cell::Given(v) => v.map(crate::lod::px).unwrap_or_default(),
+            Cell::Flag(v) => v.map(|v| v.to_string()).unwrap_or_default(),
         }
     }
 
@@ -82,6 +85,7 @@ impl Cell {
             Cell::Spread(s) => real(s.map(|s| s.median)),
             Cell::Given(Some(v)) if v.is_finite() => crate::lod::px(*v),
             Cell::Given(_) => "null".into(),
+            Cell::Flag(v) => v.map_or("null".into(), |v| v.to_string()),
         }
     }
 
@@ -97,6 +101,7 @@ impl Cell {
     fn short(&self) -> String {
         match self {
             Cell::Name(s) | Cell::Prose(s) => s.clone(),
+            Cell::Flag(v) => v.map(|v| v.to_string()).unwrap_or_default(),
             Cell::Count(Some(v)) => v.to_string(),
             Cell::Real(Some(v), digits) => format!("{v:.digits$}"),
             Cell::Spread(Some(s)) => format!("{:.2}", s.median),
@@ -608,7 +613,22 @@ mod tests {
             Cell::Real(v, _) => v,
             Cell::Spread(s) => s.map(|s| s.median),
             Cell::Given(v) => v.map(f64::from),
-            Cell::Name(_) | Cell::Prose(_) => None,
+            Cell::Name(_) | Cell::Prose(_) | Cell::Flag(_) => None,
+        }
+    }
+
+    /// A yes-or-no column is a JSON boolean (`null` where it does not apply), `true`/`false`
+    /// or empty elsewhere.
+    #[test]
+    fn flags_are_json_booleans() {
+        for (v, json, text) in [
+            (Some(true), "true", "true"),
+            (Some(false), "false", "false"),
+            (None, "null", ""),
+        ] {
+            let c = Cell::Flag(v);
+            assert_eq!((c.json().as_str(), c.csv().as_str()), (json, text));
+            assert_eq!((c.markdown().as_str(), c.short().as_str()), (text, text));
         }
     }
 
@@ -703,6 +723,11 @@ mod tests {
                     Cell::Name(s) | Cell::Prose(s) => {
                         assert_eq!(field, s, "{}", c.key);
                         assert_eq!(json_value, s, "{}", c.key);
+                    }
+                    Cell::Flag(v) => {
+                        let text = v.map(|v| v.to_string());
+                        assert_eq!(field, &text.clone().unwrap_or_default(), "{}", c.key);
+                        assert_eq!(json_value, &text.unwrap_or("null".into()), "{}", c.key);
                     }
                     // Written at 4 decimals: within half a unit of the last.
                     _ => {

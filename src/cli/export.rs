@@ -174,7 +174,9 @@ fn check_adaptive(a: &Adaptive, cfg: &DrawConfig, chosen: &ChosenLevels) -> Resu
             chosen.culled
         );
     }
-    let power_of_two = !cfg.driver.kind().integer_levels();
+    // Powers of two where the levels are (the tessellator's too while it glides: another
+    // largest level would draw integer levels, more triangles than the estimate counts).
+    let power_of_two = !cfg.driver.kind().integer_levels() || cfg.dyadic_levels();
     // The pixel error as typed (render's default when none was).
     let named = (a.opts.pixel_error.as_ref())
         .map_or_else(|| super::adaptive::px(a.pixel_error), |t| t.text.clone());

@@ -58,7 +58,7 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc, given: &Given) -> Result<()> {
         // window starts with, as the keys switch drivers.
         if let Some(m) = a.adaptive.max_level.filter(|m| !m.is_power_of_two()) {
             crate::note(format_args!(
-                "warning: --max-level {m} is not a power of two: the pattern and static drivers draw adaptively up to {}, tess up to {m} without geomorphing",
+                "warning: --max-level {m} is not a power of two: the pattern and static drivers draw adaptively up to {}, tess up to {m} (or its device's limit) without geomorphing",
                 1u32 << m.ilog2()
             ));
         }

@@ -20,7 +20,7 @@ pub enum RenderError {
     },
     /// A level beyond what the device lets a driver draw (the one message for refusing,
     /// lowering or skipping it).
-    #[error("level {level} is beyond this device's {limit} ({max}): the {driver} driver cannot draw it (use a level up to {max}, or --driver pattern, whose largest level while adaptive is a power of two)")]
+    #[error("level {level} is beyond this device's {limit} ({max}): the {driver} driver cannot draw it (use a level up to {max}, or the pattern driver, which this limit does not bind)")]
     DriverLevel {
         driver: &'static str,
         level: u32,
