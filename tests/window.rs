@@ -706,8 +706,14 @@ fn the_demo_starts_adaptive_and_keys_change_its_controls() {
         ("minus", "max level 32", ""),
         // The static driver refines adaptively on the CPU (the CPU baseline).
         ("1", "static adaptive 0.5 px max level 32", ""),
-        // The static driver chooses its levels on the CPU: no level pass (no key pressed).
+        // The static driver chooses its levels on the CPU: no level pass (no key pressed). It
+        // never glides: G changes nothing (and says so, below).
         ("", "level pass none", ""),
+        (
+            "g",
+            "static adaptive 0.5 px max level 32 cull on",
+            "geomorph off",
+        ),
         ("3", "tess adaptive 0.5 px max level 32", ""),
         ("m", "tess level 16", "adaptive"),
         ("m", "tess adaptive", ""),
@@ -748,7 +754,11 @@ fn the_demo_starts_adaptive_and_keys_change_its_controls() {
     // The levels view of the adaptive frame still shows the mesh.
     demo.xdotool(&["key", "n"]);
     demo.xdotool(&["key", "n"]);
-    demo.quit();
+    let stderr = demo.quit();
+    assert!(
+        stderr.contains("'g' changes nothing on the static driver, which never glides"),
+        "{stderr}"
+    );
     let (n, total) = covered(&shot);
     assert!(
         n > total / 5,

@@ -228,6 +228,9 @@ impl State {
                 "-" | "_" => c.set_level(step_level(&levels, limit, c.level(), false)),
                 "m" | "M" => c.adaptive = !c.adaptive,
                 "c" | "C" if c.adaptive => c.cull = !c.cull,
+                "g" | "G" if c.adaptive && c.cfg.driver.kind().refines_on_cpu() => {
+                    log::warn!("'{ch}' changes nothing on the static driver, which never glides")
+                }
                 "g" | "G" if c.adaptive => c.cfg.geomorph = !c.cfg.geomorph,
                 "f" | "F" if c.adaptive => c.freeze = !c.freeze,
                 "[" if c.adaptive => {

@@ -398,7 +398,13 @@ fn adaptive(ui: &mut egui::Ui, c: &mut Controls, info: &PanelInfo) {
     level_row(ui, "max level [+ -]", &mut c.max_level, info.levels);
     ui.horizontal(|ui| {
         ui.checkbox(&mut c.cull, "cull [C]");
-        ui.checkbox(&mut c.cfg.geomorph, "geomorph [G]");
+        // The static driver never glides (its CPU would refine every frame).
+        let glides = !c.cfg.driver.kind().refines_on_cpu();
+        ui.add_enabled(
+            glides,
+            egui::Checkbox::new(&mut c.cfg.geomorph, "geomorph [G]"),
+        )
+        .on_disabled_hover_text("the static driver never glides");
         ui.checkbox(&mut c.freeze, "freeze levels [F]");
     });
 }

@@ -125,7 +125,8 @@ impl QueryPools {
 
     /// Reset the slot's timestamps and write its start, without statistics: a span inside
     /// another slot's [`QueryPools::cmd_begin`]..[`QueryPools::cmd_end`] (statistics queries
-    /// cannot nest). Outside a render pass instance.
+    /// cannot nest). The start is written once the earlier commands completed (bottom of the
+    /// pipe), so the span times only what is recorded after it. Outside a render pass instance.
     pub fn cmd_begin_time(&self, cmd: &Cmd<'_>, slot: u32) {
         assert!(slot < self.slots);
         let d = &self.ctx.device;
@@ -134,7 +135,7 @@ impl QueryPools {
             d.cmd_reset_query_pool(cmd.raw, self.timestamps, 2 * slot, 2);
             d.cmd_write_timestamp(
                 cmd.raw,
-                vk::PipelineStageFlags::TOP_OF_PIPE,
+                vk::PipelineStageFlags::BOTTOM_OF_PIPE,
                 self.timestamps,
                 2 * slot,
             );

@@ -86,10 +86,10 @@ pub struct FrameWork<'a> {
     /// ([`GpuMesh::levels`], src/lod/levels.rs), `cfg.level` being the largest; otherwise every
     /// element at `cfg.level`.
     pub adaptive: bool,
-    /// Draw the static driver's adaptive mesh element by element, each draw naming its element
-    /// (the `levels` view colours each element by its level; the vertices of the static driver
-    /// carry no element unless the normal field is evaluated per fragment). Other drivers name
-    /// their elements anyway.
+    /// Draw the static driver's adaptive mesh element by element, each draw naming its element,
+    /// where its vertices carry none (they do where the normal field is evaluated per
+    /// fragment): the `levels` view colours each element by its level. Other drivers name their
+    /// elements anyway.
     pub element_draws: bool,
     /// Draw the coarse mesh's edges over the surface (the cage overlay, src/render/cage.rs).
     pub cage: Option<&'a super::cage::Cage>,

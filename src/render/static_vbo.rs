@@ -191,6 +191,8 @@ pub fn cmd_draw(
     }
     cmd.bind_index_buffer_u32(&vbo.indices);
     if let Some(a) = &vbo.adaptive {
+        // Vertices that carry their element need no draw of their own per element.
+        let per_element = per_element && vbo.elements.is_none();
         super::static_adaptive::cmd_draw(cmd, r, mesh, vbo.level, a, range, per_element);
         return;
     }
