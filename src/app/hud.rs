@@ -145,6 +145,15 @@ impl State {
             pixel_error: self.controls.pixel_error.to_bits(),
         };
         let lines = u.notes(self.controls.pixel_error, cfg.level, cfg.loop_displaced());
+        // A largest level the frame budget lowered is not --max-level's.
+        let asked = self.adaptive_max(cfg.driver).min(self.driver_max(cfg));
+        let lowered = format!(" (lowered from {asked} to keep frames interactive)");
+        let lines: Vec<String> = (lines.into_iter())
+            .map(|l| match cfg.level < asked {
+                true => l.replace(" (--max-level)", &lowered),
+                false => l,
+            })
+            .collect();
         if lines.is_empty() {
             self.unmet_said = None;
         } else if self.unmet_said != Some(kinds) {
@@ -219,11 +228,14 @@ pub struct LevelCost {
 }
 
 impl LevelCost {
-    /// `level pass 0.05 ms GPU, choosing 0.10 ms CPU` (`none` for the pass where it ran none).
+    /// `level pass 0.05 ms GPU, choosing 0.10 ms CPU` (`none` for the pass where it ran none,
+    /// `measuring` while the first frame that runs it is in flight).
     fn describe(&self) -> String {
-        let gpu = self
-            .gpu_ms
-            .map_or("none".to_string(), |ms| format!("{ms:.2} ms GPU"));
+        let gpu = match (self.gpu_ms, self.timed) {
+            (Some(ms), _) => format!("{ms:.2} ms GPU"),
+            (None, true) => "measuring".to_string(),
+            (None, false) => "none".to_string(),
+        };
         format!("{gpu}, choosing {:.2} ms CPU", self.cpu_ms)
     }
 }

@@ -196,6 +196,7 @@ impl State {
             .filter(|&d| self.displacement_refusal(&self.controls.cfg, d).is_some())
             .collect();
         let beyond = |d| refused.contains(&d);
+        let glide_refusal = super::ui::glide_refusal(&self.drawn);
         let c = &mut self.controls;
         match key {
             Key::Named(NamedKey::Escape) => return false,
@@ -228,8 +229,9 @@ impl State {
                 "-" | "_" => c.set_level(step_level(&levels, limit, c.level(), false)),
                 "m" | "M" => c.adaptive = !c.adaptive,
                 "c" | "C" if c.adaptive => c.cull = !c.cull,
-                "g" | "G" if c.adaptive && c.cfg.driver.kind().refines_on_cpu() => {
-                    log::warn!("'{ch}' changes nothing on the static driver, which never glides")
+                "g" | "G" if c.adaptive && glide_refusal.is_some() => {
+                    let why = glide_refusal.as_deref().unwrap_or_default();
+                    log::warn!("'{ch}' changes nothing here: {why}")
                 }
                 "g" | "G" if c.adaptive => c.cfg.geomorph = !c.cfg.geomorph,
                 "f" | "F" if c.adaptive => c.freeze = !c.freeze,

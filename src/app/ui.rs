@@ -65,6 +65,28 @@ pub struct Asked {
     pub fit_view: bool,
 }
 
+/// Why adaptive frames of `drawn`'s driver at its largest level cannot glide, whatever
+/// `--geomorph` says (`DrawConfig::glides`); `None` where they can.
+pub fn glide_refusal(drawn: &DrawConfig) -> Option<String> {
+    let kind = drawn.driver.kind();
+    if (DrawConfig {
+        geomorph: true,
+        ..*drawn
+    })
+    .glides()
+    {
+        None
+    } else if kind.refines_on_cpu() {
+        Some(format!("the {} driver never glides", kind.name()))
+    } else {
+        Some(format!(
+            "the {} driver glides only under a largest level that is a power of two, not {}",
+            kind.name(),
+            drawn.level
+        ))
+    }
+}
+
 /// The pixel error's range in the window (the slider and the `[` `]` keys).
 pub const PIXEL_ERRORS: std::ops::RangeInclusive<f32> = 0.25..=16.0;
 
@@ -169,6 +191,10 @@ pub struct Ui {
 impl Ui {
     pub fn new(window: &Window, max_texture_side: usize) -> Self {
         let egui = egui::Context::default();
+        // Room for the passes a new or resized panel takes to lay out (an invisible sizing
+        // pass, the grid's columns, the height measured), so that the first frame, which a
+        // `--frames 1 --screenshot` run saves, shows it laid out.
+        egui.options_mut(|o| o.max_passes = std::num::NonZeroUsize::new(4).unwrap());
         let input = egui_winit::State::new(
             egui.clone(),
             egui::ViewportId::ROOT,
@@ -258,6 +284,8 @@ fn panel(ctx: &egui::Context, c: &mut Controls, info: &PanelInfo) {
         .max_width((ctx.screen_rect().width() - 20.0).clamp(60.0, 480.0))
         .resizable(false)
         .collapsible(true)
+        // Shown at once, not faded in over the first frames (a screenshot of the first frame).
+        .fade_in(false)
         // Taller than the window (a small window, the default size in adaptive mode): the
         // panel scrolls instead of losing its last rows.
         .vscroll(true)
@@ -277,8 +305,12 @@ fn panel(ctx: &egui::Context, c: &mut Controls, info: &PanelInfo) {
     // Anchored 10 px down and at most 20 px shorter than the window: cut where it reaches
     // within a few pixels of the bottom.
     let cut = (shown.as_ref()).is_some_and(|r| r.response.rect.bottom() >= height - 15.0);
-    let content = shown.and_then(|r| r.inner).unwrap_or(content);
-    ctx.data_mut(|d| d.insert_temp(key, (height, cut, generation, content)));
+    let measured = shown.and_then(|r| r.inner).unwrap_or(content);
+    if measured != content {
+        // Lay out again at the measured height before this frame is drawn.
+        ctx.request_discard("the panel's rows changed height");
+    }
+    ctx.data_mut(|d| d.insert_temp(key, (height, cut, generation, measured)));
 }
 
 /// The last frame's statistics, a name and a value a row.
@@ -362,16 +394,23 @@ fn drawing(ui: &mut egui::Ui, c: &mut Controls, info: &PanelInfo) {
         return;
     }
     ui.add_enabled_ui(!c.lod, |ui| {
-        level_row(ui, "level [+ -]", &mut c.cfg.level, info.levels)
+        level_row(ui, "level [+ -]", &mut c.cfg.level, info)
     });
 }
 
-/// A row of the levels the driver draws, the one drawn selected: `current`, or the largest
-/// listed where `current` lies beyond the driver's limit (the tessellator draws up to it).
-fn level_row(ui: &mut egui::Ui, label: &str, current: &mut u32, levels: &[u32]) {
+/// A row of the levels the driver draws, the one the last frame drew selected (else
+/// `current`, or the largest listed where `current` lies beyond the driver's limit: the
+/// tessellator draws up to it); a click sets `current`.
+fn level_row(ui: &mut egui::Ui, label: &str, current: &mut u32, info: &PanelInfo) {
+    let levels = info.levels;
     ui.horizontal_wrapped(|ui| {
         ui.label(label);
-        let drawn = shown_level(*current, levels);
+        // The level the last frame drew (a largest level rounded to a power of two, lowered
+        // by the frame budget or LOD), where the row has it.
+        let drawn = match info.drawn.level {
+            l if levels.contains(&l) => l,
+            _ => shown_level(*current, levels),
+        };
         for &l in levels {
             if ui.selectable_label(drawn == l, l.to_string()).clicked() {
                 *current = l;
@@ -395,16 +434,16 @@ fn adaptive(ui: &mut egui::Ui, c: &mut Controls, info: &PanelInfo) {
             .suffix(" px")
             .text("pixel error [ ]"),
     );
-    level_row(ui, "max level [+ -]", &mut c.max_level, info.levels);
+    level_row(ui, "max level [+ -]", &mut c.max_level, info);
     ui.horizontal(|ui| {
         ui.checkbox(&mut c.cull, "cull [C]");
-        // The static driver never glides (its CPU would refine every frame).
-        let glides = !c.cfg.driver.kind().refines_on_cpu();
-        ui.add_enabled(
-            glides,
-            egui::Checkbox::new(&mut c.cfg.geomorph, "geomorph [G]"),
-        )
-        .on_disabled_hover_text("the static driver never glides");
+        // Where the driver drawn cannot glide the box is off and disabled, saying why.
+        match glide_refusal(&info.drawn) {
+            None => ui.checkbox(&mut c.cfg.geomorph, "geomorph [G]"),
+            Some(why) => ui
+                .add_enabled(false, egui::Checkbox::new(&mut false, "geomorph [G]"))
+                .on_disabled_hover_text(why),
+        };
         ui.checkbox(&mut c.freeze, "freeze levels [F]");
     });
 }
