@@ -85,6 +85,9 @@ fn export(
     let (centre, scale) = input.mesh.viewing_transform();
     let frame = Frame { centre, scale };
     let mut scene = h.scene(mesh, viewed.level)?;
+    // An export draws no frames to wait for: it captures in passes and reports its own
+    // progress, so the slow-frame estimate would mislead.
+    scene.skip_slow_warning();
     apply_surface_inputs(&h, &mut scene, &input)?;
     let mut adaptive_camera =
         adaptive_camera(&mut h, &mut scene, &viewed, adaptive.as_ref(), size, &frame)?;
