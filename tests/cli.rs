@@ -467,6 +467,20 @@ fn render_export_and_headless_view_work() {
     let png = png::Decoder::new(std::fs::File::open(&view_png).unwrap());
     let info = png.read_info().unwrap().info().clone();
     assert_eq!((info.width, info.height), (320, 200));
+    drop(_guard);
+    // --view, which the window starts in, is the headless image's: the plain view is one
+    // colour over the background (one sample per pixel: no blended silhouettes).
+    #[rustfmt::skip]
+    ok(&[
+        "view", "--headless-output", p(&view_png), "--view", "plain", "--msaa", "1", "--width",
+        "160", "--height", "90",
+    ]);
+    let decoder = png::Decoder::new(std::fs::File::open(&view_png).unwrap());
+    let mut reader = decoder.read_info().unwrap();
+    let mut rgba = vec![0; reader.output_buffer_size()];
+    reader.next_frame(&mut rgba).unwrap();
+    let colours: std::collections::BTreeSet<&[u8]> = rgba.chunks_exact(4).collect();
+    assert_eq!(colours.len(), 2, "{colours:?}");
 }
 
 /// The headless `view` has no panel to switch to what an option applies to: it warns of the

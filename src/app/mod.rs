@@ -18,9 +18,11 @@ mod camera;
 mod draw;
 mod hud;
 mod input;
+mod options;
 mod ui;
 
 pub use adaptive::{AdaptiveView, DEFAULT_MAX_LEVEL, DEFAULT_PIXEL_ERROR};
+pub use options::ViewOptions;
 
 use crate::gpu::sample_count;
 use crate::gpu::{
@@ -28,12 +30,11 @@ use crate::gpu::{
     QueryPools, Semaphore, Swapchain, DEPTH_FORMAT,
 };
 use crate::mesh::Mesh;
-use crate::render::{Background, Camera, DrawConfig, Renderer, Scene, View};
+use crate::render::{Camera, DrawConfig, Renderer, Scene};
 use crate::surface::Surface;
 use anyhow::{anyhow, Context as _, Result};
 use raw_window_handle::{HasDisplayHandle, HasWindowHandle};
 use std::io::Write as _;
-use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
 use ui::{Asked, Controls, Ui};
@@ -45,50 +46,6 @@ use winit::window::Window;
 #[derive(Debug, thiserror::Error)]
 #[error("cannot connect to the display '{0}'")]
 pub struct NoWindowSystem(pub String);
-
-/// Options of `meshrefine view`.
-#[derive(Clone, Debug)]
-pub struct ViewOptions {
-    pub cfg: DrawConfig,
-    /// Exit after this many frames.
-    pub frames: Option<u32>,
-    /// Save the last frame here.
-    pub screenshot: Option<PathBuf>,
-    pub wireframe: bool,
-    /// Start with the cage overlay (the coarse mesh's edges) on.
-    pub cage: bool,
-    pub animate: bool,
-    /// Start with LOD by distance on.
-    pub lod: bool,
-    /// The height map (None: the generated one).
-    pub heightmap: Option<crate::surface::Heightmap>,
-    /// The scalar tags (None: derived from the mesh's hard edges).
-    pub tags: Option<Vec<crate::surface::stpn::VertexTag>>,
-    /// Why the loop surface must not subdivide this mesh though it loaded (the file had faces
-    /// the loader dropped): switching to loop then warns with it and shows pn.
-    pub loop_refusal: Option<String>,
-    /// The mesh as the user named it, for messages.
-    pub source: String,
-    /// On a software device, lower what a frame draws to keep it under a second
-    /// (`--no-frame-budget` turns it off: frames then draw what is asked, however slow).
-    pub frame_budget: bool,
-    /// Samples per pixel (`--msaa`; `None`: 4 where supported, else the most the device has).
-    pub msaa: Option<u32>,
-    /// Adaptive mode's starting settings, and whether the demo starts in it.
-    pub adaptive: AdaptiveView,
-    /// The window's inner size at the start, in logical pixels (`--width`, `--height`), and
-    /// the size leaving fullscreen returns to when the demo started fullscreen.
-    pub size: (u32, u32),
-    /// Start borderless fullscreen (`--fullscreen`; `F11` toggles).
-    pub fullscreen: bool,
-    /// What the mesh is drawn on at the start (`--background`; `B` toggles).
-    pub background: Background,
-    /// Where the screenshot key writes `meshrefine-<n>.png` (None: the current directory).
-    pub screenshot_dir: Option<PathBuf>,
-    /// The transform of the drawn mesh from the file's coordinates (drawn = (mesh − centre) ·
-    /// scale, `Mesh::viewing_transform`): the camera is reported in the file's coordinates.
-    pub viewing: (glam::DVec3, f64),
-}
 
 /// The window offers every power-of-two level up to this one (and the level it starts at):
 /// `+` reaches it whatever the start level. A pattern of level 256 is 33,153 vertices.
@@ -350,7 +307,7 @@ impl App {
                 lod_max: cfg.level,
                 refused: None,
                 dropped: None,
-                view: View::Shaded,
+                view: self.opts.view,
                 initial: cfg.params,
                 submit: cfg.driver.submit().unwrap_or_default(),
                 adaptive: a.on,

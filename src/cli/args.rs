@@ -250,6 +250,9 @@ pub struct ViewArgs {
     #[arg(long, value_name = "WHAT", num_args = 0..=1, default_missing_value = "refined",
           value_parser = super::choices::wireframe(), help_heading = "Window")]
     pub wireframe: Option<meshrefine::render::cage::Wireframe>,
+    /// What the window shows at the start (N switches), and the headless fallback's image.
+    #[arg(long, default_value = "shaded", value_parser = super::choices::view(), help_heading = "Window")]
+    pub view: meshrefine::render::View,
     /// Start with the coarse-mesh animation on.
     #[arg(long, help_heading = "Window")]
     pub animate: bool,

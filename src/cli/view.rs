@@ -79,6 +79,7 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc, given: &Given) -> Result<()> {
             size: (a.width, a.height),
             fullscreen: a.fullscreen,
             background: a.background,
+            view: a.view,
             screenshot_dir: a.screenshot_dir.clone(),
             viewing: (centre, scale),
             adaptive: {
@@ -153,7 +154,7 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc, given: &Given) -> Result<()> {
     let image = super::render::ImageOptions {
         size: (a.width, a.height),
         wireframe: a.wireframe,
-        view: meshrefine::render::View::Shaded,
+        view: a.view,
         background: a.background,
         msaa: a.msaa,
         // Adaptive by default as the window is; `--level` or `--lod` draw uniformly.
