@@ -144,16 +144,20 @@ impl State {
             max: cfg.level,
             pixel_error: self.controls.pixel_error.to_bits(),
         };
-        let lines = u.notes(self.controls.pixel_error, cfg.level, cfg.loop_displaced());
-        // A largest level the frame budget lowered is not --max-level's.
-        let asked = self.adaptive_max(cfg.driver).min(self.driver_max(cfg));
-        let lowered = format!(" (lowered from {asked} to keep frames interactive)");
-        let lines: Vec<String> = (lines.into_iter())
-            .map(|l| match cfg.level < asked {
-                true => l.replace(" (--max-level)", &lowered),
-                false => l,
-            })
-            .collect();
+        let mut lines = u.notes(self.controls.pixel_error, cfg.level, cfg.loop_displaced());
+        // The largest level the notes name is not --max-level's where the driver's limit on
+        // this device or the frame budget lowered it: a last note says which.
+        let asked = self.adaptive_max(cfg.driver);
+        if !lines.is_empty() && cfg.level < asked {
+            let why = match cfg.level == self.driver_max(cfg) {
+                true => "the largest the driver draws on this device",
+                false => "to keep frames interactive",
+            };
+            lines.push(format!(
+                "note: the largest level, {}, is lowered from --max-level {asked}: {why}",
+                cfg.level
+            ));
+        }
         if lines.is_empty() {
             self.unmet_said = None;
         } else if self.unmet_said != Some(kinds) {

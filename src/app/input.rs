@@ -196,7 +196,8 @@ impl State {
             .filter(|&d| self.displacement_refusal(&self.controls.cfg, d).is_some())
             .collect();
         let beyond = |d| refused.contains(&d);
-        let glide_refusal = super::ui::glide_refusal(&self.drawn);
+        let largest = limit.map_or(self.controls.max_level, |l| self.controls.max_level.min(l));
+        let glide_refusal = super::ui::glide_refusal(self.controls.cfg.driver, largest);
         let c = &mut self.controls;
         match key {
             Key::Named(NamedKey::Escape) => return false,

@@ -65,24 +65,23 @@ pub struct Asked {
     pub fit_view: bool,
 }
 
-/// Why adaptive frames of `drawn`'s driver at its largest level cannot glide, whatever
-/// `--geomorph` says (`DrawConfig::glides`); `None` where they can.
-pub fn glide_refusal(drawn: &DrawConfig) -> Option<String> {
-    let kind = drawn.driver.kind();
-    if (DrawConfig {
+/// Why adaptive frames of `driver` up to the largest level asked for, `largest` (the panel's,
+/// at most what the driver draws on this device), cannot glide whatever `--geomorph` says
+/// (`DrawConfig::glides`); `None` where they can.
+pub fn glide_refusal(driver: Driver, largest: u32) -> Option<String> {
+    let kind = driver.kind();
+    let cfg = DrawConfig {
         geomorph: true,
-        ..*drawn
-    })
-    .glides()
-    {
+        ..DrawConfig::new(driver, largest)
+    };
+    if cfg.glides() {
         None
     } else if kind.refines_on_cpu() {
         Some(format!("the {} driver never glides", kind.name()))
     } else {
         Some(format!(
-            "the {} driver glides only under a largest level that is a power of two, not {}",
-            kind.name(),
-            drawn.level
+            "the {} driver glides only under a largest level that is a power of two, not {largest}",
+            kind.name()
         ))
     }
 }
@@ -394,35 +393,40 @@ fn drawing(ui: &mut egui::Ui, c: &mut Controls, info: &PanelInfo) {
         return;
     }
     ui.add_enabled_ui(!c.lod, |ui| {
-        level_row(ui, "level [+ -]", &mut c.cfg.level, info)
+        let drawn = info.adaptive_rows.is_empty().then_some(info.drawn.level);
+        level_row(ui, "level [+ -]", &mut c.cfg.level, info.levels, drawn)
     });
 }
 
 /// A row of the levels the driver draws, the one the last frame drew selected (else
 /// `current`, or the largest listed where `current` lies beyond the driver's limit: the
 /// tessellator draws up to it); a click sets `current`.
-fn level_row(ui: &mut egui::Ui, label: &str, current: &mut u32, info: &PanelInfo) {
-    let levels = info.levels;
+fn level_row(
+    ui: &mut egui::Ui,
+    label: &str,
+    current: &mut u32,
+    levels: &[u32],
+    drawn: Option<u32>,
+) {
     ui.horizontal_wrapped(|ui| {
         ui.label(label);
-        // The level the last frame drew (a largest level rounded to a power of two, lowered
-        // by the frame budget or LOD), where the row has it.
-        let drawn = match info.drawn.level {
-            l if levels.contains(&l) => l,
-            _ => shown_level(*current, levels),
-        };
+        let selected = selected_level(*current, levels, drawn);
         for &l in levels {
-            if ui.selectable_label(drawn == l, l.to_string()).clicked() {
+            if ui.selectable_label(selected == l, l.to_string()).clicked() {
                 *current = l;
             }
         }
     });
 }
 
-/// The level a row shows selected for `current` among `levels` (ascending): `current`, at most
-/// the last.
-fn shown_level(current: u32, levels: &[u32]) -> u32 {
-    levels.last().map_or(current, |&last| current.min(last))
+/// The level a row shows selected: the level the last frame drew in the row's mode (`drawn`: a
+/// largest level rounded down to a power of two, lowered by the frame budget or chosen by LOD)
+/// where the row has it, else `current`, at most the last of `levels` (ascending).
+fn selected_level(current: u32, levels: &[u32], drawn: Option<u32>) -> u32 {
+    match drawn {
+        Some(l) if levels.contains(&l) => l,
+        _ => levels.last().map_or(current, |&last| current.min(last)),
+    }
 }
 
 /// Adaptive mode's controls: the pixel error (log scale), the largest level, culling, frozen
@@ -434,11 +438,16 @@ fn adaptive(ui: &mut egui::Ui, c: &mut Controls, info: &PanelInfo) {
             .suffix(" px")
             .text("pixel error [ ]"),
     );
-    level_row(ui, "max level [+ -]", &mut c.max_level, info);
+    let drawn = (!info.adaptive_rows.is_empty()).then_some(info.drawn.level);
+    level_row(ui, "max level [+ -]", &mut c.max_level, info.levels, drawn);
     ui.horizontal(|ui| {
         ui.checkbox(&mut c.cull, "cull [C]");
         // Where the driver drawn cannot glide the box is off and disabled, saying why.
-        match glide_refusal(&info.drawn) {
+        let largest = info
+            .levels
+            .last()
+            .map_or(c.max_level, |&l| c.max_level.min(l));
+        match glide_refusal(c.cfg.driver, largest) {
             None => ui.checkbox(&mut c.cfg.geomorph, "geomorph [G]"),
             Some(why) => ui
                 .add_enabled(false, egui::Checkbox::new(&mut false, "geomorph [G]"))
@@ -567,14 +576,32 @@ mod tests {
         assert_eq!(slider_pixel_error(16.0), 16.0);
     }
 
-    /// A level beyond what the driver draws (128 after switching to a tessellator limited to
-    /// 64) shows the level drawn selected, not none.
+    /// A row selects the level the last frame of its mode drew (a largest level of 48 drawn at
+    /// 32 by the pattern driver), else the level asked for, and a level beyond what the driver
+    /// draws (128 after switching to a tessellator limited to 64) the largest listed, not none.
     #[test]
     fn the_level_row_selects_the_level_drawn() {
-        let levels = [1, 2, 4, 8, 16, 32, 64];
-        assert_eq!(shown_level(128, &levels), 64);
-        assert_eq!(shown_level(16, &levels), 16);
-        assert_eq!(shown_level(40, &[1, 2, 4, 8, 16, 32, 40, 64]), 40);
+        let levels = [1, 2, 4, 8, 16, 32, 48, 64];
+        assert_eq!(selected_level(48, &levels, Some(32)), 32);
+        assert_eq!(selected_level(48, &levels, None), 48);
+        // A level drawn that the row does not list (the frame budget's 12): the one asked for.
+        assert_eq!(selected_level(16, &levels, Some(12)), 16);
+        assert_eq!(selected_level(128, &levels, None), 64);
+        assert_eq!(selected_level(40, &[1, 2, 4, 8, 16, 32, 40, 64], None), 40);
+    }
+
+    /// Geomorphing is refused where the driver cannot glide at the largest level asked for:
+    /// never on static, on tess only under a power of two; the pattern driver always glides
+    /// (its largest level is rounded down to one).
+    #[test]
+    fn geomorphing_is_refused_where_the_driver_cannot_glide() {
+        let pattern = Driver::Pattern(Submit::Instanced);
+        assert_eq!(glide_refusal(pattern, 64), None);
+        assert_eq!(glide_refusal(Driver::Tess, 64), None);
+        let tess = glide_refusal(Driver::Tess, 48).unwrap();
+        assert!(tess.contains("power of two, not 48"), "{tess}");
+        let stat = glide_refusal(Driver::Static, 64).unwrap();
+        assert_eq!(stat, "the static driver never glides");
     }
 
     /// The panel is as tall as its rows where the window has room for them, and scrolls within
