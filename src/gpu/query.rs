@@ -107,20 +107,11 @@ impl QueryPools {
 
     /// End statistics and write the end timestamp.
     pub fn cmd_end(&self, cmd: &Cmd<'_>, slot: u32) {
-        let cmd = cmd.raw;
-        let d = &self.ctx.device;
-        // SAFETY: matching cmd_begin recorded earlier in this command buffer.
-        unsafe {
-            if let Some(s) = self.stats {
-                d.cmd_end_query(cmd, s, slot);
-            }
-            d.cmd_write_timestamp(
-                cmd,
-                vk::PipelineStageFlags::BOTTOM_OF_PIPE,
-                self.timestamps,
-                2 * slot + 1,
-            );
+        if let Some(s) = self.stats {
+            // SAFETY: matching cmd_begin recorded earlier in this command buffer.
+            unsafe { self.ctx.device.cmd_end_query(cmd.raw, s, slot) };
         }
+        self.cmd_end_time(cmd, slot);
     }
 
     /// Reset the slot's timestamps and write its start, without statistics: a span inside
@@ -142,7 +133,8 @@ impl QueryPools {
         }
     }
 
-    /// Write the end timestamp of a span begun by [`QueryPools::cmd_begin_time`].
+    /// Write the end timestamp of a span begun by [`QueryPools::cmd_begin_time`] (or
+    /// [`QueryPools::cmd_begin`]).
     pub fn cmd_end_time(&self, cmd: &Cmd<'_>, slot: u32) {
         // SAFETY: matching cmd_begin_time recorded earlier in this command buffer.
         unsafe {
