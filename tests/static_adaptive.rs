@@ -166,6 +166,18 @@ fn static_adaptive_uploads_when_the_levels_change() {
         assert_eq!(scene.geometry_bytes(&st, true), cost.upload_bytes);
         assert_eq!(scene.upload_bytes(&st), cost.upload_bytes);
         assert!(cost.upload_bytes < st.geometry_bytes(20, false));
+        // Animated, it also uploads the levels it chose (16 bytes an element); a driver whose
+        // level pass chooses them uploads that pass's bounds instead (464 bytes an element).
+        let count = scene.elements(st.surface).element_count as u64;
+        assert_eq!(scene.level_upload_bytes(&st), count * 16);
+        let pattern = DrawConfig {
+            driver: Driver::Pattern(Submit::Instanced),
+            ..st
+        };
+        scene.set_levels(&pattern, &view(far, 4.0)).unwrap();
+        assert!(scene.level_pass(&pattern).is_some());
+        assert_eq!(scene.level_upload_bytes(&pattern), count * 464);
+        scene.set_levels(&st, &view(far, 4.0)).unwrap();
         scene.set_levels(&st, &view(far, 4.0)).unwrap();
         h.render(&mut scene, &st, &far).unwrap();
         assert_eq!(

@@ -218,6 +218,20 @@ impl Scene {
         self.levels.as_ref().map(|l| &l.records)
     }
 
+    /// Bytes an adaptive frame drawing `cfg` uploads besides the coarse data when the coarse
+    /// mesh moved (animation): the bounds the level pass reads, computed again on the CPU from
+    /// the moved mesh ([`LodRecord`], 464 bytes an element), or, where the CPU chooses the
+    /// levels (the static driver; a device that cannot hold the pass), the levels themselves
+    /// ([`ElementLevels`], 16 bytes an element). Independent of the levels chosen.
+    pub fn level_upload_bytes(&self, cfg: &DrawConfig) -> u64 {
+        let per_element = if self.level_pass(cfg).is_some() {
+            std::mem::size_of::<LodRecord>()
+        } else {
+            std::mem::size_of::<ElementLevels>()
+        };
+        self.elements(cfg.surface).element_count as u64 * per_element as u64
+    }
+
     /// The level pass and the camera of the last [`Scene::set_levels`], for
     /// `FrameWork::level_pass` of every adaptive frame drawn with `cfg`: `None` unless that call
     /// was for `cfg`'s elements, largest level and rounding (or the device could not hold the
