@@ -173,14 +173,8 @@ impl<'a> Lod<'a> {
     /// edge 0.
     fn local(&self, r: &CornerRecord, c: &Corners, edge: Option<usize>) -> Bounds {
         let tags = self.tags(r, c);
-        let SurfaceBound::Nets { geometry, .. } = self.surface.facts().bound else {
-            unreachable!("surfaces with bounds of their own return before");
-        };
-        let (exact, near) = match geometry(&self.params, c, &tags, edge.is_some()) {
-            Patch::Exact(net) => (Some(net), None),
-            Patch::Near(net, d) => (None, Some((net, d))),
-        };
-        let net = exact.unwrap_or_else(|| near.unwrap().0);
+        let (net, exact, sphere) = self.patch(c, &tags, edge);
+        let exact = exact.then_some(net);
         let dirs: Vec<usize> = match edge {
             Some(k) => vec![k],
             None => vec![0, 1, 2],
@@ -194,10 +188,6 @@ impl<'a> Lod<'a> {
         if exact.is_none() {
             m.iter_mut().for_each(|x| *x = f32::INFINITY);
             mixed.iter_mut().for_each(|x| *x = f32::INFINITY);
-        }
-        let mut sphere = Sphere::around(&net.hull(edge));
-        if let Some((_, d)) = near {
-            sphere = sphere.grown(d);
         }
         let displaced = !matches!(self.displace.facts().bound, DisplaceBound::Zero);
         let (mut kink, mut grow) = (Chord::ZERO, 0.0f32);
@@ -255,6 +245,38 @@ impl<'a> Lod<'a> {
             kink,
             cone,
         }
+    }
+
+    /// The undisplaced patch on canonical corners `c` (the whole element, or with `edge`
+    /// canonical edge 0): its net, whether the net is the surface exactly, and a sphere holding
+    /// the patch (the net's hull, grown by how far the surface may lie from a net that is not).
+    fn patch(
+        &self,
+        c: &Corners,
+        tags: &[stpn::VertexTag; 3],
+        edge: Option<usize>,
+    ) -> (Net, bool, Sphere) {
+        let SurfaceBound::Nets { geometry, .. } = self.surface.facts().bound else {
+            unreachable!("surfaces with bounds of their own return before");
+        };
+        match geometry(&self.params, c, tags, edge.is_some()) {
+            Patch::Exact(net) => (net, true, Sphere::around(&net.hull(edge))),
+            Patch::Near(net, d) => (net, false, Sphere::around(&net.hull(edge)).grown(d)),
+        }
+    }
+
+    /// The sphere [`Lod::element`] gives element `rec` where nothing displaces the surface,
+    /// without the rest of its bounds (what telling an eye outside the surface needs); `None`
+    /// for a surface with bounds of its own (`loop`) or a displaced one.
+    pub fn undisplaced_sphere(&self, rec: &ElementRecord) -> Option<Sphere> {
+        let own = matches!(self.surface.facts().bound, SurfaceBound::Own { .. });
+        let displaced = !matches!(self.displace.facts().bound, DisplaceBound::Zero);
+        if own || displaced {
+            return None;
+        }
+        let r = CornerRecord::decode(rec);
+        let c = canonical(&r, [1.0 / 3.0; 3]);
+        Some(self.patch(&c, &self.tags(&r, &c), None).2)
     }
 
     /// What displacement adds to each direction's `M_k`, its kink terms, and how far it moves

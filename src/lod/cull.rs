@@ -130,11 +130,23 @@ pub const BACK_FACING_MARGIN: f32 = 1e-4;
 /// room, or closer to the surface than a sphere's reach) the visible faces may face away: no
 /// culling for facing away then, only for lying outside the view.
 pub fn eye_outside(eye: Vec3, records: &[super::frame::LodRecord], mesh: &Mesh) -> bool {
-    let clear = records.iter().all(|r| {
+    let spheres = records.iter().map(|r| {
         let s = Vec4::from(r.sphere);
-        (s.truncate() - eye).length() > s.w
+        Sphere {
+            centre: s.truncate(),
+            radius: s.w,
+        }
     });
-    clear && mesh.winding_number(eye).abs() < 0.5
+    eye_outside_spheres(eye, spheres, mesh)
+}
+
+/// [`eye_outside`] from the elements' spheres alone.
+pub fn eye_outside_spheres(
+    eye: Vec3,
+    mut spheres: impl Iterator<Item = Sphere>,
+    mesh: &Mesh,
+) -> bool {
+    spheres.all(|s| (s.centre - eye).length() > s.radius) && mesh.winding_number(eye).abs() < 0.5
 }
 
 #[cfg(test)]

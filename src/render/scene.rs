@@ -44,6 +44,9 @@ pub struct Scene {
     /// found when first asked (`flat` drawn adaptively with culling), again after
     /// [`Scene::update_mesh`].
     pub(super) self_intersecting: std::cell::OnceCell<bool>,
+    /// [`Scene::front_only`]'s answer from the elements' spheres alone where no bounds were
+    /// at hand: for what they were made from and which eye.
+    pub(super) front_spheres: Option<(super::scene_levels::BoundsKey, glam::Vec3, bool)>,
     /// The warning that the level pass cannot hold this mesh's bounds was given (once a scene:
     /// the window chooses levels every frame).
     pub(super) cpu_levels_said: bool,
@@ -154,6 +157,7 @@ impl Scene {
             adaptive_frames: false,
             closed,
             self_intersecting: std::cell::OnceCell::new(),
+            front_spheres: None,
             cpu_levels_said: false,
             static_levels: None,
             loop_: None,

@@ -12,7 +12,7 @@
 use super::static_adaptive::StaticLevels;
 use super::{Camera, DrawConfig, LevelPass, RenderError, Scene};
 use crate::gpu::vk;
-use crate::lod::cull::eye_outside;
+use crate::lod::cull::{eye_outside, eye_outside_spheres};
 use crate::lod::frame::{
     frame_levels, lod_records, uniform_level, unmet, LevelStats, LodRecord, LodView,
 };
@@ -39,7 +39,7 @@ pub struct LevelView {
 
 /// What the bounds on the GPU were made from.
 #[derive(Clone, Copy, Debug, PartialEq)]
-struct BoundsKey {
+pub(super) struct BoundsKey {
     surface: Surface,
     displace: Displace,
     params: SurfaceParams,
@@ -199,6 +199,27 @@ impl Scene {
             return Ok(false);
         }
         // Computing the bounds, not uploading them, fails only as `Scene::prepare` would.
+        let key = self.bounds_key(cfg);
+        let current = |l: &SceneLevels| l.records_key == Some(key);
+        if !self.levels.as_ref().is_some_and(current) {
+            // Bounds not at hand (a uniform frame of a moving mesh, say): the spheres alone,
+            // kept while the key and the eye stay, are much cheaper than every bound.
+            if let Some((k, e, outside)) = self.front_spheres {
+                if k == key && e == eye {
+                    return Ok(outside);
+                }
+            }
+            let lod = Lod::new(&self.mirror(cfg, cfg.level)?, &cfg.params);
+            let records = self.records(cfg.surface);
+            let spheres: Option<Vec<_>> = (records.iter().enumerate())
+                .map(|(t, r)| lod.for_element(t).undisplaced_sphere(r))
+                .collect();
+            if let Some(spheres) = spheres {
+                let outside = eye_outside_spheres(eye, spheres.into_iter(), &self.data.mesh);
+                self.front_spheres = Some((key, eye, outside));
+                return Ok(outside);
+            }
+        }
         self.update_bounds(cfg, false)??;
         let l = self.levels.as_mut().expect("update_bounds leaves bounds");
         Ok(match l.outside {
@@ -264,21 +285,25 @@ impl Scene {
     /// outer error: the surface's mirror cannot be built, nothing is changed), and uploaded then
     /// when `upload` (the inner error: the device could not hold them). The bounds are kept on
     /// the CPU even when the upload fails (the mirror uses them).
-    fn update_bounds(
-        &mut self,
-        cfg: &DrawConfig,
-        upload: bool,
-    ) -> Result<Result<(), RenderError>, RenderError> {
-        let mesh = self.elements(cfg.surface);
-        let key = BoundsKey {
+    /// What the bounds of `cfg`'s elements are made from.
+    fn bounds_key(&self, cfg: &DrawConfig) -> BoundsKey {
+        BoundsKey {
             surface: cfg.surface,
             displace: cfg.displace,
             params: cfg.params,
             build: cfg.build,
             pyramid: (cfg.displace == Displace::Heightmap).then(|| self.heightmap_lod(cfg.level)),
             generation: self.generation,
-            levels: mesh.levels.raw,
-        };
+            levels: self.elements(cfg.surface).levels.raw,
+        }
+    }
+
+    fn update_bounds(
+        &mut self,
+        cfg: &DrawConfig,
+        upload: bool,
+    ) -> Result<Result<(), RenderError>, RenderError> {
+        let key = self.bounds_key(cfg);
         let have = |l: &SceneLevels| l.records_key == Some(key) && (!upload || l.key == Some(key));
         if self.levels.as_ref().is_some_and(have) {
             return Ok(Ok(()));

@@ -72,13 +72,11 @@ fn halved_bounds_are_caught() {
         (Surface::Pn, Displace::None),
         (Surface::Flat, Displace::Sine),
     ] {
-        let case = Case {
+        let case = Case::plain(
             surface,
-            field: NormalField::default(),
             displace,
-            params: SurfaceParams::for_radius(spot.bounding_radius()),
-            inputs: Sources::default(),
-        };
+            SurfaceParams::for_radius(spot.bounding_radius()),
+        );
         let r = std::panic::catch_unwind(|| {
             // Ratios of 2 are rare: the largest-curvature elements must show it.
             case.check_with(&recs, &[1, 2, 4], spot.bounding_radius(), "halved", 0.5)

@@ -52,6 +52,18 @@ struct Case<'a> {
 }
 
 impl Case<'_> {
+    /// `surface` displaced by `displace` with the default normal field, parameters and inputs
+    /// (`params` as given).
+    fn plain(surface: Surface, displace: Displace, params: SurfaceParams) -> Self {
+        Case {
+            surface,
+            field: NormalField::default(),
+            displace,
+            params,
+            inputs: Sources::default(),
+        }
+    }
+
     fn mirror(&self) -> Mirror<'_> {
         let build = BuildOptions {
             normal_field: self.field,
