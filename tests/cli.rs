@@ -1116,35 +1116,78 @@ fn bad_values_of_unread_options_are_refused_alone() {
 }
 
 /// An `--eye` at the default camera's target names that target as the default's, not as a
-/// `--look-at` never given.
+/// `--look-at` never given; so does a `--look-at` at the default eye. Read back from `info`'s
+/// line, the point maps into the drawn frame a rounding away from the default's on some meshes
+/// (a single triangle, the octahedron): still no view direction, in every command, rather than
+/// one made of rounding (an export wrote such a camera in its header).
 #[test]
 fn an_eye_on_the_default_target_names_the_default() {
-    let tet = model_path("tetrahedron.obj");
-    let info = ok(&[
-        "info",
-        p(&tet),
-        "--pixel-error",
-        "1",
-        "--width",
-        "320",
-        "--height",
-        "240",
-    ]);
-    let target = (info
-        .split(", look-at ")
-        .nth(1)
-        .unwrap()
-        .split(',')
-        .next()
-        .unwrap())
-    .replace(' ', ",");
-    let eye = format!("--eye={target}");
-    expect_error(
-        &["render", p(&tet), &eye, "--width", "320", "--height", "240"],
-        &[&format!(
-            "--eye {target} and the default camera's target ({target}) give no view direction: they are the same point"
-        )],
-    );
+    let tri = write("eye-tri.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    let size = ["--width", "160", "--height", "90"];
+    for mesh in [
+        model_path("tetrahedron.obj"),
+        model_path("octahedron.obj"),
+        tri,
+    ] {
+        let mut args = vec!["info", p(&mesh), "--pixel-error", "1"];
+        args.extend(size);
+        let info = ok(&args);
+        let point = |after: &str| {
+            let rest = info.split(after).nth(1).unwrap();
+            rest.split(',').next().unwrap().replace(' ', ",")
+        };
+        let (eye, target) = (point(" eye "), point(", look-at "));
+        let out = tmp("eye-on-target.obj");
+        let commands: [&[&str]; 3] = [
+            &["render"],
+            &["export", "-o", p(&out), "--pixel-error", "1"],
+            &["info", "--pixel-error", "1"],
+        ];
+        for command in commands {
+            let on_target = format!("--eye={target}");
+            let mut args = vec![command[0], p(&mesh), &on_target];
+            args.extend(&command[1..]);
+            args.extend(size);
+            expect_error(
+                &args,
+                &[&format!(
+                    "--eye {target} and the default camera's target ({target}) give no view direction"
+                )],
+            );
+            let on_eye = format!("--look-at={eye}");
+            args[2] = &on_eye;
+            expect_error(
+                &args,
+                &[&format!(
+                    "the default camera's eye ({eye}) and --look-at {eye} give no view direction"
+                )],
+            );
+        }
+    }
+}
+
+/// A camera farther from the mesh than supported is refused before any GPU work: with no
+/// Vulkan driver at all, the camera's sentence, not the driver's (an adaptive export; render).
+#[test]
+fn a_camera_too_far_is_refused_before_the_device() {
+    let env = [("VK_DRIVER_FILES", "/nonexistent/no-driver.json")];
+    let out = tmp("far-camera.obj");
+    let commands: [&[&str]; 2] = [
+        &["render", "-o", "/tmp/meshrefine-far-camera.png"],
+        &["export", "-o", p(&out), "--pixel-error", "1"],
+    ];
+    for command in commands {
+        let mut args = command.to_vec();
+        args.extend(["--eye", "2e12,0,0"]);
+        let out = meshrefine_env(&args, &env);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{stderr}");
+        assert!(
+            stderr.contains("--eye 2e12,0,0 is") && stderr.contains("bounding radii"),
+            "{stderr}"
+        );
+        assert!(!stderr.contains("Vulkan driver"), "{stderr}");
+    }
 }
 
 /// `--help` groups every option of a command under a heading of its own (docs/cli.md): only

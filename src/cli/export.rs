@@ -41,6 +41,12 @@ pub fn run(a: &ExportArgs, desc: &ContextDesc) -> Result<()> {
         progress.set_size(size);
     }
     attach_surface_inputs(&mut input, &a.surface, false)?;
+    if adaptive.is_some() {
+        // A camera too far from the mesh is refused before any GPU work, as render's is.
+        let (centre, scale) = input.mesh.viewing_transform();
+        super::adaptive::check_distance(&a.adaptive.viewpoint, &Frame { centre, scale })
+            .with_context(|| format!("cannot export '{shown}'"))?;
+    }
     let size = (a.width, a.height);
     let counts = with_context(desc, |ctx| {
         let shown = input.shown.clone();

@@ -24,6 +24,11 @@ pub fn run(a: &RenderArgs, desc: &ContextDesc, level_given: bool) -> Result<()> 
     let mut input = load_mesh(a.mesh.as_deref(), for_loop)?;
     let cfg = draw_config(&a.technique, &input.mesh)?;
     attach_surface_inputs(&mut input, &a.technique.surface, false)?;
+    // A camera too far from the mesh is refused before any GPU work (its distance needs only
+    // the mesh's bounding box; one without a view direction needs the surface as drawn).
+    let (centre, scale) = input.mesh.viewing_transform();
+    super::adaptive::check_distance(&a.adaptive.viewpoint, &Frame { centre, scale })
+        .with_context(|| format!("cannot render '{}'", input.shown))?;
     let image = ImageOptions {
         size: (a.width, a.height),
         wireframe: a.wireframe,

@@ -293,6 +293,11 @@ impl Default for Viewpoint {
     }
 }
 
+/// The least distance between the eye and the point looked at, in radii of the surface, that
+/// gives a view direction ([`Viewpoint::complete`]): a thousand times `f32`'s step at the drawn
+/// frame's unit scale, so the direction is good to about a tenth of a degree.
+pub const MIN_VIEW_RADII: f32 = 1e-4;
+
 impl Viewpoint {
     /// The camera for an image of `aspect` (width / height) showing `points`, the surface as
     /// drawn ([`crate::render::framing_points`]): fitted at this field of view, then moved to
@@ -311,6 +316,12 @@ impl Viewpoint {
         }
         let eye = self.eye.unwrap_or(fitted.eye());
         let target = self.look_at.unwrap_or(fitted.target);
+        // Closer together than single precision resolves a direction at the surface's scale
+        // (an eye given at the default target as printed, which maps back into the drawn frame
+        // a rounding away from it): no view direction, rather than one made of rounding.
+        if (target - eye).length() <= r * MIN_VIEW_RADII {
+            return None;
+        }
         // A look-at far beyond the mesh would grow the sphere the depth range holds, and with
         // it the near plane, past the mesh: the target moves back along the view ray to the
         // point nearest the mesh's centre. Eye and direction, so the image, stay.
