@@ -1166,6 +1166,41 @@ fn an_eye_on_the_default_target_names_the_default() {
     }
 }
 
+/// `bench` refuses a surface and displacement that cannot go together before timing anything
+/// (with no Vulkan driver at all, its sentence, not the driver's), whatever else it times.
+#[test]
+fn bench_refuses_incompatible_displacements_up_front() {
+    let env = [("VK_DRIVER_FILES", "/nonexistent/no-driver.json")];
+    let grid = model_path("grid_uv_8x8.obj");
+    let spot_heightmap = ["bench", "--displacements", "none,sine,heightmap"];
+    let loop_heightmap = [
+        "bench",
+        p(&grid),
+        "--surfaces",
+        "pn,loop",
+        "--displacements",
+        "heightmap",
+    ];
+    let cases: [(&[&str], &str); 2] = [
+        (
+            &spot_heightmap,
+            "cannot benchmark 'the default mesh (spot)': the mesh has no texture coordinates (vt on every face): the heightmap displacement reads the map there",
+        ),
+        (
+            &loop_heightmap,
+            "the loop surface has no texture coordinates: the heightmap displacement needs them",
+        ),
+    ];
+    for (command, needle) in cases {
+        let mut args = command.to_vec();
+        args.extend(["--frames", "1", "--levels", "2"]);
+        let out = meshrefine_env(&args, &env);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{stderr}");
+        assert!(stderr.contains(needle), "{stderr}");
+    }
+}
+
 /// A camera farther from the mesh than supported is refused before any GPU work: with no
 /// Vulkan driver at all, the camera's sentence, not the driver's (an adaptive export; render).
 #[test]
@@ -3153,6 +3188,59 @@ fn bench_times_uniform_rows_of_a_variant_not_drawn_adaptively() {
         ) && !near.contains("up to --max-level"),
         "{near}"
     );
+}
+
+/// Integer levels past the patterns' cap (`--geomorph off --max-level 256`) are drawn as render
+/// draws them: up to the largest level the levels chosen reach, the same levels (render's line),
+/// and the row says so.
+#[test]
+fn bench_draws_integer_levels_up_to_the_levels_reached() {
+    let oct = model_path("octahedron.obj");
+    let prefix = tmp("bench-integer-256");
+    #[rustfmt::skip]
+    let common = [
+        "--pixel-error", "1", "--geomorph", "off", "--max-level", "256", "--width", "160",
+        "--height", "90",
+    ];
+    let png = tmp("integer-256.png");
+    let mut args = vec!["render", p(&oct), "-o", p(&png)];
+    args.extend(common);
+    let render = ok(&args);
+    let histogram = render.split("(level:elements) ").nth(1).unwrap();
+    let histogram = histogram.split(';').next().unwrap();
+    #[rustfmt::skip]
+    let mut args = vec![
+        "bench", p(&oct), "--drivers", "pattern", "--surfaces", "pn", "--levels", "2",
+        "--frames", "1", "--no-bound-levels", "--out", p(&prefix),
+    ];
+    args.extend(common);
+    ok(&args);
+    let csv = std::fs::read_to_string(prefix.with_extension("csv")).unwrap();
+    let mut lines = csv.lines();
+    let keys = common::csv_fields(lines.next().unwrap());
+    let get = |r: &Vec<String>, key: &str| r[keys.iter().position(|k| k == key).unwrap()].clone();
+    let rows: Vec<Vec<String>> = lines.map(common::csv_fields).collect();
+    let adaptive: Vec<_> = rows
+        .iter()
+        .filter(|r| get(r, "adaptive") == "true")
+        .collect();
+    assert_eq!(adaptive.len(), 3, "{csv}");
+    let top: u32 = (histogram.split_whitespace())
+        .map(|l| l.split(':').next().unwrap().parse::<u32>().unwrap())
+        .max()
+        .unwrap();
+    for row in adaptive {
+        assert!(get(row, "gpu_ms_median").parse::<f64>().is_ok(), "{csv}");
+        assert_eq!(get(row, "level_histogram"), histogram, "{csv}");
+        assert_eq!(get(row, "level"), top.next_power_of_two().to_string());
+        assert!(
+            get(row, "note").contains(&format!(
+                "drawn up to level {}, the largest its levels reach",
+                top.next_power_of_two()
+            )),
+            "{csv}"
+        );
+    }
 }
 
 /// Where the pixel error is not met, elements are counted by their own bounds: those drawn at

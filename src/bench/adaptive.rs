@@ -96,23 +96,39 @@ fn variant(
         geomorph: a.geomorph,
         ..cfg
     };
-    let mut first = timed(ctx, h, m, adaptive_cfg, true, "view".into(), a)?;
-    if first.drawn {
-        if let Err(e) = cfg
-            .driver
-            .kind()
-            .check_adaptive(ctx, &m.scene, &adaptive_cfg)
-        {
-            first.row.note = format!("not drawn: {e}");
-            first.drawn = false;
-        }
-    }
     let cameras = if a.cameras.is_empty() {
         vec![m.camera(&cfg, opts)?]
     } else {
         a.cameras.clone()
     };
     let cameras = &cameras[..];
+    let mut first = timed(ctx, h, m, adaptive_cfg, true, "view".into(), a)?;
+    let check = |m: &MeshSetup, c: &DrawConfig| c.driver.kind().check_adaptive(ctx, &m.scene, c);
+    if first.drawn {
+        if let Err(e) = check(m, &adaptive_cfg) {
+            // As render draws it: up to the largest level the cameras' levels reach (the same
+            // levels), where that fits.
+            let mut reached = None;
+            for &c in cameras {
+                let chosen = m.scene.set_levels(&adaptive_cfg, &view(c))?;
+                reached = reached.max(chosen.report().histogram.keys().max().copied());
+            }
+            let lowered = reached.and_then(|l| adaptive_cfg.lowered_to(l));
+            match lowered.filter(|l| check(m, l).is_ok()) {
+                Some(l) => {
+                    first = timed(ctx, h, m, l, true, "view".into(), a)?;
+                    first.row.note = format!(
+                        "drawn up to level {}, the largest its levels reach (up to --max-level {} the device cannot draw it adaptively)",
+                        l.level, adaptive_cfg.level
+                    );
+                }
+                None => {
+                    first.row.note = format!("not drawn: {e}");
+                    first.drawn = false;
+                }
+            }
+        }
+    }
     // The smallest uniform level meeting the bound on every camera (any integer: a uniform
     // frame has no transitions to round for); none where the adaptive frame cannot be drawn
     // (its levels are not chosen): then only the levels asked for are timed.
@@ -136,10 +152,11 @@ fn variant(
             bound.unwrap_or(cfg.level),
             if a.bound_levels { " (bound)" } else { "" },
         );
-        first.row.note = format!(
+        let note = format!(
             "the bound is not met on every element{}: uniform {level}{row} does not meet it either",
             why_unmet(&unmet, cfg.level)
         );
+        add_note(&mut first.row, note);
     }
     if let Some(b) = bound.filter(|b| a.bound_levels && b.next_power_of_two() > a.max_level) {
         let note = format!(
@@ -147,11 +164,7 @@ fn variant(
             b.next_power_of_two(),
             a.max_level
         );
-        first.row.note = [std::mem::take(&mut first.row.note), note]
-            .into_iter()
-            .filter(|n| !n.is_empty())
-            .collect::<Vec<_>>()
-            .join("; ");
+        add_note(&mut first.row, note);
     }
     let mut list = vec![first];
     for (level, from) in uniform_levels(opts, a, bound) {
@@ -465,6 +478,15 @@ fn into_rows(list: Vec<Timed>, cameras: usize, frames: usize) -> Vec<Row> {
         first.note = notes.join("; ");
     }
     rows
+}
+
+/// `note` after what `row`'s note says already ("; " between).
+fn add_note(row: &mut Row, note: String) {
+    row.note = [std::mem::take(&mut row.note), note]
+        .into_iter()
+        .filter(|n| !n.is_empty())
+        .collect::<Vec<_>>()
+        .join("; ");
 }
 
 #[cfg(test)]

@@ -430,25 +430,8 @@ pub fn cannot_adapt(
     Ok(refusal.map(|e| e.to_string()))
 }
 
-/// `cfg` at the largest level drawn among the levels of `report` (a power of two where the
-/// driver's levels are), where that is below `cfg.level` and draws the same: not for the height
-/// map, whose mip level follows the largest level, nor where the normal field would move
-/// between fragments and vertices (`loop` from level 16).
+/// `cfg` at the largest level drawn among the levels of `report`, where that draws the same
+/// below `cfg.level` ([`DrawConfig::lowered_to`]).
 fn chosen_max(cfg: &DrawConfig, report: &ChosenLevels) -> Option<DrawConfig> {
-    lowered_to(cfg, *report.report().histogram.keys().max()?)
-}
-
-/// `cfg` at `drawn`, the largest level drawn (a power of two at or above it where the driver's
-/// levels are), where that is below `cfg.level` and draws the same ([`chosen_max`]; `info`
-/// asks it as render does).
-pub fn lowered_to(cfg: &DrawConfig, drawn: u32) -> Option<DrawConfig> {
-    let level = if cfg.power_of_two_max() {
-        drawn.next_power_of_two()
-    } else {
-        drawn
-    };
-    let lowered = DrawConfig { level, ..*cfg };
-    let same = cfg.displace != meshrefine::surface::Displace::Heightmap
-        && lowered.fragment_normal_field() == cfg.fragment_normal_field();
-    (level < cfg.level && same).then_some(lowered)
+    cfg.lowered_to(*report.report().histogram.keys().max()?)
 }

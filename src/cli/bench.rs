@@ -34,6 +34,17 @@ pub fn run(a: &BenchArgs, desc: &ContextDesc, levels_given: bool) -> Result<()> 
         // As render does: every surface is then timed on the same, split, mesh.
         split_three_creases(&mut input, None)?;
     }
+    // A surface and displacement that cannot go together (the height map without texture
+    // coordinates) are refused before anything is timed, as render refuses them.
+    let texcoords = input.mesh.triangles.iter().all(|t| t.t.is_some());
+    for (&s, &d) in surfaces
+        .iter()
+        .flat_map(|s| displacements.iter().map(move |d| (s, d)))
+    {
+        if let Some(why) = s.incompatibility(d, texcoords) {
+            bail!("cannot benchmark '{}': {why}", input.shown);
+        }
+    }
     let (mesh, _) = for_viewing(&input.mesh, &DrawConfig::new(Driver::default(), 1));
     let (centre, scale) = input.mesh.viewing_transform();
     let params = a

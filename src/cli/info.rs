@@ -330,7 +330,7 @@ fn print_levels(a: &InfoArgs, mut input: Input) -> Result<()> {
             ..meshrefine::render::DrawConfig::new(a.driver, a.max_level)
         }
         .with_surface(surface, displace);
-        let drawn = super::adaptive::lowered_to(&cfg, top).map_or(cfg.level, |c| c.level);
+        let drawn = cfg.lowered_to(top).map_or(cfg.level, |c| c.level);
         if check_integer_levels(drawn, dyadic).is_err() {
             check_integer_levels(a.max_level, dyadic)
                 .map_err(|e| anyhow::anyhow!("--max-level {}: {e}", a.max_level))?;

@@ -182,6 +182,24 @@ impl DrawConfig {
         }
     }
 
+    /// This configuration at `drawn`, the largest level an adaptive frame's elements were given
+    /// (a power of two at or above it where [`DrawConfig::power_of_two_max`]), where that is
+    /// below the largest level and draws the same: not for the height map, whose mip level
+    /// follows the largest level, nor where the normal field would move between fragments and
+    /// vertices (`loop` from level 16). What `render`, `export` and `bench` draw where the draws
+    /// up to the largest level do not fit the device.
+    pub fn lowered_to(&self, drawn: u32) -> Option<DrawConfig> {
+        let level = if self.power_of_two_max() {
+            drawn.next_power_of_two()
+        } else {
+            drawn
+        };
+        let lowered = DrawConfig { level, ..*self };
+        let same = self.displace != crate::surface::Displace::Heightmap
+            && lowered.fragment_normal_field() == self.fragment_normal_field();
+        (level < self.level && same).then_some(lowered)
+    }
+
     /// Whether the largest level of an adaptive frame is a power of two: the pattern and
     /// static drivers' (their adaptive patterns are built up to a power of two, whichever
     /// levels they draw), the tess driver's while it glides.
