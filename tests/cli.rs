@@ -1201,6 +1201,21 @@ fn bench_refuses_incompatible_displacements_up_front() {
     }
 }
 
+/// An `--eye` and a `--look-at` both given, a hair apart (well under `1e-4` radii of the
+/// surface): no view direction, rather than one made of rounding.
+#[test]
+fn an_eye_a_hair_from_the_look_at_gives_no_direction() {
+    let png = tmp("hair.png");
+    #[rustfmt::skip]
+    expect_error(
+        &[
+            "render", "-o", p(&png), "--width", "64", "--height", "48", "--eye", "0.1,0.2,0.3",
+            "--look-at", "0.1,0.2,0.30001",
+        ],
+        &["--eye 0.1,0.2,0.3 and --look-at 0.1,0.2,0.30001 give no view direction: they are too close together for one"],
+    );
+}
+
 /// A camera farther from the mesh than supported is refused before any GPU work: with no
 /// Vulkan driver at all, the camera's sentence, not the driver's (an adaptive export; render).
 #[test]

@@ -643,6 +643,8 @@ fn only_front_faces_show_on_closed_undisplaced_surfaces_from_outside() {
         };
         let pn = cfg(Surface::Pn, Displace::None);
         assert!(scene.front_only(&pn, outside).unwrap());
+        // Told from the elements' spheres alone: no bounds were computed.
+        assert!(scene.level_bounds().is_none());
         assert!(!scene.front_only(&pn, c).unwrap(), "from inside");
         let mut open = pn;
         open.build.seams = meshrefine::surface::Seams::Open;

@@ -170,6 +170,8 @@ fn static_adaptive_uploads_when_the_levels_change() {
         // level pass chooses them uploads that pass's bounds instead (464 bytes an element).
         let count = scene.elements(st.surface).element_count as u64;
         assert_eq!(scene.level_upload_bytes(&st), count * 16);
+        let coarse = scene.upload_bytes(&st);
+        assert_eq!(scene.animated_upload_bytes(&st, true), coarse + count * 16);
         let pattern = DrawConfig {
             driver: Driver::Pattern(Submit::Instanced),
             ..st
@@ -177,7 +179,12 @@ fn static_adaptive_uploads_when_the_levels_change() {
         scene.set_levels(&pattern, &view(far, 4.0)).unwrap();
         assert!(scene.level_pass(&pattern).is_some());
         assert_eq!(scene.level_upload_bytes(&pattern), count * 464);
-        scene.set_levels(&st, &view(far, 4.0)).unwrap();
+        let records = scene.upload_bytes(&pattern);
+        assert_eq!(scene.animated_upload_bytes(&pattern, false), records);
+        assert_eq!(
+            scene.animated_upload_bytes(&pattern, true),
+            records + count * 464
+        );
         scene.set_levels(&st, &view(far, 4.0)).unwrap();
         h.render(&mut scene, &st, &far).unwrap();
         assert_eq!(

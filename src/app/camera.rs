@@ -10,7 +10,7 @@ use glam::{DVec3, Vec3};
 use std::sync::Arc;
 
 /// Why the window cannot start from the viewpoint asked for.
-const NO_DIRECTION: &str = "--eye and --look-at give no view direction with the camera that frames the surface: the eye is at the point looked at";
+const NO_DIRECTION: &str = "--eye and --look-at give no view direction with the camera that frames the surface: the eye is within 1e-4 radii of the surface of the point looked at";
 
 /// The camera the demo starts with: the one default camera (render's), fitted to the surface
 /// `cfg` draws at the field of view asked for, moved to the eye or point looked at given, the

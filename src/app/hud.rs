@@ -51,9 +51,7 @@ impl State {
             coarse,
             refined: if shown { self.refined(&d, coarse) } else { 0 },
             geometry_bytes: self.scene.geometry_bytes(&d, self.levels.is_some()),
-            // An adaptive frame also uploads what the moved mesh's levels are chosen from.
-            upload_bytes: self.scene.upload_bytes(&d)
-                + (self.levels.as_ref()).map_or(0, |_| self.scene.level_upload_bytes(&d)),
+            upload_bytes: (self.scene).animated_upload_bytes(&d, self.levels.is_some()),
             table_bytes: self
                 .scene
                 .loop_

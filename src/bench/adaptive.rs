@@ -117,10 +117,13 @@ fn variant(
             match lowered.filter(|l| check(m, l).is_ok()) {
                 Some(l) => {
                     first = timed(ctx, h, m, l, true, "view".into(), a)?;
-                    first.row.note = format!(
+                    let note = format!(
                         "drawn up to level {}, the largest its levels reach (up to --max-level {} the device cannot draw it adaptively)",
                         l.level, adaptive_cfg.level
                     );
+                    if first.drawn {
+                        first.row.note = note;
+                    }
                 }
                 None => {
                     first.row.note = format!("not drawn: {e}");

@@ -350,7 +350,7 @@ impl MeshSetup {
                 let aspect = opts.width as f32 / opts.height.max(1) as f32;
                 v.camera(&self.scene.framing_points(cfg), aspect)
                     .ok_or(RenderError::Unsupported(
-                        "the eye and the point looked at give no view direction: they are the same point",
+                        "--eye and --look-at give no view direction with the camera fitted to the surface: the eye is within 1e-4 radii of the surface of the point looked at",
                     ))?
             }
         };

@@ -41,7 +41,7 @@ pub fn run(a: &BenchArgs, desc: &ContextDesc, levels_given: bool) -> Result<()> 
         .iter()
         .flat_map(|s| displacements.iter().map(move |d| (s, d)))
     {
-        if let Some(why) = s.incompatibility(d, texcoords) {
+        if let Some(why) = s.incompatibility_on(d, &input.mesh, texcoords) {
             bail!("cannot benchmark '{}': {why}", input.shown);
         }
     }

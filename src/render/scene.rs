@@ -44,9 +44,8 @@ pub struct Scene {
     /// found when first asked (`flat` drawn adaptively with culling), again after
     /// [`Scene::update_mesh`].
     pub(super) self_intersecting: std::cell::OnceCell<bool>,
-    /// [`Scene::front_only`]'s answer from the elements' spheres alone where no bounds were
-    /// at hand: for what they were made from and which eye.
-    pub(super) front_spheres: Option<(super::scene_levels::BoundsKey, glam::Vec3, bool)>,
+    /// The elements' spheres [`Scene::front_only`] computed alone where no bounds were at hand.
+    pub(super) front_spheres: Option<super::scene_levels::FrontSpheres>,
     /// The warning that the level pass cannot hold this mesh's bounds was given (once a scene:
     /// the window chooses levels every frame).
     pub(super) cpu_levels_said: bool,

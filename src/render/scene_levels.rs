@@ -39,7 +39,7 @@ pub struct LevelView {
 
 /// What the bounds on the GPU were made from.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) struct BoundsKey {
+struct BoundsKey {
     surface: Surface,
     displace: Displace,
     params: SurfaceParams,
@@ -51,6 +51,14 @@ pub(super) struct BoundsKey {
     generation: u64,
     /// The levels buffer written (another mesh after a re-upload or Loop's faces).
     levels: vk::Buffer,
+}
+
+/// The elements' spheres where no bounds are at hand ([`Scene::front_only`]): what they were
+/// made from, and the last eye told outside them or not, with the answer.
+pub(super) struct FrontSpheres {
+    key: BoundsKey,
+    spheres: Vec<crate::lod::Sphere>,
+    outside: Option<(glam::Vec3, bool)>,
 }
 
 /// The scene's level pass, the bounds it holds and the camera of the last
@@ -202,22 +210,31 @@ impl Scene {
         let key = self.bounds_key(cfg);
         let current = |l: &SceneLevels| l.records_key == Some(key);
         if !self.levels.as_ref().is_some_and(current) {
-            // Bounds not at hand (a uniform frame of a moving mesh, say): the spheres alone,
-            // kept while the key and the eye stay, are much cheaper than every bound.
-            if let Some((k, e, outside)) = self.front_spheres {
-                if k == key && e == eye {
-                    return Ok(outside);
-                }
+            // Bounds not at hand (a uniform frame): the spheres alone, kept while what they are
+            // made of stays (a still mesh seen from a moving camera), are much cheaper than
+            // every bound (a moving mesh computes them every frame).
+            if self.front_spheres.as_ref().is_none_or(|f| f.key != key) {
+                let lod = Lod::new(&self.mirror(cfg, cfg.level)?, &cfg.params);
+                let records = self.records(cfg.surface);
+                let spheres: Option<Vec<_>> = (records.iter().enumerate())
+                    .map(|(t, r)| lod.for_element(t).undisplaced_sphere(r))
+                    .collect();
+                self.front_spheres = spheres.map(|spheres| FrontSpheres {
+                    key,
+                    spheres,
+                    outside: None,
+                });
             }
-            let lod = Lod::new(&self.mirror(cfg, cfg.level)?, &cfg.params);
-            let records = self.records(cfg.surface);
-            let spheres: Option<Vec<_>> = (records.iter().enumerate())
-                .map(|(t, r)| lod.for_element(t).undisplaced_sphere(r))
-                .collect();
-            if let Some(spheres) = spheres {
-                let outside = eye_outside_spheres(eye, spheres.into_iter(), &self.data.mesh);
-                self.front_spheres = Some((key, eye, outside));
-                return Ok(outside);
+            if let Some(f) = &mut self.front_spheres {
+                return Ok(match f.outside {
+                    Some((e, outside)) if e == eye => outside,
+                    _ => {
+                        let spheres = f.spheres.iter().copied();
+                        let outside = eye_outside_spheres(eye, spheres, &self.data.mesh);
+                        f.outside = Some((eye, outside));
+                        outside
+                    }
+                });
             }
         }
         self.update_bounds(cfg, false)??;
@@ -253,6 +270,18 @@ impl Scene {
         self.elements(cfg.surface).element_count as u64 * per_element as u64
     }
 
+    /// What an animated frame drawing `cfg` uploads (the window's panel): the coarse data
+    /// ([`Scene::upload_bytes`]) and, for an adaptive frame, what its levels are chosen from
+    /// ([`Scene::level_upload_bytes`]).
+    pub fn animated_upload_bytes(&self, cfg: &DrawConfig, adaptive: bool) -> u64 {
+        let levels = if adaptive {
+            self.level_upload_bytes(cfg)
+        } else {
+            0
+        };
+        self.upload_bytes(cfg) + levels
+    }
+
     /// The level pass and the camera of the last [`Scene::set_levels`], for
     /// `FrameWork::level_pass` of every adaptive frame drawn with `cfg`: `None` unless that call
     /// was for `cfg`'s elements, largest level and rounding (or the device could not hold the
@@ -281,10 +310,6 @@ impl Scene {
         (levels, report)
     }
 
-    /// The level pass's bounds for `cfg`, computed when what they are made of changed (the
-    /// outer error: the surface's mirror cannot be built, nothing is changed), and uploaded then
-    /// when `upload` (the inner error: the device could not hold them). The bounds are kept on
-    /// the CPU even when the upload fails (the mirror uses them).
     /// What the bounds of `cfg`'s elements are made from.
     fn bounds_key(&self, cfg: &DrawConfig) -> BoundsKey {
         BoundsKey {
@@ -298,6 +323,10 @@ impl Scene {
         }
     }
 
+    /// The level pass's bounds for `cfg`, computed when what they are made of changed (the
+    /// outer error: the surface's mirror cannot be built, nothing is changed), and uploaded then
+    /// when `upload` (the inner error: the device could not hold them). The bounds are kept on
+    /// the CPU even when the upload fails (the mirror uses them).
     fn update_bounds(
         &mut self,
         cfg: &DrawConfig,
