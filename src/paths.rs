@@ -260,16 +260,26 @@ fn check_replaceable(path: &Path, option: &str) -> Result<(), String> {
     let (tmp, probe) = temporary_beside(&target).map_err(cannot)?;
     let _guard = Temporary::new(&tmp);
     let mine = std::os::unix::fs::MetadataExt::uid(&probe.metadata().map_err(cannot)?);
-    if let Ok(old) = std::fs::metadata(&target) {
-        // A read-only file is not replaced, as it would not be written (root's excepted).
-        if old.permissions().readonly() && mine != 0 {
-            return Err(format!("{option} '{shown}' is a read-only file"));
-        }
-        if written_in_place(&old, mine) {
-            File::options().write(true).open(&target).map_err(|e| {
-                format!("{option} '{shown}' is a file this user may not write: {e}")
-            })?;
-        }
+    let Ok(old) = std::fs::metadata(&target) else {
+        // Not there yet: its own name must be one the folder takes (not too long, say), which
+        // the temporary's does not tell. Made and removed at once.
+        File::options()
+            .write(true)
+            .create_new(true)
+            .open(&target)
+            .map_err(cannot)?;
+        let _ = std::fs::remove_file(&target);
+        return Ok(());
+    };
+    // A read-only file is not replaced, as it would not be written (root's excepted).
+    if old.permissions().readonly() && mine != 0 {
+        return Err(format!("{option} '{shown}' is a read-only file"));
+    }
+    if written_in_place(&old, mine) {
+        File::options()
+            .write(true)
+            .open(&target)
+            .map_err(|e| format!("{option} '{shown}' is a file this user may not write: {e}"))?;
     }
     Ok(())
 }
@@ -286,38 +296,103 @@ pub fn write_output(
     path: &Path,
     write: impl FnOnce(&mut dyn std::io::Write) -> std::io::Result<()>,
 ) -> std::io::Result<()> {
+    match stage_output(path, write)? {
+        Some(staged) => staged.commit(),
+        None => Ok(()),
+    }
+}
+
+/// Several outputs, all or none as far as the file system allows: each file is written whole
+/// beside its place first ([`write_output`]), and only once every one is are they put in place
+/// (renames, which fail only for a name the folder does not take, which [`check_output`]
+/// refuses up front), so a full disk leaves every old file as it was. Each error names its
+/// file.
+pub fn write_outputs(files: &[(&Path, &[u8])]) -> std::io::Result<()> {
+    let named = |path: &Path, e: std::io::Error| {
+        std::io::Error::new(e.kind(), format!("'{}': {e}", path.display()))
+    };
+    let mut staged = Vec::new();
+    for &(path, bytes) in files {
+        let s = stage_output(path, |w| w.write_all(bytes)).map_err(|e| named(path, e))?;
+        staged.push((path, s));
+    }
+    for (path, s) in staged {
+        if let Some(s) = s {
+            s.commit().map_err(|e| named(path, e))?;
+        }
+    }
+    Ok(())
+}
+
+/// An output written whole to a temporary file beside its place ([`stage_output`]), removed
+/// unless [`Staged::commit`] puts it there.
+struct Staged {
+    target: std::path::PathBuf,
+    guard: Temporary,
+    file: File,
+}
+
+/// [`write_output`]'s first half: a regular file (or none yet) is written to a temporary file
+/// beside it and flushed to the disk (returned, to put in place); a device or FIFO is written
+/// directly (`None`).
+fn stage_output(
+    path: &Path,
+    write: impl FnOnce(&mut dyn std::io::Write) -> std::io::Result<()>,
+) -> std::io::Result<Option<Staged>> {
     use std::io::Write as _;
-    use std::os::unix::fs::{MetadataExt as _, PermissionsExt as _};
     let Some(target) = regular_target(path)? else {
         let mut w = std::io::BufWriter::with_capacity(1 << 20, File::create(path)?);
         write(&mut w)?;
-        return w.flush();
+        w.flush()?;
+        return Ok(None);
     };
     crate::interrupt::install();
     let (tmp, file) = temporary_beside(&target)?;
-    let mut guard = Temporary::new(&tmp);
+    let guard = Temporary::new(&tmp);
     let mut w = std::io::BufWriter::with_capacity(1 << 20, file);
     write(&mut w)?;
-    let mut file = w.into_inner().map_err(|e| e.into_error())?;
+    let file = w.into_inner().map_err(|e| e.into_error())?;
     // A full disk may only say so when the data reaches it.
     file.sync_all()?;
-    let old = std::fs::metadata(&target).ok();
-    let mine = file.metadata()?.uid();
-    if old.as_ref().is_some_and(|m| written_in_place(m, mine)) {
-        return copy_into(&mut file, &target);
-    }
-    if let Some(m) = &old {
-        let mode = m.permissions().mode() & !0o6000;
-        file.set_permissions(std::fs::Permissions::from_mode(mode))?;
-    }
-    match std::fs::rename(&tmp, &target) {
-        Ok(()) => {
-            guard.0 = None;
-            Ok(())
+    Ok(Some(Staged {
+        target,
+        guard,
+        file,
+    }))
+}
+
+impl Staged {
+    /// Puts the file in its place: renamed over the old one with its permissions, or copied
+    /// into it where a rename would change more than the contents or cannot be done.
+    fn commit(mut self) -> std::io::Result<()> {
+        use std::os::unix::fs::{MetadataExt as _, PermissionsExt as _};
+        let target = &self.target;
+        let old = std::fs::metadata(target).ok();
+        let mine = self.file.metadata()?.uid();
+        if old.as_ref().is_some_and(|m| written_in_place(m, mine)) {
+            return copy_into(&mut self.file, target);
         }
-        // EBUSY (a file mounted on its own), EXDEV (another file system).
-        Err(e) if matches!(e.raw_os_error(), Some(16 | 18)) => copy_into(&mut file, &target),
-        Err(e) => Err(e),
+        if let Some(m) = &old {
+            let mode = m.permissions().mode() & !0o6000;
+            self.file
+                .set_permissions(std::fs::Permissions::from_mode(mode))?;
+        }
+        let tmp = self
+            .guard
+            .0
+            .clone()
+            .expect("a staged file has its temporary");
+        match std::fs::rename(&tmp, target) {
+            Ok(()) => {
+                self.guard.0 = None;
+                Ok(())
+            }
+            // EBUSY (a file mounted on its own), EXDEV (another file system).
+            Err(e) if matches!(e.raw_os_error(), Some(16 | 18)) => {
+                copy_into(&mut self.file, target)
+            }
+            Err(e) => Err(e),
+        }
     }
 }
 
@@ -354,6 +429,46 @@ pub fn printable(text: &str) -> std::borrow::Cow<'_, str> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Several outputs are put in place only once every one is written: where the last cannot
+    /// be written (no folder for it), the others keep what an earlier run wrote, no temporary
+    /// file is left, and the error names the file; where all can, all are replaced. A name
+    /// too long for its folder, which only putting the file in place would find, is refused by
+    /// the check before any work.
+    #[test]
+    fn outputs_written_together_are_all_replaced_or_none() {
+        let d = dir().join("write-outputs");
+        let _ = std::fs::remove_dir_all(&d);
+        std::fs::create_dir_all(&d).unwrap();
+        let (md, csv) = (d.join("run.md"), d.join("run.csv"));
+        let lost = d.join("gone").join("run.json");
+        for f in [&md, &csv] {
+            std::fs::write(f, "earlier run").unwrap();
+        }
+        let e = write_outputs(&[(&md, b"new"), (&csv, b"new"), (&lost, b"new")]).unwrap_err();
+        assert!(
+            e.to_string().contains(&format!("'{}'", lost.display())),
+            "{e}"
+        );
+        for f in [&md, &csv] {
+            assert_eq!(std::fs::read_to_string(f).unwrap(), "earlier run");
+        }
+        assert_eq!(
+            std::fs::read_dir(&d).unwrap().count(),
+            2,
+            "a temporary file left"
+        );
+        let long = d.join(format!("{}.json", "a".repeat(251)));
+        let refused = check_output(&long, "--out", Output::File).unwrap_err();
+        assert!(refused.contains("cannot write there"), "{refused}");
+        let json = d.join("run.json");
+        write_outputs(&[(&md, b"new"), (&csv, b"new"), (&json, b"new")]).unwrap();
+        for f in [&md, &csv, &json] {
+            assert_eq!(std::fs::read_to_string(f).unwrap(), "new");
+        }
+        assert!(check_output(&d.join("fresh.png"), "-o", Output::File).is_ok());
+        assert!(!d.join("fresh.png").exists(), "the check left its file");
+    }
 
     /// A write that fails part way, or panics, leaves the file as it was and no temporary file;
     /// one that ends replaces it whole, with its permissions, through a symbolic link (the

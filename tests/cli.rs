@@ -340,6 +340,13 @@ fn info_reports_topology_and_footprint() {
         s.contains(&format!("static {static_bytes:>15}")) || s.contains(&static_bytes.to_string()),
         "{s}"
     );
+    assert!(!s.contains("note:"), "{s}");
+    // Past lavapipe's maxTessellationGenerationLevel (64), tess's line says it cannot draw it,
+    // in render's sentence; the other drivers' do not.
+    let s = ok(&["info", p(&model_path("grid_open_8x8.obj")), "--level", "65"]);
+    let note = "    note: level 65 is beyond this device's maxTessellationGenerationLevel (64): the tess driver cannot draw it";
+    assert_eq!(s.matches("note:").count(), 1, "{s}");
+    assert!(s.lines().any(|l| l.starts_with(note)), "{s}");
     // Loop's elements are M1's faces: the icosahedron's 20 triangles make 80, x 64 at level 8
     // (what `export --surface loop --level 8` writes).
     let ico = model_path("icosahedron.obj");
@@ -1213,6 +1220,23 @@ fn an_eye_a_hair_from_the_look_at_gives_no_direction() {
             "--look-at", "0.1,0.2,0.30001",
         ],
         &["--eye 0.1,0.2,0.3 and --look-at 0.1,0.2,0.30001 give no view direction: they are too close together for one"],
+    );
+}
+
+/// `bench` goes on past a row whose mesh the device cannot hold (the static driver refined at
+/// level 1024: gigabytes), as past a level it refuses: the row says why, the others are timed,
+/// the run succeeds.
+#[test]
+fn bench_goes_on_past_a_row_the_device_cannot_hold() {
+    #[rustfmt::skip]
+    let out = ok(&[
+        "bench", "--levels", "1,1024", "--drivers", "static", "--frames", "1", "--width", "32",
+        "--height", "32",
+    ]);
+    let out = out.split_whitespace().collect::<Vec<_>>().join(" ");
+    assert!(
+        out.contains("static: not drawn: the static driver's refined mesh at level 1024 needs"),
+        "{out}"
     );
 }
 
@@ -2520,6 +2544,11 @@ fn control_characters_in_names_are_escaped() {
     assert!(
         md.lines().next().unwrap().ends_with("b\\nout'`"),
         "{md:.300}"
+    );
+    // The table's mesh cells (the mesh is named by its file) escaped too.
+    assert!(
+        !md.contains('\u{1b}') && md.contains("v\\u{1b}[2Jx"),
+        "{md}"
     );
 }
 

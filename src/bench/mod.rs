@@ -412,7 +412,8 @@ fn warm_up(
 }
 
 /// A variant's row with what is known before timing (counts, bytes; the scene prepared for
-/// `cfg`), and why the device refuses its level, if it does (then nothing was prepared).
+/// `cfg`), and why the device refuses its level or cannot hold what it draws, if it does (then
+/// nothing was prepared).
 fn new_row(
     ctx: &crate::gpu::Context,
     h: &mut Headless,
@@ -421,13 +422,22 @@ fn new_row(
 ) -> Result<(Row, Option<RenderError>), RenderError> {
     let (surface, displace, level) = (cfg.surface, cfg.displace, cfg.level);
     let scene = &mut m.scene;
-    let refused = crate::render::driver::check_level(ctx, cfg).err();
-    let t = if refused.is_none() {
-        h.prepared_elements(scene, cfg, crate::render::Capture::None)?
-    } else {
-        // Not drawn; loop's M1 is there once another driver drew it.
-        scene.elements(surface).element_count
+    let mut refused = crate::render::driver::check_level(ctx, cfg).err();
+    let prepared = match refused {
+        None => match h.prepared_elements(scene, cfg, crate::render::Capture::None) {
+            Ok(t) => Some(t),
+            // What the device cannot hold (the static driver's mesh refined at a level): not
+            // drawn, as a level it refuses, and the other rows are still timed.
+            Err(e @ RenderError::OverLimit { .. }) => {
+                refused = Some(e);
+                None
+            }
+            Err(e) => return Err(e),
+        },
+        Some(_) => None,
     };
+    // Not drawn: loop's M1 is there once another driver drew it.
+    let t = prepared.unwrap_or_else(|| scene.elements(surface).element_count);
     let (kind, elements) = (cfg.driver.kind(), t as u64);
     let (stored_vertices, stored_indices) = match h.adaptive {
         true => kind.stored_adaptive(cfg.level, elements, cfg.dyadic_levels()),

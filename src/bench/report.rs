@@ -228,7 +228,9 @@ impl Report {
         });
         let _ = writeln!(s, "|{}", rule.collect::<String>());
         for r in &self.rows {
-            let cells = columns.iter().map(|c| c.cell(self, r).markdown());
+            // A mesh named with control characters writes nothing a terminal acts on.
+            let cells = (columns.iter())
+                .map(|c| crate::paths::printable(&c.cell(self, r).markdown()).into_owned());
             let _ = writeln!(s, "{}", line(cells.collect()));
         }
         s
@@ -249,12 +251,13 @@ impl Report {
             ("csv", self.csv()),
             ("json", self.json()),
         ];
-        for (ext, text) in files {
-            let path = with_extension(prefix, ext);
-            crate::paths::write_output(&path, |w| w.write_all(text.as_bytes()))
-                .map_err(|e| std::io::Error::new(e.kind(), format!("'{}': {e}", path.display())))?;
-        }
-        Ok(())
+        let paths = files.each_ref().map(|(ext, _)| with_extension(prefix, ext));
+        let outputs: Vec<(&Path, &[u8])> = (paths.iter())
+            .zip(&files)
+            .map(|(path, (_, text))| (path.as_path(), text.as_bytes()))
+            .collect();
+        // All three or none: a failure leaves the files of an earlier run as they were.
+        crate::paths::write_outputs(&outputs)
     }
 
     /// Every column, one row per line, headed by the column keys.

@@ -130,8 +130,9 @@ pub fn run(a: &BenchArgs, desc: &ContextDesc, levels_given: bool) -> Result<()> 
     if let Some(prefix) = &a.out {
         let command = super::command_line();
         if let Err(e) = report.write_files(prefix, &command) {
-            // The measurements are not lost: the summary first, then why the files are not.
-            out!("{}", report.summary(None));
+            // The measurements are not lost: the summary first (no word of where the full
+            // table is), then why the files are not written.
+            out!("{}", report.summary_table());
             return Err(e).with_context(|| {
                 format!(
                     "cannot write the results to {}.{{md,csv,json}}",

@@ -69,7 +69,7 @@ pub fn run(a: &InfoArgs, desc: &ContextDesc) -> Result<()> {
     if let Some(level) = a.level {
         // Loop's drivers draw the faces of one Loop step, four to a coarse triangle.
         let elements = mesh.triangles.len() as u64 * if for_loop { 4 } else { 1 };
-        print_geometry(level, elements, for_loop)?;
+        print_geometry(level, elements, for_loop, desc)?;
     }
     // With --pixel-error the levels build Loop's data on the mesh as drawn and print these
     // lines from it (the same topology, so the same tables): built once.
@@ -115,8 +115,10 @@ fn print_stats(path: &str, mesh: &Mesh, report: &LoadReport) -> Result<()> {
 }
 
 /// `--level`: the refined triangles of `elements` (the coarse triangles, or M1's faces for
-/// `loop`), and each driver's GPU geometry.
-fn print_geometry(level: u32, elements: u64, m1_faces: bool) -> Result<()> {
+/// `loop`), and each driver's GPU geometry; past [`LEAST_LEVEL_LIMIT`], where the device render
+/// would draw on (its limits read, nothing opened) refuses the level to a driver, a note under
+/// its line says so in render's sentence.
+fn print_geometry(level: u32, elements: u64, m1_faces: bool, desc: &ContextDesc) -> Result<()> {
     let t = elements;
     let element = if m1_faces {
         "M1 face: the elements are one Loop step's faces"
@@ -128,6 +130,10 @@ fn print_geometry(level: u32, elements: u64, m1_faces: bool) -> Result<()> {
         t * meshrefine::pattern::triangle_count(level) as u64,
         meshrefine::pattern::triangle_count(level)
     );
+    // No device to ask (no Vulkan driver): the figures stand alone.
+    let device = (level > LEAST_LEVEL_LIMIT)
+        .then(|| meshrefine::gpu::picked_device(desc).ok())
+        .flatten();
     for d in Driver::ALL {
         // The tessellator's rings make more triangles than the level's lattice (about 1.5 N²).
         let own = d.refined_per_element(level);
@@ -141,6 +147,12 @@ fn print_geometry(level: u32, elements: u64, m1_faces: bool) -> Result<()> {
             d.name(),
             d.geometry_bytes(level, t)
         );
+        if let Some(device) = &device {
+            let cfg = meshrefine::render::DrawConfig::new(d, level);
+            if let Err(e) = meshrefine::render::driver::check_level_on(device, &cfg) {
+                out!("    note: {e}");
+            }
+        }
     }
     Ok(())
 }
