@@ -23,13 +23,15 @@
 //!   (`/dev/full.md`), which nobody means;
 //! - a single-file output that is (or will be) a regular file must be writable: an existing
 //!   file this user may not write is refused, and so is a folder that takes no new file (one
-//!   is made there and removed).
+//!   is made there and removed), or a name it does not take (too long: a file of that name is
+//!   made and removed where none is).
 //!
 //! A regular file is written whole beside its path and renamed over it only once complete
 //! ([`write_output`]): a write that fails (a full disk) or is interrupted (Ctrl-C,
 //! [`crate::interrupt`]) leaves what was there before and no temporary file (but for a file
 //! that must be written in place, as [`write_output`] says), and an output that names the input
-//! replaces it only with a finished file.
+//! replaces it only with a finished file. Several outputs of one command ([`write_outputs`]:
+//! `bench --out`'s three) are all written beside their paths before any is put in place.
 #![forbid(unsafe_code)]
 
 use std::fs::{File, FileType, Metadata};
