@@ -1,5 +1,6 @@
 //! An interrupted command leaves no unfinished output behind: while a regular output file is
-//! written beside its path ([`crate::paths::write_output`]), the temporary file is registered
+//! written beside its path ([`crate::paths::write_output`], [`crate::paths::write_outputs`]),
+//! the temporary file is registered
 //! here, and `SIGINT`, `SIGTERM` or `SIGHUP` (Ctrl-C, `kill`, a closed terminal) removes it
 //! before the process ends as the signal says (its default action, re-raised: the shell still
 //! sees the signal). What the path held before stays, unless the interruption comes while a
@@ -7,12 +8,13 @@
 //! [`crate::paths::write_output`]).
 //!
 //! Handlers are installed only for signals whose action is the default, so a signal the
-//! process ignores (`nohup`, a background job) stays ignored. One temporary file is registered
-//! at a time (the commands write their outputs one after the other), as soon as it is made; a
-//! second registration replaces the first.
+//! process ignores (`nohup`, a background job) stays ignored. A temporary file is registered
+//! as soon as it is made, in one of [`SLOTS`] slots (several when one command writes several
+//! outputs as a set, [`crate::paths::write_outputs`]); with every slot taken, a registration
+//! replaces the first slot's.
 //!
-//! The handler does only what is safe in a signal handler: it swaps one atomic pointer, calls
-//! `unlink` on the C string it pointed to, and restores and re-raises the signal. Registered
+//! The handler does only what is safe in a signal handler: it swaps each slot's atomic pointer,
+//! calls `unlink` on the C strings they pointed to, and restores and re-raises the signal. Registered
 //! names are never freed (a few bytes per output written), so the handler never reads freed
 //! memory whatever the thread it runs on.
 
@@ -21,20 +23,29 @@ use std::path::Path;
 use std::sync::atomic::{AtomicPtr, Ordering};
 use std::sync::Once;
 
-/// The temporary file being written, as a C string; null when none is.
-static PENDING: AtomicPtr<c_char> = AtomicPtr::new(std::ptr::null_mut());
+/// How many temporary files may be pending at once.
+pub const SLOTS: usize = 4;
+
+/// The temporary files being written, as C strings; null where none is.
+static PENDING: [AtomicPtr<c_char>; SLOTS] =
+    [const { AtomicPtr::new(std::ptr::null_mut()) }; SLOTS];
 
 const SIGNALS: [libc::c_int; 3] = [libc::SIGINT, libc::SIGTERM, libc::SIGHUP];
 
-/// Removes the pending temporary file, then ends the process as `signal` would have.
+/// Removes the pending temporary files, then ends the process as `signal` would have.
 extern "C" fn on_signal(signal: libc::c_int) {
-    let pending = PENDING.swap(std::ptr::null_mut(), Ordering::SeqCst);
-    // SAFETY: `unlink`, `signal` and `raise` are async-signal-safe; `pending` is null or a
-    // NUL-terminated string that is never freed (`register`).
-    unsafe {
+    for slot in &PENDING {
+        let pending = slot.swap(std::ptr::null_mut(), Ordering::SeqCst);
         if !pending.is_null() {
-            libc::unlink(pending);
+            // SAFETY: `unlink` is async-signal-safe; `pending` is a NUL-terminated string
+            // that is never freed (`register`).
+            unsafe {
+                libc::unlink(pending);
+            }
         }
+    }
+    // SAFETY: `signal` and `raise` are async-signal-safe.
+    unsafe {
         libc::signal(signal, libc::SIG_DFL);
         libc::raise(signal);
     }
@@ -70,16 +81,11 @@ pub fn install() {
 pub struct Registered(Option<&'static CStr>);
 
 impl Registered {
-    /// Forgets the registration if it is still the pending one (the file was renamed into
-    /// place or removed).
+    /// Forgets the registration if it is still pending (the file was renamed into place or
+    /// removed).
     pub fn clear(&self) {
         if let Some(name) = self.0 {
-            let _ = PENDING.compare_exchange(
-                name.as_ptr().cast_mut(),
-                std::ptr::null_mut(),
-                Ordering::SeqCst,
-                Ordering::SeqCst,
-            );
+            release(&PENDING, name.as_ptr().cast_mut());
         }
     }
 }
@@ -94,10 +100,62 @@ pub fn register(tmp: &Path) -> Registered {
         Ok(name) => {
             // Never freed (module notes).
             let name: &'static CStr = Box::leak(name.into_boxed_c_str());
-            PENDING.store(name.as_ptr().cast_mut(), Ordering::SeqCst);
+            claim(&PENDING, name.as_ptr().cast_mut());
             Registered(Some(name))
         }
         // A path with a NUL byte cannot have been made.
         Err(_) => Registered(None),
+    }
+}
+
+/// Puts `name` in the first free slot of `slots`, or with none free in the first.
+fn claim(slots: &[AtomicPtr<c_char>], name: *mut c_char) {
+    let null = std::ptr::null_mut();
+    let free = (slots.iter())
+        .any(|s| (s.compare_exchange(null, name, Ordering::SeqCst, Ordering::SeqCst)).is_ok());
+    if !free {
+        slots[0].store(name, Ordering::SeqCst);
+    }
+}
+
+/// Empties the slots of `slots` that hold `name`.
+fn release(slots: &[AtomicPtr<c_char>], name: *mut c_char) {
+    for s in slots {
+        let _ = s.compare_exchange(
+            name,
+            std::ptr::null_mut(),
+            Ordering::SeqCst,
+            Ordering::SeqCst,
+        );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Temporaries written as a set are all pending at once, each forgotten alone; past the
+    /// slots, the first slot's is replaced.
+    #[test]
+    fn several_temporaries_are_pending_at_once() {
+        let slots: [AtomicPtr<c_char>; 3] = Default::default();
+        let names = [c"a.tmp", c"b.tmp", c"c.tmp", c"d.tmp"].map(|n| n.as_ptr().cast_mut());
+        let held = |slots: &[AtomicPtr<c_char>]| -> Vec<*mut c_char> {
+            slots.iter().map(|s| s.load(Ordering::SeqCst)).collect()
+        };
+        for &n in &names[..3] {
+            claim(&slots, n);
+        }
+        assert_eq!(held(&slots), names[..3]);
+        release(&slots, names[1]);
+        assert_eq!(held(&slots), [names[0], std::ptr::null_mut(), names[2]]);
+        claim(&slots, names[3]);
+        assert_eq!(held(&slots), [names[0], names[3], names[2]]);
+        claim(&slots, names[1]);
+        assert_eq!(held(&slots), [names[1], names[3], names[2]]);
+        for &n in &names {
+            release(&slots, n);
+        }
+        assert!(held(&slots).iter().all(|p| p.is_null()));
     }
 }

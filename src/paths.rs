@@ -270,7 +270,8 @@ fn check_replaceable(path: &Path, option: &str) -> Result<(), String> {
             .create_new(true)
             .open(&target)
             .map_err(cannot)?;
-        let _ = std::fs::remove_file(&target);
+        // Removed when dropped, and if interrupted before.
+        drop(Temporary::new(&target));
         return Ok(());
     };
     // A read-only file is not replaced, as it would not be written (root's excepted).
@@ -305,10 +306,13 @@ pub fn write_output(
 }
 
 /// Several outputs, all or none as far as the file system allows: each file is written whole
-/// beside its place first ([`write_output`]), and only once every one is are they put in place
-/// (renames, which fail only for a name the folder does not take, which [`check_output`]
-/// refuses up front), so a full disk leaves every old file as it was. Each error names its
-/// file.
+/// beside its place first ([`write_output`]; each temporary registered for removal if the
+/// process is interrupted), and only once every one is are they put in place, so a failed
+/// write (a full disk) leaves every old file as it was. Putting them in place is renames, which
+/// fail only for a name the folder does not take ([`check_output`] refuses it up front), but
+/// where a file must be copied into its place ([`write_output`]: another user's, one with other
+/// hard links, another file system) a failure while copying, or an interruption between the
+/// renames, can leave some files of each run. Each error names its file.
 pub fn write_outputs(files: &[(&Path, &[u8])]) -> std::io::Result<()> {
     let named = |path: &Path, e: std::io::Error| {
         std::io::Error::new(e.kind(), format!("'{}': {e}", path.display()))
