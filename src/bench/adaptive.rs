@@ -96,13 +96,14 @@ fn variant(
         geomorph: a.geomorph,
         ..cfg
     };
+    let mut first = timed(ctx, h, m, adaptive_cfg, true, "view".into(), a)?;
+    // Fitted to the surface as prepared (loop's limit surface from its M1 faces).
     let cameras = if a.cameras.is_empty() {
         vec![m.camera(&cfg, opts)?]
     } else {
         a.cameras.clone()
     };
     let cameras = &cameras[..];
-    let mut first = timed(ctx, h, m, adaptive_cfg, true, "view".into(), a)?;
     let check = |m: &MeshSetup, c: &DrawConfig| c.driver.kind().check_adaptive(ctx, &m.scene, c);
     if first.drawn {
         if let Err(e) = check(m, &adaptive_cfg) {
