@@ -108,6 +108,34 @@ pub fn register(tmp: &Path) -> Registered {
     }
 }
 
+/// Runs `f` with SIGINT, SIGTERM and SIGHUP held back (blocked on this thread, delivered when
+/// it returns): what `f` makes and registers, or puts in place, is never cut in the middle.
+pub fn deferred<T>(f: impl FnOnce() -> T) -> T {
+    /// The mask before; restored when dropped, a panic in `f` included.
+    struct Restore(libc::sigset_t);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            // SAFETY: `pthread_sigmask` reads only the set passed.
+            unsafe {
+                libc::pthread_sigmask(libc::SIG_SETMASK, &self.0, std::ptr::null_mut());
+            }
+        }
+    }
+    // SAFETY: `sigemptyset`, `sigaddset` and `pthread_sigmask` write only the sets passed
+    // (zeroed sets are valid to start from).
+    let _restore = unsafe {
+        let mut set: libc::sigset_t = std::mem::zeroed();
+        libc::sigemptyset(&mut set);
+        for s in SIGNALS {
+            libc::sigaddset(&mut set, s);
+        }
+        let mut old: libc::sigset_t = std::mem::zeroed();
+        libc::pthread_sigmask(libc::SIG_BLOCK, &set, &mut old);
+        Restore(old)
+    };
+    f()
+}
+
 /// Puts `name` in the first free slot of `slots`, or with none free in the first.
 fn claim(slots: &[AtomicPtr<c_char>], name: *mut c_char) {
     let null = std::ptr::null_mut();

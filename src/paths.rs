@@ -154,7 +154,11 @@ pub fn check_output(path: &Path, option: &str, kind: Output) -> Result<(), Strin
         // writable as a single file is (a folder that takes no files, as /proc/self, fails here
         // rather than after the run).
         for ext in ["md", "csv", "json"] {
-            let file = std::path::PathBuf::from(format!("{text}.{ext}"));
+            // Built from the path's own bytes, as the files are named when written (a name
+            // that is not UTF-8 stays itself).
+            let mut file = path.as_os_str().to_owned();
+            file.push(format!(".{ext}"));
+            let file = std::path::PathBuf::from(file);
             if let Ok(m) = std::fs::metadata(&file) {
                 if !m.is_file() {
                     return Err(format!(
@@ -179,7 +183,8 @@ fn regular_target(path: &Path) -> std::io::Result<Option<std::path::PathBuf>> {
         return Ok(None);
     }
     let mut target = path.to_path_buf();
-    for _ in 0..40 {
+    // The kernel follows up to 40 links: 40 reads, then the file they lead to.
+    for _ in 0..=40 {
         match std::fs::read_link(&target) {
             Ok(to) => target = target.parent().unwrap_or(Path::new(".")).join(to),
             Err(_) => return Ok(Some(target)),
@@ -220,6 +225,17 @@ fn temporary_beside(target: &Path) -> std::io::Result<(std::path::PathBuf, File)
     Err(last.unwrap_or_else(|| std::io::Error::other("no temporary file name was free")))
 }
 
+/// [`temporary_beside`], registered for removal if the process is interrupted, with no
+/// moment between the two when a signal would leave it behind.
+fn temporary_registered(target: &Path) -> std::io::Result<(std::path::PathBuf, File, Temporary)> {
+    crate::interrupt::install();
+    crate::interrupt::deferred(|| {
+        let (tmp, file) = temporary_beside(target)?;
+        let guard = Temporary::new(&tmp);
+        Ok((tmp, file, guard))
+    })
+}
+
 /// Removes the temporary file when dropped (an error or a panic on the way), unless kept (the
 /// path taken); an interrupting signal removes it meanwhile ([`crate::interrupt`]).
 struct Temporary(Option<std::path::PathBuf>, crate::interrupt::Registered);
@@ -258,20 +274,31 @@ fn check_replaceable(path: &Path, option: &str) -> Result<(), String> {
     let Some(target) = regular_target(path).map_err(cannot)? else {
         return Ok(());
     };
-    crate::interrupt::install();
-    let (tmp, probe) = temporary_beside(&target).map_err(cannot)?;
-    let _guard = Temporary::new(&tmp);
+    let (tmp, probe, mut made) = temporary_registered(&target).map_err(cannot)?;
     let mine = std::os::unix::fs::MetadataExt::uid(&probe.metadata().map_err(cannot)?);
-    let Ok(old) = std::fs::metadata(&target) else {
-        // Not there yet: its own name must be one the folder takes (not too long, say), which
-        // the temporary's does not tell. Made and removed at once.
-        File::options()
-            .write(true)
-            .create_new(true)
-            .open(&target)
-            .map_err(cannot)?;
-        // Removed when dropped, and if interrupted before.
-        drop(Temporary::new(&target));
+    let old = std::fs::metadata(&target).ok();
+    if old.is_none() {
+        // None is there yet: the probe goes where the output will, as the output will (a
+        // rename, under the output's own name: one the folder does not take, too long say,
+        // fails here).
+        made = crate::interrupt::deferred(|| {
+            std::fs::rename(&tmp, &target)?;
+            made.0 = None;
+            Ok(Temporary::new(&target))
+        })
+        .map_err(cannot)?;
+    }
+    // And it must go again: a folder that takes files but lets none go (append-only) would
+    // keep every temporary file.
+    if let Some(path) = made.0.take() {
+        std::fs::remove_file(&path).map_err(|e| {
+            format!(
+                "{option} '{shown}': cannot write there: a file made there cannot be removed: {e}"
+            )
+        })?;
+    }
+    drop(made);
+    let Some(old) = old else {
         return Ok(());
     };
     // A read-only file is not replaced, as it would not be written (root's excepted).
@@ -289,12 +316,12 @@ fn check_replaceable(path: &Path, option: &str) -> Result<(), String> {
 
 /// Writes the output file `path` with `write` (module notes). A regular file (or none yet) is
 /// written to a new temporary file beside it, flushed to the disk and renamed over it only once
-/// whole, with the old file's permissions (less set-user and set-group ID); on any error (or a
-/// panic) the temporary file is removed and what `path` held stays. Where a rename would change
-/// more than the contents (the old file is another user's, or has other hard links) or cannot
-/// be done (across file systems, a file mounted on its own), the finished file is copied into
-/// the old one, which is not atomic: a failure while copying leaves it partly written. A device
-/// or FIFO is written directly.
+/// whole, with the old file's permissions (less set-user and set-group ID) and group; on any
+/// error (or a panic) the temporary file is removed and what `path` held stays. Where a rename
+/// would change more than the contents (the old file is another user's, has other hard links,
+/// or has a group this user may not give) or cannot be done (across file systems, a file
+/// mounted on its own), the finished file is copied into the old one, which is not atomic: a
+/// failure while copying leaves it partly written. A device or FIFO is written directly.
 pub fn write_output(
     path: &Path,
     write: impl FnOnce(&mut dyn std::io::Write) -> std::io::Result<()>,
@@ -322,12 +349,16 @@ pub fn write_outputs(files: &[(&Path, &[u8])]) -> std::io::Result<()> {
         let s = stage_output(path, |w| w.write_all(bytes)).map_err(|e| named(path, e))?;
         staged.push((path, s));
     }
-    for (path, s) in staged {
-        if let Some(s) = s {
-            s.commit().map_err(|e| named(path, e))?;
+    // No signal between the renames: the set is put in place whole (a signal that comes then
+    // ends the process right after).
+    crate::interrupt::deferred(|| {
+        for (path, s) in staged {
+            if let Some(s) = s {
+                s.commit().map_err(|e| named(path, e))?;
+            }
         }
-    }
-    Ok(())
+        Ok(())
+    })
 }
 
 /// An output written whole to a temporary file beside its place ([`stage_output`]), removed
@@ -352,9 +383,7 @@ fn stage_output(
         w.flush()?;
         return Ok(None);
     };
-    crate::interrupt::install();
-    let (tmp, file) = temporary_beside(&target)?;
-    let guard = Temporary::new(&tmp);
+    let (_, file, guard) = temporary_registered(&target)?;
     let mut w = std::io::BufWriter::with_capacity(1 << 20, file);
     write(&mut w)?;
     let file = w.into_inner().map_err(|e| e.into_error())?;
@@ -379,6 +408,13 @@ impl Staged {
             return copy_into(&mut self.file, target);
         }
         if let Some(m) = &old {
+            // The old file's group too, where this user may give it (else written in place,
+            // so that the group keeps what it could do).
+            if m.gid() != self.file.metadata()?.gid()
+                && std::os::unix::fs::fchown(&self.file, None, Some(m.gid())).is_err()
+            {
+                return copy_into(&mut self.file, target);
+            }
             let mode = m.permissions().mode() & !0o6000;
             self.file
                 .set_permissions(std::fs::Permissions::from_mode(mode))?;
@@ -474,6 +510,53 @@ mod tests {
         }
         assert!(check_output(&d.join("fresh.png"), "-o", Output::File).is_ok());
         assert!(!d.join("fresh.png").exists(), "the check left its file");
+    }
+
+    /// A replaced file keeps its group (renamed over with the group given to the new file, or
+    /// written in place where this user may not give it); a chain of 40 symbolic links, as
+    /// many as the kernel follows, is written through, one more is refused; a prefix that is
+    /// not UTF-8 is checked under its own bytes (a folder named as its .csv refused up front).
+    #[test]
+    fn outputs_keep_their_group_follow_40_links_and_any_bytes() {
+        use std::os::unix::ffi::OsStrExt as _;
+        use std::os::unix::fs::MetadataExt as _;
+        let d = dir().join("output-group-links");
+        let _ = std::fs::remove_dir_all(&d);
+        std::fs::create_dir_all(&d).unwrap();
+        let grouped = d.join("g.obj");
+        std::fs::write(&grouped, "old").unwrap();
+        // Another group than a new file's, where this user may give one (root in CI).
+        if std::os::unix::fs::chown(&grouped, None, Some(65534)).is_ok() {
+            write_output(&grouped, |w| w.write_all(b"new")).unwrap();
+            let m = std::fs::metadata(&grouped).unwrap();
+            assert_eq!(
+                (m.gid(), std::fs::read_to_string(&grouped).unwrap().as_str()),
+                (65534, "new")
+            );
+        }
+        let end = d.join("end.obj");
+        std::fs::write(&end, "old").unwrap();
+        let mut last = end.clone();
+        for i in 0..41 {
+            let link = d.join(format!("l{i}.obj"));
+            std::os::unix::fs::symlink(last.file_name().unwrap(), &link).unwrap();
+            last = link;
+            if i == 39 {
+                // 40 links to the file.
+                assert!(check_output(&last, "-o", Output::File).is_ok());
+                write_output(&last, |w| w.write_all(b"through 40")).unwrap();
+                assert_eq!(std::fs::read_to_string(&end).unwrap(), "through 40");
+            }
+        }
+        let refused = check_output(&last, "-o", Output::File).unwrap_err();
+        assert!(
+            refused.contains("too many levels of symbolic links"),
+            "{refused}"
+        );
+        let prefix = d.join(std::ffi::OsStr::from_bytes(b"q\xff"));
+        std::fs::create_dir(d.join(std::ffi::OsStr::from_bytes(b"q\xff.csv"))).unwrap();
+        let refused = check_output(&prefix, "--out", Output::Prefix).unwrap_err();
+        assert!(refused.contains("which is a directory"), "{refused}");
     }
 
     /// A write that fails part way, or panics, leaves the file as it was and no temporary file;
