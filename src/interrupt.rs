@@ -109,7 +109,8 @@ pub fn register(tmp: &Path) -> Registered {
 }
 
 /// Runs `f` with SIGINT, SIGTERM and SIGHUP held back (blocked on this thread, delivered when
-/// it returns): what `f` makes and registers, or puts in place, is never cut in the middle.
+/// it returns): where this is the thread that would take them (no other thread runs), what `f`
+/// puts in place is never cut in the middle.
 pub fn deferred<T>(f: impl FnOnce() -> T) -> T {
     /// The mask before; restored when dropped, a panic in `f` included.
     struct Restore(libc::sigset_t);

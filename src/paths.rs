@@ -194,9 +194,13 @@ fn regular_target(path: &Path) -> std::io::Result<Option<std::path::PathBuf>> {
 }
 
 /// A new temporary file beside `target`, made exclusively (never through a link another user
-/// left there), with a short name whatever `target`'s length.
-fn temporary_beside(target: &Path) -> std::io::Result<(std::path::PathBuf, File)> {
+/// left there), with a short name whatever `target`'s length, and registered for removal if
+/// the process is interrupted before it is made, so that no signal, on whichever thread it
+/// comes, can leave it behind (a name registered but not made removes nothing: it is this
+/// process's own, `.meshrefine-PID-...`).
+fn temporary_registered(target: &Path) -> std::io::Result<(std::path::PathBuf, File, Temporary)> {
     use std::hash::{BuildHasher as _, Hasher as _};
+    crate::interrupt::install();
     let folder = match target.parent() {
         Some(p) if !p.as_os_str().is_empty() => p,
         _ => Path::new("."),
@@ -211,29 +215,25 @@ fn temporary_beside(target: &Path) -> std::io::Result<(std::path::PathBuf, File)
             h.finish() as u32
         );
         let tmp = folder.join(name);
+        let mut guard = Temporary::new(&tmp);
         match File::options()
             .read(true)
             .write(true)
             .create_new(true)
             .open(&tmp)
         {
-            Ok(file) => return Ok((tmp, file)),
-            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => last = Some(e),
-            Err(e) => return Err(e),
+            Ok(file) => return Ok((tmp, file, guard)),
+            Err(e) => {
+                // Not made here: not removed either.
+                guard.0 = None;
+                if e.kind() != std::io::ErrorKind::AlreadyExists {
+                    return Err(e);
+                }
+                last = Some(e);
+            }
         }
     }
     Err(last.unwrap_or_else(|| std::io::Error::other("no temporary file name was free")))
-}
-
-/// [`temporary_beside`], registered for removal if the process is interrupted, with no
-/// moment between the two when a signal would leave it behind.
-fn temporary_registered(target: &Path) -> std::io::Result<(std::path::PathBuf, File, Temporary)> {
-    crate::interrupt::install();
-    crate::interrupt::deferred(|| {
-        let (tmp, file) = temporary_beside(target)?;
-        let guard = Temporary::new(&tmp);
-        Ok((tmp, file, guard))
-    })
 }
 
 /// Removes the temporary file when dropped (an error or a panic on the way), unless kept (the
@@ -280,13 +280,14 @@ fn check_replaceable(path: &Path, option: &str) -> Result<(), String> {
     if old.is_none() {
         // None is there yet: the probe goes where the output will, as the output will (a
         // rename, under the output's own name: one the folder does not take, too long say,
-        // fails here).
-        made = crate::interrupt::deferred(|| {
-            std::fs::rename(&tmp, &target)?;
-            made.0 = None;
-            Ok(Temporary::new(&target))
-        })
-        .map_err(cannot)?;
+        // fails here), registered there first so that a signal leaves nothing behind.
+        let mut placed = Temporary::new(&target);
+        if let Err(e) = std::fs::rename(&tmp, &target) {
+            placed.0 = None;
+            return Err(cannot(e));
+        }
+        made.0 = None;
+        made = placed;
     }
     // And it must go again: a folder that takes files but lets none go (append-only) would
     // keep every temporary file.
@@ -350,7 +351,8 @@ pub fn write_outputs(files: &[(&Path, &[u8])]) -> std::io::Result<()> {
         staged.push((path, s));
     }
     // No signal between the renames: the set is put in place whole (a signal that comes then
-    // ends the process right after).
+    // ends the process right after). Held back on this thread, the one that takes them where
+    // the commands write their outputs: after their GPU work, the device and its threads gone.
     crate::interrupt::deferred(|| {
         for (path, s) in staged {
             if let Some(s) = s {
