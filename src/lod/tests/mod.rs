@@ -219,6 +219,7 @@ fn every(v: &[ElementRecord], step: usize) -> Vec<ElementRecord> {
 }
 
 mod bounds;
+mod cull;
 mod heightmap;
 mod levels;
 mod view;
