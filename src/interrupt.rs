@@ -1,7 +1,6 @@
 //! An interrupted command leaves no unfinished output behind: while a regular output file is
 //! written beside its path ([`crate::paths::write_output`], [`crate::paths::write_outputs`]),
-//! the temporary file is registered
-//! here, and `SIGINT`, `SIGTERM` or `SIGHUP` (Ctrl-C, `kill`, a closed terminal) removes it
+//! the temporary file is registered here, and `SIGINT`, `SIGTERM` or `SIGHUP` (Ctrl-C, `kill`, a closed terminal) removes it
 //! before the process ends as the signal says (its default action, re-raised: the shell still
 //! sees the signal). What the path held before stays, unless the interruption comes while a
 //! finished file is copied into it in place (another user's file, one with other hard links:
@@ -9,13 +8,13 @@
 //!
 //! Handlers are installed only for signals whose action is the default, so a signal the
 //! process ignores (`nohup`, a background job) stays ignored. A temporary file is registered
-//! as soon as it is made, in one of [`SLOTS`] slots (several when one command writes several
+//! before it is made (a name not made removes nothing), in one of [`SLOTS`] slots (several when one command writes several
 //! outputs as a set, [`crate::paths::write_outputs`]); with every slot taken, a registration
 //! replaces the first slot's.
 //!
 //! The handler does only what is safe in a signal handler: it swaps each slot's atomic pointer,
-//! calls `unlink` on the C strings they pointed to, and restores and re-raises the signal. Registered
-//! names are never freed (a few bytes per output written), so the handler never reads freed
+//! calls `unlink` on the C strings they pointed to, and restores and re-raises the signal.
+//! Registered names are never freed (a few bytes per output written), so the handler never reads freed
 //! memory whatever the thread it runs on.
 
 use std::ffi::{c_char, CStr, CString};
