@@ -7,7 +7,7 @@
 
 pub use super::net::Net;
 use super::{Chord, Sphere, EDGE_FACTOR, EDGE_KINK_FACTOR, ELEMENT_FACTOR, KINK_FACTOR};
-use crate::surface::bounds::{DisplaceBound, Patch, SurfaceBound};
+use crate::surface::bounds::{DisplaceBound, Height, Patch, Radial, SurfaceBound};
 use crate::surface::{
     canonical, edge_of, stpn, CornerRecord, Corners, Displace, DisplaceInputs, ElementRecord,
     Mirror, Surface, SurfaceInputs, SurfaceParams,
@@ -331,9 +331,13 @@ impl<'a> Lod<'a> {
             DisplaceBound::OfPoint(height) => {
                 let hb = height(p, sphere);
                 for (i, &k) in dirs.iter().enumerate() {
-                    let (v, m) = (net.first(k, edge), net.second(k, edge));
+                    let (v, m) = (net.first_sup(k, edge), net.second(k, edge));
                     h1[i] = hb.grad * v;
                     h2[i] = hb.hess * v * v + hb.grad * m;
+                    if let Some(r) = hb.radial {
+                        (h1[i], h2[i]) =
+                            radial_height(&hb, r, net, sphere, k, edge, [h1[i], h2[i]]);
+                    }
                 }
             }
             DisplaceBound::Zero => {}
@@ -369,6 +373,33 @@ impl<'a> Lod<'a> {
         }
         (extra, Chord::ZERO, max_h)
     }
+}
+
+/// `|h'|` and `|h''|` along direction `k` for a height of the distance from a point
+/// ([`Radial`]), where that bounds them better than `plain` (the general bounds): with
+/// `R >= sup |r'|` (`r = |P − o|`, [`Net::radial_first`] over the least distance `r_min`, at
+/// most `|P'|`'s bound `V`), `|h'| <= G R` and, where `φ''`'s bound `C >= G/r_min`,
+/// `|h''| <= C r'² + G (|P'|² − r'²)/r + G |P''| <= C R² + G (V² − R²)/r_min + G |P''|` (the
+/// middle expression grows with `r'²` then). Mirror: the sine branch of `lod_local` in
+/// glsl/include/lod.glsl.
+fn radial_height(
+    hb: &Height,
+    r: Radial,
+    net: &Net,
+    sphere: &Sphere,
+    k: usize,
+    edge: Option<usize>,
+    plain: [f32; 2],
+) -> (f32, f32) {
+    let d = (sphere.centre - r.origin).length();
+    let (r_min, r_max) = (d - sphere.radius, d + sphere.radius);
+    if !(r_min > 0.0 && r.curve * r_min >= hb.grad) {
+        return (plain[0], plain[1]);
+    }
+    let (v, m) = (net.first_sup(k, edge), net.second(k, edge));
+    let rate = (net.radial_first(k, edge, r.origin, r_max) / r_min).min(v);
+    let second = r.curve * rate * rate + hb.grad * (v * v - rate * rate) / r_min + hb.grad * m;
+    (plain[0].min(hb.grad * rate), plain[1].min(second))
 }
 
 /// Whether canonical order `o` is an odd permutation of the stored corners (it flips the

@@ -85,9 +85,14 @@
 //!   for `n'⊥` the part of `n'` across `N`; `N''`'s part along `N` is `−|N'|² N`, and across it
 //!   `n''⊥/r − 2 n'⊥ (N·n')/r²`, where `2|n'⊥||N·n'| <= |n'|²`). For a height `h = η(P)` of the point
 //!   (`sine`: src/surface/displace.rs; `noise`: src/surface/noise.rs),
-//!   `|h''| <= H |P'|² + G |P''|` (`h'' = ∇²η[P', P'] + ∇η · P''`) with `G` a bound of `η`'s
+//!   `|h''| <= H |P'|² + G |P''|` (`h'' = ∇²η[P', P'] + ∇η · P''`, `|P'|` bounded by
+//!   [`Net::first_sup`](bound::Net::first_sup), `|P''|` by the net's second differences) with `G` a bound of `η`'s
 //!   gradient length and `H` of its second derivative along any unit direction over the
-//!   patch's sphere ([`crate::surface::bounds::Height`]). The height map's `h`
+//!   patch's sphere ([`crate::surface::bounds::Height`]). Where `η = φ(|p − o|)` depends on
+//!   the distance from a point alone (`sine`), `h'' = φ'' r'² + φ' r''` with `r = |P − o|`,
+//!   `|r''| <= (|P'|² − r'²)/r + |P''|`: the patch's own `sup |r'|` (from
+//!   [`Net::radial_first`](bound::Net::radial_first)) replaces `|P'|` in the curvature term
+//!   (src/lod/bound.rs `radial_height`), far smaller where the patch runs around `o`. The height map's `h`
 //!   (src/surface/heightmap_bound.rs, `BOUND`) is bilinear in texels (kinks at texel lines):
 //!   its slope jumps by at most the second difference of the texels under the patch per texel
 //!   line crossed, one jump at the peak weight, which gives the `c1 / N` term, the rest in

@@ -50,6 +50,18 @@ pub struct Height {
     pub max: f32,
     pub grad: f32,
     pub hess: f32,
+    /// A height of the distance from a point alone, where it is one (`sine`).
+    pub radial: Option<Radial>,
+}
+
+/// `η(p) = φ(|p − origin|)` with `|φ'| <= grad` ([`Height::grad`]) and `|φ''| <= curve`: along a
+/// curve `P` with `r = |P − origin|`, `h'' = φ''(r) r'² + φ'(r) r''` and
+/// `|r''| <= (|P'|² − r'²)/r + |P''|`, so a patch whose distance from `origin` changes slowly
+/// (`r'` small) gets a bound far below `hess |P'|²` (src/lod/bound.rs).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Radial {
+    pub origin: glam::Vec3,
+    pub curve: f32,
 }
 
 /// How a displacement's height is bounded.

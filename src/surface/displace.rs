@@ -129,8 +129,10 @@ pub fn height(d: Displace, params: &SurfaceParams, p: Vec3) -> (f32, Vec3) {
 /// `|∇η| <= |a| f`, and its Hessian's radial curvature `−a f² sin(f r)` and tangential
 /// `a f cos(f r) / r` give `|a| max(f², f / r_min)`, `r_min` the sphere's distance from the
 /// displacement's origin (the cone point of `|P|` at the origin has unbounded curvature: a patch
-/// containing it gets no finite bound). A zero amplitude or frequency is no displacement at all:
-/// every bound zero.
+/// containing it gets no finite bound). `η` is a function of the distance from the origin alone
+/// (`φ(r) = a sin(f r)`, `|φ''| <= |a| f²`: [`Radial`](super::bounds::Radial)), so a patch whose
+/// distance from the origin changes slowly gets less than `|a| f² |P'|²` (src/lod/bound.rs). A
+/// zero amplitude or frequency is no displacement at all: every bound zero.
 fn sine_bound(params: &SurfaceParams, s: &Sphere) -> Height {
     let (a, f) = (params.amplitude.abs(), params.frequency);
     if !params.moves(super::Displace::Sine) {
@@ -138,6 +140,7 @@ fn sine_bound(params: &SurfaceParams, s: &Sphere) -> Height {
             max: 0.0,
             grad: 0.0,
             hess: 0.0,
+            radial: None,
         };
     }
     // η = a sin(f r): radial curvature −a f² sin(f r), tangential a f cos(f r) / r.
@@ -151,6 +154,10 @@ fn sine_bound(params: &SurfaceParams, s: &Sphere) -> Height {
         max: a,
         grad: a * f,
         hess: a * (f * f).max(tangential),
+        radial: Some(super::bounds::Radial {
+            origin: params.origin,
+            curve: a * f * f,
+        }),
     }
 }
 

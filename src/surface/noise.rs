@@ -146,6 +146,7 @@ pub fn bound(params: &crate::surface::SurfaceParams, _: &crate::lod::Sphere) -> 
             max: 0.0,
             grad: 0.0,
             hess: 0.0,
+            radial: None,
         };
     }
     let (a, f) = (params.amplitude.abs(), params.frequency);
@@ -155,6 +156,7 @@ pub fn bound(params: &crate::surface::SurfaceParams, _: &crate::lod::Sphere) -> 
         max: a * NOISE_MAX * amp_sum,
         grad: a * f * o as f32 * NOISE_GRAD,
         hess: a * f * f * ((1u64 << o) - 1) as f32 * NOISE_HESS,
+        radial: None,
     }
 }
 

@@ -95,9 +95,9 @@ fn halved_bounds_are_caught() {
 /// of the truth on the median element. Where the bound multiplies extremes that an element
 /// rarely meets together, the median is looser and the tightest element shows that the bound
 /// is still approached: `noise` (its curvature bound is its largest anywhere, and a small patch
-/// sees a fraction of it: median about 45-120x, tightest about 6-10x) and `sine` over `pn`
+/// sees a fraction of it: median about 40-80x, tightest about 6-8.5x) and `sine` over `pn`
 /// with the paper's normal field (its control normals are far from its values, so the moving
-/// direction's derivative bounds are large: median about 30x, tightest about 6.5x). The other
+/// direction's derivative bounds are large: median about 23x, tightest about 4.6x). The other
 /// normal fields: `displaced_bounds_hold_for_every_normal_field`.
 #[test]
 fn displaced_bounds_hold() {
