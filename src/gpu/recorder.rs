@@ -230,24 +230,20 @@ impl<'a> Cmd<'a> {
         };
     }
 
-    /// Make a compute pass's storage writes visible to indirect draws: their commands, their
-    /// vertex input and their vertex stage.
+    /// Make compute writes visible to indirect draws (commands, vertex input, stage) and copies.
     pub fn barrier_compute_to_indirect(&self) {
+        use vk::{AccessFlags as A, PipelineStageFlags as S};
+        let read = A::INDIRECT_COMMAND_READ | A::VERTEX_ATTRIBUTE_READ | A::SHADER_READ;
         let barrier = vk::MemoryBarrier::default()
-            .src_access_mask(vk::AccessFlags::SHADER_WRITE)
-            .dst_access_mask(
-                vk::AccessFlags::INDIRECT_COMMAND_READ
-                    | vk::AccessFlags::VERTEX_ATTRIBUTE_READ
-                    | vk::AccessFlags::SHADER_READ,
-            );
+            .src_access_mask(A::SHADER_WRITE)
+            .dst_access_mask(read | A::TRANSFER_READ);
+        let stages = S::DRAW_INDIRECT | S::VERTEX_INPUT | S::VERTEX_SHADER | S::TRANSFER;
         // SAFETY: see `bind_graphics_pipeline`; outside a rendering instance.
         unsafe {
             self.ctx.device.cmd_pipeline_barrier(
                 self.raw,
-                vk::PipelineStageFlags::COMPUTE_SHADER,
-                vk::PipelineStageFlags::DRAW_INDIRECT
-                    | vk::PipelineStageFlags::VERTEX_INPUT
-                    | vk::PipelineStageFlags::VERTEX_SHADER,
+                S::COMPUTE_SHADER,
+                stages,
                 vk::DependencyFlags::empty(),
                 &[barrier],
                 &[],

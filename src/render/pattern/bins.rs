@@ -85,6 +85,11 @@ fn bins_per_chunk(level: u32, dyadic: bool) -> u32 {
     }
 }
 
+/// Blocks of [`BLOCK`] elements in a chunk of `chunk` of a mesh of `elements`.
+fn blocks_per_chunk(elements: u32, chunk: u32) -> u32 {
+    chunk.min(elements.max(1)).div_ceil(BLOCK)
+}
+
 /// Bytes of the adaptive draws' commands and bin lists.
 fn adaptive_bytes(elements: u32, chunk: u32, level: u32, dyadic: bool) -> (u64, u64) {
     let n = elements.max(1) as u64;
@@ -96,8 +101,11 @@ fn adaptive_bytes(elements: u32, chunk: u32, level: u32, dyadic: bool) -> (u64, 
 /// Bytes of one `VkDrawIndexedIndirectCommand`.
 const COMMAND_BYTES: u64 = 20;
 
-/// Elements (phase 1) or bins (phase 0) one dispatch of the bins pass covers.
+/// Elements, blocks or bins one dispatch of the bins pass covers.
 const BINS_PER_DISPATCH: u32 = 64 * 65_535;
+
+/// Elements a block of the bins pass ranks in order (phase 2 of glsl/pattern/bins.comp).
+const BLOCK: u32 = 64;
 
 /// `Push` of glsl/pattern/bins.comp.
 #[repr(C)]
@@ -110,6 +118,9 @@ struct BinsPush {
     n: u32,
     chunk: u32,
     dyadic: u32,
+    lo: u32,
+    hi: u32,
+    blocks_per_chunk: u32,
 }
 
 /// What drawing one mesh's elements adaptively at largest level `f` needs: the patterns (at
@@ -128,8 +139,12 @@ pub struct AdaptivePattern {
     pub indices: Buffer,
     /// Per element one command (`push`, `ubo`), then per chunk and level one bin's command.
     pub commands: Buffer,
-    /// Each bin's elements: level `l`, chunk `c` from entry `l n + c chunk`.
+    /// Each bin's elements, in element order: level `l`, chunk `c` from entry `l n + c chunk`.
     pub lists: Buffer,
+    /// Each element's rank among its block's at its level, and each block's count (then
+    /// offset) per level: what puts the lists in element order.
+    _ranks: Buffer,
+    _blocks: Buffer,
     elements: u32,
     chunk: u32,
     chunks: u32,
@@ -169,18 +184,40 @@ impl AdaptivePattern {
         let (command_bytes, list_bytes) = adaptive_bytes(n, mesh.chunk, f, dyadic);
         let commands = Buffer::new(
             ctx,
-            BufferDesc::new_gpu_only(command_bytes, U::STORAGE_BUFFER | U::INDIRECT_BUFFER),
+            // (read back by tests)
+            BufferDesc::new_gpu_only(
+                command_bytes,
+                U::STORAGE_BUFFER | U::INDIRECT_BUFFER | U::TRANSFER_SRC,
+            ),
             "adaptive pattern commands",
         )?;
         let lists = Buffer::new(
             ctx,
-            BufferDesc::new_gpu_only(list_bytes, U::STORAGE_BUFFER | U::VERTEX_BUFFER),
+            BufferDesc::new_gpu_only(
+                list_bytes,
+                U::STORAGE_BUFFER | U::VERTEX_BUFFER | U::TRANSFER_SRC,
+            ),
             "adaptive pattern bins",
+        )?;
+        // Never larger than the lists (a block holds at least one element, a list entry each).
+        let block_bytes = chunks as u64
+            * blocks_per_chunk(n, mesh.chunk) as u64
+            * bins_per_chunk(f, dyadic) as u64
+            * 4;
+        let ranks = Buffer::new(
+            ctx,
+            BufferDesc::new_gpu_only(n as u64 * 4, U::STORAGE_BUFFER),
+            "adaptive pattern ranks",
+        )?;
+        let blocks = Buffer::new(
+            ctx,
+            BufferDesc::new_gpu_only(block_bytes, U::STORAGE_BUFFER),
+            "adaptive pattern blocks",
         )?;
         let c = vk::ShaderStageFlags::COMPUTE;
         let t = vk::DescriptorType::STORAGE_BUFFER;
-        let set_layout =
-            DescriptorSetLayout::new(ctx, &[(0, t, c), (1, t, c), (2, t, c)], "pattern bins set")?;
+        let bindings: Vec<_> = (0..5).map(|b| (b, t, c)).collect();
+        let set_layout = DescriptorSetLayout::new(ctx, &bindings, "pattern bins set")?;
         let layout = PipelineLayout::new(
             ctx,
             &[&set_layout],
@@ -190,10 +227,11 @@ impl AdaptivePattern {
         )?;
         let pipeline =
             Pipeline::new_compute(ctx, &layout, names::PATTERN_BINS_COMP, "pattern bins")?;
-        let dpool = DescriptorPool::new(ctx, 1, &[(t, 3)], "pattern bins descriptors")?;
+        let dpool = DescriptorPool::new(ctx, 1, &[(t, 5)], "pattern bins descriptors")?;
         let set = dpool.allocate(&set_layout, "pattern bins set")?;
-        for (b, buffer) in [(0, &mesh.levels), (1, &commands), (2, &lists)] {
-            dpool.write_buffer(set, b, t, buffer.raw, vk::WHOLE_SIZE);
+        let buffers = [&mesh.levels, &commands, &lists, &ranks, &blocks];
+        for (b, buffer) in buffers.into_iter().enumerate() {
+            dpool.write_buffer(set, b as u32, t, buffer.raw, vk::WHOLE_SIZE);
         }
         Ok(Self {
             level: f,
@@ -202,6 +240,8 @@ impl AdaptivePattern {
             indices,
             commands,
             lists,
+            _ranks: ranks,
+            _blocks: blocks,
             elements: n,
             chunk: mesh.chunk,
             chunks,
@@ -214,19 +254,28 @@ impl AdaptivePattern {
     }
 
     /// Bins per chunk: levels in the hierarchy (`L + 1`), or every integer level.
-    pub(super) fn levels(&self) -> u32 {
+    pub fn levels(&self) -> u32 {
         bins_per_chunk(self.level, self.dyadic)
     }
 
-    /// Record the bins pass for `elements`: the bins' commands, then each element's command and
-    /// bin; barriers before (earlier draws read the same buffers) and after (the draws read
-    /// them: indirect commands, vertex input, vertex stage).
+    /// Record the bins pass for `elements`: the bins' commands, each element's command, then
+    /// the bins' lists in element order (glsl/pattern/bins.comp, phases 0 to 4); barriers
+    /// before (earlier draws read the same buffers), between the phases and after (the draws
+    /// read them: indirect commands, vertex input, vertex stage).
     pub fn cmd_bins(&self, cmd: &Cmd<'_>, elements: std::ops::Range<u32>) {
         cmd.barrier_to_compute();
         cmd.bind_compute_pipeline(self.pipeline.raw);
         cmd.bind_compute_descriptor_set(self.layout.raw, 0, self.set);
         let bins = self.chunks * self.levels();
-        for (phase, range) in [(0, 0..bins), (1, elements)] {
+        let per_chunk = blocks_per_chunk(self.elements, self.chunk);
+        let phases = [
+            (0, 0..bins),
+            (1, elements.clone()),
+            (2, 0..self.chunks * per_chunk),
+            (3, 0..bins),
+            (4, elements.clone()),
+        ];
+        for (phase, range) in phases {
             let mut first = range.start;
             while first < range.end {
                 let end = range.end.min(first + BINS_PER_DISPATCH);
@@ -238,6 +287,9 @@ impl AdaptivePattern {
                     n: self.elements,
                     chunk: self.chunk,
                     dyadic: self.dyadic as u32,
+                    lo: elements.start,
+                    hi: elements.end,
+                    blocks_per_chunk: per_chunk,
                 };
                 cmd.push_constants(
                     self.layout.raw,
@@ -248,7 +300,7 @@ impl AdaptivePattern {
                 cmd.dispatch((end - first).div_ceil(64), 1, 1);
                 first = end;
             }
-            if phase == 0 {
+            if phase < 4 {
                 cmd.barrier_to_compute();
             }
         }
@@ -262,13 +314,13 @@ impl AdaptivePattern {
 
     /// Byte offset of the bin of the chunk starting at element `base` and bin `l` (level `2^l`,
     /// or `l + 1` at integer levels).
-    pub(super) fn bin_command(&self, base: u32, l: u32) -> u64 {
+    pub fn bin_command(&self, base: u32, l: u32) -> u64 {
         let bin = (base / self.chunk) * self.levels() + l;
         (self.elements as u64 + bin as u64) * COMMAND_BYTES
     }
 
     /// Byte offset of that bin's element list.
-    pub(super) fn bin_list(&self, base: u32, l: u32) -> u64 {
+    pub fn bin_list(&self, base: u32, l: u32) -> u64 {
         (l as u64 * self.elements as u64 + base as u64) * 4
     }
 }
