@@ -254,7 +254,7 @@ impl<'a> Demo<'a> {
 
     /// [`Demo::start`] with environment variables `env` set for the demo.
     fn start_with(x: &'a Xvfb, args: &[&str], env: &[(&str, &str)]) -> Self {
-        let child = Command::new(env!("CARGO_BIN_EXE_meshrefine"))
+        let mut child = Command::new(env!("CARGO_BIN_EXE_meshrefine"))
             .args(["--validate", "view"])
             .args(args)
             .env("DISPLAY", &x.display)
@@ -269,8 +269,20 @@ impl<'a> Demo<'a> {
             std::thread::sleep(Duration::from_millis(200));
             let found = xdotool(&x.display, &["search", "--name", "^meshrefine"]);
             window = found.lines().next().unwrap_or("").to_string();
+            // A demo that ended without a window: say how, at once.
+            if window.is_empty() && child.try_wait().unwrap().is_some() {
+                break;
+            }
         }
-        assert!(!window.is_empty(), "the demo's window never appeared");
+        if window.is_empty() {
+            let _ = child.kill();
+            let out = child.wait_with_output().unwrap();
+            panic!(
+                "the demo's window never appeared ({args:?}, {}): {}",
+                out.status,
+                String::from_utf8_lossy(&out.stderr)
+            );
+        }
         xdotool(&x.display, &["windowfocus", "--sync", &window]);
         Self {
             x,
