@@ -122,7 +122,7 @@ impl Net {
     /// `sup |D²H[d_j, d_j]|` is the hodograph's own [`Net::second`]. On edge `k`'s curve
     /// (`edge = Some(k)`) the samples are the edge's `G + 1` and the factor `1/8`
     /// ([`Net::sampled_sup`]). The smaller of the two bounds. Mirror: `lod_first_sup` in
-    /// glsl/include/lod.glsl.
+    /// glsl/include/lod_derivatives.glsl.
     pub fn first_sup(&self, k: usize, edge: Option<usize>) -> f32 {
         let hull = self.first(k, edge);
         if self.degree < 3 {
@@ -147,7 +147,7 @@ impl Net {
     /// `r_max` times the hodograph's [`Net::second`], the first derivatives' [`Net::first_sup`]
     /// times the second ones ([`Net::second`] along `k`, [`Net::mixed`] across), and the
     /// second derivative's times `H`'s; at most `r_max · first_sup(k)`. Mirror:
-    /// `lod_radial_first` in glsl/include/lod.glsl.
+    /// `lod_radial_first` in glsl/include/lod_derivatives.glsl.
     pub fn radial_first(&self, k: usize, edge: Option<usize>, o: Vec3, r_max: f32) -> f32 {
         let v = self.first_sup(k, edge);
         let plain = r_max * v;
