@@ -420,18 +420,24 @@ LodBounds lod_local(uint surface, uint field, uint d, vec4 params, vec3 origin, 
         vec3 h = lod_height(d, params, origin, sphere);
         LodNet dn = lod_direction_net(surface, field, c);
         float rho = lod_min_length(dn, edge);
+        vec3 firsts = vec3(0.0);
+        for (int k = 0; k < 3; ++k) {
+            if (edge < 0 || k == edge) {
+                firsts[k] = lod_first_sup(net, k, edge);
+            }
+        }
         for (int k = 0; k < 3; ++k) {
             if (edge >= 0 && k != edge) {
                 continue;
             }
-            float v = lod_first_sup(net, k, edge), mk = lod_second(net, k, edge);
+            float v = firsts[k], mk = lod_second(net, k, edge);
             float h1 = h.y * v, h2 = h.z * v * v + h.y * mk;
             // The sine's height of the distance from its origin. Mirror: `radial_height`.
             float curve = abs(params.y) * params.z * params.z;
             float dist = length(sphere.xyz - origin);
             float r_min = dist - sphere.w, r_max = dist + sphere.w;
             if (d == 1u && h != vec3(0.0) && r_min > 0.0 && curve * r_min >= h.y) {
-                float rate = min(lod_radial_first(net, k, edge, origin, r_max) / r_min, v);
+                float rate = min(lod_radial_first(net, k, edge, origin, r_max, firsts) / r_min, v);
                 float second = curve * rate * rate + h.y * (v * v - rate * rate) / r_min + h.y * mk;
                 h1 = min(h1, h.y * rate);
                 h2 = min(h2, second);

@@ -86,13 +86,14 @@ float lod_first_sup(LodNet net, int k, int edge) {
     return min(hull, lod_sampled_sup(best, lod_second_over(h, edge), rounding, edge));
 }
 
-// sup |D²P[d_k, d_{k+1}]|. Mirror: `Net::mixed`.
+// Point g + e_x + e_y of the net.
 vec3 lod_at2(LodNet net, ivec3 g, int x, int y) {
     g[x] += 1;
     g[y] += 1;
     return lod_at(net, g);
 }
 
+// sup |D²P[d_k, d_{k+1}]|. Mirror: `Net::mixed`.
 float lod_mixed(LodNet net, int k) {
     int m = net.degree;
     if (m < 2) {
@@ -109,9 +110,10 @@ float lod_mixed(LodNet net, int k) {
     return float(m * (m - 1)) * best;
 }
 
-// sup |(P - o) . DP[d_k]|, r_max >= |P - o|. Mirror: `Net::radial_first`.
-float lod_radial_first(LodNet net, int k, int edge, vec3 o, float r_max) {
-    float v = lod_first_sup(net, k, edge);
+// sup |(P - o) . DP[d_k]|, r_max >= |P - o|, firsts the lod_first_sup of each direction the
+// bound runs over. Mirror: `Net::radial_first`.
+float lod_radial_first(LodNet net, int k, int edge, vec3 o, float r_max, vec3 firsts) {
+    float v = firsts[k];
     float plain = r_max * v;
     LodNet h = lod_hodograph(net, k);
     float second = 0.0;
@@ -121,7 +123,7 @@ float lod_radial_first(LodNet net, int k, int edge, vec3 o, float r_max) {
         }
         float across = j == k ? lod_second(net, k, edge)
                      : (j == (k + 1) % 3 ? lod_mixed(net, k) : lod_mixed(net, j));
-        float t = r_max * lod_second(h, j, edge) + 2.0 * lod_first_sup(net, j, edge) * across
+        float t = r_max * lod_second(h, j, edge) + 2.0 * firsts[j] * across
                 + lod_second(net, j, edge) * v;
         second = max(second, t);
     }

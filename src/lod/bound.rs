@@ -330,13 +330,16 @@ impl<'a> Lod<'a> {
             }
             DisplaceBound::OfPoint(height) => {
                 let hb = height(p, sphere);
+                let mut firsts = [0.0f32; 3];
+                dirs.iter()
+                    .for_each(|&k| firsts[k] = net.first_sup(k, edge));
                 for (i, &k) in dirs.iter().enumerate() {
-                    let (v, m) = (net.first_sup(k, edge), net.second(k, edge));
+                    let (v, m) = (firsts[k], net.second(k, edge));
                     h1[i] = hb.grad * v;
                     h2[i] = hb.hess * v * v + hb.grad * m;
                     if let Some(r) = hb.radial {
-                        (h1[i], h2[i]) =
-                            radial_height(&hb, r, net, sphere, k, edge, [h1[i], h2[i]]);
+                        let at = Along { k, edge, firsts, m };
+                        (h1[i], h2[i]) = radial_height(&hb, r, net, sphere, at, [h1[i], h2[i]]);
                     }
                 }
             }
@@ -375,6 +378,16 @@ impl<'a> Lod<'a> {
     }
 }
 
+/// A lattice direction `k` of a patch (of edge `k`'s curve with `edge`), with its net's
+/// [`Net::first_sup`] per direction bounded and `M_k`.
+#[derive(Clone, Copy)]
+struct Along {
+    k: usize,
+    edge: Option<usize>,
+    firsts: [f32; 3],
+    m: f32,
+}
+
 /// `|h'|` and `|h''|` along direction `k` for a height of the distance from a point
 /// ([`Radial`]), where that bounds them better than `plain` (the general bounds): with
 /// `R >= sup |r'|` (`r = |P − o|`, [`Net::radial_first`] over the least distance `r_min`, at
@@ -387,8 +400,7 @@ fn radial_height(
     r: Radial,
     net: &Net,
     sphere: &Sphere,
-    k: usize,
-    edge: Option<usize>,
+    at: Along,
     plain: [f32; 2],
 ) -> (f32, f32) {
     let d = (sphere.centre - r.origin).length();
@@ -396,8 +408,9 @@ fn radial_height(
     if !(r_min > 0.0 && r.curve * r_min >= hb.grad) {
         return (plain[0], plain[1]);
     }
-    let (v, m) = (net.first_sup(k, edge), net.second(k, edge));
-    let rate = (net.radial_first(k, edge, r.origin, r_max) / r_min).min(v);
+    let Along { k, edge, firsts, m } = at;
+    let v = firsts[k];
+    let rate = (net.radial_first(k, edge, r.origin, r_max, firsts) / r_min).min(v);
     let second = r.curve * rate * rate + hb.grad * (v * v - rate * rate) / r_min + hb.grad * m;
     (plain[0].min(hb.grad * rate), plain[1].min(second))
 }

@@ -146,14 +146,19 @@ impl Net {
     /// `(P − o) · D²H[d_j, d_j] + 2 DP[d_j] · D²P[d_k, d_j] + D²P[d_j, d_j] · H`, bounded by
     /// `r_max` times the hodograph's [`Net::second`], the first derivatives' [`Net::first_sup`]
     /// times the second ones ([`Net::second`] along `k`, [`Net::mixed`] across), and the
-    /// second derivative's times `H`'s; at most `r_max · first_sup(k)`. Mirror:
-    /// `lod_radial_first` in glsl/include/lod_derivatives.glsl.
-    pub fn radial_first(&self, k: usize, edge: Option<usize>, o: Vec3, r_max: f32) -> f32 {
-        let v = self.first_sup(k, edge);
+    /// second derivative's times `H`'s; at most `r_max · first_sup(k)`. `firsts` holds
+    /// [`Net::first_sup`] of each direction the bound runs over (the others are not read).
+    /// Mirror: `lod_radial_first` in glsl/include/lod_derivatives.glsl.
+    pub fn radial_first(
+        &self,
+        k: usize,
+        edge: Option<usize>,
+        o: Vec3,
+        r_max: f32,
+        firsts: [f32; 3],
+    ) -> f32 {
+        let v = firsts[k];
         let plain = r_max * v;
-        if self.degree < 1 {
-            return plain;
-        }
         let hodograph = self.hodograph(k);
         let mut second = 0.0f32;
         for j in Self::directions(edge) {
@@ -165,7 +170,7 @@ impl Net {
                 self.mixed(j)
             };
             let t = r_max * hodograph.second(j, edge)
-                + 2.0 * self.first_sup(j, edge) * across
+                + 2.0 * firsts[j] * across
                 + self.second(j, edge) * v;
             second = second.max(t);
         }
@@ -598,7 +603,8 @@ mod tests {
                         let d = (net.eval(up) - net.eval(down)) / 2e-3;
                         (net.eval(w) - o).dot(d).abs()
                     });
-                    let bound = net.radial_first(k, edge, o, r_max);
+                    let firsts = [0, 1, 2].map(|j| net.first_sup(j, edge));
+                    let bound = net.radial_first(k, edge, o, r_max, firsts);
                     assert!(
                         bound >= truth * (1.0 - 1e-3) - 1e-5,
                         "case {case} k {k} {edge:?}: bound {bound} below {truth}"
