@@ -2,10 +2,13 @@
 //! level pass (`Scene::set_levels`, `FrameWork::level_pass`) and drawn adaptively by the
 //! pattern and tess drivers' real pipelines, read back (the capture variant; for tess also
 //! transform feedback, for the triangles); every drawn triangle (transition triangles and
-//! snapped boundary vertices included) is sampled at interior and edge points, and the true
-//! surface there (the CPU mirror, `Mirror::eval`) must be within the pixel error of the triangle's
-//! linear interpolation of the captured corners, counted in the metric's pixels
-//! (`d·K/|p − eye|`) wherever the sample is inside the view.
+//! snapped boundary vertices included) is sampled at interior and edge points (and, while
+//! geomorphing, at its corners, which then lie off the surface), and the true surface there (the
+//! CPU mirror, `Mirror::eval`) must be within the pixel error of the triangle's linear
+//! interpolation of the captured corners, counted in the metric's pixels (`d·K/|p − eye|`)
+//! wherever the sample is inside the view. Each element's triangles, over the parameters their
+//! corners stand for, must tile the element (no fold, areas adding up to the element's), so the
+//! samples cover its whole surface.
 //!
 //! Tolerance: 1e-3 relative on the bound (the captured corners equal the mirror's to a few ulp,
 //! tests/adaptive_pattern.rs). Elements whose levels the largest level caps are skipped
@@ -199,8 +202,12 @@ fn draw_and_measure_at(
         morphing: 0,
     };
     let mut seen = vec![false; records.len()];
+    // Each element's blended-parameter triangles: their signed areas (in the element's `(u, v)`)
+    // and how many there are, to check that they tile the element.
+    let mut tiles: HashMap<usize, Vec<f64>> = HashMap::new();
     for (t, b, p) in drawn {
         let l = levels[t];
+        tiles.entry(t).or_default().push(signed_area(&b));
         if l.inner >= MAX as f32 || l.edges.iter().any(|&e| e >= MAX as f32) {
             found.capped += !std::mem::replace(&mut seen[t], true) as usize;
             continue;
@@ -216,8 +223,10 @@ fn draw_and_measure_at(
         const S: u32 = 6;
         for c in 0..=S {
             for a in 0..=S - c {
-                if [a, c, S - a - c].contains(&S) {
-                    continue; // a corner
+                // A corner is on the surface but while gliding, where it stands for its
+                // blended parameter and lies between its parents' and its own positions.
+                if [a, c, S - a - c].contains(&S) && !cfg.glides() {
+                    continue;
                 }
                 let w = [(S - a - c) as f32, a as f32, c as f32].map(|x| x / S as f32);
                 let bary: [f32; 3] =
@@ -231,7 +240,42 @@ fn draw_and_measure_at(
             }
         }
     }
+    for (t, areas) in tiles {
+        check_tiling(t, &areas, cfg);
+    }
     found
+}
+
+/// The signed area of the parameter triangle `b` in the element's `(u, v)` (the
+/// whole element's is 1/2).
+fn signed_area(b: &[[f32; 3]; 3]) -> f64 {
+    let uv = b.map(|w| [w[1] as f64, w[2] as f64]);
+    0.5 * ((uv[1][0] - uv[0][0]) * (uv[2][1] - uv[0][1])
+        - (uv[2][0] - uv[0][0]) * (uv[1][1] - uv[0][1]))
+}
+
+/// The triangles drawn for element `t`, over the parameters they stand for, tile the element
+/// (what sampling each triangle at its blended parameters relies on to see the whole surface):
+/// their areas, every one of one sign (the element's winding) or zero (welded by snapping), add
+/// up to the element's. Tolerance: the parameters are `f32` weights, exact multiples of
+/// `1/64` up to the blend's rounding, a few ulp of 1.
+fn check_tiling(t: usize, areas: &[f64], cfg: &DrawConfig) {
+    let total: f64 = areas.iter().sum();
+    let sign = total.signum();
+    assert!(
+        (total.abs() - 0.5).abs() <= 1e-5,
+        "{}: element {t}'s {} triangles cover {} of its parameter area, not 1/2",
+        cfg.label(),
+        areas.len(),
+        total.abs()
+    );
+    let folded = areas.iter().filter(|&&a| a * sign < -1e-9).count();
+    assert_eq!(
+        folded,
+        0,
+        "{}: {folded} of element {t}'s triangles fold over in parameter space",
+        cfg.label()
+    );
 }
 
 /// Whether an element is drawn mid-morph: one of its edges' or its inner level's morph factor

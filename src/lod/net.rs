@@ -535,7 +535,7 @@ mod tests {
     /// `first_sup` against the derivative along each direction by central differences on a
     /// lattice of 96 segments a side (the edge's 96 with `edge = Some(k)`), on random PN
     /// triangles from nearly flat to normals 1.2 radians off the face's: never below it, never above `first`, within 2%
-    /// of it on some net, and within a tenth of it on the median net and direction, where
+    /// of it on some net, and within 3% of it on the median net and direction, where
     /// `first` (the hull of the derivative's net) is looser. The samples alone (the lattice of
     /// `FIRST_GRID` without the chord term) fall below the truth on some nets: the test
     /// would catch a bound without it.
@@ -573,7 +573,7 @@ mod tests {
             median(&tight),
             median(&hulls)
         );
-        assert!(tight[0] <= 1.02 && median(&tight) <= 1.1, "{tight:?}");
+        assert!(tight[0] <= 1.02 && median(&tight) <= 1.03, "{tight:?}");
         assert!(median(&hulls) > median(&tight), "the hull is as tight");
         assert!(
             lowest < 0.999,
@@ -584,11 +584,13 @@ mod tests {
     /// `radial_first` against `|(P − o) · DP[d_k]|` by central differences on a lattice of 96
     /// segments a side (the edge's with `edge = Some(k)`), on random PN triangles and points
     /// `o` from beside the patch to far from it: never below it, never above `r_max` times the
-    /// derivative's bound, and within 5% of it on some patch.
+    /// derivative's bound, and within 5% of it on some patch. The samples alone (the lattice of
+    /// `FIRST_GRID` without the chord term) fall below the truth on some patches: the test would
+    /// catch a bound without it.
     #[test]
     fn radial_first_is_an_upper_bound() {
         let mut rng = Rng(0x5851_f42d_4c95_7f2d);
-        let mut tightest = f32::INFINITY;
+        let (mut tightest, mut lowest) = (f32::INFINITY, f32::INFINITY);
         for case in 0..150 {
             let net = pn_triangle(&mut rng, [0.1, 0.5, 1.0][case % 3]);
             let o = rng.vec() * [0.5, 2.0, 6.0][case % 3];
@@ -599,10 +601,11 @@ mod tests {
                 .fold(0.0, f32::max);
             for k in 0..3 {
                 for edge in [None, Some(k)] {
-                    let truth = dense_max(edge, k, 96, |w, up, down| {
+                    let radial = |w, up, down| {
                         let d = (net.eval(up) - net.eval(down)) / 2e-3;
                         (net.eval(w) - o).dot(d).abs()
-                    });
+                    };
+                    let truth = dense_max(edge, k, 96, radial);
                     let firsts = [0, 1, 2].map(|j| net.first_sup(j, edge));
                     let bound = net.radial_first(k, edge, o, r_max, firsts);
                     assert!(
@@ -612,11 +615,17 @@ mod tests {
                     assert!(bound <= r_max * net.first_sup(k, edge) * (1.0 + 1e-6));
                     if truth > 1e-3 {
                         tightest = tightest.min(bound / truth);
+                        let alone = dense_max(edge, k, FIRST_GRID, radial);
+                        lowest = lowest.min(alone / truth);
                     }
                 }
             }
         }
-        eprintln!("radial_first / sampled: tightest {tightest}");
+        eprintln!("radial_first / sampled: tightest {tightest}; samples alone: least {lowest}");
         assert!(tightest <= 1.05, "{tightest}");
+        assert!(
+            lowest < 0.999,
+            "the samples alone never fall short: {lowest}"
+        );
     }
 }

@@ -63,7 +63,7 @@ pub(super) fn uv_grid() -> (Mesh, Vec<ElementRecord>, Vec<[[f32; 2]; 3]>) {
 }
 
 /// The height map's kink terms are tight where every kink bends the same way: on the parabola
-/// map, read at one pyramid level, the bounds hold, the elements' come within 2.5x of the truth
+/// map, read at one pyramid level, the bounds hold, the elements' come within 2.2x of the truth
 /// and half of the edges' is caught (the peak-weight jump and the rest at the mean weight: a
 /// total-variation bound at the peak weight alone would be about twice the truth).
 #[test]
@@ -82,10 +82,11 @@ fn height_map_kink_bounds_are_tight() {
         checked += 1;
     }
     // Elements whose edges bend one way inside (no lattice direction along which the two
-    // families' kinks cancel) come within 2.5x; the edges, 1D, within about 1.3x everywhere,
+    // families' kinks cancel) come within 2.2x; the edges, 1D, within about 1.3x everywhere,
     // so half of every element's edges' bounds is caught.
+    eprintln!("height map on the parabola map: tightest element bound {tightest}x the truth");
     assert!(
-        tightest <= 2.5,
+        tightest <= 2.2,
         "the element bounds are {tightest}x the truth or more"
     );
     assert_eq!(
