@@ -236,3 +236,144 @@ fn static_refuses_an_oversized_adaptive_mesh_before_refining_it() {
     );
     assert!(!stderr.contains("validation"), "{stderr}");
 }
+
+/// Runs `args` with the device seen with a `maxStorageBufferRange` of `range` bytes
+/// (`MESHREFINE_MAX_STORAGE_BUFFER_RANGE`: a small mesh then meets the limits of a mesh of
+/// millions of elements), validated; returns (status, stdout, stderr).
+fn limited(range: u32, args: &[&str]) -> (Option<i32>, String, String) {
+    let _guard = common::gpu_lock();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_meshrefine"))
+        .env("MESHREFINE_VALIDATE", "1")
+        .env("MESHREFINE_MAX_STORAGE_BUFFER_RANGE", range.to_string())
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .args(args)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert!(!stderr.contains("validation"), "{args:?}: {stderr}");
+    let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
+    (out.status.code(), stdout, stderr)
+}
+
+/// The pattern driver's adaptive draws where the device cannot hold their indirect commands and
+/// bin lists (docs/cli.md, "Size limits"), on Spot's control mesh (372 elements) with a device
+/// seen with less room. While geomorphing, the bins up to level 64 take 7 levels' slots, 28 bytes
+/// an element (10,416 here, counted in the test from the mesh), beside a 20-byte command each.
+/// - With 10,000 bytes the draws up to 64 do not fit but those up to the largest level chosen
+///   (16 for export's default camera) do: `export` writes the file it writes on the whole
+///   device (but for its `# command:` line), and `render` the image that `--max-level` at its
+///   largest level chosen draws on the same device.
+/// - With 7,000 bytes not even level 1's commands fit: `render` by default draws uniformly at
+///   the default level 16 with one `note:` naming the limit (the image `--level 16` draws),
+///   and with an explicit `--pixel-error` stops with that sentence, status 1.
+/// - A bad value of the variable is one sentence naming it.
+#[test]
+fn adaptive_draws_past_the_devices_room_fall_back_as_documented() {
+    let spot = common::model_path("spot_control_tri.obj");
+    let spot = spot.to_str().unwrap();
+    let elements = 372u64;
+    let needed = elements * 4 * 7;
+    let small = ["--width", "160", "--height", "120"];
+
+    // Export: lowered to the largest level chosen, the same vertices.
+    let whole = tmp("fit-whole.obj");
+    let lowered = tmp("fit-lowered.obj");
+    ok(&["export", spot, "--pixel-error", "1", "-o", &whole]);
+    let (status, _, stderr) = limited(
+        10_000,
+        &["export", spot, "--pixel-error", "1", "-o", &lowered],
+    );
+    assert_eq!(status, Some(0), "{stderr}");
+    let body = |p: &str| -> Vec<String> {
+        let text = std::fs::read_to_string(p).unwrap();
+        text.lines()
+            .filter(|l| !l.starts_with("# command:"))
+            .map(str::to_string)
+            .collect()
+    };
+    let (a, b) = (body(&whole), body(&lowered));
+    assert!(
+        a.iter()
+            .any(|l| l.starts_with("# levels ") && l.contains("16:")),
+        "the levels reach 16: {:?}",
+        &a[..6]
+    );
+    assert!(a == b, "the lowered export differs from the whole device's");
+
+    // Render: the same lowering, the image `--max-level 16` draws.
+    let png_lowered = tmp("fit-lowered.png");
+    let png_16 = tmp("fit-max-level.png");
+    let mut args = vec!["render", spot, "-o", &png_lowered];
+    args.extend(small);
+    let (status, stdout, stderr) = limited(10_000, &args);
+    assert_eq!(status, Some(0), "{stderr}");
+    assert!(stdout.contains(ADAPTIVE_LINE), "{stdout}");
+    // The largest level of the histogram `L:n L:n ...; culled C`.
+    let histogram = stdout.split(ADAPTIVE_LINE).nth(1).unwrap();
+    let largest = (histogram.split(';').next().unwrap().split_whitespace())
+        .map(|t| t.split(':').next().unwrap().parse::<u32>().unwrap())
+        .max()
+        .unwrap();
+    assert!((2..64).contains(&largest), "{stdout}");
+    let largest = largest.to_string();
+    let mut args = vec!["render", spot, "-o", &png_16, "--max-level", &largest];
+    args.extend(small);
+    let (status, _, stderr) = limited(10_000, &args);
+    assert_eq!(status, Some(0), "{stderr}");
+    assert!(
+        std::fs::read(&png_lowered).unwrap() == std::fs::read(&png_16).unwrap(),
+        "the lowered image differs from --max-level {largest}'s"
+    );
+
+    // No room even at level 1: uniform at the default level by default, refused when asked.
+    let why = format!(
+        "drawing {elements} elements adaptively up to level 64 (indirect commands and bins) needs {needed} bytes, over maxStorageBufferRange (7000)"
+    );
+    let png_default = tmp("room-default.png");
+    let png_level = tmp("room-16.png");
+    let mut args = vec!["render", spot, "-o", &png_default];
+    args.extend(small);
+    let (status, stdout, stderr) = limited(7_000, &args);
+    assert_eq!(status, Some(0), "{stderr}");
+    assert!(!stdout.contains("adaptive at"), "{stdout}");
+    let notes: Vec<&str> = stderr.lines().filter(|l| l.starts_with("note:")).collect();
+    assert_eq!(notes.len(), 1, "{stderr}");
+    assert!(
+        notes[0].starts_with(&format!(
+            "note: drawing uniformly at level 16 (the default --level): {why}"
+        )),
+        "{stderr}"
+    );
+    let mut args = vec!["render", spot, "-o", &png_level, "--level", "16"];
+    args.extend(small);
+    let (status, _, stderr) = limited(7_000, &args);
+    assert_eq!(status, Some(0), "{stderr}");
+    assert!(
+        std::fs::read(&png_default).unwrap() == std::fs::read(&png_level).unwrap(),
+        "the fallback image differs from --level 16's"
+    );
+    let mut args = vec!["render", spot, "-o", &png_default, "--pixel-error", "1"];
+    args.extend(small);
+    let (status, _, stderr) = limited(7_000, &args);
+    assert_eq!(status, Some(1), "{stderr}");
+    let errors: Vec<&str> = stderr.lines().collect();
+    assert_eq!(errors.len(), 1, "{stderr}");
+    assert!(
+        errors[0].starts_with("error: ") && errors[0].contains(&why),
+        "{stderr}"
+    );
+
+    let (status, _, stderr) = limited(1, &["info"]);
+    assert_eq!(status, Some(0), "{stderr}");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_meshrefine"))
+        .env("MESHREFINE_MAX_STORAGE_BUFFER_RANGE", "lots")
+        .args(["info"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    assert_eq!(
+        String::from_utf8_lossy(&out.stderr).trim_end(),
+        "error: MESHREFINE_MAX_STORAGE_BUFFER_RANGE must be a positive number of bytes, at most 4294967295, not 'lots'"
+    );
+}

@@ -331,13 +331,7 @@ fn write_obj(
 const MAX_CAPTURE_BYTES_ENV: &str = "MESHREFINE_MAX_CAPTURE_BYTES";
 
 fn capture_bytes_env() -> Result<Option<u64>> {
-    let Ok(s) = std::env::var(MAX_CAPTURE_BYTES_ENV) else {
-        return Ok(None);
-    };
-    match s.trim().parse::<u64>() {
-        Ok(n) if n > 0 => Ok(Some(n)),
-        _ => bail!("{MAX_CAPTURE_BYTES_ENV} must be a positive number of bytes, not '{s}'"),
-    }
+    super::bytes_env(MAX_CAPTURE_BYTES_ENV, u64::MAX)
 }
 
 /// The progress line, even if a report panicked while holding it.

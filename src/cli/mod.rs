@@ -55,7 +55,7 @@ pub fn command_line() -> String {
 
 /// Runs `cli`'s command (`given`: the options given on the command line).
 pub fn run(cli: Cli, given: &options::Given) -> Result<()> {
-    let desc = context_desc(&cli);
+    let desc = context_desc(&cli)?;
     options::check_outputs(&cli).map_err(anyhow::Error::msg)?;
     adaptive::check(&cli, given)?;
     match &cli.command {
@@ -68,12 +68,36 @@ pub fn run(cli: Cli, given: &options::Given) -> Result<()> {
     }
 }
 
-fn context_desc(cli: &Cli) -> ContextDesc {
+fn context_desc(cli: &Cli) -> Result<ContextDesc> {
     let env = std::env::var("MESHREFINE_VALIDATE").is_ok_and(|v| !v.is_empty() && v != "0");
-    ContextDesc {
+    Ok(ContextDesc {
         validate: cli.validate || env,
         device_name: cli.device.clone(),
         surface_extensions: vec![],
+        max_storage_buffer_range: storage_range_env()?,
+    })
+}
+
+/// The environment variable that has the device seen with a smaller `maxStorageBufferRange`
+/// (a test's knob: a small mesh then meets the limits a very large one meets).
+const MAX_STORAGE_RANGE_ENV: &str = "MESHREFINE_MAX_STORAGE_BUFFER_RANGE";
+
+fn storage_range_env() -> Result<Option<u32>> {
+    Ok(bytes_env(MAX_STORAGE_RANGE_ENV, u32::MAX as u64)?.map(|n| n as u32))
+}
+
+/// A test's knob read from environment variable `name`: a positive number of bytes, at most
+/// `max`; `None` where it is not set.
+pub fn bytes_env(name: &str, max: u64) -> Result<Option<u64>> {
+    let Ok(s) = std::env::var(name) else {
+        return Ok(None);
+    };
+    match s.trim().parse::<u64>() {
+        Ok(n) if n > 0 && n <= max => Ok(Some(n)),
+        _ if max < u64::MAX => {
+            bail!("{name} must be a positive number of bytes, at most {max}, not '{s}'")
+        }
+        _ => bail!("{name} must be a positive number of bytes, not '{s}'"),
     }
 }
 

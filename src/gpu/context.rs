@@ -103,6 +103,22 @@ pub struct ContextDesc {
     pub device_name: Option<String>,
     /// Instance extensions a window surface needs (from `ash_window::enumerate_required_extensions`).
     pub surface_extensions: Vec<&'static CStr>,
+    /// Treat the device's `maxStorageBufferRange` as at most this many bytes: the device then
+    /// looks as a device with less room would, so that a small mesh meets the limits a very
+    /// large one meets (records bound in chunks, adaptive draws refused). For tests; the CLI
+    /// reads it from `MESHREFINE_MAX_STORAGE_BUFFER_RANGE`.
+    pub max_storage_buffer_range: Option<u32>,
+}
+
+impl ContextDesc {
+    /// `info` as this description has the device seen ([`Self::max_storage_buffer_range`]).
+    fn limited(&self, mut info: DeviceInfo) -> DeviceInfo {
+        if let Some(cap) = self.max_storage_buffer_range {
+            let range = &mut info.limits.max_storage_buffer_range;
+            *range = (*range).min(cap);
+        }
+        info
+    }
 }
 
 pub struct Context {
@@ -421,7 +437,9 @@ pub fn list_devices(desc: &ContextDesc) -> Result<Vec<Result<DeviceInfo, GpuErro
             .collect();
         list.sort_by_key(|c| c.0);
         list.into_iter()
-            .map(|(_, pd, info)| query_capabilities(&parts.instance, pd, info))
+            .map(|(_, pd, info)| {
+                query_capabilities(&parts.instance, pd, info).map(|i| desc.limited(i))
+            })
             .collect()
     });
     parts.destroy();
@@ -434,7 +452,8 @@ pub fn picked_device(desc: &ContextDesc) -> Result<DeviceInfo, GpuError> {
     let messages = Arc::new(Messages::default());
     let parts = InstanceParts::new(desc, &messages)?;
     let picked = pick_device(&parts.instance, desc)
-        .and_then(|(physical, _, info)| query_capabilities(&parts.instance, physical, info));
+        .and_then(|(physical, _, info)| query_capabilities(&parts.instance, physical, info))
+        .map(|info| desc.limited(info));
     parts.destroy();
     picked
 }
@@ -445,7 +464,7 @@ impl Context {
         let messages = Arc::new(Messages::default());
         let parts = InstanceParts::new(desc, &messages)?;
         let opened = pick_device(&parts.instance, desc).and_then(|(physical, family, info)| {
-            let info = query_capabilities(&parts.instance, physical, info)?;
+            let info = desc.limited(query_capabilities(&parts.instance, physical, info)?);
             let device = open_device(&parts.instance, physical, family, &info, desc)?;
             Ok((physical, family, info, device))
         });

@@ -324,3 +324,40 @@ impl AdaptivePattern {
         (l as u64 * self.elements as u64 + base as u64) * 4
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The bytes docs/cli.md ("Size limits") quotes per element, counted from what the lists
+    /// and commands hold: a 4-byte slot per element in each level's bin (powers of two up to 64:
+    /// 1, 2, 4, ..., 64, seven bins; integer levels: 64 bins), and a 20-byte command per
+    /// element plus one per bin of each chunk.
+    #[test]
+    fn adaptive_bytes_are_the_documented_slots_and_commands() {
+        let n = 1_000_000u32;
+        let chunk = 1_198_372; // lavapipe's records per chunk: one chunk here
+        let (commands, lists) = adaptive_bytes(n, chunk, 64, true);
+        assert_eq!(lists, 28 * n as u64);
+        assert_eq!(commands, 20 * (n as u64 + 7));
+        let (commands, lists) = adaptive_bytes(n, chunk, 64, false);
+        assert_eq!(lists, 256 * n as u64);
+        assert_eq!(commands, 20 * (n as u64 + 64));
+        // All at level 1: the commands, 20 bytes an element, are what counts.
+        let (commands, lists) = adaptive_bytes(n, chunk, 1, true);
+        assert_eq!((commands, lists), (20 * (n as u64 + 1), 4 * n as u64));
+        // Chunks of 1000: a bin per level in each.
+        let (commands, _) = adaptive_bytes(n, 1000, 64, true);
+        assert_eq!(commands, 20 * (n as u64 + 1000 * 7));
+        // The elements lavapipe's 128 MiB holds, as the docs say: about 4.8 million while
+        // geomorphing, 520,000 at integer levels, 6.7 million all at level 1.
+        let range = 128u64 << 20;
+        let fits = |n: u32, level: u32, dyadic: bool| {
+            let (commands, lists) = adaptive_bytes(n, chunk, level, dyadic);
+            commands.max(lists) <= range
+        };
+        assert!(fits(4_790_000, 64, true) && !fits(4_800_000, 64, true));
+        assert!(fits(524_000, 64, false) && !fits(525_000, 64, false));
+        assert!(fits(6_700_000, 1, true) && !fits(6_720_000, 1, true));
+    }
+}
