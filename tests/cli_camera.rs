@@ -308,3 +308,69 @@ fn fov_without_eye_fits_the_camera_at_that_field_of_view() {
         "{stderr}"
     );
 }
+
+/// The command transcripts of docs/adaptivity.md ("Trying it") are what the commands print:
+/// each `$ meshrefine ...` line of its code blocks is run (through `sh`, in a folder of its own
+/// holding a link to `assets`, the validation layer on), and the lines shown under it, but for
+/// `...` (lines left out), appear in its output in that order.
+#[test]
+fn the_adaptivity_guides_transcripts_are_what_the_commands_print() {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let guide = std::fs::read_to_string(root.join("docs/adaptivity.md")).unwrap();
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("guide-transcripts");
+    std::fs::create_dir_all(&dir).unwrap();
+    let assets = dir.join("assets");
+    if !assets.exists() {
+        std::os::unix::fs::symlink(root.join("assets"), &assets).unwrap();
+    }
+    let bin = PathBuf::from(env!("CARGO_BIN_EXE_meshrefine"));
+    let path = format!(
+        "{}:{}",
+        bin.parent().unwrap().display(),
+        std::env::var("PATH").unwrap_or_default()
+    );
+    // (command, the lines shown under it)
+    let mut runs: Vec<(String, Vec<String>)> = Vec::new();
+    let mut in_block = false;
+    for line in guide.lines() {
+        if line.starts_with("```") {
+            in_block = !in_block;
+            continue;
+        }
+        if !in_block {
+            continue;
+        }
+        if let Some(command) = line.strip_prefix("$ ") {
+            runs.push((command.to_string(), Vec::new()));
+        } else if let Some((_, shown)) = runs.last_mut() {
+            shown.push(line.to_string());
+        }
+    }
+    assert!(runs.len() >= 10, "only {} transcripts found", runs.len());
+    for (command, shown) in &runs {
+        assert!(command.starts_with("meshrefine "), "{command}");
+        let out = {
+            let _guard = common::gpu_lock();
+            std::process::Command::new("sh")
+                .args(["-c", command])
+                .current_dir(&dir)
+                .env("PATH", &path)
+                .env("MESHREFINE_VALIDATE", "1")
+                .env_remove("DISPLAY")
+                .env_remove("WAYLAND_DISPLAY")
+                .output()
+                .unwrap()
+        };
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{command}: {stderr}");
+        assert!(!stderr.contains("validation"), "{command}: {stderr}");
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        let mut printed = stdout.lines();
+        for want in shown.iter().filter(|l| l.trim() != "...") {
+            assert!(
+                printed.any(|l| l == want),
+                "{command}: '{want}' is not printed (in that order):\n{stdout}"
+            );
+        }
+    }
+}
