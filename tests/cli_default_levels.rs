@@ -241,10 +241,16 @@ fn static_refuses_an_oversized_adaptive_mesh_before_refining_it() {
 /// (`MESHREFINE_MAX_STORAGE_BUFFER_RANGE`: a small mesh then meets the limits of a mesh of
 /// millions of elements), validated; returns (status, stdout, stderr).
 fn limited(range: u32, args: &[&str]) -> (Option<i32>, String, String) {
+    seen_with("MESHREFINE_MAX_STORAGE_BUFFER_RANGE", range, args)
+}
+
+/// Runs `args` with the device limit knob `var` at `value`, validated; returns (status, stdout,
+/// stderr).
+fn seen_with(var: &str, value: impl ToString, args: &[&str]) -> (Option<i32>, String, String) {
     let _guard = common::gpu_lock();
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_meshrefine"))
         .env("MESHREFINE_VALIDATE", "1")
-        .env("MESHREFINE_MAX_STORAGE_BUFFER_RANGE", range.to_string())
+        .env(var, value.to_string())
         .env_remove("DISPLAY")
         .env_remove("WAYLAND_DISPLAY")
         .args(args)
@@ -375,5 +381,62 @@ fn adaptive_draws_past_the_devices_room_fall_back_as_documented() {
     assert_eq!(
         String::from_utf8_lossy(&out.stderr).trim_end(),
         "error: MESHREFINE_MAX_STORAGE_BUFFER_RANGE must be a positive number of bytes, at most 4294967295, not 'lots'"
+    );
+}
+
+/// The level pass where its bounds do not fit one allocation (docs/adaptivity.md, "Levels per
+/// frame"): Spot's 5,856 elements need 2,717,184 bytes of bounds (464 an element); with the
+/// device seen with a `maxMemoryAllocationSize` of 1,000,000 bytes the CPU chooses the levels
+/// instead, with one warning, and `render` draws the same image and `export` writes the same
+/// file (but for its `# command:` line) as on the whole device.
+#[test]
+fn levels_past_one_allocation_are_chosen_on_the_cpu_alike() {
+    let spot = common::model_path("spot_tri.obj");
+    let spot = spot.to_str().unwrap();
+    let var = "MESHREFINE_MAX_MEMORY_ALLOCATION_SIZE";
+    let warning = format!(
+        "warning: the level pass's bounds buffer needs {} bytes, over this device's maxMemoryAllocationSize (1000000)",
+        5856 * 464
+    );
+    let size = ["--width", "320", "--height", "180"];
+    let (whole, cpu) = (tmp("alloc-whole.png"), tmp("alloc-cpu.png"));
+    let mut args = vec!["render", spot, "-o", &whole];
+    args.extend(size);
+    let (line, stderr) = ok(&args);
+    assert!(!stderr.contains("warning"), "{stderr}");
+    let mut args = vec!["render", spot, "-o", &cpu];
+    args.extend(size);
+    let (status, stdout, stderr) = seen_with(var, 1_000_000, &args);
+    assert_eq!(status, Some(0), "{stderr}");
+    let first = |s: &str| s.lines().next().unwrap_or_default().to_string();
+    assert_eq!(first(&stdout), first(&line));
+    let warnings: Vec<&str> = stderr
+        .lines()
+        .filter(|l| l.starts_with("warning:"))
+        .collect();
+    assert_eq!(warnings.len(), 1, "{stderr}");
+    assert!(warnings[0].starts_with(&warning), "{stderr}");
+    assert!(
+        std::fs::read(&whole).unwrap() == std::fs::read(&cpu).unwrap(),
+        "the image differs with the levels chosen on the CPU"
+    );
+    let (whole, cpu) = (tmp("alloc-whole.obj"), tmp("alloc-cpu.obj"));
+    ok(&["export", spot, "--pixel-error", "1", "-o", &whole]);
+    let (status, _, stderr) = seen_with(
+        var,
+        1_000_000,
+        &["export", spot, "--pixel-error", "1", "-o", &cpu],
+    );
+    assert_eq!(status, Some(0), "{stderr}");
+    assert!(stderr.starts_with(&warning), "{stderr}");
+    let body = |p: &str| -> Vec<String> {
+        (std::fs::read_to_string(p).unwrap().lines())
+            .filter(|l| !l.starts_with("# command:"))
+            .map(str::to_string)
+            .collect()
+    };
+    assert!(
+        body(&whole) == body(&cpu),
+        "the export differs with the levels chosen on the CPU"
     );
 }

@@ -75,12 +75,16 @@ fn context_desc(cli: &Cli) -> Result<ContextDesc> {
         device_name: cli.device.clone(),
         surface_extensions: vec![],
         max_storage_buffer_range: storage_range_env()?,
+        max_memory_allocation_size: bytes_env(MAX_ALLOCATION_ENV, u64::MAX)?,
     })
 }
 
 /// The environment variable that has the device seen with a smaller `maxStorageBufferRange`
 /// (a test's knob: a small mesh then meets the limits a very large one meets).
 const MAX_STORAGE_RANGE_ENV: &str = "MESHREFINE_MAX_STORAGE_BUFFER_RANGE";
+
+/// The same for `maxMemoryAllocationSize`.
+const MAX_ALLOCATION_ENV: &str = "MESHREFINE_MAX_MEMORY_ALLOCATION_SIZE";
 
 fn storage_range_env() -> Result<Option<u32>> {
     Ok(bytes_env(MAX_STORAGE_RANGE_ENV, u32::MAX as u64)?.map(|n| n as u32))

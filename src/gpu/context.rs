@@ -108,14 +108,21 @@ pub struct ContextDesc {
     /// large one meets (records bound in chunks, adaptive draws refused). For tests; the CLI
     /// reads it from `MESHREFINE_MAX_STORAGE_BUFFER_RANGE`.
     pub max_storage_buffer_range: Option<u32>,
+    /// The same for `maxMemoryAllocationSize` (`MESHREFINE_MAX_MEMORY_ALLOCATION_SIZE`): what
+    /// does not fit one allocation is refused or done another way, as on a smaller device.
+    pub max_memory_allocation_size: Option<u64>,
 }
 
 impl ContextDesc {
-    /// `info` as this description has the device seen ([`Self::max_storage_buffer_range`]).
+    /// `info` as this description has the device seen ([`Self::max_storage_buffer_range`],
+    /// [`Self::max_memory_allocation_size`]).
     fn limited(&self, mut info: DeviceInfo) -> DeviceInfo {
         if let Some(cap) = self.max_storage_buffer_range {
             let range = &mut info.limits.max_storage_buffer_range;
             *range = (*range).min(cap);
+        }
+        if let Some(cap) = self.max_memory_allocation_size {
+            info.max_memory_allocation_size = info.max_memory_allocation_size.min(cap);
         }
         info
     }
