@@ -158,6 +158,19 @@ fn window_demo_presents_and_screenshots() {
         // 372 x 1024² triangles a frame would take minutes on lavapipe: the demo lowers the
         // level to keep frames under a second, and says so.
         ("budget", vec!["--level", "1024"]),
+        // The same adaptively (noise at 0.25 px: about 12 million triangles up to level 256):
+        // the largest level is lowered instead.
+        (
+            "budget-adaptive",
+            vec![
+                "--displace",
+                "noise",
+                "--pixel-error",
+                "0.25",
+                "--max-level",
+                "256",
+            ],
+        ),
         // A bound no level meets: the window says so on standard error, as render does.
         ("unmet", vec!["--pixel-error", "0.25", "--max-level", "8"]),
     ] {
@@ -177,6 +190,14 @@ fn window_demo_presents_and_screenshots() {
             assert!(
                 stderr.contains("note: the 0.25 px bound is not met on ")
                     && stderr.contains("they need a level above the largest, 8 (--max-level)"),
+                "{stderr}"
+            );
+        }
+        if name == "budget-adaptive" {
+            assert!(
+                stderr.contains(
+                    "max level 256 would take over a second a frame on this software device at 0.25 px: drawing up to level "
+                ),
                 "{stderr}"
             );
         }
