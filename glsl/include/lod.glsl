@@ -401,7 +401,8 @@ struct LodBounds {
 // displacement d (0 none, 1 sine, 2 noise) on canonical corners c. Mirror: src/lod/bound.rs
 // `Lod::local` (without `stpn` and the height map).
 LodBounds lod_local(uint surface, uint field, uint d, vec4 params, vec3 origin, Corners c, int edge) {
-    bool exact = surface != 1u || edge >= 0 || !lod_phong_mixed(c);
+    // Phong at alpha 0 is the flat triangle exactly, blended seam normals or not.
+    bool exact = surface != 1u || edge >= 0 || params.x == 0.0 || !lod_phong_mixed(c);
     LodNet net = lod_surface_net(exact ? surface : 0u, params.x, c);
     vec4 sphere = lod_sphere(net, edge);
     if (!exact) {

@@ -113,7 +113,7 @@
 //! shows up to `1/cos²φ` times the pixels the metric counts (the end-to-end test checks both).
 //! An edge's level uses the edge's own bound and sphere; an element's inner level is at least
 //! the largest of its edges' ([`View::levels`]). Where a bound is infinite (a Phong element with
-//! blended seam normals, a direction field that may vanish, `sine` around its centre, `loop`
+//! blended seam normals, unless its alpha is 0, a direction field that may vanish, `sine` around its centre, `loop`
 //! with displacement, a height map read past `2^18` texels of texture coordinates: src/surface/
 //! heightmap_bound.rs, `FAR`) the level is the maximum and the pixel error is not guaranteed
 //! there.

@@ -98,14 +98,16 @@ fn edge_normal(c: &Corners, i: usize, e: usize) -> Vec3 {
 /// normals (a flagged seam, src/surface/record.rs) blends them inside the triangle, which is not
 /// a polynomial: such an element has no finite interior bound (the flat triangle's net, with
 /// `|Phong − flat| <= α · max |p − P_i| <= α ·` the longest edge), unless only the edges' curves
-/// are wanted (`edges_only`: each edge's curve is the quadratic of its own normals).
+/// are wanted (`edges_only`: each edge's curve is the quadratic of its own normals) or `α = 0`
+/// (the flat triangle exactly: [`eval`] draws `p · 1 + curved · 0`, the net's midpoints).
 pub fn net(params: &SurfaceParams, c: &Corners, _: &[VertexTag; 3], edges_only: bool) -> Patch {
     let alpha = params.alpha;
     let corner = |w: [usize; 3]| (0..3).find(|&i| w[i] == w.iter().sum::<usize>());
-    let mixed = (0..3).any(|i| {
-        let (j, k) = ((i + 1) % 3, (i + 2) % 3);
-        edge_normal(c, i, edge_of(i, j)) != edge_normal(c, i, edge_of(i, k))
-    });
+    let mixed = alpha != 0.0
+        && (0..3).any(|i| {
+            let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+            edge_normal(c, i, edge_of(i, j)) != edge_normal(c, i, edge_of(i, k))
+        });
     if mixed && !edges_only {
         let longest = (0..3)
             .map(|i| (c.p[(i + 1) % 3] - c.p[i]).length())

@@ -59,6 +59,24 @@ fn local_surface_bounds_hold_and_are_useful() {
             displaced.check(&cyl, &[1, 3], 2.0, &format!("{what} + sine"));
         }
     }
+    // Phong at alpha 0 is the flat triangle: bounded as flat (zero) where its corners blend
+    // seam normals too, and the check agrees.
+    let unbent = Case {
+        surface: Surface::Phong,
+        field: NormalField::default(),
+        displace: Displace::None,
+        params: SurfaceParams {
+            alpha: 0.0,
+            ..SurfaceParams::default()
+        },
+        inputs: Sources::default(),
+    };
+    unbent.check(&cyl, &[1, 3, 6], 2.0, "phong at alpha 0 on the cylinder");
+    let lod = unbent.lod();
+    for rec in &cyl {
+        let b = lod.element(rec);
+        assert_eq!((b.chord.c1, b.chord.c2), (0.0, 0.0), "{b:?}");
+    }
 }
 
 /// A bound made 2x too small is caught: the check has the power to see an underestimate
