@@ -347,6 +347,40 @@ fn info_reports_topology_and_footprint() {
     let note = "    note: level 65 is beyond this device's maxTessellationGenerationLevel (64): the tess driver cannot draw it";
     assert_eq!(s.matches("note:").count(), 1, "{s}");
     assert!(s.lines().any(|l| l.starts_with(note)), "{s}");
+    // Past one allocation, the static driver's line says render refuses it, in render's
+    // sentence (its vertex buffer: 5856 elements x 131,841 vertices x 24 bytes at level 512).
+    let spot = model_path("spot_tri.obj");
+    let s = ok(&["info", p(&spot), "--level", "512"]);
+    let bytes = 5856u64 * 131_841 * 24;
+    let sentence = format!(
+        "the static driver's refined mesh at level 512 needs {bytes} bytes, over this device's maxMemoryAllocationSize"
+    );
+    let lines: Vec<&str> = s.lines().collect();
+    let at = lines
+        .iter()
+        .position(|l| l.starts_with("  static "))
+        .unwrap();
+    assert!(
+        lines[at + 1].starts_with(&format!("    note: {sentence}")),
+        "{s}"
+    );
+    let png = tmp("static-512.png");
+    let out = meshrefine(&[
+        "render",
+        p(&spot),
+        "--level",
+        "512",
+        "--driver",
+        "static",
+        "-o",
+        p(&png),
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains(&sentence), "{stderr}");
+    assert!(
+        lines[at + 1].ends_with(stderr.trim_end().split(&sentence).nth(1).unwrap()),
+        "{s}\n{stderr}"
+    );
     // Loop's elements are M1's faces: the icosahedron's 20 triangles make 80, x 64 at level 8
     // (what `export --surface loop --level 8` writes).
     let ico = model_path("icosahedron.obj");

@@ -130,8 +130,11 @@ fn print_geometry(level: u32, elements: u64, m1_faces: bool, desc: &ContextDesc)
         t * meshrefine::pattern::triangle_count(level) as u64,
         meshrefine::pattern::triangle_count(level)
     );
-    // No device to ask (no Vulkan driver): the figures stand alone.
-    let device = (level > LEAST_LEVEL_LIMIT)
+    // No device to ask (no Vulkan driver): the figures stand alone. Asked where some device
+    // may refuse: a level past the least tessellation limit, or a static vertex buffer past
+    // the least maxMemoryAllocationSize (1 GiB).
+    let static_bytes = t * meshrefine::pattern::vertex_count(level) as u64 * 24;
+    let device = (level > LEAST_LEVEL_LIMIT || static_bytes > 1 << 30)
         .then(|| meshrefine::gpu::picked_device(desc).ok())
         .flatten();
     for d in Driver::ALL {
@@ -149,7 +152,14 @@ fn print_geometry(level: u32, elements: u64, m1_faces: bool, desc: &ContextDesc)
         );
         if let Some(device) = &device {
             let cfg = meshrefine::render::DrawConfig::new(d, level);
-            if let Err(e) = meshrefine::render::driver::check_level_on(device, &cfg) {
+            let refused = meshrefine::render::driver::check_level_on(device, &cfg).err();
+            let refused = refused.or_else(|| match d {
+                Driver::Static => {
+                    meshrefine::render::static_vbo::check_uniform_size_on(device, t, level).err()
+                }
+                _ => None,
+            });
+            if let Some(e) = refused {
                 out!("    note: {e}");
             }
         }

@@ -10,7 +10,7 @@ use super::{
     Capture, DrawConfig, GpuMesh, RenderError, Renderer, Scene, PUSH_DRAW_OFFSET, PUSH_STAGES,
 };
 use crate::gpu::shaders::names;
-use crate::gpu::{vk, Buffer, Cmd, CommandPool, Context, GraphicsPipelineDesc};
+use crate::gpu::{vk, Buffer, Cmd, CommandPool, Context, DeviceInfo, GraphicsPipelineDesc};
 use crate::pattern::{index_count, vertex_count, Pattern};
 use crate::surface::{ElementRecord, Mirror};
 use std::sync::Arc;
@@ -77,7 +77,17 @@ pub(super) fn check_allocation(
     what: impl FnOnce() -> String,
     remedy: &str,
 ) -> Result<(), RenderError> {
-    let max = ctx.info.max_memory_allocation_size;
+    check_allocation_on(&ctx.info, bytes, what, remedy)
+}
+
+/// [`check_allocation`] on `device`'s limits (read without opening it).
+fn check_allocation_on(
+    device: &DeviceInfo,
+    bytes: u64,
+    what: impl FnOnce() -> String,
+    remedy: &str,
+) -> Result<(), RenderError> {
+    let max = device.max_memory_allocation_size;
     if bytes > max {
         return Err(RenderError::OverLimit {
             what: what(),
@@ -98,17 +108,22 @@ fn check_uniform_size(
     elements: usize,
     pattern: &Pattern,
 ) -> Result<(), RenderError> {
-    let bytes =
-        elements as u64 * pattern.bary.len() as u64 * std::mem::size_of::<StaticVertex>() as u64;
-    check_allocation(
-        ctx,
+    check_uniform_size_on(&ctx.info, elements as u64, pattern.level)
+}
+
+/// Whether the static driver's vertex buffer for `elements` elements at uniform `level` fits
+/// one allocation on `device` (its limits read, nothing opened: `info --level` says so as
+/// `render` would), one sentence where not.
+pub fn check_uniform_size_on(
+    device: &DeviceInfo,
+    elements: u64,
+    level: u32,
+) -> Result<(), RenderError> {
+    let bytes = elements * vertex_count(level) as u64 * std::mem::size_of::<StaticVertex>() as u64;
+    check_allocation_on(
+        device,
         bytes,
-        || {
-            format!(
-                "the static driver's refined mesh at level {}",
-                pattern.level
-            )
-        },
+        || format!("the static driver's refined mesh at level {level}"),
         "use a lower level or the pattern driver",
     )
 }
