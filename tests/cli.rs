@@ -1255,6 +1255,23 @@ fn an_eye_a_hair_from_the_look_at_gives_no_direction() {
         ],
         &["--eye 0.1,0.2,0.3 and --look-at 0.1,0.2,0.30001 give no view direction: they are too close together for one"],
     );
+    // Points named as typed, not as they read back.
+    expect_error(
+        &[
+            "info",
+            "--pixel-error",
+            "1",
+            "--eye",
+            "1.0,2,3e0",
+            "--look-at",
+            "1,2.0,3",
+        ],
+        &["--eye 1.0,2,3e0 and --look-at 1,2.0,3 give no view direction: they are the same point"],
+    );
+    expect_error(
+        &["info", "--pixel-error", "1", "--eye", "1.0e13,0,0"],
+        &["--eye 1.0e13,0,0 is 7.3e12 bounding radii from the mesh's centre"],
+    );
 }
 
 /// `bench` goes on past a row whose mesh the device cannot hold (the static driver refined at
@@ -2321,6 +2338,26 @@ fn displacement_that_cannot_be_finite_is_refused_up_front() {
         (
             vec!["--displace", "sine", "--frequency", "1e25"],
             "--frequency 1e25 is",
+        ),
+        // Named as typed, not as the number reads back.
+        (
+            vec!["--displace", "sine", "--frequency", "1.0e6"],
+            "--frequency 1.0e6 is",
+        ),
+        (
+            vec!["--displace", "sine", "--amplitude", "3.40e38"],
+            "--amplitude 3.40e38 moves the surface up to",
+        ),
+        (
+            vec![
+                "--displace",
+                "noise",
+                "--frequency",
+                "1e5",
+                "--octaves",
+                "8",
+            ],
+            "--frequency 1e5 is",
         ),
         (
             vec![

@@ -5,6 +5,7 @@
 #![forbid(unsafe_code)]
 
 use super::args::{AdaptiveOpts, Cli, Command, TypedF32, ViewpointOpts};
+use super::numbers::TypedVec3;
 use super::options::Given;
 use crate::note;
 use anyhow::{bail, Result};
@@ -50,13 +51,16 @@ pub fn check_camera(v: &ViewpointOpts) -> Result<()> {
             v.fov.in_f32_range(inside)
         );
     }
-    if let (Some(eye), Some(target)) = (v.eye, v.look_at) {
-        let (eye, target) = (Vec3::from(eye), Vec3::from(target));
+    if let (Some(e), Some(t)) = (&v.eye, &v.look_at) {
+        let (eye, target) = (Vec3::from(e.value), Vec3::from(t.value));
         // In f64: points far apart (1e20) are a direction, though their distance leaves f32.
         let offset = eye.as_dvec3() - target.as_dvec3();
         let distance = offset.length();
         if !(distance > 0.0 && distance.is_finite()) {
-            bail!("{}", no_direction((eye, true), (target, true)));
+            bail!(
+                "{}",
+                no_direction((eye, Some(&e.text)), (target, Some(&t.text)))
+            );
         }
     }
     Ok(())
@@ -72,13 +76,13 @@ pub const MAX_VIEWPOINT_RADII: f64 = 1e12;
 /// [`MAX_VIEWPOINT_RADII`] (`frame` maps the mesh to its drawn frame, where the bounding box's
 /// centre is the origin and its half diagonal 1).
 pub fn check_distance(v: &ViewpointOpts, frame: &Frame) -> Result<()> {
-    for (name, p) in [("--eye", v.eye), ("--look-at", v.look_at)] {
+    for (name, p) in [("--eye", &v.eye), ("--look-at", &v.look_at)] {
         let Some(p) = p else { continue };
-        let radii = ((Vec3::from(p).as_dvec3() - frame.centre) * frame.scale).length();
+        let radii = ((Vec3::from(p.value).as_dvec3() - frame.centre) * frame.scale).length();
         if radii.is_nan() || radii > MAX_VIEWPOINT_RADII {
             bail!(
                 "{name} {} is {radii:.1e} bounding radii from the mesh's centre: at most {MAX_VIEWPOINT_RADII:.0e} are supported",
-                shown_point(p)
+                p.text
             );
         }
     }
@@ -88,26 +92,25 @@ pub fn check_distance(v: &ViewpointOpts, frame: &Frame) -> Result<()> {
 /// The sentence for a camera without a view direction: its eye and target, each given
 /// (`true`) or the default camera's.
 pub fn no_direction(
-    (eye, eye_given): (Vec3, bool),
-    (target, target_given): (Vec3, bool),
+    (eye, eye_typed): (Vec3, Option<&str>),
+    (target, target_typed): (Vec3, Option<&str>),
 ) -> String {
     let why = if eye == target {
         "they are the same point"
     } else {
         "they are too close together for one"
     };
-    let name = |p: Vec3, given: bool, option: &str, default: &str| {
-        let p = shown_point(p.to_array());
-        if given {
-            format!("{option} {p}")
-        } else {
-            format!("the default camera's {default} ({p})")
-        }
+    let name = |p: Vec3, typed: Option<&str>, option: &str, default: &str| match typed {
+        Some(text) => format!("{option} {text}"),
+        None => format!(
+            "the default camera's {default} ({})",
+            shown_point(p.to_array())
+        ),
     };
     format!(
         "{} and {} give no view direction: {why}",
-        name(eye, eye_given, "--eye", "eye"),
-        name(target, target_given, "--look-at", "target")
+        name(eye, eye_typed, "--eye", "eye"),
+        name(target, target_typed, "--look-at", "target")
     )
 }
 
@@ -366,8 +369,8 @@ impl Adaptive<'_> {
     ) -> [String; 2] {
         // The values given, exactly; the framing camera's mapped back to mesh coordinates.
         let v = &self.opts.viewpoint;
-        let [ex, ey, ez] = v.eye.unwrap_or(frame.mesh(camera.eye()).to_array());
-        let [tx, ty, tz] = v.look_at.unwrap_or(frame.mesh(camera.target).to_array());
+        let [ex, ey, ez] = v.eye().unwrap_or(frame.mesh(camera.eye()).to_array());
+        let [tx, ty, tz] = v.look_at().unwrap_or(frame.mesh(camera.target).to_array());
         // +Y but looking (nearly) straight up or down (`Camera::up`).
         let [ux, uy, uz] = camera.up().to_array();
         [
@@ -387,11 +390,21 @@ impl ViewpointOpts {
         self.eye.is_some() || self.look_at.is_some()
     }
 
+    /// `--eye`'s point, where given.
+    pub fn eye(&self) -> Option<[f32; 3]> {
+        self.eye.as_ref().map(|p| p.value)
+    }
+
+    /// `--look-at`'s point, where given.
+    pub fn look_at(&self) -> Option<[f32; 3]> {
+        self.look_at.as_ref().map(|p| p.value)
+    }
+
     /// The viewpoint asked for, in the drawn frame (`frame` maps the mesh's coordinates to it).
     pub fn drawn(&self, frame: &Frame) -> Viewpoint {
         Viewpoint {
-            eye: self.eye.map(|e| frame.drawn(Vec3::from(e))),
-            look_at: self.look_at.map(|t| frame.drawn(Vec3::from(t))),
+            eye: self.eye().map(|e| frame.drawn(Vec3::from(e))),
+            look_at: self.look_at().map(|t| frame.drawn(Vec3::from(t))),
             fov_y: self.fov.value.to_radians(),
         }
     }
@@ -405,12 +418,15 @@ impl ViewpointOpts {
         let fitted = Camera::fit_with_fov(framing, aspect, v.fov_y);
         v.complete(fitted).ok_or_else(|| {
             // The values as given, or where the fitted camera puts them.
-            let given = |p: Option<[f32; 3]>, drawn: Vec3| {
-                (p.map_or(frame.mesh(drawn), Vec3::from), p.is_some())
-            };
+            fn given(p: &Option<TypedVec3>, fallback: Vec3) -> (Vec3, Option<&str>) {
+                match p {
+                    Some(p) => (Vec3::from(p.value), Some(p.text.as_str())),
+                    None => (fallback, None),
+                }
+            }
             let (e, t) = (
-                given(self.eye, fitted.eye()),
-                given(self.look_at, fitted.target),
+                given(&self.eye, frame.mesh(fitted.eye())),
+                given(&self.look_at, frame.mesh(fitted.target)),
             );
             anyhow::anyhow!("{}", no_direction(e, t))
         })

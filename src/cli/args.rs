@@ -5,7 +5,7 @@
 
 use super::choices;
 pub use super::numbers::TypedF32;
-use super::numbers::{parse_vec3, typed_f32};
+use super::numbers::{typed_f32, typed_vec3, TypedVec3};
 use clap::{Args, Parser, Subcommand};
 use meshrefine::render::{Driver, Submit};
 use meshrefine::surface::loop_::Boundary;
@@ -153,18 +153,32 @@ impl ParamOpts {
         let extent = lo.abs().max(hi.abs()).length();
         for &d in displaces {
             p.check_displacement(d, radius, extent).map_err(|e| {
-                // A frequency not given is the mesh's default: named as such, not as typed.
-                let typed = format!(
-                    "--frequency {}",
-                    meshrefine::surface::shown_number(p.frequency)
+                // A value given is named as typed; a frequency not given is the mesh's
+                // default, named as such.
+                let shown = |name: &str, x: f32| {
+                    format!("--{name} {}", meshrefine::surface::shown_number(x))
+                };
+                let e = match &self.amplitude {
+                    Some(a) => e.replacen(
+                        &shown("amplitude", p.amplitude),
+                        &format!("--amplitude {}", a.text.trim()),
+                        1,
+                    ),
+                    None => e,
+                };
+                let e = e.replacen(
+                    &format!(" with {}", shown("bias", p.bias)),
+                    &format!(" with --bias {}", self.bias.text.trim()),
+                    1,
                 );
-                match self.frequency {
+                let typed = shown("frequency", p.frequency);
+                match &self.frequency {
                     None => e.replacen(
                         &typed,
                         &format!("the default {typed} (24 over the mesh's bounding radius)"),
                         1,
                     ),
-                    Some(_) => e,
+                    Some(f) => e.replacen(&typed, &format!("--frequency {}", f.text.trim()), 1),
                 }
             })?;
         }
@@ -479,11 +493,11 @@ pub struct CameraOpts {
 pub struct ViewpointOpts {
     /// Camera position X,Y,Z (default: the fitted camera's, which frames the surface as
     /// drawn).
-    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
-    pub eye: Option<[f32; 3]>,
+    #[arg(long, value_parser = typed_vec3, allow_hyphen_values = true)]
+    pub eye: Option<TypedVec3>,
     /// The point looked at X,Y,Z (default: the fitted camera's target).
-    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
-    pub look_at: Option<[f32; 3]>,
+    #[arg(long, value_parser = typed_vec3, allow_hyphen_values = true)]
+    pub look_at: Option<TypedVec3>,
     /// Vertical field of view in degrees (without --eye the camera is fitted with it: the
     /// surface fills the image as at 45 degrees, until at wide angles the eye, kept outside the
     /// surface's reach, stays back and the surface takes less of the image).

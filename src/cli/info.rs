@@ -359,8 +359,8 @@ fn print_levels(a: &InfoArgs, mut input: Input) -> Result<()> {
         }
     }
     // As given, or where the framing camera is, in the mesh's coordinates.
-    let [ex, ey, ez] = v.eye.unwrap_or(frame.mesh(eye).to_array());
-    let [tx, ty, tz] = v.look_at.unwrap_or(frame.mesh(camera.target).to_array());
+    let [ex, ey, ez] = v.eye().unwrap_or(frame.mesh(eye).to_array());
+    let [tx, ty, tz] = v.look_at().unwrap_or(frame.mesh(camera.target).to_array());
     out!(
         "adaptive {} at {} px: {}x{}, fov-y {}°, eye {ex} {ey} {ez}, look-at {tx} {ty} {tz}, max level {}, driver {}",
         match displace {

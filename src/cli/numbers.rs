@@ -73,6 +73,22 @@ pub fn typed_f32(s: &str) -> Result<TypedF32, String> {
     })
 }
 
+/// A point as typed and as parsed (`--eye`, `--look-at`): a message about it names what was
+/// typed.
+#[derive(Clone, Debug)]
+pub struct TypedVec3 {
+    pub value: [f32; 3],
+    pub text: String,
+}
+
+/// [`TypedVec3`]: [`parse_vec3`], keeping the text.
+pub fn typed_vec3(s: &str) -> Result<TypedVec3, String> {
+    Ok(TypedVec3 {
+        value: parse_vec3(s)?,
+        text: s.trim().to_string(),
+    })
+}
+
 /// `X,Y,Z`: three finite numbers.
 pub fn parse_vec3(s: &str) -> Result<[f32; 3], String> {
     let parts: Vec<&str> = s.split(',').map(str::trim).collect();
