@@ -4728,6 +4728,21 @@ fn a_blank_image_of_culled_elements_blames_culling() {
             "culling removed all 372 elements: the camera given by --eye and --look-at sees none of them",
         ],
     );
+    // What was chosen is said first, as for an image that shows the mesh; a camera placed by
+    // one option is named by that option alone.
+    let out = meshrefine(&args);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(
+        stdout.trim_end(),
+        "adaptive at 1 px, max level 64: levels (level:elements) none; culled 372"
+    );
+    #[rustfmt::skip]
+    let look_away = ["render", "-o", p(&png), "--width", "64", "--height", "64",
+        "--look-at", "1e11,0,0"];
+    expect_error(
+        &look_away,
+        &["culling removed all 372 elements: the camera given by --look-at sees none of them"],
+    );
     // An open surface shows its back side: its elements facing away are not culled, and the
     // open grid, seen from below by the framing camera, is drawn.
     let grid = model_path("grid_open_8x8.obj");

@@ -51,10 +51,13 @@ pub fn run(a: &RenderArgs, desc: &ContextDesc, level_given: bool) -> Result<()> 
 
 /// The line that says what adaptive drawing chose.
 fn levels_line(a: &Adaptive, max: u32, report: &meshrefine::lod::LevelReport) -> String {
+    let histogram = match report.histogram_line() {
+        h if h.is_empty() => "none".to_string(),
+        h => h,
+    };
     format!(
-        "adaptive at {} px, max level {max}: levels (level:elements) {}; culled {}",
+        "adaptive at {} px, max level {max}: levels (level:elements) {histogram}; culled {}",
         super::adaptive::px(a.pixel_error),
-        report.histogram_line(),
         report.culled
     )
 }
@@ -204,8 +207,15 @@ pub fn render_png(
         } else {
             String::new()
         };
-        let camera = if opts.viewpoint.placed() {
-            format!("the camera given by --eye and --look-at sees none of them, or each is much smaller than a pixel there{at_fov}")
+        // The options that placed the camera, as given.
+        let v = opts.viewpoint;
+        let given = match (v.eye.is_some(), v.look_at.is_some()) {
+            (true, true) => "--eye and --look-at",
+            (true, false) => "--eye",
+            _ => "--look-at",
+        };
+        let camera = if v.placed() {
+            format!("the camera given by {given} sees none of them, or each is much smaller than a pixel there{at_fov}, or seen edge-on")
         } else {
             format!("each is much smaller than a pixel when the whole mesh is framed{at_fov}, or seen edge-on")
         };
@@ -214,7 +224,7 @@ pub fn render_png(
                 "culling removed all {n} elements, outside the view or facing away from the eye; --cull off draws them"
             ),
             Some(n) => format!(
-                "culling removed all {n} elements: the camera given by --eye and --look-at sees none of them, or they face away from the eye (--cull off draws those)"
+                "culling removed all {n} elements: the camera given by {given} sees none of them, or they face away from the eye (--cull off draws those)"
             ),
             // Some drawn, none covering a pixel: culling may have removed those that would.
             None if culled_some && line.is_some() => format!(
@@ -228,6 +238,10 @@ pub fn render_png(
         } else {
             why
         };
+        // What adaptive drawing chose is said first, as for an image that shows the mesh.
+        if let Some(line) = &line {
+            out!("{line}");
+        }
         bail!(
             "'{}' is blank: no pixel of the {width}x{height} image shows any of the {triangles} triangle(s) of '{}' ({why})",
             out.display(),
