@@ -230,6 +230,22 @@ impl Frame {
 /// `--max-level l` for `driver` on `device`: within what the driver draws there (the one level
 /// policy's sentence, `driver::check_level`, naming the option), and a power of two where its
 /// adaptive levels are ([`check_max_level_rounding`]).
+/// [`Adaptive::max_level`] on `device` with `--max-level` `given`.
+fn max_level_on(device: &DeviceInfo, given: Option<u32>, driver: Driver) -> Result<u32> {
+    let limit = driver.kind().level_limit(device);
+    let pattern = !driver.kind().integer_levels();
+    if let Some(l) = given {
+        check_max_level(device, l, driver)?;
+        return Ok(l);
+    }
+    let limit = limit.map_or(1024, |(max, _)| max.min(1024));
+    Ok(if pattern {
+        PATTERN_MAX_LEVEL.min(1 << limit.ilog2())
+    } else {
+        limit
+    })
+}
+
 pub fn check_max_level(device: &DeviceInfo, l: u32, driver: Driver) -> Result<()> {
     let cfg = DrawConfig::new(driver, l);
     if let Err(e) = meshrefine::render::driver::check_level_on(device, &cfg) {
@@ -259,18 +275,7 @@ impl Adaptive<'_> {
     /// static drivers), else the largest `driver` draws there, at most 1024; for the pattern
     /// and static drivers [`PATTERN_MAX_LEVEL`].
     pub fn max_level(&self, ctx: &Context, driver: Driver) -> Result<u32> {
-        let limit = driver.kind().level_limit(&ctx.info);
-        let pattern = !driver.kind().integer_levels();
-        if let Some(l) = self.opts.max_level {
-            check_max_level(&ctx.info, l, driver)?;
-            return Ok(l);
-        }
-        let limit = limit.map_or(1024, |(max, _)| max.min(1024));
-        Ok(if pattern {
-            PATTERN_MAX_LEVEL.min(1 << limit.ilog2())
-        } else {
-            limit
-        })
+        max_level_on(&ctx.info, self.opts.max_level, driver)
     }
 
     /// The camera in the drawn frame: the camera fitted to what `scene` draws with `cfg`
@@ -450,4 +455,57 @@ pub fn cannot_adapt(
 /// below `cfg.level` ([`DrawConfig::lowered_to`]).
 fn chosen_max(cfg: &DrawConfig, report: &ChosenLevels) -> Option<DrawConfig> {
     cfg.lowered_to(*report.report().histogram.keys().max()?)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use meshrefine::gpu::vk;
+    use meshrefine::render::Submit;
+
+    /// A device whose tessellator draws up to `tess` segments an edge.
+    fn device(tess: u32) -> DeviceInfo {
+        DeviceInfo {
+            name: "test".into(),
+            driver_name: "test".into(),
+            driver_info: String::new(),
+            driver_id: vk::DriverId::MESA_LLVMPIPE,
+            device_type: vk::PhysicalDeviceType::CPU,
+            api_version: vk::API_VERSION_1_3,
+            limits: vk::PhysicalDeviceLimits {
+                max_tessellation_generation_level: tess,
+                ..Default::default()
+            },
+            pipeline_statistics: false,
+            vertex_stores: false,
+            fill_mode_non_solid: false,
+            depth_bias_clamp: false,
+            max_memory_allocation_size: 1 << 30,
+            transform_feedback: false,
+            max_transform_feedback_buffer_size: 0,
+        }
+    }
+
+    /// The default `--max-level` (docs/adaptivity.md): the tessellator's own limit, at most
+    /// 1,024; 64 for the pattern and static drivers whatever the device; a level given is
+    /// checked against the device.
+    #[test]
+    fn the_default_max_level_follows_the_driver_and_device() {
+        let pattern = Driver::Pattern(Submit::Instanced);
+        for (tess, want) in [(32, 32), (64, 64), (100, 100), (2048, 1024)] {
+            let d = device(tess);
+            assert_eq!(max_level_on(&d, None, Driver::Tess).unwrap(), want);
+            assert_eq!(max_level_on(&d, None, pattern).unwrap(), PATTERN_MAX_LEVEL);
+            assert_eq!(
+                max_level_on(&d, None, Driver::Static).unwrap(),
+                PATTERN_MAX_LEVEL
+            );
+        }
+        assert_eq!(
+            max_level_on(&device(32), Some(16), Driver::Tess).unwrap(),
+            16
+        );
+        assert!(max_level_on(&device(32), Some(33), Driver::Tess).is_err());
+        assert!(max_level_on(&device(32), Some(48), pattern).is_err());
+    }
 }

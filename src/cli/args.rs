@@ -630,6 +630,7 @@ mod tests {
             TypeId::of::<u64>(),
             TypeId::of::<TypedF32>(),
             TypeId::of::<[f32; 3]>(),
+            TypeId::of::<TypedVec3>(),
         ];
         let cli = Cli::command();
         let mut seen = 0;
