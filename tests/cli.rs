@@ -2271,10 +2271,13 @@ fn adaptive_options_nothing_reads_warn() {
     type Warned<'a> = &'a dyn Fn(&[&str]) -> Vec<String>;
     let commands: [Warned; 2] = [&render, &info];
     for run in commands {
-        assert_eq!(
-            run(&["--driver", "static", "--geomorph", "on"]),
-            ["warning: --geomorph applies only to the pattern and tess drivers, not to the static driver: it is ignored"]
-        );
+        // Either way.
+        for g in ["on", "off"] {
+            assert_eq!(
+                run(&["--driver", "static", "--geomorph", g]),
+                ["warning: --geomorph applies only to the pattern and tess drivers, not to the static driver: it is ignored"]
+            );
+        }
         assert_eq!(
             run(&["--driver", "tess", "--max-level", "12", "--geomorph", "on"]),
             ["warning: --geomorph on: the tess driver glides only under a --max-level that is a power of two; at --max-level 12 it draws integer levels without gliding"]
