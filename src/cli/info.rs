@@ -240,7 +240,7 @@ fn check_level_options(a: &InfoArgs, desc: &ContextDesc) -> Result<()> {
 fn print_levels(a: &InfoArgs, mut input: Input) -> Result<()> {
     use meshrefine::lod::cull::eye_outside;
     use meshrefine::lod::frame::{
-        frame_levels, lod_records, uniform_level, unmet, LevelStats, LodView,
+        culled_facing_away, frame_levels, lod_records, uniform_level, unmet, LevelStats, LodView,
     };
     use meshrefine::lod::{Frustum, Lod, View};
     use meshrefine::render::{framing_points, MeshData};
@@ -338,6 +338,7 @@ fn print_levels(a: &InfoArgs, mut input: Input) -> Result<()> {
         uniform_level: uniform_level(&lod_view, &bounds, &levels),
         histogram: stats.histogram,
         culled: stats.culled,
+        facing_away: culled_facing_away(&lod_view, &bounds, &levels),
         unmet,
     };
     // Render draws up to the largest level chosen where that draws the same (not the height

@@ -163,7 +163,8 @@ pub fn render_png(
                 .triangles_on(|l| viewed.driver.refined_per_element(l))
                 .0;
             slow = Some((drawn, report.faster()));
-            culled_all = report.histogram.is_empty().then_some(report.culled);
+            culled_all =
+                (report.histogram.is_empty()).then_some((report.culled, report.facing_away));
             culled_some = report.culled > 0;
         }
         let refusal = (adaptive)
@@ -219,12 +220,20 @@ pub fn render_png(
         } else {
             format!("each is much smaller than a pixel when the whole mesh is framed{at_fov}, or seen edge-on")
         };
+        // Elements outside the view stay out with --cull off: the hint names only those
+        // facing away.
         let why = match culled_all {
-            Some(n) if !opts.viewpoint.placed() => format!(
-                "culling removed all {n} elements, outside the view or facing away from the eye; --cull off draws them"
+            Some((n, 0)) if !v.placed() => {
+                format!("culling removed all {n} elements, outside the view")
+            }
+            Some((n, 0)) => format!(
+                "culling removed all {n} elements: the camera given by {given} sees none of them"
             ),
-            Some(n) => format!(
-                "culling removed all {n} elements: the camera given by {given} sees none of them, or they face away from the eye (--cull off draws those)"
+            Some((n, away)) if !v.placed() => format!(
+                "culling removed all {n} elements, outside the view or facing away from the eye; --cull off draws the {away} facing away"
+            ),
+            Some((n, away)) => format!(
+                "culling removed all {n} elements: the camera given by {given} sees none of them, or they face away from the eye (--cull off draws the {away} facing away)"
             ),
             // Some drawn, none covering a pixel: culling may have removed those that would.
             None if culled_some && line.is_some() => format!(

@@ -380,6 +380,14 @@ fn outside(v: &LodView, s: [f32; 4]) -> bool {
         .any(|p| Vec4::from(*p).truncate().dot(c) + p[3] < -s[3])
 }
 
+/// Of the elements `levels` culls, those culled for facing away: their spheres are inside the
+/// view (what `--cull off` would draw; the others lie outside it).
+pub fn culled_facing_away(view: &LodView, records: &[LodRecord], levels: &[ElementLevels]) -> u64 {
+    (records.iter().zip(levels))
+        .filter(|(r, l)| l.culled() && !(view.flags & CULL_FRUSTUM != 0 && outside(view, r.sphere)))
+        .count() as u64
+}
+
 /// Whether the element's cone faces away from the eye everywhere in its sphere
 /// ([`super::NormalCone::back_facing`]; a cosine of 0 is no cone). Mirror: `lod_back_facing`.
 fn back_facing(v: &LodView, cone: [f32; 4], s: [f32; 4]) -> bool {

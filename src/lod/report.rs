@@ -10,8 +10,10 @@ use std::collections::BTreeMap;
 pub struct LevelReport {
     /// Elements per inner level (segments per edge), visible elements only.
     pub histogram: BTreeMap<u32, u64>,
-    /// Elements outside the view frustum (their bounding spheres are).
+    /// Elements culled: outside the view frustum (their bounding spheres are) or facing away.
     pub culled: u64,
+    /// Of those, the ones culled for facing away (inside the view: `--cull off` draws them).
+    pub facing_away: u64,
     /// The smallest level that, given to every element, meets the same pixel error on every
     /// visible one (`lod::frame::uniform_level`: any integer, without the transitions an
     /// adaptive frame draws, so possibly below its largest level; 1 when none is visible).

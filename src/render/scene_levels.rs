@@ -14,7 +14,8 @@ use super::{Camera, DrawConfig, LevelPass, RenderError, Scene};
 use crate::gpu::vk;
 use crate::lod::cull::{eye_outside, eye_outside_spheres};
 use crate::lod::frame::{
-    frame_levels, lod_records, uniform_level, unmet, LevelStats, LodRecord, LodView,
+    culled_facing_away, frame_levels, lod_records, uniform_level, unmet, LevelStats, LodRecord,
+    LodView,
 };
 use crate::lod::levels::ElementLevels;
 use crate::lod::{Frustum, LevelReport, Lod, View};
@@ -383,6 +384,7 @@ fn chosen_report(view: &LodView, records: &[LodRecord], levels: &[ElementLevels]
     LevelReport {
         unmet: unmet(view, records, levels),
         uniform_level: uniform_level(view, records, levels),
+        facing_away: culled_facing_away(view, records, levels),
         ..level_report(levels, view.dyadic(), view.max_level)
     }
 }

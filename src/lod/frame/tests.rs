@@ -175,6 +175,11 @@ fn culling_follows_the_spheres_and_cones() {
         back += (away && !o) as usize;
     }
     assert!(out > 10 && back > 10, "{out} outside, {back} back-facing");
+    // The culled that face away, inside the view, are told apart (what `--cull off` draws).
+    let lv = LodView::new(&view, Some(&frustum), true, Rounding::Snapped, count);
+    assert_eq!(culled_facing_away(&lv, &lr, &fb), back as u64);
+    let lv = LodView::new(&view, Some(&frustum), false, Rounding::Snapped, count);
+    assert_eq!(culled_facing_away(&lv, &lr, &f), 0);
 }
 
 /// The levels are at least `View::levels`' (equal on the edges without their share of the
