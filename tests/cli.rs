@@ -4716,8 +4716,8 @@ fn bench_adaptive_rows_warn_of_slow_frames_from_the_levels_chosen() {
     );
 }
 
-/// A blank image whose elements culling removed says so (and that `--cull off` draws those that
-/// face away, where some do).
+/// A blank image whose elements culling removed says so, without suggesting `--cull off`
+/// (culling removes nothing visible: the same image is blank without it).
 #[test]
 fn a_blank_image_of_culled_elements_blames_culling() {
     let png = tmp("culled-away.png");
@@ -4740,11 +4740,17 @@ fn a_blank_image_of_culled_elements_blames_culling() {
         stdout.trim_end(),
         "adaptive at 1 px, max level 64: levels (level:elements) none; culled 372"
     );
-    // Every element lies outside the view: --cull off would draw nothing more, and is not
-    // suggested (the level pass's mirror tells the culled facing away apart,
-    // `culling_follows_the_spheres_and_cones`).
+    // Every element lies outside the view (none is counted as facing away: the level pass's
+    // mirror tells them apart, `culling_follows_the_spheres_and_cones`), and --cull off would
+    // draw the same blank image.
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(!stderr.contains("--cull off"), "{stderr}");
+    assert!(
+        !stderr.contains("--cull off") && !stderr.contains("face away"),
+        "{stderr}"
+    );
+    let mut uncull = args.to_vec();
+    uncull.extend(["--cull", "off"]);
+    expect_error(&uncull, &["is blank"]);
     #[rustfmt::skip]
     let look_away = ["render", "-o", p(&png), "--width", "64", "--height", "64",
         "--look-at", "1e11,0,0"];

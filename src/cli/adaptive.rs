@@ -89,8 +89,8 @@ pub fn check_distance(v: &ViewpointOpts, frame: &Frame) -> Result<()> {
     Ok(())
 }
 
-/// The sentence for a camera without a view direction: its eye and target, each given
-/// (`true`) or the default camera's.
+/// The sentence for a camera without a view direction: its eye and target, each as typed where
+/// given (`Some(text)`) or the default camera's.
 pub fn no_direction(
     (eye, eye_typed): (Vec3, Option<&str>),
     (target, target_typed): (Vec3, Option<&str>),
@@ -227,9 +227,6 @@ impl Frame {
     }
 }
 
-/// `--max-level l` for `driver` on `device`: within what the driver draws there (the one level
-/// policy's sentence, `driver::check_level`, naming the option), and a power of two where its
-/// adaptive levels are ([`check_max_level_rounding`]).
 /// [`Adaptive::max_level`] on `device` with `--max-level` `given`.
 fn max_level_on(device: &DeviceInfo, given: Option<u32>, driver: Driver) -> Result<u32> {
     let limit = driver.kind().level_limit(device);
@@ -246,6 +243,9 @@ fn max_level_on(device: &DeviceInfo, given: Option<u32>, driver: Driver) -> Resu
     })
 }
 
+/// `--max-level l` for `driver` on `device`: within what the driver draws there (the one level
+/// policy's sentence, `driver::check_level`, naming the option), and a power of two where its
+/// adaptive levels are ([`check_max_level_rounding`]).
 pub fn check_max_level(device: &DeviceInfo, l: u32, driver: Driver) -> Result<()> {
     let cfg = DrawConfig::new(driver, l);
     if let Err(e) = meshrefine::render::driver::check_level_on(device, &cfg) {

@@ -132,9 +132,13 @@ fn print_geometry(level: u32, elements: u64, m1_faces: bool, desc: &ContextDesc)
     );
     // No device to ask (no Vulkan driver): the figures stand alone. Asked where some device
     // may refuse: a level past the least tessellation limit, or a static vertex buffer past
-    // the least maxMemoryAllocationSize (1 GiB).
+    // the least maxMemoryAllocationSize (1 GiB, or less as `desc` has the device seen).
     let static_bytes = t * meshrefine::pattern::vertex_count(level) as u64 * 24;
-    let device = (level > LEAST_LEVEL_LIMIT || static_bytes > 1 << 30)
+    let least_allocation = desc
+        .max_memory_allocation_size
+        .unwrap_or(u64::MAX)
+        .min(1 << 30);
+    let device = (level > LEAST_LEVEL_LIMIT || static_bytes > least_allocation)
         .then(|| meshrefine::gpu::picked_device(desc).ok())
         .flatten();
     for d in Driver::ALL {

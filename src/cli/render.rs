@@ -106,7 +106,6 @@ pub fn render_png(
     // The elements culled when the level pass culled every one (nothing was drawn).
     let mut culled_all = None;
     // Whether the level pass culled any element.
-    let mut culled_some = false;
     let image = (|| -> Result<_> {
         let mut cfg = *cfg;
         let uniform_level = cfg.level;
@@ -165,7 +164,6 @@ pub fn render_png(
             slow = Some((drawn, report.faster()));
             culled_all =
                 (report.histogram.is_empty()).then_some((report.culled, report.facing_away));
-            culled_some = report.culled > 0;
         }
         let refusal = (adaptive)
             .map(|_| cannot_adapt(&mut h, &mut scene, &viewed, Capture::None))
@@ -220,25 +218,20 @@ pub fn render_png(
         } else {
             format!("each is much smaller than a pixel when the whole mesh is framed{at_fov}, or seen edge-on")
         };
-        // Elements outside the view stay out with --cull off: the hint names only those
-        // facing away.
+        // Culling draws nothing visible away (docs/adaptivity.md, "Culling"): --cull off would
+        // give the same blank image, so it is not suggested.
         let why = match culled_all {
-            Some((n, 0)) if !v.placed() => {
-                format!("culling removed all {n} elements, outside the view")
+            Some((n, away)) => {
+                let facing = match away {
+                    0 => String::new(),
+                    a => format!(", or they face away from the eye ({a} of them)"),
+                };
+                if v.placed() {
+                    format!("culling removed all {n} elements: the camera given by {given} sees none of them{facing}")
+                } else {
+                    format!("culling removed all {n} elements, outside the view{facing}")
+                }
             }
-            Some((n, 0)) => format!(
-                "culling removed all {n} elements: the camera given by {given} sees none of them"
-            ),
-            Some((n, away)) if !v.placed() => format!(
-                "culling removed all {n} elements, outside the view or facing away from the eye; --cull off draws the {away} facing away"
-            ),
-            Some((n, away)) => format!(
-                "culling removed all {n} elements: the camera given by {given} sees none of them, or they face away from the eye (--cull off draws the {away} facing away)"
-            ),
-            // Some drawn, none covering a pixel: culling may have removed those that would.
-            None if culled_some && line.is_some() => format!(
-                "{camera}, or culling removed those that would show (--cull off draws them)"
-            ),
             None => camera,
         };
         // A few pixels' samples can all miss a mesh that covers most of them.

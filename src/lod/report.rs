@@ -12,7 +12,9 @@ pub struct LevelReport {
     pub histogram: BTreeMap<u32, u64>,
     /// Elements culled: outside the view frustum (their bounding spheres are) or facing away.
     pub culled: u64,
-    /// Of those, the ones culled for facing away (inside the view: `--cull off` draws them).
+    /// Of those, the ones culled for facing away (their spheres inside the view), where the
+    /// report was made with the records (`Scene::set_levels`, `info`); 0 in a tally of levels
+    /// alone (`Scene::drawn_levels`).
     pub facing_away: u64,
     /// The smallest level that, given to every element, meets the same pixel error on every
     /// visible one (`lod::frame::uniform_level`: any integer, without the transitions an

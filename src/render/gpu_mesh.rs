@@ -160,7 +160,8 @@ pub struct Chunk {
 
 /// Elements per chunk for per-element arrays of `sizes` bytes each: as many as one
 /// storage-buffer descriptor can span (`max_range` bytes) for the largest, a multiple of what
-/// keeps every array's chunk offsets aligned to `align`.
+/// keeps every array's chunk offsets aligned to `align` (one such step where the range holds
+/// less: only a range below Vulkan's least, `MESHREFINE_MAX_STORAGE_BUFFER_RANGE`, does).
 pub fn chunk_elements(max_range: u64, align: u64, sizes: &[u64]) -> u32 {
     let gcd = |mut a: u64, mut b: u64| {
         while b != 0 {
@@ -174,8 +175,9 @@ pub fn chunk_elements(max_range: u64, align: u64, sizes: &[u64]) -> u32 {
         step / gcd(step, k) * k
     });
     let largest = sizes.iter().copied().max().unwrap_or(1);
+    // At least one step, whatever the range: a chunk offset must stay aligned.
     let n = (max_range / largest) / step * step;
-    n.clamp(1, u32::MAX as u64) as u32
+    n.clamp(step.min(u32::MAX as u64), u32::MAX as u64) as u32
 }
 
 /// Bytes of one element's levels on the GPU.
@@ -568,5 +570,36 @@ mod tests {
             "height map 'bumps.png' (4 x 4 pixels, with its mip pyramid) needs 21 texels, over \
              this device's maxTexelBufferElements (20): use a smaller height map"
         );
+    }
+
+    /// Chunks hold as many records as the range spans, in whole steps that keep every array's
+    /// offsets aligned (records 112 bytes, texture coordinates 32, levels 16), and at least one
+    /// step where the range holds less.
+    #[test]
+    fn chunks_keep_every_arrays_offsets_aligned() {
+        let sizes = [RECORD_BYTES as u64, UV_BYTES, LEVELS_BYTES];
+        // lavapipe: 128 MiB at an alignment of 16.
+        assert_eq!(chunk_elements(1 << 27, 16, &sizes), 1_198_372);
+        for align in [16u64, 64, 256] {
+            for range in [1u64, 100, 448, 1_000, 1 << 20] {
+                let n = chunk_elements(range, align, &sizes) as u64;
+                assert!(n >= 1);
+                for s in sizes {
+                    assert_eq!(
+                        n * s % align,
+                        0,
+                        "align {align}, range {range}: {n} elements"
+                    );
+                }
+                // Within the range where a step fits.
+                let step = [1u64, 4, 16][[16, 64, 256].iter().position(|&a| a == align).unwrap()];
+                if range >= step * 112 {
+                    assert!(
+                        n * 112 <= range,
+                        "align {align}, range {range}: {n} elements"
+                    );
+                }
+            }
+        }
     }
 }

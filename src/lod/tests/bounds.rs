@@ -77,6 +77,15 @@ fn local_surface_bounds_hold_and_are_useful() {
         let b = lod.element(rec);
         assert_eq!((b.chord.c1, b.chord.c2), (0.0, 0.0), "{b:?}");
     }
+    // Not vacuous: at the default alpha the cylinder's corners do blend seam normals.
+    let bent = Case {
+        params: SurfaceParams::default(),
+        ..unbent
+    };
+    let blended = (cyl.iter())
+        .filter(|rec| bent.lod().element(rec).chord.c2.is_infinite())
+        .count();
+    assert!(blended >= 4, "{blended} blended elements on the cylinder");
 }
 
 /// A bound made 2x too small is caught: the check has the power to see an underestimate

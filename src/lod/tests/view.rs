@@ -541,7 +541,7 @@ fn height_map_pixel_error_holds_end_to_end() {
             // The height map's bound is the loosest (docs/adaptivity.md, "How it is checked").
             assert!(worst > 2.0 / 40.0, "{what}: worst {worst} px");
             // How loose: levels chosen for 40 px, their worst in pixels (the bound's own test,
-            // `heightmap_bounds_hold`, catches one below the truth). The sampling sees errors of
+            // `displaced_bounds_hold`, catches one below the truth). The sampling sees errors of
             // the bound's order there (1.3 to 2.8 px): the check above is not blind.
             let mut coarse = Screen::new(&grid, 40.0);
             coarse.measure_only = true;
