@@ -1088,6 +1088,17 @@ fn meshes_of_any_f32_scale_are_framed_and_blank_images_are_errors() {
     let mut single = one.to_vec();
     single.extend(["--msaa", "1"]);
     expect_success(&single);
+    // An eye nearer a face than the near plane (a thousandth of the framed radius) sees it
+    // clipped: among the reasons given.
+    let (tri, near_png) = (tmp("near-plane-triangle.obj"), tmp("near-plane.png"));
+    std::fs::write(&tri, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+    #[rustfmt::skip]
+    let near = ["render", p(&tri), "-o", p(&near_png), "--surface", "flat", "--width", "64",
+        "--height", "64", "--eye", "0.3,0.3,0.0015", "--look-at", "0.3,0.3,-1"];
+    expect_error(
+        &near,
+        &["is blank", "or nearer the eye than the near plane"],
+    );
 }
 
 #[test]

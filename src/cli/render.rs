@@ -214,7 +214,7 @@ pub fn render_png(
             _ => "--look-at",
         };
         let camera = if v.placed() {
-            format!("the camera given by {given} sees none of them, or each is much smaller than a pixel there{at_fov}, or seen edge-on")
+            format!("the camera given by {given} sees none of them, or each is much smaller than a pixel there{at_fov}, or seen edge-on, or nearer the eye than the near plane")
         } else {
             format!("each is much smaller than a pixel when the whole mesh is framed{at_fov}, or seen edge-on")
         };
