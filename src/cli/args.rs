@@ -3,7 +3,7 @@
 //! parse through [`choices`], which maps names to the library's enums.
 #![forbid(unsafe_code)]
 
-use super::choices;
+use super::choices::{self, Trimmed};
 pub use super::numbers::TypedF32;
 use super::numbers::{typed_f32, typed_vec3, TypedVec3};
 use clap::{Args, Parser, Subcommand};
@@ -537,20 +537,20 @@ pub struct BenchArgs {
     /// OBJ file (default: the embedded Spot control mesh).
     pub mesh: Option<PathBuf>,
     /// Surfaces to measure (comma separated).
-    #[arg(long, value_parser = choices::surface(), value_delimiter = ',', default_value = "flat", help_heading = "Measurement")]
+    #[arg(long, value_parser = Trimmed(choices::surface()), value_delimiter = ',', default_value = "flat", help_heading = "Measurement")]
     pub surfaces: Vec<Surface>,
     /// Displacements to measure with every surface (comma separated).
-    #[arg(long, value_parser = choices::displace(), value_delimiter = ',', default_value = "none", help_heading = "Measurement")]
+    #[arg(long, value_parser = Trimmed(choices::displace()), value_delimiter = ',', default_value = "none", help_heading = "Measurement")]
     pub displacements: Vec<Displace>,
     /// Drivers to measure (comma separated; default: every driver and submission mode; `pattern`
     /// means all three submissions; the ratios to static need `static` among them).
-    #[arg(long, value_parser = choices::driver(), value_delimiter = ',', help_heading = "Measurement")]
+    #[arg(long, value_parser = Trimmed(choices::driver()), value_delimiter = ',', help_heading = "Measurement")]
     pub drivers: Vec<Driver>,
     #[command(flatten)]
     pub params: ParamOpts,
     /// Levels to measure (comma separated).
     #[arg(long, allow_hyphen_values = true, value_delimiter = ',', default_value = "8,16,32,64",
-          value_parser = clap::value_parser!(u32).range(1..=1024), help_heading = "Measurement")]
+          value_parser = Trimmed(clap::value_parser!(u32).range(1..=1024)), help_heading = "Measurement")]
     pub levels: Vec<u32>,
     /// Also write the results to PREFIX.md (with this command line), PREFIX.csv and PREFIX.json.
     #[arg(long, value_name = "PREFIX", help_heading = "Measurement")]
@@ -670,6 +670,40 @@ mod tests {
                 }
                 parse("16384").unwrap();
             }
+        }
+    }
+
+    /// bench's lists read items with spaces around them, as `--eye` does; a bad item is still
+    /// a usage error.
+    #[test]
+    fn list_items_are_read_without_the_spaces_around_them() {
+        let cli = Cli::try_parse_from([
+            "meshrefine",
+            "bench",
+            "--levels",
+            " 2, 4",
+            "--surfaces",
+            "flat, pn",
+            "--displacements",
+            "none, sine",
+            "--drivers",
+            "static, tess",
+        ])
+        .unwrap();
+        let Command::Bench(b) = cli.command else {
+            panic!("not bench");
+        };
+        assert_eq!(b.levels, [2, 4]);
+        assert_eq!(b.surfaces, [Surface::Flat, Surface::Pn]);
+        assert_eq!(b.displacements, [Displace::None, Displace::Sine]);
+        assert_eq!(b.drivers, [Driver::Static, Driver::Tess]);
+        for bad in [["--levels", " 0, 4"], ["--surfaces", "flat, bogus"]] {
+            let e = Cli::try_parse_from(["meshrefine", "bench", bad[0], bad[1]]).unwrap_err();
+            let usage = [
+                clap::error::ErrorKind::InvalidValue,
+                clap::error::ErrorKind::ValueValidation,
+            ];
+            assert!(usage.contains(&e.kind()), "{e}");
         }
     }
 }

@@ -37,6 +37,31 @@ where
     })
 }
 
+/// `P`, reading each value with the spaces around it removed: an item of a comma-separated list
+/// (`--levels "2, 4"`, `--surfaces "flat, pn"`) reads as `--eye " 1, 2, 3"` does.
+#[derive(Clone)]
+pub struct Trimmed<P>(pub P);
+
+impl<P: TypedValueParser> TypedValueParser for Trimmed<P> {
+    type Value = P::Value;
+
+    fn parse_ref(
+        &self,
+        cmd: &clap::Command,
+        arg: Option<&clap::Arg>,
+        value: &std::ffi::OsStr,
+    ) -> Result<Self::Value, clap::Error> {
+        let value = value
+            .to_str()
+            .map_or(value, |s| std::ffi::OsStr::new(s.trim()));
+        self.0.parse_ref(cmd, arg, value)
+    }
+
+    fn possible_values(&self) -> Option<Box<dyn Iterator<Item = PossibleValue> + '_>> {
+        self.0.possible_values()
+    }
+}
+
 /// `--surface`, `--surfaces`.
 pub fn surface() -> impl TypedValueParser<Value = Surface> {
     parser(&Surface::ALL, Surface::name, |s| s.facts().help)
