@@ -350,6 +350,21 @@ fn info_reports_topology_and_footprint() {
     // Past one allocation, the static driver's line says render refuses it, in render's
     // sentence (its vertex buffer: 5856 elements x 131,841 vertices x 24 bytes at level 512).
     let spot = model_path("spot_tri.obj");
+    // A --device that names none is refused where the notes need it, as render refuses it.
+    let out = meshrefine(&[
+        "--device",
+        "no-such-gpu",
+        "info",
+        p(&spot),
+        "--level",
+        "512",
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("no Vulkan device matches --device 'no-such-gpu'"),
+        "{stderr}"
+    );
     let s = ok(&["info", p(&spot), "--level", "512"]);
     let bytes = 5856u64 * 131_841 * 24;
     let sentence = format!(
@@ -2390,7 +2405,19 @@ fn displacement_that_cannot_be_finite_is_refused_up_front() {
         expect_error(&args, &[needle, "at most 1e6"]);
         assert!(!obj.exists(), "{args:?} wrote a file");
     }
+    // An amplitude not given is the mesh's default, named as such; the bias as typed.
     let grid = model_path("grid_uv_8x8.obj");
+    let map = gray_png("default-amplitude.png", 2, 2, &[0, 64, 128, 255]);
+    #[rustfmt::skip]
+    let args = ["export", p(&grid), "-o", p(&obj), "--level", "2", "--displace", "heightmap",
+        "--heightmap", p(&map), "--bias", "1.0e8"];
+    expect_error(
+        &args,
+        &[
+            "the default --amplitude ",
+            " (3% of the mesh's bounding radius) with --bias 1.0e8 moves the surface",
+        ],
+    );
     let png = tmp("displaced-away.png");
     let displaced = [
         "render",
@@ -4762,6 +4789,17 @@ fn a_blank_image_of_culled_elements_blames_culling() {
     let mut uncull = args.to_vec();
     uncull.extend(["--cull", "off"]);
     expect_error(&uncull, &["is blank"]);
+    // Nothing drawn: a tiny image's samples did not miss anything, and --msaa is not blamed.
+    #[rustfmt::skip]
+    let tiny = ["render", "-o", p(&png), "--width", "2", "--height", "2", "--eye", "3,0,0",
+        "--look-at", "6,0,0"];
+    let out = meshrefine(&tiny);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("culling removed all 372 elements"),
+        "{stderr}"
+    );
+    assert!(!stderr.contains("--msaa"), "{stderr}");
     #[rustfmt::skip]
     let look_away = ["render", "-o", p(&png), "--width", "64", "--height", "64",
         "--look-at", "1e11,0,0"];

@@ -158,13 +158,14 @@ impl ParamOpts {
                 let shown = |name: &str, x: f32| {
                     format!("--{name} {}", meshrefine::surface::shown_number(x))
                 };
+                let amplitude = shown("amplitude", p.amplitude);
                 let e = match &self.amplitude {
-                    Some(a) => e.replacen(
-                        &shown("amplitude", p.amplitude),
-                        &format!("--amplitude {}", a.text.trim()),
+                    Some(a) => e.replacen(&amplitude, &format!("--amplitude {}", a.text.trim()), 1),
+                    None => e.replacen(
+                        &amplitude,
+                        &format!("the default {amplitude} (3% of the mesh's bounding radius)"),
                         1,
                     ),
-                    None => e,
                 };
                 let e = e.replacen(
                     &format!(" with {}", shown("bias", p.bias)),

@@ -138,9 +138,15 @@ fn print_geometry(level: u32, elements: u64, m1_faces: bool, desc: &ContextDesc)
         .max_memory_allocation_size
         .unwrap_or(u64::MAX)
         .min(1 << 30);
-    let device = (level > LEAST_LEVEL_LIMIT || static_bytes > least_allocation)
-        .then(|| meshrefine::gpu::picked_device(desc).ok())
-        .flatten();
+    // A --device that names none is refused, as render refuses it.
+    let device = match level > LEAST_LEVEL_LIMIT || static_bytes > least_allocation {
+        false => None,
+        true => match meshrefine::gpu::picked_device(desc) {
+            Ok(d) => Some(d),
+            Err(e @ meshrefine::gpu::GpuError::DeviceNotFound { .. }) => return Err(e.into()),
+            Err(_) => None,
+        },
+    };
     for d in Driver::ALL {
         // The tessellator's rings make more triangles than the level's lattice (about 1.5 N²).
         let own = d.refined_per_element(level);

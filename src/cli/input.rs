@@ -174,7 +174,7 @@ pub fn read_surface_files(input: &mut Input, s: &SurfaceOpts, any: bool) -> Resu
 pub fn attach_surface_inputs(input: &mut Input, s: &SurfaceOpts, any: bool) -> Result<()> {
     read_surface_files(input, s, any)?;
     if s.surface.facts().tags && s.drawn.tags.is_none() {
-        split_three_creases(input, s.drawn.crease_angle.as_ref().map(|a| a.value))?;
+        split_three_creases(input, s.drawn.crease_angle.as_ref())?;
         let (_, corners) = meshrefine::surface::stpn::derive_with_angle(
             &input.mesh,
             s.drawn.crease_angle.as_ref().map(|a| a.value),
@@ -193,7 +193,10 @@ pub fn attach_surface_inputs(input: &mut Input, s: &SurfaceOpts, any: bool) -> R
 /// carry derived creases (from split normals or `--crease-angle`) is split at its centroid
 /// (`Mesh::split_at_centroids`: the new vertex is smooth, the old edges stay, so the surface
 /// stays watertight), with one warning; `input` then carries the tags.
-pub fn split_three_creases(input: &mut Input, crease_angle: Option<f32>) -> Result<()> {
+pub fn split_three_creases(
+    input: &mut Input,
+    crease_angle: Option<&super::numbers::TypedF32>,
+) -> Result<()> {
     use meshrefine::surface::stpn;
     let mut tags = match input.tags.take() {
         Some(t) => t,
@@ -204,7 +207,7 @@ pub fn split_three_creases(input: &mut Input, crease_angle: Option<f32>) -> Resu
         .map(|(i, _)| i)
         .collect();
     let source = match crease_angle {
-        Some(a) => format!("--crease-angle {a}"),
+        Some(a) => format!("--crease-angle {}", a.text.trim()),
         None => "the mesh's split normals".to_string(),
     };
     if let Some(&first) = which.first() {

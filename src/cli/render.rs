@@ -213,8 +213,15 @@ pub fn render_png(
             (true, false) => "--eye",
             _ => "--look-at",
         };
+        // The default eye stays clear of the surface: only an --eye given can come nearer it
+        // than the near plane.
+        let near = if v.eye.is_some() {
+            ", or nearer the eye than the near plane"
+        } else {
+            ""
+        };
         let camera = if v.placed() {
-            format!("the camera given by {given} sees none of them, or each is much smaller than a pixel there{at_fov}, or seen edge-on, or nearer the eye than the near plane")
+            format!("the camera given by {given} sees none of them, or each is much smaller than a pixel there{at_fov}, or seen edge-on{near}")
         } else {
             format!("each is much smaller than a pixel when the whole mesh is framed{at_fov}, or seen edge-on")
         };
@@ -234,8 +241,9 @@ pub fn render_png(
             }
             None => camera,
         };
-        // A few pixels' samples can all miss a mesh that covers most of them.
-        let why = if width.min(height) <= 4 && samples.as_raw() > 1 {
+        // A few pixels' samples can all miss a mesh that covers most of them (not one culled
+        // away whole: nothing was drawn).
+        let why = if width.min(height) <= 4 && samples.as_raw() > 1 && culled_all.is_none() {
             format!("{why}; or its {} samples per pixel all miss the mesh: --msaa 1 samples each pixel's centre", samples.as_raw())
         } else {
             why
