@@ -64,8 +64,10 @@ impl From<f32> for TypedF32 {
     }
 }
 
-/// [`TypedF32`]: any text `f32` parses (its checks are the option's own, in one sentence).
+/// [`TypedF32`]: any text `f32` parses, the spaces around it left out as `--eye`'s are (its
+/// checks are the option's own, in one sentence).
 pub fn typed_f32(s: &str) -> Result<TypedF32, String> {
+    let s = s.trim();
     let value = s.parse::<f32>().map_err(|e| format!("{e}"))?;
     Ok(TypedF32 {
         value,
@@ -109,7 +111,15 @@ pub fn parse_vec3(s: &str) -> Result<[f32; 3], String> {
 
 #[cfg(test)]
 mod tests {
-    use super::parse_vec3;
+    use super::{parse_vec3, typed_f32};
+
+    /// A number reads without the spaces around it, and keeps its text as typed inside them.
+    #[test]
+    fn numbers_read_without_surrounding_spaces() {
+        let t = typed_f32(" 179.90 ").unwrap();
+        assert_eq!((t.value, t.text.as_str()), (179.9, "179.90"));
+        assert!(typed_f32(" ").is_err() && typed_f32("1 2").is_err());
+    }
 
     /// Three finite numbers, else one sentence naming the text; a number finite as typed but
     /// beyond single precision says so.
