@@ -18,6 +18,7 @@ mod input;
 mod loop_check;
 mod numbers;
 mod options;
+mod params;
 mod progress;
 mod render;
 mod view;

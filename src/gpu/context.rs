@@ -1,10 +1,11 @@
 //! Instance, device, queue, allocator, validation messages (device choice: `device.rs`).
 
+pub use super::device::ContextDesc;
 use super::device::{pick_device, DeviceInfo};
 use super::{track_drop, track_new};
 use ash::vk;
 use gpu_allocator::vulkan::{Allocator, AllocatorCreateDesc};
-use std::ffi::{c_char, c_void, CStr, CString};
+use std::ffi::{c_char, c_void, CString};
 use std::mem::ManuallyDrop;
 use std::sync::{Arc, Mutex};
 
@@ -91,40 +92,6 @@ impl Messages {
                 log::debug!("vulkan validation (instance not created): {m}");
             }
         }
-    }
-}
-
-/// What to create.
-#[derive(Clone, Debug, Default)]
-pub struct ContextDesc {
-    /// Enable VK_LAYER_KHRONOS_validation and the debug messenger.
-    pub validate: bool,
-    /// Pick the first device whose name contains this (case-insensitive).
-    pub device_name: Option<String>,
-    /// Instance extensions a window surface needs (from `ash_window::enumerate_required_extensions`).
-    pub surface_extensions: Vec<&'static CStr>,
-    /// Treat the device's `maxStorageBufferRange` as at most this many bytes: the device then
-    /// looks as a device with less room would, so that a small mesh meets the limits a very
-    /// large one meets (records bound in chunks, adaptive draws refused). For tests; the CLI
-    /// reads it from `MESHREFINE_MAX_STORAGE_BUFFER_RANGE`.
-    pub max_storage_buffer_range: Option<u32>,
-    /// The same for `maxMemoryAllocationSize` (`MESHREFINE_MAX_MEMORY_ALLOCATION_SIZE`): what
-    /// does not fit one allocation is refused or done another way, as on a smaller device.
-    pub max_memory_allocation_size: Option<u64>,
-}
-
-impl ContextDesc {
-    /// `info` as this description has the device seen ([`Self::max_storage_buffer_range`],
-    /// [`Self::max_memory_allocation_size`]).
-    fn limited(&self, mut info: DeviceInfo) -> DeviceInfo {
-        if let Some(cap) = self.max_storage_buffer_range {
-            let range = &mut info.limits.max_storage_buffer_range;
-            *range = (*range).min(cap);
-        }
-        if let Some(cap) = self.max_memory_allocation_size {
-            info.max_memory_allocation_size = info.max_memory_allocation_size.min(cap);
-        }
-        info
     }
 }
 

@@ -2,7 +2,7 @@
 //! integrated, virtual, CPU (lavapipe); `--device NAME` picks by name. Only Vulkan 1.3 devices
 //! with a graphics + compute queue family are candidates.
 
-use super::context::{ContextDesc, GpuError, VkResultExt};
+use super::context::{GpuError, VkResultExt};
 use ash::vk;
 use std::ffi::{c_char, CStr};
 
@@ -137,4 +137,38 @@ pub(crate) fn pick_device(
     };
     candidates.sort_by_key(|c| rank(c.2.device_type));
     candidates.into_iter().next().ok_or(GpuError::NoDevice)
+}
+
+/// What to create.
+#[derive(Clone, Debug, Default)]
+pub struct ContextDesc {
+    /// Enable VK_LAYER_KHRONOS_validation and the debug messenger.
+    pub validate: bool,
+    /// Pick the first device whose name contains this (case-insensitive).
+    pub device_name: Option<String>,
+    /// Instance extensions a window surface needs (from `ash_window::enumerate_required_extensions`).
+    pub surface_extensions: Vec<&'static CStr>,
+    /// Treat the device's `maxStorageBufferRange` as at most this many bytes: the device then
+    /// looks as a device with less room would, so that a small mesh meets the limits a very
+    /// large one meets (records bound in chunks, adaptive draws refused). For tests; the CLI
+    /// reads it from `MESHREFINE_MAX_STORAGE_BUFFER_RANGE`.
+    pub max_storage_buffer_range: Option<u32>,
+    /// The same for `maxMemoryAllocationSize` (`MESHREFINE_MAX_MEMORY_ALLOCATION_SIZE`): what
+    /// does not fit one allocation is refused or done another way, as on a smaller device.
+    pub max_memory_allocation_size: Option<u64>,
+}
+
+impl ContextDesc {
+    /// `info` as this description has the device seen ([`Self::max_storage_buffer_range`],
+    /// [`Self::max_memory_allocation_size`]).
+    pub(crate) fn limited(&self, mut info: DeviceInfo) -> DeviceInfo {
+        if let Some(cap) = self.max_storage_buffer_range {
+            let range = &mut info.limits.max_storage_buffer_range;
+            *range = (*range).min(cap);
+        }
+        if let Some(cap) = self.max_memory_allocation_size {
+            info.max_memory_allocation_size = info.max_memory_allocation_size.min(cap);
+        }
+        info
+    }
 }

@@ -26,7 +26,7 @@ use crate::subdiv::bft::{progress_line, Progress};
 use crate::surface::ElementRecord;
 use bytemuck::{Pod, Zeroable};
 use glam::{Vec3, Vec4};
-use std::collections::{BTreeMap, HashMap};
+use std::collections::HashMap;
 
 /// The mirror's "no finite bound" (GLSL keeps no infinities): `LOD_HUGE` in glsl/include/lod.glsl.
 pub const HUGE: f32 = 3.0e38;
@@ -572,30 +572,7 @@ pub fn element_unmet(view: &LodView, r: &LodRecord, l: &ElementLevels) -> Option
     Some(u)
 }
 
-/// What one frame's levels draw: for `info`, the benchmark and the window.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct LevelStats {
-    /// Visible elements per drawn inner level.
-    pub histogram: BTreeMap<u32, u64>,
-    /// Elements culled (frustum or back faces).
-    pub culled: u64,
-}
-
-impl LevelStats {
-    /// The tally of `levels` as a driver that rounds as `dyadic` says, up to `max`, draws them.
-    pub fn new(levels: &[ElementLevels], dyadic: bool, max: u32) -> Self {
-        let mut s = Self::default();
-        for l in levels {
-            if l.culled() {
-                s.culled += 1;
-                continue;
-            }
-            let n = drawn_level(l.inner, dyadic, max);
-            *s.histogram.entry(n).or_default() += 1;
-        }
-        s
-    }
-}
+pub use super::report::LevelStats;
 
 mod cores;
 use cores::on_every_core;

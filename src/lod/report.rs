@@ -127,6 +127,31 @@ pub fn px(value: f32) -> String {
     }
 }
 
+/// What one frame's levels draw: for `info`, the benchmark and the window.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct LevelStats {
+    /// Visible elements per drawn inner level.
+    pub histogram: BTreeMap<u32, u64>,
+    /// Elements culled (frustum or back faces).
+    pub culled: u64,
+}
+
+impl LevelStats {
+    /// The tally of `levels` as a driver that rounds as `dyadic` says, up to `max`, draws them.
+    pub fn new(levels: &[super::levels::ElementLevels], dyadic: bool, max: u32) -> Self {
+        let mut s = Self::default();
+        for l in levels {
+            if l.culled() {
+                s.culled += 1;
+                continue;
+            }
+            let n = super::levels::drawn_level(l.inner, dyadic, max);
+            *s.histogram.entry(n).or_default() += 1;
+        }
+        s
+    }
+}
+
 #[cfg(test)]
 mod px_tests {
     #[test]
