@@ -3833,6 +3833,32 @@ fn pixel_error_draws_adaptively_end_to_end() {
     );
     assert_eq!(&camera[..6], &[0.3, 0.2, 0.6, 0.0, 0.1, 0.3]);
     assert_eq!(camera[9], 50.0);
+    // Numbers far from 1 in exponent form, as short and as exact (not 45 zeros before the 1).
+    let tiny = std::env::temp_dir().join("meshrefine-export-tiny-eye.obj");
+    ok(&[
+        "export",
+        spot,
+        "-o",
+        p(&tiny),
+        "--pixel-error",
+        "1",
+        "--eye",
+        "1e-30,-1e-40,3",
+        "--look-at",
+        "1e-45,0,0",
+        "--max-level",
+        "2",
+    ]);
+    let text = std::fs::read_to_string(&tiny).unwrap();
+    assert!(
+        text.contains("\n# camera eye 1e-30 -1e-40 3 target 1e-45 0 0 up 0 1 0 fov-y 45 "),
+        "{text}"
+    );
+    assert_eq!(
+        &adaptive_header(&text).0[..6],
+        &[1e-30, -1e-40, 3.0, 1e-45, 0.0, 0.0]
+    );
+    std::fs::remove_file(&tiny).unwrap();
     let drawn: u64 = levels.iter().map(|l| l.1).sum();
     assert!(drawn > 0 && drawn < 372, "{levels:?}");
     assert!(levels.iter().all(|&(l, _)| l <= 20), "{levels:?}");

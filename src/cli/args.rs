@@ -82,7 +82,8 @@ pub struct ParamOpts {
     /// The loop surface's basis function tables' level (--surface loop): 2^N segments per
     /// M1-face edge, the lattice whose points are exact limit points; each level up takes four
     /// times the memory.
-    #[arg(long, allow_hyphen_values = true, default_value_t = meshrefine::surface::loop_::DEFAULT_LMAX)]
+    #[arg(long, allow_hyphen_values = true, default_value_t = meshrefine::surface::loop_::DEFAULT_LMAX,
+          value_parser = Trimmed(clap::value_parser!(u32)))]
     pub bft_level: u32,
 }
 
@@ -136,7 +137,7 @@ pub struct Technique {
     /// Refinement level N: N segments per coarse edge, N² triangles per coarse triangle (the tess
     /// driver's rings about 1.5 N²), every element at it (render and view: given, it replaces
     /// adaptive drawing at 1 px).
-    #[arg(long, allow_hyphen_values = true, default_value_t = 16, value_parser = clap::value_parser!(u32).range(1..=1024), help_heading = "Driver and level")]
+    #[arg(long, allow_hyphen_values = true, default_value_t = 16, value_parser = level(), help_heading = "Driver and level")]
     pub level: u32,
 }
 
@@ -154,7 +155,7 @@ pub struct ViewArgs {
     #[command(flatten)]
     pub technique: Technique,
     /// Exit after N frames (at least 1).
-    #[arg(long, allow_hyphen_values = true, value_parser = clap::value_parser!(u32).range(1..), help_heading = "Window")]
+    #[arg(long, allow_hyphen_values = true, value_parser = Trimmed(clap::value_parser!(u32).range(1..)), help_heading = "Window")]
     pub frames: Option<u32>,
     /// Save the last frame to this PNG file.
     #[arg(long, value_name = "FILE.png", help_heading = "Window")]
@@ -276,7 +277,7 @@ pub struct ExportArgs {
     #[arg(long, value_parser = choices::submit(), help_heading = "Driver and level")]
     pub submit: Option<Submit>,
     /// Refinement level N: N segments per coarse edge.
-    #[arg(long, allow_hyphen_values = true, default_value_t = 16, value_parser = clap::value_parser!(u32).range(1..=1024), help_heading = "Driver and level")]
+    #[arg(long, allow_hyphen_values = true, default_value_t = 16, value_parser = level(), help_heading = "Driver and level")]
     pub level: u32,
     #[command(flatten)]
     pub adaptive: AdaptiveOpts,
@@ -323,7 +324,7 @@ pub struct InfoArgs {
     /// OBJ file (default: the embedded Spot control mesh).
     pub mesh: Option<PathBuf>,
     /// Also print the GPU geometry bytes each driver would hold at this level.
-    #[arg(long, allow_hyphen_values = true, value_parser = clap::value_parser!(u32).range(1..=1024), help_heading = "Driver and level")]
+    #[arg(long, allow_hyphen_values = true, value_parser = level(), help_heading = "Driver and level")]
     pub level: Option<u32>,
     /// Also report what this surface builds (`loop`: M1, valences, configurations and the basis
     /// function tables' memory).
@@ -348,7 +349,7 @@ pub struct InfoArgs {
     #[arg(long, value_parser = choices::cull(), help_heading = "Adaptive drawing")]
     pub cull: Option<bool>,
     /// The largest level any element gets (with --pixel-error).
-    #[arg(long, allow_hyphen_values = true, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=1024), help_heading = "Adaptive drawing")]
+    #[arg(long, allow_hyphen_values = true, default_value_t = 64, value_parser = level(), help_heading = "Adaptive drawing")]
     pub max_level: u32,
     /// The driver whose rounding of the levels is reported (with --pixel-error): pattern and
     /// tess draw powers of two while geomorphing, any integer without; static any integer.
@@ -418,7 +419,7 @@ pub struct AdaptiveOpts {
     pub pixel_error: Option<TypedF32>,
     /// The largest level any element gets when drawing adaptively, at most what the device
     /// draws.
-    #[arg(long, allow_hyphen_values = true, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    #[arg(long, allow_hyphen_values = true, value_parser = level())]
     pub max_level: Option<u32>,
     /// Draw nothing of the elements outside the view or facing away (when drawing adaptively).
     #[arg(long, value_parser = choices::cull())]
@@ -437,26 +438,26 @@ pub struct BenchArgs {
     /// OBJ file (default: the embedded Spot control mesh).
     pub mesh: Option<PathBuf>,
     /// Surfaces to measure (comma separated).
-    #[arg(long, value_parser = Trimmed(choices::surface()), value_delimiter = ',', default_value = "flat", help_heading = "Measurement")]
+    #[arg(long, value_parser = choices::surface(), value_delimiter = ',', default_value = "flat", help_heading = "Measurement")]
     pub surfaces: Vec<Surface>,
     /// Displacements to measure with every surface (comma separated).
-    #[arg(long, value_parser = Trimmed(choices::displace()), value_delimiter = ',', default_value = "none", help_heading = "Measurement")]
+    #[arg(long, value_parser = choices::displace(), value_delimiter = ',', default_value = "none", help_heading = "Measurement")]
     pub displacements: Vec<Displace>,
     /// Drivers to measure (comma separated; default: every driver and submission mode; `pattern`
     /// means all three submissions; the ratios to static need `static` among them).
-    #[arg(long, value_parser = Trimmed(choices::driver()), value_delimiter = ',', help_heading = "Measurement")]
+    #[arg(long, value_parser = choices::driver(), value_delimiter = ',', help_heading = "Measurement")]
     pub drivers: Vec<Driver>,
     #[command(flatten)]
     pub params: ParamOpts,
     /// Levels to measure (comma separated).
     #[arg(long, allow_hyphen_values = true, value_delimiter = ',', default_value = "8,16,32,64",
-          value_parser = Trimmed(clap::value_parser!(u32).range(1..=1024)), help_heading = "Measurement")]
+          value_parser = level(), help_heading = "Measurement")]
     pub levels: Vec<u32>,
     /// Also write the results to PREFIX.md (with this command line), PREFIX.csv and PREFIX.json.
     #[arg(long, value_name = "PREFIX", help_heading = "Measurement")]
     pub out: Option<PathBuf>,
     /// Timed frames per variant (after one warm-up frame; 1 to 100000).
-    #[arg(long, allow_hyphen_values = true, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..=100_000), help_heading = "Measurement")]
+    #[arg(long, allow_hyphen_values = true, default_value_t = 5, value_parser = Trimmed(clap::value_parser!(u32).range(1..=100_000)), help_heading = "Measurement")]
     pub frames: u32,
     /// Keep timing past --frames until every variant has this many GPU milliseconds in total
     /// (at most 20 x --frames frames): more samples for short frames, whose timestamps jitter.
@@ -501,15 +502,22 @@ pub const MAX_IMAGE_SIDE: u32 = 16384;
 
 /// `--width`, `--height`: 1 to [`MAX_IMAGE_SIDE`], in every command a usage error (status 2)
 /// outside.
-fn image_side() -> clap::builder::RangedI64ValueParser<u32> {
-    clap::value_parser!(u32).range(1..=MAX_IMAGE_SIDE as i64)
+fn image_side() -> Trimmed<clap::builder::RangedI64ValueParser<u32>> {
+    Trimmed(clap::value_parser!(u32).range(1..=MAX_IMAGE_SIDE as i64))
+}
+
+/// `--level`, `--max-level`, an item of bench's `--levels`: 1 to 1024.
+fn level() -> Trimmed<clap::builder::RangedI64ValueParser<u32>> {
+    Trimmed(clap::value_parser!(u32).range(1..=1024))
 }
 
 /// `--msaa`: 1, 2, 4 or 8.
 fn msaa_counts() -> impl clap::builder::TypedValueParser<Value = u32> {
     use clap::builder::TypedValueParser as _;
-    clap::builder::PossibleValuesParser::new(["1", "2", "4", "8"])
-        .map(|s| s.parse::<u32>().expect("a possible value"))
+    Trimmed(clap::builder::PossibleValuesParser::new([
+        "1", "2", "4", "8",
+    ]))
+    .map(|s| s.parse::<u32>().expect("a possible value"))
 }
 
 #[cfg(test)]
@@ -604,6 +612,67 @@ mod tests {
                 clap::error::ErrorKind::ValueValidation,
             ];
             assert!(usage.contains(&e.kind()), "{e}");
+        }
+        // An empty item is named as such, not as a missing value or an unparsable number.
+        let lists = [
+            ("--levels", "2"),
+            ("--surfaces", "pn"),
+            ("--displacements", "sine"),
+            ("--drivers", "tess"),
+        ];
+        for (list, item) in lists {
+            for v in [format!("{item},,{item}"), format!("{item},"), " , ".into()] {
+                let e = Cli::try_parse_from(["meshrefine", "bench", list, &v]).unwrap_err();
+                assert_eq!(e.kind(), clap::error::ErrorKind::InvalidValue, "{e}");
+                let text = e.to_string();
+                assert!(
+                    text.contains("an empty item in the list"),
+                    "{list} {v:?}: {text}"
+                );
+            }
+        }
+    }
+
+    /// Every option's value but a path reads without the spaces around it: whole numbers,
+    /// names and on/off as the real numbers and points do; an empty value is named as such.
+    #[test]
+    fn values_are_read_without_the_spaces_around_them() {
+        let cli = Cli::try_parse_from([
+            "meshrefine",
+            "render",
+            "--max-level",
+            " 128",
+            "--width",
+            "64 ",
+            "--height",
+            " 32 ",
+            "--msaa",
+            " 4",
+            "--surface",
+            " phong ",
+            "--cull",
+            "off ",
+            "--bft-level",
+            " 5",
+        ])
+        .unwrap();
+        let Command::Render(r) = cli.command else {
+            panic!("not render");
+        };
+        assert_eq!((r.width, r.height, r.msaa), (64, 32, Some(4)));
+        assert_eq!(r.adaptive.max_level, Some(128));
+        assert_eq!(r.adaptive.cull, Some(false));
+        assert_eq!(r.technique.surface.surface, Surface::Phong);
+        assert_eq!(r.technique.surface.drawn.params.bft_level, 5);
+        let cli = Cli::try_parse_from(["meshrefine", "info", "--level", " 8 "]).unwrap();
+        let Command::Info(i) = cli.command else {
+            panic!("not info");
+        };
+        assert_eq!(i.level, Some(8));
+        for (option, value) in [("--level", " "), ("--surface", ""), ("--width", "  ")] {
+            let e = Cli::try_parse_from(["meshrefine", "render", option, value]).unwrap_err();
+            assert_eq!(e.kind(), clap::error::ErrorKind::InvalidValue, "{e}");
+            assert!(e.to_string().contains("an empty value"), "{option}: {e}");
         }
     }
 }

@@ -17,7 +17,7 @@ use meshrefine::surface::loop_::Boundary;
 use meshrefine::surface::{Displace, NormalField, Seams, Surface};
 
 /// A value parser that accepts `name(v)` for every `v` of `values` (listed in `--help` in that
-/// order, each with `help(v)`) and yields `v`.
+/// order, each with `help(v)`), with the spaces around it left out ([`Trimmed`]), and yields `v`.
 pub fn parser<T>(
     values: &[T],
     name: fn(T) -> &'static str,
@@ -30,15 +30,17 @@ where
     let possible: Vec<PossibleValue> = (values.iter())
         .map(|&v| PossibleValue::new(name(v)).help(help(v)))
         .collect();
-    PossibleValuesParser::new(possible).try_map(move |s: String| {
+    Trimmed(PossibleValuesParser::new(possible)).try_map(move |s: String| {
         (values.iter().copied())
             .find(|&v| name(v) == s)
             .ok_or_else(|| format!("'{s}' is not one of the possible values"))
     })
 }
 
-/// `P`, reading each value with the spaces around it removed: an item of a comma-separated list
-/// (`--levels "2, 4"`, `--surfaces "flat, pn"`) reads as `--eye " 1, 2, 3"` does.
+/// `P`, reading each value with the spaces around it removed, as `--eye " 1, 2, 3"` reads: a
+/// whole number (`--max-level " 128"`), a name (`--surface "pn "`), an item of a comma-separated
+/// list (`--levels "2, 4"`, `--surfaces "flat, pn"`). An empty value, or an empty item of a list
+/// (`"flat,,pn"`), is refused as such.
 #[derive(Clone)]
 pub struct Trimmed<P>(pub P);
 
@@ -51,10 +53,26 @@ impl<P: TypedValueParser> TypedValueParser for Trimmed<P> {
         arg: Option<&clap::Arg>,
         value: &std::ffi::OsStr,
     ) -> Result<Self::Value, clap::Error> {
-        let value = value
+        let trimmed = value
             .to_str()
             .map_or(value, |s| std::ffi::OsStr::new(s.trim()));
-        self.0.parse_ref(cmd, arg, value)
+        if trimmed.is_empty() {
+            // Rather than the inner parser's "a value is required" or "cannot parse integer
+            // from empty string": say what is empty.
+            let name = arg.map_or_else(|| "the option".to_string(), |a| format!("'{a}'"));
+            let what = match arg.and_then(clap::Arg::get_value_delimiter) {
+                Some(d) => format!("an empty item in the list (a '{d}' too many)"),
+                None => "an empty value".to_string(),
+            };
+            let message = format!(
+                "invalid value '{}' for {name}: {what}\n",
+                value.to_string_lossy()
+            );
+            return Err(
+                clap::Error::raw(clap::error::ErrorKind::InvalidValue, message).with_cmd(cmd),
+            );
+        }
+        self.0.parse_ref(cmd, arg, trimmed)
     }
 
     fn possible_values(&self) -> Option<Box<dyn Iterator<Item = PossibleValue> + '_>> {
