@@ -369,6 +369,11 @@ fn adaptive_draws_past_the_devices_room_fall_back_as_documented() {
         errors[0].starts_with("error: ") && errors[0].contains(&why),
         "{stderr}"
     );
+    // 7,000 bytes over the 28 an element's bins take up to level 64.
+    assert!(
+        errors[0].ends_with(": draw at most about 250 elements adaptively, or draw uniformly"),
+        "{stderr}"
+    );
 
     let (status, _, stderr) = limited(1, &["info"]);
     assert_eq!(status, Some(0), "{stderr}");
@@ -439,4 +444,32 @@ fn levels_past_one_allocation_are_chosen_on_the_cpu_alike() {
         body(&whole) == body(&cpu),
         "the export differs with the levels chosen on the CPU"
     );
+}
+
+/// An image past one allocation is refused with its need and the limit apart: in MiB to a tenth
+/// (the need rounded up, the limit down), in bytes under 1 MiB.
+#[test]
+fn an_image_past_one_allocation_names_both_sizes_apart() {
+    let var = "MESHREFINE_MAX_MEMORY_ALLOCATION_SIZE";
+    let png = tmp("alloc-image.png");
+    for (limit, side, says) in [
+        (
+            2_000_000,
+            "1000",
+            "needs 3.9 MiB per attachment, over the 1.9 MiB this device",
+        ),
+        (
+            4_000,
+            "40",
+            "needs 6400 bytes per attachment, over the 4000 bytes this device",
+        ),
+    ] {
+        let args = [
+            "render", "-o", &png, "--width", side, "--height", side, "--msaa", "1",
+        ];
+        let (status, _, stderr) = seen_with(var, limit, &args);
+        assert_eq!(status, Some(1), "{stderr}");
+        assert_eq!(stderr.lines().count(), 1, "{stderr}");
+        assert!(stderr.contains(says), "{stderr}");
+    }
 }

@@ -252,16 +252,31 @@ impl OffscreenTarget {
         let bytes = width as u64 * height as u64 * 4 * n;
         let max_bytes = ctx.info.max_memory_allocation_size;
         if bytes > max_bytes {
-            let mib = |b: u64| b.div_ceil(1 << 20);
+            // In MiB to a tenth, the need rounded up and the limit down (so that they never
+            // read alike), or in bytes under 1 MiB.
+            let (need, max) = if max_bytes >= 1 << 20 {
+                let tenths = |b: u64, up: bool| {
+                    let t = if up {
+                        (b * 10).div_ceil(1 << 20)
+                    } else {
+                        (b * 10) >> 20
+                    };
+                    match t % 10 {
+                        0 => format!("{} MiB", t / 10),
+                        d => format!("{}.{d} MiB", t / 10),
+                    }
+                };
+                (tenths(bytes, true), tenths(max_bytes, false))
+            } else {
+                (format!("{bytes} bytes"), format!("{max_bytes} bytes"))
+            };
             let remedy = if n > 1 {
                 "fewer samples per pixel (--msaa) or a smaller image fits"
             } else {
                 "a smaller image fits"
             };
             return Err(GpuError::Other(format!(
-                "a {width}x{height} image at {n} sample(s) per pixel needs {} MiB per attachment, over the {} MiB this device allocates at once (maxMemoryAllocationSize): {remedy}",
-                mib(bytes),
-                mib(max_bytes)
+                "a {width}x{height} image at {n} sample(s) per pixel needs {need} per attachment, over the {max} this device allocates at once (maxMemoryAllocationSize): {remedy}",
             )));
         }
         let extent = vk::Extent2D { width, height };

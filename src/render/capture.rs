@@ -43,7 +43,7 @@ impl Headless {
             let per_at = |l: u32| cfg.driver.capture_per_element(l).unwrap_or(0) as u64;
             let remedy = match (1..cfg.level).rev().find(|&l| fits(per_at(l))) {
                 Some(l) => format!("use --level {l} or lower"),
-                None => "use a lower level".to_string(),
+                None => "no level fits it".to_string(),
             };
             return Err(RenderError::OverLimit {
                 what: format!("capturing the {per_element} evaluated vertices of one element"),

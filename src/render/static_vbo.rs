@@ -124,7 +124,11 @@ pub fn check_uniform_size_on(
         device,
         bytes,
         || format!("the static driver's refined mesh at level {level}"),
-        "use a lower level or the pattern driver",
+        if level > 1 {
+            "use a lower level or the pattern driver"
+        } else {
+            "use the pattern driver"
+        },
     )
 }
 

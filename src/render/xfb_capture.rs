@@ -101,7 +101,7 @@ impl Headless {
             let remedy = match (fitting, self.adaptive) {
                 (Some(l), false) => format!("use --level {l} or lower"),
                 (Some(l), true) => format!("use --max-level {l} or lower"),
-                (None, _) => "use a lower level".into(),
+                (None, _) => "no level fits it".into(),
             };
             return Err(RenderError::OverLimit {
                 what: format!(

@@ -50,9 +50,11 @@ pub fn check_adaptive_fits(
             unit: "bytes",
             limit,
             max,
-            remedy: format!(
-                "draw at most about {fits} elements adaptively{glide}, or draw uniformly"
-            ),
+            remedy: if fits > 0 {
+                format!("draw at most about {fits} elements adaptively{glide}, or draw uniformly")
+            } else {
+                "draw uniformly".into()
+            },
         });
     }
     Ok(())
