@@ -360,6 +360,24 @@ fn compact_histogram(histogram: &std::collections::BTreeMap<u32, u64>) -> String
 mod tests {
     use super::*;
 
+    /// The level pass's cost reads `measuring` while the frame that first runs it is in flight,
+    /// its GPU time once that frame is done, and `none` where no pass runs (docs/window.md).
+    #[test]
+    fn the_level_pass_cost_says_when_it_is_measuring() {
+        let cost = |gpu_ms, timed| {
+            LevelCost {
+                cpu_ms: 0.125,
+                gpu_ms,
+                timed,
+            }
+            .describe()
+        };
+        assert_eq!(cost(None, true), "measuring, choosing 0.12 ms CPU");
+        assert_eq!(cost(Some(0.5), true), "0.50 ms GPU, choosing 0.12 ms CPU");
+        assert_eq!(cost(Some(0.5), false), "0.50 ms GPU, choosing 0.12 ms CPU");
+        assert_eq!(cost(None, false), "none, choosing 0.12 ms CPU");
+    }
+
     /// Dyadic levels are shown one by one, integer levels in power-of-two ranges.
     #[test]
     fn histograms_are_compact() {

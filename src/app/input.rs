@@ -1,6 +1,6 @@
 //! The window's events: winit's callbacks, the mouse's orbit and zoom, and the keys.
 
-use super::ui::PIXEL_ERRORS;
+use super::ui::step_pixel_error;
 use super::{camera, next, App, State, ViewOptions};
 use crate::render::{Background, DrawConfig, Driver, Submit, View};
 use crate::surface::{Displace, Surface};
@@ -236,10 +236,8 @@ impl State {
                 }
                 "g" | "G" if c.adaptive => c.cfg.geomorph = !c.cfg.geomorph,
                 "f" | "F" if c.adaptive => c.freeze = !c.freeze,
-                "[" if c.adaptive => {
-                    c.pixel_error = (c.pixel_error * 0.5).max(*PIXEL_ERRORS.start())
-                }
-                "]" if c.adaptive => c.pixel_error = (c.pixel_error * 2.0).min(*PIXEL_ERRORS.end()),
+                "[" if c.adaptive => c.pixel_error = step_pixel_error(c.pixel_error, true),
+                "]" if c.adaptive => c.pixel_error = step_pixel_error(c.pixel_error, false),
                 // Each mode's own keys change nothing in the other (it would show up unasked
                 // on switching back), and say so.
                 "c" | "C" | "g" | "G" | "f" | "F" | "[" | "]" => {

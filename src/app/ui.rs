@@ -89,6 +89,13 @@ pub fn glide_refusal(driver: Driver, largest: u32) -> Option<String> {
 /// The pixel error's range in the window (the slider and the `[` `]` keys).
 pub const PIXEL_ERRORS: std::ops::RangeInclusive<f32> = 0.25..=16.0;
 
+/// The pixel error after `[` (`finer`: halved) or `]` (doubled), held within [`PIXEL_ERRORS`]:
+/// a step past an end stops at it.
+pub fn step_pixel_error(px: f32, finer: bool) -> f32 {
+    let stepped = if finer { px * 0.5 } else { px * 2.0 };
+    stepped.clamp(*PIXEL_ERRORS.start(), *PIXEL_ERRORS.end())
+}
+
 /// A pixel error from the command line as the window's slider holds it: within
 /// [`PIXEL_ERRORS`], with a warning where it had to move.
 pub fn slider_pixel_error(px: f32) -> f32 {
@@ -574,6 +581,29 @@ mod tests {
         assert_eq!(slider_pixel_error(0.1), 0.25);
         assert_eq!(slider_pixel_error(1.5), 1.5);
         assert_eq!(slider_pixel_error(16.0), 16.0);
+    }
+
+    /// `[` halves and `]` doubles the pixel error, stopping at the range's ends (docs/window.md:
+    /// 0.25 to 16 px), whatever the slider left between powers of two.
+    #[test]
+    fn the_keys_halve_and_double_the_pixel_error_within_its_range() {
+        assert_eq!(step_pixel_error(1.0, true), 0.5);
+        assert_eq!(step_pixel_error(1.0, false), 2.0);
+        assert_eq!(step_pixel_error(0.25, true), 0.25);
+        assert_eq!(step_pixel_error(0.3, true), 0.25);
+        assert_eq!(step_pixel_error(16.0, false), 16.0);
+        assert_eq!(step_pixel_error(12.0, false), 16.0);
+        assert_eq!(step_pixel_error(12.0, true), 6.0);
+        // Down from the top and back up again lands where it started.
+        let mut px = 16.0;
+        for _ in 0..10 {
+            px = step_pixel_error(px, true);
+        }
+        assert_eq!(px, 0.25);
+        for _ in 0..6 {
+            px = step_pixel_error(px, false);
+        }
+        assert_eq!(px, 16.0);
     }
 
     /// A row selects the level the last frame of its mode drew (a largest level of 48 drawn at
