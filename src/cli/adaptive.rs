@@ -390,10 +390,10 @@ impl Adaptive<'_> {
     }
 }
 
-/// A coordinate in export's camera line: the shortest decimal that reads back as the same
+/// A coordinate in export's camera line (and `info`'s): the shortest decimal that reads back as the same
 /// `f32`, as Rust writes it, but in exponent form where that would be a long run of zeros
 /// (`1e-30`, not thirty of them; `1e20`).
-fn coordinate(value: f32) -> String {
+pub fn coordinate(value: f32) -> String {
     if value != 0.0 && !(1e-5..1e16).contains(&value.abs()) {
         format!("{value:e}")
     } else {

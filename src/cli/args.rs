@@ -5,7 +5,7 @@
 
 use super::choices::{self, Trimmed};
 pub use super::numbers::TypedF32;
-use super::numbers::{typed_f32, typed_vec3, TypedVec3};
+use super::numbers::{name, typed_f32, typed_vec3, whole_number, TypedVec3};
 use clap::{Args, Parser, Subcommand};
 use meshrefine::render::{Driver, Submit};
 use meshrefine::surface::loop_::Boundary;
@@ -25,7 +25,7 @@ pub struct Cli {
     #[arg(long, global = true)]
     pub validate: bool,
     /// Use the first Vulkan device whose name contains NAME (case-insensitive).
-    #[arg(long, global = true, value_name = "NAME")]
+    #[arg(long, global = true, value_name = "NAME", value_parser = name)]
     pub device: Option<String>,
 }
 
@@ -61,7 +61,7 @@ pub struct ParamOpts {
     #[arg(long, value_parser = typed_f32, allow_hyphen_values = true)]
     pub frequency: Option<TypedF32>,
     /// Octaves of the noise displacement (1 to 8).
-    #[arg(long, allow_hyphen_values = true, default_value = "1")]
+    #[arg(long, allow_hyphen_values = true, default_value = "1", value_parser = whole_number)]
     pub octaves: String,
     /// PN and Phong geometry at split normals (a position with several vn): `closed` is
     /// crack-free, `open` is the papers' behaviour (cracks).
@@ -623,7 +623,7 @@ mod tests {
         for (list, item) in lists {
             for v in [format!("{item},,{item}"), format!("{item},"), " , ".into()] {
                 let e = Cli::try_parse_from(["meshrefine", "bench", list, &v]).unwrap_err();
-                assert_eq!(e.kind(), clap::error::ErrorKind::InvalidValue, "{e}");
+                assert_eq!(e.kind(), clap::error::ErrorKind::ValueValidation, "{e}");
                 let text = e.to_string();
                 assert!(
                     text.contains("an empty item in the list"),
@@ -669,9 +669,18 @@ mod tests {
             panic!("not info");
         };
         assert_eq!(i.level, Some(8));
-        for (option, value) in [("--level", " "), ("--surface", ""), ("--width", "  ")] {
+        let empty = [
+            ("--level", " "),
+            ("--surface", ""),
+            ("--width", "  "),
+            ("--fov", " "),
+            ("--eye", ""),
+            ("--octaves", ""),
+            ("--device", " "),
+        ];
+        for (option, value) in empty {
             let e = Cli::try_parse_from(["meshrefine", "render", option, value]).unwrap_err();
-            assert_eq!(e.kind(), clap::error::ErrorKind::InvalidValue, "{e}");
+            assert_eq!(e.kind(), clap::error::ErrorKind::ValueValidation, "{e}");
             assert!(e.to_string().contains("an empty value"), "{option}: {e}");
         }
     }

@@ -58,25 +58,26 @@ impl<P: TypedValueParser> TypedValueParser for Trimmed<P> {
             .map_or(value, |s| std::ffi::OsStr::new(s.trim()));
         if trimmed.is_empty() {
             // Rather than the inner parser's "a value is required" or "cannot parse integer
-            // from empty string": say what is empty.
-            let name = arg.map_or_else(|| "the option".to_string(), |a| format!("'{a}'"));
-            let what = match arg.and_then(clap::Arg::get_value_delimiter) {
-                Some(d) => format!("an empty item in the list (a '{d}' too many)"),
-                None => "an empty value".to_string(),
-            };
-            let message = format!(
-                "invalid value '{}' for {name}: {what}\n",
-                value.to_string_lossy()
-            );
-            return Err(
-                clap::Error::raw(clap::error::ErrorKind::InvalidValue, message).with_cmd(cmd),
-            );
+            // from empty string": say what is empty, as clap words a value's error.
+            let list = arg.and_then(clap::Arg::get_value_delimiter).is_some();
+            let refuse = move |_: &str| -> Result<P::Value, String> { Err(empty(list)) };
+            return refuse.parse_ref(cmd, arg, value);
         }
         self.0.parse_ref(cmd, arg, trimmed)
     }
 
     fn possible_values(&self) -> Option<Box<dyn Iterator<Item = PossibleValue> + '_>> {
         self.0.possible_values()
+    }
+}
+
+/// What an empty value is called: an empty item of a comma-separated list (`"flat,,pn"`, `""`),
+/// or an empty value.
+pub fn empty(list: bool) -> String {
+    if list {
+        "an empty item in the list (items are separated by ',')".into()
+    } else {
+        "an empty value".into()
     }
 }
 

@@ -66,15 +66,18 @@ pub fn run(a: &InfoArgs, desc: &ContextDesc) -> Result<()> {
     }
     let (mesh, report) = (&input.mesh, &input.report);
     print_stats(path, mesh, report)?;
+    // With --pixel-error the levels build Loop's data on the mesh as drawn and print Loop's
+    // lines from it (the same topology, so the same tables); --level counts its GPU bytes.
+    let loop_ = (for_loop && (a.level.is_some() || a.pixel_error.is_none()))
+        .then(|| loop_data(a, path, mesh))
+        .transpose()?;
     if let Some(level) = a.level {
         // Loop's drivers draw the faces of one Loop step, four to a coarse triangle.
         let elements = mesh.triangles.len() as u64 * if for_loop { 4 } else { 1 };
-        print_geometry(level, elements, for_loop, desc)?;
+        print_geometry(level, elements, loop_.as_ref(), desc)?;
     }
-    // With --pixel-error the levels build Loop's data on the mesh as drawn and print these
-    // lines from it (the same topology, so the same tables): built once.
-    if for_loop && a.pixel_error.is_none() {
-        print_loop(a, &loop_data(a, path, mesh)?)?;
+    if let (Some(data), None) = (&loop_, &a.pixel_error) {
+        print_loop(a, data)?;
     }
     print_levels(a, input)?;
     Ok(())
@@ -115,12 +118,18 @@ fn print_stats(path: &str, mesh: &Mesh, report: &LoadReport) -> Result<()> {
 }
 
 /// `--level`: the refined triangles of `elements` (the coarse triangles, or M1's faces for
-/// `loop`), and each driver's GPU geometry; past [`LEAST_LEVEL_LIMIT`], where the device render
+/// `loop`), and each driver's GPU geometry (for `loop` on the GPU drivers, with M1, its passes'
+/// data and the tables, as `bench` counts them); past [`LEAST_LEVEL_LIMIT`], where the device render
 /// would draw on (its limits read, nothing opened) refuses the level to a driver, a note under
 /// its line says so in render's sentence.
-fn print_geometry(level: u32, elements: u64, m1_faces: bool, desc: &ContextDesc) -> Result<()> {
+fn print_geometry(
+    level: u32,
+    elements: u64,
+    loop_: Option<&LoopData>,
+    desc: &ContextDesc,
+) -> Result<()> {
     let t = elements;
-    let element = if m1_faces {
+    let element = if loop_.is_some() {
         "M1 face: the elements are one Loop step's faces"
     } else {
         "coarse triangle"
@@ -155,10 +164,16 @@ fn print_geometry(level: u32, elements: u64, m1_faces: bool, desc: &ContextDesc)
         } else {
             format!(", {} refined triangles ({own} per element)", t * own as u64)
         };
+        let pass = match loop_ {
+            Some(data) if !d.kind().refines_on_cpu() => {
+                meshrefine::render::loop_gpu::LoopPass::gpu_bytes_of(data)
+            }
+            _ => 0,
+        };
         out!(
             "  {:8} {:>14} bytes of GPU geometry{made}",
             d.name(),
-            d.geometry_bytes(level, t)
+            d.geometry_bytes(level, t) + pass
         );
         if let Some(device) = &device {
             let cfg = meshrefine::render::DrawConfig::new(d, level);
@@ -370,8 +385,14 @@ fn print_levels(a: &InfoArgs, mut input: Input) -> Result<()> {
         }
     }
     // As given, or where the framing camera is, in the mesh's coordinates.
-    let [ex, ey, ez] = v.eye().unwrap_or(frame.mesh(eye).to_array());
-    let [tx, ty, tz] = v.look_at().unwrap_or(frame.mesh(camera.target).to_array());
+    // Written as export's camera line writes them.
+    use super::adaptive::coordinate;
+    let [ex, ey, ez] = v
+        .eye()
+        .unwrap_or(frame.mesh(eye).to_array())
+        .map(coordinate);
+    let [tx, ty, tz] =
+        (v.look_at().unwrap_or(frame.mesh(camera.target).to_array())).map(coordinate);
     out!(
         "adaptive {} at {} px: {}x{}, fov-y {}°, eye {ex} {ey} {ez}, look-at {tx} {ty} {tz}, max level {}, driver {}",
         match displace {

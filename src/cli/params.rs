@@ -18,18 +18,14 @@ impl ParamOpts {
             f.check("frequency", Some((0.0, f32::MAX, "a finite number >= 0")))?;
         }
         self.bias.check("bias", None)?;
-        // Read as typed, so that a negative or huge count gets the range's sentence too, and
-        // what is no whole number says so.
-        let typed = self.octaves.trim();
-        let digits = typed.strip_prefix(['-', '+']).unwrap_or(typed);
-        let octaves = (typed.parse::<u32>().ok())
+        // A whole number as typed (`numbers::whole_number`), so that a negative or huge count
+        // gets the range's sentence too.
+        let octaves = (self.octaves.parse::<u32>().ok())
             .filter(|o| (1..=SurfaceParams::MAX_OCTAVES).contains(o))
             .ok_or_else(|| {
-                let whole = !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit());
                 format!(
-                    "--octaves {} is not {}within [1, {}]",
+                    "--octaves {} is not within [1, {}]",
                     meshrefine::mesh::shown_word(&self.octaves),
-                    if whole { "" } else { "a whole number " },
                     SurfaceParams::MAX_OCTAVES
                 )
             })?;

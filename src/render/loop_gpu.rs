@@ -113,6 +113,7 @@ impl LoopPass {
             grid,
         };
         pass.upload_m0(m0);
+        debug_assert_eq!(pass.gpu_bytes(), Self::gpu_bytes_of(data));
         Ok(pass)
     }
 
@@ -155,6 +156,38 @@ impl LoopPass {
         ]
         .iter()
         .map(|b| b.size())
+        .sum()
+    }
+
+    /// [`LoopPass::gpu_bytes`] of `data` before any buffer is made (`info --level` prints it
+    /// without a device): the same sizes, each buffer's as [`LoopPass::new`] makes it.
+    pub fn gpu_bytes_of(data: &LoopData) -> u64 {
+        let words = |n: usize| n as u64 * 4;
+        let m1 = data.stencils.len().max(1) as u64 * 16;
+        let entries: usize = data.stencils.iter().map(|s| s.parents.len()).sum();
+        let packed = &data.tables.packed;
+        [
+            data.m0_count.max(1) as u64 * 16,
+            m1,
+            m1,
+            words(data.stencils.len() + 1),
+            entries.max(1) as u64 * 8,
+            words(data.ring_offsets.len()),
+            words(data.rings.len().max(1)),
+            words(data.faces.len() * 4),
+            words(if data.control.is_empty() {
+                4
+            } else {
+                data.control.len()
+            }),
+            words(if packed.pool.is_empty() {
+                4
+            } else {
+                packed.pool.len()
+            }),
+            words(packed.rows.len().max(1)),
+        ]
+        .iter()
         .sum()
     }
 
