@@ -4064,7 +4064,9 @@ fn pixel_error_draws_adaptively_with_the_pattern_driver() {
             "--geomorph on, or --max-level 128 or a smaller power of two",
         ],
     );
-    // render refuses the same in one sentence, with no warning of slow frames before it.
+    // render refuses the same in one sentence, with no warning of slow frames before it, nor a
+    // note on the levels it does not draw (elements holding the eye drawn at 256, others
+    // needing more).
     let high_png = tmp("adaptive-pattern-integer-256.png");
     #[rustfmt::skip]
     let render = [
@@ -4073,7 +4075,12 @@ fn pixel_error_draws_adaptively_with_the_pattern_driver() {
     ];
     expect_error(&render, &["at most up to level 128, not 256"]);
     let stderr = String::from_utf8_lossy(&meshrefine(&render).stderr).into_owned();
-    assert!(!stderr.contains("warning"), "{stderr}");
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    let mut close = render.to_vec();
+    close.extend(["--eye", "0.3,0.2,0.6", "--look-at", "0,0.1,0.3"]);
+    let stderr = String::from_utf8_lossy(&meshrefine(&close).stderr).into_owned();
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(stderr.contains("not 256"), "{stderr}");
     // So does info, which chooses the same levels; and where they fit, it prints them.
     let mut info: Vec<&str> = render.to_vec();
     info.splice(0..4, ["info", spot]);

@@ -293,7 +293,8 @@ impl Adaptive<'_> {
 
     /// Prepare `scene` for `cfg` (whose level is the largest), choose every element's levels
     /// for the camera and an image of `size`, and make `h` draw adaptively. Returns the camera
-    /// (drawn frame) and what was chosen (tallied by the CPU mirror when read).
+    /// (drawn frame) and what was chosen (tallied by the CPU mirror when read); the caller
+    /// then fits the draws to the device ([`Adaptive::lower_to_fit`]).
     pub fn set_up(
         &self,
         h: &mut Headless,
@@ -309,7 +310,6 @@ impl Adaptive<'_> {
         let camera = self.camera(scene, cfg, width as f32 / height as f32, frame)?;
         let report = scene.set_levels(cfg, &self.level_view(camera, (width, height)))?;
         h.adaptive = true;
-        self.note_unmet(cfg, &report);
         Ok((camera, report))
     }
 
@@ -328,6 +328,8 @@ impl Adaptive<'_> {
     /// elements, or integer levels past their patterns' cap), those up to the largest level
     /// `report` chose may: the same levels, set again for `camera` and an image of `size` with
     /// `cfg` lowered to them (returned with them). `None`: `cfg` fits, or lowering does not help.
+    /// Where the levels are drawn (`cfg` fits, or lowered), says where they miss the pixel
+    /// error ([`Adaptive::note_unmet`]).
     #[allow(clippy::too_many_arguments)]
     pub fn lower_to_fit(
         &self,
@@ -340,8 +342,10 @@ impl Adaptive<'_> {
         report: &ChosenLevels,
     ) -> Result<Option<(DrawConfig, ChosenLevels)>> {
         if cannot_adapt(h, scene, cfg, capture)?.is_none() {
+            self.note_unmet(cfg, report);
             return Ok(None);
         }
+        // Refused (or, by default, drawn uniformly) after this: no note on levels not drawn.
         let Some(lowered) = chosen_max(cfg, report) else {
             return Ok(None);
         };
@@ -349,6 +353,7 @@ impl Adaptive<'_> {
             return Ok(None);
         }
         let report = scene.set_levels(&lowered, &self.level_view(camera, size))?;
+        self.note_unmet(&lowered, &report);
         Ok(Some((lowered, report)))
     }
 

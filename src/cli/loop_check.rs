@@ -38,7 +38,7 @@ pub fn loop_refusal(
         ));
     }
     Some(format!(
-        "'{shown}': the loop surface cannot subdivide it: {face} {} ({} degenerate face(s) in all): Loop subdivision needs every face of the file, and dropping it, as the other surfaces do, would open a hole",
+        "'{shown}': the loop surface cannot subdivide it: {face} {}, {} degenerate face(s) in all: Loop subdivision needs every face of the file, and dropping it, as the other surfaces do, would open a hole",
         d.reason,
         report.dropped_degenerate.len()
     ))

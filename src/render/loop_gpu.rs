@@ -449,7 +449,7 @@ fn loop_limits(data: &LoopData, limits: &vk::PhysicalDeviceLimits) -> Result<(),
     let storage = limits.max_storage_buffer_range as u64;
     if m1 > storage {
         return Err(RenderError::OverLimit {
-            what: "the loop surface's M1 positions".into(),
+            what: "the loop surface's buffer of M1 positions".into(),
             needed: m1,
             unit: "bytes",
             limit: "this device's maxStorageBufferRange",
@@ -472,7 +472,7 @@ fn loop_limits(data: &LoopData, limits: &vk::PhysicalDeviceLimits) -> Result<(),
     ] {
         if texels > max {
             return Err(RenderError::OverLimit {
-                what: format!("the loop surface's {what}"),
+                what: format!("the loop surface's buffer of {what}"),
                 needed: texels,
                 unit: "texels",
                 limit: "this device's maxTexelBufferElements",

@@ -333,12 +333,7 @@ fn tag_numbers(line: &str) -> Result<Option<Vec<f32>>, String> {
             crate::mesh::shown_word(words[0])
         ));
     }
-    if words.len() != 5 && words.len() != 10 {
-        return Err(format!(
-            "{} numbers, expected 4 (X Y Z TENSION) or 9 (with SHARPNESS BIAS DX DY DZ)",
-            words.len() - 1
-        ));
-    }
+    // Each word a number first, so that a count names numbers only.
     let mut v = Vec::with_capacity(9);
     for w in &words[1..] {
         match w.parse::<f32>() {
@@ -348,6 +343,12 @@ fn tag_numbers(line: &str) -> Result<Option<Vec<f32>>, String> {
                 return Err(format!("'{w}' is not a finite number"));
             }
         }
+    }
+    if v.len() != 4 && v.len() != 9 {
+        return Err(format!(
+            "{} numbers, expected 4 (X Y Z TENSION) or 9 (with SHARPNESS BIAS DX DY DZ)",
+            v.len()
+        ));
     }
     Ok(Some(v))
 }
@@ -560,6 +561,27 @@ mod tests {
     use super::*;
     use crate::mesh::test_support::load_model;
     use crate::surface::{BuildOptions, Mirror, Sources, Surface, SurfaceParams};
+
+    /// A tag line's words are read as numbers before they are counted: a count names numbers
+    /// only, and a word that is none is named.
+    #[test]
+    fn tag_lines_name_what_is_wrong_with_them() {
+        let err = |l: &str| tag_numbers(l).unwrap_err();
+        assert_eq!(
+            err("t 1 1 1 0.5 1 0 1 0 0 junk"),
+            "'junk' is not a finite number"
+        );
+        assert!(err("t 1 2 3").starts_with("3 numbers, expected 4"));
+        assert!(err("t 1 2 3 4 5").starts_with("5 numbers, expected 4"));
+        assert_eq!(
+            tag_numbers("t 1 2 3 0.5 # a comment")
+                .unwrap()
+                .unwrap()
+                .len(),
+            4
+        );
+        assert_eq!(tag_numbers("  # only a comment").unwrap(), None);
+    }
 
     /// Neutral tags give PN triangles: the same points to 4 ulp of the mesh's radius (the edge
     /// coefficient is the same point computed another way: `P + (Q − P)/3` projected, not
