@@ -379,11 +379,10 @@ impl Adaptive<'_> {
     ) -> [String; 2] {
         // The values given, exactly; the framing camera's mapped back to mesh coordinates.
         let v = &self.opts.viewpoint;
-        let [ex, ey, ez] = (v.eye().unwrap_or(frame.mesh(camera.eye()).to_array())).map(coordinate);
-        let [tx, ty, tz] =
-            (v.look_at().unwrap_or(frame.mesh(camera.target).to_array())).map(coordinate);
+        let [ex, ey, ez] = (v.eye().unwrap_or(frame.mesh(camera.eye()).to_array())).map(px);
+        let [tx, ty, tz] = (v.look_at().unwrap_or(frame.mesh(camera.target).to_array())).map(px);
         // +Y but looking (nearly) straight up or down (`Camera::up`).
-        let [ux, uy, uz] = camera.up().to_array().map(coordinate);
+        let [ux, uy, uz] = camera.up().to_array().map(px);
         [
             format!(
                 "camera eye {ex} {ey} {ez} target {tx} {ty} {tz} up {ux} {uy} {uz} fov-y {} size {width} {height} pixel-error {}",
@@ -392,17 +391,6 @@ impl Adaptive<'_> {
             ),
             format!("levels {}", report.histogram_line()),
         ]
-    }
-}
-
-/// A coordinate in export's camera line (and `info`'s): the shortest decimal that reads back as the same
-/// `f32`, as Rust writes it, but in exponent form where that would be a long run of zeros
-/// (`1e-30`, not thirty of them; `1e20`).
-pub fn coordinate(value: f32) -> String {
-    if value != 0.0 && !(1e-5..1e16).contains(&value.abs()) {
-        format!("{value:e}")
-    } else {
-        format!("{value}")
     }
 }
 

@@ -386,13 +386,12 @@ fn print_levels(a: &InfoArgs, mut input: Input) -> Result<()> {
     }
     // As given, or where the framing camera is, in the mesh's coordinates.
     // Written as export's camera line writes them.
-    use super::adaptive::coordinate;
     let [ex, ey, ez] = v
         .eye()
         .unwrap_or(frame.mesh(eye).to_array())
-        .map(coordinate);
+        .map(super::adaptive::px);
     let [tx, ty, tz] =
-        (v.look_at().unwrap_or(frame.mesh(camera.target).to_array())).map(coordinate);
+        (v.look_at().unwrap_or(frame.mesh(camera.target).to_array())).map(super::adaptive::px);
     out!(
         "adaptive {} at {} px: {}x{}, fov-y {}°, eye {ex} {ey} {ez}, look-at {tx} {ty} {tz}, max level {}, driver {}",
         match displace {

@@ -117,8 +117,8 @@ impl super::frame::Unmet {
     }
 }
 
-/// A pixel error as printed: as given where that is short, in exponent form far from 1
-/// (`1e-30`, not thirty zeros).
+/// A pixel error, or a camera coordinate, as printed: the shortest decimal that reads back as
+/// the same `f32`, in exponent form far from 1 (`1e-30`, not thirty zeros; `2.5e7`).
 pub fn px(value: f32) -> String {
     if value != 0.0 && !(1e-3..1e6).contains(&value.abs()) {
         format!("{value:e}")
