@@ -551,6 +551,42 @@ fn switching_to_stpn_with_three_crease_corners_names_the_file() {
     );
 }
 
+/// Keys past their ends say they change nothing (`[` at 0.25 px, `-` at level 1), the notes on
+/// an unmet pixel error are said again when what is drawn changes (`D` onto sine: other elements
+/// miss it), and a height map asked for on a mesh without texture coordinates blames the mesh,
+/// promising no surface that takes it back.
+#[test]
+fn keys_at_their_ends_and_notes_follow_what_is_drawn() {
+    let _guard = common::gpu_lock();
+    let x = Xvfb::start();
+    #[rustfmt::skip]
+    let args = [
+        "--pixel-error", "0.25", "--max-level", "4", "--displace", "heightmap", "--width", "480",
+        "--height", "320",
+    ];
+    let demo = Demo::start(&x, &args);
+    demo.wait_title("| pn + none |");
+    demo.xdotool(&["key", "bracketleft"]);
+    demo.xdotool(&["key", "d"]);
+    demo.wait_title("| pn + sine |");
+    demo.xdotool(&["key", "m"]);
+    demo.wait_title("level 16");
+    for _ in 0..6 {
+        demo.xdotool(&["key", "minus"]);
+    }
+    demo.wait_title("level 1 ");
+    let stderr = demo.quit();
+    let said = "px bound is not met on ";
+    assert_eq!(stderr.matches(said).count(), 2, "{stderr}");
+    for line in [
+        "'[' changes nothing: the pixel error is at its smallest, 0.25 px",
+        "'-' changes nothing: 1 is the smallest level",
+        "the mesh has no texture coordinates (vt on every face): the heightmap displacement reads the map there: showing no displacement\n",
+    ] {
+        assert!(stderr.contains(line), "{line:?} not in {stderr}");
+    }
+}
+
 /// The title names the surface and displacement (and geomorphing where it is off); `S` onto
 /// `loop`, which cannot take the height map, switches the displacement off with a warning,
 /// and the next surface that takes it shows it again.

@@ -4,7 +4,7 @@
 
 use super::ui::{self, PanelInfo};
 use super::{camera, State};
-use crate::render::DrawConfig;
+use crate::render::{DrawConfig, Driver};
 use std::time::Instant;
 
 impl State {
@@ -45,6 +45,7 @@ impl State {
             device: &device,
             levels: &levels,
             wireframe_supported: self.renderer.wireframe_supported(),
+            first: self.frames == 0,
             fps: self.fps,
             gpu_ms: self.gpu_ms,
             drawn: d,
@@ -143,6 +144,7 @@ impl State {
             capped: u.capped > 0,
             max: cfg.level,
             pixel_error: self.controls.pixel_error.to_bits(),
+            drawing: (cfg.surface, cfg.displace, cfg.driver),
         };
         let mut lines = u.notes(self.controls.pixel_error, cfg.level, cfg.loop_displaced());
         // The largest level the notes name is not --max-level's where the driver's limit on
@@ -432,8 +434,8 @@ mod tests {
     }
 }
 
-/// What kinds of unmet pixel error the window last said, and for which pixel error and
-/// largest level.
+/// What kinds of unmet pixel error the window last said, and for which pixel error, largest
+/// level and drawing (surface, displacement, driver: the counts change with them).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) struct UnmetKinds {
     near: bool,
@@ -441,4 +443,5 @@ pub(super) struct UnmetKinds {
     capped: bool,
     max: u32,
     pixel_error: u32,
+    drawing: (crate::surface::Surface, crate::surface::Displace, Driver),
 }

@@ -150,11 +150,16 @@ impl State {
         };
         let displace = c.cfg.displace;
         if let Some(why) = surface.incompatibility(displace, uvs) {
-            log::warn!(
-                "'{source}': {why}: showing no displacement; the {} displacement comes back with a surface that takes it",
-                displace.name()
-            );
-            c.dropped = Some(displace);
+            // On a mesh without texture coordinates no surface takes it back.
+            let back = match uvs {
+                true => format!(
+                    "; the {} displacement comes back with a surface that takes it",
+                    displace.name()
+                ),
+                false => String::new(),
+            };
+            log::warn!("'{source}': {why}: showing no displacement{back}");
+            c.dropped = uvs.then_some(displace);
             c.cfg.displace = Displace::None;
         } else if let Some(d) = c.dropped {
             if displace != Displace::None {
@@ -226,8 +231,18 @@ impl State {
                 "p" | "P" => c.set_submit(Submit::Push),
                 "u" | "U" => c.set_submit(Submit::Ubo),
                 "i" | "I" => c.set_submit(Submit::Instanced),
-                "+" | "=" => c.set_level(step_level(&levels, limit, c.level(), true)),
-                "-" | "_" => c.set_level(step_level(&levels, limit, c.level(), false)),
+                "+" | "=" | "-" | "_" => {
+                    let up = matches!(ch.as_str(), "+" | "=");
+                    let to = step_level(&levels, limit, c.level(), up);
+                    if to == c.level() {
+                        let (end, drawn) = match up {
+                            true => ("largest", " the driver draws here"),
+                            false => ("smallest", ""),
+                        };
+                        log::warn!("'{ch}' changes nothing: {to} is the {end} level{drawn}");
+                    }
+                    c.set_level(to);
+                }
                 "m" | "M" => c.adaptive = !c.adaptive,
                 "c" | "C" if c.adaptive => c.cull = !c.cull,
                 "g" | "G" if c.adaptive && glide_refusal.is_some() => {
@@ -236,8 +251,17 @@ impl State {
                 }
                 "g" | "G" if c.adaptive => c.cfg.geomorph = !c.cfg.geomorph,
                 "f" | "F" if c.adaptive => c.freeze = !c.freeze,
-                "[" if c.adaptive => c.pixel_error = step_pixel_error(c.pixel_error, true),
-                "]" if c.adaptive => c.pixel_error = step_pixel_error(c.pixel_error, false),
+                "[" | "]" if c.adaptive => {
+                    let finer = ch.as_str() == "[";
+                    let px = step_pixel_error(c.pixel_error, finer);
+                    if px == c.pixel_error {
+                        let end = if finer { "smallest" } else { "largest" };
+                        log::warn!(
+                            "'{ch}' changes nothing: the pixel error is at its {end}, {px} px"
+                        );
+                    }
+                    c.pixel_error = px;
+                }
                 // Each mode's own keys change nothing in the other (it would show up unasked
                 // on switching back), and say so.
                 "c" | "C" | "g" | "G" | "f" | "F" | "[" | "]" => {

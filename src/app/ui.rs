@@ -151,6 +151,8 @@ pub struct PanelInfo<'a> {
     /// The pattern set's levels, ascending.
     pub levels: &'a [u32],
     pub wireframe_supported: bool,
+    /// No frame is drawn yet (the first one's panel): nothing to show of the last frame.
+    pub first: bool,
     pub fps: f64,
     /// GPU time of the last frame (timestamp queries).
     pub gpu_ms: f64,
@@ -323,6 +325,13 @@ fn panel(ctx: &egui::Context, c: &mut Controls, info: &PanelInfo) {
 fn statistics(ui: &mut egui::Ui, info: &PanelInfo) {
     egui::Grid::new("stats").num_columns(2).show(ui, |ui| {
         let d = &info.drawn;
+        if info.first {
+            // Rather than figures of a frame never drawn (the starting configuration's).
+            ui.label("statistics");
+            ui.label("from the next frame (this is the first)");
+            ui.end_row();
+            return;
+        }
         let mut rows = vec![
             ("fps", format!("{:.0}", info.fps)),
             ("GPU frame", format!("{:.2} ms", info.gpu_ms)),
@@ -664,6 +673,7 @@ mod tests {
             device: "a device",
             levels: &[1, 2, 4, 8, 16, 32, 64],
             wireframe_supported: true,
+            first: false,
             fps: 60.0,
             gpu_ms: 1.0,
             drawn: c.cfg,
@@ -681,7 +691,7 @@ mod tests {
             screenshot_note: None,
         };
         // The panel's height after a few frames on a screen `height` points high.
-        let panel_height = |c: &mut Controls, height: f32| {
+        let panel_height = |c: &mut Controls, height: f32, info: &PanelInfo| {
             let ctx = egui::Context::default();
             let input = || egui::RawInput {
                 screen_rect: Some(egui::Rect::from_min_size(
@@ -691,14 +701,14 @@ mod tests {
                 ..Default::default()
             };
             for _ in 0..4 {
-                let _ = ctx.run(input(), |ctx| panel(ctx, c, &info));
+                let _ = ctx.run(input(), |ctx| panel(ctx, c, info));
             }
             let id = egui::Id::new(("meshrefine panel", 0u32));
             ctx.memory(|m| m.area_rect(id))
                 .expect("the panel is shown")
                 .height()
         };
-        let tall = panel_height(&mut c, 2000.0);
+        let tall = panel_height(&mut c, 2000.0, &info);
         assert!(
             tall > 700.0,
             "the panel is {tall} points tall on a tall screen"
@@ -707,10 +717,22 @@ mod tests {
             tall < 1500.0,
             "the panel is {tall} points tall, more than its rows"
         );
-        let short = panel_height(&mut c, 500.0);
+        let short = panel_height(&mut c, 500.0, &info);
         assert!(
             short <= 490.0,
             "the panel is {short} points tall on a 500-point screen"
+        );
+        // The first frame's panel has no last frame to show: one row where the statistics'
+        // nine (with the adaptive rows) would be.
+        let first = PanelInfo {
+            first: true,
+            ..info
+        };
+        let rows = 8.0 * 14.0;
+        let without = panel_height(&mut c, 2000.0, &first);
+        assert!(
+            without < tall - rows,
+            "the first frame's panel is {without} points tall, against {tall}"
         );
     }
 }

@@ -117,16 +117,17 @@ pub fn incompatibility(
     if !displace.texture_coordinates {
         return None;
     }
-    if !surface.texture_coordinates {
+    // The mesh first: without its coordinates no surface can take the displacement.
+    if !mesh_has_texcoords {
         return Some(format!(
-            "the {} surface has no texture coordinates: the {} displacement needs them (use sine or noise)",
-            surface.name, displace.name
-        ));
-    }
-    (!mesh_has_texcoords).then(|| {
-        format!(
             "the mesh has no texture coordinates (vt on every face): the {} displacement reads the map there",
             displace.name
+        ));
+    }
+    (!surface.texture_coordinates).then(|| {
+        format!(
+            "the {} surface has no texture coordinates: the {} displacement needs them (use sine or noise)",
+            surface.name, displace.name
         )
     })
 }
