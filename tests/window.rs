@@ -230,7 +230,29 @@ fn the_first_frame_shows_the_panel() {
     let _ = std::fs::remove_file(&shot);
     let args = ["--background", "light", "--width", "640", "--height", "480"];
     run_view_frames(&x.display, "1", &args, &shot);
-    let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(&shot).unwrap()));
+    let (dark, total) = dark_corner(&shot);
+    assert!(
+        dark > total / 2,
+        "only {dark} of {total} pixels of the panel's corner are dark"
+    );
+    // --hide-panel: the corner shows the light background and the lit mesh alone.
+    let _ = std::fs::remove_file(&shot);
+    run_view_frames(
+        &x.display,
+        "1",
+        &[&args[..], &["--hide-panel"]].concat(),
+        &shot,
+    );
+    let (dark, total) = dark_corner(&shot);
+    assert!(
+        dark < total / 10,
+        "{dark} of {total} pixels of the corner are dark without the panel"
+    );
+}
+
+/// The dark pixels of a screenshot's top-left corner, where the panel sits, and all of them.
+fn dark_corner(shot: &std::path::Path) -> (usize, usize) {
+    let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(shot).unwrap()));
     let mut reader = decoder.read_info().unwrap();
     let mut buf = vec![0; reader.output_buffer_size()];
     let info = reader.next_frame(&mut buf).unwrap();
@@ -243,10 +265,7 @@ fn the_first_frame_shows_the_panel() {
             dark += usize::from(p.iter().all(|&c| c < 80));
         }
     }
-    assert!(
-        dark > total / 2,
-        "only {dark} of {total} pixels of the panel's corner are dark"
-    );
+    (dark, total)
 }
 
 fn xdotool(display: &str, args: &[&str]) -> String {

@@ -245,7 +245,8 @@ impl App {
         // With multisampling the panel is drawn over the resolved image, without depth.
         let overlay_depth = (samples == vk::SampleCountFlags::TYPE_1).then_some(DEPTH_FORMAT);
         let overlay = Overlay::new(&ctx, swapchain.format, overlay_depth)?;
-        let ui = Ui::new(&window, ctx.info.limits.max_image_dimension2_d as usize);
+        let mut ui = Ui::new(&window, ctx.info.limits.max_image_dimension2_d as usize);
+        ui.visible = self.opts.panel;
         let pool = CommandPool::new(&ctx, "window commands")?;
         let cmd = pool.allocate(1)?[0];
         let mesh = self.mesh.take().expect("created once");

@@ -39,6 +39,8 @@ pub struct ViewOptions {
     pub size: (u32, u32),
     /// Start borderless fullscreen (`--fullscreen`; `F11` toggles).
     pub fullscreen: bool,
+    /// Start with the overlay panel shown (`--hide-panel` starts without; `H` toggles).
+    pub panel: bool,
     /// What the mesh is drawn on at the start (`--background`; `B` toggles).
     pub background: Background,
     /// What the fragment stage shows at the start (`--view`; `N` switches).

@@ -201,6 +201,10 @@ pub struct ViewArgs {
     /// to --width x --height).
     #[arg(long, help_heading = "Window")]
     pub fullscreen: bool,
+    /// Start with the overlay panel hidden (H shows it), as screenshots then show the scene
+    /// alone.
+    #[arg(long, help_heading = "Window")]
+    pub hide_panel: bool,
     /// What the mesh is drawn on (B toggles).
     #[arg(long, default_value = "dark", value_parser = super::choices::background(),
           help_heading = "Window")]

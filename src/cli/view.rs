@@ -78,6 +78,7 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc, given: &Given) -> Result<()> {
             msaa: a.msaa,
             size: (a.width, a.height),
             fullscreen: a.fullscreen,
+            panel: !a.hide_panel,
             background: a.background,
             view: a.view,
             screenshot_dir: a.screenshot_dir.clone(),
@@ -120,6 +121,7 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc, given: &Given) -> Result<()> {
         "frames",
         "animate",
         "fullscreen",
+        "hide_panel",
         "no_frame_budget",
         "screenshot_dir",
     ]
