@@ -44,7 +44,16 @@ void main() {
         return;
     }
     vec3 v = normalize(frame.eye.xyz - v_position);
-    if (dot(n, v) < 0.0) {
+    // Two-sided: a shading normal facing away from the eye is turned toward it (the inside of
+    // an open surface), unless the drawn triangle itself says the normal is on the side the eye
+    // sees (the triangle's normal from the position's screen derivatives, whatever the
+    // winding): near a silhouette a smooth normal field may turn slightly away from the eye
+    // while the triangle still faces it, and turning it there drew a dark band along the
+    // outline. (The derivatives alone decide nothing: across tiny or sliver triangles they
+    // are noise, which would speckle faces turned toward the eye.)
+    vec3 g = cross(dFdx(v_position), dFdy(v_position));
+    bool seen_side = dot(n, g) * dot(g, v) > 0.0;
+    if (dot(n, v) < 0.0 && !seen_side) {
         n = -n;
     }
     vec3 l = normalize(frame.light_dir.xyz);
