@@ -4609,6 +4609,8 @@ fn adaptive_exports_are_sized_by_the_levels_chosen() {
         expect_error(&args, needles);
         let stderr = String::from_utf8_lossy(&meshrefine(&args).stderr).to_string();
         assert!(!stderr.contains("--level "), "{stderr}");
+        // One sentence: no note before it on levels it does not draw.
+        assert_eq!(stderr.lines().count(), 1, "{stderr}");
         assert!(!obj.exists());
     };
     // 5856 elements at levels 1 and 2: about eleven thousand triangles, written.

@@ -49,10 +49,14 @@ void main() {
     // sees (the triangle's normal from the position's screen derivatives, whatever the
     // winding): near a silhouette a smooth normal field may turn slightly away from the eye
     // while the triangle still faces it, and turning it there drew a dark band along the
-    // outline. (The derivatives alone decide nothing: across tiny or sliver triangles they
-    // are noise, which would speckle faces turned toward the eye.)
-    vec3 g = cross(dFdx(v_position), dFdy(v_position));
-    bool seen_side = dot(n, g) * dot(g, v) > 0.0;
+    // outline. The derivatives alone decide nothing (across tiny or sliver triangles they are
+    // noise, which would speckle faces turned toward the eye), and nothing where they are
+    // degenerate: along a line of the wireframe pass, where both run along the line, the old
+    // rule stands (a line on a silhouette keeps the band, in the lines' darker colour).
+    vec3 dx = dFdx(v_position), dy = dFdy(v_position);
+    vec3 g = cross(dx, dy);
+    bool trusted = length(g) > 1.0e-3 * length(dx) * length(dy);
+    bool seen_side = trusted && (dot(n, g) > 0.0) == (dot(g, v) > 0.0);
     if (dot(n, v) < 0.0 && !seen_side) {
         n = -n;
     }

@@ -4,7 +4,7 @@
 
 use super::ui::{self, PanelInfo};
 use super::{camera, State};
-use crate::render::{DrawConfig, Driver};
+use crate::render::DrawConfig;
 use std::time::Instant;
 
 impl State {
@@ -144,7 +144,7 @@ impl State {
             capped: u.capped > 0,
             max: cfg.level,
             pixel_error: self.controls.pixel_error.to_bits(),
-            drawing: (cfg.surface, cfg.displace, cfg.driver),
+            drawing: (cfg.surface, cfg.displace, cfg.driver.name()),
         };
         let mut lines = u.notes(self.controls.pixel_error, cfg.level, cfg.loop_displaced());
         // The largest level the notes name is not --max-level's where the driver's limit on
@@ -435,7 +435,8 @@ mod tests {
 }
 
 /// What kinds of unmet pixel error the window last said, and for which pixel error, largest
-/// level and drawing (surface, displacement, driver: the counts change with them).
+/// level and drawing (surface, displacement, driver by name, whatever its submission: the
+/// counts change with them).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) struct UnmetKinds {
     near: bool,
@@ -443,5 +444,9 @@ pub(super) struct UnmetKinds {
     capped: bool,
     max: u32,
     pixel_error: u32,
-    drawing: (crate::surface::Surface, crate::surface::Displace, Driver),
+    drawing: (
+        crate::surface::Surface,
+        crate::surface::Displace,
+        &'static str,
+    ),
 }

@@ -235,11 +235,13 @@ impl State {
                     let up = matches!(ch.as_str(), "+" | "=");
                     let to = step_level(&levels, limit, c.level(), up);
                     if to == c.level() {
-                        let (end, drawn) = match up {
-                            true => ("largest", " the driver draws here"),
-                            false => ("smallest", ""),
+                        // The driver's limit on this device, or the end of the window's list.
+                        let end = match (up, limit.is_some_and(|m| to >= m)) {
+                            (false, _) => "the smallest level",
+                            (true, true) => "the largest level the driver draws here",
+                            (true, false) => "the largest level the window offers",
                         };
-                        log::warn!("'{ch}' changes nothing: {to} is the {end} level{drawn}");
+                        log::warn!("'{ch}' changes nothing: {to} is {end}");
                     }
                     c.set_level(to);
                 }

@@ -328,8 +328,8 @@ impl Adaptive<'_> {
     /// elements, or integer levels past their patterns' cap), those up to the largest level
     /// `report` chose may: the same levels, set again for `camera` and an image of `size` with
     /// `cfg` lowered to them (returned with them). `None`: `cfg` fits, or lowering does not help.
-    /// Where the levels are drawn (`cfg` fits, or lowered), says where they miss the pixel
-    /// error ([`Adaptive::note_unmet`]).
+    /// The caller says where the levels miss the pixel error ([`Adaptive::note_unmet`]) once
+    /// nothing else refuses them: no note on levels that are not drawn.
     #[allow(clippy::too_many_arguments)]
     pub fn lower_to_fit(
         &self,
@@ -342,10 +342,8 @@ impl Adaptive<'_> {
         report: &ChosenLevels,
     ) -> Result<Option<(DrawConfig, ChosenLevels)>> {
         if cannot_adapt(h, scene, cfg, capture)?.is_none() {
-            self.note_unmet(cfg, report);
             return Ok(None);
         }
-        // Refused (or, by default, drawn uniformly) after this: no note on levels not drawn.
         let Some(lowered) = chosen_max(cfg, report) else {
             return Ok(None);
         };
@@ -353,7 +351,6 @@ impl Adaptive<'_> {
             return Ok(None);
         }
         let report = scene.set_levels(&lowered, &self.level_view(camera, size))?;
-        self.note_unmet(&lowered, &report);
         Ok(Some((lowered, report)))
     }
 

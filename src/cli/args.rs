@@ -271,7 +271,7 @@ pub struct ExportArgs {
     /// Whose GPU evaluation to read back (static evaluates on the CPU: nothing to read back).
     #[arg(
         long,
-        value_enum,
+        value_parser = Trimmed(clap::builder::EnumValueParser::<ExportDriver>::new()),
         default_value = "pattern",
         help_heading = "Driver and level"
     )]
@@ -294,7 +294,7 @@ pub struct ExportArgs {
 }
 
 /// The drivers whose evaluated geometry can be read back.
-#[derive(clap::ValueEnum, Clone, Copy, Debug)]
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ExportDriver {
     /// The refinement pattern's vertices, as the vertex shader evaluated them.
     Pattern,
@@ -668,6 +668,11 @@ mod tests {
         assert_eq!(r.adaptive.cull, Some(false));
         assert_eq!(r.technique.surface.surface, Surface::Phong);
         assert_eq!(r.technique.surface.drawn.params.bft_level, 5);
+        let cli = Cli::try_parse_from(["meshrefine", "export", "-o", "x.obj", "--driver", " tess"]);
+        let Command::Export(e) = cli.unwrap().command else {
+            panic!("not export");
+        };
+        assert_eq!(e.driver, ExportDriver::Tess);
         let cli = Cli::try_parse_from(["meshrefine", "info", "--level", " 8 "]).unwrap();
         let Command::Info(i) = cli.command else {
             panic!("not info");

@@ -112,6 +112,8 @@ fn export(
             (viewed, *chosen) = fits;
         }
         progress.set_size(check_adaptive(a, &viewed, chosen)?);
+        // Drawn: where they miss the pixel error (none said of levels refused above).
+        a.note_unmet(&viewed, chosen);
     }
     let cfg = &viewed;
     let adaptive_camera = adaptive_camera.map(|(camera, _)| camera);

@@ -141,6 +141,8 @@ pub fn render_png(
         // The triangles of a frame drawn as chosen below, for the slow-frame warning, and what
         // draws faster.
         let mut slow = None;
+        // The levels chosen, for the notes on an unmet pixel error once they are drawn.
+        let mut chosen = None;
         if let Some(a) = &adaptive {
             let size = (width, height);
             let (cam, mut report) =
@@ -164,6 +166,7 @@ pub fn render_png(
             slow = Some((drawn, report.faster()));
             culled_all =
                 (report.histogram.is_empty()).then_some((report.culled, report.facing_away));
+            chosen = Some(report);
         }
         let refusal = (adaptive)
             .map(|_| cannot_adapt(&mut h, &mut scene, &viewed, Capture::None))
@@ -175,6 +178,9 @@ pub fn render_png(
         {
             // Asked for: refused in one sentence, before any warning that frames are slow.
             bail!("{why}");
+        }
+        if let (Some(a), Some(report), None) = (&adaptive, &chosen, &refusal) {
+            a.note_unmet(&viewed, report);
         }
         if let Some(why) = refusal {
             uniform_instead(uniform_level, &why);

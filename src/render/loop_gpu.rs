@@ -593,7 +593,7 @@ mod tests {
         assert_eq!(
             e,
             format!(
-                "the loop surface's basis function tables needs {tables} texels, over this \
+                "the loop surface's buffer of basis function tables needs {tables} texels, over this \
                  device's maxTexelBufferElements ({}): use a coarser mesh or a lower --bft-level",
                 tables - 1
             )
@@ -615,7 +615,7 @@ mod tests {
             limits.max_texel_buffer_elements = texels as u32 - 1;
             let e = loop_limits(data, &limits).unwrap_err().to_string();
             let over = format!("over this device's maxTexelBufferElements ({})", texels - 1);
-            let what = format!("the loop surface's {what} needs {texels} texels, {over}");
+            let what = format!("the loop surface's buffer of {what} needs {texels} texels, {over}");
             assert_eq!(
                 e,
                 format!("{what}: use a coarser mesh or a lower --bft-level")
@@ -624,7 +624,7 @@ mod tests {
         limits.max_storage_buffer_range = 1024;
         let e = loop_limits(&data, &limits).unwrap_err().to_string();
         assert!(
-            e.starts_with("the loop surface's M1 positions needs")
+            e.starts_with("the loop surface's buffer of M1 positions needs")
                 && e.contains("bytes, over this device's maxStorageBufferRange (1024)"),
             "{e}"
         );
