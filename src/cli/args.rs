@@ -5,7 +5,7 @@
 
 use super::choices::{self, Trimmed};
 pub use super::numbers::TypedF32;
-use super::numbers::{name, typed_f32, typed_vec3, whole_number, TypedVec3};
+use super::numbers::{typed_f32, typed_vec3, whole_number, TypedVec3};
 use clap::{Args, Parser, Subcommand};
 use meshrefine::render::{Driver, Submit};
 use meshrefine::surface::loop_::Boundary;
@@ -25,7 +25,7 @@ pub struct Cli {
     #[arg(long, global = true)]
     pub validate: bool,
     /// Use the first Vulkan device whose name contains NAME (case-insensitive).
-    #[arg(long, global = true, value_name = "NAME", value_parser = name)]
+    #[arg(long, global = true, value_name = "NAME", value_parser = Trimmed(clap::builder::StringValueParser::new()))]
     pub device: Option<String>,
 }
 
@@ -52,16 +52,16 @@ pub enum Command {
 #[command(next_help_heading = "Surface parameters")]
 pub struct ParamOpts {
     /// Phong tessellation's shape factor, within [0, 1].
-    #[arg(long, value_parser = typed_f32, allow_hyphen_values = true, default_value = "0.75")]
+    #[arg(long, value_parser = Trimmed(typed_f32), allow_hyphen_values = true, default_value = "0.75")]
     pub alpha: TypedF32,
     /// Displacement amplitude in the mesh's units (default: 3% of its bounding radius).
-    #[arg(long, value_parser = typed_f32, allow_hyphen_values = true)]
+    #[arg(long, value_parser = Trimmed(typed_f32), allow_hyphen_values = true)]
     pub amplitude: Option<TypedF32>,
     /// Displacement frequency per mesh unit (default: 24 / bounding radius).
-    #[arg(long, value_parser = typed_f32, allow_hyphen_values = true)]
+    #[arg(long, value_parser = Trimmed(typed_f32), allow_hyphen_values = true)]
     pub frequency: Option<TypedF32>,
     /// Octaves of the noise displacement (1 to 8).
-    #[arg(long, allow_hyphen_values = true, default_value = "1", value_parser = whole_number)]
+    #[arg(long, allow_hyphen_values = true, default_value = "1", value_parser = Trimmed(whole_number))]
     pub octaves: String,
     /// PN and Phong geometry at split normals (a position with several vn): `closed` is
     /// crack-free, `open` is the papers' behaviour (cracks).
@@ -72,7 +72,7 @@ pub struct ParamOpts {
     #[arg(long, value_parser = choices::normal_field(), default_value = NormalField::default().name())]
     pub normal_field: NormalField,
     /// Height map displacement: P' = P + a·(h − bias)·N, h in [0, 1].
-    #[arg(long, value_parser = typed_f32, default_value = "0", allow_hyphen_values = true)]
+    #[arg(long, value_parser = Trimmed(typed_f32), default_value = "0", allow_hyphen_values = true)]
     pub bias: TypedF32,
     /// Loop subdivision's boundaries (--surface loop): `edge-only` keeps boundary edges sharp
     /// (OpenSubdiv's VTX_BOUNDARY_EDGE_ONLY), `edge-and-corner` also pins boundary vertices of
@@ -117,7 +117,7 @@ pub struct DrawnOpts {
     pub tags: Option<PathBuf>,
     /// For --surface stpn without --tags (or under it): edges whose faces meet at more than this
     /// many degrees are creases too (default: only positions with two vn are).
-    #[arg(long, allow_hyphen_values = true, value_name = "DEGREES", value_parser = typed_f32)]
+    #[arg(long, allow_hyphen_values = true, value_name = "DEGREES", value_parser = Trimmed(typed_f32))]
     pub crease_angle: Option<TypedF32>,
     #[command(flatten)]
     pub params: ParamOpts,
@@ -343,7 +343,7 @@ pub struct InfoArgs {
     /// the camera below: the level histogram and the triangles against the smallest uniform
     /// level that meets the same bound (--surface, default pn; not with --level). The levels
     /// are those render draws with the same options.
-    #[arg(long, value_parser = typed_f32, allow_hyphen_values = true, help_heading = "Adaptive drawing")]
+    #[arg(long, value_parser = Trimmed(typed_f32), allow_hyphen_values = true, help_heading = "Adaptive drawing")]
     pub pixel_error: Option<TypedF32>,
     #[command(flatten)]
     pub camera: CameraOpts,
@@ -398,15 +398,15 @@ pub struct CameraOpts {
 pub struct ViewpointOpts {
     /// Camera position X,Y,Z (default: the fitted camera's, which frames the surface as
     /// drawn).
-    #[arg(long, value_parser = typed_vec3, allow_hyphen_values = true)]
+    #[arg(long, value_parser = Trimmed(typed_vec3), allow_hyphen_values = true)]
     pub eye: Option<TypedVec3>,
     /// The point looked at X,Y,Z (default: the fitted camera's target).
-    #[arg(long, value_parser = typed_vec3, allow_hyphen_values = true)]
+    #[arg(long, value_parser = Trimmed(typed_vec3), allow_hyphen_values = true)]
     pub look_at: Option<TypedVec3>,
     /// Vertical field of view in degrees (without --eye the camera is fitted with it: the
     /// surface fills the image as at 45 degrees, until at wide angles the eye, kept outside the
     /// surface's reach, stays back and the surface takes less of the image).
-    #[arg(long, value_parser = typed_f32, allow_hyphen_values = true, default_value = "45")]
+    #[arg(long, value_parser = Trimmed(typed_f32), allow_hyphen_values = true, default_value = "45")]
     pub fov: TypedF32,
 }
 
@@ -419,7 +419,7 @@ pub struct AdaptiveOpts {
     /// d * K / |p - eye| pixels, K = height / (2 tan(fov / 2)): off the view axis the screen
     /// can show up to 1/cos² of the angle more).
     // Each command's default ends these options' help (`options::command`).
-    #[arg(long, value_parser = typed_f32, allow_hyphen_values = true)]
+    #[arg(long, value_parser = Trimmed(typed_f32), allow_hyphen_values = true)]
     pub pixel_error: Option<TypedF32>,
     /// The largest level any element gets when drawing adaptively, at most what the device
     /// draws.
@@ -468,7 +468,7 @@ pub struct BenchArgs {
     #[arg(
         long,
         value_name = "MS",
-        value_parser = typed_f32,
+        value_parser = Trimmed(typed_f32),
         default_value = "0",
         allow_hyphen_values = true,
         help_heading = "Measurement"

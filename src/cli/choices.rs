@@ -73,7 +73,7 @@ impl<P: TypedValueParser> TypedValueParser for Trimmed<P> {
 
 /// What an empty value is called: an empty item of a comma-separated list (`"flat,,pn"`, `""`),
 /// or an empty value.
-pub fn empty(list: bool) -> String {
+fn empty(list: bool) -> String {
     if list {
         "an empty item in the list (items are separated by ',')".into()
     } else {

@@ -68,9 +68,6 @@ impl From<f32> for TypedF32 {
 /// checks are the option's own, in one sentence).
 pub fn typed_f32(s: &str) -> Result<TypedF32, String> {
     let s = s.trim();
-    if s.is_empty() {
-        return Err(super::choices::empty(false));
-    }
     let value = s.parse::<f32>().map_err(|e| format!("{e}"))?;
     Ok(TypedF32 {
         value,
@@ -78,27 +75,16 @@ pub fn typed_f32(s: &str) -> Result<TypedF32, String> {
     })
 }
 
-/// A whole number as typed (`--octaves`), the spaces around it left out: any sign and size,
-/// so that the command's own range check names a negative or huge count as typed; what is no
-/// whole number is the parser's error.
+/// A whole number as typed (`--octaves`; read through [`super::choices::Trimmed`], which
+/// leaves out the spaces and names an empty value): any sign and size, so that the command's
+/// own range check names a negative or huge count as typed; what is no whole number is the
+/// parser's error.
 pub fn whole_number(s: &str) -> Result<String, String> {
-    let s = s.trim();
     let digits = s.strip_prefix(['-', '+']).unwrap_or(s);
-    if s.is_empty() {
-        Err(super::choices::empty(false))
-    } else if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
-        Err("not a whole number".into())
-    } else {
-        Ok(s.to_string())
+    if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
+        return Err("not a whole number".into());
     }
-}
-
-/// A name (`--device`), the spaces around it left out; an empty one is refused.
-pub fn name(s: &str) -> Result<String, String> {
-    match s.trim() {
-        "" => Err(super::choices::empty(false)),
-        s => Ok(s.to_string()),
-    }
+    Ok(s.to_string())
 }
 
 /// A point as typed and as parsed (`--eye`, `--look-at`): a message about it names what was
@@ -111,9 +97,6 @@ pub struct TypedVec3 {
 
 /// [`TypedVec3`]: [`parse_vec3`], keeping the text.
 pub fn typed_vec3(s: &str) -> Result<TypedVec3, String> {
-    if s.trim().is_empty() {
-        return Err(super::choices::empty(false));
-    }
     Ok(TypedVec3 {
         value: parse_vec3(s)?,
         text: s.trim().to_string(),
