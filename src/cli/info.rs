@@ -66,11 +66,10 @@ pub fn run(a: &InfoArgs, desc: &ContextDesc) -> Result<()> {
     }
     let (mesh, report) = (&input.mesh, &input.report);
     print_stats(path, mesh, report)?;
-    // With --pixel-error the levels build Loop's data on the mesh as drawn and print Loop's
-    // lines from it (the same topology, so the same tables); --level counts its GPU bytes.
-    let loop_ = (for_loop && (a.level.is_some() || a.pixel_error.is_none()))
-        .then(|| loop_data(a, path, mesh))
-        .transpose()?;
+    // Loop's data, built once: --level counts its GPU bytes, and with --pixel-error the levels
+    // use it on the mesh as drawn (the same topology, so the same tables) and print Loop's
+    // lines after theirs.
+    let loop_ = for_loop.then(|| loop_data(a, path, mesh)).transpose()?;
     if let Some(level) = a.level {
         // Loop's drivers draw the faces of one Loop step, four to a coarse triangle.
         let elements = mesh.triangles.len() as u64 * if for_loop { 4 } else { 1 };
@@ -79,7 +78,7 @@ pub fn run(a: &InfoArgs, desc: &ContextDesc) -> Result<()> {
     if let (Some(data), None) = (&loop_, &a.pixel_error) {
         print_loop(a, data)?;
     }
-    print_levels(a, input)?;
+    print_levels(a, input, loop_)?;
     Ok(())
 }
 
@@ -262,7 +261,7 @@ fn check_level_options(a: &InfoArgs, desc: &ContextDesc) -> Result<()> {
 /// the triangles against the smallest uniform level that meets the same bound. Everything is
 /// as render has it with the same options: the surface as drawn (centred, at unit size, its
 /// displacement, inputs and parameters), its default camera fitted to that surface, culling.
-fn print_levels(a: &InfoArgs, mut input: Input) -> Result<()> {
+fn print_levels(a: &InfoArgs, mut input: Input, loop_: Option<LoopData>) -> Result<()> {
     use meshrefine::lod::cull::eye_outside;
     use meshrefine::lod::frame::{
         culled_facing_away, frame_levels, lod_records, uniform_level, unmet, LevelStats, LodView,
@@ -307,7 +306,10 @@ fn print_levels(a: &InfoArgs, mut input: Input) -> Result<()> {
     .rounding();
     let dyadic = rounding.dyadic();
     let loop_data = if surface.uses_loop_faces() {
-        let data = loop_data(a, path, mesh)?;
+        let data = match loop_ {
+            Some(data) => data,
+            None => loop_data(a, path, mesh)?,
+        };
         print_loop(a, &data)?;
         let frame = data.frame(&mesh.positions);
         Some((data, frame))
