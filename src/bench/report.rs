@@ -349,7 +349,11 @@ impl Report {
             .map(|c| {
                 (
                     c,
-                    self.rows.iter().map(|r| c.cell(self, r).short()).collect(),
+                    // Escaped here (a mesh name may hold a line end), so that the widths
+                    // count what is printed.
+                    (self.rows.iter())
+                        .map(|r| crate::paths::printable(&c.cell(self, r).short()).into_owned())
+                        .collect(),
                 )
             })
             .collect();
@@ -822,6 +826,18 @@ mod tests {
         let static_row = s.lines().find(|l| l.starts_with("static ")).expect(&s);
         let cells: Vec<&str> = static_row.split_whitespace().collect();
         assert_eq!(cells, ["static", "12.35", "8.10", "0.99", "1.50"], "{s}");
+    }
+
+    /// A mesh name's control characters are escaped in the summary (one row or several), as
+    /// on every other line of standard output: a line end in a file's name starts no line.
+    #[test]
+    fn the_summary_escapes_a_mesh_name() {
+        for n in [1, 2] {
+            let rows = (0..n).map(|_| row("nl\nname\u{1b}[31m", 2, "static", true));
+            let s = report(rows.collect()).summary(None);
+            assert!(s.contains("mesh nl\\nname\\u{1b}[31m,"), "{s}");
+            assert!(!s.contains('\u{1b}') && !s.contains("\nname"), "{s}");
+        }
     }
 
     /// A single row is said whole above where the table would be, every column with its value
