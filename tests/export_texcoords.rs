@@ -286,6 +286,36 @@ fn exports_without_texture_coordinates_are_unchanged() {
     }
 }
 
+/// Texture coordinates on some triangles only are not written (they would leave vertices
+/// without any), and a warning says so, naming the file and how many triangles have them.
+#[test]
+fn texture_coordinates_on_some_triangles_only_are_said_dropped() {
+    let mesh = tmp("some-vt.obj");
+    let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n\
+                f 1/1 2/2 3/3\nf 2 4 3\n";
+    std::fs::write(&mesh, text).unwrap();
+    for driver in ["pattern", "tess"] {
+        let name = format!("some-vt-{driver}.obj");
+        let (text, stderr) = export(&mesh, &name, &["--level", "2", "--driver", driver]);
+        let faces = text.lines().filter(|l| l.starts_with("f "));
+        assert!(!text.contains("\nvt "), "{name}");
+        assert!(faces.clone().count() > 0, "{name}");
+        assert!(
+            faces
+                .flat_map(|l| l[2..].split(' '))
+                .all(|c| c.contains("//")),
+            "{name}"
+        );
+        assert!(
+            stderr.contains(&format!(
+                "warning: '{}' gives texture coordinates (vt) on 1 of its 2 triangles, not on every one: the export writes none",
+                mesh.display()
+            )),
+            "{name}: {stderr}"
+        );
+    }
+}
+
 /// Texture coordinates change nothing else: an export of the grid without its `vt` is the
 /// export with them less the `vt` lines, the faces' `vt` indices and the counts line's
 /// `, N texture coordinates` (and but for the command lines, which name other files), on both

@@ -133,6 +133,20 @@ fn export(
             input.shown
         ));
     }
+    let faces = input.mesh.triangles.len();
+    let with_vt = input
+        .mesh
+        .triangles
+        .iter()
+        .filter(|t| t.t.is_some())
+        .count();
+    if with_vt > 0 && with_vt < faces {
+        // Written for every refined vertex or for none: coordinates on some faces only are not.
+        crate::note(format_args!(
+            "warning: '{}' gives texture coordinates (vt) on {with_vt} of its {faces} triangles, not on every one: the export writes none",
+            input.shown
+        ));
+    }
     // The levels the GPU's level pass wrote for the capture, as the driver drew them.
     let levels = adaptive.as_ref().zip(adaptive_camera).map(|(a, cam)| {
         let (_, report) = scene.drawn_levels(cfg);
