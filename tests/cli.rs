@@ -4801,6 +4801,53 @@ fn adaptive_renders_warn_of_slow_frames_from_the_levels_chosen() {
     assert!(!stderr.contains("refined triangles per frame"), "{stderr}");
 }
 
+/// Loop's vertices sum their face's control points: the slow-frame warning counts a face of
+/// many (around a vertex of high valence) as that many times a regular face's 12, and says so.
+/// A bicone of two valence-500 poles at level 8: 256,000 triangles, about a second on lavapipe,
+/// where the triangles alone would say a tenth of that.
+#[test]
+fn slow_frame_warnings_count_loop_control_points() {
+    let n = 500;
+    let mut obj = String::from("v 0 1 0\nv 0 -1 0\n");
+    for k in 0..n {
+        let a = std::f64::consts::TAU * k as f64 / n as f64;
+        obj += &format!("v {} 0 {}\n", a.cos(), a.sin());
+    }
+    for k in 0..n {
+        let (a, b) = (3 + k, 3 + (k + 1) % n);
+        obj += &format!("f 1 {b} {a}\nf 2 {a} {b}\n");
+    }
+    let mesh = tmp("bicone500.obj");
+    std::fs::write(&mesh, obj).unwrap();
+    let png = tmp("bicone500.png");
+    let render = |surface: &str| {
+        #[rustfmt::skip]
+        let out = meshrefine(&[
+            "render", p(&mesh), "-o", p(&png), "--surface", surface, "--level", "8",
+            "--width", "64", "--height", "48",
+        ]);
+        let stderr = String::from_utf8_lossy(&out.stderr).to_string();
+        assert!(out.status.success(), "{surface}: {stderr}");
+        stderr
+    };
+    let stderr = render("loop");
+    let warning = stderr
+        .lines()
+        .find(|l| l.contains("refined triangles per frame"));
+    let warning = warning.unwrap_or_else(|| panic!("{stderr}"));
+    assert!(
+        warning.starts_with("warning: 256000 refined triangles"),
+        "{warning}"
+    );
+    assert!(
+        warning.contains("times that on average here: a vertex sums its Loop face's control points, up to 506 on this mesh against 12 on a regular face); a lower --level draws faster"),
+        "{warning}"
+    );
+    // As PN: 1000 elements of 64 triangles, no warning.
+    let stderr = render("pn");
+    assert!(!stderr.contains("refined triangles per frame"), "{stderr}");
+}
+
 /// bench's adaptive rows warn of slow frames from the levels chosen, as render does, not from
 /// every element at --max-level: none where few triangles are drawn (or none, every element
 /// culled), and where they are many, the adaptive row's own count with render's advice.

@@ -275,11 +275,14 @@ fn frame(
         let report = m.scene.set_levels(&t.cfg, view)?;
         let cpu_ms = start.elapsed().as_secs_f64() * 1e3;
         if round == 0 {
+            let first = t.reports.is_empty();
+            let weight = first.then(|| m.scene.evaluation_weight(&t.cfg, Some(&report)));
             let report = report.into_report();
             // Counted from the levels chosen (its prepare, at the largest level, did not warn).
             if t.reports.is_empty() {
                 let refined = drawn_triangles(&t.cfg, &report);
-                m.scene.warn_once_if_slow(refined, report.faster());
+                m.scene
+                    .warn_once_if_slow(refined, weight.flatten(), report.faster());
             }
             t.reports.push(report);
         }

@@ -163,7 +163,8 @@ pub fn render_png(
             let drawn = report
                 .triangles_on(|l| viewed.driver.refined_per_element(l))
                 .0;
-            slow = Some((drawn, report.faster()));
+            let weight = scene.evaluation_weight(&viewed, Some(&report));
+            slow = Some((drawn, weight, report.faster()));
             culled_all =
                 (report.histogram.is_empty()).then_some((report.culled, report.facing_away));
             chosen = Some(report);
@@ -190,11 +191,12 @@ pub fn render_png(
             culled_all = None;
             let elements = scene.elements(viewed.surface).element_count as u64;
             let refined = elements * viewed.refined_per_element() as u64;
-            slow = Some((refined, "a lower --level draws faster"));
+            let weight = scene.evaluation_weight(&viewed, None);
+            slow = Some((refined, weight, "a lower --level draws faster"));
             camera = uniform_camera(&scene, &viewed)?;
         }
-        if let Some((refined, advice)) = slow {
-            scene.warn_if_slow(refined, advice);
+        if let Some((refined, weight, advice)) = slow {
+            scene.warn_if_slow(refined, weight, advice);
         }
         Ok(h.render(&mut scene, &viewed, &camera)?)
     })()

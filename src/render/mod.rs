@@ -38,7 +38,7 @@ pub use headless::{
 };
 pub use level_pass::LevelPass;
 pub use pipelines::{Renderer, GEOMETRY_STAGES, PUSH_STAGES};
-pub use scene::{software_frame_seconds, Scene};
+pub use scene::{software_frame_seconds, EvaluationWeight, Scene};
 pub use scene_levels::{ChosenLevels, LevelView};
 pub use xfb_capture::{CapturePass, LAVAPIPE_MAX_CAPTURE_PASS_BYTES};
 

@@ -6,6 +6,7 @@ use super::gpu_mesh::{Extras, GpuMesh, MeshData, Patterns};
 use super::loop_gpu::{LoopPass, LoopScene};
 use super::RenderError;
 use crate::gpu::{vk, CommandPool, Context, GpuError};
+use crate::lod::levels::drawn_level;
 use crate::mesh::Mesh;
 use crate::pattern::PatternSet;
 use crate::surface::stpn::VertexTag;
@@ -72,6 +73,17 @@ pub struct Scene {
 /// drivers (92 to 343 ns; level 4 costs more a triangle), rounded to 100 and 400. The range of
 /// [`software_frame_seconds`].
 pub const SOFTWARE_NS_PER_TRIANGLE: (f64, f64) = (100.0, 400.0);
+
+/// The control points a vertex of a regular Loop face sums (its 12-point neighbourhood).
+const REGULAR_CONTROL_POINTS: u32 = 12;
+
+/// [`Scene::evaluation_weight`]: how many times its triangles' cost a frame takes (`factor`),
+/// and the most control points a face of the mesh sums (`most`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EvaluationWeight {
+    pub factor: f64,
+    pub most: u32,
+}
 
 /// How long a frame of `refined` triangles takes on a software device, as a range in seconds;
 /// `None` when even the slower estimate is under a second.
@@ -248,7 +260,8 @@ impl Scene {
         if !self.adaptive_frames {
             let refined =
                 self.elements(cfg.surface).element_count as u64 * cfg.refined_per_element() as u64;
-            self.warn_once_if_slow(refined, self.uniform_advice);
+            let weight = self.evaluation_weight(cfg, None);
+            self.warn_once_if_slow(refined, weight, self.uniform_advice);
         }
         kind.prepare(self, ctx, pool, cfg)?;
         Ok(())
@@ -336,27 +349,84 @@ impl Scene {
 
     /// [`Scene::warn_if_slow`] unless a slow frame was warned about already (or the warning
     /// skipped, [`Scene::skip_slow_warning`]).
-    pub fn warn_once_if_slow(&mut self, refined: u64, advice: &str) {
+    pub fn warn_once_if_slow(
+        &mut self,
+        refined: u64,
+        weight: Option<EvaluationWeight>,
+        advice: &str,
+    ) {
         if !self.warned_slow {
-            self.warn_if_slow(refined, advice);
+            self.warn_if_slow(refined, weight, advice);
         }
     }
 
     /// Warn when frames of `refined` triangles take a second or more on a software device
     /// ([`software_frame_seconds`]), ending with `advice` (what draws faster); whether or not
-    /// [`Scene::prepare`]'s own warning was skipped, which it skips from then on.
-    pub fn warn_if_slow(&mut self, refined: u64, advice: &str) {
-        let slow = software_frame_seconds(refined)
+    /// [`Scene::prepare`]'s own warning was skipped, which it skips from then on. `weight`:
+    /// [`Scene::evaluation_weight`], how many times its triangles' cost such a frame takes.
+    pub fn warn_if_slow(&mut self, refined: u64, weight: Option<EvaluationWeight>, advice: &str) {
+        let factor = weight.map_or(1.0, |w| w.factor);
+        let slow = software_frame_seconds((refined as f64 * factor) as u64)
             .filter(|_| self.ctx.info.device_type == vk::PhysicalDeviceType::CPU);
         if let Some((lo, hi)) = slow {
             let (a, b) = SOFTWARE_NS_PER_TRIANGLE;
+            let heavier = match weight.filter(|w| w.factor >= 1.5) {
+                Some(w) => format!(
+                    ", {:.1} times that on average here: a vertex sums its Loop face's control points, up to {} on this mesh against {REGULAR_CONTROL_POINTS} on a regular face",
+                    w.factor, w.most
+                ),
+                None => String::new(),
+            };
             log::warn!(
-                "{refined} refined triangles per frame on a software device ({}): about {} s a frame ({a:.0} to {b:.0} ns a triangle there); {advice}",
+                "{refined} refined triangles per frame on a software device ({}): about {} s a frame ({a:.0} to {b:.0} ns a triangle there{heavier}); {advice}",
                 self.ctx.info.name,
                 seconds_range(lo, hi)
             );
             self.warned_slow = true;
         }
+    }
+
+    /// How many times its triangles' cost a frame of `cfg` takes on a software device, for
+    /// the slow-frame warning; `None` but for `loop` drawn on the GPU. Each vertex of a Loop
+    /// face sums the face's `K` control points (12 on a regular face; an extraordinary vertex's
+    /// valence plus 6 around it), so a face counts `max(1, K / 12)` times its triangles: the
+    /// mean over the triangles drawn at the levels `chosen` (an adaptive frame's, where the
+    /// level pass's mirror chose them), or at the configuration's level on every face.
+    pub fn evaluation_weight(
+        &self,
+        cfg: &super::DrawConfig,
+        chosen: Option<&super::ChosenLevels>,
+    ) -> Option<EvaluationWeight> {
+        let data = &self
+            .loop_
+            .as_ref()
+            .filter(|_| cfg.surface.uses_loop_faces())?
+            .data;
+        // `static` evaluates on the CPU before the frame: its frames draw triangles alone.
+        cfg.driver.kind().capture_per_element(cfg.level)?;
+        let levels = chosen.and_then(|c| c.levels());
+        let dyadic = cfg.dyadic_levels();
+        let (mut triangles, mut weighted, mut most) = (0.0f64, 0.0f64, 0u32);
+        for (i, face) in data.faces.iter().enumerate() {
+            let level = match &levels {
+                Some(l) => l
+                    .get(i)
+                    .map_or(0, |l| drawn_level(l.inner, dyadic, cfg.level)),
+                None => cfg.level,
+            };
+            let k = face[1] & 0xffff;
+            let t = match level {
+                0 => 0.0,
+                l => cfg.driver.refined_per_element(l) as f64,
+            };
+            triangles += t;
+            weighted += t * (k as f64 / REGULAR_CONTROL_POINTS as f64).max(1.0);
+            most = most.max(k);
+        }
+        (triangles > 0.0).then(|| EvaluationWeight {
+            factor: weighted / triangles,
+            most,
+        })
     }
 
     /// The records of [`Scene::elements`].

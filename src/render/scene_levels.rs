@@ -102,6 +102,13 @@ impl ChosenLevels {
         })
     }
 
+    /// Each element's levels, the mirror run again; `None` where they were tallied on the CPU
+    /// and not kept (the static driver's, or uploaded instead of the pass).
+    pub fn levels(&self) -> Option<Vec<ElementLevels>> {
+        let (view, records) = self.mirror.as_ref()?;
+        Some(frame_levels(view, records))
+    }
+
     /// Whether the tally is made (read, or the levels were on the CPU already).
     pub fn is_tallied(&self) -> bool {
         self.report.get().is_some()
