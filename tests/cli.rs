@@ -1554,6 +1554,37 @@ fn logs_are_bounded_and_limits_name_the_file_and_the_remedy() {
     );
 }
 
+/// A mesh with a flipped face is drawn, with one warning naming the file and how many edges
+/// join triangles of opposite winding; the same mesh wound consistently gets none.
+#[test]
+fn a_flipped_face_is_warned_about() {
+    for (name, faces, warned) in [
+        ("flipped.obj", "f 1 2 3\nf 2 3 4\n", true),
+        ("wound.obj", "f 1 2 3\nf 2 4 3\n", false),
+    ] {
+        let mesh = tmp(name);
+        let text = format!("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n{faces}");
+        std::fs::write(&mesh, text).unwrap();
+        #[rustfmt::skip]
+        let out = meshrefine(&[
+            "render", p(&mesh), "-o", p(&tmp("flipped.png")), "--level", "2", "--width", "32",
+            "--height", "32",
+        ]);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{name}: {stderr}");
+        let warning = format!(
+            "warning: '{}' is not consistently oriented: 1 edge(s) join triangles of opposite winding",
+            p(&mesh)
+        );
+        assert_eq!(stderr.contains(&warning), warned, "{name}: {stderr}");
+        assert_eq!(
+            stderr.matches("oriented").count(),
+            warned as usize,
+            "{stderr}"
+        );
+    }
+}
+
 /// Runs and expects success (the error output in the message otherwise).
 fn expect_success(args: &[&str]) {
     let out = meshrefine(args);

@@ -63,6 +63,13 @@ pub fn load_mesh(path: Option<&Path>, for_loop: bool) -> Result<Input> {
         };
         note(format_args!("warning: {e} (only --surface loop needs one)"));
     }
+    let flipped = mesh.stats().inconsistently_oriented_edges;
+    if flipped > 0 {
+        // Drawn all the same, but a flipped face is easy to miss in the image.
+        note(format_args!(
+            "warning: '{shown}' is not consistently oriented: {flipped} edge(s) join triangles of opposite winding (a flipped face); normals computed from the faces are wrong beside them, and no element is culled as facing away (`meshrefine info` counts them)"
+        ));
+    }
     Ok(Input {
         mesh,
         shown,
