@@ -335,6 +335,9 @@ impl Scanner<'_> {
                     return Err(self.err(ln, "vertex weight w is zero".into()));
                 }
                 p /= w;
+                if c.iter().all(|c| c.is_finite()) && !p.is_finite() {
+                    return Err(self.non_finite(ln, "vertex coordinate divided by its weight w"));
+                }
             }
             n => {
                 return Err(self.err(
@@ -664,6 +667,11 @@ mod tests {
         assert_eq!(
             err("v 1 2 3 inf\n"),
             "'x.obj' line 1: vertex weight is not finite in f32 (NaN, infinite, or beyond about ±3.4e38)"
+        );
+        // Four finite numbers whose quotient is not: the division is named.
+        assert_eq!(
+            err("v 1 1 1 1e-45\n"),
+            "'x.obj' line 1: vertex coordinate divided by its weight w is not finite in f32 (NaN, infinite, or beyond about ±3.4e38)"
         );
     }
 
