@@ -188,6 +188,13 @@ impl Progress {
     pub fn is_last(&self) -> bool {
         matches!(*self, Progress::Tables(d, t) | Progress::Bounds(d, t) if d == t)
     }
+
+    /// Whether the phase has done anything yet (a start says nothing a log should keep).
+    fn started(&self) -> bool {
+        match *self {
+            Progress::Faces(d, _) | Progress::Tables(d, _) | Progress::Bounds(d, _) => d > 0,
+        }
+    }
 }
 
 impl std::fmt::Display for Progress {
@@ -244,8 +251,11 @@ fn progress_writer<W: std::io::Write>(
         let line = format!("{what}: {p}");
         let last = p.is_last();
         if !terminal {
+            // A plain line stays in the log: not one of a phase that has not begun ("0 of N
+            // faces classified" read as stuck there when the next line was the last).
             let now = std::time::Instant::now();
-            if last || written.is_none_or(|at| now - at >= PLAIN_PROGRESS_EVERY) {
+            let due = written.is_none_or(|at| now - at >= PLAIN_PROGRESS_EVERY);
+            if last || (due && p.started()) {
                 written = Some(now);
                 let _ = writeln!(out(), "{line}");
             }
@@ -526,6 +536,7 @@ mod tests {
     #[test]
     fn progress_rewrites_a_terminal_line_and_writes_plain_lines_elsewhere() {
         let reports = [
+            Progress::Faces(0, 100),
             Progress::Faces(10, 100),
             Progress::Faces(100, 100),
             Progress::Tables(1, 3),
@@ -538,22 +549,22 @@ mod tests {
             reports.into_iter().for_each(&mut report);
             String::from_utf8(sink.0.take()).unwrap()
         };
-        // A log or a pipe: no carriage return, the first report and the last (the others come
-        // within PLAIN_PROGRESS_EVERY of the first), each a line.
+        // A log or a pipe: no carriage return, the first report of work done and the last (the
+        // others come within PLAIN_PROGRESS_EVERY of the first), each a line.
         let plain = text(false);
         assert!(!plain.contains('\r'), "{plain:?}");
         assert_eq!(
             plain,
             format!(
                 "loop surface: {}\nloop surface: {}\n",
-                reports[0], reports[3]
+                reports[1], reports[4]
             )
         );
         // A terminal: every report rewrites the line, the last ends it.
         let terminal = text(true);
-        assert_eq!(terminal.matches('\r').count(), 4, "{terminal:?}");
+        assert_eq!(terminal.matches('\r').count(), 5, "{terminal:?}");
         assert!(
-            terminal.ends_with(&format!("{}\n", reports[3])),
+            terminal.ends_with(&format!("{}\n", reports[4])),
             "{terminal:?}"
         );
         assert_eq!(terminal.matches('\n').count(), 1, "{terminal:?}");
