@@ -423,7 +423,7 @@ impl Report {
                     r.variant,
                     r.note
                 );
-                wrap(&mut s, &what, "  ");
+                wrap(&mut s, &crate::paths::printable(&what), "  ");
             }
         }
         if table > 0 || noted_any {
@@ -828,13 +828,19 @@ mod tests {
         assert_eq!(cells, ["static", "12.35", "8.10", "0.99", "1.50"], "{s}");
     }
 
-    /// A mesh name's control characters are escaped in the summary (one row or several), as
-    /// on every other line of standard output: a line end in a file's name starts no line.
+    /// A mesh name's control characters are escaped in the summary (one row or several, the
+    /// table and the notes under it), as on every other line of standard output: a line end in
+    /// a file's name starts no line.
     #[test]
     fn the_summary_escapes_a_mesh_name() {
         for n in [1, 2] {
-            let rows = (0..n).map(|_| row("nl\nname\u{1b}[31m", 2, "static", true));
-            let s = report(rows.collect()).summary(None);
+            let mut rows: Vec<Row> = (0..n)
+                .map(|_| row("nl\nname\u{1b}[31m", 2, "static", true))
+                .collect();
+            // A noted row: its note is said under the table with the mesh's name.
+            rows[0].note = "not drawn: level 128".into();
+            let s = report(rows).summary(None);
+            assert!(s.contains("- nl\\nname\\u{1b}[31m level 2"), "{s}");
             assert!(s.contains("mesh nl\\nname\\u{1b}[31m,"), "{s}");
             assert!(!s.contains('\u{1b}') && !s.contains("\nname"), "{s}");
         }

@@ -65,9 +65,13 @@ pub fn load_mesh(path: Option<&Path>, for_loop: bool) -> Result<Input> {
     }
     let flipped = mesh.stats().inconsistently_oriented_edges;
     if flipped > 0 {
-        // Drawn all the same, but a flipped face is easy to miss in the image.
+        // Drawn all the same, but a face wound the other way is easy to miss in the image.
+        let normals = match report.normals_computed {
+            true => "the normals computed from the faces are wrong beside them, and ",
+            false => "",
+        };
         note(format_args!(
-            "warning: '{shown}' is not consistently oriented: {flipped} edge(s) join triangles of opposite winding (a flipped face); normals computed from the faces are wrong beside them, and no element is culled as facing away (`meshrefine info` counts them)"
+            "warning: '{shown}' is not consistently oriented: {flipped} edge(s) join triangles of opposite winding; {normals}no element is culled as facing away"
         ));
     }
     Ok(Input {

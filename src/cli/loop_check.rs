@@ -165,7 +165,7 @@ fn m0_message(mesh: &Mesh, report: &LoadReport, e: &TopologyError) -> String {
                 .map(|(i, _)| report.face(i))
                 .collect();
             format!(
-                "{} both run from {} to {}: the faces around that edge are not consistently oriented, which Loop subdivision needs (flip one of them; a one-sided surface, such as a Möbius strip, has no consistent orientation and cannot be subdivided)",
+                "{} both run from {} to {}: the faces around that edge are not consistently oriented, which Loop subdivision needs (flip one of them; a one-sided surface, such as a Möbius strip, has no consistent orientation)",
                 list(&faces),
                 v(a),
                 v(b)

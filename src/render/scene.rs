@@ -260,8 +260,10 @@ impl Scene {
         if !self.adaptive_frames {
             let refined =
                 self.elements(cfg.surface).element_count as u64 * cfg.refined_per_element() as u64;
-            let weight = self.evaluation_weight(cfg, None);
-            self.warn_once_if_slow(refined, weight, self.uniform_advice);
+            if !self.warned_slow {
+                let weight = self.evaluation_weight(cfg, None);
+                self.warn_once_if_slow(refined, weight, self.uniform_advice);
+            }
         }
         kind.prepare(self, ctx, pool, cfg)?;
         Ok(())
@@ -387,23 +389,31 @@ impl Scene {
     }
 
     /// How many times its triangles' cost a frame of `cfg` takes on a software device, for
-    /// the slow-frame warning; `None` but for `loop` drawn on the GPU. Each vertex of a Loop
+    /// the slow-frame warning; `None` but for `loop` drawn on the GPU of a software device
+    /// (the only one warned about). Each vertex of a Loop
     /// face sums the face's `K` control points (12 on a regular face; an extraordinary vertex's
     /// valence plus 6 around it), so a face counts `max(1, K / 12)` times its triangles: the
     /// mean over the triangles drawn at the levels `chosen` (an adaptive frame's, where the
-    /// level pass's mirror chose them), or at the configuration's level on every face.
+    /// level pass's mirror chose them), or at the configuration's level on every face (also
+    /// where the levels were uploaded instead of the pass, and not kept).
     pub fn evaluation_weight(
         &self,
         cfg: &super::DrawConfig,
         chosen: Option<&super::ChosenLevels>,
     ) -> Option<EvaluationWeight> {
+        // Only a software device is warned about (what an estimate of it is for).
+        if self.ctx.info.device_type != vk::PhysicalDeviceType::CPU {
+            return None;
+        }
         let data = &self
             .loop_
             .as_ref()
             .filter(|_| cfg.surface.uses_loop_faces())?
             .data;
         // `static` evaluates on the CPU before the frame: its frames draw triangles alone.
-        cfg.driver.kind().capture_per_element(cfg.level)?;
+        if cfg.driver.kind().refines_on_cpu() {
+            return None;
+        }
         let levels = chosen.and_then(|c| c.levels());
         let dyadic = cfg.dyadic_levels();
         let (mut triangles, mut weighted, mut most) = (0.0f64, 0.0f64, 0u32);

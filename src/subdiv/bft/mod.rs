@@ -189,11 +189,27 @@ impl Progress {
         matches!(*self, Progress::Tables(d, t) | Progress::Bounds(d, t) if d == t)
     }
 
+    /// Done and total, whatever the phase.
+    fn counts(&self) -> (usize, usize) {
+        match *self {
+            Progress::Faces(d, t) | Progress::Tables(d, t) | Progress::Bounds(d, t) => (d, t),
+        }
+    }
+
     /// Whether the phase has done anything yet (a start says nothing a log should keep).
     fn started(&self) -> bool {
-        match *self {
-            Progress::Faces(d, _) | Progress::Tables(d, _) | Progress::Bounds(d, _) => d > 0,
-        }
+        self.counts().0 > 0
+    }
+
+    /// Whether this report ends its phase (every face classified, every table built...).
+    fn ends_phase(&self) -> bool {
+        let (d, t) = self.counts();
+        d == t
+    }
+
+    /// Whether `other` reports on the same phase.
+    fn same_phase(&self, other: &Progress) -> bool {
+        std::mem::discriminant(self) == std::mem::discriminant(other)
     }
 }
 
@@ -208,8 +224,8 @@ impl std::fmt::Display for Progress {
 }
 
 /// `report` behind a throttle, for [`build`]'s `progress`: quiet in the first second (most builds
-/// take less), then at most one report a second, and the last one (every table built) when it
-/// has reported anything.
+/// take less), then at most one report a second, the end of a phase it reported on, and the
+/// last one (every table built) when it has reported anything.
 pub fn throttled(mut report: impl FnMut(Progress)) -> impl FnMut(Progress) {
     let start = std::time::Instant::now();
     let second = std::time::Duration::from_secs(1);
@@ -219,7 +235,10 @@ pub fn throttled(mut report: impl FnMut(Progress)) -> impl FnMut(Progress) {
         let finished = p.is_last();
         let due = match last {
             None => now - start >= second,
-            Some((at, prev)) => prev != p && (finished || now - at >= second),
+            Some((at, prev)) => {
+                let phase_end = p.ends_phase() && prev.same_phase(&p);
+                prev != p && (finished || phase_end || now - at >= second)
+            }
         };
         if due {
             last = Some((now, p));
@@ -246,17 +265,19 @@ fn progress_writer<W: std::io::Write>(
     mut out: impl FnMut() -> W,
 ) -> impl FnMut(Progress) {
     let mut width = 0usize;
-    let mut written: Option<std::time::Instant> = None;
+    let mut written: Option<(std::time::Instant, Progress)> = None;
     move |p| {
         let line = format!("{what}: {p}");
         let last = p.is_last();
         if !terminal {
             // A plain line stays in the log: not one of a phase that has not begun ("0 of N
-            // faces classified" read as stuck there when the next line was the last).
+            // faces classified" read as stuck there when the next line was the last), and a
+            // phase it was written for ends with its own line.
             let now = std::time::Instant::now();
-            let due = written.is_none_or(|at| now - at >= PLAIN_PROGRESS_EVERY);
-            if last || (due && p.started()) {
-                written = Some(now);
+            let due = written.is_none_or(|(at, _)| now - at >= PLAIN_PROGRESS_EVERY);
+            let phase_end = p.ends_phase() && written.is_some_and(|(_, w)| w.same_phase(&p));
+            if last || phase_end || (due && p.started()) {
+                written = Some((now, p));
                 let _ = writeln!(out(), "{line}");
             }
             return;
@@ -549,15 +570,16 @@ mod tests {
             reports.into_iter().for_each(&mut report);
             String::from_utf8(sink.0.take()).unwrap()
         };
-        // A log or a pipe: no carriage return, the first report of work done and the last (the
-        // others come within PLAIN_PROGRESS_EVERY of the first), each a line.
+        // A log or a pipe: no carriage return, the first report of work done, the end of its
+        // phase, and the last (the others come within PLAIN_PROGRESS_EVERY of the first), each a
+        // line.
         let plain = text(false);
         assert!(!plain.contains('\r'), "{plain:?}");
         assert_eq!(
             plain,
             format!(
-                "loop surface: {}\nloop surface: {}\n",
-                reports[1], reports[4]
+                "loop surface: {}\nloop surface: {}\nloop surface: {}\n",
+                reports[1], reports[2], reports[4]
             )
         );
         // A terminal: every report rewrites the line, the last ends it.
@@ -956,7 +978,8 @@ mod tests {
         assert_eq!(one.packed.rows, three.packed.rows);
     }
 
-    /// Reports wait a second, then come at most once a second, and never twice the same.
+    /// Reports wait a second, then come at most once a second (but the end of a phase reported
+    /// on), and never twice the same.
     #[test]
     fn progress_is_throttled() {
         let mut heard = Vec::new();
@@ -966,10 +989,13 @@ mod tests {
             std::thread::sleep(std::time::Duration::from_millis(1050));
             p(Progress::Faces(5, 10));
             p(Progress::Faces(6, 10));
+            p(Progress::Faces(10, 10));
+            p(Progress::Tables(0, 2));
             p(Progress::Tables(2, 2));
             p(Progress::Tables(2, 2));
         }
-        assert_eq!(heard, [Progress::Faces(5, 10), Progress::Tables(2, 2)]);
+        let ends = [Progress::Faces(10, 10), Progress::Tables(2, 2)];
+        assert_eq!(heard, [&[Progress::Faces(5, 10)], &ends[..]].concat());
     }
 
     /// The tetrahedron's M1 has two configurations: the corner faces (one vertex of valence 3,
