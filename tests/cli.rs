@@ -4838,16 +4838,7 @@ fn adaptive_renders_warn_of_slow_frames_from_the_levels_chosen() {
 /// where the triangles alone would say a tenth of that.
 #[test]
 fn slow_frame_warnings_count_loop_control_points() {
-    let n = 500;
-    let mut obj = String::from("v 0 1 0\nv 0 -1 0\n");
-    for k in 0..n {
-        let a = std::f64::consts::TAU * k as f64 / n as f64;
-        obj += &format!("v {} 0 {}\n", a.cos(), a.sin());
-    }
-    for k in 0..n {
-        let (a, b) = (3 + k, 3 + (k + 1) % n);
-        obj += &format!("f 1 {b} {a}\nf 2 {a} {b}\n");
-    }
+    let obj = common::bicone_obj(500);
     let mesh = tmp("bicone500.obj");
     std::fs::write(&mesh, obj).unwrap();
     let png = tmp("bicone500.png");

@@ -216,6 +216,34 @@ fn window_demo_presents_and_screenshots() {
     }
 }
 
+/// The frame budget counts Loop's faces by their control points (a vertex sums its face's):
+/// on a bicone of two valence-500 poles, uniform level 16 (1,024,000 triangles, which the
+/// triangles alone put under half a second, and about 15 s a frame on lavapipe) is lowered
+/// before the first frame is drawn at it (one frame: no slow frame has been measured).
+#[test]
+fn the_frame_budget_counts_loop_control_points() {
+    let _guard = common::gpu_lock();
+    let x = Xvfb::start();
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("window");
+    std::fs::create_dir_all(&dir).unwrap();
+    let obj = common::bicone_obj(500);
+    let mesh = dir.join("bicone500.obj");
+    std::fs::write(&mesh, obj).unwrap();
+    let shot = dir.join("bicone500.png");
+    #[rustfmt::skip]
+    let stderr = run_view_frames(&x.display, "1", &[
+        mesh.to_str().unwrap(), "--surface", "loop", "--level", "16",
+    ], &shot);
+    let said = "level 16 would take over a second a frame on this software device: drawing level ";
+    let at = stderr.find(said).unwrap_or_else(|| panic!("{stderr}"));
+    let drawn: u32 = stderr[at + said.len()..]
+        .split(|c: char| !c.is_ascii_digit())
+        .next()
+        .and_then(|d| d.parse().ok())
+        .unwrap_or_else(|| panic!("{stderr}"));
+    assert!(drawn < 8, "{stderr}");
+}
+
 /// The panel is laid out and opaque in the very first frame (a `--frames 1 --screenshot` run
 /// saves it): egui gets the passes a new panel takes to size itself, and it does not fade in.
 /// On the light background the panel is dark: most of its corner of the image is (the lit mesh

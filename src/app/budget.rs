@@ -9,6 +9,14 @@ use crate::gpu::vk;
 use crate::render::{software_frame_seconds, DrawConfig};
 
 impl State {
+    /// How many times its triangles' cost the estimate counts a frame of `cfg` at: Loop's faces
+    /// by their control points ([`crate::render::Scene::evaluation_weight`], the mean over the
+    /// faces, as if each drew as many triangles), 1 for the other surfaces. What is measured
+    /// on slow frames needs no weight: it was measured on this mesh.
+    fn loop_weight(&self, cfg: &DrawConfig) -> f64 {
+        (self.scene.evaluation_weight(cfg, None)).map_or(1.0, |w| w.factor)
+    }
+
     /// On a software device, lower `cfg.level` to the finest level whose frame the slower
     /// estimate ([`software_frame_seconds`], or the slower rate measured on this configuration's
     /// slow frames) puts under a second (the wireframe pass counted as a second draw), and say so in the panel: the window stays responsive
@@ -23,11 +31,13 @@ impl State {
         let elements = self.scene.elements(cfg.surface).element_count as u64;
         let passes = if wire { 2 } else { 1 };
         let measured = self.measured_rates.for_config(cfg, wire, false);
+        let weight = self.loop_weight(cfg);
         let fits = |level: u32| {
             let mut c = *cfg;
             c.level = level;
             let refined = elements * c.refined_per_element() as u64 * passes;
-            software_frame_seconds(refined).is_none() && refined as f64 * measured * 1e-9 < 1.0
+            software_frame_seconds((refined as f64 * weight) as u64).is_none()
+                && refined as f64 * measured * 1e-9 < 1.0
         };
         if fits(cfg.level) {
             return;
@@ -71,11 +81,12 @@ impl State {
         let measured = self
             .measured_rates
             .for_config(cfg, self.controls.wireframe, true);
+        let weight = self.loop_weight(cfg);
         let fits = |cap: u32| {
             let refined: u64 = (report.histogram.iter())
                 .map(|(&n, &count)| count * cfg.driver.refined_per_element(n.min(cap)) as u64)
                 .sum();
-            software_frame_seconds(refined * passes).is_none()
+            software_frame_seconds((refined as f64 * passes as f64 * weight) as u64).is_none()
                 && (refined * passes) as f64 * measured * 1e-9 < 1.0
         };
         let asked = cfg.level;

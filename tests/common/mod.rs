@@ -113,3 +113,18 @@ pub fn tmp_file(dir: &str, name: &str) -> String {
     std::fs::create_dir_all(&d).unwrap();
     d.join(name).to_str().unwrap().to_string()
 }
+
+/// A bicone: two poles of valence `n` joined by a ring of `n` vertices (`2n` triangles wound
+/// outwards), as OBJ text; what Loop's faces around a vertex of high valence cost.
+pub fn bicone_obj(n: usize) -> String {
+    let mut obj = String::from("v 0 1 0\nv 0 -1 0\n");
+    for k in 0..n {
+        let a = std::f64::consts::TAU * k as f64 / n as f64;
+        obj += &format!("v {} 0 {}\n", a.cos(), a.sin());
+    }
+    for k in 0..n {
+        let (a, b) = (3 + k, 3 + (k + 1) % n);
+        obj += &format!("f 1 {b} {a}\nf 2 {a} {b}\n");
+    }
+    obj
+}
