@@ -3303,7 +3303,7 @@ fn info_reports_adaptive_levels_for_a_camera() {
         .find_map(|l| l.trim().strip_prefix("capped: "))
         .and_then(|l| l.split_whitespace().next()?.parse().ok())
         .expect("a capped line");
-    // The elements the pattern driver draws above 8 at --max-level 64, but for a few drawn
+    // The elements the pattern driver draws above 8 at --max-level 64, but for some drawn
     // there only for a capped neighbour's need on their shared edge (met at 8).
     let above: u64 = (pattern.lines().find(|l| l.contains("levels (")).unwrap())
         .split_whitespace()
@@ -3312,7 +3312,7 @@ fn info_reports_adaptive_levels_for_a_camera() {
         .filter(|(l, _)| l.parse::<u32>().unwrap() > 8)
         .map(|(_, n)| n.parse::<u64>().unwrap())
         .sum();
-    assert!(capped <= above && above - capped <= above / 5, "{low}");
+    assert!(capped <= above && above - capped <= above / 2, "{low}");
     // The uniform level compared with is the cap, which does not meet the bound either.
     assert!(
         low.contains("at uniform level 8 (")
@@ -3557,7 +3557,7 @@ fn bench_with_pixel_error_times_adaptive_and_uniform_rows() {
     #[rustfmt::skip]
     ok(&[
         "--validate", "bench", &spot, "--surfaces", "pn", "--drivers", "tess", "--pixel-error", "1",
-        "--max-level", "12", "--levels", "2", "--frames", "1", "--width", "320", "--height", "200",
+        "--max-level", "12", "--levels", "2", "--frames", "1", "--width", "448", "--height", "280",
         "--out", &p,
     ]);
     let csv = std::fs::read_to_string(prefix.with_extension("csv")).unwrap();
@@ -3595,7 +3595,7 @@ fn bench_with_pixel_error_times_adaptive_and_uniform_rows() {
     #[rustfmt::skip]
     let info = ok(&[
         "info", &spot, "--surface", "pn", "--driver", "tess", "--geomorph", "off", "--pixel-error",
-        "1", "--max-level", "12", "--width", "320", "--height", "200",
+        "1", "--max-level", "12", "--width", "448", "--height", "280",
     ]);
     let bound = adaptive_report(&info).2 as u64;
     assert!(bound <= histogram.iter().map(|(l, _)| *l).max().unwrap());
@@ -4660,10 +4660,10 @@ fn adaptive_exports_are_sized_by_the_levels_chosen() {
     std::fs::remove_file(&obj).unwrap();
     // Levels up to 64 on most elements: more than 2^24 triangles.
     run(
-        &["--pixel-error", "1e-3"],
+        &["--pixel-error", "3e-4"],
         &[
             "cannot export '",
-            "--pixel-error 1e-3 chooses levels that would export",
+            "--pixel-error 3e-4 chooses levels that would export",
             "at most 16777216 (2^24)",
             "use a larger --pixel-error, or --max-level 32 or a smaller power of two",
         ],
@@ -4686,7 +4686,7 @@ fn adaptive_exports_are_sized_by_the_levels_chosen() {
     integer.extend(["--geomorph", "off"]);
     run(
         &integer,
-        &["use a larger --pixel-error, or --max-level 43 or lower"],
+        &["use a larger --pixel-error, or --max-level 44 or lower"],
     );
 }
 
@@ -5192,11 +5192,11 @@ fn render_and_export_say_where_the_pixel_error_is_not_met() {
         capped_err.contains(&format!("note: the 1 px bound is not met on {capped} elements: they need a level above the largest, 8 (--max-level)")),
         "{capped_err}"
     );
-    // Every element needing more than 8 is drawn above 8 with the larger cap; a few more are
+    // Every element needing more than 8 is drawn above 8 with the larger cap; some more are
     // drawn there only for a capped neighbour's need on their shared edge, met at 8.
     let (unmet, drawn_above) = (capped + near(&capped_err), above(&free_out, 8));
     assert!(
-        unmet <= drawn_above && drawn_above - unmet <= drawn_above / 5,
+        unmet <= drawn_above && drawn_above - unmet <= drawn_above / 2,
         "{capped_err}\n{free_out}"
     );
     assert_eq!(

@@ -131,7 +131,7 @@ fn gpu_bounds_match_the_cpu() {
             octaves: 2,
             ..SurfaceParams::for_radius(r)
         };
-        let (mut compared, mut cones, mut still_cones) = (0, 0, 0);
+        let (mut compared, mut cones, mut still_cones, mut cubics) = (0, 0, 0, 0);
         let (mut blended, mut flat_phong) = (0, 0);
         // pn with each normal field (the direction displacement moves along).
         let cases = [Surface::Flat, Surface::Phong]
@@ -234,6 +234,14 @@ fn gpu_bounds_match_the_cpu() {
                             ch[1],
                             w
                         );
+                        // The polynomial patch's cubic term (elements only).
+                        assert!(
+                            close(ch[2], w.cubic, 1e-3),
+                            "{what}: element {i} bound {k}: GPU cubic {} vs CPU {}",
+                            ch[2],
+                            w.cubic
+                        );
+                        cubics += w.cubic.is_finite() as usize;
                         let centre = Vec3::new(sp[0], sp[1], sp[2]);
                         assert!(
                             (centre - w.sphere.centre).abs().max_element() <= 1e-5 * r
@@ -268,6 +276,8 @@ fn gpu_bounds_match_the_cpu() {
         assert!(blended >= 6, "{blended} blended Phong elements");
         assert_eq!(flat_phong, n - spot);
         assert!(cones > n, "{cones} cones");
+        // Polynomial patches (undisplaced, or displaced by nothing) have a cubic term.
+        assert!(cubics > 2 * n, "{cubics} cubic terms");
         // Displacement that moves nothing keeps the cones (facing-away culling stays on).
         assert!(
             still_cones > n,

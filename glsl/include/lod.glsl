@@ -72,6 +72,44 @@ float lod_second(LodNet net, int k, int edge) {
     return float(m * (m - 1)) * best;
 }
 
+// C-bar: m(m-1)(m-2) max |third differences| over any three lattice directions. Mirror:
+// `Net::third`.
+float lod_third(LodNet net) {
+    int m = net.degree;
+    if (m < 3) {
+        return 0.0;
+    }
+    float best = 0.0;
+    int count = (m - 2) * (m - 1) / 2;
+    for (int q = 0; q < count; ++q) {
+        ivec3 g = lod_multi(m - 3, q);
+        for (int a = 0; a < 3; ++a) {
+            for (int b = a; b < 3; ++b) {
+                for (int c = b; c < 3; ++c) {
+                    ivec3 dirs = ivec3(a, b, c);
+                    vec3 sum = vec3(0.0);
+                    for (int bits = 0; bits < 8; ++bits) {
+                        ivec3 w = g;
+                        float sign = 1.0;
+                        for (int i = 0; i < 3; ++i) {
+                            int k = dirs[i];
+                            if (((bits >> i) & 1) == 1) {
+                                w[(k + 1) % 3] += 1;
+                            } else {
+                                w[k] += 1;
+                                sign = -sign;
+                            }
+                        }
+                        sum += lod_at(net, w) * sign;
+                    }
+                    best = max(best, length(sum));
+                }
+            }
+        }
+    }
+    return float(m * (m - 1) * (m - 2)) * best;
+}
+
 // sup |DP[d_k]|: m max |first differences| along k. Mirror: `Net::first`.
 float lod_first(LodNet net, int k, int edge) {
     int m = net.degree;
@@ -395,6 +433,7 @@ struct LodBounds {
     vec4 sphere; // centre, radius
     vec3 second; // per canonical direction (element) or the curve's in x (edge)
     vec4 cone;   // axis, cosine of the half-angle (w <= 0: none)
+    float cubic; // a polynomial patch's cubic term (LOD_HUGE: none)
 };
 
 // Bounds of a local surface (0 flat, 1 phong, 2 pn; pn with normal field `field`) with
@@ -459,6 +498,8 @@ LodBounds lod_local(uint surface, uint field, uint d, vec4 params, vec3 origin, 
     // Canonical order c.o an odd permutation of the stored corners: the orientation flips.
     bool odd = !((c.o[0] == 0 && c.o[1] == 1) || (c.o[0] == 1 && c.o[1] == 2) || (c.o[0] == 2 && c.o[1] == 0));
     b.cone = (edge < 0 && exact && !lod_moves(d, params)) ? lod_normal_cone(net, odd) : vec4(0.0);
+    // Mirror: `Bounds::cubic` (src/lod/mod.rs, "A polynomial patch").
+    b.cubic = (edge < 0 && exact && !lod_moves(d, params)) ? LOD_CUBIC_FACTOR * lod_third(net) : LOD_HUGE;
     return b;
 }
 

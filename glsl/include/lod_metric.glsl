@@ -5,6 +5,14 @@
 #define LOD_METRIC_GLSL
 
 const float LOD_ELEMENT_FACTOR = 9.0 / 40.0;
+// A polynomial patch's quadratic and cubic factors, and the tessellator's cubic term against
+// the lattice's, (4/3)^3. Mirror: src/lod/mod.rs `QUADRATIC_FACTOR`, `CUBIC_FACTOR`,
+// `TESS_CUBIC`.
+const float LOD_QUADRATIC_FACTOR = 1.0 / 6.0;
+const float LOD_CUBIC_FACTOR = 4.0 / 81.0;
+const float LOD_TESS_CUBIC = 64.0 / 27.0;
+// The quadratic factor over the general one, (1/6) / (9/40). Mirror: `POLYNOMIAL_SHARE`.
+const float LOD_POLYNOMIAL_SHARE = 20.0 / 27.0;
 // The tessellator's ring diagonals, (2/3)^2. Mirror: src/lod/mod.rs `RING_DIAGONAL`.
 const float LOD_RING_DIAGONAL = 4.0 / 9.0;
 

@@ -1,7 +1,7 @@
 #version 460
 // Element and edge bounds of the local surfaces, one invocation per element: the first half of
 // an adaptive level pass. Each element writes four bounds (itself, then its stored edges 0, 1,
-// 2), three vec4 each: (c1, c2, 0, 0) of its chord bound, its sphere (centre, radius) and its
+// 2), three vec4 each: (c1, c2, cubic, 0) of its chord bound and cubic term, its sphere (centre, radius) and its
 // normal cone (axis, cosine of the half-angle; zero for none and for edges). The
 // surface, displacement and pn's normal field are pc.draw.x, pc.draw.y and pc.draw.z (0 flat,
 // 1 phong, 2 pn; 0 none, 1 sine, 2 noise; NORMAL_FIELD_*), the parameters frame.params and
@@ -17,7 +17,7 @@ layout(set = SET_LOD, binding = BINDING_LOD_BOUNDS, std430) writeonly buffer Bou
 };
 
 void put(uint slot, LodBounds b) {
-    bounds[3u * slot] = vec4(b.chord, 0.0, 0.0);
+    bounds[3u * slot] = vec4(b.chord, b.cubic, 0.0);
     bounds[3u * slot + 1u] = b.sphere;
     bounds[3u * slot + 2u] = b.cone;
 }

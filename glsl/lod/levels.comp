@@ -14,7 +14,7 @@ const uint DYADIC = 4u;
 const uint LATTICE = 8u;
 
 struct LodEdge {
-    vec4 curve;    // (c1, c2) of the edge curve
+    vec4 curve;    // (c1, c2) of the edge curve, then both elements' cubic terms (LOD_HUGE: none)
     vec4 needs[4]; // (c1, c2) of each element's transition need: tess snapped, integer,
                    // snapped, snapped integer (src/lod/frame.rs Rounding::ALL)
     vec4 sphere;
@@ -26,7 +26,7 @@ struct LodRecord {
     vec4 sphere;
     vec4 cone;   // axis, cosine of the half-angle (0: none)
     vec4 chord;  // (c1, c2), then the kink terms (k1, k2)
-    vec4 second; // M_k per stored direction
+    vec4 second; // M_k per stored direction, then the cubic term (LOD_HUGE: none)
     vec4 mixed;  // B_k per stored pair of directions (k, k + 1)
     LodEdge edges[3];
 };
@@ -88,13 +88,49 @@ vec2 own_chord(LodRecord r) {
     return vec2(c.x + k1 / 3.0, c.y + LOD_ELEMENT_FACTOR * max(ring - mx, 0.0) + (7.0 / 9.0) * k2);
 }
 
+// Mirror: `own_level` (a polynomial patch's tighter bound, src/lod/mod.rs).
+float own_level(LodRecord r) {
+    float general = level(own_chord(r), r.sphere);
+    vec3 m = r.second.xyz;
+    float mx = max(m.x, max(m.y, m.z));
+    float t = r.second.w;
+    if (t >= LOD_HUGE || mx >= LOD_HUGE) {
+        return general;
+    }
+    float q = mx;
+    if ((view.flags & LATTICE) == 0u) {
+        vec3 b = r.mixed.xyz;
+        float ring = max(max(second_along(m, b, vec2(1.0, 1.0)), second_along(m, b, vec2(2.0, -1.0))),
+                         second_along(m, b, vec2(-1.0, 2.0))) * LOD_RING_DIAGONAL;
+        q = max(mx, ring);
+        t *= LOD_TESS_CUBIC;
+    }
+    q *= LOD_QUADRATIC_FACTOR;
+    float n0 = level(vec2(0.0, q), r.sphere);
+    float n1 = level(vec2(0.0, q + t / n0), r.sphere);
+    return min(general, n1);
+}
+
+// Mirror: `edge_need_level` (a polynomial patch's transition need, src/lod/frame/transitions.rs).
+float edge_need_level(vec2 need, float t, vec4 s) {
+    float general = level(need, s);
+    if (t >= LOD_HUGE || need.x != 0.0 || need.y >= LOD_HUGE) {
+        return general;
+    }
+    float q = need.y * LOD_POLYNOMIAL_SHARE;
+    // (1 + lambda)^3: `need_extent_cubed`.
+    t *= (view.flags & (DYADIC | LATTICE)) == 0u ? 8.0 : 3.375;
+    float n0 = level(vec2(0.0, q), s);
+    return min(general, level(vec2(0.0, q + t / n0), s));
+}
+
 // Mirror: `edge_level`.
 float edge_level(LodEdge e) {
     uint kind = view.flags & (DYADIC | LATTICE);
     vec4 needs = e.needs[kind == 0u ? 1 : (kind == DYADIC ? 0 : (kind == LATTICE ? 3 : 2))];
     float own = level(e.curve.xy, e.sphere);
-    float a = level(needs.xy, e.sphere_a);
-    float b = level(needs.zw, e.sphere_b);
+    float a = edge_need_level(needs.xy, e.curve.z, e.sphere_a);
+    float b = edge_need_level(needs.zw, e.curve.w, e.sphere_b);
     return max(max(own, a), b);
 }
 
@@ -132,13 +168,40 @@ float quadratic_level(float p, float q, float c, float tol, float mx) {
     return clamp((1.0 + 1.0 / 65536.0) / beta, 1.0, mx);
 }
 
+// Mirror: `cubic_level`.
+float cubic_bound(float p, float q, float c, float t, float a, float b) {
+    float s = a + b;
+    return (p * b + q) * b + c + t * s * s * s;
+}
+
+float cubic_level(float p, float q, float c, float t, float a, float tol, float mx) {
+    if (cubic_bound(p, q, c, t, a, 0.0) >= tol) {
+        return mx;
+    }
+    if (cubic_bound(p, q, c, t, a, a) <= tol) {
+        return clamp(1.0 / a, 1.0, mx);
+    }
+    float b = min(1.0 / quadratic_level(p, q, c, tol, mx), a);
+    for (int it = 0; it < 4; ++it) {
+        float s = a + b;
+        float slope = 2.0 * p * b + q + 3.0 * t * s * s;
+        if (slope <= 0.0) {
+            break;
+        }
+        b -= (cubic_bound(p, q, c, t, a, b) - tol) / slope;
+    }
+    float ts = t * (a + clamp(b, 0.0, a));
+    return quadratic_level(p + ts, q + 2.0 * ts * a, c + ts * a * a, tol, mx);
+}
+
 // Mirror: `tess_side_coefficients`.
 vec3 tess_side_coefficients(float me, float t, float mb) {
     return vec3(0.25 * me, (2.0 / 3.0) * me + t / 3.0, (4.0 / 9.0) * (me + t + mb));
 }
 
 // Mirror: `strip_level`.
-float strip_level(LodRecord r, int e, float a, float tol) {
+// `enough`: the level the caller compares with (the polynomial bound is solved only above it).
+float strip_level(LodRecord r, int e, float a, float tol, float enough) {
     vec3 m = r.second.xyz;
     float k1 = r.chord.z, k2 = r.chord.w;
     float t = twist(r.mixed.xyz, e);
@@ -158,12 +221,22 @@ float strip_level(LodRecord r, int e, float a, float tol) {
         q = LOD_ELEMENT_FACTOR * h * a * t + k1 + 2.0 * k2 * a;
         c = (LOD_ELEMENT_FACTOR * h * h * a * m[e] + k1 + k2 * a) * a;
     }
+    // A polynomial patch (no kinks): 20/27 of these, plus the cubic term.
+    float t3 = r.second.w;
+    bool polynomial = t3 < LOD_HUGE && k1 == 0.0 && k2 == 0.0;
+    float share = LOD_POLYNOMIAL_SHARE;
     float sides = quadratic_level(p, q, c, tol, mx);
+    if (polynomial && sides > enough) {
+        sides = min(sides, cubic_level(share * p, share * q, share * c, t3, a, tol, mx));
+    }
     if (kind == 0u) {
         return sides;
     }
-    float bases = quadratic_level(k2, k1 + 2.0 * k2 * a,
-                                  (LOD_ELEMENT_FACTOR * a * m[e] + k1 + k2 * a) * a, tol, mx);
+    float base = (LOD_ELEMENT_FACTOR * a * m[e] + k1 + k2 * a) * a;
+    float bases = quadratic_level(k2, k1 + 2.0 * k2 * a, base, tol, mx);
+    if (polynomial && bases > enough) {
+        bases = min(bases, cubic_level(0.0, 0.0, share * base, t3, a, tol, mx));
+    }
     return max(sides, bases);
 }
 
@@ -192,7 +265,7 @@ float raise_for_transitions(LodRecord r, vec3 edges, float inner) {
         float need = 0.0;
         for (int e = 0; e < 3; ++e) {
             if (ne[e] < n) {
-                need = max(need, strip_level(r, e, 1.0 / float(ne[e]), tol));
+                need = max(need, strip_level(r, e, 1.0 / float(ne[e]), tol, float(n)));
             }
         }
         if (need <= float(n)) {
@@ -216,7 +289,7 @@ void main() {
             && lod_back_facing(r.cone, r.sphere, view.eye_k.xyz));
     float inner = 0.0;
     if (!culled) {
-        float own = level(own_chord(r), r.sphere);
+        float own = own_level(r);
         inner = max(max(own, edges.x), max(edges.y, edges.z));
         inner = raise_for_transitions(r, edges, inner);
     }

@@ -6,7 +6,10 @@
 //! on both sides of the edge.
 
 pub use super::net::Net;
-use super::{Chord, Sphere, EDGE_FACTOR, EDGE_KINK_FACTOR, ELEMENT_FACTOR, KINK_FACTOR};
+use super::{
+    Chord, Sphere, CUBIC_FACTOR, EDGE_FACTOR, EDGE_KINK_FACTOR, ELEMENT_FACTOR, KINK_FACTOR,
+    QUADRATIC_FACTOR,
+};
 use crate::surface::bounds::{DisplaceBound, Height, Patch, Radial, SurfaceBound};
 use crate::surface::{
     canonical, edge_of, stpn, CornerRecord, Corners, Displace, DisplaceInputs, ElementRecord,
@@ -35,9 +38,27 @@ pub struct Bounds {
     pub kink: Chord,
     /// The cone of the drawn triangles' normals (elements of undisplaced Bézier surfaces only).
     pub cone: Option<super::NormalCone>,
+    /// Where the element's surface is a polynomial of degree at most 3 (`flat`, `phong`, `pn`,
+    /// `stpn` where no displacement moves it), its lattice triangles are also within `max_k M_k / (6N²) +
+    /// cubic / N³` ([`Bounds::element_error`]): `cubic = 4/81 · C̄` ([`Net::third`]; the proof
+    /// is in src/lod/mod.rs, "A polynomial patch"). Infinity elsewhere, and for an edge.
+    pub cubic: f32,
 }
 
 impl Bounds {
+    /// The element's chord error at level `n`: the smaller of [`Bounds::chord`]'s and, for a
+    /// polynomial patch, `max_k M_k / (6n²) + cubic / n³` ([`Bounds::cubic`]). Mirror of what
+    /// `lod::frame::own_level` turns into a level (for the lattice).
+    pub fn element_error(&self, n: f32) -> f32 {
+        let general = self.chord.error(n);
+        if !self.cubic.is_finite() {
+            return general;
+        }
+        let mx = self.second.iter().fold(0.0f32, |a, &b| a.max(b));
+        let x = 1.0 / n;
+        general.min((QUADRATIC_FACTOR * mx + self.cubic * x) * x * x)
+    }
+
     /// A bound of `|D²P[e, e]|` for a parameter vector `e = (du, dv)` of an element, from the
     /// three directions' bounds and the mixed ones: `e = α a + β b` for two lattice directions
     /// `a`, `b` whose sum or difference is the third, so `|Q(e)| <= α² M_a + β² M_b + 2|αβ|
@@ -234,6 +255,14 @@ impl<'a> Lod<'a> {
             (None, Some(net), false) => super::cull::normal_cone(&net, odd_permutation(c.order)),
             _ => None,
         };
+        // A polynomial of degree at most 3 where nothing displaces it: the lattice's own
+        // tighter bound (src/lod/mod.rs, "A polynomial patch").
+        let cubic = match (edge, exact) {
+            (None, Some(net)) if !self.params.moves(self.displace) && net.degree <= 3 => {
+                CUBIC_FACTOR * net.third()
+            }
+            _ => f32::INFINITY,
+        };
         Bounds {
             chord: Chord {
                 c1: kink.c1,
@@ -244,6 +273,7 @@ impl<'a> Lod<'a> {
             mixed: stored_mixed,
             kink,
             cone,
+            cubic,
         }
     }
 

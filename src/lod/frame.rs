@@ -18,10 +18,9 @@
 //! depends on how the driver rounds levels and snaps its boundary ([`Rounding`]).
 #![forbid(unsafe_code)]
 
-use super::bound::second_along;
 use super::bound::Lod;
 use super::levels::{drawn_level, ElementLevels};
-use super::{Bounds, Chord, Frustum, Sphere, View, ELEMENT_FACTOR, RING_DIAGONAL};
+use super::{Bounds, Chord, Frustum, Sphere, View};
 use crate::subdiv::bft::{progress_line, Progress};
 use crate::surface::ElementRecord;
 use bytemuck::{Pod, Zeroable};
@@ -35,7 +34,8 @@ pub const HUGE: f32 = 3.0e38;
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct LodEdge {
-    /// `(c1, c2)` of the edge curve's bound (`zw` unused).
+    /// `(c1, c2)` of the edge curve's bound, then the first and the second element's cubic
+    /// terms ([`Bounds::cubic`], [`HUGE`] where there is none: [`edge_need_level`]).
     pub curve: [f32; 4],
     /// The transition needs ([`strip_need`]) `(c1, c2)` of the first element, then of the
     /// second (the first's again on a boundary), for each [`Rounding`] (`[Rounding::index]`).
@@ -57,7 +57,8 @@ pub struct LodRecord {
     pub cone: [f32; 4],
     /// `(c1, c2)` of its chord bound, then its kink terms per unit segment (`k1`, `k2`).
     pub chord: [f32; 4],
-    /// `M_k` per stored direction (`w` unused).
+    /// `M_k` per stored direction, then the polynomial patch's cubic term
+    /// ([`Bounds::cubic`], [`HUGE`] where there is none).
     pub second: [f32; 4],
     /// `B_k` per stored pair of directions `(k, k + 1)` ([`super::Bounds::mixed`]; `w` unused).
     pub mixed: [f32; 4],
@@ -291,7 +292,7 @@ pub fn lod_records_reporting(
                 sphere: sphere4(&b.sphere),
                 cone,
                 chord: [c1, c2, k1, k2],
-                second: [b.second[0], b.second[1], b.second[2], 0.0].map(clamp_huge),
+                second: [b.second[0], b.second[1], b.second[2], b.cubic].map(clamp_huge),
                 mixed: [b.mixed[0], b.mixed[1], b.mixed[2], 0.0].map(clamp_huge),
                 edges: [LodEdge::zeroed(); 3],
             }
@@ -314,14 +315,17 @@ pub fn lod_records_reporting(
         };
         let (needs_a, sphere_a) = need(&list[0]);
         let (mut needs_b, mut sphere_b) = list.get(1).map_or((needs_a, sphere_a), need);
+        let cubic_a = elements[list[0].0].cubic;
+        let mut cubic_b = list.get(1).map_or(cubic_a, |&(i, _)| elements[i].cubic);
         for extra in list.iter().skip(2) {
             let (c, s) = need(extra);
             needs_b = [0, 1, 2, 3].map(|k| needs_b[k].max(c[k]));
             sphere_b = enclosing(sphere_b, s);
+            cubic_b = cubic_b.max(elements[extra.0].cubic);
         }
         let [ec1, ec2] = chord2(edge.chord);
         let slot = LodEdge {
-            curve: [ec1, ec2, 0.0, 0.0],
+            curve: [ec1, ec2, cubic_a, cubic_b].map(clamp_huge),
             needs: [0, 1, 2, 3].map(|k| {
                 let ([a1, a2], [b1, b2]) = (chord2(needs_a[k]), chord2(needs_b[k]));
                 [a1, a2, b1, b2]
@@ -362,9 +366,25 @@ fn level(v: &LodView, c: [f32; 2], s: [f32; 4]) -> f32 {
 fn edge_level(v: &LodView, e: &LodEdge) -> f32 {
     let needs = e.needs[v.rounding().index()];
     let own = curve_level(v, e);
-    let a = level(v, [needs[0], needs[1]], e.sphere_a);
-    let b = level(v, [needs[2], needs[3]], e.sphere_b);
+    let a = edge_need_level(v, [needs[0], needs[1]], e.curve[2], e.sphere_a);
+    let b = edge_need_level(v, [needs[2], needs[3]], e.curve[3], e.sphere_b);
     own.max(a).max(b)
+}
+
+/// The level an edge needs for one element's transition triangles ([`strip_need`]'s chord
+/// `need` inside the element's sphere `s`): that of the chord or, where the element is a
+/// polynomial patch (its cubic term `t` finite), the smaller level of its tighter bound
+/// (src/lod/frame/transitions.rs, "Polynomial patches"). Mirror: `edge_need_level` in
+/// glsl/lod/levels.comp.
+pub fn edge_need_level(v: &LodView, need: [f32; 2], t: f32, s: [f32; 4]) -> f32 {
+    let general = level(v, need, s);
+    if t >= HUGE || need[0] != 0.0 || need[1] >= HUGE {
+        return general;
+    }
+    let q = need[1] * transitions::POLYNOMIAL_SHARE;
+    let t = t * transitions::need_extent_cubed(v.rounding());
+    let n0 = level(v, [0.0, q], s);
+    general.min(level(v, [0.0, q + t / n0], s))
 }
 
 /// The continuous level an edge's own curve needs (no transitions).
@@ -410,49 +430,13 @@ pub fn element_levels(v: &LodView, r: &LodRecord) -> ElementLevels {
     if culled {
         return ElementLevels { edges, inner: 0.0 };
     }
-    let own = level(v, own_chord(v, r), r.sphere);
+    let own = own_level(v, r);
     let inner = own.max(edges[0]).max(edges[1]).max(edges[2]);
     ElementLevels {
         edges,
         inner: raise_for_transitions(v, r, &edges, inner),
     }
 }
-
-/// Element `r`'s own chord bound `(c1, c2)` as `v`'s driver draws its inside: the lattice
-/// triangles' (`LodRecord::chord`) for the pattern and static drivers; for the tessellator,
-/// whose rings' triangles have sides `(2/3)(d_a − d_b)/N` besides the lattice's
-/// ([`super::RING_DIAGONAL`]), `c2` takes the largest of those sides' second-derivative bounds
-/// where it exceeds the directions' own, and the height map's kink terms count at those sides'
-/// texel extent (up to 4/3 of a lattice side's in each family of texel lines). Mirror:
-/// `own_chord` in glsl/lod/levels.comp.
-pub fn own_chord(v: &LodView, r: &LodRecord) -> [f32; 2] {
-    let [c1, c2] = [r.chord[0], r.chord[1]];
-    if !v.rounding().tessellator() || c1 >= HUGE || c2 >= HUGE {
-        return [c1, c2];
-    }
-    let m = [r.second[0], r.second[1], r.second[2]];
-    let b = [r.mixed[0], r.mixed[1], r.mixed[2]];
-    let mx = m[0].max(m[1]).max(m[2]);
-    if mx >= HUGE {
-        return [c1, c2];
-    }
-    let ring = RING_SIDES
-        .iter()
-        .map(|&e| second_along(m, b, e))
-        .fold(0.0f32, f32::max)
-        * RING_DIAGONAL;
-    // The kink terms (`chord[2..]`, per unit segment) at the diagonals' texel extent, 4/3 of a
-    // lattice side's: `c1` takes a third more of `k1`, `c2` 7/9 more of `k2`.
-    let (k1, k2) = (r.chord[2], r.chord[3]);
-    [
-        c1 + k1 / 3.0,
-        c2 + ELEMENT_FACTOR * (ring - mx).max(0.0) + (7.0 / 9.0) * k2,
-    ]
-}
-
-/// The tessellator's ring diagonals `d_a − d_b` as `(du, dv)`, before [`RING_DIAGONAL`]'s
-/// scale: `d0 − d2`, `d0 − d1`, `d1 − d2`.
-const RING_SIDES: [[f32; 2]; 3] = [[1.0, 1.0], [2.0, -1.0], [-1.0, 2.0]];
 
 /// The smallest level that, given to every element, meets `view`'s pixel error on every
 /// element `levels` draws (up to the largest level): each element's own need and its edges'
@@ -471,7 +455,7 @@ pub fn uniform_level(view: &LodView, records: &[LodRecord], levels: &[ElementLev
 /// The level element `r`'s own bounds need, its chord's and its edges' curves', without the
 /// transitions to coarser edges (what a uniform frame draws).
 fn own_need(view: &LodView, r: &LodRecord) -> f32 {
-    let own = level(view, own_chord(view, r), r.sphere);
+    let own = own_level(view, r);
     (r.edges.iter())
         .map(|e| curve_level(view, e))
         .fold(own, f32::max)
@@ -576,6 +560,8 @@ pub use super::report::LevelStats;
 
 mod cores;
 use cores::on_every_core;
+mod inside;
+pub use inside::{own_chord, own_error, own_level};
 pub mod transitions;
 use transitions::raise_for_transitions;
 pub use transitions::strip_need;

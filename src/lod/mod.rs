@@ -46,6 +46,29 @@
 //! between the lines (a bilinear cell's twist) counting at half its supremum as above
 //! ([`KINK_FACTOR`]).
 //!
+//! *A polynomial patch.* Where the surface is a polynomial of degree at most 3 (undisplaced
+//! `flat`, `phong`, `pn`, `stpn`), a tighter bound holds. Take `x` in a lattice triangle with
+//! corners `v_i`, weights `λ_i`, and `w_i = v_i − x`. Taylor's expansion at `x` stops at the
+//! third order (`D³P` is constant): `P(v_i) = P(x) + DP(x) w_i + ½ D²P(x)[w_i, w_i] +
+//! (1/6) D³P[w_i, w_i, w_i]`. As `Σ λ_i w_i = 0` and `Σ λ_i w_i ⊗ w_i = Σ_{i<j} λ_i λ_j
+//! e_ij ⊗ e_ij` (`e_ij = v_i − v_j`, a lattice side `±d_k / N`),
+//! `I P(x) − P(x) = ½ Σ_{i<j} λ_i λ_j D²P(x)[e_ij, e_ij] + (1/6) Σ_i λ_i D³P[w_i, w_i, w_i]`.
+//! The first part is at most `½ (λ0 λ1 + λ1 λ2 + λ2 λ0) max_k M_k / N² <= max_k M_k / (6N²)`
+//! (the sum is at most 1/3, at the centroid). For the second, `w_i = Σ_{j≠i} λ_j e_ij` has
+//! lattice coordinates whose absolute values sum to `1 − λ_i`, so `|D³P[w_i, w_i, w_i]| <=
+//! C̄ (1 − λ_i)³ / N³` with `C̄` bounding `|D³P|` on any three lattice directions
+//! ([`Net::third`]), and `Σ λ_i (1 − λ_i)³ <= 8/27` (at the centroid). So the lattice
+//! triangles are within `max_k M_k / (6N²) + 4 C̄ / (81 N³)` ([`QUADRATIC_FACTOR`],
+//! [`CUBIC_FACTOR`], [`Bounds::cubic`]): the quadratic term is 20/27 of the general one's, and
+//! Phong's quadratic has no cubic term. Each element takes the smaller of the two bounds
+//! (`lod::frame::own_level`). The cubic term is turned into a level without solving a cubic:
+//! with `N0` the level of the quadratic term alone, the level `N1` of
+//! `c2 = max_k M_k / 6 + 4 C̄ / (81 N0)` is at least `N0`, so at `N1` the cubic term is at most
+//! `4 C̄ / (81 N0 N1²)` and both terms together at most `c2 / N1²`. The tessellator's triangles
+//! (below) take the same identity with their own sides: `max(max_k M_k, R) / 6` and, their
+//! sides spanning up to `4/3` of a lattice side in lattice coordinates (the diagonals), `(4/3)³`
+//! times the cubic term ([`TESS_CUBIC`]).
+//!
 //! *The tessellator's inside.* The tess driver's inside is the tessellator's, not the lattice:
 //! with equal spacing at level `N`, concentric rings of `N, N − 2, ...` segments a side
 //! (src/render/tess.rs), each vertex at barycentric coordinates `K/(3N)` with integers `K`.
@@ -162,6 +185,16 @@ use glam::Vec3;
 
 /// `c2` of an element from its per-direction second-derivative bounds: `9/40 · max_k M_k`.
 pub const ELEMENT_FACTOR: f32 = 9.0 / 40.0;
+/// The quadratic term of a polynomial patch's lattice triangles: `max_k M_k / 6` over `N²`
+/// (module notes, "A polynomial patch"). Mirror: `LOD_QUADRATIC_FACTOR`.
+pub const QUADRATIC_FACTOR: f32 = 1.0 / 6.0;
+/// The cubic term's factor on the third differences' bound `C̄` ([`Net::third`]): `(1/6) ·
+/// max Σ λ_i (1 − λ_i)³ = (1/6)(8/27) = 4/81` (module notes, "A polynomial patch").
+pub const CUBIC_FACTOR: f32 = 4.0 / 81.0;
+/// The cubic term of the tessellator's triangles against the lattice's: `(4/3)³`, their
+/// sides spanning up to `4/3` of a lattice side in lattice directions (the diagonals
+/// `(2/3)(d_a − d_b)`). Mirror: `LOD_TESS_CUBIC`.
+pub const TESS_CUBIC: f32 = 64.0 / 27.0;
 /// The scale of the tessellator's ring diagonals `(2/3)(d_a − d_b)` in `|Q|`: `(2/3)²` (module
 /// notes, "The tessellator's inside"). Mirror: `LOD_RING_DIAGONAL`.
 pub const RING_DIAGONAL: f32 = 4.0 / 9.0;
@@ -312,11 +345,26 @@ impl View {
         }
     }
 
+    /// The continuous level of an element's lattice triangles: that of its chord bound or, for
+    /// a polynomial patch ([`Bounds::cubic`]), the smaller level `N1` of `max_k M_k / 6 +
+    /// cubic / N0`, `N0` the level of the quadratic term alone (module notes, "A polynomial
+    /// patch"). The level pass's own, written on its records: `lod::frame::own_level`.
+    pub fn element_level(&self, b: &Bounds) -> f32 {
+        let general = self.level(&b.chord, &b.sphere);
+        if !b.cubic.is_finite() {
+            return general;
+        }
+        let q = QUADRATIC_FACTOR * b.second.iter().fold(0.0f32, |a, &m| a.max(m));
+        let n0 = self.level(&Chord { c1: 0.0, c2: q }, &b.sphere);
+        let c2 = q + b.cubic / n0;
+        general.min(self.level(&Chord { c1: 0.0, c2 }, &b.sphere))
+    }
+
     /// The levels of an element and its three edges (stored edge order): each edge's own, and the
-    /// element's inner level at least the largest of them.
+    /// element's inner level ([`View::element_level`]) at least the largest of them.
     pub fn levels(&self, element: &Bounds, edges: &[Bounds; 3]) -> ([f32; 3], f32) {
         let e = edges.each_ref().map(|b| self.level(&b.chord, &b.sphere));
-        let inner = self.level(&element.chord, &element.sphere);
+        let inner = self.element_level(element);
         (e, inner.max(e[0]).max(e[1]).max(e[2]))
     }
 }

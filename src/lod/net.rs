@@ -99,6 +99,45 @@ impl Net {
         (m * (m - 1)) as f32 * best
     }
 
+    /// `C̄ >= |D³P[d_a, d_b, d_c]|` for every three lattice directions of the patch (any of
+    /// `d0`, `d1`, `d2`, repeated or not): `m(m − 1)(m − 2) · max |Δ_a Δ_b Δ_c b_γ|` over the
+    /// net's third differences (the proof of [`Net::mixed`], one order up: a convex combination
+    /// of them; for a cubic one term each, the exact constant third derivative). Zero below
+    /// degree 3. What [`super::CUBIC_FACTOR`] turns into the lattice's cubic term.
+    pub fn third(&self) -> f32 {
+        let m = self.degree;
+        if m < 3 {
+            return 0.0;
+        }
+        let mut best = 0.0f32;
+        for g in Self::multi(m - 3) {
+            for a in 0..3 {
+                for b in a..3 {
+                    for c in b..3 {
+                        // Δ_k b_γ = b_{γ+e_{k+1}} − b_{γ+e_k}, applied three times: eight
+                        // signed points.
+                        let mut sum = Vec3::ZERO;
+                        for bits in 0..8u32 {
+                            let mut w = g;
+                            let mut sign = 1.0f32;
+                            for (i, &k) in [a, b, c].iter().enumerate() {
+                                if bits >> i & 1 == 1 {
+                                    w[(k + 1) % 3] += 1;
+                                } else {
+                                    w[k] += 1;
+                                    sign = -sign;
+                                }
+                            }
+                            sum += self.at(w) * sign;
+                        }
+                        best = best.max(sum.length());
+                    }
+                }
+            }
+        }
+        (m * (m - 1) * (m - 2)) as f32 * best
+    }
+
     /// `sup |DP[d_k]|`: `m · max |Δ_k b|` (restricted to the edge with `edge = Some(k)`).
     pub fn first(&self, k: usize, edge: Option<usize>) -> f32 {
         let m = self.degree;
@@ -627,5 +666,50 @@ mod tests {
             lowest < 0.999,
             "the samples alone never fall short: {lowest}"
         );
+    }
+
+    /// `third` is the largest third directional derivative along any three lattice directions:
+    /// on random cubics, the third finite differences of the evaluated patch (exact for a cubic
+    /// but for rounding) over every choice of directions reach it and never pass it; zero below
+    /// degree 3.
+    #[test]
+    fn third_is_the_largest_third_derivative() {
+        let mut rng = Rng(0x5eed_cafe);
+        let dirs = [[-1.0f32, 1.0, 0.0], [0.0, -1.0, 1.0], [1.0, 0.0, -1.0]];
+        for _ in 0..40 {
+            let points = [0; 10].map(|_| rng.vec());
+            let net = Net { degree: 3, points };
+            let h = 0.1f32;
+            let mut best = 0.0f32;
+            for a in 0..3 {
+                for b in 0..3 {
+                    for c in 0..3 {
+                        // Δ_a Δ_b Δ_c P at the centroid, step h: eight evaluations.
+                        let mut sum = Vec3::ZERO;
+                        for bits in 0..8u32 {
+                            let mut w = [1.0f32 / 3.0; 3];
+                            let mut sign = -1.0f32;
+                            for (i, &k) in [a, b, c].iter().enumerate() {
+                                if bits >> i & 1 == 1 {
+                                    (0..3).for_each(|j| w[j] += h * dirs[k][j]);
+                                    sign = -sign;
+                                }
+                            }
+                            sum += net.eval(w) * sign;
+                        }
+                        best = best.max(sum.length() / (h * h * h));
+                    }
+                }
+            }
+            let third = net.third();
+            assert!(
+                best <= third * 1.002 && best >= third * 0.998,
+                "sampled {best}, bound {third}"
+            );
+        }
+        for degree in 1..3 {
+            let points = [0; 10].map(|_| rng.vec());
+            assert_eq!(Net { degree, points }.third(), 0.0);
+        }
     }
 }

@@ -76,6 +76,7 @@ fn finish(lod: &Lod, m: [f32; 3], b: Option<[f32; 3]>, factor: f32, points: &[Ve
         },
         kink: Chord::ZERO,
         cone: None,
+        cubic: f32::INFINITY,
     }
 }
 

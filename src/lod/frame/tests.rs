@@ -533,3 +533,50 @@ fn tess_snapped_transitions_meet_their_bound() {
     }
     assert_eq!(checked, forms.len() * 9);
 }
+
+/// A polynomial patch's level (`own_level`, from `N0` the quadratic term's level without
+/// solving the cubic): for spot's `pn` and `phong` elements seen from near to far, with every
+/// rounding, the level meets the bound it comes from (`own_error` within the tolerance, unless
+/// capped at the largest level), never exceeds the general bound's level, and is lower on most
+/// elements close up; `pn` with displacement has no polynomial bound and keeps the general one.
+#[test]
+fn polynomial_levels_meet_their_bound() {
+    let (mesh, recs) = spot();
+    let r = mesh.bounding_radius();
+    let params = SurfaceParams::for_radius(r);
+    let (mut checked, mut lower) = (0, 0);
+    for (surface, displace) in [
+        (Surface::Pn, Displace::None),
+        (Surface::Phong, Displace::None),
+        (Surface::Pn, Displace::Sine),
+    ] {
+        let lod = Lod::of(surface, displace, &params, &Sources::default());
+        let lr = lod_records(&lod, &recs);
+        let polynomial = displace == Displace::None;
+        for rounding in Rounding::ALL {
+            for d in [1.05f32, 1.5, 3.0, 12.0, 80.0] {
+                let view = view_at(Vec3::new(0.2, 0.3, d * r), 64);
+                let v = LodView::new(&view, None, false, rounding, lr.len() as u32);
+                for rec in &lr {
+                    assert_eq!(rec.second[3] < HUGE, polynomial);
+                    let n = own_level(&v, rec);
+                    let general = level(&v, own_chord(&v, rec), rec.sphere);
+                    assert!((1.0..=general).contains(&n), "{n} vs {general}");
+                    if n < 64.0 {
+                        let (err, tol) = (own_error(&v, rec, n), tolerance(&v, rec.sphere));
+                        assert!(err <= tol * (1.0 + 1e-4), "{err} above {tol} at level {n}");
+                    }
+                    if d <= 3.0 && n < general && general < 64.0 {
+                        lower += 1;
+                    }
+                    checked += 1;
+                }
+            }
+        }
+    }
+    assert_eq!(checked, 3 * 4 * 5 * recs.len());
+    assert!(
+        lower > 2 * 4 * 3 * recs.len() / 2,
+        "{lower} of {checked} lower"
+    );
+}

@@ -106,10 +106,25 @@
 //! drivers' transitions cheap: their edges need about the level their elements' insides need
 //! along them (`M_e`), where a floor's corners need it across the whole element (`M_c`) and its
 //! sides twice the move. On Spot as `pn` close up at 1 px (the test
-//! `pixel_error_holds_end_to_end`) the transitions then cost about a tenth more triangles than
+//! `pixel_error_holds_end_to_end`) the transitions then cost about a third more triangles than
 //! levels that ignore them on the pattern driver, half as many again beside the tessellator's
-//! first ring (whose vertices sit between the lattice's), and 3.6 times as many with the
+//! first ring (whose vertices sit between the lattice's), and 3.7 times as many with the
 //! tessellator's own transitions at integer levels.
+//!
+//! # Polynomial patches
+//! Where the element is a polynomial of degree at most 3 (its cubic term `T` finite,
+//! [`Bounds::cubic`]), a triangle of its domain whose sides span at most `H` in lattice
+//! coordinates is within `(1/6) · max |Q(side)| + T H³`: the identity of src/lod/mod.rs, "A
+//! polynomial patch", holds for any triangle, and there `w_i = Σ_{j≠i} λ_j e_ij` has lattice
+//! coordinates summing to at most `(1 − λ_i) H`. So every bound above holds with `9/40`
+//! replaced by `1/6` ([`POLYNOMIAL_SHARE`] of it) plus `T H³`, the sides' extent `H <= a_e + β`
+//! as for the kink terms (which such a patch has none of). Step 1's share, at `β <= λ a_e`,
+//! adds `T (1 + λ)³ a_e³` ([`need_extent_cubed`]), turned into a level as the element's own
+//! cubic term is (`super::edge_need_level`); step 2 adds `T (a_e + β)³`, solved to within
+//! rounding by Newton's steps (`cubic_level`), as step 1's share, met at `β = λ a_e`, has it
+//! met there: a conservative estimate would raise inner levels that need no raise, and
+//! gliding levels would jump. Each level is the smaller of the general bound's and this
+//! one's.
 //!
 //! Interior lattice triangles meet `τ` at the element's own level. Where a level is capped at
 //! the maximum, or a bound is infinite, nothing is promised (as for the levels themselves).
@@ -166,6 +181,21 @@ pub fn strip_need(b: &Bounds, e: usize, rounding: Rounding) -> Chord {
     }
 }
 
+/// What a polynomial patch's quadratic term is of the general bound's: `(1/6) / (9/40) =
+/// 20/27` (module notes, "Polynomial patches"). Mirror: `LOD_POLYNOMIAL_SHARE`.
+pub const POLYNOMIAL_SHARE: f32 = 20.0 / 27.0;
+
+/// `(1 + λ)³`: the cube of the extent of the transition triangles' sides, over `a_e`, that
+/// [`strip_need`] allows for (`β <= λ a_e`; module notes, "Polynomial patches"). Mirror: in
+/// `edge_need_level`, glsl/lod/levels.comp.
+pub fn need_extent_cubed(rounding: Rounding) -> f32 {
+    if rounding == Rounding::Integer {
+        8.0
+    } else {
+        3.375
+    }
+}
+
 /// The transition sides' bound beside the tessellator's first ring ([`Rounding::TessSnapped`],
 /// module notes), `S_e = c_aa a² + c_ab a β + c_bb β²` along an edge drawn at `a = 1/n_e` beside
 /// an inside at `β = 1/n`, as `[c_aa, c_ab, c_bb] = [M_e/4, 2/3 M_e + T_e/3, 4/9 (M_e + T_e +
@@ -208,8 +238,10 @@ fn quadratic_level(p: f32, q: f32, c: f32, tol: f32, max: f32) -> f32 {
 
 /// The smallest inner level at which the transition triangles along stored edge `e`, drawn at
 /// `a = 1/n_e`, meet tolerance `tol` (module notes, step 2), or the maximum level where none
-/// does. Mirror: `strip_level` in glsl/lod/levels.comp.
-fn strip_level(v: &LodView, r: &LodRecord, e: usize, a: f32, tol: f32) -> f32 {
+/// does. A polynomial patch's own bound is solved only where the general one needs more than
+/// `enough` (the level the caller compares with): whether the answer is above `enough` does
+/// not change. Mirror: `strip_level` in glsl/lod/levels.comp.
+fn strip_level(v: &LodView, r: &LodRecord, e: usize, a: f32, tol: f32, enough: f32) -> f32 {
     let m = r.second;
     let (k1, k2) = (r.chord[2], r.chord[3]);
     let t = twist(&r.mixed, e);
@@ -233,20 +265,70 @@ fn strip_level(v: &LodView, r: &LodRecord, e: usize, a: f32, tol: f32) -> f32 {
             (ELEMENT_FACTOR * h * h * a * m[e] + k1 + k2 * a) * a,
         )
     };
-    let sides = quadratic_level(p, q, c, tol, max);
+    // A polynomial patch (no kinks): its quadratic term is 20/27 of these, plus the cubic term.
+    let t3 = m[3];
+    let polynomial = t3 < HUGE && k1 == 0.0 && k2 == 0.0;
+    let share = POLYNOMIAL_SHARE;
+    let mut sides = quadratic_level(p, q, c, tol, max);
+    if polynomial && sides > enough {
+        sides = sides.min(cubic_level(
+            share * p,
+            share * q,
+            share * c,
+            t3,
+            a,
+            tol,
+            max,
+        ));
+    }
     if !rounding.snapped() {
         // The bases' a² M_e is S_e's own first term.
         return sides;
     }
-    let bases = quadratic_level(
-        k2,
-        k1 + 2.0 * k2 * a,
-        (ELEMENT_FACTOR * a * m[e] + k1 + k2 * a) * a,
-        tol,
-        max,
-    );
+    let base = (ELEMENT_FACTOR * a * m[e] + k1 + k2 * a) * a;
+    let mut bases = quadratic_level(k2, k1 + 2.0 * k2 * a, base, tol, max);
+    if polynomial && bases > enough {
+        bases = bases.min(cubic_level(0.0, 0.0, share * base, t3, a, tol, max));
+    }
     sides.max(bases)
 }
+
+/// The smallest level `1/β` at which a polynomial patch's transition triangles along an edge
+/// drawn coarser than the inside (`β < a`), quadratic term `p β² + q β + c` and cubic term
+/// `t (a + β)³` (their sides' extent at most `a + β`), meet `tol` (module notes, "Polynomial
+/// patches"): `1/a` (the edge's own level) where `β = a` fits, the maximum where `β = 0` does
+/// not. Else the whole bound `f(β)` is convex and rising on `[0, a]`, so Newton's steps from the
+/// quadratic term's own solution (at most `a`), which lies at or beyond the root `β*`, stay at
+/// or beyond it ([`CUBIC_STEPS`] of them, within rounding of it); with `b` the last,
+/// `t (a + β)³ <= t (a + b)(a + β)²` for every `β <= b`, a quadratic again, whose solution is at
+/// most `β*` (there the quadratic is at least `f(β*) = tol`) and so at most `b`. Mirror:
+/// `cubic_level` in glsl/lod/levels.comp.
+fn cubic_level(p: f32, q: f32, c: f32, t: f32, a: f32, tol: f32, max: f32) -> f32 {
+    let bound = |b: f32| {
+        let s = a + b;
+        (p * b + q) * b + c + t * s * s * s
+    };
+    if bound(0.0) >= tol {
+        return max;
+    }
+    if bound(a) <= tol {
+        return (1.0 / a).clamp(1.0, max);
+    }
+    let mut b = (1.0 / quadratic_level(p, q, c, tol, max)).min(a);
+    for _ in 0..CUBIC_STEPS {
+        let s = a + b;
+        let slope = 2.0 * p * b + q + 3.0 * t * s * s;
+        if slope <= 0.0 {
+            break;
+        }
+        b -= (bound(b) - tol) / slope;
+    }
+    let ts = t * (a + b.clamp(0.0, a));
+    quadratic_level(p + ts, q + 2.0 * ts * a, c + ts * a * a, tol, max)
+}
+
+/// Newton's steps of [`cubic_level`].
+const CUBIC_STEPS: u32 = 4;
 
 /// Whether element `r`, drawn at the largest level with its edges at `edges` (continuous, as
 /// `v` chose them), leaves the transition triangles along a coarser edge short of its
@@ -260,7 +342,7 @@ pub fn transitions_beyond(v: &LodView, r: &LodRecord, edges: &[f32; 3]) -> bool 
     };
     edges.iter().enumerate().any(|(e, &l)| {
         let ne = drawn_level(l, dyadic, max);
-        ne < max && strip_level(&free, r, e, 1.0 / ne as f32, tol) > max as f32
+        ne < max && strip_level(&free, r, e, 1.0 / ne as f32, tol, max as f32) > max as f32
     })
 }
 
@@ -284,7 +366,7 @@ pub fn raise_for_transitions(v: &LodView, r: &LodRecord, edges: &[f32; 3], inner
         let mut need = 0.0f32;
         for (e, &ne) in drawn_edges.iter().enumerate() {
             if ne < n {
-                need = need.max(strip_level(v, r, e, 1.0 / ne as f32, tol));
+                need = need.max(strip_level(v, r, e, 1.0 / ne as f32, tol, n as f32));
             }
         }
         if need <= n as f32 {

@@ -96,20 +96,27 @@ impl Case<'_> {
         Lod::new(&self.mirror(), &self.params)
     }
 
+    /// The largest distance between the surface and the flat triangle through its points at
+    /// weights `b` (of the element's corners), sampled densely over the triangle.
+    fn triangle_error(&self, rec: &ElementRecord, b: [[f32; 3]; 3]) -> f32 {
+        let p = b.map(|b| self.at(rec, b));
+        let mut worst = 0.0f32;
+        for c in 0..=R {
+            for a in 0..=R - c {
+                let l = [(R - a - c) as f32, a as f32, c as f32].map(|x| x / R as f32);
+                let lin = p[0] * l[0] + p[1] * l[1] + p[2] * l[2];
+                worst = worst.max((self.at(rec, mix(b, l)) - lin).length());
+            }
+        }
+        worst
+    }
+
     /// The true largest distance between the surface and its interpolation at level `n`, over
     /// the element (dense samples of every lattice triangle) and along each stored edge.
     fn true_error(&self, rec: &ElementRecord, n: u32) -> (f32, [f32; 3]) {
         let mut inner = 0.0f32;
         for t in lattice_triangles(n) {
-            let b = t.map(|(i, j)| lattice_bary(n, i, j));
-            let p = b.map(|b| self.at(rec, b));
-            for c in 0..=R {
-                for a in 0..=R - c {
-                    let l = [(R - a - c) as f32, a as f32, c as f32].map(|x| x / R as f32);
-                    let lin = p[0] * l[0] + p[1] * l[1] + p[2] * l[2];
-                    inner = inner.max((self.at(rec, mix(b, l)) - lin).length());
-                }
-            }
+            inner = inner.max(self.triangle_error(rec, t.map(|(i, j)| lattice_bary(n, i, j))));
         }
         let mut edges = [0.0f32; 3];
         for (e, out) in edges.iter_mut().enumerate() {
@@ -162,7 +169,7 @@ impl Case<'_> {
             let eb = [0, 1, 2].map(|e| lod.edge(rec, e));
             for &n in levels {
                 let (inner, edges) = self.true_error(rec, n);
-                let bound = b.chord.error(n as f32) * shrink;
+                let bound = b.element_error(n as f32) * shrink;
                 assert!(
                     inner <= bound + slack,
                     "{what}: element {ix} at level {n}: true chord error {inner} above the bound {bound}"
