@@ -88,6 +88,11 @@ vec2 own_chord(LodRecord r) {
     return vec2(c.x + k1 / 3.0, c.y + LOD_ELEMENT_FACTOR * max(ring - mx, 0.0) + (7.0 / 9.0) * k2);
 }
 
+// Mirror: `glide_factor` (src/lod/frame/inside.rs).
+float glide_factor() {
+    return (view.flags & DYADIC) != 0u ? 2.0 : 1.0;
+}
+
 // Mirror: `own_level` (a polynomial patch's tighter bound, src/lod/mod.rs).
 float own_level(LodRecord r) {
     float general = level(own_chord(r), r.sphere);
@@ -107,7 +112,7 @@ float own_level(LodRecord r) {
     }
     q *= LOD_QUADRATIC_FACTOR;
     float n0 = level(vec2(0.0, q), r.sphere);
-    float n1 = level(vec2(0.0, q + t / n0), r.sphere);
+    float n1 = level(vec2(0.0, q + glide_factor() * t / n0), r.sphere);
     return min(general, n1);
 }
 
@@ -121,7 +126,7 @@ float edge_need_level(vec2 need, float t, vec4 s) {
     // (1 + lambda)^3: `need_extent_cubed`.
     t *= (view.flags & (DYADIC | LATTICE)) == 0u ? 8.0 : 3.375;
     float n0 = level(vec2(0.0, q), s);
-    return min(general, level(vec2(0.0, q + t / n0), s));
+    return min(general, level(vec2(0.0, q + glide_factor() * t / n0), s));
 }
 
 // Mirror: `edge_level`.

@@ -155,8 +155,8 @@ pub fn check(cli: &Cli, given: &Given) -> Result<()> {
 pub const PATTERN_MAX_LEVEL: u32 = 64;
 
 /// The pixel error `render` and `view` draw at when neither `--pixel-error` nor `--level` is
-/// given (the window's too): the bounds are one and a half to three times the true chord error
-/// on most surfaces (docs/adaptivity.md), so 1 px draws within about 0.55 to 0.7 px, which
+/// given (the window's too): the bounds are 1.3 to 3.6 times the true chord error on most
+/// surfaces (docs/adaptivity.md), so 1 px draws within about 0.55 to 0.7 px, which
 /// looks right, at half the triangles of 0.5 px.
 pub const DEFAULT_PIXEL_ERROR: f32 = meshrefine::app::DEFAULT_PIXEL_ERROR;
 

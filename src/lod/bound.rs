@@ -71,7 +71,10 @@ impl Bounds {
     /// weights of corners 1 and 2): what the transition triangles between an element's inner
     /// level and its edges' levels need. `9/40 · max` over its sides of [`Bounds::second_along`],
     /// plus the kink terms at the size `h = max (|du| + |dv|)` of its sides (a side's texel
-    /// extent is at most `h` times the lattice directions' largest). Element bounds only.
+    /// extent is at most `h` times the lattice directions' largest, and `h` bounds its extent in
+    /// lattice directions: `(du, dv) = du d0 − dv d2`); for a polynomial patch the smaller of
+    /// that and `max / 6 + cubic · h³` (src/lod/frame/transitions.rs, "Polynomial patches").
+    /// Element bounds only.
     pub fn triangle_error(&self, uv: [[f32; 2]; 3]) -> f32 {
         let (mut q, mut h) = (0.0f32, 0.0f32);
         for i in 0..3 {
@@ -80,7 +83,11 @@ impl Bounds {
             q = q.max(self.second_along(e));
             h = h.max(e[0].abs() + e[1].abs());
         }
-        ELEMENT_FACTOR * q + (self.kink.c1 + self.kink.c2 * h) * h
+        let general = ELEMENT_FACTOR * q + (self.kink.c1 + self.kink.c2 * h) * h;
+        if !self.cubic.is_finite() {
+            return general;
+        }
+        general.min(QUADRATIC_FACTOR * q + self.cubic * h * h * h)
     }
 }
 

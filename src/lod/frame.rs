@@ -384,7 +384,7 @@ pub fn edge_need_level(v: &LodView, need: [f32; 2], t: f32, s: [f32; 4]) -> f32 
     let q = need[1] * transitions::POLYNOMIAL_SHARE;
     let t = t * transitions::need_extent_cubed(v.rounding());
     let n0 = level(v, [0.0, q], s);
-    general.min(level(v, [0.0, q + t / n0], s))
+    general.min(level(v, [0.0, q + inside::glide_factor(v) * t / n0], s))
 }
 
 /// The continuous level an edge's own curve needs (no transitions).
@@ -445,6 +445,11 @@ pub fn element_levels(v: &LodView, r: &LodRecord) -> ElementLevels {
 /// frame draws; 1 when none is drawn.
 pub fn uniform_level(view: &LodView, records: &[LodRecord], levels: &[ElementLevels]) -> u32 {
     let max = view.max_level;
+    // A uniform frame does not glide: its levels are those of the integer rounding.
+    let view = &LodView {
+        flags: view.flags & !DYADIC,
+        ..*view
+    };
     (records.iter().zip(levels))
         .filter(|(_, l)| !l.culled())
         .map(|(r, _)| drawn_level(own_need(view, r), false, max))

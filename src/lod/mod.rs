@@ -64,7 +64,12 @@
 //! (`lod::frame::own_level`). The cubic term is turned into a level without solving a cubic:
 //! with `N0` the level of the quadratic term alone, the level `N1` of
 //! `c2 = max_k M_k / 6 + 4 C̄ / (81 N0)` is at least `N0`, so at `N1` the cubic term is at most
-//! `4 C̄ / (81 N0 N1²)` and both terms together at most `c2 / N1²`. The tessellator's triangles
+//! `4 C̄ / (81 N0 N1²)` and both terms together at most `c2 / N1²`. Where the driver glides, a
+//! geomorphing element drawn at the power of two `n` (`n/2 < N1 <= n`) blends from level `n/2`
+//! with a factor that assumes an error of the form `c2 / N²` at both (docs/adaptivity.md,
+//! "Geomorphing"); there `c2` takes `2 · 4 C̄ / (81 N0)`, which bounds the cubic term at every
+//! level from `N0 / 2` up (`lod::frame::own_level`; without it the blend passed the tolerance
+//! by 1 % on Spot, `polynomial_levels_meet_their_bound`). The tessellator's triangles
 //! (below) take the same identity with their own sides: `max(max_k M_k, R) / 6` and, their
 //! sides spanning up to `4/3` of a lattice side in lattice coordinates (the diagonals), `(4/3)³`
 //! times the cubic term ([`TESS_CUBIC`]).
@@ -348,7 +353,8 @@ impl View {
     /// The continuous level of an element's lattice triangles: that of its chord bound or, for
     /// a polynomial patch ([`Bounds::cubic`]), the smaller level `N1` of `max_k M_k / 6 +
     /// cubic / N0`, `N0` the level of the quadratic term alone (module notes, "A polynomial
-    /// patch"). The level pass's own, written on its records: `lod::frame::own_level`.
+    /// patch"), at integer levels. The level pass's own, written on its records:
+    /// `lod::frame::own_level`.
     pub fn element_level(&self, b: &Bounds) -> f32 {
         let general = self.level(&b.chord, &b.sphere);
         if !b.cubic.is_finite() {

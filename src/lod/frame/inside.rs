@@ -54,16 +54,30 @@ fn ring_second(r: &LodRecord) -> f32 {
 /// [`own_chord`], or, for a polynomial patch (a finite cubic term in `second[3]`), the smaller
 /// level of its tighter bound `Q / N² + T / N³`, with `Q = max_k M_k / 6` and `T` the cubic
 /// term (for the tessellator `Q = max(max_k M_k, R) / 6` over its ring diagonals too and `T`
-/// times [`TESS_CUBIC`]): the level `N1` of `Q + T / N0`, `N0` the level of `Q` alone (proof in
-/// src/lod/mod.rs, "A polynomial patch"). Mirror: `own_level` in glsl/lod/levels.comp.
+/// times [`TESS_CUBIC`]): the level `N1` of `Q + T / N0`, `N0` the level of `Q` alone, or of
+/// `Q + 2T / N0` where the driver glides (`glide_factor`; proof in src/lod/mod.rs, "A
+/// polynomial patch"). Mirror: `own_level` in glsl/lod/levels.comp.
 pub fn own_level(v: &LodView, r: &LodRecord) -> f32 {
     let general = level(v, own_chord(v, r), r.sphere);
     let Some([q, t]) = polynomial(v, r) else {
         return general;
     };
     let n0 = level(v, [0.0, q], r.sphere);
-    let n1 = level(v, [0.0, q + t / n0], r.sphere);
+    let n1 = level(v, [0.0, q + glide_factor(v) * t / n0], r.sphere);
     general.min(n1)
+}
+
+/// How many times `T / N0` a polynomial patch's level takes beside its quadratic term: 1, the
+/// bound at the level itself; 2 where the driver glides (dyadic levels), so that the bound also
+/// holds, in the form `c2 / N²` geomorphing's factor assumes, at half the level, which a gliding
+/// element blends from (src/lod/mod.rs, "A polynomial patch"). Mirror: in `own_level` and
+/// `edge_need_level`, glsl/lod/levels.comp.
+pub(super) fn glide_factor(v: &LodView) -> f32 {
+    if v.dyadic() {
+        2.0
+    } else {
+        1.0
+    }
 }
 
 /// A polynomial patch's `(Q, T)` as `v`'s driver draws its inside ([`own_level`]); `None`

@@ -537,14 +537,15 @@ fn tess_snapped_transitions_meet_their_bound() {
 /// A polynomial patch's level (`own_level`, from `N0` the quadratic term's level without
 /// solving the cubic): for spot's `pn` and `phong` elements seen from near to far, with every
 /// rounding, the level meets the bound it comes from (`own_error` within the tolerance, unless
-/// capped at the largest level), never exceeds the general bound's level, and is lower on most
-/// elements close up; `pn` with displacement has no polynomial bound and keeps the general one.
+/// capped at the largest level), and so does the blend of the two levels a gliding element
+/// draws between; it never exceeds the general bound's level, and is lower on most elements
+/// close up; `pn` with displacement has no polynomial bound and keeps the general one.
 #[test]
 fn polynomial_levels_meet_their_bound() {
     let (mesh, recs) = spot();
     let r = mesh.bounding_radius();
     let params = SurfaceParams::for_radius(r);
-    let (mut checked, mut lower) = (0, 0);
+    let (mut checked, mut lower, mut glides) = (0, 0, 0);
     for (surface, displace) in [
         (Surface::Pn, Displace::None),
         (Surface::Phong, Displace::None),
@@ -562,9 +563,20 @@ fn polynomial_levels_meet_their_bound() {
                     let n = own_level(&v, rec);
                     let general = level(&v, own_chord(&v, rec), rec.sphere);
                     assert!((1.0..=general).contains(&n), "{n} vs {general}");
+                    let tol = tolerance(&v, rec.sphere);
                     if n < 64.0 {
-                        let (err, tol) = (own_error(&v, rec, n), tolerance(&v, rec.sphere));
+                        let err = own_error(&v, rec, n);
                         assert!(err <= tol * (1.0 + 1e-4), "{err} above {tol} at level {n}");
+                    }
+                    // Gliding: the drawn power of two `p` blends from `p/2` with the factor
+                    // that assumes a bound `c2/N²` at both (docs/adaptivity.md, "Geomorphing").
+                    let p = drawn_level(n, true, 64);
+                    if rounding.dyadic() && (2..64).contains(&p) {
+                        let m = crate::pattern::adaptive::morph_factor(n, p);
+                        let half = own_error(&v, rec, (p / 2) as f32);
+                        let blend = (1.0 - m) * half + m * own_error(&v, rec, p as f32);
+                        assert!(blend <= tol * (1.0 + 1e-4), "{blend} above {tol} gliding");
+                        glides += 1;
                     }
                     if d <= 3.0 && n < general && general < 64.0 {
                         lower += 1;
@@ -575,6 +587,7 @@ fn polynomial_levels_meet_their_bound() {
         }
     }
     assert_eq!(checked, 3 * 4 * 5 * recs.len());
+    assert!(glides > recs.len(), "{glides} gliding elements");
     assert!(
         lower > 2 * 4 * 3 * recs.len() / 2,
         "{lower} of {checked} lower"

@@ -106,8 +106,8 @@
 //! drivers' transitions cheap: their edges need about the level their elements' insides need
 //! along them (`M_e`), where a floor's corners need it across the whole element (`M_c`) and its
 //! sides twice the move. On Spot as `pn` close up at 1 px (the test
-//! `pixel_error_holds_end_to_end`) the transitions then cost about a third more triangles than
-//! levels that ignore them on the pattern driver, half as many again beside the tessellator's
+//! `pixel_error_holds_end_to_end`) the transitions then cost about two fifths more triangles
+//! than levels that ignore them on the pattern driver, two thirds more beside the tessellator's
 //! first ring (whose vertices sit between the lattice's), and 3.7 times as many with the
 //! tessellator's own transitions at integer levels.
 //!
@@ -120,7 +120,8 @@
 //! replaced by `1/6` ([`POLYNOMIAL_SHARE`] of it) plus `T H³`, the sides' extent `H <= a_e + β`
 //! as for the kink terms (which such a patch has none of). Step 1's share, at `β <= λ a_e`,
 //! adds `T (1 + λ)³ a_e³` ([`need_extent_cubed`]), turned into a level as the element's own
-//! cubic term is (`super::edge_need_level`); step 2 adds `T (a_e + β)³`, solved to within
+//! cubic term is (`T (1 + λ)³ / N0` beside the quadratic term, twice that where the driver
+//! glides: `super::edge_need_level`); step 2 adds `T (a_e + β)³`, solved to within
 //! rounding by Newton's steps (`cubic_level`), as step 1's share, met at `β = λ a_e`, has it
 //! met there: a conservative estimate would raise inner levels that need no raise, and
 //! gliding levels would jump. Each level is the smaller of the general bound's and this
