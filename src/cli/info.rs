@@ -436,12 +436,13 @@ fn print_levels(a: &InfoArgs, mut input: Input, loop_: Option<LoopData>) -> Resu
         );
     }
     if u.capped > 0 {
-        // Some may need it only for their transitions to coarser neighbours, which a
-        // uniform frame does not draw.
+        // Some may need it only for their transitions to coarser neighbours, or for gliding
+        // (a polynomial patch's bound at the level it blends from), which a uniform frame
+        // does neither of.
         let uniform = match u.beyond_uniform {
             b if b == u.capped => ", nor by any uniform level up to it".to_string(),
-            0 => format!(" as drawn (for their transitions to coarser neighbours: uniform level {} meets it on them)", a.max_level),
-            b => format!(" as drawn, nor on {b} of them by any uniform level up to it (the others need it for their transitions to coarser neighbours)"),
+            0 => format!(" as drawn (for their transitions to coarser neighbours or for gliding: uniform level {} meets it on them)", a.max_level),
+            b => format!(" as drawn, nor on {b} of them by any uniform level up to it (the others need it for their transitions to coarser neighbours or for gliding)"),
         };
         out!(
             "  capped: {} element(s) need a level above --max-level {}: the bound is not met on them{uniform}",

@@ -487,9 +487,9 @@ pub struct Unmet {
     pub unbounded: u64,
     /// Elements whose bound needs a level above the largest.
     pub capped: u64,
-    /// Of the `capped`, those whose own bounds need a level above the largest (the others
-    /// need it only for their transitions to coarser neighbours, which a uniform frame does
-    /// not draw).
+    /// Of the `capped`, those whose own bounds need a level above the largest as a uniform
+    /// frame draws them (the others need it only for their transitions to coarser neighbours,
+    /// or for gliding, which a uniform frame does neither of).
     pub beyond_uniform: u64,
 }
 
@@ -544,6 +544,14 @@ pub fn element_unmet(view: &LodView, r: &LodRecord, l: &ElementLevels) -> Option
         (s.truncate() - view.eye()).length() <= s.w
     };
     let own = own_need(&free, r);
+    // What a uniform frame needs of it: the same without gliding (`uniform_level`).
+    let uniform = own_need(
+        &LodView {
+            flags: free.flags & !DYADIC,
+            ..free
+        },
+        r,
+    );
     let mut u = Unmet::default();
     if n >= UNCAPPED && (huge(&r.chord) || r.edges.iter().any(|e| huge(&e.curve))) {
         u.unbounded = 1;
@@ -552,7 +560,8 @@ pub fn element_unmet(view: &LodView, r: &LodRecord, l: &ElementLevels) -> Option
     {
         u.near = 1;
     } else if drawn_level(own, false, UNCAPPED) > max {
-        (u.capped, u.beyond_uniform) = (1, 1);
+        u.capped = 1;
+        u.beyond_uniform = (drawn_level(uniform, false, UNCAPPED) > max) as u64;
     } else if transitions::transitions_beyond(view, r, &l.edges) {
         u.capped = 1;
     } else {
