@@ -229,4 +229,5 @@ mod bounds;
 mod cull;
 mod heightmap;
 mod levels;
+mod polynomial;
 mod view;
