@@ -1,9 +1,11 @@
 // Level of detail with a guaranteed screen-space error: chord-error bounds of the local surfaces
 // and the sine and noise displacements, the screen-space metric that turns them into levels,
 // bounding spheres, frustum and normal-cone culling. Mirror, function for function, of src/lod
-// (mod.rs, bound.rs, displace.rs, cull.rs), where the proofs are; tests/lod_mirror.rs compares
-// the two. Not mirrored yet: `stpn`'s tags, the height map's texel statistics, `loop`'s lattice
-// (src/lod/bound.rs, src/lod/subdiv.rs).
+// (mod.rs, bound.rs, net.rs, cull.rs) and src/surface/displace.rs, where the proofs are;
+// tests/lod_mirror.rs compares the two. Not mirrored: `stpn`'s tags, the height map's texel
+// statistics, `loop`'s lattice (src/lod/bound.rs, src/surface/heightmap_bound.rs,
+// src/surface/loop_bound.rs): the level pass (glsl/lod/levels.comp) reads every surface's bounds
+// from the records the CPU computes once.
 #ifndef LOD_GLSL
 #define LOD_GLSL
 #include "corners.glsl"

@@ -58,13 +58,18 @@ float lod_tolerance(LodView v, vec4 s) {
     return v.pixel_error * max(dist, 0.0) / v.k;
 }
 
-// The continuous level in [1, max_level]; its ceiling is the integer level. Mirror: `View::level`.
-float lod_level(LodView v, vec2 chord, vec4 s) {
-    float tol = lod_tolerance(v, s);
+// lod_level at tolerance tol (a sphere's, computed once for the levels it gives). Mirror:
+// src/lod/frame.rs `level_at`.
+float lod_level_at(LodView v, vec2 chord, float tol) {
     if (tol > 0.0 && max(chord.x, chord.y) < LOD_HUGE) {
         return min(lod_level_for(chord, tol), v.max_level);
     }
     return (chord.x == 0.0 && chord.y == 0.0) ? 1.0 : v.max_level;
+}
+
+// The continuous level in [1, max_level]; its ceiling is the integer level. Mirror: `View::level`.
+float lod_level(LodView v, vec2 chord, vec4 s) {
+    return lod_level_at(v, chord, lod_tolerance(v, s));
 }
 
 // ---- Culling (src/lod/cull.rs) ----

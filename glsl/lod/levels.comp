@@ -63,6 +63,11 @@ float level(vec2 c, vec4 s) {
     return lod_level(metric(), c, s);
 }
 
+// Mirror: `level_at` (a sphere's tolerance computed once for the levels it gives).
+float level_at(vec2 c, float tol) {
+    return lod_level_at(metric(), c, tol);
+}
+
 // Mirror: src/lod/bound.rs `second_along`.
 float second_along(vec3 m, vec3 b, vec2 e) {
     float x = e.x, y = e.y;
@@ -93,9 +98,14 @@ float glide_factor() {
     return (view.flags & DYADIC) != 0u ? 2.0 : 1.0;
 }
 
-// Mirror: `own_level` (a polynomial patch's tighter bound, src/lod/mod.rs).
-float own_level(LodRecord r) {
-    float general = level(own_chord(r), r.sphere);
+// Mirror: `own_level_above` (a polynomial patch's tighter bound, src/lod/mod.rs; not computed
+// where the general bound's level is at most `floor`).
+float own_level_above(LodRecord r, float floor_level) {
+    float tol = tolerance(r.sphere);
+    float general = level_at(own_chord(r), tol);
+    if (general <= floor_level) {
+        return floor_level;
+    }
     vec3 m = r.second.xyz;
     float mx = max(m.x, max(m.y, m.z));
     float t = r.second.w;
@@ -111,22 +121,26 @@ float own_level(LodRecord r) {
         t *= LOD_TESS_CUBIC;
     }
     q *= LOD_QUADRATIC_FACTOR;
-    float n0 = level(vec2(0.0, q), r.sphere);
-    float n1 = level(vec2(0.0, q + glide_factor() * t / n0), r.sphere);
-    return min(general, n1);
+    float n0 = level_at(vec2(0.0, q), tol);
+    float n1 = level_at(vec2(0.0, q + glide_factor() * t / n0), tol);
+    return max(floor_level, min(general, n1));
 }
 
-// Mirror: `edge_need_level` (a polynomial patch's transition need, src/lod/frame/transitions.rs).
-float edge_need_level(vec2 need, float t, vec4 s) {
-    float general = level(need, s);
+// Mirror: `edge_need_level` (a polynomial patch's transition need, src/lod/frame/transitions.rs;
+// at least `floor_level`, the polynomial bound not computed where the chord's level is at most it).
+float edge_need_level(vec2 need, float t, float tol, float floor_level) {
+    float general = level_at(need, tol);
+    if (general <= floor_level) {
+        return floor_level;
+    }
     if (t >= LOD_HUGE || need.x != 0.0 || need.y >= LOD_HUGE) {
         return general;
     }
     float q = need.y * LOD_POLYNOMIAL_SHARE;
     // (1 + lambda)^3: `need_extent_cubed`.
     t *= (view.flags & (DYADIC | LATTICE)) == 0u ? 8.0 : 3.375;
-    float n0 = level(vec2(0.0, q), s);
-    return min(general, level(vec2(0.0, q + glide_factor() * t / n0), s));
+    float n0 = level_at(vec2(0.0, q), tol);
+    return max(floor_level, min(general, level_at(vec2(0.0, q + glide_factor() * t / n0), tol)));
 }
 
 // Mirror: `edge_level`.
@@ -134,9 +148,8 @@ float edge_level(LodEdge e) {
     uint kind = view.flags & (DYADIC | LATTICE);
     vec4 needs = e.needs[kind == 0u ? 1 : (kind == DYADIC ? 0 : (kind == LATTICE ? 3 : 2))];
     float own = level(e.curve.xy, e.sphere);
-    float a = edge_need_level(needs.xy, e.curve.z, e.sphere_a);
-    float b = edge_need_level(needs.zw, e.curve.w, e.sphere_b);
-    return max(max(own, a), b);
+    float a = edge_need_level(needs.xy, e.curve.z, tolerance(e.sphere_a), own);
+    return edge_need_level(needs.zw, e.curve.w, tolerance(e.sphere_b), a);
 }
 
 // Mirror: src/lod/levels.rs `drawn_level` (glsl/include/levels.glsl).
@@ -204,45 +217,75 @@ vec3 tess_side_coefficients(float me, float t, float mb) {
     return vec3(0.25 * me, (2.0 / 3.0) * me + t / 3.0, (4.0 / 9.0) * (me + t + mb));
 }
 
-// Mirror: `strip_level`.
-// `enough`: the level the caller compares with (the polynomial bound is solved only above it).
-float strip_level(LodRecord r, int e, float a, float tol, float enough) {
+// Mirror: `Strip` (src/lod/frame/transitions.rs): step 2's bound of the transition triangles
+// along stored edge e drawn at a = 1/n_e beside an inside at beta: the sides' p beta^2 + q beta
+// + c, the bases' base (with the kink terms; `has_base` false where the sides hold them), and a
+// polynomial patch's cubic term t3 (`polynomial`).
+struct Strip {
+    float p, q, c, k1, k2, a, base, t3;
+    bool has_base, polynomial;
+};
+
+Strip strip_new(LodRecord r, int e, float a) {
     vec3 m = r.second.xyz;
     float k1 = r.chord.z, k2 = r.chord.w;
     float t = twist(r.mixed.xyz, e);
     float mb = max(m[(e + 1) % 3], m[(e + 2) % 3]);
-    float mx = float(view.max_level);
     uint kind = view.flags & (DYADIC | LATTICE);
-    float p, q, c;
+    Strip st;
     if (kind == DYADIC) {
         // The tessellator's first ring beside a snapped outer ring.
         vec3 s = tess_side_coefficients(m[e], t, mb);
-        p = LOD_ELEMENT_FACTOR * s.z + k2;
-        q = LOD_ELEMENT_FACTOR * s.y * a + k1 + 2.0 * k2 * a;
-        c = (LOD_ELEMENT_FACTOR * s.x * a + k1 + k2 * a) * a;
+        st.p = LOD_ELEMENT_FACTOR * s.z + k2;
+        st.q = LOD_ELEMENT_FACTOR * s.y * a + k1 + 2.0 * k2 * a;
+        st.c = (LOD_ELEMENT_FACTOR * s.x * a + k1 + k2 * a) * a;
     } else {
         float h = kind == 0u ? 1.0 : 0.5;
-        p = LOD_ELEMENT_FACTOR * mb + k2;
-        q = LOD_ELEMENT_FACTOR * h * a * t + k1 + 2.0 * k2 * a;
-        c = (LOD_ELEMENT_FACTOR * h * h * a * m[e] + k1 + k2 * a) * a;
+        st.p = LOD_ELEMENT_FACTOR * mb + k2;
+        st.q = LOD_ELEMENT_FACTOR * h * a * t + k1 + 2.0 * k2 * a;
+        st.c = (LOD_ELEMENT_FACTOR * h * h * a * m[e] + k1 + k2 * a) * a;
     }
-    // A polynomial patch (no kinks): 20/27 of these, plus the cubic term.
-    float t3 = r.second.w;
-    bool polynomial = t3 < LOD_HUGE && k1 == 0.0 && k2 == 0.0;
+    st.k1 = k1;
+    st.k2 = k2;
+    st.a = a;
+    st.has_base = kind != 0u;
+    st.base = st.has_base ? (LOD_ELEMENT_FACTOR * a * m[e] + k1 + k2 * a) * a : 0.0;
+    st.t3 = r.second.w;
+    st.polynomial = st.t3 < LOD_HUGE && k1 == 0.0 && k2 == 0.0;
+    return st;
+}
+
+// Mirror: `Strip::level`. `enough`: the level the caller compares with (the polynomial bound is
+// solved only above it).
+float strip_level(Strip st, float tol, float enough) {
+    float mx = float(view.max_level);
     float share = LOD_POLYNOMIAL_SHARE;
-    float sides = quadratic_level(p, q, c, tol, mx);
-    if (polynomial && sides > enough) {
-        sides = min(sides, cubic_level(share * p, share * q, share * c, t3, a, tol, mx));
+    float sides = quadratic_level(st.p, st.q, st.c, tol, mx);
+    if (st.polynomial && sides > enough) {
+        sides = min(sides, cubic_level(share * st.p, share * st.q, share * st.c, st.t3, st.a, tol, mx));
     }
-    if (kind == 0u) {
+    if (!st.has_base) {
         return sides;
     }
-    float base = (LOD_ELEMENT_FACTOR * a * m[e] + k1 + k2 * a) * a;
-    float bases = quadratic_level(k2, k1 + 2.0 * k2 * a, base, tol, mx);
-    if (polynomial && bases > enough) {
-        bases = min(bases, cubic_level(0.0, 0.0, share * base, t3, a, tol, mx));
+    float bases = quadratic_level(st.k2, st.k1 + 2.0 * st.k2 * st.a, st.base, tol, mx);
+    if (st.polynomial && bases > enough) {
+        bases = min(bases, cubic_level(0.0, 0.0, share * st.base, st.t3, st.a, tol, mx));
     }
     return max(sides, bases);
+}
+
+// Mirror: `Strip::fits`: the bounds at beta = (1 + 2^-16)/n, no square root or Newton's steps.
+bool strip_meets(Strip st, float quad, float cubed, float tol) {
+    return quad <= tol || (st.polynomial && LOD_POLYNOMIAL_SHARE * quad + st.t3 * cubed <= tol);
+}
+
+bool strip_fits(Strip st, float n, float tol) {
+    float b = (1.0 + 1.0 / 65536.0) / n;
+    float s = st.a + b;
+    float cubed = s * s * s;
+    float sides = (st.p * b + st.q) * b + st.c;
+    float bases = st.has_base ? (st.k2 * b + st.k1 + 2.0 * st.k2 * st.a) * b + st.base : 0.0;
+    return strip_meets(st, sides, cubed, tol) && strip_meets(st, bases, cubed, tol);
 }
 
 // Mirror: `outside` (`lod_outside`).
@@ -270,7 +313,11 @@ float raise_for_transitions(LodRecord r, vec3 edges, float inner) {
         float need = 0.0;
         for (int e = 0; e < 3; ++e) {
             if (ne[e] < n) {
-                need = max(need, strip_level(r, e, 1.0 / float(ne[e]), tol, float(n)));
+                // Solved only where the bound at n is not met.
+                Strip st = strip_new(r, e, 1.0 / float(ne[e]));
+                if (!strip_fits(st, float(n), tol)) {
+                    need = max(need, strip_level(st, tol, float(n)));
+                }
             }
         }
         if (need <= float(n)) {
@@ -294,8 +341,7 @@ void main() {
             && lod_back_facing(r.cone, r.sphere, view.eye_k.xyz));
     float inner = 0.0;
     if (!culled) {
-        float own = own_level(r);
-        inner = max(max(own, edges.x), max(edges.y, edges.z));
+        inner = own_level_above(r, max(edges.x, max(edges.y, edges.z)));
         inner = raise_for_transitions(r, edges, inner);
     }
     element_levels[i] = vec4(edges, inner);

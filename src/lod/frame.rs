@@ -350,7 +350,12 @@ fn tolerance(v: &LodView, s: [f32; 4]) -> f32 {
 /// The continuous level of chord `c` inside sphere `s`, in `[1, max]`. Mirror: `lod_level`
 /// (glsl/include/lod.glsl), as [`View::level`] with [`HUGE`] for infinity.
 fn level(v: &LodView, c: [f32; 2], s: [f32; 4]) -> f32 {
-    let tol = tolerance(v, s);
+    level_at(v, c, tolerance(v, s))
+}
+
+/// [`level`] at tolerance `tol` (a sphere's, computed once for the levels it gives). Mirror:
+/// `level_at` in glsl/lod/levels.comp.
+fn level_at(v: &LodView, c: [f32; 2], tol: f32) -> f32 {
     let max = v.max_level as f32;
     if tol > 0.0 && c[0].max(c[1]) < HUGE {
         Chord { c1: c[0], c2: c[1] }.level_for(tol).min(max)
@@ -366,25 +371,33 @@ fn level(v: &LodView, c: [f32; 2], s: [f32; 4]) -> f32 {
 fn edge_level(v: &LodView, e: &LodEdge) -> f32 {
     let needs = e.needs[v.rounding().index()];
     let own = curve_level(v, e);
-    let a = edge_need_level(v, [needs[0], needs[1]], e.curve[2], e.sphere_a);
-    let b = edge_need_level(v, [needs[2], needs[3]], e.curve[3], e.sphere_b);
-    own.max(a).max(b)
+    let (ta, tb) = (tolerance(v, e.sphere_a), tolerance(v, e.sphere_b));
+    let a = edge_need_level(v, [needs[0], needs[1]], e.curve[2], ta, own);
+    edge_need_level(v, [needs[2], needs[3]], e.curve[3], tb, a)
 }
 
-/// The level an edge needs for one element's transition triangles ([`strip_need`]'s chord
-/// `need` inside the element's sphere `s`): that of the chord or, where the element is a
-/// polynomial patch (its cubic term `t` finite), the smaller level of its tighter bound
-/// (src/lod/frame/transitions.rs, "Polynomial patches"). Mirror: `edge_need_level` in
+/// The larger of `floor` and the level an edge needs for one element's transition triangles
+/// ([`strip_need`]'s chord `need` at the element's tolerance `tol`): that of the chord or, where
+/// the element is a polynomial patch (its cubic term `t` finite), the smaller level of its
+/// tighter bound (src/lod/frame/transitions.rs, "Polynomial patches"), which is not computed
+/// where the chord's is at most `floor` (it cannot matter there). Mirror: `edge_need_level` in
 /// glsl/lod/levels.comp.
-pub fn edge_need_level(v: &LodView, need: [f32; 2], t: f32, s: [f32; 4]) -> f32 {
-    let general = level(v, need, s);
+pub fn edge_need_level(v: &LodView, need: [f32; 2], t: f32, tol: f32, floor: f32) -> f32 {
+    let general = level_at(v, need, tol);
+    if general <= floor {
+        return floor;
+    }
     if t >= HUGE || need[0] != 0.0 || need[1] >= HUGE {
         return general;
     }
     let q = need[1] * transitions::POLYNOMIAL_SHARE;
     let t = t * transitions::need_extent_cubed(v.rounding());
-    let n0 = level(v, [0.0, q], s);
-    general.min(level(v, [0.0, q + inside::glide_factor(v) * t / n0], s))
+    let n0 = level_at(v, [0.0, q], tol);
+    floor.max(general.min(level_at(
+        v,
+        [0.0, q + inside::glide_factor(v) * t / n0],
+        tol,
+    )))
 }
 
 /// The continuous level an edge's own curve needs (no transitions).
@@ -430,8 +443,7 @@ pub fn element_levels(v: &LodView, r: &LodRecord) -> ElementLevels {
     if culled {
         return ElementLevels { edges, inner: 0.0 };
     }
-    let own = own_level(v, r);
-    let inner = own.max(edges[0]).max(edges[1]).max(edges[2]);
+    let inner = own_level_above(v, r, edges[0].max(edges[1]).max(edges[2]));
     ElementLevels {
         edges,
         inner: raise_for_transitions(v, r, &edges, inner),
@@ -575,7 +587,7 @@ pub use super::report::LevelStats;
 mod cores;
 use cores::on_every_core;
 mod inside;
-pub use inside::{own_chord, own_error, own_level};
+pub use inside::{own_chord, own_error, own_level, own_level_above};
 pub mod transitions;
 use transitions::raise_for_transitions;
 pub use transitions::strip_need;

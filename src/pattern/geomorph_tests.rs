@@ -227,7 +227,7 @@ fn geomorphing_removes_popping() {
     eprintln!(
         "popping over {changes} level changes: geomorph on {on} px ({n_on} vertices compared), off {off} px ({n_off})"
     );
-    // The sweep's extent as docs/adaptivity.md gives it (927 changes; 0.94 and 0.80 million
+    // The sweep's extent as docs/adaptivity.md gives it (923 changes; 0.94 and 0.75 million
     // vertex steps).
     assert!(changes > 800, "only {changes} level changes");
     assert!(

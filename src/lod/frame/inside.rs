@@ -2,7 +2,7 @@
 //! tessellator's rings', and the level it needs (the proofs are in src/lod/mod.rs, "A lattice
 //! triangle", "A polynomial patch" and "The tessellator's inside").
 
-use super::{level, LodRecord, LodView, HUGE};
+use super::{level_at, tolerance, LodRecord, LodView, HUGE};
 use crate::lod::bound::second_along;
 use crate::lod::Chord;
 use crate::lod::{ELEMENT_FACTOR, QUADRATIC_FACTOR, RING_DIAGONAL, TESS_CUBIC};
@@ -58,13 +58,25 @@ fn ring_second(r: &LodRecord) -> f32 {
 /// `Q + 2T / N0` where the driver glides (`glide_factor`; proof in src/lod/mod.rs, "A
 /// polynomial patch"). Mirror: `own_level` in glsl/lod/levels.comp.
 pub fn own_level(v: &LodView, r: &LodRecord) -> f32 {
-    let general = level(v, own_chord(v, r), r.sphere);
+    own_level_above(v, r, 0.0)
+}
+
+/// The larger of `floor` and [`own_level`], the polynomial patch's level not computed where
+/// the general bound's is at most `floor` (it cannot matter there): what the level pass takes
+/// with the largest of the element's edges' levels. Mirror: `own_level_above` in
+/// glsl/lod/levels.comp.
+pub fn own_level_above(v: &LodView, r: &LodRecord, floor: f32) -> f32 {
+    let tol = tolerance(v, r.sphere);
+    let general = level_at(v, own_chord(v, r), tol);
+    if general <= floor {
+        return floor;
+    }
     let Some([q, t]) = polynomial(v, r) else {
         return general;
     };
-    let n0 = level(v, [0.0, q], r.sphere);
-    let n1 = level(v, [0.0, q + glide_factor(v) * t / n0], r.sphere);
-    general.min(n1)
+    let n0 = level_at(v, [0.0, q], tol);
+    let n1 = level_at(v, [0.0, q + glide_factor(v) * t / n0], tol);
+    floor.max(general.min(n1))
 }
 
 /// How many times `T / N0` a polynomial patch's level takes beside its quadratic term: 1, the

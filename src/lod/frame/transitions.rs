@@ -237,61 +237,122 @@ fn quadratic_level(p: f32, q: f32, c: f32, tol: f32, max: f32) -> f32 {
     ((1.0 + 1.0 / 65536.0) / beta).clamp(1.0, max)
 }
 
+/// Step 2's bound of the transition triangles along stored edge `e` of element `r`, drawn at
+/// `a = 1/n_e` beside an inside at `β` (module notes): the sides' `p β² + q β + c` (the kink terms
+/// at `a + β`, the sides' `S_e` after a move of at most `h a`; beside the tessellator's first
+/// ring, its own coefficients), the bases' `base` (with the kink terms' `k2 β² + (k1 + 2 k2 a) β`;
+/// none where the sides' `S_e` holds them: the tessellator's integer levels), and where the
+/// element is a polynomial patch (no kinks) its cubic term `t3` (else `None`).
+struct Strip {
+    p: f32,
+    q: f32,
+    c: f32,
+    k1: f32,
+    k2: f32,
+    a: f32,
+    base: Option<f32>,
+    t3: Option<f32>,
+}
+
+impl Strip {
+    fn new(v: &LodView, r: &LodRecord, e: usize, a: f32) -> Self {
+        let m = r.second;
+        let (k1, k2) = (r.chord[2], r.chord[3]);
+        let t = twist(&r.mixed, e);
+        let mb = m[(e + 1) % 3].max(m[(e + 2) % 3]);
+        let rounding = v.rounding();
+        let (p, q, c) = if rounding == Rounding::TessSnapped {
+            let [caa, cab, cbb] = tess_side_coefficients(m[e], t, mb);
+            (
+                ELEMENT_FACTOR * cbb + k2,
+                ELEMENT_FACTOR * cab * a + k1 + 2.0 * k2 * a,
+                (ELEMENT_FACTOR * caa * a + k1 + k2 * a) * a,
+            )
+        } else {
+            let h = if rounding.snapped() { 0.5 } else { 1.0 };
+            (
+                ELEMENT_FACTOR * mb + k2,
+                ELEMENT_FACTOR * h * a * t + k1 + 2.0 * k2 * a,
+                (ELEMENT_FACTOR * h * h * a * m[e] + k1 + k2 * a) * a,
+            )
+        };
+        // The bases' a² M_e is S_e's own first term where vertices move anywhere in a sample.
+        let base = rounding
+            .snapped()
+            .then(|| (ELEMENT_FACTOR * a * m[e] + k1 + k2 * a) * a);
+        let t3 = (m[3] < HUGE && k1 == 0.0 && k2 == 0.0).then_some(m[3]);
+        Strip {
+            p,
+            q,
+            c,
+            k1,
+            k2,
+            a,
+            base,
+            t3,
+        }
+    }
+
+    /// The smallest inner level at which the triangles meet tolerance `tol`, or the maximum
+    /// level `max` where none does. A polynomial patch's own bound (20/27 of the quadratic
+    /// terms, plus the cubic term) is solved only where the general one needs more than
+    /// `enough` (the level the caller compares with): whether the answer is above `enough`
+    /// does not change.
+    fn level(&self, tol: f32, max: f32, enough: f32) -> f32 {
+        let (p, q, c, a) = (self.p, self.q, self.c, self.a);
+        let share = POLYNOMIAL_SHARE;
+        let mut sides = quadratic_level(p, q, c, tol, max);
+        if let Some(t3) = self.t3.filter(|_| sides > enough) {
+            sides = sides.min(cubic_level(
+                share * p,
+                share * q,
+                share * c,
+                t3,
+                a,
+                tol,
+                max,
+            ));
+        }
+        let Some(base) = self.base else {
+            return sides;
+        };
+        let (k1, k2) = (self.k1, self.k2);
+        let mut bases = quadratic_level(k2, k1 + 2.0 * k2 * a, base, tol, max);
+        if let Some(t3) = self.t3.filter(|_| bases > enough) {
+            bases = bases.min(cubic_level(0.0, 0.0, share * base, t3, a, tol, max));
+        }
+        sides.max(bases)
+    }
+
+    /// Whether the triangles meet `tol` at inner level `n`: each bound evaluated at `β = (1 +
+    /// 2⁻¹⁶)/n`, the margin [`quadratic_level`] solves with, so that where [`Strip::level`]
+    /// finds a level at most `n` this finds them met (up to rounding), without a square root
+    /// or Newton's steps; and where it finds them met, they are, by the bound itself. A
+    /// polynomial patch's bound is evaluated where the general one is not met.
+    fn fits(&self, n: f32, tol: f32) -> bool {
+        let b = (1.0 + 1.0 / 65536.0) / n;
+        let (p, q, c, a) = (self.p, self.q, self.c, self.a);
+        let s = a + b;
+        let cubed = s * s * s;
+        let meets = |quad: f32| {
+            quad <= tol
+                || self
+                    .t3
+                    .is_some_and(|t3| POLYNOMIAL_SHARE * quad + t3 * cubed <= tol)
+        };
+        let sides = (p * b + q) * b + c;
+        let bases = self.base.map_or(0.0, |base| {
+            (self.k2 * b + self.k1 + 2.0 * self.k2 * a) * b + base
+        });
+        meets(sides) && meets(bases)
+    }
+}
+
 /// The smallest inner level at which the transition triangles along stored edge `e`, drawn at
 /// `a = 1/n_e`, meet tolerance `tol` (module notes, step 2), or the maximum level where none
-/// does. A polynomial patch's own bound is solved only where the general one needs more than
-/// `enough` (the level the caller compares with): whether the answer is above `enough` does
-/// not change. Mirror: `strip_level` in glsl/lod/levels.comp.
+/// does ([`Strip::level`], `enough` as there). Mirror: `strip_level` in glsl/lod/levels.comp.
 fn strip_level(v: &LodView, r: &LodRecord, e: usize, a: f32, tol: f32, enough: f32) -> f32 {
-    let m = r.second;
-    let (k1, k2) = (r.chord[2], r.chord[3]);
-    let t = twist(&r.mixed, e);
-    let mb = m[(e + 1) % 3].max(m[(e + 2) % 3]);
-    let max = v.max_level as f32;
-    // The kink terms at a + β, then the sides' S_e (a move of at most h a; beside the
-    // tessellator's first ring, its own coefficients).
-    let rounding = v.rounding();
-    let (p, q, c) = if rounding == Rounding::TessSnapped {
-        let [caa, cab, cbb] = tess_side_coefficients(m[e], t, mb);
-        (
-            ELEMENT_FACTOR * cbb + k2,
-            ELEMENT_FACTOR * cab * a + k1 + 2.0 * k2 * a,
-            (ELEMENT_FACTOR * caa * a + k1 + k2 * a) * a,
-        )
-    } else {
-        let h = if rounding.snapped() { 0.5 } else { 1.0 };
-        (
-            ELEMENT_FACTOR * mb + k2,
-            ELEMENT_FACTOR * h * a * t + k1 + 2.0 * k2 * a,
-            (ELEMENT_FACTOR * h * h * a * m[e] + k1 + k2 * a) * a,
-        )
-    };
-    // A polynomial patch (no kinks): its quadratic term is 20/27 of these, plus the cubic term.
-    let t3 = m[3];
-    let polynomial = t3 < HUGE && k1 == 0.0 && k2 == 0.0;
-    let share = POLYNOMIAL_SHARE;
-    let mut sides = quadratic_level(p, q, c, tol, max);
-    if polynomial && sides > enough {
-        sides = sides.min(cubic_level(
-            share * p,
-            share * q,
-            share * c,
-            t3,
-            a,
-            tol,
-            max,
-        ));
-    }
-    if !rounding.snapped() {
-        // The bases' a² M_e is S_e's own first term.
-        return sides;
-    }
-    let base = (ELEMENT_FACTOR * a * m[e] + k1 + k2 * a) * a;
-    let mut bases = quadratic_level(k2, k1 + 2.0 * k2 * a, base, tol, max);
-    if polynomial && bases > enough {
-        bases = bases.min(cubic_level(0.0, 0.0, share * base, t3, a, tol, max));
-    }
-    sides.max(bases)
+    Strip::new(v, r, e, a).level(tol, v.max_level as f32, enough)
 }
 
 /// The smallest level `1/β` at which a polynomial patch's transition triangles along an edge
@@ -367,7 +428,11 @@ pub fn raise_for_transitions(v: &LodView, r: &LodRecord, edges: &[f32; 3], inner
         let mut need = 0.0f32;
         for (e, &ne) in drawn_edges.iter().enumerate() {
             if ne < n {
-                need = need.max(strip_level(v, r, e, 1.0 / ne as f32, tol, n as f32));
+                // Solved only where the bound at `n` is not met.
+                let strip = Strip::new(v, r, e, 1.0 / ne as f32);
+                if !strip.fits(n as f32, tol) {
+                    need = need.max(strip.level(tol, max as f32, n as f32));
+                }
             }
         }
         if need <= n as f32 {
