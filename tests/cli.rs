@@ -1225,6 +1225,7 @@ fn bad_values_of_unread_options_are_refused_alone() {
 /// one made of rounding (an export wrote such a camera in its header).
 #[test]
 fn an_eye_on_the_default_target_names_the_default() {
+    bench_names_the_fitted_camera_of_several_surfaces();
     let tri = write("eye-tri.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     let size = ["--width", "160", "--height", "90"];
     for mesh in [
@@ -1241,10 +1242,22 @@ fn an_eye_on_the_default_target_names_the_default() {
         };
         let (eye, target) = (point(" eye "), point(", look-at "));
         let out = tmp("eye-on-target.obj");
-        let commands: [&[&str]; 3] = [
+        let commands: [&[&str]; 4] = [
             &["render"],
             &["export", "-o", p(&out), "--pixel-error", "1"],
             &["info", "--pixel-error", "1"],
+            // bench fits its camera once it has the device: the same sentence then.
+            &[
+                "bench",
+                "--pixel-error",
+                "1",
+                "--surfaces",
+                "pn",
+                "--drivers",
+                "static",
+                "--frames",
+                "1",
+            ],
         ];
         for command in commands {
             let on_target = format!("--eye={target}");
@@ -1267,6 +1280,53 @@ fn an_eye_on_the_default_target_names_the_default() {
             );
         }
     }
+}
+
+/// Where several surfaces are timed, each with its own fitted camera, a `--look-at` at one's
+/// default eye names the surface whose camera it was; with both points given, no surface.
+fn bench_names_the_fitted_camera_of_several_surfaces() {
+    let info = ok(&[
+        "info",
+        "--pixel-error",
+        "1",
+        "--width",
+        "32",
+        "--height",
+        "18",
+    ]);
+    let rest = info.split(" eye ").nth(1).unwrap();
+    let eye = rest.split(',').next().unwrap().replace(' ', ",");
+    let bench = [
+        "bench",
+        "--frames",
+        "1",
+        "--levels",
+        "2",
+        "--drivers",
+        "static",
+    ];
+    let size = ["--width", "32", "--height", "18", "--surfaces", "pn,flat"];
+    let on_eye = format!("--look-at={eye}");
+    let args: Vec<&str> = bench
+        .iter()
+        .chain(&size)
+        .copied()
+        .chain([on_eye.as_str()])
+        .collect();
+    expect_error(
+        &args,
+        &[&format!(
+            "the default camera's eye ({eye}) and --look-at {eye} give no view direction: they are the same point (the camera fitted to the pn surface)"
+        )],
+    );
+    let both = ["--eye", "0,0,0", "--look-at", "0,1e-5,0"];
+    let args: Vec<&str> = bench.iter().chain(&size).chain(&both).copied().collect();
+    expect_error(
+        &args,
+        &["--eye 0,0,0 and --look-at 0,1e-5,0 give no view direction: they are too close together for one"],
+    );
+    let out = meshrefine(&args);
+    assert!(!String::from_utf8_lossy(&out.stderr).contains("fitted"));
 }
 
 /// `bench` refuses a surface and displacement that cannot go together before timing anything
@@ -3372,10 +3432,35 @@ fn info_reports_adaptive_levels_for_a_camera() {
         &["info", spot, "--pixel-error", "1", "--fov", "180"],
         &["--fov 180"],
     );
-    // Camera options without --pixel-error are reported as ignored.
+    // Camera options without --pixel-error are reported as ignored ...
     let out = meshrefine(&["info", spot, "--fov", "30"]);
     assert!(out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("--fov applies only with --pixel-error"));
+    // ... their values checked all the same, as every ignored option's (docs/errors.md), in
+    // info and in a uniform export.
+    let obj = tmp("ignored-camera.obj");
+    let obj = obj.to_str().unwrap();
+    for cmd in [
+        &["info", spot][..],
+        &["export", spot, "-o", obj, "--level", "2"][..],
+    ] {
+        let with = |extra: &[&'static str]| -> Vec<&str> {
+            cmd.iter().copied().chain(extra.iter().copied()).collect()
+        };
+        expect_error(
+            &with(&["--fov", "nan"]),
+            &["--fov nan is not within [0.01, 180) degrees"],
+        );
+        expect_error(&with(&["--fov", "1e3"]), &["--fov 1e3 is not within"]);
+        expect_error(
+            &with(&["--eye", "1,1,1", "--look-at", "1,1,1"]),
+            &["--eye 1,1,1 and --look-at 1,1,1 give no view direction: they are the same point"],
+        );
+    }
+    assert!(
+        !std::path::Path::new(&obj).exists(),
+        "an export refused wrote {obj}"
+    );
 }
 
 /// An adaptive variant the device cannot draw (tess past its level limit, beside static,

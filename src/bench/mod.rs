@@ -348,10 +348,16 @@ impl MeshSetup {
             }
             BenchCamera::Fitted(v) => {
                 let aspect = opts.width as f32 / opts.height.max(1) as f32;
-                v.camera(&self.scene.framing_points(cfg), aspect)
-                    .ok_or(RenderError::Unsupported(
-                        "--eye and --look-at give no view direction with the camera fitted to the surface: the eye is within 1e-4 radii of the surface of the point looked at",
-                    ))?
+                let fitted = Camera::fit_with_fov(&self.scene.framing_points(cfg), aspect, v.fov_y);
+                v.complete(fitted)
+                    .ok_or_else(|| RenderError::NoViewDirection {
+                        surface: match cfg.displace {
+                            Displace::None => format!("the {} surface", cfg.surface.name()),
+                            d => format!("the {} surface with {}", cfg.surface.name(), d.name()),
+                        },
+                        eye: v.eye.unwrap_or(fitted.eye()),
+                        target: v.look_at.unwrap_or(fitted.target),
+                    })?
             }
         };
         self.cameras.push((key, camera));

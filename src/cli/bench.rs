@@ -4,12 +4,15 @@
 
 use super::adaptive::Frame;
 use super::args::BenchArgs;
+use super::args::ViewpointOpts;
 use super::input::{for_viewing, load_mesh, split_three_creases};
+use super::numbers::TypedVec3;
 use super::with_context;
 use anyhow::{bail, Context as _, Result};
+use glam::Vec3;
 use meshrefine::bench::BenchCamera;
 use meshrefine::gpu::ContextDesc;
-use meshrefine::render::{DrawConfig, Driver};
+use meshrefine::render::{DrawConfig, Driver, RenderError};
 use meshrefine::surface::{Displace, Heightmap};
 use std::io::Write as _;
 
@@ -93,6 +96,8 @@ pub fn run(a: &BenchArgs, desc: &ContextDesc, levels_given: bool) -> Result<()> 
     // to --eye and --look-at where given.
     super::adaptive::check_distance(&a.adaptive.viewpoint, &scene_frame)?;
     let viewpoint = a.adaptive.viewpoint.drawn(&scene_frame);
+    // Each surface x displacement has its own fitted camera: a refusal says whose.
+    let several = opts.surfaces.len() > 1;
     let report = with_context(desc, |ctx| {
         let mut opts = opts;
         opts.camera = BenchCamera::Fitted(viewpoint);
@@ -125,6 +130,7 @@ pub fn run(a: &BenchArgs, desc: &ContextDesc, levels_given: bool) -> Result<()> 
             });
         }
         meshrefine::bench::run(ctx, &[mesh], &opts)
+            .map_err(|e| no_direction(e, &a.adaptive.viewpoint, &scene_frame, several))
             .with_context(|| format!("cannot benchmark '{}'", input.shown))
     })?;
     if let Some(prefix) = &a.out {
@@ -174,4 +180,34 @@ fn dedup<T: PartialEq + Copy>(list: &[T]) -> Vec<T> {
         }
     }
     out
+}
+
+/// A camera without a view direction named as `render` names it: `--eye` and `--look-at` as
+/// typed, the fitted camera's eye or target where one was not given (mesh coordinates), and
+/// then, where several surfaces or displacements are timed, which one's fitted camera it was.
+fn no_direction(e: RenderError, v: &ViewpointOpts, frame: &Frame, several: bool) -> anyhow::Error {
+    let RenderError::NoViewDirection {
+        surface,
+        eye,
+        target,
+    } = e
+    else {
+        return e.into();
+    };
+    fn given(p: &Option<TypedVec3>, fitted: Vec3) -> (Vec3, Option<&str>) {
+        match p {
+            Some(p) => (Vec3::from(p.value), Some(p.text.as_str())),
+            None => (fitted, None),
+        }
+    }
+    let sentence = super::adaptive::no_direction(
+        given(&v.eye, frame.mesh(eye)),
+        given(&v.look_at, frame.mesh(target)),
+    );
+    // Both given: no fitted camera is in the sentence.
+    if several && (v.eye.is_none() || v.look_at.is_none()) {
+        anyhow::anyhow!("{sentence} (the camera fitted to {surface})")
+    } else {
+        anyhow::anyhow!("{sentence}")
+    }
 }

@@ -47,6 +47,15 @@ pub enum RenderError {
     Loop(crate::surface::loop_::TopologyError),
     #[error("the tessellator evaluated {written} vertices, more than the {capacity} the capture buffer holds")]
     CaptureOverflow { written: u64, capacity: u64 },
+    /// An eye and a point looked at that give no view direction (`Viewpoint::complete`): the
+    /// camera fitted to `surface` completed with what was given, its eye and target in the
+    /// drawn frame, for the caller to name as they were typed.
+    #[error("--eye and --look-at give no view direction with the camera fitted to {surface}: the eye is within 1e-4 radii of the surface of the point looked at")]
+    NoViewDirection {
+        surface: String,
+        eye: glam::Vec3,
+        target: glam::Vec3,
+    },
 }
 
 impl From<crate::surface::loop_::TopologyError> for RenderError {
