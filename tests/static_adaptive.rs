@@ -219,6 +219,8 @@ fn static_adaptive_is_watertight() {
         (Surface::Pn, Displace::None),
         (Surface::Phong, Displace::None),
         (Surface::Pn, Displace::Sine),
+        (Surface::Pn, Displace::Noise),
+        (Surface::Stpn, Displace::None),
     ]
     .into_iter()
     .enumerate()
