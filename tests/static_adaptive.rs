@@ -220,7 +220,6 @@ fn static_adaptive_is_watertight() {
         (Surface::Phong, Displace::None),
         (Surface::Pn, Displace::Sine),
         (Surface::Pn, Displace::Noise),
-        (Surface::Stpn, Displace::None),
     ]
     .into_iter()
     .enumerate()

@@ -276,7 +276,7 @@ float strip_level(Strip st, float tol, float enough) {
 
 // Mirror: `Strip::fits`: the bounds at beta = (1 + 2^-16)/n, no square root or Newton's steps.
 bool strip_meets(Strip st, float quad, float cubed, float tol) {
-    return quad <= tol || (st.polynomial && LOD_POLYNOMIAL_SHARE * quad + st.t3 * cubed <= tol);
+    return quad < tol || (st.polynomial && LOD_POLYNOMIAL_SHARE * quad + st.t3 * cubed < tol);
 }
 
 bool strip_fits(Strip st, float n, float tol) {

@@ -240,14 +240,13 @@ fn print_loop(a: &InfoArgs, data: &LoopData) -> Result<()> {
     Ok(())
 }
 
-/// `--pixel-error` and the camera: one sentence for the first bad value, before any work (the
-/// camera's values checked without `--pixel-error` too, where they are ignored with a
-/// warning, as every ignored option's: docs/errors.md). A `--max-level` above [`LEAST_LEVEL_LIMIT`] for the tess driver (the only one with a
+/// `--pixel-error` and the camera: one sentence for the first bad value, before any work.
+/// A `--max-level` above [`LEAST_LEVEL_LIMIT`] for the tess driver (the only one with a
 /// device level limit) is checked against the device render would draw on (its limits read,
 /// nothing opened), as render refuses it; otherwise no device is needed.
 fn check_level_options(a: &InfoArgs, desc: &ContextDesc) -> Result<()> {
     let Some(px) = &a.pixel_error else {
-        return super::adaptive::check_camera(&a.camera.viewpoint);
+        return Ok(());
     };
     check_view(px, &a.camera.viewpoint, a.level.is_some())?;
     if a.max_level > LEAST_LEVEL_LIMIT && matches!(a.driver, meshrefine::render::Driver::Tess) {

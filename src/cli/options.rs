@@ -429,7 +429,17 @@ pub fn check_values(cli: &Cli) -> Result<(), String> {
     if let Some(a) = drawn.and_then(|d| d.crease_angle.as_ref()) {
         super::input::check_crease_angle(a)?;
     }
-    Ok(())
+    // The camera's values, whether or not the command reads them (info without --pixel-error
+    // and a uniform export ignore them, with a warning after this).
+    let viewpoint = match &cli.command {
+        Command::Render(a) => &a.adaptive.viewpoint,
+        Command::View(a) => &a.adaptive.viewpoint,
+        Command::Export(a) => &a.adaptive.viewpoint,
+        Command::Bench(a) => &a.adaptive.viewpoint,
+        Command::Info(a) => &a.camera.viewpoint,
+        Command::Devices => return Ok(()),
+    };
+    super::adaptive::check_camera(viewpoint).map_err(|e| e.to_string())
 }
 
 /// Checks every output path of `cli`'s command by the rules of `meshrefine::paths`, before any

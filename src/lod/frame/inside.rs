@@ -56,7 +56,8 @@ fn ring_second(r: &LodRecord) -> f32 {
 /// term (for the tessellator `Q = max(max_k M_k, R) / 6` over its ring diagonals too and `T`
 /// times [`TESS_CUBIC`]): the level `N1` of `Q + T / N0`, `N0` the level of `Q` alone, or of
 /// `Q + 2T / N0` where the driver glides (`glide_factor`; proof in src/lod/mod.rs, "A
-/// polynomial patch"). Mirror: `own_level` in glsl/lod/levels.comp.
+/// polynomial patch"). Mirror: `own_level_above` in glsl/lod/levels.comp (with the largest
+/// of the element's edges' levels).
 pub fn own_level(v: &LodView, r: &LodRecord) -> f32 {
     own_level_above(v, r, 0.0)
 }
@@ -82,8 +83,8 @@ pub fn own_level_above(v: &LodView, r: &LodRecord, floor: f32) -> f32 {
 /// How many times `T / N0` a polynomial patch's level takes beside its quadratic term: 1, the
 /// bound at the level itself; 2 where the driver glides (dyadic levels), so that the bound also
 /// holds, in the form `c2 / N²` geomorphing's factor assumes, at half the level, which a gliding
-/// element blends from (src/lod/mod.rs, "A polynomial patch"). Mirror: in `own_level` and
-/// `edge_need_level`, glsl/lod/levels.comp.
+/// element blends from (src/lod/mod.rs, "A polynomial patch"). Mirror: in `own_level_above`
+/// and `edge_need_level`, glsl/lod/levels.comp.
 pub(super) fn glide_factor(v: &LodView) -> f32 {
     if v.dyadic() {
         2.0

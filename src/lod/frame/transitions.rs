@@ -334,11 +334,13 @@ impl Strip {
         let (p, q, c, a) = (self.p, self.q, self.c, self.a);
         let s = a + b;
         let cubed = s * s * s;
+        // Strictly below, as the solver asks (`c >= tol` is never met: a tolerance of zero,
+        // where a sphere holds the eye, takes the largest level whatever the bound).
         let meets = |quad: f32| {
-            quad <= tol
+            quad < tol
                 || self
                     .t3
-                    .is_some_and(|t3| POLYNOMIAL_SHARE * quad + t3 * cubed <= tol)
+                    .is_some_and(|t3| POLYNOMIAL_SHARE * quad + t3 * cubed < tol)
         };
         let sides = (p * b + q) * b + c;
         let bases = self.base.map_or(0.0, |base| {
@@ -350,7 +352,8 @@ impl Strip {
 
 /// The smallest inner level at which the transition triangles along stored edge `e`, drawn at
 /// `a = 1/n_e`, meet tolerance `tol` (module notes, step 2), or the maximum level where none
-/// does ([`Strip::level`], `enough` as there). Mirror: `strip_level` in glsl/lod/levels.comp.
+/// does ([`Strip::level`], `enough` as there). Mirror: `strip_new` then `strip_level` in
+/// glsl/lod/levels.comp.
 fn strip_level(v: &LodView, r: &LodRecord, e: usize, a: f32, tol: f32, enough: f32) -> f32 {
     Strip::new(v, r, e, a).level(tol, v.max_level as f32, enough)
 }
