@@ -218,12 +218,13 @@ vec3 tess_side_coefficients(float me, float t, float mb) {
 }
 
 // Mirror: `Strip` (src/lod/frame/transitions.rs): step 2's bound of the transition triangles
-// along stored edge e drawn at a = 1/n_e beside an inside at beta: the sides' p beta^2 + q beta
-// + c, the bases' base (with the kink terms; `has_base` false where the sides hold them), and a
+// along stored edge e drawn at a = 1/n_e beside an inside at beta, as quadratics (p, q, c) in
+// beta: the sides' and the bases' (`has_bases` false where the sides hold them), and a
 // polynomial patch's cubic term t3 (`polynomial`).
 struct Strip {
-    float p, q, c, k1, k2, a, base, t3;
-    bool has_base, polynomial;
+    vec3 sides, bases;
+    float a, t3;
+    bool has_bases, polynomial;
 };
 
 Strip strip_new(LodRecord r, int e, float a) {
@@ -236,46 +237,45 @@ Strip strip_new(LodRecord r, int e, float a) {
     if (kind == DYADIC) {
         // The tessellator's first ring beside a snapped outer ring.
         vec3 s = tess_side_coefficients(m[e], t, mb);
-        st.p = LOD_ELEMENT_FACTOR * s.z + k2;
-        st.q = LOD_ELEMENT_FACTOR * s.y * a + k1 + 2.0 * k2 * a;
-        st.c = (LOD_ELEMENT_FACTOR * s.x * a + k1 + k2 * a) * a;
+        st.sides = vec3(LOD_ELEMENT_FACTOR * s.z + k2, LOD_ELEMENT_FACTOR * s.y * a + k1 + 2.0 * k2 * a,
+                        (LOD_ELEMENT_FACTOR * s.x * a + k1 + k2 * a) * a);
     } else {
         float h = kind == 0u ? 1.0 : 0.5;
-        st.p = LOD_ELEMENT_FACTOR * mb + k2;
-        st.q = LOD_ELEMENT_FACTOR * h * a * t + k1 + 2.0 * k2 * a;
-        st.c = (LOD_ELEMENT_FACTOR * h * h * a * m[e] + k1 + k2 * a) * a;
+        st.sides = vec3(LOD_ELEMENT_FACTOR * mb + k2, LOD_ELEMENT_FACTOR * h * a * t + k1 + 2.0 * k2 * a,
+                        (LOD_ELEMENT_FACTOR * h * h * a * m[e] + k1 + k2 * a) * a);
     }
-    st.k1 = k1;
-    st.k2 = k2;
+    st.has_bases = kind != 0u;
+    st.bases = st.has_bases
+        ? vec3(k2, k1 + 2.0 * k2 * a, (LOD_ELEMENT_FACTOR * a * m[e] + k1 + k2 * a) * a)
+        : vec3(0.0);
     st.a = a;
-    st.has_base = kind != 0u;
-    st.base = st.has_base ? (LOD_ELEMENT_FACTOR * a * m[e] + k1 + k2 * a) * a : 0.0;
     st.t3 = r.second.w;
     st.polynomial = st.t3 < LOD_HUGE && k1 == 0.0 && k2 == 0.0;
     return st;
 }
 
+// A quadratic's level, and where it needs more than `enough` the polynomial bound's (in
+// `Strip::level`).
+float strip_solve(Strip st, vec3 pqc, float tol, float enough) {
+    float mx = float(view.max_level);
+    float general = quadratic_level(pqc.x, pqc.y, pqc.z, tol, mx);
+    if (st.polynomial && general > enough) {
+        vec3 s = LOD_POLYNOMIAL_SHARE * pqc;
+        return min(general, cubic_level(s.x, s.y, s.z, st.t3, st.a, tol, mx));
+    }
+    return general;
+}
+
 // Mirror: `Strip::level`. `enough`: the level the caller compares with (the polynomial bound is
 // solved only above it).
 float strip_level(Strip st, float tol, float enough) {
-    float mx = float(view.max_level);
-    float share = LOD_POLYNOMIAL_SHARE;
-    float sides = quadratic_level(st.p, st.q, st.c, tol, mx);
-    if (st.polynomial && sides > enough) {
-        sides = min(sides, cubic_level(share * st.p, share * st.q, share * st.c, st.t3, st.a, tol, mx));
-    }
-    if (!st.has_base) {
-        return sides;
-    }
-    float bases = quadratic_level(st.k2, st.k1 + 2.0 * st.k2 * st.a, st.base, tol, mx);
-    if (st.polynomial && bases > enough) {
-        bases = min(bases, cubic_level(0.0, 0.0, share * st.base, st.t3, st.a, tol, mx));
-    }
-    return max(sides, bases);
+    float sides = strip_solve(st, st.sides, tol, enough);
+    return st.has_bases ? max(sides, strip_solve(st, st.bases, tol, enough)) : sides;
 }
 
 // Mirror: `Strip::fits`: the bounds at beta = (1 + 2^-16)/n, no square root or Newton's steps.
-bool strip_meets(Strip st, float quad, float cubed, float tol) {
+bool strip_meets(Strip st, vec3 pqc, float b, float cubed, float tol) {
+    float quad = (pqc.x * b + pqc.y) * b + pqc.z;
     return quad < tol || (st.polynomial && LOD_POLYNOMIAL_SHARE * quad + st.t3 * cubed < tol);
 }
 
@@ -283,9 +283,8 @@ bool strip_fits(Strip st, float n, float tol) {
     float b = (1.0 + 1.0 / 65536.0) / n;
     float s = st.a + b;
     float cubed = s * s * s;
-    float sides = (st.p * b + st.q) * b + st.c;
-    float bases = st.has_base ? (st.k2 * b + st.k1 + 2.0 * st.k2 * st.a) * b + st.base : 0.0;
-    return strip_meets(st, sides, cubed, tol) && strip_meets(st, bases, cubed, tol);
+    return strip_meets(st, st.sides, b, cubed, tol)
+        && (!st.has_bases || strip_meets(st, st.bases, b, cubed, tol));
 }
 
 // Mirror: `outside` (`lod_outside`).

@@ -424,19 +424,24 @@ impl ViewpointOpts {
         let v = self.drawn(frame);
         let fitted = Camera::fit_with_fov(framing, aspect, v.fov_y);
         v.complete(fitted).ok_or_else(|| {
-            // The values as given, or where the fitted camera puts them.
-            fn given(p: &Option<TypedVec3>, fallback: Vec3) -> (Vec3, Option<&str>) {
-                match p {
-                    Some(p) => (Vec3::from(p.value), Some(p.text.as_str())),
-                    None => (fallback, None),
-                }
-            }
-            let (e, t) = (
-                given(&self.eye, frame.mesh(fitted.eye())),
-                given(&self.look_at, frame.mesh(fitted.target)),
-            );
-            anyhow::anyhow!("{}", no_direction(e, t))
+            anyhow::anyhow!(
+                "{}",
+                self.no_direction(frame.mesh(fitted.eye()), frame.mesh(fitted.target))
+            )
         })
+    }
+
+    /// The sentence for a camera without a view direction ([`no_direction`]): `--eye` and
+    /// `--look-at` as typed, where not given the fitted camera's `eye` or `target` (mesh
+    /// coordinates).
+    pub fn no_direction(&self, eye: Vec3, target: Vec3) -> String {
+        fn given(p: &Option<TypedVec3>, fallback: Vec3) -> (Vec3, Option<&str>) {
+            match p {
+                Some(p) => (Vec3::from(p.value), Some(p.text.as_str())),
+                None => (fallback, None),
+            }
+        }
+        no_direction(given(&self.eye, eye), given(&self.look_at, target))
     }
 }
 

@@ -6,10 +6,8 @@ use super::adaptive::Frame;
 use super::args::BenchArgs;
 use super::args::ViewpointOpts;
 use super::input::{for_viewing, load_mesh, split_three_creases};
-use super::numbers::TypedVec3;
 use super::with_context;
 use anyhow::{bail, Context as _, Result};
-use glam::Vec3;
 use meshrefine::bench::BenchCamera;
 use meshrefine::gpu::ContextDesc;
 use meshrefine::render::{DrawConfig, Driver, RenderError};
@@ -194,16 +192,7 @@ fn no_direction(e: RenderError, v: &ViewpointOpts, frame: &Frame, several: bool)
     else {
         return e.into();
     };
-    fn given(p: &Option<TypedVec3>, fitted: Vec3) -> (Vec3, Option<&str>) {
-        match p {
-            Some(p) => (Vec3::from(p.value), Some(p.text.as_str())),
-            None => (fitted, None),
-        }
-    }
-    let sentence = super::adaptive::no_direction(
-        given(&v.eye, frame.mesh(eye)),
-        given(&v.look_at, frame.mesh(target)),
-    );
+    let sentence = v.no_direction(frame.mesh(eye), frame.mesh(target));
     // Both given: no fitted camera is in the sentence.
     if several && (v.eye.is_none() || v.look_at.is_none()) {
         anyhow::anyhow!("{sentence} (the camera fitted to {surface})")

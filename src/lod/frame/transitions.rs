@@ -238,19 +238,15 @@ fn quadratic_level(p: f32, q: f32, c: f32, tol: f32, max: f32) -> f32 {
 }
 
 /// Step 2's bound of the transition triangles along stored edge `e` of element `r`, drawn at
-/// `a = 1/n_e` beside an inside at `β` (module notes): the sides' `p β² + q β + c` (the kink terms
-/// at `a + β`, the sides' `S_e` after a move of at most `h a`; beside the tessellator's first
-/// ring, its own coefficients), the bases' `base` (with the kink terms' `k2 β² + (k1 + 2 k2 a) β`;
-/// none where the sides' `S_e` holds them: the tessellator's integer levels), and where the
+/// `a = 1/n_e` beside an inside at `β` (module notes), as quadratics `[p, q, c]` in `β`
+/// (`p β² + q β + c`): the sides' (the kink terms at `a + β`, the sides' `S_e` after a move of
+/// at most `h a`; beside the tessellator's first ring, its own coefficients) and the bases'
+/// (none where the sides' `S_e` holds them: the tessellator's integer levels); and where the
 /// element is a polynomial patch (no kinks) its cubic term `t3` (else `None`).
 struct Strip {
-    p: f32,
-    q: f32,
-    c: f32,
-    k1: f32,
-    k2: f32,
+    sides: [f32; 3],
+    bases: Option<[f32; 3]>,
     a: f32,
-    base: Option<f32>,
     t3: Option<f32>,
 }
 
@@ -277,18 +273,15 @@ impl Strip {
             )
         };
         // The bases' a² M_e is S_e's own first term where vertices move anywhere in a sample.
-        let base = rounding
-            .snapped()
-            .then(|| (ELEMENT_FACTOR * a * m[e] + k1 + k2 * a) * a);
+        let bases = rounding.snapped().then(|| {
+            let base = (ELEMENT_FACTOR * a * m[e] + k1 + k2 * a) * a;
+            [k2, k1 + 2.0 * k2 * a, base]
+        });
         let t3 = (m[3] < HUGE && k1 == 0.0 && k2 == 0.0).then_some(m[3]);
         Strip {
-            p,
-            q,
-            c,
-            k1,
-            k2,
+            sides: [p, q, c],
+            bases,
             a,
-            base,
             t3,
         }
     }
@@ -299,29 +292,20 @@ impl Strip {
     /// `enough` (the level the caller compares with): whether the answer is above `enough`
     /// does not change.
     fn level(&self, tol: f32, max: f32, enough: f32) -> f32 {
-        let (p, q, c, a) = (self.p, self.q, self.c, self.a);
-        let share = POLYNOMIAL_SHARE;
-        let mut sides = quadratic_level(p, q, c, tol, max);
-        if let Some(t3) = self.t3.filter(|_| sides > enough) {
-            sides = sides.min(cubic_level(
-                share * p,
-                share * q,
-                share * c,
-                t3,
-                a,
-                tol,
-                max,
-            ));
-        }
-        let Some(base) = self.base else {
-            return sides;
+        // A quadratic's level, and where it needs more than `enough` the polynomial bound's.
+        let solve = |[p, q, c]: [f32; 3]| {
+            let general = quadratic_level(p, q, c, tol, max);
+            match self.t3.filter(|_| general > enough) {
+                Some(t3) => {
+                    let share = POLYNOMIAL_SHARE;
+                    let cubic = cubic_level(share * p, share * q, share * c, t3, self.a, tol, max);
+                    general.min(cubic)
+                }
+                None => general,
+            }
         };
-        let (k1, k2) = (self.k1, self.k2);
-        let mut bases = quadratic_level(k2, k1 + 2.0 * k2 * a, base, tol, max);
-        if let Some(t3) = self.t3.filter(|_| bases > enough) {
-            bases = bases.min(cubic_level(0.0, 0.0, share * base, t3, a, tol, max));
-        }
-        sides.max(bases)
+        let sides = solve(self.sides);
+        self.bases.map_or(sides, |bases| sides.max(solve(bases)))
     }
 
     /// Whether the triangles meet `tol` at inner level `n`: each bound evaluated at `β = (1 +
@@ -331,22 +315,18 @@ impl Strip {
     /// polynomial patch's bound is evaluated where the general one is not met.
     fn fits(&self, n: f32, tol: f32) -> bool {
         let b = (1.0 + 1.0 / 65536.0) / n;
-        let (p, q, c, a) = (self.p, self.q, self.c, self.a);
-        let s = a + b;
+        let s = self.a + b;
         let cubed = s * s * s;
         // Strictly below, as the solver asks (`c >= tol` is never met: a tolerance of zero,
         // where a sphere holds the eye, takes the largest level whatever the bound).
-        let meets = |quad: f32| {
+        let meets = |[p, q, c]: [f32; 3]| {
+            let quad = (p * b + q) * b + c;
             quad < tol
                 || self
                     .t3
                     .is_some_and(|t3| POLYNOMIAL_SHARE * quad + t3 * cubed < tol)
         };
-        let sides = (p * b + q) * b + c;
-        let bases = self.base.map_or(0.0, |base| {
-            (self.k2 * b + self.k1 + 2.0 * self.k2 * a) * b + base
-        });
-        meets(sides) && meets(bases)
+        meets(self.sides) && self.bases.is_none_or(meets)
     }
 }
 
