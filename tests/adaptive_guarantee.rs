@@ -109,14 +109,9 @@ fn drawn_triangles(
         }
         return out;
     }
-    let pv = meshrefine::pattern::vertex_count(MAX) as usize;
-    // A geomorphing vertex stands for its blended parameter (`adaptive::geomorph_weights`).
-    let mut lattice = vec![(0, 0); pv];
-    for j in 0..=MAX {
-        for i in 0..=MAX - j {
-            lattice[meshrefine::pattern::lattice_index(MAX, i, j) as usize] = (i, j);
-        }
-    }
+    // A geomorphing vertex stands for its blended parameter (`adaptive::geomorph_weights`), at
+    // its point of the finest lattice (the hierarchy's vertices, in its order).
+    let lattice = adaptive::Hierarchy::new(MAX).points;
     let (levels, _) = scene.drawn_levels(cfg);
     for (t, (inner, slots)) in cap.adaptive_elements().enumerate() {
         if inner == 0 {

@@ -162,9 +162,9 @@ fn check_chunked(
                 2e-3
             };
             let mirror = scene.mirror(&cfg, max).unwrap();
-            // The patterns' own weights (the finest pattern's, or the integer patterns').
+            // The patterns' own weights (the hierarchy's, or the integer patterns').
             let plain = match cfg.dyadic_levels() {
-                true => meshrefine::pattern::Pattern::uniform(max).bary,
+                true => meshrefine::pattern::adaptive::Hierarchy::new(max).bary,
                 false => IntegerPatterns::new(max).bary,
             };
             let elements: Vec<_> = cap.adaptive_elements().collect();

@@ -155,7 +155,7 @@ void main() {
     // Packed (src/render/packed_capture.rs): the element's vertices at its inner level only,
     // point (i, j) of that level's own lattice at its lattice index (`bft_row`, the GLSL twin of
     // pattern::lattice_index) after the element's first slot; id.y the pattern's vertex (the
-    // finest's, or the integer patterns'), id.z the inner level, id.w 1 (adaptive). A vertex
+    // hierarchy's, or the integer patterns'), id.z the inner level, id.w 1 (adaptive). A vertex
     // outside the room the capture made for its element (a level other than the one it was
     // sized for) is counted, not written.
     uint s = GEOMORPH != 0u ? f / max(n.w, 1u) : 1u;

@@ -163,11 +163,18 @@ pub fn bary(i: u32, j: u32, f: u32) -> [f32; 3] {
     [weight(f - i - j, f), weight(i, f), weight(j, f)]
 }
 
-/// The hierarchy of dyadic patterns up to level `f = 2^L`: level `2^l`'s triangles (the uniform
-/// pattern's, in its order) with indices into the finest pattern's vertices, level after level.
+/// The hierarchy of dyadic patterns up to level `f = 2^L`: the finest pattern's vertices in
+/// hierarchical order ([`hierarchy_vertex`]: level `2^l`'s vertices are the first
+/// `vertex_count(2^l)`), then level `2^l`'s triangles (the uniform pattern's, in its order)
+/// indexing them, level after level. A level's draw then reads only its own vertices, the first
+/// ones: a device that shades every vertex between a draw's smallest and largest index (as
+/// lavapipe does) shades no more than the level's own.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Hierarchy {
     pub level: u32,
+    /// The finest lattice's points `(i, j)` in hierarchical order, and their weights.
+    pub points: Vec<(u32, u32)>,
+    pub bary: Vec<[f32; 3]>,
     pub indices: Vec<u32>,
 }
 
@@ -178,14 +185,30 @@ impl Hierarchy {
             f.is_power_of_two(),
             "hierarchical patterns need a power of two"
         );
+        // Level after level, the points it adds (an odd coordinate of its own lattice), in its
+        // lattice order.
+        let mut points = Vec::with_capacity(super::vertex_count(f) as usize);
+        for l in 0..=f.trailing_zeros() {
+            let (n, s) = (1u32 << l, f >> l);
+            let p = Pattern::uniform(n);
+            let new = p.lattice().filter(|&(i, j)| n == 1 || (i | j) % 2 == 1);
+            points.extend(new.map(|(i, j)| (i * s, j * s)));
+        }
+        let bary = points.iter().map(|&(i, j)| bary(i, j, f)).collect();
         let mut indices = Vec::with_capacity(Self::first_index(f.trailing_zeros() + 1) as usize);
         for l in 0..=f.trailing_zeros() {
             indices.extend(Self::level_indices(f, 1 << l));
         }
-        Self { level: f, indices }
+        Self {
+            level: f,
+            points,
+            bary,
+            indices,
+        }
     }
 
-    /// Level `n`'s triangle list with indices into the finest level `f`'s vertices.
+    /// Level `n`'s triangle list with indices into the finest level `f`'s vertices in
+    /// hierarchical order ([`hierarchy_vertex`]).
     pub fn level_indices(f: u32, n: u32) -> Vec<u32> {
         let s = f / n;
         let p = Pattern::uniform(n);
@@ -194,7 +217,7 @@ impl Hierarchy {
             .iter()
             .map(|&k| {
                 let (i, j) = lattice[k as usize];
-                lattice_index(f, i * s, j * s)
+                hierarchy_vertex(f, i * s, j * s)
             })
             .collect()
     }
@@ -209,6 +232,27 @@ impl Hierarchy {
         let first = Self::first_index(n.trailing_zeros());
         first..first + index_count(n)
     }
+}
+
+/// Where point `(i, j)` of the finest lattice (level `f`, a power of two) is among the
+/// [`Hierarchy`]'s vertices: the corners first, then each level `n = 2, 4, ..., f` the points it
+/// adds to level `n / 2`'s (those with an odd coordinate on its own lattice), in its lattice
+/// order, so that level `n`'s points are the first `vertex_count(n)`.
+pub fn hierarchy_vertex(f: u32, i: u32, j: u32) -> u32 {
+    // The coarsest level the point is on: `n = f / 2^t`, at `(i, j) / 2^t` of its lattice.
+    let t = (i | j).trailing_zeros().min(f.trailing_zeros());
+    let (n, ci, cj) = (f >> t, i >> t, j >> t);
+    if n == 1 {
+        return lattice_index(1, ci, cj);
+    }
+    // Level n / 2's points before (ci, cj) in level n's lattice order: both coordinates even,
+    // (n - r)/2 + 1 of them on each even row r < cj, and (ci + 1)/2 before it on an even row.
+    let rows = cj.div_ceil(2);
+    let mut old = rows * (n / 2 + 1) - rows * rows.saturating_sub(1) / 2;
+    if cj % 2 == 0 {
+        old += ci.div_ceil(2);
+    }
+    super::vertex_count(n / 2) + lattice_index(n, ci, cj) - old
 }
 
 /// What the adaptive pattern driver draws for one element at largest level `f`.
@@ -269,7 +313,7 @@ pub fn dyadic_element(levels: &ElementLevels, f: u32) -> Option<AdaptiveElement>
     for j in 0..=d.inner {
         for i in 0..=(d.inner - j) {
             let (fi, fj) = (i * s, j * s);
-            vertices.push(lattice_index(f, fi, fj));
+            vertices.push(hierarchy_vertex(f, fi, fj));
             points.push((fi, fj));
             let (si, sj) = snap(fi, fj, &d, f);
             out.push(bary(si, sj, f));
@@ -452,8 +496,7 @@ mod tests {
     fn adaptive_stored_counts_what_the_patterns_hold() {
         for f in [1, 2, 8, 64] {
             let h = Hierarchy::new(f);
-            let fine = Pattern::uniform(f);
-            let dyadic = (fine.bary.len() as u64, h.indices.len() as u64);
+            let dyadic = (h.bary.len() as u64, h.indices.len() as u64);
             assert_eq!(adaptive_stored(f, true), dyadic, "hierarchy up to {f}");
             let p = IntegerPatterns::new(f);
             let integer = (p.bary.len() as u64, p.indices.len() as u64);
@@ -466,15 +509,18 @@ mod tests {
     fn hierarchy_levels_are_the_uniform_patterns() {
         let f = 16;
         let h = Hierarchy::new(f);
-        let fine = Pattern::uniform(f);
         for l in 0..=4 {
             let n = 1 << l;
             let r = Hierarchy::range(n);
             let coarse = Pattern::uniform(n);
-            let got: Vec<[f32; 3]> = h.indices[r.start as usize..r.end as usize]
-                .iter()
-                .map(|&k| fine.bary[k as usize])
-                .collect();
+            let range = &h.indices[r.start as usize..r.end as usize];
+            // A level reads only its own vertices, the first ones.
+            let own = crate::pattern::vertex_count(n);
+            assert!(
+                range.iter().all(|&k| k < own),
+                "level {n} reads past its vertices"
+            );
+            let got: Vec<[f32; 3]> = range.iter().map(|&k| h.bary[k as usize]).collect();
             let want: Vec<[f32; 3]> = coarse
                 .indices
                 .iter()
@@ -483,6 +529,22 @@ mod tests {
             assert_eq!(got, want, "level {n}");
         }
         assert_eq!(h.indices.len() as u32, Hierarchy::first_index(5));
+    }
+
+    /// The hierarchical order holds every point of the finest lattice once, and
+    /// [`hierarchy_vertex`] finds each where [`Hierarchy::new`] put it.
+    #[test]
+    fn hierarchy_vertex_numbers_the_hierarchical_order() {
+        for f in [1, 2, 4, 16, 64, 256] {
+            let h = Hierarchy::new(f);
+            assert_eq!(h.points.len() as u32, crate::pattern::vertex_count(f));
+            let mut seen = std::collections::HashSet::new();
+            for (k, &(i, j)) in h.points.iter().enumerate() {
+                assert!(seen.insert((i, j)), "level {f}: ({i}, {j}) twice");
+                assert_eq!(hierarchy_vertex(f, i, j), k as u32, "level {f}: ({i}, {j})");
+                assert_eq!(h.bary[k], bary(i, j, f));
+            }
+        }
     }
 
     #[test]

@@ -314,8 +314,8 @@ pub(super) fn check_dyadic(level: u32, driver: &str, option: &str) -> Result<(),
 }
 
 /// Record the adaptive draws of the elements `range` of `mesh` (the bins pass already
-/// recorded): the patterns' vertices and index ranges (the finest pattern's vertices and the
-/// hierarchy's ranges, or the integer patterns'), the commands the pass
+/// recorded): the patterns' vertices and index ranges (the hierarchy's, or the integer
+/// patterns'), the commands the pass
 /// wrote. The same per-element loop as [`cmd_draw`] for `push` and `ubo`; one indirect draw per
 /// chunk and level for `instanced`.
 fn cmd_draw_adaptive(
@@ -327,10 +327,9 @@ fn cmd_draw_adaptive(
     submit: Submit,
     range: std::ops::Range<u32>,
 ) {
-    let finest = mesh
-        .pattern(a.level)
-        .expect("the finest pattern is in the set");
-    let draw = |base: u32, local: u32| -> DrawWords { [a.level, base, finest.vertex_count, local] };
+    // The capture's slots per element: the finest level's vertices.
+    let slots = vertex_count(a.level);
+    let draw = |base: u32, local: u32| -> DrawWords { [a.level, base, slots, local] };
     let push_draw = |words: DrawWords| {
         cmd.push_constants(
             r.layout.raw,
@@ -339,7 +338,7 @@ fn cmd_draw_adaptive(
             bytemuck::cast_slice(&words),
         )
     };
-    cmd.bind_vertex_buffer(0, a.vertices.as_ref().unwrap_or(&finest.vertices));
+    cmd.bind_vertex_buffer(0, &a.vertices);
     // The element lists (`instanced` rebinds them per bin; the other modes ignore them).
     cmd.bind_vertex_buffer(2, &a.lists);
     cmd.bind_index_buffer_u32(&a.indices);

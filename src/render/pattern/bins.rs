@@ -126,18 +126,19 @@ struct BinsPush {
 }
 
 /// What drawing one mesh's elements adaptively at largest level `f` needs: the patterns (at
-/// dyadic levels, the hierarchical index ranges into the finest uniform pattern's vertices; at
-/// integer levels, every level's own vertices and triangles), the indirect commands and bins
+/// dyadic levels, the finest level's vertices in hierarchical order and each level's index
+/// range into them, [`Hierarchy`]; at integer levels, every level's own vertices and
+/// triangles), the indirect commands and bins
 /// the pass glsl/pattern/bins.comp writes from the levels buffer each frame, and that pass.
 /// Built by [`super::PatternDriver`]'s `prepare` for a level that is a power of two.
 pub struct AdaptivePattern {
     pub level: u32,
     /// Levels are powers of two (geomorphing), else any integer.
     pub dyadic: bool,
-    /// The integer patterns' vertices (`None` at dyadic levels: the finest pattern's).
-    pub vertices: Option<Buffer>,
-    /// Every level's triangles: dyadic, indexing the finest pattern's vertices; integer, each
-    /// level's own (drawn with its vertex offset).
+    /// The hierarchy's vertices (dyadic) or the integer patterns'.
+    pub vertices: Buffer,
+    /// Every level's triangles: dyadic, indexing the hierarchy's vertices (a level its first
+    /// ones); integer, each level's own (drawn with its vertex offset).
     pub indices: Buffer,
     /// Per element one command (`push`, `ubo`), then per chunk and level one bin's command.
     pub commands: Buffer,
@@ -173,15 +174,17 @@ impl AdaptivePattern {
         let (vertices, indices) = if dyadic {
             let hierarchy = Hierarchy::new(f);
             let name = format!("hierarchical patterns up to {f}");
+            let vertices =
+                Buffer::new_with_data(ctx, pool, U::VERTEX_BUFFER, &hierarchy.bary, &name)?;
             let indices =
                 Buffer::new_with_data(ctx, pool, U::INDEX_BUFFER, &hierarchy.indices, &name)?;
-            (None, indices)
+            (vertices, indices)
         } else {
             let p = IntegerPatterns::new(f);
             let name = format!("integer patterns up to {f}");
             let vertices = Buffer::new_with_data(ctx, pool, U::VERTEX_BUFFER, &p.bary, &name)?;
             let indices = Buffer::new_with_data(ctx, pool, U::INDEX_BUFFER, &p.indices, &name)?;
-            (Some(vertices), indices)
+            (vertices, indices)
         };
         let (command_bytes, list_bytes) = adaptive_bytes(n, mesh.chunk, f, dyadic);
         let commands = Buffer::new(
