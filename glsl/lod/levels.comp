@@ -334,14 +334,17 @@ void main() {
         return;
     }
     LodRecord r = lod_records[i];
-    vec3 edges = vec3(edge_level(r.edges[0]), edge_level(r.edges[1]), edge_level(r.edges[2]));
     bool culled = ((view.flags & CULL_FRUSTUM) != 0u && outside(r.sphere))
         || ((view.flags & CULL_BACK_FACES) != 0u
             && lod_back_facing(r.cone, r.sphere, view.eye_k.xyz));
-    float inner = 0.0;
-    if (!culled) {
-        inner = own_level_above(r, max(edges.x, max(edges.y, edges.z)));
-        inner = raise_for_transitions(r, edges, inner);
+    // A culled element draws nothing, and an edge's level is computed by each element that
+    // draws it: no level is needed here.
+    if (culled) {
+        element_levels[i] = vec4(0.0);
+        return;
     }
+    vec3 edges = vec3(edge_level(r.edges[0]), edge_level(r.edges[1]), edge_level(r.edges[2]));
+    float inner = own_level_above(r, max(edges.x, max(edges.y, edges.z)));
+    inner = raise_for_transitions(r, edges, inner);
     element_levels[i] = vec4(edges, inner);
 }

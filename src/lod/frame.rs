@@ -435,14 +435,17 @@ fn back_facing(v: &LodView, cone: [f32; 4], s: [f32; 4]) -> bool {
     cone.cos > 0.0 && cone.back_facing(&sphere, v.eye())
 }
 
-/// One element's levels. Mirror: glsl/lod/levels.comp's `main`.
+/// One element's levels ([`ElementLevels::CULLED`] where it is culled). Mirror:
+/// glsl/lod/levels.comp's `main`.
 pub fn element_levels(v: &LodView, r: &LodRecord) -> ElementLevels {
-    let edges = [0, 1, 2].map(|e| edge_level(v, &r.edges[e]));
     let culled = (v.flags & CULL_FRUSTUM != 0 && outside(v, r.sphere))
         || (v.flags & CULL_BACK_FACES != 0 && back_facing(v, r.cone, r.sphere));
+    // A culled element draws nothing, and an edge's level is computed by each element that
+    // draws it: no level is needed here.
     if culled {
-        return ElementLevels { edges, inner: 0.0 };
+        return ElementLevels::CULLED;
     }
+    let edges = [0, 1, 2].map(|e| edge_level(v, &r.edges[e]));
     let inner = own_level_above(v, r, edges[0].max(edges[1]).max(edges[2]));
     ElementLevels {
         edges,
