@@ -7,7 +7,8 @@
 //! A driver rounds each continuous level to the level it draws with [`drawn_level`] (the GLSL
 //! twin is `drawn_level` in glsl/include/levels.glsl): the two elements that share an edge read
 //! the same value for it and round it the same way, so they sample the edge identically.
-//! An inner level of zero means the element is culled: it draws nothing.
+//! An inner level of zero means the element is culled: it draws nothing (the level pass then
+//! writes [`ElementLevels::CULLED`], computing none of its levels).
 #![forbid(unsafe_code)]
 
 use bytemuck::{Pod, Zeroable};
