@@ -167,8 +167,8 @@ pub fn bary(i: u32, j: u32, f: u32) -> [f32; 3] {
 /// hierarchical order ([`hierarchy_vertex`]: level `2^l`'s vertices are the first
 /// `vertex_count(2^l)`), then level `2^l`'s triangles (the uniform pattern's, in its order)
 /// indexing them, level after level. A level's draw then reads only its own vertices, the first
-/// ones: a device that shades every vertex between a draw's smallest and largest index (as
-/// lavapipe does) shades no more than the level's own.
+/// ones, near one another (on lavapipe, draws whose few indices were spread over the whole
+/// finest pattern shaded far more vertices than they used: docs/bench/hierarchy-order.md).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Hierarchy {
     pub level: u32,
