@@ -160,7 +160,7 @@ fn the_static_driver_draws_adaptively_on_the_cpu() {
 }
 
 /// The pattern driver's adaptive rows count the patterns they draw from: up to level 16 the
-/// finest pattern's 153 vertices and the hierarchy's 1,023 indices while geomorphing, every
+/// hierarchy's 153 vertices (the finest level's) and the hierarchy's 1,023 indices while geomorphing, every
 /// integer level's 968 vertices and 4,488 indices without; the uniform row its own level's
 /// pattern. Each with the records in `geometry_bytes`.
 #[test]

@@ -5,8 +5,9 @@
 //! the weights of every vertex it draws (boundary vertices snapped onto their edge's level) and
 //! its triangles. docs/adaptivity.md, "How cracks are excluded", has the argument.
 //!
-//! Every weight here is `k / 2^l`, exactly representable: the finest buffer's `(w, u, v)` are
-//! the uniform pattern's, and a snapped weight is again a multiple of `1/F`.
+//! Every weight here is `k / 2^l`, exactly representable: the hierarchy's `(w, u, v)` are the
+//! finest uniform pattern's (in hierarchical order), and a snapped weight is again a multiple of
+//! `1/F`.
 #![forbid(unsafe_code)]
 
 use super::{index_count, lattice_index, weight, Pattern};
@@ -124,7 +125,7 @@ impl IntegerPatterns {
 }
 
 /// Vertices and indices the adaptive draws up to `f` store: at powers of two (`dyadic`) the
-/// finest uniform pattern's vertices and the [`Hierarchy`]'s index ranges, else every integer
+/// [`Hierarchy`]'s (the finest level's vertices, every level's index range), else every integer
 /// level's pattern ([`IntegerPatterns`]).
 pub const fn adaptive_stored(f: u32, dyadic: bool) -> (u64, u64) {
     if dyadic {
@@ -259,14 +260,14 @@ pub fn hierarchy_vertex(f: u32, i: u32, j: u32) -> u32 {
 #[derive(Clone, Debug, PartialEq)]
 pub struct AdaptiveElement {
     pub levels: DrawnLevels,
-    /// The finest pattern's vertices the element's inner level draws, and each one's weights
-    /// after snapping (`bary[k]` belongs to `vertices[k]`).
+    /// The vertices the element's inner level draws (the [`Hierarchy`]'s, or the
+    /// [`IntegerPatterns`]'), and each one's weights after snapping (`bary[k]` belongs to `vertices[k]`).
     pub vertices: Vec<u32>,
     pub bary: Vec<[f32; 3]>,
     /// Each vertex's finest-lattice point `(i, j)` before snapping (what
     /// [`geomorph_position`] takes).
     pub points: Vec<(u32, u32)>,
-    /// The triangles, indices into the finest pattern (the draw's order). Where snapping
+    /// The triangles, indices into the same vertices (the draw's order). Where snapping
     /// welds two corners of a triangle it is degenerate (zero area): an exporter drops it.
     pub triangles: Vec<[u32; 3]>,
 }

@@ -51,7 +51,7 @@ pub struct Headless {
 /// - `pattern` drawing adaptively: packed, each element's vertices at its drawn inner level
 ///   `inner_levels[t]` only (`vertex_count` of it, none when culled), in that level's own pattern
 ///   order, element after element ([`CaptureResult::adaptive_elements`]); `id = (element, the
-///   finest pattern's vertex, inner level, 1)`.
+///   pattern's vertex: the hierarchy's, in its order, or the integer patterns', inner level, 1)`.
 /// - `tess`: every evaluation-stage invocation, in no particular order (`id.y = u32::MAX`,
 ///   `coord` = gl_TessCoord); an implementation may evaluate a vertex more than once.
 pub struct CaptureResult {

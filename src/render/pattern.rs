@@ -169,7 +169,8 @@ impl DriverKind for PatternDriver {
         );
     }
 
-    /// The adaptive vertex stage: the finest pattern's `(w, u, v)` per vertex, the element of
+    /// The adaptive vertex stage: the patterns' `(w, u, v)` per vertex (the hierarchy's or the
+    /// integer patterns'), the element of
     /// each instance from its bin's list (`instanced`); records from the storage buffer.
     fn describe_adaptive_pipeline(
         &self,
