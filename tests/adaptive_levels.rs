@@ -50,7 +50,8 @@ fn gpu_levels_match_the_mirror_and_share_edges() {
                 h.draw(&mut scene, &cfg, &camera).unwrap();
                 let (gpu, drawn) = scene.drawn_levels(&cfg);
                 // The mirror, from bounds made here.
-                let lod = Lod::new(&scene.mirror(&cfg, max).unwrap(), &cfg.params);
+                let lod = Lod::new(&scene.mirror(&cfg, max).unwrap(), &cfg.params)
+                    .drawn_as(cfg.rounding());
                 let metric = View::new(camera.eye(), camera.fov_y, 720, 1.0, max);
                 let bounds = lod_records(&lod, scene.records(surface));
                 let lod_view =

@@ -146,7 +146,7 @@ impl State {
             pixel_error: self.controls.pixel_error.to_bits(),
             drawing: (cfg.surface, cfg.displace, cfg.driver.name()),
         };
-        let mut lines = u.notes(self.controls.pixel_error, cfg.level, cfg.loop_displaced());
+        let mut lines = u.notes(self.controls.pixel_error, cfg.level);
         // The largest level the notes name is not --max-level's where the driver's limit on
         // this device or the frame budget lowered it: a last note says which.
         let asked = self.adaptive_max(cfg.driver);

@@ -357,10 +357,7 @@ impl Adaptive<'_> {
     /// Says on standard error where the pixel error is not met: elements with no finite error
     /// bound, and elements whose bound needs a level above the largest (`cfg.level`).
     pub fn note_unmet(&self, cfg: &DrawConfig, report: &LevelReport) {
-        for line in report
-            .unmet
-            .notes(self.pixel_error, cfg.level, cfg.loop_displaced())
-        {
+        for line in report.unmet.notes(self.pixel_error, cfg.level) {
             note(format_args!("{line}"));
         }
     }

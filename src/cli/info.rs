@@ -341,7 +341,7 @@ fn print_levels(a: &InfoArgs, mut input: Input, loop_: Option<LoopData>) -> Resu
     // surface shows no face turned away (`DrawConfig::may_show_back_faces`) on a mesh wound
     // outwards, seen from outside.
     let cull = a.cull.unwrap_or(true);
-    let bounds = lod_records(&Lod::new(&mirror, &params), records);
+    let bounds = lod_records(&Lod::new(&mirror, &params).drawn_as(rounding), records);
     let drawn = meshrefine::render::DrawConfig {
         params,
         build,

@@ -118,6 +118,10 @@ pub struct Lod<'a> {
     pub uv: Option<&'a [[f32; 2]; 3]>,
     /// The two pyramid levels the height map reads (the same level twice when it reads one).
     pub map_levels: Option<[usize; 2]>,
+    /// How the driver rounds levels and meets coarser edges: `loop`'s bounds depend on whether
+    /// its drawn samples are lattice points (src/surface/loop_bound.rs). [`Lod::new`] takes the
+    /// tessellator's integer levels, which are not; [`Lod::drawn_as`] sets it.
+    pub rounding: super::frame::Rounding,
 }
 
 impl<'a> Lod<'a> {
@@ -136,7 +140,13 @@ impl<'a> Lod<'a> {
             mirror: *mirror,
             uv: mirror.uv(0),
             map_levels,
+            rounding: super::frame::Rounding::Integer,
         }
+    }
+
+    /// This `Lod` for a driver that rounds as `rounding` ([`Lod::rounding`]).
+    pub fn drawn_as(self, rounding: super::frame::Rounding) -> Self {
+        Self { rounding, ..self }
     }
 
     /// [`Lod::new`] of `surface` with `displace`, their inputs from `sources` and the default

@@ -497,7 +497,7 @@ pub struct Unmet {
     /// Elements with a finite bound whose bounding sphere (or an edge's) holds the eye: no
     /// distance bounds their error in pixels, no level meets it.
     pub near: u64,
-    /// Other elements with no finite bound (a `loop` surface with displacement, a normal field
+    /// Other elements with no finite bound (a Phong corner blending seam normals, a normal field
     /// that may vanish): at the largest level whatever the pixel error.
     pub unbounded: u64,
     /// Elements whose bound needs a level above the largest.

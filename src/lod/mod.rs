@@ -142,9 +142,9 @@
 //! An edge's level uses the edge's own bound and sphere; an element's inner level is at least
 //! the largest of its edges' ([`View::levels`]). Where a bound is infinite (a Phong element with
 //! blended seam normals, unless its alpha is 0, a direction field that may vanish, `sine` around its centre, `loop`
-//! with displacement, a height map read past `2^18` texels of texture coordinates: src/surface/
-//! heightmap_bound.rs, `FAR`) the level is the maximum and the pixel error is not guaranteed
-//! there.
+//! displaced where M1's normals may cancel, a height map read past `2^18` texels of texture
+//! coordinates: src/surface/heightmap_bound.rs, `FAR`) the level is the maximum and the pixel
+//! error is not guaranteed there.
 //!
 //! The displacement direction's lower bound `ρ` ([`net::Net::min_length`]) is the better of
 //! the Bernstein hull's distance from the origin and a lattice's cells, each bounded below by

@@ -64,15 +64,10 @@ impl LevelReport {
 impl super::frame::Unmet {
     /// One `note:` sentence for each kind of element on which `pixel_error` is not met, drawn
     /// at largest level `max`: those holding the eye in their bounds, those with no finite
-    /// bound (`loop_displaced`: the loop surface with a displacement that moves it, which has none), those
-    /// needing a level above `max`. What `render`, `view` and `export` print on standard
-    /// error, and the window when they change.
-    pub fn notes(&self, pixel_error: f32, max: u32, loop_displaced: bool) -> Vec<String> {
-        let why_unbounded = if loop_displaced {
-            "the loop surface with displacement has none"
-        } else {
-            "docs/adaptivity.md says where none exists"
-        };
+    /// bound, those needing a level above `max`. What `render`, `view` and `export` print on
+    /// standard error, and the window when they change.
+    pub fn notes(&self, pixel_error: f32, max: u32) -> Vec<String> {
+        let why_unbounded = "docs/adaptivity.md says where none exists";
         let elements = |n: u64, one: &str, many: &str| {
             let verb = if n == 1 { one } else { many };
             format!("{n} element{} {verb}", if n == 1 { "" } else { "s" })
@@ -194,7 +189,7 @@ mod notes_tests {
                 capped,
                 beyond_uniform: capped,
             };
-            let notes = unmet.notes(1.0, 8, false).join("\n");
+            let notes = unmet.notes(1.0, 8).join("\n");
             for w in wanted {
                 assert!(notes.contains(w), "{w:?} not in {notes}");
             }

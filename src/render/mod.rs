@@ -148,12 +148,6 @@ impl DrawConfig {
             || (self.surface == Surface::Flat && self_intersects())
     }
 
-    /// The loop surface with a displacement that moves it: no finite error bound on any element
-    /// (docs/adaptivity.md).
-    pub fn loop_displaced(&self) -> bool {
-        self.surface.uses_loop_faces() && self.params.moves(self.displace)
-    }
-
     /// Whether adaptive levels are rounded to powers of two: while the pattern or tess driver
     /// glides (the pattern driver's hierarchical patterns, the tessellator's morph between
     /// them).

@@ -52,6 +52,9 @@ struct BoundsKey {
     generation: u64,
     /// The levels buffer written (another mesh after a re-upload or Loop's faces).
     levels: vk::Buffer,
+    /// How the driver rounds levels, where the bounds depend on it (`loop`'s:
+    /// src/surface/loop_bound.rs).
+    rounding: Option<crate::lod::frame::Rounding>,
 }
 
 /// The elements' spheres where no bounds are at hand ([`Scene::front_only`]): what they were
@@ -328,6 +331,7 @@ impl Scene {
             pyramid: (cfg.displace == Displace::Heightmap).then(|| self.heightmap_lod(cfg.level)),
             generation: self.generation,
             levels: self.elements(cfg.surface).levels.raw,
+            rounding: cfg.surface.uses_loop_faces().then(|| cfg.rounding()),
         }
     }
 
@@ -349,7 +353,10 @@ impl Scene {
             Some(l) if l.records_key == Some(key) => None,
             _ => {
                 let lod = Lod::new(&self.mirror(cfg, cfg.level)?, &cfg.params);
-                Some(lod_records(&lod, self.records(cfg.surface)))
+                Some(lod_records(
+                    &lod.drawn_as(cfg.rounding()),
+                    self.records(cfg.surface),
+                ))
             }
         };
         let mut l = self.levels.take().unwrap_or(SceneLevels {

@@ -264,6 +264,27 @@ pub fn position(data: &LoopData, frame: &LoopFrame, rec: &ElementRecord, bary: [
     p
 }
 
+/// The position of [`eval`] at sample `bary` of `rec`'s face, the same bits, and the sum of
+/// M1's normals there before it is normalized (what a displacement moves along, divided by its
+/// length): what the bounds of a displaced `loop` read ([`bound`]).
+pub fn position_and_field(
+    data: &LoopData,
+    frame: &LoopFrame,
+    rec: &ElementRecord,
+    bary: [f32; 3],
+) -> (Vec3, Vec3) {
+    let (g, b) = owner(rec, bary);
+    let cell = FaceCell::new(data, g, b);
+    let (mut p, mut n) = (Vec3::ZERO, Vec3::ZERO);
+    for c in 0..cell.k {
+        let v = data.control[cell.first + c] as usize;
+        let w = cell.weight(cell.weights(data, c));
+        p += frame.positions[v] * w;
+        n += frame.normals[v] * w;
+    }
+    (p, n)
+}
+
 /// Evaluate face `g` at weights `b` of its stored corners. Mirror of `loop_eval_face`.
 pub fn eval_face(data: &LoopData, frame: &LoopFrame, g: u32, b: [f32; 3]) -> SurfacePoint {
     let cell = FaceCell::new(data, g, b);

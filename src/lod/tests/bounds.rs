@@ -106,7 +106,14 @@ fn halved_bounds_are_caught() {
         );
         let r = std::panic::catch_unwind(|| {
             // Ratios of 2 are rare: the largest-curvature elements must show it.
-            case.check_with(&recs, &[1, 2, 4], spot.bounding_radius(), "halved", 0.5)
+            case.check_lod(
+                &case.lod(),
+                &recs,
+                &[1, 2, 4],
+                spot.bounding_radius(),
+                "halved",
+                0.5,
+            )
         });
         assert!(
             r.is_err(),
@@ -352,6 +359,36 @@ fn loop_bounds_hold() {
         "loop",
     );
     assert!(m <= 20.0, "loop: median bound / truth {m}");
+    // Integer levels whose samples are not lattice points, up to and past the lattice's (the
+    // tessellator's integer levels, which `Lod::new` takes); and the powers of two of the
+    // pattern driver, whose samples are, without the kink terms that pay for that.
+    let r = mesh.bounding_radius();
+    let some = every(&data.records, 61);
+    case.check(&some, &[6, 12, 24, 31, 40, 63], r, "loop at integer levels");
+    let snapped = case.lod().drawn_as(Rounding::Snapped);
+    case.check_lod(
+        &snapped,
+        &some,
+        &[16, 32, 64],
+        r,
+        "loop at powers of two",
+        1.0,
+    );
+    // Not vacuous: without those terms the integer levels pass their bound.
+    let bare = std::panic::catch_unwind(|| {
+        case.check_lod(
+            &snapped,
+            &some,
+            &[24, 31],
+            r,
+            "loop's powers of two at integers",
+            1.0,
+        )
+    });
+    assert!(
+        bare.is_err(),
+        "integer levels met the bound of powers of two"
+    );
     // The mixed bounds are the lattice's mixed differences (or polarization's `Σ/2` where
     // smaller): sampled on that lattice they agree, which pins the pairs' order, and they are
     // below `Σ/2` somewhere (else the lattice's own would add nothing).
@@ -373,8 +410,7 @@ fn loop_bounds_hold() {
     }
     assert!(tighter > 10, "only {tighter} pairs below Σ/2");
     // A displacement that moves nothing (zero amplitude, a sine or noise of frequency zero)
-    // keeps the limit surface's bounds, edges and elements alike; one that moves has none.
-    let r = mesh.bounding_radius();
+    // keeps the limit surface's bounds, edges and elements alike; one that moves has its own.
     let moving = SurfaceParams::for_radius(r);
     let still = [
         (
@@ -419,7 +455,33 @@ fn loop_bounds_hold() {
             }
         }
         let b = with(Displace::Sine, moving).lod().element(&rec);
-        assert_eq!(b.chord.c2, f32::INFINITY);
+        let still = lod.element(&rec);
+        assert!(
+            b.chord.c2.is_finite() && b.chord.c2 != still.chord.c2,
+            "{b:?}"
+        );
+        assert!(b.sphere.radius > still.sphere.radius, "{b:?}");
+    }
+    // Displaced: `sine` and `noise` at their default amplitude and frequency, at integer levels
+    // up to the tables' lattice (32) and beyond, every edge too, and at powers of two as the
+    // pattern driver draws them; and the bound is not loose everywhere: an eighth of it fails
+    // somewhere (the share inside the cells, E_k, counts at every level as at the lattice's).
+    // Noise's bounds are the loosest (its scanned constants hold for every gradient choice).
+    for (displace, loose) in [(Displace::Sine, 20.0), (Displace::Noise, 40.0)] {
+        let case = with(displace, moving);
+        let what = format!("loop + {}", displace.name());
+        let some = every(&data.records, 97);
+        let (_, m) = case.check(&some, &[1, 2, 3, 5, 8, 24, 31, 48], r, &what);
+        let snapped = case.lod().drawn_as(Rounding::Snapped);
+        case.check_lod(&snapped, &some, &[4, 16, 32, 64], r, &what, 1.0);
+        assert!(m <= loose, "{what}: median bound / truth {m}");
+        let less = std::panic::catch_unwind(|| {
+            case.check_lod(&case.lod(), &some, &[2, 4, 8], r, "less", 0.125)
+        });
+        assert!(
+            less.is_err(),
+            "{what}: an eighth of the bound went unnoticed"
+        );
     }
 }
 

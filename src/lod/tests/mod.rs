@@ -2,6 +2,7 @@
 //! (`surface::Mirror::eval`, what every driver mirrors) on real meshes and random elements.
 
 use super::*;
+use crate::lod::frame::Rounding;
 use crate::mesh::test_support::load_model;
 use crate::mesh::Mesh;
 use crate::pattern::weight;
@@ -148,20 +149,21 @@ impl Case<'_> {
         scale: f32,
         what: &str,
     ) -> (f32, f32) {
-        self.check_with(records, levels, scale, what, 1.0)
+        self.check_lod(&self.lod(), records, levels, scale, what, 1.0)
     }
 
-    /// [`Case::check`] with every bound multiplied by `shrink` (below 1: a bound made too
-    /// small, which the check must catch).
-    fn check_with(
+    /// [`Case::check`] with the bounds of `lod` (this case's, or made for a driver's rounding:
+    /// [`Lod::drawn_as`]), each multiplied by `shrink` (below 1: a bound made too small, which
+    /// the check must catch).
+    fn check_lod(
         &self,
+        lod: &Lod,
         records: &[ElementRecord],
         levels: &[u32],
         scale: f32,
         what: &str,
         shrink: f32,
     ) -> (f32, f32) {
-        let lod = self.lod();
         let slack = 64.0 * f32::EPSILON * scale;
         let mut ratios = Vec::new();
         for (ix, rec) in records.iter().enumerate() {

@@ -213,7 +213,7 @@ fn end_to_end(
 ) -> (usize, usize, f32, [u64; 3]) {
     use crate::lod::frame::{corner_indices, frame_levels, lod_records, LodView};
     use crate::lod::levels::drawn_level;
-    let lod = case.lod();
+    let lod = case.lod().drawn_as(rounding);
     let view = &screen.view;
     let max = view.max_level;
     let lr = lod_records(&lod, records);
@@ -337,6 +337,7 @@ fn pixel_error_holds_end_to_end() {
         (Surface::Phong, Displace::Noise),
         (Surface::Flat, Displace::Sine),
         (Surface::Loop, Displace::None),
+        (Surface::Loop, Displace::Sine),
     ] {
         let case = Case {
             surface,
