@@ -5230,7 +5230,7 @@ fn a_camera_can_look_straight_down() {
 /// Where the pixel error cannot be met, `render` and `export` say so on standard error, with
 /// the counts `info` prints: elements whose bound needs a level above `--max-level`, and those
 /// at the largest level whatever the pixel error (holding the eye in their bounds, or with no
-/// finite bound: the loop surface with displacement), checked against the levels drawn with a
+/// finite bound: Phong corners blending seam normals), checked against the levels drawn with a
 /// larger cap.
 #[test]
 fn render_and_export_say_where_the_pixel_error_is_not_met() {

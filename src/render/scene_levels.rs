@@ -52,9 +52,9 @@ struct BoundsKey {
     generation: u64,
     /// The levels buffer written (another mesh after a re-upload or Loop's faces).
     levels: vk::Buffer,
-    /// How the driver rounds levels, where the bounds depend on it (`loop`'s:
-    /// src/surface/loop_bound.rs).
-    rounding: Option<crate::lod::frame::Rounding>,
+    /// Whether the driver's samples are lattice points, where the bounds depend on it
+    /// (`loop`'s: src/surface/loop_bound.rs `aligned`).
+    aligned: Option<(bool, bool)>,
 }
 
 /// The elements' spheres where no bounds are at hand ([`Scene::front_only`]): what they were
@@ -331,7 +331,8 @@ impl Scene {
             pyramid: (cfg.displace == Displace::Heightmap).then(|| self.heightmap_lod(cfg.level)),
             generation: self.generation,
             levels: self.elements(cfg.surface).levels.raw,
-            rounding: cfg.surface.uses_loop_faces().then(|| cfg.rounding()),
+            aligned: (cfg.surface.uses_loop_faces())
+                .then(|| crate::surface::loop_::bound::aligned(cfg.rounding())),
         }
     }
 

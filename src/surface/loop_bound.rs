@@ -28,14 +28,17 @@
 //! the kink terms that hold at every level, the peak weight of one jump, `c1 = S D / 4`
 //! (src/lod/mod.rs, "One dimension", with `J = S D` per unit parameter; at most one jump per
 //! segment past level `S`): a proof. Where the drawn inside's vertices are not lattice points
-//! (any level but the pattern driver's and the static baseline's powers of two,
-//! [`Rounding::Snapped`]: the tessellator's rings sit between the lattice's rows) the
-//! element's chord and kink terms take `c1 = S max_k D_k / 4` ([`INSIDE_KINK`]). That one is
-//! checked against dense sampling at integer levels from 3 to 63 (`loop_bounds_hold`), not
-//! proven: a bound from each family's jumps (`25/64 · S Σ_f B_f`, `B_f` the mixed
+//! (every rounding but the pattern driver's powers of two, [`Rounding::Snapped`]: integer
+//! levels, and the tessellator's rings, which sit between the lattice's rows) the element's
+//! chord and kink terms take `c1 = S max_k D_k / 4` ([`INSIDE_KINK`]). That one is checked
+//! against dense sampling of lattice triangles at integer levels 3, 6, 12, 24, 31, 40 and 63
+//! (`loop_bounds_hold`) and end to end on the tessellator's rings (`pixel_error_holds_end_to_end`),
+//! not proven: a bound from each family's jumps (`25/64 · S Σ_f B_f`, `B_f` the mixed
 //! differences) would be, and would draw Spot's close-up at integer levels with about four
-//! times the triangles. At the pattern driver's powers of two every drawn vertex is a lattice
-//! point, and the bounds are those above.
+//! times the triangles. At the pattern driver's powers of two the lattice triangles' vertices
+//! are lattice points up to level `S` (past it each triangle lies in one cell), and the bounds
+//! are those above; its transition triangles, whose vertices are lattice points but whose
+//! sides cut cells, are checked end to end, as they were.
 //!
 //! # Displaced
 //! A height of the point (`sine`, `noise`) moves the drawn point `P` along `N = n/|n|`, `n` the
@@ -51,8 +54,12 @@
 //! `ΣE/2`). On an edge at dyadic levels `N <= S` this is again a proof: the drawn samples are
 //! lattice points, whose polyline is within `H² D/8` of the chord over `H` steps, and the curve
 //! within `E/(8S²) <= E/(8N²)` of that polyline; at dyadic levels `N >= S` every drawn segment
-//! lies in one cell, where `|D''| <= E`. Inside the face the unit tests check it against dense
-//! sampling, as for the undisplaced surface. Where `ρ` is not positive (M1's normals may cancel,
+//! lies in one cell, where `|D''| <= E`. Where the samples are not lattice points the curve
+//! is off its lattice polyline at both ends of a segment too (`2E/(8S²)`), and a one-sided
+//! derivative of `D` differs from its cell's chord slope by up to `E/(2S)`, so a jump is at
+//! most `S D + E/S`: `M` takes `2E` and the peak term `(S D + E/S)/4` (`E/S` likewise in an
+//! element's). Inside the face the unit tests check it against dense sampling, as for the
+//! undisplaced surface. Where `ρ` is not positive (M1's normals may cancel,
 //! and the drawn direction falls back to one control vertex's), or for a displacement this
 //! module does not bound (a height map: `loop` has no texture coordinates), the bound is
 //! infinite and the element gets the maximum level. A displacement that moves nothing
@@ -91,9 +98,9 @@ fn at(lod: &Lod, rec: &ElementRecord, bary: [f32; 3]) -> Vec3 {
 pub const INSIDE_KINK: f32 = 0.25;
 
 /// Whether a driver rounding as `rounding` draws its edges' samples on lattice points (powers
-/// of two), and its insides as whole cells (the pattern driver's and the static baseline's
-/// powers of two; the tessellator's rings are not) (module notes).
-fn aligned(rounding: Rounding) -> (bool, bool) {
+/// of two), and its insides' vertices there too (the pattern driver's powers of two; the
+/// tessellator's rings are not) (module notes): what loop's bounds depend on.
+pub fn aligned(rounding: Rounding) -> (bool, bool) {
     (rounding.dyadic(), rounding == Rounding::Snapped)
 }
 
@@ -295,23 +302,28 @@ pub fn element(lod: &Lod, rec: &ElementRecord) -> Bounds {
     let s2 = (s * s) as f32;
     let (mut m, mut b) = (d.map(|x| x.sqrt() * s2), b.map(|x| x.sqrt() * s2));
     let mut sphere = Sphere::around(&points);
+    let inside = aligned(lod.rounding).1;
+    let mut e = [0.0f32; 3];
     if moving {
-        let e = height(lod, &sphere).map_or([f32::INFINITY; 3], |h| {
+        e = height(lod, &sphere).map_or([f32::INFINITY; 3], |h| {
             sphere = sphere.grown(h.max);
             inside_cells(&h, s, q)
         });
+        // Twice where the drawn vertices are not lattice points (module notes, "Displaced").
+        let times = if inside { 1.0 } else { 2.0 };
         // The displacement's own mixed term by polarization of its directional ones, as in
         // src/lod/bound.rs.
-        let half = 0.5 * (e[0] + e[1] + e[2]);
+        let half = times * 0.5 * (e[0] + e[1] + e[2]);
         for k in 0..3 {
-            m[k] += e[k];
+            m[k] += times * e[k];
             b[k] += half;
         }
     }
     let mut bounds = finish(m, Some(b), ELEMENT_FACTOR, sphere);
-    if !aligned(lod.rounding).1 {
+    if !inside {
         // The peak weight of one jump where the drawn triangles cut cells (module notes).
-        let c1 = INSIDE_KINK * s as f32 * d.iter().fold(0.0f32, |a, &x| a.max(x.sqrt()));
+        let most = |x: [f32; 3]| x.iter().fold(0.0f32, |a, &y| a.max(y));
+        let c1 = INSIDE_KINK * (s as f32 * most(d.map(f32::sqrt)) + most(e) / s as f32);
         bounds.chord.c1 = c1;
         bounds.kink.c1 = c1;
     }
@@ -344,9 +356,9 @@ pub fn edge(lod: &Lod, rec: &ElementRecord, e: usize) -> Bounds {
         .sqrt();
     let points: Vec<Vec3> = samples.iter().map(|m| m.p).collect();
     let mut sphere = Sphere::around(&points);
-    let mut m = d * (s * s) as f32;
-    if moving {
-        m += height(lod, &sphere).map_or(f32::INFINITY, |h| {
+    let on_lattice = aligned(lod.rounding).0;
+    let e = if moving {
+        height(lod, &sphere).map_or(f32::INFINITY, |h| {
             sphere = sphere.grown(h.max);
             (samples.windows(2))
                 .map(|w| {
@@ -354,12 +366,18 @@ pub fn edge(lod: &Lod, rec: &ElementRecord, e: usize) -> Bounds {
                     inside_cell(&h, s as f32, &w[0], &w[1], rho)
                 })
                 .fold(0.0f32, f32::max)
-        });
-    }
+        })
+    } else {
+        0.0
+    };
+    // Twice where the samples are not lattice points (module notes, "Displaced").
+    let times = if on_lattice { 1.0 } else { 2.0 };
+    let m = d * (s * s) as f32 + times * e;
     let mut bounds = finish([m, 0.0, 0.0], None, EDGE_FACTOR, sphere);
-    if !aligned(lod.rounding).0 {
-        // Samples between lattice points (module notes): the peak weight of one jump, `S D/4`.
-        bounds.chord.c1 = EDGE_KINK_FACTOR * s as f32 * d;
+    if !on_lattice {
+        // Samples between lattice points (module notes): the peak weight of one jump,
+        // `(S D + E/S)/4`.
+        bounds.chord.c1 = EDGE_KINK_FACTOR * (s as f32 * d + e / s as f32);
         bounds.kink.c1 = bounds.chord.c1;
     }
     bounds
