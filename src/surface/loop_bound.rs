@@ -38,7 +38,7 @@
 //! times the triangles. At the pattern driver's powers of two the lattice triangles' vertices
 //! are lattice points up to level `S` (past it each triangle lies in one cell), and the bounds
 //! are those above; its transition triangles, whose vertices are lattice points but whose
-//! sides cut cells, are checked end to end, as they were.
+//! sides cut cells, are checked end to end only.
 //!
 //! # Displaced
 //! A height of the point (`sine`, `noise`) moves the drawn point `P` along `N = n/|n|`, `n` the
