@@ -1,5 +1,5 @@
 //! Each surface's and displacement's bound against dense sampling: undisplaced, halved,
-//! displaced, any parameter triangle, Loop.
+//! displaced, any parameter triangle (Loop's: loop_bounds.rs).
 
 use super::heightmap::{grid_case, uv_grid};
 use super::*;
@@ -335,171 +335,13 @@ fn triangle_errors_hold_for_any_triangle() {
     assert!(checked > 100, "{checked}");
 }
 
-/// Loop: spot's M1 faces, at dyadic and other levels, with extraordinary vertices of valence 3
-/// to 10; and its mixed bounds against its lattice.
-#[test]
-fn loop_bounds_hold() {
-    let (mesh, _) = load_model("spot_control_tri.obj");
-    let data = LoopData::new(&mesh, Boundary::EdgeOnly, Lattice::default(), |_| {}).unwrap();
-    let frame = data.frame(&mesh.positions);
-    let case = Case {
-        surface: Surface::Loop,
-        field: NormalField::default(),
-        displace: Displace::None,
-        params: SurfaceParams::default(),
-        inputs: Sources {
-            loop_: Some((&data, &frame)),
-            ..Default::default()
-        },
-    };
-    let (_, m) = case.check(
-        &every(&data.records, 23),
-        &[1, 2, 3, 4, 8],
-        mesh.bounding_radius(),
-        "loop",
-    );
-    assert!(m <= 20.0, "loop: median bound / truth {m}");
-    // Integer levels whose samples are not lattice points, up to and past the lattice's (the
-    // tessellator's integer levels, which `Lod::new` takes); and the powers of two of the
-    // pattern driver, whose samples are, without the kink terms that pay for that.
-    let r = mesh.bounding_radius();
-    let some = every(&data.records, 61);
-    case.check(&some, &[6, 12, 24, 31, 40, 63], r, "loop at integer levels");
-    let snapped = case.lod().drawn_as(Rounding::Snapped);
-    case.check_lod(
-        &snapped,
-        &some,
-        &[16, 32, 64],
-        r,
-        "loop at powers of two",
-        1.0,
-    );
-    case.check_lod(
-        &snapped,
-        &every(&data.records, 23),
-        &[1, 2, 4, 8],
-        r,
-        "loop at powers of two",
-        1.0,
-    );
-    // Not vacuous: without those terms the integer levels pass their bound (the edges' first).
-    let bare = std::panic::catch_unwind(|| {
-        case.check_lod(
-            &snapped,
-            &some,
-            &[24, 31],
-            r,
-            "loop's powers of two at integers",
-            1.0,
-        )
-    });
-    assert!(
-        bare.is_err(),
-        "integer levels met the bound of powers of two"
-    );
-    // The mixed bounds are the lattice's mixed differences (or polarization's `Σ/2` where
-    // smaller): sampled on that lattice they agree, which pins the pairs' order, and they are
-    // below `Σ/2` somewhere (else the lattice's own would add nothing).
-    let lod = case.lod();
-    let mut tighter = 0;
-    for rec in every(&data.records, 17) {
-        let s = 1i32 << (data.faces[rec.words[0] as usize][3] >> 3);
-        let b = lod.element(&rec);
-        let (lattice, _) = sampled_mixed(&case, &rec, s);
-        let half = 0.5 * b.second.iter().sum::<f32>();
-        for (k, (&got, &sampled)) in b.mixed.iter().zip(&lattice).enumerate() {
-            let want = sampled.min(half);
-            assert!(
-                (got - want).abs() <= 1e-5 * want,
-                "pair {k}: bound {got} against the lattice's {want}"
-            );
-            tighter += usize::from(sampled < 0.9 * half);
-        }
-    }
-    assert!(tighter > 10, "only {tighter} pairs below Σ/2");
-    // A displacement that moves nothing (zero amplitude, a sine or noise of frequency zero)
-    // keeps the limit surface's bounds, edges and elements alike; one that moves has its own.
-    let moving = SurfaceParams::for_radius(r);
-    let still = [
-        (
-            Displace::Sine,
-            SurfaceParams {
-                amplitude: 0.0,
-                ..moving
-            },
-        ),
-        (
-            Displace::Sine,
-            SurfaceParams {
-                frequency: 0.0,
-                ..moving
-            },
-        ),
-        (
-            Displace::Noise,
-            SurfaceParams {
-                frequency: 0.0,
-                ..moving
-            },
-        ),
-    ];
-    let with = |displace, params| Case {
-        surface: Surface::Loop,
-        field: NormalField::default(),
-        displace,
-        params,
-        inputs: Sources {
-            loop_: Some((&data, &frame)),
-            ..Default::default()
-        },
-    };
-    for rec in every(&data.records, 29) {
-        for (displace, params) in still {
-            let c = with(displace, params);
-            let what = format!("{} {params:?}", displace.name());
-            assert_eq!(c.lod().element(&rec), lod.element(&rec), "{what}");
-            for e in 0..3 {
-                assert_eq!(c.lod().edge(&rec, e), lod.edge(&rec, e), "{what}");
-            }
-        }
-        let b = with(Displace::Sine, moving).lod().element(&rec);
-        let still = lod.element(&rec);
-        assert!(
-            b.chord.c2.is_finite() && b.chord.c2 != still.chord.c2,
-            "{b:?}"
-        );
-        assert!(b.sphere.radius > still.sphere.radius, "{b:?}");
-    }
-    // Displaced: `sine` and `noise` at their default amplitude and frequency, at integer levels
-    // up to the tables' lattice (32) and beyond, every edge too, and at powers of two as the
-    // pattern driver draws them; and the bound is not loose everywhere: an eighth of it fails
-    // somewhere (the share inside the cells, E_k, counts at every level as at the lattice's).
-    // Noise's bounds are the loosest (its scanned constants hold for every gradient choice).
-    for (displace, loose) in [(Displace::Sine, 20.0), (Displace::Noise, 40.0)] {
-        let case = with(displace, moving);
-        let what = format!("loop + {}", displace.name());
-        let some = every(&data.records, 97);
-        case.check(&some, &[3, 5, 24, 31, 48], r, &what);
-        let snapped = case.lod().drawn_as(Rounding::Snapped);
-        let (_, m) = case.check_lod(&snapped, &some, &[1, 2, 4, 8, 16, 32, 64], r, &what, 1.0);
-        assert!(m <= loose, "{what}: median bound / truth {m}");
-        let less = std::panic::catch_unwind(|| {
-            case.check_lod(&snapped, &some, &[2, 4, 8], r, "less", 0.125)
-        });
-        assert!(
-            less.is_err(),
-            "{what}: an eighth of the bound went unnoticed"
-        );
-    }
-}
-
 /// The largest `|D²P[d_k, d_{k+1}]|` sampled on lattice parallelograms of `g` segments per side:
 /// `|P(x) − P(x + a) − P(x + b) + P(x + a + b)| / h²` for the steps `a = h d_k`, `b = h d_{k+1}`
 /// (`h = 1/g`, stored directions). This is `h⁻²` times the integral of `D²P[a, b]` over the
 /// parallelogram, never above its supremum there, and it is the value at the parallelogram's
 /// centre exactly where `D²P` is affine (a cubic), so it reaches the corners' values within one
 /// step. Returns per pair and the largest `|P|` (for the rounding slack).
-fn sampled_mixed(case: &Case, rec: &ElementRecord, g: i32) -> ([f32; 3], f32) {
+pub(super) fn sampled_mixed(case: &Case, rec: &ElementRecord, g: i32) -> ([f32; 3], f32) {
     let at = |i: i32, j: i32| {
         case.at(
             rec,

@@ -231,5 +231,6 @@ mod bounds;
 mod cull;
 mod heightmap;
 mod levels;
+mod loop_bounds;
 mod polynomial;
 mod view;
