@@ -13,31 +13,54 @@ const uint CULL_BACK_FACES = 2u;
 const uint DYADIC = 4u;
 const uint LATTICE = 8u;
 
-struct LodEdge {
-    vec4 curve;    // (c1, c2) of the edge curve, then both elements' cubic terms (LOD_HUGE: none)
-    vec4 needs[4]; // (c1, c2) of each element's transition need: tess snapped, integer,
-                   // snapped, snapped integer (src/lod/frame.rs Rounding::ALL)
-    vec4 sphere;
-    vec4 sphere_a;
-    vec4 sphere_b;
-};
+// The element's bounds (src/lod/frame.rs LodRecord, 464 bytes): 29 texels of a uniform texel
+// buffer, at these offsets. The level pass reads them as texels, not from a storage buffer:
+// lavapipe loads a storage buffer at per-invocation addresses one invocation and one component
+// at a time, a texel buffer with vector gathers, and the pass's time there is mostly its loads
+// (docs/bench/level-pass-loads.md).
+const int RECORD_TEXELS = 29;
+const int RECORD_SPHERE = 0;
+const int RECORD_CONE = 1;   // axis, cosine of the half-angle (0: none)
+const int RECORD_CHORD = 2;  // (c1, c2), then the kink terms (k1, k2)
+const int RECORD_SECOND = 3; // M_k per stored direction, then the cubic term (LOD_HUGE: none)
+const int RECORD_MIXED = 4;  // B_k per stored pair of directions (k, k + 1)
+// Each stored edge (LodEdge, 8 texels from RECORD_EDGES + 8 e): the edge curve's (c1, c2),
+// then both elements' cubic terms (LOD_HUGE: none); each element's transition need (c1, c2)
+// per rounding (tess snapped, integer, snapped, snapped integer: src/lod/frame.rs
+// Rounding::ALL); the edge's sphere; its two elements' spheres.
+const int RECORD_EDGES = 5;
+const int EDGE_CURVE = 0;
+const int EDGE_NEEDS = 1;
+const int EDGE_SPHERE = 5;
+const int EDGE_SPHERE_A = 6;
+const int EDGE_SPHERE_B = 7;
 
-struct LodRecord {
-    vec4 sphere;
-    vec4 cone;   // axis, cosine of the half-angle (0: none)
-    vec4 chord;  // (c1, c2), then the kink terms (k1, k2)
-    vec4 second; // M_k per stored direction, then the cubic term (LOD_HUGE: none)
-    vec4 mixed;  // B_k per stored pair of directions (k, k + 1)
-    LodEdge edges[3];
-};
+layout(set = 0, binding = LEVEL_BINDING_RECORDS) uniform samplerBuffer lod_records;
 
-layout(set = 0, binding = LEVEL_BINDING_RECORDS, std430) readonly buffer Records {
-    LodRecord lod_records[];
-};
+vec4 record(uint i, int texel) {
+    return texelFetch(lod_records, int(i) * RECORD_TEXELS + texel);
+}
 
 // The mesh's levels buffer, whole (src/lod/levels.rs ElementLevels).
 layout(set = 0, binding = LEVEL_BINDING_LEVELS, std430) writeonly buffer Levels {
     vec4 element_levels[];
+};
+
+// What a drawn element's levels read of its record (after culling, which reads only the
+// sphere and the cone), and of each edge only the needs of this frame's rounding.
+struct Element {
+    vec4 sphere;
+    vec4 chord;
+    vec4 second;
+    vec4 mixed;
+};
+
+struct Edge {
+    vec4 curve;
+    vec4 needs; // this frame's rounding's
+    vec4 sphere;
+    vec4 sphere_a;
+    vec4 sphere_b;
 };
 
 // src/lod/frame.rs LodView.
@@ -79,7 +102,7 @@ float second_along(vec3 m, vec3 b, vec2 e) {
 }
 
 // Mirror: `own_chord` (the tessellator's ring diagonals, src/lod/mod.rs).
-vec2 own_chord(LodRecord r) {
+vec2 own_chord(Element r) {
     vec2 c = r.chord.xy;
     vec3 m = r.second.xyz;
     float mx = max(m.x, max(m.y, m.z));
@@ -100,7 +123,7 @@ float glide_factor() {
 
 // Mirror: `own_level_above` (a polynomial patch's tighter bound, src/lod/mod.rs; not computed
 // where the general bound's level is at most `floor`).
-float own_level_above(LodRecord r, float floor_level) {
+float own_level_above(Element r, float floor_level) {
     float tol = tolerance(r.sphere);
     float general = level_at(own_chord(r), tol);
     if (general <= floor_level) {
@@ -143,13 +166,24 @@ float edge_need_level(vec2 need, float t, float tol, float floor_level) {
     return max(floor_level, min(general, level_at(vec2(0.0, q + glide_factor() * t / n0), tol)));
 }
 
-// Mirror: `edge_level`.
-float edge_level(LodEdge e) {
+// The index of this frame's rounding's needs in `LodEdge::needs`. Mirror: `Rounding::index`.
+int needs_index() {
     uint kind = view.flags & (DYADIC | LATTICE);
-    vec4 needs = e.needs[kind == 0u ? 1 : (kind == DYADIC ? 0 : (kind == LATTICE ? 3 : 2))];
+    return kind == 0u ? 1 : (kind == DYADIC ? 0 : (kind == LATTICE ? 3 : 2));
+}
+
+Edge load_edge(uint i, int e) {
+    int base = RECORD_EDGES + 8 * e;
+    return Edge(record(i, base + EDGE_CURVE), record(i, base + EDGE_NEEDS + needs_index()),
+                record(i, base + EDGE_SPHERE), record(i, base + EDGE_SPHERE_A),
+                record(i, base + EDGE_SPHERE_B));
+}
+
+// Mirror: `edge_level`.
+float edge_level(Edge e) {
     float own = level(e.curve.xy, e.sphere);
-    float a = edge_need_level(needs.xy, e.curve.z, tolerance(e.sphere_a), own);
-    return edge_need_level(needs.zw, e.curve.w, tolerance(e.sphere_b), a);
+    float a = edge_need_level(e.needs.xy, e.curve.z, tolerance(e.sphere_a), own);
+    return edge_need_level(e.needs.zw, e.curve.w, tolerance(e.sphere_b), a);
 }
 
 // Mirror: src/lod/levels.rs `drawn_level` (glsl/include/levels.glsl).
@@ -227,7 +261,7 @@ struct Strip {
     bool has_bases, polynomial;
 };
 
-Strip strip_new(LodRecord r, int e, float a) {
+Strip strip_new(Element r, int e, float a) {
     vec3 m = r.second.xyz;
     float k1 = r.chord.z, k2 = r.chord.w;
     float t = twist(r.mixed.xyz, e);
@@ -294,7 +328,7 @@ bool outside(vec4 s) {
 }
 
 // Mirror: `raise_for_transitions`.
-float raise_for_transitions(LodRecord r, vec3 edges, float inner) {
+float raise_for_transitions(Element r, vec3 edges, float inner) {
     bool dyadic = (view.flags & DYADIC) != 0u;
     uint mx = view.max_level;
     if (r.chord.y >= LOD_HUGE || r.chord.x >= LOD_HUGE) {
@@ -333,17 +367,20 @@ void main() {
     if (i >= view.count) {
         return;
     }
-    LodRecord r = lod_records[i];
-    bool culled = ((view.flags & CULL_FRUSTUM) != 0u && outside(r.sphere))
+    vec4 sphere = record(i, RECORD_SPHERE);
+    bool culled = ((view.flags & CULL_FRUSTUM) != 0u && outside(sphere))
         || ((view.flags & CULL_BACK_FACES) != 0u
-            && lod_back_facing(r.cone, r.sphere, view.eye_k.xyz));
+            && lod_back_facing(record(i, RECORD_CONE), sphere, view.eye_k.xyz));
     // A culled element draws nothing, and an edge's level is computed by each element that
     // draws it: no level is needed here.
     if (culled) {
         element_levels[i] = vec4(0.0);
         return;
     }
-    vec3 edges = vec3(edge_level(r.edges[0]), edge_level(r.edges[1]), edge_level(r.edges[2]));
+    Element r = Element(sphere, record(i, RECORD_CHORD), record(i, RECORD_SECOND),
+                        record(i, RECORD_MIXED));
+    vec3 edges = vec3(edge_level(load_edge(i, 0)), edge_level(load_edge(i, 1)),
+                      edge_level(load_edge(i, 2)));
     float inner = own_level_above(r, max(edges.x, max(edges.y, edges.z)));
     inner = raise_for_transitions(r, edges, inner);
     element_levels[i] = vec4(edges, inner);

@@ -196,11 +196,24 @@ impl BufferView {
         format: vk::Format,
         name: &str,
     ) -> Result<Self, GpuError> {
+        Self::span(ctx, buffer, format, (0, vk::WHOLE_SIZE), name)
+    }
+
+    /// `range` bytes of `buffer` from `offset` as texels of `format` (the offset a multiple of
+    /// minTexelBufferOffsetAlignment, the range of the texel size and at most
+    /// maxTexelBufferElements of them).
+    pub fn span(
+        ctx: &Arc<Context>,
+        buffer: &Buffer,
+        format: vk::Format,
+        (offset, range): (u64, u64),
+        name: &str,
+    ) -> Result<Self, GpuError> {
         let info = vk::BufferViewCreateInfo::default()
             .buffer(buffer.raw)
             .format(format)
-            .offset(0)
-            .range(vk::WHOLE_SIZE);
+            .offset(offset)
+            .range(range);
         // SAFETY: the buffer outlives the view (its owner keeps both and drops the view first).
         let raw =
             unsafe { ctx.device.create_buffer_view(&info, None) }.call("vkCreateBufferView")?;

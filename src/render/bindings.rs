@@ -81,7 +81,8 @@ pub const SET_LOD: u32 = 2;
 pub const BINDING_LOD_BOUNDS: u32 = 0;
 
 /// The per-frame level pass (glsl/lod/levels.comp, its own set 0): each element's bounds
-/// (`LodRecord[]`, src/lod/frame.rs) in, the mesh's whole levels buffer out.
+/// (`LodRecord`s, src/lod/frame.rs, as a uniform texel buffer of `RGBA32F`) in, the mesh's
+/// whole levels buffer out (storage buffer).
 pub const LEVEL_BINDING_RECORDS: u32 = 0;
 pub const LEVEL_BINDING_LEVELS: u32 = 1;
 

@@ -5,19 +5,23 @@
 //! Bounds are computed on the CPU once per mesh and parameters ([`LevelPass::update_bounds`],
 //! `lod::frame::lod_records`) and uploaded as one `LodRecord` per element; a frame costs one
 //! dispatch of cheap math (`glsl/lod/levels.comp`, mirrored by `lod::frame::frame_levels`), the
-//! camera in push constants, and no readback. A storage-buffer descriptor spans at most
-//! maxStorageBufferRange bytes (289,262 bounds on lavapipe), so a larger mesh's bounds and levels
-//! are bound and dispatched in chunks, one descriptor set each: the shader is the same.
+//! camera in push constants, and no readback. The shader reads the bounds as texels
+//! (a uniform texel buffer of `RGBA32F`, 29 texels an element), which lavapipe fetches
+//! with vector gathers where it loads a storage buffer one invocation at a time
+//! (docs/bench/level-pass-loads.md). A descriptor spans at most maxTexelBufferElements texels
+//! of the bounds (4,628,197 bounds on lavapipe) and maxStorageBufferRange bytes of the levels,
+//! so a larger mesh's bounds and levels are bound and dispatched in chunks, one descriptor set
+//! and buffer view each: the shader is the same.
 
 use super::bindings::{LEVEL_BINDING_LEVELS, LEVEL_BINDING_RECORDS};
 use super::gpu_mesh::GpuMesh;
 use super::loop_gpu::dispatch_grid;
 use super::RenderError;
 use crate::gpu::{
-    vk, Buffer, BufferDesc, Cmd, Context, DescriptorPool, DescriptorSetLayout, Pipeline,
-    PipelineLayout,
+    vk, Buffer, BufferDesc, BufferView, Cmd, Context, DescriptorPool, DescriptorSetLayout,
+    Pipeline, PipelineLayout,
 };
-use crate::lod::frame::{lod_records, LodRecord, LodView};
+use crate::lod::frame::{lod_records, LodEdge, LodRecord, LodView};
 use crate::lod::levels::ElementLevels;
 use crate::lod::Lod;
 use crate::surface::ElementRecord;
@@ -26,16 +30,41 @@ use std::sync::Arc;
 /// Invocations per workgroup (`local_size_x` of levels.comp).
 const GROUP: u32 = 64;
 
+/// The texel format the shader reads the bounds in.
+const RECORD_FORMAT: vk::Format = vk::Format::R32G32B32A32_SFLOAT;
+
+/// Texels of [`RECORD_FORMAT`] an element's bounds span (`RECORD_TEXELS` in levels.comp).
+const RECORD_TEXELS: u64 = (std::mem::size_of::<LodRecord>() / 16) as u64;
+
+// The texels levels.comp reads each field at (`RECORD_*`, `EDGE_*`).
+const _: () = {
+    use std::mem::{offset_of, size_of};
+    assert!(size_of::<LodRecord>() == 29 * 16);
+    assert!(offset_of!(LodRecord, sphere) == 0);
+    assert!(offset_of!(LodRecord, cone) == 16);
+    assert!(offset_of!(LodRecord, chord) == 2 * 16);
+    assert!(offset_of!(LodRecord, second) == 3 * 16);
+    assert!(offset_of!(LodRecord, mixed) == 4 * 16);
+    assert!(offset_of!(LodRecord, edges) == 5 * 16);
+    assert!(size_of::<LodEdge>() == 8 * 16);
+    assert!(offset_of!(LodEdge, curve) == 0);
+    assert!(offset_of!(LodEdge, needs) == 16);
+    assert!(offset_of!(LodEdge, sphere) == 5 * 16);
+    assert!(offset_of!(LodEdge, sphere_a) == 6 * 16);
+    assert!(offset_of!(LodEdge, sphere_b) == 7 * 16);
+};
+
 /// The level pass's pipeline, its bounds on the GPU and the levels buffer it writes.
 pub struct LevelPass {
     ctx: Arc<Context>,
+    /// The dispatches, each over a range of elements bound by its own set (declared before
+    /// `records`, so that their views of it are dropped first).
+    chunks: Vec<Chunk>,
     /// One `LodRecord` per element (at least one: a buffer may not be empty).
     records: Buffer,
     count: u32,
     /// The levels buffer the sets point at (the mesh of the last [`LevelPass::update_bounds`]).
     levels: vk::Buffer,
-    /// The dispatches, each over a range of elements bound by its own set.
-    chunks: Vec<Chunk>,
     /// At most this many elements a chunk (None: as many as the device's limits allow; tests
     /// pass small chunks to exercise dispatching chunk by chunk).
     max_chunk: Option<u32>,
@@ -46,11 +75,12 @@ pub struct LevelPass {
     set_layout: DescriptorSetLayout,
 }
 
-/// One dispatch of the level pass: `count` elements from `first`, bound by `set`.
+/// One dispatch of the level pass: `count` elements, bound by `set`, whose bounds `view` shows.
 struct Chunk {
     count: u32,
     grid: [u32; 2],
     set: vk::DescriptorSet,
+    _view: BufferView,
 }
 
 impl LevelPass {
@@ -65,11 +95,14 @@ impl LevelPass {
     /// tests exercise the chunks on small meshes.
     pub fn with_max_chunk(ctx: &Arc<Context>, max_chunk: Option<u32>) -> Result<Self, RenderError> {
         let c = vk::ShaderStageFlags::COMPUTE;
-        let storage = vk::DescriptorType::STORAGE_BUFFER;
+        let (texels, storage) = (
+            vk::DescriptorType::UNIFORM_TEXEL_BUFFER,
+            vk::DescriptorType::STORAGE_BUFFER,
+        );
         let set_layout = DescriptorSetLayout::new(
             ctx,
             &[
-                (LEVEL_BINDING_RECORDS, storage, c),
+                (LEVEL_BINDING_RECORDS, texels, c),
                 (LEVEL_BINDING_LEVELS, storage, c),
             ],
             "level pass set",
@@ -82,21 +115,26 @@ impl LevelPass {
             "level pass",
         )?;
         let pipeline = Pipeline::new_compute(ctx, &layout, "lod/levels.comp", "level pass")?;
-        let pool = DescriptorPool::new(ctx, 1, &[(storage, 2)], "level pass descriptors")?;
+        let pool = DescriptorPool::new(
+            ctx,
+            1,
+            &[(texels, 1), (storage, 1)],
+            "level pass descriptors",
+        )?;
         let records = Buffer::new(
             ctx,
             BufferDesc::new_upload(
                 std::mem::size_of::<LodRecord>() as u64,
-                vk::BufferUsageFlags::STORAGE_BUFFER,
+                vk::BufferUsageFlags::UNIFORM_TEXEL_BUFFER,
             ),
             "level pass bounds",
         )?;
         Ok(Self {
             ctx: ctx.clone(),
+            chunks: Vec::new(),
             records,
             count: 0,
             levels: vk::Buffer::null(),
-            chunks: Vec::new(),
             max_chunk,
             pipeline,
             layout,
@@ -117,21 +155,27 @@ impl LevelPass {
         self.upload(mesh, &lod_records(lod, records))
     }
 
-    /// Elements a chunk holds: as many as maxStorageBufferRange lets one descriptor span of the
-    /// bounds and of the levels, a multiple of what keeps the next chunk's offsets aligned to
-    /// minStorageBufferOffsetAlignment, and at most `max_chunk`; all of `n` when they fit.
+    /// Elements a chunk holds: as many as one descriptor may span of the bounds
+    /// (maxTexelBufferElements texels) and of the levels (maxStorageBufferRange bytes), a
+    /// multiple of what keeps the next chunk's offsets aligned to minTexelBufferOffsetAlignment
+    /// and minStorageBufferOffsetAlignment, and at most `max_chunk`; all of `n` when they fit.
     fn chunk_size(&self, n: u64) -> u64 {
         let limits = &self.ctx.info.limits;
         let range = limits.max_storage_buffer_range as u64;
-        let align = limits.min_storage_buffer_offset_alignment.max(1);
+        let texels = limits.max_texel_buffer_elements as u64;
+        let (record_align, level_align) = (
+            limits.min_texel_buffer_offset_alignment.max(1),
+            limits.min_storage_buffer_offset_alignment.max(1),
+        );
         let (record, level) = (
             std::mem::size_of::<LodRecord>() as u64,
             std::mem::size_of::<ElementLevels>() as u64,
         );
-        let step = (1..=align)
-            .find(|k| (k * record) % align == 0 && (k * level) % align == 0)
-            .unwrap_or(align);
-        let fit = (range / record).min(range / level);
+        let bound = record_align.max(level_align);
+        let step = (1..=bound)
+            .find(|k| (k * record) % record_align == 0 && (k * level) % level_align == 0)
+            .unwrap_or(bound);
+        let fit = (texels / RECORD_TEXELS).min(range / level);
         let fit = fit.min(self.max_chunk.map_or(u64::MAX, u64::from));
         if fit >= n {
             n
@@ -188,40 +232,46 @@ impl LevelPass {
                 break;
             }
         }
+        // The views of the old bounds go before the buffer they show.
+        let old: Vec<vk::DescriptorSet> = self.chunks.drain(..).map(|c| c.set).collect();
         if self.records.size() < bytes.max(1) {
             self.records = Buffer::new(
                 &self.ctx,
-                BufferDesc::new_upload(bytes, vk::BufferUsageFlags::STORAGE_BUFFER),
+                BufferDesc::new_upload(bytes, vk::BufferUsageFlags::UNIFORM_TEXEL_BUFFER),
                 "level pass bounds",
             )?;
         }
         self.records.write_pod(0, bounds);
-        let storage = vk::DescriptorType::STORAGE_BUFFER;
+        let (texels, storage) = (
+            vk::DescriptorType::UNIFORM_TEXEL_BUFFER,
+            vk::DescriptorType::STORAGE_BUFFER,
+        );
         let sets = plan.len() as u32;
-        if sets != self.chunks.len() as u32 || self.chunks.is_empty() {
-            self.chunks.clear();
+        let old = if sets != old.len() as u32 || old.is_empty() {
             self.pool = DescriptorPool::new(
                 &self.ctx,
                 sets,
-                &[(storage, 2 * sets)],
+                &[(texels, sets), (storage, sets)],
                 "level pass descriptors",
             )?;
-        }
-        let old: Vec<vk::DescriptorSet> = self.chunks.drain(..).map(|c| c.set).collect();
+            Vec::new()
+        } else {
+            old
+        };
         for (k, (first, count, grid)) in plan.into_iter().enumerate() {
             let set = match old.get(k) {
                 Some(&set) => set,
                 None => self.pool.allocate(&self.set_layout, "level pass set")?,
             };
             let span = count.max(1) as u64;
-            (self.pool).write_buffer_at(
-                set,
-                LEVEL_BINDING_RECORDS,
-                storage,
-                self.records.raw,
-                first * record,
-                span * record,
-            );
+            let view = BufferView::span(
+                &self.ctx,
+                &self.records,
+                RECORD_FORMAT,
+                (first * record, span * record),
+                &format!("level pass bounds {k}"),
+            )?;
+            (self.pool).write_texel_buffer(set, LEVEL_BINDING_RECORDS, texels, view.raw);
             (self.pool).write_buffer_at(
                 set,
                 LEVEL_BINDING_LEVELS,
@@ -230,7 +280,12 @@ impl LevelPass {
                 first * level,
                 span * level,
             );
-            self.chunks.push(Chunk { count, grid, set });
+            self.chunks.push(Chunk {
+                count,
+                grid,
+                set,
+                _view: view,
+            });
         }
         self.count = bounds.len() as u32;
         self.levels = mesh.levels.raw;
