@@ -28,13 +28,27 @@ const uint VIEW_NORMALS = 1u;
 const uint VIEW_LEVELS = 2u;
 const uint VIEW_PLAIN = 3u;
 
-// The elements' records (set 1), one chunk of them: a storage-buffer descriptor spans at most
-// maxStorageBufferRange bytes, so a large mesh is drawn chunk by chunk, `records[0]` being element
-// pc.draw.y. Drivers read the record of the element they sample; the fragment stage reads it to
-// evaluate normal fields per fragment (v_element is the index within the chunk).
+// The elements' records (set 1), one chunk of them: a descriptor spans at most
+// maxStorageBufferRange bytes (maxTexelBufferElements texels), so a large mesh is drawn chunk by
+// chunk, `records[0]` being element pc.draw.y. Drivers read the record of the element they
+// sample; the fragment stage reads it to evaluate normal fields per fragment (v_element is the
+// index within the chunk).
 layout(set = SET_MESH, binding = BINDING_ELEMENTS, std430) readonly buffer Records {
     ElementRecord records[];
 };
+
+// The same chunk of records as texels, seven an element (src/render/bindings.rs
+// BINDING_ELEMENT_TEXELS says why the stages read them so).
+layout(set = SET_MESH, binding = BINDING_ELEMENT_TEXELS) uniform usamplerBuffer record_texels;
+
+// Element `local` of the chunk's records: `records[local]`, the same bits.
+ElementRecord fetch_record(uint local) {
+    ElementRecord r;
+    for (int k = 0; k < 7; ++k) {
+        r.d[k] = texelFetch(record_texels, int(local) * 7 + k);
+    }
+    return r;
+}
 
 // Each element's texture coordinates (stored corner order), same chunking as the records.
 layout(set = SET_MESH, binding = BINDING_UVS, std430) readonly buffer ElementUvs {

@@ -15,8 +15,8 @@ const uint LATTICE = 8u;
 
 // The element's bounds (src/lod/frame.rs LodRecord, 464 bytes): 29 texels of a uniform texel
 // buffer, at these offsets. The level pass reads them as texels, not from a storage buffer:
-// lavapipe loads a storage buffer at per-invocation addresses one invocation and one component
-// at a time, a texel buffer with vector gathers, and the pass's time there is mostly its loads
+// lavapipe loads a storage buffer one invocation and one component at a time, a texel buffer
+// with vector gathers, and the pass's time there is mostly its loads
 // (docs/bench/level-pass-loads.md).
 const int RECORD_TEXELS = 29;
 const int RECORD_SPHERE = 0;

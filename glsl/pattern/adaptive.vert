@@ -127,7 +127,7 @@ void main() {
     } else if (SUBMIT == 1) {
         rec = rec_ubo.recs[element % uint(UBO_WINDOW)];
     } else {
-        rec = records[local];
+        rec = fetch_record(local);
     }
     uvec4 n = adaptive_levels(element_levels[local], f, GEOMORPH != 0u);
     vec3 bary;

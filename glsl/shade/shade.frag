@@ -34,10 +34,10 @@ void main() {
     if (FRAGMENT_FIELD == 0) {
         n = normalize(v_normal);
     } else if (DISPLACE == DISPLACE_NONE) {
-        n = surface_normal_field(records[v_element], v_bary);
+        n = surface_normal_field(fetch_record(v_element), v_bary);
     } else {
         // The displaced normal at this fragment's sample: the whole evaluation, per fragment.
-        n = evaluate(records[v_element], Sample(v_element, v_bary)).normal;
+        n = evaluate(fetch_record(v_element), Sample(v_element, v_bary)).normal;
     }
     if (frame.view == VIEW_NORMALS) {
         out_color = vec4((n * 0.5 + 0.5) * (WIRE != 0 ? 0.6 : 1.0), 1.0);

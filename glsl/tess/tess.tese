@@ -47,10 +47,11 @@ void main() {
     } else {
         bary = tess_weights(gl_TessCoord, n);
     }
-    SurfacePoint sp = evaluate(records[local], Sample(local, bary));
+    ElementRecord rec = fetch_record(local);
+    SurfacePoint sp = evaluate(rec, Sample(local, bary));
     if (GEOMORPH != 0u && pc.draw.z != 0u) {
         // The normal stays the true point's (docs/adaptivity.md, "Geomorphing").
-        sp.position = tess_geomorph_position(records[local], local, gl_TessCoord, bary, sp.position, outer,
+        sp.position = tess_geomorph_position(rec, local, gl_TessCoord, bary, sp.position, outer,
                                              inner, element_levels[local]);
     }
     v_position = sp.position;

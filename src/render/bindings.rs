@@ -12,9 +12,15 @@ pub const BINDING_NOISE: u32 = 1;
 
 /// Set 1: per mesh.
 pub const SET_MESH: u32 = 1;
-/// Set 1, binding 0: `ElementRecord[]`, storage buffer (instanced pattern, tess, and the
-/// fragment stage's per-fragment normal fields).
+/// Set 1, binding 0: `ElementRecord[]`, storage buffer (the GLSL twin of the bounds).
 pub const BINDING_ELEMENTS: u32 = 0;
+/// Set 1, binding 13: the same records as a uniform texel buffer of `RGBA32UI`, seven texels an
+/// element (`fetch_record` in glsl/include/records.glsl), chunked like them: what the stages
+/// read per invocation (the adaptive instanced pattern's vertices, the tessellator's evaluated
+/// vertices, the fragment stage's per-fragment normal fields). lavapipe fetches texels with
+/// vector gathers but loads a storage buffer one invocation and one component at a time, which
+/// made a `pn` frame's fragment stage several times slower (docs/bench/record-texels.md).
+pub const BINDING_ELEMENT_TEXELS: u32 = 13;
 /// Set 1, binding 1: a window of [`UBO_WINDOW`] `ElementRecord`s, dynamic uniform buffer (`ubo`
 /// submission).
 pub const BINDING_ELEMENT_UBO: u32 = 1;
@@ -104,6 +110,7 @@ pub const GLSL_DEFINES: &[(&str, u32)] = &[
     ("BINDING_NOISE", BINDING_NOISE),
     ("SET_MESH", SET_MESH),
     ("BINDING_ELEMENTS", BINDING_ELEMENTS),
+    ("BINDING_ELEMENT_TEXELS", BINDING_ELEMENT_TEXELS),
     ("BINDING_ELEMENT_UBO", BINDING_ELEMENT_UBO),
     ("UBO_WINDOW", UBO_WINDOW),
     ("BINDING_UVS", BINDING_UVS),

@@ -126,6 +126,8 @@ pub struct GpuMesh {
     /// before its `pass`, which owns the buffers; the placeholder's views before the
     /// placeholder, declared after).
     _views: Vec<BufferView>,
+    /// Each chunk's records as texels ([`BINDING_ELEMENT_TEXELS`]).
+    _record_views: Vec<BufferView>,
     /// The height map's texels, every level (a uniform texel buffer; after its view).
     pub heightmap_texels: Buffer,
     /// Bound where a surface's buffers are absent (every binding must be valid).
@@ -223,7 +225,7 @@ impl GpuMesh {
             chunks,
             &[
                 (vk::DescriptorType::STORAGE_BUFFER, 5 * chunks),
-                (vk::DescriptorType::UNIFORM_TEXEL_BUFFER, 7 * chunks),
+                (vk::DescriptorType::UNIFORM_TEXEL_BUFFER, 8 * chunks),
                 (vk::DescriptorType::UNIFORM_BUFFER_DYNAMIC, chunks),
             ],
             "mesh descriptors",
@@ -236,6 +238,7 @@ impl GpuMesh {
             "placeholder",
         )?;
         let mut views = loop_views(ctx, extras.loop_, &placeholder)?;
+        let mut record_views = Vec::with_capacity(chunks as usize);
         views.push(BufferView::new(
             ctx,
             &inputs.heightmap_texels,
@@ -248,6 +251,21 @@ impl GpuMesh {
                 let first = c * chunk as u64;
                 let count = (n - first.min(n)).min(chunk as u64).max(1);
                 write_mesh_set(&pool, set, &records, &inputs, &views, first, count);
+                let rec_size = RECORD_BYTES as u64;
+                let texels = BufferView::span(
+                    ctx,
+                    &records,
+                    vk::Format::R32G32B32A32_UINT,
+                    (first * rec_size, count * rec_size),
+                    &format!("element record texels {c}"),
+                )?;
+                pool.write_texel_buffer(
+                    set,
+                    BINDING_ELEMENT_TEXELS,
+                    vk::DescriptorType::UNIFORM_TEXEL_BUFFER,
+                    texels.raw,
+                );
+                record_views.push(texels);
                 pool.write_buffer_at(
                     set,
                     BINDING_LEVELS,
@@ -273,6 +291,7 @@ impl GpuMesh {
             sets,
             chunk,
             _views: views,
+            _record_views: record_views,
             _placeholder: placeholder,
         })
     }
@@ -316,12 +335,16 @@ impl GpuMesh {
 }
 
 /// Elements per chunk on this device: as many records (and texture coordinates) as one
-/// storage-buffer descriptor spans, or `max_chunk` (tests use small chunks).
+/// storage-buffer descriptor spans and one texel-buffer descriptor spans of the records, or
+/// `max_chunk` (tests use small chunks).
 fn chunk_size(ctx: &Context, max_chunk: Option<u32>) -> u32 {
     let rec_size = RECORD_BYTES as u64;
     let limits = &ctx.info.limits;
-    let align = limits.min_storage_buffer_offset_alignment;
-    let range = limits.max_storage_buffer_range as u64;
+    // Both alignments are powers of two: the larger is a multiple of the other.
+    let align =
+        (limits.min_storage_buffer_offset_alignment).max(limits.min_texel_buffer_offset_alignment);
+    let texel_range = limits.max_texel_buffer_elements as u64 * 16;
+    let range = (limits.max_storage_buffer_range as u64).min(texel_range);
     let range = max_chunk.map_or(range, |c| range.min(c as u64 * rec_size));
     chunk_elements(range, align, &[rec_size, UV_BYTES, LEVELS_BYTES])
 }
@@ -336,6 +359,7 @@ fn upload_records(ctx: &Arc<Context>, data: &[ElementRecord]) -> Result<Buffer, 
             n.div_ceil(UBO_WINDOW as u64).max(1) * UBO_WINDOW as u64 * rec_size,
             vk::BufferUsageFlags::STORAGE_BUFFER
                 | vk::BufferUsageFlags::UNIFORM_BUFFER
+                | vk::BufferUsageFlags::UNIFORM_TEXEL_BUFFER
                 | vk::BufferUsageFlags::VERTEX_BUFFER,
         ),
         "element records",
@@ -550,56 +574,4 @@ fn write_mesh_set(
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// A height map whose pyramid is over maxTexelBufferElements is one sentence naming the
-    /// file, its size, the texels and the limit.
-    #[test]
-    fn a_heightmap_over_the_texel_limit_is_refused_naming_it() {
-        // 4 x 4 with its pyramid: 16 + 4 + 1 texels.
-        let map = Heightmap::from_heights("bumps.png", 4, 4, vec![0.5; 16]);
-        let mut limits = vk::PhysicalDeviceLimits {
-            max_texel_buffer_elements: 21,
-            ..Default::default()
-        };
-        check_heightmap(&map, &limits).unwrap();
-        limits.max_texel_buffer_elements = 20;
-        assert_eq!(
-            check_heightmap(&map, &limits).unwrap_err().to_string(),
-            "height map 'bumps.png' (4 x 4 pixels, with its mip pyramid) needs 21 texels, over \
-             this device's maxTexelBufferElements (20): use a smaller height map"
-        );
-    }
-
-    /// Chunks hold as many records as the range spans, in whole steps that keep every array's
-    /// offsets aligned (records 112 bytes, texture coordinates 32, levels 16), and at least one
-    /// step where the range holds less.
-    #[test]
-    fn chunks_keep_every_arrays_offsets_aligned() {
-        let sizes = [RECORD_BYTES as u64, UV_BYTES, LEVELS_BYTES];
-        // lavapipe: 128 MiB at an alignment of 16.
-        assert_eq!(chunk_elements(1 << 27, 16, &sizes), 1_198_372);
-        for align in [16u64, 64, 256] {
-            for range in [1u64, 100, 448, 1_000, 1 << 20] {
-                let n = chunk_elements(range, align, &sizes) as u64;
-                assert!(n >= 1);
-                for s in sizes {
-                    assert_eq!(
-                        n * s % align,
-                        0,
-                        "align {align}, range {range}: {n} elements"
-                    );
-                }
-                // Within the range where a step fits.
-                let step = [1u64, 4, 16][[16, 64, 256].iter().position(|&a| a == align).unwrap()];
-                if range >= step * 112 {
-                    assert!(
-                        n * 112 <= range,
-                        "align {align}, range {range}: {n} elements"
-                    );
-                }
-            }
-        }
-    }
-}
+mod tests;

@@ -117,8 +117,10 @@ impl Renderer {
         let mesh_layout = DescriptorSetLayout::new(
             ctx,
             &[
-                // ElementRecord[] (instanced, tess; per-fragment normal fields)
+                // ElementRecord[] (the bounds' GLSL twin)
                 (BINDING_ELEMENTS, T::STORAGE_BUFFER, ALL_STAGES),
+                // the same as texels (instanced adaptive pattern, tess; per-fragment normal fields)
+                (BINDING_ELEMENT_TEXELS, T::UNIFORM_TEXEL_BUFFER, ALL_STAGES),
                 // one ElementRecord (ubo)
                 (
                     BINDING_ELEMENT_UBO,

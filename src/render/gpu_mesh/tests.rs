@@ -1,0 +1,53 @@
+//! Unit tests of the mesh upload's limits and chunks.
+
+use super::*;
+
+/// A height map whose pyramid is over maxTexelBufferElements is one sentence naming the
+/// file, its size, the texels and the limit.
+#[test]
+fn a_heightmap_over_the_texel_limit_is_refused_naming_it() {
+    // 4 x 4 with its pyramid: 16 + 4 + 1 texels.
+    let map = Heightmap::from_heights("bumps.png", 4, 4, vec![0.5; 16]);
+    let mut limits = vk::PhysicalDeviceLimits {
+        max_texel_buffer_elements: 21,
+        ..Default::default()
+    };
+    check_heightmap(&map, &limits).unwrap();
+    limits.max_texel_buffer_elements = 20;
+    assert_eq!(
+        check_heightmap(&map, &limits).unwrap_err().to_string(),
+        "height map 'bumps.png' (4 x 4 pixels, with its mip pyramid) needs 21 texels, over \
+         this device's maxTexelBufferElements (20): use a smaller height map"
+    );
+}
+
+/// Chunks hold as many records as the range spans, in whole steps that keep every array's
+/// offsets aligned (records 112 bytes, texture coordinates 32, levels 16), and at least one
+/// step where the range holds less.
+#[test]
+fn chunks_keep_every_arrays_offsets_aligned() {
+    let sizes = [RECORD_BYTES as u64, UV_BYTES, LEVELS_BYTES];
+    // lavapipe: 128 MiB at an alignment of 16.
+    assert_eq!(chunk_elements(1 << 27, 16, &sizes), 1_198_372);
+    for align in [16u64, 64, 256] {
+        for range in [1u64, 100, 448, 1_000, 1 << 20] {
+            let n = chunk_elements(range, align, &sizes) as u64;
+            assert!(n >= 1);
+            for s in sizes {
+                assert_eq!(
+                    n * s % align,
+                    0,
+                    "align {align}, range {range}: {n} elements"
+                );
+            }
+            // Within the range where a step fits.
+            let step = [1u64, 4, 16][[16, 64, 256].iter().position(|&a| a == align).unwrap()];
+            if range >= step * 112 {
+                assert!(
+                    n * 112 <= range,
+                    "align {align}, range {range}: {n} elements"
+                );
+            }
+        }
+    }
+}
