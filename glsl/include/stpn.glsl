@@ -4,10 +4,10 @@
 #define STPN_GLSL
 #include "pn.glsl"
 
-// Every vertex's tags, three vec4 each: (tension, sharpness, bias, crease), (D, 0), (N, 0).
-layout(set = SET_MESH, binding = BINDING_TAGS, std430) readonly buffer VertexTags {
-    vec4 vertex_tags[];
-};
+// Every vertex's tags, three texels each: (tension, sharpness, bias, crease), (D, 0), (N, 0).
+// Texels, not a storage buffer: read per vertex and per fragment (src/render/bindings.rs
+// BINDING_ELEMENT_TEXELS says why).
+layout(set = SET_MESH, binding = BINDING_TAGS) uniform samplerBuffer vertex_tags;
 
 struct StTag {
     float tension;
@@ -19,7 +19,8 @@ struct StTag {
 };
 
 StTag stpn_tag(uint vertex) {
-    vec4 a = vertex_tags[3u * vertex], b = vertex_tags[3u * vertex + 1u], n = vertex_tags[3u * vertex + 2u];
+    int t = 3 * int(vertex);
+    vec4 a = texelFetch(vertex_tags, t), b = texelFetch(vertex_tags, t + 1), n = texelFetch(vertex_tags, t + 2);
     return StTag(a.x, a.y, a.z, a.w != 0.0, b.xyz, n.xyz);
 }
 

@@ -38,7 +38,8 @@ pub const BINDING_HEIGHTMAP: u32 = 3;
 /// uniform texel buffer: maxTexelBufferElements texels (at least 65,536; 134 M on common
 /// devices), not the 128 MiB a storage-buffer range may span, so an 8192² map fits.
 pub const BINDING_HEIGHTMAP_TEXELS: u32 = 12;
-/// Set 1, binding 4: every vertex's scalar tags (`stpn`), three `vec4` each.
+/// Set 1, binding 4: every vertex's scalar tags (`stpn`), three `RGBA32F` texels each, a uniform
+/// texel buffer (read per vertex and per fragment: [`BINDING_ELEMENT_TEXELS`] says why).
 pub const BINDING_TAGS: u32 = 4;
 
 /// Set 1, binding 11: each element's levels for adaptive drawing (`vec4`: its stored edges'

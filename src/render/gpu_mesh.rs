@@ -204,6 +204,7 @@ impl GpuMesh {
         let chunk = chunk_size(ctx, max_chunk);
         let chunks = n.div_ceil(chunk as u64).max(1) as u32;
         check_heightmap(extras.heightmap, &ctx.info.limits)?;
+        check_tags(extras.tags.len(), &ctx.info.limits)?;
         let records = upload_records(ctx, &data.records)?;
         let levels = storage(
             ctx,
@@ -224,8 +225,8 @@ impl GpuMesh {
             ctx,
             chunks,
             &[
-                (vk::DescriptorType::STORAGE_BUFFER, 5 * chunks),
-                (vk::DescriptorType::UNIFORM_TEXEL_BUFFER, 8 * chunks),
+                (vk::DescriptorType::STORAGE_BUFFER, 4 * chunks),
+                (vk::DescriptorType::UNIFORM_TEXEL_BUFFER, 9 * chunks),
                 (vk::DescriptorType::UNIFORM_BUFFER_DYNAMIC, chunks),
             ],
             "mesh descriptors",
@@ -244,6 +245,12 @@ impl GpuMesh {
             &inputs.heightmap_texels,
             vk::Format::R32_SFLOAT,
             "height map texels view",
+        )?);
+        views.push(BufferView::new(
+            ctx,
+            &inputs.tags,
+            vk::Format::R32G32B32A32_SFLOAT,
+            "vertex scalar tags view",
         )?);
         let sets = (0..chunks as u64)
             .map(|c| {
@@ -410,23 +417,19 @@ impl SurfaceInputs {
                 &extras.heightmap.gpu_header(),
                 "height map pyramid layout",
             )?,
-            heightmap_texels: {
-                let texels = extras.heightmap.gpu_texels();
-                let mut b = Buffer::new(
-                    ctx,
-                    BufferDesc::new_upload(
-                        std::mem::size_of_val(&texels[..]) as u64,
-                        vk::BufferUsageFlags::UNIFORM_TEXEL_BUFFER,
-                    ),
-                    "height map texels",
-                )?;
-                b.write_pod(0, &texels);
-                b
-            },
-            tags: storage(ctx, &tag_words, "vertex scalar tags")?,
+            heightmap_texels: upload(
+                ctx,
+                &extras.heightmap.gpu_texels(),
+                TEXELS,
+                "height map texels",
+            )?,
+            tags: upload(ctx, &tag_words, TEXELS, "vertex scalar tags")?,
         })
     }
 }
+
+/// The usage of the buffers the stages read as texels.
+const TEXELS: vk::BufferUsageFlags = vk::BufferUsageFlags::UNIFORM_TEXEL_BUFFER;
 
 /// A host-visible storage buffer holding `words`.
 fn storage<T: bytemuck::Pod>(
@@ -434,14 +437,18 @@ fn storage<T: bytemuck::Pod>(
     words: &[T],
     name: &str,
 ) -> Result<Buffer, GpuError> {
-    let mut b = Buffer::new(
-        ctx,
-        BufferDesc::new_upload(
-            std::mem::size_of_val(words) as u64,
-            vk::BufferUsageFlags::STORAGE_BUFFER,
-        ),
-        name,
-    )?;
+    upload(ctx, words, vk::BufferUsageFlags::STORAGE_BUFFER, name)
+}
+
+/// A host-visible buffer of `usage` holding `words`.
+fn upload<T: bytemuck::Pod>(
+    ctx: &Arc<Context>,
+    words: &[T],
+    usage: vk::BufferUsageFlags,
+    name: &str,
+) -> Result<Buffer, GpuError> {
+    let size = std::mem::size_of_val(words) as u64;
+    let mut b = Buffer::new(ctx, BufferDesc::new_upload(size, usage), name)?;
     b.write_pod(0, words);
     Ok(b)
 }
@@ -463,6 +470,24 @@ fn check_heightmap(map: &Heightmap, limits: &vk::PhysicalDeviceLimits) -> Result
             limit: "this device's maxTexelBufferElements",
             max,
             remedy: "use a smaller height map".into(),
+        });
+    }
+    Ok(())
+}
+
+/// `count` vertices' scalar tags fit one texel-buffer descriptor (three texels a vertex), or a
+/// sentence naming the limit.
+fn check_tags(count: usize, limits: &vk::PhysicalDeviceLimits) -> Result<(), RenderError> {
+    let needed = 3 * count as u64;
+    let max = limits.max_texel_buffer_elements as u64;
+    if needed > max {
+        return Err(RenderError::OverLimit {
+            what: format!("the scalar-tag buffer of {count} vertices"),
+            needed,
+            unit: "texels",
+            limit: "this device's maxTexelBufferElements",
+            max,
+            remedy: "use a mesh with fewer vertices".into(),
         });
     }
     Ok(())
@@ -503,7 +528,7 @@ fn loop_views(
 }
 
 /// Write set 1 for the chunk of `count` elements from `first`: its records (storage and `ubo`
-/// window), its texture coordinates, the height map, the tags and the loop views.
+/// window), its texture coordinates, the height map, and the loop, height map texel and tag views.
 fn write_mesh_set(
     pool: &DescriptorPool,
     set: vk::DescriptorSet,
@@ -545,13 +570,6 @@ fn write_mesh_set(
         inputs.heightmap.raw,
         vk::WHOLE_SIZE,
     );
-    pool.write_buffer(
-        set,
-        BINDING_TAGS,
-        vk::DescriptorType::STORAGE_BUFFER,
-        inputs.tags.raw,
-        vk::WHOLE_SIZE,
-    );
     for (binding, view) in [
         BINDING_LOOP_P1,
         BINDING_LOOP_N1,
@@ -560,6 +578,7 @@ fn write_mesh_set(
         BINDING_LOOP_TABLES,
         BINDING_LOOP_ROWS,
         BINDING_HEIGHTMAP_TEXELS,
+        BINDING_TAGS,
     ]
     .into_iter()
     .zip(views)

@@ -136,7 +136,7 @@ impl Renderer {
                     ALL_STAGES,
                 ),
                 // every vertex's scalar tags (stpn)
-                (BINDING_TAGS, T::STORAGE_BUFFER, ALL_STAGES),
+                (BINDING_TAGS, T::UNIFORM_TEXEL_BUFFER, ALL_STAGES),
                 // each element's levels (adaptive drawing)
                 (BINDING_LEVELS, T::STORAGE_BUFFER, ALL_STAGES),
                 // the loop surface: M1, per-face table entries, control points, tables, row maps

@@ -21,6 +21,23 @@ fn a_heightmap_over_the_texel_limit_is_refused_naming_it() {
     );
 }
 
+/// Scalar tags past maxTexelBufferElements (three texels a vertex) are one sentence naming the
+/// vertices, the texels and the limit.
+#[test]
+fn tags_over_the_texel_limit_are_refused_naming_them() {
+    let mut limits = vk::PhysicalDeviceLimits {
+        max_texel_buffer_elements: 21,
+        ..Default::default()
+    };
+    check_tags(7, &limits).unwrap();
+    limits.max_texel_buffer_elements = 20;
+    assert_eq!(
+        check_tags(7, &limits).unwrap_err().to_string(),
+        "the scalar-tag buffer of 7 vertices needs 21 texels, over this device's \
+         maxTexelBufferElements (20): use a mesh with fewer vertices"
+    );
+}
+
 /// Chunks hold as many records as the range spans, in whole steps that keep every array's
 /// offsets aligned (records 112 bytes, texture coordinates 32, levels 16), and at least one
 /// step where the range holds less.
