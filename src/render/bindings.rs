@@ -19,7 +19,7 @@ pub const BINDING_ELEMENTS: u32 = 0;
 /// read per invocation (the adaptive instanced pattern's vertices, the tessellator's evaluated
 /// vertices, the fragment stage's per-fragment normal fields). lavapipe fetches texels with
 /// vector gathers but loads a storage buffer one invocation and one component at a time, which
-/// made a `pn` frame's fragment stage several times slower (docs/bench/record-texels.md).
+/// would make a `pn` frame's fragment stage several times slower (docs/bench/record-texels.md).
 pub const BINDING_ELEMENT_TEXELS: u32 = 13;
 /// Set 1, binding 1: a window of [`UBO_WINDOW`] `ElementRecord`s, dynamic uniform buffer (`ubo`
 /// submission).
