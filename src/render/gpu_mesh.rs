@@ -100,14 +100,22 @@ impl GpuPattern {
 /// GPU data of one mesh.
 pub struct GpuMesh {
     pub element_count: u32,
-    /// `ElementRecord[]`, bound as a storage buffer (instanced pattern, tess, fragment normal
-    /// fields) and, in windows of [`UBO_WINDOW`] records, as a dynamic uniform buffer (`ubo`
-    /// submission); padded to whole windows.
+    /// Each chunk's records as texels ([`BINDING_ELEMENT_TEXELS`]; declared, so dropped, before
+    /// the records).
+    _record_views: Vec<BufferView>,
+    /// The loop buffers' texel views, then the height map's and the tags' (declared before the
+    /// tags, the height map's texels and the placeholder; a [`LoopScene`] drops its `gpu`
+    /// before its `pass`, which owns the loop buffers).
+    _views: Vec<BufferView>,
+    /// `ElementRecord[]`, bound as a uniform texel buffer per chunk (what the stages read per
+    /// invocation: the instanced adaptive pattern, tess, fragment normal fields), as a storage
+    /// buffer (the bounds' GLSL twin) and, in windows of [`UBO_WINDOW`] records, as a dynamic
+    /// uniform buffer (`ubo` submission); padded to whole windows.
     pub records: Buffer,
     /// Each element's texture coordinates (`heightmap`), and the height map's pyramid.
     pub uvs: Buffer,
     pub heightmap: Buffer,
-    /// Every vertex's scalar tags (`stpn`).
+    /// Every vertex's scalar tags (`stpn`), a uniform texel buffer (after its view).
     pub tags: Buffer,
     /// Each element's levels ([`ElementLevels`], 16 bytes), read by the drivers when they draw
     /// adaptively (`FrameWork::adaptive`); written by the level pass or [`GpuMesh::upload_levels`].
@@ -117,17 +125,12 @@ pub struct GpuMesh {
     /// The pattern driver's adaptive draws of these elements (built by its `prepare`).
     pub adaptive: Option<super::pattern::AdaptivePattern>,
     pub pool: DescriptorPool,
-    /// One descriptor set per chunk of [`GpuMesh::chunk`] elements: a storage-buffer descriptor
-    /// may span at most maxStorageBufferRange bytes, so a larger mesh is drawn chunk by chunk.
+    /// One descriptor set per chunk of [`GpuMesh::chunk`] elements: a descriptor may span at
+    /// most maxStorageBufferRange bytes (maxTexelBufferElements texels), so a larger mesh is
+    /// drawn chunk by chunk.
     pub sets: Vec<vk::DescriptorSet>,
     /// Elements per chunk.
     pub chunk: u32,
-    /// The loop buffers' texel views, then the height map's (a [`LoopScene`] drops its `gpu`
-    /// before its `pass`, which owns the buffers; the placeholder's views before the
-    /// placeholder, declared after).
-    _views: Vec<BufferView>,
-    /// Each chunk's records as texels ([`BINDING_ELEMENT_TEXELS`]).
-    _record_views: Vec<BufferView>,
     /// The height map's texels, every level (a uniform texel buffer; after its view).
     pub heightmap_texels: Buffer,
     /// Bound where a surface's buffers are absent (every binding must be valid).

@@ -171,7 +171,7 @@ impl DriverKind for PatternDriver {
 
     /// The adaptive vertex stage: the patterns' `(w, u, v)` per vertex (the hierarchy's or the
     /// integer patterns'), the element of
-    /// each instance from its bin's list (`instanced`); records from the storage buffer.
+    /// each instance from its bin's list (`instanced`); records read as texels (`fetch_record`).
     fn describe_adaptive_pipeline(
         &self,
         desc: &mut GraphicsPipelineDesc,

@@ -130,7 +130,8 @@ impl Scene {
     }
 
     /// Upload `mesh` with exactly the given pattern set, its records in chunks of at most
-    /// `max_chunk` elements (None: as many as the device's maxStorageBufferRange allows; tests
+    /// `max_chunk` elements (None: as many as the device's maxStorageBufferRange and
+    /// maxTexelBufferElements allow; tests
     /// pass small chunks to exercise drawing chunk by chunk).
     pub fn with_chunks(
         ctx: &Arc<Context>,
