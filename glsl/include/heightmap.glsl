@@ -5,7 +5,7 @@
 #define HEIGHTMAP_GLSL
 #include "records.glsl"
 
-layout(set = SET_MESH, binding = BINDING_HEIGHTMAP, std430) readonly buffer HeightmapData {
+layout(set = SET_MESH, binding = BINDING_HEIGHTMAP, std140) uniform HeightmapData {
     uvec4 hm_header;       // x: level count
     uvec4 hm_level[16];    // offset (texels), width, height, 0
 };

@@ -2,10 +2,24 @@
 #define LEVELS_GLSL
 // Each element's levels for adaptive drawing (set 1, chunked like the records): its stored
 // edges' continuous levels (edge k: corner k -> k + 1) and its inner level; inner 0: culled.
-// Mirror: src/lod/levels.rs.
+// The drawing stages read them as one RGBA32F texel an element (src/render/bindings.rs
+// BINDING_ELEMENT_TEXELS says why); a compute pass that defines LEVELS_STORAGE binds the
+// buffer as storage. Mirror: src/lod/levels.rs.
+#ifdef LEVELS_STORAGE
 layout(set = SET_MESH, binding = BINDING_LEVELS, std430) readonly buffer Levels {
     vec4 element_levels[];
 };
+
+vec4 fetch_levels(uint local) {
+    return element_levels[local];
+}
+#else
+layout(set = SET_MESH, binding = BINDING_LEVELS) uniform samplerBuffer level_texels;
+
+vec4 fetch_levels(uint local) {
+    return texelFetch(level_texels, int(local));
+}
+#endif
 
 // The level a driver draws for a continuous level: its ceiling, a power of two for a dyadic
 // driver, capped at max_level. Mirror: src/lod/levels.rs `drawn_level`.

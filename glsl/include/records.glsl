@@ -28,20 +28,15 @@ const uint VIEW_NORMALS = 1u;
 const uint VIEW_LEVELS = 2u;
 const uint VIEW_PLAIN = 3u;
 
-// The elements' records (set 1), one chunk of them: a descriptor spans at most
-// maxStorageBufferRange bytes (maxTexelBufferElements texels), so a large mesh is drawn chunk by
-// chunk, `records[0]` being element pc.draw.y. Drivers read the record of the element they
-// sample; the fragment stage reads it to evaluate normal fields per fragment (v_element is the
-// index within the chunk).
-layout(set = SET_MESH, binding = BINDING_ELEMENTS, std430) readonly buffer Records {
-    ElementRecord records[];
-};
-
-// The same chunk of records as texels, seven an element (src/render/bindings.rs
-// BINDING_ELEMENT_TEXELS says why the stages read them so).
+// The elements' records (set 1), one chunk of them, as texels, seven an element: a descriptor
+// spans at most maxTexelBufferElements texels (and the chunk's levels maxStorageBufferRange
+// bytes), so a large mesh is drawn chunk by chunk, the chunk's first record being element
+// pc.draw.y. Drivers read the record of the element they sample; the fragment stage reads it
+// to evaluate normal fields per fragment (v_element is the index within the chunk).
+// src/render/bindings.rs BINDING_ELEMENT_TEXELS says why the stages read texels.
 layout(set = SET_MESH, binding = BINDING_ELEMENT_TEXELS) uniform usamplerBuffer record_texels;
 
-// Element `local` of the chunk's records: `records[local]`, the same bits.
+// Element `local` of the chunk's records, the bits the Rust side uploaded.
 ElementRecord fetch_record(uint local) {
     ElementRecord r;
     for (int k = 0; k < 7; ++k) {
@@ -50,10 +45,16 @@ ElementRecord fetch_record(uint local) {
     return r;
 }
 
-// Each element's texture coordinates (stored corner order), same chunking as the records.
-layout(set = SET_MESH, binding = BINDING_UVS, std430) readonly buffer ElementUvs {
-    vec4 element_uv[]; // two per element: (uv0, uv1), (uv2, 0)
-};
+// Each element's texture coordinates (stored corner order), same chunking as the records, two
+// RGBA32F texels per element: (uv0, uv1), (uv2, 0).
+layout(set = SET_MESH, binding = BINDING_UVS) uniform samplerBuffer uv_texels;
+
+// Element `local`'s texture coordinates, in stored corner order.
+void fetch_uvs(uint local, out vec2 t[3]) {
+    vec4 a = texelFetch(uv_texels, int(2u * local));
+    vec4 b = texelFetch(uv_texels, int(2u * local + 1u));
+    t = vec2[3](a.xy, a.zw, b.xy);
+}
 
 #ifndef FRAGMENT_STAGE
 // Per draw: 128 bytes, the minimum every device offers; geometry stages only.

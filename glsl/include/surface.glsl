@@ -72,8 +72,8 @@ SurfacePoint surface_eval(ElementRecord rec, Sample s) {
     SurfacePoint sp = SurfacePoint(p, n, dir, gs[1] - gs[0], gs[2] - gs[0], vec2(0.0), vec2(0.0), vec2(0.0));
     if (DISPLACE == DISPLACE_HEIGHTMAP) {
         // Texture coordinates in canonical order (src/surface/mod.rs `eval_surface`).
-        vec4 a = element_uv[2u * s.local], b = element_uv[2u * s.local + 1u];
-        vec2 t[3] = vec2[3](a.xy, a.zw, b.xy);
+        vec2 t[3];
+        fetch_uvs(s.local, t);
         precise vec2 uv = t[c.o[0]] * c.w[0] + t[c.o[1]] * c.w[1] + t[c.o[2]] * c.w[2];
         sp.uv = uv;
         sp.duv_du = t[1] - t[0];

@@ -12,6 +12,11 @@ layout(local_size_x = 64) in;
 
 #include "lod.glsl"
 
+// The records, a storage buffer in this pass's set (tests/lod_mirror.rs binds it).
+layout(set = SET_MESH, binding = BINDING_ELEMENTS, std430) readonly buffer Records {
+    ElementRecord records[];
+};
+
 layout(set = SET_LOD, binding = BINDING_LOD_BOUNDS, std430) writeonly buffer Bounds {
     vec4 bounds[];
 };

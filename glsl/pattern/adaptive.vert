@@ -129,7 +129,8 @@ void main() {
     } else {
         rec = fetch_record(local);
     }
-    uvec4 n = adaptive_levels(element_levels[local], f, GEOMORPH != 0u);
+    vec4 levels = fetch_levels(local);
+    uvec4 n = adaptive_levels(levels, f, GEOMORPH != 0u);
     vec3 bary;
     uvec2 raw;
     if (GEOMORPH != 0u) {
@@ -144,7 +145,7 @@ void main() {
     SurfacePoint sp = evaluate(rec, Sample(local, bary));
     if (GEOMORPH != 0u) {
         // The normal stays the true point's (docs/adaptivity.md, "Geomorphing").
-        sp.position = geomorph_position(rec, local, raw, sp.position, n, element_levels[local], f);
+        sp.position = geomorph_position(rec, local, raw, sp.position, n, levels, f);
     }
     v_position = sp.position;
     v_normal = sp.normal;

@@ -18,6 +18,7 @@ layout(local_size_x = 64) in;
 #define SET_MESH 0
 #undef BINDING_LEVELS
 #define BINDING_LEVELS 0
+#define LEVELS_STORAGE
 #include "levels.glsl"
 #include "adaptive.glsl"
 
@@ -69,7 +70,7 @@ int drawn_bin(uint k) {
     if (k < pc.lo || k >= pc.hi) {
         return -1;
     }
-    uint inner = adaptive_levels(element_levels[k], pc.f, pc.dyadic != 0u).w;
+    uint inner = adaptive_levels(fetch_levels(k), pc.f, pc.dyadic != 0u).w;
     return inner == 0u ? -1 : int(bin_of(inner));
 }
 
@@ -86,7 +87,7 @@ void main() {
         return;
     }
     if (pc.phase == 1u) {
-        uint inner = adaptive_levels(element_levels[k], pc.f, dyadic).w;
+        uint inner = adaptive_levels(fetch_levels(k), pc.f, dyadic).w;
         uint o = 5u * k;
         // A culled element: level 1's range with no indices.
         write_command(o, max(inner, 1u));

@@ -66,7 +66,7 @@ void main() {
     float specular = pow(max(dot(n, h), 0.0), 48.0);
     vec3 base = frame.base_color.rgb;
     if (frame.view == VIEW_LEVELS) {
-        base = level_color(frame.level > 0.0 ? frame.level : element_levels[v_element].w);
+        base = level_color(frame.level > 0.0 ? frame.level : fetch_levels(v_element).w);
     }
     vec3 color = base * (0.18 + 0.82 * diffuse) + vec3(0.22 * specular);
     // The refined edges: the lit colour, darkened, so the lines fade into the shading instead

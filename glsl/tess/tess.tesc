@@ -24,7 +24,7 @@ void main() {
     if (gl_InvocationID == 0) {
         if (pc.draw.z != 0u) {
             uint max_level = pc.draw.x;
-            vec4 l = element_levels[pc.draw.w + uint(gl_PrimitiveID)];
+            vec4 l = fetch_levels(pc.draw.w + uint(gl_PrimitiveID));
             uint inner = drawn_level(l.w, false, max_level);
             uvec3 outer = uvec3(drawn_level(l.y, false, max_level), drawn_level(l.z, false, max_level),
                                 drawn_level(l.x, false, max_level));

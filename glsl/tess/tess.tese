@@ -52,7 +52,7 @@ void main() {
     if (GEOMORPH != 0u && pc.draw.z != 0u) {
         // The normal stays the true point's (docs/adaptivity.md, "Geomorphing").
         sp.position = tess_geomorph_position(rec, local, gl_TessCoord, bary, sp.position, outer,
-                                             inner, element_levels[local]);
+                                             inner, fetch_levels(local));
     }
     v_position = sp.position;
     v_normal = sp.normal;

@@ -10,16 +10,19 @@ pub const BINDING_FRAME: u32 = 0;
 /// Set 0, binding 1: Perlin's permutation table (`uvec4[64]` uniform block), written once.
 pub const BINDING_NOISE: u32 = 1;
 
-/// Set 1: per mesh.
+/// Set 1: per mesh. No drawing stage reads a storage buffer of it (every binding is a texel
+/// buffer or a uniform block): see [`BINDING_ELEMENT_TEXELS`], and a storage binding visible to
+/// every stage would count against each stage's maxPerStageDescriptorStorageBuffers (at least 4).
 pub const SET_MESH: u32 = 1;
-/// Set 1, binding 0: `ElementRecord[]`, storage buffer (the GLSL twin of the bounds).
+/// Binding 0 of set [`SET_MESH`] in the GLSL twin of the bounds (glsl/lod/bounds.comp, run by
+/// tests/lod_mirror.rs with its own layout): `ElementRecord[]`, a storage buffer.
 pub const BINDING_ELEMENTS: u32 = 0;
-/// Set 1, binding 13: the same records as a uniform texel buffer of `RGBA32UI`, seven texels an
-/// element (`fetch_record` in glsl/include/records.glsl), chunked like them: what the stages
-/// read per invocation (the adaptive instanced pattern's vertices, the tessellator's evaluated
-/// vertices, the fragment stage's per-fragment normal fields). lavapipe fetches texels with
-/// vector gathers but loads a storage buffer one invocation and one component at a time, which
-/// would make a `pn` frame's fragment stage several times slower (docs/bench/record-texels.md).
+/// Set 1, binding 13: the chunk's records as a uniform texel buffer of `RGBA32UI`, seven texels
+/// an element (`fetch_record` in glsl/include/records.glsl): what the stages read per
+/// invocation (the adaptive instanced pattern's vertices, the tessellator's evaluated vertices,
+/// the fragment stage's per-fragment normal fields). lavapipe fetches texels with vector
+/// gathers but loads a storage buffer one invocation and one component at a time, which would
+/// make a `pn` frame's fragment stage several times slower (docs/bench/record-texels.md).
 pub const BINDING_ELEMENT_TEXELS: u32 = 13;
 /// Set 1, binding 1: a window of [`UBO_WINDOW`] `ElementRecord`s, dynamic uniform buffer (`ubo`
 /// submission).
@@ -30,9 +33,11 @@ pub const BINDING_ELEMENT_UBO: u32 = 1;
 pub const UBO_WINDOW: u32 = 144;
 
 /// Set 1, binding 2: each element's texture coordinates, three `vec2` padded to 32 bytes
-/// (`heightmap` displacement), chunked like the records.
+/// (`heightmap` displacement), chunked like the records, two `RGBA32F` texels an element
+/// (`fetch_uvs`).
 pub const BINDING_UVS: u32 = 2;
-/// Set 1, binding 3: the height map's pyramid layout (`Heightmap::gpu_header`), storage buffer.
+/// Set 1, binding 3: the height map's pyramid layout (`Heightmap::gpu_header`, 272 bytes), a
+/// uniform block.
 pub const BINDING_HEIGHTMAP: u32 = 3;
 /// Set 1, binding 12: the height map's texels, every level (`Heightmap::gpu_texels`), an `R32`
 /// uniform texel buffer: maxTexelBufferElements texels (at least 65,536; 134 M on common
@@ -44,7 +49,8 @@ pub const BINDING_TAGS: u32 = 4;
 
 /// Set 1, binding 11: each element's levels for adaptive drawing (`vec4`: its stored edges'
 /// continuous levels, then its inner level; inner level 0 means culled: draw nothing), chunked
-/// like the records. Written by the level pass each frame (or uploaded,
+/// like the records, one `RGBA32F` texel an element (`fetch_levels`). Written by the level pass
+/// each frame as a storage buffer of its own set (or uploaded,
 /// [`crate::lod::levels::ElementLevels`]); the drivers read it when they draw adaptively.
 pub const BINDING_LEVELS: u32 = 11;
 

@@ -100,19 +100,21 @@ impl GpuPattern {
 /// GPU data of one mesh.
 pub struct GpuMesh {
     pub element_count: u32,
-    /// Each chunk's records as texels ([`BINDING_ELEMENT_TEXELS`]; declared, so dropped, before
-    /// the records).
-    _record_views: Vec<BufferView>,
+    /// Each chunk's records, texture coordinates and levels as texels
+    /// ([`BINDING_ELEMENT_TEXELS`], [`BINDING_UVS`], [`BINDING_LEVELS`]; declared, so dropped,
+    /// before the buffers they show).
+    _chunk_views: Vec<BufferView>,
     /// The loop buffers' texel views, then the height map's and the tags' (declared before the
     /// tags, the height map's texels and the placeholder; a [`LoopScene`] drops its `gpu`
     /// before its `pass`, which owns the loop buffers).
     _views: Vec<BufferView>,
     /// `ElementRecord[]`, bound as a uniform texel buffer per chunk (what the stages read per
-    /// invocation: the instanced adaptive pattern, tess, fragment normal fields), as a storage
-    /// buffer (the bounds' GLSL twin) and, in windows of [`UBO_WINDOW`] records, as a dynamic
+    /// invocation: the instanced adaptive pattern, tess, fragment normal fields) and, in
+    /// windows of [`UBO_WINDOW`] records, as a dynamic
     /// uniform buffer (`ubo` submission); padded to whole windows.
     pub records: Buffer,
-    /// Each element's texture coordinates (`heightmap`), and the height map's pyramid.
+    /// Each element's texture coordinates (`heightmap`, texels per chunk), and the height map's
+    /// pyramid layout (a uniform buffer).
     pub uvs: Buffer,
     pub heightmap: Buffer,
     /// Every vertex's scalar tags (`stpn`), a uniform texel buffer (after its view).
@@ -209,9 +211,11 @@ impl GpuMesh {
         check_heightmap(extras.heightmap, &ctx.info.limits)?;
         check_tags(extras.tags.len(), &ctx.info.limits)?;
         let records = upload_records(ctx, &data.records)?;
-        let levels = storage(
+        // Written by the level pass (storage), read by the drawing stages (texels).
+        let levels = upload(
             ctx,
             &vec![ElementLevels::UNIFORM_1; n.max(1) as usize],
+            vk::BufferUsageFlags::STORAGE_BUFFER | TEXELS,
             "element levels",
         )?;
         let inputs = SurfaceInputs::upload(ctx, data, &extras)?;
@@ -228,21 +232,15 @@ impl GpuMesh {
             ctx,
             chunks,
             &[
-                (vk::DescriptorType::STORAGE_BUFFER, 4 * chunks),
-                (vk::DescriptorType::UNIFORM_TEXEL_BUFFER, 9 * chunks),
+                (vk::DescriptorType::UNIFORM_TEXEL_BUFFER, 11 * chunks),
+                (vk::DescriptorType::UNIFORM_BUFFER, chunks),
                 (vk::DescriptorType::UNIFORM_BUFFER_DYNAMIC, chunks),
             ],
             "mesh descriptors",
         )?;
-        let placeholder = Buffer::new_with_data(
-            ctx,
-            cmd_pool,
-            vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::UNIFORM_TEXEL_BUFFER,
-            &[0u32; 4],
-            "placeholder",
-        )?;
+        let placeholder = Buffer::new_with_data(ctx, cmd_pool, TEXELS, &[0u32; 4], "placeholder")?;
         let mut views = loop_views(ctx, extras.loop_, &placeholder)?;
-        let mut record_views = Vec::with_capacity(chunks as usize);
+        let mut chunk_views = Vec::with_capacity(3 * chunks as usize);
         views.push(BufferView::new(
             ctx,
             &inputs.heightmap_texels,
@@ -260,30 +258,42 @@ impl GpuMesh {
                 let set = pool.allocate(set_layout, &format!("mesh set {c}"))?;
                 let first = c * chunk as u64;
                 let count = (n - first.min(n)).min(chunk as u64).max(1);
-                write_mesh_set(&pool, set, &records, &inputs, &views, first, count);
+                write_mesh_set(&pool, set, &records, &inputs, &views);
                 let rec_size = RECORD_BYTES as u64;
-                let texels = BufferView::span(
-                    ctx,
-                    &records,
-                    vk::Format::R32G32B32A32_UINT,
-                    (first * rec_size, count * rec_size),
-                    &format!("element record texels {c}"),
-                )?;
-                pool.write_texel_buffer(
-                    set,
-                    BINDING_ELEMENT_TEXELS,
-                    vk::DescriptorType::UNIFORM_TEXEL_BUFFER,
-                    texels.raw,
-                );
-                record_views.push(texels);
-                pool.write_buffer_at(
-                    set,
-                    BINDING_LEVELS,
-                    vk::DescriptorType::STORAGE_BUFFER,
-                    levels.raw,
-                    first * LEVELS_BYTES,
-                    count * LEVELS_BYTES,
-                );
+                let uv_first = if inputs.own_uvs { first } else { 0 };
+                let spans = [
+                    (
+                        BINDING_ELEMENT_TEXELS,
+                        &records,
+                        vk::Format::R32G32B32A32_UINT,
+                        (first * rec_size, count * rec_size),
+                        "element record texels",
+                    ),
+                    (
+                        BINDING_UVS,
+                        &inputs.uvs,
+                        vk::Format::R32G32B32A32_SFLOAT,
+                        (uv_first * UV_BYTES, count.min(inputs.uv_count) * UV_BYTES),
+                        "element texture coordinate texels",
+                    ),
+                    (
+                        BINDING_LEVELS,
+                        &levels,
+                        vk::Format::R32G32B32A32_SFLOAT,
+                        (first * LEVELS_BYTES, count * LEVELS_BYTES),
+                        "element level texels",
+                    ),
+                ];
+                for (binding, buffer, format, span, name) in spans {
+                    let view = BufferView::span(ctx, buffer, format, span, &format!("{name} {c}"))?;
+                    pool.write_texel_buffer(
+                        set,
+                        binding,
+                        vk::DescriptorType::UNIFORM_TEXEL_BUFFER,
+                        view.raw,
+                    );
+                    chunk_views.push(view);
+                }
                 Ok(set)
             })
             .collect::<Result<Vec<_>, GpuError>>()?;
@@ -301,7 +311,7 @@ impl GpuMesh {
             sets,
             chunk,
             _views: views,
-            _record_views: record_views,
+            _chunk_views: chunk_views,
             _placeholder: placeholder,
         })
     }
@@ -344,9 +354,10 @@ impl GpuMesh {
     }
 }
 
-/// Elements per chunk on this device: as many records (and texture coordinates) as one
-/// storage-buffer descriptor spans and one texel-buffer descriptor spans of the records, or
-/// `max_chunk` (tests use small chunks).
+/// Elements per chunk on this device: as many records (and texture coordinates and levels) as
+/// one texel-buffer descriptor spans of the records and one storage-buffer descriptor of
+/// records' size (the level pass writes each chunk's levels as storage, and a chunk keeps to
+/// one range of every per-element array), or `max_chunk` (tests use small chunks).
 fn chunk_size(ctx: &Context, max_chunk: Option<u32>) -> u32 {
     let rec_size = RECORD_BYTES as u64;
     let limits = &ctx.info.limits;
@@ -359,7 +370,7 @@ fn chunk_size(ctx: &Context, max_chunk: Option<u32>) -> u32 {
     chunk_elements(range, align, &[rec_size, UV_BYTES, LEVELS_BYTES])
 }
 
-/// The records, padded to whole `ubo` windows (storage, uniform and vertex buffer alike).
+/// The records, padded to whole `ubo` windows (texel, uniform and vertex buffer alike).
 fn upload_records(ctx: &Arc<Context>, data: &[ElementRecord]) -> Result<Buffer, GpuError> {
     let n = data.len() as u64;
     let rec_size = RECORD_BYTES as u64;
@@ -367,8 +378,7 @@ fn upload_records(ctx: &Arc<Context>, data: &[ElementRecord]) -> Result<Buffer, 
         ctx,
         BufferDesc::new_upload(
             n.div_ceil(UBO_WINDOW as u64).max(1) * UBO_WINDOW as u64 * rec_size,
-            vk::BufferUsageFlags::STORAGE_BUFFER
-                | vk::BufferUsageFlags::UNIFORM_BUFFER
+            vk::BufferUsageFlags::UNIFORM_BUFFER
                 | vk::BufferUsageFlags::UNIFORM_TEXEL_BUFFER
                 | vk::BufferUsageFlags::VERTEX_BUFFER,
         ),
@@ -412,12 +422,13 @@ impl SurfaceInputs {
             extras.tags.iter().map(VertexTag::to_gpu).collect()
         };
         Ok(Self {
-            uvs: storage(ctx, &uv_words, "element texture coordinates")?,
+            uvs: upload(ctx, &uv_words, TEXELS, "element texture coordinates")?,
             uv_count: uv_words.len() as u64,
             own_uvs: data.uvs.is_some(),
-            heightmap: storage(
+            heightmap: upload(
                 ctx,
                 &extras.heightmap.gpu_header(),
+                vk::BufferUsageFlags::UNIFORM_BUFFER,
                 "height map pyramid layout",
             )?,
             heightmap_texels: upload(
@@ -433,15 +444,6 @@ impl SurfaceInputs {
 
 /// The usage of the buffers the stages read as texels.
 const TEXELS: vk::BufferUsageFlags = vk::BufferUsageFlags::UNIFORM_TEXEL_BUFFER;
-
-/// A host-visible storage buffer holding `words`.
-fn storage<T: bytemuck::Pod>(
-    ctx: &Arc<Context>,
-    words: &[T],
-    name: &str,
-) -> Result<Buffer, GpuError> {
-    upload(ctx, words, vk::BufferUsageFlags::STORAGE_BUFFER, name)
-}
 
 /// A host-visible buffer of `usage` holding `words`.
 fn upload<T: bytemuck::Pod>(
@@ -530,26 +532,17 @@ fn loop_views(
         .collect()
 }
 
-/// Write set 1 for the chunk of `count` elements from `first`: its records (storage and `ubo`
-/// window), its texture coordinates, the height map, and the loop, height map texel and tag views.
+/// Write what set 1 shares between chunks: the records' `ubo` window, the height map's layout,
+/// and the loop, height map texel and tag views (each chunk's own texel views are written
+/// beside it, in [`GpuMesh::new`]).
 fn write_mesh_set(
     pool: &DescriptorPool,
     set: vk::DescriptorSet,
     records: &Buffer,
     inputs: &SurfaceInputs,
     views: &[BufferView],
-    first: u64,
-    count: u64,
 ) {
     let rec_size = RECORD_BYTES as u64;
-    pool.write_buffer_at(
-        set,
-        BINDING_ELEMENTS,
-        vk::DescriptorType::STORAGE_BUFFER,
-        records.raw,
-        first * rec_size,
-        count * rec_size,
-    );
     pool.write_buffer(
         set,
         BINDING_ELEMENT_UBO,
@@ -557,19 +550,10 @@ fn write_mesh_set(
         records.raw,
         UBO_WINDOW as u64 * rec_size,
     );
-    let uv_first = if inputs.own_uvs { first } else { 0 };
-    pool.write_buffer_at(
-        set,
-        BINDING_UVS,
-        vk::DescriptorType::STORAGE_BUFFER,
-        inputs.uvs.raw,
-        uv_first * UV_BYTES,
-        count.min(inputs.uv_count) * UV_BYTES,
-    );
     pool.write_buffer(
         set,
         BINDING_HEIGHTMAP,
-        vk::DescriptorType::STORAGE_BUFFER,
+        vk::DescriptorType::UNIFORM_BUFFER,
         inputs.heightmap.raw,
         vk::WHOLE_SIZE,
     );

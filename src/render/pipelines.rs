@@ -117,9 +117,8 @@ impl Renderer {
         let mesh_layout = DescriptorSetLayout::new(
             ctx,
             &[
-                // ElementRecord[] (the bounds' GLSL twin)
-                (BINDING_ELEMENTS, T::STORAGE_BUFFER, ALL_STAGES),
-                // the same as texels (instanced adaptive pattern, tess; per-fragment normal fields)
+                // the records as texels (instanced adaptive pattern, tess; per-fragment normal
+                // fields): no stage reads a storage buffer of this set
                 (BINDING_ELEMENT_TEXELS, T::UNIFORM_TEXEL_BUFFER, ALL_STAGES),
                 // one ElementRecord (ubo)
                 (
@@ -128,8 +127,8 @@ impl Renderer {
                     GEOMETRY_STAGES,
                 ),
                 // texture coordinates and the height map (heightmap displacement)
-                (BINDING_UVS, T::STORAGE_BUFFER, ALL_STAGES),
-                (BINDING_HEIGHTMAP, T::STORAGE_BUFFER, ALL_STAGES),
+                (BINDING_UVS, T::UNIFORM_TEXEL_BUFFER, ALL_STAGES),
+                (BINDING_HEIGHTMAP, T::UNIFORM_BUFFER, ALL_STAGES),
                 (
                     BINDING_HEIGHTMAP_TEXELS,
                     T::UNIFORM_TEXEL_BUFFER,
@@ -138,7 +137,7 @@ impl Renderer {
                 // every vertex's scalar tags (stpn)
                 (BINDING_TAGS, T::UNIFORM_TEXEL_BUFFER, ALL_STAGES),
                 // each element's levels (adaptive drawing)
-                (BINDING_LEVELS, T::STORAGE_BUFFER, ALL_STAGES),
+                (BINDING_LEVELS, T::UNIFORM_TEXEL_BUFFER, ALL_STAGES),
                 // the loop surface: M1, per-face table entries, control points, tables, row maps
                 (BINDING_LOOP_P1, T::UNIFORM_TEXEL_BUFFER, ALL_STAGES),
                 (BINDING_LOOP_N1, T::UNIFORM_TEXEL_BUFFER, ALL_STAGES),
