@@ -28,6 +28,15 @@ pub enum GpuError {
         device: String,
         feature: &'static str,
     },
+    #[error("device '{device}' offers {offered} {what} per shader stage ({limit}), and meshrefine's {user} bind {needed}")]
+    StageLimit {
+        device: String,
+        what: &'static str,
+        limit: &'static str,
+        offered: u32,
+        needed: u32,
+        user: &'static str,
+    },
     #[error("the Vulkan validation layer VK_LAYER_KHRONOS_validation is not installed (apt-get install vulkan-validationlayers)")]
     NoValidationLayer,
     #[error("the overlay renderer (egui-ash-renderer) failed: {0}")]
@@ -316,6 +325,7 @@ fn query_capabilities(
             feature,
         });
     }
+    super::device::check_stage_limits(&info)?;
     info.pipeline_statistics = available.pipeline_statistics_query == vk::TRUE;
     info.vertex_stores = available.vertex_pipeline_stores_and_atomics == vk::TRUE;
     info.fill_mode_non_solid = available.fill_mode_non_solid == vk::TRUE;

@@ -172,3 +172,67 @@ impl ContextDesc {
         info
     }
 }
+
+/// The most storage buffers one of meshrefine's pipelines binds to one shader stage: the Loop
+/// step's and normals' compute set (per-vertex entry offsets, entries, M0, M1, one-ring offsets,
+/// one-rings, M1's normals). Vulkan lets a device offer as few as 4; the drawing stages read
+/// none outside the capture set's three (src/render/bindings.rs, `SET_MESH`), the pattern
+/// driver's bins pass binds five.
+pub const STORAGE_BUFFERS_PER_STAGE: u32 = 7;
+
+/// The per-stage descriptor limits meshrefine's pipelines need beyond Vulkan's least, or a
+/// sentence naming the limit (before any pipeline is made, so never a validation message).
+pub(crate) fn check_stage_limits(info: &DeviceInfo) -> Result<(), GpuError> {
+    let offered = info.limits.max_per_stage_descriptor_storage_buffers;
+    if offered < STORAGE_BUFFERS_PER_STAGE {
+        return Err(GpuError::StageLimit {
+            device: info.name.clone(),
+            what: "storage buffers",
+            limit: "maxPerStageDescriptorStorageBuffers",
+            offered,
+            needed: STORAGE_BUFFERS_PER_STAGE,
+            user: "Loop passes",
+        });
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn info(storage_buffers: u32) -> DeviceInfo {
+        DeviceInfo {
+            name: "Tiny GPU".into(),
+            driver_name: String::new(),
+            driver_info: String::new(),
+            driver_id: vk::DriverId::default(),
+            device_type: vk::PhysicalDeviceType::INTEGRATED_GPU,
+            api_version: vk::API_VERSION_1_3,
+            limits: vk::PhysicalDeviceLimits {
+                max_per_stage_descriptor_storage_buffers: storage_buffers,
+                ..Default::default()
+            },
+            pipeline_statistics: false,
+            vertex_stores: false,
+            fill_mode_non_solid: false,
+            depth_bias_clamp: false,
+            max_memory_allocation_size: 0,
+            transform_feedback: false,
+            max_transform_feedback_buffer_size: 0,
+        }
+    }
+
+    /// A device offering Vulkan's least, 4 storage buffers a stage, is refused with one sentence
+    /// naming the device, the limit and what needs more; 7 is enough.
+    #[test]
+    fn too_few_storage_buffers_per_stage_are_refused_naming_the_limit() {
+        let err = check_stage_limits(&info(4)).unwrap_err().to_string();
+        assert_eq!(
+            err,
+            "device 'Tiny GPU' offers 4 storage buffers per shader stage \
+             (maxPerStageDescriptorStorageBuffers), and meshrefine's Loop passes bind 7"
+        );
+        assert!(check_stage_limits(&info(STORAGE_BUFFERS_PER_STAGE)).is_ok());
+    }
+}

@@ -206,10 +206,9 @@ impl GpuMesh {
         extras: Extras<'_>,
     ) -> Result<Self, RenderError> {
         let n = data.records.len() as u64;
-        let chunk = chunk_size(ctx, max_chunk);
+        let chunk = chunk_size(&ctx.info.limits, max_chunk);
         let chunks = n.div_ceil(chunk as u64).max(1) as u32;
         check_heightmap(extras.heightmap, &ctx.info.limits)?;
-        check_tags(extras.tags.len(), &ctx.info.limits)?;
         let records = upload_records(ctx, &data.records)?;
         // Written by the level pass (storage), read by the drawing stages (texels).
         let levels = upload(
@@ -358,9 +357,8 @@ impl GpuMesh {
 /// one texel-buffer descriptor spans of the records and one storage-buffer descriptor of
 /// records' size (the level pass writes each chunk's levels as storage, and a chunk keeps to
 /// one range of every per-element array), or `max_chunk` (tests use small chunks).
-fn chunk_size(ctx: &Context, max_chunk: Option<u32>) -> u32 {
+fn chunk_size(limits: &vk::PhysicalDeviceLimits, max_chunk: Option<u32>) -> u32 {
     let rec_size = RECORD_BYTES as u64;
-    let limits = &ctx.info.limits;
     // Both alignments are powers of two: the larger is a multiple of the other.
     let align =
         (limits.min_storage_buffer_offset_alignment).max(limits.min_texel_buffer_offset_alignment);
@@ -416,10 +414,11 @@ impl SurfaceInputs {
                 .collect(),
             None => vec![[0.0; 8]; n.max(1) as usize],
         };
-        let tag_words: Vec<[f32; 12]> = if extras.tags.is_empty() {
+        let tags = uploaded_tags(extras.tags, &ctx.info.limits);
+        let tag_words: Vec<[f32; 12]> = if tags.is_empty() {
             vec![[0.0; 12]]
         } else {
-            extras.tags.iter().map(VertexTag::to_gpu).collect()
+            tags.iter().map(VertexTag::to_gpu).collect()
         };
         Ok(Self {
             uvs: upload(ctx, &uv_words, TEXELS, "element texture coordinates")?,
@@ -480,9 +479,20 @@ fn check_heightmap(map: &Heightmap, limits: &vk::PhysicalDeviceLimits) -> Result
     Ok(())
 }
 
+/// The scalar tags to upload: all of them where they fit one texel-buffer descriptor
+/// ([`check_tags`]), else none (one zero entry is bound): every mesh carries tags, derived if
+/// not given, but only `stpn` reads them, and drawing it refuses a mesh whose tags do not fit.
+fn uploaded_tags<'a>(tags: &'a [VertexTag], limits: &vk::PhysicalDeviceLimits) -> &'a [VertexTag] {
+    if check_tags(tags.len(), limits).is_ok() {
+        tags
+    } else {
+        &[]
+    }
+}
+
 /// `count` vertices' scalar tags fit one texel-buffer descriptor (three texels a vertex), or a
-/// sentence naming the limit.
-fn check_tags(count: usize, limits: &vk::PhysicalDeviceLimits) -> Result<(), RenderError> {
+/// sentence naming the limit (checked where a surface that reads tags is drawn).
+pub fn check_tags(count: usize, limits: &vk::PhysicalDeviceLimits) -> Result<(), RenderError> {
     let needed = 3 * count as u64;
     let max = limits.max_texel_buffer_elements as u64;
     if needed > max {
@@ -580,4 +590,4 @@ fn write_mesh_set(
 }
 
 #[cfg(test)]
-mod tests;
+pub(super) mod tests;

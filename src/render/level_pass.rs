@@ -160,28 +160,7 @@ impl LevelPass {
     /// multiple of what keeps the next chunk's offsets aligned to minTexelBufferOffsetAlignment
     /// and minStorageBufferOffsetAlignment, and at most `max_chunk`; all of `n` when they fit.
     fn chunk_size(&self, n: u64) -> u64 {
-        let limits = &self.ctx.info.limits;
-        let range = limits.max_storage_buffer_range as u64;
-        let texels = limits.max_texel_buffer_elements as u64;
-        let (record_align, level_align) = (
-            limits.min_texel_buffer_offset_alignment.max(1),
-            limits.min_storage_buffer_offset_alignment.max(1),
-        );
-        let (record, level) = (
-            std::mem::size_of::<LodRecord>() as u64,
-            std::mem::size_of::<ElementLevels>() as u64,
-        );
-        let bound = record_align.max(level_align);
-        let step = (1..=bound)
-            .find(|k| (k * record) % record_align == 0 && (k * level) % level_align == 0)
-            .unwrap_or(bound);
-        let fit = (texels / RECORD_TEXELS).min(range / level);
-        let fit = fit.min(self.max_chunk.map_or(u64::MAX, u64::from));
-        if fit >= n {
-            n
-        } else {
-            (fit / step * step).max(step)
-        }
+        level_chunk(&self.ctx.info.limits, self.max_chunk, n)
     }
 
     /// Upload bounds computed elsewhere (`lod::frame::lod_records`), one per element of `mesh`.
@@ -333,5 +312,51 @@ impl LevelPass {
             cmd.dispatch(x, y, 1);
         }
         cmd.barrier_levels_to_draws();
+    }
+}
+
+/// [`LevelPass::chunk_size`] for a device's `limits`: elements a chunk of `n` holds.
+fn level_chunk(limits: &vk::PhysicalDeviceLimits, max_chunk: Option<u32>, n: u64) -> u64 {
+    let range = limits.max_storage_buffer_range as u64;
+    let texels = limits.max_texel_buffer_elements as u64;
+    let (record_align, level_align) = (
+        limits.min_texel_buffer_offset_alignment.max(1),
+        limits.min_storage_buffer_offset_alignment.max(1),
+    );
+    let (record, level) = (
+        std::mem::size_of::<LodRecord>() as u64,
+        std::mem::size_of::<ElementLevels>() as u64,
+    );
+    let bound = record_align.max(level_align);
+    let step = (1..=bound)
+        .find(|k| (k * record) % record_align == 0 && (k * level) % level_align == 0)
+        .unwrap_or(bound);
+    let fit = (texels / RECORD_TEXELS).min(range / level);
+    let fit = fit.min(max_chunk.map_or(u64::MAX, u64::from));
+    if fit >= n {
+        n
+    } else {
+        (fit / step * step).max(step)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// On a device at Vulkan's least texel range (65,536 texels) with 256-byte offset
+    /// alignments, a chunk of bounds spans at most that many texels (29 an element), in steps
+    /// of 16 elements that keep both arrays' offsets aligned: 2,256 elements; a mesh that fits
+    /// is one chunk, and `max_chunk` cuts smaller ones.
+    #[test]
+    fn chunks_follow_the_texel_limit_and_both_alignments() {
+        let limits = crate::render::gpu_mesh::tests::least_texel_range();
+        let chunk = level_chunk(&limits, None, 1_000_000);
+        assert_eq!(chunk, 2_256);
+        assert!(chunk * RECORD_TEXELS <= 65_536);
+        assert_eq!(chunk * std::mem::size_of::<LodRecord>() as u64 % 256, 0);
+        assert_eq!(chunk * std::mem::size_of::<ElementLevels>() as u64 % 256, 0);
+        assert_eq!(level_chunk(&limits, None, 2_259), 2_259);
+        assert_eq!(level_chunk(&limits, Some(100), 1_000), 96);
     }
 }

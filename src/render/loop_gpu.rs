@@ -242,6 +242,9 @@ const PASS_BINDINGS: [u32; 7] = [
     LOOP_BINDING_N1,
 ];
 
+// The device check at start-up asks for as many storage buffers a stage as this set binds.
+const _: () = assert!(PASS_BINDINGS.len() as u32 <= crate::gpu::STORAGE_BUFFERS_PER_STAGE);
+
 /// The two compute passes (M0 -> M1, M1's normals) and the layout they share.
 struct Passes {
     set_layout: DescriptorSetLayout,

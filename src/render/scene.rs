@@ -219,6 +219,7 @@ impl Scene {
             return Err(RenderError::Incompatible(why));
         }
         if cfg.surface.facts().tags {
+            super::gpu_mesh::check_tags(self.tags.len(), &ctx.info.limits)?;
             crate::surface::stpn::check(&self.data.mesh, &self.tags).map_err(RenderError::Tags)?;
         }
         if cfg.build.seams != self.data.seams && coarse {
