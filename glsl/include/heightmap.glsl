@@ -1,6 +1,6 @@
 // The height map and its mip pyramid, sampled by hand (bilinear within a level, linear between
 // two levels, coordinates repeating) so that the CPU mirror computes the same arithmetic.
-// Mirror: src/surface/heightmap.rs (layout: `Heightmap::to_gpu`).
+// Mirror: src/surface/heightmap.rs (layout: `Heightmap::gpu_header`, `Heightmap::gpu_texels`).
 #ifndef HEIGHTMAP_GLSL
 #define HEIGHTMAP_GLSL
 #include "records.glsl"

@@ -28,10 +28,9 @@ const uint VIEW_NORMALS = 1u;
 const uint VIEW_LEVELS = 2u;
 const uint VIEW_PLAIN = 3u;
 
-// The elements' records (set 1), one chunk of them, as texels, seven an element: a descriptor
-// spans at most maxTexelBufferElements texels (and the chunk's levels maxStorageBufferRange
-// bytes), so a large mesh is drawn chunk by chunk, the chunk's first record being element
-// pc.draw.y. Drivers read the record of the element they sample; the fragment stage reads it
+// The elements' records (set 1), one chunk of them, as texels, seven an element: a view spans
+// at most maxTexelBufferElements texels (src/render/gpu_mesh.rs `chunk_size`), so a large mesh
+// is drawn chunk by chunk, the chunk's first record being element pc.draw.y. Drivers read the record of the element they sample; the fragment stage reads it
 // to evaluate normal fields per fragment (v_element is the index within the chunk).
 // src/render/bindings.rs BINDING_ELEMENT_TEXELS says why the stages read texels.
 layout(set = SET_MESH, binding = BINDING_ELEMENT_TEXELS) uniform usamplerBuffer record_texels;
@@ -60,7 +59,7 @@ void fetch_uvs(uint local, out vec2 t[3]) {
 // Per draw: 128 bytes, the minimum every device offers; geometry stages only.
 layout(push_constant, std430) uniform Push {
     ElementRecord rec; // `push` submission: the element of this draw
-    uvec4 draw;        // x: level N; y: the bound chunk's first element (records[0]);
+    uvec4 draw;        // x: level N; y: the bound chunk's first element (fetch_record(0));
                        // z: pattern vertex count (tess: 1 when drawing adaptively); w: the element of this draw
                        // (`push`, `ubo`) or its first element (`instanced`, `tess`), in the chunk
 } pc;

@@ -1,4 +1,4 @@
-//! Per-mesh GPU data (descriptor set 1): the elements' records, in a storage buffer and in an
+//! Per-mesh GPU data (descriptor set 1): the elements' records, as texels per chunk and in an
 //! aligned uniform array, the inputs the surfaces read (texture coordinates, the height map,
 //! scalar tags, Loop's texel buffers), and the refinement patterns. Bytes uploaded per frame
 //! depend on the coarse mesh only ([`GpuMesh::update_records`]), never on the refinement level.
@@ -127,9 +127,9 @@ pub struct GpuMesh {
     /// The pattern driver's adaptive draws of these elements (built by its `prepare`).
     pub adaptive: Option<super::pattern::AdaptivePattern>,
     pub pool: DescriptorPool,
-    /// One descriptor set per chunk of [`GpuMesh::chunk`] elements: a descriptor may span at
-    /// most maxStorageBufferRange bytes (maxTexelBufferElements texels), so a larger mesh is
-    /// drawn chunk by chunk.
+    /// One descriptor set per chunk of [`GpuMesh::chunk`] elements: a texel view may span at
+    /// most maxTexelBufferElements texels (and a chunk keeps within maxStorageBufferRange bytes
+    /// of records: `chunk_size`), so a larger mesh is drawn chunk by chunk.
     pub sets: Vec<vk::DescriptorSet>,
     /// Elements per chunk.
     pub chunk: u32,
@@ -157,7 +157,7 @@ pub struct Extras<'a> {
 /// The part of an element range that lies in one chunk of records.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Chunk {
-    /// The chunk's descriptor set: `records[0]` there is element `base`.
+    /// The chunk's descriptor set: its first record (`fetch_record(0)`) is element `base`.
     pub set: vk::DescriptorSet,
     pub base: u32,
     /// The first element to draw (global index) and how many.
@@ -165,8 +165,8 @@ pub struct Chunk {
     pub count: u32,
 }
 
-/// Elements per chunk for per-element arrays of `sizes` bytes each: as many as one
-/// storage-buffer descriptor can span (`max_range` bytes) for the largest, a multiple of what
+/// Elements per chunk for per-element arrays of `sizes` bytes each: as many as `max_range` bytes
+/// hold of the largest (what one descriptor of it may span), a multiple of what
 /// keeps every array's chunk offsets aligned to `align` (one such step where the range holds
 /// less: only a range below Vulkan's least, `MESHREFINE_MAX_STORAGE_BUFFER_RANGE`, does).
 pub fn chunk_elements(max_range: u64, align: u64, sizes: &[u64]) -> u32 {
@@ -353,10 +353,12 @@ impl GpuMesh {
     }
 }
 
-/// Elements per chunk on this device: as many records (and texture coordinates and levels) as
-/// one texel-buffer descriptor spans of the records and one storage-buffer descriptor of
-/// records' size (the level pass writes each chunk's levels as storage, and a chunk keeps to
-/// one range of every per-element array), or `max_chunk` (tests use small chunks).
+/// Elements per chunk on this device: as many records as one texel view spans
+/// (maxTexelBufferElements texels, seven a record; the texture coordinates' and levels' views,
+/// two and one texels an element, then fit too), and at most maxStorageBufferRange bytes of
+/// records, the device's largest buffer range (no set 1 binding is a storage buffer, but this
+/// is the limit `MESHREFINE_MAX_STORAGE_BUFFER_RANGE` lowers to cut small chunks in tests), or
+/// `max_chunk` (tests use small chunks).
 fn chunk_size(limits: &vk::PhysicalDeviceLimits, max_chunk: Option<u32>) -> u32 {
     let rec_size = RECORD_BYTES as u64;
     // Both alignments are powers of two: the larger is a multiple of the other.

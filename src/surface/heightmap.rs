@@ -2,7 +2,7 @@
 //! mip pyramid, sampled at texture coordinates with level-aware filtering. Mirror of
 //! `glsl/include/heightmap.glsl`.
 //!
-//! The GPU samples the pyramid by hand from a storage buffer (bilinear within a level, linear
+//! The GPU samples the pyramid by hand from a texel buffer, its layout a uniform block (bilinear within a level, linear
 //! between the two levels around the requested one, coordinates repeating), not through a
 //! sampler: hardware filtering's sub-texel precision differs between devices (Vulkan requires only
 //! 4 bits), and this way the CPU mirror computes the same arithmetic. The level is chosen from the

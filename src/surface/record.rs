@@ -3,7 +3,7 @@
 //! Every record is [`RECORD_BYTES`] bytes (`struct ElementRecord` in `glsl/include/records.glsl`:
 //! seven `uvec4`), small enough to be pushed with the draw words inside the 128 bytes of push
 //! constants every device offers. Drivers only move records around (push constants, a dynamic
-//! uniform buffer, a storage buffer indexed by element); each surface owns the layout of the
+//! uniform buffer, instance-rate vertex attributes, a texel buffer indexed by element); each surface owns the layout of the
 //! bytes inside, how it builds them from the mesh, and decodes them itself.
 //!
 //! The local surfaces (`flat`, `phong`, `pn`) share one layout, [`CornerRecord`]: the coarse

@@ -221,7 +221,9 @@ impl AdaptivePattern {
         )?;
         let c = vk::ShaderStageFlags::COMPUTE;
         let t = vk::DescriptorType::STORAGE_BUFFER;
-        let bindings: Vec<_> = (0..5).map(|b| (b, t, c)).collect();
+        // The device check at start-up asks for at least this many storage buffers a stage.
+        const _: () = assert!(BINS_STORAGE_BUFFERS <= crate::gpu::STORAGE_BUFFERS_PER_STAGE);
+        let bindings: Vec<_> = (0..BINS_STORAGE_BUFFERS).map(|b| (b, t, c)).collect();
         let set_layout = DescriptorSetLayout::new(ctx, &bindings, "pattern bins set")?;
         let layout = PipelineLayout::new(
             ctx,
@@ -232,7 +234,12 @@ impl AdaptivePattern {
         )?;
         let pipeline =
             Pipeline::new_compute(ctx, &layout, names::PATTERN_BINS_COMP, "pattern bins")?;
-        let dpool = DescriptorPool::new(ctx, 1, &[(t, 5)], "pattern bins descriptors")?;
+        let dpool = DescriptorPool::new(
+            ctx,
+            1,
+            &[(t, BINS_STORAGE_BUFFERS)],
+            "pattern bins descriptors",
+        )?;
         let set = dpool.allocate(&set_layout, "pattern bins set")?;
         let buffers = [&mesh.levels, &commands, &lists, &ranks, &blocks];
         for (b, buffer) in buffers.into_iter().enumerate() {
@@ -329,6 +336,10 @@ impl AdaptivePattern {
         (l as u64 * self.elements as u64 + base as u64) * 4
     }
 }
+
+/// The bins pass's storage buffers (glsl/pattern/bins.comp): the levels, the commands, the bins'
+/// lists, the ranks and the blocks.
+const BINS_STORAGE_BUFFERS: u32 = 5;
 
 #[cfg(test)]
 mod tests {
