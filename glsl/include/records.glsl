@@ -30,8 +30,9 @@ const uint VIEW_PLAIN = 3u;
 
 // The elements' records (set 1), one chunk of them, as texels, seven an element: a view spans
 // at most maxTexelBufferElements texels (src/render/gpu_mesh.rs `chunk_size`), so a large mesh
-// is drawn chunk by chunk, the chunk's first record being element pc.draw.y. Drivers read the record of the element they sample; the fragment stage reads it
-// to evaluate normal fields per fragment (v_element is the index within the chunk).
+// is drawn chunk by chunk, the chunk's first record being element pc.draw.y. Drivers read the
+// record of the element they sample; the fragment stage reads it to evaluate normal fields per
+// fragment (v_element is the index within the chunk).
 // src/render/bindings.rs BINDING_ELEMENT_TEXELS says why the stages read texels.
 layout(set = SET_MESH, binding = BINDING_ELEMENT_TEXELS) uniform usamplerBuffer record_texels;
 
