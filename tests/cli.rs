@@ -3467,6 +3467,18 @@ fn info_reports_adaptive_levels_for_a_camera() {
             &with(&["--eye", "1,1,1", "--look-at", "1,1,1"]),
             "--eye 1,1,1 and --look-at 1,1,1 give no view direction: they are the same point",
         );
+        refused(
+            &with(&["--eye", "nan,0,0"]),
+            "--eye nan,0,0 is not three finite numbers X,Y,Z",
+        );
+        refused(
+            &with(&["--look-at", "0,inf,0"]),
+            "--look-at 0,inf,0 is not three finite numbers X,Y,Z",
+        );
+        refused(
+            &with(&["--eye", "1e39,0,0"]),
+            "--eye 1e39,0,0 is not three finite numbers X,Y,Z in single precision",
+        );
     }
     assert!(
         !std::path::Path::new(&obj).exists(),

@@ -40,8 +40,14 @@ pub use meshrefine::lod::px;
 /// frustum's planes (the image breaks up, culling fails).
 pub const MIN_FOV: f32 = 0.01;
 
-/// One sentence for a bad `--fov`, or an `--eye` and `--look-at` with no view direction.
+/// One sentence for a bad `--fov`, an `--eye` or `--look-at` that is not finite, or an `--eye`
+/// and `--look-at` with no view direction.
 pub fn check_camera(v: &ViewpointOpts) -> Result<()> {
+    for (name, p) in [("eye", &v.eye), ("look-at", &v.look_at)] {
+        if let Some(p) = p {
+            p.check(name).map_err(anyhow::Error::msg)?;
+        }
+    }
     let fov = v.fov.value;
     if !(fov.is_finite() && (MIN_FOV..180.0).contains(&fov)) {
         let inside = |x: f64| (MIN_FOV as f64..180.0).contains(&x);

@@ -103,27 +103,42 @@ pub fn typed_vec3(s: &str) -> Result<TypedVec3, String> {
     })
 }
 
-/// `X,Y,Z`: three finite numbers.
+/// `X,Y,Z`: three numbers, any that `f32` parses (`nan`, `inf` and `1e39` included: the
+/// camera's check names them in one sentence, [`TypedVec3::check`]); what is not three numbers
+/// is the parser's error.
 pub fn parse_vec3(s: &str) -> Result<[f32; 3], String> {
     let parts: Vec<&str> = s.split(',').map(str::trim).collect();
     let numbers: Vec<f32> = parts.iter().filter_map(|p| p.parse().ok()).collect();
     match numbers[..] {
-        [x, y, z] if parts.len() == 3 && numbers.iter().all(|v| v.is_finite()) => Ok([x, y, z]),
-        // Finite as typed, not in single precision: say so, as a single number's check does.
-        _ if parts.len() == 3
-            && (parts.iter()).all(|p| p.parse::<f64>().is_ok_and(f64::is_finite)) =>
-        {
-            Err(format!(
-                "'{s}' is not three finite numbers X,Y,Z in single precision (one is beyond f32's largest, about 3.4e38)"
-            ))
+        [x, y, z] if parts.len() == 3 => Ok([x, y, z]),
+        _ => Err(format!("'{s}' is not three numbers X,Y,Z")),
+    }
+}
+
+impl TypedVec3 {
+    /// One sentence naming option `--name` and the point as typed when a coordinate is not
+    /// finite; a number finite as typed but beyond single precision says so.
+    pub fn check(&self, name: &str) -> Result<(), String> {
+        if self.value.iter().all(|v| v.is_finite()) {
+            return Ok(());
         }
-        _ => Err(format!("'{s}' is not three finite numbers X,Y,Z")),
+        let typed_finite =
+            (self.text.split(',')).all(|p| p.trim().parse::<f64>().is_ok_and(f64::is_finite));
+        let why = if typed_finite {
+            " in single precision (one is beyond f32's largest, about 3.4e38)"
+        } else {
+            ""
+        };
+        Err(format!(
+            "--{name} {} is not three finite numbers X,Y,Z{why}",
+            self.text
+        ))
     }
 }
 
 #[cfg(test)]
 mod tests {
-    use super::{parse_vec3, typed_f32};
+    use super::{parse_vec3, typed_f32, typed_vec3};
 
     /// A number reads without the spaces around it, and keeps its text as typed inside them.
     #[test]
@@ -133,19 +148,27 @@ mod tests {
         assert!(typed_f32(" ").is_err() && typed_f32("1 2").is_err());
     }
 
-    /// Three finite numbers, else one sentence naming the text; a number finite as typed but
-    /// beyond single precision says so.
+    /// Three numbers, else the parser's sentence naming the text; the check then refuses
+    /// what is not finite, saying so where a number finite as typed is beyond single precision.
     #[test]
     fn points_are_three_finite_numbers() {
         assert_eq!(parse_vec3(" 1, -2.5,3e2"), Ok([1.0, -2.5, 300.0]));
-        for bad in ["1,2", "1,2,3,4", "nan,0,0", "1,inf,0", "a,b,c", ""] {
+        for bad in ["1,2", "1,2,3,4", "a,b,c", ""] {
             let e = parse_vec3(bad).unwrap_err();
-            assert_eq!(e, format!("'{bad}' is not three finite numbers X,Y,Z"));
+            assert_eq!(e, format!("'{bad}' is not three numbers X,Y,Z"));
         }
-        let e = parse_vec3("1e39,0,0").unwrap_err();
-        assert!(
-            e.contains("in single precision (one is beyond f32's largest"),
-            "{e}"
+        for bad in ["nan,0,0", "1, inf,0"] {
+            let e = typed_vec3(bad).unwrap().check("eye").unwrap_err();
+            assert_eq!(e, format!("--eye {bad} is not three finite numbers X,Y,Z"));
+        }
+        let e = typed_vec3("1e39,0,0")
+            .unwrap()
+            .check("look-at")
+            .unwrap_err();
+        assert_eq!(
+            e,
+            "--look-at 1e39,0,0 is not three finite numbers X,Y,Z in single precision (one is beyond f32's largest, about 3.4e38)"
         );
+        assert!(typed_vec3(" 1,2,3 ").unwrap().check("eye").is_ok());
     }
 }
