@@ -332,9 +332,10 @@ fn adaptive_draws_past_the_devices_room_fall_back_as_documented() {
         "the lowered image differs from --max-level {largest}'s"
     );
 
-    // No room even at level 1: uniform at the default level by default, refused when asked.
+    // No room even at level 1 (7,000 bytes hold 62 of the 112-byte records a chunk, six
+    // chunks of bins): uniform at the default level by default, refused when asked.
     let why = format!(
-        "drawing {elements} elements adaptively up to level 64 (indirect commands and bins) needs {needed} bytes, over maxStorageBufferRange (7000)"
+        "drawing {elements} elements in chunks of 62 adaptively up to level 64 (indirect commands and bins) needs {needed} bytes, over maxStorageBufferRange (7000)"
     );
     let png_default = tmp("room-default.png");
     let png_level = tmp("room-16.png");
@@ -374,6 +375,23 @@ fn adaptive_draws_past_the_devices_room_fall_back_as_documented() {
         errors[0].ends_with(": draw at most about 250 elements adaptively, or draw uniformly"),
         "{stderr}"
     );
+    // Where a smaller largest level fits, the refusal names it, and it draws (a close-up,
+    // whose levels reach past 8; 7,920 bytes: chunks of 70, level 8's commands fill them).
+    let close = ["--eye", "0.3,0.2,0.6", "--look-at", "0,0.1,0.3"];
+    let mut args = vec!["render", spot, "-o", &png_default, "--pixel-error", "1"];
+    args.extend(small.iter().chain(&close));
+    let (status, _, stderr) = limited(7_920, &args);
+    assert_eq!(status, Some(1), "{stderr}");
+    assert!(
+        stderr.trim_end().ends_with(
+            ": use --max-level 8, draw at most about 282 elements adaptively, or draw uniformly"
+        ),
+        "{stderr}"
+    );
+    args.extend(["--max-level", "8"]);
+    let (status, stdout, stderr) = limited(7_920, &args);
+    assert_eq!(status, Some(0), "{stderr}");
+    assert!(stdout.contains("adaptive at 1 px, max level 8"), "{stdout}");
 
     let (status, _, stderr) = limited(1, &["info"]);
     assert_eq!(status, Some(0), "{stderr}");

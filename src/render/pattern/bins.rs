@@ -35,29 +35,83 @@ pub fn check_adaptive_fits(
         (range, "maxStorageBufferRange")
     };
     check_integer_levels(level, dyadic)?;
-    let (commands, lists) = adaptive_bytes(elements, chunk, level, dyadic);
-    let needed = commands.max(lists);
+    let needed = adaptive_need(elements, chunk, level, dyadic);
     if needed > max {
-        let levels = bins_per_chunk(level, dyadic) as u64;
-        let fits = max / (4 * levels).max(COMMAND_BYTES + 1);
-        // Integer levels bin by every level, powers of two by a few.
-        let glide = if dyadic { "" } else { ", with --geomorph on" };
+        // Smaller record chunks (a smaller maxStorageBufferRange makes them) take more bins,
+        // so the sentence names them where the mesh is split.
+        let chunked = if chunk < elements {
+            format!(" in chunks of {chunk}")
+        } else {
+            String::new()
+        };
+        let mut remedies = Vec::new();
+        if let Some(l) = fitting_level(max, elements, chunk, level, dyadic) {
+            remedies.push(format!("use --max-level {l}"));
+        }
+        let fits = fitting_elements(max, chunk, level, dyadic);
+        if fits > 0 {
+            // Integer levels bin by every level, powers of two by a few.
+            let glide = if dyadic { "" } else { ", with --geomorph on" };
+            remedies.push(format!(
+                "draw at most about {fits} elements adaptively{glide}"
+            ));
+        }
+        remedies.push("draw uniformly".into());
+        let last = remedies.pop().unwrap_or_default();
+        let remedy = match remedies.len() {
+            0 => last,
+            _ => format!("{}, or {last}", remedies.join(", ")),
+        };
         return Err(RenderError::OverLimit {
             what: format!(
-                "drawing {elements} elements adaptively up to level {level} (indirect commands and bins)"
+                "drawing {elements} elements{chunked} adaptively up to level {level} (indirect commands and bins)"
             ),
             needed,
             unit: "bytes",
             limit,
             max,
-            remedy: if fits > 0 {
-                format!("draw at most about {fits} elements adaptively{glide}, or draw uniformly")
-            } else {
-                "draw uniformly".into()
-            },
+            remedy,
         });
     }
     Ok(())
+}
+
+/// The larger of the commands' and the bin lists' bytes ([`adaptive_bytes`]): what one
+/// buffer must hold.
+fn adaptive_need(elements: u32, chunk: u32, level: u32, dyadic: bool) -> u64 {
+    let (commands, lists) = adaptive_bytes(elements, chunk, level, dyadic);
+    commands.max(lists)
+}
+
+/// The largest level below `level` (a power of two where `dyadic`) at which `elements` in
+/// chunks of `chunk` fit `max` bytes, if one does.
+fn fitting_level(max: u64, elements: u32, chunk: u32, level: u32, dyadic: bool) -> Option<u32> {
+    let below: Vec<u32> = if dyadic {
+        (0..level.trailing_zeros()).rev().map(|k| 1 << k).collect()
+    } else {
+        (1..level).rev().collect()
+    };
+    below.into_iter().find(|&l| adaptive_need(elements, chunk, l, dyadic) <= max)
+}
+
+/// The most elements, in chunks of `chunk`, whose draws up to `level` fit `max` bytes (0 if
+/// not even one's do).
+fn fitting_elements(max: u64, chunk: u32, level: u32, dyadic: bool) -> u64 {
+    let fits = |n: u32| adaptive_need(n, chunk, level, dyadic) <= max;
+    if !fits(1) {
+        return 0;
+    }
+    // The bytes grow with the elements: bisect between one that fits and one past it.
+    let (mut lo, mut hi) = (1u64, u32::MAX as u64 + 1);
+    while hi - lo > 1 {
+        let mid = lo + (hi - lo) / 2;
+        if fits(mid as u32) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    lo
 }
 
 /// Whether the pattern driver can draw integer levels (`dyadic` false) up to `level`, the
@@ -375,5 +429,31 @@ mod tests {
         assert!(fits(4_790_000, 64, true) && !fits(4_800_000, 64, true));
         assert!(fits(524_000, 64, false) && !fits(525_000, 64, false));
         assert!(fits(6_700_000, 1, true) && !fits(6_720_000, 1, true));
+    }
+
+    /// What a refusal offers fits, and one more element or the next level up does not, with
+    /// the commands' share of small chunks counted.
+    #[test]
+    fn refusals_offer_what_fits() {
+        for (max, chunk, level, dyadic) in [
+            (7_000u64, 62u32, 64u32, true),
+            (7_920, 70, 64, true),
+            (128 << 20, 1_198_372, 64, true),
+            (100_000, 40, 64, false),
+        ] {
+            let n = fitting_elements(max, chunk, level, dyadic);
+            assert!(n > 0);
+            assert!(adaptive_need(n as u32, chunk, level, dyadic) <= max);
+            assert!(adaptive_need(n as u32 + 1, chunk, level, dyadic) > max);
+            let elements = n as u32 + 1;
+            let l = fitting_level(max, elements, chunk, level, dyadic).unwrap();
+            assert!(adaptive_need(elements, chunk, l, dyadic) <= max);
+            let up = if dyadic { 2 * l } else { l + 1 };
+            assert!(up == level || adaptive_need(elements, chunk, up, dyadic) > max);
+        }
+        // Small chunks: their bins' commands, not the lists, are what does not fit.
+        assert!(fitting_elements(7_000, 15, 64, true) < 7_000 / 28);
+        assert_eq!(fitting_elements(10, 15, 64, true), 0);
+        assert_eq!(fitting_level(10, 1, 1, 64, true), None);
     }
 }
