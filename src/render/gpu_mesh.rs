@@ -240,18 +240,20 @@ impl GpuMesh {
         let placeholder = Buffer::new_with_data(ctx, cmd_pool, TEXELS, &[0u32; 4], "placeholder")?;
         let mut views = loop_views(ctx, extras.loop_, &placeholder)?;
         let mut chunk_views = Vec::with_capacity(3 * chunks as usize);
-        views.push(BufferView::new(
-            ctx,
-            &inputs.heightmap_texels,
-            vk::Format::R32_SFLOAT,
-            "height map texels view",
-        )?);
-        views.push(BufferView::new(
-            ctx,
-            &inputs.tags,
-            vk::Format::R32G32B32A32_SFLOAT,
-            "vertex scalar tags view",
-        )?);
+        for (buffer, format, name) in [
+            (
+                &inputs.heightmap_texels,
+                vk::Format::R32_SFLOAT,
+                "height map texels view",
+            ),
+            (
+                &inputs.tags,
+                vk::Format::R32G32B32A32_SFLOAT,
+                "vertex scalar tags view",
+            ),
+        ] {
+            views.push(BufferView::new(ctx, buffer, format, name)?);
+        }
         let sets = (0..chunks as u64)
             .map(|c| {
                 let set = pool.allocate(set_layout, &format!("mesh set {c}"))?;

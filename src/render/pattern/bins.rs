@@ -91,7 +91,9 @@ fn fitting_level(max: u64, elements: u32, chunk: u32, level: u32, dyadic: bool) 
     } else {
         (1..level).rev().collect()
     };
-    below.into_iter().find(|&l| adaptive_need(elements, chunk, l, dyadic) <= max)
+    below
+        .into_iter()
+        .find(|&l| adaptive_need(elements, chunk, l, dyadic) <= max)
 }
 
 /// The most elements, in chunks of `chunk`, whose draws up to `level` fit `max` bytes (0 if
