@@ -167,3 +167,51 @@ fn height_map_far_out_is_unbounded_unless_flat() {
         );
     }
 }
+
+/// The height map on a curved, textured mesh, on every surface that carries it: the terrain
+/// (its own texture coordinates and normals, so `phong`, `pn` and `stpn` bend away from the
+/// flat triangles, `stpn` with the tags derived from its mesh) displaced by the generated map,
+/// read at pyramid levels 0 and 1.5; every element and edge bound holds against dense sampling.
+#[test]
+fn height_map_bounds_hold_on_every_surface() {
+    let (terrain, _) = load_model("terrain_16x16.obj");
+    let recs = build_records(RecordKind::Corners, &terrain, Seams::Closed);
+    let uvs: Vec<[[f32; 2]; 3]> = (terrain.triangles.iter())
+        .map(|t| {
+            t.t.unwrap()
+                .map(|i| terrain.texcoords[i as usize].to_array())
+        })
+        .collect();
+    let (tags, _) = crate::surface::stpn::derive(&terrain);
+    let map = Heightmap::generated();
+    let r = terrain.bounding_radius();
+    for surface in [Surface::Flat, Surface::Phong, Surface::Pn, Surface::Stpn] {
+        for lod in [0.0, 1.5] {
+            let what = format!(
+                "heightmap on the terrain as {} at lod {lod}",
+                surface.name()
+            );
+            let case = Case {
+                surface,
+                field: NormalField::default(),
+                displace: Displace::Heightmap,
+                params: SurfaceParams {
+                    amplitude: 0.05 * r,
+                    bias: 0.5,
+                    ..Default::default()
+                },
+                inputs: Sources {
+                    uvs: Some(&uvs),
+                    heightmap: Some(&map),
+                    tags: Some(&tags),
+                    lod,
+                    ..Default::default()
+                },
+            };
+            for t in (0..recs.len()).step_by(23) {
+                let one = std::slice::from_ref(&recs[t]);
+                case.element(t).check(one, &[1, 2, 5], r, &what);
+            }
+        }
+    }
+}
