@@ -3479,6 +3479,22 @@ fn info_reports_adaptive_levels_for_a_camera() {
             &with(&["--eye", "1e39,0,0"]),
             "--eye 1e39,0,0 is not three finite numbers X,Y,Z in single precision",
         );
+        // Checked before the warnings about what the command ignores.
+        refused(
+            &with(&[
+                "--surface",
+                "flat",
+                "--alpha",
+                "0.5",
+                "--pixel-error",
+                "nan",
+            ]),
+            "--pixel-error nan is not a finite number > 0",
+        );
+        refused(
+            &with(&["--max-level", "3"]),
+            "--max-level 3 is not a power of two",
+        );
     }
     assert!(
         !std::path::Path::new(&obj).exists(),
@@ -3836,7 +3852,7 @@ fn adaptive_options_refuse_bad_values() {
             "--max-level 100: level 100 is beyond this device's maxTessellationGenerationLevel (64): the tess driver cannot draw it (use a level up to 64, or the pattern driver, which this limit does not bind)",
         ],
     );
-    // export's refusals name the mesh as render's do; info, which draws nothing, refuses the
+    // export's refusals of what the device allows name the mesh as render's do; info, which draws nothing, refuses the
     // level render refuses with the same sentence (the device's limits read, none opened).
     let past =
         "--max-level 100: level 100 is beyond this device's maxTessellationGenerationLevel (64)";
@@ -3845,7 +3861,8 @@ fn adaptive_options_refuse_bad_values() {
         (&["export", "-o", p(&obj), "--driver", "tess", "--pixel-error", "1", "--max-level", "100"],
          format!("error: cannot export 'the default mesh (spot)': {past}")),
         (&["export", "-o", p(&obj), "--pixel-error", "1", "--max-level", "48"],
-         "error: cannot export 'the default mesh (spot)': --max-level 48 is not a power of two".into()),
+         // A value every device refuses: checked before the mesh is read, as --pixel-error's.
+         "error: --max-level 48 is not a power of two".into()),
         (&["info", "--driver", "tess", "--pixel-error", "1", "--max-level", "100"],
          format!("error: {past}")),
     ];

@@ -392,6 +392,27 @@ fn adaptive_draws_past_the_devices_room_fall_back_as_documented() {
     let (status, stdout, stderr) = limited(7_920, &args);
     assert_eq!(status, Some(0), "{stderr}");
     assert!(stdout.contains("adaptive at 1 px, max level 8"), "{stdout}");
+    // Integer levels bin by every level: the level offered is still a power of two, as the
+    // pattern driver's largest level must be, and geomorphing is offered where it fits.
+    let mut args = vec!["render", spot, "-o", &png_default, "--pixel-error", "1"];
+    args.extend(small.iter().chain(&close).chain(&["--geomorph", "off"]));
+    let (status, _, stderr) = limited(11_000, &args);
+    assert_eq!(status, Some(1), "{stderr}");
+    assert!(
+        stderr.trim_end().ends_with(
+            ": use --max-level 4, use --geomorph on, draw at most about 42 elements adaptively, or draw uniformly"
+        ),
+        "{stderr}"
+    );
+    for remedy in [["--max-level", "4"], ["--geomorph", "on"]] {
+        let mut args = args.clone();
+        if remedy[0] == "--geomorph" {
+            args.truncate(args.len() - 2);
+        }
+        args.extend(remedy);
+        let (status, _, stderr) = limited(11_000, &args);
+        assert_eq!(status, Some(0), "{remedy:?}: {stderr}");
+    }
 
     let (status, _, stderr) = limited(1, &["info"]);
     assert_eq!(status, Some(0), "{stderr}");

@@ -21,13 +21,7 @@ use meshrefine::surface::shown_number;
 /// One sentence for the first bad value of a pixel error and its camera, before any work.
 /// `level_given`: `--level` was given too.
 pub fn check_view(px: &TypedF32, v: &ViewpointOpts, level_given: bool) -> Result<()> {
-    if !(px.value.is_finite() && px.value > 0.0) {
-        bail!(
-            "--pixel-error {} is not a finite number > 0{}",
-            px.text,
-            px.in_f32()
-        );
-    }
+    check_pixel_error(px)?;
     if level_given {
         bail!("--pixel-error and --level are exclusive: adaptive levels come from the pixel error, --level asks for one level everywhere");
     }
@@ -39,6 +33,18 @@ pub use meshrefine::lod::px;
 /// The narrowest vertical field of view: narrower, single precision cannot place the view
 /// frustum's planes (the image breaks up, culling fails).
 pub const MIN_FOV: f32 = 0.01;
+
+/// One sentence for a pixel error that is not a finite number above zero.
+pub fn check_pixel_error(px: &TypedF32) -> Result<()> {
+    if !(px.value.is_finite() && px.value > 0.0) {
+        bail!(
+            "--pixel-error {} is not a finite number > 0{}",
+            px.text,
+            px.in_f32()
+        );
+    }
+    Ok(())
+}
 
 /// One sentence for a bad `--fov`, an `--eye` or `--look-at` that is not finite, or an `--eye`
 /// and `--look-at` with no view direction.

@@ -48,13 +48,14 @@ pub fn check_adaptive_fits(
         if let Some(l) = fitting_level(max, elements, chunk, level, dyadic) {
             remedies.push(format!("use --max-level {l}"));
         }
-        let fits = fitting_elements(max, chunk, level, dyadic);
-        if fits > 0 {
-            // Integer levels bin by every level, powers of two by a few.
-            let glide = if dyadic { "" } else { ", with --geomorph on" };
-            remedies.push(format!(
-                "draw at most about {fits} elements adaptively{glide}"
-            ));
+        // Integer levels bin by every level, powers of two by a few.
+        if !dyadic && adaptive_need(elements, chunk, level, true) <= max {
+            remedies.push("use --geomorph on".into());
+        }
+        match fitting_elements(max, chunk, level, dyadic) {
+            0 => {}
+            1 => remedies.push("draw one element adaptively".into()),
+            fits => remedies.push(format!("draw at most about {fits} elements adaptively")),
         }
         remedies.push("draw uniformly".into());
         let last = remedies.pop().unwrap_or_default();
@@ -83,16 +84,13 @@ fn adaptive_need(elements: u32, chunk: u32, level: u32, dyadic: bool) -> u64 {
     commands.max(lists)
 }
 
-/// The largest level below `level` (a power of two where `dyadic`) at which `elements` in
-/// chunks of `chunk` fit `max` bytes, if one does.
+/// The largest power of two below `level` (the pattern driver's largest level is one, drawn
+/// dyadic or at integer levels) at which `elements` in chunks of `chunk` fit `max` bytes, if
+/// one does.
 fn fitting_level(max: u64, elements: u32, chunk: u32, level: u32, dyadic: bool) -> Option<u32> {
-    let below: Vec<u32> = if dyadic {
-        (0..level.trailing_zeros()).rev().map(|k| 1 << k).collect()
-    } else {
-        (1..level).rev().collect()
-    };
-    below
-        .into_iter()
+    (0..level.trailing_zeros())
+        .rev()
+        .map(|k| 1 << k)
         .find(|&l| adaptive_need(elements, chunk, l, dyadic) <= max)
 }
 
@@ -450,8 +448,8 @@ mod tests {
             let elements = n as u32 + 1;
             let l = fitting_level(max, elements, chunk, level, dyadic).unwrap();
             assert!(adaptive_need(elements, chunk, l, dyadic) <= max);
-            let up = if dyadic { 2 * l } else { l + 1 };
-            assert!(up == level || adaptive_need(elements, chunk, up, dyadic) > max);
+            assert!(l.is_power_of_two());
+            assert!(2 * l == level || adaptive_need(elements, chunk, 2 * l, dyadic) > max);
         }
         // Small chunks: their bins' commands, not the lists, are what does not fit.
         assert!(fitting_elements(7_000, 15, 64, true) < 7_000 / 28);
