@@ -374,3 +374,72 @@ fn the_adaptivity_guides_transcripts_are_what_the_commands_print() {
         }
     }
 }
+
+/// Distance, not depth: turning the camera about its eye changes no level. From one eye,
+/// looking at the mesh, away from it and sideways, culling off, `info` prints the same
+/// histogram and `export` the same levels; at integer levels (`--geomorph off`) the same
+/// vertices bit for bit. Gliding levels follow the eye continuously, and the camera is rebuilt
+/// from its target, distance and direction (docs/cli.md), so the eye moves by single-precision
+/// rounding as the target changes: their vertices agree to within 1e-5 of the mesh's size.
+#[test]
+fn turning_the_camera_changes_no_level() {
+    let spot = model_path("spot_control_tri.obj");
+    let spot = spot.to_str().unwrap();
+    let eye = "0.3,0.6,-1.4";
+    for geomorph in ["off", "on"] {
+        let mut exports: Vec<(Vec<String>, Vec<f32>)> = Vec::new();
+        let mut histograms = Vec::new();
+        for (i, target) in ["0,0.5,-0.5", "0.3,0.6,-3", "2,0.6,-1.4"]
+            .into_iter()
+            .enumerate()
+        {
+            #[rustfmt::skip]
+            let camera = [
+                "--pixel-error", "1", "--eye", eye, "--look-at", target, "--cull", "off",
+                "--width", "320", "--height", "240", "--geomorph", geomorph,
+            ];
+            let obj = tmp(&format!("turned-{geomorph}-{i}.obj"));
+            let mut args = vec!["export", spot, "-o", &obj];
+            args.extend(camera);
+            ok(&args);
+            let text = std::fs::read_to_string(&obj).unwrap();
+            // Everything but the camera and command lines, and the coordinates apart.
+            let (mut lines, mut coords) = (Vec::new(), Vec::new());
+            for l in text.lines() {
+                if l.starts_with("# camera") || l.starts_with("# command") {
+                    continue;
+                }
+                match l.strip_prefix("v ") {
+                    Some(v) => coords.extend(v.split(' ').map(|x| x.parse::<f32>().unwrap())),
+                    None => lines.push(l.to_string()),
+                }
+            }
+            exports.push((lines, coords));
+            let mut args = vec!["info", spot];
+            args.extend(camera);
+            histograms.push(info_histogram(&ok(&args)));
+        }
+        let (lines, coords) = &exports[0];
+        assert!(
+            lines
+                .iter()
+                .any(|l| l.starts_with("# levels ") && l.contains(' ')),
+            "{:?}",
+            &lines[..4]
+        );
+        assert!(coords.len() > 3000, "{} coordinates", coords.len());
+        for ((l, c), h) in exports.iter().zip(&histograms).skip(1) {
+            assert_eq!(h, &histograms[0]);
+            assert!(l == lines, "geomorph {geomorph}: other levels or triangles");
+            assert_eq!(c.len(), coords.len());
+            let moved = (c.iter().zip(coords))
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f32::max);
+            let most = if geomorph == "off" { 0.0 } else { 1e-5 };
+            assert!(
+                moved <= most,
+                "geomorph {geomorph}: a vertex moved by {moved}"
+            );
+        }
+    }
+}
