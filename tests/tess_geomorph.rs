@@ -283,7 +283,7 @@ fn tess_sweep(h: &mut Headless, scene: &mut Scene, geomorph: bool) -> (f32, usiz
 /// the GPU drew the frame before (measured 0.109 px, where a coarser edge doubles and a ring-1
 /// vertex's parent on the snapped outer ring switches samples, docs/adaptivity.md "What
 /// remains"), under the 0.2 px the sweep allows; without, the integer levels' changes (by one
-/// level at a time, with the tessellator's own transitions) step by more (0.129 px). The
+/// level at a time, with the tessellator's own transitions) step by more (0.163 px). The
 /// dyadic levels change less often than integer ones, so this comparison alone would not show
 /// a morph that does nothing: `tess_geomorph_matches_the_mirror_and_is_watertight` checks every
 /// morphing vertex against the mirror (hundreds of them mid-morph).
