@@ -152,7 +152,11 @@ fn levels_are_the_smallest_that_meet_the_error() {
     assert_eq!(dyadic(8), 8);
 }
 
-/// Every sampled point of every surface and displacement is inside its element's sphere.
+/// Every sampled point of every surface and displacement is inside its element's sphere, and
+/// every point of an edge inside the edge's (what frustum culling and the levels' distances
+/// rely on): Spot as each surface (`stpn` with its derived tags, `loop` from its tables)
+/// undisplaced, with sine and with noise, and the terrain with the height map at its own
+/// texture coordinates.
 #[test]
 fn spheres_contain_the_displaced_patch() {
     let (spot, recs) = corner_records("spot_control_tri_vn.obj");
@@ -160,29 +164,79 @@ fn spheres_contain_the_displaced_patch() {
         octaves: 3,
         ..SurfaceParams::for_radius(spot.bounding_radius())
     };
-    for surface in [Surface::Phong, Surface::Pn, Surface::Stpn] {
+    let (tags, _) = crate::surface::stpn::derive(&spot);
+    let (plain, _) = load_model("spot_control_tri.obj");
+    let data = LoopData::new(&plain, Boundary::EdgeOnly, Lattice::default(), |_| {}).unwrap();
+    let frame = data.frame(&plain.positions);
+    let (loop_recs, spot_recs) = (every(&data.records, 4), every(&recs, 3));
+    for surface in Surface::ALL {
         for displace in [Displace::None, Displace::Sine, Displace::Noise] {
             let case = Case {
                 surface,
                 field: NormalField::default(),
                 displace,
                 params,
-                inputs: Sources::default(),
+                inputs: Sources {
+                    tags: Some(&tags),
+                    loop_: Some((&data, &frame)),
+                    ..Default::default()
+                },
             };
-            let lod = case.lod();
-            for rec in recs.iter().step_by(3) {
-                let s = lod.element(rec).sphere;
-                let edges = [0, 1, 2].map(|e| lod.edge(rec, e).sphere);
-                for (i, j) in crate::pattern::Pattern::uniform(9).lattice() {
-                    let b = lattice_bary(9, i, j);
-                    let p = case.at(rec, b);
-                    assert!((p - s.centre).length() <= s.radius, "{}", surface.name());
-                    for e in 0..3 {
-                        if b[(e + 2) % 3] == 0.0 {
-                            let d = (p - edges[e].centre).length();
-                            assert!(d <= edges[e].radius, "edge sphere");
-                        }
-                    }
+            let records = match surface {
+                Surface::Loop => &loop_recs,
+                _ => &spot_recs,
+            };
+            check_spheres(&case, records);
+        }
+    }
+    let (terrain, _) = load_model("terrain_16x16.obj");
+    let terrain_recs = build_records(RecordKind::Corners, &terrain, Seams::Closed);
+    let uvs: Vec<[[f32; 2]; 3]> = (terrain.triangles.iter())
+        .map(|t| {
+            t.t.unwrap()
+                .map(|i| terrain.texcoords[i as usize].to_array())
+        })
+        .collect();
+    let map = Heightmap::generated();
+    for surface in [Surface::Flat, Surface::Phong, Surface::Pn] {
+        let case = Case {
+            surface,
+            field: NormalField::default(),
+            displace: Displace::Heightmap,
+            params: SurfaceParams {
+                amplitude: 0.05 * terrain.bounding_radius(),
+                bias: 0.5,
+                ..Default::default()
+            },
+            inputs: Sources {
+                uvs: Some(&uvs),
+                heightmap: Some(&map),
+                lod: 1.0,
+                ..Default::default()
+            },
+        };
+        for t in (0..terrain_recs.len()).step_by(5) {
+            check_spheres(&case.element(t), std::slice::from_ref(&terrain_recs[t]));
+        }
+    }
+}
+
+/// Every lattice point of level 9 of each of `records` lies in its element's sphere, and each
+/// on an edge in that edge's sphere.
+fn check_spheres(case: &Case, records: &[ElementRecord]) {
+    let lod = case.lod();
+    let what = || format!("{} + {}", case.surface.name(), case.displace.name());
+    for rec in records {
+        let s = lod.element(rec).sphere;
+        let edges = [0, 1, 2].map(|e| lod.edge(rec, e).sphere);
+        for (i, j) in crate::pattern::Pattern::uniform(9).lattice() {
+            let b = lattice_bary(9, i, j);
+            let p = case.at(rec, b);
+            assert!((p - s.centre).length() <= s.radius, "{}", what());
+            for e in 0..3 {
+                if b[(e + 2) % 3] == 0.0 {
+                    let d = (p - edges[e].centre).length();
+                    assert!(d <= edges[e].radius, "{}: edge sphere", what());
                 }
             }
         }

@@ -33,13 +33,17 @@ fn frustum_and_back_face_culling_are_conservative() {
     let (spot, recs) = corner_records("spot_control_tri_vn.obj");
     let (eye, vp, _, _) = close_camera(&spot);
     let frustum = Frustum::from_view_proj(vp);
-    for surface in [Surface::Flat, Surface::Phong, Surface::Pn] {
+    let (tags, _) = crate::surface::stpn::derive(&spot);
+    for surface in [Surface::Flat, Surface::Phong, Surface::Pn, Surface::Stpn] {
         let case = Case {
             surface,
             field: NormalField::default(),
             displace: Displace::None,
             params: SurfaceParams::default(),
-            inputs: Sources::default(),
+            inputs: Sources {
+                tags: Some(&tags),
+                ..Default::default()
+            },
         };
         let lod = case.lod();
         let (mut outside, mut back) = (0, 0);
