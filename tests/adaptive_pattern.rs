@@ -441,6 +441,9 @@ fn adaptive_geomorph_matches_the_mirror_and_is_watertight() {
         (Surface::Pn, Displace::None),
         (Surface::Phong, Displace::Sine),
         (Surface::Loop, Displace::None),
+        (Surface::Stpn, Displace::Noise),
+        (Surface::Flat, Displace::Noise),
+        (Surface::Loop, Displace::Sine),
     ];
     with_gpu(64, 64, |h| {
         let max = 16;

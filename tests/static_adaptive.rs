@@ -212,6 +212,8 @@ fn static_adaptive_is_watertight() {
     let mesh = model("spot_control_tri.obj");
     let records = build_records(RecordKind::Corners, &mesh, Seams::default());
     let corners: Vec<[u32; 3]> = mesh.triangles.iter().map(|t| t.p).collect();
+    // stpn's tags, derived from the mesh as render derives them.
+    let (tags, _) = meshrefine::surface::stpn::derive(&mesh);
     let max = 16;
     let r = mesh.bounding_radius();
     for (k, (surface, displace)) in [
@@ -220,6 +222,8 @@ fn static_adaptive_is_watertight() {
         (Surface::Phong, Displace::None),
         (Surface::Pn, Displace::Sine),
         (Surface::Pn, Displace::Noise),
+        (Surface::Stpn, Displace::None),
+        (Surface::Flat, Displace::Noise),
     ]
     .into_iter()
     .enumerate()
@@ -234,7 +238,11 @@ fn static_adaptive_is_watertight() {
             .filter(|l| l.edges.iter().any(|&e| e < l.inner))
             .count();
         assert!(snapped > 100, "{snapped} elements with a coarser edge");
-        let mirror = Mirror::new(cfg.surface, cfg.displace, &cfg.build, &Sources::default());
+        let sources = Sources {
+            tags: Some(&tags),
+            ..Default::default()
+        };
+        let mirror = Mirror::new(cfg.surface, cfg.displace, &cfg.build, &sources);
         let refined = refine_adaptive(&cfg, &records, d, &mirror.unwrap(), false);
         let mut ids: HashMap<[u32; 3], u32> = HashMap::new();
         let weld: Vec<u32> = (refined.vertices.iter())

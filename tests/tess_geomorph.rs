@@ -35,6 +35,9 @@ fn tess_geomorph_matches_the_mirror_and_is_watertight() {
         ("spot_control_tri.obj", Surface::Pn, Displace::None, 7),
         // Loop's M1 faces glide on the tessellator (`DrawConfig::glides`).
         ("spot_control_tri.obj", Surface::Loop, Displace::None, 11),
+        ("icosahedron_vn.obj", Surface::Stpn, Displace::Noise, 13),
+        ("icosahedron_vn.obj", Surface::Flat, Displace::Noise, 17),
+        ("icosahedron.obj", Surface::Loop, Displace::Sine, 19),
     ];
     with_gpu(64, 64, |h| {
         for (file, surface, displace, seed) in cases {
