@@ -185,6 +185,13 @@ fn static_adaptive_uploads_when_the_levels_change() {
             scene.animated_upload_bytes(&pattern, true),
             records + count * 464
         );
+        // Independent of the levels: levels for a sixteenth of the pixel error upload the same.
+        scene.set_levels(&pattern, &view(far, 0.25)).unwrap();
+        assert!(scene.level_pass(&pattern).is_some());
+        assert_eq!(
+            scene.animated_upload_bytes(&pattern, true),
+            records + count * 464
+        );
         scene.set_levels(&st, &view(far, 4.0)).unwrap();
         h.render(&mut scene, &st, &far).unwrap();
         assert_eq!(
