@@ -1129,3 +1129,34 @@ fn slow_wireframe_frames_lower_the_level() {
         "{stderr}"
     );
 }
+
+/// A `--pixel-error` outside the slider's 0.25 to 16 px is drawn at the nearest end, with a
+/// warning (docs/window.md); within it, no warning.
+#[test]
+fn a_pixel_error_past_the_slider_is_held_at_its_end_with_a_warning() {
+    let _guard = common::gpu_lock();
+    let x = Xvfb::start();
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("window");
+    std::fs::create_dir_all(&dir).unwrap();
+    let shot = dir.join("slider-end.png");
+    let size = ["--width", "320", "--height", "240"];
+    for (px, said) in [
+        ("64", Some("--pixel-error 64 is drawn at 16 px")),
+        ("0.1", Some("--pixel-error 0.1 is drawn at 0.25 px")),
+        ("3", None),
+    ] {
+        let mut args = vec!["--pixel-error", px];
+        args.extend(size);
+        let stderr = run_view_frames(&x.display, "2", &args, &shot);
+        let warned = (stderr.lines())
+            .filter(|l| l.starts_with("warning: the window's pixel error spans 0.25 to 16 px"))
+            .collect::<Vec<_>>();
+        match said {
+            Some(s) => assert!(
+                warned.len() == 1 && warned[0].ends_with(s),
+                "{px}: {stderr}"
+            ),
+            None => assert!(warned.is_empty(), "{px}: {stderr}"),
+        }
+    }
+}
