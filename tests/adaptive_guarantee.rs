@@ -453,11 +453,12 @@ fn geomorphing_displaced_and_loop_meshes_meet_the_pixel_error() {
                     worst = worst.max(f.worst);
                 }
                 assert!(
-                    morphing * 2 >= checked,
+                    morphing * 10 >= checked * 9,
                     "{}: only {morphing} of {checked} elements mid-morph",
                     cfg.label()
                 );
-                assert!(worst > 0.15, "{}: worst {worst} px", cfg.label());
+                // Not vacuous: levels not refined far past the bound.
+                assert!(worst > 0.2, "{}: worst {worst} px", cfg.label());
             }
         }
     });

@@ -3802,6 +3802,10 @@ fn adaptive_options_refuse_bad_values() {
         );
         expect_error(&with(&["--pixel-error", "1", "--fov", "0"]), &["--fov 0"]);
         expect_error(
+            &with(&["--pixel-error", "1", "--eye", "nan,0,0"]),
+            &["--eye nan,0,0 is not three finite numbers X,Y,Z"],
+        );
+        expect_error(
             &with(&["--pixel-error", "1", "--fov", "180"]),
             &["--fov 180"],
         );

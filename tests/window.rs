@@ -1131,7 +1131,8 @@ fn slow_wireframe_frames_lower_the_level() {
 }
 
 /// A `--pixel-error` outside the slider's 0.25 to 16 px is drawn at the nearest end, with a
-/// warning (docs/window.md); within it, no warning.
+/// warning (docs/window.md); within it, no warning. A `--max-level` that is not a power of two
+/// starts the window too (docs/cli.md).
 #[test]
 fn a_pixel_error_past_the_slider_is_held_at_its_end_with_a_warning() {
     let _guard = common::gpu_lock();
@@ -1159,4 +1160,13 @@ fn a_pixel_error_past_the_slider_is_held_at_its_end_with_a_warning() {
             None => assert!(warned.is_empty(), "{px}: {stderr}"),
         }
     }
+    // A largest level that is not a power of two: the window takes it (tess draws it, the
+    // pattern and static drivers round it down), where render refuses it for them.
+    let mut args = vec!["--max-level", "48"];
+    args.extend(size);
+    let stderr = run_view_frames(&x.display, "2", &args, &shot);
+    assert!(
+        stderr.contains("warning: --max-level 48 is not a power of two: the pattern and static drivers draw adaptively up to 32, tess up to 48"),
+        "{stderr}"
+    );
 }

@@ -34,6 +34,44 @@ pub use meshrefine::lod::px;
 /// frustum's planes (the image breaks up, culling fails).
 pub const MIN_FOV: f32 = 0.01;
 
+/// The camera's and the adaptive drawing's values of `cli`'s command, whether or not it reads
+/// them (info without --pixel-error and a uniform export ignore them, with a warning after
+/// this): the pixel error, a `--max-level` the command's driver cannot take as its largest
+/// level (not for the window, whose keys switch drivers and which rounds it for each, nor for
+/// bench, whose drivers are checked row by row), and the camera.
+pub fn check_values(cli: &Cli) -> Result<()> {
+    let (viewpoint, px, max_level, driver) = match &cli.command {
+        Command::Render(a) => (
+            &a.adaptive.viewpoint,
+            &a.adaptive.pixel_error,
+            a.adaptive.max_level,
+            Some(a.technique.driver),
+        ),
+        Command::View(a) => (&a.adaptive.viewpoint, &a.adaptive.pixel_error, None, None),
+        Command::Export(a) => (
+            &a.adaptive.viewpoint,
+            &a.adaptive.pixel_error,
+            a.adaptive.max_level,
+            Some(a.driver.driver()),
+        ),
+        Command::Bench(a) => (&a.adaptive.viewpoint, &a.adaptive.pixel_error, None, None),
+        Command::Info(a) => (
+            &a.camera.viewpoint,
+            &a.pixel_error,
+            Some(a.max_level),
+            Some(a.driver),
+        ),
+        Command::Devices => return Ok(()),
+    };
+    if let Some(px) = px {
+        check_pixel_error(px)?;
+    }
+    if let (Some(l), Some(driver)) = (max_level, driver) {
+        check_max_level_rounding(l, driver)?;
+    }
+    check_camera(viewpoint)
+}
+
 /// One sentence for a pixel error that is not a finite number above zero.
 pub fn check_pixel_error(px: &TypedF32) -> Result<()> {
     if !(px.value.is_finite() && px.value > 0.0) {

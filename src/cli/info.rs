@@ -243,7 +243,8 @@ fn print_loop(a: &InfoArgs, data: &LoopData) -> Result<()> {
 /// `--pixel-error` and the camera: one sentence for the first bad value, before any work.
 /// A `--max-level` above [`LEAST_LEVEL_LIMIT`] for the tess driver (the only one with a
 /// device level limit) is checked against the device render would draw on (its limits read,
-/// nothing opened), as render refuses it; otherwise no device is needed.
+/// nothing opened), as render refuses it; otherwise no device is needed (a largest level the
+/// driver cannot take was refused with the other values, `adaptive::check_values`).
 fn check_level_options(a: &InfoArgs, desc: &ContextDesc) -> Result<()> {
     let Some(px) = &a.pixel_error else {
         return Ok(());
@@ -253,7 +254,7 @@ fn check_level_options(a: &InfoArgs, desc: &ContextDesc) -> Result<()> {
         let device = meshrefine::gpu::picked_device(desc)?;
         return super::adaptive::check_max_level(&device, a.max_level, a.driver);
     }
-    super::adaptive::check_max_level_rounding(a.max_level, a.driver)
+    Ok(())
 }
 
 /// With `--pixel-error`: the level each element is drawn at for the camera by `--driver` (the

@@ -404,9 +404,10 @@ pub fn warnings(cli: &Cli, given: &Given) -> Vec<String> {
     }
 }
 
-/// Checks the values of `cli`'s surface and displacement parameters, whether or not what is
-/// drawn reads them (a value out of its range is refused, not said to be ignored), before any
-/// warning or work: one sentence naming the option and its value.
+/// Checks the values of `cli`'s surface and displacement parameters, and its camera's and
+/// adaptive drawing's (`adaptive::check_values`), whether or not what is drawn reads them (a
+/// value out of its range is refused, not said to be ignored), before any warning or work: one
+/// sentence naming the option and its value.
 pub fn check_values(cli: &Cli) -> Result<(), String> {
     use super::args::{Command, DrawnOpts};
     let (params, drawn): (&super::args::ParamOpts, Option<&DrawnOpts>) = match &cli.command {
@@ -429,48 +430,7 @@ pub fn check_values(cli: &Cli) -> Result<(), String> {
     if let Some(a) = drawn.and_then(|d| d.crease_angle.as_ref()) {
         super::input::check_crease_angle(a)?;
     }
-    // The camera's and the adaptive drawing's values, whether or not the command reads them
-    // (info without --pixel-error and a uniform export ignore them, with a warning after
-    // this): the pixel error, and a --max-level the driver's largest level must be (bench's
-    // drivers are checked row by row).
-    let (viewpoint, px, max_level, driver) = match &cli.command {
-        Command::Render(a) => (
-            &a.adaptive.viewpoint,
-            &a.adaptive.pixel_error,
-            a.adaptive.max_level,
-            Some(a.technique.driver),
-        ),
-        Command::View(a) => (
-            &a.adaptive.viewpoint,
-            &a.adaptive.pixel_error,
-            a.adaptive.max_level,
-            Some(a.technique.driver),
-        ),
-        Command::Export(a) => (
-            &a.adaptive.viewpoint,
-            &a.adaptive.pixel_error,
-            a.adaptive.max_level,
-            Some(a.driver.driver()),
-        ),
-        Command::Bench(a) => (&a.adaptive.viewpoint, &a.adaptive.pixel_error, None, None),
-        Command::Info(a) => (
-            &a.camera.viewpoint,
-            &a.pixel_error,
-            Some(a.max_level),
-            Some(a.driver),
-        ),
-        Command::Devices => return Ok(()),
-    };
-    let adaptive = || -> anyhow::Result<()> {
-        if let Some(px) = px {
-            super::adaptive::check_pixel_error(px)?;
-        }
-        if let (Some(l), Some(driver)) = (max_level, driver) {
-            super::adaptive::check_max_level_rounding(l, driver)?;
-        }
-        super::adaptive::check_camera(viewpoint)
-    };
-    adaptive().map_err(|e| e.to_string())
+    super::adaptive::check_values(cli).map_err(|e| e.to_string())
 }
 
 /// Checks every output path of `cli`'s command by the rules of `meshrefine::paths`, before any
