@@ -290,38 +290,11 @@ fn mid_morph(l: &ElementLevels, cfg: &DrawConfig) -> bool {
 /// between two powers of two): the meshes drawn mid-morph meet the pixel error; levels for
 /// 8 px do not meet 1 px.
 fn check_geomorph(h: &mut Headless, scene: &mut Scene, cfg: &DrawConfig) {
-    let tol = 1.0 + 1e-3;
     let mut cfg = *cfg;
     cfg.geomorph = true;
-    assert!(cfg.glides());
-    let (mut morphing, mut checked, mut worst) = (0, 0, 0.0f32);
-    for dist in [1.6, 1.75, 1.9, 2.1] {
-        let camera = camera_at(scene, dist);
-        let f = draw_and_measure_at(h, scene, &cfg, &camera, 1.0, 1.0);
-        eprintln!(
-            "{} geomorphing at {dist} radii, 1 px: {} elements checked ({} mid-morph), {} capped, worst {} px",
-            cfg.label(),
-            f.checked,
-            f.morphing,
-            f.capped,
-            f.worst
-        );
-        assert!(f.checked > 50, "only {} elements checked", f.checked);
-        assert!(f.worst <= tol, "geomorphing: worst {} px", f.worst);
-        // Within about 0.7 px while gliding too (docs/cli.md).
-        assert!(f.worst <= 0.75, "geomorphing: worst {} px at 1 px", f.worst);
-        morphing += f.morphing;
-        checked += f.checked;
-        worst = worst.max(f.worst);
-    }
-    // Nearly every element is caught mid-morph at these distances (docs/adaptivity.md).
-    assert!(
-        morphing * 10 >= checked * 9,
-        "only {morphing} of {checked} elements mid-morph"
-    );
-    // Not vacuous, nor refined far past the bound: a worst sample under a fifth of a pixel
-    // would mean levels about twice what 1 px needs.
-    assert!(worst > 0.2, "worst {worst} px");
+    let worst = geomorph_sweep(h, scene, &cfg, &[1.6, 1.75, 1.9, 2.1], 50);
+    // Within about 0.7 px while gliding too (docs/cli.md).
+    assert!(worst <= 0.75, "geomorphing: worst {worst} px at 1 px");
     let coarser = draw_and_measure(h, scene, &cfg, 8.0, 1.0);
     eprintln!(
         "{} geomorphing: levels for 8 px, checked at 1 px: worst {} px",
@@ -332,6 +305,52 @@ fn check_geomorph(h: &mut Headless, scene: &mut Scene, cfg: &DrawConfig) {
         coarser.worst > 1.0,
         "levels for 8 px met 1 px while geomorphing: the check sees nothing"
     );
+}
+
+/// `cfg` (geomorphing) drawn with levels for 1 px from the close camera's direction at each of
+/// `distances` (bounding radii) and checked at 1 px: at each, more than `least` elements
+/// checked and every sample within the pixel error; over all, at least 90 % of the elements
+/// mid-morph and a worst sample above 0.2 px (not vacuous: a worst under a fifth of a pixel
+/// would mean levels about twice what 1 px needs). Returns the worst sample's pixels.
+fn geomorph_sweep(
+    h: &mut Headless,
+    scene: &mut Scene,
+    cfg: &DrawConfig,
+    distances: &[f32],
+    least: usize,
+) -> f32 {
+    let tol = 1.0 + 1e-3;
+    assert!(cfg.glides());
+    let (mut morphing, mut checked, mut worst) = (0, 0, 0.0f32);
+    for &dist in distances {
+        let camera = camera_at(scene, dist);
+        let f = draw_and_measure_at(h, scene, cfg, &camera, 1.0, 1.0);
+        eprintln!(
+            "{} geomorphing at {dist} radii, 1 px: {} elements checked ({} mid-morph), {} capped, worst {} px",
+            cfg.label(),
+            f.checked,
+            f.morphing,
+            f.capped,
+            f.worst
+        );
+        assert!(
+            f.checked > least,
+            "{}: only {} checked",
+            cfg.label(),
+            f.checked
+        );
+        assert!(f.worst <= tol, "{}: worst {} px", cfg.label(), f.worst);
+        (morphing, checked) = (morphing + f.morphing, checked + f.checked);
+        worst = worst.max(f.worst);
+    }
+    // Nearly every element is caught mid-morph at these distances (docs/adaptivity.md).
+    assert!(
+        morphing * 10 >= checked * 9,
+        "{}: only {morphing} of {checked} elements mid-morph",
+        cfg.label()
+    );
+    assert!(worst > 0.2, "{}: worst {worst} px", cfg.label());
+    worst
 }
 
 /// Levels for 1 px and the check at 1 px; finer levels pass, coarser ones fail.
@@ -412,7 +431,6 @@ fn geomorphing_meshes_meet_the_pixel_error() {
 /// check comes near it.
 #[test]
 fn geomorphing_displaced_and_loop_meshes_meet_the_pixel_error() {
-    let tol = 1.0 + 1e-3;
     with_gpu(64, 36, |h| {
         let mut scene = h.scene(model("spot_control_tri.obj"), MAX).unwrap();
         let (_, r) = scene.bounding_sphere();
@@ -429,36 +447,7 @@ fn geomorphing_displaced_and_loop_meshes_meet_the_pixel_error() {
                     ..SurfaceParams::for_radius(r)
                 };
                 cfg.geomorph = true;
-                assert!(cfg.glides());
-                let (mut morphing, mut checked, mut worst) = (0, 0, 0.0f32);
-                for dist in [1.6, 1.9] {
-                    let camera = camera_at(&scene, dist);
-                    let f = draw_and_measure_at(h, &mut scene, &cfg, &camera, 1.0, 1.0);
-                    eprintln!(
-                        "{} geomorphing at {dist} radii, 1 px: {} elements checked ({} mid-morph), {} capped, worst {} px",
-                        cfg.label(),
-                        f.checked,
-                        f.morphing,
-                        f.capped,
-                        f.worst
-                    );
-                    assert!(
-                        f.checked > 30,
-                        "{}: only {} checked",
-                        cfg.label(),
-                        f.checked
-                    );
-                    assert!(f.worst <= tol, "{}: worst {} px", cfg.label(), f.worst);
-                    (morphing, checked) = (morphing + f.morphing, checked + f.checked);
-                    worst = worst.max(f.worst);
-                }
-                assert!(
-                    morphing * 10 >= checked * 9,
-                    "{}: only {morphing} of {checked} elements mid-morph",
-                    cfg.label()
-                );
-                // Not vacuous: levels not refined far past the bound.
-                assert!(worst > 0.2, "{}: worst {worst} px", cfg.label());
+                geomorph_sweep(h, &mut scene, &cfg, &[1.6, 1.9], 30);
             }
         }
     });

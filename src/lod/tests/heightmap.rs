@@ -52,14 +52,18 @@ pub(super) fn grid_case<'a>(
 
 /// `grid_uv_8x8.obj`, its records and its elements' texture coordinates.
 pub(super) fn uv_grid() -> (Mesh, Vec<ElementRecord>, Vec<[[f32; 2]; 3]>) {
-    let (grid, _) = load_model("grid_uv_8x8.obj");
-    let recs = build_records(RecordKind::Corners, &grid, Seams::Closed);
-    let uvs = grid
-        .triangles
-        .iter()
-        .map(|t| t.t.unwrap().map(|i| grid.texcoords[i as usize].to_array()))
+    textured("grid_uv_8x8.obj")
+}
+
+/// A model with texture coordinates on every face, its records and each element's
+/// coordinates.
+pub(super) fn textured(file: &str) -> (Mesh, Vec<ElementRecord>, Vec<[[f32; 2]; 3]>) {
+    let (mesh, _) = load_model(file);
+    let recs = build_records(RecordKind::Corners, &mesh, Seams::Closed);
+    let uvs = (mesh.triangles.iter())
+        .map(|t| t.t.unwrap().map(|i| mesh.texcoords[i as usize].to_array()))
         .collect();
-    (grid, recs, uvs)
+    (mesh, recs, uvs)
 }
 
 /// The height map's kink terms are tight where every kink bends the same way: on the parabola
@@ -174,14 +178,7 @@ fn height_map_far_out_is_unbounded_unless_flat() {
 /// read at pyramid levels 0 and 1.5; every element and edge bound holds against dense sampling.
 #[test]
 fn height_map_bounds_hold_on_every_surface() {
-    let (terrain, _) = load_model("terrain_16x16.obj");
-    let recs = build_records(RecordKind::Corners, &terrain, Seams::Closed);
-    let uvs: Vec<[[f32; 2]; 3]> = (terrain.triangles.iter())
-        .map(|t| {
-            t.t.unwrap()
-                .map(|i| terrain.texcoords[i as usize].to_array())
-        })
-        .collect();
+    let (terrain, recs, uvs) = textured("terrain_16x16.obj");
     let (tags, _) = crate::surface::stpn::derive(&terrain);
     let map = Heightmap::generated();
     let r = terrain.bounding_radius();

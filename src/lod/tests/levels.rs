@@ -189,14 +189,7 @@ fn spheres_contain_the_displaced_patch() {
             check_spheres(&case, records);
         }
     }
-    let (terrain, _) = load_model("terrain_16x16.obj");
-    let terrain_recs = build_records(RecordKind::Corners, &terrain, Seams::Closed);
-    let uvs: Vec<[[f32; 2]; 3]> = (terrain.triangles.iter())
-        .map(|t| {
-            t.t.unwrap()
-                .map(|i| terrain.texcoords[i as usize].to_array())
-        })
-        .collect();
+    let (terrain, terrain_recs, uvs) = super::heightmap::textured("terrain_16x16.obj");
     let map = Heightmap::generated();
     for surface in [Surface::Flat, Surface::Phong, Surface::Pn] {
         let case = Case {
