@@ -12,75 +12,19 @@
 
 mod common;
 
-use common::random_levels::{crack_free_vertices, element_corners, open_edges, random_levels};
+use common::watertight::{
+    assert_closed, bits, check_tess_adaptive, config, scene_at, tess_positions, CLOSED, SURFACES,
+};
 use common::{model, with_gpu};
 use meshrefine::export::{weld, weld_triangles};
-use meshrefine::lod::levels::ElementLevels;
 use meshrefine::mesh::Mesh;
-use meshrefine::pattern::{Pattern, PatternSet};
+use meshrefine::pattern::Pattern;
 use meshrefine::render::static_vbo::refine_on_cpu;
-use meshrefine::render::tess::{
-    outer_levels, tess_triangle_count, tess_triangle_count_levels, tess_vertex_count,
-};
-use meshrefine::render::{Camera, DrawConfig, Driver, Headless, Scene, Submit};
+use meshrefine::render::tess::{tess_triangle_count, tess_vertex_count};
+use meshrefine::render::{DrawConfig, Driver, Submit};
 use meshrefine::subdiv::{LoopData, LoopFrame};
-use meshrefine::surface::{Displace, NormalField, RecordKind, Seams, Surface, SurfaceParams};
-
-/// Surface x displacement combinations checked on every driver.
-const SURFACES: &[(Surface, Displace)] = &[
-    (Surface::Flat, Displace::None),
-    (Surface::Phong, Displace::Sine),
-    (Surface::Pn, Displace::None),
-    (Surface::Pn, Displace::Noise),
-    // Tags derived from the hard edges: the cylinder's rims become creases, closed.
-    (Surface::Stpn, Displace::None),
-];
-
-fn config(driver: Driver, n: u32, (s, d): (Surface, Displace), r: f32) -> DrawConfig {
-    let mut cfg = DrawConfig::new(driver, n).with_surface(s, d);
-    cfg.params = SurfaceParams::for_radius(r);
-    cfg
-}
+use meshrefine::surface::{Displace, NormalField, RecordKind, Seams, Surface};
 use std::collections::HashSet;
-
-const CLOSED: &[&str] = &[
-    "tetrahedron.obj",
-    "octahedron.obj",
-    "icosahedron.obj",
-    "cube_tri.obj",
-    "torus_16x8.obj",
-    "bicone16.obj",
-    "uvsphere12.obj",
-    "spot_control_tri.obj",
-    // Split normals (several `vn` at a position): watertight with closed seams (the default).
-    "cylinder_hard_normals.obj",
-    "cube_face_normals.obj",
-];
-
-/// `mesh` uploaded with patterns of `levels`, and a camera framing it.
-fn scene_at(h: &Headless, mesh: &Mesh, levels: &[u32]) -> (Scene, Camera) {
-    let scene = Scene::with_patterns(
-        &h.ctx,
-        &h.pool,
-        &h.renderer,
-        mesh.clone(),
-        PatternSet::from_levels(levels),
-    )
-    .unwrap();
-    let (c, r) = scene.bounding_sphere();
-    (scene, Camera::framing(c, r))
-}
-
-/// Distinct positions the tess driver's capture variant evaluated for `cfg`.
-fn tess_positions(h: &mut Headless, scene: &mut Scene, cfg: &DrawConfig, camera: &Camera) -> usize {
-    let cap = h.capture(scene, cfg, camera).unwrap();
-    let distinct: HashSet<[u32; 3]> = cap
-        .vertices
-        .iter()
-        .map(|v| bits(&v.position[..3]))
-        .collect();
-    distinct.len()
-}
 
 /// Distinct positions of `records` refined on the CPU at level `n`.
 fn static_positions(
@@ -127,18 +71,6 @@ fn edges(mesh: &Mesh) -> usize {
 fn expected(mesh: &Mesh, n: usize, inner: usize) -> usize {
     let v = mesh.stats().vertices;
     v + edges(mesh) * (n - 1) + mesh.triangles.len() * inner
-}
-
-fn bits(p: &[f32]) -> [u32; 3] {
-    [p[0], p[1], p[2]].map(|x| if x == 0.0 { 0 } else { x.to_bits() })
-}
-
-fn assert_closed(triangles: &[[(u32, u32); 3]], what: &str) {
-    let open = open_edges(triangles);
-    assert_eq!(
-        open, 0,
-        "{what}: {open} welded edges are not shared by exactly two triangles (a crack)"
-    );
 }
 
 #[test]
@@ -285,128 +217,6 @@ fn every_normal_field_is_watertight_under_displacement() {
                 }
             }
         }
-    });
-}
-
-/// The tess driver drawing adaptively at random levels (one per unique edge, shared; inner levels
-/// at least their edges'): the evaluated vertices (capture) and the tessellator's triangles
-/// (transform feedback, what export writes) weld on exact bits into exactly the vertex count of a
-/// crack-free tessellation, and the triangles into a closed mesh, for every closed mesh and
-/// surface, loop too. Levels equal everywhere draw exactly the uniform triangles.
-#[test]
-fn tess_adaptive_is_watertight() {
-    with_gpu(64, 64, |h| {
-        let loop_files = ["icosahedron.obj", "spot_control_tri.obj"];
-        for (f, file) in CLOSED.iter().enumerate() {
-            let mesh = model(file);
-            let max = 9;
-            let (mut scene, camera) = scene_at(h, &mesh, &[max]);
-            let r = mesh.bounding_radius();
-            let mut combos = SURFACES.to_vec();
-            if loop_files.contains(file) {
-                combos.push((Surface::Loop, Displace::None));
-                combos.push((Surface::Loop, Displace::Sine));
-            }
-            for (c, &combo) in combos.iter().enumerate() {
-                let cfg = config(Driver::Tess, max, combo, r);
-                let seed = 31 * f as u32 + c as u32 + 1;
-                check_tess_adaptive(h, &mut scene, &camera, &cfg, seed, file);
-            }
-            // Every element at level 4 adaptively: exactly the uniform level-4 triangles.
-            if f < 3 {
-                let cfg = config(Driver::Tess, 4, (Surface::Pn, Displace::None), r);
-                let (mut scene, camera) = scene_at(h, &mesh, &[4]);
-                let uniform = h.capture_triangles(&mut scene, &cfg, &camera).unwrap();
-                let n = scene.gpu.element_count as usize;
-                scene
-                    .gpu
-                    .upload_levels(&vec![ElementLevels::uniform(4.0); n]);
-                h.adaptive = true;
-                let adaptive = h.capture_triangles(&mut scene, &cfg, &camera).unwrap();
-                h.adaptive = false;
-                assert!(
-                    adaptive == uniform,
-                    "{file}: adaptive at level 4 everywhere differs from uniform level 4"
-                );
-            }
-        }
-    });
-}
-
-/// `cfg` (tess, largest level `cfg.level`) drawn adaptively at random levels from `seed` (one
-/// per unique edge, shared; inner levels at least their edges'): the evaluated vertices and the
-/// transform-feedback triangles weld on exact bits into exactly the vertex count of a
-/// crack-free tessellation, and the triangles into a closed mesh where `file`'s is closed.
-fn check_tess_adaptive(
-    h: &mut Headless,
-    scene: &mut Scene,
-    camera: &Camera,
-    cfg: &DrawConfig,
-    seed: u32,
-    file: &str,
-) {
-    let (surface, max) = (cfg.surface, cfg.level);
-    let what = format!(
-        "{file} {} + {} tess adaptive",
-        surface.name(),
-        cfg.displace.name()
-    );
-    h.prepared_elements(scene, cfg, meshrefine::render::Capture::None)
-        .unwrap();
-    let corners = element_corners(scene, surface);
-    let levels = random_levels(&corners, max, 0.0, seed);
-    scene.elements_mut(surface).upload_levels(&levels);
-    h.adaptive = true;
-    let want = crack_free_vertices(&corners, &levels, |l| outer_levels(l, max));
-    assert_eq!(tess_positions(h, scene, cfg, camera), want, "{what}");
-    let tris = h.capture_triangles(scene, cfg, camera).unwrap();
-    let count: u32 = levels
-        .iter()
-        .map(|l| {
-            let (outer, inner) = outer_levels(l, max).unwrap();
-            tess_triangle_count_levels(outer, inner)
-        })
-        .sum();
-    assert_eq!(tris.len(), count as usize, "{what}: triangles");
-    let welded = weld_triangles(&tris);
-    assert_eq!(welded.positions.len(), want, "{what}: triangles welded");
-    if CLOSED.contains(&file) {
-        assert_closed(&welded.triangles, &format!("{what} triangles"));
-    }
-    h.adaptive = false;
-}
-
-/// Culled elements (inner level 0) draw nothing: with every element culled the image is the
-/// background and no triangle is written; with one drawn, exactly its triangles are.
-#[test]
-fn tess_culled_elements_draw_nothing() {
-    with_gpu(64, 64, |h| {
-        let mesh = model("spot_control_tri.obj");
-        let r = mesh.bounding_radius();
-        let (mut scene, camera) = scene_at(h, &mesh, &[6]);
-        let cfg = config(Driver::Tess, 6, (Surface::Pn, Displace::None), r);
-        let n = scene.gpu.element_count as usize;
-        let mut levels = vec![ElementLevels::CULLED; n];
-        scene.gpu.upload_levels(&levels);
-        h.adaptive = true;
-        let image = h.render(&mut scene, &cfg, &camera).unwrap();
-        assert_eq!(meshrefine::render::covered_pixels(&image), 0);
-        assert!(h
-            .capture_triangles(&mut scene, &cfg, &camera)
-            .unwrap()
-            .is_empty());
-        assert!(h
-            .capture(&mut scene, &cfg, &camera)
-            .unwrap()
-            .vertices
-            .is_empty());
-        levels[5] = ElementLevels::uniform(3.0);
-        scene.gpu.upload_levels(&levels);
-        let tris = h.capture_triangles(&mut scene, &cfg, &camera).unwrap();
-        assert_eq!(tris.len(), tess_triangle_count(3) as usize);
-        let cap = h.capture(&mut scene, &cfg, &camera).unwrap();
-        assert!(cap.vertices.iter().all(|v| v.id[0] == 5));
-        h.adaptive = false;
     });
 }
 

@@ -4,6 +4,7 @@
 #![allow(dead_code)]
 
 pub mod random_levels;
+pub mod watertight;
 
 use meshrefine::gpu::{check_shutdown, live_objects, ContextDesc, ShutdownError};
 use meshrefine::mesh::Mesh;

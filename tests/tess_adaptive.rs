@@ -1,10 +1,13 @@
-//! Geomorphing on the tess driver (docs/adaptivity.md, "Geomorphing"): the real pipelines
-//! drawing at random continuous levels, read back, against the CPU mirror
-//! (`render::tess::morph`), and the welded result closed.
+//! The tess driver drawing adaptively: at random integer levels, welded on exact bits into a
+//! crack-free tessellation (the style of tests/watertight.rs); culled elements drawing nothing;
+//! and geomorphing (docs/adaptivity.md, "Geomorphing"): the real pipelines drawing at random
+//! continuous levels, read back, against the CPU mirror (`render::tess::morph`), the welded
+//! result closed, and the popping sweep.
 
 mod common;
 
 use common::random_levels::{crack_free_vertices, element_corners, open_edges, random_levels};
+use common::watertight::{check_tess_adaptive, config, scene_at, CLOSED, SURFACES};
 use common::{model, with_gpu};
 use glam::{DVec2, Mat4, Vec2, Vec3, Vec4};
 use meshrefine::export::weld_triangles;
@@ -13,7 +16,7 @@ use meshrefine::pattern::PatternSet;
 use meshrefine::render::tess::morph::{
     geomorph_position, geomorph_weights, morph_levels, morph_weights,
 };
-use meshrefine::render::tess::{outer_levels, tess_weights_levels};
+use meshrefine::render::tess::{outer_levels, tess_triangle_count, tess_weights_levels};
 use meshrefine::render::{Camera, Capture, DrawConfig, Driver, Headless, LevelView, Scene};
 use meshrefine::surface::{Displace, Surface, SurfaceParams};
 use std::collections::{HashMap, HashSet};
@@ -314,5 +317,84 @@ fn tess_geomorphing_removes_popping() {
             off > on,
             "without geomorphing only {off} px (with: {on} px): the test sees no popping"
         );
+    });
+}
+
+/// The tess driver drawing adaptively at random levels (one per unique edge, shared; inner levels
+/// at least their edges'): the evaluated vertices (capture) and the tessellator's triangles
+/// (transform feedback, what export writes) weld on exact bits into exactly the vertex count of a
+/// crack-free tessellation, and the triangles into a closed mesh, for every closed mesh and
+/// surface, loop too. Levels equal everywhere draw exactly the uniform triangles.
+#[test]
+fn tess_adaptive_is_watertight() {
+    with_gpu(64, 64, |h| {
+        let loop_files = ["icosahedron.obj", "spot_control_tri.obj"];
+        for (f, file) in CLOSED.iter().enumerate() {
+            let mesh = model(file);
+            let max = 9;
+            let (mut scene, camera) = scene_at(h, &mesh, &[max]);
+            let r = mesh.bounding_radius();
+            let mut combos = SURFACES.to_vec();
+            if loop_files.contains(file) {
+                combos.push((Surface::Loop, Displace::None));
+                combos.push((Surface::Loop, Displace::Sine));
+            }
+            for (c, &combo) in combos.iter().enumerate() {
+                let cfg = config(Driver::Tess, max, combo, r);
+                let seed = 31 * f as u32 + c as u32 + 1;
+                check_tess_adaptive(h, &mut scene, &camera, &cfg, seed, file);
+            }
+            // Every element at level 4 adaptively: exactly the uniform level-4 triangles.
+            if f < 3 {
+                let cfg = config(Driver::Tess, 4, (Surface::Pn, Displace::None), r);
+                let (mut scene, camera) = scene_at(h, &mesh, &[4]);
+                let uniform = h.capture_triangles(&mut scene, &cfg, &camera).unwrap();
+                let n = scene.gpu.element_count as usize;
+                scene
+                    .gpu
+                    .upload_levels(&vec![ElementLevels::uniform(4.0); n]);
+                h.adaptive = true;
+                let adaptive = h.capture_triangles(&mut scene, &cfg, &camera).unwrap();
+                h.adaptive = false;
+                assert!(
+                    adaptive == uniform,
+                    "{file}: adaptive at level 4 everywhere differs from uniform level 4"
+                );
+            }
+        }
+    });
+}
+
+/// Culled elements (inner level 0) draw nothing: with every element culled the image is the
+/// background and no triangle is written; with one drawn, exactly its triangles are.
+#[test]
+fn tess_culled_elements_draw_nothing() {
+    with_gpu(64, 64, |h| {
+        let mesh = model("spot_control_tri.obj");
+        let r = mesh.bounding_radius();
+        let (mut scene, camera) = scene_at(h, &mesh, &[6]);
+        let cfg = config(Driver::Tess, 6, (Surface::Pn, Displace::None), r);
+        let n = scene.gpu.element_count as usize;
+        let mut levels = vec![ElementLevels::CULLED; n];
+        scene.gpu.upload_levels(&levels);
+        h.adaptive = true;
+        let image = h.render(&mut scene, &cfg, &camera).unwrap();
+        assert_eq!(meshrefine::render::covered_pixels(&image), 0);
+        assert!(h
+            .capture_triangles(&mut scene, &cfg, &camera)
+            .unwrap()
+            .is_empty());
+        assert!(h
+            .capture(&mut scene, &cfg, &camera)
+            .unwrap()
+            .vertices
+            .is_empty());
+        levels[5] = ElementLevels::uniform(3.0);
+        scene.gpu.upload_levels(&levels);
+        let tris = h.capture_triangles(&mut scene, &cfg, &camera).unwrap();
+        assert_eq!(tris.len(), tess_triangle_count(3) as usize);
+        let cap = h.capture(&mut scene, &cfg, &camera).unwrap();
+        assert!(cap.vertices.iter().all(|v| v.id[0] == 5));
+        h.adaptive = false;
     });
 }
