@@ -111,6 +111,18 @@
 //! first ring (whose vertices sit between the lattice's), and 3.7 times as many with the
 //! tessellator's own transitions at integer levels.
 //!
+//! At integer levels, an edge finer than half the inside (`a_e/2 < β < a_e`) is where step 2
+//! raises inner levels: the sides' move, up to `a_e/2`, is then as long as a lattice side. No
+//! other snapping moves less: the edge fixes its samples, each must be a vertex from both
+//! sides, and any monotone map of the `n + 1` lattice points onto the `n_e + 1` samples moves
+//! some point about half a sample. Spreading each move over `R` rows (row `r` moving `1 − r/R`
+//! of its foot's, only where the edge is finer than half the inside) would bound the sides along
+//! the edge by `h = 1 − 1/(2R) − (1 − 1/R) β/a_e` (down to `1/(2R)` at `β = a_e`), but where
+//! two edges' rows meet (beside a corner, and on small insides) a vertex moves along both
+//! edges, and its sides fall outside both the corners' bound (extent at most `max a_e`) and
+//! the strip's (at most `β` across the edge), some triangles even fold over, tapered moves
+//! too: spreading needs a bound for a lattice side plus moves along two edges first.
+//!
 //! # Polynomial patches
 //! Where the element is a polynomial of degree at most 3 (its cubic term `T` finite,
 //! [`Bounds::cubic`]), a triangle of its domain whose sides span at most `H` in lattice
