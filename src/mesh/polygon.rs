@@ -10,8 +10,9 @@
 
 use glam::{DVec2, DVec3, Vec3};
 
-/// Polygons with more corners than this are fanned whatever their shape (ear clipping takes a
-/// time that grows with the square of the corners, and with their cube at worst).
+/// Concave polygons with more corners than this are fanned (ear clipping takes a time that grows
+/// with the square of the corners, and with their cube at worst); convex ones are cut corner by
+/// corner in linear time where their first corner's fan would hold a flat triangle.
 pub const MAX_CLIPPED_CORNERS: usize = 256;
 
 /// A turn this small against the product of its two sides' lengths is no turn (the projection
@@ -31,7 +32,7 @@ struct Plane {
 /// triples of corner numbers wound as the polygon is: a fan where the polygon is convex (corners
 /// on a line with their neighbours included) or has no plane (every corner on a line, or lobes
 /// whose areas cancel), else its ears clipped one by one (what is left fanned where no ear can
-/// be found: a polygon crossing itself), or fanned where it has more corners than
+/// be found: a polygon crossing itself), or fanned where it is concave with more corners than
 /// [`MAX_CLIPPED_CORNERS`]. With whether they cover it without turning over: false where a
 /// triangle is wound against the polygon's plane (a polygon crossing or touching itself, or
 /// too large to clip), or has area where the polygon has no plane.
@@ -68,8 +69,9 @@ pub fn triangulate(corners: &[Vec3]) -> (Vec<[usize; 3]>, bool) {
 /// that corner (beside a corner on a line with its neighbours, as at a T-junction) would make a
 /// triangle of zero area, which the loader would drop, opening a hole: then the fan from the
 /// first corner that makes none, else (several corners in a line on more than one side) its
-/// ears clipped, which take turning corners first. Where every choice leaves a flat triangle,
-/// or the polygon has more corners than [`MAX_CLIPPED_CORNERS`], the first corner's fan.
+/// ears clipped, which take turning corners first; with more corners than
+/// [`MAX_CLIPPED_CORNERS`], zipped between two chains in linear time ([`clip_convex`]). Where
+/// every choice leaves a flat triangle, the first corner's fan.
 fn convex(plane: &Plane) -> Vec<[usize; 3]> {
     let n = plane.p.len();
     let fan = |c: usize| -> Vec<[usize; 3]> {
@@ -77,14 +79,74 @@ fn convex(plane: &Plane) -> Vec<[usize; 3]> {
     };
     let flat = |t: &[[usize; 3]]| t.iter().any(|&[a, b, c]| turn(plane, a, b, c) <= 0);
     let first = fan(0);
-    if !flat(&first) || n > MAX_CLIPPED_CORNERS {
+    if !flat(&first) {
         return first;
+    }
+    if n > MAX_CLIPPED_CORNERS {
+        return clip_convex(plane).filter(|t| !flat(t)).unwrap_or(first);
     }
     (1..n)
         .map(fan)
         .find(|t| !flat(t))
         .or_else(|| Some(clip_ears(plane)).filter(|t| !flat(t)))
         .unwrap_or(first)
+}
+
+/// A convex counter-clockwise polygon's triangles without a flat one, in time linear in its
+/// corners (for polygons too large for the fans' search and [`clip_ears`]): zipped between its
+/// two chains from a corner `u` that turns, each triangle a diagonal across the polygon and the
+/// next corner of one chain: the chain that is behind (by the share of its corners passed, the
+/// chains meeting about opposite `u`), unless its triangle would be flat or leave the rest
+/// flat, then the other (one of the two always does neither). Triangles across the polygon
+/// keep their height where a side holds many corners on a line (cutting corners one by one
+/// leaves slivers there, flat within rounding). `None` where no corner turns.
+fn clip_convex(plane: &Plane) -> Option<Vec<[usize; 3]>> {
+    let n = plane.p.len();
+    let turns: Vec<bool> = (0..n)
+        .map(|i| turn(plane, (i + n - 1) % n, i, (i + 1) % n) > 0)
+        .collect();
+    // Turning corners before each index, and strictly between l and r counter-clockwise: the
+    // rest of the polygon, l to r, has area exactly where one of its corners but those turns
+    // (in a convex polygon a corner between two others on a line goes straight on).
+    let mut before = vec![0usize; n + 1];
+    for i in 0..n {
+        before[i + 1] = before[i] + usize::from(turns[i]);
+    }
+    let between = |l: usize, r: usize| {
+        if l < r {
+            before[r] - before[l + 1]
+        } else {
+            before[n] - before[l + 1] + before[r]
+        }
+    };
+    let (next, prev) = (|i: usize| (i + 1) % n, |i: usize| (i + n - 1) % n);
+    let u = (0..n).find(|&i| turns[i] && between(next(i), prev(i)) > 0)?;
+    let far = |i: usize| (i + n - u) % n;
+    let mut out = Vec::with_capacity(n - 2);
+    let (mut l, mut r) = (next(u), prev(u));
+    out.push([r, u, l]);
+    while next(l) != r {
+        let (l2, r2) = (next(l), prev(r));
+        let last = next(l2) == r;
+        let flat = |[a, b, c]: [usize; 3]| turn(plane, a, b, c) <= 0;
+        let left_ok = !flat([r, l, l2]) && (last || between(l2, r) > 0);
+        let right_ok = !flat([r2, r, l]) && (last || between(l, r2) > 0);
+        // The left chain (counter-clockwise from u) is behind when it has passed fewer corners.
+        let behind = far(l) <= n - far(r);
+        let left = match (left_ok, right_ok) {
+            (false, false) => return None,
+            (true, true) => behind,
+            (ok, _) => ok,
+        };
+        if left {
+            out.push([r, l, l2]);
+            l = l2;
+        } else {
+            out.push([r2, r, l]);
+            r = r2;
+        }
+    }
+    Some(out)
 }
 
 /// Whether the polygon turns once round (its exterior angles sum to one turn, not two or more
@@ -291,6 +353,48 @@ mod tests {
             triangulate(&square),
             (vec![[0, 1, 2], [0, 2, 3], [0, 3, 4]], true)
         );
+    }
+
+    /// Past [`MAX_CLIPPED_CORNERS`], a convex polygon whose fans hold flat triangles (a square
+    /// with 64 corners along each side, a triangle with 300 along one, a square of 100,000
+    /// corners a unit apart) is zipped between two chains: no triangle flat, together they
+    /// cover it, in linear time.
+    #[test]
+    fn large_convex_polygons_with_straight_corners_get_no_flat_triangles() {
+        let square: Vec<Vec3> = (0..4)
+            .flat_map(|side| {
+                (0..65).map(move |k| {
+                    let t = k as f32 / 65.0;
+                    let [x, y] = [[t, 0.0], [1.0, t], [1.0 - t, 1.0], [0.0, 1.0 - t]][side];
+                    Vec3::new(x, y, 0.0)
+                })
+            })
+            .collect();
+        let mut triangle: Vec<Vec3> = (0..=300).map(|i| Vec3::new(i as f32, 0.0, 0.0)).collect();
+        triangle.push(Vec3::new(150.0, 100.0, 0.0));
+        let large: Vec<Vec3> = (0..4)
+            .flat_map(|side| {
+                (0..25_000).map(move |k| {
+                    let t = k as f32;
+                    let [x, y] = [[t, 0.0], [25e3, t], [25e3 - t, 25e3], [0.0, 25e3 - t]][side];
+                    Vec3::new(x, y, 0.0)
+                })
+            })
+            .collect();
+        for (name, p) in [
+            ("square", &square),
+            ("triangle", &triangle),
+            ("large", &large),
+        ] {
+            assert!(p.len() > MAX_CLIPPED_CORNERS);
+            let (t, covers) = triangulate(p);
+            assert!(covers, "{name}");
+            assert_eq!(t.len(), p.len() - 2, "{name}");
+            assert!(t.iter().all(|&x| area(p, x) > 0.0), "{name}");
+            let total: f64 = t.iter().map(|&x| area(p, x)).sum();
+            let want = polygon_area(p);
+            assert!((total - want).abs() < 1e-6 * want, "{name}: {total} {want}");
+        }
     }
 
     #[test]
