@@ -59,6 +59,12 @@ pub fn run(a: &InfoArgs, desc: &ContextDesc) -> Result<()> {
         // The files the levels read and the parameters are refused before anything is
         // printed, as render refuses them before drawing.
         let so = a.surface_opts();
+        let texcoords = input.mesh.triangles.iter().all(|t| t.t.is_some());
+        if let Some(why) =
+            (so.surface).incompatibility_on(so.drawn.displace, &input.mesh, texcoords)
+        {
+            bail!("'{path}': {why}");
+        }
         read_surface_files(&mut input, &so, false)?;
         (so.drawn.params)
             .params_for(&input.mesh, &[so.drawn.displace])
