@@ -1875,7 +1875,14 @@ fn heightmap_displacement_and_its_errors() {
     );
     // info refuses before it prints the mesh's statistics, as for its other inputs.
     for mesh in [p(&partial), p(&model_path("icosahedron.obj"))] {
-        let args = ["info", mesh, "--displace", "heightmap", "--pixel-error", "1"];
+        let args = [
+            "info",
+            mesh,
+            "--displace",
+            "heightmap",
+            "--pixel-error",
+            "1",
+        ];
         let out = meshrefine(&args);
         assert_eq!(out.status.code(), Some(1), "{args:?}");
         assert!(out.stdout.is_empty(), "{args:?} printed before refusing");

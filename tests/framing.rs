@@ -1,6 +1,7 @@
 //! The default camera (`Scene::framing_camera`) shows the whole refined surface, displacement
-//! included, and fills the image: for bundled models and surfaces, a headless render at that
-//! camera has no covered pixel on the image's border and covers more than 15% of it, in wide
+//! included, fills the image and centres it: for bundled models and surfaces, a headless render
+//! at that camera has no covered pixel on the image's border, covers more than 15% of it, and
+//! leaves margins left and right, and top and bottom, within two pixels of each other, in wide
 //! and tall images.
 
 mod common;
@@ -13,8 +14,9 @@ use meshrefine::surface::{Displace, Surface};
 /// The least fraction of the image a framed mesh covers.
 const MIN_COVERED: f64 = 0.15;
 
-/// Covered pixels on the image's border, and the fraction covered.
-fn coverage(h: &Headless, image: &Readback) -> (usize, f64) {
+/// Covered pixels on the image's border, the fraction covered, and the uncovered margins
+/// (left, right, top, bottom) in pixels.
+fn coverage(h: &Headless, image: &Readback) -> (usize, f64, [usize; 4]) {
     let (w, ht) = (image.width as usize, image.height as usize);
     let bg = meshrefine::render::background_srgb8(h.background);
     let covered = |x: usize, y: usize| {
@@ -27,7 +29,14 @@ fn coverage(h: &Headless, image: &Readback) -> (usize, f64) {
         .filter(|&(x, y)| covered(x, y))
         .count();
     let all = covered_pixels_on(image, h.background);
-    (border, all as f64 / (w * ht) as f64)
+    let (mut lo, mut hi) = ([w, ht], [0, 0]);
+    for y in 0..ht {
+        for x in (0..w).filter(|&x| covered(x, y)) {
+            (lo, hi) = ([lo[0].min(x), lo[1].min(y)], [hi[0].max(x), hi[1].max(y)]);
+        }
+    }
+    let margins = [lo[0], w - 1 - hi[0], lo[1], ht - 1 - hi[1]];
+    (border, all as f64 / (w * ht) as f64, margins)
 }
 
 /// Renders each model with each surface (and displacement) at the framing camera and checks
@@ -47,7 +56,7 @@ fn check_framing(h: &mut Headless, aspect: f32, cases: &[(&str, Surface, Displac
             .unwrap();
         let camera = scene.framing_camera(&cfg, aspect);
         let image = h.render(&mut scene, &cfg, &camera).unwrap();
-        let (border, fraction) = coverage(h, &image);
+        let (border, fraction, [left, right, top, bottom]) = coverage(h, &image);
         let what = format!("{name} {} {} ({tag})", surface.name(), displace.name());
         if border > 0 || fraction <= MIN_COVERED {
             let file = output_dir().join(format!(
@@ -59,6 +68,12 @@ fn check_framing(h: &mut Headless, aspect: f32, cases: &[(&str, Surface, Displac
             image.save_png(&file).unwrap();
         }
         assert_eq!(border, 0, "{what}: {border} covered pixels on the border");
+        // Centred: the margins left and right, and top and bottom, within two pixels (the
+        // camera is fitted to points of the surface, not its drawn outline).
+        assert!(
+            left.abs_diff(right) <= 2 && top.abs_diff(bottom) <= 2,
+            "{what}: margins {left} {right} {top} {bottom}"
+        );
         assert!(
             fraction > MIN_COVERED,
             "{what}: covers {:.1}% of the image",

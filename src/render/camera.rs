@@ -94,8 +94,9 @@ impl Camera {
     /// [`Camera::fit_from`] with the eye outside every sphere of `reach` (centre, radius) and
     /// the points wholly in front of the near plane: where the closest fit puts the eye inside
     /// one, or within `NEAR_CLEARANCE` of the framed radius of the nearest point's depth, the
-    /// eye moves back along its line of sight until it is clear, so the points stay inside the
-    /// frustum, centred as before, and take less of the image.
+    /// eye moves back along its line of sight until it is clear, and the points are centred
+    /// again at that depth (which moves its line of sight: a few rounds), so they stay inside
+    /// the frustum, centred in the image, and take less of it.
     pub fn fit_clear_of(&self, points: &[Vec3], reach: &[Vec4], aspect: f32) -> Self {
         let mut cam = *self;
         let points: Vec<Vec3> = points.iter().copied().filter(|p| p.is_finite()).collect();
@@ -124,10 +125,13 @@ impl Camera {
         // frustum when |x - ex| <= tx (z - ez) and |y - ey| <= ty (z - ez). For each axis the
         // farthest forward eye is where the two planes touch the extreme points: with
         // a = min(z - x / tx) and b = min(z + x / tx), ex = tx (b - a) / 2 and ez = (a + b) / 2.
+        let frame: Vec<Vec3> = points
+            .iter()
+            .map(|p| Vec3::new(p.dot(right), p.dot(up), p.dot(forward)))
+            .collect();
         let (mut a, mut b, mut c, mut d) = (f32::MAX, f32::MAX, f32::MAX, f32::MAX);
         let (mut zmin, mut zmax) = (f32::MAX, f32::MIN);
-        for p in &points {
-            let (x, y, z) = (p.dot(right), p.dot(up), p.dot(forward));
+        for &Vec3 { x, y, z } in &frame {
             a = a.min(z - x / tx);
             b = b.min(z + x / tx);
             c = c.min(z - y / ty);
@@ -135,30 +139,21 @@ impl Camera {
             zmin = zmin.min(z);
             zmax = zmax.max(z);
         }
-        let (ex, ey) = (tx * (b - a) * 0.5, ty * (d - c) * 0.5);
         let mut ez = ((a + b) * 0.5).min((c + d) * 0.5);
-        // The target (below) is on the view axis, at the middle of the points' depths: moving
-        // the eye along the axis moves neither it nor the radius around it.
-        let mid = right * ex + up * ey + forward * ((zmin + zmax) * 0.5);
-        let framed = points
-            .iter()
-            .map(|p| (*p - mid).length())
-            .fold(0.0f32, f32::max);
-        // Each sphere the axis passes through keeps the eye behind it. Moved back along the
-        // axis from (ex, ey, ez), every point stays inside the frustum (the nearer cone lies
-        // inside the farther one with the same axis and angle) and (ex, ey) still centres them
-        // (the interval of centred positions is the same at every depth).
-        for s in reach {
-            let c = s.truncate();
-            let (x, y, z) = (c.dot(right), c.dot(up), c.dot(forward));
-            // A thousandth more, so that rounding leaves the eye outside.
-            let w = s.w * (1.0 + 1e-3);
-            let across = (x - ex) * (x - ex) + (y - ey) * (y - ey);
-            if across < w * w {
-                ez = ez.min(z - (w * w - across).sqrt());
+        let (mut ex, mut ey) = (tx * (b - a) * 0.5, ty * (d - c) * 0.5);
+        // Where the eye must stand back (below), the points are centred again in the image at
+        // the new depth, which can bring the axis into another sphere: a few rounds settle it.
+        for _ in 0..4 {
+            // Centred in the image: the points' projections reach as far past the axis on one
+            // side as on the other (the eye anywhere in [lo, hi] keeps them inside the frustum).
+            ex = centred(&frame, ez, |p| p.x, tx * (ez - a), tx * (b - ez));
+            ey = centred(&frame, ez, |p| p.y, ty * (ez - c), ty * (d - ez));
+            let back = clear_of(&frame, &points, reach, [right, up, forward], [ex, ey, ez]);
+            if back >= ez {
+                break;
             }
+            ez = back;
         }
-        ez = ez.min(zmin - framed * NEAR_CLEARANCE);
         let eye = right * ex + up * ey + forward * ez;
         let distance = (zmin + zmax) * 0.5 - ez;
         let target = eye + forward * distance;
@@ -348,9 +343,72 @@ impl Viewpoint {
     }
 }
 
+/// Where on one axis of the camera's frame (`coord` of each point in `frame`: right, up,
+/// forward) an eye at depth `ez` centres the points in the image: their projections
+/// `(q - e) / (z - ez)` reach as far past the axis on one side as on the other. That reach is
+/// falling in `e`, so bisected in `[lo, hi]` (where every point stays inside the frustum).
+fn centred(frame: &[Vec3], ez: f32, coord: impl Fn(&Vec3) -> f32, lo: f32, hi: f32) -> f32 {
+    let (lo, hi) = (lo as f64, hi as f64);
+    // An empty or degenerate interval (the tighter axis, where both borders touch), or NaN.
+    if lo.partial_cmp(&hi) != Some(std::cmp::Ordering::Less) {
+        return ((lo + hi) * 0.5) as f32;
+    }
+    let balance = |e: f64| {
+        let (mut most, mut least) = (f64::MIN, f64::MAX);
+        for p in frame {
+            let t = (coord(p) as f64 - e) / (p.z as f64 - ez as f64).max(f64::MIN_POSITIVE);
+            most = most.max(t);
+            least = least.min(t);
+        }
+        most + least
+    };
+    let (mut lo, mut hi) = (lo, hi);
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if balance(mid) > 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    (0.5 * (lo + hi)) as f32
+}
+
+/// The depth an eye at `(ex, ey)` of the camera's frame (`axes`: right, up, forward) must
+/// stand at or behind, from depth `ez`: outside each sphere of `reach` its line of sight passes
+/// through, and `NEAR_CLEARANCE` of the framed radius before the nearest point. Moved back
+/// along its axis, every point stays inside the frustum (the nearer cone lies inside the
+/// farther one with the same axis and angle).
+fn clear_of(frame: &[Vec3], points: &[Vec3], reach: &[Vec4], axes: [Vec3; 3], e: [f32; 3]) -> f32 {
+    let [right, up, forward] = axes;
+    let [ex, ey, mut ez] = e;
+    let (zmin, zmax) = frame.iter().fold((f32::MAX, f32::MIN), |(lo, hi), p| {
+        (lo.min(p.z), hi.max(p.z))
+    });
+    // The target (below) is on the view axis, at the middle of the points' depths: moving the
+    // eye along the axis moves neither it nor the radius around it.
+    let mid = right * ex + up * ey + forward * ((zmin + zmax) * 0.5);
+    let framed = points
+        .iter()
+        .map(|p| (*p - mid).length())
+        .fold(0.0f32, f32::max);
+    for s in reach {
+        let c = s.truncate();
+        let (x, y, z) = (c.dot(right), c.dot(up), c.dot(forward));
+        // A thousandth more, so that rounding leaves the eye outside.
+        let w = s.w * (1.0 + 1e-3);
+        let across = (x - ex) * (x - ex) + (y - ey) * (y - ey);
+        if across < w * w {
+            ez = ez.min(z - (w * w - across).sqrt());
+        }
+    }
+    ez.min(zmin - framed * NEAR_CLEARANCE)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::Vec2;
 
     /// Zooming out stops at MAX_ZOOM_RADII radii (80 wheel clicks went to 10⁵ radii, an empty
     /// view), zooming in at a hundredth of one; an eye placed farther stays where it is.
@@ -468,9 +526,11 @@ mod tests {
             let cam = Camera::fit(&points, aspect);
             let m = cam.view_proj(aspect);
             let mut extent = 0.0f32;
+            let (mut lo, mut hi) = (Vec2::MAX, Vec2::MIN);
             for p in &points {
                 let c = m * p.extend(1.0);
                 let (x, y, z) = (c.x / c.w, c.y / c.w, c.z / c.w);
+                (lo, hi) = (lo.min(Vec2::new(x, y)), hi.max(Vec2::new(x, y)));
                 assert!(
                     c.w > 0.0 && (0.0..=1.0).contains(&z),
                     "{aspect}: {p} at depth {z}"
@@ -485,6 +545,10 @@ mod tests {
                 extent > 1.0 - FIT_MARGIN - 1e-3,
                 "{aspect}: fills only {extent}"
             );
+            // Centred in the image between both pairs of borders, the looser one too (the
+            // cloud is deeper on one side: centring the eye between the positions that touch
+            // either border would not centre it).
+            assert!((lo + hi).abs().max_element() < 1e-3, "{aspect}: {lo} {hi}");
             assert_eq!((cam.yaw, cam.pitch), (FRAMING_YAW, FRAMING_PITCH));
         }
         // No point, or one: a camera still.
@@ -527,6 +591,7 @@ mod tests {
             let (near, _) = cam.depth_range();
             let m = cam.view_proj(aspect);
             let forward = (cam.target - eye).normalize();
+            let (mut lo, mut hi) = (Vec2::MAX, Vec2::MIN);
             for p in &points {
                 assert!(
                     (*p - eye).dot(forward) > near,
@@ -538,6 +603,13 @@ mod tests {
                     x.abs() <= 1.0 - FIT_MARGIN + 1e-3 && y.abs() <= 1.0 - FIT_MARGIN + 1e-3,
                     "{degrees}: {p} at {x} {y}"
                 );
+                (lo, hi) = (lo.min(Vec2::new(x, y)), hi.max(Vec2::new(x, y)));
+            }
+            // Centred in the image where the eye stood back too (below 179 degrees, where the
+            // points still span more than rounding).
+            if degrees < 179.0 {
+                let off = (lo + hi).abs().max_element() / (hi - lo).max_element();
+                assert!(off < 1e-3, "{degrees}: {lo} {hi}");
             }
             // Where the reach does not keep it back (as at 45 degrees), the eye is where the
             // points alone put it.
