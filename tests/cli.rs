@@ -4232,7 +4232,7 @@ fn pixel_error_draws_adaptively_with_the_pattern_driver() {
         "--max-level 256 wrote other vertices than the default largest level"
     );
     expect_error(
-        &high("0.02"),
+        &high("0.01"),
         &[
             "at most up to level 128, not 256",
             "--geomorph on, or --max-level 128 or a smaller power of two",
@@ -4244,7 +4244,7 @@ fn pixel_error_draws_adaptively_with_the_pattern_driver() {
     let high_png = tmp("adaptive-pattern-integer-256.png");
     #[rustfmt::skip]
     let render = [
-        "render", spot, "-o", p(&high_png), "--pixel-error", "0.02", "--geomorph", "off",
+        "render", spot, "-o", p(&high_png), "--pixel-error", "0.01", "--geomorph", "off",
         "--max-level", "256",
     ];
     expect_error(&render, &["at most up to level 128, not 256"]);
