@@ -828,3 +828,63 @@ fn outlines_are_shaded_as_the_surface_they_border() {
         );
     });
 }
+
+/// Two-sided lighting does not speckle a closed surface seen nearly edge-on: two tetrahedra
+/// apart as `pn` at level 8, seen as `render` frames them at 320x240, where the nearer one turns
+/// a face almost edge-on to the eye. The sign of the screen derivatives the fragment stage asks
+/// which side of a triangle it sees flips there in a speckled pattern, and turning the normal
+/// by it lit single pixels on the dark face where v_position is sampled at the centroid of
+/// the covered samples (14 here, counted as below); on a closed
+/// surface wound outwards the rasteriser's side of the triangle decides. Counted: pixels
+/// brighter by more than 24/255 than the mean of their eight neighbours, at least two pixels
+/// from the background.
+#[test]
+fn a_face_seen_edge_on_is_not_speckled() {
+    let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 5 0 0\nv 6 0 0\nv 5 1 0\nv 5 0 1\n\
+                f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\nf 5 7 6\nf 5 6 8\nf 5 8 7\nf 6 7 8\n";
+    let (mesh, _) = meshrefine::mesh::Mesh::from_obj_str("two.obj", text).unwrap();
+    assert!(mesh.closed_outward());
+    // render's camera for this mesh, in the mesh's coordinates (`info --pixel-error 1 --width
+    // 320 --height 240` prints it), moved into the drawn frame.
+    let (centre, scale) = mesh.viewing_transform();
+    let drawn = |p: glam::Vec3| ((p.as_dvec3() - centre) * scale).as_vec3();
+    let eye = drawn(glam::Vec3::new(6.5348926, 0.98406744, -1.2179321));
+    let target = drawn(glam::Vec3::new(3.527982, -0.37352446, 0.97078586));
+    with_gpu(320, 240, |h| {
+        // Four samples a pixel, as render draws by default (one sample shows none).
+        let samples = sample_count(&h.ctx, Some(4)).unwrap();
+        let mut msaa = Headless::multisampled(h.ctx.clone(), 320, 240, samples).unwrap();
+        let mut scene = msaa.scene(mesh.for_viewing(), 8).unwrap();
+        let cfg = DrawConfig::new(Driver::Pattern(Submit::Instanced), 8)
+            .with_surface(Surface::Pn, Displace::None);
+        let (_, r) = scene.bounding_sphere();
+        let camera = Camera::looking(eye, target, 45f32.to_radians(), r).unwrap();
+        let img = msaa.render(&mut scene, &cfg, &camera).unwrap();
+        let (w, hgt) = (img.width as usize, img.height as usize);
+        let px = |x: usize, y: usize| &img.rgba[(y * w + x) * 4..(y * w + x) * 4 + 3];
+        let bg = px(0, 0).to_vec();
+        let luma = |p: &[u8]| (p[0] as i32 + p[1] as i32 + p[2] as i32) / 3;
+        let (mut speckles, mut mesh_pixels) = (0, 0);
+        for y in 2..hgt - 2 {
+            for x in 2..w - 2 {
+                let around = || (y - 1..=y + 1).flat_map(|j| (x - 1..=x + 1).map(move |i| (i, j)));
+                // At least two pixels from the background: the outline's blended pixels are
+                // brighter than their neighbours on the mesh.
+                let near = (y - 2..=y + 2).flat_map(|j| (x - 2..=x + 2).map(move |i| (i, j)));
+                if near.into_iter().any(|(i, j)| px(i, j) == &bg[..]) {
+                    continue;
+                }
+                mesh_pixels += 1;
+                let sum: i32 = around().map(|(i, j)| luma(px(i, j))).sum();
+                let mean = (sum - luma(px(x, y))) / 8;
+                speckles += usize::from(luma(px(x, y)) - mean > 24);
+            }
+        }
+        eprintln!("{speckles} speckles in {mesh_pixels} mesh pixels");
+        assert!(mesh_pixels > 5000, "only {mesh_pixels} mesh pixels");
+        assert!(
+            speckles <= 3,
+            "{speckles} speckles in {mesh_pixels} mesh pixels"
+        );
+    });
+}

@@ -13,7 +13,7 @@ struct ElementRecord {
 layout(set = SET_FRAME, binding = BINDING_FRAME, std140) uniform Frame {
     mat4 view_proj;
     vec4 eye;        // xyz: camera position (world)
-    vec4 light_dir;  // xyz: direction towards the light (world)
+    vec4 light_dir;  // xyz: direction towards the light (world); w: 1 on a closed surface wound outwards
     vec4 base_color; // rgb: surface colour
     vec4 params;     // surface and displacement: (alpha, amplitude, frequency, octaves)
     vec4 origin;     // xyz: the mesh's origin in drawn coordinates (displacement's frame)

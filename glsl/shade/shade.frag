@@ -52,11 +52,18 @@ void main() {
     // outline. The derivatives alone decide nothing (across tiny or sliver triangles they are
     // noise, which would speckle faces turned toward the eye), and nothing where they are
     // degenerate: along a line of the wireframe pass, where both run along the line, the old
-    // rule stands (a line on a silhouette keeps the band, in the lines' darker colour).
+    // rule stands (a line on a silhouette keeps the band, in the lines' darker colour). On a
+    // closed surface wound outwards (frame.light_dir.w) the rasteriser's own side of the
+    // triangle decides, exactly: a front face shows the outside, whose normal is kept; a back
+    // face the inside (an eye within the surface), whose normal is turned. There the
+    // derivatives' sign, on a face seen nearly edge-on, flipped in a speckled pattern and lit
+    // single pixels.
     vec3 dx = dFdx(v_position), dy = dFdy(v_position);
     vec3 g = cross(dx, dy);
     bool trusted = length(g) > 1.0e-3 * length(dx) * length(dy);
-    bool seen_side = trusted && (dot(n, g) > 0.0) == (dot(g, v) > 0.0);
+    bool seen_side = frame.light_dir.w > 0.5
+        ? gl_FrontFacing
+        : trusted && (dot(n, g) > 0.0) == (dot(g, v) > 0.0);
     if (dot(n, v) < 0.0 && !seen_side) {
         n = -n;
     }

@@ -271,7 +271,11 @@ pub struct FrameUniforms {
     pub view_proj: [[f32; 4]; 4],
     /// xyz: camera position.
     pub eye: [f32; 4],
-    /// xyz: direction towards the light.
+    /// xyz: direction towards the light; w: 1 where the surface drawn is closed and wound
+    /// outwards ([`Scene::closed`], [`DrawConfig::closed_surface`], undisplaced, as a
+    /// displacement may fold it): the fragment stage's two-sided lighting then turns a normal
+    /// facing away on back faces only (the inside, seen from an eye within the surface), as
+    /// the rasteriser says (glsl/shade/shade.frag).
     pub light_dir: [f32; 4],
     /// rgb: surface colour.
     pub base_color: [f32; 4],
@@ -310,10 +314,13 @@ impl FrameUniforms {
         let eye = camera.eye();
         let light = eye - camera.target + glam::Vec3::new(0.3, 0.8, 0.2) * camera.distance;
         let params = &cfg.params;
+        let one_sided = scene.closed && cfg.closed_surface() && cfg.displace == Displace::None;
         Self {
             view_proj: camera.view_proj(aspect).to_cols_array_2d(),
             eye: eye.extend(1.0).to_array(),
-            light_dir: light.normalize().extend(0.0).to_array(),
+            light_dir: (light.normalize())
+                .extend(f32::from(u8::from(one_sided)))
+                .to_array(),
             base_color: [0.80, 0.55, 0.35, 1.0],
             params: params.to_gpu(),
             origin: params.origin.extend(0.0).to_array(),
