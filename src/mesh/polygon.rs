@@ -83,7 +83,14 @@ fn convex(plane: &Plane) -> Vec<[usize; 3]> {
         return first;
     }
     if n > MAX_CLIPPED_CORNERS {
-        return clip_convex(plane).filter(|t| !flat(t)).unwrap_or(first);
+        // Where rounding leaves the zip without a move (a corner straight within rounding
+        // beside its short sides turns off a long diagonal), the fan from a turning corner
+        // that makes no flat triangle, a few tried (linear time still).
+        let turning = |c: &usize| turn(plane, (c + n - 1) % n, *c, (c + 1) % n) > 0;
+        return clip_convex(plane)
+            .filter(|t| !flat(t))
+            .or_else(|| (0..n).filter(turning).take(64).map(fan).find(|t| !flat(t)))
+            .unwrap_or(first);
     }
     (1..n)
         .map(fan)
@@ -381,11 +388,50 @@ mod tests {
                 })
             })
             .collect();
-        for (name, p) in [
-            ("square", &square),
-            ("triangle", &triangle),
-            ("large", &large),
-        ] {
+        // A square whose right side starts a hair above its bottom corner: that corner is
+        // straight within rounding beside its short side, and the zip finds no move (a fan
+        // from the top left corner has no flat triangle).
+        let mut hair: Vec<Vec3> = (0..=200)
+            .map(|i| Vec3::new(i as f32 * 5.0, 0.0, 0.0))
+            .collect();
+        hair.push(Vec3::new(1000.0, 0.01, 0.0));
+        hair.extend((1..=100).map(|i| Vec3::new(1000.0, i as f32 * 9.99, 0.0)));
+        hair.extend([Vec3::new(1000.0, 1000.0, 0.0), Vec3::new(0.0, 1000.0, 0.0)]);
+        let mut shapes = vec![
+            ("square".to_string(), square),
+            ("triangle".to_string(), triangle),
+            ("large".to_string(), large),
+            ("hair".to_string(), hair),
+        ];
+        // Random convex polygons: 3 to 14 corners on a circle, up to 40 more along each side.
+        let mut seed = 7u64;
+        let mut random = move |m: u64| {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 33) % m
+        };
+        for k in 0..40 {
+            let hull = 3 + random(12) as usize;
+            let mut angles: Vec<f32> = (0..hull).map(|_| random(100_000) as f32 / 1e5).collect();
+            angles.sort_by(f32::total_cmp);
+            angles.dedup();
+            let at = |a: f32| {
+                let a = a * std::f32::consts::TAU;
+                Vec3::new(a.cos(), a.sin(), 0.0) * 100.0
+            };
+            let mut p = Vec::new();
+            for i in 0..angles.len() {
+                let (a, b) = (at(angles[i]), at(angles[(i + 1) % angles.len()]));
+                let m = random(41) as usize;
+                p.extend((0..=m).map(|j| a.lerp(b, j as f32 / (m + 1) as f32)));
+            }
+            if p.len() > MAX_CLIPPED_CORNERS {
+                shapes.push((format!("random {k}"), p));
+            }
+        }
+        assert!(shapes.len() > 10, "{}", shapes.len());
+        for (name, p) in &shapes {
             assert!(p.len() > MAX_CLIPPED_CORNERS);
             let (t, covers) = triangulate(p);
             assert!(covers, "{name}");
