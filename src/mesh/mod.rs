@@ -258,6 +258,23 @@ impl Mesh {
             && self.piece_volumes().iter().all(|&v| v > 0.0)
     }
 
+    /// Whether every corner's normal lies on its face's wound side (a non-negative dot product
+    /// with the face's normal from its winding): computed normals always do; a file's may
+    /// point inwards. With [`Mesh::closed_outward`], the normals then point out of the surface
+    /// too, so the side of a triangle the eye sees says on which side of the normal it is
+    /// (the fragment stage's lighting: `render::FrameUniforms::light_dir`).
+    pub fn normals_follow_winding(&self) -> bool {
+        self.triangles.iter().all(|t| {
+            let [a, b, c] = t.p.map(|i| self.positions[i as usize]);
+            let face = (b - a).cross(c - a);
+            t.n.iter().all(|&i| {
+                self.normals
+                    .get(i as usize)
+                    .is_some_and(|n| n.dot(face) >= 0.0)
+            })
+        })
+    }
+
     /// The generalized winding number of the triangles about `p`: the signed solid angle they
     /// subtend at `p` over 4π (A. van Oosterom and J. Strackee's formula, in f64). For a closed
     /// mesh wound outwards: 0 outside, 1 inside (an integer up to rounding away from the
@@ -593,6 +610,19 @@ mod tests {
         let v = two.piece_volumes();
         assert!(v.len() == 2 && (v[0] - 8.0).abs() < 1e-9 && (v[1] + 1.0).abs() < 1e-9);
         assert!(cube.closed_outward() && !inside_out.closed_outward() && !two.closed_outward());
+    }
+
+    /// Computed normals follow the winding; a file's pointing inwards do not.
+    #[test]
+    fn normals_follow_the_winding_unless_a_file_turns_them_in() {
+        let tet = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n";
+        let faces = "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+        let (computed, _) = Mesh::from_obj_str("t.obj", &format!("{tet}{faces}")).unwrap();
+        assert!(computed.closed_outward() && computed.normals_follow_winding());
+        // One normal a corner, pointing into the tetrahedron.
+        let inward = "vn 1 1 1\nvn -1 -1 -1\nf 1//1 3//1 2//1\nf 1//1 2//1 4//1\nf 1//1 4//1 3//1\nf 2//2 3//2 4//2\n";
+        let (turned, _) = Mesh::from_obj_str("t.obj", &format!("{tet}{inward}")).unwrap();
+        assert!(turned.closed_outward() && !turned.normals_follow_winding());
     }
 
     /// The winding number is 1 inside a closed mesh wound outwards, 0 outside (however close),

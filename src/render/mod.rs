@@ -272,8 +272,9 @@ pub struct FrameUniforms {
     /// xyz: camera position.
     pub eye: [f32; 4],
     /// xyz: direction towards the light; w: 1 where the surface drawn is closed and wound
-    /// outwards ([`Scene::closed`], [`DrawConfig::closed_surface`], undisplaced, as a
-    /// displacement may fold it): the fragment stage's two-sided lighting then turns a normal
+    /// outwards, its normals pointing out ([`Scene::normals_outward`],
+    /// [`DrawConfig::closed_surface`], undisplaced, as a displacement may fold it): the
+    /// fragment stage's two-sided lighting then turns a normal
     /// facing away on back faces only (the inside, seen from an eye within the surface), as
     /// the rasteriser says (glsl/shade/shade.frag).
     pub light_dir: [f32; 4],
@@ -314,7 +315,8 @@ impl FrameUniforms {
         let eye = camera.eye();
         let light = eye - camera.target + glam::Vec3::new(0.3, 0.8, 0.2) * camera.distance;
         let params = &cfg.params;
-        let one_sided = scene.closed && cfg.closed_surface() && cfg.displace == Displace::None;
+        let one_sided =
+            scene.normals_outward && cfg.closed_surface() && cfg.displace == Displace::None;
         Self {
             view_proj: camera.view_proj(aspect).to_cols_array_2d(),
             eye: eye.extend(1.0).to_array(),

@@ -41,6 +41,10 @@ pub struct Scene {
     /// the eye culled ([`Scene::set_levels`]). An open surface shows its back side, and an
     /// inside-out one shows only faces that face away.
     pub closed: bool,
+    /// [`Scene::closed`], and every corner's normal on its face's wound side
+    /// ([`Mesh::normals_follow_winding`](crate::mesh::Mesh::normals_follow_winding)): the
+    /// normals point out of the surface, so lighting may tell the inside by the triangle's side.
+    pub normals_outward: bool,
     /// Whether the coarse mesh intersects itself ([`Mesh::self_intersects`](crate::mesh::Mesh::self_intersects)),
     /// found when first asked (`flat` drawn adaptively with culling), again after
     /// [`Scene::update_mesh`].
@@ -143,6 +147,7 @@ impl Scene {
     ) -> Result<Self, RenderError> {
         let data = MeshData::new(mesh, RecordKind::Corners, Seams::default());
         let closed = data.mesh.closed_outward();
+        let normals_outward = closed && data.mesh.normals_follow_winding();
         let heightmap = Heightmap::generated();
         let (tags, _) = crate::surface::stpn::derive(&data.mesh);
         let gpu = GpuMesh::new(
@@ -168,6 +173,7 @@ impl Scene {
             static_vbo: None,
             adaptive_frames: false,
             closed,
+            normals_outward,
             self_intersecting: std::cell::OnceCell::new(),
             front_spheres: None,
             cpu_levels_said: false,
