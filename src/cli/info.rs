@@ -295,10 +295,8 @@ fn print_levels(a: &InfoArgs, mut input: Input, loop_: Option<LoopData>) -> Resu
     let frame = Frame { centre, scale };
     let params = params.in_drawn_frame(centre, scale);
     let data = MeshData::new(input.mesh.for_viewing(), RecordKind::Corners, build.seams);
+    // (A surface and displacement that cannot go together were refused before printing.)
     let mesh = &data.mesh;
-    if let Some(why) = surface.incompatibility_on(displace, &data.mesh, data.uvs.is_some()) {
-        bail!("'{path}': {why}");
-    }
     let tags = input.tags.take().unwrap_or_else(|| stpn::derive(mesh).0);
     if surface.facts().tags {
         stpn::check(mesh, &tags).map_err(anyhow::Error::msg)?;

@@ -53,7 +53,7 @@ pub fn triangulate(corners: &[Vec3]) -> (Vec<[usize; 3]>, bool) {
         return (triangles, flat);
     };
     let flat = Plane { p, slack };
-    if (0..n).all(|i| turn(&flat, (i + n - 1) % n, i, (i + 1) % n) >= 0) {
+    if (0..n).all(|i| corner_turn(&flat, i) >= 0) {
         // Convex where it turns once round; a pentagram's fan overlaps.
         return (convex(&flat), turns_once(&flat));
     }
@@ -86,7 +86,7 @@ fn convex(plane: &Plane) -> Vec<[usize; 3]> {
         // Where rounding leaves the zip without a move (a corner straight within rounding
         // beside its short sides turns off a long diagonal), the fan from a turning corner
         // that makes no flat triangle, a few tried (linear time still).
-        let turning = |c: &usize| turn(plane, (c + n - 1) % n, *c, (c + 1) % n) > 0;
+        let turning = |&c: &usize| corner_turn(plane, c) > 0;
         return clip_convex(plane)
             .filter(|t| !flat(t))
             .or_else(|| (0..n).filter(turning).take(64).map(fan).find(|t| !flat(t)))
@@ -109,9 +109,7 @@ fn convex(plane: &Plane) -> Vec<[usize; 3]> {
 /// leaves slivers there, flat within rounding). `None` where no corner turns.
 fn clip_convex(plane: &Plane) -> Option<Vec<[usize; 3]>> {
     let n = plane.p.len();
-    let turns: Vec<bool> = (0..n)
-        .map(|i| turn(plane, (i + n - 1) % n, i, (i + 1) % n) > 0)
-        .collect();
+    let turns: Vec<bool> = (0..n).map(|i| corner_turn(plane, i) > 0).collect();
     // Turning corners before each index, and strictly between l and r counter-clockwise: the
     // rest of the polygon, l to r, has area exactly where one of its corners but those turns
     // (in a convex polygon a corner between two others on a line goes straight on).
@@ -163,7 +161,7 @@ fn clip_convex(plane: &Plane) -> Option<Vec<[usize; 3]>> {
 fn turns_once(plane: &Plane) -> bool {
     let (p, n) = (&plane.p, plane.p.len());
     let total: f64 = (0..n)
-        .filter(|&i| turn(plane, (i + n - 1) % n, i, (i + 1) % n) > 0)
+        .filter(|&i| corner_turn(plane, i) > 0)
         .map(|i| {
             let (u, v) = (p[i] - p[(i + n - 1) % n], p[(i + 1) % n] - p[i]);
             cross(u, v).atan2(u.dot(v))
@@ -241,6 +239,12 @@ fn in_plane(corners: &[Vec3]) -> Option<Vec<DVec2>> {
 
 fn cross(a: DVec2, b: DVec2) -> f64 {
     a.x * b.y - a.y * b.x
+}
+
+/// How corner `i` of the polygon turns between its neighbours ([`turn`]).
+fn corner_turn(plane: &Plane, i: usize) -> i32 {
+    let n = plane.p.len();
+    turn(plane, (i + n - 1) % n, i, (i + 1) % n)
 }
 
 /// Whether `p` lies inside triangle `a b c` (counter-clockwise) or on its sides.

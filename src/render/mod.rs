@@ -274,9 +274,9 @@ pub struct FrameUniforms {
     /// xyz: direction towards the light; w: 1 where the surface drawn is closed and wound
     /// outwards, its normals pointing out ([`Scene::normals_outward`],
     /// [`DrawConfig::closed_surface`], undisplaced, as a displacement may fold it): the
-    /// fragment stage's two-sided lighting then turns a normal
-    /// facing away on back faces only (the inside, seen from an eye within the surface), as
-    /// the rasteriser says (glsl/shade/shade.frag).
+    /// fragment stage's two-sided lighting then turns a normal facing away on back faces only
+    /// (the inside, seen from an eye within the surface), as the rasteriser says
+    /// (glsl/shade/shade.frag).
     pub light_dir: [f32; 4],
     /// rgb: surface colour.
     pub base_color: [f32; 4],
