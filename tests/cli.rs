@@ -386,21 +386,25 @@ fn info_reports_topology_and_footprint() {
     // Past one allocation, the static driver's line says render refuses it, in render's
     // sentence (its vertex buffer: 5856 elements x 131,841 vertices x 24 bytes at level 512).
     let spot = model_path("spot_tri.obj");
-    // A --device that names none is refused where the notes need it, as render refuses it.
-    let out = meshrefine(&[
-        "--device",
-        "no-such-gpu",
-        "info",
-        p(&spot),
-        "--level",
-        "512",
-    ]);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(1), "{stderr}");
-    assert!(
-        stderr.contains("no Vulkan device matches --device 'no-such-gpu'"),
-        "{stderr}"
-    );
+    // A --device that names none is refused, as render refuses it, before anything is
+    // printed: where the notes need the device and where nothing reads it.
+    for extra in [&["--level", "512"][..], &[]] {
+        let mut args = vec!["--device", "no-such-gpu", "info", p(&spot)];
+        args.extend(extra);
+        let out = meshrefine(&args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{stderr}");
+        assert!(
+            stderr.contains("no Vulkan device matches --device 'no-such-gpu'"),
+            "{stderr}"
+        );
+        assert!(out.stdout.is_empty(), "{args:?}");
+    }
+    // One that names a device, in any case or with spaces around it, is taken.
+    for name in ["LLVMPIPE", " llvm "] {
+        let s = ok(&["--device", name, "info", p(&spot), "--level", "65"]);
+        assert!(s.lines().any(|l| l.starts_with(note)), "{name}: {s}");
+    }
     let s = ok(&["info", p(&spot), "--level", "512"]);
     let bytes = 5856u64 * 131_841 * 24;
     let sentence = format!(
@@ -1441,14 +1445,37 @@ fn a_camera_too_far_is_refused_before_the_device() {
 /// the global options and `--help` are left under the plain "Options".
 #[test]
 fn help_groups_every_option_under_a_heading() {
+    // The headings docs/cli.md names ("Options"), each command's under its own name.
+    let named = [
+        "Output:",
+        "Surface and displacement:",
+        "Surface parameters:",
+        "Driver and level:",
+        "Window:",
+        "Measurement:",
+        "Camera:",
+        "Camera (with --pixel-error):",
+        "Adaptive drawing:",
+    ];
+    let mut seen = std::collections::BTreeSet::new();
     for command in ["render", "view", "export", "info", "bench", "devices"] {
         let out = meshrefine(&[command, "--help"]);
         assert!(out.status.success());
         let help = String::from_utf8_lossy(&out.stdout);
+        // `meshrefine help COMMAND` prints the same.
+        let help_command = meshrefine(&["help", command]);
+        assert!(help_command.status.success());
+        assert_eq!(help_command.stdout, out.stdout, "help {command}");
         let mut heading = "";
         for line in help.lines() {
             if !line.starts_with(' ') && line.ends_with(':') {
                 heading = line;
+                let plain = ["Usage:", "Arguments:", "Options:"].contains(&line);
+                assert!(
+                    plain || named.contains(&line),
+                    "{command}: heading {line} is not among docs/cli.md's"
+                );
+                seen.insert(line.to_string());
             } else if let Some(option) = (line.split_whitespace())
                 .find(|w| w.starts_with("--"))
                 .filter(|_| line.trim_start().starts_with('-'))
@@ -1460,6 +1487,9 @@ fn help_groups_every_option_under_a_heading() {
                 );
             }
         }
+    }
+    for heading in named {
+        assert!(seen.contains(heading), "no command's help has {heading}");
     }
 }
 
@@ -4801,12 +4831,20 @@ fn adaptive_exports_are_sized_by_the_levels_chosen() {
         .unwrap();
     assert!((5856..4 * 5856).contains(&triangles), "{out}");
     std::fs::remove_file(&obj).unwrap();
-    // Levels up to 64 on most elements: more than 2^24 triangles.
+    // Levels up to 64 on most elements: more than 2^24 triangles, the sentence docs/errors.md
+    // shows (after the file's name), word for word.
+    let guide =
+        std::fs::read_to_string(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("docs/errors.md"))
+            .unwrap();
+    let shown = (guide.lines())
+        .find_map(|l| l.strip_prefix("error: cannot export 'spot_tri.obj': --pixel-error 3e-4"))
+        .expect("docs/errors.md shows the refusal of --pixel-error 3e-4");
+    let sentence = format!("--pixel-error 3e-4{shown}");
     run(
         &["--pixel-error", "3e-4"],
         &[
             "cannot export '",
-            "--pixel-error 3e-4 chooses levels that would export",
+            &sentence,
             "at most 16777216 (2^24)",
             "use a larger --pixel-error, or --max-level 32 or a smaller power of two",
         ],

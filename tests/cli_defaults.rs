@@ -295,3 +295,41 @@ fn exported_corners_come_back_within_rounding_of_the_input() {
         );
     }
 }
+
+/// The outputs' long forms (`--output`, docs/cli.md), `export` refusing to run without one (a
+/// usage error naming it), and the headless `view` naming a single window option it ignores.
+#[test]
+fn outputs_long_forms_and_a_missing_export_output() {
+    let grid = model("grid_open_8x8.obj");
+    let out = meshrefine(&["export", &grid, "--level", "1"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("--output <FILE.obj>"), "{stderr}");
+    let obj = tmp("long-form.obj");
+    let _ = std::fs::remove_file(&obj);
+    ok(&["export", &grid, "--level", "1", "--output", &obj]);
+    assert_eq!(positions(&obj).len(), 81);
+    let png = tmp("long-form.png");
+    let _ = std::fs::remove_file(&png);
+    let size = ["--width", "64", "--height", "48", "--level", "1"];
+    ok(&[&["render", &grid, "--output", &png][..], &size[..]].concat());
+    assert!(std::path::Path::new(&png).exists());
+    let shown = tmp("one-window-option.png");
+    let out = meshrefine(
+        &[
+            &["view", &grid, "--headless-output", &shown, "--fullscreen"][..],
+            &size[..],
+        ]
+        .concat(),
+    );
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    let warnings: Vec<&str> = (stderr.lines())
+        .filter(|l| l.starts_with("warning:"))
+        .collect();
+    assert_eq!(
+        warnings,
+        ["warning: --fullscreen applies only to the window and is ignored: no display found (DISPLAY and WAYLAND_DISPLAY are unset)"],
+        "{stderr}"
+    );
+}

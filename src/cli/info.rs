@@ -18,6 +18,11 @@ use std::io::Write as _;
 
 /// Runs `meshrefine info` with `a`.
 pub fn run(a: &InfoArgs, desc: &ContextDesc) -> Result<()> {
+    // A --device that names no device is refused before anything is printed, as render
+    // refuses it, whether or not these options read a device's limits.
+    if desc.device_name.is_some() {
+        meshrefine::gpu::picked_device(desc)?;
+    }
     check_level_options(a, desc)?;
     a.drawn.params.build().map_err(anyhow::Error::msg)?;
     let (mesh, report, shown) = match &a.mesh {
