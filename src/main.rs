@@ -49,7 +49,7 @@ pub use meshrefine::paths::printable;
 /// [`printable`] line by line: the line ends of a text of several lines (a benchmark's table)
 /// kept, every other control character escaped.
 pub fn printable_lines(text: &str) -> std::borrow::Cow<'_, str> {
-    if !text.chars().any(|c| c.is_control() && c != '\n') {
+    if !(text.chars()).any(|c| (c.is_control() && c != '\n') || meshrefine::paths::unseen(c)) {
         return text.into();
     }
     text.split('\n')

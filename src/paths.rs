@@ -456,13 +456,16 @@ fn copy_into(from: &mut File, target: &Path) -> std::io::Result<()> {
 }
 
 /// `text` with its control characters escaped (`\u{1b}`, `\n`): a warning or error stays one
-/// line and writes nothing a terminal would act on, whatever a file or a path held.
+/// line and writes nothing a terminal would act on, whatever a file or a path held. So are the
+/// characters that show nothing or reorder what follows ([`unseen`]): a byte-order mark inside
+/// a file (two files joined) is quoted as `'\u{feff}f'`, not as an `'f'` said to be no statement.
 pub fn printable(text: &str) -> std::borrow::Cow<'_, str> {
-    if !text.chars().any(char::is_control) {
+    let hidden = |c: char| c.is_control() || unseen(c);
+    if !text.chars().any(hidden) {
         return text.into();
     }
     (text.chars())
-        .map(|c| match c.is_control() {
+        .map(|c| match hidden(c) {
             true => c.escape_default().to_string(),
             false => c.to_string(),
         })
@@ -470,9 +473,34 @@ pub fn printable(text: &str) -> std::borrow::Cow<'_, str> {
         .into()
 }
 
+/// The format characters a terminal shows nothing for, or that reorder the text after them:
+/// the soft hyphen, zero-width spaces and joiners, the direction marks, embeddings, overrides
+/// and isolates, the invisible operators, and the byte-order mark (zero-width no-break space).
+pub fn unseen(c: char) -> bool {
+    matches!(
+        c,
+        '\u{ad}'
+            | '\u{200b}'..='\u{200f}'
+            | '\u{202a}'..='\u{202e}'
+            | '\u{2060}'..='\u{2064}'
+            | '\u{2066}'..='\u{2069}'
+            | '\u{feff}'
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Control characters and the characters a terminal shows nothing for are escaped; other
+    /// text, accented or not, is kept.
+    #[test]
+    fn unseen_characters_are_escaped() {
+        assert_eq!(printable("caf\u{e9}.obj"), "caf\u{e9}.obj");
+        assert_eq!(printable("\u{feff}f"), "\\u{feff}f");
+        assert_eq!(printable("a\u{202e}b\u{200b}c"), "a\\u{202e}b\\u{200b}c");
+        assert_eq!(printable("x\ny\u{1b}"), "x\\ny\\u{1b}");
+    }
 
     /// Several outputs are put in place only once every one is written: where the last cannot
     /// be written (no folder for it), the others keep what an earlier run wrote, no temporary

@@ -1355,7 +1355,7 @@ fn bench_refuses_incompatible_displacements_up_front() {
         ),
         (
             &loop_heightmap,
-            "the loop surface has no texture coordinates: the heightmap displacement needs them",
+            "the loop surface has no texture coordinates: the heightmap displacement needs them (leave loop out of --surfaces, or heightmap out of --displacements)",
         ),
     ];
     for (command, needle) in cases {
@@ -1529,19 +1529,31 @@ fn meaningless_requests_are_refused() {
         &["render", p(&cube), "-o", ".png"],
         &["output file '.png' has no name before its .png"],
     );
-    // A window (a display named) reads --screenshot-dir: refused before it opens.
+    // Only a window reads --screenshot-dir (tests/window.rs: a window refuses one that is no
+    // folder before it opens): a display named but out of reach falls back to the headless
+    // render and ignores it with a warning, as no display named does.
+    let shown = tmp("unreachable-display.png");
+    std::fs::remove_file(&shown).ok();
     let out = bin()
-        .args(["view", "--screenshot-dir", "no/such/dir"])
+        .args([
+            "view",
+            "--screenshot-dir",
+            "no/such/dir",
+            "--headless-output",
+            p(&shown),
+        ])
+        .args(["--level", "1", "--width", "64", "--height", "48"])
         .env("DISPLAY", ":4242")
         .env_remove("WAYLAND_DISPLAY")
         .output()
         .unwrap();
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(out.status.success(), "{stderr}");
     assert_eq!(
         stderr.trim(),
-        "error: --screenshot-dir 'no/such/dir' is not a directory (the screenshot key writes meshrefine-<n>.png there)"
+        "warning: --screenshot-dir applies only to the window and is ignored: cannot connect to the display ':4242'"
     );
+    assert!(shown.exists());
     // Zero frames, or more than bench keeps times for (100000): clap refuses the value (usage
     // error, status 2); a negative number is a value
     // clap's range refuses as such, not an unexpected argument.
@@ -5801,4 +5813,14 @@ fn lines_that_are_no_obj_statement_are_warned_about() {
         b"mtllib none.mtl\no thing\ng side \\\n  top\ns 1\ncall other.obj\ncsh ls\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\nl 1 2\n",
     );
     assert!(!stderr.contains("no OBJ statement"), "{stderr}");
+    // A byte-order mark inside the file (two files joined, the second with one) is shown
+    // escaped, not as an invisible character before a word said to be no statement.
+    let stderr = info_stderr(
+        "joined.obj",
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n\u{feff}f 1 3 2\nf 1 2 4\n".as_bytes(),
+    );
+    assert!(
+        stderr.contains("(the first: line 5, '\\u{feff}f')") && !stderr.contains('\u{feff}'),
+        "{stderr}"
+    );
 }

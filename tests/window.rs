@@ -244,6 +244,28 @@ fn the_frame_budget_counts_loop_control_points() {
     assert!(drawn < 8, "{stderr}");
 }
 
+/// A window reads `--screenshot-dir`: one that is no folder is refused before the window
+/// opens, in one sentence (without a reachable display it is ignored with a warning instead:
+/// tests/cli.rs).
+#[test]
+fn a_window_refuses_a_screenshot_dir_that_is_no_folder() {
+    let _guard = common::gpu_lock();
+    let x = Xvfb::start();
+    let out = Command::new(env!("CARGO_BIN_EXE_meshrefine"))
+        .args(["view", "--screenshot-dir", "no/such/dir", "--frames", "1"])
+        .env("DISPLAY", &x.display)
+        .env_remove("WAYLAND_DISPLAY")
+        .env("MESHREFINE_VALIDATE", "1")
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert_eq!(
+        stderr.trim(),
+        "error: --screenshot-dir 'no/such/dir' is not a directory (the screenshot key writes meshrefine-<n>.png there)"
+    );
+}
+
 /// The panel is laid out and opaque in the very first frame (a `--frames 1 --screenshot` run
 /// saves it): egui gets the passes a new panel takes to size itself, and it does not fade in.
 /// On the light background the panel is dark: most of its corner of the image is (the lit mesh

@@ -80,16 +80,28 @@ fn per_image<T, E>(
     Ok(())
 }
 
-/// Run the demo until the window closes (or `frames` frames). Returns the context's message list
-/// so the caller can check validation and leaks after everything is dropped.
-pub fn run(desc: ContextDesc, mesh: Mesh, opts: ViewOptions) -> Result<Arc<Messages>> {
-    let event_loop = EventLoop::new().map_err(|e| {
+/// The window system, reached: what [`run`] opens the window on. Where it cannot be reached
+/// (no X server at `DISPLAY`, say) the caller may fall back to a headless render, before
+/// checking what only a window reads.
+pub fn connect() -> Result<EventLoop<()>, NoWindowSystem> {
+    EventLoop::new().map_err(|e| {
         log::debug!("winit: {e}");
         let display = std::env::var("WAYLAND_DISPLAY")
             .or_else(|_| std::env::var("DISPLAY"))
             .unwrap_or_default();
         NoWindowSystem(display)
-    })?;
+    })
+}
+
+/// Run the demo on `event_loop` ([`connect`]) until the window closes (or `frames` frames).
+/// Returns the context's message list so the caller can check validation and leaks after
+/// everything is dropped.
+pub fn run(
+    event_loop: EventLoop<()>,
+    desc: ContextDesc,
+    mesh: Mesh,
+    opts: ViewOptions,
+) -> Result<Arc<Messages>> {
     let mut app = App {
         desc,
         mesh: Some(mesh),

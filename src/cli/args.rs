@@ -5,7 +5,7 @@
 
 use super::choices::{self, Trimmed};
 pub use super::numbers::TypedF32;
-use super::numbers::{typed_f32, typed_vec3, whole_number, TypedVec3};
+use super::numbers::{typed_f32, typed_vec3, whole_in, whole_number, TypedVec3};
 use clap::{Args, Parser, Subcommand};
 use meshrefine::render::{Driver, Submit};
 use meshrefine::surface::loop_::Boundary;
@@ -83,7 +83,7 @@ pub struct ParamOpts {
     /// M1-face edge, the lattice whose points are exact limit points; each level up takes four
     /// times the memory.
     #[arg(long, allow_hyphen_values = true, default_value_t = meshrefine::surface::loop_::DEFAULT_LMAX,
-          value_parser = Trimmed(clap::value_parser!(u32)))]
+          value_parser = Trimmed(whole_in(0..=u32::MAX)))]
     pub bft_level: u32,
 }
 
@@ -155,7 +155,7 @@ pub struct ViewArgs {
     #[command(flatten)]
     pub technique: Technique,
     /// Exit after N frames (at least 1).
-    #[arg(long, allow_hyphen_values = true, value_parser = Trimmed(clap::value_parser!(u32).range(1..)), help_heading = "Window")]
+    #[arg(long, allow_hyphen_values = true, value_parser = Trimmed(whole_in(1..=u32::MAX)), help_heading = "Window")]
     pub frames: Option<u32>,
     /// Save the last frame to this PNG file.
     #[arg(long, value_name = "FILE.png", help_heading = "Window")]
@@ -461,7 +461,7 @@ pub struct BenchArgs {
     #[arg(long, value_name = "PREFIX", help_heading = "Measurement")]
     pub out: Option<PathBuf>,
     /// Timed frames per variant (after one warm-up frame; 1 to 100000).
-    #[arg(long, allow_hyphen_values = true, default_value_t = 5, value_parser = Trimmed(clap::value_parser!(u32).range(1..=100_000)), help_heading = "Measurement")]
+    #[arg(long, allow_hyphen_values = true, default_value_t = 5, value_parser = Trimmed(whole_in(1..=100_000)), help_heading = "Measurement")]
     pub frames: u32,
     /// Keep timing past --frames until every variant has this many GPU milliseconds in total
     /// (at most 20 x --frames frames): more samples for short frames, whose timestamps jitter.
@@ -506,13 +506,13 @@ pub const MAX_IMAGE_SIDE: u32 = 16384;
 
 /// `--width`, `--height`: 1 to [`MAX_IMAGE_SIDE`], in every command a usage error (status 2)
 /// outside.
-fn image_side() -> Trimmed<clap::builder::RangedI64ValueParser<u32>> {
-    Trimmed(clap::value_parser!(u32).range(1..=MAX_IMAGE_SIDE as i64))
+fn image_side() -> Trimmed<impl Fn(&str) -> Result<u32, String> + Clone + Send + Sync> {
+    Trimmed(whole_in(1..=MAX_IMAGE_SIDE))
 }
 
 /// `--level`, `--max-level`, an item of bench's `--levels`: 1 to 1024.
-fn level() -> Trimmed<clap::builder::RangedI64ValueParser<u32>> {
-    Trimmed(clap::value_parser!(u32).range(1..=1024))
+fn level() -> Trimmed<impl Fn(&str) -> Result<u32, String> + Clone + Send + Sync> {
+    Trimmed(whole_in(1..=1024))
 }
 
 /// `--msaa`: 1, 2, 4 or 8.
@@ -583,6 +583,39 @@ mod tests {
                 parse("16384").unwrap();
             }
         }
+    }
+
+    /// What is no whole number, given to an option that takes one, is called so (not the
+    /// integer parser's "invalid digit"); a whole number out of range names the range.
+    #[test]
+    fn integer_options_call_other_values_no_whole_number() {
+        let cases: [&[&str]; 8] = [
+            &["render", "--level", "2.5"],
+            &["render", "--width", "1e3"],
+            &["export", "-o", "x.obj", "--height", "7.0"],
+            &["info", "--max-level", "64 "],
+            &["bench", "--levels", "2 4"],
+            &["bench", "--levels", "2,4.5"],
+            &["bench", "--frames", "ten"],
+            &["render", "--bft-level", "x"],
+        ];
+        for args in cases {
+            let e = Cli::try_parse_from([&["meshrefine"][..], args].concat());
+            match (args[2].trim(), e) {
+                // Spaces around a number are left out.
+                ("64", Ok(_)) => {}
+                (_, Err(e)) => {
+                    assert_eq!(e.kind(), clap::error::ErrorKind::ValueValidation, "{e}");
+                    assert!(
+                        e.to_string().contains(": not a whole number"),
+                        "{args:?}: {e}"
+                    );
+                }
+                (_, Ok(_)) => panic!("{args:?} parsed"),
+            }
+        }
+        let e = Cli::try_parse_from(["meshrefine", "render", "--level", "2000"]).unwrap_err();
+        assert!(e.to_string().contains("2000 is not in 1..=1024"), "{e}");
     }
 
     /// bench's lists read items with spaces around them, as `--eye` does; a bad item is still

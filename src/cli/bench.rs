@@ -43,6 +43,18 @@ pub fn run(a: &BenchArgs, desc: &ContextDesc, levels_given: bool) -> Result<()> 
         .flat_map(|s| displacements.iter().map(move |d| (s, d)))
     {
         if let Some(why) = s.incompatibility_on(d, &input.mesh, texcoords) {
+            // Where the mesh could take the displacement with another surface, the remedy is
+            // the lists' (render's is another displacement).
+            let why = match texcoords && !s.facts().texture_coordinates {
+                true => format!(
+                    "the {} surface has no texture coordinates: the {} displacement needs them (leave {} out of --surfaces, or {} out of --displacements)",
+                    s.name(),
+                    d.name(),
+                    s.name(),
+                    d.name()
+                ),
+                false => why,
+            };
             bail!("cannot benchmark '{}': {why}", input.shown);
         }
     }

@@ -87,6 +87,23 @@ pub fn whole_number(s: &str) -> Result<String, String> {
     Ok(s.to_string())
 }
 
+/// A parser of a whole number in `range` (`--level`, `--width`, an item of `--levels`; read
+/// through [`super::choices::Trimmed`]): what is no whole number is called so, as
+/// [`whole_number`] words it (not the integer parser's "invalid digit found in string"), and one
+/// outside the range names it (`2000 is not in 1..=1024`, clap's words).
+pub fn whole_in(
+    range: std::ops::RangeInclusive<u32>,
+) -> impl Fn(&str) -> Result<u32, String> + Clone + Send + Sync + 'static {
+    move |s: &str| {
+        whole_number(s)?;
+        let (lo, hi) = (range.start(), range.end());
+        match s.parse::<i128>() {
+            Ok(v) if (*lo as i128..=*hi as i128).contains(&v) => Ok(v as u32),
+            _ => Err(format!("{s} is not in {lo}..={hi}")),
+        }
+    }
+}
+
 /// A point as typed and as parsed (`--eye`, `--look-at`): a message about it names what was
 /// typed.
 #[derive(Clone, Debug)]

@@ -41,8 +41,10 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc, given: &Given) -> Result<()> {
     } else {
         "unset"
     };
-    let why_headless = if has_display {
-        // Only the window reads it: without a display it is ignored with the others below.
+    let connected = has_display.then(meshrefine::app::connect);
+    let why_headless = if let Some(Ok(event_loop)) = connected {
+        // Only the window reads it: without a display, or one that cannot be reached, it is
+        // ignored with the others below.
         if let Some(dir) = &a.screenshot_dir {
             if !dir.is_dir() {
                 anyhow::bail!(
@@ -106,13 +108,12 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc, given: &Given) -> Result<()> {
                 }
             },
         };
-        match meshrefine::app::run(desc.clone(), mesh, opts) {
-            Ok(messages) => return check_messages(&messages),
-            Err(e) => match e.downcast::<meshrefine::app::NoWindowSystem>() {
-                Ok(no_window) => no_window.to_string(),
-                Err(e) => return Err(e.context(format!("cannot show '{}'", input.shown))),
-            },
-        }
+        return match meshrefine::app::run(event_loop, desc.clone(), mesh, opts) {
+            Ok(messages) => check_messages(&messages),
+            Err(e) => Err(e.context(format!("cannot show '{}'", input.shown))),
+        };
+    } else if let Some(Err(no_window)) = connected {
+        no_window.to_string()
     } else {
         format!("no display found (DISPLAY and WAYLAND_DISPLAY are {unset})")
     };
