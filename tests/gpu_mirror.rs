@@ -503,7 +503,7 @@ fn every_surface_and_displacement_on_pattern() {
 /// A normal field that vanishes (at the middle of an edge whose corners' normals point opposite
 /// ways) takes the same corner's normal on the GPU as in the mirror, and stays finite under
 /// every displacement and submission (the tessellator's evaluation is the same code: this
-/// mesh's tess exports are checked in tests/watertight.rs and tests/cli.rs).
+/// mesh's tess exports are checked in tests/watertight.rs and tests/cli.rs, `vanishing_normal_fields_export_unit_normals`).
 #[test]
 fn vanishing_normal_fields_match_the_mirror() {
     with_gpu(64, 64, |h| {

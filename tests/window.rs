@@ -246,7 +246,7 @@ fn the_frame_budget_counts_loop_control_points() {
 
 /// A window reads `--screenshot-dir`: one that is no folder is refused before the window
 /// opens, in one sentence (without a reachable display it is ignored with a warning instead:
-/// tests/cli.rs).
+/// tests/cli_options.rs).
 #[test]
 fn a_window_refuses_a_screenshot_dir_that_is_no_folder() {
     let _guard = common::gpu_lock();

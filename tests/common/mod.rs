@@ -3,6 +3,7 @@
 //! validation warning or error, leaked Vulkan object or leaked allocation fails the test.
 #![allow(dead_code)]
 
+pub mod cli;
 pub mod random_levels;
 pub mod watertight;
 
