@@ -47,7 +47,7 @@ pub fn note(line: std::fmt::Arguments) {
 pub use meshrefine::paths::printable;
 
 /// [`printable`] line by line: the line ends of a text of several lines (a benchmark's table)
-/// kept, every other control character escaped.
+/// kept, every other control character, and every character [`printable`] escapes, escaped.
 pub fn printable_lines(text: &str) -> std::borrow::Cow<'_, str> {
     if !(text.chars()).any(|c| (c.is_control() && c != '\n') || meshrefine::paths::unseen(c)) {
         return text.into();
@@ -112,5 +112,22 @@ fn main() -> ExitCode {
             note(format_args!("error: {e:#}"));
             ExitCode::FAILURE
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::printable_lines;
+
+    /// Line ends are kept; control characters and characters that show nothing are escaped,
+    /// also in a text that holds no control character but them.
+    #[test]
+    fn printed_lines_escape_what_a_terminal_would_hide() {
+        assert_eq!(printable_lines("a\nb"), "a\nb");
+        assert_eq!(
+            printable_lines("a\u{202e}b\nc\u{1b}"),
+            "a\\u{202e}b\nc\\u{1b}"
+        );
+        assert_eq!(printable_lines("\u{feff}x"), "\\u{feff}x");
     }
 }

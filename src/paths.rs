@@ -473,18 +473,24 @@ pub fn printable(text: &str) -> std::borrow::Cow<'_, str> {
         .into()
 }
 
-/// The format characters a terminal shows nothing for, or that reorder the text after them:
-/// the soft hyphen, zero-width spaces and joiners, the direction marks, embeddings, overrides
-/// and isolates, the invisible operators, and the byte-order mark (zero-width no-break space).
+/// The format characters a terminal shows nothing for, or that reorder or break the text after
+/// them: the soft hyphen, the Arabic letter mark, the Mongolian vowel separator, zero-width
+/// spaces and joiners, the line and paragraph separators, the direction marks, embeddings,
+/// overrides and isolates, the invisible operators, the byte-order mark (zero-width no-break
+/// space), the interlinear annotation characters and the tags.
 pub fn unseen(c: char) -> bool {
     matches!(
         c,
         '\u{ad}'
+            | '\u{61c}'
+            | '\u{180e}'
             | '\u{200b}'..='\u{200f}'
-            | '\u{202a}'..='\u{202e}'
+            | '\u{2028}'..='\u{202e}'
             | '\u{2060}'..='\u{2064}'
             | '\u{2066}'..='\u{2069}'
             | '\u{feff}'
+            | '\u{fff9}'..='\u{fffb}'
+            | '\u{e0000}'..='\u{e007f}'
     )
 }
 
@@ -500,6 +506,7 @@ mod tests {
         assert_eq!(printable("\u{feff}f"), "\\u{feff}f");
         assert_eq!(printable("a\u{202e}b\u{200b}c"), "a\\u{202e}b\\u{200b}c");
         assert_eq!(printable("x\ny\u{1b}"), "x\\ny\\u{1b}");
+        assert_eq!(printable("p\u{2028}q\u{e0041}"), "p\\u{2028}q\\u{e0041}");
     }
 
     /// Several outputs are put in place only once every one is written: where the last cannot

@@ -87,7 +87,7 @@ fn info_reports_topology_and_footprint() {
         let stderr = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(1), "{stderr}");
         assert!(
-            stderr.contains("no Vulkan device matches --device 'no-such-gpu'"),
+            stderr.contains("no Vulkan device matches --device 'no-such-gpu'; available: "),
             "{stderr}"
         );
         assert!(out.stdout.is_empty(), "{args:?}");

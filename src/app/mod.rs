@@ -86,8 +86,10 @@ fn per_image<T, E>(
 pub fn connect() -> Result<EventLoop<()>, NoWindowSystem> {
     EventLoop::new().map_err(|e| {
         log::debug!("winit: {e}");
-        let display = std::env::var("WAYLAND_DISPLAY")
-            .or_else(|_| std::env::var("DISPLAY"))
+        // An empty variable names no display (the command line treats it as unset).
+        let named = |v: &str| std::env::var(v).ok().filter(|d| !d.is_empty());
+        let display = named("WAYLAND_DISPLAY")
+            .or_else(|| named("DISPLAY"))
             .unwrap_or_default();
         NoWindowSystem(display)
     })

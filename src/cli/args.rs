@@ -616,6 +616,30 @@ mod tests {
         }
         let e = Cli::try_parse_from(["meshrefine", "render", "--level", "2000"]).unwrap_err();
         assert!(e.to_string().contains("2000 is not in 1..=1024"), "{e}");
+        // A sign and leading zeros are read; a negative number or one past every integer type
+        // names the range (a long one cut to 40 characters), a character that shows nothing is
+        // named escaped.
+        let level = |v: &str| match Cli::try_parse_from(["meshrefine", "render", "--level", v]) {
+            Ok(Cli {
+                command: Command::Render(r),
+                ..
+            }) => Ok(r.technique.level),
+            Ok(_) => panic!("not render"),
+            Err(e) => Err(e.to_string()),
+        };
+        assert_eq!(level("+3"), Ok(3));
+        assert_eq!(level("007"), Ok(7));
+        let refused = |v: &str, said: &str| {
+            let e = level(v).unwrap_err();
+            assert!(e.contains(said), "{v}: {e}");
+        };
+        refused("-3", ": -3 is not in 1..=1024");
+        let huge = "9".repeat(60);
+        refused(
+            &huge,
+            &format!(": {}… (60 characters) is not in 1..=1024", &huge[..40]),
+        );
+        refused("3\u{200b}", ": not a whole number ('3\\u{200b}')");
     }
 
     /// bench's lists read items with spaces around them, as `--eye` does; a bad item is still

@@ -44,16 +44,14 @@ pub fn run(a: &BenchArgs, desc: &ContextDesc, levels_given: bool) -> Result<()> 
     {
         if let Some(why) = s.incompatibility_on(d, &input.mesh, texcoords) {
             // Where the mesh could take the displacement with another surface, the remedy is
-            // the lists' (render's is another displacement).
-            let why = match texcoords && !s.facts().texture_coordinates {
-                true => format!(
-                    "the {} surface has no texture coordinates: the {} displacement needs them (leave {} out of --surfaces, or {} out of --displacements)",
-                    s.name(),
-                    d.name(),
+            // the lists' (render's, which the sentence ends with, is another displacement).
+            let why = match why.strip_suffix(" (use sine or noise)") {
+                Some(stem) if texcoords => format!(
+                    "{stem} (leave {} out of --surfaces, or {} out of --displacements)",
                     s.name(),
                     d.name()
                 ),
-                false => why,
+                _ => why,
             };
             bail!("cannot benchmark '{}': {why}", input.shown);
         }

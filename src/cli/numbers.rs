@@ -82,7 +82,13 @@ pub fn typed_f32(s: &str) -> Result<TypedF32, String> {
 pub fn whole_number(s: &str) -> Result<String, String> {
     let digits = s.strip_prefix(['-', '+']).unwrap_or(s);
     if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
-        return Err("not a whole number".into());
+        // The value as the parser quotes it is as typed: where a character there shows nothing,
+        // say it escaped.
+        let shown = meshrefine::paths::printable(s);
+        return Err(match shown != s {
+            true => format!("not a whole number ('{shown}')"),
+            false => "not a whole number".into(),
+        });
     }
     Ok(s.to_string())
 }
@@ -99,7 +105,10 @@ pub fn whole_in(
         let (lo, hi) = (range.start(), range.end());
         match s.parse::<i128>() {
             Ok(v) if (*lo as i128..=*hi as i128).contains(&v) => Ok(v as u32),
-            _ => Err(format!("{s} is not in {lo}..={hi}")),
+            _ => Err(format!(
+                "{} is not in {lo}..={hi}",
+                meshrefine::mesh::shown_word(s)
+            )),
         }
     }
 }

@@ -134,8 +134,6 @@ pub fn summary_table(s: &str) -> (Vec<String>, Vec<Vec<String>>) {
     (header, rows)
 }
 
-// ---- Issue 7: what a hostile user found -------------------------------------------------------
-
 /// Runs meshrefine with the given stdout and stderr.
 pub fn meshrefine_with(args: &[&str], stdout: Stdio, stderr: Stdio) -> std::process::ExitStatus {
     let _guard = super::gpu_lock();
