@@ -283,6 +283,9 @@ impl Scene {
     /// by the next `prepare`. Only between frames.
     pub fn update_mesh(&mut self, mesh: Mesh, surface: Surface) {
         self.data = MeshData::new(mesh, self.data.kind, self.data.seams);
+        // Moved corners may leave a file's normals on the other side of their faces (the
+        // topology, and so `closed`, stays).
+        self.normals_outward = self.closed && self.data.mesh.normals_follow_winding();
         self.self_intersecting = std::cell::OnceCell::new();
         self.generation += 1;
         if let Some(l) = &mut self.loop_ {
