@@ -160,8 +160,9 @@ float edge_need_level(vec2 need, float t, float tol, float floor_level) {
         return general;
     }
     float q = need.y * LOD_POLYNOMIAL_SHARE;
-    // (1 + lambda)^3: `need_extent_cubed`.
-    t *= (view.flags & (DYADIC | LATTICE)) == 0u ? 8.0 : 3.375;
+    // `need_extent_cubed`: 1 where the lattice's boundary is snapped, (1 + lambda)^3 else.
+    uint kind = view.flags & (DYADIC | LATTICE);
+    t *= (kind & LATTICE) != 0u ? 1.0 : (kind == 0u ? 8.0 : 3.375);
     float n0 = level_at(vec2(0.0, q), tol);
     return max(floor_level, min(general, level_at(vec2(0.0, q + glide_factor() * t / n0), tol)));
 }
@@ -220,30 +221,31 @@ float quadratic_level(float p, float q, float c, float tol, float mx) {
     return clamp((1.0 + 1.0 / 65536.0) / beta, 1.0, mx);
 }
 
-// Mirror: `cubic_level`.
-float cubic_bound(float p, float q, float c, float t, float a, float b) {
-    float s = a + b;
-    return (p * b + q) * b + c + t * s * s * s;
+// Mirror: `cubic_level`: the cubic term t (e0 + e1 b)^3, ext = (e0, e1).
+float cubic_bound(vec3 pqc, float t, vec2 ext, float b) {
+    float s = ext.x + ext.y * b;
+    return (pqc.x * b + pqc.y) * b + pqc.z + t * s * s * s;
 }
 
-float cubic_level(float p, float q, float c, float t, float a, float tol, float mx) {
-    if (cubic_bound(p, q, c, t, a, 0.0) >= tol) {
+float cubic_level(vec3 pqc, float t, vec2 ext, float a, float tol, float mx) {
+    if (cubic_bound(pqc, t, ext, 0.0) >= tol) {
         return mx;
     }
-    if (cubic_bound(p, q, c, t, a, a) <= tol) {
+    if (cubic_bound(pqc, t, ext, a) <= tol) {
         return clamp(1.0 / a, 1.0, mx);
     }
-    float b = min(1.0 / quadratic_level(p, q, c, tol, mx), a);
+    float b = min(1.0 / quadratic_level(pqc.x, pqc.y, pqc.z, tol, mx), a);
     for (int it = 0; it < 4; ++it) {
-        float s = a + b;
-        float slope = 2.0 * p * b + q + 3.0 * t * s * s;
+        float s = ext.x + ext.y * b;
+        float slope = 2.0 * pqc.x * b + pqc.y + 3.0 * t * ext.y * s * s;
         if (slope <= 0.0) {
             break;
         }
-        b -= (cubic_bound(p, q, c, t, a, b) - tol) / slope;
+        b -= (cubic_bound(pqc, t, ext, b) - tol) / slope;
     }
-    float ts = t * (a + clamp(b, 0.0, a));
-    return quadratic_level(p + ts, q + 2.0 * ts * a, c + ts * a * a, tol, mx);
+    float ts = t * (ext.x + ext.y * clamp(b, 0.0, a));
+    return quadratic_level(pqc.x + ts * ext.y * ext.y, pqc.y + 2.0 * ts * ext.x * ext.y,
+                           pqc.z + ts * ext.x * ext.x, tol, mx);
 }
 
 // Mirror: `tess_side_coefficients`.
@@ -253,12 +255,15 @@ vec3 tess_side_coefficients(float me, float t, float mb) {
 
 // Mirror: `Strip` (src/lod/frame/transitions.rs): step 2's bound of the transition triangles
 // along stored edge e drawn at a = 1/n_e beside an inside at beta, as quadratics (p, q, c) in
-// beta: the sides' and the bases' (`has_bases` false where the sides hold them), and a
-// polynomial patch's cubic term t3 (`polynomial`).
+// beta, each with its triangles' sides' extent e0 + e1 beta (`ext`): the sides' and the bases'
+// (none where the sides hold them), at a + beta, or where the lattice's boundary is snapped at
+// a/2 + beta and at a; and a polynomial patch's cubic term t3 (`polynomial`).
 struct Strip {
-    vec3 sides, bases;
+    vec3 quads[4];
+    vec2 exts[4];
+    int count;
     float a, t3;
-    bool has_bases, polynomial;
+    bool polynomial;
 };
 
 Strip strip_new(Element r, int e, float a) {
@@ -267,21 +272,34 @@ Strip strip_new(Element r, int e, float a) {
     float t = twist(r.mixed.xyz, e);
     float mb = max(m[(e + 1) % 3], m[(e + 2) % 3]);
     uint kind = view.flags & (DYADIC | LATTICE);
-    Strip st;
+    vec3 sides;
+    float reach = a;
     if (kind == DYADIC) {
         // The tessellator's first ring beside a snapped outer ring.
         vec3 s = tess_side_coefficients(m[e], t, mb);
-        st.sides = vec3(LOD_ELEMENT_FACTOR * s.z + k2, LOD_ELEMENT_FACTOR * s.y * a + k1 + 2.0 * k2 * a,
-                        (LOD_ELEMENT_FACTOR * s.x * a + k1 + k2 * a) * a);
+        sides = vec3(s.z, s.y * a, s.x * a * a);
     } else {
         float h = kind == 0u ? 1.0 : 0.5;
-        st.sides = vec3(LOD_ELEMENT_FACTOR * mb + k2, LOD_ELEMENT_FACTOR * h * a * t + k1 + 2.0 * k2 * a,
-                        (LOD_ELEMENT_FACTOR * h * h * a * m[e] + k1 + k2 * a) * a);
+        sides = vec3(mb, h * a * t, h * h * a * a * m[e]);
+        if ((kind & LATTICE) != 0u) {
+            reach = 0.5 * a;
+        }
     }
-    st.has_bases = kind != 0u;
-    st.bases = st.has_bases
-        ? vec3(k2, k1 + 2.0 * k2 * a, (LOD_ELEMENT_FACTOR * a * m[e] + k1 + k2 * a) * a)
-        : vec3(0.0);
+    bool has_bases = kind != 0u;
+    Strip st;
+    st.count = 0;
+    for (int x = 0; x < (reach < a ? 2 : 1); ++x) {
+        vec2 ext = x == 0 ? vec2(reach, 1.0) : vec2(a, 0.0);
+        // The kink terms at extent e0 + e1 beta.
+        vec3 kink = vec3(k2 * ext.y * ext.y, (k1 + 2.0 * k2 * ext.x) * ext.y,
+                         (k1 + k2 * ext.x) * ext.x);
+        for (int y = 0; y < (has_bases ? 2 : 1); ++y) {
+            vec3 quad = y == 0 ? sides : vec3(0.0, 0.0, a * a * m[e]);
+            st.quads[st.count] = LOD_ELEMENT_FACTOR * quad + kink;
+            st.exts[st.count] = ext;
+            st.count += 1;
+        }
+    }
     st.a = a;
     st.t3 = r.second.w;
     st.polynomial = st.t3 < LOD_HUGE && k1 == 0.0 && k2 == 0.0;
@@ -290,12 +308,12 @@ Strip strip_new(Element r, int e, float a) {
 
 // A quadratic's level, and where it needs more than `enough` the polynomial bound's (in
 // `Strip::level`).
-float strip_solve(Strip st, vec3 pqc, float tol, float enough) {
+float strip_solve(Strip st, int i, float tol, float enough) {
     float mx = float(view.max_level);
+    vec3 pqc = st.quads[i];
     float general = quadratic_level(pqc.x, pqc.y, pqc.z, tol, mx);
     if (st.polynomial && general > enough) {
-        vec3 s = LOD_POLYNOMIAL_SHARE * pqc;
-        return min(general, cubic_level(s.x, s.y, s.z, st.t3, st.a, tol, mx));
+        return min(general, cubic_level(LOD_POLYNOMIAL_SHARE * pqc, st.t3, st.exts[i], st.a, tol, mx));
     }
     return general;
 }
@@ -303,22 +321,25 @@ float strip_solve(Strip st, vec3 pqc, float tol, float enough) {
 // Mirror: `Strip::level`. `enough`: the level the caller compares with (the polynomial bound is
 // solved only above it).
 float strip_level(Strip st, float tol, float enough) {
-    float sides = strip_solve(st, st.sides, tol, enough);
-    return st.has_bases ? max(sides, strip_solve(st, st.bases, tol, enough)) : sides;
+    float level = 1.0;
+    for (int i = 0; i < st.count; ++i) {
+        level = max(level, strip_solve(st, i, tol, enough));
+    }
+    return level;
 }
 
 // Mirror: `Strip::fits`: the bounds at beta = (1 + 2^-16)/n, no square root or Newton's steps.
-bool strip_meets(Strip st, vec3 pqc, float b, float cubed, float tol) {
-    float quad = (pqc.x * b + pqc.y) * b + pqc.z;
-    return quad < tol || (st.polynomial && LOD_POLYNOMIAL_SHARE * quad + st.t3 * cubed < tol);
-}
-
 bool strip_fits(Strip st, float n, float tol) {
     float b = (1.0 + 1.0 / 65536.0) / n;
-    float s = st.a + b;
-    float cubed = s * s * s;
-    return strip_meets(st, st.sides, b, cubed, tol)
-        && (!st.has_bases || strip_meets(st, st.bases, b, cubed, tol));
+    for (int i = 0; i < st.count; ++i) {
+        vec3 pqc = st.quads[i];
+        float quad = (pqc.x * b + pqc.y) * b + pqc.z;
+        float s = st.exts[i].x + st.exts[i].y * b;
+        if (!(quad < tol || (st.polynomial && LOD_POLYNOMIAL_SHARE * quad + st.t3 * s * s * s < tol))) {
+            return false;
+        }
+    }
+    return true;
 }
 
 // Mirror: `outside` (`lod_outside`).

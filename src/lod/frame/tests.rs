@@ -593,3 +593,91 @@ fn polynomial_levels_meet_their_bound() {
         "{lower} of {checked} lower"
     );
 }
+
+/// A side's extent in lattice coordinates, `min Σ |c_k|` over `δ = Σ c_k d_k` (the three
+/// directions summing to zero): with `δ` in weights, `c = (−δ0, δ2, 0) + t (1, 1, 1)`, so the
+/// sum's minimum is the spread of those three numbers.
+fn lattice_extent(x: [f32; 3], y: [f32; 3]) -> f32 {
+    let c = [y[0] - x[0], x[2] - y[2], 0.0];
+    let (lo, hi) = c
+        .iter()
+        .fold((0.0f32, 0.0f32), |(lo, hi), &v| (lo.min(v), hi.max(v)));
+    hi - lo
+}
+
+/// The extents the transition triangles' kink and cubic terms are taken at
+/// (src/lod/frame/transitions.rs, "Extents") hold for what the pattern driver draws: at
+/// integer levels and at powers of two, every triangle with a vertex on a coarser edge `e` has
+/// sides spanning at most `max(a_e, a_e/2 + β)` in lattice coordinates (the largest over the
+/// coarser edges it touches: a corner triangle spans both edges' samples), every other one a
+/// lattice side `β`; and the bound is reached.
+#[test]
+fn snapped_transition_sides_span_what_their_extent_allows() {
+    use crate::pattern::adaptive::adaptive_element;
+    use std::collections::HashMap;
+    let f = 16u32;
+    let (mut checked, mut reached) = (0u64, 0u64);
+    for dyadic in [false, true] {
+        let levels: Vec<u32> = if dyadic {
+            vec![1, 2, 4, 8, 16]
+        } else {
+            (1..=12).collect()
+        };
+        for &n in &levels {
+            let below: Vec<u32> = levels.iter().copied().filter(|&m| m <= n).collect();
+            for &e0 in &below {
+                for &e1 in &below {
+                    for &e2 in &below {
+                        let edges = [e0, e1, e2];
+                        let l = ElementLevels {
+                            edges: edges.map(|e| e as f32),
+                            inner: n as f32,
+                        };
+                        let el = adaptive_element(&l, f, dyadic).unwrap();
+                        assert_eq!(el.levels.inner, n);
+                        let at: HashMap<u32, [f32; 3]> = el
+                            .vertices
+                            .iter()
+                            .copied()
+                            .zip(el.bary.iter().copied())
+                            .collect();
+                        let beta = 1.0 / n as f32;
+                        for t in &el.triangles {
+                            let w = t.map(|k| at[&k]);
+                            if w[0] == w[1] || w[1] == w[2] || w[0] == w[2] {
+                                continue;
+                            }
+                            let extent = [(0, 1), (1, 2), (2, 0)]
+                                .map(|(x, y)| lattice_extent(w[x], w[y]))
+                                .into_iter()
+                                .fold(0.0, f32::max);
+                            // Stored edge k has weight k + 2 (mod 3) zero.
+                            let allowed = (0..3)
+                                .filter(|&k| {
+                                    edges[k] < n && w.iter().any(|x| x[(k + 2) % 3] == 0.0)
+                                })
+                                .map(|k| {
+                                    let a = 1.0 / edges[k] as f32;
+                                    a.max(0.5 * a + beta)
+                                })
+                                .fold(beta, f32::max);
+                            assert!(
+                                extent <= allowed * (1.0 + 1e-5),
+                                "inner {n}, edges {edges:?} ({}): {w:?} spans {extent} > {allowed}",
+                                if dyadic { "dyadic" } else { "integer" }
+                            );
+                            checked += 1;
+                            if extent >= 0.999 * allowed && allowed > beta {
+                                reached += 1;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+    assert!(
+        checked > 100_000 && reached > 1000,
+        "{checked} triangles, {reached} at the bound"
+    );
+}

@@ -41,8 +41,8 @@
 //!   `(d_e, d_{e+1})` when `|α| <= h a_e` (cross term `2|α|β B_e`) and on `(d_e, d_{e+2})`
 //!   otherwise (`(α − β) d_e − β d_{e+2}`, `|α − β| <= h a_e`, cross term
 //!   `2|α − β|β B_{e+2}`): with the twist `T_e = 2 max(B_e, B_{e+2})`,
-//!   `|Q| <= S_e = h² a_e² M_e + h a_e β T_e + β² max(M_{e+1}, M_{e+2})`, texel extent
-//!   `<= a_e + β`;
+//!   `|Q| <= S_e = h² a_e² M_e + h a_e β T_e + β² max(M_{e+1}, M_{e+2})`, extent
+//!   `<= h a_e + β` ("Extents", below);
 //! - at a corner between edges `e` and `f`, where a vertex beside the corner moves away from
 //!   it, to at most `a_e` (not [`Rounding::Snapped`]: there the only triangles with vertices
 //!   on two edges are the corner's two lattice triangles, whose vertices beside the corner
@@ -72,17 +72,40 @@
 //! (on a nearly spherical patch of an equilateral element, `|Q(d_e, d_{e+1})|` is about a third
 //! of `Σ/2`).
 //!
+//! # Extents
+//! The kink terms (the height map's texel lines, src/lod/mod.rs) and a polynomial patch's cubic
+//! term (below) grow with how far a triangle's sides reach: a side `δ` counts at its extent in
+//! lattice coordinates, `|δ| = min Σ |c_k|` over the ways of writing `δ = Σ c_k d_k` (the texel
+//! lines a side crosses, and `|D³P[δ, δ, δ]| <= C̄ |δ|³`, both from the triangle inequality,
+//! hold for every such sum; as `d_0 + d_1 + d_2 = 0` there are many). A lattice side has extent
+//! `β`, a base `a_e`. A side `α d_e + β d_{e+1}` written so has `|α| + β`, and written as
+//! `(α − β) d_e − β d_{e+2}` has `|α − β| + β`: over `−h a_e <= α <= h a_e + β` the smaller is
+//! at most `h a_e + β` (`α <= 0` the first, `α >= β` the second) or `3β/2` (`0 <= α <= β`). A
+//! corner triangle's sides `y d_e + z d_f = −m d_g + r d_j` have `m + r <= max(a_e, a_f)`. So
+//! the triangles along a coarser edge `e` reach at most `max(a_e, h a_e + β, 3β/2)`: where the
+//! lattice's boundary is snapped (`h = 1/2`, [`Rounding::Snapped`] and
+//! [`Rounding::SnappedInteger`]) `max(a_e, a_e/2 + β)` for every `β <= a_e`, which is `a_e` at
+//! `β <= a_e/2`; else (`h = 1`) `a_e + β`. Beside the tessellator's first ring the sides are
+//! not the lattice's, and they take `a_e + β` (above). The corner triangles reach the coarser
+//! of their two edges' `a`, which that edge's need covers. The test
+//! `snapped_transition_sides_span_what_their_extent_allows` (src/lod/frame/tests.rs) measures
+//! the sides of every triangle the pattern driver draws at integer levels up to 12 and powers
+//! of two up to 16, every combination of coarser edges, against these extents, and finds them
+//! reached.
+//!
 //! Every drawn triangle's error is then at most `9/40` of its sides' largest `|Q|` plus the kink
 //! terms at its sides' extent (the lattice triangle's proof, src/lod/mod.rs, holds for any
 //! triangle). Two steps make every one of them meet the element's tolerance `τ`:
 //! 1. The edge's level includes, for each of its elements, the level at which the chord
-//!    `((1 + λ) k_1, 9/40 · max(M_c, M_e + λ T_e + λ² max(M_{e+1}, M_{e+2})) + (1 + λ)² k_2)`
+//!    `(x k_1, 9/40 · max(M_c, M_e + λ T_e + λ² max(M_{e+1}, M_{e+2})) + x² k_2)`, with `x a_e`
+//!    the extent at `β = λ a_e` ([`need_extent`]: `1 + λ`, and `1` where the lattice's
+//!    boundary is snapped)
 //!    (`k` the kink terms; snapped: `max(M_e, M_e/4 + λ/2 T_e + λ² max(M_{e+1}, M_{e+2}))`,
 //!    no corners; snapped integer: `max(M_c, M_e/4 + λ/2 T_e + λ² max(M_{e+1}, M_{e+2}))`, as
 //!    `M_c >= M_e` covers the bases; beside the tessellator's first ring, `max(M_e, S_e/a_e²)`
 //!    with the sides above at `β = λ a_e`, no corners) meets that element's tolerance
 //!    ([`strip_need`]). So the
-//!    bases and the corners fit in `τ` whatever `n`, and the kink terms at `a_e + β` and `S_e`
+//!    bases and the corners fit in `τ` whatever `n`, and the kink terms at their extent and `S_e`
 //!    whenever `β <= λ a_e` (beyond, step 2's quadratics hold both). The dyadic drivers take
 //!    `λ = 1/2` (a coarser edge is at most half the inner level, so it rarely needs step 2),
 //!    the tessellator's integer levels
@@ -94,9 +117,11 @@
 //!    edge's need and raising the inner level to twice a coarser edge's where they do not fit
 //!    drew about a seventh more).
 //! 2. The element checks, on the drawn levels ([`LodView::rounding`] says how the driver
-//!    rounds and snaps), that `9/40 max(a_e² M_e, S_e) + k_1 (a_e + β) + k_2 (a_e + β)² <= τ`
-//!    for every edge drawn coarser than its inside, and raises its inner level where not
-//!    (`S_e` and the kink terms are quadratics in `β`, solved for it: `strip_level`); raising
+//!    rounds and snaps), that `9/40 max(a_e² M_e, S_e) + k_1 E + k_2 E² <= τ`, `E` the extent
+//!    (`a_e + β`, or where the lattice's boundary is snapped the larger of `a_e/2 + β` and
+//!    `a_e`), for every edge drawn coarser than its inside, and raises its inner level where
+//!    not (`S_e` and the kink terms are quadratics in `β`, one for each form of `E`, solved for
+//!    it: `strip_level`); raising
 //!    it can make another edge coarser than it, so this repeats (at most three times). After
 //!    step 1 this is a safety net (rounding at the thresholds); by itself, with step 1's share
 //!    dropped, it would still keep the guarantee wherever the bases and corners fit (the tests
@@ -105,11 +130,11 @@
 //! Snapping to the nearest sample, a tie toward the nearer corner, is what makes the snapped
 //! drivers' transitions cheap: their edges need about the level their elements' insides need
 //! along them (`M_e`), where a floor's corners need it across the whole element (`M_c`) and its
-//! sides twice the move. On Spot as `pn` close up at 1 px (the test
-//! `pixel_error_holds_end_to_end`) the transitions then cost about two fifths more triangles
-//! than levels that ignore them on the pattern driver, two thirds more beside the tessellator's
-//! first ring (whose vertices sit between the lattice's), and 3.7 times as many with the
-//! tessellator's own transitions at integer levels.
+//! sides twice the move; and it keeps their sides short ("Extents"). On Spot as `pn` close up
+//! at 1 px (the test `pixel_error_holds_end_to_end`) the transitions then cost about a sixth
+//! more triangles than levels that ignore them on the pattern driver, two thirds more beside
+//! the tessellator's first ring (whose vertices sit between the lattice's), and 3.7 times as
+//! many with the tessellator's own transitions at integer levels.
 //!
 //! At integer levels, an edge finer than half the inside (`a_e/2 < β < a_e`) is where step 2
 //! raises inner levels: the sides' move, up to `a_e/2`, is then as long as a lattice side. No
@@ -125,12 +150,14 @@
 //!
 //! On Spot close up as `pn` at integer levels (the benchmark's camera, 0.5 to 4 px), levels
 //! that ignore the transitions draw 0.19-0.21x the triangles of the uniform level meeting the
-//! bound, step 1 alone 0.27-0.32x, both steps 0.39-0.41x: step 2's raises, at edges finer than
-//! half the inside, are most of the cost. Lifting an edge to the inner level of one of its
-//! elements where that is at most a fifth above it (a second pass, reading the neighbour's
-//! level) leaves fewer raises but more elements finer: 0.35-0.41x, repeated 0.35-0.41x too.
-//! Taking `λ = 1` draws more (0.44-0.47x), and so would step 1 without the corners (0.54-0.58x,
-//! though nothing would then bound them): its edges are coarser, so step 2 raises more.
+//! bound, step 1 alone 0.25-0.27x, both steps 0.34-0.36x: step 2's raises, at edges finer than
+//! half the inside, are most of the cost. Taking `λ` at 5/8, 3/4 or 1 for them draws more
+//! (0.36-0.38x, 0.37-0.41x, 0.44-0.47x), and `λ` below 1/2 the same (the corners' `M_c`, not the
+//! sides, sets those edges). Step 1 without the corners would draw more still (nothing would
+//! then bound them, and its edges being coarser, step 2 raises more). Lifting an edge to the
+//! inner level of one of its elements where that is at most a fifth above it (a second pass,
+//! reading the neighbour's level) leaves fewer raises but more elements finer: with the
+//! transitions' extents at `a_e + β` it drew 0.35-0.41x where both steps drew 0.39-0.41x.
 //!
 //! # Polynomial patches
 //! Where the element is a polynomial of degree at most 3 (its cubic term `T` finite,
@@ -138,11 +165,11 @@
 //! coordinates is within `(1/6) · max |Q(side)| + T H³`: the identity of src/lod/mod.rs, "A
 //! polynomial patch", holds for any triangle, and there `w_i = Σ_{j≠i} λ_j e_ij` has lattice
 //! coordinates summing to at most `(1 − λ_i) H`. So every bound above holds with `9/40`
-//! replaced by `1/6` ([`POLYNOMIAL_SHARE`] of it) plus `T H³`, the sides' extent `H <= a_e + β`
-//! as for the kink terms (which such a patch has none of). Step 1's share, at `β <= λ a_e`,
-//! adds `T (1 + λ)³ a_e³` ([`need_extent_cubed`]), turned into a level as the element's own
-//! cubic term is (`T (1 + λ)³ / N0` beside the quadratic term, twice that where the driver
-//! glides: `super::edge_need_level`); step 2 adds `T (a_e + β)³`, solved to within
+//! replaced by `1/6` ([`POLYNOMIAL_SHARE`] of it) plus `T H³`, `H` the sides' extent as for the
+//! kink terms (which such a patch has none of; "Extents"). Step 1's share, at `β <= λ a_e`,
+//! adds `T x³ a_e³` ([`need_extent_cubed`]), turned into a level as the element's own
+//! cubic term is (`T x³ / N0` beside the quadratic term, twice that where the driver
+//! glides: `super::edge_need_level`); step 2 adds `T E³`, solved to within
 //! rounding by Newton's steps (`cubic_level`), as step 1's share, met at `β = λ a_e`, has it
 //! met there: a conservative estimate would raise inner levels that need no raise, and
 //! gliding levels would jump. Each level is the smaller of the general bound's and this
@@ -196,10 +223,23 @@ pub fn strip_need(b: &Bounds, e: usize, rounding: Rounding) -> Chord {
         // Corner triangles (`M_c >= M_e` covers the bases).
         Rounding::SnappedInteger | Rounding::Integer => mc.max(sides),
     };
-    let h = 1.0 + lambda;
+    // The sides' extent at β = λ a, over a (the kink terms').
+    let x = need_extent(rounding);
     Chord {
-        c1: h * b.kink.c1,
-        c2: ELEMENT_FACTOR * q + h * h * b.kink.c2,
+        c1: x * b.kink.c1,
+        c2: ELEMENT_FACTOR * q + x * x * b.kink.c2,
+    }
+}
+
+/// The largest extent of the transition triangles' sides, in lattice coordinates, over `a_e`,
+/// at the `β <= λ a_e` that [`strip_need`] allows for (module notes, "Extents"): `1` where the
+/// lattice's boundary is snapped (`max(a_e, a_e/2 + β)` at `λ = 1/2`), `1 + λ` else (`a_e + β`:
+/// `2` for the tessellator's integer levels, `3/2` beside its first ring).
+pub fn need_extent(rounding: Rounding) -> f32 {
+    match rounding {
+        Rounding::Snapped | Rounding::SnappedInteger => 1.0,
+        Rounding::TessSnapped => 1.5,
+        Rounding::Integer => 2.0,
     }
 }
 
@@ -207,15 +247,10 @@ pub fn strip_need(b: &Bounds, e: usize, rounding: Rounding) -> Chord {
 /// 20/27` (module notes, "Polynomial patches"). Mirror: `LOD_POLYNOMIAL_SHARE`.
 pub const POLYNOMIAL_SHARE: f32 = 20.0 / 27.0;
 
-/// `(1 + λ)³`: the cube of the extent of the transition triangles' sides, over `a_e`, that
-/// [`strip_need`] allows for (`β <= λ a_e`; module notes, "Polynomial patches"). Mirror: in
+/// The cube of [`need_extent`] (module notes, "Polynomial patches"). Mirror: in
 /// `edge_need_level`, glsl/lod/levels.comp.
 pub fn need_extent_cubed(rounding: Rounding) -> f32 {
-    if rounding == Rounding::Integer {
-        8.0
-    } else {
-        3.375
-    }
+    need_extent(rounding).powi(3)
 }
 
 /// The transition sides' bound beside the tessellator's first ring ([`Rounding::TessSnapped`],
@@ -260,13 +295,15 @@ fn quadratic_level(p: f32, q: f32, c: f32, tol: f32, max: f32) -> f32 {
 
 /// Step 2's bound of the transition triangles along stored edge `e` of element `r`, drawn at
 /// `a = 1/n_e` beside an inside at `β` (module notes), as quadratics `[p, q, c]` in `β`
-/// (`p β² + q β + c`): the sides' (the kink terms at `a + β`, the sides' `S_e` after a move of
-/// at most `h a`; beside the tessellator's first ring, its own coefficients) and the bases'
-/// (none where the sides' `S_e` holds them: the tessellator's integer levels); and where the
-/// element is a polynomial patch (no kinks) its cubic term `t3` (else `None`).
+/// (`p β² + q β + c`), each with the extent `e0 + e1 β` of its triangles' sides (module notes,
+/// "Extents"): the sides' (the kink terms at that extent, the sides' `S_e` after a move of at
+/// most `h a`; beside the tessellator's first ring, its own coefficients) and the bases' (none
+/// where the sides' `S_e` holds them: the tessellator's integer levels), each at `a + β`, or
+/// where the lattice's boundary is snapped at `a/2 + β` and at `a` (the extent is the larger);
+/// and where the element is a polynomial patch (no kinks) its cubic term `t3` (else `None`).
 struct Strip {
-    sides: [f32; 3],
-    bases: Option<[f32; 3]>,
+    kinds: [([f32; 3], [f32; 2]); 4],
+    count: usize,
     a: f32,
     t3: Option<f32>,
 }
@@ -278,30 +315,33 @@ impl Strip {
         let t = twist(&r.mixed, e);
         let mb = m[(e + 1) % 3].max(m[(e + 2) % 3]);
         let rounding = v.rounding();
-        let (p, q, c) = if rounding == Rounding::TessSnapped {
+        let (sides, reach) = if rounding == Rounding::TessSnapped {
             let [caa, cab, cbb] = tess_side_coefficients(m[e], t, mb);
-            (
-                ELEMENT_FACTOR * cbb + k2,
-                ELEMENT_FACTOR * cab * a + k1 + 2.0 * k2 * a,
-                (ELEMENT_FACTOR * caa * a + k1 + k2 * a) * a,
-            )
+            ([cbb, cab * a, caa * a * a], a)
         } else {
             let h = if rounding.snapped() { 0.5 } else { 1.0 };
-            (
-                ELEMENT_FACTOR * mb + k2,
-                ELEMENT_FACTOR * h * a * t + k1 + 2.0 * k2 * a,
-                (ELEMENT_FACTOR * h * h * a * m[e] + k1 + k2 * a) * a,
-            )
+            let reach = if rounding.tessellator() { a } else { 0.5 * a };
+            ([mb, h * a * t, h * h * a * a * m[e]], reach)
         };
         // The bases' a² M_e is S_e's own first term where vertices move anywhere in a sample.
-        let bases = rounding.snapped().then(|| {
-            let base = (ELEMENT_FACTOR * a * m[e] + k1 + k2 * a) * a;
-            [k2, k1 + 2.0 * k2 * a, base]
-        });
+        let bases = rounding.snapped().then_some([0.0, 0.0, a * a * m[e]]);
+        // The kink terms at extent `e0 + e1 β`.
+        let kink =
+            |[e0, e1]: [f32; 2]| [k2 * e1 * e1, (k1 + 2.0 * k2 * e0) * e1, (k1 + k2 * e0) * e0];
+        let extents = if reach < a { 2 } else { 1 };
+        let mut kinds = [([0.0; 3], [0.0; 2]); 4];
+        let mut count = 0;
+        for ext in [[reach, 1.0], [a, 0.0]].into_iter().take(extents) {
+            for quad in std::iter::once(sides).chain(bases) {
+                let k = kink(ext);
+                kinds[count] = ([0, 1, 2].map(|i| ELEMENT_FACTOR * quad[i] + k[i]), ext);
+                count += 1;
+            }
+        }
         let t3 = (m[3] < HUGE && k1 == 0.0 && k2 == 0.0).then_some(m[3]);
         Strip {
-            sides: [p, q, c],
-            bases,
+            kinds,
+            count,
             a,
             t3,
         }
@@ -314,19 +354,22 @@ impl Strip {
     /// does not change.
     fn level(&self, tol: f32, max: f32, enough: f32) -> f32 {
         // A quadratic's level, and where it needs more than `enough` the polynomial bound's.
-        let solve = |[p, q, c]: [f32; 3]| {
+        let solve = |&([p, q, c], ext): &([f32; 3], [f32; 2])| {
             let general = quadratic_level(p, q, c, tol, max);
             match self.t3.filter(|_| general > enough) {
                 Some(t3) => {
                     let share = POLYNOMIAL_SHARE;
-                    let cubic = cubic_level(share * p, share * q, share * c, t3, self.a, tol, max);
+                    let cubic =
+                        cubic_level([share * p, share * q, share * c], t3, ext, self.a, tol, max);
                     general.min(cubic)
                 }
                 None => general,
             }
         };
-        let sides = solve(self.sides);
-        self.bases.map_or(sides, |bases| sides.max(solve(bases)))
+        self.kinds[..self.count]
+            .iter()
+            .map(solve)
+            .fold(1.0, f32::max)
     }
 
     /// Whether the triangles meet `tol` at inner level `n`: each bound evaluated at `β = (1 +
@@ -336,18 +379,17 @@ impl Strip {
     /// polynomial patch's bound is evaluated where the general one is not met.
     fn fits(&self, n: f32, tol: f32) -> bool {
         let b = (1.0 + 1.0 / 65536.0) / n;
-        let s = self.a + b;
-        let cubed = s * s * s;
         // Strictly below, as the solver asks (`c >= tol` is never met: a tolerance of zero,
         // where a sphere holds the eye, takes the largest level whatever the bound).
-        let meets = |[p, q, c]: [f32; 3]| {
+        let meets = |&([p, q, c], [e0, e1]): &([f32; 3], [f32; 2])| {
             let quad = (p * b + q) * b + c;
+            let s = e0 + e1 * b;
             quad < tol
                 || self
                     .t3
-                    .is_some_and(|t3| POLYNOMIAL_SHARE * quad + t3 * cubed < tol)
+                    .is_some_and(|t3| POLYNOMIAL_SHARE * quad + t3 * s * s * s < tol)
         };
-        meets(self.sides) && self.bases.is_none_or(meets)
+        self.kinds[..self.count].iter().all(meets)
     }
 }
 
@@ -361,17 +403,17 @@ fn strip_level(v: &LodView, r: &LodRecord, e: usize, a: f32, tol: f32, enough: f
 
 /// The smallest level `1/β` at which a polynomial patch's transition triangles along an edge
 /// drawn coarser than the inside (`β < a`), quadratic term `p β² + q β + c` and cubic term
-/// `t (a + β)³` (their sides' extent at most `a + β`), meet `tol` (module notes, "Polynomial
-/// patches"): `1/a` (the edge's own level) where `β = a` fits, the maximum where `β = 0` does
-/// not. Else the whole bound `f(β)` is convex and rising on `[0, a]`, so Newton's steps from the
-/// quadratic term's own solution (at most `a`), which lies at or beyond the root `β*`, stay at
-/// or beyond it ([`CUBIC_STEPS`] of them, within rounding of it); with `b` the last,
-/// `t (a + β)³ <= t (a + b)(a + β)²` for every `β <= b`, a quadratic again, whose solution is at
-/// most `β*` (there the quadratic is at least `f(β*) = tol`) and so at most `b`. Mirror:
-/// `cubic_level` in glsl/lod/levels.comp.
-fn cubic_level(p: f32, q: f32, c: f32, t: f32, a: f32, tol: f32, max: f32) -> f32 {
+/// `t (e0 + e1 β)³` (their sides' extent at most `e0 + e1 β`, `e1` 0 or 1), meet `tol` (module
+/// notes, "Polynomial patches"): `1/a` (the edge's own level) where `β = a` fits, the maximum
+/// where `β = 0` does not. Else the whole bound `f(β)` is convex and rising on `[0, a]`, so
+/// Newton's steps from the quadratic term's own solution (at most `a`), which lies at or beyond
+/// the root `β*`, stay at or beyond it ([`CUBIC_STEPS`] of them, within rounding of it); with
+/// `b` the last, `t (e0 + e1 β)³ <= t (e0 + e1 b)(e0 + e1 β)²` for every `β <= b`, a quadratic
+/// again, whose solution is at most `β*` (there the quadratic is at least `f(β*) = tol`) and so
+/// at most `b`. Mirror: `cubic_level` in glsl/lod/levels.comp.
+fn cubic_level([p, q, c]: [f32; 3], t: f32, [e0, e1]: [f32; 2], a: f32, tol: f32, max: f32) -> f32 {
     let bound = |b: f32| {
-        let s = a + b;
+        let s = e0 + e1 * b;
         (p * b + q) * b + c + t * s * s * s
     };
     if bound(0.0) >= tol {
@@ -382,15 +424,21 @@ fn cubic_level(p: f32, q: f32, c: f32, t: f32, a: f32, tol: f32, max: f32) -> f3
     }
     let mut b = (1.0 / quadratic_level(p, q, c, tol, max)).min(a);
     for _ in 0..CUBIC_STEPS {
-        let s = a + b;
-        let slope = 2.0 * p * b + q + 3.0 * t * s * s;
+        let s = e0 + e1 * b;
+        let slope = 2.0 * p * b + q + 3.0 * t * e1 * s * s;
         if slope <= 0.0 {
             break;
         }
         b -= (bound(b) - tol) / slope;
     }
-    let ts = t * (a + b.clamp(0.0, a));
-    quadratic_level(p + ts, q + 2.0 * ts * a, c + ts * a * a, tol, max)
+    let ts = t * (e0 + e1 * b.clamp(0.0, a));
+    quadratic_level(
+        p + ts * e1 * e1,
+        q + 2.0 * ts * e0 * e1,
+        c + ts * e0 * e0,
+        tol,
+        max,
+    )
 }
 
 /// Newton's steps of [`cubic_level`].
