@@ -76,7 +76,8 @@ impl Placement {
 /// [`weld_with`] and [`weld_adaptive_with`].
 pub type TexcoordOf<'a> = &'a dyn Fn(&CapturedVertex) -> Vec2;
 
-/// Weld captured vertices. Fails if the capture misses a vertex (its `w` was never set to 1).
+/// Weld captured vertices, triangles whose corners weld together (degenerate) dropped. Fails if
+/// the capture misses a vertex (its `w` was never set to 1).
 pub fn weld(capture: &CaptureResult, pattern: &Pattern) -> Result<RefinedMesh, String> {
     weld_with(capture, pattern, None)
 }
@@ -119,7 +120,14 @@ pub fn weld_with(
     let local = pattern.triangles();
     for t in 0..capture.vertices.len() / pv {
         for tri in &local {
-            out.triangles.push(tri.map(|i| remap[t * pv + i as usize]));
+            let c = tri.map(|i| remap[t * pv + i as usize]);
+            // Distinct lattice points whose positions round to the same `f32` (detail far
+            // below the drawing frame's precision) make a triangle of no area: dropped, as
+            // the adaptive and tessellated captures drop theirs.
+            if c[0].0 == c[1].0 || c[1].0 == c[2].0 || c[2].0 == c[0].0 {
+                continue;
+            }
+            out.triangles.push(c);
             if uv.is_some() {
                 out.texcoord_triangles
                     .push(tri.map(|i| uv_remap[t * pv + i as usize]));

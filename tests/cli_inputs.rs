@@ -762,3 +762,50 @@ fn lines_that_are_no_obj_statement_are_warned_about() {
         "{stderr}"
     );
 }
+
+/// Detail far below the drawing frame's precision (a cube of unit size beside a triangle
+/// reaching 1e18 away, drawn in `f32` at unit radius) collapses to one point: every export
+/// drops the triangles of no area that makes, at uniform levels on both drivers and
+/// adaptively, so that no face repeats a vertex (which a reader warns about and drops).
+#[test]
+fn exports_drop_the_triangles_that_collapse_to_a_point() {
+    let cube = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/assets/models/cube_tri.obj"
+    ))
+    .unwrap();
+    let mesh = write(
+        "cube-beside-1e18.obj",
+        format!("{cube}\nv 1e18 0 0\nv 0 1e18 0\nv 0 0 1e18\nf 9 10 11\n").as_bytes(),
+    );
+    for (name, args) in [
+        ("pattern-l1", vec!["--level", "1"]),
+        ("pattern-l2", vec!["--level", "2"]),
+        ("tess-l2", vec!["--level", "2", "--driver", "tess"]),
+        ("adaptive", vec!["--pixel-error", "1"]),
+    ] {
+        let out = tmp(&format!("collapsed-{name}.obj"));
+        let mut all = vec!["export", p(&mesh), "-o", p(&out)];
+        all.extend(args);
+        ok(&all);
+        let text = std::fs::read_to_string(&out).unwrap();
+        let faces: Vec<Vec<&str>> = (text.lines())
+            .filter_map(|l| l.strip_prefix("f "))
+            .map(|f| f.split(' ').map(|c| c.split('/').next().unwrap()).collect())
+            .collect();
+        assert!(!faces.is_empty(), "{name}: no face");
+        for f in &faces {
+            assert!(
+                f[0] != f[1] && f[1] != f[2] && f[2] != f[0],
+                "{name}: face {f:?} repeats a vertex"
+            );
+        }
+        // Reading it back drops nothing.
+        let info = meshrefine(&["info", p(&out)]);
+        let stderr = String::from_utf8_lossy(&info.stderr);
+        assert!(
+            info.status.success() && !stderr.contains("degenerate"),
+            "{name}: {stderr}"
+        );
+    }
+}
