@@ -587,6 +587,12 @@ fn loop_surface_from_the_command_line() {
         ],
         &["--bft-level 9 is not within [1, 7]"],
     );
+    for level in ["0", "8"] {
+        expect_error(
+            &["info", p(&spot), "--surface", "loop", "--bft-level", level],
+            &[&format!("--bft-level {level} is not within [1, 7]")],
+        );
+    }
     let coarse = ok(&["info", p(&spot), "--surface", "loop", "--bft-level", "3"]);
     assert!(
         coarse.contains("table level: 3 (8 segments per M1-face edge, 45 lattice points)"),

@@ -952,7 +952,7 @@ fn adaptive_options_refuse_bad_values() {
         // What was typed, not the f32 it parses to (inf), and a negative exponent is a value.
         expect_error(
             &with(&["--pixel-error", "1e39"]),
-            &["--pixel-error 1e39 is not a finite number > 0"],
+            &["--pixel-error 1e39 is not a finite number > 0 in single precision (it is beyond f32's largest, about 3.4e38)"],
         );
         expect_error(
             &with(&["--pixel-error", "-1e-30"]),
@@ -1104,6 +1104,16 @@ fn msaa_counts_render_or_are_refused_in_one_sentence() {
     assert_ne!(
         a, b,
         "the default (multisampled where offered) drew the 1x image"
+    );
+    // The default is 4 samples where the device offers them (lavapipe does).
+    let explicit = tmp("msaa-4.png");
+    let mut args = vec!["render", "-o", p(&explicit), "--msaa", "4"];
+    args.extend(small);
+    ok(&args);
+    assert_eq!(
+        std::fs::read(&explicit).unwrap(),
+        b,
+        "the default is not --msaa 4"
     );
     for n in ["2", "8"] {
         let out_path = tmp(&format!("msaa-{n}.png"));
