@@ -735,6 +735,24 @@ mod tests {
             panic!("not info");
         };
         assert_eq!(i.level, Some(8));
+        // In bench's lists, around each item.
+        let cli = Cli::try_parse_from([
+            "meshrefine",
+            "bench",
+            "--levels",
+            "2, 4 ",
+            "--surfaces",
+            "flat, pn",
+            "--drivers",
+            " tess ,static",
+        ])
+        .unwrap();
+        let Command::Bench(b) = cli.command else {
+            panic!("not bench");
+        };
+        assert_eq!(b.levels, [2, 4]);
+        assert_eq!(b.surfaces, [Surface::Flat, Surface::Pn]);
+        assert_eq!(b.drivers, [Driver::Tess, Driver::Static]);
         let empty = [
             ("--level", " "),
             ("--surface", ""),
