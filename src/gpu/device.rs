@@ -128,15 +128,20 @@ pub(crate) fn pick_device(
                 available,
             });
     }
-    let rank = |t: vk::PhysicalDeviceType| match t {
+    candidates.sort_by_key(|c| default_rank(c.2.device_type));
+    candidates.into_iter().next().ok_or(GpuError::NoDevice)
+}
+
+/// The default device's order (docs/cli.md, `--device`): a discrete GPU, then an integrated,
+/// virtual or CPU device, then any other; among equals the loader's order (a stable sort).
+fn default_rank(t: vk::PhysicalDeviceType) -> u32 {
+    match t {
         vk::PhysicalDeviceType::DISCRETE_GPU => 0,
         vk::PhysicalDeviceType::INTEGRATED_GPU => 1,
         vk::PhysicalDeviceType::VIRTUAL_GPU => 2,
         vk::PhysicalDeviceType::CPU => 3,
         _ => 4,
-    };
-    candidates.sort_by_key(|c| rank(c.2.device_type));
-    candidates.into_iter().next().ok_or(GpuError::NoDevice)
+    }
 }
 
 /// What to create.
@@ -234,5 +239,40 @@ mod tests {
              (maxPerStageDescriptorStorageBuffers), and meshrefine's Loop passes bind 7"
         );
         assert!(check_stage_limits(&info(STORAGE_BUFFERS_PER_STAGE)).is_ok());
+    }
+}
+
+#[cfg(test)]
+mod rank_tests {
+    use super::default_rank;
+    use ash::vk::PhysicalDeviceType as T;
+
+    /// A discrete GPU first, then integrated, virtual, CPU and other devices, the loader's order
+    /// kept among equals.
+    #[test]
+    fn the_default_device_is_a_discrete_gpu_first() {
+        let mut listed = [
+            ("cpu", T::CPU),
+            ("other", T::OTHER),
+            ("virtual", T::VIRTUAL_GPU),
+            ("integrated", T::INTEGRATED_GPU),
+            ("discrete b", T::DISCRETE_GPU),
+            ("integrated b", T::INTEGRATED_GPU),
+            ("discrete", T::DISCRETE_GPU),
+        ];
+        listed.sort_by_key(|d| default_rank(d.1));
+        let order: Vec<&str> = listed.iter().map(|d| d.0).collect();
+        assert_eq!(
+            order,
+            [
+                "discrete b",
+                "discrete",
+                "integrated",
+                "integrated b",
+                "virtual",
+                "cpu",
+                "other"
+            ]
+        );
     }
 }
