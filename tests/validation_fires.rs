@@ -1,0 +1,45 @@
+//! The check every GPU test ends with (`tests/common`'s `with_gpu`: the validation layer on,
+//! `check_shutdown` after the context is gone) catches what it promises to: a call the
+//! validation layer rejects, made on a context created as the tests create theirs, makes the
+//! shutdown check fail and names the problem; the same context without it passes.
+// The invalid call goes to ash directly: the crate's own wrappers refuse to make it.
+#![allow(unsafe_code)]
+
+use ash::vk;
+use meshrefine::gpu::{check_shutdown, Context, ContextDesc, ShutdownError};
+
+/// A validated context; with `invalid`, a buffer of size zero created and destroyed (valid
+/// usage requires a size above zero: `VUID-VkBufferCreateInfo-size-00912`).
+fn run(invalid: bool) -> Result<(), ShutdownError> {
+    let desc = ContextDesc {
+        validate: true,
+        ..Default::default()
+    };
+    let ctx = Context::new(&desc).expect("a validated Vulkan context");
+    let messages = ctx.messages_handle();
+    if invalid {
+        let info = vk::BufferCreateInfo::default()
+            .size(0)
+            .usage(vk::BufferUsageFlags::STORAGE_BUFFER);
+        // SAFETY: a valid device; the buffer, if created, is destroyed before the device.
+        unsafe {
+            if let Ok(buffer) = ctx.device.create_buffer(&info, None) {
+                ctx.device.destroy_buffer(buffer, None);
+            }
+        }
+    }
+    drop(ctx);
+    check_shutdown(&messages)
+}
+
+#[test]
+fn a_validation_error_fails_the_shutdown_check() {
+    run(false).expect("a context that does nothing wrong shuts down cleanly");
+    match run(true) {
+        Err(ShutdownError::Validation(list)) => assert!(
+            list.iter().any(|m| m.contains("size")),
+            "the report does not name the problem: {list:?}"
+        ),
+        other => panic!("an invalid call was not caught: {other:?}"),
+    }
+}
