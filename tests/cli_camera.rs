@@ -442,3 +442,63 @@ fn turning_the_camera_changes_no_level() {
         }
     }
 }
+
+/// The pictures' captions in docs/adaptivity.md ("What it looks like") count what their
+/// command draws: each caption's `render ...` command, run (from the repository, the
+/// validation layer on), prints the caption's `levels L:n ...` and culls as many elements as
+/// the caption says.
+#[test]
+fn the_adaptivity_guides_captions_count_what_their_commands_draw() {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let guide = std::fs::read_to_string(root.join("docs/adaptivity.md")).unwrap();
+    let start = guide.find("## What it looks like").unwrap();
+    let end = start + guide[start..].find("\n## ").unwrap();
+    let section = guide[start..end].replace('\n', " ");
+    let mut checked = 0;
+    for caption in section.split("*").skip(1).step_by(2) {
+        let Some(cmd) = caption
+            .split('`')
+            .nth(1)
+            .and_then(|c| c.strip_prefix("render "))
+        else {
+            continue;
+        };
+        let levels = caption
+            .split("levels ")
+            .filter_map(|s| s.split(')').next())
+            .find(|s| s.split(' ').all(|p| p.split_once(':').is_some()))
+            .unwrap_or_else(|| panic!("no levels in the caption of {cmd}"));
+        let culled: u32 = caption
+            .split_whitespace()
+            .collect::<Vec<_>>()
+            .windows(3)
+            .find_map(|w| match w {
+                [n, "elements", "outside"] | [n, "of", "the"] => n.parse().ok(),
+                _ => None,
+            })
+            .unwrap_or_else(|| panic!("no culled count in the caption of {cmd}"));
+        let png = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("caption.png");
+        let mut args: Vec<&str> = vec!["render"];
+        args.extend(cmd.split_whitespace());
+        args.extend(["-o", png.to_str().unwrap()]);
+        let out = {
+            let _guard = common::gpu_lock();
+            std::process::Command::new(env!("CARGO_BIN_EXE_meshrefine"))
+                .args(&args)
+                .current_dir(&root)
+                .env("MESHREFINE_VALIDATE", "1")
+                .output()
+                .unwrap()
+        };
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            out.status.success() && !stderr.contains("validation"),
+            "{cmd}: {stderr}"
+        );
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        let want = format!("levels (level:elements) {levels}; culled {culled}");
+        assert!(stdout.contains(&want), "{cmd}: '{want}' not in\n{stdout}");
+        checked += 1;
+    }
+    assert!(checked >= 2, "only {checked} captions found");
+}
