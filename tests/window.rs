@@ -344,7 +344,21 @@ impl<'a> Demo<'a> {
 
     /// [`Demo::start`] with environment variables `env` set for the demo.
     fn start_with(x: &'a Xvfb, args: &[&str], env: &[(&str, &str)]) -> Self {
-        let mut child = Command::new(env!("CARGO_BIN_EXE_meshrefine"))
+        Self::start_in(x, args, env, None)
+    }
+
+    /// [`Demo::start_with`], the demo's current directory `dir` where given.
+    fn start_in(
+        x: &'a Xvfb,
+        args: &[&str],
+        env: &[(&str, &str)],
+        dir: Option<&std::path::Path>,
+    ) -> Self {
+        let mut command = Command::new(env!("CARGO_BIN_EXE_meshrefine"));
+        if let Some(dir) = dir {
+            command.current_dir(dir);
+        }
+        let mut child = command
             .args(["--validate", "view"])
             .args(args)
             .env("DISPLAY", &x.display)
@@ -544,6 +558,36 @@ fn window_resizes_and_quits_with_escape() {
         "the last frame was not drawn at the new size"
     );
     assert!(is_background(corner, Background::Dark), "B: {corner:?}");
+}
+
+/// Without `--screenshot-dir`, F12 writes `meshrefine-1.png` into the current directory
+/// (window.md).
+#[test]
+fn f12_writes_into_the_current_directory_by_default() {
+    let _guard = common::gpu_lock();
+    let x = Xvfb::start();
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("window/cwd");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let demo = Demo::start_in(&x, &["--level", "2"], &[], Some(&dir));
+    // The key's frame is drawn after the first ones.
+    std::thread::sleep(Duration::from_secs(1));
+    demo.xdotool(&["key", "F12"]);
+    let first = dir.join("meshrefine-1.png");
+    let t0 = Instant::now();
+    while decoded(&first).is_none() {
+        assert!(
+            t0.elapsed() < Duration::from_secs(60),
+            "F12 wrote no {first:?}"
+        );
+        std::thread::sleep(Duration::from_millis(200));
+    }
+    demo.quit();
+    let (n, total) = covered(&first);
+    assert!(
+        n > total / 5,
+        "F12's frame shows {n} of {total} mesh pixels"
+    );
 }
 
 #[test]
