@@ -807,7 +807,15 @@ fn keys_switch_driver_level_and_views() {
         ("minus", "tess level 4"),
         ("w", "level 4 wire"),
         ("u", "pattern/ubo level 4 wire"),
-        ("1", "static level 4 wire"),
+        ("p", "pattern/push level 4 wire"),
+        ("i", "pattern/instanced level 4 wire"),
+        // `=` and `_` are `+` and `-` without the shift key (and with it).
+        ("equal", "pattern/instanced level 8 wire"),
+        ("underscore", "pattern/instanced level 4 wire"),
+        ("k", "pattern/instanced level 4 wire cage"),
+        ("1", "static level 4 wire cage"),
+        ("2", "pattern/instanced level 4 wire cage"),
+        ("1", "static level 4 wire cage"),
         ("l", "(LOD)"),
         ("a", "animated"),
     ] {
