@@ -607,10 +607,10 @@ fn lattice_extent(x: [f32; 3], y: [f32; 3]) -> f32 {
 
 /// The extents the transition triangles' kink and cubic terms are taken at
 /// (src/lod/frame/transitions.rs, "Extents") hold for what the pattern driver draws: at
-/// integer levels and at powers of two, every triangle with a vertex on a coarser edge `e` has
-/// sides spanning at most `max(a_e, a_e/2 + β)` in lattice coordinates (the largest over the
-/// coarser edges it touches: a corner triangle spans both edges' samples), every other one a
-/// lattice side `β`; and the bound is reached.
+/// integer levels and at powers of two, every triangle with a vertex moved from a coarser edge
+/// `e` has sides spanning at most `max(a_e, a_e/2 + β)` in lattice coordinates (with vertices
+/// moved from two coarser edges, a corner's at integer levels, the coarser's; at powers of two
+/// both's), every other one a lattice side `β`; and the bound is reached.
 #[test]
 fn snapped_transition_sides_span_what_their_extent_allows() {
     use crate::pattern::adaptive::adaptive_element;
@@ -635,15 +635,23 @@ fn snapped_transition_sides_span_what_their_extent_allows() {
                         };
                         let el = adaptive_element(&l, f, dyadic).unwrap();
                         assert_eq!(el.levels.inner, n);
-                        let at: HashMap<u32, [f32; 3]> = el
-                            .vertices
-                            .iter()
+                        let at: HashMap<u32, ([f32; 3], (u32, u32))> = (el.vertices.iter())
                             .copied()
-                            .zip(el.bary.iter().copied())
+                            .zip(el.bary.iter().copied().zip(el.points.iter().copied()))
                             .collect();
+                        // The lattice the points are given on (the finest drawn level's where
+                        // dyadic), and the coarser edges a point moved from (its edge before
+                        // snapping: stored edge 0 `j = 0`, 1 `i + j = N`, 2 `i = 0`; a corner
+                        // stays).
+                        let scale = if dyadic { f } else { n };
+                        let moved_from = |(i, j): (u32, u32)| {
+                            let on = [j == 0, i + j == scale, i == 0];
+                            let corner = on.iter().filter(|&&x| x).count() > 1;
+                            (0..3).filter(move |&k| on[k] && !corner && edges[k] < n)
+                        };
                         let beta = 1.0 / n as f32;
                         for t in &el.triangles {
-                            let w = t.map(|k| at[&k]);
+                            let w = t.map(|k| at[&k].0);
                             if w[0] == w[1] || w[1] == w[2] || w[0] == w[2] {
                                 continue;
                             }
@@ -651,16 +659,23 @@ fn snapped_transition_sides_span_what_their_extent_allows() {
                                 .map(|(x, y)| lattice_extent(w[x], w[y]))
                                 .into_iter()
                                 .fold(0.0, f32::max);
-                            // Stored edge k has weight k + 2 (mod 3) zero.
-                            let allowed = (0..3)
-                                .filter(|&k| {
-                                    edges[k] < n && w.iter().any(|x| x[(k + 2) % 3] == 0.0)
-                                })
+                            // A triangle with points moved from two coarser edges: the coarser's
+                            // extent at integer levels, both's at powers of two.
+                            let extents: Vec<f32> = (0..3)
+                                .filter(|&k| t.iter().any(|v| moved_from(at[v].1).any(|e| e == k)))
                                 .map(|k| {
                                     let a = 1.0 / edges[k] as f32;
                                     a.max(0.5 * a + beta)
                                 })
-                                .fold(beta, f32::max);
+                                .collect();
+                            let allowed = match extents.iter().copied().reduce(if dyadic {
+                                f32::min
+                            } else {
+                                f32::max
+                            }) {
+                                Some(x) => x.max(beta),
+                                None => beta,
+                            };
                             assert!(
                                 extent <= allowed * (1.0 + 1e-5),
                                 "inner {n}, edges {edges:?} ({}): {w:?} spans {extent} > {allowed}",

@@ -80,18 +80,27 @@
 //! hold for every such sum; as `d_0 + d_1 + d_2 = 0` there are many). A lattice side has extent
 //! `β`, a base `a_e`. A side `α d_e + β d_{e+1}` written so has `|α| + β`, and written as
 //! `(α − β) d_e − β d_{e+2}` has `|α − β| + β`: over `−h a_e <= α <= h a_e + β` the smaller is
-//! at most `h a_e + β` (`α <= 0` the first, `α >= β` the second) or `3β/2` (`0 <= α <= β`). A
-//! corner triangle's sides `y d_e + z d_f = −m d_g + r d_j` have `m + r <= max(a_e, a_f)`. So
-//! the triangles along a coarser edge `e` reach at most `max(a_e, h a_e + β, 3β/2)`: where the
-//! lattice's boundary is snapped (`h = 1/2`, [`Rounding::Snapped`] and
-//! [`Rounding::SnappedInteger`]) `max(a_e, a_e/2 + β)` for every `β <= a_e`, which is `a_e` at
-//! `β <= a_e/2`; else (`h = 1`) `a_e + β`. Beside the tessellator's first ring the sides are
-//! not the lattice's, and they take `a_e + β` (above). The corner triangles reach the coarser
-//! of their two edges' `a`, which that edge's need covers. The test
-//! `snapped_transition_sides_span_what_their_extent_allows` (src/lod/frame/tests.rs) measures
-//! the sides of every triangle the pattern driver draws at integer levels up to 12 and powers
-//! of two up to 16, every combination of coarser edges, against these extents, and finds them
-//! reached.
+//! at most `h a_e + β` (`α <= 0` the first, `α >= β` the second; between them the smallest sum,
+//! over every way of writing it, is `β`). A corner triangle's sides
+//! `y d_e + z d_f = −m d_g + r d_j` have `m + r <= max(a_e, a_f)`. So the triangles along a
+//! coarser edge `e` reach at most `max(a_e, h a_e + β)`: where the lattice's boundary is snapped
+//! (`h = 1/2`, [`Rounding::Snapped`] and [`Rounding::SnappedInteger`]) `max(a_e, a_e/2 + β)`,
+//! which is `a_e` at `β <= a_e/2`; else (`h = 1`) `a_e + β`. Beside the tessellator's first
+//! ring the sides are not the lattice's, and they take `a_e + β` (above).
+//!
+//! A triangle with vertices on two coarser edges `e` and `f` (a corner's, at integer levels)
+//! reaches at most the coarser edge's `a` (`A = max(a_e, a_f)`), which can pass the finer edge's
+//! `a_e/2 + β` (inner level 3, edges at 1 and 2: a triangle reaching `2/3` where edge 2's
+//! extent is `7/12`). Its bound is then the coarser edge's, which step 1 meets at any inner
+//! level: its kink and cubic terms at `A`, and its sides' `|Q|` within the corners' `A² M_c`
+//! (where `A > a_e/2 + β`, with `u = a_e/2`: `S_e <= u² M_e + 2uβ B_x + β² mb <= (u + β)² M_c
+//! < A² M_c`). At powers of two such triangles stay within both edges' extents.
+//!
+//! The test `snapped_transition_sides_span_what_their_extent_allows` (src/lod/frame/tests.rs)
+//! measures the sides of every triangle the pattern driver draws at integer levels up to 12 and
+//! powers of two up to 16, every combination of coarser edges, against these extents (at
+//! integer levels the coarser edge's where a triangle touches two, at powers of two both), and
+//! finds them reached.
 //!
 //! Every drawn triangle's error is then at most `9/40` of its sides' largest `|Q|` plus the kink
 //! terms at its sides' extent (the lattice triangle's proof, src/lod/mod.rs, holds for any
