@@ -384,6 +384,29 @@ fn a_full_stdout_is_an_error_line_and_a_closed_one_ends_quietly() {
         assert_eq!(out.status.code(), Some(0), "{args:?} | true: {stderr}");
         assert!(stderr.is_empty(), "{args:?} | true: {stderr}");
     }
+    // `bench --out` writes its files before the summary: they are there whether standard
+    // output is closed early (status 0) or full (status 1).
+    let tet = model_path("tetrahedron.obj");
+    for (name, full_stdout) in [("closed", false), ("full", true)] {
+        let prefix = tmp(&format!("bench-out-{name}"));
+        let files = ["md", "csv", "json"].map(|x| prefix.with_extension(x));
+        for f in &files {
+            let _ = std::fs::remove_file(f);
+        }
+        let mut args = vec!["bench", p(&tet), "--out", p(&prefix)];
+        args.extend("--levels 2 --frames 1 --width 32 --height 32".split(' '));
+        let code = if full_stdout {
+            let full = Stdio::from(std::fs::File::create("/dev/full").unwrap());
+            meshrefine_with(&args, full, Stdio::null()).code()
+        } else {
+            with_closed_stdout(&args).status.code()
+        };
+        assert_eq!(code, Some(if full_stdout { 1 } else { 0 }), "{name}");
+        for f in &files {
+            let text = std::fs::read_to_string(f).unwrap_or_else(|e| panic!("{name}: {f:?}: {e}"));
+            assert!(text.contains("tetrahedron"), "{name}: {f:?}");
+        }
+    }
     // A full stderr while warning: warnings are dropped, the command still succeeds.
     let degenerate = model_path("degenerate_faces.obj");
     let full = || Stdio::from(std::fs::File::create("/dev/full").unwrap());
