@@ -128,8 +128,14 @@ pub(crate) fn pick_device(
                 available,
             });
     }
-    candidates.sort_by_key(|c| default_rank(c.2.device_type));
+    sort_by_default_rank(&mut candidates, |c| c.2.device_type);
     candidates.into_iter().next().ok_or(GpuError::NoDevice)
+}
+
+/// Sorts devices into the default order ([`default_rank`]), keeping the loader's order among
+/// equals.
+fn sort_by_default_rank<T>(devices: &mut [T], kind: impl Fn(&T) -> vk::PhysicalDeviceType) {
+    devices.sort_by_key(|d| default_rank(kind(d)));
 }
 
 /// The default device's order (docs/cli.md, `--device`): a discrete GPU, then an integrated,
@@ -244,7 +250,7 @@ mod tests {
 
 #[cfg(test)]
 mod rank_tests {
-    use super::default_rank;
+    use super::sort_by_default_rank;
     use ash::vk::PhysicalDeviceType as T;
 
     /// A discrete GPU first, then integrated, virtual, CPU and other devices, the loader's order
@@ -260,7 +266,7 @@ mod rank_tests {
             ("integrated b", T::INTEGRATED_GPU),
             ("discrete", T::DISCRETE_GPU),
         ];
-        listed.sort_by_key(|d| default_rank(d.1));
+        sort_by_default_rank(&mut listed, |d| d.1);
         let order: Vec<&str> = listed.iter().map(|d| d.0).collect();
         assert_eq!(
             order,

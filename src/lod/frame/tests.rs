@@ -595,10 +595,10 @@ fn polynomial_levels_meet_their_bound() {
 }
 
 /// A side's extent in lattice coordinates, `min Σ |c_k|` over `δ = Σ c_k d_k` (the three
-/// directions summing to zero): with `δ` in weights, `c = (−δ0, δ2, 0) + t (1, 1, 1)`, so the
-/// sum's minimum is the spread of those three numbers.
+/// directions summing to zero): with `δ = y − x` in weights, `c = (−δ0, δ2, 0) + t (1, 1, 1)`,
+/// so the sum's minimum is the spread of those three numbers.
 fn lattice_extent(x: [f32; 3], y: [f32; 3]) -> f32 {
-    let c = [y[0] - x[0], x[2] - y[2], 0.0];
+    let c = [x[0] - y[0], y[2] - x[2], 0.0];
     let (lo, hi) = c
         .iter()
         .fold((0.0f32, 0.0f32), |(lo, hi), &v| (lo.min(v), hi.max(v)));
@@ -609,8 +609,9 @@ fn lattice_extent(x: [f32; 3], y: [f32; 3]) -> f32 {
 /// (src/lod/frame/transitions.rs, "Extents") hold for what the pattern driver draws: at
 /// integer levels and at powers of two, every triangle with a vertex moved from a coarser edge
 /// `e` has sides spanning at most `max(a_e, a_e/2 + β)` in lattice coordinates (with vertices
-/// moved from two coarser edges, a corner's at integer levels, the coarser's; at powers of two
-/// both's), every other one a lattice side `β`; and the bound is reached.
+/// moved from two coarser edges, a corner's at integer levels, the coarser edge's `a`; at
+/// powers of two both edges' extents), every other one a lattice side `β`; and the bound is
+/// reached.
 #[test]
 fn snapped_transition_sides_span_what_their_extent_allows() {
     use crate::pattern::adaptive::adaptive_element;
@@ -659,22 +660,20 @@ fn snapped_transition_sides_span_what_their_extent_allows() {
                                 .map(|(x, y)| lattice_extent(w[x], w[y]))
                                 .into_iter()
                                 .fold(0.0, f32::max);
-                            // A triangle with points moved from two coarser edges: the coarser's
-                            // extent at integer levels, both's at powers of two.
-                            let extents: Vec<f32> = (0..3)
+                            // A triangle with points moved from two coarser edges: the coarser
+                            // edge's `a` at integer levels, both edges' extents at powers of two.
+                            let from: Vec<f32> = (0..3)
                                 .filter(|&k| t.iter().any(|v| moved_from(at[v].1).any(|e| e == k)))
-                                .map(|k| {
-                                    let a = 1.0 / edges[k] as f32;
-                                    a.max(0.5 * a + beta)
-                                })
+                                .map(|k| 1.0 / edges[k] as f32)
                                 .collect();
-                            let allowed = match extents.iter().copied().reduce(if dyadic {
-                                f32::min
-                            } else {
-                                f32::max
-                            }) {
-                                Some(x) => x.max(beta),
-                                None => beta,
+                            let extent_of = |a: f32| a.max(0.5 * a + beta);
+                            let allowed = match from[..] {
+                                [] => beta,
+                                [a] => extent_of(a),
+                                _ if dyadic => {
+                                    from.iter().map(|&a| extent_of(a)).fold(1.0, f32::min)
+                                }
+                                _ => from.iter().fold(beta, |m, &a| m.max(a)),
                             };
                             assert!(
                                 extent <= allowed * (1.0 + 1e-5),

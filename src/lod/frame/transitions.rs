@@ -75,9 +75,11 @@
 //! # Extents
 //! The kink terms (the height map's texel lines, src/lod/mod.rs) and a polynomial patch's cubic
 //! term (below) grow with how far a triangle's sides reach: a side `δ` counts at its extent in
-//! lattice coordinates, `|δ| = min Σ |c_k|` over the ways of writing `δ = Σ c_k d_k` (the texel
-//! lines a side crosses, and `|D³P[δ, δ, δ]| <= C̄ |δ|³`, both from the triangle inequality,
-//! hold for every such sum; as `d_0 + d_1 + d_2 = 0` there are many). A lattice side has extent
+//! lattice coordinates, `|δ| = min Σ |c_k|` over the ways of writing `δ = Σ c_k d_k` (as
+//! `d_0 + d_1 + d_2 = 0` there are many): the texel lines a side crosses, per family, are at
+//! most `s Σ |c_k|` (`s` as in src/lod/mod.rs), and `|D³P[δ, δ, δ]| <= C̄ (Σ |c_k|)³` (`C̄`
+//! bounds `D³P` on any three lattice directions), for every such sum, by the triangle
+//! inequality and multilinearity. A lattice side has extent
 //! `β`, a base `a_e`. A side `α d_e + β d_{e+1}` written so has `|α| + β`, and written as
 //! `(α − β) d_e − β d_{e+2}` has `|α − β| + β`: over `−h a_e <= α <= h a_e + β` the smaller is
 //! at most `h a_e + β` (`α <= 0` the first, `α >= β` the second; between them the smallest sum,
@@ -88,8 +90,10 @@
 //! which is `a_e` at `β <= a_e/2`; else (`h = 1`) `a_e + β`. Beside the tessellator's first
 //! ring the sides are not the lattice's, and they take `a_e + β` (above).
 //!
-//! A triangle with vertices on two coarser edges `e` and `f` (a corner's, at integer levels)
-//! reaches at most the coarser edge's `a` (`A = max(a_e, a_f)`), which can pass the finer edge's
+//! A triangle with vertices moved from two coarser edges `e` and `f` (a corner's, at integer
+//! levels) reaches at most the coarser edge's `a` (`A = max(a_e, a_f)`: the corner triangle's
+//! sides by `m + r <= A`, and the side from its vertex beside the corner to the next row, that
+//! vertex moved `a_e − β < β` along its edge, at most `a_e`), which can pass the finer edge's
 //! `a_e/2 + β` (inner level 3, edges at 1 and 2: a triangle reaching `2/3` where edge 2's
 //! extent is `7/12`). Its bound is then the coarser edge's, which step 1 meets at any inner
 //! level: its kink and cubic terms at `A`, and its sides' `|Q|` within the corners' `A² M_c`
@@ -98,9 +102,9 @@
 //!
 //! The test `snapped_transition_sides_span_what_their_extent_allows` (src/lod/frame/tests.rs)
 //! measures the sides of every triangle the pattern driver draws at integer levels up to 12 and
-//! powers of two up to 16, every combination of coarser edges, against these extents (at
-//! integer levels the coarser edge's where a triangle touches two, at powers of two both), and
-//! finds them reached.
+//! powers of two up to 16, every combination of coarser edges, against these extents (where a
+//! triangle has vertices moved from two edges, the coarser edge's `a` at integer levels, both
+//! edges' extents at powers of two), and finds them reached.
 //!
 //! Every drawn triangle's error is then at most `9/40` of its sides' largest `|Q|` plus the kink
 //! terms at its sides' extent (the lattice triangle's proof, src/lod/mod.rs, holds for any
@@ -160,13 +164,13 @@
 //! On Spot close up as `pn` at integer levels (the benchmark's camera, 0.5 to 4 px), levels
 //! that ignore the transitions draw 0.19-0.21x the triangles of the uniform level meeting the
 //! bound, step 1 alone 0.25-0.27x, both steps 0.34-0.36x: step 2's raises, at edges finer than
-//! half the inside, are most of the cost. Taking `λ` at 5/8, 3/4 or 1 for them draws more
-//! (0.36-0.38x, 0.37-0.41x, 0.44-0.47x), and `λ` below 1/2 the same (the corners' `M_c`, not the
-//! sides, sets those edges). Step 1 without the corners would draw more still (nothing would
-//! then bound them, and its edges being coarser, step 2 raises more). Lifting an edge to the
-//! inner level of one of its elements where that is at most a fifth above it (a second pass,
-//! reading the neighbour's level) leaves fewer raises but more elements finer: with the
-//! transitions' extents at `a_e + β` it drew 0.35-0.41x where both steps drew 0.39-0.41x.
+//! half the inside, are most of the cost. Taking `λ` at 5/8, 3/4 or 1 for them (each with its
+//! own extent, `a_e/2 + λ a_e`) draws more (0.36-0.38x, 0.37-0.41x, 0.44-0.47x), and `λ` below
+//! 1/2 the same (the corners' `M_c`, not the sides, sets those edges). Step 1 without the
+//! corners would draw more still (nothing would then bound them, and its edges being coarser,
+//! step 2 raises more). Lifting an edge to the inner level of one of its elements where that is
+//! at most a fifth above it (a second pass, reading the neighbour's level) leaves fewer raises
+//! but more elements finer; it would need the level pass to read its neighbours' levels.
 //!
 //! # Polynomial patches
 //! Where the element is a polynomial of degree at most 3 (its cubic term `T` finite,
