@@ -160,9 +160,10 @@ float edge_need_level(vec2 need, float t, float tol, float floor_level) {
         return general;
     }
     float q = need.y * LOD_POLYNOMIAL_SHARE;
-    // `need_extent_cubed`: 1 where the lattice's boundary is snapped, (1 + lambda)^3 else.
+    // `need_extent_cubed`: 1 at snapped integer levels, (5/4)^3 gliding snapped, (1 + lambda)^3
+    // beside the tessellator's rings.
     uint kind = view.flags & (DYADIC | LATTICE);
-    t *= (kind & LATTICE) != 0u ? 1.0 : (kind == 0u ? 8.0 : 3.375);
+    t *= kind == LATTICE ? 1.0 : (kind == (DYADIC | LATTICE) ? 1.953125 : (kind == 0u ? 8.0 : 3.375));
     float n0 = level_at(vec2(0.0, q), tol);
     return max(floor_level, min(general, level_at(vec2(0.0, q + glide_factor() * t / n0), tol)));
 }

@@ -111,8 +111,9 @@
 //! triangle). Two steps make every one of them meet the element's tolerance `τ`:
 //! 1. The edge's level includes, for each of its elements, the level at which the chord
 //!    `(x k_1, 9/40 · max(M_c, M_e + λ T_e + λ² max(M_{e+1}, M_{e+2})) + x² k_2)`, with `x a_e`
-//!    the extent at `β = λ a_e` ([`need_extent`]: `1 + λ`, and `1` where the lattice's
-//!    boundary is snapped)
+//!    at least the extent at `β = λ a_e` ([`need_extent`]: `1 + λ`, `1` where the lattice's
+//!    boundary is snapped at integer levels, `5/4` for the gliding pattern driver: "Gliding",
+//!    below)
 //!    (`k` the kink terms; snapped: `max(M_e, M_e/4 + λ/2 T_e + λ² max(M_{e+1}, M_{e+2}))`,
 //!    no corners; snapped integer: `max(M_c, M_e/4 + λ/2 T_e + λ² max(M_{e+1}, M_{e+2}))`, as
 //!    `M_c >= M_e` covers the bases; beside the tessellator's first ring, `max(M_e, S_e/a_e²)`
@@ -171,6 +172,17 @@
 //! step 2 raises more). Lifting an edge to the inner level of one of its elements where that is
 //! at most a fifth above it (a second pass, reading the neighbour's level) leaves fewer raises
 //! but more elements finer; it would need the level pass to read its neighbours' levels.
+//!
+//! # Gliding
+//! The gliding pattern driver takes step 1's kink and cubic terms at `5/4 a_e`, a quarter past
+//! the extent: any `x` at least the extent keeps the bound, and the extent itself would leave
+//! its edges coarser than the popping test allows. Where an edge four times coarser than its
+//! inside doubles while the inside stays, the vertices of the first row whose parents are
+//! snapped onto the edge step along the surface (docs/adaptivity.md, "What remains"); the
+//! coarser the edges may stay, the more such steps, and the larger. In the popping sweep
+//! (`geomorphing_removes_popping`: at most 0.2 px a frame) the worst step is 0.209 px at
+//! `x = 1`, 0.198 at 1.05, 0.186 at 1.1, 0.175 at 1.15 and 0.171 px from 1.25 on (as at 3/2).
+//! At integer levels nothing glides, and the extent itself is taken.
 //!
 //! # Polynomial patches
 //! Where the element is a polynomial of degree at most 3 (its cubic term `T` finite,
@@ -244,13 +256,17 @@ pub fn strip_need(b: &Bounds, e: usize, rounding: Rounding) -> Chord {
     }
 }
 
-/// The largest extent of the transition triangles' sides, in lattice coordinates, over `a_e`,
-/// at the `β <= λ a_e` that [`strip_need`] allows for (module notes, "Extents"): `1` where the
-/// lattice's boundary is snapped (`max(a_e, a_e/2 + β)` at `λ = 1/2`), `1 + λ` else (`a_e + β`:
-/// `2` for the tessellator's integer levels, `3/2` beside its first ring).
+/// The extent, over `a_e`, at which [`strip_need`] takes the transition triangles' kink and
+/// cubic terms, at the `β <= λ a_e` it allows for (module notes, "Extents"): their largest
+/// extent, `1` where the lattice's boundary is snapped at integer levels (`max(a_e, a_e/2 + β)`
+/// at `λ = 1/2`), `1 + λ` beside the tessellator's rings (`a_e + β`: `2` for its integer levels,
+/// `3/2` beside its first ring); and `5/4` for the gliding pattern driver, a quarter above its
+/// extent, so that its edges stay close enough to their insides' levels for the snapped
+/// boundary's switches to glide (module notes, "Gliding").
 pub fn need_extent(rounding: Rounding) -> f32 {
     match rounding {
-        Rounding::Snapped | Rounding::SnappedInteger => 1.0,
+        Rounding::SnappedInteger => 1.0,
+        Rounding::Snapped => 1.25,
         Rounding::TessSnapped => 1.5,
         Rounding::Integer => 2.0,
     }
