@@ -145,7 +145,7 @@
 //! drivers' transitions cheap: their edges need about the level their elements' insides need
 //! along them (`M_e`), where a floor's corners need it across the whole element (`M_c`) and its
 //! sides twice the move; and it keeps their sides short ("Extents"). On Spot as `pn` close up
-//! at 1 px (the test `pixel_error_holds_end_to_end`) the transitions then cost about a sixth
+//! at 1 px (the test `pixel_error_holds_end_to_end`) the transitions then cost about a third
 //! more triangles than levels that ignore them on the pattern driver, two thirds more beside
 //! the tessellator's first ring (whose vertices sit between the lattice's), and 3.7 times as
 //! many with the tessellator's own transitions at integer levels.
