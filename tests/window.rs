@@ -445,6 +445,19 @@ fn decoded(shot: &std::path::Path) -> Option<(Vec<u8>, (u32, u32))> {
     Some((buf, (info.width, info.height)))
 }
 
+/// Waits (at most a minute) until F12's PNG `shot` decodes whole: the demo writes it after the
+/// frame's fence.
+fn wait_for_screenshot(shot: &std::path::Path) {
+    let t0 = Instant::now();
+    while decoded(shot).is_none() {
+        assert!(
+            t0.elapsed() < Duration::from_secs(60),
+            "F12 wrote no {shot:?}"
+        );
+        std::thread::sleep(Duration::from_millis(200));
+    }
+}
+
 /// The pixel at `(x, y)` of a PNG (RGB) and its size.
 fn pixel(shot: &std::path::Path, x: u32, y: u32) -> ([u8; 3], (u32, u32)) {
     let (buf, (w, h)) = decoded(shot).unwrap_or_else(|| panic!("{shot:?} is not a PNG"));
@@ -516,15 +529,7 @@ fn window_resizes_and_quits_with_escape() {
     std::thread::sleep(Duration::from_secs(1));
     demo.xdotool(&["key", "F12"]);
     let first = dir.join("meshrefine-1.png");
-    let t0 = Instant::now();
-    // Decoded whole once written (the demo writes it after the frame's fence).
-    while decoded(&first).is_none() {
-        assert!(
-            t0.elapsed() < Duration::from_secs(60),
-            "F12 wrote no {first:?}"
-        );
-        std::thread::sleep(Duration::from_millis(200));
-    }
+    wait_for_screenshot(&first);
     let (corner, size) = pixel(&first, 1279, 1023);
     assert_eq!(
         size,
@@ -574,14 +579,7 @@ fn f12_writes_into_the_current_directory_by_default() {
     std::thread::sleep(Duration::from_secs(1));
     demo.xdotool(&["key", "F12"]);
     let first = dir.join("meshrefine-1.png");
-    let t0 = Instant::now();
-    while decoded(&first).is_none() {
-        assert!(
-            t0.elapsed() < Duration::from_secs(60),
-            "F12 wrote no {first:?}"
-        );
-        std::thread::sleep(Duration::from_millis(200));
-    }
+    wait_for_screenshot(&first);
     demo.quit();
     let (n, total) = covered(&first);
     assert!(

@@ -596,4 +596,6 @@ use transitions::raise_for_transitions;
 pub use transitions::strip_need;
 
 #[cfg(test)]
+mod extent_tests;
+#[cfg(test)]
 mod tests;

@@ -100,7 +100,7 @@
 //! (where `A > a_e/2 + β`, with `u = a_e/2`: `S_e <= u² M_e + 2uβ B_x + β² mb <= (u + β)² M_c
 //! < A² M_c`). At powers of two such triangles stay within both edges' extents.
 //!
-//! The test `snapped_transition_sides_span_what_their_extent_allows` (src/lod/frame/tests.rs)
+//! The test `snapped_transition_sides_span_what_their_extent_allows` (src/lod/frame/extent_tests.rs)
 //! measures the sides of every triangle the pattern driver draws at integer levels up to 12 and
 //! powers of two up to 16, every combination of coarser edges, against these extents (where a
 //! triangle has vertices moved from two edges, the coarser edge's `a` at integer levels, both
