@@ -466,7 +466,7 @@ fn adaptive_draws_past_the_devices_room_fall_back_as_documented() {
 }
 
 /// The level pass where its bounds do not fit one allocation (docs/adaptivity.md, "Levels per
-/// frame"): Spot's 5,856 elements need 2,717,184 bytes of bounds (464 an element); with the
+/// frame"): Spot's 5,856 elements need 2,810,880 bytes of bounds (480 an element); with the
 /// device seen with a `maxMemoryAllocationSize` of 1,000,000 bytes the CPU chooses the levels
 /// instead, with one warning, and `render` draws the same image and `export` writes the same
 /// file (but for its `# command:` line) as on the whole device.
@@ -477,7 +477,7 @@ fn levels_past_one_allocation_are_chosen_on_the_cpu_alike() {
     let var = "MESHREFINE_MAX_MEMORY_ALLOCATION_SIZE";
     let warning = format!(
         "warning: the level pass's bounds buffer needs {} bytes, over this device's maxMemoryAllocationSize (1000000)",
-        5856 * 464
+        5856 * 480
     );
     let size = ["--width", "320", "--height", "180"];
     let (whole, cpu) = (tmp("alloc-whole.png"), tmp("alloc-cpu.png"));

@@ -2,8 +2,9 @@
 //! mesh's real levels buffer) against its CPU mirror (`lod::frame::frame_levels`) on Spot, for
 //! `flat`, `phong`, `pn`, `stpn` and `loop`, with and without displacement, for a far camera, a
 //! close-up that culls (frustum and back faces) and a grazing one from inside the mesh's
-//! bounding sphere, for a dyadic and an integer driver; and once more without the edges' share
-//! of the transition triangles, so that the inner levels' raise for them is compared too.
+//! bounding sphere, for every rounding (the snapped integer levels' with the lift's second
+//! dispatch: src/lod/frame/lift.rs); and once more without the edges' share of the transition
+//! triangles, so that the inner levels' raise for them is compared too.
 //!
 //! The two evaluate the same formulas in f32, but GLSL's `sqrt` and `length` are not correctly
 //! rounded, so: continuous levels agree to a relative 1e-4; where that much moves a level
@@ -20,7 +21,8 @@ use common::{model, with_gpu};
 use glam::{Mat4, Vec3};
 use meshrefine::gpu::vk;
 use meshrefine::lod::frame::{
-    corner_indices, frame_levels, lod_records, LodRecord, LodView, Rounding, CULL_BACK_FACES,
+    corner_indices, element_levels, frame_levels, lod_records, LodRecord, LodView, Rounding,
+    CULL_BACK_FACES,
 };
 use meshrefine::lod::levels::{drawn_level, ElementLevels};
 use meshrefine::lod::{Frustum, Lod, View};
@@ -101,6 +103,8 @@ fn gpu_levels_match_the_cpu() {
         let (c, r) = scene.bounding_sphere();
         let mut pass = LevelPass::new(&h.ctx).unwrap();
         let (mut compared, mut culled, mut shared, mut raised) = (0usize, 0usize, 0usize, 0usize);
+        // Elements whose levels the lift changed (the mirror's, against its first pass).
+        let mut lifted = 0usize;
         let mut thresholds = 0usize;
         for (surface, displace) in [
             (Surface::Flat, Displace::Sine),
@@ -241,6 +245,7 @@ fn gpu_levels_match_the_cpu() {
                         }
                         let top = k.edges.iter().fold(0.0f32, |a, &e| a.max(e));
                         raised += (k.inner.fract() == 0.0 && k.inner > top) as usize;
+                        lifted += (element_levels(&view, &bounds[i]) != k) as usize;
                         compared += 1;
                     }
                     thresholds += rounding;
@@ -270,9 +275,10 @@ fn gpu_levels_match_the_cpu() {
         }
         eprintln!(
             "{compared} elements equal, {thresholds} at a threshold, {culled} culled, \
-             {shared} shared edges, {raised} raised"
+             {shared} shared edges, {raised} raised, {lifted} lifted"
         );
         assert!(compared > 20_000 && culled > 6000 && raised > 5000 && shared > 40_000);
+        assert!(lifted > 100, "{lifted} elements lifted");
         drop(pass);
     });
 }

@@ -167,7 +167,7 @@ fn static_adaptive_uploads_when_the_levels_change() {
         assert_eq!(scene.upload_bytes(&st), cost.upload_bytes);
         assert!(cost.upload_bytes < st.geometry_bytes(20, false));
         // Animated, it also uploads the levels it chose (16 bytes an element); a driver whose
-        // level pass chooses them uploads that pass's bounds instead (464 bytes an element).
+        // level pass chooses them uploads that pass's bounds instead (480 bytes an element).
         let count = scene.elements(st.surface).element_count as u64;
         assert_eq!(scene.level_upload_bytes(&st), count * 16);
         let coarse = scene.upload_bytes(&st);
@@ -178,12 +178,12 @@ fn static_adaptive_uploads_when_the_levels_change() {
         };
         let coarse_levels = scene.set_levels(&pattern, &view(far, 4.0)).unwrap();
         assert!(scene.level_pass(&pattern).is_some());
-        assert_eq!(scene.level_upload_bytes(&pattern), count * 464);
+        assert_eq!(scene.level_upload_bytes(&pattern), count * 480);
         let records = scene.upload_bytes(&pattern);
         assert_eq!(scene.animated_upload_bytes(&pattern, false), records);
         assert_eq!(
             scene.animated_upload_bytes(&pattern, true),
-            records + count * 464
+            records + count * 480
         );
         // Independent of the levels: levels for a sixteenth of the pixel error, other levels,
         // upload the same (the level pass reads the same bounds whatever it chooses).
@@ -195,7 +195,7 @@ fn static_adaptive_uploads_when_the_levels_change() {
         );
         assert_eq!(
             scene.animated_upload_bytes(&pattern, true),
-            records + count * 464
+            records + count * 480
         );
         scene.set_levels(&st, &view(far, 4.0)).unwrap();
         h.render(&mut scene, &st, &far).unwrap();

@@ -1,8 +1,10 @@
 #version 460
 // The level pass: each element's levels for this frame (its stored edges' continuous levels and
 // its inner level; inner 0: culled) from its bounds, computed once (LodRecord), and the camera
-// (push constants). One invocation per element, over the whole levels buffer.
-// Mirror, operation for operation: src/lod/frame.rs `element_levels` (the proof of the
+// (push constants). One invocation per element, over the whole levels buffer. Where the view
+// lifts edges (LIFT), a second dispatch (LIFTING) lifts them from what the first left of every
+// element (src/lod/frame/lift.rs).
+// Mirror, operation for operation: src/lod/frame.rs `frame_levels` (the proof of the
 // transition triangles is in src/lod/frame/transitions.rs); tests/level_pass.rs compares the two.
 layout(local_size_x = 64) in;
 
@@ -12,13 +14,15 @@ const uint CULL_FRUSTUM = 1u;
 const uint CULL_BACK_FACES = 2u;
 const uint DYADIC = 4u;
 const uint LATTICE = 8u;
+const uint LIFT = 16u;
+const uint LIFTING = 32u;
 
-// The element's bounds (src/lod/frame.rs LodRecord, 464 bytes): 29 texels of a uniform texel
+// The element's bounds (src/lod/frame.rs LodRecord, 480 bytes): 30 texels of a uniform texel
 // buffer, at these offsets. The level pass reads them as texels, not from a storage buffer:
 // lavapipe loads a storage buffer one invocation and one component at a time, a texel buffer
 // with vector gathers, and the pass's time there is mostly its loads
 // (docs/bench/level-pass-loads.md).
-const int RECORD_TEXELS = 29;
+const int RECORD_TEXELS = 30;
 const int RECORD_SPHERE = 0;
 const int RECORD_CONE = 1;   // axis, cosine of the half-angle (0: none)
 const int RECORD_CHORD = 2;  // (c1, c2), then the kink terms (k1, k2)
@@ -34,6 +38,11 @@ const int EDGE_NEEDS = 1;
 const int EDGE_SPHERE = 5;
 const int EDGE_SPHERE_A = 6;
 const int EDGE_SPHERE_B = 7;
+// Its neighbours across its stored edges (`j * 4 + e'`, NO_NEIGHBOUR or SHARED_EDGE), read as
+// unsigned integers through lod_neighbours.
+const int RECORD_NEIGHBOURS = 29;
+const uint NO_NEIGHBOUR = 0xffffffffu;
+const uint SHARED_EDGE = 0xfffffffeu;
 
 layout(set = 0, binding = LEVEL_BINDING_RECORDS) uniform samplerBuffer lod_records;
 
@@ -41,9 +50,20 @@ vec4 record(uint i, int texel) {
     return texelFetch(lod_records, int(i) * RECORD_TEXELS + texel);
 }
 
+layout(set = 0, binding = LEVEL_BINDING_NEIGHBOURS) uniform usamplerBuffer lod_neighbours;
+
 // The mesh's levels buffer, whole (src/lod/levels.rs ElementLevels).
-layout(set = 0, binding = LEVEL_BINDING_LEVELS, std430) writeonly buffer Levels {
+layout(set = 0, binding = LEVEL_BINDING_LEVELS, std430) buffer Levels {
     vec4 element_levels[];
+};
+
+// What the first dispatch leaves of each element for the lift (src/lod/frame/lift.rs `Before`:
+// own, inner, failing, 0): this chunk's elements, and every element (the neighbours').
+layout(set = 0, binding = LEVEL_BINDING_BEFORE, std430) buffer Before {
+    vec4 before[];
+};
+layout(set = 0, binding = LEVEL_BINDING_BEFORE_ALL, std430) readonly buffer BeforeAll {
+    vec4 before_all[];
 };
 
 // What a drawn element's levels read of its record (after culling, which reads only the
@@ -349,10 +369,12 @@ bool outside(vec4 s) {
     return lod_outside(planes, s);
 }
 
-// Mirror: `raise_for_transitions`.
-float raise_for_transitions(Element r, vec3 edges, float inner) {
+// Mirror: `raise_for_transitions` (with the edges whose triangles do not fit at the level it
+// starts from, bit e of `failing`).
+float raise_for_transitions(Element r, vec3 edges, float inner, out uint failing) {
     bool dyadic = (view.flags & DYADIC) != 0u;
     uint mx = view.max_level;
+    failing = 0u;
     if (r.chord.y >= LOD_HUGE || r.chord.x >= LOD_HUGE) {
         return inner;
     }
@@ -372,6 +394,9 @@ float raise_for_transitions(Element r, vec3 edges, float inner) {
                 Strip st = strip_new(r, e, 1.0 / float(ne[e]));
                 if (!strip_fits(st, float(n), tol)) {
                     need = max(need, strip_level(st, tol, float(n)));
+                    if (it == 0) {
+                        failing |= 1u << e;
+                    }
                 }
             }
         }
@@ -384,26 +409,91 @@ float raise_for_transitions(Element r, vec3 edges, float inner) {
     return raised ? float(n) : inner;
 }
 
+Element load_element(uint i, vec4 sphere) {
+    return Element(sphere, record(i, RECORD_CHORD), record(i, RECORD_SECOND),
+                   record(i, RECORD_MIXED));
+}
+
+// The first dispatch. Mirror: `element_levels` (`first_levels`).
+void first_levels(uint i) {
+    vec4 sphere = record(i, RECORD_SPHERE);
+    bool culled = ((view.flags & CULL_FRUSTUM) != 0u && outside(sphere))
+        || ((view.flags & CULL_BACK_FACES) != 0u
+            && lod_back_facing(record(i, RECORD_CONE), sphere, view.eye_k.xyz));
+    bool lift = (view.flags & LIFT) != 0u;
+    // A culled element draws nothing, and an edge's level is computed by each element that
+    // draws it: no level is needed here.
+    if (culled) {
+        element_levels[i] = vec4(0.0);
+        if (lift) {
+            before[i] = vec4(0.0);
+        }
+        return;
+    }
+    Element r = load_element(i, sphere);
+    vec3 edges = vec3(edge_level(load_edge(i, 0)), edge_level(load_edge(i, 1)),
+                      edge_level(load_edge(i, 2)));
+    float own = own_level_above(r, max(edges.x, max(edges.y, edges.z)));
+    uint failing;
+    float inner = raise_for_transitions(r, edges, own, failing);
+    element_levels[i] = vec4(edges, inner);
+    if (lift) {
+        before[i] = vec4(own, inner, float(failing), 0.0);
+    }
+}
+
+// Mirror: `Before::proposal` (0: none).
+uint proposal(vec4 b, uint slot, uint edge, vec4 other, bool has_other) {
+    uint mx = view.max_level;
+    uint n = drawn(b.x, false, mx);
+    uint across = (has_other && other.y > 0.0) ? drawn(other.y, false, mx) : 0xffffffffu;
+    return ((uint(b.z) >> slot) & 1u) != 0u && n > edge && n <= across ? n : 0u;
+}
+
+// The lift's dispatch. Mirror: src/lod/frame/lift.rs `lifted`.
+void lift_levels(uint i) {
+    vec4 me = before[i];
+    if (me.y <= 0.0) {
+        return;
+    }
+    uint mx = view.max_level;
+    vec4 l = element_levels[i];
+    vec3 edges = l.xyz;
+    uvec4 across = texelFetch(lod_neighbours, int(i) * RECORD_TEXELS + RECORD_NEIGHBOURS);
+    for (int e = 0; e < 3; ++e) {
+        uint a = across[e];
+        if (a == SHARED_EDGE) {
+            continue;
+        }
+        uint drawn_edge = drawn(l[e], false, mx);
+        bool has_other = a != NO_NEIGHBOUR;
+        vec4 other = has_other ? before_all[a / 4u] : vec4(0.0);
+        uint n = proposal(me, uint(e), drawn_edge, other, has_other);
+        if (has_other && other.y > 0.0) {
+            n = max(n, proposal(other, a % 4u, drawn_edge, me, true));
+        }
+        if (n > 0u) {
+            edges[e] = float(n);
+        }
+    }
+    if (edges == l.xyz) {
+        return;
+    }
+    Element r = load_element(i, record(i, RECORD_SPHERE));
+    float own = own_level_above(r, max(edges.x, max(edges.y, edges.z)));
+    uint failing;
+    float inner = raise_for_transitions(r, edges, own, failing);
+    element_levels[i] = vec4(edges, inner);
+}
+
 void main() {
     uint i = gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * gl_NumWorkGroups.x * 64u;
     if (i >= view.count) {
         return;
     }
-    vec4 sphere = record(i, RECORD_SPHERE);
-    bool culled = ((view.flags & CULL_FRUSTUM) != 0u && outside(sphere))
-        || ((view.flags & CULL_BACK_FACES) != 0u
-            && lod_back_facing(record(i, RECORD_CONE), sphere, view.eye_k.xyz));
-    // A culled element draws nothing, and an edge's level is computed by each element that
-    // draws it: no level is needed here.
-    if (culled) {
-        element_levels[i] = vec4(0.0);
-        return;
+    if ((view.flags & LIFTING) != 0u) {
+        lift_levels(i);
+    } else {
+        first_levels(i);
     }
-    Element r = Element(sphere, record(i, RECORD_CHORD), record(i, RECORD_SECOND),
-                        record(i, RECORD_MIXED));
-    vec3 edges = vec3(edge_level(load_edge(i, 0)), edge_level(load_edge(i, 1)),
-                      edge_level(load_edge(i, 2)));
-    float inner = own_level_above(r, max(edges.x, max(edges.y, edges.z)));
-    inner = raise_for_transitions(r, edges, inner);
-    element_levels[i] = vec4(edges, inner);
 }

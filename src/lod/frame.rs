@@ -46,8 +46,8 @@ pub struct LodEdge {
     pub sphere_b: [f32; 4],
 }
 
-/// What the level pass reads of one element (std430, 464 bytes): its own bounds and its three
-/// stored edges'.
+/// What the level pass reads of one element (std430, 480 bytes): its own bounds, its three
+/// stored edges' and its neighbours across them.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct LodRecord {
@@ -63,10 +63,14 @@ pub struct LodRecord {
     /// `B_k` per stored pair of directions `(k, k + 1)` ([`super::Bounds::mixed`]; `w` unused).
     pub mixed: [f32; 4],
     pub edges: [LodEdge; 3],
+    /// Across each stored edge `e`, the other element that has it and its slot there,
+    /// `j * 4 + e'`; [`lift::BOUNDARY`] where no other has it, [`lift::SHARED`] where more than
+    /// one other has it (`w` unused): what the lift reads ([`lift`]).
+    pub neighbours: [u32; 4],
 }
 
 const _: () = assert!(std::mem::size_of::<LodEdge>() == 128);
-const _: () = assert!(std::mem::size_of::<LodRecord>() == 464);
+const _: () = assert!(std::mem::size_of::<LodRecord>() == 480);
 
 /// Cull flags of [`LodView::flags`].
 pub const CULL_FRUSTUM: u32 = 1;
@@ -78,6 +82,10 @@ pub const DYADIC: u32 = 4;
 /// tessellator's rings ([`Rounding::TessSnapped`] with [`DYADIC`], [`Rounding::Integer`]
 /// without).
 pub const LATTICE: u32 = 8;
+/// Edges are lifted to a neighbour's inner level where that saves its transition ([`lift`]):
+/// set for [`Rounding::SnappedInteger`], the only rounding whose inner levels step 2 raises
+/// often.
+pub const LIFT: u32 = 16;
 
 /// How a driver rounds an element's levels and draws its boundary along a coarser edge: what
 /// the level pass bounds the transition triangles for ([`transitions`]).
@@ -143,7 +151,7 @@ pub struct LodView {
     pub eye_k: [f32; 4],
     pub pixel_error: f32,
     pub max_level: u32,
-    /// [`CULL_FRUSTUM`], [`CULL_BACK_FACES`], [`DYADIC`], [`LATTICE`].
+    /// [`CULL_FRUSTUM`], [`CULL_BACK_FACES`], [`DYADIC`], [`LATTICE`], [`LIFT`].
     pub flags: u32,
     /// Elements.
     pub count: u32,
@@ -168,7 +176,7 @@ impl LodView {
                 Rounding::Integer => 0,
                 Rounding::TessSnapped => DYADIC,
                 Rounding::Snapped => DYADIC | LATTICE,
-                Rounding::SnappedInteger => LATTICE,
+                Rounding::SnappedInteger => LATTICE | LIFT,
             };
         Self {
             planes,
@@ -295,6 +303,7 @@ pub fn lod_records_reporting(
                 second: [b.second[0], b.second[1], b.second[2], b.cubic].map(clamp_huge),
                 mixed: [b.mixed[0], b.mixed[1], b.mixed[2], 0.0].map(clamp_huge),
                 edges: [LodEdge::zeroed(); 3],
+                neighbours: [0; 4],
             }
         })
         .collect();
@@ -334,8 +343,16 @@ pub fn lod_records_reporting(
             sphere_a: sphere4(&sphere_a),
             sphere_b: sphere4(&sphere_b),
         };
-        for &(i, e) in list {
+        for (k, &(i, e)) in list.iter().enumerate() {
             out[i].edges[e] = slot;
+            out[i].neighbours[e] = match list.len() {
+                1 => lift::BOUNDARY,
+                2 => {
+                    let (j, f) = list[1 - k];
+                    (j * 4 + f) as u32
+                }
+                _ => lift::SHARED,
+            };
         }
     }
     out
@@ -435,22 +452,31 @@ fn back_facing(v: &LodView, cone: [f32; 4], s: [f32; 4]) -> bool {
     cone.cos > 0.0 && cone.back_facing(&sphere, v.eye())
 }
 
-/// One element's levels ([`ElementLevels::CULLED`] where it is culled). Mirror:
+/// Whether the view culls the element. Mirror: the start of glsl/lod/levels.comp's `main`.
+fn element_levels_culled(v: &LodView, r: &LodRecord) -> bool {
+    (v.flags & CULL_FRUSTUM != 0 && outside(v, r.sphere))
+        || (v.flags & CULL_BACK_FACES != 0 && back_facing(v, r.cone, r.sphere))
+}
+
+/// One element's levels ([`ElementLevels::CULLED`] where it is culled) before the lift (all
+/// that [`frame_levels`] gives it where the view does not lift). Mirror:
 /// glsl/lod/levels.comp's `main`.
 pub fn element_levels(v: &LodView, r: &LodRecord) -> ElementLevels {
-    let culled = (v.flags & CULL_FRUSTUM != 0 && outside(v, r.sphere))
-        || (v.flags & CULL_BACK_FACES != 0 && back_facing(v, r.cone, r.sphere));
     // A culled element draws nothing, and an edge's level is computed by each element that
     // draws it: no level is needed here.
-    if culled {
+    if element_levels_culled(v, r) {
         return ElementLevels::CULLED;
     }
+    first_levels(v, r).0
+}
+
+/// [`element_levels`] before the lift, with what the lift reads of it ([`lift::Before`]).
+fn first_levels(v: &LodView, r: &LodRecord) -> (ElementLevels, lift::Before) {
     let edges = [0, 1, 2].map(|e| edge_level(v, &r.edges[e]));
-    let inner = own_level_above(v, r, edges[0].max(edges[1]).max(edges[2]));
-    ElementLevels {
-        edges,
-        inner: raise_for_transitions(v, r, &edges, inner),
-    }
+    let own = own_level_above(v, r, edges[0].max(edges[1]).max(edges[2]));
+    let (inner, failing) = raise_for_transitions(v, r, &edges, own);
+    let levels = ElementLevels { edges, inner };
+    (levels, lift::Before::new(own, inner, failing))
 }
 
 /// The smallest level that, given to every element, meets `view`'s pixel error on every
@@ -483,7 +509,23 @@ fn own_need(view: &LodView, r: &LodRecord) -> f32 {
 
 /// Every element's levels for `view`: the mirror of the level pass.
 pub fn frame_levels(view: &LodView, records: &[LodRecord]) -> Vec<ElementLevels> {
-    records.iter().map(|r| element_levels(view, r)).collect()
+    let culled = |r: &LodRecord| element_levels_culled(view, r);
+    let (levels, before): (Vec<_>, Vec<_>) = records
+        .iter()
+        .map(|r| {
+            if culled(r) {
+                (ElementLevels::CULLED, lift::Before::CULLED)
+            } else {
+                first_levels(view, r)
+            }
+        })
+        .unzip();
+    if view.flags & LIFT == 0 {
+        return levels;
+    }
+    (records.iter().zip(&levels).enumerate())
+        .map(|(i, (r, l))| lift::lifted(view, r, l, &before[i], &before))
+        .collect()
 }
 
 /// A largest level no finite bound reaches in practice: levels chosen under it are uncapped
@@ -591,11 +633,14 @@ mod cores;
 use cores::on_every_core;
 mod inside;
 pub use inside::{own_chord, own_error, own_level, own_level_above};
+pub mod lift;
 pub mod transitions;
 use transitions::raise_for_transitions;
 pub use transitions::strip_need;
 
 #[cfg(test)]
 mod extent_tests;
+#[cfg(test)]
+mod lift_tests;
 #[cfg(test)]
 mod tests;

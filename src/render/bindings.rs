@@ -95,9 +95,14 @@ pub const BINDING_LOD_BOUNDS: u32 = 0;
 
 /// The per-frame level pass (glsl/lod/levels.comp, its own set 0): each element's bounds
 /// (`LodRecord`s, src/lod/frame.rs, as a uniform texel buffer of `RGBA32F`) in, the mesh's
-/// whole levels buffer out (storage buffer).
+/// whole levels buffer out (storage buffer); for the lift (src/lod/frame/lift.rs), the same
+/// records' neighbours (the same buffer as `RGBA32UI` texels), and what the first dispatch
+/// leaves of each element (a storage buffer: the chunk's own range, and the whole of it).
 pub const LEVEL_BINDING_RECORDS: u32 = 0;
 pub const LEVEL_BINDING_LEVELS: u32 = 1;
+pub const LEVEL_BINDING_NEIGHBOURS: u32 = 2;
+pub const LEVEL_BINDING_BEFORE: u32 = 3;
+pub const LEVEL_BINDING_BEFORE_ALL: u32 = 4;
 
 /// Specialization constant ids.
 pub const SPEC_SURFACE: u32 = 0;
@@ -146,6 +151,9 @@ pub const GLSL_DEFINES: &[(&str, u32)] = &[
     ("BINDING_LOD_BOUNDS", BINDING_LOD_BOUNDS),
     ("LEVEL_BINDING_RECORDS", LEVEL_BINDING_RECORDS),
     ("LEVEL_BINDING_LEVELS", LEVEL_BINDING_LEVELS),
+    ("LEVEL_BINDING_NEIGHBOURS", LEVEL_BINDING_NEIGHBOURS),
+    ("LEVEL_BINDING_BEFORE", LEVEL_BINDING_BEFORE),
+    ("LEVEL_BINDING_BEFORE_ALL", LEVEL_BINDING_BEFORE_ALL),
     ("SPEC_SURFACE", SPEC_SURFACE),
     ("SPEC_SUBMIT", SPEC_SUBMIT),
     ("SPEC_WIRE", SPEC_WIRE),

@@ -6,14 +6,24 @@
 //! `lod::frame::lod_records`) and uploaded as one `LodRecord` per element; a frame costs one
 //! dispatch of cheap math (`glsl/lod/levels.comp`, mirrored by `lod::frame::frame_levels`), the
 //! camera in push constants, and no readback. The shader reads the bounds as texels
-//! (a uniform texel buffer of `RGBA32F`, 29 texels an element), which lavapipe fetches
+//! (a uniform texel buffer of `RGBA32F`, 30 texels an element), which lavapipe fetches
 //! with vector gathers where it loads a storage buffer one invocation at a time
 //! (docs/bench/level-pass-loads.md). A descriptor spans at most maxTexelBufferElements texels
-//! of the bounds (4,628,197 bounds on lavapipe) and maxStorageBufferRange bytes of the levels,
+//! of the bounds (4,473,924 bounds on lavapipe) and maxStorageBufferRange bytes of the levels,
 //! so a larger mesh's bounds and levels are bound and dispatched in chunks, one descriptor set
 //! and buffer view each: the shader is the same.
+//!
+//! Where the view lifts edges (`lod::frame::LIFT`, src/lod/frame/lift.rs), a second dispatch
+//! per chunk, after a barrier, reads what the first left of every element (its own and its
+//! neighbours', from a buffer bound whole) and writes the lifted levels. A mesh whose buffer
+//! of those (16 bytes an element) exceeds maxStorageBufferRange (at least 2^27 bytes, 8.4
+//! million elements) is drawn without the lift: its levels are the first dispatch's, which
+//! meet the pixel error as well, with more triangles than the mirror's (which always lifts).
 
-use super::bindings::{LEVEL_BINDING_LEVELS, LEVEL_BINDING_RECORDS};
+use super::bindings::{
+    LEVEL_BINDING_BEFORE, LEVEL_BINDING_BEFORE_ALL, LEVEL_BINDING_LEVELS, LEVEL_BINDING_NEIGHBOURS,
+    LEVEL_BINDING_RECORDS,
+};
 use super::gpu_mesh::GpuMesh;
 use super::loop_gpu::dispatch_grid;
 use super::RenderError;
@@ -21,7 +31,7 @@ use crate::gpu::{
     vk, Buffer, BufferDesc, BufferView, Cmd, Context, DescriptorPool, DescriptorSetLayout,
     Pipeline, PipelineLayout,
 };
-use crate::lod::frame::{lod_records, LodEdge, LodRecord, LodView};
+use crate::lod::frame::{lod_records, LodEdge, LodRecord, LodView, LIFT};
 use crate::lod::levels::ElementLevels;
 use crate::lod::Lod;
 use crate::surface::ElementRecord;
@@ -32,6 +42,12 @@ const GROUP: u32 = 64;
 
 /// The texel format the shader reads the bounds in.
 const RECORD_FORMAT: vk::Format = vk::Format::R32G32B32A32_SFLOAT;
+/// The texel format it reads the records' neighbours in.
+const NEIGHBOURS_FORMAT: vk::Format = vk::Format::R32G32B32A32_UINT;
+/// Bytes of what the first dispatch leaves of an element for the lift (a `vec4`).
+const BEFORE_BYTES: u64 = 16;
+/// [`LodView::flags`] of the lift's dispatch (`LIFTING` in levels.comp).
+const LIFTING: u32 = 32;
 
 /// Texels of [`RECORD_FORMAT`] an element's bounds span (`RECORD_TEXELS` in levels.comp).
 const RECORD_TEXELS: u64 = (std::mem::size_of::<LodRecord>() / 16) as u64;
@@ -39,13 +55,14 @@ const RECORD_TEXELS: u64 = (std::mem::size_of::<LodRecord>() / 16) as u64;
 // The texels levels.comp reads each field at (`RECORD_*`, `EDGE_*`).
 const _: () = {
     use std::mem::{offset_of, size_of};
-    assert!(size_of::<LodRecord>() == 29 * 16);
+    assert!(size_of::<LodRecord>() == 30 * 16);
     assert!(offset_of!(LodRecord, sphere) == 0);
     assert!(offset_of!(LodRecord, cone) == 16);
     assert!(offset_of!(LodRecord, chord) == 2 * 16);
     assert!(offset_of!(LodRecord, second) == 3 * 16);
     assert!(offset_of!(LodRecord, mixed) == 4 * 16);
     assert!(offset_of!(LodRecord, edges) == 5 * 16);
+    assert!(offset_of!(LodRecord, neighbours) == 29 * 16);
     assert!(size_of::<LodEdge>() == 8 * 16);
     assert!(offset_of!(LodEdge, curve) == 0);
     assert!(offset_of!(LodEdge, needs) == 16);
@@ -62,6 +79,10 @@ pub struct LevelPass {
     chunks: Vec<Chunk>,
     /// One `LodRecord` per element (at least one: a buffer may not be empty).
     records: Buffer,
+    /// What the first dispatch leaves of each element for the lift ([`BEFORE_BYTES`] each).
+    before: Buffer,
+    /// Whether the whole of `before` fits one descriptor (else no lift is dispatched).
+    lift: bool,
     count: u32,
     /// The levels buffer the sets point at (the mesh of the last [`LevelPass::update_bounds`]).
     levels: vk::Buffer,
@@ -75,12 +96,14 @@ pub struct LevelPass {
     set_layout: DescriptorSetLayout,
 }
 
-/// One dispatch of the level pass: `count` elements, bound by `set`, whose bounds `view` shows.
+/// One dispatch of the level pass: `count` elements, bound by `set`, whose bounds `view` shows
+/// (and `neighbours` their neighbours).
 struct Chunk {
     count: u32,
     grid: [u32; 2],
     set: vk::DescriptorSet,
     _view: BufferView,
+    _neighbours: BufferView,
 }
 
 impl LevelPass {
@@ -104,6 +127,9 @@ impl LevelPass {
             &[
                 (LEVEL_BINDING_RECORDS, texels, c),
                 (LEVEL_BINDING_LEVELS, storage, c),
+                (LEVEL_BINDING_NEIGHBOURS, texels, c),
+                (LEVEL_BINDING_BEFORE, storage, c),
+                (LEVEL_BINDING_BEFORE_ALL, storage, c),
             ],
             "level pass set",
         )?;
@@ -118,7 +144,7 @@ impl LevelPass {
         let pool = DescriptorPool::new(
             ctx,
             1,
-            &[(texels, 1), (storage, 1)],
+            &[(texels, 2), (storage, 3)],
             "level pass descriptors",
         )?;
         let records = Buffer::new(
@@ -129,10 +155,13 @@ impl LevelPass {
             ),
             "level pass bounds",
         )?;
+        let before = before_buffer(ctx, 1)?;
         Ok(Self {
             ctx: ctx.clone(),
             chunks: Vec::new(),
             records,
+            before,
+            lift: false,
             count: 0,
             levels: vk::Buffer::null(),
             max_chunk,
@@ -221,6 +250,12 @@ impl LevelPass {
             )?;
         }
         self.records.write_pod(0, bounds);
+        if self.before.size() < n.max(1) * BEFORE_BYTES {
+            self.before = before_buffer(&self.ctx, n)?;
+        }
+        let range = info.limits.max_storage_buffer_range as u64;
+        self.lift = n * BEFORE_BYTES <= range;
+        let whole = self.before.size().min(range / BEFORE_BYTES * BEFORE_BYTES);
         let (texels, storage) = (
             vk::DescriptorType::UNIFORM_TEXEL_BUFFER,
             vk::DescriptorType::STORAGE_BUFFER,
@@ -230,7 +265,7 @@ impl LevelPass {
             self.pool = DescriptorPool::new(
                 &self.ctx,
                 sets,
-                &[(texels, sets), (storage, sets)],
+                &[(texels, 2 * sets), (storage, 3 * sets)],
                 "level pass descriptors",
             )?;
             Vec::new()
@@ -250,7 +285,31 @@ impl LevelPass {
                 (first * record, span * record),
                 &format!("level pass bounds {k}"),
             )?;
+            let neighbours = BufferView::span(
+                &self.ctx,
+                &self.records,
+                NEIGHBOURS_FORMAT,
+                (first * record, span * record),
+                &format!("level pass neighbours {k}"),
+            )?;
             (self.pool).write_texel_buffer(set, LEVEL_BINDING_RECORDS, texels, view.raw);
+            (self.pool).write_texel_buffer(set, LEVEL_BINDING_NEIGHBOURS, texels, neighbours.raw);
+            (self.pool).write_buffer_at(
+                set,
+                LEVEL_BINDING_BEFORE,
+                storage,
+                self.before.raw,
+                first * BEFORE_BYTES,
+                span * BEFORE_BYTES,
+            );
+            (self.pool).write_buffer_at(
+                set,
+                LEVEL_BINDING_BEFORE_ALL,
+                storage,
+                self.before.raw,
+                0,
+                whole,
+            );
             (self.pool).write_buffer_at(
                 set,
                 LEVEL_BINDING_LEVELS,
@@ -264,6 +323,7 @@ impl LevelPass {
                 grid,
                 set,
                 _view: view,
+                _neighbours: neighbours,
             });
         }
         self.count = bounds.len() as u32;
@@ -289,16 +349,27 @@ impl LevelPass {
             mesh.levels.raw, self.levels,
             "the level pass's bounds are for another mesh (update_bounds)"
         );
+        let lift = view.flags & LIFT != 0 && self.lift;
         let view = LodView {
             count: self.count,
+            flags: if lift { view.flags } else { view.flags & !LIFT },
             ..*view
         };
         cmd.barrier_draws_to_levels();
         cmd.bind_compute_pipeline(self.pipeline.raw);
-        // The chunks write disjoint ranges of the levels: no barrier between them.
-        for chunk in &self.chunks {
+        // The chunks write disjoint ranges, but each dispatch binds the whole buffer the lift
+        // reads (what every chunk's first dispatch wrote), which the synchronization checks
+        // take as read (and the chunk's range as written) whatever the dispatch: a barrier
+        // between any two dispatches (chunks are for meshes of millions of elements).
+        let passes: &[u32] = if lift { &[0, LIFTING] } else { &[0] };
+        let dispatches = (passes.iter()).flat_map(|&p| self.chunks.iter().map(move |c| (c, p)));
+        for (k, (chunk, pass)) in dispatches.enumerate() {
+            if k > 0 {
+                cmd.barrier_to_compute();
+            }
             let view = LodView {
                 count: chunk.count,
+                flags: view.flags | pass,
                 ..view
             };
             cmd.bind_compute_descriptor_set(self.layout.raw, 0, chunk.set);
@@ -313,6 +384,15 @@ impl LevelPass {
         }
         cmd.barrier_levels_to_draws();
     }
+}
+
+/// The buffer of what the first dispatch leaves of `n` elements (at least one) for the lift.
+fn before_buffer(ctx: &Arc<Context>, n: u64) -> Result<Buffer, RenderError> {
+    let desc = BufferDesc::new_gpu_only(
+        n.max(1) * BEFORE_BYTES,
+        vk::BufferUsageFlags::STORAGE_BUFFER,
+    );
+    Ok(Buffer::new(ctx, desc, "level pass lift")?)
 }
 
 /// [`LevelPass::chunk_size`] for a device's `limits`: elements a chunk of `n` holds.
@@ -345,18 +425,18 @@ mod tests {
     use super::*;
 
     /// On a device at Vulkan's least texel range (65,536 texels) with 256-byte offset
-    /// alignments, a chunk of bounds spans at most that many texels (29 an element), in steps
-    /// of 16 elements that keep both arrays' offsets aligned: 2,256 elements; a mesh that fits
+    /// alignments, a chunk of bounds spans at most that many texels (30 an element), in steps
+    /// of 16 elements that keep both arrays' offsets aligned: 2,176 elements; a mesh that fits
     /// is one chunk, and `max_chunk` cuts smaller ones.
     #[test]
     fn chunks_follow_the_texel_limit_and_both_alignments() {
         let limits = crate::render::gpu_mesh::tests::least_texel_range();
         let chunk = level_chunk(&limits, None, 1_000_000);
-        assert_eq!(chunk, 2_256);
+        assert_eq!(chunk, 2_176);
         assert!(chunk * RECORD_TEXELS <= 65_536);
         assert_eq!(chunk * std::mem::size_of::<LodRecord>() as u64 % 256, 0);
         assert_eq!(chunk * std::mem::size_of::<ElementLevels>() as u64 % 256, 0);
-        assert_eq!(level_chunk(&limits, None, 2_259), 2_259);
+        assert_eq!(level_chunk(&limits, None, 2_180), 2_180);
         assert_eq!(level_chunk(&limits, Some(100), 1_000), 96);
     }
 }

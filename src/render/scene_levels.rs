@@ -269,7 +269,7 @@ impl Scene {
 
     /// Bytes an adaptive frame drawing `cfg` uploads besides the coarse data when the coarse
     /// mesh moved (animation): the bounds the level pass reads, computed again on the CPU from
-    /// the moved mesh ([`LodRecord`], 464 bytes an element), or, where the CPU chooses the
+    /// the moved mesh ([`LodRecord`], 480 bytes an element), or, where the CPU chooses the
     /// levels (the static driver; a device that cannot hold the pass), the levels themselves
     /// ([`ElementLevels`], 16 bytes an element). Independent of the levels chosen.
     pub fn level_upload_bytes(&self, cfg: &DrawConfig) -> u64 {

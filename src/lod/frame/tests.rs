@@ -46,31 +46,34 @@ fn shared_edges_hold_identical_bits() {
             &recs
         };
         let lr = lod_records(&lod, records);
-        let mut seen: HashMap<(u32, u32), LodEdge> = HashMap::new();
-        let mut shared = 0;
-        let view = LodView::new(
-            &view_at(Vec3::new(0.0, 0.3, 3.0 * r), 64),
-            None,
-            false,
-            Rounding::Snapped,
-            lr.len() as u32,
-        );
-        let levels = frame_levels(&view, &lr);
-        let mut level_of: HashMap<(u32, u32), u32> = HashMap::new();
-        for (i, rec) in records.iter().enumerate() {
-            for e in 0..3 {
-                let key = edge_key(&lod, rec, e);
-                let slot = lr[i].edges[e];
-                let bits = levels[i].edges[e].to_bits();
-                if let Some(old) = seen.insert(key, slot) {
-                    assert_eq!(bytemuck::bytes_of(&old), bytemuck::bytes_of(&slot));
-                    assert_eq!(level_of[&key], bits);
-                    shared += 1;
+        // The gliding levels, and the integer ones with the lift (src/lod/frame/lift.rs).
+        for rounding in [Rounding::Snapped, Rounding::SnappedInteger] {
+            let mut seen: HashMap<(u32, u32), LodEdge> = HashMap::new();
+            let mut shared = 0;
+            let view = LodView::new(
+                &view_at(Vec3::new(0.0, 0.3, 3.0 * r), 64),
+                None,
+                false,
+                rounding,
+                lr.len() as u32,
+            );
+            let levels = frame_levels(&view, &lr);
+            let mut level_of: HashMap<(u32, u32), u32> = HashMap::new();
+            for (i, rec) in records.iter().enumerate() {
+                for e in 0..3 {
+                    let key = edge_key(&lod, rec, e);
+                    let slot = lr[i].edges[e];
+                    let bits = levels[i].edges[e].to_bits();
+                    if let Some(old) = seen.insert(key, slot) {
+                        assert_eq!(bytemuck::bytes_of(&old), bytemuck::bytes_of(&slot));
+                        assert_eq!(level_of[&key], bits);
+                        shared += 1;
+                    }
+                    level_of.insert(key, bits);
                 }
-                level_of.insert(key, bits);
             }
+            assert_eq!(shared * 2, 3 * records.len(), "{}", surface.name());
         }
-        assert_eq!(shared * 2, 3 * records.len(), "{}", surface.name());
     }
 }
 
@@ -88,22 +91,30 @@ fn levels_fall_with_distance_and_respect_the_cap() {
     let centre = (lo + hi) * 0.5;
     for rounding in Rounding::ALL {
         let dyadic = rounding.dyadic();
-        let at = |d: f32, max: u32| {
+        let view = |d: f32, max: u32| {
             let v = view_at(centre + Vec3::new(0.3, 0.2, 1.0).normalize() * d, max);
-            frame_levels(&LodView::new(&v, None, false, rounding, 0), &lr)
+            LodView::new(&v, None, false, rounding, 0)
         };
-        let mut last: Option<Vec<ElementLevels>> = None;
+        let at = |d: f32, max: u32| frame_levels(&view(d, max), &lr);
+        // The levels before the lift (which follows the neighbours' levels, not the distance
+        // alone: src/lod/frame/lift.rs): the same where the view does not lift.
+        let first = |d: f32| -> Vec<ElementLevels> {
+            let v = view(d, 64);
+            lr.iter().map(|r| element_levels(&v, r)).collect()
+        };
+        let mut last: Option<(Vec<ElementLevels>, Vec<ElementLevels>)> = None;
         for d in [1.5 * r, 3.0 * r, 6.0 * r, 12.0 * r] {
-            let now = at(d, 64);
-            for l in &now {
+            let (now, before) = (at(d, 64), first(d));
+            for (l, b) in now.iter().zip(&before) {
                 assert!(l.inner >= 1.0 && l.inner <= 64.0);
-                for e in l.edges {
+                for (e, f) in l.edges.into_iter().zip(b.edges) {
                     assert!((1.0..=64.0).contains(&e));
                     assert!(l.inner >= e);
+                    assert!(e >= f);
                 }
             }
-            if let Some(prev) = &last {
-                for (p, n) in prev.iter().zip(&now) {
+            if let Some((prev, prev_before)) = &last {
+                for (p, n) in prev_before.iter().zip(&before) {
                     for e in 0..3 {
                         assert!(n.edges[e] <= p.edges[e]);
                     }
@@ -114,7 +125,7 @@ fn levels_fall_with_distance_and_respect_the_cap() {
                 };
                 assert!(tris(&now) <= tris(prev), "at {d}");
             }
-            last = Some(now);
+            last = Some((now, before));
         }
         // A cap of 4: nothing drawn finer, and the close camera hits it.
         let capped = at(1.5 * r, 4);
@@ -212,10 +223,12 @@ fn inner_levels_cover_own_bound_and_transitions() {
             let b = lod.element(rec);
             let edges = [0, 1, 2].map(|e| lod.edge(rec, e));
             let (own_edges, own_inner) = view.levels(&b, &edges);
-            for (mine, own) in l.edges.iter().zip(own_edges) {
-                assert!(*mine >= own);
+            // Before the lift, without step 1, an edge's level is its curve's.
+            let before = element_levels(&lv, x).edges;
+            for ((mine, own), first) in l.edges.iter().zip(own_edges).zip(before) {
+                assert!(*mine >= first && first >= own);
                 if !step1 {
-                    assert_eq!(*mine, own);
+                    assert_eq!(first, own);
                 }
             }
             assert!(l.inner >= own_inner);

@@ -169,9 +169,9 @@
 //! own extent, `a_e/2 + λ a_e`) draws more (0.36-0.38x, 0.37-0.41x, 0.44-0.47x), and `λ` below
 //! 1/2 the same (the corners' `M_c`, not the sides, sets those edges). Step 1 without the
 //! corners would draw more still (nothing would then bound them, and its edges being coarser,
-//! step 2 raises more). Lifting an edge to the inner level of one of its elements where that is
-//! at most a fifth above it (a second pass, reading the neighbour's level) leaves fewer raises
-//! but more elements finer; it would need the level pass to read its neighbours' levels.
+//! step 2 raises more). Lifting such an edge to the inner level of the element it would raise,
+//! where the element across it is already drawn that fine, leaves no transition there: a
+//! second pass over the neighbours' levels ([`super::lift`]) draws 0.31-0.33x.
 //!
 //! # Gliding
 //! The gliding pattern driver takes step 1's kink and cubic terms at `5/4 a_e`, a quarter past
@@ -491,18 +491,25 @@ pub fn transitions_beyond(v: &LodView, r: &LodRecord, edges: &[f32; 3]) -> bool 
 
 /// The inner level raised until every transition triangle meets the element's tolerance
 /// (module notes, step 2): unchanged where no edge is drawn coarser than the inside or the
-/// triangles already fit, else the drawn level that fits (an exact integer). Mirror:
-/// `raise_for_transitions` in glsl/lod/levels.comp.
-pub fn raise_for_transitions(v: &LodView, r: &LodRecord, edges: &[f32; 3], inner: f32) -> f32 {
+/// triangles already fit, else the drawn level that fits (an exact integer); and the edges
+/// (bit `e`) whose triangles do not fit at the level it starts from (what the lift reads:
+/// [`super::lift`]). Mirror: `raise_for_transitions` in glsl/lod/levels.comp.
+pub fn raise_for_transitions(
+    v: &LodView,
+    r: &LodRecord,
+    edges: &[f32; 3],
+    inner: f32,
+) -> (f32, u32) {
     let (dyadic, max) = (v.dyadic(), v.max_level);
     if r.chord[1] >= HUGE || r.chord[0] >= HUGE {
-        return inner;
+        return (inner, 0);
     }
     let tol = tolerance(v, r.sphere);
     let drawn_edges = edges.map(|l| drawn_level(l, dyadic, max));
     let mut n = drawn_level(inner, dyadic, max);
     let mut raised = false;
-    for _ in 0..4 {
+    let mut failing = 0;
+    for it in 0..4 {
         if n >= max {
             break;
         }
@@ -513,6 +520,9 @@ pub fn raise_for_transitions(v: &LodView, r: &LodRecord, edges: &[f32; 3], inner
                 let strip = Strip::new(v, r, e, 1.0 / ne as f32);
                 if !strip.fits(n as f32, tol) {
                     need = need.max(strip.level(tol, max as f32, n as f32));
+                    if it == 0 {
+                        failing |= 1 << e;
+                    }
                 }
             }
         }
@@ -522,11 +532,7 @@ pub fn raise_for_transitions(v: &LodView, r: &LodRecord, edges: &[f32; 3], inner
         n = drawn_level(need, dyadic, max);
         raised = true;
     }
-    if raised {
-        n as f32
-    } else {
-        inner
-    }
+    (if raised { n as f32 } else { inner }, failing)
 }
 
 #[cfg(test)]
