@@ -271,7 +271,9 @@ pub fn lod_records_reporting(
     records: &[ElementRecord],
     mut progress: impl FnMut(Progress),
 ) -> Vec<LodRecord> {
-    // The slots of each unique edge, in element order.
+    // The slots of each unique edge, in element order (an element and a slot in one u32:
+    // `LodRecord::neighbours`).
+    assert!(records.len() < 1 << 30, "{} elements", records.len());
     let mut slots: HashMap<(u32, u32), Vec<(usize, usize)>> = HashMap::new();
     let mut order = Vec::new();
     for (i, rec) in records.iter().enumerate() {

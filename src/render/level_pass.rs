@@ -15,10 +15,12 @@
 //!
 //! Where the view lifts edges (`lod::frame::LIFT`, src/lod/frame/lift.rs), a second dispatch
 //! per chunk, after a barrier, reads what the first left of every element (its own and its
-//! neighbours', from a buffer bound whole) and writes the lifted levels. A mesh whose buffer
-//! of those (16 bytes an element) exceeds maxStorageBufferRange (at least 2^27 bytes, 8.4
-//! million elements) is drawn without the lift: its levels are the first dispatch's, which
-//! meet the pixel error as well, with more triangles than the mirror's (which always lifts).
+//! neighbours', from a buffer bound whole) and writes the lifted levels. That buffer (16 bytes
+//! an element) must fit maxStorageBufferRange (at least 2^27 bytes, 8.4 million elements); the
+//! pattern driver's adaptive draws need at least 20 bytes an element of it (their bins), so
+//! where they fit the lift does. Elsewhere the pass leaves the lift out ([`LevelPass::lifts`];
+//! `Scene::set_levels` then clears the view's flag, so that the mirror does without it too):
+//! the first dispatch's levels meet the pixel error as well, with more triangles.
 
 use super::bindings::{
     LEVEL_BINDING_BEFORE, LEVEL_BINDING_BEFORE_ALL, LEVEL_BINDING_LEVELS, LEVEL_BINDING_NEIGHBOURS,
@@ -44,8 +46,10 @@ const GROUP: u32 = 64;
 const RECORD_FORMAT: vk::Format = vk::Format::R32G32B32A32_SFLOAT;
 /// The texel format it reads the records' neighbours in.
 const NEIGHBOURS_FORMAT: vk::Format = vk::Format::R32G32B32A32_UINT;
-/// Bytes of what the first dispatch leaves of an element for the lift (a `vec4`).
+/// Bytes of what the first dispatch leaves of an element for the lift (a `vec4`; the levels'
+/// size, so that the chunks' offsets into both are aligned alike).
 const BEFORE_BYTES: u64 = 16;
+const _: () = assert!(BEFORE_BYTES == std::mem::size_of::<ElementLevels>() as u64);
 /// [`LodView::flags`] of the lift's dispatch (`LIFTING` in levels.comp).
 const LIFTING: u32 = 32;
 
@@ -331,9 +335,15 @@ impl LevelPass {
         Ok(())
     }
 
-    /// Dispatches a frame's pass makes (one per chunk).
+    /// Chunks a frame's pass dispatches (each once, and once more where the view lifts).
     pub fn dispatches(&self) -> usize {
         self.chunks.len()
+    }
+
+    /// Whether it lifts edges where the view asks for it (`LIFT`): unless the buffer the lift
+    /// reads exceeds one descriptor (maxStorageBufferRange).
+    pub fn lifts(&self) -> bool {
+        self.lift
     }
 
     /// Elements the pass has bounds for.

@@ -15,7 +15,7 @@ use crate::gpu::vk;
 use crate::lod::cull::{eye_outside, eye_outside_spheres};
 use crate::lod::frame::{
     culled_facing_away, frame_levels, lod_records, uniform_level, unmet, LevelStats, LodRecord,
-    LodView,
+    LodView, LIFT,
 };
 use crate::lod::levels::ElementLevels;
 use crate::lod::{Frustum, LevelReport, Lod, View};
@@ -182,6 +182,12 @@ impl Scene {
         }
         Ok(match on_gpu {
             Ok(()) => {
+                // A mesh too large for the lift's buffer in one descriptor is not lifted: the
+                // mirror then does without it too.
+                let mut lod_view = lod_view;
+                if !l.pass.as_ref().is_some_and(LevelPass::lifts) {
+                    lod_view.flags &= !LIFT;
+                }
                 l.view = Some((cfg.surface, lod_view));
                 ChosenLevels {
                     mirror: Some((lod_view, records)),

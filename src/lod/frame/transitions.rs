@@ -171,7 +171,8 @@
 //! corners would draw more still (nothing would then bound them, and its edges being coarser,
 //! step 2 raises more). Lifting such an edge to the inner level of the element it would raise,
 //! where the element across it is already drawn that fine, leaves no transition there: a
-//! second pass over the neighbours' levels ([`super::lift`]) draws 0.31-0.33x.
+//! second pass over the neighbours' levels ([`super::lift`]) draws 0.31-0.33x (with it, `λ`
+//! at 5/8 and 3/4 draw 0.32-0.33x and 0.34-0.37x, below 1/2 the same).
 //!
 //! # Gliding
 //! The gliding pattern driver takes step 1's kink and cubic terms at `5/4 a_e`, a quarter past
