@@ -1019,7 +1019,7 @@ fn adaptive_options_refuse_bad_values() {
     let past =
         "--max-level 100: level 100 is beyond this device's maxTessellationGenerationLevel (64)";
     #[rustfmt::skip]
-    let refusals: [(&[&str], String); 3] = [
+    let refusals: [(&[&str], String); 4] = [
         (&["export", "-o", p(&obj), "--driver", "tess", "--pixel-error", "1", "--max-level", "100"],
          format!("error: cannot export 'the default mesh (spot)': {past}")),
         (&["export", "-o", p(&obj), "--pixel-error", "1", "--max-level", "48"],
@@ -1027,6 +1027,9 @@ fn adaptive_options_refuse_bad_values() {
          "error: --max-level 48 is not a power of two".into()),
         (&["info", "--driver", "tess", "--pixel-error", "1", "--max-level", "100"],
          format!("error: {past}")),
+        // info's --help: a power of two for the pattern driver, as render's.
+        (&["info", "--pixel-error", "1", "--max-level", "7"],
+         "error: --max-level 7 is not a power of two, as the pattern driver's largest level must be".into()),
     ];
     for (args, sentence) in refusals {
         expect_error(args, &[&sentence]);

@@ -352,7 +352,8 @@ pub struct InfoArgs {
     /// --pixel-error; default: on, as render).
     #[arg(long, value_parser = choices::cull(), help_heading = "Adaptive drawing")]
     pub cull: Option<bool>,
-    /// The largest level any element gets (with --pixel-error).
+    /// The largest level any element gets (with --pixel-error): a power of two for the pattern
+    /// and static drivers, as render's.
     #[arg(long, allow_hyphen_values = true, default_value_t = 64, value_parser = level(), help_heading = "Adaptive drawing")]
     pub max_level: u32,
     /// The driver whose rounding of the levels is reported (with --pixel-error): pattern and
