@@ -346,6 +346,42 @@ fn info_reports_adaptive_levels_for_a_camera() {
 /// `capped`), and those no uniform level meets are the same whichever lattice driver's
 /// transitions raise the others (the tessellator's, whose rings' diagonals bend more, at least
 /// as many).
+/// The benchmark's close-up (docs/benchmarks.md, "Adaptive refinement"): at integer levels
+/// (`--geomorph off`, and `static`) Spot as `pn` takes at most 0.35x the triangles of the
+/// smallest uniform level meeting the bound at every pixel error the benchmark times (the
+/// lift's doing: without it 0.36x at 0.5 and 1 px); gliding, at powers of two, it takes more,
+/// at most 0.55x.
+#[test]
+fn the_close_up_at_integer_levels_takes_at_most_0_35x_the_uniform_triangles() {
+    let spot = model_path("spot_control_tri.obj");
+    #[rustfmt::skip]
+    let camera = [
+        "--surface", "pn", "--eye", "0.35,0.65,-1.3", "--look-at", "0,0.5,-0.5", "--fov", "45",
+        "--width", "1920", "--height", "1080", "--max-level", "64",
+    ];
+    for px in ["0.5", "1", "2", "4"] {
+        let report = |extra: &[&str]| {
+            let mut args = vec!["info", p(&spot), "--pixel-error", px];
+            args.extend(camera);
+            args.extend(extra);
+            let (adaptive, uniform, ..) = adaptive_report(&ok(&args));
+            (adaptive, uniform)
+        };
+        for extra in [&["--geomorph", "off"][..], &["--driver", "static"]] {
+            let (adaptive, uniform) = report(extra);
+            assert!(
+                adaptive * 100 <= uniform * 35,
+                "{px} px {extra:?}: {adaptive} triangles against {uniform}"
+            );
+        }
+        let (adaptive, uniform) = report(&[]);
+        assert!(
+            adaptive * 100 > uniform * 35 && adaptive * 100 <= uniform * 55,
+            "{px} px gliding: {adaptive} triangles against {uniform}"
+        );
+    }
+}
+
 #[test]
 fn info_counts_unmet_elements_by_their_own_bounds() {
     let ico = model_path("icosahedron.obj");
