@@ -501,6 +501,61 @@ fn levels_view_colours_by_level() {
     });
 }
 
+/// What the fragment stage shows is a specialization constant: on one target, each view is
+/// drawn with pipelines of its own, created once (returning to a view compiles nothing and
+/// draws the same image), and every view draws an image of its own.
+#[test]
+fn views_have_pipelines_of_their_own_created_once() {
+    with_gpu(320, 240, |h| {
+        let mut scene = h.scene(default_mesh(), 8).unwrap();
+        let (c, r) = scene.bounding_sphere();
+        let camera = Camera::framing(c, r);
+        let cfg = DrawConfig::new(Driver::Pattern(Submit::Instanced), 8)
+            .with_surface(Surface::Pn, Displace::None);
+        let views = [
+            View::Shaded,
+            View::Plain,
+            View::Normals,
+            View::Levels,
+            View::Shaded,
+            View::Plain,
+        ];
+        let (mut images, mut pipelines) = (Vec::new(), Vec::new());
+        for view in views {
+            h.view = view;
+            images.push(h.render(&mut scene, &cfg, &camera).unwrap());
+            pipelines.push(h.renderer.pipeline_count());
+        }
+        h.view = View::Shaded;
+        eprintln!("pipelines after each view: {pipelines:?}");
+        for k in 1..4 {
+            assert!(
+                pipelines[k] > pipelines[k - 1],
+                "{:?}: {pipelines:?}",
+                views[k]
+            );
+            for j in 0..k {
+                assert!(
+                    diff(&images[j], &images[k]).over_one > 1000,
+                    "{:?} draws {:?}'s image",
+                    views[k],
+                    views[j]
+                );
+            }
+        }
+        assert_eq!(
+            pipelines[4], pipelines[3],
+            "shaded again compiled: {pipelines:?}"
+        );
+        assert_eq!(
+            pipelines[5], pipelines[3],
+            "plain again compiled: {pipelines:?}"
+        );
+        assert!(images[4].rgba == images[0].rgba, "shaded again differs");
+        assert!(images[5].rgba == images[1].rgba, "plain again differs");
+    });
+}
+
 /// Drawn adaptively, the static driver's levels view colours each element by its own level, as
 /// the pattern driver does at the same integer levels (`--geomorph off`): the CPU's levels reach
 /// the fragment stage, with or without the vertices' element attributes (`pn` evaluates its

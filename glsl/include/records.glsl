@@ -17,12 +17,13 @@ layout(set = SET_FRAME, binding = BINDING_FRAME, std140) uniform Frame {
     vec4 base_color; // rgb: surface colour
     vec4 params;     // surface and displacement: (alpha, amplitude, frequency, octaves)
     vec4 origin;     // xyz: the mesh's origin in drawn coordinates (displacement's frame)
-    uint view;       // VIEW_SHADED, VIEW_NORMALS, VIEW_LEVELS, VIEW_PLAIN (src/render/mod.rs `View`)
+    uint pad;        // std140 padding
     float heightmap_bias;
     float heightmap_lod; // the height map pyramid level to read
     float level;     // the level every element is drawn at; 0: each its own (levels buffer)
 } frame;
 
+// What the fragment stage shows (src/render/mod.rs `View`: its specialization constant).
 const uint VIEW_SHADED = 0u;
 const uint VIEW_NORMALS = 1u;
 const uint VIEW_LEVELS = 2u;

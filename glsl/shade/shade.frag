@@ -3,9 +3,11 @@
 // normal field of its own (pn: FRAGMENT_FIELD), the normal is evaluated at this fragment's
 // barycentric coordinates (the field, or with displacement the displaced normal), so highlights
 // do not depend on the refinement level; otherwise the interpolated vertex normal. The WIRE variant (a second
-// pass in polygon mode LINE) draws the refined triangles' edges, darker than the surface; frame.view = VIEW_NORMALS shows normals,
-// VIEW_LEVELS the lit surface coloured by the level its element is drawn at, VIEW_PLAIN the
-// surface colour alone (nothing evaluated, nothing lit).
+// pass in polygon mode LINE) draws the refined triangles' edges, darker than the surface; VIEW
+// (a specialization constant: each view's pipelines do its own work alone, which a software
+// rasteriser would otherwise pay for per fragment behind a uniform branch) VIEW_NORMALS shows
+// normals, VIEW_LEVELS the lit surface coloured by the level its element is drawn at,
+// VIEW_PLAIN the surface colour alone (nothing evaluated, nothing lit, no varying read).
 #define FRAGMENT_STAGE
 #include "records.glsl"
 #include "surface.glsl"
@@ -13,6 +15,7 @@
 #include "levels.glsl"
 
 layout(constant_id = SPEC_WIRE) const uint WIRE = 0;
+layout(constant_id = SPEC_VIEW) const uint VIEW = VIEW_SHADED;
 
 layout(location = 0) out vec4 out_color;
 
@@ -26,7 +29,7 @@ vec3 level_color(float level) {
 }
 
 void main() {
-    if (frame.view == VIEW_PLAIN) {
+    if (VIEW == VIEW_PLAIN) {
         out_color = vec4(frame.base_color.rgb * (WIRE != 0 ? 0.6 : 1.0), 1.0);
         return;
     }
@@ -39,7 +42,7 @@ void main() {
         // The displaced normal at this fragment's sample: the whole evaluation, per fragment.
         n = evaluate(fetch_record(v_element), Sample(v_element, v_bary)).normal;
     }
-    if (frame.view == VIEW_NORMALS) {
+    if (VIEW == VIEW_NORMALS) {
         out_color = vec4((n * 0.5 + 0.5) * (WIRE != 0 ? 0.6 : 1.0), 1.0);
         return;
     }
@@ -72,7 +75,7 @@ void main() {
     float diffuse = max(dot(n, l), 0.0);
     float specular = pow(max(dot(n, h), 0.0), 48.0);
     vec3 base = frame.base_color.rgb;
-    if (frame.view == VIEW_LEVELS) {
+    if (VIEW == VIEW_LEVELS) {
         base = level_color(frame.level > 0.0 ? frame.level : fetch_levels(v_element).w);
     }
     vec3 color = base * (0.18 + 0.82 * diffuse) + vec3(0.22 * specular);

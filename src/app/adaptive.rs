@@ -41,6 +41,8 @@ impl State {
     pub(super) fn prepare_frame(&mut self, opts: &ViewOptions) -> Result<(DrawConfig, bool)> {
         self.mode_note = None;
         self.levels = None;
+        // The pipelines prepared below are this view's.
+        self.renderer.set_view(self.controls.view);
         if !self.controls.freeze {
             self.frozen = None;
         } else if self.frozen.is_none() {

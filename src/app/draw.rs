@@ -33,8 +33,7 @@ impl State {
             )?);
         }
         let aspect = extent.width as f32 / extent.height as f32;
-        let uniforms =
-            FrameUniforms::new(&self.camera, aspect, cfg, &self.scene, self.controls.view);
+        let uniforms = FrameUniforms::new(&self.camera, aspect, cfg, &self.scene);
         // The levels view shows each element's own level when it has one.
         let uniforms = if adaptive {
             uniforms.adaptive()

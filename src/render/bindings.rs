@@ -114,6 +114,8 @@ pub const SPEC_FRAGMENT_FIELD: u32 = 4;
 pub const SPEC_NORMAL_FIELD: u32 = 5;
 /// Geomorphing in the adaptive pattern driver (`DrawConfig::geomorph`).
 pub const SPEC_GEOMORPH: u32 = 6;
+/// What the fragment stage shows (`super::View`): each view compiles to its own work alone.
+pub const SPEC_VIEW: u32 = 7;
 
 /// Everything above, as GLSL macro definitions.
 pub const GLSL_DEFINES: &[(&str, u32)] = &[
@@ -161,4 +163,5 @@ pub const GLSL_DEFINES: &[(&str, u32)] = &[
     ("SPEC_FRAGMENT_FIELD", SPEC_FRAGMENT_FIELD),
     ("SPEC_NORMAL_FIELD", SPEC_NORMAL_FIELD),
     ("SPEC_GEOMORPH", SPEC_GEOMORPH),
+    ("SPEC_VIEW", SPEC_VIEW),
 ];

@@ -218,13 +218,7 @@ impl Headless {
 
     fn frame_uniforms(&self, camera: &Camera, cfg: &DrawConfig, scene: &Scene) -> FrameUniforms {
         let e = self.target.extent();
-        let u = FrameUniforms::new(
-            camera,
-            e.width as f32 / e.height as f32,
-            cfg,
-            scene,
-            self.view,
-        );
+        let u = FrameUniforms::new(camera, e.width as f32 / e.height as f32, cfg, scene);
         // Adaptive frames: each element's own level (the levels view reads it).
         if self.adaptive {
             u.adaptive()
@@ -258,6 +252,7 @@ impl Headless {
         capture: Capture,
     ) -> Result<u32, RenderError> {
         scene.adaptive_frames = self.adaptive;
+        self.renderer.set_view(self.view);
         scene.prepare(
             &self.ctx,
             &self.pool,

@@ -235,7 +235,8 @@ impl DrawConfig {
     }
 }
 
-/// What the fragment stage shows (`Frame::view`).
+/// What the fragment stage shows: its specialization constant `SPEC_VIEW`
+/// ([`Renderer::set_view`]), each view's pipelines doing its work alone.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
 #[repr(u32)]
 pub enum View {
@@ -246,8 +247,9 @@ pub enum View {
     Normals = 1,
     /// The lit surface coloured by each element's level (blue at 1 to red at 256).
     Levels = 2,
-    /// One colour, unlit: the fragment stage does no work beyond writing it (the geometry's
-    /// silhouette; timing what drawing the refined triangles costs without shading them).
+    /// One colour, unlit: the fragment stage does no work beyond writing it, reads no
+    /// varying (the geometry's silhouette; timing what drawing the refined triangles costs
+    /// without shading them).
     Plain = 3,
 }
 
@@ -284,8 +286,9 @@ pub struct FrameUniforms {
     pub params: [f32; 4],
     /// xyz: [`SurfaceParams::origin`].
     pub origin: [f32; 4],
-    /// [`View`].
-    pub view: u32,
+    /// std140 padding (what the fragment stage shows is a specialization constant:
+    /// [`Renderer::set_view`]).
+    pub pad: u32,
     /// The height map displacement's bias ([`SurfaceParams::bias`]).
     pub heightmap_bias: f32,
     /// The height map pyramid level to read ([`Scene::heightmap_lod`]).
@@ -302,16 +305,16 @@ const _: () = {
     assert!(std::mem::offset_of!(FrameUniforms, base_color) == 96);
     assert!(std::mem::offset_of!(FrameUniforms, params) == 112);
     assert!(std::mem::offset_of!(FrameUniforms, origin) == 128);
-    assert!(std::mem::offset_of!(FrameUniforms, view) == 144);
+    assert!(std::mem::offset_of!(FrameUniforms, pad) == 144);
     assert!(std::mem::offset_of!(FrameUniforms, heightmap_bias) == 148);
     assert!(std::mem::offset_of!(FrameUniforms, heightmap_lod) == 152);
 };
 
 impl FrameUniforms {
     /// The frame that draws `cfg` of `scene` seen by `camera` on a target of `aspect` (width /
-    /// height), showing `view`: lit from above and behind the camera's shoulder, the default
+    /// height): lit from above and behind the camera's shoulder, the default
     /// surface colour. The one way every frame (headless, window, benchmark) gets its uniforms.
-    pub fn new(camera: &Camera, aspect: f32, cfg: &DrawConfig, scene: &Scene, view: View) -> Self {
+    pub fn new(camera: &Camera, aspect: f32, cfg: &DrawConfig, scene: &Scene) -> Self {
         let eye = camera.eye();
         let light = eye - camera.target + glam::Vec3::new(0.3, 0.8, 0.2) * camera.distance;
         let params = &cfg.params;
@@ -326,7 +329,7 @@ impl FrameUniforms {
             base_color: [0.80, 0.55, 0.35, 1.0],
             params: params.to_gpu(),
             origin: params.origin.extend(0.0).to_array(),
-            view: view as u32,
+            pad: 0,
             heightmap_bias: params.bias,
             heightmap_lod: scene.heightmap_lod(cfg.level),
             level: cfg.level as f32,

@@ -4,7 +4,7 @@
 //! displacement and normal field are specialization constants of the same SPIR-V modules.
 
 use super::bindings::*;
-use super::{Capture, DrawConfig, Driver, FrameUniforms};
+use super::{Capture, DrawConfig, Driver, FrameUniforms, View};
 use crate::gpu::{
     vk, Buffer, BufferDesc, Context, DescriptorPool, DescriptorSetLayout, GpuError,
     GraphicsPipelineDesc, Pipeline, PipelineLayout,
@@ -61,6 +61,8 @@ struct PipelineKey {
     adaptive: bool,
     /// Adaptive and geomorphing (`DrawConfig::geomorph`).
     geomorph: bool,
+    /// What the fragment stage shows ([`Renderer::set_view`]).
+    view: View,
 }
 
 pub struct Renderer {
@@ -76,6 +78,9 @@ pub struct Renderer {
     pub depth_format: vk::Format,
     /// Samples per pixel of the targets drawn into (`--msaa`).
     pub samples: vk::SampleCountFlags,
+    /// What the fragment stage of the pipelines prepared and drawn next shows
+    /// ([`Renderer::set_view`]).
+    view: View,
     frame_ubo: Buffer,
     /// Kept alive for the frame set's binding.
     _noise_ubo: Buffer,
@@ -215,12 +220,22 @@ impl Renderer {
             color_format,
             depth_format,
             samples,
+            view: View::default(),
             frame_ubo,
             _noise_ubo: noise_ubo,
             pool,
             frame_set,
             capture_set,
         })
+    }
+
+    /// Show `view` in the frames drawn from now on: the fragment stage's view is a
+    /// specialization constant, so each view's pipelines do its own work alone (on a software
+    /// rasteriser the views not shown cost time per fragment even behind a uniform branch).
+    /// Set it before [`Renderer::prepare`], which creates the pipelines for the view set (each
+    /// once: switching back and forth compiles nothing again).
+    pub fn set_view(&mut self, view: View) {
+        self.view = view;
     }
 
     /// Write this frame's uniforms. The caller makes sure no pending work reads them.
@@ -273,9 +288,9 @@ impl Renderer {
         capture: Capture,
         wire: bool,
     ) -> Result<(), GpuError> {
-        let mut keys = vec![key(cfg, capture, false, false)];
+        let mut keys = vec![key(cfg, capture, false, false, self.view)];
         if wire && self.wireframe_supported() {
-            keys.push(key(cfg, Capture::None, true, false));
+            keys.push(key(cfg, Capture::None, true, false, self.view));
         }
         // The adaptive variants where the driver draws adaptively at this level (created
         // together: pipelines are compiled at their first draw).
@@ -328,7 +343,8 @@ impl Renderer {
         wire: bool,
         adaptive: bool,
     ) -> vk::Pipeline {
-        self.pipelines[&key(cfg, capture, wire, adaptive && adaptive_drawn(cfg))].raw
+        let adaptive = adaptive && adaptive_drawn(cfg);
+        self.pipelines[&key(cfg, capture, wire, adaptive, self.view)].raw
     }
 
     fn create(&self, key: PipelineKey) -> Result<Pipeline, GpuError> {
@@ -342,6 +358,7 @@ impl Renderer {
                 (SPEC_FRAGMENT_FIELD, key.fragment_field as u32),
                 (SPEC_NORMAL_FIELD, key.normal_field as u32),
                 (SPEC_GEOMORPH, key.geomorph as u32),
+                (SPEC_VIEW, key.view as u32),
             ],
             vertex_bindings: vec![],
             vertex_attributes: vec![],
@@ -412,8 +429,9 @@ fn adaptive_drawn(cfg: &DrawConfig) -> bool {
     cfg.driver.kind().adaptive_pipeline(cfg.level)
 }
 
-fn key(cfg: &DrawConfig, capture: Capture, wire: bool, adaptive: bool) -> PipelineKey {
+fn key(cfg: &DrawConfig, capture: Capture, wire: bool, adaptive: bool, view: View) -> PipelineKey {
     PipelineKey {
+        view,
         // The driver carries the pattern driver's submission mode.
         driver: cfg.driver,
         surface: cfg.surface,
