@@ -2,8 +2,9 @@
 // The level pass: each element's levels for this frame (its stored edges' continuous levels and
 // its inner level; inner 0: culled) from its bounds, computed once (LodRecord), and the camera
 // (push constants). One invocation per element, over the whole levels buffer. Where the view
-// lifts edges (LIFT), a second dispatch (LIFTING) lifts them from what the first left of every
-// element (src/lod/frame/lift.rs).
+// lifts edges (LIFT), a second dispatch lifts them from what the first left of every element
+// (src/lod/frame/lift.rs), with a pipeline of its own (LIFTING: lavapipe would run the other
+// dispatch's code too behind a uniform branch).
 // Mirror, operation for operation: src/lod/frame.rs `frame_levels` (the proof of the
 // transition triangles is in src/lod/frame/transitions.rs); tests/level_pass.rs compares the two.
 layout(local_size_x = 64) in;
@@ -15,7 +16,8 @@ const uint CULL_BACK_FACES = 2u;
 const uint DYADIC = 4u;
 const uint LATTICE = 8u;
 const uint LIFT = 16u;
-const uint LIFTING = 32u;
+// 1: the lift's dispatch; 0: the first.
+layout(constant_id = SPEC_LIFTING) const uint LIFTING = 0u;
 
 // The element's bounds (src/lod/frame.rs LodRecord, 480 bytes): 30 texels of a uniform texel
 // buffer, at these offsets. The level pass reads them as texels, not from a storage buffer:
@@ -491,7 +493,7 @@ void main() {
     if (i >= view.count) {
         return;
     }
-    if ((view.flags & LIFTING) != 0u) {
+    if (LIFTING != 0u) {
         lift_levels(i);
     } else {
         first_levels(i);

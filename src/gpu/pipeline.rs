@@ -501,11 +501,25 @@ impl Pipeline {
         shader: &str,
         name: &str,
     ) -> Result<Self, GpuError> {
+        Self::new_compute_specialized(ctx, layout, shader, &vec![], name)
+    }
+
+    /// A compute pipeline with specialization constants `spec` (id, value).
+    pub fn new_compute_specialized(
+        ctx: &Arc<Context>,
+        layout: &PipelineLayout,
+        shader: &str,
+        spec: &SpecConstants,
+        name: &str,
+    ) -> Result<Self, GpuError> {
         let module = ShaderModule::new(ctx, shader)?;
+        let spec = Specialization::new(spec);
+        let spec_info = spec.info();
         let stage = vk::PipelineShaderStageCreateInfo::default()
             .stage(vk::ShaderStageFlags::COMPUTE)
             .module(module.raw)
-            .name(c"main");
+            .name(c"main")
+            .specialization_info(&spec_info);
         let info = vk::ComputePipelineCreateInfo::default()
             .stage(stage)
             .layout(layout.raw);

@@ -116,6 +116,9 @@ pub const SPEC_NORMAL_FIELD: u32 = 5;
 pub const SPEC_GEOMORPH: u32 = 6;
 /// What the fragment stage shows (`super::View`): each view compiles to its own work alone.
 pub const SPEC_VIEW: u32 = 7;
+/// The level pass's lift (`LevelPass`): its second dispatch's pipeline is the first's with this
+/// set, so each does its own work alone.
+pub const SPEC_LIFTING: u32 = 8;
 
 /// Everything above, as GLSL macro definitions.
 pub const GLSL_DEFINES: &[(&str, u32)] = &[
@@ -164,4 +167,5 @@ pub const GLSL_DEFINES: &[(&str, u32)] = &[
     ("SPEC_NORMAL_FIELD", SPEC_NORMAL_FIELD),
     ("SPEC_GEOMORPH", SPEC_GEOMORPH),
     ("SPEC_VIEW", SPEC_VIEW),
+    ("SPEC_LIFTING", SPEC_LIFTING),
 ];

@@ -24,7 +24,7 @@
 
 use super::bindings::{
     LEVEL_BINDING_BEFORE, LEVEL_BINDING_BEFORE_ALL, LEVEL_BINDING_LEVELS, LEVEL_BINDING_NEIGHBOURS,
-    LEVEL_BINDING_RECORDS,
+    LEVEL_BINDING_RECORDS, SPEC_LIFTING,
 };
 use super::gpu_mesh::GpuMesh;
 use super::loop_gpu::dispatch_grid;
@@ -50,8 +50,6 @@ const NEIGHBOURS_FORMAT: vk::Format = vk::Format::R32G32B32A32_UINT;
 /// size, so that the chunks' offsets into both are aligned alike).
 const BEFORE_BYTES: u64 = 16;
 const _: () = assert!(BEFORE_BYTES == std::mem::size_of::<ElementLevels>() as u64);
-/// [`LodView::flags`] of the lift's dispatch (`LIFTING` in levels.comp).
-const LIFTING: u32 = 32;
 
 /// Texels of [`RECORD_FORMAT`] an element's bounds span (`RECORD_TEXELS` in levels.comp).
 const RECORD_TEXELS: u64 = (std::mem::size_of::<LodRecord>() / 16) as u64;
@@ -94,6 +92,8 @@ pub struct LevelPass {
     /// pass small chunks to exercise dispatching chunk by chunk).
     max_chunk: Option<u32>,
     pipeline: Pipeline,
+    /// The lift's dispatch (`SPEC_LIFTING`).
+    lift_pipeline: Pipeline,
     layout: PipelineLayout,
     /// Sets for the chunks (made again when their number changes).
     pool: DescriptorPool,
@@ -144,7 +144,11 @@ impl LevelPass {
             c,
             "level pass",
         )?;
-        let pipeline = Pipeline::new_compute(ctx, &layout, "lod/levels.comp", "level pass")?;
+        let shader = "lod/levels.comp";
+        let pipeline = Pipeline::new_compute(ctx, &layout, shader, "level pass")?;
+        let lifting = vec![(SPEC_LIFTING, 1)];
+        let lift_pipeline =
+            Pipeline::new_compute_specialized(ctx, &layout, shader, &lifting, "level pass lift")?;
         let pool = DescriptorPool::new(
             ctx,
             1,
@@ -170,6 +174,7 @@ impl LevelPass {
             levels: vk::Buffer::null(),
             max_chunk,
             pipeline,
+            lift_pipeline,
             layout,
             pool,
             set_layout,
@@ -366,20 +371,27 @@ impl LevelPass {
             ..*view
         };
         cmd.barrier_draws_to_levels();
-        cmd.bind_compute_pipeline(self.pipeline.raw);
         // The chunks write disjoint ranges, but each dispatch binds the whole buffer the lift
         // reads (what every chunk's first dispatch wrote), which the synchronization checks
         // take as read (and the chunk's range as written) whatever the dispatch: a barrier
         // between any two dispatches (chunks are for meshes of millions of elements).
-        let passes: &[u32] = if lift { &[0, LIFTING] } else { &[0] };
+        let passes: &[&Pipeline] = if lift {
+            &[&self.pipeline, &self.lift_pipeline]
+        } else {
+            &[&self.pipeline]
+        };
         let dispatches = (passes.iter()).flat_map(|&p| self.chunks.iter().map(move |c| (c, p)));
-        for (k, (chunk, pass)) in dispatches.enumerate() {
+        let mut bound = vk::Pipeline::null();
+        for (k, (chunk, pipeline)) in dispatches.enumerate() {
             if k > 0 {
                 cmd.barrier_to_compute();
             }
+            if pipeline.raw != bound {
+                cmd.bind_compute_pipeline(pipeline.raw);
+                bound = pipeline.raw;
+            }
             let view = LodView {
                 count: chunk.count,
-                flags: view.flags | pass,
                 ..view
             };
             cmd.bind_compute_descriptor_set(self.layout.raw, 0, chunk.set);
