@@ -17,7 +17,7 @@ layout(set = SET_FRAME, binding = BINDING_FRAME, std140) uniform Frame {
     vec4 base_color; // rgb: surface colour
     vec4 params;     // surface and displacement: (alpha, amplitude, frequency, octaves)
     vec4 origin;     // xyz: the mesh's origin in drawn coordinates (displacement's frame)
-    uint pad;        // std140 padding
+    uint unused;     // keeps the offsets (the view is a specialization constant)
     float heightmap_bias;
     float heightmap_lod; // the height map pyramid level to read
     float level;     // the level every element is drawn at; 0: each its own (levels buffer)

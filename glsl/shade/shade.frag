@@ -3,9 +3,9 @@
 // normal field of its own (pn: FRAGMENT_FIELD), the normal is evaluated at this fragment's
 // barycentric coordinates (the field, or with displacement the displaced normal), so highlights
 // do not depend on the refinement level; otherwise the interpolated vertex normal. The WIRE variant (a second
-// pass in polygon mode LINE) draws the refined triangles' edges, darker than the surface; VIEW
+// pass in polygon mode LINE) draws the refined triangles' edges, darker than the surface. VIEW
 // (a specialization constant: each view's pipelines do its own work alone, which a software
-// rasteriser would otherwise pay for per fragment behind a uniform branch) VIEW_NORMALS shows
+// rasteriser would otherwise pay for per fragment behind a uniform branch): VIEW_NORMALS shows
 // normals, VIEW_LEVELS the lit surface coloured by the level its element is drawn at,
 // VIEW_PLAIN the surface colour alone (nothing evaluated, nothing lit, no varying read).
 #define FRAGMENT_STAGE

@@ -401,9 +401,12 @@ impl State {
         self.advance_scene();
         let pipelines = self.renderer.pipeline_count();
         let (cfg, adaptive) = self.prepare_frame(opts)?;
+        let compiled = self.renderer.pipeline_count() != pipelines;
         self.say_compiling(pipelines);
         let drawn = Some((cfg, self.controls.wireframe, adaptive));
-        self.warm = self.last_drawn == drawn;
+        // A frame that made pipelines (a configuration, or a view, drawn for the first time)
+        // compiles them at its draw: not warm, whatever it draws.
+        self.warm = self.last_drawn == drawn && !compiled;
         self.last_drawn = drawn;
         let Some(image) = self.swapchain.acquire(self.acquired.raw)? else {
             self.resize = true;

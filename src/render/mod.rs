@@ -286,9 +286,9 @@ pub struct FrameUniforms {
     pub params: [f32; 4],
     /// xyz: [`SurfaceParams::origin`].
     pub origin: [f32; 4],
-    /// std140 padding (what the fragment stage shows is a specialization constant:
-    /// [`Renderer::set_view`]).
-    pub pad: u32,
+    /// Unused: keeps the block's offsets and size (what the fragment stage shows is a
+    /// specialization constant: [`Renderer::set_view`]).
+    pub unused: u32,
     /// The height map displacement's bias ([`SurfaceParams::bias`]).
     pub heightmap_bias: f32,
     /// The height map pyramid level to read ([`Scene::heightmap_lod`]).
@@ -305,7 +305,7 @@ const _: () = {
     assert!(std::mem::offset_of!(FrameUniforms, base_color) == 96);
     assert!(std::mem::offset_of!(FrameUniforms, params) == 112);
     assert!(std::mem::offset_of!(FrameUniforms, origin) == 128);
-    assert!(std::mem::offset_of!(FrameUniforms, pad) == 144);
+    assert!(std::mem::offset_of!(FrameUniforms, unused) == 144);
     assert!(std::mem::offset_of!(FrameUniforms, heightmap_bias) == 148);
     assert!(std::mem::offset_of!(FrameUniforms, heightmap_lod) == 152);
 };
@@ -329,7 +329,7 @@ impl FrameUniforms {
             base_color: [0.80, 0.55, 0.35, 1.0],
             params: params.to_gpu(),
             origin: params.origin.extend(0.0).to_array(),
-            pad: 0,
+            unused: 0,
             heightmap_bias: params.bias,
             heightmap_lod: scene.heightmap_lod(cfg.level),
             level: cfg.level as f32,

@@ -1,7 +1,8 @@
 //! Layouts and pipelines shared by all drivers, the per-frame uniform buffer (set 0) and the
 //! capture output binding (set 2). Pipelines are created on first use, keyed by
-//! (driver, submission, surface, displacement, normal field, capture, wireframe); surface,
-//! displacement and normal field are specialization constants of the same SPIR-V modules.
+//! (driver, submission, surface, displacement, normal field, capture, wireframe, adaptive,
+//! geomorph, view); all but the capture (a stage variant) are specialization constants of the
+//! same SPIR-V modules.
 
 use super::bindings::*;
 use super::{Capture, DrawConfig, Driver, FrameUniforms, View};
@@ -344,7 +345,11 @@ impl Renderer {
         adaptive: bool,
     ) -> vk::Pipeline {
         let adaptive = adaptive && adaptive_drawn(cfg);
-        self.pipelines[&key(cfg, capture, wire, adaptive, self.view)].raw
+        let key = key(cfg, capture, wire, adaptive, self.view);
+        let pipeline = self.pipelines.get(&key);
+        pipeline
+            .unwrap_or_else(|| panic!("no pipeline prepared for {key:?}"))
+            .raw
     }
 
     fn create(&self, key: PipelineKey) -> Result<Pipeline, GpuError> {
@@ -405,7 +410,7 @@ impl Renderer {
             crate::gpu::shaders::names::SHADE_SHADE_FRAG.to_string(),
         ));
         let name = format!(
-            "{}{}{}{} ({} + {})",
+            "{}{}{}{} ({} + {}, {})",
             DrawConfig::new(key.driver, 0).label(),
             if key.geomorph {
                 " adaptive geomorph"
@@ -417,7 +422,8 @@ impl Renderer {
             key.capture.shader_suffix(),
             if key.wire { " wireframe" } else { "" },
             key.surface.name(),
-            key.displace.name()
+            key.displace.name(),
+            key.view.name()
         );
         Pipeline::new_graphics(&self.ctx, &self.layout, &desc, &name)
     }
