@@ -1031,6 +1031,17 @@ fn a_blank_image_of_culled_elements_blames_culling() {
         &look_away,
         &["culling removed all 372 elements: the camera given by --look-at sees none of them"],
     );
+    // Loop's elements are M1's faces, named beside the triangles the sentence counts.
+    #[rustfmt::skip]
+    let loop_away = ["render", "-o", p(&png), "--width", "32", "--height", "32",
+        "--surface", "loop", "--eye", "3,0,0", "--look-at", "6,0,0"];
+    expect_error(
+        &loop_away,
+        &[
+            "any of the 372 triangle(s)",
+            "culling removed all 1488 elements (M1's faces, four to a triangle)",
+        ],
+    );
     // An open surface shows its back side: its elements facing away are not culled, and the
     // open grid, seen from below by the framing camera, is drawn.
     let grid = model_path("grid_open_8x8.obj");

@@ -203,6 +203,16 @@ fn an_eye_on_the_default_target_names_the_default() {
                     "the default camera's eye ({eye}) and --look-at {eye} give no view direction"
                 )],
             );
+            if command[0] == "info" {
+                // Found once the levels' camera is fitted, after the statistics are made:
+                // still the one sentence alone.
+                let out = meshrefine(&args);
+                assert!(
+                    out.stdout.is_empty(),
+                    "{}",
+                    String::from_utf8_lossy(&out.stdout)
+                );
+            }
         }
     }
 }

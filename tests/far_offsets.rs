@@ -232,7 +232,10 @@ fn an_eye_or_target_too_far_away_is_refused_as_given() {
 
 /// A look-at far beyond the mesh, in the same direction from the eye as one at its centre,
 /// draws the same image, uniform and adaptive (the depth range holds the mesh, not a sphere
-/// grown around the far target, whose near plane cut the whole mesh away).
+/// grown around the far target, whose near plane cut the whole mesh away). The two view
+/// matrices are made from different points, so they may differ in their last bits: a pixel or
+/// two on a triangle's edge may then differ by a shade (seen on a CPU whose llvmpipe code
+/// rounds otherwise), where the cut, or a depth range that loses precision, changes hundreds.
 #[test]
 fn a_far_look_at_draws_what_a_near_one_does() {
     for level in [&["--level", "2"][..], &[]] {
@@ -243,8 +246,20 @@ fn a_far_look_at_draws_what_a_near_one_does() {
             let args = [&["render", "-o", p(&png), "--width", "160", "--height", "100",
                 "--eye", "0,0,-3", "--look-at", target][..], level].concat();
             ok(&args);
-            images.push(std::fs::read(&png).unwrap());
+            images.push(common::cli::rgba_of(&png));
         }
-        assert_eq!(images[0], images[1], "{level:?}");
+        let (a, b) = (&images[0], &images[1]);
+        assert_eq!(a.len(), b.len());
+        let differing: Vec<(usize, u8)> = (a.chunks(4).zip(b.chunks(4)).enumerate())
+            .filter(|(_, (x, y))| x != y)
+            .map(|(i, (x, y))| {
+                let most = x.iter().zip(y).map(|(u, v)| u.abs_diff(*v)).max();
+                (i, most.unwrap_or(0))
+            })
+            .collect();
+        assert!(
+            differing.len() <= 4 && differing.iter().all(|&(_, d)| d <= 8),
+            "{level:?}: pixels (index, largest channel difference) {differing:?}"
+        );
     }
 }

@@ -16,8 +16,26 @@ use meshrefine::render::Driver;
 use meshrefine::surface::loop_::LoopData;
 use std::io::Write as _;
 
-/// Runs `meshrefine info` with `a`.
+/// A line of `info`'s report, held until the whole report is made.
+macro_rules! put {
+    ($o:expr, $($arg:tt)*) => {
+        $o.push(format!($($arg)*))
+    };
+}
+
+/// Runs `meshrefine info` with `a`. The report is printed whole once every value is checked
+/// and its levels chosen, so that a refusal found late (a camera at its own target, a
+/// `--max-level` past the pattern driver's integer patterns) prints its one sentence alone.
 pub fn run(a: &InfoArgs, desc: &ContextDesc) -> Result<()> {
+    let mut lines = Vec::new();
+    report(&mut lines, a, desc)?;
+    for line in lines {
+        out!("{line}");
+    }
+    Ok(())
+}
+
+fn report(o: &mut Vec<String>, a: &InfoArgs, desc: &ContextDesc) -> Result<()> {
     // A --device that names no device is refused before anything is printed, as render
     // refuses it, whether or not these options read a device's limits.
     if desc.device_name.is_some() {
@@ -76,7 +94,7 @@ pub fn run(a: &InfoArgs, desc: &ContextDesc) -> Result<()> {
             .map_err(anyhow::Error::msg)?;
     }
     let (mesh, report) = (&input.mesh, &input.report);
-    print_stats(path, mesh, report)?;
+    print_stats(o, path, mesh, report)?;
     // Loop's data, built once: --level counts its GPU bytes, and with --pixel-error the levels
     // use it on the mesh as drawn (the same topology, so the same tables) and print Loop's
     // lines after theirs.
@@ -84,33 +102,36 @@ pub fn run(a: &InfoArgs, desc: &ContextDesc) -> Result<()> {
     if let Some(level) = a.level {
         // Loop's drivers draw the faces of one Loop step, four to a coarse triangle.
         let elements = mesh.triangles.len() as u64 * if for_loop { 4 } else { 1 };
-        print_geometry(level, elements, loop_.as_ref(), desc)?;
+        print_geometry(o, level, elements, loop_.as_ref(), desc)?;
     }
     if let (Some(data), None) = (&loop_, &a.pixel_error) {
-        print_loop(a, data)?;
+        print_loop(o, a, data)?;
     }
-    print_levels(a, input, loop_)?;
+    print_levels(o, a, input, loop_)?;
     Ok(())
 }
 
 /// The mesh's statistics and what loading did.
-fn print_stats(path: &str, mesh: &Mesh, report: &LoadReport) -> Result<()> {
+fn print_stats(o: &mut Vec<String>, path: &str, mesh: &Mesh, report: &LoadReport) -> Result<()> {
     let s = mesh.stats();
-    out!("mesh: {}", crate::printable(path));
-    out!("vertices: {}", s.vertices);
-    out!("triangles: {}", s.triangles);
-    out!("boundary edges: {}", s.boundary_edges);
-    out!("non-manifold edges: {}", s.nonmanifold_edges);
-    out!("non-manifold vertices: {}", s.nonmanifold_vertices);
-    out!(
+    put!(o, "mesh: {}", crate::printable(path));
+    put!(o, "vertices: {}", s.vertices);
+    put!(o, "triangles: {}", s.triangles);
+    put!(o, "boundary edges: {}", s.boundary_edges);
+    put!(o, "non-manifold edges: {}", s.nonmanifold_edges);
+    put!(o, "non-manifold vertices: {}", s.nonmanifold_vertices);
+    put!(
+        o,
         "inconsistently oriented edges: {}",
         s.inconsistently_oriented_edges
     );
-    out!(
+    put!(
+        o,
         "degenerate faces dropped: {}",
         report.dropped_degenerate.len()
     );
-    out!(
+    put!(
+        o,
         "normals: {}",
         if report.normals_computed {
             "computed (area-weighted)"
@@ -123,7 +144,11 @@ fn print_stats(path: &str, mesh: &Mesh, report: &LoadReport) -> Result<()> {
         .iter()
         .map(|(v, n)| format!("{v}:{n}"))
         .collect();
-    out!("valence histogram (valence:vertices): {}", hist.join(" "));
+    put!(
+        o,
+        "valence histogram (valence:vertices): {}",
+        hist.join(" ")
+    );
     Ok(())
 }
 
@@ -133,6 +158,7 @@ fn print_stats(path: &str, mesh: &Mesh, report: &LoadReport) -> Result<()> {
 /// would draw on (its limits read, nothing opened) refuses the level to a driver, a note under
 /// its line says so in render's sentence.
 fn print_geometry(
+    o: &mut Vec<String>,
     level: u32,
     elements: u64,
     loop_: Option<&LoopData>,
@@ -144,7 +170,8 @@ fn print_geometry(
     } else {
         "coarse triangle"
     };
-    out!(
+    put!(
+        o,
         "level {level}: {} refined triangles ({} per {element})",
         t * meshrefine::pattern::triangle_count(level) as u64,
         meshrefine::pattern::triangle_count(level)
@@ -180,7 +207,8 @@ fn print_geometry(
             }
             _ => 0,
         };
-        out!(
+        put!(
+            o,
             "  {:8} {:>14} bytes of GPU geometry{made}",
             d.name(),
             d.geometry_bytes(level, t) + pass
@@ -195,7 +223,7 @@ fn print_geometry(
                 _ => None,
             });
             if let Some(e) = refused {
-                out!("    note: {e}");
+                put!(o, "    note: {e}");
             }
         }
     }
@@ -216,9 +244,10 @@ fn loop_data(a: &InfoArgs, path: &str, mesh: &Mesh) -> Result<LoopData> {
 }
 
 /// `--surface loop`: M1, the valence configurations and the basis function tables built.
-fn print_loop(a: &InfoArgs, data: &LoopData) -> Result<()> {
+fn print_loop(o: &mut Vec<String>, a: &InfoArgs, data: &LoopData) -> Result<()> {
     let lattice = meshrefine::surface::loop_::Lattice::new(a.drawn.params.bft_level);
-    out!(
+    put!(
+        o,
         "loop: M1 has {} vertices and {} faces ({} boundaries)",
         data.m1.vertex_count,
         data.m1.faces.len(),
@@ -229,25 +258,28 @@ fn print_loop(a: &InfoArgs, data: &LoopData) -> Result<()> {
         .iter()
         .map(|&(v, b, n)| format!("{v}{}:{n}", if b { "b" } else { "" }))
         .collect();
-    out!(
+    put!(
+        o,
         "configurations: {} in {} tables (valence:tables, b = on a boundary): {}",
         data.tables.keys.len(),
         data.tables.configs.len(),
         configs.join(" ")
     );
     let control = || data.faces.iter().map(|f| f[1] & 0xffff);
-    out!(
+    put!(
+        o,
         "control points per face: {} to {}",
         control().min().unwrap_or(0),
         control().max().unwrap_or(0)
     );
-    out!(
+    put!(
+        o,
         "table level: {} ({} segments per M1-face edge, {} lattice points)",
         lattice.lmax,
         lattice.segments(),
         lattice.rows()
     );
-    out!("basis function tables: {} bytes", data.table_bytes());
+    put!(o, "basis function tables: {} bytes", data.table_bytes());
     Ok(())
 }
 
@@ -273,7 +305,12 @@ fn check_level_options(a: &InfoArgs, desc: &ContextDesc) -> Result<()> {
 /// the triangles against the smallest uniform level that meets the same bound. Everything is
 /// as render has it with the same options: the surface as drawn (centred, at unit size, its
 /// displacement, inputs and parameters), its default camera fitted to that surface, culling.
-fn print_levels(a: &InfoArgs, mut input: Input, loop_: Option<LoopData>) -> Result<()> {
+fn print_levels(
+    o: &mut Vec<String>,
+    a: &InfoArgs,
+    mut input: Input,
+    loop_: Option<LoopData>,
+) -> Result<()> {
     use meshrefine::lod::cull::eye_outside;
     use meshrefine::lod::frame::{
         culled_facing_away, frame_levels, lod_records, uniform_level, unmet, LevelStats, LodView,
@@ -320,7 +357,7 @@ fn print_levels(a: &InfoArgs, mut input: Input, loop_: Option<LoopData>) -> Resu
             Some(data) => data,
             None => loop_data(a, path, mesh)?,
         };
-        print_loop(a, &data)?;
+        print_loop(o, a, &data)?;
         let frame = data.frame(&mesh.positions);
         Some((data, frame))
     } else {
@@ -404,7 +441,7 @@ fn print_levels(a: &InfoArgs, mut input: Input, loop_: Option<LoopData>) -> Resu
         .map(super::adaptive::px);
     let [tx, ty, tz] =
         (v.look_at().unwrap_or(frame.mesh(camera.target).to_array())).map(super::adaptive::px);
-    out!(
+    put!(o,
         "adaptive {} at {} px: {}x{}, fov-y {}°, eye {ex} {ey} {ez}, look-at {tx} {ty} {tz}, max level {}, driver {}",
         match displace {
             meshrefine::surface::Displace::None => surface.name().to_string(),
@@ -417,7 +454,8 @@ fn print_levels(a: &InfoArgs, mut input: Input, loop_: Option<LoopData>) -> Resu
         a.max_level,
         a.driver.name()
     );
-    out!(
+    put!(
+        o,
         "  levels (level:{}): {}",
         surface.facts().elements.label(),
         if report.histogram.is_empty() {
@@ -426,20 +464,21 @@ fn print_levels(a: &InfoArgs, mut input: Input, loop_: Option<LoopData>) -> Resu
             report.histogram_line()
         }
     );
-    out!(
+    put!(
+        o,
         "  culled (outside the view or facing away): {}",
         report.culled
     );
     let u = &report.unmet;
     if u.near > 0 {
-        out!(
+        put!(o,
             "  near: {} element(s) hold the eye in their bounds: drawn at --max-level {} whatever the pixel error, no pixel error is promised on them",
             u.near,
             a.max_level
         );
     }
     if u.unbounded > 0 {
-        out!(
+        put!(o,
             "  unbounded: {} element(s) have no finite error bound (see docs/adaptivity.md): drawn at --max-level {} whatever the pixel error, no pixel error is promised on them",
             u.unbounded,
             a.max_level
@@ -454,14 +493,14 @@ fn print_levels(a: &InfoArgs, mut input: Input, loop_: Option<LoopData>) -> Resu
             0 => format!(" as drawn (for their transitions to coarser neighbours or for gliding: uniform level {} meets it on them)", a.max_level),
             b => format!(" as drawn, nor on {b} of them by any uniform level up to it (the others need it for their transitions to coarser neighbours or for gliding)"),
         };
-        out!(
+        put!(o,
             "  capped: {} element(s) need a level above --max-level {}: the bound is not met on them{uniform}",
             u.capped,
             a.max_level
         );
     }
     if report.histogram.is_empty() {
-        out!("  refined triangles: none drawn");
+        put!(o, "  refined triangles: none drawn");
         return Ok(());
     }
     // As the driver draws them (the tessellator makes about 1.5 N² at level N).
@@ -473,7 +512,7 @@ fn print_levels(a: &InfoArgs, mut input: Input, loop_: Option<LoopData>) -> Resu
     } else {
         ""
     };
-    out!(
+    put!(o,
         "  refined triangles: {adaptive} adaptive against {uniform} at uniform level {} ({:.2}x{capped})",
         report.uniform_level,
         adaptive as f64 / uniform.max(1) as f64

@@ -213,6 +213,13 @@ mod tests {
             e,
             "the edge between vertex 2 and vertex 3 is shared by more than two faces (the face at line 7, the face at line 8 and the face at line 9): Loop subdivision needs a manifold mesh"
         );
+        // Three faces the same way round on one edge: still a fin, not a flipped face.
+        let fin = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 0 0 -1\nf 1 2 3\nf 1 2 4\nf 1 2 5\n";
+        let e = refusal(fin).unwrap();
+        assert_eq!(
+            e,
+            "the edge between vertex 1 and vertex 2 is shared by more than two faces (the face at line 6, the face at line 7 and the face at line 8): Loop subdivision needs a manifold mesh"
+        );
         let flipped = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 3 4\n";
         let e = refusal(flipped).unwrap();
         assert!(

@@ -241,10 +241,18 @@ pub fn render_png(
                     0 => String::new(),
                     a => format!(", or they face away from the eye ({a} of them)"),
                 };
+                // Loop's elements are M1's faces, four to a triangle: named, beside the
+                // triangle count the sentence gives.
+                let elements = match cfg.surface.facts().elements {
+                    meshrefine::surface::Elements::CoarseTriangles => "elements",
+                    meshrefine::surface::Elements::LoopFaces => {
+                        "elements (M1's faces, four to a triangle)"
+                    }
+                };
                 if v.placed() {
-                    format!("culling removed all {n} elements: the camera given by {given} sees none of them{facing}")
+                    format!("culling removed all {n} {elements}: the camera given by {given} sees none of them{facing}")
                 } else {
-                    format!("culling removed all {n} elements, outside the view{facing}")
+                    format!("culling removed all {n} {elements}, outside the view{facing}")
                 }
             }
             None => camera,

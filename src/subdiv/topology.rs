@@ -47,7 +47,8 @@ impl Topology {
     /// Builds the topology of `faces` over `vertex_count` vertices, refusing what Loop cannot
     /// subdivide (the first problem found).
     pub fn new(faces: &[[u32; 3]], vertex_count: usize) -> Result<Self, TopologyError> {
-        let mut directed: HashMap<(u32, u32), u32> = HashMap::with_capacity(3 * faces.len());
+        // Every edge's faces are counted before any orientation is compared: three faces on an
+        // edge, two of them the same way round, are a non-manifold edge, which no flip mends.
         let mut undirected: HashMap<(u32, u32), u8> = HashMap::with_capacity(3 * faces.len());
         for (f, t) in faces.iter().enumerate() {
             for k in 0..3 {
@@ -68,6 +69,12 @@ impl Topology {
                         b: a.max(b),
                     });
                 }
+            }
+        }
+        let mut directed: HashMap<(u32, u32), u32> = HashMap::with_capacity(3 * faces.len());
+        for (f, t) in faces.iter().enumerate() {
+            for k in 0..3 {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
                 if directed.insert((a, b), (3 * f + k) as u32).is_some() {
                     return Err(TopologyError::OrientationConflict { a, b });
                 }
