@@ -74,7 +74,8 @@ pub struct Scene {
 
 /// What a refined triangle costs a software device (lavapipe) at high levels, in nanoseconds:
 /// about the range docs/bench/table1.md measures at levels 16 and 32 over its surfaces and
-/// drivers (level 4 costs more a triangle), rounded out to hundreds. The range of
+/// drivers (level 4 costs more a triangle), rounded to 100 and 400 with a margin above, as
+/// runs vary by a quarter. The range of
 /// [`software_frame_seconds`].
 pub const SOFTWARE_NS_PER_TRIANGLE: (f64, f64) = (100.0, 400.0);
 

@@ -1,6 +1,7 @@
 //! The half-edge topology Loop subdivides: built from faces (or a mesh's position indices), it
 //! refuses what Loop cannot subdivide (a face repeating a vertex, a non-manifold edge or vertex,
-//! inconsistent orientation) with the first offending edge or vertex, and walks one-rings
+//! inconsistent orientation) with one offending edge or vertex (a face repeating a vertex or an
+//! edge of more than two faces before any orientation conflict), and walks one-rings
 //! counter-clockwise with their boundary flag.
 #![forbid(unsafe_code)]
 
@@ -45,7 +46,9 @@ pub struct Topology {
 
 impl Topology {
     /// Builds the topology of `faces` over `vertex_count` vertices, refusing what Loop cannot
-    /// subdivide (the first problem found).
+    /// subdivide: a face repeating a vertex or a non-manifold edge (the first in face order)
+    /// before an orientation conflict, which only two faces on an edge can have, and those
+    /// before a non-manifold vertex.
     pub fn new(faces: &[[u32; 3]], vertex_count: usize) -> Result<Self, TopologyError> {
         // Every edge's faces are counted before any orientation is compared: three faces on an
         // edge, two of them the same way round, are a non-manifold edge, which no flip mends.
