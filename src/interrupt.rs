@@ -161,6 +161,52 @@ fn release(slots: &[AtomicPtr<c_char>], name: *mut c_char) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::sync::atomic::AtomicBool;
+
+    /// A signal raised while `deferred` runs is held back (pending, its handler not yet run)
+    /// and delivered once it returns, also when its body panics; the mask is then as before.
+    #[test]
+    fn deferred_holds_signals_back_until_it_returns() {
+        static RAN: AtomicBool = AtomicBool::new(false);
+        extern "C" fn on_hangup(_: libc::c_int) {
+            RAN.store(true, Ordering::SeqCst);
+        }
+        let blocked = |signal| {
+            // SAFETY: `pthread_sigmask` with no new set and `sigismember` only read and write
+            // the sets passed (a zeroed set is valid to start from).
+            unsafe {
+                let mut now: libc::sigset_t = std::mem::zeroed();
+                libc::pthread_sigmask(libc::SIG_BLOCK, std::ptr::null(), &mut now);
+                libc::sigismember(&now, signal) == 1
+            }
+        };
+        let raise = || {
+            // SAFETY: sends SIGHUP to this thread, whose handler (below) only stores a flag.
+            unsafe { libc::pthread_kill(libc::pthread_self(), libc::SIGHUP) };
+        };
+        let handler = on_hangup as extern "C" fn(libc::c_int) as libc::sighandler_t;
+        // SAFETY: the handler is async-signal-safe (one atomic store); the default comes
+        // back at the end. No other test sends SIGHUP.
+        unsafe { libc::signal(libc::SIGHUP, handler) };
+        assert!(!blocked(libc::SIGHUP));
+        for panics in [false, true] {
+            RAN.store(false, Ordering::SeqCst);
+            let result = std::panic::catch_unwind(|| {
+                deferred(|| {
+                    assert!(SIGNALS.iter().all(|&s| blocked(s)));
+                    raise();
+                    std::thread::sleep(std::time::Duration::from_millis(20));
+                    assert!(!RAN.load(Ordering::SeqCst), "delivered while held back");
+                    assert!(!panics, "the body's panic");
+                })
+            });
+            assert_eq!(result.is_err(), panics);
+            assert!(RAN.load(Ordering::SeqCst), "not delivered on return");
+            assert!(SIGNALS.iter().all(|&s| !blocked(s)));
+        }
+        // SAFETY: as above.
+        unsafe { libc::signal(libc::SIGHUP, libc::SIG_DFL) };
+    }
 
     /// Temporaries written as a set are all pending at once, each forgotten alone; past the
     /// slots, the first slot's is replaced.

@@ -662,6 +662,47 @@ mod tests {
         std::fs::remove_dir_all(&d).unwrap();
     }
 
+    /// A file with another hard link is written in place (both names see the new bytes, the
+    /// link kept); a replaced file keeps its permissions less set-user and set-group ID; a
+    /// read-only file is refused up front, except to root, who may write it.
+    #[test]
+    fn links_special_bits_and_read_only_files() {
+        use std::os::unix::fs::{MetadataExt as _, PermissionsExt as _};
+        let d = dir().join("links-and-bits");
+        let _ = std::fs::remove_dir_all(&d);
+        std::fs::create_dir_all(&d).unwrap();
+        let (out, other) = (d.join("out.obj"), d.join("other-name.obj"));
+        std::fs::write(&out, "old").unwrap();
+        std::fs::hard_link(&out, &other).unwrap();
+        check_output(&out, "-o", Output::File).unwrap();
+        write_output(&out, |w| w.write_all(b"new")).unwrap();
+        assert_eq!(std::fs::read_to_string(&other).unwrap(), "new");
+        assert_eq!(std::fs::metadata(&out).unwrap().nlink(), 2);
+        assert_eq!(
+            std::fs::metadata(&out).unwrap().ino(),
+            std::fs::metadata(&other).unwrap().ino()
+        );
+        let special = d.join("special.obj");
+        std::fs::write(&special, "old").unwrap();
+        std::fs::set_permissions(&special, std::fs::Permissions::from_mode(0o6755)).unwrap();
+        write_output(&special, |w| w.write_all(b"new")).unwrap();
+        let mode = std::fs::metadata(&special).unwrap().permissions().mode();
+        assert_eq!(mode & 0o7777, 0o755, "{mode:o}");
+        let read_only = d.join("read-only.obj");
+        std::fs::write(&read_only, "old").unwrap();
+        std::fs::set_permissions(&read_only, std::fs::Permissions::from_mode(0o444)).unwrap();
+        let checked = check_output(&read_only, "-o", Output::File);
+        let root = std::fs::metadata(&d).unwrap().uid() == 0;
+        match checked {
+            Ok(()) => assert!(root, "a read-only file was taken"),
+            Err(e) => {
+                assert!(!root, "{e}");
+                assert!(e.ends_with("read-only.obj' is a read-only file"), "{e}");
+            }
+        }
+        std::fs::remove_dir_all(&d).unwrap();
+    }
+
     fn dir() -> std::path::PathBuf {
         let d = std::env::temp_dir().join("meshrefine-paths-test");
         std::fs::create_dir_all(&d).unwrap();

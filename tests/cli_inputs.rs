@@ -274,6 +274,10 @@ fn meshes_of_any_f32_scale_are_framed_and_blank_images_are_errors() {
     args.extend(size);
     expect_error(&args, &["specks.png", "is blank", "specks.obj"]);
     assert!(png.exists() && covered(&png) == 0);
+    // On the light background the check compares with that background.
+    let mut light = args.clone();
+    light.extend(["--background", "light"]);
+    expect_error(&light, &["specks.png", "is blank", "specks.obj"]);
     // A field of view that shrinks the mesh to a speck is named.
     let mut wide = vec!["render", "--fov", "179.999", "-o", p(&png)];
     wide.extend(size);

@@ -617,6 +617,9 @@ mod tests {
         }
         let e = Cli::try_parse_from(["meshrefine", "render", "--level", "2000"]).unwrap_err();
         assert!(e.to_string().contains("2000 is not in 1..=1024"), "{e}");
+        let e = Cli::try_parse_from(["meshrefine", "bench", "--frames", "100001"]).unwrap_err();
+        assert!(e.to_string().contains("100001 is not in 1..=100000"), "{e}");
+        Cli::try_parse_from(["meshrefine", "bench", "--frames", "100000"]).unwrap();
         // A sign and leading zeros are read; a negative number or one past every integer type
         // names the range (a long one cut to 40 characters), a character that shows nothing is
         // named escaped.

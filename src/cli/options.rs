@@ -77,8 +77,17 @@ pub fn command() -> clap::Command {
 
 /// Parses the command line like `Cli::try_parse`, and says which options were given.
 pub fn parse() -> Result<(Cli, Given), clap::Error> {
+    parse_from(std::env::args_os())
+}
+
+/// [`parse`] for the arguments `args` (the program's name first).
+pub fn parse_from<I, T>(args: I) -> Result<(Cli, Given), clap::Error>
+where
+    I: IntoIterator<Item = T>,
+    T: Into<std::ffi::OsString> + Clone,
+{
     let mut command = command();
-    let matches = command.try_get_matches_from_mut(std::env::args_os())?;
+    let matches = command.try_get_matches_from_mut(args)?;
     let cli = Cli::from_arg_matches(&matches).map_err(|e| e.format(&mut command))?;
     let given = matches
         .subcommand()
@@ -563,5 +572,51 @@ mod tests {
         );
         // Options not given never warn.
         assert!(inapplicable(&given(&[]), &chosen(&[Surface::Flat], &[Displace::None])).is_empty());
+    }
+
+    /// The example commands of the README's quick start and docs/cli.md's examples are
+    /// commands a user can paste: each parses, passes every check made before any work (values,
+    /// camera, output paths), draws no warning, and every mesh it names is in the repository.
+    #[test]
+    fn documented_examples_parse_and_pass_the_checks() {
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+        let mut seen = 0;
+        for doc in ["README.md", "docs/cli.md"] {
+            let text = std::fs::read_to_string(root.join(doc)).unwrap();
+            let mut in_sh = false;
+            for line in text.lines() {
+                if line.starts_with("```") {
+                    in_sh = line == "```sh";
+                    continue;
+                }
+                let Some(rest) = line.strip_prefix("meshrefine ").filter(|_| in_sh) else {
+                    continue;
+                };
+                // A comment starts at " # " (no example quotes anything).
+                let command = rest.split(" # ").next().unwrap();
+                let words: Vec<&str> = command.split_whitespace().collect();
+                let args = [&["meshrefine"][..], &words[..]].concat();
+                let (cli, given) =
+                    parse_from(&args).unwrap_or_else(|e| panic!("{doc}: {line}: {e}"));
+                check_values(&cli).unwrap_or_else(|e| panic!("{doc}: {line}: {e}"));
+                check_outputs(&cli).unwrap_or_else(|e| panic!("{doc}: {line}: {e}"));
+                super::super::adaptive::check(&cli, &given)
+                    .unwrap_or_else(|e| panic!("{doc}: {line}: {e}"));
+                assert_eq!(
+                    warnings(&cli, &given),
+                    Vec::<String>::new(),
+                    "{doc}: {line}"
+                );
+                for path in words
+                    .iter()
+                    .filter(|w| w.ends_with(".obj") && w.starts_with("assets/"))
+                {
+                    assert!(root.join(path).is_file(), "{doc}: {line}: no {path}");
+                }
+                seen += 1;
+            }
+        }
+        // The README's sixteen and cli.md's twelve.
+        assert!(seen >= 28, "{seen} examples found");
     }
 }

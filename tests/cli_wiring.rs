@@ -1,0 +1,183 @@
+//! What the command line promises about its own wiring, run as a user would: that `--validate`
+//! and `MESHREFINE_VALIDATE` really ask for the validation layer, that the surface options'
+//! defaults are the values `--help` and docs/cli.md name (the same export as with the value
+//! written out, a different one with another), that `devices` shows the limits the environment
+//! lowers, and that a Wayland display that cannot be reached falls back to the headless render.
+
+mod common;
+
+use common::cli::*;
+
+fn model(name: &str) -> String {
+    model_path(name).to_str().unwrap().to_string()
+}
+
+/// Exports `mesh` with `args` to `name` and returns what it wrote (less the command line).
+fn export(mesh: &str, name: &str, args: &[&str]) -> String {
+    let obj = tmp(&format!("wiring-{name}"));
+    ok(&[&["export", &model(mesh), "-o", p(&obj)][..], args].concat());
+    without_command(&obj)
+}
+
+/// The binary run with `env` set and `MESHREFINE_VALIDATE` unset unless `env` sets it, no
+/// display, one at a time with the other GPU work of this test process.
+fn run_with(env: &[(&str, &str)], args: &[&str]) -> Output {
+    let _guard = common::gpu_lock();
+    let mut command = Command::new(env!("CARGO_BIN_EXE_meshrefine"));
+    command
+        .env_remove("MESHREFINE_VALIDATE")
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .envs(env.iter().copied());
+    command.args(args).output().expect("run meshrefine")
+}
+
+/// With the validation layer hidden from the Vulkan loader, `--validate` and
+/// `MESHREFINE_VALIDATE=1` each fail in one sentence naming the layer and its package, so both
+/// ask for it (every validated test relies on that); without either, or with the variable `0`,
+/// the command runs.
+#[test]
+fn validate_flag_and_variable_ask_for_the_layer() {
+    let hidden = ("VK_LOADER_LAYERS_DISABLE", "*validation*");
+    let refused = |out: Output, how: &str| {
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{how}: {stderr}");
+        assert_eq!(
+            stderr.trim_end(),
+            "error: the Vulkan validation layer VK_LAYER_KHRONOS_validation is not installed (apt-get install vulkan-validationlayers)",
+            "{how}"
+        );
+    };
+    refused(
+        run_with(&[hidden], &["--validate", "devices"]),
+        "--validate",
+    );
+    refused(
+        run_with(&[hidden, ("MESHREFINE_VALIDATE", "1")], &["devices"]),
+        "MESHREFINE_VALIDATE=1",
+    );
+    for env in [vec![hidden], vec![hidden, ("MESHREFINE_VALIDATE", "0")]] {
+        let out = run_with(&env, &["devices"]);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{env:?}: {stderr}");
+        assert!(String::from_utf8_lossy(&out.stdout).contains("(default)"));
+    }
+}
+
+/// Exports `mesh` with `base`, then with `option documented` and `option other` added:
+/// returns the three (the first two must be equal, the third must differ).
+fn default_is(mesh: &str, base: &[&str], option: &str, documented: &str, other: &str) -> String {
+    let name = |v: &str| format!("{}-{v}.obj", option.trim_start_matches('-'));
+    let with = |v: &str| export(mesh, &name(v), &[base, &[option, v]].concat());
+    let default = export(mesh, &name("default"), base);
+    assert_eq!(default, with(documented), "{option} {documented}");
+    let other = with(other);
+    assert_ne!(default, other, "{option} {other}");
+    other
+}
+
+/// `--pn-seams` defaults to `closed` (crack-free at split normals): the cylinder with hard
+/// normals exports as with `--pn-seams closed`, and differently from `open`, which keeps each
+/// side's own geometry (more distinct positions: the cracks).
+#[test]
+fn pn_seams_default_is_closed() {
+    let cylinder = "cylinder_hard_normals.obj";
+    let pn = ["--surface", "pn", "--level", "2"];
+    let open = default_is(cylinder, &pn, "--pn-seams", "closed", "open");
+    let positions = |text: &str| {
+        let mut p: Vec<&str> = text.lines().filter(|l| l.starts_with("v ")).collect();
+        p.sort_unstable();
+        p.dedup();
+        p.len()
+    };
+    let closed = export(cylinder, "pn-seams-default.obj", &pn);
+    assert!(
+        positions(&open) > positions(&closed),
+        "{} distinct positions open, {} closed",
+        positions(&open),
+        positions(&closed)
+    );
+}
+
+/// `--normal-field` defaults to `vlachos`, `--octaves` to 1, `--bias` to 0 and `--bft-level`
+/// to 5, as `--help` says.
+#[test]
+fn surface_defaults_are_the_documented_ones() {
+    let spot = "spot_control_tri.obj";
+    let pn = ["--surface", "pn", "--level", "2"];
+    default_is(spot, &pn, "--normal-field", "vlachos", "paper");
+    let noise = ["--surface", "flat", "--displace", "noise", "--level", "4"];
+    default_is(spot, &noise, "--octaves", "1", "3");
+    let height = ["--surface", "flat", "--displace", "heightmap"];
+    default_is("grid_uv_8x8.obj", &height, "--bias", "0", "0.5");
+    let tetrahedron = model("tetrahedron.obj");
+    let table = |extra: &[&str]| {
+        let args = [&["info", &tetrahedron, "--surface", "loop"][..], extra].concat();
+        let out = ok(&args);
+        let line = out.lines().find(|l| l.starts_with("table level: "));
+        line.unwrap_or_else(|| panic!("{out}")).to_string()
+    };
+    assert!(table(&[]).starts_with("table level: 5 (32 segments"));
+    assert!(table(&["--bft-level", "3"]).starts_with("table level: 3 (8 segments"));
+}
+
+/// `MESHREFINE_MAX_STORAGE_BUFFER_RANGE` and `MESHREFINE_MAX_MEMORY_ALLOCATION_SIZE` lower the
+/// limits meshrefine respects, and `devices` shows the values seen.
+#[test]
+fn devices_shows_the_limits_the_environment_lowers() {
+    let out = meshrefine_env(
+        &["devices"],
+        &[
+            ("MESHREFINE_MAX_STORAGE_BUFFER_RANGE", "4096"),
+            ("MESHREFINE_MAX_MEMORY_ALLOCATION_SIZE", "1000000"),
+        ],
+    );
+    let (stdout, stderr) = (
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr),
+    );
+    assert!(out.status.success(), "{stderr}");
+    assert!(
+        stdout.contains("(maxStorageBufferRange): 4096 bytes; largest allocation: 1000000 bytes"),
+        "{stdout}"
+    );
+}
+
+/// With only `WAYLAND_DISPLAY` set, to a display that cannot be reached, `view` renders the
+/// scene headlessly, says why and where, and succeeds.
+#[test]
+fn an_unreachable_wayland_display_falls_back_to_the_headless_render() {
+    let png = tmp("wiring-wayland.png");
+    let _ = std::fs::remove_file(&png);
+    let out = run_with(
+        &[
+            ("WAYLAND_DISPLAY", "meshrefine-nowhere"),
+            ("MESHREFINE_VALIDATE", "1"),
+        ],
+        &[
+            "view",
+            "--level",
+            "1",
+            "--width",
+            "64",
+            "--height",
+            "48",
+            "--headless-output",
+            p(&png),
+        ],
+    );
+    let (stdout, stderr) = (
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr),
+    );
+    assert!(out.status.success(), "{stderr}");
+    assert!(!stderr.contains("validation"), "{stderr}");
+    assert_eq!(
+        stdout.trim_end(),
+        format!(
+            "cannot connect to the display 'meshrefine-nowhere': rendered the scene headlessly to {}",
+            png.display()
+        )
+    );
+    assert!(png.is_file());
+}
