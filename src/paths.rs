@@ -274,6 +274,18 @@ fn check_replaceable(path: &Path, option: &str) -> Result<(), String> {
     let Some(target) = regular_target(path).map_err(cannot)? else {
         return Ok(());
     };
+    if target != path {
+        // A link whose file would be made in a folder that is not there.
+        let folder = target.parent().filter(|p| !p.as_os_str().is_empty());
+        let folder = folder.unwrap_or(Path::new("."));
+        if !folder.is_dir() {
+            return Err(format!(
+                "{option} '{shown}' is a link to '{}', whose folder '{}' does not exist (outputs never create folders)",
+                target.display(),
+                folder.display()
+            ));
+        }
+    }
     let (tmp, probe, mut made) = temporary_registered(&target).map_err(cannot)?;
     let mine = std::os::unix::fs::MetadataExt::uid(&probe.metadata().map_err(cannot)?);
     let old = std::fs::metadata(&target).ok();
@@ -643,6 +655,20 @@ mod tests {
         write_output(&link, |w| w.write_all(b"through")).unwrap();
         assert!(std::fs::symlink_metadata(&link).unwrap().is_symlink());
         assert_eq!(std::fs::read_to_string(&out).unwrap(), "through");
+        let nowhere = d.join("nowhere.obj");
+        std::os::unix::fs::symlink("missing/x.obj", &nowhere).unwrap();
+        let e = check_output(&nowhere, "-o", Output::File).unwrap_err();
+        let missing = d.join("missing");
+        assert_eq!(
+            e,
+            format!(
+                "-o '{}' is a link to '{}', whose folder '{}' does not exist (outputs never create folders)",
+                nowhere.display(),
+                missing.join("x.obj").display(),
+                missing.display()
+            )
+        );
+        std::fs::remove_file(&nowhere).unwrap();
         let dangling = d.join("dangling.obj");
         std::os::unix::fs::symlink("sub/made.obj", &dangling).unwrap();
         write_output(&dangling, |w| w.write_all(b"new")).unwrap();

@@ -341,6 +341,17 @@ fn tags_file_errors_name_the_line() {
         w,
         [format!("warning: tags file '{}' tags no vertex (no line but comments): every vertex keeps its derived tags", p(&empty))]
     );
+    // A file with nothing in it is said to be empty.
+    let nothing = write("nothing.tags", b"");
+    #[rustfmt::skip]
+    let w = warnings_of(&[
+        "render", p(&tet), "-o", p(&png), "--surface", "stpn", "--tags", p(&nothing), "--width",
+        "32", "--height", "32", "--level", "2",
+    ]);
+    assert_eq!(
+        w,
+        [format!("warning: tags file '{}' tags no vertex (it is empty): every vertex keeps its derived tags", p(&nothing))]
+    );
     // The whole sentence stays one short line.
     let long = write(
         "long-coordinate.obj",

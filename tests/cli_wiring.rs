@@ -122,9 +122,17 @@ fn surface_defaults_are_the_documented_ones() {
 }
 
 /// `MESHREFINE_MAX_STORAGE_BUFFER_RANGE` and `MESHREFINE_MAX_MEMORY_ALLOCATION_SIZE` lower the
-/// limits meshrefine respects, and `devices` shows the values seen.
+/// limits meshrefine respects, and `devices` shows the values seen; a range under one
+/// element's bytes still draws (every chunk holds an element), saying what it cannot draw.
 #[test]
 fn devices_shows_the_limits_the_environment_lowers() {
+    let png = tmp("wiring-range-1.png");
+    let args = ["render", "-o", p(&png), "--width", "64", "--height", "64"];
+    let stderr = succeeds(&args, &[("MESHREFINE_MAX_STORAGE_BUFFER_RANGE", "1")]);
+    assert!(
+        stderr.contains("over maxStorageBufferRange (1): draw uniformly"),
+        "{stderr}"
+    );
     let out = meshrefine_env(
         &["devices"],
         &[

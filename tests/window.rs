@@ -416,6 +416,21 @@ impl<'a> Demo<'a> {
         }
     }
 
+    /// Waits (at most two minutes from the start) for the demo to end on its own after `what`;
+    /// returns its status and stderr.
+    fn ended_after(mut self, what: &str) -> (Option<i32>, String) {
+        while self.child.try_wait().unwrap().is_none() {
+            if self.start.elapsed() > Duration::from_secs(120) {
+                let _ = self.child.kill();
+                panic!("the demo did not end after {what}");
+            }
+            std::thread::sleep(Duration::from_millis(50));
+        }
+        let out = self.child.wait_with_output().unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+        (out.status.code(), stderr)
+    }
+
     /// Press Esc and expect a clean exit: status 0, no validation message. Returns stderr.
     fn quit(mut self) -> String {
         self.xdotool(&["key", "Escape"]);
@@ -698,6 +713,33 @@ fn keys_at_their_ends_and_notes_follow_what_is_drawn() {
     }
 }
 
+/// `]` doubles the pixel error up to 16 px and past it says it changes nothing; a key marked
+/// for the other mode says so (`L` in adaptive mode, `G` in uniform mode).
+#[test]
+fn keys_at_the_top_and_of_the_other_mode_say_so() {
+    let _guard = common::gpu_lock();
+    let x = Xvfb::start();
+    #[rustfmt::skip]
+    let args = ["--pixel-error", "8", "--max-level", "4", "--width", "320", "--height", "240"];
+    let demo = Demo::start(&x, &args);
+    demo.wait_title("adaptive 8 px");
+    demo.xdotool(&["key", "bracketright"]);
+    demo.wait_title("adaptive 16 px");
+    demo.xdotool(&["key", "bracketright"]);
+    demo.xdotool(&["key", "l"]);
+    demo.xdotool(&["key", "m"]);
+    demo.wait_title("level 16");
+    demo.xdotool(&["key", "g"]);
+    let stderr = demo.quit();
+    for line in [
+        "']' changes nothing: the pixel error is at its largest, 16 px",
+        "'l' (LOD by distance) acts in uniform mode only (M switches to it)",
+        "'g' acts in adaptive mode only (M switches to it)",
+    ] {
+        assert!(stderr.contains(line), "{line:?} not in {stderr}");
+    }
+}
+
 /// The title names the surface and displacement (and geomorphing where it is off); `S` onto
 /// `loop`, which cannot take the height map, switches the displacement off with a warning,
 /// and the next surface that takes it shows it again.
@@ -852,18 +894,10 @@ fn a_window_destroyed_by_another_client_ends_the_demo_with_a_sentence() {
     // where winit expects a geometry): one sentence and status 1, no panic, no hang.
     let _guard = common::gpu_lock();
     let x = Xvfb::start();
-    let mut demo = Demo::start(&x, &["--level", "2"]);
+    let demo = Demo::start(&x, &["--level", "2"]);
     demo.xdotool(&["windowclose", &demo.window]);
-    while demo.child.try_wait().unwrap().is_none() {
-        if demo.start.elapsed() > Duration::from_secs(120) {
-            let _ = demo.child.kill();
-            panic!("the demo did not end after its window was destroyed");
-        }
-        std::thread::sleep(Duration::from_millis(50));
-    }
-    let out = demo.child.wait_with_output().unwrap();
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    let (status, stderr) = demo.ended_after("its window was destroyed");
+    assert_eq!(status, Some(1), "{stderr}");
     assert!(!stderr.contains("panicked"), "{stderr}");
     assert!(
         stderr.contains("the window was closed by another program"),
@@ -874,6 +908,87 @@ fn a_window_destroyed_by_another_client_ends_the_demo_with_a_sentence() {
         "{stderr}"
     );
     assert_eq!(stderr.trim().lines().count(), 1, "{stderr}");
+}
+
+/// The window starts in the state its options ask for (`--lod`, `--wireframe cage`, `--driver
+/// tess` with `--submit push`, which its keys use once they switch to `pattern`), and warns of
+/// no option it does not read yet (`--alpha` on `pn`: its keys may switch to `phong`).
+#[test]
+fn the_window_starts_as_its_options_say() {
+    let _guard = common::gpu_lock();
+    let x = Xvfb::start();
+    #[rustfmt::skip]
+    let args = [
+        "--lod", "--level", "4", "--wireframe", "cage", "--driver", "tess", "--submit", "push",
+        "--surface", "pn", "--alpha", "0.3", "--width", "320", "--height", "240",
+    ];
+    let demo = Demo::start(&x, &args);
+    demo.wait_title("meshrefine | tess level 4 (LOD) cage | pn + none |");
+    demo.xdotool(&["key", "2"]);
+    demo.wait_title("meshrefine | pattern/push level 4 (LOD) cage |");
+    let stderr = demo.quit();
+    assert!(!stderr.contains("warning"), "{stderr}");
+}
+
+/// A window whose attachments the device cannot allocate is refused in the sentence `render`
+/// gives, before any of them is made (no validation message): here at 640x480 and 4 samples
+/// under a limit lowered to 4,000,000 bytes (`MESHREFINE_MAX_MEMORY_ALLOCATION_SIZE`), at the
+/// start and when a window that fits is resized past it.
+#[test]
+fn a_window_too_large_to_allocate_is_one_sentence() {
+    let _guard = common::gpu_lock();
+    let x = Xvfb::start();
+    let out = Command::new(env!("CARGO_BIN_EXE_meshrefine"))
+        .args(["--validate", "view", "--frames", "3", "--msaa", "4"])
+        .args(["--width", "640", "--height", "480"])
+        .env("DISPLAY", &x.display)
+        .env("MESHREFINE_MAX_MEMORY_ALLOCATION_SIZE", "4000000")
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert_eq!(
+        stderr.trim_end(),
+        "error: cannot show 'the default mesh (spot)': a 640x480 image at 4 sample(s) per pixel needs 4.7 MiB per attachment, over the 3.8 MiB this device allocates at once (maxMemoryAllocationSize): fewer samples per pixel (--msaa) or a smaller image fits"
+    );
+    // A window that fits, resized past the limit: the same sentence when the swapchain is
+    // made again, status 1.
+    let limit = [("MESHREFINE_MAX_MEMORY_ALLOCATION_SIZE", "4000000")];
+    let args = [
+        "--msaa", "4", "--level", "2", "--width", "320", "--height", "240",
+    ];
+    let demo = Demo::start_with(&x, &args, &limit);
+    demo.wait_title("level 2");
+    demo.xdotool(&["windowsize", &demo.window, "640", "480"]);
+    let (status, stderr) = demo.ended_after("its window grew past the limit");
+    assert_eq!(status, Some(1), "{stderr}");
+    assert!(!stderr.contains("validation"), "{stderr}");
+    assert!(
+        stderr.ends_with("a 640x480 image at 4 sample(s) per pixel needs 4.7 MiB per attachment, over the 3.8 MiB this device allocates at once (maxMemoryAllocationSize): fewer samples per pixel (--msaa) or a smaller image fits\n"),
+        "{stderr}"
+    );
+}
+
+/// The X server going away under a running demo ends it with Xlib's message and status 1
+/// (window.md), at once: no panic, no hang.
+#[test]
+fn the_x_server_going_away_ends_the_demo_with_status_1() {
+    let _guard = common::gpu_lock();
+    let x = Xvfb::start();
+    let demo = Demo::start(&x, &["--level", "2", "--width", "320", "--height", "240"]);
+    demo.wait_title("level 2");
+    let killed = Command::new("kill")
+        .arg(x.child.id().to_string())
+        .status()
+        .unwrap();
+    assert!(killed.success());
+    let (status, stderr) = demo.ended_after("its X server went away");
+    assert_eq!(status, Some(1), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert!(
+        stderr.contains(&format!("X connection to {} broken", x.display)),
+        "{stderr}"
+    );
 }
 
 /// The title's refined triangle count (`... -> N triangles`).

@@ -324,7 +324,7 @@ impl App {
                 dropped: None,
                 view: self.opts.view,
                 initial: cfg.params,
-                submit: cfg.driver.submit().unwrap_or_default(),
+                submit: cfg.driver.submit().unwrap_or(self.opts.submit),
                 adaptive: a.on,
                 pixel_error: ui::slider_pixel_error(a.pixel_error),
                 max_level: adaptive_max,

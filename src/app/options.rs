@@ -18,6 +18,9 @@ pub struct ViewOptions {
     pub animate: bool,
     /// Start with LOD by distance on.
     pub lod: bool,
+    /// The pattern driver's submission (`--submit`): drawn where `cfg`'s driver is `pattern`,
+    /// and what the keys switch to from another driver.
+    pub submit: crate::render::Submit,
     /// The height map (None: the generated one).
     pub heightmap: Option<crate::surface::Heightmap>,
     /// The scalar tags (None: derived from the mesh's hard edges).

@@ -458,8 +458,9 @@ pub struct BenchArgs {
     #[arg(long, allow_hyphen_values = true, value_delimiter = ',', default_value = "8,16,32,64",
           value_parser = level(), help_heading = "Measurement")]
     pub levels: Vec<u32>,
-    /// Also write the results to PREFIX.md (with this command line), PREFIX.csv and PREFIX.json.
-    #[arg(long, value_name = "PREFIX", help_heading = "Measurement")]
+    /// Also write the results to PREFIX.md (with this command line), PREFIX.csv and PREFIX.json
+    /// (a PREFIX ending in .md, .csv or .json names the three without it).
+    #[arg(long, value_name = "PREFIX", value_parser = out_prefix(), help_heading = "Measurement")]
     pub out: Option<PathBuf>,
     /// Timed frames per variant (after one warm-up frame; 1 to 100000).
     #[arg(long, allow_hyphen_values = true, default_value_t = 5, value_parser = Trimmed(whole_in(1..=100_000)), help_heading = "Measurement")]
@@ -517,6 +518,26 @@ fn level() -> Trimmed<impl Fn(&str) -> Result<u32, String> + Clone + Send + Sync
 }
 
 /// `--msaa`: 1, 2, 4 or 8.
+/// `bench --out`'s prefix: one of the files it names (`run.csv`) stands for the three
+/// (`run`), the extension left out in any case; any other path is the prefix as given (its
+/// bytes kept: a path need not be UTF-8).
+fn out_prefix() -> impl clap::builder::TypedValueParser<Value = PathBuf> {
+    use clap::builder::TypedValueParser as _;
+    clap::builder::OsStringValueParser::new().map(|s| {
+        let path = PathBuf::from(s);
+        let written = (path.extension().and_then(|e| e.to_str())).is_some_and(|e| {
+            ["md", "csv", "json"]
+                .iter()
+                .any(|x| e.eq_ignore_ascii_case(x))
+        });
+        if written {
+            path.with_extension("")
+        } else {
+            path
+        }
+    })
+}
+
 fn msaa_counts() -> impl clap::builder::TypedValueParser<Value = u32> {
     use clap::builder::TypedValueParser as _;
     Trimmed(clap::builder::PossibleValuesParser::new([
@@ -562,6 +583,29 @@ mod tests {
             }
         }
         assert!(seen > 40, "{seen}");
+    }
+
+    /// `bench --out` naming one of its files (any case) stands for the three; other paths are
+    /// the prefix as given.
+    #[test]
+    fn bench_out_names_the_prefix() {
+        let prefix = |v: &str| match Cli::try_parse_from(["meshrefine", "bench", "--out", v]) {
+            Ok(Cli {
+                command: Command::Bench(b),
+                ..
+            }) => b.out.unwrap(),
+            other => panic!("{other:?}"),
+        };
+        for (given, meant) in [
+            ("run.md", "run"),
+            ("dir/run.CSV", "dir/run"),
+            ("run.json", "run"),
+            ("run.2026", "run.2026"),
+            ("run", "run"),
+            (".md", ".md"),
+        ] {
+            assert_eq!(prefix(given), PathBuf::from(meant), "{given}");
+        }
     }
 
     /// `--width` and `--height` are checked by clap alike in every command: 0 and

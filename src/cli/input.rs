@@ -375,8 +375,13 @@ impl SurfaceOpts {
         let tag_lines =
             (text.lines()).filter(|l| !l.split('#').next().unwrap_or("").trim().is_empty());
         if tag_lines.count() == 0 {
+            let holds = if text.trim().is_empty() {
+                "it is empty"
+            } else {
+                "no line but comments"
+            };
             crate::note(format_args!(
-                "warning: tags file '{shown_tags}' tags no vertex (no line but comments): every vertex keeps its derived tags"
+                "warning: tags file '{shown_tags}' tags no vertex ({holds}): every vertex keeps its derived tags"
             ));
         }
         check(&tags, &format!("tags file '{shown_tags}'"))?;

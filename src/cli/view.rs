@@ -72,6 +72,7 @@ pub fn run(a: &ViewArgs, desc: &ContextDesc, given: &Given) -> Result<()> {
             cage: a.wireframe.is_some_and(|w| w.cage()),
             animate: a.animate,
             lod: a.lod,
+            submit: a.technique.submit(),
             heightmap: input.heightmap.clone(),
             tags: input.tags.clone(),
             loop_refusal: input.loop_refusal.clone(),

@@ -240,45 +240,7 @@ impl OffscreenTarget {
         height: u32,
         samples: vk::SampleCountFlags,
     ) -> Result<Self, GpuError> {
-        let max = ctx.info.limits.max_image_dimension2_d;
-        if width == 0 || height == 0 || width > max || height > max {
-            return Err(GpuError::Other(format!(
-                "image size {width}x{height} is outside what the device supports (1..={max} per side)"
-            )));
-        }
-        // Each attachment is one allocation of 4 bytes per sample (RGBA8, D32): refused here
-        // in one sentence rather than by the allocator (and the validation layer) later.
-        let n = samples.as_raw().max(1) as u64;
-        let bytes = width as u64 * height as u64 * 4 * n;
-        let max_bytes = ctx.info.max_memory_allocation_size;
-        if bytes > max_bytes {
-            // In MiB to a tenth, the need rounded up and the limit down (so that they never
-            // read alike), or in bytes under 1 MiB.
-            let (need, max) = if max_bytes >= 1 << 20 {
-                let tenths = |b: u64, up: bool| {
-                    let t = if up {
-                        (b * 10).div_ceil(1 << 20)
-                    } else {
-                        (b * 10) >> 20
-                    };
-                    match t % 10 {
-                        0 => format!("{} MiB", t / 10),
-                        d => format!("{}.{d} MiB", t / 10),
-                    }
-                };
-                (tenths(bytes, true), tenths(max_bytes, false))
-            } else {
-                (format!("{bytes} bytes"), format!("{max_bytes} bytes"))
-            };
-            let remedy = if n > 1 {
-                "fewer samples per pixel (--msaa) or a smaller image fits"
-            } else {
-                "a smaller image fits"
-            };
-            return Err(GpuError::Other(format!(
-                "a {width}x{height} image at {n} sample(s) per pixel needs {need} per attachment, over the {max} this device allocates at once (maxMemoryAllocationSize): {remedy}",
-            )));
-        }
+        check_attachments(ctx, width, height, samples)?;
         let extent = vk::Extent2D { width, height };
         let color = Image::new(
             ctx,
@@ -336,6 +298,57 @@ impl OffscreenTarget {
 
 /// The sample counts `--msaa` accepts.
 pub const MSAA_COUNTS: [u32; 4] = [1, 2, 4, 8];
+
+/// Whether attachments of `width` x `height` at `samples` per pixel fit the device: each side
+/// within `maxImageDimension2D`, and each attachment (4 bytes a sample: RGBA8, BGRA8, D32) one
+/// allocation within `maxMemoryAllocationSize`. Refused here in one sentence, before any
+/// Vulkan object is made, rather than by the allocator (and the validation layer) later:
+/// offscreen targets and the window's swapchain alike.
+pub fn check_attachments(
+    ctx: &Context,
+    width: u32,
+    height: u32,
+    samples: vk::SampleCountFlags,
+) -> Result<(), GpuError> {
+    let max = ctx.info.limits.max_image_dimension2_d;
+    if width == 0 || height == 0 || width > max || height > max {
+        return Err(GpuError::Other(format!(
+            "image size {width}x{height} is outside what the device supports (1..={max} per side)"
+        )));
+    }
+    let n = samples.as_raw().max(1) as u64;
+    let bytes = width as u64 * height as u64 * 4 * n;
+    let max_bytes = ctx.info.max_memory_allocation_size;
+    if bytes > max_bytes {
+        // In MiB to a tenth, the need rounded up and the limit down (so that they never
+        // read alike), or in bytes under 1 MiB.
+        let (need, max) = if max_bytes >= 1 << 20 {
+            let tenths = |b: u64, up: bool| {
+                let t = if up {
+                    (b * 10).div_ceil(1 << 20)
+                } else {
+                    (b * 10) >> 20
+                };
+                match t % 10 {
+                    0 => format!("{} MiB", t / 10),
+                    d => format!("{}.{d} MiB", t / 10),
+                }
+            };
+            (tenths(bytes, true), tenths(max_bytes, false))
+        } else {
+            (format!("{bytes} bytes"), format!("{max_bytes} bytes"))
+        };
+        let remedy = if n > 1 {
+            "fewer samples per pixel (--msaa) or a smaller image fits"
+        } else {
+            "a smaller image fits"
+        };
+        return Err(GpuError::Other(format!(
+            "a {width}x{height} image at {n} sample(s) per pixel needs {need} per attachment, over the {max} this device allocates at once (maxMemoryAllocationSize): {remedy}",
+        )));
+    }
+    Ok(())
+}
 
 /// The sample count for `requested` samples per pixel (`None`: 4 where the device supports it
 /// for both colour and depth attachments, else the largest it supports), or one sentence

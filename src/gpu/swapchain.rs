@@ -152,6 +152,8 @@ impl Swapchain {
             .present_mode(vk::PresentModeKHR::FIFO)
             .clipped(true)
             .old_swapchain(old);
+        // Attachments the device cannot allocate are one sentence, before anything is made.
+        super::image::check_attachments(&ctx, extent.width, extent.height, self.samples)?;
         // SAFETY: valid surface; the old swapchain is retired by this call and idle.
         let raw = unsafe { self.swapchain_fn.create_swapchain(&info, None) }
             .call("vkCreateSwapchainKHR")?;

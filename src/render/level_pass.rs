@@ -264,7 +264,9 @@ impl LevelPass {
         }
         let range = info.limits.max_storage_buffer_range as u64;
         self.lift = n * BEFORE_BYTES <= range;
-        let whole = self.before.size().min(range / BEFORE_BYTES * BEFORE_BYTES);
+        // At least one element, as every chunk holds one whatever the range (a range under
+        // one element's bytes is only ever a test's lowered limit: Vulkan's least is 2^27).
+        let whole = (self.before.size()).min((range / BEFORE_BYTES).max(1) * BEFORE_BYTES);
         let (texels, storage) = (
             vk::DescriptorType::UNIFORM_TEXEL_BUFFER,
             vk::DescriptorType::STORAGE_BUFFER,

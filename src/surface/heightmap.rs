@@ -127,7 +127,10 @@ impl Heightmap {
     pub fn load_png(path: &Path) -> Result<Self, String> {
         let shown = path.display();
         // Checked before opening: opening a FIFO would block (crate::paths).
-        let (mut file, _) = crate::paths::open_input(path, "height map")?;
+        let (mut file, meta) = crate::paths::open_input(path, "height map")?;
+        if meta.len() == 0 {
+            return Err(format!("height map '{shown}' is empty (0 bytes)"));
+        }
         let sides = |w: u32, h: u32| {
             if w == 0 || h == 0 || w > MAX_SIDE || h > MAX_SIDE {
                 return Err(format!(
@@ -466,6 +469,11 @@ mod tests {
         std::fs::write(&cut, &std::fs::read(&gray).unwrap()[..40]).unwrap();
         let e = Heightmap::load_png(&cut).unwrap_err();
         assert!(e.ends_with("it ends early (the file is truncated)"), "{e}");
+        // Nothing at all: empty, not truncated.
+        let empty = dir.join("empty.png");
+        std::fs::write(&empty, b"").unwrap();
+        let e = Heightmap::load_png(&empty).unwrap_err();
+        assert!(e.ends_with("empty.png' is empty (0 bytes)"), "{e}");
         // An RGB image is refused; a 16-bit grayscale one loads.
         let write = |name: &str, color, depth, data: &[u8]| {
             let p = dir.join(name);
