@@ -12,6 +12,16 @@ if cargo fmt --version >/dev/null 2>&1; then cargo fmt --all -- --check; fi
 if cargo clippy --version >/dev/null 2>&1; then cargo clippy --all-targets --quiet -- -D warnings; fi
 # The library's documentation builds without a warning (broken links, private items).
 RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --lib --quiet
+# The oldest Rust the README promises (rust-version in Cargo.toml) checks every target with the
+# locked dependencies (its own target folder: the stable build stays as it is).
+msrv=$(sed -n 's/^rust-version = "\(.*\)"$/\1/p' Cargo.toml)
+if command -v rustup >/dev/null 2>&1; then
+  rustup toolchain install "$msrv" --profile minimal >/dev/null 2>&1 ||
+    { echo "test: cannot install Rust $msrv (rust-version) with rustup" >&2; exit 1; }
+  CARGO_TARGET_DIR=target/msrv cargo "+$msrv" check --all-targets --locked --quiet
+else
+  echo "test: no rustup: Rust $msrv (rust-version) not checked"
+fi
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 cargo test --all-targets 2>&1 | tee "$log"

@@ -789,6 +789,60 @@ fn render_views_backgrounds_and_the_cage() {
     assert_eq!(out.status.code(), Some(2));
 }
 
+/// On a terminal (a pseudo-terminal made by `script`), the export's progress is one line
+/// rewritten in place: each report starts with a carriage return, and the line ends only after
+/// the last (`export: N passes, T triangles, written`), padded over what it replaces.
+#[test]
+fn export_progress_on_a_terminal_is_one_line_rewritten() {
+    let ico = model_path("icosahedron.obj");
+    let obj = tmp("progress_terminal.obj");
+    let bytes = (3 * 54 * 3 * std::mem::size_of::<meshrefine::render::XfbVertex>()).to_string();
+    let quote = |s: &str| format!("'{}'", s.replace('\'', "'\\''"));
+    let command = [
+        env!("CARGO_BIN_EXE_meshrefine"),
+        "export",
+        p(&ico),
+        "-o",
+        p(&obj),
+        "--level",
+        "6",
+        "--driver",
+        "tess",
+    ]
+    .map(quote)
+    .join(" ");
+    let _guard = common::gpu_lock();
+    let out = Command::new("script")
+        .args(["-qec", &command, "/dev/null"])
+        .env("MESHREFINE_VALIDATE", "1")
+        .env("MESHREFINE_PROGRESS_AFTER", "0")
+        .env("MESHREFINE_MAX_CAPTURE_BYTES", &bytes)
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .stdin(Stdio::null())
+        .output()
+        .expect("script (util-linux) runs the export on a terminal");
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{text}");
+    assert!(!text.contains("validation"), "{text}");
+    // The terminal ends lines with "\r\n"; progress lines are the ones saying "export:".
+    let lines: Vec<&str> = (text.split("\r\n"))
+        .filter(|l| l.contains("export:"))
+        .collect();
+    assert_eq!(lines.len(), 1, "{text:?}");
+    let updates: Vec<&str> = lines[0].split('\r').filter(|u| !u.is_empty()).collect();
+    assert!(lines[0].starts_with("\rexport: 1/7 passes"), "{text:?}");
+    assert_eq!(
+        updates.last().map(|u| u.trim_end()),
+        Some("export: 7 passes, 1080 triangles, written"),
+        "{text:?}"
+    );
+    // Each update covers the one before it.
+    for pair in updates.windows(2) {
+        assert!(pair[1].len() >= pair[0].len(), "{text:?}");
+    }
+}
+
 /// A long export reports how far it is on standard error, a few plain lines when that is not a
 /// terminal: each pass captured, the writing, the end (forced here from the start with
 /// MESHREFINE_PROGRESS_AFTER=0). An export made in many small passes (MESHREFINE_MAX_CAPTURE_BYTES)
