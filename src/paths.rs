@@ -278,9 +278,17 @@ fn check_replaceable(path: &Path, option: &str) -> Result<(), String> {
         // A link whose file would be made in a folder that is not there.
         let folder = target.parent().filter(|p| !p.as_os_str().is_empty());
         let folder = folder.unwrap_or(Path::new("."));
-        if !folder.is_dir() {
+        let is = match std::fs::metadata(folder) {
+            Ok(m) if m.is_dir() => None,
+            Ok(m) => Some(format!("is {}, not a folder", file_kind(m.file_type()))),
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+                Some("does not exist (outputs never create folders)".to_string())
+            }
+            Err(e) => Some(format!("cannot be read: {e}")),
+        };
+        if let Some(is) = is {
             return Err(format!(
-                "{option} '{shown}' is a link to '{}', whose folder '{}' does not exist (outputs never create folders)",
+                "{option} '{shown}' is a link to '{}', whose folder '{}' {is}",
                 target.display(),
                 folder.display()
             ));
@@ -669,6 +677,14 @@ mod tests {
             )
         );
         std::fs::remove_file(&nowhere).unwrap();
+        // Through a regular file: no folder at all.
+        std::os::unix::fs::symlink("out.obj/x.obj", &nowhere).unwrap();
+        let e = check_output(&nowhere, "-o", Output::File).unwrap_err();
+        assert!(
+            e.ends_with("out.obj' is a regular file, not a folder"),
+            "{e}"
+        );
+        std::fs::remove_file(&nowhere).unwrap();
         let dangling = d.join("dangling.obj");
         std::os::unix::fs::symlink("sub/made.obj", &dangling).unwrap();
         write_output(&dangling, |w| w.write_all(b"new")).unwrap();
@@ -711,6 +727,9 @@ mod tests {
         let special = d.join("special.obj");
         std::fs::write(&special, "old").unwrap();
         std::fs::set_permissions(&special, std::fs::Permissions::from_mode(0o6755)).unwrap();
+        // Both bits are set (the kernel keeps set-group ID only for a group of the owner's).
+        let mode = std::fs::metadata(&special).unwrap().permissions().mode();
+        assert_eq!(mode & 0o7777, 0o6755, "{mode:o}");
         write_output(&special, |w| w.write_all(b"new")).unwrap();
         let mode = std::fs::metadata(&special).unwrap().permissions().mode();
         assert_eq!(mode & 0o7777, 0o755, "{mode:o}");

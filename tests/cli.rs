@@ -812,8 +812,10 @@ fn export_progress_on_a_terminal_is_one_line_rewritten() {
     .map(quote)
     .join(" ");
     let _guard = common::gpu_lock();
+    // `script -c` runs its command with $SHELL: a POSIX shell, for the quoting above.
     let out = Command::new("script")
         .args(["-qec", &command, "/dev/null"])
+        .env("SHELL", "/bin/sh")
         .env("MESHREFINE_VALIDATE", "1")
         .env("MESHREFINE_PROGRESS_AFTER", "0")
         .env("MESHREFINE_MAX_CAPTURE_BYTES", &bytes)

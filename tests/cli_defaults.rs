@@ -4,6 +4,7 @@
 
 mod common;
 
+use common::cli::model_arg as model;
 use std::process::Output;
 
 fn meshrefine(args: &[&str]) -> Output {
@@ -12,10 +13,6 @@ fn meshrefine(args: &[&str]) -> Output {
 
 fn tmp(name: &str) -> String {
     common::tmp_file("cli-defaults", name)
-}
-
-fn model(name: &str) -> String {
-    common::model_path(name).to_str().unwrap().to_string()
 }
 
 /// The fields of a CSV line (quoted fields hold commas; `""` is a quote).

@@ -8,27 +8,38 @@ mod common;
 
 use common::cli::*;
 
-fn model(name: &str) -> String {
-    model_path(name).to_str().unwrap().to_string()
-}
-
 /// Exports `mesh` with `args` to `name` and returns what it wrote (less the command line).
 fn export(mesh: &str, name: &str, args: &[&str]) -> String {
     let obj = tmp(&format!("wiring-{name}"));
-    ok(&[&["export", &model(mesh), "-o", p(&obj)][..], args].concat());
+    ok(&[&["export", &model_arg(mesh), "-o", p(&obj)][..], args].concat());
     without_command(&obj)
 }
 
-/// The binary run with `env` set and `MESHREFINE_VALIDATE` unset unless `env` sets it, no
-/// display, one at a time with the other GPU work of this test process.
-fn run_with(env: &[(&str, &str)], args: &[&str]) -> Output {
+/// The binary run with `args` where the Vulkan loader finds no validation layer (explicit
+/// layers searched in an empty folder only, the validation layer disabled by name, nothing
+/// asking for it through the loader's own variables), with `MESHREFINE_VALIDATE` set to
+/// `validate` or unset; no display, one at a time with the other GPU work of this process.
+fn without_the_layer(args: &[&str], validate: Option<&str>) -> Output {
+    let empty = tmp("no-layers");
+    std::fs::create_dir_all(&empty).unwrap();
     let _guard = common::gpu_lock();
-    let mut command = Command::new(env!("CARGO_BIN_EXE_meshrefine"));
+    let mut command = bin();
+    command.env_remove("MESHREFINE_VALIDATE");
+    for var in [
+        "DISPLAY",
+        "WAYLAND_DISPLAY",
+        "VK_LOADER_LAYERS_ENABLE",
+        "VK_INSTANCE_LAYERS",
+        "VK_ADD_LAYER_PATH",
+    ] {
+        command.env_remove(var);
+    }
     command
-        .env_remove("MESHREFINE_VALIDATE")
-        .env_remove("DISPLAY")
-        .env_remove("WAYLAND_DISPLAY")
-        .envs(env.iter().copied());
+        .env("VK_LAYER_PATH", &empty)
+        .env("VK_LOADER_LAYERS_DISABLE", "*validation*");
+    if let Some(v) = validate {
+        command.env("MESHREFINE_VALIDATE", v);
+    }
     command.args(args).output().expect("run meshrefine")
 }
 
@@ -38,7 +49,6 @@ fn run_with(env: &[(&str, &str)], args: &[&str]) -> Output {
 /// the command runs.
 #[test]
 fn validate_flag_and_variable_ask_for_the_layer() {
-    let hidden = ("VK_LOADER_LAYERS_DISABLE", "*validation*");
     let refused = |out: Output, how: &str| {
         let stderr = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(1), "{how}: {stderr}");
@@ -49,31 +59,37 @@ fn validate_flag_and_variable_ask_for_the_layer() {
         );
     };
     refused(
-        run_with(&[hidden], &["--validate", "devices"]),
+        without_the_layer(&["--validate", "devices"], None),
         "--validate",
     );
     refused(
-        run_with(&[hidden, ("MESHREFINE_VALIDATE", "1")], &["devices"]),
+        without_the_layer(&["devices"], Some("1")),
         "MESHREFINE_VALIDATE=1",
     );
-    for env in [vec![hidden], vec![hidden, ("MESHREFINE_VALIDATE", "0")]] {
-        let out = run_with(&env, &["devices"]);
+    for validate in [None, Some("0")] {
+        let out = without_the_layer(&["devices"], validate);
         let stderr = String::from_utf8_lossy(&out.stderr);
-        assert!(out.status.success(), "{env:?}: {stderr}");
+        assert!(out.status.success(), "{validate:?}: {stderr}");
         assert!(String::from_utf8_lossy(&out.stdout).contains("(default)"));
     }
 }
 
 /// Exports `mesh` with `base`, then with `option documented` and `option other` added:
-/// returns the three (the first two must be equal, the third must differ).
-fn default_is(mesh: &str, base: &[&str], option: &str, documented: &str, other: &str) -> String {
+/// the first two must be equal, the third must differ; returns the default's and the other's.
+fn default_is(
+    mesh: &str,
+    base: &[&str],
+    option: &str,
+    documented: &str,
+    other: &str,
+) -> (String, String) {
     let name = |v: &str| format!("{}-{v}.obj", option.trim_start_matches('-'));
     let with = |v: &str| export(mesh, &name(v), &[base, &[option, v]].concat());
     let default = export(mesh, &name("default"), base);
     assert_eq!(default, with(documented), "{option} {documented}");
     let other = with(other);
     assert_ne!(default, other, "{option} {other}");
-    other
+    (default, other)
 }
 
 /// `--pn-seams` defaults to `closed` (crack-free at split normals): the cylinder with hard
@@ -83,14 +99,13 @@ fn default_is(mesh: &str, base: &[&str], option: &str, documented: &str, other: 
 fn pn_seams_default_is_closed() {
     let cylinder = "cylinder_hard_normals.obj";
     let pn = ["--surface", "pn", "--level", "2"];
-    let open = default_is(cylinder, &pn, "--pn-seams", "closed", "open");
+    let (closed, open) = default_is(cylinder, &pn, "--pn-seams", "closed", "open");
     let positions = |text: &str| {
         let mut p: Vec<&str> = text.lines().filter(|l| l.starts_with("v ")).collect();
         p.sort_unstable();
         p.dedup();
         p.len()
     };
-    let closed = export(cylinder, "pn-seams-default.obj", &pn);
     assert!(
         positions(&open) > positions(&closed),
         "{} distinct positions open, {} closed",
@@ -110,7 +125,7 @@ fn surface_defaults_are_the_documented_ones() {
     default_is(spot, &noise, "--octaves", "1", "3");
     let height = ["--surface", "flat", "--displace", "heightmap"];
     default_is("grid_uv_8x8.obj", &height, "--bias", "0", "0.5");
-    let tetrahedron = model("tetrahedron.obj");
+    let tetrahedron = model_arg("tetrahedron.obj");
     let table = |extra: &[&str]| {
         let args = [&["info", &tetrahedron, "--surface", "loop"][..], extra].concat();
         let out = ok(&args);
@@ -125,7 +140,7 @@ fn surface_defaults_are_the_documented_ones() {
 /// limits meshrefine respects, and `devices` shows the values seen; a range under one
 /// element's bytes still draws (every chunk holds an element), saying what it cannot draw.
 #[test]
-fn devices_shows_the_limits_the_environment_lowers() {
+fn the_limit_variables_are_respected_and_shown() {
     let png = tmp("wiring-range-1.png");
     let args = ["render", "-o", p(&png), "--width", "64", "--height", "64"];
     let stderr = succeeds(&args, &[("MESHREFINE_MAX_STORAGE_BUFFER_RANGE", "1")]);
@@ -157,11 +172,7 @@ fn devices_shows_the_limits_the_environment_lowers() {
 fn an_unreachable_wayland_display_falls_back_to_the_headless_render() {
     let png = tmp("wiring-wayland.png");
     let _ = std::fs::remove_file(&png);
-    let out = run_with(
-        &[
-            ("WAYLAND_DISPLAY", "meshrefine-nowhere"),
-            ("MESHREFINE_VALIDATE", "1"),
-        ],
+    let out = meshrefine_env(
         &[
             "view",
             "--level",
@@ -173,6 +184,7 @@ fn an_unreachable_wayland_display_falls_back_to_the_headless_render() {
             "--headless-output",
             p(&png),
         ],
+        &[("WAYLAND_DISPLAY", "meshrefine-nowhere")],
     );
     let (stdout, stderr) = (
         String::from_utf8_lossy(&out.stdout),

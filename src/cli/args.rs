@@ -517,7 +517,6 @@ fn level() -> Trimmed<impl Fn(&str) -> Result<u32, String> + Clone + Send + Sync
     Trimmed(whole_in(1..=1024))
 }
 
-/// `--msaa`: 1, 2, 4 or 8.
 /// `bench --out`'s prefix: one of the files it names (`run.csv`) stands for the three
 /// (`run`), the extension left out in any case; any other path is the prefix as given (its
 /// bytes kept: a path need not be UTF-8).
@@ -538,6 +537,7 @@ fn out_prefix() -> impl clap::builder::TypedValueParser<Value = PathBuf> {
     })
 }
 
+/// `--msaa`: 1, 2, 4 or 8.
 fn msaa_counts() -> impl clap::builder::TypedValueParser<Value = u32> {
     use clap::builder::TypedValueParser as _;
     Trimmed(clap::builder::PossibleValuesParser::new([

@@ -375,7 +375,7 @@ impl SurfaceOpts {
         let tag_lines =
             (text.lines()).filter(|l| !l.split('#').next().unwrap_or("").trim().is_empty());
         if tag_lines.count() == 0 {
-            let holds = if text.trim().is_empty() {
+            let holds = if text.is_empty() {
                 "it is empty"
             } else {
                 "no line but comments"

@@ -266,7 +266,10 @@ impl LevelPass {
         self.lift = n * BEFORE_BYTES <= range;
         // At least one element, as every chunk holds one whatever the range (a range under
         // one element's bytes is only ever a test's lowered limit: Vulkan's least is 2^27).
-        let whole = (self.before.size()).min((range / BEFORE_BYTES).max(1) * BEFORE_BYTES);
+        let whole = self
+            .before
+            .size()
+            .min((range / BEFORE_BYTES).max(1) * BEFORE_BYTES);
         let (texels, storage) = (
             vk::DescriptorType::UNIFORM_TEXEL_BUFFER,
             vk::DescriptorType::STORAGE_BUFFER,

@@ -369,16 +369,22 @@ pub fn rgba_of(png_path: &Path) -> Vec<u8> {
     rgba
 }
 
-/// `meshrefine` with `args` and the environment variables `env`.
+/// `meshrefine` with `args` and the environment variables `env` (set last: a test may name a
+/// display, or turn validation off with `MESHREFINE_VALIDATE=0`).
 pub fn meshrefine_env(args: &[&str], env: &[(&str, &str)]) -> Output {
     let _guard = super::gpu_lock();
     bin()
         .args(args)
-        .envs(env.iter().copied())
         .env_remove("DISPLAY")
         .env_remove("WAYLAND_DISPLAY")
+        .envs(env.iter().copied())
         .output()
         .expect("run meshrefine")
+}
+
+/// The path of the test mesh `name` as an argument.
+pub fn model_arg(name: &str) -> String {
+    model_path(name).to_str().unwrap().to_string()
 }
 
 /// Runs meshrefine with `args` and `env`, expecting success; returns its standard error.
