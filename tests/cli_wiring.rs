@@ -201,3 +201,56 @@ fn an_unreachable_wayland_display_falls_back_to_the_headless_render() {
     );
     assert!(png.is_file());
 }
+
+/// Sine and noise displacement are functions of the point in the file's own coordinates, with
+/// the amplitude and frequency in its units, whatever frame the mesh is drawn in (centred, unit
+/// size): the 8x8 grid scaled by 7 and moved to z = 5, off the origin, exports every vertex
+/// displaced along the plane's normal by the height the CPU displacement gives at its point in
+/// the file's coordinates (within 1e-4: f32 rounding of coordinates near 10; a wrong origin,
+/// scale or frequency moves points by a sizeable share of the 0.2 amplitude).
+#[test]
+fn displacement_is_measured_in_the_files_coordinates() {
+    use meshrefine::surface::{displace, Displace, SurfaceParams};
+    let grid = std::fs::read_to_string(model_path("grid_open_8x8.obj")).unwrap();
+    let moved: String = (grid.lines())
+        .map(|l| match l.strip_prefix("v ") {
+            Some(xyz) => {
+                let c: Vec<f64> = xyz.split_whitespace().map(|x| x.parse().unwrap()).collect();
+                assert_eq!(c[2], 0.0);
+                format!("v {} {} 5\n", 7.0 * c[0] + 3.0, 7.0 * c[1] - 2.0)
+            }
+            None => format!("{l}\n"),
+        })
+        .collect();
+    let mesh = write("wiring-moved-grid.obj", moved.as_bytes());
+    for (d, displace_name) in [(Displace::Sine, "sine"), (Displace::Noise, "noise")] {
+        let obj = tmp(&format!("wiring-moved-grid-{displace_name}.obj"));
+        #[rustfmt::skip]
+        ok(&[
+            "export", p(&mesh), "-o", p(&obj), "--surface", "flat", "--level", "4",
+            "--displace", displace_name, "--amplitude", "0.2", "--frequency", "3", "--octaves", "2",
+        ]);
+        let params = SurfaceParams {
+            amplitude: 0.2,
+            frequency: 3.0,
+            octaves: 2,
+            ..SurfaceParams::default()
+        };
+        let text = std::fs::read_to_string(&obj).unwrap();
+        let mut worst = 0.0f64;
+        let mut seen = 0;
+        for xyz in text.lines().filter_map(|l| l.strip_prefix("v ")) {
+            let v: Vec<f64> = xyz.split_whitespace().map(|x| x.parse().unwrap()).collect();
+            let at = glam::Vec3::new(v[0] as f32, v[1] as f32, 5.0);
+            let h = displace::height(d, &params, at).0 as f64;
+            worst = worst.max((v[2] - 5.0 - h).abs());
+            seen += 1;
+        }
+        // 8 x 8 quads, each edge in 4 at level 4: 33 x 33 points, each written once.
+        assert_eq!(seen, 33 * 33, "{displace_name}");
+        assert!(
+            worst <= 1e-4,
+            "{displace_name}: {worst} from the file's own height"
+        );
+    }
+}

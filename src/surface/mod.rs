@@ -597,6 +597,8 @@ mod tests {
             .unwrap();
     }
 
+    /// The tangents are the positions' derivatives (central differences) on every surface and
+    /// displacement, and on a planar element the displaced normal is the displaced positions'.
     #[test]
     fn tangents_are_the_derivatives() {
         let curved = rec().encode();
@@ -631,6 +633,20 @@ mod tests {
                         p.dpdu,
                         p.dpdv
                     );
+                    // On the planar element the normal field is constant, so the displaced
+                    // normal (Blinn's, from the height's gradient) is the geometric one: the
+                    // normal of the displaced positions' differences, on the normal's side.
+                    if d != Displace::None {
+                        let geometric = du.cross(dv).normalize();
+                        let geometric = geometric * geometric.dot(n).signum();
+                        assert!(
+                            (p.normal - geometric).length() < 2e-2,
+                            "{} + {}: at ({u}, {v}) normal {} vs {geometric}",
+                            s.name(),
+                            d.name(),
+                            p.normal
+                        );
+                    }
                 }
             }
         }
