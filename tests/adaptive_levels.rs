@@ -346,3 +346,64 @@ fn bounds_are_kept_while_only_the_view_or_the_largest_level_change() {
         ));
     });
 }
+
+/// An animated mesh's levels follow it: after `update_mesh` the bounds are made again from the
+/// moved mesh (not those of the first pose, which would leave levels too low and cones that
+/// cull what is seen), and the GPU level pass reads them: its levels are the mirror's from the
+/// moved mesh's own bounds, for a local surface and for Loop (whose M1 the GPU makes again).
+#[test]
+fn an_animated_mesh_gets_new_bounds_and_levels() {
+    with_gpu(64, 64, |h| {
+        for surface in [Surface::Pn, Surface::Loop] {
+            let max = 16;
+            let base = model("spot_control_tri.obj");
+            let mut scene = h.scene(base.clone(), max).unwrap();
+            let (c, r) = scene.bounding_sphere();
+            let mut cfg = DrawConfig::new(Driver::Tess, max).with_surface(surface, Displace::None);
+            cfg.params = SurfaceParams::for_radius(r);
+            let eye = c + glam::Vec3::new(0.2, 0.1, 0.5) * r;
+            let camera = Camera::looking(eye, c, 45f32.to_radians(), r).unwrap();
+            let view = LevelView {
+                camera,
+                width: 1280,
+                height: 720,
+                pixel_error: 1.0,
+                cull: false,
+            };
+            h.prepared_elements(&mut scene, &cfg, Capture::None)
+                .unwrap();
+            scene.set_levels(&cfg, &view).unwrap();
+            let before = scene.level_bounds().unwrap().clone();
+            scene.update_mesh(base.animated(0.7, 0.05 * r), surface);
+            h.prepared_elements(&mut scene, &cfg, Capture::None)
+                .unwrap();
+            let got = scene.set_levels(&cfg, &view).unwrap();
+            let what = surface.name();
+            h.adaptive = true;
+            h.draw(&mut scene, &cfg, &camera).unwrap();
+            let (gpu, drawn) = scene.drawn_levels(&cfg);
+            let lod =
+                Lod::new(&scene.mirror(&cfg, max).unwrap(), &cfg.params).drawn_as(cfg.rounding());
+            let bounds = lod_records(&lod, scene.records(surface));
+            assert!(
+                scene.level_bounds().unwrap()[..] == bounds[..],
+                "{what}: the scene's bounds are not the moved mesh's"
+            );
+            assert!(
+                before[..] != bounds[..],
+                "{what}: the pose did not change the bounds"
+            );
+            let metric = View::new(camera.eye(), camera.fov_y, 720, 1.0, max);
+            let lod_view = LodView::new(&metric, None, false, cfg.rounding(), bounds.len() as u32);
+            let mirror = frame_levels(&lod_view, &bounds);
+            assert_eq!(gpu.len(), mirror.len(), "{what}");
+            for (i, (g, m)) in gpu.iter().zip(&mirror).enumerate() {
+                assert!(
+                    (g.inner - m.inner).abs() <= 1e-4 * m.inner.max(1.0),
+                    "{what}: element {i}: {g:?} {m:?}"
+                );
+            }
+            assert_eq!(got.histogram, drawn.histogram, "{what}");
+        }
+    });
+}
