@@ -14,6 +14,32 @@ use meshrefine::render::{Camera, Capture, DrawConfig, Driver, LevelView};
 use meshrefine::surface::{Displace, Surface, SurfaceParams};
 use std::collections::HashMap;
 
+/// The bounds of `scene`'s elements for `cfg` made here from its mirror, and the levels the
+/// level pass's CPU mirror chooses from them for `camera` at 720 lines and 1 px, no culling.
+fn mirror_levels(
+    scene: &meshrefine::render::Scene,
+    cfg: &DrawConfig,
+    camera: &Camera,
+) -> (Vec<meshrefine::lod::frame::LodRecord>, Vec<ElementLevels>) {
+    let max = cfg.level;
+    let lod = Lod::new(&scene.mirror(cfg, max).unwrap(), &cfg.params).drawn_as(cfg.rounding());
+    let bounds = lod_records(&lod, scene.records(cfg.surface));
+    let metric = View::new(camera.eye(), camera.fov_y, 720, 1.0, max);
+    let lod_view = LodView::new(&metric, None, false, cfg.rounding(), bounds.len() as u32);
+    let levels = frame_levels(&lod_view, &bounds);
+    (bounds, levels)
+}
+
+/// The GPU's inner levels are the mirror's within 1e-4 (relative).
+fn assert_levels_agree(gpu: &[ElementLevels], mirror: &[ElementLevels], what: &str) {
+    for (i, (g, m)) in gpu.iter().zip(mirror).enumerate() {
+        assert!(
+            (g.inner - m.inner).abs() <= 1e-4 * m.inner.max(1.0),
+            "{what}: element {i}: {g:?} {m:?}"
+        );
+    }
+}
+
 #[test]
 fn gpu_levels_match_the_mirror_and_share_edges() {
     with_gpu(64, 64, |h| {
@@ -50,19 +76,8 @@ fn gpu_levels_match_the_mirror_and_share_edges() {
                 h.draw(&mut scene, &cfg, &camera).unwrap();
                 let (gpu, drawn) = scene.drawn_levels(&cfg);
                 // The mirror, from bounds made here.
-                let lod = Lod::new(&scene.mirror(&cfg, max).unwrap(), &cfg.params)
-                    .drawn_as(cfg.rounding());
-                let metric = View::new(camera.eye(), camera.fov_y, 720, 1.0, max);
-                let bounds = lod_records(&lod, scene.records(surface));
-                let lod_view =
-                    LodView::new(&metric, None, false, cfg.rounding(), bounds.len() as u32);
-                let mirror = frame_levels(&lod_view, &bounds);
-                for (i, (g, m)) in gpu.iter().zip(&mirror).enumerate() {
-                    assert!(
-                        (g.inner - m.inner).abs() <= 1e-4 * m.inner.max(1.0),
-                        "{what}: element {i}: {g:?} {m:?}"
-                    );
-                }
+                let (_, mirror) = mirror_levels(&scene, &cfg, &camera);
+                assert_levels_agree(&gpu, &mirror, &what);
                 assert_eq!(got.histogram, drawn.histogram, "{what}");
                 assert_eq!(got.culled, 0, "{what}");
                 // The buffer the drivers read: each edge the same bits from both sides.
@@ -382,9 +397,7 @@ fn an_animated_mesh_gets_new_bounds_and_levels() {
             h.adaptive = true;
             h.draw(&mut scene, &cfg, &camera).unwrap();
             let (gpu, drawn) = scene.drawn_levels(&cfg);
-            let lod =
-                Lod::new(&scene.mirror(&cfg, max).unwrap(), &cfg.params).drawn_as(cfg.rounding());
-            let bounds = lod_records(&lod, scene.records(surface));
+            let (bounds, mirror) = mirror_levels(&scene, &cfg, &camera);
             assert!(
                 scene.level_bounds().unwrap()[..] == bounds[..],
                 "{what}: the scene's bounds are not the moved mesh's"
@@ -393,16 +406,8 @@ fn an_animated_mesh_gets_new_bounds_and_levels() {
                 before[..] != bounds[..],
                 "{what}: the pose did not change the bounds"
             );
-            let metric = View::new(camera.eye(), camera.fov_y, 720, 1.0, max);
-            let lod_view = LodView::new(&metric, None, false, cfg.rounding(), bounds.len() as u32);
-            let mirror = frame_levels(&lod_view, &bounds);
             assert_eq!(gpu.len(), mirror.len(), "{what}");
-            for (i, (g, m)) in gpu.iter().zip(&mirror).enumerate() {
-                assert!(
-                    (g.inner - m.inner).abs() <= 1e-4 * m.inner.max(1.0),
-                    "{what}: element {i}: {g:?} {m:?}"
-                );
-            }
+            assert_levels_agree(&gpu, &mirror, what);
             assert_eq!(got.histogram, drawn.histogram, "{what}");
         }
     });
