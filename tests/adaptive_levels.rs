@@ -226,7 +226,7 @@ fn culling_keeps_the_image_of_a_mesh_wound_either_way() {
 /// Where a closed mesh's surface shows its back side from outside, culling keeps what faces
 /// away: Spot's control cage drawn `flat` folds through itself where the head meets the body
 /// (a face facing away is the first one seen there from below), and the hard-edged cylinder as
-/// `pn` with open seams shows its inside through the cracks. Images with culling on and off,
+/// `pn`, `phong` or `stpn` with open seams shows its inside through the cracks. Images with culling on and off,
 /// one sample per pixel, compared pixel for pixel.
 #[test]
 fn culling_keeps_what_a_fold_or_a_crack_shows() {
@@ -241,6 +241,17 @@ fn culling_keeps_what_a_fold_or_a_crack_shows() {
                 "cylinder cracked",
                 model("cylinder_hard_normals.obj"),
                 Surface::Pn,
+            ),
+            // Open seams turn facing-away culling off for every surface but `flat`.
+            (
+                "cylinder cracked",
+                model("cylinder_hard_normals.obj"),
+                Surface::Phong,
+            ),
+            (
+                "cylinder cracked",
+                model("cylinder_hard_normals.obj"),
+                Surface::Stpn,
             ),
         ];
         for (name, mesh, surface) in cases {
@@ -259,6 +270,7 @@ fn culling_keeps_what_a_fold_or_a_crack_shows() {
             let (all, _) = adaptive_image(h, &mut scene, &cfg, &camera, false);
             let (culled_img, culled) = adaptive_image(h, &mut scene, &cfg, &camera, true);
             let differ = differing(&all, &culled_img);
+            let name = format!("{name} ({})", surface.name());
             assert_eq!(differ, 0, "{name}: culling changed {differ} pixels");
             assert_eq!(
                 culled, 0,

@@ -1,12 +1,13 @@
 //! The check every GPU test ends with (`tests/common`'s `with_gpu`: the validation layer on,
 //! `check_shutdown` after the context is gone) catches what it promises to: a call the
 //! validation layer rejects, made on a context created as the tests create theirs, makes the
-//! shutdown check fail and names the problem; the same context without it passes.
+//! shutdown check fail and names the problem; the same context without it passes; and a
+//! wrapper still alive when the context goes (a leak) fails it, counted.
 // The invalid call goes to ash directly: the crate's own wrappers refuse to make it.
 #![allow(unsafe_code)]
 
 use ash::vk;
-use meshrefine::gpu::{check_shutdown, Context, ContextDesc, ShutdownError};
+use meshrefine::gpu::{check_shutdown, Buffer, BufferDesc, Context, ContextDesc, ShutdownError};
 
 /// A validated context; with `invalid`, a buffer of size zero created and destroyed (valid
 /// usage requires a size above zero: `VUID-VkBufferCreateInfo-size-00912`).
@@ -32,6 +33,22 @@ fn run(invalid: bool) -> Result<(), ShutdownError> {
     check_shutdown(&messages)
 }
 
+/// A validated context whose buffer is never dropped (forgotten, as a leak leaves it): the
+/// shutdown check counts it. Last in the process: the forgotten wrapper stays counted.
+fn leak_a_buffer() -> Result<(), ShutdownError> {
+    let desc = ContextDesc {
+        validate: true,
+        ..Default::default()
+    };
+    let ctx = Context::new(&desc).expect("a validated Vulkan context");
+    let messages = ctx.messages_handle();
+    let usage = vk::BufferUsageFlags::STORAGE_BUFFER;
+    let buffer = Buffer::new(&ctx, BufferDesc::new_upload(256, usage), "leaked").unwrap();
+    std::mem::forget(buffer);
+    drop(ctx);
+    check_shutdown(&messages)
+}
+
 #[test]
 fn a_validation_error_fails_the_shutdown_check() {
     run(false).expect("a context that does nothing wrong shuts down cleanly");
@@ -41,5 +58,9 @@ fn a_validation_error_fails_the_shutdown_check() {
             "the report does not name the problem: {list:?}"
         ),
         other => panic!("an invalid call was not caught: {other:?}"),
+    }
+    match leak_a_buffer() {
+        Err(ShutdownError::Leaked(n)) => assert!(n >= 1, "{n}"),
+        other => panic!("a leaked buffer was not caught: {other:?}"),
     }
 }
