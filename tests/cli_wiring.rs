@@ -254,3 +254,55 @@ fn displacement_is_measured_in_the_files_coordinates() {
         );
     }
 }
+
+/// docs/loop.md's memory table is what `info --surface loop` prints for each bundled mesh it
+/// names: the configurations (and the tables they fill) and the basis function tables' bytes.
+#[test]
+fn loop_table_memory_is_what_info_prints() {
+    let doc =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/loop.md")).unwrap();
+    let mut checked = 0;
+    for row in doc
+        .lines()
+        .filter(|l| l.starts_with("| ") && l.contains(" bytes |"))
+    {
+        let cells: Vec<&str> = row.split('|').map(str::trim).collect();
+        let (mesh, configurations, bytes) = (cells[1], cells[2], cells[4]);
+        // The default mesh is Spot; sphere960 is not bundled.
+        let file = match mesh.split_whitespace().next().unwrap() {
+            "torus" => Some("torus_16x8".to_string()),
+            "Spot" => None,
+            "sphere960" => continue,
+            name => Some(name.to_string()),
+        };
+        let mut args = vec!["info".to_string(), "--surface".into(), "loop".into()];
+        args.extend(file.map(|f| model_arg(&format!("{f}.obj"))));
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let out = ok(&args);
+        let line = |prefix: &str| {
+            let l = out.lines().find(|l| l.starts_with(prefix));
+            l.unwrap_or_else(|| panic!("{mesh}: no {prefix:?} in {out}"))
+                .to_string()
+        };
+        let tables = if let Some(c) = configurations.strip_suffix(" tables") {
+            c.to_string()
+        } else {
+            format!("{configurations} in {configurations}")
+        };
+        assert!(
+            line("configurations: ").starts_with(&format!("configurations: {tables} tables")),
+            "{mesh}: {row}"
+        );
+        let bytes = bytes.trim_end_matches(" bytes").replace(',', "");
+        assert_eq!(
+            line("basis function tables: "),
+            format!("basis function tables: {bytes} bytes"),
+            "{mesh}: {row}"
+        );
+        checked += 1;
+    }
+    assert_eq!(
+        checked, 8,
+        "rows of bundled meshes in docs/loop.md's memory table"
+    );
+}
