@@ -148,6 +148,10 @@ enum Which {
     Loop(Boundary, u32),
     /// `pn` and `stpn` with a normal field, without and with displacement (which moves along it).
     Field(NormalField),
+    /// `stpn` with tags of its own, as a tags file gives them (not derived from the mesh: every
+    /// vertex a tension, sharpness and bias, two opposite vertices creases), without and with
+    /// displacement.
+    OwnTags,
 }
 
 impl From<bool> for Which {
@@ -188,6 +192,17 @@ fn setup(
         ..build
     };
     let params = SurfaceParams::for_radius(r);
+    let mut scene = scene;
+    if let Which::OwnTags = which {
+        scene
+            .set_tags(
+                &h.ctx,
+                &h.pool,
+                &h.renderer,
+                common::own_tags(&scene.data.mesh),
+            )
+            .unwrap();
+    }
     (scene, camera, params, build, r)
 }
 
@@ -210,6 +225,11 @@ fn combinations(which: Which, uvs: bool) -> Vec<(Surface, Displace)> {
                     [Displace::None, Displace::Sine, Displace::Noise].map(move |d| (s, d))
                 })
                 .collect()
+        }
+        Which::OwnTags => {
+            return [Displace::None, Displace::Sine, Displace::Noise]
+                .map(|d| (Surface::Stpn, d))
+                .to_vec()
         }
         Which::All => {}
     }
@@ -534,6 +554,36 @@ fn every_normal_field_on_pattern_and_tess() {
             check_tess("icosahedron_vn.obj", h, &[4], f);
             check_tess("spot_control_tri.obj", h, &[3], f);
         }
+    });
+}
+
+/// `stpn` with tags of its own (what a tags file gives: tension, sharpness and bias at every
+/// vertex, crease directions) on both GPU drivers and every submission mode, against the
+/// mirror reading the same tags.
+#[test]
+fn stpn_with_its_own_tags_matches_the_mirror() {
+    with_gpu(64, 64, |h| {
+        check_pattern("icosahedron_vn.obj", h, &[4], Which::OwnTags);
+        check_tess("icosahedron_vn.obj", h, &[4], Which::OwnTags);
+        // The tags are in effect: with neutral ones stpn is pn, with these it is not.
+        let (scene, _, params, build, r) =
+            setup(h, "icosahedron_vn.obj", &[4], Which::OwnTags, None);
+        let mirror = |s: Surface| {
+            let mut cfg = DrawConfig::new(Driver::Tess, 4).with_surface(s, Displace::None);
+            (cfg.params, cfg.build) = (params, build);
+            scene.mirror(&cfg, 4).unwrap()
+        };
+        let (stpn, pn) = (mirror(Surface::Stpn), mirror(Surface::Pn));
+        let records = scene.records(Surface::Stpn);
+        let apart = (records.iter().enumerate())
+            .map(|(t, rec)| {
+                let at = [0.2, 0.3, 0.5];
+                let a = stpn.eval(&params, t, rec, at).position;
+                let b = pn.eval(&params, t, scene.records(Surface::Pn).get(t).unwrap(), at);
+                a.distance(b.position)
+            })
+            .fold(0.0f32, f32::max);
+        assert!(apart > 1e-2 * r, "own tags leave stpn as pn: {apart}");
     });
 }
 

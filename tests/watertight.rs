@@ -149,6 +149,29 @@ fn pattern_and_tess_are_watertight() {
     });
 }
 
+/// `[pattern, tess]` (configurations at one level) weld crack-free on `mesh`: the pattern's
+/// captured vertices into a closed mesh of a crack-free refinement's vertex count, the
+/// tessellator's evaluated positions into that count.
+fn crack_free_on_pattern_and_tess(
+    h: &mut meshrefine::render::Headless,
+    scene: &mut meshrefine::render::Scene,
+    camera: &meshrefine::render::Camera,
+    mesh: &Mesh,
+    [pattern, tess]: &[DrawConfig; 2],
+    name: &str,
+) {
+    let n = pattern.level;
+    let cap = h.capture(scene, pattern, camera).unwrap();
+    let welded = weld(&cap, &Pattern::uniform(n)).unwrap();
+    let inner = ((n - 1) * (n - 2) / 2) as usize;
+    let want = expected(mesh, n as usize, inner);
+    assert_eq!(welded.positions.len(), want, "{name} pattern");
+    assert_closed(&welded.triangles, &format!("{name} pattern"));
+    let inner = (tess_vertex_count(n) - 3 * n) as usize;
+    let want = expected(mesh, n as usize, inner);
+    assert_eq!(tess_positions(h, scene, tess, camera), want, "{name} tess");
+}
+
 /// Every local surface with every procedural displacement (the combinations `SURFACES` leaves
 /// out among them, each its own pipeline) is watertight on the pattern driver and the
 /// tessellator, on smooth meshes (`stpn` displaced opens at creases by design:
@@ -165,26 +188,32 @@ fn every_surface_and_displacement_is_watertight() {
             for s in Surface::LOCAL {
                 for d in [Displace::None, Displace::Sine, Displace::Noise] {
                     let name = format!("{file} {} + {} level {n}", s.name(), d.name());
-                    let cfg = config(Driver::Pattern(Submit::Instanced), n, (s, d), r);
-                    let cap = h.capture(&mut scene, &cfg, &camera).unwrap();
-                    let welded = weld(&cap, &Pattern::uniform(n)).unwrap();
-                    let inner = ((n - 1) * (n - 2) / 2) as usize;
-                    assert_eq!(
-                        welded.positions.len(),
-                        expected(&mesh, n as usize, inner),
-                        "{name} pattern"
-                    );
-                    assert_closed(&welded.triangles, &format!("{name} pattern"));
-                    let cfg = config(Driver::Tess, n, (s, d), r);
-                    let inner = (tess_vertex_count(n) - 3 * n) as usize;
-                    assert_eq!(
-                        tess_positions(h, &mut scene, &cfg, &camera),
-                        expected(&mesh, n as usize, inner),
-                        "{name} tess"
-                    );
+                    let cfgs = [Driver::Pattern(Submit::Instanced), Driver::Tess]
+                        .map(|driver| config(driver, n, (s, d), r));
+                    crack_free_on_pattern_and_tess(h, &mut scene, &camera, &mesh, &cfgs, &name);
                 }
             }
         }
+    });
+}
+
+/// `stpn` with tags of its own (tension, sharpness and bias at every vertex, two creases: what a
+/// tags file gives) stays watertight on the pattern driver and the tessellator: an edge's
+/// coefficients come from its two corners' tags alone, and at a crease both sides move along
+/// the same direction.
+#[test]
+fn stpn_with_its_own_tags_is_watertight() {
+    with_gpu(64, 64, |h| {
+        let mesh = model("icosahedron_vn.obj");
+        let n = 4u32;
+        let (mut scene, camera) = scene_at(h, &mesh, &[n]);
+        let tags = common::own_tags(&mesh);
+        scene.set_tags(&h.ctx, &h.pool, &h.renderer, tags).unwrap();
+        let r = mesh.bounding_radius();
+        let combo = (Surface::Stpn, Displace::None);
+        let cfgs = [Driver::Pattern(Submit::Instanced), Driver::Tess]
+            .map(|driver| config(driver, n, combo, r));
+        crack_free_on_pattern_and_tess(h, &mut scene, &camera, &mesh, &cfgs, "stpn, own tags");
     });
 }
 

@@ -130,3 +130,32 @@ pub fn bicone_obj(n: usize) -> String {
     }
     obj
 }
+
+/// Tags for every vertex of `mesh`, centred on the origin: tension, sharpness and bias varying
+/// from vertex to vertex in [-0.45, 0.45], [0, 0.9] and [-0.4, 0.4]; the first vertex and the
+/// one farthest from it creases (no triangle holds both, as appendix B asks), their direction
+/// across the radial normal.
+pub fn own_tags(mesh: &meshrefine::mesh::Mesh) -> Vec<meshrefine::surface::stpn::VertexTag> {
+    let p = &mesh.positions;
+    let far = (0..p.len())
+        .max_by(|&a, &b| p[a].distance(p[0]).total_cmp(&p[b].distance(p[0])))
+        .unwrap();
+    (0..p.len())
+        .map(|i| {
+            let k = i as f32;
+            let normal = p[i].normalize();
+            let crease = i == 0 || i == far;
+            meshrefine::surface::stpn::VertexTag {
+                tension: ((k * 7.0) % 10.0) / 10.0 - 0.45,
+                sharpness: ((k * 3.0) % 10.0) / 11.0,
+                bias: ((k * 5.0) % 9.0) / 10.0 - 0.4,
+                direction: if crease {
+                    normal.any_orthonormal_vector()
+                } else {
+                    glam::Vec3::ZERO
+                },
+                normal: if crease { normal } else { glam::Vec3::ZERO },
+            }
+        })
+        .collect()
+}
