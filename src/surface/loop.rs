@@ -469,6 +469,56 @@ mod tests {
         }
     }
 
+    /// Off its lattice a sample interpolates the lattice triangle around it (docs/loop.md):
+    /// within the limit's second derivative (by the face's parameters) times 1/S² of the limit.
+    /// At table level 3 (S = 8), samples off its lattice are compared with the same samples at
+    /// table level 7 (S = 128, whose own interpolation is 256 times closer), the second
+    /// derivative measured independently, as second differences of the fine table's lattice
+    /// points in the lattice's three directions.
+    #[test]
+    fn off_lattice_samples_are_within_the_interpolation_bound() {
+        let (mesh, _) = load_model("spot_control_tri.obj");
+        let data = |lmax| {
+            let d = LoopData::new(&mesh, Boundary::EdgeOnly, Lattice::new(lmax), |_| {}).unwrap();
+            let f = d.frame(&mesh.positions);
+            (d, f)
+        };
+        let ((coarse, cf), (fine, ff)) = (data(3), data(7));
+        let mut worst = 0.0f32;
+        for (t, rec) in coarse.records.iter().enumerate().step_by(5) {
+            let at = |u: f32, v: f32| eval(&fine, &ff, rec, [1.0 - u - v, u, v]).position;
+            // The second derivative over the face: second differences at lattice points of the
+            // fine table (steps of 1/32, lattice points at S = 128) along u, v and u - v.
+            let d = 1.0 / 32.0;
+            let mut m2 = 0.0f32;
+            for i in 1..31 {
+                for j in 1..(31 - i) {
+                    let (u, v) = (i as f32 * d, j as f32 * d);
+                    let p = at(u, v);
+                    for (du, dv) in [(d, 0.0), (0.0, d), (d, -d)] {
+                        let second = at(u + du, v + dv) - 2.0 * p + at(u - du, v - dv);
+                        m2 = m2.max(second.length() / (d * d));
+                    }
+                }
+            }
+            let bound = m2 / 64.0;
+            for (u, v) in [(0.21f32, 0.33f32), (0.6, 0.1), (0.1, 0.85), (0.49, 0.37)] {
+                let bary = [1.0 - u - v, u, v];
+                let off = eval(&coarse, &cf, rec, bary).position;
+                let limit = eval(&fine, &ff, rec, bary).position;
+                let e = off.distance(limit);
+                assert!(
+                    e <= bound,
+                    "face {t} at ({u}, {v}): {e} from the limit, bound {bound}"
+                );
+                worst = worst.max(e / bound);
+            }
+        }
+        // Interpolation's error is a sizeable share of the bound somewhere: it is not idle.
+        eprintln!("off-lattice samples at S = 8: at most {worst:.3} of the bound");
+        assert!(worst > 0.05, "largest share of the bound {worst}");
+    }
+
     /// Interpolated (off-lattice) samples are continuous: a point just inside a lattice cell's
     /// edge agrees with the edge point, and tangents are the derivatives of the interpolation.
     #[test]
