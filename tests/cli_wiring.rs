@@ -306,3 +306,60 @@ fn loop_table_memory_is_what_info_prints() {
         "rows of bundled meshes in docs/loop.md's memory table"
     );
 }
+
+/// `sine` around its centre has no finite bound (its curvature is unbounded at the origin):
+/// the 8x8 grid through the origin draws the elements whose bounds hold it at the largest
+/// level and `info` counts them as unbounded; with amplitude zero, or noise of frequency zero,
+/// nothing is displaced: the grid is all level 1, and Spot's cage as `pn` gets the levels and
+/// the culling (normal cones) of `--displace none`.
+#[test]
+fn sine_at_its_centre_is_unbounded_and_a_zero_displacement_is_none() {
+    let grid = model_arg("grid_open_8x8.obj");
+    let info = |mesh: Option<&str>, surface: &str, extra: &[&str]| {
+        let mut args = vec!["info", "--surface", surface, "--pixel-error", "1"];
+        args.extend(mesh);
+        args.extend(extra);
+        let out = ok(&args);
+        let lines: Vec<String> = (out.lines())
+            .filter(|l| {
+                l.starts_with("  levels ")
+                    || l.starts_with("  culled ")
+                    || l.starts_with("  unbounded:")
+            })
+            .map(str::to_string)
+            .collect();
+        lines
+    };
+    let sine = info(Some(&grid), "flat", &["--displace", "sine"]);
+    let unbounded = sine.iter().find(|l| l.starts_with("  unbounded: "));
+    let n: u32 = (unbounded.unwrap_or_else(|| panic!("{sine:?}")))
+        .trim_start_matches("  unbounded: ")
+        .split(' ')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(
+        n >= 6,
+        "the six triangles around the origin at least: {sine:?}"
+    );
+    assert!(sine[0].contains(&format!(" 64:{n}")), "{sine:?}");
+    let flat = info(
+        Some(&grid),
+        "flat",
+        &["--displace", "sine", "--amplitude", "0"],
+    );
+    assert_eq!(
+        flat[0], "  levels (level:coarse triangles): 1:128",
+        "{flat:?}"
+    );
+    assert!(!flat.iter().any(|l| l.contains("unbounded")), "{flat:?}");
+    let none = info(None, "pn", &["--displace", "none"]);
+    assert!(!none[1].ends_with(" 0"), "nothing culled: {none:?}");
+    for zero in [
+        ["--displace", "sine", "--amplitude", "0"],
+        ["--displace", "noise", "--frequency", "0"],
+    ] {
+        assert_eq!(info(None, "pn", &zero), none, "{zero:?}");
+    }
+}

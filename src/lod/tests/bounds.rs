@@ -204,6 +204,31 @@ fn displaced_bounds_hold() {
     }
 }
 
+/// `sine` close to its centre, where the curvature of `|P|` across the radius, `a f / r_min`,
+/// outweighs the radial `a f²`: on the 8x8 grid (z = 0) with the centre 0.3 below it at
+/// frequency 4 (f / r_min up to about 30 against f² = 16), every bound holds by dense sampling,
+/// flat and as `pn`, and is approached on the tightest element (within 4x flat; `pn`'s moving
+/// direction adds its own derivative bounds, as in `displaced_bounds_hold`).
+#[test]
+fn sine_bounds_hold_close_to_its_centre() {
+    let (grid, recs) = corner_records("grid_open_8x8.obj");
+    for (surface, limit) in [(Surface::Flat, 4.0), (Surface::Pn, 30.0)] {
+        let case = Case::plain(
+            surface,
+            Displace::Sine,
+            SurfaceParams {
+                amplitude: 0.2,
+                frequency: 4.0,
+                origin: glam::Vec3::new(0.1, 0.05, -0.3),
+                ..SurfaceParams::default()
+            },
+        );
+        let what = format!("{} + sine near its centre", surface.name());
+        let (min, _) = case.check(&recs, &[1, 2, 4, 8], grid.bounding_radius(), &what);
+        assert!(min <= limit, "{what}: smallest bound / truth {min}");
+    }
+}
+
 /// The displacement direction is `pn`'s and `stpn`'s normal field: the bounds hold with every
 /// choice of it, over spot and over a mesh with hard edges (flagged seams, and crease tags whose
 /// sharp normals `stpn` interpolates).
