@@ -608,6 +608,45 @@ fn f12_writes_into_the_current_directory_by_default() {
     );
 }
 
+/// `H` hides the panel and shows it again: F12's frames show the panel's corner dark, then the
+/// light background there, then the panel again.
+#[test]
+fn h_hides_and_shows_the_panel() {
+    let _guard = common::gpu_lock();
+    let x = Xvfb::start();
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("window/panel-key");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    #[rustfmt::skip]
+    let args = ["--background", "light", "--level", "2", "--width", "640", "--height", "480"];
+    let demo = Demo::start_in(&x, &args, &[], Some(&dir));
+    let mut shots = Vec::new();
+    for (n, key) in [(1, None), (2, Some("h")), (3, Some("h"))] {
+        if let Some(key) = key {
+            demo.xdotool(&["key", key]);
+        }
+        // The key's frame is drawn after the first ones.
+        std::thread::sleep(Duration::from_secs(1));
+        demo.xdotool(&["key", "F12"]);
+        let shot = dir.join(format!("meshrefine-{n}.png"));
+        wait_for_screenshot(&shot);
+        shots.push(dark_corner(&shot));
+    }
+    demo.quit();
+    let [(shown, total), (hidden, _), (again, _)] = shots[..] else {
+        unreachable!()
+    };
+    assert!(shown > total / 2, "panel shown: {shown} of {total} dark");
+    assert!(
+        hidden < total / 10,
+        "panel hidden: {hidden} of {total} dark"
+    );
+    assert!(
+        again > total / 2,
+        "panel shown again: {again} of {total} dark"
+    );
+}
+
 #[test]
 fn switching_to_loop_on_a_mesh_it_refuses_shows_pn() {
     // The file loads for the other surfaces (its degenerate face dropped with a warning), but
