@@ -363,3 +363,108 @@ fn sine_at_its_centre_is_unbounded_and_a_zero_displacement_is_none() {
         assert_eq!(info(None, "pn", &zero), none, "{zero:?}");
     }
 }
+
+/// `MESHREFINE_HIDE_FEATURES` shows the paths a device without a feature takes (platform.md),
+/// validated: a required feature missing (`tessellationShader`, `dynamicRendering`) refuses the
+/// device in one sentence naming it; without `transformFeedback` only a `tess` export is
+/// refused, without `vertexPipelineStoresAndAtomics` the pattern driver's (renders still draw,
+/// the tessellator still exports through transform feedback), without
+/// `fillModeNonSolid` the wireframe is off with a warning (the image is the one without it),
+/// without `depthBiasClamp` the wireframe draws, without `pipelineStatisticsQuery` bench's
+/// vertex invocations are left empty; `devices` says "no" for each; an unknown name is one
+/// sentence listing the names.
+#[test]
+fn hidden_features_take_the_paths_a_device_without_them_takes() {
+    let hide = |feature: &str, args: &[&str]| {
+        meshrefine_env(args, &[("MESHREFINE_HIDE_FEATURES", feature)])
+    };
+    let refused = |out: Output, says: &str| {
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{stderr}");
+        let errors: Vec<&str> = stderr.lines().filter(|l| l.starts_with("error:")).collect();
+        assert_eq!(errors.len(), 1, "{stderr}");
+        assert!(errors[0].contains(says), "{stderr}");
+        assert!(!stderr.contains("validation"), "{stderr}");
+    };
+    let drew = |out: Output| {
+        let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+        assert!(out.status.success(), "{stderr}");
+        assert!(!stderr.contains("validation"), "{stderr}");
+        stderr
+    };
+    let (png, obj) = (tmp("wiring-hidden.png"), tmp("wiring-hidden.obj"));
+    let size = ["--width", "64", "--height", "64", "--level", "2"];
+    let render = |extra: &[&'static str]| [&["render", "-o", p(&png)][..], &size, extra].concat();
+    let export =
+        |extra: &[&'static str]| [&["export", "-o", p(&obj), "--level", "2"][..], extra].concat();
+    for required in ["tessellationShader", "dynamicRendering"] {
+        refused(
+            hide(required, &render(&[])),
+            &format!("lacks the required feature {required}"),
+        );
+    }
+    let xfb = "lacks the required feature transformFeedback";
+    refused(
+        hide("transformFeedback", &export(&["--driver", "tess"])),
+        xfb,
+    );
+    drew(hide("transformFeedback", &export(&[])));
+    drew(hide("transformFeedback", &render(&["--driver", "tess"])));
+    let stores = "vertexPipelineStoresAndAtomics";
+    let said = drew(hide(stores, &render(&[])));
+    assert!(
+        said.contains("no vertexPipelineStoresAndAtomics, the pattern driver's capture (its export) is unavailable"),
+        "{said}"
+    );
+    refused(
+        hide(stores, &export(&["--driver", "pattern"])),
+        "lacks the required feature vertexPipelineStoresAndAtomics (needed to capture the pattern driver's evaluated vertices; the tess driver exports through transform feedback)",
+    );
+    drew(hide(stores, &export(&["--driver", "tess"])));
+    drew(hide("", &render(&[])));
+    let plain = std::fs::read(&png).unwrap();
+    let said = drew(hide("fillModeNonSolid", &render(&["--wireframe"])));
+    assert!(
+        said.contains("no fillModeNonSolid, the wireframe view is off"),
+        "{said}"
+    );
+    assert!(
+        std::fs::read(&png).unwrap() == plain,
+        "the wireframe was drawn"
+    );
+    drew(hide("", &render(&["--wireframe"])));
+    let wire = std::fs::read(&png).unwrap();
+    assert!(wire != plain, "the wireframe changes nothing");
+    drew(hide("depthBiasClamp", &render(&["--wireframe"])));
+    let prefix = tmp("wiring-hidden-bench");
+    #[rustfmt::skip]
+    let bench = [
+        "bench", "--levels", "2", "--frames", "1", "--width", "64", "--height", "64",
+        "--drivers", "static", "--out", p(&prefix),
+    ];
+    for (feature, counted) in [("", true), ("pipelineStatisticsQuery", false)] {
+        drew(hide(feature, &bench));
+        let csv = std::fs::read_to_string(format!("{}.csv", p(&prefix))).unwrap();
+        let mut lines = csv.lines();
+        let header = common::csv_fields(lines.next().unwrap());
+        let column = header
+            .iter()
+            .position(|h| h == "vertex_invocations")
+            .unwrap();
+        let row = common::csv_fields(lines.next().unwrap());
+        assert_eq!(!row[column].is_empty(), counted, "{feature:?}: {csv}");
+    }
+    let devices = drew(hide("fillModeNonSolid,depthBiasClamp", &["devices"]));
+    assert!(devices.contains("no fillModeNonSolid"), "{devices}");
+    let out = hide("fillModeNonSolid,depthBiasClamp", &["devices"]);
+    let listed = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        listed.contains("wireframe (fillModeNonSolid): no"),
+        "{listed}"
+    );
+    assert!(listed.contains("(depthBiasClamp): no"), "{listed}");
+    refused(
+        hide("geometryShader", &["devices"]),
+        "MESHREFINE_HIDE_FEATURES: 'geometryShader' is not a feature meshrefine checks (one of tessellationShader,",
+    );
+}

@@ -77,7 +77,36 @@ fn context_desc(cli: &Cli) -> Result<ContextDesc> {
         surface_extensions: vec![],
         max_storage_buffer_range: storage_range_env()?,
         max_memory_allocation_size: bytes_env(MAX_ALLOCATION_ENV, u64::MAX)?,
+        hidden_features: hidden_features_env()?,
     })
+}
+
+/// The environment variable that has the device seen without some features (a test's knob:
+/// the paths a device without them takes, on one that has them).
+const HIDE_FEATURES_ENV: &str = "MESHREFINE_HIDE_FEATURES";
+
+/// The features `MESHREFINE_HIDE_FEATURES` names, comma-separated, each one meshrefine checks.
+fn hidden_features_env() -> Result<Vec<String>> {
+    use meshrefine::gpu::CHECKED_FEATURES;
+    let Ok(s) = std::env::var(HIDE_FEATURES_ENV) else {
+        return Ok(Vec::new());
+    };
+    let names: Vec<String> = (s.split(','))
+        .map(str::trim)
+        .filter(|n| !n.is_empty())
+        .map(str::to_string)
+        .collect();
+    if let Some(bad) = names
+        .iter()
+        .find(|n| !CHECKED_FEATURES.contains(&n.as_str()))
+    {
+        bail!(
+            "{HIDE_FEATURES_ENV}: '{}' is not a feature meshrefine checks (one of {})",
+            crate::printable(bad),
+            CHECKED_FEATURES.join(", ")
+        );
+    }
+    Ok(names)
 }
 
 /// The environment variable that has the device seen with a smaller `maxStorageBufferRange`
@@ -174,7 +203,7 @@ fn devices(desc: &meshrefine::gpu::ContextDesc) -> Result<()> {
                     l.max_tessellation_generation_level
                 );
                 out!(
-                    "  export and capture (vertexPipelineStoresAndAtomics): {}",
+                    "  pattern export and capture (vertexPipelineStoresAndAtomics): {}",
                     yes(info.vertex_stores)
                 );
                 out!(

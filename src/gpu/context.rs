@@ -285,10 +285,11 @@ fn query_capabilities(
     instance: &ash::Instance,
     physical: vk::PhysicalDevice,
     mut info: DeviceInfo,
+    desc: &ContextDesc,
 ) -> Result<DeviceInfo, GpuError> {
     // Features: required ones fail with a named error; optional ones degrade with a log line.
     // SAFETY: valid physical device.
-    let available = unsafe { instance.get_physical_device_features(physical) };
+    let mut available = unsafe { instance.get_physical_device_features(physical) };
     // SAFETY: valid physical device.
     let device_extensions =
         unsafe { instance.enumerate_device_extension_properties(physical) }.unwrap_or_default();
@@ -304,6 +305,24 @@ fn query_capabilities(
     // SAFETY: valid physical device; the chain lives on the stack and names only structs of
     // supported extensions.
     unsafe { instance.get_physical_device_features2(physical, &mut f2) };
+    // A feature a test hides is absent from here on, as on a device without it.
+    let hidden = |name: &str| desc.hidden_features.iter().any(|h| h == name);
+    let off = |on: &mut vk::Bool32, name: &str| {
+        if hidden(name) {
+            *on = vk::FALSE;
+        }
+    };
+    off(&mut available.tessellation_shader, "tessellationShader");
+    off(&mut f13.dynamic_rendering, "dynamicRendering");
+    off(&mut fxfb.transform_feedback, "transformFeedback");
+    let stores = &mut available.vertex_pipeline_stores_and_atomics;
+    off(stores, "vertexPipelineStoresAndAtomics");
+    off(&mut available.fill_mode_non_solid, "fillModeNonSolid");
+    off(&mut available.depth_bias_clamp, "depthBiasClamp");
+    off(
+        &mut available.pipeline_statistics_query,
+        "pipelineStatisticsQuery",
+    );
     let transform_feedback = has_xfb && fxfb.transform_feedback == vk::TRUE;
     let mut xfb_props = vk::PhysicalDeviceTransformFeedbackPropertiesEXT::default();
     if transform_feedback {
@@ -358,7 +377,7 @@ fn query_capabilities(
     }
     if !info.vertex_stores {
         log::warn!(
-            "{}: no vertexPipelineStoresAndAtomics, capture (export) is unavailable",
+            "{}: no vertexPipelineStoresAndAtomics, the pattern driver's capture (its export) is unavailable; the tess driver's export (transform feedback) is not",
             info.name
         );
     }
@@ -422,7 +441,7 @@ pub fn list_devices(desc: &ContextDesc) -> Result<Vec<Result<DeviceInfo, GpuErro
         list.sort_by_key(|c| c.0);
         list.into_iter()
             .map(|(_, pd, info)| {
-                query_capabilities(&parts.instance, pd, info).map(|i| desc.limited(i))
+                query_capabilities(&parts.instance, pd, info, desc).map(|i| desc.limited(i))
             })
             .collect()
     });
@@ -436,7 +455,7 @@ pub fn picked_device(desc: &ContextDesc) -> Result<DeviceInfo, GpuError> {
     let messages = Arc::new(Messages::default());
     let parts = InstanceParts::new(desc, &messages)?;
     let picked = pick_device(&parts.instance, desc)
-        .and_then(|(physical, _, info)| query_capabilities(&parts.instance, physical, info))
+        .and_then(|(physical, _, info)| query_capabilities(&parts.instance, physical, info, desc))
         .map(|info| desc.limited(info));
     parts.destroy();
     picked
@@ -448,7 +467,7 @@ impl Context {
         let messages = Arc::new(Messages::default());
         let parts = InstanceParts::new(desc, &messages)?;
         let opened = pick_device(&parts.instance, desc).and_then(|(physical, family, info)| {
-            let info = desc.limited(query_capabilities(&parts.instance, physical, info)?);
+            let info = desc.limited(query_capabilities(&parts.instance, physical, info, desc)?);
             let device = open_device(&parts.instance, physical, family, &info, desc)?;
             Ok((physical, family, info, device))
         });

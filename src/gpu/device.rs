@@ -167,7 +167,24 @@ pub struct ContextDesc {
     /// The same for `maxMemoryAllocationSize` (`MESHREFINE_MAX_MEMORY_ALLOCATION_SIZE`): what
     /// does not fit one allocation is refused or done another way, as on a smaller device.
     pub max_memory_allocation_size: Option<u64>,
+    /// Features to treat as absent, by their Vulkan names (one of [`CHECKED_FEATURES`]): the
+    /// device then looks as one without them would, refused for a required one, without what
+    /// an optional one gives. For tests; the CLI reads it from `MESHREFINE_HIDE_FEATURES`.
+    pub hidden_features: Vec<String>,
 }
+
+/// The device features meshrefine checks: the required ones (a device without them is refused,
+/// naming it), then the optional ones (each missing one turns off what needs it, with a log
+/// line).
+pub const CHECKED_FEATURES: [&str; 7] = [
+    "tessellationShader",
+    "dynamicRendering",
+    "transformFeedback",
+    "vertexPipelineStoresAndAtomics",
+    "fillModeNonSolid",
+    "depthBiasClamp",
+    "pipelineStatisticsQuery",
+];
 
 impl ContextDesc {
     /// `info` as this description has the device seen ([`Self::max_storage_buffer_range`],

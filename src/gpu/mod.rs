@@ -26,7 +26,7 @@ pub use buffer::{Buffer, BufferDesc, BufferView};
 pub use checked::{check_shutdown, with_context, ShutdownError};
 pub use commands::{CommandPool, Fence, Semaphore};
 pub use context::{list_devices, picked_device, Context, ContextDesc, GpuError, Messages};
-pub use device::{DeviceInfo, STORAGE_BUFFERS_PER_STAGE};
+pub use device::{DeviceInfo, CHECKED_FEATURES, STORAGE_BUFFERS_PER_STAGE};
 pub use image::{
     sample_count, Image, ImageDesc, OffscreenTarget, Readback, DEPTH_FORMAT, MSAA_COUNTS,
     OFFSCREEN_FORMAT,

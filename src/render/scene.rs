@@ -240,7 +240,7 @@ impl Scene {
         if capture == Capture::Vertices && !ctx.info.vertex_stores {
             return Err(GpuError::MissingFeature {
                 device: ctx.info.name.clone(),
-                feature: "vertexPipelineStoresAndAtomics (needed to capture evaluated vertices)",
+                feature: "vertexPipelineStoresAndAtomics (needed to capture the pattern driver's evaluated vertices; the tess driver exports through transform feedback)",
             }
             .into());
         }
