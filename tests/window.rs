@@ -954,6 +954,30 @@ fn a_window_destroyed_by_another_client_ends_the_demo_with_a_sentence() {
     assert_eq!(stderr.trim().lines().count(), 1, "{stderr}");
 }
 
+/// On a device without `fillModeNonSolid` (`MESHREFINE_HIDE_FEATURES`) the wireframe is off:
+/// said once at the start, and `W` says it changes nothing, validated.
+#[test]
+fn w_without_line_fill_says_it_changes_nothing() {
+    let _guard = common::gpu_lock();
+    let x = Xvfb::start();
+    let hidden = [("MESHREFINE_HIDE_FEATURES", "fillModeNonSolid")];
+    let args = ["--level", "2", "--width", "320", "--height", "240"];
+    let demo = Demo::start_with(&x, &args, &hidden);
+    demo.wait_title("level 2");
+    demo.xdotool(&["key", "w"]);
+    // The cage is a line list, which needs no fillModeNonSolid: it still shows.
+    demo.xdotool(&["key", "k"]);
+    let title = demo.wait_title(" cage |");
+    assert!(!title.contains(" wire"), "{title}");
+    let stderr = demo.quit();
+    for line in [
+        "no fillModeNonSolid, the wireframe view is off",
+        "'w' changes nothing here: the device has no fillModeNonSolid, which the wireframe's lines need",
+    ] {
+        assert!(stderr.contains(line), "{line:?} not in {stderr}");
+    }
+}
+
 /// The window starts in the state its options ask for (`--lod`, `--wireframe cage`, `--driver
 /// tess` with `--submit push`, which its keys use once they switch to `pattern`), and warns of
 /// no option it does not read yet (`--alpha` on `pn`: its keys may switch to `phong`).

@@ -203,6 +203,7 @@ impl State {
         let beyond = |d| refused.contains(&d);
         let largest = limit.map_or(self.controls.max_level, |l| self.controls.max_level.min(l));
         let glide_refusal = super::ui::glide_refusal(self.controls.cfg.driver, largest);
+        let lines = self.ctx.info.fill_mode_non_solid;
         let c = &mut self.controls;
         match key {
             Key::Named(NamedKey::Escape) => return false,
@@ -274,6 +275,9 @@ impl State {
                         "'{ch}' (LOD by distance) acts in uniform mode only (M switches to it)"
                     )
                 }
+                "w" | "W" if !lines => log::warn!(
+                    "'{ch}' changes nothing here: the device has no fillModeNonSolid, which the wireframe's lines need"
+                ),
                 "w" | "W" => c.wireframe = !c.wireframe,
                 "k" | "K" => c.cage = !c.cage,
                 "a" | "A" => c.animate = !c.animate,
