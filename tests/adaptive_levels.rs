@@ -30,8 +30,9 @@ fn mirror_levels(
     (bounds, levels)
 }
 
-/// The GPU's inner levels are the mirror's within 1e-4 (relative).
+/// The GPU's inner levels are the mirror's within 1e-4 (relative), one for each element.
 fn assert_levels_agree(gpu: &[ElementLevels], mirror: &[ElementLevels], what: &str) {
+    assert_eq!(gpu.len(), mirror.len(), "{what}");
     for (i, (g, m)) in gpu.iter().zip(mirror).enumerate() {
         assert!(
             (g.inner - m.inner).abs() <= 1e-4 * m.inner.max(1.0),
@@ -418,8 +419,19 @@ fn an_animated_mesh_gets_new_bounds_and_levels() {
                 before[..] != bounds[..],
                 "{what}: the pose did not change the bounds"
             );
-            assert_eq!(gpu.len(), mirror.len(), "{what}");
             assert_levels_agree(&gpu, &mirror, what);
+            // The first pose's bounds would choose other levels: the check above tells them
+            // apart.
+            let metric = View::new(camera.eye(), camera.fov_y, 720, 1.0, max);
+            let lod_view = LodView::new(&metric, None, false, cfg.rounding(), before.len() as u32);
+            let stale = frame_levels(&lod_view, &before);
+            assert!(
+                stale
+                    .iter()
+                    .zip(&mirror)
+                    .any(|(s, m)| (s.inner - m.inner).abs() > 1e-4 * m.inner.max(1.0)),
+                "{what}: the first pose's bounds choose the same levels"
+            );
             assert_eq!(got.histogram, drawn.histogram, "{what}");
         }
     });

@@ -206,8 +206,9 @@ fn an_unreachable_wayland_display_falls_back_to_the_headless_render() {
 /// the amplitude and frequency in its units, whatever frame the mesh is drawn in (centred, unit
 /// size): the 8x8 grid scaled by 7 and moved to z = 5, off the origin, exports every vertex
 /// displaced along the plane's normal by the height the CPU displacement gives at its point in
-/// the file's coordinates (within 1e-4: f32 rounding of coordinates near 10; a wrong origin,
-/// scale or frequency moves points by a sizeable share of the 0.2 amplitude).
+/// the file's coordinates (within 2e-3 of the amplitude and 1e-5, as the GPU's `sin` is held to
+/// in tests/gpu_mirror.rs; a wrong origin, scale or frequency moves points by a sizeable share
+/// of the 0.2 amplitude).
 #[test]
 fn displacement_is_measured_in_the_files_coordinates() {
     use meshrefine::surface::{displace, Displace, SurfaceParams};
@@ -248,8 +249,9 @@ fn displacement_is_measured_in_the_files_coordinates() {
         }
         // 8 x 8 quads, each edge in 4 at level 4: 33 x 33 points, each written once.
         assert_eq!(seen, 33 * 33, "{displace_name}");
+        let tolerance = 2e-3 * 0.2 + 1e-5;
         assert!(
-            worst <= 1e-4,
+            worst <= tolerance,
             "{displace_name}: {worst} from the file's own height"
         );
     }
@@ -343,7 +345,8 @@ fn sine_at_its_centre_is_unbounded_and_a_zero_displacement_is_none() {
         n >= 6,
         "the six triangles around the origin at least: {sine:?}"
     );
-    assert!(sine[0].contains(&format!(" 64:{n}")), "{sine:?}");
+    let at_64 = format!("64:{n}");
+    assert!(sine[0].split_whitespace().any(|t| t == at_64), "{sine:?}");
     let flat = info(
         Some(&grid),
         "flat",
@@ -367,12 +370,13 @@ fn sine_at_its_centre_is_unbounded_and_a_zero_displacement_is_none() {
 /// `MESHREFINE_HIDE_FEATURES` shows the paths a device without a feature takes (platform.md),
 /// validated: a required feature missing (`tessellationShader`, `dynamicRendering`) refuses the
 /// device in one sentence naming it; without `transformFeedback` only a `tess` export is
-/// refused, without `vertexPipelineStoresAndAtomics` the pattern driver's (renders still draw,
-/// the tessellator still exports through transform feedback), without
+/// refused, without `vertexPipelineStoresAndAtomics` the pattern driver's (renders of every
+/// driver and Loop still draw, the tessellator still exports through transform feedback, which
+/// the warning and the error say only where the device has it), without
 /// `fillModeNonSolid` the wireframe is off with a warning (the image is the one without it),
 /// without `depthBiasClamp` the wireframe draws, without `pipelineStatisticsQuery` bench's
-/// vertex invocations are left empty; `devices` says "no" for each; an unknown name is one
-/// sentence listing the names.
+/// vertex invocations are left empty; `devices` says "no" for each optional one and calls the
+/// device unusable without a required one; an unknown name is one sentence listing the names.
 #[test]
 fn hidden_features_take_the_paths_a_device_without_them_takes() {
     let hide = |feature: &str, args: &[&str]| {
@@ -403,7 +407,7 @@ fn hidden_features_take_the_paths_a_device_without_them_takes() {
             &format!("lacks the required feature {required}"),
         );
     }
-    let xfb = "lacks the required feature transformFeedback";
+    let xfb = "has no transformFeedback (VK_EXT_transform_feedback), which reading back the tessellator's triangles needs";
     refused(
         hide("transformFeedback", &export(&["--driver", "tess"])),
         xfb,
@@ -413,14 +417,38 @@ fn hidden_features_take_the_paths_a_device_without_them_takes() {
     let stores = "vertexPipelineStoresAndAtomics";
     let said = drew(hide(stores, &render(&[])));
     assert!(
-        said.contains("no vertexPipelineStoresAndAtomics, the pattern driver's capture (its export) is unavailable"),
+        said.contains("no vertexPipelineStoresAndAtomics, evaluated vertices cannot be captured (export --driver pattern); export --driver tess still works (transform feedback)"),
         "{said}"
     );
+    // No shader that draws (rather than captures) needs it: every driver and Loop render.
+    for extra in [
+        &["--driver", "tess"][..],
+        &["--driver", "static"],
+        &["--surface", "loop"],
+    ] {
+        drew(hide(stores, &render(extra)));
+    }
     refused(
         hide(stores, &export(&["--driver", "pattern"])),
-        "lacks the required feature vertexPipelineStoresAndAtomics (needed to capture the pattern driver's evaluated vertices; the tess driver exports through transform feedback)",
+        "has no vertexPipelineStoresAndAtomics, which capturing evaluated vertices needs; --driver tess exports through transform feedback",
     );
     drew(hide(stores, &export(&["--driver", "tess"])));
+    // Without transform feedback either, the warning and the error promise no tess export.
+    let both = "vertexPipelineStoresAndAtomics,transformFeedback";
+    let said = drew(hide(both, &render(&[])));
+    assert!(
+        said.contains("evaluated vertices cannot be captured (export --driver pattern)\n"),
+        "{said}"
+    );
+    let out = hide(both, &export(&[]));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.ends_with(
+            "has no vertexPipelineStoresAndAtomics, which capturing evaluated vertices needs\n"
+        ),
+        "{stderr}"
+    );
     drew(hide("", &render(&[])));
     let plain = std::fs::read(&png).unwrap();
     let said = drew(hide("fillModeNonSolid", &render(&["--wireframe"])));
@@ -436,6 +464,7 @@ fn hidden_features_take_the_paths_a_device_without_them_takes() {
     let wire = std::fs::read(&png).unwrap();
     assert!(wire != plain, "the wireframe changes nothing");
     drew(hide("depthBiasClamp", &render(&["--wireframe"])));
+    assert!(std::fs::read(&png).unwrap() != plain, "no wireframe drawn");
     let prefix = tmp("wiring-hidden-bench");
     #[rustfmt::skip]
     let bench = [
@@ -454,15 +483,25 @@ fn hidden_features_take_the_paths_a_device_without_them_takes() {
         let row = common::csv_fields(lines.next().unwrap());
         assert_eq!(!row[column].is_empty(), counted, "{feature:?}: {csv}");
     }
-    let devices = drew(hide("fillModeNonSolid,depthBiasClamp", &["devices"]));
-    assert!(devices.contains("no fillModeNonSolid"), "{devices}");
-    let out = hide("fillModeNonSolid,depthBiasClamp", &["devices"]);
+    // `devices` says `no` for each optional feature hidden, and a required one makes the
+    // device unusable.
+    let optional = meshrefine::gpu::CHECKED_FEATURES[2..].join(",");
+    let out = hide(&optional, &["devices"]);
+    let listed = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{listed}");
+    for feature in &meshrefine::gpu::CHECKED_FEATURES[2..] {
+        assert!(
+            listed.contains(&format!("({feature}): no")),
+            "{feature}: {listed}"
+        );
+    }
+    let out = hide("tessellationShader", &["devices"]);
     let listed = String::from_utf8_lossy(&out.stdout);
     assert!(
-        listed.contains("wireframe (fillModeNonSolid): no"),
+        listed.contains("unusable: device '")
+            && listed.contains("lacks the required feature tessellationShader"),
         "{listed}"
     );
-    assert!(listed.contains("(depthBiasClamp): no"), "{listed}");
     refused(
         hide("geometryShader", &["devices"]),
         "MESHREFINE_HIDE_FEATURES: 'geometryShader' is not a feature meshrefine checks (one of tessellationShader,",

@@ -2,12 +2,14 @@
 //! `check_shutdown` after the context is gone) catches what it promises to: a call the
 //! validation layer rejects, made on a context created as the tests create theirs, makes the
 //! shutdown check fail and names the problem; the same context without it passes; and a
-//! wrapper still alive when the context goes (a leak) fails it, counted.
+//! wrapper still alive at shutdown (a leak; it keeps its context alive too) fails it, counted.
 // The invalid call goes to ash directly: the crate's own wrappers refuse to make it.
 #![allow(unsafe_code)]
 
 use ash::vk;
-use meshrefine::gpu::{check_shutdown, Buffer, BufferDesc, Context, ContextDesc, ShutdownError};
+use meshrefine::gpu::{
+    check_shutdown, live_objects, Buffer, BufferDesc, Context, ContextDesc, ShutdownError,
+};
 
 /// A validated context; with `invalid`, a buffer of size zero created and destroyed (valid
 /// usage requires a size above zero: `VUID-VkBufferCreateInfo-size-00912`).
@@ -34,19 +36,27 @@ fn run(invalid: bool) -> Result<(), ShutdownError> {
 }
 
 /// A validated context whose buffer is never dropped (forgotten, as a leak leaves it): the
-/// shutdown check counts it. Last in the process: the forgotten wrapper stays counted.
-fn leak_a_buffer() -> Result<(), ShutdownError> {
+/// buffer keeps the context alive, and the shutdown check counts both. Returns the check and
+/// the live objects once the context was made. Last in the process: the forgotten wrappers stay
+/// counted.
+fn leak_a_buffer() -> (Result<(), ShutdownError>, isize) {
     let desc = ContextDesc {
         validate: true,
         ..Default::default()
     };
     let ctx = Context::new(&desc).expect("a validated Vulkan context");
+    let with_context = live_objects();
     let messages = ctx.messages_handle();
     let usage = vk::BufferUsageFlags::STORAGE_BUFFER;
     let buffer = Buffer::new(&ctx, BufferDesc::new_upload(256, usage), "leaked").unwrap();
+    assert_eq!(
+        live_objects(),
+        with_context + 1,
+        "the buffer is not counted"
+    );
     std::mem::forget(buffer);
     drop(ctx);
-    check_shutdown(&messages)
+    (check_shutdown(&messages), with_context)
 }
 
 #[test]
@@ -60,7 +70,7 @@ fn a_validation_error_fails_the_shutdown_check() {
         other => panic!("an invalid call was not caught: {other:?}"),
     }
     match leak_a_buffer() {
-        Err(ShutdownError::Leaked(n)) => assert!(n >= 1, "{n}"),
+        (Err(ShutdownError::Leaked(n)), with_context) => assert_eq!(n, with_context + 1),
         other => panic!("a leaked buffer was not caught: {other:?}"),
     }
 }

@@ -954,14 +954,15 @@ fn a_window_destroyed_by_another_client_ends_the_demo_with_a_sentence() {
     assert_eq!(stderr.trim().lines().count(), 1, "{stderr}");
 }
 
-/// On a device without `fillModeNonSolid` (`MESHREFINE_HIDE_FEATURES`) the wireframe is off:
-/// said once at the start, and `W` says it changes nothing, validated.
+/// On a device without `fillModeNonSolid` (`MESHREFINE_HIDE_FEATURES`) the wireframe is off,
+/// `--wireframe` too: said once at the start, and `W` says it changes nothing, validated.
 #[test]
 fn w_without_line_fill_says_it_changes_nothing() {
     let _guard = common::gpu_lock();
     let x = Xvfb::start();
     let hidden = [("MESHREFINE_HIDE_FEATURES", "fillModeNonSolid")];
-    let args = ["--level", "2", "--width", "320", "--height", "240"];
+    #[rustfmt::skip]
+    let args = ["--level", "2", "--wireframe", "--width", "320", "--height", "240"];
     let demo = Demo::start_with(&x, &args, &hidden);
     demo.wait_title("level 2");
     demo.xdotool(&["key", "w"]);
@@ -974,7 +975,7 @@ fn w_without_line_fill_says_it_changes_nothing() {
         "no fillModeNonSolid, the wireframe view is off",
         "'w' changes nothing here: the device has no fillModeNonSolid, which the wireframe's lines need",
     ] {
-        assert!(stderr.contains(line), "{line:?} not in {stderr}");
+        assert_eq!(stderr.matches(line).count(), 1, "{line:?} in {stderr}");
     }
 }
 

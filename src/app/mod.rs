@@ -262,6 +262,8 @@ impl App {
         let mut ui = Ui::new(&window, ctx.info.limits.max_image_dimension2_d as usize);
         ui.visible = self.opts.panel;
         let pool = CommandPool::new(&ctx, "window commands")?;
+        // A device without line fill draws no wireframe (said when its capabilities are read).
+        let wireframe = self.opts.wireframe && ctx.info.fill_mode_non_solid;
         let cmd = pool.allocate(1)?[0];
         let mesh = self.mesh.take().expect("created once");
         let cfg = self.opts.cfg;
@@ -315,7 +317,7 @@ impl App {
             warm: false,
             controls: Controls {
                 cfg,
-                wireframe: self.opts.wireframe,
+                wireframe,
                 cage: self.opts.cage,
                 animate: self.opts.animate,
                 lod: self.opts.lod,

@@ -306,6 +306,13 @@ fn query_capabilities(
     // supported extensions.
     unsafe { instance.get_physical_device_features2(physical, &mut f2) };
     // A feature a test hides is absent from here on, as on a device without it.
+    let checked = super::device::CHECKED_FEATURES;
+    if let Some(bad) = (desc.hidden_features.iter()).find(|h| !checked.contains(&h.as_str())) {
+        return Err(GpuError::Other(format!(
+            "cannot hide '{bad}': not a feature meshrefine checks (one of {})",
+            checked.join(", ")
+        )));
+    }
     let hidden = |name: &str| desc.hidden_features.iter().any(|h| h == name);
     let off = |on: &mut vk::Bool32, name: &str| {
         if hidden(name) {
@@ -376,8 +383,13 @@ fn query_capabilities(
         );
     }
     if !info.vertex_stores {
+        let tess = if info.transform_feedback {
+            "; export --driver tess still works (transform feedback)"
+        } else {
+            ""
+        };
         log::warn!(
-            "{}: no vertexPipelineStoresAndAtomics, the pattern driver's capture (its export) is unavailable; the tess driver's export (transform feedback) is not",
+            "{}: no vertexPipelineStoresAndAtomics, evaluated vertices cannot be captured (export --driver pattern){tess}",
             info.name
         );
     }

@@ -238,17 +238,22 @@ impl Scene {
         super::driver::check_level(ctx, cfg)?;
         use super::Capture;
         if capture == Capture::Vertices && !ctx.info.vertex_stores {
-            return Err(GpuError::MissingFeature {
-                device: ctx.info.name.clone(),
-                feature: "vertexPipelineStoresAndAtomics (needed to capture the pattern driver's evaluated vertices; the tess driver exports through transform feedback)",
-            }
+            let tess = if ctx.info.transform_feedback {
+                "; --driver tess exports through transform feedback"
+            } else {
+                ""
+            };
+            return Err(GpuError::Other(format!(
+                "device '{}' has no vertexPipelineStoresAndAtomics, which capturing evaluated vertices needs{tess}",
+                ctx.info.name
+            ))
             .into());
         }
         if capture == Capture::Triangles && !ctx.info.transform_feedback {
-            return Err(GpuError::MissingFeature {
-                device: ctx.info.name.clone(),
-                feature: "transformFeedback (VK_EXT_transform_feedback, needed to read back the tessellator's triangles)",
-            }
+            return Err(GpuError::Other(format!(
+                "device '{}' has no transformFeedback (VK_EXT_transform_feedback), which reading back the tessellator's triangles needs",
+                ctx.info.name
+            ))
             .into());
         }
         let kind = cfg.driver.kind();

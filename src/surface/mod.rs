@@ -639,8 +639,11 @@ mod tests {
                     if d != Displace::None {
                         let geometric = du.cross(dv).normalize();
                         let geometric = geometric * geometric.dot(n).signum();
+                        // Exact up to the differences' rounding; the height map's bilinear
+                        // texels kink where the differences straddle them.
+                        let tol = if d == Displace::Heightmap { 2e-2 } else { 2e-3 };
                         assert!(
-                            (p.normal - geometric).length() < 2e-2,
+                            (p.normal - geometric).length() < tol,
                             "{} + {}: at ({u}, {v}) normal {} vs {geometric}",
                             s.name(),
                             d.name(),

@@ -132,7 +132,7 @@ pub fn bicone_obj(n: usize) -> String {
 }
 
 /// Tags for every vertex of `mesh`, centred on the origin: tension, sharpness and bias varying
-/// from vertex to vertex in [-0.45, 0.45], [0, 0.9] and [-0.4, 0.4]; the first vertex and the
+/// from vertex to vertex in [-0.45, 0.45], [0, 9/11] and [-0.4, 0.4]; the first vertex and the
 /// one farthest from it creases (no triangle holds both, as appendix B asks), their direction
 /// across the radial normal.
 pub fn own_tags(mesh: &meshrefine::mesh::Mesh) -> Vec<meshrefine::surface::stpn::VertexTag> {
