@@ -15,7 +15,7 @@ use meshrefine::surface::{Displace, Surface, SurfaceParams};
 use std::collections::HashMap;
 
 /// The bounds of `scene`'s elements for `cfg` made here from its mirror, and the levels the
-/// level pass's CPU mirror chooses from them for `camera` at 720 lines and 1 px, no culling.
+/// level pass's CPU mirror chooses from them ([`levels_from`]).
 fn mirror_levels(
     scene: &meshrefine::render::Scene,
     cfg: &DrawConfig,
@@ -24,10 +24,31 @@ fn mirror_levels(
     let max = cfg.level;
     let lod = Lod::new(&scene.mirror(cfg, max).unwrap(), &cfg.params).drawn_as(cfg.rounding());
     let bounds = lod_records(&lod, scene.records(cfg.surface));
-    let metric = View::new(camera.eye(), camera.fov_y, 720, 1.0, max);
-    let lod_view = LodView::new(&metric, None, false, cfg.rounding(), bounds.len() as u32);
-    let levels = frame_levels(&lod_view, &bounds);
+    let levels = levels_from(&bounds, cfg, camera);
     (bounds, levels)
+}
+
+/// The level view the mirror comparisons draw with: 1280x720, 1 px, no culling.
+fn view_at_1px(camera: Camera) -> LevelView {
+    LevelView {
+        camera,
+        width: 1280,
+        height: 720,
+        pixel_error: 1.0,
+        cull: false,
+    }
+}
+
+/// The levels the level pass's CPU mirror chooses from `bounds` for `camera` as
+/// [`view_at_1px`] sees it, `cfg`'s largest level and rounding.
+fn levels_from(
+    bounds: &[meshrefine::lod::frame::LodRecord],
+    cfg: &DrawConfig,
+    camera: &Camera,
+) -> Vec<ElementLevels> {
+    let metric = View::new(camera.eye(), camera.fov_y, 720, 1.0, cfg.level);
+    let lod_view = LodView::new(&metric, None, false, cfg.rounding(), bounds.len() as u32);
+    frame_levels(&lod_view, bounds)
 }
 
 /// The GPU's inner levels are the mirror's within 1e-4 (relative), one for each element.
@@ -61,13 +82,7 @@ fn gpu_levels_match_the_mirror_and_share_edges() {
             )
             .unwrap();
             for camera in [framing, close] {
-                let view = LevelView {
-                    camera,
-                    width: 1280,
-                    height: 720,
-                    pixel_error: 1.0,
-                    cull: false,
-                };
+                let view = view_at_1px(camera);
                 let what = format!("{} at {:?}", surface.name(), camera.eye());
                 let got = scene.set_levels(&cfg, &view).unwrap();
                 // Drawn on the GPU: the mirror runs when the tally is read (below), not before.
@@ -391,13 +406,7 @@ fn an_animated_mesh_gets_new_bounds_and_levels() {
             cfg.params = SurfaceParams::for_radius(r);
             let eye = c + glam::Vec3::new(0.2, 0.1, 0.5) * r;
             let camera = Camera::looking(eye, c, 45f32.to_radians(), r).unwrap();
-            let view = LevelView {
-                camera,
-                width: 1280,
-                height: 720,
-                pixel_error: 1.0,
-                cull: false,
-            };
+            let view = view_at_1px(camera);
             h.prepared_elements(&mut scene, &cfg, Capture::None)
                 .unwrap();
             scene.set_levels(&cfg, &view).unwrap();
@@ -422,9 +431,7 @@ fn an_animated_mesh_gets_new_bounds_and_levels() {
             assert_levels_agree(&gpu, &mirror, what);
             // The first pose's bounds would choose other levels: the check above tells them
             // apart.
-            let metric = View::new(camera.eye(), camera.fov_y, 720, 1.0, max);
-            let lod_view = LodView::new(&metric, None, false, cfg.rounding(), before.len() as u32);
-            let stale = frame_levels(&lod_view, &before);
+            let stale = levels_from(&before, &cfg, &camera);
             assert!(
                 stale
                     .iter()

@@ -1,7 +1,7 @@
 //! Instance, device, queue, allocator, validation messages (device choice: `device.rs`).
 
 pub use super::device::ContextDesc;
-use super::device::{pick_device, DeviceInfo};
+use super::device::{pick_device, query_capabilities, DeviceInfo};
 use super::{track_drop, track_new};
 use ash::vk;
 use gpu_allocator::vulkan::{Allocator, AllocatorCreateDesc};
@@ -277,123 +277,6 @@ impl InstanceParts {
         // SAFETY: no child object remains.
         unsafe { self.instance.destroy_instance(None) };
     }
-}
-
-/// What the chosen device offers beyond the required features: gathered once, before the device
-/// is opened (as wgpu-hal's `expose_adapter` does), each missing optional feature said once.
-fn query_capabilities(
-    instance: &ash::Instance,
-    physical: vk::PhysicalDevice,
-    mut info: DeviceInfo,
-    desc: &ContextDesc,
-) -> Result<DeviceInfo, GpuError> {
-    // Features: required ones fail with a named error; optional ones degrade with a log line.
-    // SAFETY: valid physical device.
-    let mut available = unsafe { instance.get_physical_device_features(physical) };
-    // SAFETY: valid physical device.
-    let device_extensions =
-        unsafe { instance.enumerate_device_extension_properties(physical) }.unwrap_or_default();
-    let has_xfb = device_extensions
-        .iter()
-        .any(|e| e.extension_name_as_c_str() == Ok(ash::ext::transform_feedback::NAME));
-    let mut f13 = vk::PhysicalDeviceVulkan13Features::default();
-    let mut fxfb = vk::PhysicalDeviceTransformFeedbackFeaturesEXT::default();
-    let mut f2 = vk::PhysicalDeviceFeatures2::default().push_next(&mut f13);
-    if has_xfb {
-        f2 = f2.push_next(&mut fxfb);
-    }
-    // SAFETY: valid physical device; the chain lives on the stack and names only structs of
-    // supported extensions.
-    unsafe { instance.get_physical_device_features2(physical, &mut f2) };
-    // A feature a test hides is absent from here on, as on a device without it.
-    let checked = super::device::CHECKED_FEATURES;
-    if let Some(bad) = (desc.hidden_features.iter()).find(|h| !checked.contains(&h.as_str())) {
-        return Err(GpuError::Other(format!(
-            "cannot hide '{bad}': not a feature meshrefine checks (one of {})",
-            checked.join(", ")
-        )));
-    }
-    let hidden = |name: &str| desc.hidden_features.iter().any(|h| h == name);
-    let off = |on: &mut vk::Bool32, name: &str| {
-        if hidden(name) {
-            *on = vk::FALSE;
-        }
-    };
-    off(&mut available.tessellation_shader, "tessellationShader");
-    off(&mut f13.dynamic_rendering, "dynamicRendering");
-    off(&mut fxfb.transform_feedback, "transformFeedback");
-    let stores = &mut available.vertex_pipeline_stores_and_atomics;
-    off(stores, "vertexPipelineStoresAndAtomics");
-    off(&mut available.fill_mode_non_solid, "fillModeNonSolid");
-    off(&mut available.depth_bias_clamp, "depthBiasClamp");
-    off(
-        &mut available.pipeline_statistics_query,
-        "pipelineStatisticsQuery",
-    );
-    let transform_feedback = has_xfb && fxfb.transform_feedback == vk::TRUE;
-    let mut xfb_props = vk::PhysicalDeviceTransformFeedbackPropertiesEXT::default();
-    if transform_feedback {
-        let mut p2 = vk::PhysicalDeviceProperties2::default().push_next(&mut xfb_props);
-        // SAFETY: as above.
-        unsafe { instance.get_physical_device_properties2(physical, &mut p2) };
-    }
-    let dynamic_rendering = f13.dynamic_rendering == vk::TRUE;
-    let missing = if available.tessellation_shader == vk::FALSE {
-        Some("tessellationShader")
-    } else if !dynamic_rendering {
-        Some("dynamicRendering")
-    } else {
-        None
-    };
-    if let Some(feature) = missing {
-        return Err(GpuError::MissingFeature {
-            device: info.name.clone(),
-            feature,
-        });
-    }
-    super::device::check_stage_limits(&info)?;
-    info.pipeline_statistics = available.pipeline_statistics_query == vk::TRUE;
-    info.vertex_stores = available.vertex_pipeline_stores_and_atomics == vk::TRUE;
-    info.fill_mode_non_solid = available.fill_mode_non_solid == vk::TRUE;
-    info.depth_bias_clamp = available.depth_bias_clamp == vk::TRUE;
-    info.transform_feedback = transform_feedback;
-    info.max_transform_feedback_buffer_size = xfb_props.max_transform_feedback_buffer_size;
-    if !info.transform_feedback {
-        log::info!(
-            "{}: no transformFeedback, the tess driver cannot be exported",
-            info.name
-        );
-    }
-    if !info.fill_mode_non_solid {
-        log::warn!(
-            "{}: no fillModeNonSolid, the wireframe view is off",
-            info.name
-        );
-    }
-    if info.fill_mode_non_solid && !info.depth_bias_clamp {
-        log::info!(
-            "{}: no depthBiasClamp, wireframe lines of steep triangles may show through the surface",
-            info.name
-        );
-    }
-    if !info.pipeline_statistics {
-        log::warn!(
-            "{}: no pipelineStatisticsQuery, statistics are off",
-            info.name
-        );
-    }
-    if !info.vertex_stores {
-        let tess = if info.transform_feedback {
-            "; export --driver tess still works (transform feedback)"
-        } else {
-            ""
-        };
-        log::warn!(
-            "{}: no vertexPipelineStoresAndAtomics, evaluated vertices cannot be captured (export --driver pattern){tess}",
-            info.name
-        );
-    }
-    Ok(info)
 }
 
 /// Open the device with the features `info` says are there, and one queue of `queue_family`.
