@@ -1042,8 +1042,9 @@ fn a_window_too_large_to_allocate_is_one_sentence() {
     );
 }
 
-/// The X server going away under a running demo ends it with Xlib's message and status 1
-/// (window.md), at once: no panic, no hang.
+/// The X server going away under a running demo ends it at once with status 1 (window.md):
+/// Xlib's message, or the window system's sentence where the presentation sees the lost
+/// connection first; no panic, no hang.
 #[test]
 #[allow(unsafe_code)]
 fn the_x_server_going_away_ends_the_demo_with_status_1() {
@@ -1058,10 +1059,12 @@ fn the_x_server_going_away_ends_the_demo_with_status_1() {
     let (status, stderr) = demo.ended_after("its X server went away");
     assert_eq!(status, Some(1), "{stderr}");
     assert!(!stderr.contains("panicked"), "{stderr}");
-    assert!(
-        stderr.contains(&format!("X connection to {} broken", x.display)),
-        "{stderr}"
-    );
+    // Whichever sees the lost connection first ends the demo: Xlib's handler, or the
+    // swapchain's presentation (the window system's sentence).
+    let xlib = format!("X connection to {} broken", x.display);
+    let ours = "error: cannot show 'the default mesh (spot)': the window system failed: the window was closed by another program, or its display went away\n";
+    assert!(stderr.contains(&xlib) || stderr.ends_with(ours), "{stderr}");
+    assert!(!stderr.contains("validation"), "{stderr}");
 }
 
 /// The title's refined triangle count (`... -> N triangles`).
