@@ -56,7 +56,11 @@ pub fn write(name: &str, text: &[u8]) -> PathBuf {
 
 /// Runs and expects failure with exactly one `error: ...` line containing every `needles` entry.
 pub fn expect_error(args: &[&str], needles: &[&str]) {
-    let out = meshrefine(args);
+    check_error(&meshrefine(args), args, needles);
+}
+
+/// [`expect_error`]'s checks on the output of a run with `args`.
+pub fn check_error(out: &Output, args: &[&str], needles: &[&str]) {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(
         !out.status.success(),
