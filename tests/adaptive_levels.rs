@@ -411,7 +411,7 @@ fn an_animated_mesh_gets_new_bounds_and_levels() {
                 .unwrap();
             scene.set_levels(&cfg, &view).unwrap();
             let before = scene.level_bounds().unwrap().clone();
-            scene.update_mesh(base.animated(0.7, 0.05 * r), surface);
+            scene.update_mesh(base.animated(0.7, 0.05 * r));
             h.prepared_elements(&mut scene, &cfg, Capture::None)
                 .unwrap();
             let got = scene.set_levels(&cfg, &view).unwrap();

@@ -141,7 +141,7 @@ fn animated_loop_uploads_m0_only() {
         }
         for frame in 1..3 {
             let moved = base.animated(frame as f32 * 0.7, 0.05 * r);
-            scene.update_mesh(moved, Surface::Loop);
+            scene.update_mesh(moved);
             let cap = h.capture(&mut scene, &cfg(4), &camera).unwrap();
             let mirror = scene.mirror(&cfg(4), 4).unwrap();
             let pattern = Pattern::uniform(4);

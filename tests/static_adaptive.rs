@@ -164,11 +164,16 @@ fn static_adaptive_uploads_when_the_levels_change() {
         // What the panel reports: the buffer refined at the levels chosen, not every element
         // at the largest level.
         assert_eq!(scene.geometry_bytes(&st, true), cost.upload_bytes);
-        assert_eq!(scene.upload_bytes(&st), cost.upload_bytes);
+        // A moved mesh also uploads its records, which pn's fragments read (the normal field).
+        let count = scene.elements(st.surface).element_count as u64;
+        assert!(st.fragment_normal_field());
+        assert_eq!(
+            scene.upload_bytes(&st),
+            cost.upload_bytes + count * meshrefine::surface::RECORD_BYTES as u64
+        );
         assert!(cost.upload_bytes < st.geometry_bytes(20, false));
         // Animated, it also uploads the levels it chose (16 bytes an element); a driver whose
         // level pass chooses them uploads that pass's bounds instead (480 bytes an element).
-        let count = scene.elements(st.surface).element_count as u64;
         assert_eq!(scene.level_upload_bytes(&st), count * 16);
         let coarse = scene.upload_bytes(&st);
         assert_eq!(scene.animated_upload_bytes(&st, true), coarse + count * 16);

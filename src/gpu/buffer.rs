@@ -156,6 +156,7 @@ impl Buffer {
             .and_then(|a| a.mapped_slice_mut())
             .expect("buffer is not host-visible");
         slice[..size][offset..offset + bytes.len()].copy_from_slice(bytes);
+        self.ctx.count_host_bytes(bytes.len());
     }
 
     /// Write a slice of `Pod` values at byte `offset`.

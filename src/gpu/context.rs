@@ -121,6 +121,8 @@ pub struct Context {
     allocator: ManuallyDrop<Arc<Mutex<Allocator>>>,
     /// Its heap address is the messenger's user data: it outlives the messenger and instance.
     messages: Arc<Messages>,
+    /// Bytes the CPU has handed the device through this context ([`Context::host_bytes`]).
+    host_bytes: std::sync::atomic::AtomicU64,
 }
 
 unsafe extern "system" fn debug_callback(
@@ -420,12 +422,25 @@ impl Context {
             queue_family,
             allocator: ManuallyDrop::new(Arc::new(Mutex::new(allocator))),
             messages,
+            host_bytes: std::sync::atomic::AtomicU64::new(0),
         }))
     }
 
     /// Validation warnings/errors and leak reports so far.
     pub fn messages(&self) -> &Messages {
         &self.messages
+    }
+
+    /// Bytes the CPU has handed the device through this context so far: every write into a
+    /// host-visible buffer (records, levels' bounds, uniforms, staging copies of what lives in
+    /// device memory) and every push constant recorded. The difference across a frame is what
+    /// that frame uploaded, counted where the bytes go, not from a scene's own accounting.
+    pub fn host_bytes(&self) -> u64 {
+        self.host_bytes.load(std::sync::atomic::Ordering::Relaxed)
+    }
+
+    pub(crate) fn count_host_bytes(&self, n: usize) {
+        (self.host_bytes).fetch_add(n as u64, std::sync::atomic::Ordering::Relaxed);
     }
 
     /// A handle to the message list that survives the context (to read leak reports after drop).

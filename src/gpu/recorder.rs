@@ -197,6 +197,7 @@ impl<'a> Cmd<'a> {
                 .device
                 .cmd_push_constants(self.raw, layout, stages, offset, bytes)
         };
+        self.ctx.count_host_bytes(bytes.len());
     }
 
     pub fn bind_vertex_buffer(&self, binding: u32, buffer: &Buffer) {

@@ -5,62 +5,15 @@
 
 use super::bindings::*;
 use super::loop_gpu::LoopPass;
-use super::RenderError;
+use super::{MeshData, RenderError};
 use crate::gpu::{
     vk, Buffer, BufferDesc, BufferView, CommandPool, Context, DescriptorPool, GpuError,
 };
 use crate::lod::levels::ElementLevels;
-use crate::mesh::Mesh;
 use crate::pattern::{Pattern, PatternSet};
 use crate::surface::stpn::VertexTag;
-use crate::surface::{build_records, ElementRecord, Heightmap, RecordKind, Seams, RECORD_BYTES};
+use crate::surface::{ElementRecord, Heightmap, RECORD_BYTES};
 use std::sync::Arc;
-
-/// CPU-side data of a mesh ready to draw: the mesh and its elements' records.
-#[derive(Clone, Debug)]
-pub struct MeshData {
-    pub mesh: Mesh,
-    pub kind: RecordKind,
-    /// The seams the records were built for.
-    pub seams: Seams,
-    pub records: Vec<ElementRecord>,
-    /// Each element's texture coordinates (stored corner order), when every triangle has them.
-    pub uvs: Option<Vec<[[f32; 2]; 3]>>,
-    /// Mean longest texture-space edge of the elements (0 without coordinates).
-    pub uv_extent: f32,
-}
-
-impl MeshData {
-    pub fn new(mesh: Mesh, kind: RecordKind, seams: Seams) -> Self {
-        let records = build_records(kind, &mesh, seams);
-        let uvs: Option<Vec<[[f32; 2]; 3]>> = mesh
-            .triangles
-            .iter()
-            .map(|t| {
-                t.t.map(|c| c.map(|i| mesh.texcoords[i as usize].to_array()))
-            })
-            .collect();
-        let uv_extent = uvs.as_ref().map_or(0.0, |uvs| {
-            let longest = |t: &[[f32; 2]; 3]| {
-                (0..3)
-                    .map(|k| {
-                        let (a, b) = (glam::Vec2::from(t[k]), glam::Vec2::from(t[(k + 1) % 3]));
-                        (a - b).length() as f64
-                    })
-                    .fold(0.0, f64::max)
-            };
-            (uvs.iter().map(longest).sum::<f64>() / uvs.len().max(1) as f64) as f32
-        });
-        Self {
-            mesh,
-            kind,
-            seams,
-            records,
-            uvs,
-            uv_extent,
-        }
-    }
-}
 
 /// One pattern level on the GPU: barycentric vertices and its triangle list.
 pub struct GpuPattern {
@@ -122,6 +75,9 @@ pub struct GpuMesh {
     /// Each element's levels ([`ElementLevels`], 16 bytes), read by the drivers when they draw
     /// adaptively (`FrameWork::adaptive`); written by the level pass or [`GpuMesh::upload_levels`].
     pub levels: Buffer,
+    /// The levels [`GpuMesh::upload_levels`] last wrote, while `levels` still holds them
+    /// (None once the level pass may have written it: [`GpuMesh::levels_from_gpu`]).
+    uploaded_levels: Option<Vec<ElementLevels>>,
     /// Shared by the scene's meshes (the loop surface's M1 draws the same patterns).
     pub patterns: Arc<Vec<GpuPattern>>,
     /// The pattern driver's adaptive draws of these elements (built by its `prepare`).
@@ -306,6 +262,7 @@ impl GpuMesh {
             heightmap_texels: inputs.heightmap_texels,
             tags: inputs.tags,
             levels,
+            uploaded_levels: None,
             patterns,
             adaptive: None,
             pool,
@@ -342,10 +299,19 @@ impl GpuMesh {
     }
 
     /// Upload every element's levels (tests and CPU-chosen levels; the level pass writes the
-    /// same buffer on the GPU). The caller makes sure no pending work reads them.
+    /// same buffer on the GPU), unless the buffer holds them already (a still frame of the
+    /// static driver uploads nothing). The caller makes sure no pending work reads them.
     pub fn upload_levels(&mut self, levels: &[ElementLevels]) {
         assert_eq!(levels.len() as u32, self.element_count);
-        self.levels.write_pod(0, levels);
+        if self.uploaded_levels.as_deref() != Some(levels) {
+            self.levels.write_pod(0, levels);
+            self.uploaded_levels = Some(levels.to_vec());
+        }
+    }
+
+    /// The level pass writes the levels from now on: the next upload writes them all.
+    pub fn levels_from_gpu(&mut self) {
+        self.uploaded_levels = None;
     }
 
     /// Upload new coarse records (animation). The caller makes sure no pending work reads them.

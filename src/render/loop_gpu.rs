@@ -11,8 +11,9 @@
 //! scene's loop surface: its data, passes and M1-face records on the GPU.
 
 use super::bindings::*;
-use super::gpu_mesh::{Extras, GpuMesh, MeshData, Patterns};
+use super::gpu_mesh::{Extras, GpuMesh, Patterns};
 use super::scene::Scene;
+use super::MeshData;
 use super::RenderError;
 use crate::gpu::{
     vk, Buffer, BufferDesc, Cmd, CommandPool, Context, DescriptorPool, DescriptorSetLayout,

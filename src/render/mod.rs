@@ -17,6 +17,7 @@ mod gpu_mesh;
 mod headless;
 pub mod level_pass;
 pub mod loop_gpu;
+mod mesh_data;
 mod packed_capture;
 pub mod pattern;
 mod pipelines;
@@ -31,12 +32,13 @@ pub use camera::{Camera, Viewpoint, FIT_MARGIN};
 pub use driver::{Driver, DriverKind, Submit};
 pub use error::RenderError;
 pub use frame::Background;
-pub use gpu_mesh::{GpuMesh, GpuPattern, MeshData};
+pub use gpu_mesh::{GpuMesh, GpuPattern};
 pub use headless::{
     background_srgb8, clear_color_srgb8, covered_pixels, covered_pixels_on, CaptureResult,
     FrameTiming, Headless,
 };
 pub use level_pass::LevelPass;
+pub use mesh_data::MeshData;
 pub use pipelines::{Renderer, GEOMETRY_STAGES, PUSH_STAGES};
 pub use scene::{software_frame_seconds, EvaluationWeight, Scene};
 pub use scene_levels::{ChosenLevels, LevelView};

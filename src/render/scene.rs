@@ -2,8 +2,9 @@
 //! the pattern set, Loop's data when drawn as `loop`, and the static driver's buffer when built.
 //! [`Scene::prepare`] checks a configuration and builds what it needs, between frames.
 
-use super::gpu_mesh::{Extras, GpuMesh, MeshData, Patterns};
+use super::gpu_mesh::{Extras, GpuMesh, Patterns};
 use super::loop_gpu::{LoopPass, LoopScene};
+use super::MeshData;
 use super::RenderError;
 use crate::gpu::{vk, CommandPool, Context, GpuError};
 use crate::lod::levels::drawn_level;
@@ -216,7 +217,7 @@ impl Scene {
             self.prepare_pre_pass(ctx, pool, renderer, pass, &cfg.build)?;
         }
         let coarse = pre_pass.is_none();
-        if coarse && self.records_stale {
+        if coarse && self.records_stale && self.reads_records(cfg) {
             self.gpu.update_records(&self.data.records);
             self.records_stale = false;
         }
@@ -283,11 +284,11 @@ impl Scene {
         Ok(())
     }
 
-    /// Replace the coarse positions/normals (animation), for drawing `surface` next: its new
-    /// data is uploaded (the records, or for loop M0's positions alone, what
+    /// Replace the coarse positions/normals (animation): loop's M0 positions are uploaded now,
+    /// the records by the next `prepare` whose drawing reads them (what
     /// [`Scene::upload_bytes`] counts); the static buffer, if any, becomes stale and is rebuilt
     /// by the next `prepare`. Only between frames.
-    pub fn update_mesh(&mut self, mesh: Mesh, surface: Surface) {
+    pub fn update_mesh(&mut self, mesh: Mesh) {
         self.data = MeshData::new(mesh, self.data.kind, self.data.seams);
         // Moved corners may leave a file's normals on the other side of their faces (the
         // topology, and so `closed`, stays).
@@ -300,12 +301,9 @@ impl Scene {
             l.pass.upload_m0(&self.data.mesh.positions);
             l.frame = std::cell::OnceCell::new();
         }
-        if surface.uses_loop_faces() && self.loop_.is_some() {
-            self.records_stale = true;
-        } else {
-            self.gpu.update_records(&self.data.records);
-            self.records_stale = false;
-        }
+        // The coarse records go up when the next frame that reads them is prepared: not for the
+        // static driver unless its fragments evaluate the normal field, nor for `loop`.
+        self.records_stale = true;
         self.static_vbo = None;
         if let Some(c) = &mut self.cage {
             c.update(&self.data.mesh.positions);
@@ -330,16 +328,28 @@ impl Scene {
     /// coarse records (the local surfaces), or M0's positions (loop): the last two independent
     /// of the level.
     pub fn upload_bytes(&self, cfg: &super::DrawConfig) -> u64 {
+        let count = self.elements(cfg.surface).element_count as u64;
+        let records = if self.reads_records(cfg) && cfg.surface.pre_pass().is_none() {
+            count * RECORD_BYTES as u64
+        } else {
+            0
+        };
         if let Some(bytes) = self.static_adaptive_bytes(cfg) {
-            return bytes;
+            return bytes + records;
         }
         if cfg.driver.kind().refines_on_cpu() {
-            return cfg.geometry_bytes(self.elements(cfg.surface).element_count as u64, false);
+            return cfg.geometry_bytes(count, false) + records;
         }
         match self.pre_pass(cfg) {
             Some(pass) => pass.upload_bytes(),
             None => self.gpu.element_count as u64 * RECORD_BYTES as u64,
         }
+    }
+
+    /// Whether drawing `cfg` reads the elements' records on the GPU: every driver but the static
+    /// one, which does only where its fragments evaluate the normal field.
+    fn reads_records(&self, cfg: &super::DrawConfig) -> bool {
+        !cfg.driver.kind().refines_on_cpu() || cfg.fragment_normal_field()
     }
 
     /// The elements `surface` draws: M1 faces for `loop` (once prepared), coarse triangles

@@ -159,6 +159,10 @@ impl Scene {
         let count = self.elements(cfg.surface).element_count;
         let on_cpu = cfg.driver.kind().refines_on_cpu();
         let on_gpu = self.update_bounds(cfg, !on_cpu)?;
+        if !on_cpu && on_gpu.is_ok() {
+            // The level pass writes this frame's levels.
+            self.elements_mut(cfg.surface).levels_from_gpu();
+        }
         let back_faces = view.cull && self.front_only(cfg, eye)?;
         let l = self.levels.as_mut().expect("update_bounds leaves bounds");
         let records = l.records.clone();
