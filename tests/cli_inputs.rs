@@ -104,7 +104,7 @@ fn unbounded_inputs_are_refused_up_front() {
     // Each run timed alone (holding the lock other tests' GPU runs take), so that waiting for
     // them is not counted.
     let mut took = Duration::ZERO;
-    let mut expect_error = |args: &[&str], needles: &[&str]| {
+    let mut refused = |args: &[&str], needles: &[&str]| {
         let _guard = common::gpu_lock();
         let t0 = Instant::now();
         let out = bin()
@@ -116,20 +116,20 @@ fn unbounded_inputs_are_refused_up_front() {
         took += t0.elapsed();
         check_error(&out, args, needles);
     };
-    expect_error(&["info", "/dev/zero"], &["/dev/zero", "character device"]);
-    expect_error(
+    refused(&["info", "/dev/zero"], &["/dev/zero", "character device"]);
+    refused(
         &["info", "/dev/urandom"],
         &["/dev/urandom", "character device"],
     );
     let dir = tmp("a-directory.obj");
     std::fs::create_dir_all(&dir).unwrap();
-    expect_error(&["info", p(&dir)], &["a-directory.obj", "directory"]);
+    refused(&["info", p(&dir)], &["a-directory.obj", "directory"]);
     // 20 GB of NUL bytes, sparse: refused by its size without reading.
     let huge = tmp("huge-sparse.obj");
     let f = std::fs::File::create(&huge).unwrap();
     f.set_len(20 << 30).unwrap();
     drop(f);
-    expect_error(
+    refused(
         &["info", p(&huge)],
         &["huge-sparse.obj", "21474836480 bytes", "1073741824"],
     );
@@ -139,7 +139,7 @@ fn unbounded_inputs_are_refused_up_front() {
     let f = std::fs::File::create(&zeros).unwrap();
     f.set_len(512 << 20).unwrap();
     drop(f);
-    expect_error(
+    refused(
         &["render", p(&zeros), "-o", "z.png"],
         &["zeros.obj", "line 1", "NUL"],
     );

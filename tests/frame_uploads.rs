@@ -174,9 +174,10 @@ fn an_animated_frame_uploads_the_same_bytes_whatever_the_levels() {
             // [`patches_per_draw`]: meshrefine::render::tess::patches_per_draw
             let added = |(still, moved): (u64, u64)| moved - still;
             assert_eq!(added(uniform[0]), added(uniform[1]), "{what}");
-            let draw_bytes = |level| 16 * tess_draws(h, &scene, &DrawConfig { level, ..cfg });
+            let draw_bytes =
+                |level| 16 * tess_draws(h, &scene, &DrawConfig { level, ..cfg }) as i64;
             assert_eq!(
-                uniform[1].0 - uniform[0].0,
+                uniform[1].0 as i64 - uniform[0].0 as i64,
                 draw_bytes(16) - draw_bytes(2),
                 "{what}: a uniform frame's bytes follow the level"
             );
@@ -235,6 +236,69 @@ fn the_static_driver_uploads_more_for_finer_levels() {
                 uniform.push(moved);
             }
             assert!(uniform[1] > 4 * uniform[0], "{what}: {uniform:?}");
+        }
+    });
+}
+
+/// What a moved mesh uploads for what is not drawn waits until it is: after `loop` has been
+/// drawn, a `pn` frame does not upload M0's positions; the cage's lines go up only while it is
+/// drawn (the panel adds them); and a scene moved while the static driver drew `phong` (no
+/// records uploaded) and `loop` (no M0), then drawn by the pattern driver as `phong`, `pn` and
+/// `loop`,
+/// evaluates exactly the vertices a scene made from the moved mesh does.
+#[test]
+fn what_is_not_drawn_is_uploaded_when_it_is() {
+    with_gpu(160, 90, |h| {
+        let instanced = Driver::Pattern(Submit::Instanced);
+        let (mut scene, loop_cfg, view, mut pose) = close_up(h, instanced, Surface::Loop);
+        let v = view(1.0);
+        h.adaptive = true;
+        frame(h, &mut scene, &loop_cfg, &v, None);
+        let pn = DrawConfig {
+            surface: Surface::Pn,
+            ..loop_cfg
+        };
+        still_and_moved(h, &mut scene, &pn, &v, &mut pose);
+        let panel = scene.animated_upload_bytes(&pn, true);
+        // The cage: its lines when it is drawn, not before.
+        assert_eq!(scene.cage_upload_bytes(), 0);
+        h.cage = true;
+        frame(h, &mut scene, &pn, &v, None);
+        let lines = scene.cage_upload_bytes();
+        assert!(lines > 0);
+        let (still, _) = frame(h, &mut scene, &pn, &v, None);
+        let (moved, _) = frame(h, &mut scene, &pn, &v, Some(pose()));
+        assert_eq!(moved - still, panel + lines, "the cage's lines");
+        h.cage = false;
+        let (still, _) = frame(h, &mut scene, &pn, &v, None);
+        let (moved, _) = frame(h, &mut scene, &pn, &v, Some(pose()));
+        assert_eq!(moved - still, panel, "a hidden cage's lines");
+
+        // Moved while static draws phong, then loop: the records and M0 wait.
+        h.adaptive = false;
+        let camera = v.camera;
+        let moved_mesh = pose();
+        scene.update_mesh(moved_mesh.clone());
+        for surface in [Surface::Phong, Surface::Loop] {
+            let st = DrawConfig {
+                driver: Driver::Static,
+                level: 2,
+                ..pn
+            }
+            .with_surface(surface, Displace::None);
+            h.draw(&mut scene, &st, &camera).unwrap();
+        }
+        let mut fresh = h.scene(moved_mesh, 16).unwrap();
+        for surface in [Surface::Phong, Surface::Pn, Surface::Loop] {
+            let cfg = DrawConfig { level: 4, ..pn }.with_surface(surface, Displace::None);
+            let got = h.capture(&mut scene, &cfg, &camera).unwrap().vertices;
+            let want = h.capture(&mut fresh, &cfg, &camera).unwrap().vertices;
+            assert!(!want.is_empty());
+            assert!(
+                got == want,
+                "{}: not the moved mesh's vertices",
+                surface.name()
+            );
         }
     });
 }

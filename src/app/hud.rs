@@ -52,7 +52,12 @@ impl State {
             coarse,
             refined: if shown { self.refined(&d, coarse) } else { 0 },
             geometry_bytes: self.scene.geometry_bytes(&d, self.levels.is_some()),
-            upload_bytes: (self.scene).animated_upload_bytes(&d, self.levels.is_some()),
+            upload_bytes: (self.scene).animated_upload_bytes(&d, self.levels.is_some())
+                + if self.controls.cage {
+                    self.scene.cage_upload_bytes()
+                } else {
+                    0
+                },
             table_bytes: self
                 .scene
                 .loop_

@@ -121,7 +121,8 @@ pub struct AdaptiveCells {
     /// every camera), `pow2` (the smallest power of two at or above it), joined by `+`.
     pub level_from: String,
     /// Milliseconds choosing the levels of one frame (median per camera, mean over cameras),
-    /// and where they were chosen (`cpu`: `Scene::set_levels`' wall time, upload included).
+    /// and where they were chosen (`cpu`: `Scene::set_levels`' wall time, the levels' upload
+    /// included when they change).
     pub level_pass_ms: Option<f64>,
     pub level_pass_on: Option<&'static str>,
     /// Elements culled (mean over cameras, rounded).

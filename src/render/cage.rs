@@ -51,6 +51,9 @@ pub struct Cage {
     lines: Buffer,
     /// Each edge's two vertex indices, ascending, sorted: what `lines` holds.
     edges: Vec<[u32; 2]>,
+    /// The mesh moved since `lines` were written (`Scene::update_mesh`): they are written again
+    /// when the cage is next prepared to be drawn.
+    pub(super) stale: bool,
 }
 
 /// `mesh`'s unique edges (by vertex index), each as (smaller, larger), sorted.
@@ -79,7 +82,11 @@ impl Cage {
             "cage lines",
         )?;
         lines.write_pod(0, &line_vertices(&edges, &mesh.positions));
-        Ok(Self { lines, edges })
+        Ok(Self {
+            lines,
+            edges,
+            stale: false,
+        })
     }
 
     /// New positions for the same mesh (animation). The caller makes sure no pending work
@@ -87,6 +94,11 @@ impl Cage {
     pub fn update(&mut self, positions: &[glam::Vec3]) {
         self.lines
             .write_pod(0, &line_vertices(&self.edges, positions));
+    }
+
+    /// Bytes [`Cage::update`] writes: two positions an edge.
+    pub fn upload_bytes(&self) -> u64 {
+        self.edges.len() as u64 * 24
     }
 
     /// Lines drawn.

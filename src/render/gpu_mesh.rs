@@ -75,9 +75,10 @@ pub struct GpuMesh {
     /// Each element's levels ([`ElementLevels`], 16 bytes), read by the drivers when they draw
     /// adaptively (`FrameWork::adaptive`); written by the level pass or [`GpuMesh::upload_levels`].
     pub levels: Buffer,
-    /// The levels [`GpuMesh::upload_levels`] last wrote, while `levels` still holds them
-    /// (None once the level pass may have written it: [`GpuMesh::levels_from_gpu`]).
+    /// The levels [`GpuMesh::upload_levels`] last wrote; `levels` holds them unless the level
+    /// pass has been recorded to write it since ([`GpuMesh::written_on_gpu`]).
     uploaded_levels: Option<Vec<ElementLevels>>,
+    gpu_wrote_levels: std::cell::Cell<bool>,
     /// Shared by the scene's meshes (the loop surface's M1 draws the same patterns).
     pub patterns: Arc<Vec<GpuPattern>>,
     /// The pattern driver's adaptive draws of these elements (built by its `prepare`).
@@ -263,6 +264,7 @@ impl GpuMesh {
             tags: inputs.tags,
             levels,
             uploaded_levels: None,
+            gpu_wrote_levels: Default::default(),
             patterns,
             adaptive: None,
             pool,
@@ -303,15 +305,16 @@ impl GpuMesh {
     /// static driver uploads nothing). The caller makes sure no pending work reads them.
     pub fn upload_levels(&mut self, levels: &[ElementLevels]) {
         assert_eq!(levels.len() as u32, self.element_count);
-        if self.uploaded_levels.as_deref() != Some(levels) {
+        if self.gpu_wrote_levels.take() || self.uploaded_levels.as_deref() != Some(levels) {
             self.levels.write_pod(0, levels);
             self.uploaded_levels = Some(levels.to_vec());
         }
     }
 
-    /// The level pass writes the levels from now on: the next upload writes them all.
-    pub fn levels_from_gpu(&mut self) {
-        self.uploaded_levels = None;
+    /// Said by the level pass when it records writes to `levels`: the next upload writes them
+    /// all.
+    pub fn written_on_gpu(&self) {
+        self.gpu_wrote_levels.set(true);
     }
 
     /// Upload new coarse records (animation). The caller makes sure no pending work reads them.

@@ -369,6 +369,7 @@ impl LevelPass {
             mesh.levels.raw, self.levels,
             "the level pass's bounds are for another mesh (update_bounds)"
         );
+        mesh.written_on_gpu();
         let lift = view.flags & LIFT != 0 && self.lift;
         let view = LodView {
             count: self.count,

@@ -442,6 +442,9 @@ pub struct LoopScene {
     pub(super) frame: std::cell::OnceCell<LoopFrame>,
     pub gpu: GpuMesh,
     pub pass: LoopPass,
+    /// M0 moved since its positions were uploaded (`Scene::update_mesh`): they go up when the
+    /// GPU next makes M1.
+    pub(super) m0_stale: bool,
 }
 
 /// Whether the loop surface's buffers fit the device: the compute passes write M1 as storage
@@ -491,7 +494,8 @@ fn loop_limits(data: &LoopData, limits: &vk::PhysicalDeviceLimits) -> Result<(),
 impl Scene {
     /// Build the data of `pass` (the pre-pass a surface declares, `Surface::pre_pass`) with
     /// `build`'s options, unless it was built with them: what `Scene::prepare` runs before the
-    /// surface is drawn.
+    /// surface is drawn. `on_gpu`: the GPU runs the pass this frame (moved M0 positions are
+    /// uploaded for it).
     pub(super) fn prepare_pre_pass(
         &mut self,
         ctx: &Arc<Context>,
@@ -499,15 +503,17 @@ impl Scene {
         renderer: &super::Renderer,
         pass: PrePass,
         build: &BuildOptions,
+        on_gpu: bool,
     ) -> Result<(), RenderError> {
         match pass {
             PrePass::LoopStep => {
-                if self
-                    .loop_
-                    .as_ref()
-                    .is_some_and(|l| pass.same_data(&l.build, build))
-                {
-                    return Ok(());
+                if let Some(l) = self.loop_.as_mut() {
+                    if pass.same_data(&l.build, build) {
+                        if on_gpu && std::mem::take(&mut l.m0_stale) {
+                            l.pass.upload_m0(&self.data.mesh.positions);
+                        }
+                        return Ok(());
+                    }
                 }
                 self.loop_ = None;
                 self.static_vbo = None;
@@ -559,6 +565,7 @@ impl LoopScene {
             frame: std::cell::OnceCell::new(),
             gpu,
             pass,
+            m0_stale: false,
         })
     }
 }

@@ -59,8 +59,9 @@ pub struct Scene {
     pub loop_: Option<LoopScene>,
     /// The coarse mesh's edges for the cage overlay, made when first drawn ([`Scene::cage`]).
     pub cage: Option<super::cage::Cage>,
-    /// The coarse records on the GPU are older than `data` (an animated frame drawn with loop,
-    /// which does not read them, uploads M0 only); the next other surface uploads them.
+    /// The coarse records on the GPU are older than `data` (the mesh moved): the next
+    /// `prepare` whose drawing reads them uploads them (`Scene::reads_records`: not `loop`,
+    /// nor `static` unless its fragments evaluate the normal field).
     records_stale: bool,
     warned_slow: bool,
     /// What the slow-frame warning of a uniform frame advises (the command's own option).
@@ -214,7 +215,8 @@ impl Scene {
         // otherwise).
         let pre_pass = cfg.surface.pre_pass();
         if let Some(pass) = pre_pass {
-            self.prepare_pre_pass(ctx, pool, renderer, pass, &cfg.build)?;
+            let on_gpu = !cfg.driver.kind().refines_on_cpu();
+            self.prepare_pre_pass(ctx, pool, renderer, pass, &cfg.build, on_gpu)?;
         }
         let coarse = pre_pass.is_none();
         if coarse && self.records_stale && self.reads_records(cfg) {
@@ -234,6 +236,7 @@ impl Scene {
             self.data.records = build_records(self.data.kind, &self.data.mesh, cfg.build.seams);
             self.data.seams = cfg.build.seams;
             self.gpu.update_records(&self.data.records);
+            self.records_stale = false;
             self.static_vbo = None;
         }
         super::driver::check_level(ctx, cfg)?;
@@ -296,9 +299,9 @@ impl Scene {
         self.self_intersecting = std::cell::OnceCell::new();
         self.generation += 1;
         if let Some(l) = &mut self.loop_ {
-            // Loop: only M0's positions go up; the passes make M1 on the GPU (the mirror's M1
-            // follows when it is read).
-            l.pass.upload_m0(&self.data.mesh.positions);
+            // Loop: only M0's positions go up, when the GPU next makes M1 from them (the
+            // mirror's M1 follows when it is read).
+            l.m0_stale = true;
             l.frame = std::cell::OnceCell::new();
         }
         // The coarse records go up when the next frame that reads them is prepared: not for the
@@ -306,7 +309,7 @@ impl Scene {
         self.records_stale = true;
         self.static_vbo = None;
         if let Some(c) = &mut self.cage {
-            c.update(&self.data.mesh.positions);
+            c.stale = true;
         }
     }
 
@@ -318,15 +321,20 @@ impl Scene {
         renderer: &mut super::Renderer,
     ) -> Result<(), RenderError> {
         renderer.prepare_cage()?;
-        if self.cage.is_none() {
-            self.cage = Some(super::cage::Cage::new(ctx, &self.data.mesh)?);
+        match &mut self.cage {
+            None => self.cage = Some(super::cage::Cage::new(ctx, &self.data.mesh)?),
+            Some(c) if c.stale => {
+                c.update(&self.data.mesh.positions);
+                c.stale = false;
+            }
+            Some(_) => {}
         }
         Ok(())
     }
 
-    /// Bytes an animated frame uploads when drawing `cfg`: the refined vertices (static), the
-    /// coarse records (the local surfaces), or M0's positions (loop): the last two independent
-    /// of the level.
+    /// Bytes an animated frame uploads when drawing `cfg`: the coarse records (the local
+    /// surfaces) or M0's positions (loop), independent of the level; on the static driver the
+    /// refined vertices, and the records where its fragments read them.
     pub fn upload_bytes(&self, cfg: &super::DrawConfig) -> u64 {
         let count = self.elements(cfg.surface).element_count as u64;
         let records = if self.reads_records(cfg) && cfg.surface.pre_pass().is_none() {
@@ -551,6 +559,7 @@ impl Scene {
         )?;
         self.generation += 1;
         self.static_vbo = None;
+        self.records_stale = false;
         Ok(())
     }
 

@@ -159,10 +159,6 @@ impl Scene {
         let count = self.elements(cfg.surface).element_count;
         let on_cpu = cfg.driver.kind().refines_on_cpu();
         let on_gpu = self.update_bounds(cfg, !on_cpu)?;
-        if !on_cpu && on_gpu.is_ok() {
-            // The level pass writes this frame's levels.
-            self.elements_mut(cfg.surface).levels_from_gpu();
-        }
         let back_faces = view.cull && self.front_only(cfg, eye)?;
         let l = self.levels.as_mut().expect("update_bounds leaves bounds");
         let records = l.records.clone();
@@ -293,7 +289,8 @@ impl Scene {
 
     /// What an animated frame drawing `cfg` uploads (the window's panel): the coarse data
     /// ([`Scene::upload_bytes`]) and, for an adaptive frame, what its levels are chosen from
-    /// ([`Scene::level_upload_bytes`]).
+    /// ([`Scene::level_upload_bytes`]). The cage's lines, while it is drawn, add
+    /// [`Scene::cage_upload_bytes`].
     pub fn animated_upload_bytes(&self, cfg: &DrawConfig, adaptive: bool) -> u64 {
         let levels = if adaptive {
             self.level_upload_bytes(cfg)
@@ -301,6 +298,12 @@ impl Scene {
             0
         };
         self.upload_bytes(cfg) + levels
+    }
+
+    /// What the cage overlay's lines upload when the mesh moved (two positions an edge), once
+    /// the cage has been drawn; 0 before.
+    pub fn cage_upload_bytes(&self) -> u64 {
+        self.cage.as_ref().map_or(0, |c| c.upload_bytes())
     }
 
     /// The level pass and the camera of the last [`Scene::set_levels`], for
