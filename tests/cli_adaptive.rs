@@ -668,6 +668,9 @@ fn pixel_error_draws_adaptively_with_the_pattern_driver() {
             "--geomorph on, or --max-level 128 or a smaller power of two",
         ],
     );
+    // In that sentence alone: no note before it on levels it does not draw.
+    let stderr = String::from_utf8_lossy(&meshrefine(&high("0.01")).stderr).into_owned();
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
     // render refuses the same in one sentence, with no warning of slow frames before it, nor a
     // note on the levels it does not draw (elements holding the eye drawn at 256, others
     // needing more).

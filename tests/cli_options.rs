@@ -883,7 +883,8 @@ fn outputs_follow_one_rule() {
 }
 
 /// An export whose refined size passes the documented limit is refused before anything is
-/// evaluated, naming the estimate and the highest level that fits.
+/// evaluated, naming the estimate and the highest level that fits (once the level is one the
+/// driver draws on this device).
 #[test]
 fn exports_past_the_size_limit_are_refused_up_front() {
     let spot = model_path("spot_tri.obj");
@@ -921,6 +922,25 @@ fn exports_past_the_size_limit_are_refused_up_front() {
             "loop",
         ],
         &["(23424 elements x 4096)", "use --level 26 or lower"],
+    );
+    // Past the tessellator's limit too: that limit is said, not a size remedy (level 915 for
+    // the icosahedron) the driver would then refuse.
+    let out = meshrefine(&[
+        "export",
+        p(&model_path("icosahedron.obj")),
+        "-o",
+        p(&obj),
+        "--level",
+        "1024",
+        "--driver",
+        "tess",
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("level 1024 is beyond this device's maxTessellationGenerationLevel")
+            && !stderr.contains("would export"),
+        "{stderr}"
     );
     assert!(!obj.exists());
 }

@@ -109,11 +109,11 @@ pub struct DrawnOpts {
     pub displace: Displace,
     /// Grayscale PNG (8 or 16 bits) for --displace heightmap, sampled at the mesh's texture
     /// coordinates (default: a generated map of smooth bumps).
-    #[arg(long, value_name = "FILE.png")]
+    #[arg(value_parser = choices::path(), long, value_name = "FILE.png")]
     pub heightmap: Option<PathBuf>,
     /// Scalar tags for --surface stpn (lines `t X Y Z TENSION [SHARPNESS BIAS DX DY DZ]`;
     /// default: tags derived from the mesh's hard edges).
-    #[arg(long, value_name = "FILE")]
+    #[arg(value_parser = choices::path(), long, value_name = "FILE")]
     pub tags: Option<PathBuf>,
     /// For --surface stpn without --tags (or under it): edges whose faces meet at more than this
     /// many degrees are creases too (default: only positions with two vn are).
@@ -151,6 +151,7 @@ impl Technique {
 #[derive(Args, Debug)]
 pub struct ViewArgs {
     /// OBJ file (default: the embedded Spot control mesh).
+    #[arg(value_parser = choices::path())]
     pub mesh: Option<PathBuf>,
     #[command(flatten)]
     pub technique: Technique,
@@ -158,7 +159,7 @@ pub struct ViewArgs {
     #[arg(long, allow_hyphen_values = true, value_parser = Trimmed(whole_in(1..=u32::MAX)), help_heading = "Window")]
     pub frames: Option<u32>,
     /// Save the last frame to this PNG file.
-    #[arg(long, value_name = "FILE.png", help_heading = "Window")]
+    #[arg(value_parser = choices::path(), long, value_name = "FILE.png", help_heading = "Window")]
     pub screenshot: Option<PathBuf>,
     /// Start with a wireframe on: the refined edges (the default when no value is given), the
     /// cage (the coarse mesh's edges) or both.
@@ -186,6 +187,7 @@ pub struct ViewArgs {
     /// Where the headless fallback writes its image when no display exists.
     #[arg(
         long,
+        value_parser = choices::path(),
         value_name = "FILE.png",
         default_value = "meshrefine-view.png",
         help_heading = "Window"
@@ -211,7 +213,7 @@ pub struct ViewArgs {
     pub background: meshrefine::render::Background,
     /// Where the screenshot key (F12) writes meshrefine-<n>.png, an existing directory
     /// (default: the current directory).
-    #[arg(long, value_name = "DIR", help_heading = "Window")]
+    #[arg(value_parser = choices::path(), long, value_name = "DIR", help_heading = "Window")]
     pub screenshot_dir: Option<PathBuf>,
     #[command(flatten)]
     pub adaptive: AdaptiveOpts,
@@ -220,11 +222,13 @@ pub struct ViewArgs {
 #[derive(Args, Debug)]
 pub struct RenderArgs {
     /// OBJ file (default: the embedded Spot control mesh).
+    #[arg(value_parser = choices::path())]
     pub mesh: Option<PathBuf>,
     /// Output PNG.
     #[arg(
         short,
         long,
+        value_parser = choices::path(),
         value_name = "FILE.png",
         default_value = "meshrefine.png",
         help_heading = "Output"
@@ -262,9 +266,10 @@ pub struct RenderArgs {
 #[derive(Args, Debug)]
 pub struct ExportArgs {
     /// OBJ file (default: the embedded Spot control mesh).
+    #[arg(value_parser = choices::path())]
     pub mesh: Option<PathBuf>,
     /// Output OBJ.
-    #[arg(short, long, value_name = "FILE.obj", help_heading = "Output")]
+    #[arg(value_parser = choices::path(), short, long, value_name = "FILE.obj", help_heading = "Output")]
     pub output: PathBuf,
     #[command(flatten)]
     pub surface: SurfaceOpts,
@@ -326,6 +331,7 @@ impl ExportArgs {
 #[derive(Args, Debug)]
 pub struct InfoArgs {
     /// OBJ file (default: the embedded Spot control mesh).
+    #[arg(value_parser = choices::path())]
     pub mesh: Option<PathBuf>,
     /// Also print the GPU geometry bytes each driver would hold at this level.
     #[arg(long, allow_hyphen_values = true, value_parser = level(), help_heading = "Driver and level")]
@@ -441,6 +447,7 @@ pub struct AdaptiveOpts {
 #[derive(Args, Debug)]
 pub struct BenchArgs {
     /// OBJ file (default: the embedded Spot control mesh).
+    #[arg(value_parser = choices::path())]
     pub mesh: Option<PathBuf>,
     /// Surfaces to measure (comma separated).
     #[arg(long, value_parser = choices::surface(), value_delimiter = ',', default_value = "flat", help_heading = "Measurement")]
@@ -478,7 +485,7 @@ pub struct BenchArgs {
     pub min_total_ms: TypedF32,
     /// Grayscale PNG (8 or 16 bits) for --displacements heightmap, sampled at the mesh's
     /// texture coordinates (default: a generated map of smooth bumps).
-    #[arg(long, value_name = "FILE.png", help_heading = "Measurement")]
+    #[arg(value_parser = choices::path(), long, value_name = "FILE.png", help_heading = "Measurement")]
     pub heightmap: Option<PathBuf>,
     /// The offscreen image's width in pixels.
     #[arg(long, allow_hyphen_values = true, default_value_t = 1280, value_parser = image_side(), help_heading = "Measurement")]
@@ -522,7 +529,7 @@ fn level() -> Trimmed<impl Fn(&str) -> Result<u32, String> + Clone + Send + Sync
 /// bytes kept: a path need not be UTF-8).
 fn out_prefix() -> impl clap::builder::TypedValueParser<Value = PathBuf> {
     use clap::builder::TypedValueParser as _;
-    clap::builder::OsStringValueParser::new().map(|s| {
+    choices::NonEmpty(clap::builder::OsStringValueParser::new()).map(|s| {
         let path = PathBuf::from(s);
         let written = (path.extension().and_then(|e| e.to_str())).is_some_and(|e| {
             ["md", "csv", "json"]
@@ -815,5 +822,31 @@ mod tests {
             assert_eq!(e.kind(), clap::error::ErrorKind::ValueValidation, "{e}");
             assert!(e.to_string().contains("an empty value"), "{option}: {e}");
         }
+        // Paths too (kept as given: an empty one is refused, one of spaces is a name), on
+        // every command that takes one, the mesh included.
+        let paths: [&[&str]; 12] = [
+            &["render", "-o"],
+            &["render", "--heightmap"],
+            &["render", "--tags"],
+            &["render"],
+            &["export", "-o"],
+            &["info"],
+            &["bench", "--out"],
+            &["bench", "--heightmap"],
+            &["view", "--screenshot"],
+            &["view", "--screenshot-dir"],
+            &["view", "--headless-output"],
+            &["view"],
+        ];
+        for args in paths {
+            let e = Cli::try_parse_from([&["meshrefine"][..], args, &[""]].concat()).unwrap_err();
+            assert_eq!(e.kind(), clap::error::ErrorKind::ValueValidation, "{e}");
+            assert!(e.to_string().contains("an empty value"), "{args:?}: {e}");
+        }
+        let cli = Cli::try_parse_from(["meshrefine", "render", "-o", " "]).unwrap();
+        let Command::Render(r) = cli.command else {
+            panic!("not render");
+        };
+        assert_eq!(r.output, PathBuf::from(" "));
     }
 }

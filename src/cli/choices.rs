@@ -71,6 +71,33 @@ impl<P: TypedValueParser> TypedValueParser for Trimmed<P> {
     }
 }
 
+/// A path, kept as given (spaces are a path's own); an empty one is refused as every other
+/// empty value is.
+pub fn path() -> impl TypedValueParser<Value = std::path::PathBuf> {
+    NonEmpty(clap::builder::PathBufValueParser::new())
+}
+
+/// `P`, refusing an empty value as such (rather than clap's "none was supplied").
+#[derive(Clone)]
+pub struct NonEmpty<P>(pub P);
+
+impl<P: TypedValueParser> TypedValueParser for NonEmpty<P> {
+    type Value = P::Value;
+
+    fn parse_ref(
+        &self,
+        cmd: &clap::Command,
+        arg: Option<&clap::Arg>,
+        value: &std::ffi::OsStr,
+    ) -> Result<Self::Value, clap::Error> {
+        if value.is_empty() {
+            let refuse = |_: &str| -> Result<P::Value, String> { Err(empty(false)) };
+            return refuse.parse_ref(cmd, arg, value);
+        }
+        self.0.parse_ref(cmd, arg, value)
+    }
+}
+
 /// What an empty value is called: an empty item of a comma-separated list (`"flat,,pn"`, `""`),
 /// or an empty value.
 fn empty(list: bool) -> String {
@@ -207,6 +234,28 @@ pub fn wireframe() -> impl TypedValueParser<Value = Wireframe> {
         Wireframe::Cage => "the coarse mesh's edges (Loop's control mesh) in light cyan",
         Wireframe::Both => "both",
     })
+}
+
+/// The arguments with `--wireframe` given without its optional value where the next one names
+/// a mesh file rather than a value (a path ending in `.obj`, or holding a `/`): so
+/// `render --wireframe spot.obj` reads as written, the mesh the mesh and the wireframe the
+/// refined edges, where clap would take the path for the wireframe's value.
+pub fn wireframe_before_a_path(args: Vec<std::ffi::OsString>) -> Vec<std::ffi::OsString> {
+    let names_a_file = |a: &std::ffi::OsString| {
+        let text = a.to_string_lossy();
+        let t = text.trim();
+        let value = Wireframe::ALL.iter().any(|w| w.name() == t);
+        !value
+            && !t.starts_with('-')
+            && (t.to_ascii_lowercase().ends_with(".obj") || t.contains('/'))
+    };
+    let mut out = args.clone();
+    for (i, a) in args.iter().enumerate() {
+        if a == "--wireframe" && args.get(i + 1).is_some_and(names_a_file) {
+            out[i] = "--wireframe=refined".into();
+        }
+    }
+    out
 }
 
 /// `--view`.

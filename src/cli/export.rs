@@ -33,13 +33,6 @@ pub fn run(a: &ExportArgs, desc: &ContextDesc) -> Result<()> {
     let adaptive = a.adaptive.enabled(false);
     let shown = input.shown.clone();
     let mut cfg = draw_config(&a.technique(), &input.mesh)?;
-    if adaptive.is_none() {
-        // Adaptive: checked on the levels chosen, once they are (`check_adaptive`).
-        let per_element = |l| cfg.driver.refined_per_element(l);
-        let size = meshrefine::export::check_size(elements, a.level, per_element)
-            .map_err(|e| anyhow::anyhow!("cannot export '{shown}': {e}"))?;
-        progress.set_size(size);
-    }
     attach_surface_inputs(&mut input, &a.surface, false)?;
     if adaptive.is_some() {
         // A camera too far from the mesh is refused before any GPU work, as render's is.
@@ -55,6 +48,15 @@ pub fn run(a: &ExportArgs, desc: &ContextDesc) -> Result<()> {
             if let Some(a) = &adaptive {
                 cfg.level = a.max_level(&ctx, cfg.driver)?;
                 cfg.geomorph = a.geomorph;
+            } else {
+                // The device's level limit first, so that the size check's remedy is a level
+                // the driver draws; adaptive sizes are checked on the levels chosen
+                // (`check_adaptive`).
+                meshrefine::render::driver::check_level(&ctx, &cfg)?;
+                let per_element = |l| cfg.driver.refined_per_element(l);
+                let size = meshrefine::export::check_size(elements, cfg.level, per_element)
+                    .map_err(anyhow::Error::msg)?;
+                progress.set_size(size);
             }
             let knobs = (progress, max_capture_bytes);
             export(ctx, input, &cfg, &a.output, adaptive, size, knobs)
@@ -110,6 +112,10 @@ fn export(
         let fits = a.lower_to_fit(&mut h, &mut scene, &viewed, capture, *camera, size, chosen)?;
         if let Some(fits) = fits {
             (viewed, *chosen) = fits;
+        }
+        // A driver that cannot draw these levels is said alone, before any note on them.
+        if let Some(why) = super::adaptive::cannot_adapt(&mut h, &mut scene, &viewed, capture)? {
+            bail!(why);
         }
         progress.set_size(check_adaptive(a, &viewed, chosen)?);
         // Drawn: where they miss the pixel error (none said of levels refused above).

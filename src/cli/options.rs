@@ -87,6 +87,7 @@ where
     T: Into<std::ffi::OsString> + Clone,
 {
     let mut command = command();
+    let args = super::choices::wireframe_before_a_path(args.into_iter().map(Into::into).collect());
     let matches = command.try_get_matches_from_mut(args)?;
     let cli = Cli::from_arg_matches(&matches).map_err(|e| e.format(&mut command))?;
     let given = matches
@@ -468,6 +469,40 @@ pub fn check_outputs(cli: &Cli) -> Result<(), String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `--wireframe` before the mesh: a path (ending in `.obj`, or with a `/`) is the mesh and
+    /// the wireframe the refined edges; a value is the wireframe's; anything else is refused
+    /// as a value of `--wireframe`.
+    #[test]
+    fn wireframe_before_the_mesh_leaves_the_mesh() {
+        use super::super::args::Command;
+        use meshrefine::render::cage::Wireframe;
+        let parsed = |args: &[&str]| {
+            let (cli, _) = parse_from([&["meshrefine"][..], args].concat()).unwrap();
+            match cli.command {
+                Command::Render(r) => (r.mesh, r.wireframe),
+                Command::View(v) => (v.mesh, v.wireframe),
+                _ => panic!("{args:?}"),
+            }
+        };
+        let mesh = |p: &str| Some(std::path::PathBuf::from(p));
+        for path in ["spot.obj", "models/spot", "SPOT.OBJ"] {
+            for sub in ["render", "view"] {
+                let got = parsed(&[sub, "--wireframe", path]);
+                assert_eq!(got, (mesh(path), Some(Wireframe::Refined)), "{sub} {path}");
+            }
+        }
+        let got = parsed(&["render", "--wireframe", "cage", "spot.obj"]);
+        assert_eq!(got, (mesh("spot.obj"), Some(Wireframe::Cage)));
+        assert_eq!(
+            parsed(&["render", "--wireframe"]),
+            (None, Some(Wireframe::Refined))
+        );
+        let e = parse_from(["meshrefine", "render", "--wireframe", "refind"])
+            .err()
+            .unwrap();
+        assert!(e.to_string().contains("for '--wireframe"), "{e}");
+    }
 
     /// The adaptive options' help names each command's own default, and no option the command
     /// lacks (bench has --levels, not --level; only export writes every element by default).
