@@ -56,14 +56,7 @@ impl<P: TypedValueParser> TypedValueParser for Trimmed<P> {
         let trimmed = value
             .to_str()
             .map_or(value, |s| std::ffi::OsStr::new(s.trim()));
-        if trimmed.is_empty() {
-            // Rather than the inner parser's "a value is required" or "cannot parse integer
-            // from empty string": say what is empty, as clap words a value's error.
-            let list = arg.and_then(clap::Arg::get_value_delimiter).is_some();
-            let refuse = move |_: &str| -> Result<P::Value, String> { Err(empty(list)) };
-            return refuse.parse_ref(cmd, arg, value);
-        }
-        self.0.parse_ref(cmd, arg, trimmed)
+        non_empty(&self.0, cmd, arg, trimmed, value)
     }
 
     fn possible_values(&self) -> Option<Box<dyn Iterator<Item = PossibleValue> + '_>> {
@@ -90,12 +83,26 @@ impl<P: TypedValueParser> TypedValueParser for NonEmpty<P> {
         arg: Option<&clap::Arg>,
         value: &std::ffi::OsStr,
     ) -> Result<Self::Value, clap::Error> {
-        if value.is_empty() {
-            let refuse = |_: &str| -> Result<P::Value, String> { Err(empty(false)) };
-            return refuse.parse_ref(cmd, arg, value);
-        }
-        self.0.parse_ref(cmd, arg, value)
+        non_empty(&self.0, cmd, arg, value, value)
     }
+}
+
+/// `parser`'s value of `value`, an empty one refused as such (`given`: the value as typed, for
+/// the message): rather than the inner parser's "a value is required" or "cannot parse integer
+/// from empty string", say what is empty, as clap words a value's error.
+fn non_empty<P: TypedValueParser>(
+    parser: &P,
+    cmd: &clap::Command,
+    arg: Option<&clap::Arg>,
+    value: &std::ffi::OsStr,
+    given: &std::ffi::OsStr,
+) -> Result<P::Value, clap::Error> {
+    if value.is_empty() {
+        let list = arg.and_then(clap::Arg::get_value_delimiter).is_some();
+        let refuse = move |_: &str| -> Result<P::Value, String> { Err(empty(list)) };
+        return refuse.parse_ref(cmd, arg, given);
+    }
+    parser.parse_ref(cmd, arg, value)
 }
 
 /// What an empty value is called: an empty item of a comma-separated list (`"flat,,pn"`, `""`),
