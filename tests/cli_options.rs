@@ -923,6 +923,18 @@ fn exports_past_the_size_limit_are_refused_up_front() {
         ],
         &["(23424 elements x 4096)", "use --level 26 or lower"],
     );
+    // Up front: with no Vulkan driver at all, the size's sentence, not the driver's.
+    let env = [("VK_DRIVER_FILES", "/nonexistent/no-driver.json")];
+    let out = meshrefine_env(
+        &["export", p(&spot), "-o", p(&obj), "--level", "1024"],
+        &env,
+    );
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("would export") && !stderr.contains("Vulkan driver"),
+        "{stderr}"
+    );
     // Past the tessellator's limit too: that limit is said, not a size remedy (level 915 for
     // the icosahedron) the driver would then refuse.
     let out = meshrefine(&[

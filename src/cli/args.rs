@@ -161,8 +161,8 @@ pub struct ViewArgs {
     /// Save the last frame to this PNG file.
     #[arg(value_parser = choices::path(), long, value_name = "FILE.png", help_heading = "Window")]
     pub screenshot: Option<PathBuf>,
-    /// Start with a wireframe on: the refined edges (the default when no value is given), the
-    /// cage (the coarse mesh's edges) or both.
+    /// Start with a wireframe on: the refined edges (the default when no value is given, or
+    /// when a mesh path follows), the cage (the coarse mesh's edges) or both.
     #[arg(long, value_name = "WHAT", num_args = 0..=1, default_missing_value = "refined",
           value_parser = super::choices::wireframe(), help_heading = "Window")]
     pub wireframe: Option<meshrefine::render::cage::Wireframe>,
@@ -240,8 +240,8 @@ pub struct RenderArgs {
     /// The image's height in pixels.
     #[arg(long, allow_hyphen_values = true, default_value_t = 720, value_parser = image_side(), help_heading = "Output")]
     pub height: u32,
-    /// Draw a wireframe: the refined edges (the default when no value is given), the cage (the
-    /// coarse mesh's edges) or both.
+    /// Draw a wireframe: the refined edges (the default when no value is given, or when a mesh
+    /// path follows), the cage (the coarse mesh's edges) or both.
     #[arg(long, value_name = "WHAT", num_args = 0..=1, default_missing_value = "refined",
           value_parser = super::choices::wireframe(), help_heading = "Output")]
     pub wireframe: Option<meshrefine::render::cage::Wireframe>,

@@ -13,8 +13,9 @@ use anyhow::{bail, Context as _, Result};
 use glam::Vec2;
 use meshrefine::export::{element_texcoord, RefinedMesh, TexcoordOf, TriangleWelder};
 use meshrefine::gpu::{Context, ContextDesc};
+use meshrefine::render::driver::LEAST_LEVEL_LIMIT;
 use meshrefine::render::{
-    Camera, Capture, CapturedVertex, ChosenLevels, DrawConfig, Headless, Scene, XfbVertex,
+    Camera, Capture, CapturedVertex, ChosenLevels, DrawConfig, Driver, Headless, Scene, XfbVertex,
 };
 use std::io::Write as _;
 use std::path::Path;
@@ -33,6 +34,21 @@ pub fn run(a: &ExportArgs, desc: &ContextDesc) -> Result<()> {
     let adaptive = a.adaptive.enabled(false);
     let shown = input.shown.clone();
     let mut cfg = draw_config(&a.technique(), &input.mesh)?;
+    // Refused up front, before any GPU work; but a level the device may refuse (above the
+    // least limit of a driver a device limits) is checked against the device first, so that
+    // the size's remedy is never a level the driver then refuses. Adaptive sizes are checked
+    // on the levels chosen (`check_adaptive`).
+    let mut too_large = None;
+    if adaptive.is_none() {
+        let per_element = |l| cfg.driver.refined_per_element(l);
+        match meshrefine::export::check_size(elements, cfg.level, per_element) {
+            Ok(triangles) => progress.set_size(triangles),
+            Err(e) if cfg.level > LEAST_LEVEL_LIMIT && cfg.driver == Driver::Tess => {
+                too_large = Some(e)
+            }
+            Err(e) => bail!("cannot export '{shown}': {e}"),
+        }
+    }
     attach_surface_inputs(&mut input, &a.surface, false)?;
     if adaptive.is_some() {
         // A camera too far from the mesh is refused before any GPU work, as render's is.
@@ -48,15 +64,9 @@ pub fn run(a: &ExportArgs, desc: &ContextDesc) -> Result<()> {
             if let Some(a) = &adaptive {
                 cfg.level = a.max_level(&ctx, cfg.driver)?;
                 cfg.geomorph = a.geomorph;
-            } else {
-                // The device's level limit first, so that the size check's remedy is a level
-                // the driver draws; adaptive sizes are checked on the levels chosen
-                // (`check_adaptive`).
+            } else if let Some(e) = too_large {
                 meshrefine::render::driver::check_level(&ctx, &cfg)?;
-                let per_element = |l| cfg.driver.refined_per_element(l);
-                let size = meshrefine::export::check_size(elements, cfg.level, per_element)
-                    .map_err(anyhow::Error::msg)?;
-                progress.set_size(size);
+                bail!(e);
             }
             let knobs = (progress, max_capture_bytes);
             export(ctx, input, &cfg, &a.output, adaptive, size, knobs)

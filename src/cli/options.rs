@@ -87,8 +87,17 @@ where
     T: Into<std::ffi::OsString> + Clone,
 {
     let mut command = command();
-    let args = super::choices::wireframe_before_a_path(args.into_iter().map(Into::into).collect());
-    let matches = command.try_get_matches_from_mut(args)?;
+    let args: Vec<std::ffi::OsString> = args.into_iter().map(Into::into).collect();
+    let matches = match command.try_get_matches_from_mut(args.clone()) {
+        Ok(matches) => matches,
+        // `--wireframe` took a path for its value: read as written, the path the mesh
+        // ([`super::choices::wireframe_before_a_path`]).
+        Err(e) if wireframe_refused(&e) => {
+            let args = super::choices::wireframe_before_a_path(args);
+            command.try_get_matches_from_mut(args)?
+        }
+        Err(e) => return Err(e),
+    };
     let cli = Cli::from_arg_matches(&matches).map_err(|e| e.format(&mut command))?;
     let given = matches
         .subcommand()
@@ -100,6 +109,14 @@ where
         })
         .unwrap_or_default();
     Ok((cli, Given(given)))
+}
+
+/// Whether `e` refuses a value of `--wireframe`.
+fn wireframe_refused(e: &clap::Error) -> bool {
+    use clap::error::{ContextKind, ContextValue, ErrorKind};
+    e.kind() == ErrorKind::InvalidValue
+        && matches!(e.get(ContextKind::InvalidArg),
+            Some(ContextValue::String(arg)) if arg.starts_with("--wireframe"))
 }
 
 /// What a command chose: the surfaces and displacements it draws (several for `bench`), with
@@ -502,6 +519,10 @@ mod tests {
             .err()
             .unwrap();
         assert!(e.to_string().contains("for '--wireframe"), "{e}");
+        // Only where `--wireframe` is the option, not another's value as typed.
+        let e = parse_from(["meshrefine", "render", "--level", "--wireframe", "a.obj"]);
+        let e = e.err().unwrap().to_string();
+        assert!(e.contains("'--wireframe' for '--level"), "{e}");
     }
 
     /// The adaptive options' help names each command's own default, and no option the command
