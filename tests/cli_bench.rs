@@ -186,7 +186,7 @@ fn bench_refuses_incompatible_displacements_up_front() {
     let cases: [(&[&str], &str); 2] = [
         (
             &spot_heightmap,
-            "cannot benchmark 'the default mesh (spot)': the mesh has no texture coordinates (vt on every face): the heightmap displacement reads the map there",
+            "cannot benchmark 'the default mesh (spot)': the mesh has no texture coordinates (vt on every face), where the heightmap displacement reads its map",
         ),
         (
             &loop_heightmap,

@@ -102,31 +102,28 @@ impl State {
         );
         let surface = format!("{} + {}", cfg.surface.name(), cfg.displace.name());
         let camera = camera::camera_args(&self.camera, self.viewing);
+        let rates = title_rates(self.fps, self.gpu_ms);
         if let Some(a) = self.adaptive_summary(cfg) {
             // Gliding is the default: only its absence is said (static never glides; tess
             // under a largest level that is not a power of two draws integer levels).
             let still = !cfg.glides() && !cfg.driver.kind().refines_on_cpu();
             self.window.set_title(&format!(
-                "meshrefine | {} {}{}{flags} | {surface} | {:.0} fps | GPU {:.2} ms | {coarse} -> {} | {:.2} MB geometry | {camera}",
+                "meshrefine | {} {}{}{flags} | {surface} | {rates} | {coarse} -> {} | {:.2} MB geometry | {camera}",
                 cfg.label(),
                 a.mode(),
                 if still { " geomorph off" } else { "" },
-                self.fps,
-                self.gpu_ms,
                 a.counts(),
                 bytes as f64 / 1e6,
             ));
             return;
         }
         self.window.set_title(&format!(
-            "meshrefine | {} level {}{}{}{flags} | {surface} | {:.0} fps | GPU {:.2} ms | {} -> {} triangles | {:.2} MB geometry | driver's largest level {} | {camera}",
+            "meshrefine | {} level {}{}{}{flags} | {surface} | {rates} | {} -> {} triangles | {:.2} MB geometry | driver's largest level {} | {camera}",
             cfg.label(),
             cfg.level,
             if c.lod && !c.adaptive { " (LOD)" } else { "" },
             // Adaptive mode that could not draw adaptively (the panel says why).
             if c.adaptive { " (uniform: adaptive mode off here)" } else { "" },
-            self.fps,
-            self.gpu_ms,
             coarse,
             self.refined(cfg, coarse),
             bytes as f64 / 1e6,
@@ -363,9 +360,29 @@ fn compact_histogram(histogram: &std::collections::BTreeMap<u32, u64>) -> String
     }
 }
 
+/// The title's frame rate and GPU time: `-` until a frame's GPU time has been read back (a
+/// first frame compiling for seconds would otherwise read as 0 ms); two decimals under one
+/// frame a second.
+fn title_rates(fps: f64, gpu_ms: f64) -> String {
+    if gpu_ms > 0.0 {
+        let digits = if fps < 1.0 { 2 } else { 0 };
+        format!("{fps:.digits$} fps | GPU {gpu_ms:.2} ms")
+    } else {
+        "- fps | GPU - ms".to_string()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The title's rates: nothing measured reads `-`, not 0; slow frames keep their digits.
+    #[test]
+    fn title_rates_say_when_nothing_is_measured() {
+        assert_eq!(title_rates(0.0, 0.0), "- fps | GPU - ms");
+        assert_eq!(title_rates(0.05, 19873.2), "0.05 fps | GPU 19873.20 ms");
+        assert_eq!(title_rates(59.6, 16.4), "60 fps | GPU 16.40 ms");
+    }
 
     /// The level pass's cost reads `measuring` while the frame that first runs it is in flight,
     /// its GPU time once that frame is done, and `none` where no pass runs (docs/window.md).

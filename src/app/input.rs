@@ -84,20 +84,18 @@ impl ApplicationHandler for App {
                     s.request_quit(&self.opts, event_loop);
                 }
             }
-            WindowEvent::RedrawRequested => {
-                match s.frame(&self.opts) {
-                    Ok(true) => {}
-                    Ok(false) => event_loop.exit(),
-                    Err(e) => {
-                        self.error = Some(if surface_lost(&e) {
-                            anyhow::anyhow!("the window was closed by another program (its Vulkan surface is lost)")
-                        } else {
-                            e
-                        });
-                        event_loop.exit();
-                    }
+            WindowEvent::RedrawRequested => match s.frame(&self.opts) {
+                Ok(true) => {}
+                Ok(false) => event_loop.exit(),
+                Err(e) => {
+                    self.error = Some(if surface_lost(&e) {
+                        anyhow::anyhow!(super::WINDOW_GONE)
+                    } else {
+                        e
+                    });
+                    event_loop.exit();
                 }
-            }
+            },
             _ => {}
         }
     }

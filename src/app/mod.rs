@@ -41,6 +41,11 @@ use ui::{Asked, Controls, Ui};
 use winit::event_loop::{ActiveEventLoop, EventLoop};
 use winit::window::Window;
 
+/// How the demo ends when its window goes away under it (another program destroyed it, its
+/// Vulkan surface was lost, or the display went away): one sentence whichever noticed first.
+pub(super) const WINDOW_GONE: &str =
+    "the window system failed: the window was closed by another program, or its display went away";
+
 /// The window system could not be opened (no reachable X server, say): callers may fall back
 /// to a headless render.
 #[derive(Debug, thiserror::Error)]
@@ -131,9 +136,7 @@ pub fn run(
         Err(_) => {
             let why = panicked.lock().unwrap_or_else(|p| p.into_inner()).take();
             log::debug!("window system panic: {why:?}");
-            return Err(anyhow!(
-                "the window system failed: the window was closed by another program, or its display went away"
-            ));
+            return Err(anyhow!(WINDOW_GONE));
         }
     }
     if let Some(e) = app.error {

@@ -333,8 +333,12 @@ fn statistics(ui: &mut egui::Ui, info: &PanelInfo) {
             return;
         }
         let mut rows = vec![
-            ("fps", format!("{:.0}", info.fps)),
-            ("GPU frame", format!("{:.2} ms", info.gpu_ms)),
+            // Measuring until a frame's GPU time is read back (as the title's `-`).
+            ("fps", measured(info.gpu_ms, || format!("{:.0}", info.fps))),
+            (
+                "GPU frame",
+                measured(info.gpu_ms, || format!("{:.2} ms", info.gpu_ms)),
+            ),
             (
                 "drawn",
                 match info.adaptive_rows.is_empty() {
@@ -576,6 +580,15 @@ fn display(ui: &mut egui::Ui, c: &mut Controls, info: &PanelInfo) {
         ui.add(egui::Label::new(note).wrap());
     }
     ui.weak("drag: orbit, right or middle drag: pan, wheel: zoom; H hides this panel");
+}
+
+/// `figure()` once a frame's GPU time (`gpu_ms`) has been read back, `measuring` before.
+fn measured(gpu_ms: f64, figure: impl FnOnce() -> String) -> String {
+    if gpu_ms > 0.0 {
+        figure()
+    } else {
+        "measuring".to_string()
+    }
 }
 
 #[cfg(test)]

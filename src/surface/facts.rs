@@ -120,7 +120,7 @@ pub fn incompatibility(
     // The mesh first: without its coordinates no surface can take the displacement.
     if !mesh_has_texcoords {
         return Some(format!(
-            "the mesh has no texture coordinates (vt on every face): the {} displacement reads the map there",
+            "the mesh has no texture coordinates (vt on every face), where the {} displacement reads its map",
             displace.name
         ));
     }
