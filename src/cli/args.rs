@@ -529,8 +529,7 @@ fn level() -> Trimmed<impl Fn(&str) -> Result<u32, String> + Clone + Send + Sync
 /// bytes kept: a path need not be UTF-8).
 fn out_prefix() -> impl clap::builder::TypedValueParser<Value = PathBuf> {
     use clap::builder::TypedValueParser as _;
-    choices::NonEmpty(clap::builder::OsStringValueParser::new()).map(|s| {
-        let path = PathBuf::from(s);
+    choices::path().map(|path| {
         let written = (path.extension().and_then(|e| e.to_str())).is_some_and(|e| {
             ["md", "csv", "json"]
                 .iter()

@@ -56,7 +56,14 @@ impl<P: TypedValueParser> TypedValueParser for Trimmed<P> {
         let trimmed = value
             .to_str()
             .map_or(value, |s| std::ffi::OsStr::new(s.trim()));
-        non_empty(&self.0, cmd, arg, trimmed, value)
+        if trimmed.is_empty() {
+            // Rather than the inner parser's "a value is required" or "cannot parse integer
+            // from empty string": say what is empty, as clap words a value's error.
+            let list = arg.and_then(clap::Arg::get_value_delimiter).is_some();
+            let refuse = move |_: &str| -> Result<P::Value, String> { Err(empty(list)) };
+            return refuse.parse_ref(cmd, arg, value);
+        }
+        self.0.parse_ref(cmd, arg, trimmed)
     }
 
     fn possible_values(&self) -> Option<Box<dyn Iterator<Item = PossibleValue> + '_>> {
@@ -67,42 +74,10 @@ impl<P: TypedValueParser> TypedValueParser for Trimmed<P> {
 /// A path, kept as given (spaces are a path's own); an empty one is refused as every other
 /// empty value is.
 pub fn path() -> impl TypedValueParser<Value = std::path::PathBuf> {
-    NonEmpty(clap::builder::PathBufValueParser::new())
-}
-
-/// `P`, refusing an empty value as such (rather than clap's "none was supplied").
-#[derive(Clone)]
-pub struct NonEmpty<P>(pub P);
-
-impl<P: TypedValueParser> TypedValueParser for NonEmpty<P> {
-    type Value = P::Value;
-
-    fn parse_ref(
-        &self,
-        cmd: &clap::Command,
-        arg: Option<&clap::Arg>,
-        value: &std::ffi::OsStr,
-    ) -> Result<Self::Value, clap::Error> {
-        non_empty(&self.0, cmd, arg, value, value)
-    }
-}
-
-/// `parser`'s value of `value`, an empty one refused as such (`given`: the value as typed, for
-/// the message): rather than the inner parser's "a value is required" or "cannot parse integer
-/// from empty string", say what is empty, as clap words a value's error.
-fn non_empty<P: TypedValueParser>(
-    parser: &P,
-    cmd: &clap::Command,
-    arg: Option<&clap::Arg>,
-    value: &std::ffi::OsStr,
-    given: &std::ffi::OsStr,
-) -> Result<P::Value, clap::Error> {
-    if value.is_empty() {
-        let list = arg.and_then(clap::Arg::get_value_delimiter).is_some();
-        let refuse = move |_: &str| -> Result<P::Value, String> { Err(empty(list)) };
-        return refuse.parse_ref(cmd, arg, given);
-    }
-    parser.parse_ref(cmd, arg, value)
+    clap::builder::OsStringValueParser::new().try_map(|s| match s.is_empty() {
+        true => Err(empty(false)),
+        false => Ok(std::path::PathBuf::from(s)),
+    })
 }
 
 /// What an empty value is called: an empty item of a comma-separated list (`"flat,,pn"`, `""`),

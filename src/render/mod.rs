@@ -223,6 +223,12 @@ impl DrawConfig {
         )
     }
 
+    /// Whether drawing this reads the elements' records on the GPU: every driver but the
+    /// static one, which does only where its fragments evaluate the normal field.
+    pub fn reads_records(&self) -> bool {
+        !self.driver.kind().refines_on_cpu() || self.fragment_normal_field()
+    }
+
     /// GPU bytes of geometry for `elements` elements ([`Driver::geometry_bytes`], plus the
     /// static buffer's element attributes when the normal field is evaluated per fragment);
     /// with `adaptive`, of an adaptive frame up to `self.level`

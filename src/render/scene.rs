@@ -60,7 +60,7 @@ pub struct Scene {
     /// The coarse mesh's edges for the cage overlay, made when first drawn ([`Scene::cage`]).
     pub cage: Option<super::cage::Cage>,
     /// The coarse records on the GPU are older than `data` (the mesh moved): the next
-    /// `prepare` whose drawing reads them uploads them (`Scene::reads_records`: not `loop`,
+    /// `prepare` whose drawing reads them uploads them (`DrawConfig::reads_records`: not `loop`,
     /// nor `static` unless its fragments evaluate the normal field).
     records_stale: bool,
     warned_slow: bool,
@@ -219,7 +219,7 @@ impl Scene {
             self.prepare_pre_pass(ctx, pool, renderer, pass, &cfg.build, on_gpu)?;
         }
         let coarse = pre_pass.is_none();
-        if coarse && self.records_stale && self.reads_records(cfg) {
+        if coarse && self.records_stale && cfg.reads_records() {
             self.gpu.update_records(&self.data.records);
             self.records_stale = false;
         }
@@ -337,7 +337,7 @@ impl Scene {
     /// refined vertices, and the records where its fragments read them.
     pub fn upload_bytes(&self, cfg: &super::DrawConfig) -> u64 {
         let count = self.elements(cfg.surface).element_count as u64;
-        let records = if self.reads_records(cfg) && cfg.surface.pre_pass().is_none() {
+        let records = if cfg.reads_records() && cfg.surface.pre_pass().is_none() {
             count * RECORD_BYTES as u64
         } else {
             0
@@ -352,12 +352,6 @@ impl Scene {
             Some(pass) => pass.upload_bytes(),
             None => self.gpu.element_count as u64 * RECORD_BYTES as u64,
         }
-    }
-
-    /// Whether drawing `cfg` reads the elements' records on the GPU: every driver but the static
-    /// one, which does only where its fragments evaluate the normal field.
-    fn reads_records(&self, cfg: &super::DrawConfig) -> bool {
-        !cfg.driver.kind().refines_on_cpu() || cfg.fragment_normal_field()
     }
 
     /// The elements `surface` draws: M1 faces for `loop` (once prepared), coarse triangles
