@@ -12,7 +12,7 @@ packages=(
   vulkan-validationlayers vulkan-tools             # validation layer (on in every GPU test), vulkaninfo
   glslang-tools spirv-tools                        # glslangValidator / spirv-val for shader work
   libosd-dev                                       # OpenSubdiv: the independent Loop reference (scripts/check-loop-osd.sh)
-  xvfb xdotool openbox libxkbcommon-x11-0 libxcursor1 libxi6 libx11-xcb1 libxrandr2  # window demo under Xvfb; xdotool resizes it, openbox minimises it in the tests
+  xvfb xdotool openbox x11-utils libxkbcommon-x11-0 libxcursor1 libxi6 libx11-xcb1 libxrandr2  # window demo under Xvfb; xdotool resizes it, openbox minimises it, xmessage covers it in the tests
 )
 
 missing=()

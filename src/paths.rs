@@ -610,6 +610,18 @@ mod tests {
             refused.contains("too many levels of symbolic links"),
             "{refused}"
         );
+        // Two links naming each other: a loop, refused the same way, and nothing written.
+        std::os::unix::fs::symlink("b.obj", d.join("a.obj")).unwrap();
+        std::os::unix::fs::symlink("a.obj", d.join("b.obj")).unwrap();
+        let refused = check_output(&d.join("a.obj"), "-o", Output::File).unwrap_err();
+        assert!(
+            refused.contains("too many levels of symbolic links"),
+            "{refused}"
+        );
+        assert!(write_output(&d.join("a.obj"), |w| w.write_all(b"x")).is_err());
+        assert!(std::fs::symlink_metadata(d.join("a.obj"))
+            .unwrap()
+            .is_symlink());
         let prefix = d.join(std::ffi::OsStr::from_bytes(b"q\xff"));
         std::fs::create_dir(d.join(std::ffi::OsStr::from_bytes(b"q\xff.csv"))).unwrap();
         let refused = check_output(&prefix, "--out", Output::Prefix).unwrap_err();

@@ -596,6 +596,13 @@ fn options_that_do_not_apply_warn_and_are_ignored() {
         warnings_of(&args),
         ["warning: --octaves applies only to --displace noise, not to --displacements none: it is ignored"]
     );
+    // A height map bench would not read is not read (it need not exist), with one warning.
+    let mut args = [bench.as_slice(), &size].concat();
+    args.extend(["--heightmap", "/nonexistent/map.png"]);
+    assert_eq!(
+        warnings_of(&args),
+        ["warning: --heightmap applies only to --displace heightmap, not to --displacements none: it is ignored"]
+    );
     // info reads the loop options only with --surface loop, and reports only for loop.
     let w = warnings_of(&["info", p(&tet), "--bft-level", "3"]);
     assert_eq!(

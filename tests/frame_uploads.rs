@@ -84,11 +84,11 @@ fn close_up(
         pixel_error,
         cull: true,
     };
-    // The window's animation (3% of the radius), a new pose each call.
+    // The window's animation, a new pose each call.
     let mut t = 0.0;
     let pose = move || {
         t += 0.3;
-        base.animated(t, 0.03 * r)
+        base.wobbled(t)
     };
     (scene, cfg, view, pose)
 }

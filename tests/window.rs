@@ -492,8 +492,8 @@ fn is_background(px: [u8; 3], background: meshrefine::render::Background) -> boo
 #[test]
 fn window_resizes_and_quits_with_escape() {
     // `--width`/`--height` size the window and `--fullscreen` fills the screen (Xvfb's
-    // 1280x1024, without a window manager); F11 returns to the window's size, and the swapchain
-    // follows each resize. F12 saves the frame as meshrefine-<n>.png in `--screenshot-dir`, on
+    // 1280x1024, without a window manager); F11 returns to the window's size (the one given,
+    // then the one it was resized to), and the swapchain follows each resize. F12 saves the frame as meshrefine-<n>.png in `--screenshot-dir`, on
     // `--background light` (one it cannot write is said, and the demo goes on); B toggles the
     // background. Esc ends the demo after one last frame
     // that `--screenshot` saves: its size is the window's size then.
@@ -567,6 +567,12 @@ fn window_resizes_and_quits_with_escape() {
     demo.xdotool(&["key", "F11"]);
     wait_size((800, 500));
     demo.xdotool(&["windowsize", &demo.window, "640", "400"]);
+    wait_size((640, 400));
+    // Fullscreen again and back: to the size the window had then, not to --width x --height.
+    demo.xdotool(&["key", "F11"]);
+    wait_size((1280, 1024));
+    demo.xdotool(&["key", "F11"]);
+    wait_size((640, 400));
     std::thread::sleep(Duration::from_millis(500));
     let stderr = demo.quit();
     assert!(
@@ -854,6 +860,29 @@ fn keys_switch_driver_level_and_views() {
         }
     };
     let start = wait_camera("start", &|(c, _)| c.starts_with("--eye "));
+    // Over the panel (anchored top-left) the wheel scrolls the panel, and a right drag that
+    // starts there pans nothing, though it ends over the mesh: the camera stays the start's
+    // once the key typed after them has been drawn (events are handled in order).
+    demo.xdotool(&["mousemove", "--window", &demo.window, "150", "300"]);
+    for _ in 0..3 {
+        demo.xdotool(&["click", "5"]);
+    }
+    demo.xdotool(&["mousedown", "3"]);
+    demo.xdotool(&["mousemove", "--window", &demo.window, "900", "400"]);
+    demo.xdotool(&["mouseup", "3"]);
+    demo.xdotool(&["key", "k"]);
+    let title = demo.wait_title("level 8 cage");
+    assert_eq!(
+        camera(&title),
+        start,
+        "the panel's events moved the camera: {title}"
+    );
+    demo.xdotool(&["key", "k"]);
+    wait_camera("cage off", &|_| {
+        !demo
+            .xdotool(&["getwindowname", &demo.window])
+            .contains("cage")
+    });
     let drag = |button: &str, to: &str| {
         demo.xdotool(&["mousemove", "--window", &demo.window, "900", "400"]);
         demo.xdotool(&["mousedown", button]);
@@ -1290,9 +1319,10 @@ fn cpu_ticks(pid: u32) -> u64 {
 }
 
 /// A minimised window draws nothing (X11 reports no zero size for it: winit's minimised state
-/// and occlusion say it), and draws again once restored.
+/// and occlusion say it), nor does one wholly covered by another window, and each draws again
+/// once shown.
 #[test]
-fn a_minimised_window_pauses() {
+fn a_minimised_or_covered_window_pauses() {
     // Alone: another demo's frames would slow this one's, and its own CPU rates are measured.
     let _guard = common::gpu_lock();
     let x = Xvfb::start();
@@ -1321,25 +1351,47 @@ fn a_minimised_window_pauses() {
         }
         false
     };
-    assert!(frames_flow(), "no frames before minimising: {}", title());
+    assert!(frames_flow(), "no frames at the start: {}", title());
     let pid = demo.child.id();
-    let (visible0, t0) = (cpu_ticks(pid), Instant::now());
-    std::thread::sleep(Duration::from_secs(2));
-    let visible = cpu_ticks(pid) - visible0;
-    let visible_s = t0.elapsed().as_secs_f64();
-    demo.xdotool(&["windowminimize", "--sync", &demo.window]);
-    std::thread::sleep(Duration::from_secs(1));
-    let (hidden0, t0) = (cpu_ticks(pid), Instant::now());
-    std::thread::sleep(Duration::from_secs(3));
-    let hidden = cpu_ticks(pid) - hidden0;
-    let hidden_s = t0.elapsed().as_secs_f64();
-    // Drawing keeps a core busy (about 100 ticks a second); paused, the process sleeps.
-    assert!(
-        (hidden as f64 / hidden_s) < 0.1 * (visible as f64 / visible_s),
-        "minimised: {hidden} ticks in {hidden_s:.1} s, visible: {visible} in {visible_s:.1} s"
-    );
+    // CPU ticks a second while shown, then while `hide` keeps it out of sight.
+    let paused = |what: &str, hide: &dyn Fn()| {
+        let (visible0, t0) = (cpu_ticks(pid), Instant::now());
+        std::thread::sleep(Duration::from_secs(2));
+        let visible = cpu_ticks(pid) - visible0;
+        let visible_s = t0.elapsed().as_secs_f64();
+        hide();
+        std::thread::sleep(Duration::from_secs(1));
+        let (hidden0, t0) = (cpu_ticks(pid), Instant::now());
+        std::thread::sleep(Duration::from_secs(3));
+        let hidden = cpu_ticks(pid) - hidden0;
+        let hidden_s = t0.elapsed().as_secs_f64();
+        // Drawing keeps a core busy (about 100 ticks a second); paused, the process sleeps.
+        assert!(
+            (hidden as f64 / hidden_s) < 0.1 * (visible as f64 / visible_s),
+            "{what}: {hidden} ticks in {hidden_s:.1} s, shown: {visible} in {visible_s:.1} s"
+        );
+    };
+    paused("minimised", &|| {
+        demo.xdotool(&["windowminimize", "--sync", &demo.window]);
+    });
     demo.xdotool(&["windowactivate", "--sync", &demo.window]);
     assert!(frames_flow(), "no frames after restoring: {}", title());
+    // Another client's window over the whole screen, raised above the demo's.
+    let cover = std::cell::RefCell::new(None);
+    paused("covered", &|| {
+        let child = Command::new("xmessage")
+            .args(["-geometry", "2000x2000+0+0", "covering the demo"])
+            .env("DISPLAY", &x.display)
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("xmessage is not installed: run scripts/setup.sh (apt-get install x11-utils)");
+        *cover.borrow_mut() = Some(child);
+    });
+    let mut child = cover.borrow_mut().take().unwrap();
+    let _ = child.kill();
+    let _ = child.wait();
+    assert!(frames_flow(), "no frames once uncovered: {}", title());
     demo.quit();
     let _ = wm.kill();
     let _ = wm.wait();

@@ -473,9 +473,7 @@ impl State {
     fn advance_scene(&mut self) {
         if self.controls.animate {
             let t = self.start.elapsed().as_secs_f32();
-            // A wobble of 3% of the mesh's size, whatever its units.
-            let (_, r) = self.scene.bounding_sphere();
-            (self.scene).update_mesh(self.base_mesh.animated(t, 0.03 * r));
+            (self.scene).update_mesh(self.base_mesh.wobbled(t));
         }
         if self.controls.lod && !self.controls.adaptive {
             let (_, r) = self.scene.bounding_sphere();

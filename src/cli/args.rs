@@ -135,8 +135,8 @@ pub struct Technique {
     #[arg(long, value_parser = choices::submit(), help_heading = "Driver and level")]
     pub submit: Option<Submit>,
     /// Refinement level N: N segments per coarse edge, N² triangles per coarse triangle (the tess
-    /// driver's rings about 1.5 N²), every element at it (render and view: given, it replaces
-    /// adaptive drawing at 1 px).
+    /// driver's rings about 1.5 N²), every element at it (render and view draw adaptively, at
+    /// 1 px, unless it is given; the window's uniform mode, `M`, starts at it).
     #[arg(long, allow_hyphen_values = true, default_value_t = 16, value_parser = level(), help_heading = "Driver and level")]
     pub level: u32,
 }

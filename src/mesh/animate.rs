@@ -84,6 +84,30 @@ mod tests {
         }
     }
 
+    /// The window's animation moves no vertex further than `WOBBLE` of the bounding radius
+    /// (what window.md says), and some vertex nearly that far (the share is the amplitude,
+    /// not a looser bound), on meshes of very different sizes.
+    #[test]
+    fn the_window_wobble_is_its_share_of_the_radius() {
+        for (file, scale) in [("torus_16x8.obj", 1.0), ("spot_control_tri.obj", 1e3)] {
+            let (mut mesh, _) = load_model(file);
+            mesh.positions.iter_mut().for_each(|p| *p *= scale);
+            let r = mesh.bounding_radius();
+            let mut largest = 0.0f32;
+            for step in 0..80 {
+                let moved = mesh.wobbled(step as f32 * 0.025);
+                for (p, q) in mesh.positions.iter().zip(&moved.positions) {
+                    largest = largest.max((*p - *q).length());
+                }
+            }
+            assert!(largest <= super::super::WOBBLE * r * (1.0 + 1e-5), "{file}");
+            assert!(
+                largest >= 0.95 * super::super::WOBBLE * r,
+                "{file}: {largest}"
+            );
+        }
+    }
+
     #[test]
     fn given_normals_are_kept() {
         for file in ["cylinder_hard_normals.obj", "spot_control_tri_vn.obj"] {

@@ -385,6 +385,12 @@ impl Mesh {
         animate::animated(self, time, amplitude)
     }
 
+    /// The window demo's animation at `time`: [`Mesh::animated`] moving each position by at
+    /// most [`WOBBLE`] times this mesh's [`Mesh::bounding_radius`], whatever its units.
+    pub fn wobbled(&self, time: f32) -> Mesh {
+        self.animated(time, WOBBLE * self.bounding_radius())
+    }
+
     /// `Ok` if the mesh has no non-manifold edge or vertex, else [`MeshError::NonManifold`]
     /// (named by [`Mesh::name`]).
     pub fn require_manifold(&self) -> Result<(), MeshError> {
@@ -400,6 +406,10 @@ impl Mesh {
         }
     }
 }
+
+/// The largest move of the window demo's animation ([`Mesh::wobbled`]), as a share of the
+/// mesh's bounding radius.
+pub const WOBBLE: f32 = 0.03;
 
 /// The default model: the control mesh of "Spot" (Spot by Keenan Crane, released into the
 /// public domain), triangulated, with area-weighted normals given in the file; 188
