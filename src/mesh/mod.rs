@@ -258,19 +258,23 @@ impl Mesh {
             && self.piece_volumes().iter().all(|&v| v > 0.0)
     }
 
-    /// Whether every corner's normal lies on its face's wound side (a non-negative dot product
-    /// with the face's normal from its winding): computed normals always do; a file's may
-    /// point inwards. With [`Mesh::closed_outward`], the normals then point out of the surface
-    /// too, so the side of a triangle the eye sees says on which side of the normal it is
-    /// (the fragment stage's lighting: `render::FrameUniforms::light_dir`).
-    pub fn normals_follow_winding(&self) -> bool {
+    /// Whether every corner's normal points out of the surface as the winding says: a
+    /// non-negative dot product with its vertex's area-weighted normal (the faces around the
+    /// vertex, wound). Computed normals always do; a file's may point inwards. Not every face
+    /// at the vertex need agree: where a closed surface folds sharply (Spot's ears, say) a
+    /// smooth normal may point against a steep face of its own. With
+    /// [`Mesh::closed_outward`], the normals then point out of the surface, so the side of a
+    /// triangle the eye sees says on which side of the surface it is (the fragment stage's
+    /// lighting: `render::FrameUniforms::light_dir`).
+    pub fn normals_point_out(&self) -> bool {
+        let outward =
+            normals::compute_area_weighted_normals(&self.positions, &self.position_indices());
         self.triangles.iter().all(|t| {
-            let [a, b, c] = t.p.map(|i| self.positions[i as usize]);
-            let face = (b - a).cross(c - a);
-            t.n.iter().all(|&i| {
+            t.p.iter().zip(&t.n).all(|(&p, &n)| {
+                let out = outward.get(p as usize).copied().unwrap_or(Vec3::ZERO);
                 self.normals
-                    .get(i as usize)
-                    .is_some_and(|n| n.dot(face) >= 0.0)
+                    .get(n as usize)
+                    .is_some_and(|n| n.dot(out) >= 0.0)
             })
         })
     }
@@ -622,17 +626,35 @@ mod tests {
         assert!(cube.closed_outward() && !inside_out.closed_outward() && !two.closed_outward());
     }
 
-    /// Computed normals follow the winding; a file's pointing inwards do not.
+    /// Computed normals point out; a file's pointing inwards do not. Spot's (computed, and its
+    /// file's) do, though at 42 corners they point against a steep face of their own.
     #[test]
-    fn normals_follow_the_winding_unless_a_file_turns_them_in() {
+    fn normals_point_out_unless_a_file_turns_them_in() {
         let tet = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n";
         let faces = "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
         let (computed, _) = Mesh::from_obj_str("t.obj", &format!("{tet}{faces}")).unwrap();
-        assert!(computed.closed_outward() && computed.normals_follow_winding());
+        assert!(computed.closed_outward() && computed.normals_point_out());
         // One normal a corner, pointing into the tetrahedron.
         let inward = "vn 1 1 1\nvn -1 -1 -1\nf 1//1 3//1 2//1\nf 1//1 2//1 4//1\nf 1//1 4//1 3//1\nf 2//2 3//2 4//2\n";
         let (turned, _) = Mesh::from_obj_str("t.obj", &format!("{tet}{inward}")).unwrap();
-        assert!(turned.closed_outward() && !turned.normals_follow_winding());
+        assert!(turned.closed_outward() && !turned.normals_point_out());
+        // Split normals (each face's own) point out too.
+        let split = "vn 0 0 -1\nvn 0 -1 0\nvn -1 0 0\nvn 1 1 1\nf 1//1 3//1 2//1\nf 1//2 2//2 4//2\nf 1//3 4//3 3//3\nf 2//4 3//4 4//4\n";
+        let (split, _) = Mesh::from_obj_str("t.obj", &format!("{tet}{split}")).unwrap();
+        assert!(split.normals_point_out());
+        for file in ["spot_control_tri.obj", "spot_control_tri_vn.obj"] {
+            let (spot, _) = test_support::load_model(file);
+            assert!(spot.closed_outward() && spot.normals_point_out(), "{file}");
+            let against = (spot.triangles.iter())
+                .flat_map(|t| {
+                    let [a, b, c] = t.p.map(|i| spot.positions[i as usize]);
+                    let face = (b - a).cross(c - a);
+                    t.n.map(|n| spot.normals[n as usize].dot(face) < 0.0)
+                })
+                .filter(|&against| against)
+                .count();
+            assert_eq!(against, 42, "{file}");
+        }
     }
 
     /// The winding number is 1 inside a closed mesh wound outwards, 0 outside (however close),

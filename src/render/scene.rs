@@ -42,9 +42,9 @@ pub struct Scene {
     /// the eye culled ([`Scene::set_levels`]). An open surface shows its back side, and an
     /// inside-out one shows only faces that face away.
     pub closed: bool,
-    /// [`Scene::closed`], and every corner's normal on its face's wound side
-    /// ([`Mesh::normals_follow_winding`](crate::mesh::Mesh::normals_follow_winding)): the
-    /// normals point out of the surface, so lighting may tell the inside by the triangle's side.
+    /// [`Scene::closed`], and every normal pointing out as the winding says
+    /// ([`Mesh::normals_point_out`](crate::mesh::Mesh::normals_point_out)), so lighting may
+    /// tell the inside by the triangle's side.
     pub normals_outward: bool,
     /// Whether the coarse mesh intersects itself ([`Mesh::self_intersects`](crate::mesh::Mesh::self_intersects)),
     /// found when first asked (`flat` drawn adaptively with culling), again after
@@ -150,7 +150,7 @@ impl Scene {
     ) -> Result<Self, RenderError> {
         let data = MeshData::new(mesh, RecordKind::Corners, Seams::default());
         let closed = data.mesh.closed_outward();
-        let normals_outward = closed && data.mesh.normals_follow_winding();
+        let normals_outward = closed && data.mesh.normals_point_out();
         let heightmap = Heightmap::generated();
         let (tags, _) = crate::surface::stpn::derive(&data.mesh);
         let gpu = GpuMesh::new(
@@ -293,9 +293,9 @@ impl Scene {
     /// by the next `prepare`. Only between frames.
     pub fn update_mesh(&mut self, mesh: Mesh) {
         self.data = MeshData::new(mesh, self.data.kind, self.data.seams);
-        // Moved corners may leave a file's normals on the other side of their faces (the
-        // topology, and so `closed`, stays).
-        self.normals_outward = self.closed && self.data.mesh.normals_follow_winding();
+        // Moved corners may leave a file's normals pointing in (the topology, and so
+        // `closed`, stays).
+        self.normals_outward = self.closed && self.data.mesh.normals_point_out();
         self.self_intersecting = std::cell::OnceCell::new();
         self.generation += 1;
         if let Some(l) = &mut self.loop_ {
