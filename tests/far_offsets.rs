@@ -263,3 +263,45 @@ fn a_far_look_at_draws_what_a_near_one_does() {
         );
     }
 }
+
+/// A mesh 1e20 from its origin, whose squared distance is past f32's range, takes a
+/// displacement within every limit of errors.md ("Displacement limits": a reach of 1e-2 radii,
+/// phases under 2^22 radians): drawn, not refused as reaching infinity. Further out the f32
+/// range itself refuses it, naming the real distance.
+#[test]
+fn a_mesh_whose_squared_distance_overflows_f32_takes_a_displacement() {
+    let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+    let moved = |offset: f64| {
+        let mut out = String::new();
+        for line in text.lines() {
+            match line.strip_prefix("v ") {
+                Some(v) => {
+                    let c: Vec<f64> = v.split_whitespace().map(|x| x.parse().unwrap()).collect();
+                    let [x, y, z] = [c[0] * 1e14 + offset, c[1] * 1e14, c[2] * 1e14];
+                    out.push_str(&format!("v {x:e} {y:e} {z:e}\n"));
+                }
+                None => out.push_str(&format!("{line}\n")),
+            }
+        }
+        let path = tmp(&format!("far-displaced-{offset:e}.obj"));
+        std::fs::write(&path, out).unwrap();
+        path
+    };
+    let mesh = moved(1e20);
+    let png = tmp("far-displaced.png");
+    let displace = [
+        "--displace",
+        "sine",
+        "--frequency",
+        "1e-14",
+        "--amplitude",
+        "1e12",
+    ];
+    let size = ["--width", "64", "--height", "48", "--level", "2"];
+    let args = [&["render", p(&mesh), "-o", p(&png)][..], &size, &displace].concat();
+    ok(&args);
+    // 1e38 from the origin: past a quarter of f32::MAX.
+    let edge = moved(1e38);
+    let args = [&["render", p(&edge), "-o", p(&png)][..], &size, &displace].concat();
+    expect_error(&args, &["beyond the range of f32", "from the origin"]);
+}

@@ -128,7 +128,7 @@ impl State {
     /// more than any mesh takes.
     pub(super) fn displacement_refusal(&self, cfg: &DrawConfig, d: Displace) -> Option<String> {
         let (centre, radius) = self.scene.bounding_sphere();
-        let extent = (centre - cfg.params.origin).length() + radius;
+        let extent = (centre - cfg.params.origin).as_dvec3().length() + radius as f64;
         cfg.params.check_displacement(d, radius, extent).err()
     }
 

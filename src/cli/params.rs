@@ -65,7 +65,8 @@ impl ParamOpts {
         let radius = mesh.bounding_radius();
         let p = self.params(radius)?;
         let (lo, hi) = mesh.bounds();
-        let extent = lo.abs().max(hi.abs()).length();
+        // In f64: a mesh 1.9e19 from its origin has a squared extent past f32's range.
+        let extent = lo.abs().max(hi.abs()).as_dvec3().length();
         for &d in displaces {
             p.check_displacement(d, radius, extent).map_err(|e| {
                 // A value given is named as typed; a frequency not given is the mesh's

@@ -593,7 +593,7 @@ mod tests {
             .unwrap_err();
         assert!(e.contains("beyond the range of f32"), "{e}");
         SurfaceParams::default()
-            .check_displacement(Displace::None, radius, f32::MAX)
+            .check_displacement(Displace::None, radius, f32::MAX as f64)
             .unwrap();
     }
 

@@ -156,7 +156,7 @@ impl SurfaceParams {
     /// points within `f32`. Within these limits positions, tangents and normals stay
     /// finite (the normal's perturbation is at most about a·f, whose square is far from
     /// overflowing).
-    pub fn check_displacement(&self, d: Displace, radius: f32, extent: f32) -> Result<(), String> {
+    pub fn check_displacement(&self, d: Displace, radius: f32, extent: f64) -> Result<(), String> {
         if d == Displace::None {
             return Ok(());
         }
@@ -173,7 +173,7 @@ impl SurfaceParams {
                 reach / r
             ));
         }
-        if extent as f64 + reach > f32::MAX as f64 / 4.0 {
+        if extent + reach > f32::MAX as f64 / 4.0 {
             return Err(format!(
                 "{by} moves the surface beyond the range of f32 coordinates (the mesh reaches {extent:e} from the origin)"
             ));
@@ -196,7 +196,7 @@ impl SurfaceParams {
                     shown_number(self.frequency)
                 ));
             }
-            let phase = top / r * extent as f64;
+            let phase = top / r * extent;
             if phase > MAX_PHASE {
                 return Err(format!(
                     "--displace {} at --frequency {} reaches phases of {phase:.3e} radians on this mesh, whose points lie up to {extent:.3e} from its origin (the displacement is a function of the mesh's coordinates); f32 resolves them up to 2^22 (about 4.2e6): move the mesh nearer its origin or lower --frequency{}",
