@@ -1117,3 +1117,59 @@ fn vanishing_normal_fields_export_unit_normals() {
         assert!(normals > 0, "{args:?}: no normals written");
     }
 }
+
+/// The README's quick start, every `meshrefine` line of it run as shown (comments aside) from a
+/// folder holding the repository's `assets`, no display (so `view` renders headlessly): each
+/// ends with status 0 and no validation message, writes what it names, and `export`'s file for
+/// a camera carries its header lines.
+#[test]
+fn the_readme_quick_start_runs_as_shown() {
+    let readme = include_str!("../README.md");
+    let start = readme.find("## Quick start").expect("no quick start");
+    let lines: Vec<&str> = readme[start..]
+        .split("```")
+        .nth(3)
+        .expect("no second block")
+        .lines()
+        .map(|l| l.split(" # ").next().unwrap().trim())
+        .filter(|l| l.starts_with("meshrefine "))
+        .collect();
+    assert!(lines.len() >= 15, "{lines:?}");
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("readme");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let assets = model_path("spot_tri.obj");
+    let assets = assets.parent().unwrap().parent().unwrap();
+    std::os::unix::fs::symlink(assets, dir.join("assets")).unwrap();
+    for line in &lines {
+        let args: Vec<&str> = line.split_whitespace().skip(1).collect();
+        let out = {
+            let _guard = common::gpu_lock();
+            bin()
+                .args(&args)
+                .current_dir(&dir)
+                .env_remove("DISPLAY")
+                .env_remove("WAYLAND_DISPLAY")
+                .output()
+                .expect("run meshrefine")
+        };
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{line}: {stderr}");
+        assert!(!stderr.contains("validation"), "{line}: {stderr}");
+        // What it writes is there: `-o FILE`, `--out PREFIX`'s three files.
+        if let Some(i) = args.iter().position(|a| *a == "-o") {
+            assert!(dir.join(args[i + 1]).is_file(), "{line}");
+        }
+        if let Some(i) = args.iter().position(|a| *a == "--out") {
+            for ext in ["md", "csv", "json"] {
+                assert!(
+                    dir.join(format!("{}.{ext}", args[i + 1])).is_file(),
+                    "{line}"
+                );
+            }
+        }
+    }
+    let close = std::fs::read_to_string(dir.join("close.obj")).unwrap();
+    assert!(close.contains("\n# camera eye ") && close.contains("\n# levels "));
+    assert!(dir.join("meshrefine-view.png").is_file());
+}
