@@ -31,6 +31,54 @@ pub struct RefinedMesh {
     pub texcoord_triangles: Vec<[u32; 3]>,
 }
 
+impl RefinedMesh {
+    /// Without the positions, normals and texture coordinates no triangle uses (those of
+    /// triangles dropped as degenerate, where nothing else shares them), the rest in their
+    /// order: an export writes no vertex no face uses. Unchanged where every one is used.
+    fn without_unused(mut self) -> Self {
+        fn keep<T: Copy>(items: &mut Vec<T>, used: impl Iterator<Item = u32>) -> Option<Vec<u32>> {
+            let mut new = vec![u32::MAX; items.len()];
+            for i in used {
+                new[i as usize] = 0;
+            }
+            if new.iter().all(|&i| i == 0) {
+                return None;
+            }
+            let mut kept = 0;
+            for (i, slot) in new.iter_mut().enumerate() {
+                if *slot == 0 {
+                    items[kept as usize] = items[i];
+                    *slot = kept;
+                    kept += 1;
+                }
+            }
+            items.truncate(kept as usize);
+            Some(new)
+        }
+        let corners =
+            |k: usize| move |t: &[(u32, u32); 3]| t.map(|c| if k == 0 { c.0 } else { c.1 });
+        if let Some(new) = keep(
+            &mut self.positions,
+            self.triangles.iter().flat_map(corners(0)),
+        ) {
+            (self.triangles.iter_mut().flatten()).for_each(|c| c.0 = new[c.0 as usize]);
+        }
+        if let Some(new) = keep(
+            &mut self.normals,
+            self.triangles.iter().flat_map(corners(1)),
+        ) {
+            (self.triangles.iter_mut().flatten()).for_each(|c| c.1 = new[c.1 as usize]);
+        }
+        if let Some(new) = keep(
+            &mut self.texcoords,
+            self.texcoord_triangles.iter().flatten().copied(),
+        ) {
+            (self.texcoord_triangles.iter_mut().flatten()).for_each(|i| *i = new[*i as usize]);
+        }
+        self
+    }
+}
+
 /// The map from drawn positions to written ones, `drawn / scale + centre` in `f64`: the inverse
 /// of `Mesh::viewing_transform`, so an export is written in the mesh's own coordinates while
 /// the GPU draws it centred at unit size.
@@ -134,7 +182,7 @@ pub fn weld_with(
             }
         }
     }
-    Ok(out)
+    Ok(out.without_unused())
 }
 
 /// Weld the vertices the pattern driver captured drawing adaptively at largest level
@@ -222,7 +270,7 @@ pub fn weld_adaptive_with(
     let mut out = w.out;
     out.triangles = triangles;
     out.texcoord_triangles = texcoord_triangles;
-    Ok(out)
+    Ok(out.without_unused())
 }
 
 /// Weld the triangles transform feedback captured from the `tess` driver (corners in the order
@@ -281,7 +329,7 @@ impl<'a> TriangleWelder<'a> {
     }
 
     pub fn finish(self) -> RefinedMesh {
-        self.w.out
+        self.w.out.without_unused()
     }
 }
 
@@ -606,6 +654,28 @@ mod tests {
         write_obj(&whole, &header, &mut out, |p| heard.push(p)).unwrap();
         assert_eq!(String::from_utf8(out).unwrap(), to_obj(&whole, &header));
         assert_eq!(heard, [(153, 153)]);
+    }
+
+    /// A triangle whose corners weld together is dropped with the vertices only it used (a
+    /// tiny triangle far from the rest: its positions round together), and its normal; the
+    /// rest keep their order.
+    #[test]
+    fn dropped_triangles_leave_no_unused_vertex() {
+        let v = |x: f32, y: f32, n: f32| XfbVertex {
+            position: [x, y, 0.0],
+            normal: [0.0, n, 1.0],
+            ..XfbVertex::zeroed()
+        };
+        let tris = [
+            [v(5.0, 5.0, 0.25), v(5.0, 5.0, 0.25), v(6.0, 5.0, 0.25)],
+            [v(0.0, 0.0, 0.0), v(1.0, 0.0, 0.0), v(0.0, 1.0, 0.5)],
+        ];
+        let mesh = weld_triangles(&tris);
+        assert_eq!(mesh.positions, [Vec3::ZERO, Vec3::X, Vec3::Y]);
+        assert_eq!(mesh.normals.len(), 2);
+        assert_eq!(mesh.triangles, [[(0, 0), (1, 0), (2, 1)]]);
+        let text = to_obj(&mesh, &[]);
+        assert_eq!(text.lines().filter(|l| l.starts_with("v ")).count(), 3);
     }
 
     /// A packed adaptive capture by hand: two triangles sharing an edge in the plane, element

@@ -273,7 +273,7 @@ impl Scan {
             let (line, v) = self.normals[n];
             if unit(v).is_none() {
                 let problem = if v.is_finite() {
-                    "has zero length"
+                    "has zero length in f32 (components under about 1e-45 read as 0)"
                 } else {
                     "is not finite in f32 (NaN, infinite, or beyond about ±3.4e38)"
                 };
@@ -810,7 +810,12 @@ mod tests {
     fn bad_normals_name_their_line() {
         assert_eq!(
             err(&format!("{TRI}vn 0 0 0\nf 1//1 2//1 3//1\n")),
-            "'x.obj' line 4: normal (0, 0, 0) used by the face on line 5 has zero length"
+            "'x.obj' line 4: normal (0, 0, 0) used by the face on line 5 has zero length in f32 (components under about 1e-45 read as 0)"
+        );
+        // Non-zero in the file, zero in f32: said so.
+        assert_eq!(
+            err(&format!("{TRI}vn 0 1e-50 0\nf 1//1 2//1 3//1\n")),
+            "'x.obj' line 4: normal (0, 0, 0) used by the face on line 5 has zero length in f32 (components under about 1e-45 read as 0)"
         );
         assert_eq!(
             err(&format!("{TRI}vn 0 0 1\nvn nan 0 1\nf 1//1 2//1 3//2\n")),
