@@ -453,9 +453,9 @@ fn geomorphing_displaced_and_loop_meshes_meet_the_pixel_error() {
     });
 }
 
-/// Geomorphing where an element's edges glide at different rates (docs/adaptivity.md, "What
-/// is proven, what is checked"): the spiky ridge (`assets/models/spiky_ridge.obj`, 320
-/// triangles) as `phong`, whose bound is exact (no slack), seen from 8.8 to 15 of its radii.
+/// Geomorphing where an element's edges glide at different rates (docs/adaptivity.md, "Where
+/// gliding exceeds the bound"): the spiky ridge (`assets/models/spiky_ridge.obj`, 320
+/// triangles) as `phong`, whose bound is exact (no slack), the eye at (6, 4, 5) and farther.
 /// Its level-2 elements draw no vertex of their own: every new vertex is an edge's, each
 /// gliding with its edge's level, and the triangles between them overshoot the pixel error a
 /// little on the pattern driver (1.03 to 1.04 px at 1 px): asserted at most 1.06 px, and over

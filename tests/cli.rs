@@ -1119,9 +1119,10 @@ fn vanishing_normal_fields_export_unit_normals() {
 }
 
 /// The README's quick start, every `meshrefine` line of it run as shown (comments aside) from a
-/// folder holding the repository's `assets`, no display (so `view` renders headlessly): each
-/// ends with status 0 and no validation message, writes what it names, and `export`'s file for
-/// a camera carries its header lines.
+/// folder holding the repository's `assets`, with no display: so its `view` lines render
+/// headlessly (the window's own tests are tests/window.rs). Each ends with status 0 and no
+/// validation message, writes what it names, and `export`'s file for a camera carries its
+/// header lines.
 #[test]
 fn the_readme_quick_start_runs_as_shown() {
     let readme = include_str!("../README.md");

@@ -1387,6 +1387,18 @@ fn a_minimised_or_covered_window_pauses() {
             .spawn()
             .expect("xmessage is not installed: run scripts/setup.sh (apt-get install x11-utils)");
         *cover.borrow_mut() = Some(child);
+        // Measured once the cover is mapped (the window manager places it first).
+        let t0 = Instant::now();
+        while demo
+            .xdotool(&["search", "--onlyvisible", "--class", "Xmessage"])
+            .is_empty()
+        {
+            assert!(
+                t0.elapsed() < Duration::from_secs(30),
+                "xmessage never showed"
+            );
+            std::thread::sleep(Duration::from_millis(100));
+        }
     });
     let mut child = cover.borrow_mut().take().unwrap();
     let _ = child.kill();

@@ -438,9 +438,9 @@ pub struct AdaptiveOpts {
     /// Glide the vertices a finer level adds from their coarser neighbours' midpoint to the
     /// surface as the level grows, so nothing pops when levels change (when drawing
     /// adaptively; default: on). While gliding the pixel error is proven only where a
-    /// triangle's vertices glide together: on the pattern driver it has been exceeded by about
-    /// 5 % where an element's edges glide at different rates (docs/adaptivity.md, "Where the
-    /// check fails"); off, it is proven.
+    /// triangle's vertices glide together: where an element's edges glide at different rates
+    /// the pattern driver can exceed it by a few percent (docs/adaptivity.md, "Where gliding
+    /// exceeds the bound"); off, it is proven.
     #[arg(long, value_parser = choices::geomorph())]
     pub geomorph: Option<bool>,
     #[command(flatten, next_help_heading = "Camera")]

@@ -259,10 +259,12 @@ impl Mesh {
     }
 
     /// Whether every corner's normal points out of the surface as the winding says: a
-    /// non-negative dot product with its vertex's area-weighted normal (the faces around the
-    /// vertex, wound). Computed normals always do; a file's may point inwards. Not every face
-    /// at the vertex need agree: where a closed surface folds sharply (Spot's ears, say) a
-    /// smooth normal may point against a steep face of its own. With
+    /// non-negative dot product with its face's normal from the winding, or with its vertex's
+    /// area-weighted normal (the faces around the vertex, wound). Computed normals always do;
+    /// a file's may point inwards, which fails both. Either suffices: where a closed surface
+    /// folds sharply (Spot's ears, say) a smooth normal may point against a steep face of its
+    /// own, and at a sharp edge (a wedge, a thin shell) a face's own normal may point against
+    /// its vertex's average. With
     /// [`Mesh::closed_outward`], the normals then point out of the surface, so the side of a
     /// triangle the eye sees says on which side of the surface it is (the fragment stage's
     /// lighting: `render::FrameUniforms::light_dir`).
@@ -270,11 +272,13 @@ impl Mesh {
         let outward =
             normals::compute_area_weighted_normals(&self.positions, &self.position_indices());
         self.triangles.iter().all(|t| {
+            let [a, b, c] = t.p.map(|i| self.positions[i as usize]);
+            let face = (b - a).cross(c - a);
             t.p.iter().zip(&t.n).all(|(&p, &n)| {
                 let out = outward.get(p as usize).copied().unwrap_or(Vec3::ZERO);
                 self.normals
                     .get(n as usize)
-                    .is_some_and(|n| n.dot(out) >= 0.0)
+                    .is_some_and(|n| n.dot(face) >= 0.0 || n.dot(out) >= 0.0)
             })
         })
     }
@@ -642,6 +646,22 @@ mod tests {
         let split = "vn 0 0 -1\nvn 0 -1 0\nvn -1 0 0\nvn 1 1 1\nf 1//1 3//1 2//1\nf 1//2 2//2 4//2\nf 1//3 4//3 3//3\nf 2//4 3//4 4//4\n";
         let (split, _) = Mesh::from_obj_str("t.obj", &format!("{tet}{split}")).unwrap();
         assert!(split.normals_point_out());
+        // A sliver tetrahedron, one normal a face: at its sharp edges a face's own normal
+        // points against its vertex's average, and still out of the surface.
+        let sliver = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0.3 0.3 0.01\n";
+        let (sliver, _) = Mesh::from_obj_str("s.obj", &format!("{sliver}{faces}")).unwrap();
+        let faces_own: String = (sliver.triangles.iter())
+            .map(|t| {
+                let [a, b, c] = t.p.map(|i| sliver.positions[i as usize]);
+                let n = (b - a).cross(c - a).normalize();
+                format!("vn {} {} {}\n", n.x, n.y, n.z)
+            })
+            .collect();
+        let split_faces =
+            "f 1//1 3//1 2//1\nf 1//2 2//2 4//2\nf 1//3 4//3 3//3\nf 2//4 3//4 4//4\n";
+        let text = format!("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0.3 0.3 0.01\n{faces_own}{split_faces}");
+        let (sliver, _) = Mesh::from_obj_str("s.obj", &text).unwrap();
+        assert!(sliver.closed_outward() && sliver.normals_point_out());
         for file in ["spot_control_tri.obj", "spot_control_tri_vn.obj"] {
             let (spot, _) = test_support::load_model(file);
             assert!(spot.closed_outward() && spot.normals_point_out(), "{file}");

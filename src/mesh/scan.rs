@@ -272,18 +272,21 @@ impl Scan {
         for &(n, face_line) in &self.normal_refs {
             let (line, v) = self.normals[n];
             if unit(v).is_none() {
-                let problem = if v.is_finite() {
-                    "has zero length in f32 (components under about 1e-45 read as 0)"
+                let msg = if v.is_finite() {
+                    format!(
+                        "the normal used by the face on line {face_line} reads as ({}, {}, {}) in f32: it has zero length",
+                        v.x, v.y, v.z
+                    )
                 } else {
-                    "is not finite in f32 (NaN, infinite, or beyond about ±3.4e38)"
+                    format!(
+                        "normal ({}, {}, {}) used by the face on line {face_line} is not finite in f32 (NaN, infinite, or beyond about ±3.4e38)",
+                        v.x, v.y, v.z
+                    )
                 };
                 return Err(MeshError::BadNormal {
                     path: path.into(),
                     line: Some(line),
-                    msg: format!(
-                        "normal ({}, {}, {}) used by the face on line {face_line} {problem}",
-                        v.x, v.y, v.z
-                    ),
+                    msg,
                 });
             }
         }
@@ -810,12 +813,12 @@ mod tests {
     fn bad_normals_name_their_line() {
         assert_eq!(
             err(&format!("{TRI}vn 0 0 0\nf 1//1 2//1 3//1\n")),
-            "'x.obj' line 4: normal (0, 0, 0) used by the face on line 5 has zero length in f32 (components under about 1e-45 read as 0)"
+            "'x.obj' line 4: the normal used by the face on line 5 reads as (0, 0, 0) in f32: it has zero length"
         );
         // Non-zero in the file, zero in f32: said so.
         assert_eq!(
             err(&format!("{TRI}vn 0 1e-50 0\nf 1//1 2//1 3//1\n")),
-            "'x.obj' line 4: normal (0, 0, 0) used by the face on line 5 has zero length in f32 (components under about 1e-45 read as 0)"
+            "'x.obj' line 4: the normal used by the face on line 5 reads as (0, 0, 0) in f32: it has zero length"
         );
         assert_eq!(
             err(&format!("{TRI}vn 0 0 1\nvn nan 0 1\nf 1//1 2//1 3//2\n")),

@@ -175,7 +175,7 @@ impl SurfaceParams {
         }
         if extent + reach > f32::MAX as f64 / 4.0 {
             return Err(format!(
-                "{by} moves the surface beyond the range of f32 coordinates (the mesh reaches {extent:e} from the origin)"
+                "{by} moves the surface beyond the range of f32 coordinates (the mesh reaches {extent:.3e} from the origin)"
             ));
         }
         if matches!(d, Displace::Sine | Displace::Noise) {
