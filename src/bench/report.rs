@@ -194,9 +194,11 @@ impl Report {
         }
         if adaptive {
             said.push(
-                "Each adaptive row's note compares it with the uniform rows of the same run below \
-                 it (`levels from`: the levels asked for, the smallest uniform level meeting the \
-                 same bound, `bound`, and the power of two at or above it, `pow2`).",
+                "Each adaptive row (`levels from` `view`: its levels chosen for the camera, its \
+                 `level` the largest any element may get) is compared in its note with the \
+                 uniform rows of the same run below it (`levels from`: the levels asked for, the \
+                 smallest uniform level meeting the same bound, `bound`, and the power of two at \
+                 or above it, `pow2`).",
             );
         }
         said.iter().map(|x| format!("{x} ")).collect()
@@ -906,7 +908,7 @@ mod tests {
             for text in [r.markdown(), r.summary(None)] {
                 let flat = text.replace('\n', " ");
                 assert_eq!(flat.contains("against `static`"), static_ratios, "{text}");
-                assert_eq!(flat.contains("adaptive row's note"), notes, "{text}");
+                assert_eq!(flat.contains("is compared in its note"), notes, "{text}");
                 assert!(
                     !flat.contains("  Elements") && !flat.contains(";  "),
                     "{text}"
