@@ -184,12 +184,12 @@ impl Report {
         let mut said = Vec::new();
         if columns {
             said.push(if short {
-                "Ratios against `static` of the same surface, throughput against `flat` with the \
-                 same variant, both from the same run."
+                "Ratios against `static` of the same surface and displacement, throughput against \
+                 `flat` with the same variant and displacement, both from the same run."
             } else {
-                "Ratios are against `static` at the same mesh and level, and throughput (refined \
-                 triangles per GPU ms) against `flat` with the same variant, measured in the same \
-                 run."
+                "Ratios are against `static` at the same mesh, level, surface and displacement, \
+                 and throughput (refined triangles per GPU ms) against `flat` with the same \
+                 variant and displacement, measured in the same run."
             });
         }
         if adaptive {
@@ -818,7 +818,7 @@ mod tests {
             ),
             "{s}"
         );
-        let header = s.lines().find(|l| l.starts_with("variant")).expect(&s);
+        let header = s.lines().find(|l| l.starts_with("variant  ")).expect(&s);
         let headers: Vec<&str> = header.split("  ").filter(|h| !h.is_empty()).collect();
         assert_eq!(
             headers,
