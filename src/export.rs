@@ -55,18 +55,12 @@ impl RefinedMesh {
             items.truncate(kept as usize);
             Some(new)
         }
-        let corners =
-            |k: usize| move |t: &[(u32, u32); 3]| t.map(|c| if k == 0 { c.0 } else { c.1 });
-        if let Some(new) = keep(
-            &mut self.positions,
-            self.triangles.iter().flat_map(corners(0)),
-        ) {
+        let positions = self.triangles.iter().flatten().map(|c| c.0);
+        if let Some(new) = keep(&mut self.positions, positions) {
             (self.triangles.iter_mut().flatten()).for_each(|c| c.0 = new[c.0 as usize]);
         }
-        if let Some(new) = keep(
-            &mut self.normals,
-            self.triangles.iter().flat_map(corners(1)),
-        ) {
+        let normals = self.triangles.iter().flatten().map(|c| c.1);
+        if let Some(new) = keep(&mut self.normals, normals) {
             (self.triangles.iter_mut().flatten()).for_each(|c| c.1 = new[c.1 as usize]);
         }
         if let Some(new) = keep(
