@@ -453,14 +453,14 @@ fn geomorphing_displaced_and_loop_meshes_meet_the_pixel_error() {
     });
 }
 
-/// Geomorphing where an element's edges glide at different rates (docs/adaptivity.md, "Where
-/// gliding exceeds the bound"): the spiky ridge (`assets/models/spiky_ridge.obj`, 320
-/// triangles) as `phong`, whose bound is exact (no slack), the eye at (6, 4, 5) and farther.
-/// Its level-2 elements draw no vertex of their own: every new vertex is an edge's, each
-/// gliding with its edge's level, and the triangles between them overshoot the pixel error a
-/// little on the pattern driver (1.03 to 1.04 px at 1 px): asserted at most 1.06 px, and over
-/// 1 px (the docs' figure, so that a fix shows here). Without geomorphing, and on tess either
-/// way, every sample is within 1 px.
+/// Geomorphing where an element's edges need different levels (docs/adaptivity.md, "Gliding
+/// edges"): the spiky ridge (`assets/models/spiky_ridge.obj`, 320 triangles) as `phong`, whose
+/// bound is exact (no slack), the eye at (6, 4, 5) and farther. Its level-2 elements draw no
+/// vertex of their own: every new vertex is an edge's midpoint, gliding with its edge's level.
+/// Edges at their own levels glide behind what the insides beside them need, and the triangles
+/// between them overshoot the pixel error on the pattern driver (1.03 to 1.04 px at 1 px); the
+/// level pass lifts each gliding edge to its elements' insides' needs (src/lod/frame/lift.rs),
+/// and every sample is within 1 px, gliding or not, on both drivers.
 #[test]
 fn geomorphing_with_edges_at_different_rates() {
     with_gpu(64, 36, |h| {
@@ -488,11 +488,9 @@ fn geomorphing_with_edges_at_different_rates() {
                     worst = worst.max(f.worst);
                 }
                 let label = format!("{} geomorph {geomorph}", cfg.label());
-                if geomorph && driver != Driver::Tess {
-                    assert!(worst > 1.0 && worst <= 1.06, "{label}: worst {worst} px");
-                } else {
-                    assert!(worst <= 1.0 + 1e-3, "{label}: worst {worst} px");
-                }
+                assert!(worst <= 1.0 + 1e-3, "{label}: worst {worst} px");
+                // Not vacuous: more than half the exact bound is reached.
+                assert!(worst > 0.5, "{label}: worst {worst} px");
             }
         }
     });

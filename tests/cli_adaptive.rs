@@ -349,8 +349,8 @@ fn info_reports_adaptive_levels_for_a_camera() {
 /// The benchmark's close-up (docs/benchmarks.md, "Adaptive refinement"): at integer levels
 /// (`--geomorph off`, and `static`) Spot as `pn` takes at most 0.35x the triangles of the
 /// smallest uniform level meeting the bound at every pixel error the benchmark times (the
-/// lift's doing: without it 0.36x at 0.5 and 1 px); gliding, at powers of two, it takes more,
-/// at most 0.55x.
+/// lift's doing: without it 0.36x at 0.5 and 1 px); gliding, at powers of two and with edges
+/// lifted to the insides beside them, it takes more, at most 0.65x.
 #[test]
 fn the_close_up_at_integer_levels_takes_at_most_0_35x_the_uniform_triangles() {
     let spot = model_path("spot_control_tri.obj");
@@ -376,7 +376,7 @@ fn the_close_up_at_integer_levels_takes_at_most_0_35x_the_uniform_triangles() {
         }
         let (adaptive, uniform) = report(&[]);
         assert!(
-            adaptive * 100 > uniform * 35 && adaptive * 100 <= uniform * 55,
+            adaptive * 100 > uniform * 35 && adaptive * 100 <= uniform * 65,
             "{px} px gliding: {adaptive} triangles against {uniform}"
         );
     }

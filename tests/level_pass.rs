@@ -2,8 +2,8 @@
 //! mesh's real levels buffer) against its CPU mirror (`lod::frame::frame_levels`) on Spot, for
 //! `flat`, `phong`, `pn`, `stpn` and `loop`, with and without displacement, for a far camera, a
 //! close-up that culls (frustum and back faces) and a grazing one from inside the mesh's
-//! bounding sphere, for every rounding (the snapped integer levels' with the lift's second
-//! dispatch: src/lod/frame/lift.rs); and once more without the edges' share of the transition
+//! bounding sphere, for every rounding (the snapped integer levels' and the gliding ones' with
+//! the lift's second dispatch: src/lod/frame/lift.rs); and once more without the edges' share of the transition
 //! triangles, so that the inner levels' raise for them is compared too.
 //!
 //! The two evaluate the same formulas in f32, but GLSL's `sqrt` and `length` are not correctly

@@ -287,7 +287,7 @@ fn tess_sweep(h: &mut Headless, scene: &mut Scene, geomorph: bool) -> (f32, usiz
 
 /// Geomorphing keeps the tessellator from popping: with it every drawn vertex moves on screen
 /// at most 0.15 px more than its surface point does between frames, measured against the mesh
-/// the GPU drew the frame before (measured 0.109 px, where a coarser edge doubles and a ring-1
+/// the GPU drew the frame before (measured 0.118 px, where a coarser edge doubles and a ring-1
 /// vertex's parent on the snapped outer ring switches samples, docs/adaptivity.md "What
 /// remains"), under the 0.2 px the sweep allows; without, the integer levels' changes (by one
 /// level at a time, with the tessellator's own transitions) step by more (0.163 px). The

@@ -2,7 +2,8 @@
 // The level pass: each element's levels for this frame (its stored edges' continuous levels and
 // its inner level; inner 0: culled) from its bounds, computed once (LodRecord), and the camera
 // (push constants). One invocation per element, over the whole levels buffer. Where the view
-// lifts edges (LIFT), a second dispatch lifts them from what the first left of every element
+// lifts edges (LIFT: at integer levels to save transitions, at gliding ones to the insides'
+// needs), a second dispatch lifts them from what the first left of every element
 // (src/lod/frame/lift.rs), with a pipeline of its own (LIFTING: lavapipe would run the other
 // dispatch's code too behind a uniform branch).
 // Mirror, operation for operation: src/lod/frame.rs `frame_levels` (the proof of the
@@ -423,24 +424,31 @@ void first_levels(uint i) {
         || ((view.flags & CULL_BACK_FACES) != 0u
             && lod_back_facing(record(i, RECORD_CONE), sphere, view.eye_k.xyz));
     bool lift = (view.flags & LIFT) != 0u;
+    bool glide = lift && (view.flags & DYADIC) != 0u;
     // A culled element draws nothing, and an edge's level is computed by each element that
-    // draws it: no level is needed here.
+    // draws it: no level is needed here, but where levels glide its inside's own need, which
+    // the lift still gives its edges. Mirror: `Before::for_culled`.
     if (culled) {
         element_levels[i] = vec4(0.0);
         if (lift) {
-            before[i] = vec4(0.0);
+            before[i] = glide ? vec4(0.0, 0.0, 0.0, own_level_above(load_element(i, sphere), 0.0))
+                              : vec4(0.0);
         }
         return;
     }
     Element r = load_element(i, sphere);
     vec3 edges = vec3(edge_level(load_edge(i, 0)), edge_level(load_edge(i, 1)),
                       edge_level(load_edge(i, 2)));
-    float own = own_level_above(r, max(edges.x, max(edges.y, edges.z)));
+    float largest = max(edges.x, max(edges.y, edges.z));
+    // Where levels glide the lift reads the inside's own need too; the level above the edges is
+    // then its maximum with them, as own_level_above computes it (the same bits).
+    float inside = glide ? own_level_above(r, 0.0) : 0.0;
+    float own = glide ? max(largest, inside) : own_level_above(r, largest);
     uint failing;
     float inner = raise_for_transitions(r, edges, own, failing);
     element_levels[i] = vec4(edges, inner);
     if (lift) {
-        before[i] = vec4(own, inner, float(failing), 0.0);
+        before[i] = vec4(own, inner, float(failing), inside);
     }
 }
 
@@ -465,6 +473,12 @@ void lift_levels(uint i) {
     for (int e = 0; e < 3; ++e) {
         uint a = across[e];
         if (a == SHARED_EDGE) {
+            continue;
+        }
+        if ((view.flags & DYADIC) != 0u) {
+            // Gliding: the same maximum from both sides (max is exact and commutative).
+            float other = a == NO_NEIGHBOUR ? me.w : before_all[a / 4u].w;
+            edges[e] = max(l[e], max(me.w, other));
             continue;
         }
         uint drawn_edge = drawn(l[e], false, mx);

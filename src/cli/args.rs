@@ -437,10 +437,10 @@ pub struct AdaptiveOpts {
     pub cull: Option<bool>,
     /// Glide the vertices a finer level adds from their coarser neighbours' midpoint to the
     /// surface as the level grows, so nothing pops when levels change (when drawing
-    /// adaptively; default: on). While gliding the pixel error is proven only where a
-    /// triangle's vertices glide together: where an element's edges glide at different rates
-    /// the pattern driver can exceed it by a few percent (docs/adaptivity.md, "Where gliding
-    /// exceeds the bound"); off, it is proven.
+    /// adaptively; default: on). While gliding, edges glide at least as far as the insides
+    /// beside them need: the pixel error is proven where a triangle's vertices glide together,
+    /// checked but not proven where they glide by different amounts (docs/adaptivity.md,
+    /// "Gliding edges"); off, it is proven.
     #[arg(long, value_parser = choices::geomorph())]
     pub geomorph: Option<bool>,
     #[command(flatten, next_help_heading = "Camera")]

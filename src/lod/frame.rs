@@ -82,9 +82,11 @@ pub const DYADIC: u32 = 4;
 /// tessellator's rings ([`Rounding::TessSnapped`] with [`DYADIC`], [`Rounding::Integer`]
 /// without).
 pub const LATTICE: u32 = 8;
-/// Edges are lifted to a neighbour's inner level where that saves its transition ([`lift`]):
-/// set for [`Rounding::SnappedInteger`], the only rounding whose inner levels step 2 raises
-/// often.
+/// A second dispatch lifts edges from what the first left of every element ([`lift`]): at
+/// integer levels ([`Rounding::SnappedInteger`], whose inner levels step 2 raises often) to a
+/// neighbour's inner level where that saves its transition; at gliding levels (the dyadic
+/// roundings) to the continuous level each of its elements' insides needs, so that an edge
+/// glides at least as far as the insides beside it.
 pub const LIFT: u32 = 16;
 
 /// How a driver rounds an element's levels and draws its boundary along a coarser edge: what
@@ -174,8 +176,8 @@ impl LodView {
             | if back_faces { CULL_BACK_FACES } else { 0 }
             | match rounding {
                 Rounding::Integer => 0,
-                Rounding::TessSnapped => DYADIC,
-                Rounding::Snapped => DYADIC | LATTICE,
+                Rounding::TessSnapped => DYADIC | LIFT,
+                Rounding::Snapped => DYADIC | LATTICE | LIFT,
                 Rounding::SnappedInteger => LATTICE | LIFT,
             };
         Self {
@@ -475,10 +477,18 @@ pub fn element_levels(v: &LodView, r: &LodRecord) -> ElementLevels {
 /// [`element_levels`] before the lift, with what the lift reads of it ([`lift::Before`]).
 fn first_levels(v: &LodView, r: &LodRecord) -> (ElementLevels, lift::Before) {
     let edges = [0, 1, 2].map(|e| edge_level(v, &r.edges[e]));
-    let own = own_level_above(v, r, edges[0].max(edges[1]).max(edges[2]));
+    let largest = edges[0].max(edges[1]).max(edges[2]);
+    // Where levels glide the lift reads the inside's own need too; the level above the edges is
+    // then its maximum with them, as `own_level_above` computes it (the same bits).
+    let (own, inside) = if lift::gliding(v) {
+        let inside = own_level(v, r);
+        (largest.max(inside), inside)
+    } else {
+        (own_level_above(v, r, largest), 0.0)
+    };
     let (inner, failing) = raise_for_transitions(v, r, &edges, own);
     let levels = ElementLevels { edges, inner };
-    (levels, lift::Before::new(own, inner, failing))
+    (levels, lift::Before::new(own, inner, failing, inside))
 }
 
 /// The smallest level that, given to every element, meets `view`'s pixel error on every
@@ -516,7 +526,7 @@ pub fn frame_levels(view: &LodView, records: &[LodRecord]) -> Vec<ElementLevels>
         .iter()
         .map(|r| {
             if culled(r) {
-                (ElementLevels::CULLED, lift::Before::CULLED)
+                (ElementLevels::CULLED, lift::Before::for_culled(view, r))
             } else {
                 first_levels(view, r)
             }

@@ -31,13 +31,28 @@
 //! pass alone draws 0.34-0.36x (docs/benchmarks.md). Lifting also where the element across must
 //! then be drawn finer draws more: always, 0.33-0.35x; where its added triangles are fewer than
 //! half those the raise saves, 0.32-0.34x. A second round of lifts (a third dispatch) draws
-//! 0.1-1.4 % fewer triangles than one. The dyadic roundings are not lifted:
-//! their coarser edges are at most half the inside, where the transitions rarely need a raise,
-//! and a gliding edge must change continuously with the camera; the tessellator's integer
-//! levels take transitions that need no raise.
+//! 0.1-1.4 % fewer triangles than one. The tessellator's integer levels take transitions that
+//! need no raise, and are not lifted.
+//!
+//! **Gliding.** The dyadic roundings (both drivers while they glide) are lifted otherwise. A
+//! vertex on an edge glides with the edge's continuous level, a vertex inside with the
+//! element's; an element whose edges come from their curves and transitions alone can have an
+//! edge gliding behind what its inside needs, and the triangles between that edge and the rest
+//! miss the pixel error while they morph (an element drawn at level 2 has no vertex of its own:
+//! its inside is its three edges' midpoints). So each edge takes the largest of its level and
+//! the continuous levels its elements' insides need by their own bounds ([`Before::inside`]:
+//! the element's chord bound, which holds over the whole element, its edges included): every
+//! vertex of an element drawn at that level then glides at least as far as a uniform glide of
+//! the element would, which meets the pixel error (docs/adaptivity.md, "The factor"; the mixed
+//! factors between that glide and the finer level are checked, not proven: "What is proven,
+//! what is checked"). The lift is a maximum of levels that change continuously with the camera, so edges still glide without popping, and doubles
+//! an edge's drawn level exactly where the lifted level passes a power of two, where its new
+//! vertices start on the coarser mesh. An element culled this frame still tells its edges its
+//! need ([`Before::for_culled`]): its neighbour's edge must not jump when it turns away. An edge
+//! shared by three elements or more is not lifted.
 #![forbid(unsafe_code)]
 
-use super::{own_level_above, raise_for_transitions, LodRecord, LodView};
+use super::{own_level, own_level_above, raise_for_transitions, LodRecord, LodView};
 use crate::lod::levels::{drawn_level, ElementLevels};
 
 /// [`LodRecord::neighbours`] of an edge no other element has.
@@ -55,6 +70,14 @@ pub struct Before {
     pub inner: f32,
     /// Bit `e`: edge `e`'s transition triangles do not fit at `own`'s drawn level.
     pub failing: u32,
+    /// Where levels glide ([`gliding`]), the continuous level its inside's own bounds need
+    /// ([`super::own_level`]), culled or not; else 0.
+    pub inside: f32,
+}
+
+/// Whether `v`'s levels glide and are lifted for it (the dyadic roundings with [`super::LIFT`]).
+pub fn gliding(v: &LodView) -> bool {
+    v.dyadic() && v.flags & super::LIFT != 0
 }
 
 impl Before {
@@ -62,13 +85,29 @@ impl Before {
         own: 0.0,
         inner: 0.0,
         failing: 0,
+        inside: 0.0,
     };
 
-    pub fn new(own: f32, inner: f32, failing: u32) -> Self {
+    /// What a culled element `r` leaves: nothing at integer levels; where the levels glide, its
+    /// inside's own need, which its edges still take. Mirror: the culled branch of
+    /// `first_levels` in glsl/lod/levels.comp.
+    pub fn for_culled(v: &LodView, r: &LodRecord) -> Before {
+        if gliding(v) {
+            Before {
+                inside: own_level(v, r),
+                ..Before::CULLED
+            }
+        } else {
+            Before::CULLED
+        }
+    }
+
+    pub fn new(own: f32, inner: f32, failing: u32, inside: f32) -> Self {
         Self {
             own,
             inner,
             failing,
+            inside,
         }
     }
 
@@ -107,6 +146,16 @@ pub fn lifted(
     let mut edges = l.edges;
     for (e, &across) in r.neighbours[..3].iter().enumerate() {
         if across == SHARED {
+            continue;
+        }
+        if v.dyadic() {
+            // Gliding: the same maximum from both sides (max is exact and commutative).
+            let other = if across == BOUNDARY {
+                me.inside
+            } else {
+                before[(across / 4) as usize].inside
+            };
+            edges[e] = l.edges[e].max(me.inside.max(other));
             continue;
         }
         let drawn = drawn_level(l.edges[e], false, max);

@@ -5,6 +5,7 @@
 
 use super::lift::{Before, BOUNDARY, SHARED};
 use super::*;
+use crate::lod::frame::own_level;
 use crate::lod::levels::drawn_level;
 use crate::mesh::test_support::load_model;
 use crate::surface::{build_records, Displace, RecordKind, Seams, Sources, Surface, SurfaceParams};
@@ -98,4 +99,88 @@ fn lifted_edges_take_an_inner_level_the_element_across_already_draws() {
         "{lifted} edge slots lifted ({proposals} by their own element), {saved} raises saved"
     );
     assert!(lifted > 100 && proposals > 50 && saved > 50);
+}
+
+/// Where levels glide, every edge of a drawn element takes the largest of its first level and
+/// the insides' own needs of both its elements, a culled one's included (so culling changes no
+/// drawn element's levels), the same bits from both sides, so that every vertex of an element
+/// glides at least as far as its inside needs; and levels change with the camera continuously,
+/// with elements turning away and leaving the view on the way (no edge jumps).
+#[test]
+fn gliding_edges_follow_the_insides_beside_them() {
+    let (mesh, _) = load_model("spot_control_tri.obj");
+    let recs = build_records(RecordKind::Corners, &mesh, Seams::Closed);
+    let r = mesh.bounding_radius();
+    let params = SurfaceParams::for_radius(r);
+    let lod = Lod::of(Surface::Pn, Displace::None, &params, &Sources::default());
+    let lr = lod_records(&lod, &recs);
+    let count = lr.len() as u32;
+    let target = Vec3::new(0.0, 0.5, -0.5);
+    let frame = |eye: Vec3, px: f32, rounding: Rounding| {
+        let mut proj = glam::Mat4::perspective_rh(0.8, 16.0 / 9.0, 0.01 * r, 10.0 * r);
+        proj.y_axis.y = -proj.y_axis.y;
+        let frustum = crate::lod::Frustum::from_view_proj(
+            proj * glam::Mat4::look_at_rh(eye, target, Vec3::Y),
+        );
+        let view = View::new(eye, 0.8, 1080, px, 64);
+        LodView::new(&view, Some(&frustum), true, rounding, count)
+    };
+    for rounding in [Rounding::Snapped, Rounding::TessSnapped] {
+        let mut lifted = 0;
+        for px in [0.5, 1.0, 4.0] {
+            let lv = frame(Vec3::new(0.35, 0.65, -1.3), px, rounding);
+            assert!(super::lift::gliding(&lv));
+            let first: Vec<ElementLevels> = lr.iter().map(|x| first_levels(&lv, x).0).collect();
+            let after = frame_levels(&lv, &lr);
+            let culled = after.iter().filter(|l| l.culled()).count();
+            assert!(culled > 20, "{px} px: {culled} culled");
+            for (i, (x, l)) in lr.iter().zip(&after).enumerate() {
+                if l.culled() {
+                    continue;
+                }
+                let inside = own_level(&lv, x);
+                for e in 0..3 {
+                    let nb = x.neighbours[e];
+                    assert!(nb != BOUNDARY && nb != SHARED);
+                    let (j, f) = ((nb / 4) as usize, (nb % 4) as usize);
+                    let want = first[i].edges[e].max(inside.max(own_level(&lv, &lr[j])));
+                    assert_eq!(l.edges[e].to_bits(), want.to_bits(), "element {i} edge {e}");
+                    if !after[j].culled() {
+                        assert_eq!(l.edges[e].to_bits(), after[j].edges[f].to_bits());
+                    }
+                    lifted += (l.edges[e] > first[i].edges[e]) as usize;
+                }
+                assert!(l.inner >= l.edges.iter().copied().fold(inside, f32::max));
+            }
+        }
+        assert!(lifted > 100, "{rounding:?}: {lifted} edge slots lifted");
+        // Continuity: the eye moves toward and past the head in steps of 0.2 % of its distance;
+        // an edge's level changes by about half that (levels go as the root of the distance).
+        let mut eye = Vec3::new(1.2, 0.9, -2.6);
+        let step = (target - eye) * 0.002;
+        let mut last: Option<Vec<ElementLevels>> = None;
+        let (mut worst, mut turned) = (0.0f32, 0);
+        for _ in 0..300 {
+            let now = frame_levels(&frame(eye, 1.0, rounding), &lr);
+            if let Some(prev) = &last {
+                for (a, b) in prev.iter().zip(&now) {
+                    turned += (a.culled() != b.culled()) as usize;
+                    if a.culled() || b.culled() {
+                        continue;
+                    }
+                    for e in 0..3 {
+                        worst = worst.max((b.edges[e] / a.edges[e]).ln().abs());
+                    }
+                }
+            }
+            last = Some(now);
+            eye += step;
+        }
+        eprintln!("{rounding:?}: worst edge step {worst}, {turned} culling changes");
+        assert!(turned > 5, "{rounding:?}: {turned} culling changes");
+        assert!(
+            worst < 0.01,
+            "{rounding:?}: an edge level jumped by {worst}"
+        );
+    }
 }

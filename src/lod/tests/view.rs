@@ -393,10 +393,11 @@ fn pixel_error_holds_end_to_end() {
             assert!(worst > 1.0 / least, "{what}: worst {worst} px");
             // The pattern driver's snapping keeps its transitions cheap (docs/adaptivity.md,
             // "Transition triangles": about a third more triangles on pn, where the
-            // tessellator's bound asks for several times as many).
+            // tessellator's bound asks for several times as many; gliding edges lifted to the
+            // insides beside them, src/lod/frame/lift.rs, add a tenth more).
             if rounding == Rounding::Snapped && surface == Surface::Pn {
                 assert!(
-                    5 * tris <= 7 * plain,
+                    2 * tris <= 3 * plain,
                     "{what}: {tris} triangles against {plain}"
                 );
             }
@@ -409,10 +410,12 @@ fn pixel_error_holds_end_to_end() {
                 );
             }
             // Beside the tessellator's first ring the snapped transitions cost more (its
-            // vertices sit between the lattice's), about two thirds more on pn.
+            // vertices sit between the lattice's), about two thirds more on pn, twice as many
+            // with the gliding edges lifted (the tessellator draws every side at the inner
+            // level, so a lifted edge refines both its elements).
             if rounding == Rounding::TessSnapped && surface == Surface::Pn {
                 assert!(
-                    5 * tris <= 9 * plain,
+                    10 * tris <= 21 * plain,
                     "{what}: {tris} triangles against {plain}"
                 );
             }
