@@ -207,7 +207,8 @@ fn gpu_levels_match_the_cpu() {
                         // decides the lift, one side may hold it and the other the edge's own
                         // continuous level (counted below as a threshold, without the
                         // bracket: lifting is not monotone in the pixel error).
-                        let lifts = view.flags & LIFT != 0;
+                        // (The gliding lift takes continuous levels: no threshold of its own.)
+                        let lifts = view.flags & LIFT != 0 && !dyadic;
                         let lift_threshold = lifts
                             && (0..3).any(|e| {
                                 !close(g.edges[e], k.edges[e], 1e-4)
@@ -379,8 +380,8 @@ fn a_frame_runs_the_level_pass_before_drawing() {
 
 /// Bounds too many for one storage-buffer descriptor are dispatched in chunks, each bound by its
 /// own set: chunks of 1, 7 and 100 of Spot's 372 elements (levels poisoned before each run)
-/// write the bits one dispatch writes, at integer levels, where the lift reads neighbours in
-/// other chunks (counted from the mirror: edges lifted across a chunk's border).
+/// write the bits one dispatch writes, at integer levels and gliding ones, where the lift reads
+/// neighbours in other chunks (counted from the mirror: edges lifted across a chunk's border).
 #[test]
 fn chunked_dispatches_write_the_levels_one_writes() {
     with_gpu(16, 16, |h| {
@@ -388,54 +389,60 @@ fn chunked_dispatches_write_the_levels_one_writes() {
         let (c, r) = scene.bounding_sphere();
         let n = bounds.len();
         let (_, eye, vp) = cameras(c, r)[1];
-        let view = LodView::new(
-            &View::new(eye, 0.8, 720, 1.0, 64),
-            Some(&Frustum::from_view_proj(vp)),
-            true,
-            cfg.rounding(),
-            n as u32,
-        );
-        let poison: Vec<ElementLevels> =
-            bytemuck::cast_slice(&vec![0xdead_beef_u32; 4 * n]).to_vec();
-        let mut run = |chunk: Option<u32>| -> (Vec<u32>, usize) {
-            let mut pass = LevelPass::with_max_chunk(&h.ctx, chunk).unwrap();
-            pass.upload(&scene.gpu, &bounds).unwrap();
-            scene.gpu.upload_levels(&poison);
-            h.pool
-                .submit_and_wait(|cmd| {
-                    pass.cmd_record(cmd, &scene.gpu, &view);
-                    cmd.barrier_to_host();
-                })
-                .unwrap();
-            let levels: Vec<ElementLevels> = scene.gpu.levels.read_pod();
-            (bytemuck::cast_slice(&levels).to_vec(), pass.dispatches())
-        };
-        let (whole, one) = run(None);
-        assert_eq!(one, 1);
-        assert!(!whole.contains(&0xdead_beef));
-        assert!(view.flags & LIFT != 0);
-        let lifted = frame_levels(&view, &bounds);
-        for chunk in [1usize, 7, 100] {
-            let mut across = 0;
-            for (i, b) in bounds.iter().enumerate() {
-                let first = element_levels(&view, b);
-                for e in 0..3 {
-                    let j = (b.neighbours[e] / 4) as usize;
-                    across +=
-                        (lifted[i].edges[e] != first.edges[e] && i / chunk != j / chunk) as usize;
+        // Integer levels (the lift for transitions), and gliding ones (the lift to the insides).
+        for rounding in [cfg.rounding(), Rounding::Snapped] {
+            let view = LodView::new(
+                &View::new(eye, 0.8, 720, 1.0, 64),
+                Some(&Frustum::from_view_proj(vp)),
+                true,
+                rounding,
+                n as u32,
+            );
+            let poison: Vec<ElementLevels> =
+                bytemuck::cast_slice(&vec![0xdead_beef_u32; 4 * n]).to_vec();
+            let mut run = |chunk: Option<u32>| -> (Vec<u32>, usize) {
+                let mut pass = LevelPass::with_max_chunk(&h.ctx, chunk).unwrap();
+                pass.upload(&scene.gpu, &bounds).unwrap();
+                scene.gpu.upload_levels(&poison);
+                h.pool
+                    .submit_and_wait(|cmd| {
+                        pass.cmd_record(cmd, &scene.gpu, &view);
+                        cmd.barrier_to_host();
+                    })
+                    .unwrap();
+                let levels: Vec<ElementLevels> = scene.gpu.levels.read_pod();
+                (bytemuck::cast_slice(&levels).to_vec(), pass.dispatches())
+            };
+            let (whole, one) = run(None);
+            assert_eq!(one, 1);
+            assert!(!whole.contains(&0xdead_beef));
+            assert!(view.flags & LIFT != 0);
+            let lifted = frame_levels(&view, &bounds);
+            for chunk in [1usize, 7, 100] {
+                let mut across = 0;
+                for (i, b) in bounds.iter().enumerate() {
+                    let first = element_levels(&view, b);
+                    for e in 0..3 {
+                        let j = (b.neighbours[e] / 4) as usize;
+                        across += (lifted[i].edges[e] != first.edges[e] && i / chunk != j / chunk)
+                            as usize;
+                    }
                 }
+                assert!(
+                    across > 10,
+                    "{rounding:?}, chunks of {chunk}: {across} edges lifted across a border"
+                );
+                let chunk = chunk as u32;
+                let (split, dispatches) = run(Some(chunk));
+                assert!(
+                    dispatches > 1,
+                    "chunks of {chunk}: {dispatches} dispatch(es)"
+                );
+                assert!(
+                    split == whole,
+                    "{rounding:?}, chunks of {chunk} write other levels"
+                );
             }
-            assert!(
-                across > 10,
-                "chunks of {chunk}: {across} edges lifted across a border"
-            );
-            let chunk = chunk as u32;
-            let (split, dispatches) = run(Some(chunk));
-            assert!(
-                dispatches > 1,
-                "chunks of {chunk}: {dispatches} dispatch(es)"
-            );
-            assert!(split == whole, "chunks of {chunk} write other levels");
         }
     });
 }

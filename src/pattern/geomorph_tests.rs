@@ -217,7 +217,7 @@ fn sweep(geomorph: bool) -> (f32, usize, usize) {
 
 /// A camera moving 3% closer per frame toward Spot (pn, 1 px, levels from the level pass's
 /// mirror as the pattern driver rounds them, 1280×720): with geomorphing (powers of two)
-/// every drawn vertex moves on screen at most 0.2 px more than its surface point does,
+/// every drawn vertex moves on screen at most 0.05 px (a quarter of the 0.2 px asked for) more than its surface point does,
 /// measured from the mesh drawn the frame before at the vertex's parameter; without (integer
 /// levels), the vertices a level change moves pop by a sizeable fraction of a pixel.
 #[test]
@@ -234,7 +234,9 @@ fn geomorphing_removes_popping() {
         n_on > 800_000 && n_off > 550_000,
         "{n_on} and {n_off} vertex steps"
     );
-    assert!(on <= 0.2, "geomorphing pops by {on} px");
+    // The sweep asks for 0.2 px; gliding edges that follow the insides beside them keep it
+    // within a quarter of that (docs/adaptivity.md, "The popping test").
+    assert!(on <= 0.05, "geomorphing pops by {on} px");
     // Without geomorphing a level change moves the surface by a good part of the pixel error
     // (docs/adaptivity.md, "The popping test", gives the figures).
     assert!(

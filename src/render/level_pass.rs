@@ -20,7 +20,9 @@
 //! pattern driver's adaptive draws need at least 20 bytes an element of it (their bins), so
 //! where they fit the lift does. Elsewhere the pass leaves the lift out ([`LevelPass::lifts`];
 //! `Scene::set_levels` then clears the view's flag, so that the mirror does without it too):
-//! the first dispatch's levels meet the pixel error as well, with more triangles.
+//! at integer levels the first dispatch's levels meet the pixel error as well, with more
+//! triangles; gliding edges then glide at their own levels (docs/adaptivity.md, "Gliding
+//! edges"), which only the tess driver can reach (the pattern driver's draws do not fit first).
 
 use super::bindings::{
     LEVEL_BINDING_BEFORE, LEVEL_BINDING_BEFORE_ALL, LEVEL_BINDING_LEVELS, LEVEL_BINDING_NEIGHBOURS,

@@ -38,7 +38,7 @@
 //! vertex on an edge glides with the edge's continuous level, a vertex inside with the
 //! element's; an element whose edges come from their curves and transitions alone can have an
 //! edge gliding behind what its inside needs, and the triangles between that edge and the rest
-//! miss the pixel error while they morph (an element drawn at level 2 has no vertex of its own:
+//! can miss the pixel error while they morph (an element drawn at level 2 has no vertex of its own:
 //! its inside is its three edges' midpoints). So each edge takes the largest of its level and
 //! the continuous levels its elements' insides need by their own bounds ([`Before::inside`]:
 //! the element's chord bound, which holds over the whole element, its edges included): every
@@ -61,7 +61,7 @@ pub const BOUNDARY: u32 = u32::MAX;
 pub const SHARED: u32 = u32::MAX - 1;
 
 /// What the lift reads of an element's first levels (on the GPU, one `vec4` per element:
-/// `own`, `inner`, `failing` as a float, 0).
+/// `own`, `inner`, `failing` as a float, `inside`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Before {
     /// The continuous inner level its own bounds and its edges need, before step 2's raise.

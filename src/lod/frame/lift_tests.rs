@@ -10,6 +10,16 @@ use crate::lod::levels::drawn_level;
 use crate::mesh::test_support::load_model;
 use crate::surface::{build_records, Displace, RecordKind, Seams, Sources, Surface, SurfaceParams};
 
+/// The bundled mesh `file` as `pn`: its bounding radius and its records' bounds.
+fn pn_records(file: &str) -> (f32, Vec<LodRecord>) {
+    let (mesh, _) = load_model(file);
+    let recs = build_records(RecordKind::Corners, &mesh, Seams::Closed);
+    let r = mesh.bounding_radius();
+    let params = SurfaceParams::for_radius(r);
+    let lod = Lod::of(Surface::Pn, Displace::None, &params, &Sources::default());
+    (r, lod_records(&lod, &recs))
+}
+
 /// Every edge the lift changes is drawn at the unraised inner level of one of its elements whose
 /// transition triangles along it did not fit there, above its first level, where the element
 /// across draws at least as fine (or draws nothing); every other edge keeps its first level; an
@@ -17,11 +27,7 @@ use crate::surface::{build_records, Displace, RecordKind, Seams, Sources, Surfac
 /// have two) hold the same bits for it; and the frame draws fewer triangles.
 #[test]
 fn lifted_edges_take_an_inner_level_the_element_across_already_draws() {
-    let (mesh, _) = load_model("spot_control_tri.obj");
-    let recs = build_records(RecordKind::Corners, &mesh, Seams::Closed);
-    let params = SurfaceParams::for_radius(mesh.bounding_radius());
-    let lod = Lod::of(Surface::Pn, Displace::None, &params, &Sources::default());
-    let lr = lod_records(&lod, &recs);
+    let (_, lr) = pn_records("spot_control_tri.obj");
     let max = 64;
     let (mut lifted, mut proposals, mut saved) = (0, 0, 0);
     for px in [0.5, 1.0, 2.0, 4.0] {
@@ -108,12 +114,7 @@ fn lifted_edges_take_an_inner_level_the_element_across_already_draws() {
 /// with elements turning away and leaving the view on the way (no edge jumps).
 #[test]
 fn gliding_edges_follow_the_insides_beside_them() {
-    let (mesh, _) = load_model("spot_control_tri.obj");
-    let recs = build_records(RecordKind::Corners, &mesh, Seams::Closed);
-    let r = mesh.bounding_radius();
-    let params = SurfaceParams::for_radius(r);
-    let lod = Lod::of(Surface::Pn, Displace::None, &params, &Sources::default());
-    let lr = lod_records(&lod, &recs);
+    let (r, lr) = pn_records("spot_control_tri.obj");
     let count = lr.len() as u32;
     let target = Vec3::new(0.0, 0.5, -0.5);
     let frame = |eye: Vec3, px: f32, rounding: Rounding| {
@@ -183,4 +184,38 @@ fn gliding_edges_follow_the_insides_beside_them() {
             "{rounding:?}: an edge level jumped by {worst}"
         );
     }
+}
+
+/// On an open mesh (the terrain) a gliding boundary edge takes the largest of its first level
+/// and its one element's inside need, and a shared edge the largest of both insides'.
+#[test]
+fn gliding_boundary_edges_follow_their_one_inside() {
+    let (_, lr) = pn_records("terrain_16x16.obj");
+    let view = View::new(Vec3::new(0.0, 0.45, -2.6), 0.8, 1080, 1.0, 64);
+    let (mut boundary, mut lifted) = (0, 0);
+    for rounding in [Rounding::Snapped, Rounding::TessSnapped] {
+        let lv = LodView::new(&view, None, false, rounding, lr.len() as u32);
+        let first: Vec<ElementLevels> = lr.iter().map(|x| first_levels(&lv, x).0).collect();
+        let after = frame_levels(&lv, &lr);
+        for (i, (x, l)) in lr.iter().zip(&after).enumerate() {
+            let inside = own_level(&lv, x);
+            for e in 0..3 {
+                let nb = x.neighbours[e];
+                assert_ne!(nb, SHARED);
+                let other = if nb == BOUNDARY {
+                    boundary += 1;
+                    inside
+                } else {
+                    own_level(&lv, &lr[(nb / 4) as usize])
+                };
+                let want = first[i].edges[e].max(inside.max(other));
+                assert_eq!(l.edges[e].to_bits(), want.to_bits(), "element {i} edge {e}");
+                lifted += (nb == BOUNDARY && l.edges[e] > first[i].edges[e]) as usize;
+            }
+        }
+    }
+    assert!(
+        boundary > 100 && lifted > 10,
+        "{boundary} boundary slots, {lifted} lifted"
+    );
 }
