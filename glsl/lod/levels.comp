@@ -4,7 +4,8 @@
 // (push constants). One invocation per element, over the whole levels buffer. Where the view
 // lifts edges (LIFT: at integer levels to save transitions, at gliding ones to the insides'
 // needs), a second dispatch lifts them from what the first left of every element
-// (src/lod/frame/lift.rs), with a pipeline of its own (LIFTING: lavapipe would run the other
+// (src/lod/frame/lift.rs; where levels glide the first leaves only the insides' needs, and the
+// second chooses every level), with a pipeline of its own (LIFTING: lavapipe would run the other
 // dispatch's code too behind a uniform branch).
 // Mirror, operation for operation: src/lod/frame.rs `frame_levels` (the proof of the
 // transition triangles is in src/lod/frame/transitions.rs); tests/level_pass.rs compares the two.
@@ -61,7 +62,7 @@ layout(set = 0, binding = LEVEL_BINDING_LEVELS, std430) buffer Levels {
 };
 
 // What the first dispatch leaves of each element for the lift (src/lod/frame/lift.rs `Before`:
-// own, inner, failing, 0): this chunk's elements, and every element (the neighbours').
+// own, inner, failing, inside): this chunk's elements, and every element (the neighbours').
 layout(set = 0, binding = LEVEL_BINDING_BEFORE, std430) buffer Before {
     vec4 before[];
 };
@@ -424,32 +425,56 @@ void first_levels(uint i) {
         || ((view.flags & CULL_BACK_FACES) != 0u
             && lod_back_facing(record(i, RECORD_CONE), sphere, view.eye_k.xyz));
     bool lift = (view.flags & LIFT) != 0u;
-    bool glide = lift && (view.flags & DYADIC) != 0u;
     // A culled element draws nothing, and an edge's level is computed by each element that
-    // draws it: no level is needed here, but where levels glide its inside's own need, which
-    // the lift still gives its edges. Mirror: `Before::for_culled`.
+    // draws it: no level is needed here.
     if (culled) {
         element_levels[i] = vec4(0.0);
+    }
+    // Where levels glide, the lift's dispatch chooses every level; this one leaves each
+    // element's inside need (a culled one's too: its edges still take it) and whether it
+    // draws. Mirror: `Before::inside`.
+    if (lift && (view.flags & DYADIC) != 0u) {
+        before[i] = vec4(0.0, culled ? 0.0 : 1.0, 0.0,
+                         own_level_above(load_element(i, sphere), 0.0));
+        return;
+    }
+    if (culled) {
         if (lift) {
-            before[i] = glide ? vec4(0.0, 0.0, 0.0, own_level_above(load_element(i, sphere), 0.0))
-                              : vec4(0.0);
+            before[i] = vec4(0.0);
         }
         return;
     }
     Element r = load_element(i, sphere);
     vec3 edges = vec3(edge_level(load_edge(i, 0)), edge_level(load_edge(i, 1)),
                       edge_level(load_edge(i, 2)));
-    float largest = max(edges.x, max(edges.y, edges.z));
-    // Where levels glide the lift reads the inside's own need too; the level above the edges is
-    // then its maximum with them, as own_level_above computes it (the same bits).
-    float inside = glide ? own_level_above(r, 0.0) : 0.0;
-    float own = glide ? max(largest, inside) : own_level_above(r, largest);
+    float own = own_level_above(r, max(edges.x, max(edges.y, edges.z)));
     uint failing;
     float inner = raise_for_transitions(r, edges, own, failing);
     element_levels[i] = vec4(edges, inner);
     if (lift) {
-        before[i] = vec4(own, inner, float(failing), inside);
+        before[i] = vec4(own, inner, float(failing), 0.0);
     }
+}
+
+// The lift's dispatch where levels glide. Mirror: src/lod/frame/lift.rs `glided`.
+void glide_levels(uint i, vec4 me) {
+    vec3 edges = vec3(edge_level(load_edge(i, 0)), edge_level(load_edge(i, 1)),
+                      edge_level(load_edge(i, 2)));
+    uvec4 across = texelFetch(lod_neighbours, int(i) * RECORD_TEXELS + RECORD_NEIGHBOURS);
+    for (int e = 0; e < 3; ++e) {
+        uint a = across[e];
+        if (a != SHARED_EDGE) {
+            float other = a == NO_NEIGHBOUR ? me.w : before_all[a / 4u].w;
+            // The same maximum from both sides (max is exact and commutative).
+            edges[e] = max(edges[e], max(me.w, other));
+        }
+    }
+    // own_level_above(r, largest), the same bits: the larger of the floor and the own need.
+    float own = max(max(edges.x, max(edges.y, edges.z)), me.w);
+    uint failing;
+    float inner = raise_for_transitions(load_element(i, record(i, RECORD_SPHERE)), edges, own,
+                                        failing);
+    element_levels[i] = vec4(edges, inner);
 }
 
 // Mirror: `Before::proposal` (0: none).
@@ -460,10 +485,14 @@ uint proposal(vec4 b, uint slot, uint edge, vec4 other, bool has_other) {
     return ((uint(b.z) >> slot) & 1u) != 0u && n > edge && n <= across ? n : 0u;
 }
 
-// The lift's dispatch. Mirror: src/lod/frame/lift.rs `lifted`.
+// The lift's dispatch. Mirror: src/lod/frame/lift.rs `lifted` (at integer levels), `glided`.
 void lift_levels(uint i) {
     vec4 me = before[i];
     if (me.y <= 0.0) {
+        return;
+    }
+    if ((view.flags & DYADIC) != 0u) {
+        glide_levels(i, me);
         return;
     }
     uint mx = view.max_level;
@@ -473,12 +502,6 @@ void lift_levels(uint i) {
     for (int e = 0; e < 3; ++e) {
         uint a = across[e];
         if (a == SHARED_EDGE) {
-            continue;
-        }
-        if ((view.flags & DYADIC) != 0u) {
-            // Gliding: the same maximum from both sides (max is exact and commutative).
-            float other = a == NO_NEIGHBOUR ? me.w : before_all[a / 4u].w;
-            edges[e] = max(l[e], max(me.w, other));
             continue;
         }
         uint drawn_edge = drawn(l[e], false, mx);

@@ -86,7 +86,8 @@ pub const LATTICE: u32 = 8;
 /// integer levels ([`Rounding::SnappedInteger`], whose inner levels step 2 raises often) to a
 /// neighbour's inner level where that saves its transition; at gliding levels (the dyadic
 /// roundings) to the continuous level each of its elements' insides needs, so that an edge
-/// glides at least as far as the insides beside it.
+/// glides at least as far as the insides beside it (there the first dispatch leaves only each
+/// element's inside need, and the second chooses every level: [`lift::glided`]).
 pub const LIFT: u32 = 16;
 
 /// How a driver rounds an element's levels and draws its boundary along a coarser edge: what
@@ -474,21 +475,14 @@ pub fn element_levels(v: &LodView, r: &LodRecord) -> ElementLevels {
     first_levels(v, r).0
 }
 
-/// [`element_levels`] before the lift, with what the lift reads of it ([`lift::Before`]).
+/// [`element_levels`] before the lift, with what the integer lift reads of it
+/// ([`lift::Before`]).
 fn first_levels(v: &LodView, r: &LodRecord) -> (ElementLevels, lift::Before) {
     let edges = [0, 1, 2].map(|e| edge_level(v, &r.edges[e]));
-    let largest = edges[0].max(edges[1]).max(edges[2]);
-    // Where levels glide the lift reads the inside's own need too; the level above the edges is
-    // then its maximum with them, as `own_level_above` computes it (the same bits).
-    let (own, inside) = if lift::gliding(v) {
-        let inside = own_level(v, r);
-        (largest.max(inside), inside)
-    } else {
-        (own_level_above(v, r, largest), 0.0)
-    };
+    let own = own_level_above(v, r, edges[0].max(edges[1]).max(edges[2]));
     let (inner, failing) = raise_for_transitions(v, r, &edges, own);
     let levels = ElementLevels { edges, inner };
-    (levels, lift::Before::new(own, inner, failing, inside))
+    (levels, lift::Before::new(own, inner, failing, 0.0))
 }
 
 /// The smallest level that, given to every element, meets `view`'s pixel error on every
@@ -522,11 +516,20 @@ fn own_need(view: &LodView, r: &LodRecord) -> f32 {
 /// Every element's levels for `view`: the mirror of the level pass.
 pub fn frame_levels(view: &LodView, records: &[LodRecord]) -> Vec<ElementLevels> {
     let culled = |r: &LodRecord| element_levels_culled(view, r);
+    if lift::gliding(view) {
+        // The first pass leaves each element's inside need alone; the second chooses every level.
+        let before: Vec<_> = (records.iter())
+            .map(|r| lift::Before::inside(view, r, culled(r)))
+            .collect();
+        return (records.iter().zip(&before))
+            .map(|(r, me)| lift::glided(view, r, me, &before))
+            .collect();
+    }
     let (levels, before): (Vec<_>, Vec<_>) = records
         .iter()
         .map(|r| {
             if culled(r) {
-                (ElementLevels::CULLED, lift::Before::for_culled(view, r))
+                (ElementLevels::CULLED, lift::Before::CULLED)
             } else {
                 first_levels(view, r)
             }

@@ -48,11 +48,15 @@
 //! what is checked"). The lift is a maximum of levels that change continuously with the camera, so edges still glide without popping, and doubles
 //! an edge's drawn level exactly where the lifted level passes a power of two, where its new
 //! vertices start on the coarser mesh. An element culled this frame still tells its edges its
-//! need ([`Before::for_culled`]): its neighbour's edge must not jump when it turns away. An edge
+//! need ([`Before::inside`]): its neighbour's edge must not jump when it turns away. An edge
 //! shared by three elements or more is not lifted.
+//!
+//! Gliding levels need nothing of the first pass but the insides' needs, so there the first
+//! pass computes those alone (and culling), and the second every level, once ([`glided`]):
+//! each element's edges, lifted, and its inner level, raised for its transitions.
 #![forbid(unsafe_code)]
 
-use super::{own_level, own_level_above, raise_for_transitions, LodRecord, LodView};
+use super::{edge_level, own_level, own_level_above, raise_for_transitions, LodRecord, LodView};
 use crate::lod::levels::{drawn_level, ElementLevels};
 
 /// [`LodRecord::neighbours`] of an edge no other element has.
@@ -61,12 +65,13 @@ pub const BOUNDARY: u32 = u32::MAX;
 pub const SHARED: u32 = u32::MAX - 1;
 
 /// What the lift reads of an element's first levels (on the GPU, one `vec4` per element:
-/// `own`, `inner`, `failing` as a float, `inside`).
+/// `own`, `inner`, `failing` as a float, `inside`). Where levels glide the first pass leaves
+/// only `inside` and whether the element is culled ([`Before::inside`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Before {
     /// The continuous inner level its own bounds and its edges need, before step 2's raise.
     pub own: f32,
-    /// Its inner level after the raise; 0: culled.
+    /// Its inner level after the raise (where levels glide, 1); 0: culled.
     pub inner: f32,
     /// Bit `e`: edge `e`'s transition triangles do not fit at `own`'s drawn level.
     pub failing: u32,
@@ -88,17 +93,15 @@ impl Before {
         inside: 0.0,
     };
 
-    /// What a culled element `r` leaves: nothing at integer levels; where the levels glide, its
-    /// inside's own need, which its edges still take. Mirror: the culled branch of
-    /// `first_levels` in glsl/lod/levels.comp.
-    pub fn for_culled(v: &LodView, r: &LodRecord) -> Before {
-        if gliding(v) {
-            Before {
-                inside: own_level(v, r),
-                ..Before::CULLED
-            }
-        } else {
-            Before::CULLED
+    /// What element `r` leaves where levels glide: its inside's own need, which its edges take
+    /// whether it is `culled` or not (so that culling changes no edge of an element that
+    /// draws), and whether it draws. Mirror: the gliding branch of `first_levels` in
+    /// glsl/lod/levels.comp.
+    pub fn inside(v: &LodView, r: &LodRecord, culled: bool) -> Before {
+        Before {
+            inner: if culled { 0.0 } else { 1.0 },
+            inside: own_level(v, r),
+            ..Before::CULLED
         }
     }
 
@@ -130,8 +133,9 @@ impl Before {
     }
 }
 
-/// Element `r`'s levels after the lift, from its first levels `l` and what the first pass left
-/// of every element (`before`, its own at `me`). Mirror: `lift_levels` in glsl/lod/levels.comp.
+/// Element `r`'s levels after the lift at integer levels, from its first levels `l` and what
+/// the first pass left of every element (`before`, its own at `me`). Mirror: `lift_levels` in
+/// glsl/lod/levels.comp.
 pub fn lifted(
     v: &LodView,
     r: &LodRecord,
@@ -148,16 +152,6 @@ pub fn lifted(
         if across == SHARED {
             continue;
         }
-        if v.dyadic() {
-            // Gliding: the same maximum from both sides (max is exact and commutative).
-            let other = if across == BOUNDARY {
-                me.inside
-            } else {
-                before[(across / 4) as usize].inside
-            };
-            edges[e] = l.edges[e].max(me.inside.max(other));
-            continue;
-        }
         let drawn = drawn_level(l.edges[e], false, max);
         let other = (across != BOUNDARY).then(|| &before[(across / 4) as usize]);
         let mut n = me.proposal(e, drawn, other, max);
@@ -172,6 +166,35 @@ pub fn lifted(
         return *l;
     }
     let own = own_level_above(v, r, edges[0].max(edges[1]).max(edges[2]));
+    let (inner, _) = raise_for_transitions(v, r, &edges, own);
+    ElementLevels { edges, inner }
+}
+
+/// Element `r`'s levels where they glide, from what the first pass left of every element
+/// (`before`, its own at `me`: [`Before::inside`]): each edge the largest of its own level
+/// and both its elements' inside needs (an edge of one element: its own; of three or more: not
+/// lifted), the inner level the largest of those and its own need, raised where a coarser
+/// edge's transition triangles do not fit, as the first pass does at integer levels. Mirror:
+/// the gliding branch of `lift_levels` in glsl/lod/levels.comp.
+pub fn glided(v: &LodView, r: &LodRecord, me: &Before, before: &[Before]) -> ElementLevels {
+    if me.culled() {
+        return ElementLevels::CULLED;
+    }
+    let mut edges = [0, 1, 2].map(|e| edge_level(v, &r.edges[e]));
+    for (e, &across) in r.neighbours[..3].iter().enumerate() {
+        if across == SHARED {
+            continue;
+        }
+        let other = if across == BOUNDARY {
+            me.inside
+        } else {
+            before[(across / 4) as usize].inside
+        };
+        // The same maximum from both sides (max is exact and commutative).
+        edges[e] = edges[e].max(me.inside.max(other));
+    }
+    // `own_level_above(v, r, largest)`, the same bits: the larger of the floor and the own need.
+    let own = edges[0].max(edges[1]).max(edges[2]).max(me.inside);
     let (inner, _) = raise_for_transitions(v, r, &edges, own);
     ElementLevels { edges, inner }
 }
