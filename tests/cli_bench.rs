@@ -42,6 +42,25 @@ fn bench_reports_every_variant_with_ratios() {
     assert!(std::fs::read_to_string(tmp("bench-out/tet.json"))
         .unwrap()
         .contains("\"rows\""));
+    // The table names the camera it drew from as the options take it: the one `export` draws
+    // from by default at the same size (its header's, the same digits).
+    let cameras = (md.lines())
+        .find(|l| l.starts_with("Cameras (in the mesh's own coordinates"))
+        .unwrap_or_else(|| panic!("{md}"));
+    let obj = tmp("bench-out/tet.obj");
+    #[rustfmt::skip]
+    ok(&["export", p(&tet), "--surface", "flat", "--pixel-error", "1", "--width", "64", "--height", "64", "-o", p(&obj)]);
+    let obj = std::fs::read_to_string(obj).unwrap();
+    let w: Vec<&str> = (obj.lines())
+        .find(|l| l.starts_with("# camera eye "))
+        .unwrap()
+        .split(' ')
+        .collect();
+    let want = format!(
+        "tetrahedron as flat + none: `--eye {},{},{} --look-at {},{},{} --fov 45`",
+        w[3], w[4], w[5], w[7], w[8], w[9]
+    );
+    assert!(cameras.contains(&want), "{cameras}\n{want}");
     assert!(s.contains("llvmpipe") || s.contains("Device:"), "{s}");
     // The terminal gets the summary, every line within 120 characters, and where the full
     // table went (its path on a line of its own, whole).

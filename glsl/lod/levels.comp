@@ -418,7 +418,8 @@ Element load_element(uint i, vec4 sphere) {
                    record(i, RECORD_MIXED));
 }
 
-// The first dispatch. Mirror: `element_levels` (`first_levels`).
+// The first dispatch. Mirror: `element_levels` (`first_levels`); where levels glide,
+// `Before::inside`.
 void first_levels(uint i) {
     vec4 sphere = record(i, RECORD_SPHERE);
     bool culled = ((view.flags & CULL_FRUSTUM) != 0u && outside(sphere))

@@ -46,7 +46,7 @@ pub(super) fn run(
     mesh: &Mesh,
     opts: &BenchOptions,
     a: &BenchAdaptive,
-) -> Result<Vec<Row>, RenderError> {
+) -> Result<(Vec<Row>, Vec<super::ViewUsed>), RenderError> {
     // Every level a uniform row may draw has its pattern uploaded (the scene checks it whatever
     // the driver): the levels asked for, the powers of two up to the largest level's, and every
     // level up to 128 (the tessellator's bounds are integers).
@@ -70,7 +70,7 @@ pub(super) fn run(
         m.scene.static_vbo = None;
     }
     h.adaptive = false;
-    Ok(rows)
+    Ok((rows, m.views_used(&a.cameras)))
 }
 
 /// One variant: its adaptive row, then its uniform rows, drawn from `a`'s cameras, or where it

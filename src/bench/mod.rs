@@ -165,6 +165,39 @@ impl Stat {
     }
 }
 
+/// The cameras one mesh's rows of one surface x displacement were drawn from (one, or a
+/// path's: [`BenchAdaptive::cameras`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ViewUsed {
+    pub mesh: String,
+    pub surface: Surface,
+    pub displace: Displace,
+    pub shots: Vec<Shot>,
+}
+
+/// Where a camera stands, where it looks and its vertical field of view in degrees (up is
+/// +Y, as on the command line).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Shot {
+    pub eye: glam::Vec3,
+    pub target: glam::Vec3,
+    pub fov_y_degrees: f32,
+}
+
+impl From<&Camera> for Shot {
+    fn from(c: &Camera) -> Self {
+        Self {
+            eye: c.eye(),
+            target: c.target,
+            fov_y_degrees: c.fov_y.to_degrees(),
+        }
+    }
+}
+
+/// [`Report::camera_space`] where the caller does not map the cameras back.
+pub const DRAWN_SPACE: &str =
+    "in the coordinates the meshes were drawn in: centred and at unit size, `Mesh::for_viewing`, in the benchmarks";
+
 #[derive(Clone, Debug)]
 pub struct Row {
     pub mesh: String,
@@ -236,9 +269,12 @@ pub fn run(
     let mut h = Headless::with_context(ctx.clone(), opts.width, opts.height)?;
     h.view = opts.view;
     let mut rows = Vec::new();
+    let mut cameras = Vec::new();
     for mesh in meshes {
         if let Some(a) = &opts.adaptive {
-            rows.extend(adaptive::run(&ctx, &mut h, mesh, opts, a)?);
+            let (r, c) = adaptive::run(&ctx, &mut h, mesh, opts, a)?;
+            rows.extend(r);
+            cameras.extend(c);
             continue;
         }
         let mut m = MeshSetup::new(&mut h, mesh, opts)?;
@@ -256,6 +292,7 @@ pub fn run(
             // Free the static buffers of this level before the next one.
             m.scene.static_vbo = None;
         }
+        cameras.extend(m.views_used(&[]));
     }
     Ok(Report {
         device,
@@ -265,6 +302,8 @@ pub fn run(
         height: opts.height,
         view: opts.view,
         rows,
+        cameras,
+        camera_space: DRAWN_SPACE.into(),
     })
 }
 
@@ -333,6 +372,27 @@ impl MeshSetup {
 }
 
 impl MeshSetup {
+    /// The cameras its rows were drawn from, per surface x displacement in the order measured:
+    /// `path` where given (every surface's), else each one's own.
+    fn views_used(&self, path: &[Camera]) -> Vec<ViewUsed> {
+        (self.surfaces.iter())
+            .filter_map(|&(surface, displace)| {
+                let own = (self.cameras.iter()).find(|(k, _)| *k == (surface, displace));
+                let shots = match own {
+                    _ if !path.is_empty() => path.iter().map(Shot::from).collect(),
+                    Some((_, c)) => vec![Shot::from(c)],
+                    None => return None,
+                };
+                Some(ViewUsed {
+                    mesh: self.name.clone(),
+                    surface,
+                    displace,
+                    shots,
+                })
+            })
+            .collect()
+    }
+
     /// The camera `cfg`'s frames are drawn from ([`BenchOptions::camera`]): fitted to its
     /// surface x displacement as drawn (the scene prepared for it: Loop's M1 faces exist), once
     /// per surface x displacement.

@@ -31,6 +31,12 @@ pub struct Report {
     /// What the frames showed (the `plain` view: unlit, no fragment work).
     pub view: View,
     pub rows: Vec<Row>,
+    /// The cameras the rows were drawn from, in the coordinates [`Report::camera_space`]
+    /// names (the markdown's `Cameras:` line).
+    pub cameras: Vec<super::ViewUsed>,
+    /// In which coordinates [`Report::cameras`] are: those the meshes were drawn in unless the
+    /// caller maps them back (`meshrefine bench`: the mesh's own, as `--eye` takes them).
+    pub camera_space: String,
 }
 
 /// How a column's cells line up in markdown and in the summary.
@@ -172,6 +178,34 @@ impl Report {
         }
     }
 
+    /// The `Cameras:` line: each mesh's surface x displacement and the eye, point looked at and
+    /// vertical field of view it was drawn from (several: a path, each frame's).
+    fn cameras_said(&self) -> String {
+        let p = |v: glam::Vec3| v.to_array().map(crate::lod::px).join(",");
+        let said: Vec<String> = (self.cameras.iter())
+            .map(|v| {
+                let shots: Vec<String> = (v.shots.iter())
+                    .map(|c| {
+                        format!(
+                            "`--eye {} --look-at {} --fov {}`",
+                            p(c.eye),
+                            p(c.target),
+                            crate::lod::px(c.fov_y_degrees)
+                        )
+                    })
+                    .collect();
+                format!(
+                    "{} as {} + {}: {}",
+                    v.mesh,
+                    v.surface.name(),
+                    v.displace.name(),
+                    shots.join(", then ")
+                )
+            })
+            .collect();
+        format!("Cameras ({}): {}.", self.camera_space, said.join("; "))
+    }
+
     /// What the report's ratios compare, as the rows hold them: uniform rows against `static`
     /// and `flat` (columns), adaptive rows against the uniform rows of the same run (their
     /// notes; the ratio columns stay empty there). `short` for the terminal's summary.
@@ -217,6 +251,9 @@ impl Report {
             self.frames,
             self.ratios_said(false)
         );
+        if !self.cameras.is_empty() {
+            let _ = writeln!(s, "{}\n", crate::paths::printable(&self.cameras_said()));
+        }
         let columns: Vec<&Column> = COLUMNS.iter().filter(|c| c.markdown.is_some()).collect();
         let line = |cells: Vec<String>| format!("| {} |", cells.join(" | "));
         let _ = writeln!(
@@ -576,6 +613,8 @@ mod tests {
             height: 720,
             view: View::Shaded,
             rows,
+            cameras: Vec::new(),
+            camera_space: super::super::DRAWN_SPACE.into(),
         }
     }
 

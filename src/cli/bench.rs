@@ -141,6 +141,20 @@ pub fn run(a: &BenchArgs, desc: &ContextDesc, levels_given: bool) -> Result<()> 
             .map_err(|e| no_direction(e, &a.adaptive.viewpoint, &scene_frame, several))
             .with_context(|| format!("cannot benchmark '{}'", input.shown))
     })?;
+    // The cameras as `--eye`, `--look-at` and `--fov` take them: the values given, exactly, and
+    // the fitted camera's mapped back to mesh coordinates.
+    let mut report = report;
+    let v = &a.adaptive.viewpoint;
+    for shot in report.cameras.iter_mut().flat_map(|c| c.shots.iter_mut()) {
+        let eye = v.eye().unwrap_or(scene_frame.mesh(shot.eye).to_array());
+        let target = v
+            .look_at()
+            .unwrap_or(scene_frame.mesh(shot.target).to_array());
+        shot.eye = eye.into();
+        shot.target = target.into();
+        shot.fov_y_degrees = v.fov.value;
+    }
+    report.camera_space = "in the mesh's own coordinates, as the options take them".into();
     if let Some(prefix) = &a.out {
         let command = super::command_line();
         if let Err(e) = report.write_files(prefix, &command) {
