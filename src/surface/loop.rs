@@ -109,7 +109,7 @@ pub fn eval(
 /// stored corner 1, `j/S` on corner 2), strictly inside the face: the one table row there summed
 /// over the control vertices, as [`eval`] sums it at that point (the same bits up to the sign of
 /// a zero: `eval` weighs the cell's other two rows by zero), without the normal and tangents.
-/// What the bounds read at every lattice point ([`bound`]).
+/// What the bounds read at every lattice point ([`bound`]), through [`FaceRows`].
 pub fn interior_point(
     data: &LoopData,
     frame: &LoopFrame,
@@ -117,30 +117,79 @@ pub fn interior_point(
     i: u32,
     j: u32,
 ) -> Vec3 {
-    let g = FaceRecord::decode(rec).face as usize;
-    let [base, kp, first, orient] = data.faces[g];
-    let (k, pairs) = ((kp & 0xffff) as usize, (kp >> 16) as usize);
-    let o = Orient {
-        rot: (orient & 3) as u8,
-        mirror: orient & 4 != 0,
-    };
-    let lattice = Lattice::new(orient >> 3);
-    let s = lattice.segments();
-    debug_assert!(
-        i > 0 && j > 0 && i + j < s,
-        "({i}, {j}) is not inside the face"
-    );
-    // Canonical lattice coordinates, as `eval_face` takes them from the barycentrics.
-    let stored = [s - i - j, i, j];
-    let row = lattice.row(stored[o.stored(1)], stored[o.stored(2)]);
-    let packed = &data.tables.packed;
-    let at = packed.entry(base as usize + row);
-    let mut p = Vec3::ZERO;
-    for c in 0..padded(k) {
-        let v = data.control[first as usize + c] as usize;
-        p += frame.positions[v] * packed.weight(at, c, pairs);
+    FaceRows::new(data, frame, rec).point(i, j)
+}
+
+/// [`interior_point`] at many points of one face: the face's record and tables read once.
+pub struct FaceRows<'a> {
+    data: &'a LoopData,
+    frame: &'a LoopFrame,
+    base: usize,
+    k: usize,
+    pairs: usize,
+    first: usize,
+    o: Orient,
+    lattice: Lattice,
+}
+
+impl<'a> FaceRows<'a> {
+    pub fn new(data: &'a LoopData, frame: &'a LoopFrame, rec: &ElementRecord) -> Self {
+        let g = FaceRecord::decode(rec).face as usize;
+        let [base, kp, first, orient] = data.faces[g];
+        Self {
+            data,
+            frame,
+            base: base as usize,
+            k: (kp & 0xffff) as usize,
+            pairs: (kp >> 16) as usize,
+            first: first as usize,
+            o: Orient {
+                rot: (orient & 3) as u8,
+                mirror: orient & 4 != 0,
+            },
+            lattice: Lattice::new(orient >> 3),
+        }
     }
-    p
+
+    /// [`interior_point`] at `(i, j)`.
+    pub fn point(&self, i: u32, j: u32) -> Vec3 {
+        let mut p = [Vec3::ZERO];
+        self.points(i, j, &mut p);
+        p[0]
+    }
+
+    /// [`interior_point`] at `(i, j)`, `(i + 1, j)`, ... into `out` (at most [`FaceRows::RUN`]
+    /// points): each point's sum in its own order, the same bits as alone, the runs' sums
+    /// interleaved so that they do not wait on each other.
+    pub fn points(&self, i: u32, j: u32, out: &mut [Vec3]) {
+        let s = self.lattice.segments();
+        let m = out.len();
+        debug_assert!(
+            m <= Self::RUN && i > 0 && j > 0 && i + m as u32 + j <= s,
+            "({i}.., {j}) is not inside the face"
+        );
+        // Canonical lattice coordinates, as `eval_face` takes them from the barycentrics.
+        let packed = &self.data.tables.packed;
+        let mut at = [(0, false); Self::RUN];
+        for (q, a) in at.iter_mut().enumerate().take(m) {
+            let i = i + q as u32;
+            let stored = [s - i - j, i, j];
+            let row = (self.lattice).row(stored[self.o.stored(1)], stored[self.o.stored(2)]);
+            *a = packed.entry(self.base + row);
+        }
+        let mut p = [Vec3::ZERO; Self::RUN];
+        for c in 0..padded(self.k) {
+            let v = self.data.control[self.first + c] as usize;
+            let position = self.frame.positions[v];
+            for q in 0..m {
+                p[q] += position * packed.weight(at[q], c, self.pairs);
+            }
+        }
+        out.copy_from_slice(&p[..m]);
+    }
+
+    /// The most points [`FaceRows::points`] takes at once.
+    pub const RUN: usize = 4;
 }
 
 /// The lattice triangle around canonical lattice coordinates (x, y) (units of 1/S): its

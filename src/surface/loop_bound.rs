@@ -270,35 +270,47 @@ pub fn element(lod: &Lod, rec: &ElementRecord) -> Bounds {
     let s = segments(lod, rec);
     let n = s as usize + 1;
     let moving = moves(lod);
-    // q(j, i): lattice point (i, j), weight i/S on corner 1, j/S on corner 2.
-    let mut grid = vec![Moved::default(); n * n];
+    let (data, frame) = inputs(lod);
+    let face = loop_::FaceRows::new(data, frame, rec);
+    // q(j, i): lattice point (i, j), weight i/S on corner 1, j/S on corner 2: the drawn points
+    // (`grid`), and where a displacement moves them each point's `Moved` too; `points`, the
+    // undisplaced ones in order, for the sphere.
+    let mut grid = vec![Vec3::ZERO; n * n];
+    let mut moved = if moving {
+        vec![Moved::default(); n * n]
+    } else {
+        Vec::new()
+    };
     let mut points = Vec::with_capacity(n * (n + 1) / 2);
     for j in 0..=s {
         for i in 0..=s - j {
             let bary = [weight(s - i - j, s), weight(i, s), weight(j, s)];
-            let m = if moving {
-                moved_at(lod, rec, bary)
+            let at_point = j as usize * n + i as usize;
+            let p = if moving {
+                let m = moved_at(lod, rec, bary);
+                moved[at_point] = m;
+                grid[at_point] = m.drawn;
+                m.p
+            } else if i == 0 || j == 0 || i + j == s {
+                // On an edge or corner: its owner's point, as every driver draws it.
+                let p = at(lod, rec, bary);
+                grid[at_point] = p;
+                p
             } else {
-                let p = if i > 0 && j > 0 && i + j < s {
-                    let (data, frame) = inputs(lod);
-                    loop_::interior_point(data, frame, rec, i, j)
-                } else {
-                    // On an edge or corner: its owner's point, as every driver draws it.
-                    at(lod, rec, bary)
-                };
-                Moved {
-                    p,
-                    n: Vec3::ZERO,
-                    drawn: p,
+                // Inside: filled a run at a time at its first point (below).
+                if i == 1 {
+                    let row = &mut grid[at_point..at_point + (s - j - 1) as usize];
+                    for (r, run) in row.chunks_mut(loop_::FaceRows::RUN).enumerate() {
+                        face.points(1 + (r * loop_::FaceRows::RUN) as u32, j, run);
+                    }
                 }
+                grid[at_point]
             };
-            grid[j as usize * n + i as usize] = m;
-            points.push(m.p);
+            points.push(p);
         }
     }
-    let q = |j: usize, i: usize| grid[j * n + i];
     let s = s as usize;
-    let (d, b) = differences(s, |j, i| q(j, i).drawn);
+    let (d, b) = differences(s, |j, i| grid[j * n + i]);
     let s2 = (s * s) as f32;
     let (mut m, mut b) = (d.map(|x| x.sqrt() * s2), b.map(|x| x.sqrt() * s2));
     let mut sphere = Sphere::around(&points);
@@ -307,7 +319,7 @@ pub fn element(lod: &Lod, rec: &ElementRecord) -> Bounds {
     if moving {
         e = height(lod, &sphere).map_or([f32::INFINITY; 3], |h| {
             sphere = sphere.grown(h.max);
-            inside_cells(&h, s, q)
+            inside_cells(&h, s, |j, i| moved[j * n + i])
         });
         // Twice where the drawn vertices are not lattice points (module notes, "Displaced").
         let times = if inside { 1.0 } else { 2.0 };
