@@ -347,6 +347,40 @@ fn bench_times_uniform_rows_of_a_variant_not_drawn_adaptively() {
         get(tess[1], "gpu_ms_median").parse::<f64>().is_ok(),
         "{csv}"
     );
+    // Where the static driver's mesh refined for the levels chosen (known only once they are)
+    // is over the device's allocation limit, its adaptive row is not drawn, as one the device
+    // refuses up front, and every other row is still timed.
+    let over = tmp("bench-adaptive-over-limit");
+    let o = over.display().to_string();
+    let spot = model_arg("spot_control_tri.obj");
+    #[rustfmt::skip]
+    succeeds(
+        &[
+            "bench", &spot, "--drivers", "static,pattern", "--surfaces", "pn", "--pixel-error",
+            "1e-9", "--max-level", "32", "--no-bound-levels", "--levels", "1", "--frames", "1",
+            "--width", "16", "--height", "16", "--out", &o,
+        ],
+        &[("MESHREFINE_MAX_MEMORY_ALLOCATION_SIZE", "2000000")],
+    );
+    let csv = std::fs::read_to_string(over.with_extension("csv")).unwrap();
+    let mut lines = csv.lines();
+    let keys = common::csv_fields(lines.next().unwrap());
+    let rows: Vec<Vec<String>> = lines.map(common::csv_fields).collect();
+    let get = |r: &Vec<String>, key: &str| r[keys.iter().position(|k| k == key).unwrap()].clone();
+    assert_eq!(rows.len(), 8, "{csv}");
+    for r in &rows {
+        let timed = get(r, "gpu_ms_median").parse::<f64>().is_ok();
+        if get(r, "variant") == "static" && get(r, "adaptive") == "true" {
+            assert!(!timed && get(r, "refined_triangles").is_empty(), "{csv}");
+            assert!(
+                get(r, "note")
+                    .starts_with("not drawn: the static driver's adaptively refined mesh"),
+                "{csv}"
+            );
+        } else {
+            assert!(timed, "{csv}");
+        }
+    }
     // Where --max-level keeps the bound from being met, the adaptive row says that the bound's
     // uniform level (the largest) does not meet it either.
     #[rustfmt::skip]

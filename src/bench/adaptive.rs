@@ -194,7 +194,20 @@ fn variant(
         let mut round = 0;
         while round == 0 || !list.iter().all(enough) {
             for t in list.iter_mut().filter(|t| t.drawn) {
-                frame(h, m, t, &camera, &view(camera), round)?;
+                match frame(h, m, t, &camera, &view(camera), round) {
+                    Ok(()) => {}
+                    // What the device cannot hold of the levels chosen (the static driver's
+                    // mesh refined for them, known only once they are): not drawn, as a level
+                    // it refuses, and the other rows are still timed.
+                    Err(e @ RenderError::OverLimit { .. }) => {
+                        m.scene.static_vbo = None;
+                        let said = std::mem::take(&mut t.row.note);
+                        t.row.note = format!("not drawn: {e}");
+                        add_note(&mut t.row, said);
+                        t.drawn = false;
+                    }
+                    Err(e) => return Err(e),
+                }
             }
             round += 1;
         }

@@ -89,6 +89,11 @@ pub const LATTICE: u32 = 8;
 /// glides at least as far as the insides beside it (there the first dispatch leaves only each
 /// element's inside need, and the second chooses every level: [`lift::glided`]).
 pub const LIFT: u32 = 16;
+/// The records' bounds hold only where the drawn samples are lattice points, the powers of two
+/// this dyadic rounding draws (`loop`'s, built for it: src/surface/loop_bound.rs, "Levels whose
+/// samples are not lattice points"): a uniform frame meeting them is drawn at a power of two
+/// ([`uniform_level`]). Read on the CPU alone ([`LodView::with_lattice_bounds`]).
+pub const LATTICE_BOUNDS: u32 = 32;
 
 /// How a driver rounds an element's levels and draws its boundary along a coarser edge: what
 /// the level pass bounds the transition triangles for ([`transitions`]).
@@ -193,6 +198,27 @@ impl LodView {
 
     pub fn dyadic(&self) -> bool {
         self.flags & DYADIC != 0
+    }
+
+    /// The same view over records whose bounds hold at its powers of two alone where
+    /// `lattice` ([`LATTICE_BOUNDS`]; only a dyadic rounding's records can be built so).
+    pub fn with_lattice_bounds(self, lattice: bool) -> Self {
+        let flag = if lattice && self.dyadic() {
+            LATTICE_BOUNDS
+        } else {
+            0
+        };
+        Self {
+            flags: self.flags & !LATTICE_BOUNDS | flag,
+            ..self
+        }
+    }
+
+    /// The level a uniform frame draws to meet `need` (a continuous level a frame without
+    /// gliding needs), up to the largest: any integer, or the power of two at or above it where
+    /// the records' bounds hold only there ([`LATTICE_BOUNDS`]).
+    pub fn uniform_drawn(&self, need: f32, max: u32) -> u32 {
+        drawn_level(need, self.flags & LATTICE_BOUNDS != 0, max)
     }
 
     pub fn rounding(&self) -> Rounding {
@@ -488,10 +514,12 @@ fn first_levels(v: &LodView, r: &LodRecord) -> (ElementLevels, lift::Before) {
 /// The smallest level that, given to every element, meets `view`'s pixel error on every
 /// element `levels` draws (up to the largest level): each element's own need and its edges'
 /// curves', without the transition needs (a uniform frame has no coarser edges), as an integer
-/// (every driver draws any uniform level), so possibly below the largest level the adaptive
-/// frame draws; 1 when none is drawn.
+/// (every driver draws any uniform level; a power of two where the records' bounds hold only
+/// there, [`LATTICE_BOUNDS`]), so possibly below the largest level the adaptive frame draws; 1
+/// when none is drawn.
 pub fn uniform_level(view: &LodView, records: &[LodRecord], levels: &[ElementLevels]) -> u32 {
     let max = view.max_level;
+    let drawn = *view;
     // A uniform frame does not glide: its levels are those of the integer rounding.
     let view = &LodView {
         flags: view.flags & !DYADIC,
@@ -499,7 +527,7 @@ pub fn uniform_level(view: &LodView, records: &[LodRecord], levels: &[ElementLev
     };
     (records.iter().zip(levels))
         .filter(|(_, l)| !l.culled())
-        .map(|(r, _)| drawn_level(own_need(view, r), false, max))
+        .map(|(r, _)| drawn.uniform_drawn(own_need(view, r), max))
         .max()
         .unwrap_or(1)
 }

@@ -98,7 +98,7 @@ pub fn element_unmet(view: &LodView, r: &LodRecord, l: &ElementLevels) -> Option
         u.near = 1;
     } else if drawn_level(own, false, UNCAPPED) > max {
         u.capped = 1;
-        u.beyond_uniform = (drawn_level(uniform, false, UNCAPPED) > max) as u64;
+        u.beyond_uniform = (view.uniform_drawn(uniform, UNCAPPED) > max) as u64;
     } else if transitions::transitions_beyond(view, r, &l.edges) {
         u.capped = 1;
     } else {
