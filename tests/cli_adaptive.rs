@@ -428,6 +428,34 @@ fn info_counts_unmet_elements_by_their_own_bounds() {
     assert!(fixed.0 > fixed.1, "{fixed:?}");
 }
 
+/// `loop`'s bounds for gliding levels hold at powers of two alone: `info` compares a gliding
+/// frame with the smallest power of two meeting them (from those bounds read as any integer,
+/// level 54 here), and at integer levels (`static`) with the integer level its own bounds ask.
+#[test]
+fn info_compares_gliding_loop_with_a_power_of_two() {
+    let ico = model_path("icosahedron.obj");
+    let uniform = |driver: &str| -> u32 {
+        #[rustfmt::skip]
+        let out = ok(&[
+            "info", p(&ico), "--surface", "loop", "--driver", driver,
+            "--eye", "-0.525731112,0.850650808,0", "--look-at", "0,0,0", "--pixel-error", "1",
+        ]);
+        let (_, after) = out.split_once("at uniform level ").expect(&out);
+        after.split_whitespace().next().unwrap().parse().unwrap()
+    };
+    assert_eq!(uniform("pattern"), 64);
+    assert_eq!(uniform("tess"), 64);
+    assert_eq!(uniform("static"), 64);
+    #[rustfmt::skip]
+    let out = ok(&[
+        "info", p(&ico), "--surface", "loop", "--driver", "pattern",
+        "--pixel-error", "1", "--max-level", "1024",
+    ]);
+    let (_, after) = out.split_once("at uniform level ").expect(&out);
+    let level: u32 = after.split_whitespace().next().unwrap().parse().unwrap();
+    assert!(level.is_power_of_two(), "{out}");
+}
+
 /// `export --pixel-error` writes what the tess driver drew adaptively for the camera: the
 /// header says which camera and how many elements at each level; without culling (export's
 /// default) every element is drawn and the welded mesh is closed, with fewer triangles than the

@@ -403,7 +403,8 @@ fn print_levels(
         back_faces,
         rounding,
         bounds.len() as u32,
-    );
+    )
+    .with_lattice_bounds(surface.uses_loop_faces());
     let levels = frame_levels(&lod_view, &bounds);
     let stats = LevelStats::new(&levels, dyadic, a.max_level);
     // The elements whose bound --max-level keeps from being met.

@@ -168,7 +168,8 @@ impl Scene {
             back_faces,
             cfg.rounding(),
             count,
-        );
+        )
+        .with_lattice_bounds(cfg.surface.uses_loop_faces());
         if on_cpu {
             // The static driver refines at the mirror's levels on the CPU: no level pass.
             l.view = None;

@@ -11,16 +11,7 @@ fn loop_bounds_hold() {
     let (mesh, _) = load_model("spot_control_tri.obj");
     let data = LoopData::new(&mesh, Boundary::EdgeOnly, Lattice::default(), |_| {}).unwrap();
     let frame = data.frame(&mesh.positions);
-    let case = Case {
-        surface: Surface::Loop,
-        field: NormalField::default(),
-        displace: Displace::None,
-        params: SurfaceParams::default(),
-        inputs: Sources {
-            loop_: Some((&data, &frame)),
-            ..Default::default()
-        },
-    };
+    let case = Case::loop_(&data, &frame, Displace::None, SurfaceParams::default());
     // Every 23rd face, and a face beside an extraordinary vertex of every valence Spot has
     // (3 to 10): a face's control points are 12 where its corners are regular, `n + 6` beside
     // one of valence `n`.
@@ -117,16 +108,7 @@ fn loop_bounds_hold() {
             },
         ),
     ];
-    let with = |displace, params| Case {
-        surface: Surface::Loop,
-        field: NormalField::default(),
-        displace,
-        params,
-        inputs: Sources {
-            loop_: Some((&data, &frame)),
-            ..Default::default()
-        },
-    };
+    let with = |displace, params| Case::loop_(&data, &frame, displace, params);
     for rec in every(&data.records, 29) {
         for (displace, params) in still {
             let c = with(displace, params);

@@ -64,6 +64,24 @@ impl Case<'_> {
             inputs: Sources::default(),
         }
     }
+}
+
+impl<'a> Case<'a> {
+    /// `loop` on `data`'s faces posed as `frame`, displaced by `displace` with `params`.
+    fn loop_(
+        data: &'a LoopData,
+        frame: &'a crate::surface::loop_::LoopFrame,
+        displace: Displace,
+        params: SurfaceParams,
+    ) -> Self {
+        Case {
+            inputs: Sources {
+                loop_: Some((data, frame)),
+                ..Default::default()
+            },
+            ..Case::plain(Surface::Loop, displace, params)
+        }
+    }
 
     fn mirror(&self) -> Mirror<'_> {
         let build = BuildOptions {
