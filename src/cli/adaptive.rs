@@ -310,8 +310,13 @@ pub fn check_max_level(device: &DeviceInfo, l: u32, driver: Driver) -> Result<()
 pub fn check_max_level_rounding(l: u32, driver: Driver) -> Result<()> {
     if !driver.kind().integer_levels() && !l.is_power_of_two() {
         let lower = 1u32 << l.ilog2();
+        let why = if driver.kind().refines_on_cpu() {
+            "it refines at the pattern driver's levels, whose patterns are built up to a power of two"
+        } else {
+            "its adaptive patterns are built up to a power of two, geomorphing or not"
+        };
         bail!(
-            "--max-level {l} is not a power of two, as the {} driver's largest level must be (the pattern driver's adaptive patterns are built up to one, with or without --geomorph, and static takes its levels); use {lower} or {}",
+            "--max-level {l} is not a power of two, as the {} driver's largest level must be ({why}); use {lower} or {}",
             driver.name(),
             lower * 2
         );
