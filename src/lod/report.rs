@@ -17,8 +17,9 @@ pub struct LevelReport {
     /// alone (`Scene::drawn_levels`).
     pub facing_away: u64,
     /// The smallest level that, given to every element, meets the same pixel error on every
-    /// visible one (`lod::frame::uniform_level`: any integer, without the transitions an
-    /// adaptive frame draws, so possibly below its largest level; 1 when none is visible).
+    /// visible one (`lod::frame::uniform_level`: any integer, a power of two where the bounds
+    /// hold only there, without the transitions an adaptive frame draws, so possibly below its
+    /// largest level; 1 when none is visible).
     pub uniform_level: u32,
     /// Visible elements on which the pixel error is not met ([`Unmet`](super::frame::Unmet)).
     pub unmet: super::frame::Unmet,

@@ -2,6 +2,7 @@
 //! integer levels, for each way a driver rounds (src/surface/loop_bound.rs).
 
 use super::bounds::sampled_mixed;
+use super::view::{rounding_name, Screen};
 use super::*;
 
 /// Loop: spot's M1 faces, at dyadic and other levels, with extraordinary vertices of valence 3
@@ -147,4 +148,52 @@ fn loop_bounds_hold() {
             "{what}: an eighth of the bound went unnoticed"
         );
     }
+}
+
+/// `loop`'s bounds built for a gliding driver (no kink terms for samples off the tables'
+/// lattice) hold at its powers of two alone, so the uniform level its adaptive frames are
+/// compared with is the smallest power of two meeting them. Read as any integer, as the other
+/// surfaces' are, they would claim integer levels that the bounds built for integer levels
+/// (which hold there, `loop_bounds_hold`) say miss the pixel error.
+#[test]
+fn loops_uniform_level_while_gliding_is_a_power_of_two() {
+    use crate::lod::frame::{frame_levels, lod_records, uniform_level, LodView};
+    let (mesh, _) = load_model("spot_control_tri.obj");
+    let data = LoopData::new(&mesh, Boundary::EdgeOnly, Lattice::default(), |_| {}).unwrap();
+    let frame = data.frame(&mesh.positions);
+    let case = Case::loop_(&data, &frame, Displace::None, SurfaceParams::default());
+    let count = data.records.len() as u32;
+    let records = |rounding| lod_records(&case.lod().drawn_as(rounding), &data.records);
+    let pairs = [
+        (Rounding::Snapped, Rounding::SnappedInteger),
+        (Rounding::TessSnapped, Rounding::Integer),
+    ];
+    let mut understated = 0;
+    for (gliding, integer) in pairs {
+        let (lr, li) = (records(gliding), records(integer));
+        for px in [0.5, 1.0, 2.0, 4.0] {
+            let screen = Screen::new(&mesh, px);
+            let view = |rounding| {
+                LodView::new(&screen.view, Some(&screen.frustum), false, rounding, count)
+            };
+            let lv = view(gliding).with_lattice_bounds(true);
+            let levels = frame_levels(&lv, &lr);
+            let uniform = uniform_level(&lv, &lr, &levels);
+            // As any integer, from the same records, and what integer levels need of the same
+            // elements by their own records.
+            let any = uniform_level(&view(gliding), &lr, &levels);
+            let at_integers = uniform_level(&view(integer), &li, &levels);
+            eprintln!(
+                "loop{} at {px} px: uniform {uniform}, as any integer {any}, integer levels need {at_integers}",
+                rounding_name(gliding)
+            );
+            assert_eq!(uniform, any.next_power_of_two().min(screen.view.max_level));
+            assert!(uniform.is_power_of_two() && uniform <= screen.view.max_level);
+            understated += usize::from(any < at_integers && !any.is_power_of_two());
+        }
+    }
+    assert!(
+        understated > 0,
+        "any integer claimed nothing integer levels miss"
+    );
 }

@@ -98,11 +98,11 @@ fn frustum_and_back_face_culling_are_conservative() {
 }
 
 /// The camera of the end-to-end check, and how its pixels are counted.
-struct Screen {
+pub(super) struct Screen {
     eye: Vec3,
     vp: Mat4,
-    view: View,
-    frustum: Frustum,
+    pub(super) view: View,
+    pub(super) frustum: Frustum,
     axis: Vec3,
     size: glam::Vec2,
     /// Only measure, assert nothing (levels for a coarser pixel error, measured at this one).
@@ -110,7 +110,7 @@ struct Screen {
 }
 
 impl Screen {
-    fn new(spot: &Mesh, px: f32) -> Self {
+    pub(super) fn new(spot: &Mesh, px: f32) -> Self {
         Self::capped(spot, px, 64)
     }
 
@@ -193,7 +193,7 @@ fn snapped(n: u32, i: u32, j: u32, ne: [u32; 3], idx: [u32; 3], rounding: Roundi
     b
 }
 
-fn rounding_name(r: Rounding) -> &'static str {
+pub(super) fn rounding_name(r: Rounding) -> &'static str {
     match r {
         Rounding::Integer => "",
         Rounding::TessSnapped => " (tess snapped)",
@@ -523,54 +523,6 @@ fn uniform_level_is_the_smallest_meeting_the_bound() {
 /// `h·c1` in the transitions' needs) that no other displacement has. The grid with texture
 /// coordinates, displaced by 1% of its radius, seen for a 2 px bound, at the pyramid level the renderer reads at
 /// the largest level, every rounding.
-/// `loop`'s bounds built for a gliding driver (no kink terms for samples off the tables'
-/// lattice) hold at its powers of two alone, so the uniform level its adaptive frames are
-/// compared with is the smallest power of two meeting them. Read as any integer, as the other
-/// surfaces' are, they would claim integer levels that the bounds built for integer levels
-/// (which hold there, `loop_bounds_hold`) say miss the pixel error.
-#[test]
-fn loops_uniform_level_while_gliding_is_a_power_of_two() {
-    use crate::lod::frame::{frame_levels, lod_records, uniform_level, LodView};
-    let (mesh, _) = load_model("spot_control_tri.obj");
-    let data = LoopData::new(&mesh, Boundary::EdgeOnly, Lattice::default(), |_| {}).unwrap();
-    let frame = data.frame(&mesh.positions);
-    let case = Case::loop_(&data, &frame, Displace::None, SurfaceParams::default());
-    let count = data.records.len() as u32;
-    let records = |rounding| lod_records(&case.lod().drawn_as(rounding), &data.records);
-    let pairs = [
-        (Rounding::Snapped, Rounding::SnappedInteger),
-        (Rounding::TessSnapped, Rounding::Integer),
-    ];
-    let mut understated = 0;
-    for (gliding, integer) in pairs {
-        let (lr, li) = (records(gliding), records(integer));
-        for px in [0.5, 1.0, 2.0, 4.0] {
-            let screen = Screen::new(&mesh, px);
-            let view = |rounding| {
-                LodView::new(&screen.view, Some(&screen.frustum), false, rounding, count)
-            };
-            let lv = view(gliding).with_lattice_bounds(true);
-            let levels = frame_levels(&lv, &lr);
-            let uniform = uniform_level(&lv, &lr, &levels);
-            // As any integer, from the same records, and what integer levels need of the same
-            // elements by their own records.
-            let any = uniform_level(&view(gliding), &lr, &levels);
-            let at_integers = uniform_level(&view(integer), &li, &levels);
-            eprintln!(
-                "loop{} at {px} px: uniform {uniform}, as any integer {any}, integer levels need {at_integers}",
-                rounding_name(gliding)
-            );
-            assert_eq!(uniform, any.next_power_of_two().min(screen.view.max_level));
-            assert!(uniform.is_power_of_two() && uniform <= screen.view.max_level);
-            understated += usize::from(any < at_integers && !any.is_power_of_two());
-        }
-    }
-    assert!(
-        understated > 0,
-        "any integer claimed nothing integer levels miss"
-    );
-}
-
 #[test]
 fn height_map_pixel_error_holds_end_to_end() {
     let (grid, _) = load_model("grid_uv_8x8.obj");
